@@ -1,0 +1,38 @@
+"""The pipeline: design file -> geometry -> statics -> verdicts -> DesignReport."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from furncheck.design import Design
+from furncheck.errors import DesignError
+from furncheck.geometry import analyze
+from furncheck.result import DesignReport
+from furncheck.statics import build_model, external_forces, solve_case
+from furncheck.validity import evaluate_case
+
+
+def check_design(design: Design) -> DesignReport:
+    """Validate a loaded design in every load case."""
+    geometry = analyze(design)
+    model = build_model(design, geometry)
+    violations = list(geometry.violations)
+    cases = []
+    for case in design.load_cases:
+        statics = solve_case(model, external_forces(model, case))
+        result, case_violations = evaluate_case(design, geometry, model, case, statics)
+        cases.append(result)
+        violations.extend(case_violations)
+    return DesignReport(design=design.source, name=design.name, valid=not violations,
+                        violations=tuple(violations), cases=tuple(cases), units=design.units)
+
+
+def check_file(path: str) -> DesignReport:
+    """Load and validate one file; an unreadable or ill-formed file gives an error report."""
+    from furncheck.design import load_design
+
+    try:
+        design = load_design(path)
+    except DesignError as error:
+        return DesignReport(design=path, name=Path(path).stem, valid=None, error=str(error))
+    return check_design(design)

@@ -1,0 +1,175 @@
+"""The frozen design model.  Everything inside is SI: metres, kilograms, newtons.
+
+A ``Design`` is what the loader returns and what geometry, statics and validity read.
+The file's own length unit is kept (``unit_scale``, metres per file unit) so reports can
+print positions the way the maker wrote them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+
+from furncheck.tolerances import GRAVITY
+
+Vec3 = tuple[float, float, float]
+
+
+def rotation_matrix(rotation_deg: Vec3) -> np.ndarray:
+    """R = Rz @ Ry @ Rx for rotations (degrees) about world x, then y, then z.
+
+    Returns (3, 3) float; columns are the plank's local x, y, z axes in world coordinates.
+    """
+    rx, ry, rz = np.radians(rotation_deg)
+    cx, sx, cy, sy, cz, sz = np.cos(rx), np.sin(rx), np.cos(ry), np.sin(ry), np.cos(rz), np.sin(rz)
+    r_x = np.array([[1.0, 0.0, 0.0], [0.0, cx, -sx], [0.0, sx, cx]])
+    r_y = np.array([[cy, 0.0, sy], [0.0, 1.0, 0.0], [-sy, 0.0, cy]])
+    r_z = np.array([[cz, -sz, 0.0], [sz, cz, 0.0], [0.0, 0.0, 1.0]])
+    return r_z @ r_y @ r_x
+
+
+@dataclass(frozen=True)
+class Material:
+    """Plank material and nail properties (SI)."""
+
+    thickness: float = 0.012      # m, default plank thickness
+    density: float = 750.0        # kg/m^3
+    nail_spacing: float = 0.020   # m between nails along a joint
+    nail_pull: float = 700.0      # N per nail
+    nail_shear: float = 190.0     # N per nail
+    friction: float = 0.5         # static Coulomb coefficient with the ground
+
+
+@dataclass(frozen=True)
+class Plank:
+    """A rigid box.  Local x = length, y = width, z = thickness (the face normal).
+
+    center   : world position of the box centre, m
+    rotation : degrees about world x, then y, then z (R = Rz @ Ry @ Rx)
+    """
+
+    id: str
+    length: float
+    width: float
+    thickness: float
+    center: Vec3
+    rotation: Vec3 = (0.0, 0.0, 0.0)
+
+    @cached_property
+    def rotation_matrix(self) -> np.ndarray:
+        """(3, 3): columns are local x, y, z in world coordinates."""
+        return rotation_matrix(self.rotation)
+
+    @cached_property
+    def center_array(self) -> np.ndarray:
+        """(3,) float, m."""
+        return np.asarray(self.center, dtype=float)
+
+    @cached_property
+    def half_extents(self) -> np.ndarray:
+        """(3,) float, m: half length, half width, half thickness."""
+        return 0.5 * np.array([self.length, self.width, self.thickness])
+
+    @property
+    def volume(self) -> float:
+        """m^3."""
+        return self.length * self.width * self.thickness
+
+    @cached_property
+    def corners(self) -> np.ndarray:
+        """(8, 3) float, m: world positions of the box corners (sign pattern of local axes
+        in the order ---, +--, -+-, ++-, --+, +-+, -++, +++)."""
+        signs = np.array([[sx, sy, sz] for sz in (-1, 1) for sy in (-1, 1) for sx in (-1, 1)],
+                         dtype=float)
+        return self.center_array + (signs * self.half_extents) @ self.rotation_matrix.T
+
+    def to_local(self, points: np.ndarray) -> np.ndarray:
+        """World points (n, 3) -> plank-local coordinates (n, 3)."""
+        return (np.asarray(points, dtype=float) - self.center_array) @ self.rotation_matrix
+
+
+@dataclass(frozen=True)
+class Load:
+    """One applied load (SI, world frame).
+
+    force : N; a mass m becomes (0, 0, -m g)
+    point : m, world point where it acts, or None for the plank centre
+    mass  : kg when the file gave a mass (kept for writing the file back), else None
+    """
+
+    plank: str
+    force: Vec3
+    point: Vec3 | None = None
+    mass: float | None = None
+
+    @staticmethod
+    def of_mass(plank: str, mass: float, point: Vec3 | None = None) -> "Load":
+        return Load(plank, (0.0, 0.0, -mass * GRAVITY), point, mass)
+
+
+@dataclass(frozen=True)
+class LoadCase:
+    """A named load case; self-weight is always added on top of ``loads``."""
+
+    name: str
+    loads: tuple[Load, ...] = ()
+
+
+@dataclass(frozen=True)
+class JointSpec:
+    """A joint listed in the file: two plank ids, optional explicit nail count."""
+
+    planks: tuple[str, str]
+    nails: int | None = None
+
+
+@dataclass(frozen=True)
+class Design:
+    """A checked design, SI inside.
+
+    source      : path as given by the user ('' when built in memory)
+    units       : the file's length unit, 'mm' or 'm'
+    unit_scale  : metres per file length unit (0.001 or 1.0)
+    joints      : listed joints, or None when they are detected from geometry
+    load_cases  : 'default' (from ``loads``) first, then ``load_cases`` in file order
+    tolerance   : m, geometric tolerance
+    lines       : key path -> 1-based line in the source file (YAML), for annotations
+    """
+
+    name: str
+    planks: tuple[Plank, ...]
+    load_cases: tuple[LoadCase, ...] = (LoadCase("default"),)
+    material: Material = Material()
+    joints: tuple[JointSpec, ...] | None = None
+    safety_factor: float = 1.0
+    tolerance: float = 0.0005
+    units: str = "mm"
+    unit_scale: float = 0.001
+    source: str = ""
+    lines: dict[str, int] = field(default_factory=dict, compare=False, repr=False)
+
+    def plank(self, plank_id: str) -> Plank:
+        for p in self.planks:
+            if p.id == plank_id:
+                return p
+        raise KeyError(plank_id)
+
+    @cached_property
+    def plank_index(self) -> dict[str, int]:
+        """plank id -> position in ``planks``."""
+        return {p.id: i for i, p in enumerate(self.planks)}
+
+    def plank_mass(self, plank: Plank) -> float:
+        """kg: density x volume."""
+        return self.material.density * plank.volume
+
+    def line_of(self, key: str) -> int | None:
+        """Source line of a key path, falling back to its closest recorded parent."""
+        while key:
+            if key in self.lines:
+                return self.lines[key]
+            cut = max(key.rfind("."), key.rfind("["))
+            key = key[:cut] if cut > 0 else ""
+        return None

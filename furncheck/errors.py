@@ -1,0 +1,53 @@
+"""Errors a user can cause, typed and carrying their data.
+
+They are turned into one line at the edge (the CLI, the reporters); the library never
+prints.  ``str(error)`` is that line: ``file:line: key.path: message``.
+"""
+
+from __future__ import annotations
+
+
+class FurncheckError(Exception):
+    """Base class of every error furncheck raises on purpose."""
+
+
+class DesignError(FurncheckError):
+    """A design file that cannot be read or is ill-formed.
+
+    file : the path as the user gave it
+    key  : key path inside the document, e.g. ``planks[1].size`` ('' for the whole file)
+    line : 1-based line in the file (YAML, or JSON syntax errors), or None
+    message : what is wrong, in words
+    """
+
+    def __init__(self, file: str, key: str, line: int | None, message: str):
+        self.file = file
+        self.key = key
+        self.line = line
+        self.message = message
+        super().__init__(self.one_line())
+
+    def one_line(self) -> str:
+        where = self.file if self.line is None else f"{self.file}:{self.line}"
+        return f"{where}: {self.key}: {self.message}" if self.key else f"{where}: {self.message}"
+
+
+class MechanismError(FurncheckError):
+    """The statics system has no unique solution: some planks are free to move.
+
+    planks : ids of the planks that form the free part
+    """
+
+    def __init__(self, planks: tuple[str, ...], message: str):
+        self.planks = tuple(planks)
+        self.message = message
+        super().__init__(message)
+
+
+class DofError(FurncheckError):
+    """An unknown or malformed DOF name given on the command line."""
+
+    def __init__(self, name: str, message: str):
+        self.name = name
+        self.message = message
+        super().__init__(f"{name}: {message}")

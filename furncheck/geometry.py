@@ -1,0 +1,389 @@
+"""Joints, ground contacts and connectivity of a design (contract section 2).
+
+A nail joint joins an *edge plank* (one of its four narrow faces rests on the other plank)
+to a *face plank* (its broad face receives the nails).  Everything here is SI (metres) and
+works for arbitrary plank rotations: faces are handled as oriented rectangles, the touching
+region is the edge face's projection clipped to the face plank's face.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from furncheck import tolerances as tol
+from furncheck.design.model import Design, Plank
+from furncheck.result import Violation
+
+_COS_MAX_TILT = float(np.cos(np.radians(tol.JOINT_MAX_TILT_DEG)))
+_GEOMETRY_EPS = 1e-9
+"""m: numeric slack added to the design's tolerance (which may be zero)."""
+
+
+@dataclass(frozen=True)
+class Joint:
+    """A nail joint.
+
+    planks : (first, second) plank ids as listed (auto-detected: (face, edge))
+    face, edge : the face plank and the edge plank
+    point  : (3,) m, centroid of the touching region
+    length : m, extent of the touching region along the joint line
+    nails  : nail count
+    frame  : (3, 3) world columns x (edge plank's thickness normal), y (joint line),
+             n (face plank's normal pointing into the edge plank)
+    edge_thickness : m, thickness t of the edge plank (the nail lever, contract section 3)
+    key    : key path of the listed joint ('joints[2]'), '' when auto-detected
+    """
+
+    planks: tuple[str, str]
+    face: str
+    edge: str
+    point: np.ndarray
+    length: float
+    nails: int
+    frame: np.ndarray
+    edge_thickness: float
+    key: str = ""
+
+    @property
+    def name(self) -> str:
+        return f"{self.planks[0]}/{self.planks[1]}"
+
+
+@dataclass(frozen=True)
+class Contact:
+    """A plank corner touching the ground; ``point`` (3,) m lies on z = 0."""
+
+    plank: str
+    point: np.ndarray
+
+
+@dataclass(frozen=True)
+class Geometry:
+    """What the statics needs, plus the geometric violations.
+
+    components : plank indices of each jointed group, in order of their first plank
+    grounded   : per component, whether any of its planks touches the ground
+    """
+
+    joints: tuple[Joint, ...]
+    contacts: tuple[Contact, ...]
+    components: tuple[tuple[int, ...], ...]
+    grounded: tuple[bool, ...]
+    violations: tuple[Violation, ...]
+
+
+@dataclass(frozen=True)
+class _Touch:
+    """A narrow face of ``edge`` found on a broad face of ``face`` (before nail counting)."""
+
+    face: Plank
+    edge: Plank
+    point: np.ndarray
+    length: float
+    frame: np.ndarray
+    gap: float          # m, signed distance of the edge face's nearest corner (< 0: inside)
+    alignment: float    # -(edge face normal . face normal), 1 when flush
+    area: float         # m^2 of the touching region
+
+
+def analyze(design: Design) -> Geometry:
+    """Detect or check joints, find ground contacts and connected components."""
+    violations: list[Violation] = []
+    if design.joints is None:
+        joints = _detect_joints(design)
+    else:
+        joints = _listed_joints(design, violations)
+    contacts = _ground_contacts(design, violations)
+    components = _components(design, joints)
+    plank_has_contact = {c.plank for c in contacts}
+    grounded = tuple(any(design.planks[i].id in plank_has_contact for i in comp)
+                     for comp in components)
+    _connectivity_violations(design, joints, components, grounded, violations)
+    return Geometry(tuple(joints), tuple(contacts), components, grounded, tuple(violations))
+
+
+# --- joints ----------------------------------------------------------------------------------
+
+def nail_count(length: float, spacing: float) -> int:
+    """max(1, floor(L / spacing)), with a little slack against round-off (300/20 -> 15)."""
+    return max(1, int(np.floor(length / spacing * (1.0 + tol.NAIL_COUNT_EPS))))
+
+
+def _detect_joints(design: Design) -> list[Joint]:
+    slack = design.tolerance + _GEOMETRY_EPS
+    lo, hi = _bounding_boxes(design.planks)
+    overlap = np.all((lo[:, None, :] <= hi[None, :, :] + slack)
+                     & (lo[None, :, :] <= hi[:, None, :] + slack), axis=2)
+    pairs = np.argwhere(np.triu(overlap, k=1))
+    best = _best_touches(design, pairs, slack, keep_deep=False)
+    joints = []
+    for i, j in pairs:
+        touch = best.get((int(i), int(j)))
+        if touch is not None and touch.gap >= -slack:
+            nails = nail_count(touch.length, design.material.nail_spacing)
+            joints.append(_joint_from_touch(touch, (touch.face.id, touch.edge.id), nails, ""))
+    return joints
+
+
+def _listed_joints(design: Design, violations: list[Violation]) -> list[Joint]:
+    slack = design.tolerance + _GEOMETRY_EPS
+    specs = design.joints or ()
+    pairs = np.array([[design.plank_index[a], design.plank_index[b]] for a, b in
+                      (spec.planks for spec in specs)], dtype=int).reshape(-1, 2)
+    best = _best_touches(design, pairs, slack, keep_deep=True)
+    joints = []
+    for index, (spec, (i, j)) in enumerate(zip(specs, pairs)):
+        key = f"joints[{index}]"
+        touch = best.get((int(i), int(j)))
+        name = f"{spec.planks[0]}/{spec.planks[1]}"
+        line = design.line_of(key)
+        if touch is None:
+            gap = _plank_gap(design.planks[i], design.planks[j])
+            violations.append(Violation(
+                "disconnected", name, None,
+                f"planks do not touch: no end face of one lies on a face of the other "
+                f"(closest corners {_fmt_len(gap, design)} apart)", line))
+            continue
+        if touch.gap < -slack:
+            violations.append(Violation(
+                "disconnected", name, None,
+                f"planks interpenetrate by {_fmt_len(-touch.gap, design)}, more than the "
+                f"tolerance {_fmt_len(design.tolerance, design)}", line))
+            continue
+        nails = spec.nails or nail_count(touch.length, design.material.nail_spacing)
+        joints.append(_joint_from_touch(touch, spec.planks, nails, key))
+    return joints
+
+
+def _joint_from_touch(touch: _Touch, planks: tuple[str, str], nails: int, key: str) -> Joint:
+    return Joint(planks=tuple(planks), face=touch.face.id, edge=touch.edge.id,
+                 point=touch.point, length=touch.length, nails=nails, frame=touch.frame,
+                 edge_thickness=touch.edge.thickness, key=key)
+
+
+@dataclass(frozen=True)
+class _Faces:
+    """Face tables of all planks (n planks).
+
+    narrow_normal (n, 4, 3), narrow_corners (n, 4, 4, 3), narrow_long (n, 4, 3) unit joint
+    line of each narrow face; broad_normal (n, 2, 3), broad_offset (n, 2) = n . face centre.
+    Narrow faces in the order +x, -x, +y, -y of the plank's local axes; broad faces +z, -z.
+    """
+
+    narrow_normal: np.ndarray
+    narrow_corners: np.ndarray
+    narrow_long: np.ndarray
+    broad_normal: np.ndarray
+    broad_offset: np.ndarray
+    centers: np.ndarray
+
+
+def _face_tables(planks: tuple[Plank, ...]) -> _Faces:
+    rot = np.stack([p.rotation_matrix for p in planks])          # (n, 3, 3) columns = axes
+    half = np.stack([p.half_extents for p in planks])            # (n, 3)
+    centers = np.stack([p.center_array for p in planks])         # (n, 3)
+    axes, signs, longs = [0, 0, 1, 1], np.array([1.0, -1.0, 1.0, -1.0]), [1, 1, 0, 0]
+    normal = np.transpose(rot[:, :, axes], (0, 2, 1)) * signs[None, :, None]
+    face_center = centers[:, None, :] + normal * half[:, axes][:, :, None]
+    long_unit = np.transpose(rot[:, :, longs], (0, 2, 1))
+    u = long_unit * half[:, longs][:, :, None]                   # (n, 4, 3)
+    w = (rot[:, :, 2] * half[:, 2:3])[:, None, :]                # (n, 1, 3)
+    corners = face_center[:, :, None, :] + np.stack([u + w, -u + w, -u - w, u - w], axis=2)
+    broad_normal = rot[:, :, 2][:, None, :] * np.array([1.0, -1.0])[None, :, None]
+    broad_center = centers[:, None, :] + broad_normal * half[:, 2][:, None, None]
+    broad_offset = np.einsum("nga,nga->ng", broad_normal, broad_center)
+    return _Faces(normal, corners, long_unit, broad_normal, broad_offset, centers)
+
+
+def _best_touches(design: Design, pairs: np.ndarray, slack: float, keep_deep: bool) -> dict:
+    """For each plank pair (i, j), the best narrow-face-on-broad-face contact either way
+    round: contacts within the slack beat deeper ones, then the flushest, then the largest.
+    ``keep_deep`` keeps faces sunk deeper than the slack (to report interpenetration)."""
+    if len(pairs) == 0:
+        return {}
+    faces = _face_tables(design.planks)
+    ordered = np.vstack([pairs, pairs[:, ::-1]])                 # (edge, face) both ways
+    edge, face = ordered[:, 0], ordered[:, 1]
+    alignment = -np.einsum("pfa,pga->pfg", faces.narrow_normal[edge], faces.broad_normal[face])
+    heights = (np.einsum("pfca,pga->pfgc", faces.narrow_corners[edge], faces.broad_normal[face])
+               - faces.broad_offset[face][:, None, :, None])
+    gap = heights.min(axis=3)                                     # (P, 4, 2)
+    outside = (np.einsum("pa,pga->pg", faces.centers[edge], faces.broad_normal[face])
+               - faces.broad_offset[face]) >= 0.0
+    candidates = (alignment >= _COS_MAX_TILT) & (gap <= slack) & outside[:, None, :]
+    if not keep_deep:
+        candidates &= gap >= -slack
+    best: dict[tuple[int, int], _Touch] = {}
+    n_pairs = len(pairs)
+    for p, f, g in np.argwhere(candidates):
+        touch = _touch_region(design.planks[face[p]], design.planks[edge[p]],
+                              faces.narrow_corners[edge[p], f], faces.narrow_long[edge[p], f],
+                              faces.broad_normal[face[p], g], float(gap[p, f, g]),
+                              float(alignment[p, f, g]))
+        if touch is None:
+            continue
+        key = tuple(int(v) for v in pairs[p % n_pairs])
+        rank = (touch.gap >= -slack, round(touch.alignment, 9), touch.area)
+        current = best.get(key)
+        if current is None or rank > (current.gap >= -slack, round(current.alignment, 9),
+                                      current.area):
+            best[key] = touch
+    return best
+
+
+def _touch_region(face: Plank, edge: Plank, corners: np.ndarray, joint_dir: np.ndarray,
+                  n_face: np.ndarray, gap: float, alignment: float) -> _Touch | None:
+    """Clip the edge face's projection (corners (4, 3)) to the face plank's broad face."""
+    r_f = face.rotation_matrix
+    h_f = face.half_extents
+    face_center = face.center_array + h_f[2] * n_face
+    local = (corners - face_center) @ r_f[:, :2]          # (4, 2) in the face's plane
+    polygon = _clip_to_rectangle(local, h_f[0], h_f[1])
+    if len(polygon) < 3:
+        return None
+    area, centroid = _polygon_area_centroid(polygon)
+    face_area = 4.0 * edge.half_extents[2] * max(edge.half_extents[0], edge.half_extents[1])
+    if area <= tol.MIN_JOINT_AREA_FRACTION * face_area:
+        return None
+    along = joint_dir - (joint_dir @ n_face) * n_face
+    along /= np.linalg.norm(along)
+    extent = polygon @ (along @ r_f[:, :2])
+    length = float(extent.max() - extent.min())
+    point = face_center + r_f[:, :2] @ centroid
+    x_axis = edge.rotation_matrix[:, 2] - (edge.rotation_matrix[:, 2] @ n_face) * n_face
+    x_axis /= np.linalg.norm(x_axis)
+    y_axis = np.array([n_face[1] * x_axis[2] - n_face[2] * x_axis[1],
+                       n_face[2] * x_axis[0] - n_face[0] * x_axis[2],
+                       n_face[0] * x_axis[1] - n_face[1] * x_axis[0]])     # n x x
+    frame = np.column_stack([x_axis, y_axis, n_face])
+    return _Touch(face, edge, point, length, frame, gap, alignment, area)
+
+
+def _clip_to_rectangle(polygon: np.ndarray, half_x: float, half_y: float) -> np.ndarray:
+    """Sutherland-Hodgman clip of a convex polygon (k, 2) to |x| <= half_x, |y| <= half_y."""
+    points = [tuple(p) for p in polygon]
+    for axis, bound in ((0, half_x), (0, -half_x), (1, half_y), (1, -half_y)):
+        sign = 1.0 if bound > 0 else -1.0
+        limit = abs(bound)
+        kept = []
+        for k, current in enumerate(points):
+            previous = points[k - 1]
+            cur_in = sign * current[axis] <= limit
+            prev_in = sign * previous[axis] <= limit
+            if cur_in != prev_in:
+                t = (sign * limit - previous[axis]) / (current[axis] - previous[axis])
+                kept.append((previous[0] + t * (current[0] - previous[0]),
+                             previous[1] + t * (current[1] - previous[1])))
+            if cur_in:
+                kept.append(current)
+        points = kept
+        if not points:
+            break
+    return np.array(points, dtype=float).reshape(-1, 2)
+
+
+def _polygon_area_centroid(polygon: np.ndarray) -> tuple[float, np.ndarray]:
+    """Area (m^2) and centroid (2,) of a simple polygon (k, 2) by the shoelace formula."""
+    x, y = polygon[:, 0], polygon[:, 1]
+    x1, y1 = np.r_[x[1:], x[:1]], np.r_[y[1:], y[:1]]
+    cross = x * y1 - x1 * y
+    signed = 0.5 * cross.sum()
+    if abs(signed) < 1e-30:
+        return 0.0, polygon.mean(axis=0)
+    cx = ((x + x1) * cross).sum() / (6.0 * signed)
+    cy = ((y + y1) * cross).sum() / (6.0 * signed)
+    return abs(float(signed)), np.array([cx, cy])
+
+
+def _bounding_boxes(planks: tuple[Plank, ...]) -> tuple[np.ndarray, np.ndarray]:
+    """World axis-aligned boxes (n, 3) lower and upper corners."""
+    corners = np.stack([p.corners for p in planks])
+    return corners.min(axis=1), corners.max(axis=1)
+
+
+def _plank_gap(a: Plank, b: Plank) -> float:
+    """m: smallest distance between the two planks' corners (a readable 'how far off')."""
+    diff = a.corners[:, None, :] - b.corners[None, :, :]
+    return float(np.sqrt((diff ** 2).sum(axis=2)).min())
+
+
+# --- ground, components ------------------------------------------------------------------------
+
+def _ground_contacts(design: Design, violations: list[Violation]) -> list[Contact]:
+    """Corners with z <= tolerance touch the ground; those below -tolerance penetrate it."""
+    slack = design.tolerance + _GEOMETRY_EPS
+    contacts = []
+    for index, plank in enumerate(design.planks):
+        z = plank.corners[:, 2]
+        for corner in plank.corners[z <= slack]:
+            contacts.append(Contact(plank.id, np.array([corner[0], corner[1], 0.0])))
+        if z.min() < -slack:
+            deepest = plank.corners[int(np.argmin(z))]
+            violations.append(Violation(
+                "penetration", plank.id, None,
+                f"corner at {_fmt_point(deepest, design)} is {_fmt_len(-deepest[2], design)} "
+                f"below the ground (tolerance {_fmt_len(design.tolerance, design)})",
+                design.line_of(f"planks[{index}].center")))
+    return contacts
+
+
+def _components(design: Design, joints: list[Joint]) -> tuple[tuple[int, ...], ...]:
+    """Connected groups of planks through joints (union-find), each sorted."""
+    parent = list(range(len(design.planks)))
+
+    def root(k: int) -> int:
+        while parent[k] != k:
+            parent[k] = parent[parent[k]]
+            k = parent[k]
+        return k
+
+    for joint in joints:
+        a, b = (design.plank_index[pid] for pid in joint.planks)
+        ra, rb = root(a), root(b)
+        if ra != rb:
+            parent[max(ra, rb)] = min(ra, rb)
+    groups: dict[int, list[int]] = {}
+    for k in range(len(design.planks)):
+        groups.setdefault(root(k), []).append(k)
+    return tuple(tuple(g) for g in sorted(groups.values()))
+
+
+def _connectivity_violations(design: Design, joints: list[Joint],
+                             components: tuple[tuple[int, ...], ...],
+                             grounded: tuple[bool, ...], violations: list[Violation]) -> None:
+    if len(design.planks) > 1:
+        joined = {pid for joint in joints for pid in joint.planks}
+        listed = {pid for spec in design.joints or () for pid in spec.planks}
+        for index, plank in enumerate(design.planks):
+            if plank.id not in joined and plank.id not in listed:
+                violations.append(Violation(
+                    "disconnected", plank.id, None,
+                    "plank is joined to no other plank (no end face rests on a neighbour's "
+                    "face, and no neighbour's end face rests on it)",
+                    design.line_of(f"planks[{index}]")))
+    for component, is_grounded in zip(components, grounded):
+        if not is_grounded:
+            ids = [design.planks[i].id for i in component]
+            lowest = min(float(design.planks[i].corners[:, 2].min()) for i in component)
+            violations.append(Violation(
+                "floating", ",".join(ids), None,
+                f"{_plural(len(ids), 'plank')} touch the ground nowhere (lowest corner "
+                f"{_fmt_len(lowest, design)} above it)",
+                design.line_of(f"planks[{component[0]}]")))
+
+
+# --- formatting helpers for messages ------------------------------------------------------------
+
+def _fmt_len(value_m: float, design: Design) -> str:
+    return f"{value_m / design.unit_scale:.4g} {design.units}"
+
+
+def _fmt_point(point_m: np.ndarray, design: Design) -> str:
+    coords = ", ".join(f"{v / design.unit_scale:.4g}" for v in point_m)
+    return f"({coords}) {design.units}"
+
+
+def _plural(n: int, word: str) -> str:
+    return f"{n} {word}s" if n != 1 else f"1 {word}"

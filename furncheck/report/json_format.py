@@ -1,0 +1,70 @@
+"""``--format json``: exactly the schema of contract section 4.
+
+Keys are written in the contract's order; floats are rounded by ``numbers.json_ready``
+(REPORT_SIGNIFICANT_DIGITS significant digits, -0.0 as 0.0, nan/inf as null), so the same
+batch always gives byte-identical text.  (The module is not called ``json.py`` so that it
+does not shadow the standard library for tools that run from this folder.)
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+from furncheck.report.numbers import json_ready
+from furncheck.result import BatchReport, CaseResult, ContactResult, DesignReport, JointResult
+
+
+def render(batch: BatchReport) -> str:
+    """The batch as a JSON document: ``{"reports": [...], "summary": {...}}``, indent 2."""
+    document = {
+        "reports": [report_dict(report) for report in batch.reports],
+        "summary": dict(batch.summary),
+    }
+    return json.dumps(json_ready(document), indent=2, allow_nan=False) + "\n"
+
+
+def report_dict(report: DesignReport) -> dict[str, Any]:
+    """One design's entry; an errored input has ``error`` and no ``valid``."""
+    if report.error is not None:
+        return {"design": report.design, "name": report.name, "error": report.error}
+    return {
+        "design": report.design,
+        "name": report.name,
+        "valid": report.valid,
+        "violations": [
+            {"kind": v.kind, "where": v.where, "case": v.case, "message": v.message}
+            for v in report.violations
+        ],
+        "cases": [_case_dict(case) for case in report.cases],
+    }
+
+
+def _case_dict(case: CaseResult) -> dict[str, Any]:
+    return {
+        "name": case.name,
+        "durable": case.durable,
+        "stable": case.stable,
+        "joints": [_joint_dict(joint) for joint in case.joints],
+        "contacts": [_contact_dict(contact) for contact in case.contacts],
+    }
+
+
+def _joint_dict(joint: JointResult) -> dict[str, Any]:
+    return {
+        "planks": list(joint.planks),
+        "point": list(joint.point),
+        "nails": joint.nails,
+        "force": list(joint.force),
+        "moment": list(joint.moment),
+        "pull": joint.pull,
+        "shear": joint.shear,
+        "pull_capacity": joint.pull_capacity,
+        "shear_capacity": joint.shear_capacity,
+        "utilization": joint.utilization,
+        "durable": joint.durable,
+    }
+
+
+def _contact_dict(contact: ContactResult) -> dict[str, Any]:
+    return {"plank": contact.plank, "point": list(contact.point), "force": list(contact.force)}

@@ -1,0 +1,72 @@
+"""Numbers in reports: rounded once, the same way, by every reporter.
+
+Reports promise byte-identical output for the same input (contract section 4), so floats
+are rounded to ``REPORT_SIGNIFICANT_DIGITS`` significant digits before they are written:
+the last bits of a linear solve never leak into a report.  ``-0.0`` is written as ``0.0``.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from collections.abc import Mapping
+from typing import Any
+
+from furncheck.tolerances import REPORT_SIGNIFICANT_DIGITS
+
+
+def round_significant(value: float, digits: int = REPORT_SIGNIFICANT_DIGITS) -> float:
+    """``value`` rounded to ``digits`` significant digits, with -0.0 turned into 0.0.
+
+    Non-finite values (nan, inf) are returned unchanged.
+    """
+    value = float(value)
+    if not math.isfinite(value):
+        return value
+    return float(f"{value:.{digits}g}") + 0.0  # + 0.0 turns -0.0 into 0.0
+
+
+def json_ready(value: Any) -> Any:
+    """A copy of ``value`` that ``json.dumps`` writes deterministically.
+
+    Floats are rounded (``round_significant``); non-finite floats become None (JSON has no
+    nan/inf); ints and bools stay as they are; tuples become lists; mappings keep their key
+    order.  numpy scalars and arrays are accepted through their ``item``/``tolist`` methods,
+    so this module never imports numpy.
+    """
+    if value is None or isinstance(value, (bool, str)):
+        return value
+    if isinstance(value, numbers.Integral):
+        return int(value)
+    if isinstance(value, numbers.Real):
+        rounded = round_significant(float(value))
+        return rounded if math.isfinite(rounded) else None
+    if isinstance(value, Mapping):
+        return {str(key): json_ready(item) for key, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [json_ready(item) for item in value]
+    if hasattr(value, "tolist"):  # numpy array or scalar
+        return json_ready(value.tolist())
+    raise TypeError(f"cannot write a {type(value).__name__} into a report")
+
+
+def format_number(value: float, digits: int = REPORT_SIGNIFICANT_DIGITS) -> str:
+    """``value`` for human eyes: rounded like JSON, no trailing zeros (``812``, ``0.125``)."""
+    value = float(value)
+    if not math.isfinite(value):
+        return str(value)
+    return f"{round_significant(value, digits):.{digits}g}"
+
+
+def format_percent(fraction: float) -> str:
+    """A utilization (1.0 = at capacity) as a percentage: ``'42 %'``, ``'0.35 %'``.
+
+    Whole percents from 1 % up (the capacity check itself is exact; this is for reading);
+    two significant digits below, so a lightly loaded joint does not read as 0 %.
+    """
+    percent = float(fraction) * 100.0
+    if not math.isfinite(percent):
+        return f"{percent} %"
+    if abs(percent) >= 1.0 or percent == 0.0:
+        return f"{percent:.0f} %"
+    return f"{round_significant(percent, 2):.2g} %"

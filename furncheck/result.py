@@ -1,0 +1,120 @@
+"""Result values: what validating a design produces, independent of any output format.
+
+Positions are in the design file's length unit; forces in N, moments in N m, world frame.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from furncheck import exitcodes
+
+VIOLATION_KINDS = ("disconnected", "penetration", "floating", "non-durable", "lift-off", "sliding")
+
+
+@dataclass(frozen=True)
+class Violation:
+    """One reason a design is invalid.
+
+    kind    : one of VIOLATION_KINDS
+    where   : 'a/b' for a joint, a plank id, or a list of plank ids joined by ','
+    case    : load case name, or None for geometric violations that hold in every case
+    message : the numbers, in words
+    line    : source line of the offending key (for annotations), or None
+    """
+
+    kind: str
+    where: str
+    case: str | None
+    message: str
+    line: int | None = field(default=None, compare=False)
+
+
+@dataclass(frozen=True)
+class JointResult:
+    """A joint's wrench and durability in one load case.
+
+    planks   : (first, second) as listed; force/moment are what the first exerts on the second
+    point    : joint point, file length unit
+    force    : (3,) N, world frame
+    moment   : (3,) N m, world frame, about ``point``
+    pull, shear : N per nail (contract section 3)
+    """
+
+    planks: tuple[str, str]
+    point: tuple[float, float, float]
+    nails: int
+    force: tuple[float, float, float]
+    moment: tuple[float, float, float]
+    pull: float
+    shear: float
+    pull_capacity: float
+    shear_capacity: float
+    utilization: float
+    durable: bool
+
+
+@dataclass(frozen=True)
+class ContactResult:
+    """The ground's force on a plank at one contact corner (N, world; z is normal)."""
+
+    plank: str
+    point: tuple[float, float, float]
+    force: tuple[float, float, float]
+
+
+@dataclass(frozen=True)
+class CaseResult:
+    """One load case.  ``stability`` is 'stable', 'lift-off', 'sliding' or 'unsolved'."""
+
+    name: str
+    durable: bool
+    stable: bool
+    joints: tuple[JointResult, ...]
+    contacts: tuple[ContactResult, ...]
+    stability: str = "stable"
+
+    @property
+    def worst_joint(self) -> JointResult | None:
+        """The joint with the highest utilization (first listed on ties)."""
+        best = None
+        for joint in self.joints:
+            if best is None or joint.utilization > best.utilization:
+                best = joint
+        return best
+
+
+@dataclass(frozen=True)
+class DesignReport:
+    """The verdict on one input file.  ``error`` set means it could not be read or checked;
+    then ``valid`` is None and there are no cases."""
+
+    design: str
+    name: str
+    valid: bool | None
+    violations: tuple[Violation, ...] = ()
+    cases: tuple[CaseResult, ...] = ()
+    error: str | None = None
+    units: str = "mm"
+
+
+@dataclass(frozen=True)
+class BatchReport:
+    """Reports of a whole ``validate`` run, in input order."""
+
+    reports: tuple[DesignReport, ...]
+
+    @property
+    def summary(self) -> dict[str, int]:
+        return {
+            "designs": len(self.reports),
+            "valid": sum(1 for r in self.reports if r.valid is True),
+            "invalid": sum(1 for r in self.reports if r.valid is False),
+            "errors": sum(1 for r in self.reports if r.error is not None),
+        }
+
+    @property
+    def return_code(self) -> int:
+        """The exit code of ``furncheck validate`` for this batch (see ``exitcodes``)."""
+        summary = self.summary
+        return exitcodes.validate_code(summary["errors"] > 0, summary["invalid"] > 0)

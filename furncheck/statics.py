@@ -1,0 +1,489 @@
+"""Static equilibrium of rigid planks: the paper's mixed formulation (section 5.1).
+
+Unknowns are a small rigid displacement per plank, q_i = (u_i, theta_i) (m, rad, about the
+plank centre), and the wrench of every nail joint, h_j = (h^t, h^r) (N, N m, world frame,
+what the joint's first plank exerts on its second, moment about the joint point).  With
+G the linearized joint deviation map (d = G q) and E = diag(eps^t, eps^r) the joint
+compliances, stationarity of the potential energy (paper eq. 3) is the sparse system
+
+    [ K_c  G^T ] [q]   [f]
+    [ G    -E  ] [h] = [0]
+
+where f holds self-weight and loads (force, moment about each centre) and K_c the ground
+contact springs.  Contacts are unilateral penalty springs with friction anchors (section 5.2):
+a contact is *stick* (three springs to its anchor), *slip* (normal spring; friction mu N along
+a fixed direction, i.e. the anchor relocated to the cone's edge) or *lifted* (no force).  An
+active-set loop switches contacts until every force is admissible.  When that loop cannot
+finish, small linear programs decide whether any admissible equilibrium exists at all, so
+the verdicts 'lift-off' and 'sliding' mean exactly what contract section 3 says.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from furncheck import tolerances as tol
+from furncheck.design.model import Design, LoadCase
+from furncheck.geometry import Geometry
+
+STICK, SLIP, LIFT = 0, 1, 2
+_SIX = np.arange(6)
+
+
+@dataclass(frozen=True)
+class StaticsModel:
+    """The load-independent part of a design's statics.
+
+    planks   : design plank indices taking part (those of grounded components)
+    joints   : geometry joint indices taking part
+    contacts : geometry contact indices taking part
+    G        : (6 nJ, 6 nP) sparse joint deviation map
+    contact_maps : (nK, 3, 6) displacement of each contact point from its plank's q
+    contact_plank : (nK,) local plank number of each contact
+    contact_component : (nK,) component number of each contact
+    components : local plank numbers of each grounded component
+    """
+
+    design: Design
+    geometry: Geometry
+    planks: tuple[int, ...]
+    joints: tuple[int, ...]
+    contacts: tuple[int, ...]
+    G: sp.csr_matrix
+    compliance: np.ndarray
+    contact_maps: np.ndarray
+    contact_plank: np.ndarray
+    contact_points: np.ndarray
+    contact_component: np.ndarray
+    components: tuple[tuple[int, ...], ...]
+    friction: float
+
+    @property
+    def n_dof(self) -> int:
+        return 6 * len(self.planks)
+
+    @cached_property
+    def fixed_triplets(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """COO rows, columns, values of the contact-independent part [[0, G^T], [G, -E]]."""
+        G = self.G.tocoo()
+        n, m = self.n_dof, G.shape[0]
+        diagonal = n + np.arange(m)
+        rows = np.concatenate([G.col, n + G.row, diagonal])
+        cols = np.concatenate([n + G.row, G.col, diagonal])
+        vals = np.concatenate([G.data, G.data, -self.compliance])
+        return rows, cols, vals
+
+
+@dataclass(frozen=True)
+class CaseStatics:
+    """Solution of one load case.
+
+    stability : 'stable', 'lift-off', 'sliding', or 'mechanism' (no force state could be
+                computed: the planks are free to move even when held at every contact)
+    joint_wrenches : (nJ, 6) force N and moment N m per model joint, or None (mechanism)
+    contact_forces : (nK, 3) N, the ground's force on each model contact, or None
+    culprits  : plank ids whose contacts lift or slide (for messages)
+    detail    : a sentence with the numbers behind an unstable verdict
+    """
+
+    stability: str
+    joint_wrenches: np.ndarray | None
+    contact_forces: np.ndarray | None
+    culprits: tuple[str, ...] = ()
+    detail: str = ""
+
+
+def build_model(design: Design, geometry: Geometry) -> StaticsModel:
+    """Assemble G, the compliances and the contact maps for the grounded components."""
+    grounded_planks = sorted(i for comp, g in zip(geometry.components, geometry.grounded)
+                             if g for i in comp)
+    local = {plank: k for k, plank in enumerate(grounded_planks)}
+    joints = [j for j, joint in enumerate(geometry.joints)
+              if design.plank_index[joint.planks[0]] in local]
+    plank_of = {design.planks[i].id: i for i in grounded_planks}
+    contacts = [k for k, c in enumerate(geometry.contacts) if c.plank in plank_of]
+
+    G = _joint_map(design, geometry, joints, local)
+    compliance = np.tile(np.r_[np.full(3, tol.JOINT_COMPLIANCE_T),
+                               np.full(3, tol.JOINT_COMPLIANCE_R)], len(joints))
+
+    maps, owner, points = [], [], []
+    for k in contacts:
+        contact = geometry.contacts[k]
+        plank_index = design.plank_index[contact.plank]
+        maps.append(_point_map(contact.point - design.planks[plank_index].center_array))
+        owner.append(local[plank_index])
+        points.append(contact.point)
+    components = tuple(tuple(local[i] for i in comp)
+                       for comp, g in zip(geometry.components, geometry.grounded) if g)
+    component_of = {p: c for c, comp in enumerate(components) for p in comp}
+    return StaticsModel(
+        design=design, geometry=geometry, planks=tuple(grounded_planks), joints=tuple(joints),
+        contacts=tuple(contacts), G=G, compliance=compliance,
+        contact_maps=np.array(maps).reshape(-1, 3, 6),
+        contact_plank=np.array(owner, dtype=int),
+        contact_points=np.array(points).reshape(-1, 3),
+        contact_component=np.array([component_of[p] for p in owner], dtype=int),
+        components=components, friction=design.material.friction)
+
+
+def _joint_map(design: Design, geometry: Geometry, joints: list[int],
+               local: dict[int, int]) -> sp.csr_matrix:
+    """(6 nJ, 6 nP) linearized joint deviations d = G q (paper eq. 1, small rotations):
+
+        d^t = (u_a + theta_a x r_a) - (u_b + theta_b x r_b),   d^r = theta_a - theta_b
+
+    with a, b the joint's first and second plank and r = joint point - plank centre.
+    """
+    n_joints = len(joints)
+    if n_joints == 0:
+        return sp.csr_matrix((0, 6 * len(local)))
+    points = np.array([geometry.joints[j].point for j in joints])
+    rows, cols, vals = [], [], []
+    for side, position in ((1.0, 0), (-1.0, 1)):
+        planks = np.array([design.plank_index[geometry.joints[j].planks[position]]
+                           for j in joints])
+        centres = np.array([design.planks[i].center_array for i in planks])
+        blocks = np.zeros((n_joints, 6, 6))
+        blocks[:, :3, :3] = np.eye(3)
+        blocks[:, :3, 3:] = -_skew_many(points - centres)
+        blocks[:, 3:, 3:] = np.eye(3)
+        base_col = 6 * np.array([local[i] for i in planks])
+        rows.append(np.broadcast_to(6 * np.arange(n_joints)[:, None, None] + _SIX[None, :, None],
+                                    blocks.shape).ravel())
+        cols.append(np.broadcast_to(base_col[:, None, None] + _SIX[None, None, :],
+                                    blocks.shape).ravel())
+        vals.append(side * blocks.ravel())
+    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                         shape=(6 * n_joints, 6 * len(local)))
+
+
+def external_forces(model: StaticsModel, case: LoadCase) -> np.ndarray:
+    """(6 nP,) self-weight and the case's loads: force (N) and moment about the centre (N m)."""
+    design = model.design
+    f = np.zeros(model.n_dof)
+    local = {design.planks[i].id: k for k, i in enumerate(model.planks)}
+    for k, i in enumerate(model.planks):
+        plank = design.planks[i]
+        f[6 * k + 2] -= design.plank_mass(plank) * tol.GRAVITY
+    for load in case.loads:
+        if load.plank not in local:
+            continue
+        k = local[load.plank]
+        plank = design.planks[model.planks[k]]
+        force = np.asarray(load.force, dtype=float)
+        f[6 * k:6 * k + 3] += force
+        if load.point is not None:
+            f[6 * k + 3:6 * k + 6] += np.cross(np.asarray(load.point) - plank.center_array, force)
+    return f
+
+
+def solve_case(model: StaticsModel, f: np.ndarray) -> CaseStatics:
+    """Equilibrium of one load case with unilateral, frictional ground contacts."""
+    if not model.planks:
+        return CaseStatics("stable", np.zeros((0, 6)), np.zeros((0, 3)))
+    scale = _force_scale(model, f)
+    solver = _ActiveSet(model, f, scale)
+    normal = solver.normal_phase(np.full(len(model.contacts), STICK))
+    if normal is None:
+        feasible, support = _unilateral_support(model, f)
+        if feasible:
+            normal = solver.normal_phase(np.where(support, STICK, LIFT))
+        if normal is None:
+            return solver.unstable("lift-off" if not feasible else "mechanism")
+    status, solution = normal
+    if solver.within_cones(solution, status):
+        return solver.stable(solution)
+    frictional = solver.friction_phase(status)
+    if frictional is not None:
+        return solver.stable(frictional[1])
+    if not _cone_feasible(model, f):
+        return solver.sliding(solution, status)
+    # An admissible equilibrium exists but the anchor iteration did not reach it; report the
+    # sticking state, whose verdict the feasibility program has settled.
+    return solver.stable(solution)
+
+
+@dataclass
+class _Solution:
+    q: np.ndarray
+    h: np.ndarray
+    contact_forces: np.ndarray
+    contact_displacements: np.ndarray
+
+
+class _ActiveSet:
+    """Contact state iterations for one load case (statuses STICK, SLIP, LIFT)."""
+
+    def __init__(self, model: StaticsModel, f: np.ndarray, scale: float):
+        self.model = model
+        self.f = f
+        self.force_tol = tol.FORCE_REL_TOL * scale
+        self.disp_tol = self.force_tol / tol.CONTACT_STIFFNESS
+        self.directions = np.zeros((len(model.contacts), 2))
+        self.mu = model.friction
+
+    # -- phases --------------------------------------------------------------------------
+    def normal_phase(self, status: np.ndarray):
+        """Lift contacts that pull, re-seat those that sink, friction unlimited."""
+        status = status.copy()
+        seen = set()
+        for _ in range(tol.CONTACT_ITERATIONS):
+            key = status.tobytes()
+            if key in seen:
+                return None
+            seen.add(key)
+            solution = self.solve(status)
+            if solution is None:
+                return None
+            if not self._update_normals(solution, status):
+                return status, solution
+        return None
+
+    def friction_phase(self, status: np.ndarray):
+        """Relocate friction anchors of contacts outside their cone until all are inside."""
+        status = status.copy()
+        for _ in range(tol.CONTACT_ITERATIONS):
+            solution = self.solve(status)
+            if solution is None:
+                return None
+            if self._update_normals(solution, status):
+                continue
+            if not self._update_friction(solution, status):
+                return status, solution
+        return None
+
+    # -- results -----------------------------------------------------------------------------
+    def stable(self, solution: _Solution) -> CaseStatics:
+        return CaseStatics("stable", _wrenches(solution.h), solution.contact_forces)
+
+    def sliding(self, solution: _Solution, status: np.ndarray) -> CaseStatics:
+        forces = solution.contact_forces
+        tangential = np.hypot(forces[:, 0], forces[:, 1])
+        over = tangential > self.mu * forces[:, 2] + self.force_tol
+        horizontal = float(np.hypot(*forces[:, :2].sum(axis=0)))
+        capacity = self.mu * float(forces[:, 2].sum())
+        detail = (f"no equilibrium within the friction cones (mu = {self.mu:g}): the ground "
+                  f"must hold {horizontal:.4g} N sideways, friction gives at most about "
+                  f"{capacity:.4g} N")
+        return CaseStatics("sliding", _wrenches(solution.h), forces,
+                           self._plank_ids(over), detail)
+
+    def unstable(self, stability: str) -> CaseStatics:
+        """Report a case without admissible equilibrium: forces as if bolted to the ground."""
+        bolted = self.solve(np.full(len(self.model.contacts), STICK))
+        if bolted is None:
+            return CaseStatics("mechanism", None, None, (),
+                               "the planks rest on too few ground points to be held even if "
+                               "bolted down (all contacts on one line)")
+        pulling = bolted.contact_forces[:, 2] < -self.force_tol
+        if stability == "lift-off":
+            detail = ("no equilibrium with the ground only pushing: the load's line of action "
+                      "falls outside the support polygon, the design topples "
+                      f"(held down, the ground would have to pull "
+                      f"{-bolted.contact_forces[pulling, 2].sum():.4g} N)")
+        else:
+            detail = ("the contact iteration found no admissible contact state; forces shown "
+                      "as if the design were bolted to the ground")
+        return CaseStatics(stability, _wrenches(bolted.h), bolted.contact_forces,
+                           self._plank_ids(pulling), detail)
+
+    def within_cones(self, solution: _Solution, status: np.ndarray) -> bool:
+        forces = solution.contact_forces
+        tangential = np.hypot(forces[:, 0], forces[:, 1])
+        return bool(np.all(tangential <= self.mu * forces[:, 2] + self.force_tol))
+
+    # -- the linear solve ------------------------------------------------------------------------
+    def solve(self, status: np.ndarray) -> _Solution | None:
+        """Solve the mixed system for the given contact states; None if it is a mechanism."""
+        model = self.model
+        springs = self._spring_matrices(status)
+        if not self._restrained(springs):
+            return None
+        n, m = model.n_dof, model.G.shape[0]
+        blocks = np.einsum("kai,kab,kbj->kij", model.contact_maps, springs, model.contact_maps)
+        base = 6 * model.contact_plank[:, None, None]
+        rows = np.broadcast_to(base + _SIX[None, :, None], blocks.shape)
+        cols = np.broadcast_to(base + _SIX[None, None, :], blocks.shape)
+        fixed_rows, fixed_cols, fixed_vals = model.fixed_triplets
+        A = sp.csc_matrix((np.concatenate([fixed_vals, blocks.ravel()]),
+                           (np.concatenate([fixed_rows, rows.ravel()]),
+                            np.concatenate([fixed_cols, cols.ravel()]))), shape=(n + m, n + m))
+        rhs = np.concatenate([self.f, np.zeros(m)])
+        try:
+            x = spla.splu(A).solve(rhs)
+        except RuntimeError:
+            return None
+        if not np.all(np.isfinite(x)):
+            return None
+        q, h = x[:n], x[n:]
+        displacement = np.einsum("kij,kj->ki", model.contact_maps, q.reshape(-1, 6)[
+            model.contact_plank])
+        forces = -np.einsum("kab,kb->ka", springs, displacement)
+        return _Solution(q, h, forces, displacement)
+
+    def _spring_matrices(self, status: np.ndarray) -> np.ndarray:
+        """(nK, 3, 3): contact force = -S w for contact point displacement w."""
+        k = tol.CONTACT_STIFFNESS
+        springs = np.zeros((len(status), 3, 3))
+        stick = status == STICK
+        springs[stick] = np.diag([k, k, k])
+        slip = np.nonzero(status == SLIP)[0]
+        springs[slip, 2, 2] = k
+        springs[slip, 0, 2] = self.mu * k * self.directions[slip, 0]
+        springs[slip, 1, 2] = self.mu * k * self.directions[slip, 1]
+        return springs
+
+    def _restrained(self, springs: np.ndarray) -> bool:
+        """Every grounded component is held in all six rigid directions by its contacts."""
+        model = self.model
+        for c, component in enumerate(model.components):
+            members = model.contact_component == c
+            if not members.any():
+                return False
+            points = model.contact_points[members]
+            reference = points.mean(axis=0)
+            arm = points - reference
+            length = max(float(np.abs(arm).max()), 1e-6)
+            rigid = np.zeros((len(points), 3, 6))
+            rigid[:, :, :3] = np.eye(3)
+            rigid[:, :, 3:] = -_skew_many(arm) / length
+            stiffness = np.einsum("kai,kab,kbj->ij", rigid, springs[members], rigid)
+            singular = np.linalg.svd(stiffness, compute_uv=False)
+            if singular[-1] <= tol.MECHANISM_RCOND * max(singular[0], 1e-300):
+                return False
+        return True
+
+    # -- state updates ------------------------------------------------------------------------------
+    def _update_normals(self, solution: _Solution, status: np.ndarray) -> bool:
+        pulling = (status != LIFT) & (solution.contact_forces[:, 2] < -self.force_tol)
+        sinking = (status == LIFT) & (solution.contact_displacements[:, 2] < -self.disp_tol)
+        status[pulling] = LIFT
+        status[sinking] = STICK
+        return bool(pulling.any() or sinking.any())
+
+    def _update_friction(self, solution: _Solution, status: np.ndarray) -> bool:
+        forces = solution.contact_forces
+        normal = forces[:, 2]
+        changed = False
+        for k in np.nonzero(status == STICK)[0]:
+            tangential = forces[k, :2]
+            size = float(np.hypot(*tangential))
+            if size > self.mu * normal[k] + self.force_tol:
+                status[k] = SLIP
+                self.directions[k] = tangential / size
+                changed = True
+        for k in np.nonzero(status == SLIP)[0]:
+            trial = -tol.CONTACT_STIFFNESS * solution.contact_displacements[k, :2]
+            size = float(np.hypot(*trial))
+            if size <= self.mu * normal[k]:
+                status[k] = STICK
+                changed = True
+                continue
+            direction = trial / size
+            if np.abs(direction - self.directions[k]).max() > 1e-9:
+                self.directions[k] = direction
+                changed = True
+        return changed
+
+    def _plank_ids(self, mask: np.ndarray) -> tuple[str, ...]:
+        design, model = self.model.design, self.model
+        ids = {design.planks[model.planks[model.contact_plank[k]]].id
+               for k in np.nonzero(mask)[0]}
+        return tuple(p.id for p in design.planks if p.id in ids)
+
+
+# --- existence of an admissible equilibrium (linear programs) -------------------------------
+
+def _component_problem(model: StaticsModel, f: np.ndarray, component: int):
+    """Equilibrium rows (6, 3 nk) for the component's contact forces and the applied wrench
+    (6,), both about the mean contact point."""
+    design = model.design
+    members = np.nonzero(model.contact_component == component)[0]
+    points = model.contact_points[members]
+    reference = points.mean(axis=0)
+    rows = np.zeros((6, 3 * len(members)))
+    for col, point in enumerate(points):
+        rows[:3, 3 * col:3 * col + 3] = np.eye(3)
+        rows[3:, 3 * col:3 * col + 3] = _skew(point - reference)
+    wrench = np.zeros(6)
+    for k in model.components[component]:
+        centre = design.planks[model.planks[k]].center_array
+        force, moment = f[6 * k:6 * k + 3], f[6 * k + 3:6 * k + 6]
+        wrench[:3] += force
+        wrench[3:] += moment + np.cross(centre - reference, force)
+    return members, rows, wrench
+
+
+def _unilateral_support(model: StaticsModel, f: np.ndarray) -> tuple[bool, np.ndarray]:
+    """Whether every component can be held with normal forces >= 0 (unlimited friction),
+    and which contacts carry force in one such equilibrium."""
+    from scipy.optimize import linprog
+
+    support = np.zeros(len(model.contacts), dtype=bool)
+    for component in range(len(model.components)):
+        members, rows, wrench = _component_problem(model, f, component)
+        if len(members) == 0:
+            return False, support
+        bounds = [b for _ in members for b in ((None, None), (None, None), (0, None))]
+        cost = np.tile([0.0, 0.0, 1.0], len(members))
+        result = linprog(cost, A_eq=rows, b_eq=-wrench, bounds=bounds, method="highs")
+        if result.status != 0:
+            return False, support
+        support[members] = result.x[2::3] > 0.0
+    return True, support
+
+
+def _cone_feasible(model: StaticsModel, f: np.ndarray) -> bool:
+    """Whether every component can be held with forces inside polygonal friction pyramids
+    inscribed in the Coulomb cones (exact to 1 - cos(pi / FRICTION_CONE_SIDES))."""
+    from scipy.optimize import linprog
+
+    sides = tol.FRICTION_CONE_SIDES
+    angles = 2.0 * np.pi * np.arange(sides) / sides
+    generators = np.column_stack([model.friction * np.cos(angles),
+                                  model.friction * np.sin(angles), np.ones(sides)]).T
+    for component in range(len(model.components)):
+        members, rows, wrench = _component_problem(model, f, component)
+        if len(members) == 0:
+            return False
+        A = np.hstack([rows[:, 3 * c:3 * c + 3] @ generators for c in range(len(members))])
+        result = linprog(np.zeros(A.shape[1]), A_eq=A, b_eq=-wrench, bounds=(0, None),
+                         method="highs")
+        if result.status != 0:
+            return False
+    return True
+
+
+# --- small helpers -----------------------------------------------------------------------------------
+
+def _force_scale(model: StaticsModel, f: np.ndarray) -> float:
+    """N: sum of the applied force magnitudes (the scale of the force tolerances)."""
+    return max(float(np.linalg.norm(f.reshape(-1, 6)[:, :3], axis=1).sum()), 1e-12)
+
+
+def _wrenches(h: np.ndarray) -> np.ndarray:
+    return h.reshape(-1, 6).copy()
+
+
+def _skew(v: np.ndarray) -> np.ndarray:
+    """[v]x, so that _skew(v) @ w = v x w."""
+    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+
+
+def _skew_many(v: np.ndarray) -> np.ndarray:
+    out = np.zeros((len(v), 3, 3))
+    out[:, 0, 1], out[:, 0, 2] = -v[:, 2], v[:, 1]
+    out[:, 1, 0], out[:, 1, 2] = v[:, 2], -v[:, 0]
+    out[:, 2, 0], out[:, 2, 1] = -v[:, 1], v[:, 0]
+    return out
+
+
+def _point_map(r: np.ndarray) -> np.ndarray:
+    """(3, 6): displacement of a point at offset r from the centre, [I, -[r]x] @ (u, theta)."""
+    return np.hstack([np.eye(3), -_skew(r)])

@@ -1,0 +1,61 @@
+"""Every numeric tolerance and solver constant of furncheck, in one place.
+
+Physical constants and defaults come first, then geometric tolerances, then the
+penalty stiffnesses and iteration limits of the statics solver.  Values are SI
+(metres, newtons, kilograms, radians) unless the name says otherwise.
+"""
+
+GRAVITY = 9.81
+"""m/s^2, acting along world -z."""
+
+# --- defaults of a design file (contract section 1; the paper's 12 mm MDF) -------------
+DEFAULT_THICKNESS = 0.012        # m
+DEFAULT_DENSITY = 750.0          # kg/m^3
+DEFAULT_NAIL_SPACING = 0.020     # m
+DEFAULT_NAIL_PULL = 700.0        # N per nail (35 kN/m x 20 mm)
+DEFAULT_NAIL_SHEAR = 190.0       # N per nail
+DEFAULT_FRICTION = 0.5           # static Coulomb coefficient with the ground
+DEFAULT_SAFETY_FACTOR = 1.0
+DEFAULT_TOLERANCE = 0.0005       # m (0.5 mm)
+
+# --- geometry ---------------------------------------------------------------------------
+JOINT_MAX_TILT_DEG = 60.0
+"""Largest angle between an edge plank's end face and the face plank's face that still
+forms a nail joint (a bevelled end).  Steeper contacts are not joints."""
+
+NAIL_COUNT_EPS = 1e-6
+"""Relative slack in floor(L / spacing), so 300 mm / 20 mm gives 15 nails despite rounding."""
+
+MIN_JOINT_AREA_FRACTION = 1e-6
+"""A touching region smaller than this fraction of the edge face's area is no joint."""
+
+# --- statics: penalty constants (paper section 5.1, eq. 2) -------------------------------
+JOINT_COMPLIANCE_T = 1e-9
+"""m/N: epsilon^t, compliance of a joint's translational constraint."""
+JOINT_COMPLIANCE_R = 1e-9
+"""rad/(N m): epsilon^r, compliance of a joint's rotational constraint."""
+CONTACT_STIFFNESS = 1e6
+"""N/m: normal and tangential (friction anchor) spring stiffness of a ground contact.
+Three orders softer than the joints, so the assembly acts as one rigid body on springs."""
+
+CONTACT_ITERATIONS = 60
+"""Most active-set / friction-anchor iterations per load case."""
+
+FORCE_REL_TOL = 1e-9
+"""Relative force slack (of the total applied load) for contact sign and cone checks."""
+
+FRICTION_CONE_SIDES = 64
+"""Sides of the inner/outer polygonal friction pyramids in the sliding feasibility LP;
+between them the verdict is exact to 1 - cos(pi / 64) = 0.12 %."""
+
+MECHANISM_RCOND = 1e-10
+"""Smallest singular value (relative) of a component's ground-support stiffness below
+which the component is a mechanism (free to move)."""
+
+# --- validity -----------------------------------------------------------------------------
+CAPACITY_REL_TOL = 1e-9
+"""A nail force within this relative slack of its capacity counts as durable."""
+
+# --- output -------------------------------------------------------------------------------
+REPORT_SIGNIFICANT_DIGITS = 6
+"""Floats in reports are rounded to this many significant digits (deterministic output)."""

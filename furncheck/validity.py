@@ -1,0 +1,112 @@
+"""Durability and stability verdicts (contract section 3, paper sections 5.1 and 6.2).
+
+Per nail, with t the edge plank's thickness and F, M the joint wrench in the joint frame
+(n = nail axis, F_n > 0 pressing the planks together, y = the joint line):
+
+    pull  = (2 |M_y| / t - F_n) / nails        (paper eq. 4)
+    shear = sqrt(F_x^2 + F_y^2) / nails          (paper eq. 5)
+
+A joint is durable iff pull <= nail_pull / safety_factor and shear <= nail_shear /
+safety_factor.  Stability comes from the statics: 'lift-off' and 'sliding' cases.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from furncheck import tolerances as tol
+from furncheck.design.model import Design, LoadCase
+from furncheck.geometry import Geometry, Joint
+from furncheck.result import CaseResult, ContactResult, JointResult, Violation
+from furncheck.statics import CaseStatics, StaticsModel
+
+
+@dataclass(frozen=True)
+class NailForces:
+    """Per-nail forces of one joint, N."""
+
+    pull: float
+    shear: float
+    pull_capacity: float
+    shear_capacity: float
+
+    @property
+    def utilization(self) -> float:
+        """max(pull / pull capacity, shear / shear capacity); > 1 means the joint fails."""
+        return max(self.pull / self.pull_capacity, self.shear / self.shear_capacity)
+
+    @property
+    def durable(self) -> bool:
+        slack = 1.0 + tol.CAPACITY_REL_TOL
+        return self.pull <= self.pull_capacity * slack and self.shear <= self.shear_capacity * slack
+
+
+def nail_forces(joint: Joint, wrench: np.ndarray, design: Design) -> NailForces:
+    """Per-nail pull and shear of a joint from its wrench (6,) = first plank on second."""
+    sign = 1.0 if joint.planks[0] == joint.face else -1.0   # -> wrench of face on edge plank
+    force = joint.frame.T @ (sign * wrench[:3])
+    moment_y = float(joint.frame[:, 1] @ (sign * wrench[3:]))
+    pull = (2.0 * abs(moment_y) / joint.edge_thickness - force[2]) / joint.nails
+    shear = float(np.hypot(force[0], force[1])) / joint.nails
+    material = design.material
+    return NailForces(float(pull), shear, material.nail_pull / design.safety_factor,
+                      material.nail_shear / design.safety_factor)
+
+
+def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case: LoadCase,
+                  statics: CaseStatics) -> tuple[CaseResult, list[Violation]]:
+    """Turn one case's statics into its CaseResult and violations."""
+    scale = design.unit_scale
+    joints, violations = [], []
+    if statics.joint_wrenches is not None:
+        for row, j in enumerate(model.joints):
+            joint = geometry.joints[j]
+            wrench = statics.joint_wrenches[row]
+            nails = nail_forces(joint, wrench, design)
+            joints.append(JointResult(
+                planks=joint.planks, point=_tuple(joint.point / scale), nails=joint.nails,
+                force=_tuple(wrench[:3]), moment=_tuple(wrench[3:]), pull=nails.pull,
+                shear=nails.shear, pull_capacity=nails.pull_capacity,
+                shear_capacity=nails.shear_capacity, utilization=nails.utilization,
+                durable=nails.durable))
+            if not nails.durable:
+                violations.append(Violation("non-durable", joint.name, case.name,
+                                            _durability_message(nails, design),
+                                            design.line_of(joint.key) if joint.key else None))
+    contacts = []
+    if statics.contact_forces is not None:
+        for row, k in enumerate(model.contacts):
+            contact = geometry.contacts[k]
+            contacts.append(ContactResult(contact.plank, _tuple(contact.point / scale),
+                                          _tuple(statics.contact_forces[row])))
+    stable = statics.stability == "stable"
+    if not stable:
+        kind = "sliding" if statics.stability == "sliding" else "lift-off"
+        where = ",".join(statics.culprits) or ",".join(design.planks[i].id for i in model.planks)
+        violations.append(Violation(kind, where, case.name, statics.detail,
+                                    design.line_of(_case_key(design, case))))
+    result = CaseResult(case.name, all(j.durable for j in joints), stable, tuple(joints),
+                        tuple(contacts), statics.stability)
+    return result, violations
+
+
+def _durability_message(nails: NailForces, design: Design) -> str:
+    parts = []
+    factor = ("" if design.safety_factor == 1.0
+              else f" (capacity / safety factor {design.safety_factor:g})")
+    if nails.pull > nails.pull_capacity:
+        parts.append(f"pull {nails.pull:.4g} N per nail exceeds {nails.pull_capacity:.4g} N")
+    if nails.shear > nails.shear_capacity:
+        parts.append(f"shear {nails.shear:.4g} N per nail exceeds {nails.shear_capacity:.4g} N")
+    return "; ".join(parts) + factor
+
+
+def _case_key(design: Design, case: LoadCase) -> str:
+    return "loads" if case.name == "default" and "loads" in design.lines \
+        else f"load_cases.{case.name}"
+
+
+def _tuple(values: np.ndarray) -> tuple[float, float, float]:
+    return tuple(float(v) for v in values)
