@@ -239,19 +239,20 @@ def _touch_region(face: Plank, edge: Plank, corners: np.ndarray, joint_dir: np.n
     r_f = face.rotation_matrix
     h_f = face.half_extents
     face_center = face.center_array + h_f[2] * n_face
-    local = (corners - face_center) @ r_f[:, :2]          # (4, 2) in the face's plane
-    polygon = _clip_to_rectangle(local, h_f[0], h_f[1])
+    local = ((corners - face_center) @ r_f[:, :2]).tolist()   # 4 points in the face's plane
+    polygon = _clip_to_rectangle(local, float(h_f[0]), float(h_f[1]))
     if len(polygon) < 3:
         return None
-    area, centroid = _polygon_area_centroid(polygon)
+    area, cx, cy = _polygon_area_centroid(polygon)
     face_area = 4.0 * edge.half_extents[2] * max(edge.half_extents[0], edge.half_extents[1])
     if area <= tol.MIN_JOINT_AREA_FRACTION * face_area:
         return None
     along = joint_dir - (joint_dir @ n_face) * n_face
-    along /= np.linalg.norm(along)
-    extent = polygon @ (along @ r_f[:, :2])
-    length = float(extent.max() - extent.min())
-    point = face_center + r_f[:, :2] @ centroid
+    ax, ay = (along @ r_f[:, :2]).tolist()
+    norm = (ax * ax + ay * ay) ** 0.5
+    extent = [(x * ax + y * ay) / norm for x, y in polygon]
+    length = max(extent) - min(extent)
+    point = face_center + r_f[:, 0] * cx + r_f[:, 1] * cy
     x_axis = edge.rotation_matrix[:, 2] - (edge.rotation_matrix[:, 2] @ n_face) * n_face
     x_axis /= np.linalg.norm(x_axis)
     y_axis = np.array([n_face[1] * x_axis[2] - n_face[2] * x_axis[1],
@@ -261,40 +262,44 @@ def _touch_region(face: Plank, edge: Plank, corners: np.ndarray, joint_dir: np.n
     return _Touch(face, edge, point, length, frame, gap, alignment, area)
 
 
-def _clip_to_rectangle(polygon: np.ndarray, half_x: float, half_y: float) -> np.ndarray:
-    """Sutherland-Hodgman clip of a convex polygon (k, 2) to |x| <= half_x, |y| <= half_y."""
-    points = [tuple(p) for p in polygon]
-    for axis, bound in ((0, half_x), (0, -half_x), (1, half_y), (1, -half_y)):
-        sign = 1.0 if bound > 0 else -1.0
-        limit = abs(bound)
+def _clip_to_rectangle(polygon: list, half_x: float, half_y: float) -> list:
+    """Sutherland-Hodgman clip of a convex polygon [(x, y), ...] to |x| <= half_x,
+    |y| <= half_y (plain floats: the polygons are tiny, numpy would only add overhead)."""
+    points = polygon
+    for axis, sign, limit in ((0, 1.0, half_x), (0, -1.0, half_x), (1, 1.0, half_y),
+                              (1, -1.0, half_y)):
         kept = []
-        for k, current in enumerate(points):
-            previous = points[k - 1]
+        previous = points[-1]
+        prev_in = sign * previous[axis] <= limit
+        for current in points:
             cur_in = sign * current[axis] <= limit
-            prev_in = sign * previous[axis] <= limit
             if cur_in != prev_in:
                 t = (sign * limit - previous[axis]) / (current[axis] - previous[axis])
                 kept.append((previous[0] + t * (current[0] - previous[0]),
                              previous[1] + t * (current[1] - previous[1])))
             if cur_in:
                 kept.append(current)
+            previous, prev_in = current, cur_in
         points = kept
         if not points:
             break
-    return np.array(points, dtype=float).reshape(-1, 2)
+    return points
 
 
-def _polygon_area_centroid(polygon: np.ndarray) -> tuple[float, np.ndarray]:
-    """Area (m^2) and centroid (2,) of a simple polygon (k, 2) by the shoelace formula."""
-    x, y = polygon[:, 0], polygon[:, 1]
-    x1, y1 = np.r_[x[1:], x[:1]], np.r_[y[1:], y[:1]]
-    cross = x * y1 - x1 * y
-    signed = 0.5 * cross.sum()
-    if abs(signed) < 1e-30:
-        return 0.0, polygon.mean(axis=0)
-    cx = ((x + x1) * cross).sum() / (6.0 * signed)
-    cy = ((y + y1) * cross).sum() / (6.0 * signed)
-    return abs(float(signed)), np.array([cx, cy])
+def _polygon_area_centroid(polygon: list) -> tuple[float, float, float]:
+    """Area (m^2) and centroid x, y of a simple polygon [(x, y), ...] (shoelace formula)."""
+    twice_area = cx = cy = 0.0
+    x0, y0 = polygon[-1]
+    for x1, y1 in polygon:
+        cross = x0 * y1 - x1 * y0
+        twice_area += cross
+        cx += (x0 + x1) * cross
+        cy += (y0 + y1) * cross
+        x0, y0 = x1, y1
+    if abs(twice_area) < 1e-30:
+        xs, ys = zip(*polygon)
+        return 0.0, sum(xs) / len(xs), sum(ys) / len(ys)
+    return abs(0.5 * twice_area), cx / (3.0 * twice_area), cy / (3.0 * twice_area)
 
 
 def _bounding_boxes(planks: tuple[Plank, ...]) -> tuple[np.ndarray, np.ndarray]:

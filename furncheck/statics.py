@@ -32,6 +32,8 @@ from furncheck.design.model import Design, LoadCase
 from furncheck.geometry import Geometry
 
 STICK, SLIP, LIFT = 0, 1, 2
+_MECHANISM_DETAIL = ("the planks rest on too few ground points to be held even if bolted "
+                     "down (all their ground contacts lie on one line)")
 _SIX = np.arange(6)
 
 
@@ -187,26 +189,27 @@ def solve_case(model: StaticsModel, f: np.ndarray) -> CaseStatics:
     """Equilibrium of one load case with unilateral, frictional ground contacts."""
     if not model.planks:
         return CaseStatics("stable", np.zeros((0, 6)), np.zeros((0, 3)))
-    scale = _force_scale(model, f)
-    solver = _ActiveSet(model, f, scale)
-    normal = solver.normal_phase(np.full(len(model.contacts), STICK))
+    solver = _ActiveSet(model, f, _force_scale(model, f))
+    all_stick = np.full(len(model.contacts), STICK)
+    normal = solver.normal_phase(all_stick, one_at_a_time=False) \
+        or solver.normal_phase(all_stick, one_at_a_time=True)
     if normal is None:
-        feasible, support = _unilateral_support(model, f)
-        if feasible:
-            normal = solver.normal_phase(np.where(support, STICK, LIFT))
-        if normal is None:
-            return solver.unstable("lift-off" if not feasible else "mechanism")
+        if not _unilateral_feasible(model, f):
+            return solver.unstable("lift-off")
+        # An equilibrium exists but the active set did not find it: take one from the
+        # feasibility program itself.
+        forces = _cone_solution(model, f)
+        return solver.prescribed(forces) if forces is not None else solver.unstable("sliding")
     status, solution = normal
-    if solver.within_cones(solution, status):
+    if solver.within_cones(solution):
         return solver.stable(solution)
     frictional = solver.friction_phase(status)
     if frictional is not None:
         return solver.stable(frictional[1])
-    if not _cone_feasible(model, f):
-        return solver.sliding(solution, status)
-    # An admissible equilibrium exists but the anchor iteration did not reach it; report the
-    # sticking state, whose verdict the feasibility program has settled.
-    return solver.stable(solution)
+    forces = _cone_solution(model, f)
+    if forces is None:
+        return solver.sliding(solution)
+    return solver.prescribed(forces)
 
 
 @dataclass
@@ -229,8 +232,12 @@ class _ActiveSet:
         self.mu = model.friction
 
     # -- phases --------------------------------------------------------------------------
-    def normal_phase(self, status: np.ndarray):
-        """Lift contacts that pull, re-seat those that sink, friction unlimited."""
+    def normal_phase(self, status: np.ndarray, one_at_a_time: bool):
+        """Lift contacts that pull, re-seat those that sink, friction unlimited.
+
+        Lifting every pulling contact at once is fast; lifting only the one that pulls
+        hardest is the slower, surer fallback.
+        """
         status = status.copy()
         seen = set()
         for _ in range(tol.CONTACT_ITERATIONS):
@@ -241,7 +248,7 @@ class _ActiveSet:
             solution = self.solve(status)
             if solution is None:
                 return None
-            if not self._update_normals(solution, status):
+            if not self._update_normals(solution, status, one_at_a_time):
                 return status, solution
         return None
 
@@ -262,25 +269,29 @@ class _ActiveSet:
     def stable(self, solution: _Solution) -> CaseStatics:
         return CaseStatics("stable", _wrenches(solution.h), solution.contact_forces)
 
-    def sliding(self, solution: _Solution, status: np.ndarray) -> CaseStatics:
+    def sliding(self, solution: _Solution) -> CaseStatics:
+        """Report a case that slides, with the forces it would need if friction were endless."""
+        model = self.model
         forces = solution.contact_forces
         tangential = np.hypot(forces[:, 0], forces[:, 1])
         over = tangential > self.mu * forces[:, 2] + self.force_tol
-        horizontal = float(np.hypot(*forces[:, :2].sum(axis=0)))
+        sideways = float(np.hypot(*forces[:, :2].sum(axis=0)))
         capacity = self.mu * float(forces[:, 2].sum())
+        centre = (forces[:, 2] @ model.contact_points) / max(float(forces[:, 2].sum()), 1e-300)
+        arms = model.contact_points - centre
+        twist = abs(float((arms[:, 0] * forces[:, 1] - arms[:, 1] * forces[:, 0]).sum()))
+        twist_text = f" and a {twist:.3g} N m twist" if twist > self.force_tol * 1e3 else ""
         detail = (f"no equilibrium within the friction cones (mu = {self.mu:g}): the ground "
-                  f"must hold {horizontal:.4g} N sideways, friction gives at most about "
+                  f"must resist {sideways:.4g} N sideways{twist_text}, friction gives at most "
                   f"{capacity:.4g} N")
-        return CaseStatics("sliding", _wrenches(solution.h), forces,
-                           self._plank_ids(over), detail)
+        return CaseStatics("sliding", _wrenches(solution.h), forces, self._plank_ids(over),
+                           detail)
 
     def unstable(self, stability: str) -> CaseStatics:
         """Report a case without admissible equilibrium: forces as if bolted to the ground."""
         bolted = self.solve(np.full(len(self.model.contacts), STICK))
         if bolted is None:
-            return CaseStatics("mechanism", None, None, (),
-                               "the planks rest on too few ground points to be held even if "
-                               "bolted down (all contacts on one line)")
+            return CaseStatics("mechanism", None, None, (), _MECHANISM_DETAIL)
         pulling = bolted.contact_forces[:, 2] < -self.force_tol
         if stability == "lift-off":
             detail = ("no equilibrium with the ground only pushing: the load's line of action "
@@ -293,16 +304,33 @@ class _ActiveSet:
         return CaseStatics(stability, _wrenches(bolted.h), bolted.contact_forces,
                            self._plank_ids(pulling), detail)
 
-    def within_cones(self, solution: _Solution, status: np.ndarray) -> bool:
+    def prescribed(self, contact_forces: np.ndarray) -> CaseStatics:
+        """Joint wrenches for contact forces fixed by a feasibility program.
+
+        The contact forces enter as loads; feeble springs (CONTACT_STIFFNESS x 1e-9) only
+        remove the rigid motions and carry no force since the loads balance.
+        """
+        model = self.model
+        f = self.f.copy()
+        for row, force in enumerate(contact_forces):
+            k = model.contact_plank[row]
+            f[6 * k:6 * k + 6] += model.contact_maps[row].T @ force
+        feeble = _ActiveSet(model, f, 1.0)
+        solution = feeble.solve(np.full(len(model.contacts), STICK), stiffness_scale=1e-9)
+        if solution is None:
+            return CaseStatics("mechanism", None, None, (), _MECHANISM_DETAIL)
+        return CaseStatics("stable", _wrenches(solution.h), contact_forces.copy())
+
+    def within_cones(self, solution: _Solution) -> bool:
         forces = solution.contact_forces
         tangential = np.hypot(forces[:, 0], forces[:, 1])
         return bool(np.all(tangential <= self.mu * forces[:, 2] + self.force_tol))
 
     # -- the linear solve ------------------------------------------------------------------------
-    def solve(self, status: np.ndarray) -> _Solution | None:
+    def solve(self, status: np.ndarray, stiffness_scale: float = 1.0) -> _Solution | None:
         """Solve the mixed system for the given contact states; None if it is a mechanism."""
         model = self.model
-        springs = self._spring_matrices(status)
+        springs = self._spring_matrices(status) * stiffness_scale
         if not self._restrained(springs):
             return None
         n, m = model.n_dof, model.G.shape[0]
@@ -360,8 +388,14 @@ class _ActiveSet:
         return True
 
     # -- state updates ------------------------------------------------------------------------------
-    def _update_normals(self, solution: _Solution, status: np.ndarray) -> bool:
-        pulling = (status != LIFT) & (solution.contact_forces[:, 2] < -self.force_tol)
+    def _update_normals(self, solution: _Solution, status: np.ndarray,
+                        one_at_a_time: bool = False) -> bool:
+        normal = solution.contact_forces[:, 2]
+        pulling = (status != LIFT) & (normal < -self.force_tol)
+        if one_at_a_time and pulling.any():
+            hardest = int(np.argmin(np.where(pulling, normal, np.inf)))
+            pulling = np.zeros_like(pulling)
+            pulling[hardest] = True
         sinking = (status == LIFT) & (solution.contact_displacements[:, 2] < -self.disp_tol)
         status[pulling] = LIFT
         status[sinking] = STICK
@@ -420,44 +454,45 @@ def _component_problem(model: StaticsModel, f: np.ndarray, component: int):
     return members, rows, wrench
 
 
-def _unilateral_support(model: StaticsModel, f: np.ndarray) -> tuple[bool, np.ndarray]:
-    """Whether every component can be held with normal forces >= 0 (unlimited friction),
-    and which contacts carry force in one such equilibrium."""
+def _unilateral_feasible(model: StaticsModel, f: np.ndarray) -> bool:
+    """Whether every component can be held with normal forces >= 0 (friction unlimited)."""
     from scipy.optimize import linprog
 
-    support = np.zeros(len(model.contacts), dtype=bool)
     for component in range(len(model.components)):
         members, rows, wrench = _component_problem(model, f, component)
         if len(members) == 0:
-            return False, support
+            return False
         bounds = [b for _ in members for b in ((None, None), (None, None), (0, None))]
-        cost = np.tile([0.0, 0.0, 1.0], len(members))
-        result = linprog(cost, A_eq=rows, b_eq=-wrench, bounds=bounds, method="highs")
+        result = linprog(np.zeros(3 * len(members)), A_eq=rows, b_eq=-wrench, bounds=bounds,
+                         method="highs")
         if result.status != 0:
-            return False, support
-        support[members] = result.x[2::3] > 0.0
-    return True, support
+            return False
+    return True
 
 
-def _cone_feasible(model: StaticsModel, f: np.ndarray) -> bool:
-    """Whether every component can be held with forces inside polygonal friction pyramids
-    inscribed in the Coulomb cones (exact to 1 - cos(pi / FRICTION_CONE_SIDES))."""
+def _cone_solution(model: StaticsModel, f: np.ndarray) -> np.ndarray | None:
+    """Contact forces (nK, 3) holding every component inside polygonal friction pyramids
+    inscribed in the Coulomb cones (exact to 1 - cos(pi / FRICTION_CONE_SIDES)), or None
+    when there are none: the design slides."""
     from scipy.optimize import linprog
 
     sides = tol.FRICTION_CONE_SIDES
     angles = 2.0 * np.pi * np.arange(sides) / sides
     generators = np.column_stack([model.friction * np.cos(angles),
                                   model.friction * np.sin(angles), np.ones(sides)]).T
+    forces = np.zeros((len(model.contacts), 3))
     for component in range(len(model.components)):
         members, rows, wrench = _component_problem(model, f, component)
         if len(members) == 0:
-            return False
+            return None
         A = np.hstack([rows[:, 3 * c:3 * c + 3] @ generators for c in range(len(members))])
         result = linprog(np.zeros(A.shape[1]), A_eq=A, b_eq=-wrench, bounds=(0, None),
                          method="highs")
         if result.status != 0:
-            return False
-    return True
+            return None
+        weights = result.x.reshape(len(members), sides)
+        forces[members] = weights @ generators.T
+    return forces
 
 
 # --- small helpers -----------------------------------------------------------------------------------

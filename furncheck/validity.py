@@ -57,7 +57,11 @@ def nail_forces(joint: Joint, wrench: np.ndarray, design: Design) -> NailForces:
 
 def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case: LoadCase,
                   statics: CaseStatics) -> tuple[CaseResult, list[Violation]]:
-    """Turn one case's statics into its CaseResult and violations."""
+    """Turn one case's statics into its CaseResult and violations.
+
+    A case that topples ('lift-off') reports its joints as if the design were bolted down;
+    those wrenches are shown but raise no 'non-durable' violation: the toppling comes first.
+    """
     scale = design.unit_scale
     joints, violations = [], []
     if statics.joint_wrenches is not None:
@@ -71,7 +75,7 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
                 shear=nails.shear, pull_capacity=nails.pull_capacity,
                 shear_capacity=nails.shear_capacity, utilization=nails.utilization,
                 durable=nails.durable))
-            if not nails.durable:
+            if not nails.durable and statics.stability in ("stable", "sliding"):
                 violations.append(Violation("non-durable", joint.name, case.name,
                                             _durability_message(nails, design),
                                             design.line_of(joint.key) if joint.key else None))

@@ -1,0 +1,88 @@
+"""Benchmark: in-process `validate` time by design size, and the cold command.
+
+Prints a table: planks, joints, contacts, load cases, median time of ``check_file`` on a
+YAML file (load + geometry + statics + verdicts, all cases), joints per second; then the
+median wall time of ``furncheck validate`` on one small catalog file as a fresh process.
+
+    python benchmarks/bench_validate.py [--repeat N]
+
+Targets on the project's 2-core machine: a 28-plank design <= 20 ms, a 400-plank design
+<= 1 s, the cold command on a small file <= 0.6 s.
+"""
+
+from __future__ import annotations
+
+import argparse
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+
+from shelving import SIZES, shelving_wall  # noqa: E402
+
+from furncheck.check import check_file  # noqa: E402
+from furncheck.design import write_design  # noqa: E402
+
+CATALOG = HERE.parent / "designs"
+
+
+def _median_seconds(action, repeat: int) -> float:
+    action()                                   # warm-up: imports, caches
+    samples = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        action()
+        samples.append(time.perf_counter() - start)
+    return statistics.median(samples)
+
+
+def _row(label: str, path: Path, repeat: int) -> str:
+    report = check_file(str(path))
+    if report.error:
+        raise SystemExit(f"{path}: {report.error}")
+    seconds = _median_seconds(lambda: check_file(str(path)), repeat)
+    case = report.cases[0]
+    joints = len(case.joints)
+    planks = len({p for j in case.joints for p in j.planks}) or 1
+    return (f"| {label:<28} | {planks:>6} | {joints:>6} | {len(case.contacts):>8} | "
+            f"{len(report.cases):>5} | {seconds * 1000:>9.1f} | "
+            f"{joints * len(report.cases) / seconds:>10,.0f} |")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=15)
+    args = parser.parse_args()
+    print("| design                       | planks | joints | contacts | cases | time (ms) |"
+          "   joints/s |")
+    print("|------------------------------|-------:|-------:|---------:|------:|----------:|"
+          "-----------:|")
+    with tempfile.TemporaryDirectory() as tmp:
+        for target, (columns, rows) in SIZES.items():
+            path = Path(tmp) / f"shelving-{target}.yaml"
+            write_design(shelving_wall(columns, rows), str(path))
+            print(_row(f"shelving wall ~{target}", path, args.repeat if target < 400 else 5))
+    for name in ("cabinet-28.yaml", "bookshelf-20.yaml"):
+        if (CATALOG / name).exists():
+            print(_row(f"designs/{name}", CATALOG / name, args.repeat))
+
+    command = shutil.which("furncheck")
+    small = CATALOG / "stool.yaml"
+    if command and small.exists():
+        runs = []
+        for _ in range(7):
+            start = time.perf_counter()
+            subprocess.run([command, "validate", str(small)], capture_output=True, check=False)
+            runs.append(time.perf_counter() - start)
+        print(f"\ncold `furncheck validate designs/{small.name}`: median "
+              f"{statistics.median(runs) * 1000:.0f} ms over {len(runs)} runs")
+
+
+if __name__ == "__main__":
+    main()
