@@ -8,7 +8,7 @@ region is the edge face's projection clipped to the face plank's face.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -33,6 +33,9 @@ class Joint:
     frame  : (3, 3) world columns x (edge plank's thickness normal), y (joint line),
              n (face plank's normal pointing into the edge plank)
     edge_thickness : m, thickness t of the edge plank (the nail lever, contract section 3)
+    edge_face : which narrow face of the edge plank rests on the face plank, as
+             (local axis 0 = x / 1 = y, sign +1 / -1)
+    face_side : which broad face of the face plank receives it (+1 = local +z, -1 = -z)
     key    : key path of the listed joint ('joints[2]'), '' when auto-detected
     """
 
@@ -44,6 +47,8 @@ class Joint:
     nails: int
     frame: np.ndarray
     edge_thickness: float
+    edge_face: tuple[int, int] = (0, 1)
+    face_side: int = 1
     key: str = ""
 
     @property
@@ -53,10 +58,14 @@ class Joint:
 
 @dataclass(frozen=True)
 class Contact:
-    """A plank corner touching the ground; ``point`` (3,) m lies on z = 0."""
+    """A plank corner touching the ground; ``point`` (3,) m lies on z = 0.
+
+    corner : index of the corner in ``Plank.corners`` (identifies the contact across edits)
+    """
 
     plank: str
     point: np.ndarray
+    corner: int = 0
 
 
 @dataclass(frozen=True)
@@ -86,6 +95,8 @@ class _Touch:
     gap: float          # m, signed distance of the edge face's nearest corner (< 0: inside)
     alignment: float    # -(edge face normal . face normal), 1 when flush
     area: float         # m^2 of the touching region
+    edge_face: tuple[int, int] = (0, 1)
+    face_side: int = 1
 
 
 def analyze(design: Design) -> Geometry:
@@ -160,7 +171,8 @@ def _listed_joints(design: Design, violations: list[Violation]) -> list[Joint]:
 def _joint_from_touch(touch: _Touch, planks: tuple[str, str], nails: int, key: str) -> Joint:
     return Joint(planks=tuple(planks), face=touch.face.id, edge=touch.edge.id,
                  point=touch.point, length=touch.length, nails=nails, frame=touch.frame,
-                 edge_thickness=touch.edge.thickness, key=key)
+                 edge_thickness=touch.edge.thickness, edge_face=touch.edge_face,
+                 face_side=touch.face_side, key=key)
 
 
 @dataclass(frozen=True)
@@ -224,6 +236,8 @@ def _best_touches(design: Design, pairs: np.ndarray, slack: float, keep_deep: bo
                               float(alignment[p, f, g]))
         if touch is None:
             continue
+        touch = replace(touch, edge_face=(int(f) // 2, 1 - 2 * (int(f) % 2)),
+                        face_side=1 - 2 * int(g))
         key = tuple(int(v) for v in pairs[p % n_pairs])
         rank = (touch.gap >= -slack, round(touch.alignment, 9), touch.area)
         current = best.get(key)
@@ -322,8 +336,9 @@ def _ground_contacts(design: Design, violations: list[Violation]) -> list[Contac
     contacts = []
     for index, plank in enumerate(design.planks):
         z = plank.corners[:, 2]
-        for corner in plank.corners[z <= slack]:
-            contacts.append(Contact(plank.id, np.array([corner[0], corner[1], 0.0])))
+        for corner in np.nonzero(z <= slack)[0]:
+            x, y, _ = plank.corners[corner]
+            contacts.append(Contact(plank.id, np.array([x, y, 0.0]), int(corner)))
         if z.min() < -slack:
             deepest = plank.corners[int(np.argmin(z))]
             violations.append(Violation(
