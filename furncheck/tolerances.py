@@ -59,3 +59,6 @@ CAPACITY_REL_TOL = 1e-9
 # --- output -------------------------------------------------------------------------------
 REPORT_SIGNIFICANT_DIGITS = 6
 """Floats in reports are rounded to this many significant digits (deterministic output)."""
+REPORT_DECIMALS = 6
+"""...after rounding to this many decimals (of N, N m, the file's length unit), so solver
+round-off such as 2e-14 mm or 1e-16 N is written as 0."""

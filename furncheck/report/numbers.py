@@ -12,17 +12,19 @@ import numbers
 from collections.abc import Mapping
 from typing import Any
 
-from furncheck.tolerances import REPORT_SIGNIFICANT_DIGITS
+from furncheck.tolerances import REPORT_DECIMALS, REPORT_SIGNIFICANT_DIGITS
 
 
 def round_significant(value: float, digits: int = REPORT_SIGNIFICANT_DIGITS) -> float:
-    """``value`` rounded to ``digits`` significant digits, with -0.0 turned into 0.0.
+    """``value`` rounded to ``REPORT_DECIMALS`` decimals, then to ``digits`` significant
+    digits, with -0.0 turned into 0.0.
 
     Non-finite values (nan, inf) are returned unchanged.
     """
     value = float(value)
     if not math.isfinite(value):
         return value
+    value = round(value, REPORT_DECIMALS)      # solver round-off (1e-14 mm, 1e-16 N) -> 0
     return float(f"{value:.{digits}g}") + 0.0  # + 0.0 turns -0.0 into 0.0
 
 

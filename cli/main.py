@@ -1,0 +1,26 @@
+"""The ``furncheck`` command group (console script ``furncheck = furncheck.cli.main:main``)."""
+
+from __future__ import annotations
+
+import click
+
+from furncheck import __version__
+from furncheck.cli.validate import validate
+
+
+@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, "--version", prog_name="furncheck",
+                      message="%(prog)s %(version)s")
+def main() -> None:
+    """Check nail-jointed plank furniture designs for durability and stability.
+
+    Exit codes: 0 all designs valid, 1 some design invalid, 2 unreadable or ill-formed
+    input, or a usage error.
+    """
+
+
+main.add_command(validate)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main()

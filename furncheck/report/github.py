@@ -1,0 +1,62 @@
+"""``--format github``: GitHub Actions workflow commands, shown as annotations on the diff.
+
+    ::error file=designs/shelf.yaml,line=14,title=furncheck non-durable::post/shelf in ...
+    ::error file=designs/broken.yaml,line=3,title=furncheck input-error::planks[0].size: ...
+    ::notice title=furncheck::3 designs: 1 valid, 1 invalid, 1 error
+
+One ``::error`` per violation and per unreadable input; ``line=`` only when the line is
+known.  Valid designs get no line of their own; the last line is one ``::notice`` with the
+batch summary.  Escaping follows the runner's rules: ``%``, CR and LF in the message;
+additionally ``:`` and ``,`` in property values.
+"""
+
+from __future__ import annotations
+
+from furncheck.report.common import INPUT_ERROR, describe_violation, input_error
+from furncheck.report.text import summary_line
+from furncheck.result import BatchReport, DesignReport
+
+
+def render(batch: BatchReport) -> str:
+    """One workflow command per line, ending with the summary notice."""
+    lines: list[str] = []
+    for report in batch.reports:
+        lines.extend(design_commands(report))
+    lines.append(command("notice", {"title": "furncheck"}, summary_line(batch)))
+    return "\n".join(lines) + "\n"
+
+
+def design_commands(report: DesignReport) -> list[str]:
+    """The ``::error`` lines of one design (none when it is valid)."""
+    if report.error is not None or report.valid is None:
+        line, message = input_error(report)
+        return [command("error", _properties(report.design, line, INPUT_ERROR), message)]
+    return [
+        command("error", _properties(report.design, v.line, v.kind), describe_violation(v))
+        for v in report.violations
+    ]
+
+
+def command(name: str, properties: dict[str, str], message: str) -> str:
+    """``::name key=value,...::message`` with GitHub's escaping applied."""
+    props = ",".join(f"{key}={escape_property(value)}" for key, value in properties.items())
+    head = f"{name} {props}" if props else name
+    return f"::{head}::{escape_data(message)}"
+
+
+def escape_data(text: str) -> str:
+    """Escape a command's message: ``%`` -> ``%25``, CR -> ``%0D``, LF -> ``%0A``."""
+    return text.replace("%", "%25").replace("\r", "%0D").replace("\n", "%0A")
+
+
+def escape_property(text: str) -> str:
+    """Escape a property value: as ``escape_data``, plus ``:`` -> ``%3A``, ``,`` -> ``%2C``."""
+    return escape_data(text).replace(":", "%3A").replace(",", "%2C")
+
+
+def _properties(file: str, line: int | None, kind: str) -> dict[str, str]:
+    properties = {"file": file}
+    if line is not None:
+        properties["line"] = str(line)
+    properties["title"] = f"furncheck {kind}"
+    return properties

@@ -1,0 +1,97 @@
+"""``--format junit``: JUnit XML for CI test dashboards.
+
+    <testsuites name="furncheck" tests=".." failures=".." errors="..">
+      <testsuite name="designs/shelf.yaml" tests="2" failures="1" errors="0" skipped="0">
+        <testcase classname="designs/shelf.yaml" name="default">
+          <failure type="non-durable" message="1 violation">non-durable: post/shelf ...</failure>
+        </testcase>
+        <testcase classname="designs/shelf.yaml" name="sit" />
+      </testsuite>
+      ...
+
+One testsuite per design, one testcase per load case.  A violation with case None
+(geometry) fails every case.  A design with violations but no load case results gets one
+testcase named ``geometry``; an unreadable input one testcase named ``load`` with an
+``<error>``.  No ``time`` attributes: the output is deterministic.
+"""
+
+from __future__ import annotations
+
+import functools
+import re
+import xml.etree.ElementTree as ET
+
+from furncheck.report.common import INPUT_ERROR, case_violations, describe_violation, plural
+from furncheck.result import BatchReport, DesignReport, Violation
+
+LOAD_TESTCASE = "load"
+"""Name of the single testcase of an input that could not be read."""
+GEOMETRY_TESTCASE = "geometry"
+"""Name of the single testcase of a design that has violations but no load case results."""
+
+_XML_INVALID = "[^\t\n\r\x20-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]"
+"""Characters XML 1.0 cannot hold (compiled on first use: keeps CLI start-up fast)."""
+
+
+def render(batch: BatchReport) -> str:
+    """The batch as a JUnit XML document (UTF-8 declaration, indented, trailing newline)."""
+    root = ET.Element("testsuites", name="furncheck")
+    totals = {"tests": 0, "failures": 0, "errors": 0}
+    for report in batch.reports:
+        suite = design_suite(report)
+        root.append(suite)
+        for key in totals:
+            totals[key] += int(suite.get(key, "0"))
+    for key, count in totals.items():
+        root.set(key, str(count))
+    ET.indent(root)
+    return ET.tostring(root, encoding="unicode", xml_declaration=True) + "\n"
+
+
+def design_suite(report: DesignReport) -> ET.Element:
+    """The ``<testsuite>`` of one design, its counts set."""
+    suite = ET.Element("testsuite", name=_clean(report.design))
+    if report.error is not None or report.valid is None:
+        case = _testcase(report, LOAD_TESTCASE)
+        error = report.error if report.error is not None else "no verdict"
+        ET.SubElement(case, "error", type=INPUT_ERROR, message=_clean(error)).text = _clean(error)
+        suite.append(case)
+    else:
+        failing = {case.name: case_violations(report, case.name) for case in report.cases}
+        if not failing and report.violations:
+            failing = {GEOMETRY_TESTCASE: list(report.violations)}
+        for name, violations in failing.items():
+            case = _testcase(report, name)
+            if violations:
+                _add_failure(case, violations)
+            suite.append(case)
+    suite.set("tests", str(len(suite)))
+    suite.set("failures", str(len(suite.findall("testcase/failure"))))
+    suite.set("errors", str(len(suite.findall("testcase/error"))))
+    suite.set("skipped", "0")
+    return suite
+
+
+def _testcase(report: DesignReport, name: str) -> ET.Element:
+    return ET.Element("testcase", classname=_clean(report.design), name=_clean(name))
+
+
+def _add_failure(testcase: ET.Element, violations: list[Violation]) -> None:
+    """One ``<failure>`` listing every violation; its type is the first violation's kind."""
+    kinds = dict.fromkeys(v.kind for v in violations)  # distinct, in order
+    message = f"{plural(len(violations), 'violation')}: {', '.join(kinds)}"
+    body = "\n".join(
+        f"{v.kind}: {describe_violation(v)}" + (f" (line {v.line})" if v.line is not None else "")
+        for v in violations)
+    failure = ET.SubElement(testcase, "failure", type=violations[0].kind, message=_clean(message))
+    failure.text = _clean(body)
+
+
+def _clean(text: str) -> str:
+    """``text`` without the characters XML 1.0 cannot hold (control characters)."""
+    return _xml_invalid().sub("\ufffd", text)
+
+
+@functools.cache
+def _xml_invalid() -> re.Pattern[str]:
+    return re.compile(_XML_INVALID)

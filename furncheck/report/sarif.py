@@ -1,0 +1,99 @@
+"""``--format sarif``: a SARIF 2.1.0 log, e.g. for GitHub code scanning.
+
+One run; ``tool.driver.rules`` holds one rule per violation kind plus ``input-error``
+(always all of them, in a fixed order, so the log's shape does not depend on the batch).
+Every violation and every unreadable input is one result of level ``error``, located at
+the design file (``artifactLocation.uri``) and, when known, its line (``region.startLine``).
+Relative paths stay relative (resolved against the repository root by code scanning);
+absolute ones become ``file://`` URIs.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import PurePath
+from typing import Any
+from urllib.parse import quote
+
+from furncheck import __version__
+from furncheck.report.common import INPUT_ERROR, describe_violation, input_error
+from furncheck.result import VIOLATION_KINDS, BatchReport, DesignReport
+
+SARIF_VERSION = "2.1.0"
+SARIF_SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
+
+RULE_DESCRIPTIONS = {
+    "disconnected": "A listed joint's planks do not touch or interpenetrate, or a plank is "
+                    "joined to no other plank.",
+    "penetration": "A plank corner lies below the ground plane.",
+    "floating": "Part of the assembly touches the ground nowhere.",
+    "non-durable": "A nail joint's pull or shear force per nail exceeds the nail capacity.",
+    "lift-off": "No equilibrium exists with non-negative ground forces: the design topples.",
+    "sliding": "No equilibrium exists within the friction cones: the design slides.",
+    INPUT_ERROR: "The design file cannot be read or is ill-formed.",
+}
+"""Rule id -> one-sentence description.  Ids are the violation kinds of the contract."""
+
+
+def render(batch: BatchReport) -> str:
+    """The batch as a SARIF 2.1.0 JSON document (indent 2, trailing newline)."""
+    rule_ids = list(VIOLATION_KINDS) + [INPUT_ERROR]
+    results: list[dict[str, Any]] = []
+    for report in batch.reports:
+        for rule_id, line, text in _findings(report):
+            if rule_id not in rule_ids:  # a kind this version does not know: still a rule
+                rule_ids.append(rule_id)
+            results.append(_result(rule_id, rule_ids.index(rule_id), report.design, line, text))
+    log = {
+        "$schema": SARIF_SCHEMA,
+        "version": SARIF_VERSION,
+        "runs": [{
+            "tool": {"driver": {
+                "name": "furncheck",
+                "version": __version__,
+                "rules": [_rule(rule_id) for rule_id in rule_ids],
+            }},
+            "results": results,
+        }],
+    }
+    return json.dumps(log, indent=2) + "\n"
+
+
+def artifact_uri(path: str) -> str:
+    """A URI reference for a design path: relative stays relative, absolute -> file://."""
+    pure = PurePath(path)
+    if pure.is_absolute():
+        return pure.as_uri()
+    return quote(pure.as_posix(), safe="/")
+
+
+def _findings(report: DesignReport) -> list[tuple[str, int | None, str]]:
+    """(rule id, line, message) of every problem of one design."""
+    if report.error is not None or report.valid is None:
+        line, message = input_error(report)
+        return [(INPUT_ERROR, line, message)]
+    return [(v.kind, v.line, describe_violation(v)) for v in report.violations]
+
+
+def _rule(rule_id: str) -> dict[str, Any]:
+    description = RULE_DESCRIPTIONS.get(rule_id, f"furncheck violation '{rule_id}'.")
+    return {
+        "id": rule_id,
+        "name": "".join(part.capitalize() for part in rule_id.split("-")),
+        "shortDescription": {"text": description},
+        "defaultConfiguration": {"level": "error"},
+    }
+
+
+def _result(rule_id: str, rule_index: int, design: str, line: int | None,
+            text: str) -> dict[str, Any]:
+    physical: dict[str, Any] = {"artifactLocation": {"uri": artifact_uri(design)}}
+    if line is not None and line >= 1:
+        physical["region"] = {"startLine": line}
+    return {
+        "ruleId": rule_id,
+        "ruleIndex": rule_index,
+        "level": "error",
+        "message": {"text": text},
+        "locations": [{"physicalLocation": physical}],
+    }

@@ -1,0 +1,205 @@
+"""``furncheck validate`` through click's CliRunner, with ``check_file`` replaced by a fake.
+
+The fake decides the verdict from the file name (valid*, bad*, boom*, garbage*), so these
+tests need neither the loader nor the solver and run in well under a second.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+import types
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+from furncheck.cli import validate as validate_module
+from furncheck.cli.main import main
+from furncheck.result import (
+    BatchReport,
+    CaseResult,
+    DesignReport,
+    JointResult,
+    Violation,
+)
+
+
+def fake_check_file(path: str) -> DesignReport:
+    """Verdict by file name; a path that does not exist is an input error, like the real one."""
+    stem = Path(path).stem
+    if not Path(path).is_file():
+        return DesignReport(path, stem, None, error=f"{path}: no such file")
+    if stem.startswith("boom"):
+        raise RuntimeError("solver exploded")
+    if stem.startswith("garbage"):
+        return 42  # type: ignore[return-value]
+    joint = JointResult(("a", "b"), (0.0, 0.0, 1.0), 3, (0.0, 0.0, -1.0), (0.0, 0.1, 0.0),
+                        10.0, 1.0, 700.0, 190.0, len(stem) / 100.0, True)
+    cases = (CaseResult("default", True, True, (joint,), ()),)
+    if stem.startswith("bad"):
+        violation = Violation("lift-off", "a", "default", "topples", line=2)
+        return DesignReport(path, stem, False, (violation,), cases)
+    return DesignReport(path, stem, True, (), cases)
+
+
+@pytest.fixture
+def calls(monkeypatch) -> list[str]:
+    """Replace ``furncheck.check`` by a module holding the fake; record the paths checked."""
+    seen: list[str] = []
+
+    def check_file(path: str) -> DesignReport:
+        seen.append(path)
+        return fake_check_file(path)
+
+    fake = types.ModuleType("furncheck.check")
+    fake.check_file = check_file
+    monkeypatch.setitem(sys.modules, "furncheck.check", fake)
+    return seen
+
+
+def run(*args: str):
+    return CliRunner().invoke(main, list(args))
+
+
+def write(folder: Path, *names: str) -> list[str]:
+    paths = []
+    for name in names:
+        path = folder / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text("furncheck: 1\n")
+        paths.append(str(path))
+    return paths
+
+
+def test_version_and_help():
+    result = run("--version")
+    assert result.exit_code == 0 and "furncheck" in result.output
+    assert run("validate", "--help").exit_code == 0
+
+
+def test_no_path_is_a_usage_error(calls):
+    result = run("validate")
+    assert result.exit_code == 2 and "PATH" in result.output and calls == []
+
+
+@pytest.mark.parametrize("args", [("--format", "yaml"), ("--jobs", "0"), ("--nope",)])
+def test_bad_options_are_usage_errors(calls, tmp_path, args):
+    (path,) = write(tmp_path, "valid.yaml")
+    result = run("validate", path, *args)
+    assert result.exit_code == 2 and "Traceback" not in result.output
+
+
+def test_exit_codes(calls, tmp_path):
+    valid, bad = write(tmp_path, "valid.yaml", "bad.yaml")
+    assert run("validate", valid).exit_code == 0
+    assert run("validate", valid, bad).exit_code == 1
+    assert run("validate", valid, bad, str(tmp_path / "missing.yaml")).exit_code == 2
+
+
+def test_missing_path_keeps_the_batch_going(calls, tmp_path):
+    valid, bad = write(tmp_path, "valid.yaml", "bad.yaml")
+    missing = str(tmp_path / "missing.yaml")
+    result = run("validate", missing, valid, bad, "--format", "json")
+    assert result.exit_code == 2
+    document = json.loads(result.stdout)
+    assert [r["design"] for r in document["reports"]] == [missing, valid, bad]
+    assert document["reports"][0]["error"].endswith("no such file")
+    assert document["summary"] == {"designs": 3, "valid": 1, "invalid": 1, "errors": 1}
+
+
+def test_explicit_file_of_another_type_is_checked_anyway(calls, tmp_path):
+    (notes,) = write(tmp_path, "notes.txt")
+    run("validate", notes)
+    assert calls == [notes]
+
+
+def test_directories_are_searched_recursively_and_sorted(calls, tmp_path):
+    write(tmp_path, "b.yaml", "a.json", "sub/c.yml", "sub/deeper/d.yaml", "a-b/e.yaml",
+          "readme.md", ".hidden/x.yaml", ".dot.yaml")
+    (tmp_path / "empty").mkdir()
+    result = run("validate", str(tmp_path), str(tmp_path / "empty"), "--format", "json")
+    names = [Path(r["design"]).relative_to(tmp_path).as_posix()
+             for r in json.loads(result.stdout)["reports"]]
+    assert names == ["a-b/e.yaml", "a.json", "b.yaml", "sub/c.yml", "sub/deeper/d.yaml", "empty"]
+    assert result.exit_code == 2  # the empty directory is an error entry
+    assert "no design files" in json.loads(result.stdout)["reports"][-1]["error"]
+
+
+def test_a_file_named_twice_is_checked_once(calls, tmp_path):
+    (valid,) = write(tmp_path, "valid.yaml")
+    run("validate", valid, str(tmp_path), valid)
+    assert calls == [valid]
+
+
+def test_text_output(calls, tmp_path):
+    valid, bad = write(tmp_path, "valid.yaml", "bad.yaml")
+    result = run("validate", valid, bad)
+    assert result.stdout.splitlines() == [
+        f"{valid}: valid (worst joint a/b at 5 % in case 'default')",
+        f"{bad}: INVALID, 1 violation",
+        "  lift-off: a in case 'default': topples (line 2)",
+        "2 designs: 1 valid, 1 invalid, 0 errors",
+    ]
+
+
+def test_unexpected_exceptions_become_error_entries(calls, tmp_path):
+    boom, garbage, valid = write(tmp_path, "boom.yaml", "garbage.yaml", "valid.yaml")
+    result = run("validate", boom, garbage, valid, "--format", "json")
+    assert result.exit_code == 2 and "Traceback" not in result.output
+    reports = json.loads(result.stdout)["reports"]
+    assert reports[0]["error"] == "internal error: RuntimeError: solver exploded"
+    assert reports[1]["error"].startswith("internal error: the checker returned a int")
+    assert reports[2]["valid"] is True
+
+
+@pytest.mark.parametrize("fmt", ["text", "json", "junit", "github", "sarif"])
+def test_output_file_gets_exactly_the_report(calls, tmp_path, fmt):
+    valid, bad = write(tmp_path, "valid.yaml", "bad.yaml")
+    out = tmp_path / f"report.{fmt}"
+    to_file = run("validate", valid, bad, "--format", fmt, "-o", str(out))
+    to_stdout = run("validate", valid, bad, "--format", fmt)
+    assert to_file.exit_code == to_stdout.exit_code == 1
+    assert to_file.stdout == ""
+    assert out.read_text(encoding="utf-8") == to_stdout.stdout
+
+
+@pytest.mark.parametrize("target", ["missing-dir/report.json", "."])
+def test_unwritable_output_is_one_line_and_exit_2(calls, tmp_path, target):
+    (valid,) = write(tmp_path, "valid.yaml")
+    result = run("validate", valid, "-o", str(tmp_path / target))
+    assert result.exit_code == 2
+    assert result.stdout == ""
+    assert len(result.stderr.splitlines()) == 1 and "cannot write" in result.stderr
+    assert calls == []  # found before any design was checked
+
+
+def test_jobs_give_the_same_output(calls, tmp_path):
+    names = [f"valid{i:02d}.yaml" for i in range(10)] + ["bad.yaml", "boom.yaml"]
+    write(tmp_path, *names)
+    (tmp_path / "empty-subfolder").mkdir()  # inside a searched folder: no entry
+    one = run("validate", str(tmp_path), "--jobs", "1", "--format", "json")
+    two = run("validate", str(tmp_path), "--jobs", "2", "--format", "json")
+    assert one.exit_code == two.exit_code == 2
+    assert one.stdout == two.stdout
+    assert len(json.loads(one.stdout)["reports"]) == 12
+
+
+def test_worker_pool_matches_sequential(calls, tmp_path):
+    paths = write(tmp_path, *[f"valid{i}.yaml" for i in range(9)], "bad.yaml")
+    parallel = validate_module._check_in_workers(paths, 2)
+    assert parallel is not None  # the pool really ran
+    assert BatchReport(tuple(parallel)) == BatchReport(tuple(map(fake_check_file, paths)))
+
+
+def test_cli_start_up_imports_nothing_heavy():
+    code = (f"import sys; sys.path.insert(0, {str(ROOT)!r}); "
+            f"sys.path.insert(0, {str(ROOT / 'tests')!r}); import test_cli; "
+            "print(sorted(m for m in ('numpy', 'scipy', 'furncheck.check') if m in sys.modules))")
+    output = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                            check=True, cwd=ROOT).stdout
+    assert output.strip() == "[]"

@@ -1,0 +1,267 @@
+"""Reporters on hand-built batches: schema, determinism, rounding, escaping."""
+
+from __future__ import annotations
+
+import json
+import math
+import xml.etree.ElementTree as ET
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from furncheck import __version__
+from furncheck.report import REPORTERS, render
+from furncheck.report.common import input_error
+from furncheck.report.github import escape_data, escape_property
+from furncheck.report.numbers import format_number, format_percent, json_ready, round_significant
+from furncheck.report.sarif import artifact_uri
+from furncheck.result import (
+    VIOLATION_KINDS,
+    BatchReport,
+    CaseResult,
+    ContactResult,
+    DesignReport,
+    JointResult,
+    Violation,
+)
+
+
+def joint(planks=("seat", "leg1"), utilization=0.42, pull=294.0, durable=True) -> JointResult:
+    return JointResult(planks=planks, point=(0.0, 150.0, 450.0), nails=15,
+                       force=(1.0 / 3.0, -0.0, -98.100000000001), moment=(0.0, 29.4, 1e-20),
+                       pull=pull, shear=6.5, pull_capacity=700.0, shear_capacity=190.0,
+                       utilization=utilization, durable=durable)
+
+
+def case(name="default", joints=None, durable=True, stable=True) -> CaseResult:
+    joints = (joint(),) if joints is None else joints
+    contacts = (ContactResult("base", (200.0, 150.0, 0.0), (0.0, -0.0, 31.2)),)
+    return CaseResult(name, durable, stable, tuple(joints), contacts)
+
+
+STOOL = DesignReport(
+    design="designs/stool.yaml", name="stool", valid=True,
+    cases=(case("default", (joint(utilization=0.1),)),
+           case("sit", (joint(("seat", "leg2"), 0.3), joint(("seat", "leg1"), 0.42)))))
+
+SHELF = DesignReport(
+    design="designs/shelf.yaml", name="shelf", valid=False,
+    violations=(
+        Violation("non-durable", "post/shelf", "default", "pull 812 N per nail exceeds 700 N",
+                  line=14),
+        Violation("floating", "lamp", None, "1 plank touches the ground nowhere"),
+    ),
+    cases=(case("default", (joint(("post", "shelf"), 1.16, 812.0, False),), durable=False),
+           case("lean")))
+
+BROKEN = DesignReport(design="designs/broken.yaml", name="broken", valid=None,
+                      error="designs/broken.yaml:3: planks[0].size: expected [length, width]")
+
+BATCH = BatchReport((STOOL, SHELF, BROKEN))
+
+
+# --- every format ---------------------------------------------------------------------------
+
+@pytest.mark.parametrize("fmt", list(REPORTERS))
+def test_every_format_is_deterministic_and_ends_with_newline(fmt):
+    first = render(BATCH, fmt)
+    again = render(BatchReport(tuple(BATCH.reports)), fmt)
+    assert first == again
+    assert first.endswith("\n") and not first.endswith("\n\n")
+
+
+@pytest.mark.parametrize("fmt", list(REPORTERS))
+def test_every_format_handles_an_empty_batch(fmt):
+    assert render(BatchReport(()), fmt).endswith("\n")
+
+
+def test_unknown_format_is_a_value_error():
+    with pytest.raises(ValueError, match="unknown report format"):
+        render(BATCH, "yaml")
+
+
+# --- json -----------------------------------------------------------------------------------
+
+def test_json_keys_are_exactly_the_contract_schema():
+    document = json.loads(render(BATCH, "json"))
+    assert list(document) == ["reports", "summary"]
+    assert document["summary"] == {"designs": 3, "valid": 1, "invalid": 1, "errors": 1}
+    assert list(document["summary"]) == ["designs", "valid", "invalid", "errors"]
+    stool, shelf, broken = document["reports"]
+    assert list(shelf) == ["design", "name", "valid", "violations", "cases"]
+    assert list(shelf["violations"][0]) == ["kind", "where", "case", "message"]
+    assert shelf["violations"][1]["case"] is None
+    assert list(shelf["cases"][0]) == ["name", "durable", "stable", "joints", "contacts"]
+    assert list(shelf["cases"][0]["joints"][0]) == [
+        "planks", "point", "nails", "force", "moment", "pull", "shear", "pull_capacity",
+        "shear_capacity", "utilization", "durable"]
+    assert list(shelf["cases"][0]["contacts"][0]) == ["plank", "point", "force"]
+    assert broken == {"design": "designs/broken.yaml", "name": "broken",
+                      "error": "designs/broken.yaml:3: planks[0].size: expected [length, width]"}
+    assert stool["valid"] is True and shelf["valid"] is False
+
+
+def test_json_rounds_floats_and_keeps_ints():
+    text = render(BATCH, "json")
+    joint_json = json.loads(text)["reports"][0]["cases"][0]["joints"][0]
+    assert joint_json["force"] == [0.333333, 0.0, -98.1]
+    assert joint_json["moment"] == [0.0, 29.4, 0.0]   # 1e-20 is solver round-off
+    assert joint_json["nails"] == 15 and isinstance(joint_json["nails"], int)
+    assert joint_json["planks"] == ["seat", "leg1"]
+    assert "-0.0" not in text
+    assert '"nails": 15,' in text and text.startswith('{\n  "reports": [\n')
+
+
+def test_json_writes_non_finite_numbers_as_null():
+    report = DesignReport("x.yaml", "x", True, cases=(case(joints=(joint(utilization=math.inf),)),))
+    document = json.loads(render(BatchReport((report,)), "json"))
+    assert document["reports"][0]["cases"][0]["joints"][0]["utilization"] is None
+
+
+def test_round_significant():
+    assert round_significant(123456789.0) == 123457000.0
+    assert round_significant(-0.0) == 0.0 and math.copysign(1.0, round_significant(-0.0)) == 1.0
+    assert round_significant(-1e-30) == 0.0            # below REPORT_DECIMALS: round-off
+    assert round_significant(2.5e-5) == 2.5e-5
+    assert round_significant(0.1 + 0.2) == 0.3
+    assert math.isnan(round_significant(math.nan))
+
+
+@given(st.floats(allow_nan=False, allow_infinity=False))
+def test_rounding_is_idempotent_and_survives_json(value):
+    rounded = round_significant(value)
+    assert round_significant(rounded) == rounded
+    assert json.loads(json.dumps(json_ready(value))) == rounded
+
+
+def test_json_ready_accepts_numpy_values():
+    np = pytest.importorskip("numpy")
+    assert json_ready({"a": np.float64(-0.0), "b": np.int64(3), "c": np.array([1.0 / 3.0]),
+                       "d": np.bool_(True)}) == {"a": 0.0, "b": 3, "c": [0.333333], "d": True}
+
+
+def test_text_numbers():
+    assert format_number(812.0000001) == "812"
+    assert format_number(-0.0) == "0"
+    assert format_number(0.125) == "0.125"
+    assert format_percent(0.42) == "42 %"
+    assert format_percent(0.0035) == "0.35 %"
+    assert format_percent(0.0) == "0 %"
+
+
+# --- text -----------------------------------------------------------------------------------
+
+def test_text_report_lines():
+    assert render(BATCH, "text").splitlines() == [
+        "designs/stool.yaml: valid (worst joint seat/leg1 at 42 % in case 'sit')",
+        "designs/shelf.yaml: INVALID, 2 violations",
+        "  non-durable: post/shelf in case 'default': pull 812 N per nail exceeds 700 N "
+        "(line 14)",
+        "  floating: lamp: 1 plank touches the ground nowhere",
+        "designs/broken.yaml: error: line 3: planks[0].size: expected [length, width]",
+        "3 designs: 1 valid, 1 invalid, 1 error",
+    ]
+
+
+def test_text_singulars_and_designs_without_joints():
+    single = DesignReport("one.yaml", "one", True, cases=(case(joints=()),))
+    bad = DesignReport("bad.yaml", "bad", False, violations=(SHELF.violations[1],))
+    assert render(BatchReport((single, bad)), "text").splitlines() == [
+        "one.yaml: valid (no nail joints)",
+        "bad.yaml: INVALID, 1 violation",
+        "  floating: lamp: 1 plank touches the ground nowhere",
+        "2 designs: 1 valid, 1 invalid, 0 errors",
+    ]
+
+
+def test_input_error_splits_file_and_line():
+    assert input_error(BROKEN) == (3, "planks[0].size: expected [length, width]")
+    other = DesignReport("a.yaml", "a", None, error="a.yaml: not a mapping")
+    assert input_error(other) == (None, "not a mapping")
+    internal = DesignReport("a.yaml", "a", None, error="internal error: boom")
+    assert input_error(internal) == (None, "internal error: boom")
+
+
+# --- junit ----------------------------------------------------------------------------------
+
+def test_junit_parses_and_counts():
+    root = ET.fromstring(render(BATCH, "junit").encode("utf-8"))
+    assert root.tag == "testsuites"
+    suites = root.findall("testsuite")
+    assert [s.get("name") for s in suites] == [r.design for r in BATCH.reports]
+    # 2 cases + 2 cases + 1 load testcase
+    assert len(root.findall("testsuite/testcase")) == 5
+    assert (root.get("tests"), root.get("failures"), root.get("errors")) == ("5", "2", "1")
+    stool, shelf, broken = suites
+    assert (stool.get("tests"), stool.get("failures"), stool.get("errors")) == ("2", "0", "0")
+    assert (shelf.get("tests"), shelf.get("failures")) == ("2", "2")
+    default, lean = shelf.findall("testcase")
+    assert (default.get("classname"), default.get("name")) == ("designs/shelf.yaml", "default")
+    assert "post/shelf" in default.find("failure").text
+    assert "lamp" in default.find("failure").text  # case None fails every case
+    assert "post/shelf" not in lean.find("failure").text
+    assert "lamp" in lean.find("failure").text
+    assert broken.find("testcase/error") is not None and broken.get("errors") == "1"
+
+
+def test_junit_survives_control_characters_and_geometry_only_designs():
+    report = DesignReport("g.yaml", "g", False,
+                          violations=(Violation("floating", "a", None, "bell \x07 rings"),))
+    root = ET.fromstring(render(BatchReport((report,)), "junit").encode("utf-8"))
+    (testcase,) = root.iter("testcase")
+    assert testcase.get("name") == "geometry"
+    assert "\x07" not in testcase.find("failure").text
+
+
+# --- github ---------------------------------------------------------------------------------
+
+def test_github_annotations():
+    lines = render(BATCH, "github").splitlines()
+    assert lines == [
+        "::error file=designs/shelf.yaml,line=14,title=furncheck non-durable::"
+        "post/shelf in case 'default': pull 812 N per nail exceeds 700 N",
+        "::error file=designs/shelf.yaml,title=furncheck floating::"
+        "lamp: 1 plank touches the ground nowhere",
+        "::error file=designs/broken.yaml,line=3,title=furncheck input-error::"
+        "planks[0].size: expected [length, width]",
+        "::notice title=furncheck::3 designs: 1 valid, 1 invalid, 1 error",
+    ]
+
+
+def test_github_escaping():
+    assert escape_data("100% a\r\nb: c, d") == "100%25 a%0D%0Ab: c, d"
+    assert escape_property("a,b:c%\n") == "a%2Cb%3Ac%25%0A"
+    report = DesignReport("odd, name:1.yaml", "odd", False,
+                          violations=(Violation("sliding", "a", "x", "50%\nmore"),))
+    (line, _) = render(BatchReport((report,)), "github").splitlines()
+    assert line == ("::error file=odd%2C name%3A1.yaml,title=furncheck sliding::"
+                    "a in case 'x': 50%25%0Amore")
+
+
+# --- sarif ----------------------------------------------------------------------------------
+
+def test_sarif_log():
+    log = json.loads(render(BATCH, "sarif"))
+    assert log["version"] == "2.1.0" and "sarif" in log["$schema"]
+    (run,) = log["runs"]
+    driver = run["tool"]["driver"]
+    assert driver["name"] == "furncheck" and driver["version"] == __version__
+    rule_ids = [rule["id"] for rule in driver["rules"]]
+    assert rule_ids == list(VIOLATION_KINDS) + ["input-error"]
+    assert all(rule["shortDescription"]["text"] for rule in driver["rules"])
+    results = run["results"]
+    assert [r["ruleId"] for r in results] == ["non-durable", "floating", "input-error"]
+    for result in results:
+        assert result["level"] == "error" and result["message"]["text"]
+        assert rule_ids[result["ruleIndex"]] == result["ruleId"]
+    locations = [r["locations"][0]["physicalLocation"] for r in results]
+    assert locations[0] == {"artifactLocation": {"uri": "designs/shelf.yaml"},
+                            "region": {"startLine": 14}}
+    assert "region" not in locations[1]
+    assert locations[2]["region"] == {"startLine": 3}
+
+
+def test_sarif_uris():
+    assert artifact_uri("designs/my shelf.yaml") == "designs/my%20shelf.yaml"
+    assert artifact_uri("/abs/x.yaml") == "file:///abs/x.yaml"
