@@ -70,15 +70,9 @@ class StaticsModel:
         return 6 * len(self.planks)
 
     @cached_property
-    def fixed_triplets(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """COO rows, columns, values of the contact-independent part [[0, G^T], [G, -E]]."""
-        G = self.G.tocoo()
-        n, m = self.n_dof, G.shape[0]
-        diagonal = n + np.arange(m)
-        rows = np.concatenate([G.col, n + G.row, diagonal])
-        cols = np.concatenate([n + G.row, G.col, diagonal])
-        vals = np.concatenate([G.data, G.data, -self.compliance])
-        return rows, cols, vals
+    def condensation(self) -> "_Condensation | None":
+        """The contact-free part of the system, condensed onto the grounded planks."""
+        return _condense(self)
 
 
 @dataclass(frozen=True)
@@ -226,6 +220,9 @@ class _ActiveSet:
     def __init__(self, model: StaticsModel, f: np.ndarray, scale: float):
         self.model = model
         self.f = f
+        self.condensed = model.condensation
+        if self.condensed is not None:
+            self.inner_part, self.ground_rhs = self.condensed.load(f)
         self.force_tol = tol.FORCE_REL_TOL * scale
         self.disp_tol = self.force_tol / tol.CONTACT_STIFFNESS
         self.directions = np.zeros((len(model.contacts), 2))
@@ -328,32 +325,33 @@ class _ActiveSet:
 
     # -- the linear solve ------------------------------------------------------------------------
     def solve(self, status: np.ndarray, stiffness_scale: float = 1.0) -> _Solution | None:
-        """Solve the mixed system for the given contact states; None if it is a mechanism."""
-        model = self.model
+        """Solve the mixed system for the given contact states; None if it is a mechanism.
+
+        Only the grounded planks' six displacements each are solved for here (a small dense
+        system, see ``_Condensation``); the rest follows by one matrix-vector product.
+        """
+        model, condensed = self.model, self.condensed
         springs = self._spring_matrices(status) * stiffness_scale
-        if not self._restrained(springs):
+        if condensed is None or not self._restrained(springs):
             return None
-        n, m = model.n_dof, model.G.shape[0]
-        blocks = np.einsum("kai,kab,kbj->kij", model.contact_maps, springs, model.contact_maps)
-        base = 6 * model.contact_plank[:, None, None]
-        rows = np.broadcast_to(base + _SIX[None, :, None], blocks.shape)
-        cols = np.broadcast_to(base + _SIX[None, None, :], blocks.shape)
-        fixed_rows, fixed_cols, fixed_vals = model.fixed_triplets
-        A = sp.csc_matrix((np.concatenate([fixed_vals, blocks.ravel()]),
-                           (np.concatenate([fixed_rows, rows.ravel()]),
-                            np.concatenate([fixed_cols, cols.ravel()]))), shape=(n + m, n + m))
-        rhs = np.concatenate([self.f, np.zeros(m)])
+        maps = model.contact_maps
+        blocks = np.transpose(maps, (0, 2, 1)) @ (springs @ maps)       # (nK, 6, 6)
+        per_plank = np.zeros((len(condensed.plank_offsets), 6, 6))
+        np.add.at(per_plank, condensed.contact_block, blocks)
+        stiffness = condensed.schur.copy()
+        for block, offset in zip(per_plank, condensed.plank_offsets):
+            stiffness[offset:offset + 6, offset:offset + 6] += block
         try:
-            x = spla.splu(A).solve(rhs)
-        except RuntimeError:
+            ground = np.linalg.solve(stiffness, self.ground_rhs)
+        except np.linalg.LinAlgError:
             return None
-        if not np.all(np.isfinite(x)):
+        if not _accurate(stiffness, ground, self.ground_rhs):
             return None
-        q, h = x[:n], x[n:]
-        displacement = np.einsum("kij,kj->ki", model.contact_maps, q.reshape(-1, 6)[
-            model.contact_plank])
-        forces = -np.einsum("kab,kb->ka", springs, displacement)
-        return _Solution(q, h, forces, displacement)
+        plank_q = ground.reshape(-1, 6)[condensed.contact_block]           # (nK, 6)
+        displacement = (maps @ plank_q[:, :, None])[:, :, 0]
+        forces = -(springs @ displacement[:, :, None])[:, :, 0]
+        x = condensed.expand(self.inner_part, ground)
+        return _Solution(x[:model.n_dof], x[model.n_dof:], forces, displacement)
 
     def _spring_matrices(self, status: np.ndarray) -> np.ndarray:
         """(nK, 3, 3): contact force = -S w for contact point displacement w."""
@@ -381,7 +379,7 @@ class _ActiveSet:
             rigid = np.zeros((len(points), 3, 6))
             rigid[:, :, :3] = np.eye(3)
             rigid[:, :, 3:] = -_skew_many(arm) / length
-            stiffness = np.einsum("kai,kab,kbj->ij", rigid, springs[members], rigid)
+            stiffness = (np.transpose(rigid, (0, 2, 1)) @ springs[members] @ rigid).sum(axis=0)
             singular = np.linalg.svd(stiffness, compute_uv=False)
             if singular[-1] <= tol.MECHANISM_RCOND * max(singular[0], 1e-300):
                 return False
@@ -420,7 +418,7 @@ class _ActiveSet:
                 changed = True
                 continue
             direction = trial / size
-            if np.abs(direction - self.directions[k]).max() > 1e-9:
+            if np.abs(direction - self.directions[k]).max() > tol.SLIP_DIRECTION_TOL:
                 self.directions[k] = direction
                 changed = True
         return changed
@@ -496,6 +494,107 @@ def _cone_solution(model: StaticsModel, f: np.ndarray) -> np.ndarray | None:
 
 
 # --- small helpers -----------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class _Condensation:
+    """Static condensation of the mixed system onto the grounded planks.
+
+    Order the unknowns as g (the six displacements of each plank with ground contacts) and
+    i (all other plank displacements and every joint wrench).  Contact springs touch only
+    the g-g block, so with A the contact-free matrix
+
+        S0 = A_gg - A_gi A_ii^-1 A_ig,   X = A_ii^-1 A_ig,   y = A_ii^-1 b_i
+
+    are computed once per design (A_ii by one sparse LU) and per load case, and each
+    contact-state iteration only solves (S0 + K_c) x_g = b_g - A_gi y, a dense system of
+    6 x (grounded planks); then x_i = y - X x_g.
+    """
+
+    ground: np.ndarray           # indices of g in the full unknown vector
+    inner: np.ndarray            # indices of i
+    lu: object                   # SuperLU of A_ii
+    coupling: sp.csc_matrix      # A_ig (n_i, n_g)
+    reduced: np.ndarray          # X = A_ii^-1 A_ig
+    schur: np.ndarray            # S0
+    contact_block: np.ndarray    # per contact, number of its plank's 6-block in x_g
+    plank_offsets: np.ndarray    # offset of each grounded plank's block in x_g
+    size: int
+
+    def load(self, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(y, b_g - A_gi y) for the plank loads f (the joint rows have no load)."""
+        b = np.zeros(self.size)
+        b[:len(f)] = f
+        inner = self.lu.solve(b[self.inner]) if len(self.inner) else np.zeros(0)
+        return inner, b[self.ground] - self.coupling.T @ inner
+
+    def expand(self, inner_part: np.ndarray, ground: np.ndarray) -> np.ndarray:
+        """The full unknown vector [q; h] from x_g."""
+        x = np.zeros(self.size)
+        x[self.ground] = ground
+        x[self.inner] = inner_part - self.reduced @ ground
+        return x
+
+
+def _condense(model: StaticsModel) -> _Condensation | None:
+    """Build the condensation; None if the contact-free part is singular (a plank that
+    is neither grounded nor jointed to a grounded plank cannot be held)."""
+    n, m = model.n_dof, model.G.shape[0]
+    G = model.G.tocoo()
+    diagonal = n + np.arange(m)
+    A = sp.csc_matrix((np.concatenate([G.data, G.data, -model.compliance]),
+                       (np.concatenate([G.col, n + G.row, diagonal]),
+                        np.concatenate([n + G.row, G.col, diagonal]))), shape=(n + m, n + m))
+    grounded, contact_block = np.unique(model.contact_plank, return_inverse=True)
+    ground = (6 * grounded[:, None] + _SIX[None, :]).ravel()
+    inner = np.setdiff1d(np.arange(n + m), ground)
+    ni = len(inner)
+    order = np.concatenate([inner, ground])
+    permuted = A[order][:, order].tocsc()
+    A_ii = permuted[:ni, :ni].tocsc()
+    coupling = permuted[:ni, ni:].tocsc()
+    lu, reduced = None, np.zeros((ni, len(ground)))
+    if ni:
+        lu = _factor(A_ii, np.asarray(coupling.sum(axis=1)).ravel())
+        if lu is None:
+            return None
+        reduced = lu.solve(coupling.toarray()) if len(ground) else reduced
+    schur = permuted[ni:, ni:].toarray() - np.asarray(coupling.T @ reduced)
+    return _Condensation(ground, inner, lu, coupling, reduced, schur,
+                         contact_block.astype(int), 6 * np.arange(len(grounded)), n + m)
+
+
+def _factor(A: sp.csc_matrix, probe: np.ndarray):
+    """SuperLU of the symmetric matrix A, or None if it is singular.  The factors are
+    checked on the right-hand side ``probe``.
+
+    A symmetric fill-reducing ordering with diagonal pivots keeps the factors about ten
+    times sparser than the default; if it solves the probe columns poorly (a tiny pivot),
+    partial pivoting (SuperLU's default) is used instead.
+    """
+    rhs = probe if np.any(probe) else np.ones(A.shape[0])
+    for options in (_SYMMETRIC_LU, {}):
+        try:
+            lu = spla.splu(A, **options)
+        except RuntimeError:
+            continue
+        if _accurate(A, lu.solve(rhs), rhs):
+            return lu
+    return None
+
+
+def _accurate(A, x: np.ndarray, b: np.ndarray) -> bool:
+    """Whether x solves A x = b to a normwise backward error below SOLVE_RESIDUAL:
+    max|A x - b| <= tol (max row sum of |A| x max|x| + max|b|)."""
+    if not np.all(np.isfinite(x)):
+        return False
+    norm = float(abs(A).sum(axis=1).max()) if A.shape[0] else 0.0
+    scale = norm * float(np.abs(x).max(initial=0.0)) + float(np.abs(b).max(initial=0.0))
+    return float(np.abs(A @ x - b).max(initial=0.0)) <= tol.SOLVE_RESIDUAL * max(scale, 1e-300)
+
+
+_SYMMETRIC_LU = {"permc_spec": "MMD_AT_PLUS_A", "diag_pivot_thresh": 0.0,
+                 "options": {"SymmetricMode": True}}
+
 
 def _force_scale(model: StaticsModel, f: np.ndarray) -> float:
     """N: sum of the applied force magnitudes (the scale of the force tolerances)."""

@@ -41,12 +41,20 @@ Three orders softer than the joints, so the assembly acts as one rigid body on s
 CONTACT_ITERATIONS = 60
 """Most active-set / friction-anchor iterations per load case."""
 
+SLIP_DIRECTION_TOL = 1e-6
+"""A slipping contact's friction direction (unit vector) counts as settled when it moves
+less than this between iterations (friction forces then err by < 1e-6 of mu N)."""
+
 FORCE_REL_TOL = 1e-9
 """Relative force slack (of the total applied load) for contact sign and cone checks."""
 
 FRICTION_CONE_SIDES = 64
 """Sides of the inner/outer polygonal friction pyramids in the sliding feasibility LP;
 between them the verdict is exact to 1 - cos(pi / 64) = 0.12 %."""
+
+SOLVE_RESIDUAL = 1e-10
+"""Largest accepted normwise backward error of a linear solve (residual over
+|A| |x| + |b|); larger means a singular or badly pivoted system."""
 
 MECHANISM_RCOND = 1e-10
 """Smallest singular value (relative) of a component's ground-support stiffness below
@@ -62,3 +70,24 @@ REPORT_SIGNIFICANT_DIGITS = 6
 REPORT_DECIMALS = 6
 """...after rounding to this many decimals (of N, N m, the file's length unit), so solver
 round-off such as 2e-14 mm or 1e-16 N is written as 0."""
+
+# --- design files: input limits and range guards (loader; SI unless the name says) ------
+MAX_FILE_BYTES = 5 * 1024 * 1024
+"""Largest design file read (5 MB); a catalog's furniture is a few kB."""
+MAX_NESTING = 32
+"""Deepest nesting of mappings and lists in a design file (a valid one needs 5)."""
+MIN_LENGTH = 1e-5                # m: smallest plank size, thickness, nail spacing
+MAX_LENGTH = 1e3                 # m: largest plank size, thickness, nail spacing, tolerance
+MAX_COORDINATE = 1e3             # m: largest |coordinate| of a centre or load point
+MAX_MASS = 1e7                   # kg per load
+MAX_FORCE = 1e9                  # N, largest |component| of a load force
+MAX_DENSITY = 1e5                # kg/m^3
+MAX_FRICTION = 10.0              # static Coulomb coefficient
+MIN_SAFETY_FACTOR = 1e-3
+MAX_SAFETY_FACTOR = 1e3
+MAX_NAIL_CAPACITY = 1e7          # N per nail, pull or shear
+MAX_ROTATION_DEG = 1e4           # degrees, largest |rotation| about one axis
+MAX_NAILS = 1e6                  # nails of one listed joint
+ON_PLANK_EPS = 1e-9
+"""m: round-off slack (on top of the design's tolerance) when a load point is checked to
+lie on its plank, so a point exactly on a face is on the plank even with tolerance 0."""

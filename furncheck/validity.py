@@ -45,14 +45,30 @@ class NailForces:
 
 def nail_forces(joint: Joint, wrench: np.ndarray, design: Design) -> NailForces:
     """Per-nail pull and shear of a joint from its wrench (6,) = first plank on second."""
-    sign = 1.0 if joint.planks[0] == joint.face else -1.0   # -> wrench of face on edge plank
-    force = joint.frame.T @ (sign * wrench[:3])
-    moment_y = float(joint.frame[:, 1] @ (sign * wrench[3:]))
-    pull = (2.0 * abs(moment_y) / joint.edge_thickness - force[2]) / joint.nails
-    shear = float(np.hypot(force[0], force[1])) / joint.nails
+    pull, shear = nail_pull_shear([joint], np.asarray(wrench, dtype=float)[None, :])
     material = design.material
-    return NailForces(float(pull), shear, material.nail_pull / design.safety_factor,
+    return NailForces(float(pull[0]), float(shear[0]), material.nail_pull / design.safety_factor,
                       material.nail_shear / design.safety_factor)
+
+
+def nail_pull_shear(joints: list[Joint], wrenches: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per-nail pull and shear (N) of many joints; wrenches (nJ, 6) first plank on second.
+
+    The wrench is turned into the face plank's action on the edge plank and expressed in
+    the joint frame (x edge thickness normal, y joint line, n nail axis):
+    pull = (2 |M_y| / t - F_n) / nails, shear = |(F_x, F_y)| / nails.
+    """
+    if not joints:
+        return np.zeros(0), np.zeros(0)
+    frames = np.stack([j.frame for j in joints])                       # (nJ, 3, 3)
+    sign = np.array([1.0 if j.planks[0] == j.face else -1.0 for j in joints])[:, None]
+    force = np.einsum("jab,ja->jb", frames, sign * wrenches[:, :3])    # frame^T F
+    moment_y = np.einsum("ja,ja->j", frames[:, :, 1], sign * wrenches[:, 3:])
+    thickness = np.array([j.edge_thickness for j in joints])
+    nails = np.array([j.nails for j in joints], dtype=float)
+    pull = (2.0 * np.abs(moment_y) / thickness - force[:, 2]) / nails
+    shear = np.hypot(force[:, 0], force[:, 1]) / nails
+    return pull, shear
 
 
 def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case: LoadCase,
@@ -64,27 +80,29 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
     """
     scale = design.unit_scale
     joints, violations = [], []
+    pull_cap = design.material.nail_pull / design.safety_factor
+    shear_cap = design.material.nail_shear / design.safety_factor
     if statics.joint_wrenches is not None:
-        for row, j in enumerate(model.joints):
-            joint = geometry.joints[j]
-            wrench = statics.joint_wrenches[row]
-            nails = nail_forces(joint, wrench, design)
+        model_joints = [geometry.joints[j] for j in model.joints]
+        pulls, shears = nail_pull_shear(model_joints, statics.joint_wrenches)
+        for joint, wrench, pull, shear in zip(model_joints, statics.joint_wrenches.tolist(),
+                                              pulls.tolist(), shears.tolist()):
+            nails = NailForces(pull, shear, pull_cap, shear_cap)
             joints.append(JointResult(
                 planks=joint.planks, point=_tuple(joint.point / scale), nails=joint.nails,
-                force=_tuple(wrench[:3]), moment=_tuple(wrench[3:]), pull=nails.pull,
-                shear=nails.shear, pull_capacity=nails.pull_capacity,
-                shear_capacity=nails.shear_capacity, utilization=nails.utilization,
-                durable=nails.durable))
+                force=tuple(wrench[:3]), moment=tuple(wrench[3:]), pull=pull, shear=shear,
+                pull_capacity=pull_cap, shear_capacity=shear_cap,
+                utilization=nails.utilization, durable=nails.durable))
             if not nails.durable and statics.stability in ("stable", "sliding"):
                 violations.append(Violation("non-durable", joint.name, case.name,
                                             _durability_message(nails, design),
                                             design.line_of(joint.key) if joint.key else None))
     contacts = []
     if statics.contact_forces is not None:
-        for row, k in enumerate(model.contacts):
-            contact = geometry.contacts[k]
-            contacts.append(ContactResult(contact.plank, _tuple(contact.point / scale),
-                                          _tuple(statics.contact_forces[row])))
+        points = (model.contact_points / scale).tolist()
+        for row, (point, force) in enumerate(zip(points, statics.contact_forces.tolist())):
+            plank = geometry.contacts[model.contacts[row]].plank
+            contacts.append(ContactResult(plank, tuple(point), tuple(force)))
     stable = statics.stability == "stable"
     if not stable:
         kind = "sliding" if statics.stability == "sliding" else "lift-off"
@@ -113,4 +131,4 @@ def _case_key(design: Design, case: LoadCase) -> str:
 
 
 def _tuple(values: np.ndarray) -> tuple[float, float, float]:
-    return tuple(float(v) for v in values)
+    return tuple(np.asarray(values, dtype=float).tolist())
