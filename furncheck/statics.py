@@ -31,7 +31,7 @@ from furncheck import tolerances as tol
 from furncheck.design.model import Design, LoadCase
 from furncheck.geometry import Geometry
 
-STICK, SLIP, LIFT = 0, 1, 2
+STICK, LIFT = 0, 2
 _MECHANISM_DETAIL = ("the planks rest on too few ground points to be held even if bolted "
                      "down (all their ground contacts lie on one line)")
 _SIX = np.arange(6)
@@ -105,8 +105,10 @@ def build_model(design: Design, geometry: Geometry) -> StaticsModel:
     contacts = [k for k, c in enumerate(geometry.contacts) if c.plank in plank_of]
 
     G = _joint_map(design, geometry, joints, local)
-    compliance = np.tile(np.r_[np.full(3, tol.JOINT_COMPLIANCE_T),
-                               np.full(3, tol.JOINT_COMPLIANCE_R)], len(joints))
+    compliance = np.concatenate([
+        np.r_[np.full(3, tol.JOINT_COMPLIANCE_T),
+              np.full(3, tol.joint_compliance_r(geometry.joints[j].edge_thickness))]
+        for j in joints]) if joints else np.zeros(0)
 
     maps, owner, points = [], [], []
     for k in contacts:
@@ -197,7 +199,7 @@ def solve_case(model: StaticsModel, f: np.ndarray) -> CaseStatics:
     status, solution = normal
     if solver.within_cones(solution):
         return solver.stable(solution)
-    frictional = solver.friction_phase(status)
+    frictional = solver.friction_phase(status, solution)
     if frictional is not None:
         return solver.stable(frictional[1])
     forces = _cone_solution(model, f)
@@ -212,10 +214,11 @@ class _Solution:
     h: np.ndarray
     contact_forces: np.ndarray
     contact_displacements: np.ndarray
+    ground: np.ndarray              # x_g, the grounded planks' displacements
 
 
 class _ActiveSet:
-    """Contact state iterations for one load case (statuses STICK, SLIP, LIFT)."""
+    """Contact state iterations for one load case (statuses STICK, LIFT)."""
 
     def __init__(self, model: StaticsModel, f: np.ndarray, scale: float):
         self.model = model
@@ -225,7 +228,6 @@ class _ActiveSet:
             self.inner_part, self.ground_rhs = self.condensed.load(f)
         self.force_tol = tol.FORCE_REL_TOL * scale
         self.disp_tol = self.force_tol / tol.CONTACT_STIFFNESS
-        self.directions = np.zeros((len(model.contacts), 2))
         self.mu = model.friction
 
     # -- phases --------------------------------------------------------------------------
@@ -249,17 +251,33 @@ class _ActiveSet:
                 return status, solution
         return None
 
-    def friction_phase(self, status: np.ndarray):
-        """Relocate friction anchors of contacts outside their cone until all are inside."""
+    def friction_phase(self, status: np.ndarray, start: _Solution):
+        """Let contacts outside their friction cone slip (paper 5.2, friction anchors).
+
+        A slipping contact's anchor is relocated so that its spring pulls with exactly
+        mu N, against the contact's motion: the tangential spring is elastic-perfectly-
+        plastic.  With the normal forces N of the last iterate as the caps, the equilibrium
+        minimizes a convex energy of the grounded planks' displacements (see
+        ``_FrictionEnergy``), solved by Newton's method with a line search; then the caps
+        are updated from the new normal forces until they agree.  None if there is no
+        minimum (the load exceeds what friction can hold) or the caps do not settle.
+        """
         status = status.copy()
-        for _ in range(tol.CONTACT_ITERATIONS):
-            solution = self.solve(status)
-            if solution is None:
+        ground = start.ground
+        caps = self.mu * np.maximum(start.contact_forces[:, 2], 0.0)
+        for _ in range(tol.FRICTION_CAP_ITERATIONS):
+            energy = _FrictionEnergy(self, status != LIFT, caps)
+            ground = energy.minimize(ground)
+            if ground is None:
                 return None
+            solution = energy.solution(ground)
             if self._update_normals(solution, status):
+                caps = self.mu * np.maximum(solution.contact_forces[:, 2], 0.0)
                 continue
-            if not self._update_friction(solution, status):
+            new_caps = self.mu * np.maximum(solution.contact_forces[:, 2], 0.0)
+            if np.abs(new_caps - caps).max(initial=0.0) <= self.force_tol:
                 return status, solution
+            caps = new_caps
         return None
 
     # -- results -----------------------------------------------------------------------------
@@ -350,19 +368,20 @@ class _ActiveSet:
         plank_q = ground.reshape(-1, 6)[condensed.contact_block]           # (nK, 6)
         displacement = (maps @ plank_q[:, :, None])[:, :, 0]
         forces = -(springs @ displacement[:, :, None])[:, :, 0]
-        x = condensed.expand(self.inner_part, ground)
-        return _Solution(x[:model.n_dof], x[model.n_dof:], forces, displacement)
+        return self.assemble(ground, forces, displacement)
+
+    def assemble(self, ground: np.ndarray, forces: np.ndarray,
+                 displacement: np.ndarray) -> _Solution:
+        """The full solution from the grounded planks' displacements x_g."""
+        x = self.condensed.expand(self.inner_part, ground)
+        return _Solution(x[:self.model.n_dof], x[self.model.n_dof:], forces, displacement,
+                         ground)
 
     def _spring_matrices(self, status: np.ndarray) -> np.ndarray:
-        """(nK, 3, 3): contact force = -S w for contact point displacement w."""
-        k = tol.CONTACT_STIFFNESS
+        """(nK, 3, 3): contact force = -S w for contact point displacement w (stick
+        contacts: springs to their anchors in all three directions; lifted: none)."""
         springs = np.zeros((len(status), 3, 3))
-        stick = status == STICK
-        springs[stick] = np.diag([k, k, k])
-        slip = np.nonzero(status == SLIP)[0]
-        springs[slip, 2, 2] = k
-        springs[slip, 0, 2] = self.mu * k * self.directions[slip, 0]
-        springs[slip, 1, 2] = self.mu * k * self.directions[slip, 1]
+        springs[status == STICK] = np.eye(3) * tol.CONTACT_STIFFNESS
         return springs
 
     def _restrained(self, springs: np.ndarray) -> bool:
@@ -399,35 +418,97 @@ class _ActiveSet:
         status[sinking] = STICK
         return bool(pulling.any() or sinking.any())
 
-    def _update_friction(self, solution: _Solution, status: np.ndarray) -> bool:
-        forces = solution.contact_forces
-        normal = forces[:, 2]
-        changed = False
-        for k in np.nonzero(status == STICK)[0]:
-            tangential = forces[k, :2]
-            size = float(np.hypot(*tangential))
-            if size > self.mu * normal[k] + self.force_tol:
-                status[k] = SLIP
-                self.directions[k] = tangential / size
-                changed = True
-        for k in np.nonzero(status == SLIP)[0]:
-            trial = -tol.CONTACT_STIFFNESS * solution.contact_displacements[k, :2]
-            size = float(np.hypot(*trial))
-            if size <= self.mu * normal[k]:
-                status[k] = STICK
-                changed = True
-                continue
-            direction = trial / size
-            if np.abs(direction - self.directions[k]).max() > tol.SLIP_DIRECTION_TOL:
-                self.directions[k] = direction
-                changed = True
-        return changed
-
     def _plank_ids(self, mask: np.ndarray) -> tuple[str, ...]:
         design, model = self.model.design, self.model
         ids = {design.planks[model.planks[model.contact_plank[k]]].id
                for k in np.nonzero(mask)[0]}
         return tuple(p.id for p in design.planks if p.id in ids)
+
+
+_ENERGY_RESOLUTION = 1e-13
+"""Relative size of an energy decrease that floating point can still resolve."""
+
+
+class _FrictionEnergy:
+    """The condensed potential energy with elastic-perfectly-plastic friction springs.
+
+    For the grounded planks' displacements x (x_g of ``_Condensation``), with w_k = M_k x
+    the displacement of contact k, k the spring stiffness and c_k = mu N_k its friction cap:
+
+        Phi(x) = 1/2 x.S0.x - b.x + sum_active [ 1/2 k w_z^2 + psi(|w_t|) ]
+        psi(r) = 1/2 k r^2           if k r <= c      (sticking to its anchor)
+               = c r - c^2 / (2 k)   otherwise         (slipping: force c against w_t)
+
+    Phi is convex and once differentiable; its minimizer is the equilibrium, and it has
+    none when the loads exceed what friction can hold (the design slides).
+    """
+
+    def __init__(self, solver: _ActiveSet, active: np.ndarray, caps: np.ndarray):
+        self.solver = solver
+        condensed = solver.condensed
+        self.maps = condensed.ground_maps[active]               # (na, 3, n_g)
+        self.caps = caps[active]
+        self.active = active
+        self.schur = condensed.schur
+        self.rhs = solver.ground_rhs
+        self.k = tol.CONTACT_STIFFNESS
+
+    def _terms(self, x: np.ndarray):
+        """Energy, gradient, Hessian, and the contact forces (na, 3) at x."""
+        k, caps = self.k, self.caps
+        w = self.maps @ x                                         # (na, 3)
+        r = np.hypot(w[:, 0], w[:, 1])
+        sticking = k * r <= caps
+        safe_r = np.where(r > 0.0, r, 1.0)
+        force_t = np.where(sticking[:, None], -k * w[:, :2], -caps[:, None] * w[:, :2] / safe_r[:, None])
+        force = np.column_stack([force_t, -k * w[:, 2]])
+        energy = 0.5 * x @ self.schur @ x - self.rhs @ x + float(
+            (0.5 * k * w[:, 2] ** 2).sum()
+            + np.where(sticking, 0.5 * k * r ** 2, caps * r - caps ** 2 / (2.0 * k)).sum())
+        gradient = self.schur @ x - self.rhs - np.einsum("kai,ka->i", self.maps, force)
+        unit = w[:, :2] / safe_r[:, None]
+        tangent = np.where(sticking[:, None, None], k * np.eye(2),
+                           (caps / safe_r)[:, None, None]
+                           * (np.eye(2) - unit[:, :, None] * unit[:, None, :]))
+        local = np.zeros((len(w), 3, 3))
+        local[:, :2, :2] = tangent
+        local[:, 2, 2] = k
+        hessian = self.schur + np.einsum("kai,kab,kbj->ij", self.maps, local, self.maps)
+        return energy, gradient, hessian, force
+
+    def minimize(self, x: np.ndarray) -> np.ndarray | None:
+        """Newton with backtracking from x; None if Phi has no minimum (it falls without
+        bound along a sliding motion) or Newton stalls."""
+        tolerance = self.solver.force_tol
+        for _ in range(tol.FRICTION_NEWTON_ITERATIONS):
+            energy, gradient, hessian, _ = self._terms(x)
+            if np.abs(gradient).max(initial=0.0) <= tolerance:
+                return x
+            shift = tol.SOLVE_RESIDUAL * max(float(np.abs(np.diag(hessian)).max()), 1.0)
+            try:
+                step = np.linalg.solve(hessian + shift * np.eye(len(x)), -gradient)
+            except np.linalg.LinAlgError:
+                return None
+            slope = float(gradient @ step)
+            if -slope <= _ENERGY_RESOLUTION * max(abs(energy), 1e-300):
+                return x        # the Newton decrement is at round-off: converged
+            t = 1.0
+            while self._terms(x + t * step)[0] > energy + 1e-4 * t * slope:
+                t *= 0.5
+                if t < 1e-12:
+                    return None
+            x = x + t * step
+            if np.abs(x).max() > tol.SLIDING_DISPLACEMENT:
+                return None
+        return None
+
+    def solution(self, x: np.ndarray) -> _Solution:
+        _, _, _, force = self._terms(x)
+        forces = np.zeros((len(self.active), 3))
+        forces[self.active] = force
+        displacement = np.zeros((len(self.active), 3))
+        displacement[self.active] = self.maps @ x
+        return self.solver.assemble(x, forces, displacement)
 
 
 # --- existence of an admissible equilibrium (linear programs) -------------------------------
@@ -519,6 +600,7 @@ class _Condensation:
     contact_block: np.ndarray    # per contact, number of its plank's 6-block in x_g
     plank_offsets: np.ndarray    # offset of each grounded plank's block in x_g
     size: int
+    ground_maps: np.ndarray      # (nK, 3, n_g): contact displacement from x_g
 
     def load(self, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(y, b_g - A_gi y) for the plank loads f (the joint rows have no load)."""
@@ -559,8 +641,12 @@ def _condense(model: StaticsModel) -> _Condensation | None:
             return None
         reduced = lu.solve(coupling.toarray()) if len(ground) else reduced
     schur = permuted[ni:, ni:].toarray() - np.asarray(coupling.T @ reduced)
+    ground_maps = np.zeros((len(model.contact_plank), 3, len(ground)))
+    for row, block in enumerate(contact_block):
+        ground_maps[row, :, 6 * block:6 * block + 6] = model.contact_maps[row]
     return _Condensation(ground, inner, lu, coupling, reduced, schur,
-                         contact_block.astype(int), 6 * np.arange(len(grounded)), n + m)
+                         contact_block.astype(int), 6 * np.arange(len(grounded)), n + m,
+                         ground_maps)
 
 
 def _factor(A: sp.csc_matrix, probe: np.ndarray):
