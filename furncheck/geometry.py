@@ -151,11 +151,8 @@ def _listed_joints(design: Design, violations: list[Violation]) -> list[Joint]:
         name = f"{spec.planks[0]}/{spec.planks[1]}"
         line = design.line_of(key)
         if touch is None:
-            gap = _plank_gap(design.planks[i], design.planks[j])
-            violations.append(Violation(
-                "disconnected", name, None,
-                f"planks do not touch: no end face of one lies on a face of the other "
-                f"(closest corners {_fmt_len(gap, design)} apart)", line))
+            violations.append(Violation("disconnected", name, None,
+                                        _apart_message(design, int(i), int(j)), line))
             continue
         if touch.gap < -slack:
             violations.append(Violation(
@@ -322,10 +319,20 @@ def _bounding_boxes(planks: tuple[Plank, ...]) -> tuple[np.ndarray, np.ndarray]:
     return corners.min(axis=1), corners.max(axis=1)
 
 
-def _plank_gap(a: Plank, b: Plank) -> float:
-    """m: smallest distance between the two planks' corners (a readable 'how far off')."""
+def _apart_message(design: Design, i: int, j: int) -> str:
+    """Why two listed planks form no joint, with the gap between the end face and the face
+    it should rest on when one faces the other."""
+    near = _best_touches(design, np.array([[i, j]]), slack=np.inf, keep_deep=False)
+    touch = near.get((i, j))
+    if touch is not None and touch.gap > 0:
+        return (f"planks do not touch: the end of {touch.edge.id} is "
+                f"{_fmt_len(touch.gap, design)} from the face of {touch.face.id} "
+                f"(tolerance {_fmt_len(design.tolerance, design)})")
+    a, b = design.planks[i], design.planks[j]
     diff = a.corners[:, None, :] - b.corners[None, :, :]
-    return float(np.sqrt((diff ** 2).sum(axis=2)).min())
+    gap = float(np.sqrt((diff ** 2).sum(axis=2)).min())
+    return (f"planks do not touch: no end face of one lies on a face of the other "
+            f"(closest corners {_fmt_len(gap, design)} apart)")
 
 
 # --- ground, components ------------------------------------------------------------------------

@@ -295,7 +295,10 @@ class _ActiveSet:
         centre = (forces[:, 2] @ model.contact_points) / max(float(forces[:, 2].sum()), 1e-300)
         arms = model.contact_points - centre
         twist = abs(float((arms[:, 0] * forces[:, 1] - arms[:, 1] * forces[:, 0]).sum()))
-        twist_text = f" and a {twist:.3g} N m twist" if twist > self.force_tol * 1e3 else ""
+        radius = float(np.sqrt(forces[:, 2] @ (arms ** 2).sum(axis=1)
+                               / max(float(forces[:, 2].sum()), 1e-300)))
+        significant = twist > 0.05 * sideways * radius + self.force_tol
+        twist_text = f" and a {twist:.3g} N m twist" if significant else ""
         detail = (f"no equilibrium within the friction cones (mu = {self.mu:g}): the ground "
                   f"must resist {sideways:.4g} N sideways{twist_text}, friction gives at most "
                   f"{capacity:.4g} N")

@@ -96,7 +96,7 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
             if not nails.durable and statics.stability in ("stable", "sliding"):
                 violations.append(Violation("non-durable", joint.name, case.name,
                                             _durability_message(nails, design),
-                                            design.line_of(joint.key) if joint.key else None))
+                                            _joint_line(design, joint)))
     contacts = []
     if statics.contact_forces is not None:
         points = (model.contact_points / scale).tolist()
@@ -123,6 +123,13 @@ def _durability_message(nails: NailForces, design: Design) -> str:
     if nails.shear > nails.shear_capacity:
         parts.append(f"shear {nails.shear:.4g} N per nail exceeds {nails.shear_capacity:.4g} N")
     return "; ".join(parts) + factor
+
+
+def _joint_line(design: Design, joint: Joint) -> int | None:
+    """Source line of a listed joint, or of the edge plank of a detected one."""
+    if joint.key:
+        return design.line_of(joint.key)
+    return design.line_of(f"planks[{design.plank_index[joint.edge]}]")
 
 
 def _case_key(design: Design, case: LoadCase) -> str:
