@@ -1,0 +1,810 @@
+"""Design files (YAML or JSON, contract section 1) -> a checked, frozen ``Design`` in SI.
+
+Reading goes in three steps:
+
+1. bytes -> text (``load_design``): the file must exist, be a regular file of at most
+   ``MAX_FILE_BYTES``, hold no NUL bytes and be UTF-8;
+2. text -> a plain tree of dicts, lists and scalars (``_read_yaml`` / ``_read_json``).  YAML
+   is read event by event, never constructed: aliases are refused before anything is
+   expanded, duplicate keys are refused, and the line of every key path is recorded.  A
+   YAML scalar stays a ``_Scalar`` (its text and whether it was quoted) until the schema
+   knows whether a number or a text belongs there;
+3. tree -> ``Design`` (``_design`` and the helpers below it, key by key as in the contract),
+   converting lengths to metres.
+
+Every problem raises ``DesignError(file, key path, line, message)``.  Key paths read
+``planks[1].size``, ``load_cases.sit[0].mass``; '' is the whole file.  For JSON, the line of
+a key path is looked up only when an error is raised (by reading the text as YAML).
+"""
+
+from __future__ import annotations
+
+import codecs
+import difflib
+import json
+import math
+import os
+import re
+import stat
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, NoReturn
+
+import numpy as np
+import yaml
+
+from furncheck import tolerances as tol
+from furncheck.design.model import Design, JointSpec, Load, LoadCase, Material, Plank
+from furncheck.errors import DesignError
+
+FORMATS = {".yaml": "yaml", ".yml": "yaml", ".json": "json"}
+"""File extension -> format."""
+UNIT_SCALES = {"mm": 0.001, "m": 1.0}
+"""Length unit -> metres per unit."""
+
+TOP_KEYS = ("furncheck", "name", "units", "material", "planks", "joints", "loads",
+            "load_cases", "safety_factor", "tolerance")
+MATERIAL_KEYS = ("thickness", "density", "nail_spacing", "nail_pull", "nail_shear", "friction")
+PLANK_KEYS = ("id", "size", "center", "rotation", "thickness")
+JOINT_KEYS = ("planks", "nails")
+LOAD_KEYS = ("plank", "mass", "force", "at")
+
+_IDENTIFIER = re.compile(r"[A-Za-z0-9_.-]+")
+_PATH_SAFE_KEY = _IDENTIFIER
+_AXES = ("length", "width", "thickness")
+_QUOTE_LIMIT = 40            # characters of a user's text repeated in a message
+
+_Loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+_YAML_TAG = "tag:yaml.org,2002:"
+_TEXT_TAGS = {"!", _YAML_TAG + "str"}
+_PLAIN_TAGS = {_YAML_TAG + name for name in ("int", "float", "bool", "null")}
+_CONTAINER_TAGS = {"!", _YAML_TAG + "map", _YAML_TAG + "seq"}
+_NULL_WORDS = {"", "~", "null", "Null", "NULL"}
+_BOOL_WORDS = {word: value for value, words in
+               ((True, ("yes", "true", "on")), (False, ("no", "false", "off")))
+               for base in words for word in (base, base.capitalize(), base.upper())}
+_DECIMAL = re.compile(r"[-+]?(?:[0-9][0-9_]*(?:\.[0-9_]*)?|\.[0-9][0-9_]*)(?:[eE][-+]?[0-9]+)?")
+_JSON_CONSTANTS = {"nan": "NaN", "inf": "Infinity", "-inf": "-Infinity"}
+_NON_FINITE = re.compile(r"[-+]?\.(?:inf|Inf|INF|nan|NaN|NAN)")
+
+
+# --- public -------------------------------------------------------------------------------------
+
+def load_design(path: str) -> Design:
+    """Read and check the design file at ``path`` (format from its extension).
+
+    Raises ``DesignError`` (file = ``path`` as given) for a missing, unreadable, binary,
+    empty, oversized or ill-formed file.
+    """
+    _check_regular_file(path)
+    fmt = _format_of(path)
+    return parse_design(_decode(_read_bytes(path), path), path, fmt)
+
+
+def parse_design(text: str, source: str, fmt: str) -> Design:
+    """Check the design document ``text`` ('yaml' or 'json'); ``source`` names it in errors
+    and becomes ``Design.source``.  Returns the ``Design`` in SI units."""
+    if fmt not in ("yaml", "json"):
+        raise DesignError(source, "", None, f"unknown format {_quote(str(fmt))}; use yaml or json")
+    text = _checked_text(text, source)
+    if fmt == "yaml":
+        tree, lines = _read_yaml(text, source)
+        doc = _Doc(source, fmt, text, lines)
+    else:
+        tree = _read_json(text, source)
+        doc = _Doc(source, fmt, text, None)
+    return _design(doc, tree)
+
+
+# --- step 1: bytes -> text ----------------------------------------------------------------------
+
+def _format_of(path: str) -> str:
+    fmt = FORMATS.get(Path(path).suffix.lower())
+    if fmt is None:
+        raise DesignError(path, "", None, f"unknown file type {_quote(Path(path).suffix)}; "
+                                          "design files end in .yaml, .yml or .json")
+    return fmt
+
+
+def _check_regular_file(path: str) -> None:
+    """Refuse a missing path, a directory, a special file and a file over the size limit."""
+    try:
+        info = os.stat(path)
+    except FileNotFoundError:
+        raise DesignError(path, "", None, "no such file") from None
+    except OSError as error:
+        raise DesignError(path, "", None, f"cannot read file: {error.strerror}") from None
+    if stat.S_ISDIR(info.st_mode):
+        raise DesignError(path, "", None, "is a directory, not a design file")
+    if not stat.S_ISREG(info.st_mode):
+        raise DesignError(path, "", None, "not a regular file")
+    if info.st_size > tol.MAX_FILE_BYTES:
+        raise _too_large(path, info.st_size)
+
+
+def _read_bytes(path: str) -> bytes:
+    """The file's bytes, at most ``MAX_FILE_BYTES`` of them."""
+    try:
+        with open(path, "rb") as handle:
+            data = handle.read(tol.MAX_FILE_BYTES + 1)
+    except OSError as error:
+        raise DesignError(path, "", None, f"cannot read file: {error.strerror}") from None
+    if len(data) > tol.MAX_FILE_BYTES:
+        raise _too_large(path, len(data))
+    return data
+
+
+def _too_large(source: str, size: int) -> DesignError:
+    limit_mb = tol.MAX_FILE_BYTES / 2**20
+    return DesignError(source, "", None,
+                       f"file too large ({size / 2**20:.1f} MB; the limit is {limit_mb:g} MB)")
+
+
+def _decode(data: bytes, path: str) -> str:
+    if b"\x00" in data:
+        raise DesignError(path, "", None, "not a text file (it holds NUL bytes)")
+    if data.startswith(codecs.BOM_UTF8):
+        data = data[len(codecs.BOM_UTF8):]
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError:
+        raise DesignError(path, "", None, "not a text file (not UTF-8)") from None
+
+
+def _checked_text(text: str, source: str) -> str:
+    """``text`` without a byte-order mark; refuses oversized, binary and empty text."""
+    if not isinstance(text, str):
+        raise DesignError(source, "", None, "not a text file")
+    if len(text) > tol.MAX_FILE_BYTES:
+        raise _too_large(source, len(text))
+    if "\x00" in text:
+        raise DesignError(source, "", None, "not a text file (it holds NUL bytes)")
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError:
+        raise DesignError(source, "", None, "not a text file (not UTF-8)") from None
+    text = text.removeprefix("\ufeff")
+    if not text.strip():
+        raise DesignError(source, "", None, "empty file")
+    return text
+
+
+# --- step 2a: YAML text -> tree -----------------------------------------------------------------
+
+@dataclass(frozen=True)
+class _Scalar:
+    """A YAML scalar as written: its text, and ``plain`` when it was not quoted (so its
+    meaning, number, boolean, null or text, is decided by where it stands)."""
+
+    text: str
+    plain: bool
+
+
+_NO_DOCUMENT = object()
+
+
+@dataclass
+class _Frame:
+    """An open YAML mapping or list while its events are read."""
+
+    value: dict | list
+    path: str
+    key: str | None = None            # mapping: key waiting for its value
+    key_lines: dict | None = None     # mapping: key -> line
+
+
+def _read_yaml(text: str, source: str) -> tuple[Any, dict[str, int]]:
+    """(tree, lines): dicts, lists and ``_Scalar``; key path -> 1-based line."""
+    loader = None
+    try:
+        loader = _Loader(text)           # the pure-Python reader checks characters here
+        return _build_yaml_tree(loader, source)
+    except yaml.YAMLError as error:
+        raise _yaml_syntax_error(error, text, source) from None
+    finally:
+        if loader is not None:
+            loader.dispose()
+
+
+def _build_yaml_tree(loader, source: str) -> tuple[Any, dict[str, int]]:
+    lines: dict[str, int] = {}
+    stack: list[_Frame] = []
+    root: Any = _NO_DOCUMENT
+    documents = 0
+    while loader.check_event():
+        event = loader.get_event()
+        line = event.start_mark.line + 1
+        if isinstance(event, yaml.DocumentStartEvent):
+            documents += 1
+            if documents > 1:
+                raise DesignError(source, "", line, "several YAML documents (the second starts "
+                                                    "here); put one design in each file")
+        elif isinstance(event, (yaml.MappingEndEvent, yaml.SequenceEndEvent)):
+            frame = stack.pop()
+            root = _place(stack, frame.value, root)
+        elif isinstance(event, yaml.NodeEvent):
+            path = _slot_path(stack, event, line, lines, source)
+            if path is None:
+                continue                      # the event was a mapping key
+            if isinstance(event, yaml.AliasEvent):
+                raise DesignError(source, path, line, f"YAML aliases (*{event.anchor}) are not "
+                                                      "allowed; write the value out")
+            if isinstance(event, yaml.ScalarEvent):
+                root = _place(stack, _yaml_scalar(event, path, line, source), root)
+            else:
+                _check_container_tag(event, path, line, source)
+                if len(stack) >= tol.MAX_NESTING:
+                    raise DesignError(source, path, line, "nested too deeply")
+                is_map = isinstance(event, yaml.MappingStartEvent)
+                stack.append(_Frame({} if is_map else [], path, None, {} if is_map else None))
+    return root, lines
+
+
+def _slot_path(stack: list[_Frame], event, line: int, lines: dict[str, int],
+               source: str) -> str | None:
+    """Key path of the node that ``event`` starts, recording its line; None when the event
+    is a mapping key (then it is held until its value arrives)."""
+    if not stack:
+        return ""
+    frame = stack[-1]
+    if isinstance(frame.value, list):
+        path = f"{frame.path}[{len(frame.value)}]"
+        lines[path] = line
+        return path
+    if frame.key is not None:
+        return _child(frame.path, frame.key)
+    if isinstance(event, yaml.AliasEvent):
+        raise DesignError(source, frame.path, line, f"YAML aliases (*{event.anchor}) are not "
+                                                    "allowed; write the value out")
+    if not isinstance(event, yaml.ScalarEvent):
+        raise DesignError(source, frame.path, line, "mapping keys must be plain text")
+    key = event.value
+    path = _child(frame.path, key)
+    if key in frame.key_lines:
+        raise DesignError(source, path, line, f"duplicate key {_quote(key)} (first on line "
+                                              f"{frame.key_lines[key]})")
+    frame.key_lines[key] = line
+    frame.key = key
+    lines[path] = line
+    return None
+
+
+def _place(stack: list[_Frame], value: Any, root: Any) -> Any:
+    """Put a finished node into its parent; returns the (possibly new) root."""
+    if not stack:
+        return value
+    frame = stack[-1]
+    if isinstance(frame.value, list):
+        frame.value.append(value)
+    else:
+        frame.value[frame.key] = value
+        frame.key = None
+    return root
+
+
+def _yaml_scalar(event, path: str, line: int, source: str) -> _Scalar:
+    tag = event.tag
+    if tag is None:
+        return _Scalar(event.value, plain=event.style in (None, "") and event.implicit[0])
+    if tag in _TEXT_TAGS:
+        return _Scalar(event.value, plain=False)
+    if tag in _PLAIN_TAGS:
+        return _Scalar(event.value, plain=True)
+    raise _tag_error(tag, path, line, source)
+
+
+def _check_container_tag(event, path: str, line: int, source: str) -> None:
+    if event.tag is not None and event.tag not in _CONTAINER_TAGS:
+        raise _tag_error(event.tag, path, line, source)
+
+
+def _tag_error(tag: str, path: str, line: int, source: str) -> DesignError:
+    shown = "!!" + tag[len(_YAML_TAG):] if tag.startswith(_YAML_TAG) else tag
+    return DesignError(source, path, line, f"unsupported YAML tag {_quote(shown)}")
+
+
+def _yaml_syntax_error(error: yaml.YAMLError, text: str, source: str) -> DesignError:
+    mark = getattr(error, "problem_mark", None) or getattr(error, "context_mark", None)
+    problem = getattr(error, "problem", None)
+    if problem is None and hasattr(error, "reason"):          # yaml.reader.ReaderError
+        line = text.count("\n", 0, max(0, error.position)) + 1
+        return DesignError(source, "", line, f"not a text file ({error.reason})")
+    context = getattr(error, "context", None)
+    message = problem or "cannot be read"
+    if context:
+        message = f"{message} ({context})"
+    return DesignError(source, "", mark.line + 1 if mark else None,
+                       _one_line(f"YAML syntax error: {message}"))
+
+
+# --- step 2b: JSON text -> tree -----------------------------------------------------------------
+
+class _DuplicateKey(Exception):
+    def __init__(self, key: str):
+        super().__init__(key)
+        self.key = key
+
+
+def _json_object(pairs: list[tuple[str, Any]]) -> dict:
+    mapping: dict = {}
+    for key, value in pairs:
+        if key in mapping:
+            raise _DuplicateKey(key)
+        mapping[key] = value
+    return mapping
+
+
+def _json_constant(name: str) -> float:
+    """NaN / Infinity / -Infinity become floats that every number check refuses as 'not a
+    finite number', naming their key path."""
+    return float(name.replace("Infinity", "inf"))
+
+
+def _read_json(text: str, source: str) -> Any:
+    """Tree of dicts, lists, str, float (every number), bool and None."""
+    try:
+        return json.loads(text, object_pairs_hook=_json_object, parse_constant=_json_constant,
+                          parse_int=float, parse_float=float)
+    except _DuplicateKey as duplicate:
+        raise _json_duplicate_error(text, source, duplicate.key) from None
+    except json.JSONDecodeError as error:
+        raise DesignError(source, "", error.lineno,
+                          f"JSON syntax error: {error.msg} (column {error.colno})") from None
+    except RecursionError:
+        raise DesignError(source, "", None, "nested too deeply") from None
+    except ValueError as error:
+        raise DesignError(source, "", None, _one_line(f"JSON syntax error: {error}")) from None
+
+
+def _json_duplicate_error(text: str, source: str, key: str) -> DesignError:
+    """The duplicate key's path and line, found by reading the JSON text as YAML."""
+    try:
+        _read_yaml(text, source)
+    except DesignError as error:
+        if error.message.startswith("duplicate key"):
+            return error
+    except (yaml.YAMLError, ValueError, RecursionError):
+        pass
+    return DesignError(source, "", None, f"duplicate key {_quote(key)}")
+
+
+def _json_lines(text: str, source: str) -> dict[str, int]:
+    """Best effort: key path -> line of a JSON text, read as YAML; {} when that fails."""
+    try:
+        return _read_yaml(text, source)[1]
+    except (DesignError, yaml.YAMLError, ValueError, RecursionError):
+        return {}
+
+
+# --- values: what the schema reads from the tree ------------------------------------------------
+
+class _Doc:
+    """The document being checked: raises ``DesignError`` with key path and line, and reads
+    typed values (numbers, text, mappings, lists) from tree nodes."""
+
+    def __init__(self, source: str, fmt: str, text: str, lines: dict[str, int] | None):
+        self.source = source
+        self.fmt = fmt
+        self.source_text = text
+        self._lines = lines
+
+    @property
+    def lines(self) -> dict[str, int]:
+        """Key path -> line: recorded for YAML, looked up on demand for JSON."""
+        if self._lines is None:
+            self._lines = _json_lines(self.source_text, self.source)
+        return self._lines
+
+    def design_lines(self) -> dict[str, int]:
+        """The lines a ``Design`` keeps: YAML's (JSON's are only looked up for errors)."""
+        return self._lines if self.fmt == "yaml" and self._lines is not None else {}
+
+    def line_of(self, key: str) -> int | None:
+        """Line of ``key``, else of its closest recorded parent."""
+        lines = self.lines
+        while key:
+            if key in lines:
+                return lines[key]
+            cut = max(key.rfind("."), key.rfind("["))
+            key = key[:cut] if cut > 0 else ""
+        return None
+
+    def fail(self, key: str, message: str) -> NoReturn:
+        raise DesignError(self.source, key, self.line_of(key), message)
+
+    def number(self, node: Any, key: str) -> float:
+        """A finite number (booleans and quoted text are not numbers)."""
+        value = _resolved(node)
+        if isinstance(value, bool) or not isinstance(value, float):
+            self.fail(key, f"expected a number, got {_describe(node)}")
+        if not math.isfinite(value):
+            written = node.text if isinstance(node, _Scalar) else _JSON_CONSTANTS[str(value)]
+            self.fail(key, f"not a finite number ({_one_line(written)})")
+        return value
+
+    def text(self, node: Any, key: str) -> str:
+        """Text; an unquoted YAML scalar counts as the text it shows (``id: 1`` is "1")."""
+        if isinstance(node, str):
+            return node
+        if isinstance(node, _Scalar) and _resolved(node) is not None:
+            return node.text
+        self.fail(key, f"expected text, got {_describe(node)}")
+
+    def sequence(self, node: Any, key: str) -> list:
+        if not isinstance(node, list):
+            self.fail(key, f"expected a list, got {_describe(node)}")
+        return node
+
+    def mapping(self, node: Any, key: str, allowed: tuple[str, ...] | None = None,
+                required: tuple[str, ...] = ()) -> dict:
+        """A mapping whose keys are all ``allowed`` (any when None) and hold ``required``."""
+        if not isinstance(node, dict):
+            self.fail(key, f"expected a mapping, got {_describe(node)}")
+        if allowed is not None:
+            for name in node:
+                if name not in allowed:
+                    self.fail(_child(key, name), _unknown_key_message(name, allowed))
+        for name in required:
+            if name not in node:
+                self.fail(_child(key, name), f"missing required key {_quote(name)}")
+        return node
+
+
+def _resolved(node: Any) -> Any:
+    """A YAML scalar's value (None, bool, float or str); other nodes as they are.  Plain
+    scalars resolve as YAML 1.1 does, except that numbers follow the decimal notation
+    (``1e3``, ``-2E-1``, ``010`` = ten)."""
+    if not isinstance(node, _Scalar):
+        return node
+    if not node.plain:
+        return node.text
+    text = node.text
+    if text in _NULL_WORDS:
+        return None
+    if text in _BOOL_WORDS:
+        return _BOOL_WORDS[text]
+    if _NON_FINITE.fullmatch(text):
+        return float(text.replace(".", "", 1))
+    if _DECIMAL.fullmatch(text):
+        try:
+            return float(text.replace("_", ""))
+        except ValueError:
+            return text
+    return text
+
+
+def _describe(node: Any) -> str:
+    """What a node is, in words, for messages: 'a list', 'text "400"', 'a boolean (yes)'."""
+    value = _resolved(node)
+    if isinstance(value, dict):
+        return "a mapping"
+    if isinstance(value, list):
+        return "a list"
+    if value is None:
+        return "nothing (null)"
+    if isinstance(value, bool):
+        shown = node.text if isinstance(node, _Scalar) else str(value).lower()
+        return f"a boolean ({_one_line(shown)})"
+    if isinstance(value, float):
+        return f"a number ({_one_line(node.text) if isinstance(node, _Scalar) else f'{value:g}'})"
+    return f"text {_quote(value)}"
+
+
+def _quote(text: str) -> str:
+    """``text`` in double quotes on one line, shortened, unprintable characters escaped."""
+    short = text if len(text) <= _QUOTE_LIMIT else text[:_QUOTE_LIMIT] + "..."
+    return '"' + _one_line(short) + '"'
+
+
+def _one_line(text: str) -> str:
+    return "".join(c if c.isprintable() else f"\\u{ord(c):04x}" for c in text)
+
+
+def _child(path: str, key: str) -> str:
+    """Key path of mapping entry ``key`` under ``path``; odd keys are written ``["..."]``."""
+    if not _PATH_SAFE_KEY.fullmatch(key):
+        return f"{path}[{_quote(key)}]"
+    return f"{path}.{key}" if path else key
+
+
+def _unknown_key_message(name: str, allowed: tuple[str, ...]) -> str:
+    close = difflib.get_close_matches(name, allowed, n=1)
+    hint = f" (did you mean {_quote(close[0])}?)" if close else ""
+    return f"unknown key {_quote(name)}{hint}; allowed keys: {', '.join(allowed)}"
+
+
+# --- step 3: tree -> Design ---------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class _Units:
+    """The file's length unit: ``name`` ('mm' or 'm'), ``scale`` metres per unit."""
+
+    name: str
+    scale: float
+
+
+def _design(doc: _Doc, tree: Any) -> Design:
+    top = _top_level(doc, tree)
+    units = _units(doc, top)
+    tolerance = (_quantity(doc, top["tolerance"], "tolerance", 0.0, tol.MAX_LENGTH,
+                           units.scale, units.name)
+                 if "tolerance" in top else tol.DEFAULT_TOLERANCE)
+    material = _material(doc, top, units)
+    planks = _planks(doc, top["planks"], material, units)
+    by_id = {plank.id: plank for plank in planks}
+    safety_factor = (_quantity(doc, top["safety_factor"], "safety_factor",
+                               tol.MIN_SAFETY_FACTOR, tol.MAX_SAFETY_FACTOR, positive=True)
+                     if "safety_factor" in top else tol.DEFAULT_SAFETY_FACTOR)
+    return Design(
+        name=_name(doc, top),
+        planks=planks,
+        load_cases=_load_cases(doc, top, by_id, units, tolerance),
+        material=material,
+        joints=_joints(doc, top["joints"], by_id) if "joints" in top else None,
+        safety_factor=safety_factor,
+        tolerance=tolerance,
+        units=units.name,
+        unit_scale=units.scale,
+        source=doc.source,
+        lines=doc.design_lines(),
+    )
+
+
+def _top_level(doc: _Doc, tree: Any) -> dict:
+    """The top mapping, its format version checked before its keys (a newer version may
+    have keys this one does not know)."""
+    if tree is _NO_DOCUMENT:
+        doc.fail("", "empty file")
+    if not isinstance(tree, dict):
+        doc.fail("", f"the top level must be a mapping, got {_describe(tree)}")
+    if "furncheck" not in tree:
+        doc.fail("furncheck", 'missing required key "furncheck" (the format version: '
+                              "write furncheck: 1)")
+    version = doc.number(tree["furncheck"], "furncheck")
+    if version != 1:
+        doc.fail("furncheck", f"unsupported format version {version:g}; this furncheck reads "
+                              "version 1")
+    return doc.mapping(tree, "", TOP_KEYS, required=("planks",))
+
+
+def _name(doc: _Doc, top: dict) -> str:
+    if "name" not in top:
+        return Path(doc.source).stem or "design"
+    name = doc.text(top["name"], "name")
+    if not name.strip() or not name.isprintable():
+        doc.fail("name", "must be printable text on one line")
+    return name
+
+
+def _units(doc: _Doc, top: dict) -> _Units:
+    name = doc.text(top["units"], "units") if "units" in top else "mm"
+    if name not in UNIT_SCALES:
+        doc.fail("units", f"unknown unit {_quote(name)}; use mm or m")
+    return _Units(name, UNIT_SCALES[name])
+
+
+def _quantity(doc: _Doc, node: Any, key: str, low: float, high: float, scale: float = 1.0,
+              unit: str = "", positive: bool = False) -> float:
+    """A number written in ``unit`` (``scale`` SI units each), checked to lie in
+    [low, high] (SI) and, if ``positive``, to be > 0.  Returns it in SI."""
+    value = doc.number(node, key)
+    shown = f" {unit}" if unit else ""
+    if positive and value <= 0:
+        doc.fail(key, f"must be positive, got {value:g}{shown}")
+    if not low <= value * scale <= high:
+        doc.fail(key, f"out of range: {value:g}{shown}; allowed {low / scale:g} to "
+                      f"{high / scale:g}{shown}")
+    return value * scale
+
+
+def _length(doc: _Doc, node: Any, key: str, units: _Units) -> float:
+    """m: a size, thickness or spacing in [MIN_LENGTH, MAX_LENGTH]."""
+    return _quantity(doc, node, key, tol.MIN_LENGTH, tol.MAX_LENGTH, units.scale, units.name,
+                     positive=True)
+
+
+def _vector(doc: _Doc, node: Any, key: str, count: int, low: float, high: float,
+            scale: float = 1.0, unit: str = "", positive: bool = False) -> tuple[float, ...]:
+    """``count`` numbers, each as ``_quantity``; SI."""
+    items = doc.sequence(node, key)
+    if len(items) != count:
+        doc.fail(key, f"expected {count} numbers, got {len(items)}")
+    return tuple(_quantity(doc, item, f"{key}[{i}]", low, high, scale, unit, positive)
+                 for i, item in enumerate(items))
+
+
+def _point(doc: _Doc, node: Any, key: str, units: _Units) -> tuple[float, float, float]:
+    """m: a world point, every |coordinate| <= MAX_COORDINATE."""
+    return _vector(doc, node, key, 3, -tol.MAX_COORDINATE, tol.MAX_COORDINATE,
+                   units.scale, units.name)
+
+
+def _identifier(doc: _Doc, node: Any, key: str, what: str) -> str:
+    name = doc.text(node, key)
+    if not _IDENTIFIER.fullmatch(name):
+        doc.fail(key, f"invalid {what} {_quote(name)}: use letters, digits, '_', '.' and '-'")
+    return name
+
+
+def _material(doc: _Doc, top: dict, units: _Units) -> Material:
+    """Material; lengths in the file unit, defaults (SI) from ``tolerances``."""
+    if "material" not in top:
+        return Material(tol.DEFAULT_THICKNESS, tol.DEFAULT_DENSITY, tol.DEFAULT_NAIL_SPACING,
+                        tol.DEFAULT_NAIL_PULL, tol.DEFAULT_NAIL_SHEAR, tol.DEFAULT_FRICTION)
+    fields = doc.mapping(top["material"], "material", MATERIAL_KEYS)
+
+    def read(name: str, default: float, low: float, high: float, scale: float = 1.0,
+             unit: str = "", positive: bool = True) -> float:
+        if name not in fields:
+            return default
+        return _quantity(doc, fields[name], f"material.{name}", low, high, scale, unit, positive)
+
+    return Material(
+        thickness=read("thickness", tol.DEFAULT_THICKNESS, tol.MIN_LENGTH, tol.MAX_LENGTH,
+                       units.scale, units.name),
+        density=read("density", tol.DEFAULT_DENSITY, 0.0, tol.MAX_DENSITY, unit="kg/m^3"),
+        nail_spacing=read("nail_spacing", tol.DEFAULT_NAIL_SPACING, tol.MIN_LENGTH,
+                          tol.MAX_LENGTH, units.scale, units.name),
+        nail_pull=read("nail_pull", tol.DEFAULT_NAIL_PULL, 0.0, tol.MAX_NAIL_CAPACITY,
+                       unit="N"),
+        nail_shear=read("nail_shear", tol.DEFAULT_NAIL_SHEAR, 0.0, tol.MAX_NAIL_CAPACITY,
+                        unit="N"),
+        friction=read("friction", tol.DEFAULT_FRICTION, 0.0, tol.MAX_FRICTION,
+                      positive=False),
+    )
+
+
+def _planks(doc: _Doc, node: Any, material: Material, units: _Units) -> tuple[Plank, ...]:
+    items = doc.sequence(node, "planks")
+    if not items:
+        doc.fail("planks", "a design needs at least one plank")
+    first_index: dict[str, int] = {}
+    planks = []
+    for index, item in enumerate(items):
+        key = f"planks[{index}]"
+        plank = _plank(doc, item, key, material, units)
+        if plank.id in first_index:
+            doc.fail(f"{key}.id", f"duplicate plank id {_quote(plank.id)} "
+                                  f"(planks[{first_index[plank.id]}] and {key})")
+        first_index[plank.id] = index
+        planks.append(plank)
+    return tuple(planks)
+
+
+def _plank(doc: _Doc, node: Any, key: str, material: Material, units: _Units) -> Plank:
+    fields = doc.mapping(node, key, PLANK_KEYS, required=("id", "size", "center"))
+    plank_id = _identifier(doc, fields["id"], f"{key}.id", "plank id")
+    length, width = _vector(doc, fields["size"], f"{key}.size", 2, tol.MIN_LENGTH,
+                            tol.MAX_LENGTH, units.scale, units.name, positive=True)
+    thickness = (_length(doc, fields["thickness"], f"{key}.thickness", units)
+                 if "thickness" in fields else material.thickness)
+    rotation = (_vector(doc, fields["rotation"], f"{key}.rotation", 3, -tol.MAX_ROTATION_DEG,
+                        tol.MAX_ROTATION_DEG, unit="degrees")
+                if "rotation" in fields else (0.0, 0.0, 0.0))
+    center = _point(doc, fields["center"], f"{key}.center", units)
+    return Plank(plank_id, length, width, thickness, center, rotation)
+
+
+def _plank_ref(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank]) -> Plank:
+    """The plank that ``node`` names."""
+    name = doc.text(node, key)
+    if name not in by_id:
+        close = difflib.get_close_matches(name, list(by_id), n=1)
+        hint = f" (did you mean {_quote(close[0])}?)" if close else ""
+        doc.fail(key, f"unknown plank {_quote(name)}{hint}")
+    return by_id[name]
+
+
+# --- joints -------------------------------------------------------------------------------------
+
+def _joints(doc: _Doc, node: Any, by_id: dict[str, Plank]) -> tuple[JointSpec, ...] | None:
+    """None for ``auto`` (detected from geometry), else the listed joints."""
+    if isinstance(_resolved(node), str) and doc.text(node, "joints") == "auto":
+        return None
+    if not isinstance(node, list):
+        doc.fail("joints", f'expected "auto" or a list of joints, got {_describe(node)}')
+    first_index: dict[frozenset, int] = {}
+    joints = []
+    for index, item in enumerate(node):
+        key = f"joints[{index}]"
+        joint = _joint(doc, item, key, by_id)
+        pair = frozenset(joint.planks)
+        if pair in first_index:
+            doc.fail(key, f"joint {'/'.join(joint.planks)} is listed twice "
+                          f"(joints[{first_index[pair]}] and {key})")
+        first_index[pair] = index
+        joints.append(joint)
+    return tuple(joints)
+
+
+def _joint(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank]) -> JointSpec:
+    """``[a, b]`` or ``{planks: [a, b], nails: n}``."""
+    nails = None
+    if isinstance(node, dict):
+        fields = doc.mapping(node, key, JOINT_KEYS, required=("planks",))
+        pair_key, pair_node = f"{key}.planks", fields["planks"]
+        if "nails" in fields:
+            nails = _nail_count(doc, fields["nails"], f"{key}.nails")
+    elif isinstance(node, list):
+        pair_key, pair_node = key, node
+    else:
+        doc.fail(key, f"expected [plank, plank] or {{planks: [plank, plank], nails: n}}, "
+                      f"got {_describe(node)}")
+    items = doc.sequence(pair_node, pair_key)
+    if len(items) != 2:
+        doc.fail(pair_key, f"expected 2 plank ids, got {len(items)}")
+    first, second = (_plank_ref(doc, item, f"{pair_key}[{i}]", by_id).id
+                     for i, item in enumerate(items))
+    if first == second:
+        doc.fail(key, f"a joint needs two different planks, got {_quote(first)} twice")
+    return JointSpec((first, second), nails)
+
+
+def _nail_count(doc: _Doc, node: Any, key: str) -> int:
+    value = doc.number(node, key)
+    if not value.is_integer() or not 1 <= value <= tol.MAX_NAILS:
+        doc.fail(key, f"must be a whole number of nails from 1 to {tol.MAX_NAILS:g}, "
+                      f"got {value:g}")
+    return int(value)
+
+
+# --- loads and load cases -----------------------------------------------------------------------
+
+def _load_cases(doc: _Doc, top: dict, by_id: dict[str, Plank], units: _Units,
+                tolerance: float) -> tuple[LoadCase, ...]:
+    """'default' (from ``loads``) first, then ``load_cases`` in file order; a lone
+    self-weight case 'default' when the file gives neither."""
+    cases = []
+    if "loads" in top:
+        cases.append(LoadCase("default", _loads(doc, top["loads"], "loads", by_id, units,
+                                                tolerance)))
+    if "load_cases" in top:
+        for name, node in doc.mapping(top["load_cases"], "load_cases").items():
+            key = _child("load_cases", name)
+            _identifier(doc, name, key, "load case name")
+            if name == "default" and "loads" in top:
+                doc.fail(key, 'case "default" is already given by "loads"; rename this case '
+                              'or move its loads there')
+            cases.append(LoadCase(name, _loads(doc, node, key, by_id, units, tolerance)))
+    return tuple(cases) or (LoadCase("default"),)
+
+
+def _loads(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank], units: _Units,
+           tolerance: float) -> tuple[Load, ...]:
+    items = doc.sequence(node, key)
+    return tuple(_load(doc, item, f"{key}[{i}]", by_id, units, tolerance)
+                 for i, item in enumerate(items))
+
+
+def _load(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank], units: _Units,
+          tolerance: float) -> Load:
+    """``{plank, mass | force, at?}``: mass kg, force N, ``at`` a world point on the plank."""
+    fields = doc.mapping(node, key, LOAD_KEYS, required=("plank",))
+    plank = _plank_ref(doc, fields["plank"], f"{key}.plank", by_id)
+    if "mass" in fields and "force" in fields:
+        doc.fail(key, "give either mass (kg) or force ([fx, fy, fz] N), not both")
+    if "mass" not in fields and "force" not in fields:
+        doc.fail(key, "a load needs a mass (kg) or a force ([fx, fy, fz] N)")
+    point = (_point_on_plank(doc, fields["at"], f"{key}.at", plank, units, tolerance)
+             if "at" in fields else None)
+    if "mass" in fields:
+        mass = _quantity(doc, fields["mass"], f"{key}.mass", 0.0, tol.MAX_MASS, unit="kg")
+        return Load.of_mass(plank.id, mass, point)
+    force = _vector(doc, fields["force"], f"{key}.force", 3, -tol.MAX_FORCE, tol.MAX_FORCE,
+                    unit="N")
+    return Load(plank.id, force, point)
+
+
+def _point_on_plank(doc: _Doc, node: Any, key: str, plank: Plank, units: _Units,
+                    tolerance: float) -> tuple[float, float, float]:
+    """m: a world point that lies on ``plank`` within ``tolerance`` (m) on every local axis."""
+    point = _point(doc, node, key, units)
+    local = plank.to_local(np.asarray(point, dtype=float))
+    outside = np.abs(local) - plank.half_extents
+    axis = int(np.argmax(outside))
+    if outside[axis] > tolerance + tol.ON_PLANK_EPS:
+        shown = ", ".join(f"{c / units.scale:g}" for c in point)
+        doc.fail(key, f"point ({shown}) is not on plank {_quote(plank.id)}: "
+                      f"{outside[axis] / units.scale:.4g} {units.name} beyond its "
+                      f"{_AXES[axis]} (tolerance {tolerance / units.scale:g} {units.name})")
+    return point

@@ -1,0 +1,115 @@
+"""A ``Design`` -> a design document (plain dicts and lists) -> a YAML or JSON file.
+
+The inverse of ``load``: lengths go back to the design's unit, masses are written as masses,
+listed joints are kept and ``joints`` is left out when they are detected from geometry, so
+that ``parse_design`` of the written text equals the design up to float round-off.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from furncheck.design.model import Design, JointSpec, Load, LoadCase, Plank
+from furncheck.errors import DesignError
+
+_Dumper = getattr(yaml, "CSafeDumper", yaml.SafeDumper)
+_FORMATS = {".yaml": "yaml", ".yml": "yaml", ".json": "json"}
+_SIGNIFICANT_DIGITS = 12
+"""Digits kept when a length is converted back to the file unit, so 0.012 m is written
+12.0 mm and not 11.999999999999998 mm.  Far below any physical meaning, far above the
+loader's round-off."""
+
+
+def design_to_document(design: Design) -> dict[str, Any]:
+    """The design as a document in contract order (plain Python types, file units)."""
+    scale = design.unit_scale
+    doc: dict[str, Any] = {
+        "furncheck": 1,
+        "name": design.name,
+        "units": design.units,
+        "material": {
+            "thickness": _in_unit(design.material.thickness, scale),
+            "density": design.material.density,
+            "nail_spacing": _in_unit(design.material.nail_spacing, scale),
+            "nail_pull": design.material.nail_pull,
+            "nail_shear": design.material.nail_shear,
+            "friction": design.material.friction,
+        },
+        "planks": [_plank_entry(plank, design) for plank in design.planks],
+    }
+    if design.joints is not None:
+        doc["joints"] = [_joint_entry(joint) for joint in design.joints]
+    cases = list(design.load_cases)
+    if cases and cases[0].name == "default":
+        default = cases.pop(0)
+        if default.loads or cases:
+            doc["loads"] = _load_entries(default, scale)
+    if cases:
+        doc["load_cases"] = {case.name: _load_entries(case, scale) for case in cases}
+    doc["safety_factor"] = design.safety_factor
+    doc["tolerance"] = _in_unit(design.tolerance, scale)
+    return doc
+
+
+def write_design(design: Design, path: str) -> None:
+    """Write ``design`` to ``path`` as YAML (.yaml, .yml) or JSON (.json), UTF-8."""
+    fmt = _FORMATS.get(Path(path).suffix.lower())
+    if fmt is None:
+        raise DesignError(path, "", None, f"unknown file type {Path(path).suffix!r}; "
+                                          "design files end in .yaml, .yml or .json")
+    doc = design_to_document(design)
+    if fmt == "json":
+        text = json.dumps(doc, indent=2, ensure_ascii=False) + "\n"
+    else:
+        text = yaml.dump(doc, Dumper=_Dumper, sort_keys=False, default_flow_style=None,
+                         allow_unicode=True, width=100)
+    Path(path).write_text(text, encoding="utf-8")
+
+
+def _in_unit(metres: float, scale: float) -> float:
+    """A length (m) in the file unit (``scale`` m each), rounded to 12 significant digits."""
+    return float(f"{metres / scale:.{_SIGNIFICANT_DIGITS}g}")
+
+
+def _vector_in_unit(metres, scale: float) -> list[float]:
+    return [_in_unit(float(v), scale) for v in metres]
+
+
+def _plank_entry(plank: Plank, design: Design) -> dict[str, Any]:
+    scale = design.unit_scale
+    entry: dict[str, Any] = {
+        "id": plank.id,
+        "size": _vector_in_unit((plank.length, plank.width), scale),
+        "center": _vector_in_unit(plank.center, scale),
+        "rotation": [float(v) for v in plank.rotation],
+    }
+    if plank.thickness != design.material.thickness:
+        entry["thickness"] = _in_unit(plank.thickness, scale)
+    return entry
+
+
+def _joint_entry(joint: JointSpec) -> list[str] | dict[str, Any]:
+    if joint.nails is None:
+        return list(joint.planks)
+    return {"planks": list(joint.planks), "nails": int(joint.nails)}
+
+
+def _load_entries(case: LoadCase, scale: float) -> list[dict[str, Any]]:
+    return [_load_entry(load, scale) for load in case.loads]
+
+
+def _load_entry(load: Load, scale: float) -> dict[str, Any]:
+    """``{plank, mass}`` when the file gave a mass, else ``{plank, force}`` (N); ``at`` in
+    the file unit when the load has a point."""
+    entry: dict[str, Any] = {"plank": load.plank}
+    if load.mass is not None:
+        entry["mass"] = float(load.mass)
+    else:
+        entry["force"] = [float(v) for v in load.force]
+    if load.point is not None:
+        entry["at"] = _vector_in_unit(load.point, scale)
+    return entry

@@ -1,0 +1,667 @@
+"""The design loader and writer (contract section 1).
+
+Bad input: one test per class of problem, each checking the ``DesignError``'s key path and
+line, and that ``str(error)`` is one line naming the file, the line and the key.  Good input:
+defaults, units, loads, joints, load cases, recorded lines, and the write -> read round trip.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import time
+from dataclasses import replace as replace_fields
+
+import numpy as np
+import pytest
+import yaml
+
+from furncheck.design import (Design, JointSpec, Load, LoadCase, Material, Plank,
+                              design_to_document, load_design, parse_design, write_design)
+from furncheck.design import load as load_module
+from furncheck.errors import DesignError
+from furncheck.tolerances import GRAVITY
+
+# A bench: seat on two legs standing on their end faces (rotation [0, 90, 0] maps local
+# x to world -z).  Line numbers are used by the tests below.
+BASE = """\
+furncheck: 1
+name: bench
+planks:
+  - id: seat
+    size: [400, 300]
+    center: [0, 0, 406]
+  - id: leg1
+    size: [400, 300]
+    center: [-194, 0, 200]
+    rotation: [0, 90, 0]
+  - id: leg2
+    size: [400, 300]
+    center: [194, 0, 200]
+    rotation: [0, 90, 0]
+loads:
+  - {plank: seat, mass: 10}
+"""
+LINE = {"furncheck": 1, "name": 2, "planks": 3, "planks[0]": 4, "planks[0].size": 5,
+        "planks[0].center": 6, "planks[1]": 7, "planks[1].id": 7, "planks[1].size": 8,
+        "planks[1].rotation": 10, "planks[2].id": 11, "loads": 15, "loads[0]": 16}
+
+
+def base_dict() -> dict:
+    return yaml.safe_load(BASE)
+
+
+def replace(old: str, new: str, text: str = BASE) -> str:
+    assert old in text, old
+    return text.replace(old, new, 1)
+
+
+def error_of(text: str, fmt: str = "yaml", source: str = "bench.yaml") -> DesignError:
+    """The DesignError that ``text`` raises, checked to be one line with file, line, key."""
+    with pytest.raises(DesignError) as info:
+        parse_design(text, source, fmt)
+    return checked(info.value, source)
+
+
+def checked(error: DesignError, source: str) -> DesignError:
+    line = str(error)
+    assert "\n" not in line and "\r" not in line
+    assert line.startswith(source)
+    if error.line is not None:
+        assert line.startswith(f"{source}:{error.line}: ")
+    if error.key:
+        assert f": {error.key}: " in line
+    return error
+
+
+def expect(text: str, key: str, line: int | None, fragment: str, fmt: str = "yaml"):
+    error = error_of(text, fmt)
+    assert (error.key, error.line) == (key, line), str(error)
+    assert fragment in error.message, str(error)
+    return error
+
+
+# --- file level -------------------------------------------------------------------------------
+
+def test_missing_file(tmp_path):
+    path = str(tmp_path / "nope.yaml")
+    with pytest.raises(DesignError) as info:
+        load_design(path)
+    assert checked(info.value, path).message == "no such file"
+    assert (info.value.key, info.value.line) == ("", None)
+
+
+def test_directory(tmp_path):
+    folder = tmp_path / "shelf.yaml"
+    folder.mkdir()
+    with pytest.raises(DesignError, match="is a directory"):
+        load_design(str(folder))
+
+
+def test_unknown_extension(tmp_path):
+    path = tmp_path / "bench.txt"
+    path.write_text(BASE)
+    with pytest.raises(DesignError, match='unknown file type ".txt"'):
+        load_design(str(path))
+
+
+def test_unreadable(tmp_path, monkeypatch):
+    """Root can read a chmod 000 file, so the permission error is simulated."""
+    path = tmp_path / "bench.yaml"
+    path.write_text(BASE)
+
+    def refuse(*args, **kwargs):
+        raise PermissionError(13, "Permission denied")
+
+    monkeypatch.setattr(load_module, "open", refuse, raising=False)
+    with pytest.raises(DesignError) as info:
+        load_design(str(path))
+    assert checked(info.value, str(path)).message == "cannot read file: Permission denied"
+
+
+@pytest.mark.parametrize("content", [b"", b"  \n\t\n", b"# only a comment\n"])
+def test_empty_file(tmp_path, content):
+    path = tmp_path / "bench.yaml"
+    path.write_bytes(content)
+    with pytest.raises(DesignError) as info:
+        load_design(str(path))
+    assert checked(info.value, str(path)).message == "empty file"
+
+
+def test_empty_json(tmp_path):
+    path = tmp_path / "bench.json"
+    path.write_bytes(b"\n \n")
+    with pytest.raises(DesignError, match="empty file"):
+        load_design(str(path))
+
+
+@pytest.mark.parametrize("content", [b"furncheck: 1\x00\x01", b"\xff\xfe\x00a", b"name: \xe9t\xe9"])
+def test_binary_file(tmp_path, content):
+    path = tmp_path / "bench.yaml"
+    path.write_bytes(content)
+    with pytest.raises(DesignError) as info:
+        load_design(str(path))
+    assert checked(info.value, str(path)).message.startswith("not a text file")
+
+
+def test_text_with_nul_or_lone_surrogate():
+    assert error_of("furncheck: 1\x00").message.startswith("not a text file")
+    assert error_of("name: \ud800").message.startswith("not a text file")
+
+
+def test_too_large(tmp_path):
+    path = tmp_path / "bench.yaml"
+    with open(path, "wb") as handle:
+        handle.truncate(5 * 2**20 + 1)          # sparse: no 5 MB written
+    with pytest.raises(DesignError, match=r"file too large \(5\.0 MB; the limit is 5 MB\)"):
+        load_design(str(path))
+
+
+def test_utf8_byte_order_mark_is_fine(tmp_path):
+    path = tmp_path / "bench.json"
+    path.write_bytes(b"\xef\xbb\xbf" + json.dumps(base_dict()).encode())
+    assert load_design(str(path)).name == "bench"
+
+
+def test_yaml_syntax_error_has_line():
+    text = replace("    center: [0, 0, 406]", "    center: [0, 0, 406")
+    error = expect(text, "", 7, "YAML syntax error")
+    assert "flow sequence" in error.message
+
+
+def test_json_syntax_error_has_line():
+    text = json.dumps(base_dict(), indent=2).replace('"seat"', "seat", 1)
+    error = error_of(text, "json", "bench.json")
+    assert error.key == "" and error.message.startswith("JSON syntax error")
+    assert error.line == text.splitlines().index('      "id": seat,') + 1
+
+
+def test_several_yaml_documents():
+    expect(BASE + "---\nfurncheck: 1\n", "", 17, "several YAML documents")
+
+
+@pytest.mark.parametrize("text, got", [("- 1\n- 2\n", "a list"),
+                                       ("just text\n", 'text "just text"'),
+                                       ("~\n", "nothing (null)")])
+def test_top_level_not_a_mapping(text, got):
+    expect(text, "", None, f"the top level must be a mapping, got {got}")
+
+
+def test_top_level_json_list():
+    expect("[1, 2]", "", None, "the top level must be a mapping, got a list", "json")
+
+
+# --- YAML specifics ---------------------------------------------------------------------------
+
+def test_alias_is_refused_with_its_line():
+    text = replace("    size: [400, 300]\n    center: [-194",
+                   "    size: *seat_size\n    center: [-194").replace(
+        "size: [400, 300]", "size: &seat_size [400, 300]", 1)
+    expect(text, "planks[1].size", 8, "YAML aliases (*seat_size) are not allowed")
+
+
+def test_billion_laughs_answers_at_once():
+    """Nine levels of ten aliases each would expand to 10^9 strings."""
+    lines = ['a0: &a0 "lol"']
+    lines += [f"a{i}: &a{i} [{', '.join([f'*a{i - 1}'] * 10)}]" for i in range(1, 10)]
+    start = time.perf_counter()
+    error = error_of("\n".join(lines) + "\n")
+    assert time.perf_counter() - start < 0.5
+    assert (error.key, error.line) == ("a1[0]", 2)
+    assert "aliases" in error.message
+
+
+def test_duplicate_key_has_line_of_the_second():
+    text = replace("    center: [0, 0, 406]\n", "    center: [0, 0, 406]\n    size: [1, 2]\n")
+    expect(text, "planks[0].size", 7, 'duplicate key "size" (first on line 5)')
+
+
+def test_unsupported_tag():
+    text = replace("name: bench", "name: !!python/object:os.system bench")
+    expect(text, "name", 2, 'unsupported YAML tag "!!python/object:os.system"')
+
+
+def test_nested_too_deeply():
+    expect("furncheck: 1\nx: " + "[" * 40 + "]" * 40 + "\n", "x" + "[0]" * 31, 2,
+           "nested too deeply")
+
+
+def test_quoted_number_is_text():
+    text = replace("size: [400, 300]", 'size: ["400", 300]')
+    expect(text, "planks[0].size[0]", 5, 'expected a number, got text "400"')
+
+
+def test_boolean_is_not_a_number():
+    text = replace("size: [400, 300]", "size: [yes, 300]")
+    expect(text, "planks[0].size[0]", 5, "expected a number, got a boolean (yes)")
+
+
+@pytest.mark.parametrize("value", [".nan", ".inf", "-.Inf", "1e999"])
+def test_non_finite_number(value):
+    text = replace("center: [0, 0, 406]", f"center: [0, {value}, 406]")
+    expect(text, "planks[0].center[1]", 6, "not a finite number")
+
+
+def test_plain_exponent_notation_is_a_number():
+    """PyYAML 1.1 reads 1e3 and -2E-1 as text; a design file reads them as numbers."""
+    text = replace("size: [400, 300]", "size: [4e2, 3.0E+2]")
+    text = replace("center: [0, 0, 406]", "center: [-2E-1, 1_0, 406]", text)
+    seat = parse_design(text, "bench.yaml", "yaml").planks[0]
+    assert (seat.length, seat.width) == pytest.approx((0.4, 0.3))
+    assert seat.center == pytest.approx((-0.0002, 0.01, 0.406))
+
+
+def test_unquoted_ids_are_text():
+    """``id: 1`` is the id "1"; ``id: no`` is "no", not the boolean of YAML 1.1."""
+    text = replace("id: seat", "id: 1").replace("plank: seat", "plank: 1")
+    text = replace("id: leg1", "id: no", text)
+    assert [p.id for p in parse_design(text, "bench.yaml", "yaml").planks] == ["1", "no", "leg2"]
+
+
+# --- schema: keys and types -------------------------------------------------------------------
+
+def test_unknown_top_level_key():
+    error = expect(BASE + "colour: red\n", "colour", 17, 'unknown key "colour"')
+    assert "allowed keys: furncheck, name, units" in error.message
+
+
+def test_unknown_nested_key_suggests_the_right_one():
+    text = replace("    center: [0, 0, 406]", "    centre: [0, 0, 406]")
+    expect(text, "planks[0].centre", 6, 'unknown key "centre" (did you mean "center"?)')
+
+
+def test_missing_required_key():
+    text = replace("    size: [400, 300]\n", "")
+    expect(text, "planks[0].size", LINE["planks[0]"], 'missing required key "size"')
+
+
+def test_missing_planks_and_version():
+    expect("furncheck: 1\nname: x\n", "planks", None, 'missing required key "planks"')
+    expect(replace("furncheck: 1\n", ""), "furncheck", None, 'missing required key "furncheck"')
+
+
+@pytest.mark.parametrize("value, fragment", [("2", "unsupported format version 2"),
+                                             ('"1"', 'expected a number, got text "1"'),
+                                             ("true", "a boolean (true)")])
+def test_bad_version(value, fragment):
+    expect(replace("furncheck: 1", f"furncheck: {value}"), "furncheck", 1, fragment)
+
+
+def test_empty_planks():
+    expect("furncheck: 1\nplanks: []\n", "planks", 2, "at least one plank")
+
+
+@pytest.mark.parametrize("old, new, key, line, fragment", [
+    ("size: [400, 300]", "size: [400]", "planks[0].size", 5, "expected 2 numbers, got 1"),
+    ("center: [0, 0, 406]", "center: [0, 406]", "planks[0].center", 6, "expected 3 numbers, got 2"),
+    ("rotation: [0, 90, 0]", "rotation: 90", "planks[1].rotation", 10,
+     "expected a list, got a number (90)"),
+    ("size: [400, 300]", "size: {length: 400}", "planks[0].size", 5,
+     "expected a list, got a mapping"),
+    ("  - id: seat", "  - id: [seat]", "planks[0].id", 4, "expected text, got a list"),
+    ("name: bench", "name:", "name", 2, "expected text, got nothing (null)"),
+    ("  - id: seat", "  - id: seat one", "planks[0].id", 4, 'invalid plank id "seat one"'),
+])
+def test_wrong_shapes_and_types(old, new, key, line, fragment):
+    expect(replace(old, new), key, line, fragment)
+
+
+def test_duplicate_plank_id_names_both():
+    expect(replace("id: leg1", "id: seat"), "planks[1].id", 7,
+           'duplicate plank id "seat" (planks[0] and planks[1])')
+
+
+def test_unknown_unit():
+    expect("units: cm\n" + BASE, "units", 1, 'unknown unit "cm"; use mm or m')
+
+
+# --- schema: ranges ---------------------------------------------------------------------------
+
+@pytest.mark.parametrize("old, new, key, line, fragment", [
+    ("size: [400, 300]", "size: [0, 300]", "planks[0].size[0]", 5, "must be positive, got 0 mm"),
+    ("size: [400, 300]", "size: [400, -3]", "planks[0].size[1]", 5, "must be positive, got -3 mm"),
+    ("size: [400, 300]", "size: [1e-9, 300]", "planks[0].size[0]", 5,
+     "out of range: 1e-09 mm; allowed 0.01 to 1e+06 mm"),
+    ("center: [0, 0, 406]", "center: [2e6, 0, 406]", "planks[0].center[0]", 6,
+     "out of range: 2e+06 mm; allowed -1e+06 to 1e+06 mm"),
+    ("rotation: [0, 90, 0]", "rotation: [0, 1e5, 0]", "planks[1].rotation[1]", 10,
+     "allowed -10000 to 10000 degrees"),
+    ("center: [0, 0, 406]", "center: [0, 0, 406]\n    thickness: 0", "planks[0].thickness", 7,
+     "must be positive"),
+    ("mass: 10", "mass: -1", "loads[0].mass", 16, "out of range: -1 kg; allowed 0 to 1e+07 kg"),
+    ("mass: 10", "mass: 2e7", "loads[0].mass", 16, "out of range"),
+])
+def test_out_of_range_in_planks_and_loads(old, new, key, line, fragment):
+    expect(replace(old, new), key, line, fragment)
+
+
+@pytest.mark.parametrize("entry, key, fragment", [
+    ("safety_factor: 0", "safety_factor", "must be positive, got 0"),
+    ("safety_factor: 1e4", "safety_factor", "out of range: 10000; allowed 0.001 to 1000"),
+    ("tolerance: -0.5", "tolerance", "out of range: -0.5 mm; allowed 0 to 1e+06 mm"),
+    ("material: {density: 0}", "material.density", "must be positive, got 0 kg/m^3"),
+    ("material: {density: 1e6}", "material.density", "allowed 0 to 100000 kg/m^3"),
+    ("material: {friction: -0.1}", "material.friction", "out of range: -0.1; allowed 0 to 10"),
+    ("material: {nail_pull: 1e8}", "material.nail_pull", "allowed 0 to 1e+07 N"),
+    ("material: {nail_shear: -5}", "material.nail_shear", "must be positive"),
+    ("material: {nail_spacing: 0.001}", "material.nail_spacing", "allowed 0.01 to 1e+06 mm"),
+    ("material: {thickness: .nan}", "material.thickness", "not a finite number (.nan)"),
+    ("material: {glue: 1}", "material.glue", 'unknown key "glue"'),
+    ("material: 12", "material", "expected a mapping, got a number (12)"),
+])
+def test_top_level_values(entry, key, fragment):
+    expect(BASE + entry + "\n", key, 17, fragment)
+
+
+def test_ranges_are_stated_in_metres_for_a_metre_file():
+    text = "units: m\n" + BASE.replace("size: [400, 300]", "size: [0.4, 3000]", 1)
+    expect(text, "planks[0].size[1]", 6, "out of range: 3000 m; allowed 1e-05 to 1000 m")
+
+
+# --- joints -----------------------------------------------------------------------------------
+
+JOINTS = BASE + "joints:\n  - [seat, leg1]\n  - {planks: [seat, leg2], nails: 10}\n"
+
+
+def test_listed_joints():
+    design = parse_design(JOINTS, "bench.yaml", "yaml")
+    assert design.joints == (JointSpec(("seat", "leg1")), JointSpec(("seat", "leg2"), 10))
+    assert design.lines["joints[1]"] == 19
+
+
+def test_auto_joints_are_none():
+    assert parse_design(BASE, "bench.yaml", "yaml").joints is None
+    assert parse_design(BASE + "joints: auto\n", "bench.yaml", "yaml").joints is None
+
+
+def test_whole_float_nail_count_is_fine():
+    design = parse_design(JOINTS.replace("nails: 10", "nails: 10.0"), "b.yaml", "yaml")
+    assert design.joints[1].nails == 10 and isinstance(design.joints[1].nails, int)
+
+
+@pytest.mark.parametrize("old, new, key, line, fragment", [
+    ("[seat, leg1]", "[seat, leg3]", "joints[0][1]", 18, 'unknown plank "leg3" (did you mean'),
+    ("[seat, leg1]", "[leg1, leg1]", "joints[0]", 18, 'two different planks, got "leg1" twice'),
+    ("[seat, leg1]", "[leg2, seat]", "joints[1]", 19,
+     "joint seat/leg2 is listed twice (joints[0] and joints[1])"),
+    ("[seat, leg1]", "[seat, leg1, leg2]", "joints[0]", 18, "expected 2 plank ids, got 3"),
+    ("[seat, leg1]", "seat", "joints[0]", 18, "expected [plank, plank]"),
+    ("nails: 10", "nails: 10.5", "joints[1].nails", 19, "whole number of nails"),
+    ("nails: 10", "nails: 0", "joints[1].nails", 19, "whole number of nails"),
+    ("planks: [seat, leg2]", "plank: [seat, leg2]", "joints[1].plank", 19,
+     'unknown key "plank" (did you mean "planks"?)'),
+    ("joints:\n  - [seat, leg1]\n  - {planks: [seat, leg2], nails: 10}", "joints: sometimes",
+     "joints", 17, 'expected "auto" or a list of joints, got text "sometimes"'),
+])
+def test_bad_joints(old, new, key, line, fragment):
+    expect(replace(old, new, JOINTS), key, line, fragment)
+
+
+# --- loads and load cases ---------------------------------------------------------------------
+
+def test_mass_load_pulls_down():
+    """10 kg at the plank centre: force (0, 0, -10 x 9.81) N, point None, mass kept."""
+    (case,) = parse_design(BASE, "bench.yaml", "yaml").load_cases
+    assert case == LoadCase("default", (Load("seat", (0.0, 0.0, -10 * GRAVITY), None, 10.0),))
+
+
+def test_force_load_at_a_point_on_the_plank():
+    """The seat's top face is z = 412; a point there is on the plank, in metres inside."""
+    text = replace("{plank: seat, mass: 10}",
+                   "{plank: seat, force: [5, 0, -50], at: [100, 50, 412]}")
+    (load,) = parse_design(text, "bench.yaml", "yaml").load_cases[0].loads
+    assert load.force == (5.0, 0.0, -50.0) and load.mass is None
+    assert load.point == pytest.approx((0.1, 0.05, 0.412))
+
+
+def test_point_on_a_rotated_plank_within_tolerance():
+    """leg1 stands with its thickness along x (faces at x = -200 and -188); a point 0.4 mm
+    outside its face is within the 0.5 mm tolerance, 0.6 mm outside is not."""
+    ok = replace("{plank: seat, mass: 10}", "{plank: leg1, mass: 1, at: [-187.6, 0, 300]}")
+    assert parse_design(ok, "bench.yaml", "yaml").load_cases[0].loads[0].point[0] == \
+        pytest.approx(-0.1876)
+    bad = replace("{plank: seat, mass: 10}", "{plank: leg1, mass: 1, at: [-187.4, 0, 300]}")
+    error = expect(bad, "loads[0].at", 16, 'point (-187.4, 0, 300) is not on plank "leg1"')
+    assert "0.6 mm beyond its thickness (tolerance 0.5 mm)" in error.message
+
+
+@pytest.mark.parametrize("new, key, fragment", [
+    ("{plank: table, mass: 10}", "loads[0].plank", 'unknown plank "table"'),
+    ("{plank: seat, mass: 10, force: [0, 0, 1]}", "loads[0]", "not both"),
+    ("{plank: seat}", "loads[0]", "needs a mass (kg) or a force"),
+    ("{mass: 10}", "loads[0].plank", 'missing required key "plank"'),
+    ("{plank: seat, force: [0, 1]}", "loads[0].force", "expected 3 numbers, got 2"),
+    ("{plank: seat, force: [0, 0, -2e9]}", "loads[0].force[2]", "allowed -1e+09 to 1e+09 N"),
+    ("{plank: seat, mass: 10, at: [0, 0, 900]}", "loads[0].at", 'is not on plank "seat"'),
+    ("{plank: seat, mass: '10'}", "loads[0].mass", 'expected a number, got text "10"'),
+])
+def test_bad_loads(new, key, fragment):
+    expect(replace("{plank: seat, mass: 10}", new), key, 16, fragment)
+
+
+def test_load_case_order_default_first_then_file_order():
+    text = BASE + "load_cases:\n  sit: [{plank: seat, mass: 80}]\n  lean: []\n"
+    design = parse_design(text, "bench.yaml", "yaml")
+    assert [c.name for c in design.load_cases] == ["default", "sit", "lean"]
+    assert design.load_cases[1].loads[0].force[2] == pytest.approx(-80 * GRAVITY)
+    assert design.lines["load_cases.sit"] == 18 and design.lines["load_cases.sit[0]"] == 18
+
+
+def test_only_load_cases_means_no_default_case():
+    text = BASE.replace("loads:\n  - {plank: seat, mass: 10}\n",
+                        "load_cases:\n  b: []\n  a: [{plank: leg1, mass: 1}]\n")
+    assert [c.name for c in parse_design(text, "bench.yaml", "yaml").load_cases] == ["b", "a"]
+
+
+def test_no_loads_is_one_self_weight_case():
+    text = BASE.replace("loads:\n  - {plank: seat, mass: 10}\n", "")
+    assert parse_design(text, "bench.yaml", "yaml").load_cases == (LoadCase("default"),)
+
+
+def test_case_named_default_next_to_loads():
+    expect(BASE + "load_cases:\n  default: []\n", "load_cases.default", 18,
+           'case "default" is already given by "loads"')
+
+
+def test_bad_case_name_and_case_value():
+    expect(BASE + "load_cases:\n  sit down: []\n", 'load_cases["sit down"]', 18,
+           'invalid load case name "sit down"')
+    expect(BASE + "load_cases:\n  sit: 80\n", "load_cases.sit", 18, "expected a list")
+
+
+# --- JSON -------------------------------------------------------------------------------------
+
+def json_text(design: dict) -> str:
+    return json.dumps(design, indent=2)
+
+
+def test_json_design_equals_yaml_design():
+    from_yaml = parse_design(BASE, "bench.yaml", "yaml")
+    from_json = parse_design(json_text(base_dict()), "bench.json", "json")
+    assert replace_fields(from_json, source="bench.yaml") == from_yaml
+    assert from_json.lines == {}
+
+
+def test_json_duplicate_key_has_line():
+    text = '{\n  "furncheck": 1,\n  "planks": [],\n  "planks": []\n}'
+    expect(text, "planks", 4, 'duplicate key "planks" (first on line 3)', "json")
+
+
+def test_json_nan_names_key_and_line():
+    design = base_dict()
+    design["planks"][1]["center"][2] = float("nan")
+    text = json_text(design)
+    line = next(i for i, row in enumerate(text.splitlines(), 1) if "NaN" in row)
+    expect(text, "planks[1].center[2]", line, "not a finite number (NaN)", "json")
+
+
+def test_json_key_path_error_finds_its_line():
+    design = base_dict()
+    design["planks"][2]["size"] = "400 x 300"
+    text = json_text(design)
+    line = next(i for i, row in enumerate(text.splitlines(), 1) if "400 x 300" in row)
+    expect(text, "planks[2].size", line, 'expected a list, got text "400 x 300"', "json")
+
+
+def test_json_booleans_and_quoted_numbers_are_not_numbers():
+    design = base_dict()
+    design["safety_factor"] = True
+    assert "a boolean (true)" in error_of(json_text(design), "json").message
+    design["safety_factor"] = "2"
+    assert 'got text "2"' in error_of(json_text(design), "json").message
+
+
+def test_unknown_format_name():
+    with pytest.raises(DesignError, match="unknown format"):
+        parse_design(BASE, "bench.toml", "toml")
+
+
+# --- good input -------------------------------------------------------------------------------
+
+def test_defaults():
+    design = parse_design("furncheck: 1\nplanks: [{id: p, size: [400, 300], center: [0, 0, 6]}]\n",
+                          "designs/my-shelf.yaml", "yaml")
+    assert design.name == "my-shelf"
+    assert (design.units, design.unit_scale) == ("mm", 0.001)
+    assert design.source == "designs/my-shelf.yaml"
+    assert design.material == Material()
+    assert (design.tolerance, design.safety_factor, design.joints) == (0.0005, 1.0, None)
+    assert design.planks == (Plank("p", 0.4, 0.3, 0.012, (0.0, 0.0, 0.006)),)
+    assert design.load_cases == (LoadCase("default"),)
+
+
+def test_material_and_thickness_override():
+    text = BASE + ("material: {thickness: 18, density: 600, nail_spacing: 25, nail_pull: 500,"
+                   " nail_shear: 150, friction: 0}\nsafety_factor: 2\ntolerance: 1\n")
+    text = replace("    center: [0, 0, 406]", "    center: [0, 0, 406]\n    thickness: 9", text)
+    design = parse_design(text, "bench.yaml", "yaml")
+    m = design.material
+    assert (m.thickness, m.density, m.nail_spacing) == pytest.approx((0.018, 600, 0.025))
+    assert (m.nail_pull, m.nail_shear, m.friction) == (500, 150, 0)
+    assert (design.safety_factor, design.tolerance) == pytest.approx((2, 0.001))
+    assert [p.thickness for p in design.planks] == pytest.approx([0.009, 0.018, 0.018])
+
+
+def numbers(design: Design) -> np.ndarray:
+    """Every number of the design (SI), flattened, for comparisons up to round-off."""
+    m = design.material
+    values = [m.thickness, m.density, m.nail_spacing, m.nail_pull, m.nail_shear, m.friction,
+              design.tolerance, design.safety_factor]
+    for p in design.planks:
+        values += [p.length, p.width, p.thickness, *p.center, *p.rotation]
+    for case in design.load_cases:
+        for load in case.loads:
+            values += [*load.force, *(load.point or ())]
+    return np.array(values)
+
+
+def test_metres_and_millimetres_give_the_same_design():
+    """The same bench in m: same SI numbers; the default tolerance is 0.5 mm in both."""
+    mm = parse_design(BASE + "tolerance: 0.5\n", "bench.yaml", "yaml")
+    metre_doc = base_dict()
+    metre_doc["units"] = "m"
+    for plank in metre_doc["planks"]:
+        plank["size"] = [v / 1000 for v in plank["size"]]
+        plank["center"] = [v / 1000 for v in plank["center"]]
+    m = parse_design(yaml.safe_dump(metre_doc), "bench.yaml", "yaml")
+    assert (m.units, m.unit_scale, m.tolerance) == ("m", 1.0, 0.0005)
+    assert [p.id for p in m.planks] == [p.id for p in mm.planks]
+    assert m.load_cases == mm.load_cases
+    np.testing.assert_allclose(numbers(m), numbers(mm), rtol=1e-12, atol=1e-15)
+
+
+def test_lines_are_recorded_for_keys_and_items():
+    design = parse_design(BASE, "bench.yaml", "yaml")
+    for key, line in LINE.items():
+        assert design.lines[key] == line, key
+    assert design.line_of("planks[1].size[1]") == 8
+
+
+def test_error_line_fallback_to_parent_in_json():
+    design = base_dict()
+    del design["planks"][1]["center"]
+    text = json_text(design)
+    line = next(i for i, row in enumerate(text.splitlines(), 1) if '"leg1"' in row) - 1
+    expect(text, "planks[1].center", line, 'missing required key "center"', "json")
+
+
+# --- writing ----------------------------------------------------------------------------------
+
+FULL = (BASE.replace("name: bench\n", "name: bench\nunits: mm\n")
+        + "material: {thickness: 18, friction: 0.3}\n"
+        + "joints:\n  - [seat, leg1]\n  - {planks: [seat, leg2], nails: 7}\n"
+        + "load_cases:\n  push: [{plank: seat, force: [30, 0, 0], at: [200, 0, 406]}]\n"
+        + "  sit: [{plank: seat, mass: 80, at: [10.5, -20, 415]}]\n"
+        + "safety_factor: 1.5\ntolerance: 0.2\n")
+
+
+def assert_same_design(a: Design, b: Design):
+    assert (a.name, a.units, a.unit_scale, a.joints) == (b.name, b.units, b.unit_scale, b.joints)
+    assert [p.id for p in a.planks] == [p.id for p in b.planks]
+    assert [(c.name, [(ld.plank, ld.mass is None, ld.point is None) for ld in c.loads])
+            for c in a.load_cases] == \
+        [(c.name, [(ld.plank, ld.mass is None, ld.point is None) for ld in c.loads])
+         for c in b.load_cases]
+    np.testing.assert_allclose(numbers(a), numbers(b), rtol=1e-12, atol=1e-15)
+
+
+def test_document_key_order_and_contents():
+    doc = design_to_document(parse_design(FULL, "bench.yaml", "yaml"))
+    assert list(doc) == ["furncheck", "name", "units", "material", "planks", "joints", "loads",
+                         "load_cases", "safety_factor", "tolerance"]
+    assert doc["loads"] == [{"plank": "seat", "mass": 10.0}]
+    assert doc["material"]["thickness"] == 18.0 and doc["tolerance"] == 0.2
+    assert doc["joints"] == [["seat", "leg1"], {"planks": ["seat", "leg2"], "nails": 7}]
+    assert doc["load_cases"]["sit"] == [{"plank": "seat", "mass": 80.0, "at": [10.5, -20.0, 415.0]}]
+    assert "thickness" not in doc["planks"][0]
+    assert json.loads(json.dumps(doc)) == doc                 # plain types only
+
+
+@pytest.mark.parametrize("text", [BASE, FULL, "units: m\n" + BASE.replace("406", "0.406")])
+def test_round_trip_through_yaml_dump(text):
+    design = parse_design(text, "bench.yaml", "yaml")
+    again = parse_design(yaml.safe_dump(design_to_document(design), sort_keys=False),
+                         "bench.yaml", "yaml")
+    assert_same_design(design, again)
+
+
+@pytest.mark.parametrize("suffix", [".yaml", ".yml", ".json"])
+def test_write_design_round_trip(tmp_path, suffix):
+    design = parse_design(FULL.replace("id: leg2", "id: leg2\n    thickness: 9"), "b.yaml", "yaml")
+    path = str(tmp_path / f"bench{suffix}")
+    write_design(design, path)
+    again = load_design(path)
+    assert_same_design(design, again)
+    assert again.planks[2].thickness == pytest.approx(0.009)
+
+
+def test_auto_joints_are_not_written():
+    doc = design_to_document(parse_design(BASE, "bench.yaml", "yaml"))
+    assert "joints" not in doc
+
+
+def test_only_named_cases_round_trip():
+    text = BASE.replace("loads:\n  - {plank: seat, mass: 10}\n",
+                        "load_cases:\n  b: []\n  default: [{plank: leg1, mass: 1}]\n")
+    design = parse_design(text, "bench.yaml", "yaml")
+    again = parse_design(yaml.safe_dump(design_to_document(design)), "bench.yaml", "yaml")
+    assert [c.name for c in again.load_cases] == ["b", "default"]
+
+
+def test_write_unknown_extension(tmp_path):
+    design = parse_design(BASE, "bench.yaml", "yaml")
+    with pytest.raises(DesignError, match="unknown file type"):
+        write_design(design, str(tmp_path / "bench.toml"))
+    assert not os.path.exists(tmp_path / "bench.toml")
+
+
+def test_in_memory_design_writes_and_reads_back(tmp_path):
+    design = Design("pair", (Plank("a", 0.4, 0.3, 0.012, (0.0, 0.0, 0.006)),),
+                    (LoadCase("default", (Load.of_mass("a", 2.0), Load("a", (1.0, 0.0, 0.0),
+                                                                      (0.1, 0.0, 0.012)))),))
+    path = str(tmp_path / "pair.yaml")
+    write_design(design, path)
+    again = load_design(path)
+    assert_same_design(design, again)
+    assert math.isclose(again.load_cases[0].loads[0].force[2], -2.0 * GRAVITY)
