@@ -450,33 +450,44 @@ class _FrictionEnergy:
         self.solver = solver
         condensed = solver.condensed
         self.maps = condensed.ground_maps[active]               # (na, 3, n_g)
+        self.flat_maps = self.maps.reshape(-1, self.maps.shape[2])
         self.caps = caps[active]
         self.active = active
         self.schur = condensed.schur
         self.rhs = solver.ground_rhs
         self.k = tol.CONTACT_STIFFNESS
 
-    def _terms(self, x: np.ndarray):
-        """Energy, gradient, Hessian, and the contact forces (na, 3) at x."""
+    def _split(self, x: np.ndarray):
+        """Contact displacements w (na, 3), tangential |w_t|, sticking mask, energy."""
         k, caps = self.k, self.caps
-        w = self.maps @ x                                         # (na, 3)
+        w = (self.flat_maps @ x).reshape(-1, 3)
         r = np.hypot(w[:, 0], w[:, 1])
         sticking = k * r <= caps
-        safe_r = np.where(r > 0.0, r, 1.0)
-        force_t = np.where(sticking[:, None], -k * w[:, :2], -caps[:, None] * w[:, :2] / safe_r[:, None])
-        force = np.column_stack([force_t, -k * w[:, 2]])
         energy = 0.5 * x @ self.schur @ x - self.rhs @ x + float(
             (0.5 * k * w[:, 2] ** 2).sum()
             + np.where(sticking, 0.5 * k * r ** 2, caps * r - caps ** 2 / (2.0 * k)).sum())
-        gradient = self.schur @ x - self.rhs - np.einsum("kai,ka->i", self.maps, force)
+        return w, r, sticking, energy
+
+    def _energy(self, x: np.ndarray) -> float:
+        return self._split(x)[3]
+
+    def _terms(self, x: np.ndarray):
+        """Energy, gradient, Hessian, and the contact forces (na, 3) at x."""
+        k, caps = self.k, self.caps
+        w, r, sticking, energy = self._split(x)
+        safe_r = np.where(r > 0.0, r, 1.0)
         unit = w[:, :2] / safe_r[:, None]
+        force_t = np.where(sticking[:, None], -k * w[:, :2], -caps[:, None] * unit)
+        force = np.column_stack([force_t, -k * w[:, 2]])
+        gradient = self.schur @ x - self.rhs - self.flat_maps.T @ force.ravel()
         tangent = np.where(sticking[:, None, None], k * np.eye(2),
                            (caps / safe_r)[:, None, None]
                            * (np.eye(2) - unit[:, :, None] * unit[:, None, :]))
         local = np.zeros((len(w), 3, 3))
         local[:, :2, :2] = tangent
         local[:, 2, 2] = k
-        hessian = self.schur + np.einsum("kai,kab,kbj->ij", self.maps, local, self.maps)
+        weighted = (local @ self.maps).reshape(-1, self.maps.shape[2])
+        hessian = self.schur + self.flat_maps.T @ weighted
         return energy, gradient, hessian, force
 
     def minimize(self, x: np.ndarray) -> np.ndarray | None:
@@ -496,7 +507,7 @@ class _FrictionEnergy:
             if -slope <= _ENERGY_RESOLUTION * max(abs(energy), 1e-300):
                 return x        # the Newton decrement is at round-off: converged
             t = 1.0
-            while self._terms(x + t * step)[0] > energy + 1e-4 * t * slope:
+            while self._energy(x + t * step) > energy + 1e-4 * t * slope:
                 t *= 0.5
                 if t < 1e-12:
                     return None

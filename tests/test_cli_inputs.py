@@ -1,0 +1,115 @@
+"""The real ``furncheck validate`` on bad input of every class: exit code 2, one line naming
+the file, the line and the key path, no traceback; the rest of the batch is still checked.
+
+(tests/test_loader.py checks the loader's DesignError for each class in depth; this file
+checks what a user sees at the command line.)
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from furncheck.cli.main import main
+
+GOOD = """\
+furncheck: 1
+planks:
+  - id: base
+    size: [400, 300]
+    center: [0, 0, 6]
+  - id: post
+    size: [700, 300]
+    center: [0, 0, 362]
+    rotation: [0, 90, 0]
+loads:
+  - {plank: base, mass: 2}
+"""
+
+# name -> (file suffix, content, key path or fragment expected in the line, line or None)
+BAD_INPUTS = {
+    "unknown key": (".yaml", GOOD.replace("    center: [0, 0, 6]", "    centre: [0, 0, 6]"),
+                    "planks[0].centre", 5),
+    "missing key": (".yaml", GOOD.replace("    size: [400, 300]\n", ""), "planks[0]", 3),
+    "wrong type": (".yaml", GOOD.replace("size: [400, 300]", "size: {a: 1}"),
+                   "planks[0].size", 4),
+    "text for a number": (".yaml", GOOD.replace("[400, 300]", '["400", 300]'),
+                          "planks[0].size[0]", 4),
+    "NaN": (".yaml", GOOD.replace("[400, 300]", "[.nan, 300]"), "planks[0].size[0]", 4),
+    "inf": (".yaml", GOOD.replace("[400, 300]", "[400, .inf]"), "planks[0].size[1]", 4),
+    "zero size": (".yaml", GOOD.replace("[400, 300]", "[0, 300]"), "planks[0].size[0]", 4),
+    "negative size": (".yaml", GOOD.replace("[400, 300]", "[400, -3]"), "planks[0].size[1]", 4),
+    "wrong list length": (".yaml", GOOD.replace("[400, 300]", "[400, 300, 12]"),
+                          "planks[0].size", 4),
+    "duplicate id": (".yaml", GOOD.replace("id: post", "id: base"), "planks[1].id", 6),
+    "unknown plank in load": (".yaml", GOOD.replace("{plank: base, mass: 2}",
+                                                    "{plank: shelf, mass: 2}"),
+                              "loads[0].plank", 11),
+    "load off its plank": (".yaml", GOOD.replace("{plank: base, mass: 2}",
+                                                 "{plank: base, mass: 2, at: [0, 0, 90]}"),
+                           "loads[0].at", 11),
+    "mass and force": (".yaml", GOOD.replace("{plank: base, mass: 2}",
+                                             "{plank: base, mass: 2, force: [0, 0, 1]}"),
+                       "loads[0]", 11),
+    "bad units": (".yaml", GOOD.replace("furncheck: 1\n", "furncheck: 1\nunits: inch\n"),
+                  "units", 2),
+    "bad material": (".yaml", GOOD.replace("furncheck: 1\n",
+                                           "furncheck: 1\nmaterial: {density: -5}\n"),
+                     "material.density", 2),
+    "syntax error": (".yaml", GOOD.replace("size: [400, 300]", "size: [400, 300"), "", None),
+    "json syntax error": (".json", '{"furncheck": 1,\n "planks": [\n}', "JSON", 3),
+    "empty file": (".yaml", "", "empty", None),
+    "top-level list": (".yaml", "- furncheck: 1\n", "mapping", None),
+    "alias bomb": (".yaml", "a: &a [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]\n"
+                            "b: &b [*a, *a, *a, *a, *a, *a, *a, *a, *a, *a]\n"
+                            "c: &c [*b, *b, *b, *b, *b, *b, *b, *b, *b, *b]\n"
+                            "d: [*c, *c, *c, *c, *c, *c, *c, *c, *c, *c]\n", "alias", 2),
+}
+
+
+def run(*args: str):
+    return CliRunner().invoke(main, ["validate", *args])
+
+
+@pytest.mark.parametrize("name", sorted(BAD_INPUTS))
+def test_bad_input_is_one_clear_line_and_exit_2(tmp_path: Path, name: str) -> None:
+    suffix, content, fragment, line = BAD_INPUTS[name]
+    path = tmp_path / f"design{suffix}"
+    path.write_text(content, encoding="utf-8")
+    result = run(str(path))
+    assert result.exit_code == 2, result.output
+    assert "Traceback" not in result.output
+    first = result.output.splitlines()[0]
+    assert str(path) in first and fragment in first, first
+    if line is not None:
+        assert f"line {line}" in first or f":{line}:" in first, first
+
+
+def test_binary_and_missing_files(tmp_path: Path) -> None:
+    binary = tmp_path / "blob.yaml"
+    binary.write_bytes(b"\x00\x01\x02furncheck\xff")
+    result = run(str(binary), str(tmp_path / "missing.yaml"))
+    assert result.exit_code == 2
+    assert "not a text file" in result.output and "no such file" in result.output
+
+
+def test_a_bad_file_does_not_stop_the_batch(tmp_path: Path) -> None:
+    """Errors keep their place; every good file still gets its full report."""
+    (tmp_path / "a-bad.yaml").write_text("furncheck: 1\nplanks: []\n", encoding="utf-8")
+    (tmp_path / "b-good.yaml").write_text(GOOD, encoding="utf-8")
+    result = run(str(tmp_path), "--format", "json")
+    assert result.exit_code == 2
+    reports = json.loads(result.output)["reports"]
+    assert [Path(r["design"]).name for r in reports] == ["a-bad.yaml", "b-good.yaml"]
+    assert "error" in reports[0] and "valid" not in reports[0]
+    assert reports[1]["valid"] is True and reports[1]["cases"][0]["joints"]
+
+
+def test_json_report_is_byte_identical_on_rerun() -> None:
+    designs = str(Path(__file__).resolve().parents[1] / "designs")
+    first, second = run(designs, "--format", "json"), run(designs, "--format", "json")
+    assert first.exit_code == second.exit_code == 1
+    assert first.output == second.output
