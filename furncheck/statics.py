@@ -428,8 +428,9 @@ class _ActiveSet:
         return tuple(p.id for p in design.planks if p.id in ids)
 
 
-_ENERGY_RESOLUTION = 1e-13
-"""Relative size of an energy decrease that floating point can still resolve."""
+_ROUNDOFF = 1e-13
+"""Relative round-off of a matrix-vector product of the condensed system (a few hundred
+terms of double precision)."""
 
 
 class _FrictionEnergy:
@@ -457,29 +458,28 @@ class _FrictionEnergy:
         self.rhs = solver.ground_rhs
         self.k = tol.CONTACT_STIFFNESS
 
-    def _split(self, x: np.ndarray):
-        """Contact displacements w (na, 3), tangential |w_t|, sticking mask, energy."""
+    def _forces(self, x: np.ndarray):
+        """Contact displacements w (na, 3), |w_t|, sticking mask and forces (na, 3) at x."""
         k, caps = self.k, self.caps
         w = (self.flat_maps @ x).reshape(-1, 3)
         r = np.hypot(w[:, 0], w[:, 1])
         sticking = k * r <= caps
-        energy = 0.5 * x @ self.schur @ x - self.rhs @ x + float(
-            (0.5 * k * w[:, 2] ** 2).sum()
-            + np.where(sticking, 0.5 * k * r ** 2, caps * r - caps ** 2 / (2.0 * k)).sum())
-        return w, r, sticking, energy
-
-    def _energy(self, x: np.ndarray) -> float:
-        return self._split(x)[3]
-
-    def _terms(self, x: np.ndarray):
-        """Energy, gradient, Hessian, and the contact forces (na, 3) at x."""
-        k, caps = self.k, self.caps
-        w, r, sticking, energy = self._split(x)
         safe_r = np.where(r > 0.0, r, 1.0)
         unit = w[:, :2] / safe_r[:, None]
         force_t = np.where(sticking[:, None], -k * w[:, :2], -caps[:, None] * unit)
-        force = np.column_stack([force_t, -k * w[:, 2]])
-        gradient = self.schur @ x - self.rhs - self.flat_maps.T @ force.ravel()
+        return w, safe_r, sticking, np.column_stack([force_t, -k * w[:, 2]])
+
+    def _gradient(self, x: np.ndarray) -> np.ndarray:
+        """dPhi/dx: the out-of-balance generalized force on the grounded planks."""
+        force = self._forces(x)[3]
+        return self.schur @ x - self.rhs - self.flat_maps.T @ force.ravel()
+
+    def _hessian(self, x: np.ndarray) -> np.ndarray:
+        """d2Phi/dx2: S0 plus each contact's tangent stiffness (a slipping spring keeps
+        only the stiffness across its slip direction, caps / |w_t|)."""
+        k, caps = self.k, self.caps
+        w, safe_r, sticking, _ = self._forces(x)
+        unit = w[:, :2] / safe_r[:, None]
         tangent = np.where(sticking[:, None, None], k * np.eye(2),
                            (caps / safe_r)[:, None, None]
                            * (np.eye(2) - unit[:, :, None] * unit[:, None, :]))
@@ -487,37 +487,51 @@ class _FrictionEnergy:
         local[:, :2, :2] = tangent
         local[:, 2, 2] = k
         weighted = (local @ self.maps).reshape(-1, self.maps.shape[2])
-        hessian = self.schur + self.flat_maps.T @ weighted
-        return energy, gradient, hessian, force
+        return self.schur + self.flat_maps.T @ weighted
 
     def minimize(self, x: np.ndarray) -> np.ndarray | None:
-        """Newton with backtracking from x; None if Phi has no minimum (it falls without
-        bound along a sliding motion) or Newton stalls."""
-        tolerance = self.solver.force_tol
+        """Newton's method from x with an exact line search on the directional derivative
+        (the energy itself is a sum of large terms that cancel, too noisy to compare near
+        the minimum; its gradient is not).  None if Phi has no minimum (it falls without
+        bound along a sliding motion) or Newton does not converge."""
         for _ in range(tol.FRICTION_NEWTON_ITERATIONS):
-            energy, gradient, hessian, _ = self._terms(x)
-            if np.abs(gradient).max(initial=0.0) <= tolerance:
+            gradient = self._gradient(x)
+            if np.abs(gradient).max(initial=0.0) <= self._gradient_floor(x):
                 return x
+            hessian = self._hessian(x)
             shift = tol.SOLVE_RESIDUAL * max(float(np.abs(np.diag(hessian)).max()), 1.0)
             try:
                 step = np.linalg.solve(hessian + shift * np.eye(len(x)), -gradient)
             except np.linalg.LinAlgError:
                 return None
-            slope = float(gradient @ step)
-            if -slope <= _ENERGY_RESOLUTION * max(abs(energy), 1e-300):
-                return x        # the Newton decrement is at round-off: converged
-            t = 1.0
-            while self._energy(x + t * step) > energy + 1e-4 * t * slope:
-                t *= 0.5
-                if t < 1e-12:
-                    return None
-            x = x + t * step
+            x = x + self._line_search(x, step) * step
             if np.abs(x).max() > tol.SLIDING_DISPLACEMENT:
                 return None
         return None
 
+    def _line_search(self, x: np.ndarray, step: np.ndarray) -> float:
+        """t in (0, 1] minimizing Phi(x + t step): Phi is convex, so its slope along the
+        step rises with t; take the full step if the slope is still <= 0 there, else
+        bisect for the zero of the slope."""
+        if float(self._gradient(x + step) @ step) <= 0.0:
+            return 1.0
+        low, high = 0.0, 1.0
+        for _ in range(tol.LINE_SEARCH_BISECTIONS):
+            middle = 0.5 * (low + high)
+            if float(self._gradient(x + middle * step) @ step) <= 0.0:
+                low = middle
+            else:
+                high = middle
+        return max(low, 0.5 * high)
+
+    def _gradient_floor(self, x: np.ndarray) -> float:
+        """N: the force tolerance, or the round-off floor of S0 x if that is larger."""
+        roundoff = _ROUNDOFF * float(np.abs(self.schur).max(initial=0.0)
+                                     * np.abs(x).sum() + np.abs(self.rhs).max(initial=0.0))
+        return max(self.solver.force_tol, roundoff)
+
     def solution(self, x: np.ndarray) -> _Solution:
-        _, _, _, force = self._terms(x)
+        force = self._forces(x)[3]
         forces = np.zeros((len(self.active), 3))
         forces[self.active] = force
         displacement = np.zeros((len(self.active), 3))

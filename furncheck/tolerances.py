@@ -60,6 +60,9 @@ FRICTION_CAP_ITERATIONS = 20
 FRICTION_NEWTON_ITERATIONS = 100
 """Most Newton steps when minimizing the energy with slipping friction springs."""
 
+LINE_SEARCH_BISECTIONS = 40
+"""Bisections of a Newton step's line search (the step is then known to 1e-12)."""
+
 SLIDING_DISPLACEMENT = 10.0
 """m: a contact-spring displacement this large means the energy falls without bound: the
 loads exceed what friction can hold (springs deflect ~1e-3 m under real loads)."""
