@@ -12,7 +12,8 @@ design's joints and ground contacts by adjusting the planks next to it, as in th
   lengthening a plank that is jointed at one end moves its free end, a rotation lengthens
   or shortens its jointed ends so that they stay on their faces;
 * a change that would pull a jointed end off its face, lift a plank off the ground or push
-  it in, cannot be compensated by these rules: the DOF is *blocked*, with the reason.
+  it in, cannot be compensated by these rules: the DOF is *blocked*, with the reason;
+* loads ride on their planks (see ``_carried``).
 
 The rules are applied exactly (not linearized), so ``apply_dof`` gives the edited design
 for any step; whether the result still has the same joints and contacts is checked by the
@@ -26,7 +27,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from furncheck.design.model import Design, JointSpec, Plank
+from furncheck.design.model import Design, JointSpec, Load, Plank
 from furncheck.errors import DofError
 from furncheck.geometry import Geometry, analyze
 
@@ -158,7 +159,24 @@ def apply_dof(design: Design, frame: Structure, dof: Dof, step: float) -> Design
     else:
         _resize(frame, planks, plank, 0 if dof.kind == "length" else 1,
                 step * design.unit_scale)
-    return replace(design, planks=tuple(planks[p.id] for p in design.planks))
+    edited = tuple(planks[p.id] for p in design.planks)
+    return replace(design, planks=edited,
+                   load_cases=tuple(replace(case, loads=tuple(
+                       _carried(load, design.plank(load.plank), planks[load.plank])
+                       for load in case.loads)) for case in design.load_cases))
+
+
+def _carried(load: Load, before: Plank, after: Plank) -> Load:
+    """A load rides on its plank: its point keeps its place relative to the plank, as a
+    fraction of the plank's length and width (a load at the end of a shelf stays at the
+    end when the shelf grows), at the same height above its face.  The force keeps its
+    world direction (gravity does not turn with the plank)."""
+    if load.point is None or before == after:
+        return load
+    local = before.to_local(np.asarray(load.point)[None, :])[0]
+    scale = np.array([after.length / before.length, after.width / before.width, 1.0])
+    point = after.center_array + after.rotation_matrix @ (local * scale)
+    return replace(load, point=tuple(float(v) for v in point))
 
 
 def _translate(design: Design, frame: Structure, planks: dict[str, Plank], plank: Plank,

@@ -115,6 +115,31 @@ def analyze(design: Design) -> Geometry:
     return Geometry(tuple(joints), tuple(contacts), components, grounded, tuple(violations))
 
 
+def follow(geometry: Geometry, design: Design) -> Geometry:
+    """The same joints (same faces) and ground contacts (same corners) on an edited design,
+    their points, frames and lengths recomputed: the structure a small design change keeps,
+    for derivatives.  Joints whose faces no longer overlap keep their old values."""
+    faces = _face_tables(design.planks)
+    joints = []
+    for joint in geometry.joints:
+        edge_index, face_index = design.plank_index[joint.edge], design.plank_index[joint.face]
+        f = 2 * joint.edge_face[0] + (0 if joint.edge_face[1] > 0 else 1)
+        g = 0 if joint.face_side > 0 else 1
+        normal = faces.broad_normal[face_index, g]
+        corners = faces.narrow_corners[edge_index, f]
+        gap = float(((corners @ normal) - faces.broad_offset[face_index, g]).min())
+        touch = _touch_region(design.planks[face_index], design.planks[edge_index], corners,
+                              faces.narrow_long[edge_index, f], normal, gap, 1.0)
+        joints.append(joint if touch is None else replace(
+            joint, point=touch.point, length=touch.length, frame=touch.frame,
+            edge_thickness=touch.edge.thickness))
+    contacts = []
+    for contact in geometry.contacts:
+        x, y, _ = design.plank(contact.plank).corners[contact.corner]
+        contacts.append(replace(contact, point=np.array([x, y, 0.0])))
+    return replace(geometry, joints=tuple(joints), contacts=tuple(contacts))
+
+
 # --- joints ----------------------------------------------------------------------------------
 
 def nail_count(length: float, spacing: float) -> int:

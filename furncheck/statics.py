@@ -92,6 +92,8 @@ class CaseStatics:
     contact_forces: np.ndarray | None
     culprits: tuple[str, ...] = ()
     detail: str = ""
+    state: np.ndarray | None = None     # the solution [q; h] of a stable case
+    holding: np.ndarray | None = None   # (nK,) bool: contacts on the ground (not lifted)
 
 
 def build_model(design: Design, geometry: Geometry) -> StaticsModel:
@@ -198,10 +200,10 @@ def solve_case(model: StaticsModel, f: np.ndarray) -> CaseStatics:
         return solver.prescribed(forces) if forces is not None else solver.unstable("sliding")
     status, solution = normal
     if solver.within_cones(solution):
-        return solver.stable(solution)
+        return solver.stable(solution, status)
     frictional = solver.friction_phase(status, solution)
     if frictional is not None:
-        return solver.stable(frictional[1])
+        return solver.stable(frictional[1], frictional[0])
     forces = _cone_solution(model, f)
     if forces is None:
         return solver.sliding(solution)
@@ -281,8 +283,10 @@ class _ActiveSet:
         return None
 
     # -- results -----------------------------------------------------------------------------
-    def stable(self, solution: _Solution) -> CaseStatics:
-        return CaseStatics("stable", _wrenches(solution.h), solution.contact_forces)
+    def stable(self, solution: _Solution, status: np.ndarray) -> CaseStatics:
+        return CaseStatics("stable", _wrenches(solution.h), solution.contact_forces,
+                           state=np.concatenate([solution.q, solution.h]),
+                           holding=status != LIFT)
 
     def sliding(self, solution: _Solution) -> CaseStatics:
         """Report a case that slides, with the forces it would need if friction were endless."""
@@ -356,12 +360,7 @@ class _ActiveSet:
         if condensed is None or not self._restrained(springs):
             return None
         maps = model.contact_maps
-        blocks = np.transpose(maps, (0, 2, 1)) @ (springs @ maps)       # (nK, 6, 6)
-        per_plank = np.zeros((len(condensed.plank_offsets), 6, 6))
-        np.add.at(per_plank, condensed.contact_block, blocks)
-        stiffness = condensed.schur.copy()
-        for block, offset in zip(per_plank, condensed.plank_offsets):
-            stiffness[offset:offset + 6, offset:offset + 6] += block
+        stiffness = _condensed_stiffness(model, springs)
         try:
             ground = np.linalg.solve(stiffness, self.ground_rhs)
         except np.linalg.LinAlgError:
@@ -381,11 +380,7 @@ class _ActiveSet:
                          ground)
 
     def _spring_matrices(self, status: np.ndarray) -> np.ndarray:
-        """(nK, 3, 3): contact force = -S w for contact point displacement w (stick
-        contacts: springs to their anchors in all three directions; lifted: none)."""
-        springs = np.zeros((len(status), 3, 3))
-        springs[status == STICK] = np.eye(3) * tol.CONTACT_STIFFNESS
-        return springs
+        return _anchor_springs(status == STICK)
 
     def _restrained(self, springs: np.ndarray) -> bool:
         """Every grounded component is held in all six rigid directions by its contacts."""
@@ -431,6 +426,57 @@ class _ActiveSet:
 _ROUNDOFF = 1e-13
 """Relative round-off of a matrix-vector product of the condensed system (a few hundred
 terms of double precision)."""
+
+
+def _anchor_springs(holding: np.ndarray) -> np.ndarray:
+    """(nK, 3, 3): contact force = -S w for contact point displacement w: springs to the
+    anchor in all three directions where the contact holds, none where it lifted."""
+    springs = np.zeros((len(holding), 3, 3))
+    springs[holding] = np.eye(3) * tol.CONTACT_STIFFNESS
+    return springs
+
+
+def _condensed_stiffness(model: StaticsModel, springs: np.ndarray) -> np.ndarray:
+    """S0 + K_c: the condensed system's matrix with the contact springs (n_g, n_g)."""
+    condensed = model.condensation
+    maps = model.contact_maps
+    blocks = np.transpose(maps, (0, 2, 1)) @ (springs @ maps)       # (nK, 6, 6)
+    per_plank = np.zeros((len(condensed.plank_offsets), 6, 6))
+    np.add.at(per_plank, condensed.contact_block, blocks)
+    stiffness = condensed.schur.copy()
+    for block, offset in zip(per_plank, condensed.plank_offsets):
+        stiffness[offset:offset + 6, offset:offset + 6] += block
+    return stiffness
+
+
+def system_matrix(model: StaticsModel, holding: np.ndarray) -> sp.csr_matrix:
+    """The full mixed matrix [[K_c, G^T], [G, -E]] with anchor springs at the holding
+    contacts (sparse, (6 nP + 6 nJ) square): the A of the paper's eq. 6."""
+    n, m = model.n_dof, model.G.shape[0]
+    maps = model.contact_maps
+    blocks = np.transpose(maps, (0, 2, 1)) @ (_anchor_springs(holding) @ maps)
+    base = 6 * model.contact_plank[:, None, None]
+    rows = np.broadcast_to(base + _SIX[None, :, None], blocks.shape).ravel()
+    cols = np.broadcast_to(base + _SIX[None, None, :], blocks.shape).ravel()
+    K_c = sp.csr_matrix((blocks.ravel(), (rows, cols)), shape=(n, n))
+    return sp.bmat([[K_c, model.G.T], [model.G, -sp.diags(model.compliance)]], format="csr")
+
+
+def solve_system(model: StaticsModel, holding: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """A^-1 rhs for ``system_matrix(model, holding)`` and rhs (n,) or (n, k), reusing the
+    design's condensation (one sparse LU per design): the solve behind eq. 6."""
+    condensed = model.condensation
+    rhs = np.asarray(rhs, dtype=float)
+    single = rhs.ndim == 1
+    R = rhs[:, None] if single else rhs
+    inner = condensed.lu.solve(R[condensed.inner]) if len(condensed.inner) else \
+        np.zeros((0, R.shape[1]))
+    ground_rhs = R[condensed.ground] - condensed.coupling.T @ inner
+    ground = np.linalg.solve(_condensed_stiffness(model, _anchor_springs(holding)), ground_rhs)
+    out = np.zeros_like(R)
+    out[condensed.ground] = ground
+    out[condensed.inner] = inner - condensed.reduced @ ground
+    return out[:, 0] if single else out
 
 
 class _FrictionEnergy:
