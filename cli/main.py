@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 import click
+from furncheck.cli.validate import validate
 
 from furncheck import __version__
-from furncheck.cli.validate import validate
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})

@@ -12,11 +12,10 @@ from __future__ import annotations
 import math
 import os
 from pathlib import Path, PurePath
-from typing import NoReturn
 
 import click
+from furncheck.cli.output import check_output, fail, write_output
 
-from furncheck import exitcodes
 from furncheck.report import REPORTERS, render
 from furncheck.result import BatchReport, DesignReport
 
@@ -46,10 +45,7 @@ def validate(paths: tuple[str, ...], fmt: str, output: str | None, jobs: int | N
     Exit code 0: every design valid; 1: some design invalid; 2: some input could not be
     read or is ill-formed (its entry in the report says why), or a usage error.
     """
-    if output is not None and output != "-":
-        problem = output_problem(output)
-        if problem:
-            _fail(f"cannot write the report to {output}: {problem}")
+    check_output(output)
     sources = collect_sources(paths)
     to_check = [source for source in sources if isinstance(source, str)]
     checked = iter(check_all(to_check, jobs if jobs is not None else (os.cpu_count() or 1)))
@@ -58,15 +54,8 @@ def validate(paths: tuple[str, ...], fmt: str, output: str | None, jobs: int | N
     try:
         document = render(batch, fmt)
     except Exception as error:  # a reporter bug must not become a traceback
-        _fail(f"internal error while writing the {fmt} report: {type(error).__name__}: {error}")
-    if output is None or output == "-":
-        click.echo(document, nl=False)
-    else:
-        try:
-            with open(output, "w", encoding="utf-8", newline="\n") as stream:
-                stream.write(document)
-        except OSError as error:
-            _fail(f"cannot write the report to {output}: {error.strerror or error}")
+        fail(f"internal error while writing the {fmt} report: {type(error).__name__}: {error}")
+    write_output(document, output)
     click.get_current_context().exit(batch.return_code)
 
 
@@ -178,25 +167,5 @@ def _check_in_workers(paths: list[str], jobs: int) -> list[DesignReport] | None:
 
 # --- small helpers --------------------------------------------------------------------------
 
-def output_problem(output: str) -> str | None:
-    """Why ``-o output`` cannot be written, found before any design is checked, or None."""
-    if os.path.isdir(output):
-        return "it is a directory"
-    parent = os.path.dirname(os.path.abspath(output))
-    if not os.path.isdir(parent):
-        return f"no such directory {os.path.dirname(output) or parent}"
-    if os.path.exists(output) and not os.access(output, os.W_OK):
-        return "permission denied"
-    if not os.path.exists(output) and not os.access(parent, os.W_OK):
-        return "permission denied"
-    return None
-
-
 def _error_report(path: str, message: str) -> DesignReport:
     return DesignReport(design=path, name=Path(path).stem or path, valid=None, error=message)
-
-
-def _fail(message: str) -> NoReturn:
-    """One line on stderr, exit code 2 (bad input or usage)."""
-    click.echo(f"furncheck: {message}", err=True)
-    raise click.exceptions.Exit(exitcodes.BAD_INPUT)

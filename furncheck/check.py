@@ -6,15 +6,16 @@ from pathlib import Path
 
 from furncheck.design import Design
 from furncheck.errors import DesignError
-from furncheck.geometry import analyze
+from furncheck.geometry import Geometry, analyze
 from furncheck.result import DesignReport
 from furncheck.statics import build_model, external_forces, solve_case
 from furncheck.validity import evaluate_case
 
 
-def check_design(design: Design) -> DesignReport:
-    """Validate a loaded design in every load case."""
-    geometry = analyze(design)
+def check_design(design: Design, geometry: Geometry | None = None) -> DesignReport:
+    """Validate a loaded design in every load case (``geometry``: its analysis, if the
+    caller already has it)."""
+    geometry = geometry or analyze(design)
     model = build_model(design, geometry)
     violations = list(geometry.violations)
     cases = []

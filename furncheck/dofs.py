@@ -27,9 +27,9 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from furncheck.design.model import Design, JointSpec, Load, Plank
+from furncheck.design.model import Design, Load, Plank
 from furncheck.errors import DofError
-from furncheck.geometry import Geometry, analyze
+from furncheck.geometry import Geometry, analyze, interpenetrations
 
 DOF_KINDS = ("x", "y", "z", "rx", "ry", "rz", "length", "width")
 _AXIS = {"x": 0, "y": 1, "z": 2, "rx": 0, "ry": 1, "rz": 2}
@@ -63,6 +63,10 @@ class Blocked(Exception):
         super().__init__(reason)
 
 
+class OutOfReach(Exception):
+    """This particular step cannot be made (the DOF itself can move by smaller steps)."""
+
+
 def parse_dof(design: Design, name: str) -> Dof:
     """``'shelf.length'`` -> Dof; plank ids may contain dots, the kind is the last part."""
     plank, dot, kind = name.rpartition(".")
@@ -93,7 +97,7 @@ def dof_value(design: Design, dof: Dof) -> float:
     return size / design.unit_scale
 
 
-# --- the constraint structure ------------------------------------------------------------------
+# --- the constraint structure -----------------------------------------------------------------
 
 @dataclass(frozen=True)
 class End:
@@ -145,7 +149,7 @@ def structure(design: Design, geometry: Geometry) -> Structure:
                      {k: tuple(v) for k, v in attached.items()}, frozenset(flat), joint_count)
 
 
-# --- applying a DOF change --------------------------------------------------------------------------
+# --- applying a DOF change --------------------------------------------------------------------
 
 def apply_dof(design: Design, frame: Structure, dof: Dof, step: float) -> Design:
     """The design with ``dof`` changed by ``step`` (file unit or degrees) and its
@@ -223,7 +227,7 @@ def _rotate(design: Design, frame: Structure, planks: dict[str, Plank], plank: P
         height_after = _end_height(edge, end, point, normal)
         along = _end_direction(edge, end) @ normal
         if abs(along) <= _PARALLEL_EPS:
-            raise Blocked(f"{edge_id} would lie along the turned face of {plank.id}")
+            raise OutOfReach(f"{edge_id} would lie along the turned face of {plank.id}")
         planks[edge_id] = _resized(edge, end.axis, end.sign, (height_before - height_after)
                                    / along)
 
@@ -242,7 +246,7 @@ def _resize(frame: Structure, planks: dict[str, Plank], plank: Plank, axis: int,
         planks[plank.id] = _with_size(plank, axis, size, plank.center_array)
 
 
-# --- plank edits (all SI) ----------------------------------------------------------------------
+# --- plank edits (all SI) ---------------------------------------------------------------------
 
 def _moved(plank: Plank, offset: np.ndarray) -> Plank:
     return replace(plank, center=tuple(float(v) for v in plank.center_array + offset))
@@ -286,7 +290,7 @@ def _reseat_end(rotated: Plank, original: Plank, end: End, support: Plank | None
     after = _end_height(rotated, end, point, normal)
     along = float(_end_direction(rotated, end) @ normal)
     if abs(along) <= _PARALLEL_EPS:
-        raise Blocked(f"{original.id}'s end would lie along its support")
+        raise OutOfReach(f"{original.id}'s end would lie along its support")
     return _resized(rotated, end.axis, end.sign, (before - after) / along)
 
 
@@ -363,26 +367,38 @@ def _euler_degrees(matrix: np.ndarray, previous: tuple[float, float, float]) -> 
     return best
 
 
-# --- checking an edit -------------------------------------------------------------------------------
+# --- checking an edit -------------------------------------------------------------------------
 
-def check_edit(original: Geometry, edited: Design) -> str | None:
-    """Why the edited design no longer has the original's joints and contacts, or None."""
+def check_edit(original: Geometry, edited: Design) -> tuple[str | None, Geometry | None]:
+    """Why the edited design no longer has the original's joints and contacts (or None),
+    and the edited design's geometry (None when a plank lost its length)."""
     for plank in edited.planks:
         if plank.length <= 0 or plank.width <= 0:
-            return f"{plank.id} would have no length left"
+            return f"{plank.id} would have no length left", None
     geometry = analyze(edited)
-    problems = [v for v in geometry.violations]
+    problem = _edit_problem(original, geometry)
+    if problem is None:
+        cutting = interpenetrations(edited)
+        if cutting:
+            a, b, depth = cutting[0]
+            problem = f"{a} would cut {depth / edited.unit_scale:.3g} {edited.units} into {b}"
+    return problem, geometry
+
+
+def _edit_problem(original: Geometry, geometry: Geometry) -> str | None:
+    known = {(v.kind, v.where) for v in original.violations}
+    problems = [v for v in geometry.violations if (v.kind, v.where) not in known]
     if problems:
         first = problems[0]
         return f"{first.kind} {first.where}: {first.message}"
-    before = {frozenset(j.planks) for j in original.joints}
-    after = {frozenset(j.planks) for j in geometry.joints}
+    before = {(j.face, j.edge, j.edge_face) for j in original.joints}
+    after = {(j.face, j.edge, j.edge_face) for j in geometry.joints}
     if before - after:
-        lost = sorted("/".join(sorted(p)) for p in before - after)
-        return f"joint {lost[0]} would come apart"
+        face, edge, _ = sorted(before - after)[0]
+        return f"joint {face}/{edge} would come apart"
     if after - before:
-        new = sorted("/".join(sorted(p)) for p in after - before)
-        return f"planks {new[0]} would touch and form a new joint"
+        face, edge, _ = sorted(after - before)[0]
+        return f"planks {face}/{edge} would touch and form a new joint"
     grounded_before = {c.plank for c in original.contacts}
     grounded_after = {c.plank for c in geometry.contacts}
     if grounded_before != grounded_after:
@@ -390,8 +406,3 @@ def check_edit(original: Geometry, edited: Design) -> str | None:
         return f"{changed[0]} would {'leave' if changed[0] in grounded_before else 'touch'} " \
                "the ground"
     return None
-
-
-def listed(design: Design, geometry: Geometry) -> Design:
-    """The design with its detected joints written out (same pairs, same order)."""
-    return replace(design, joints=tuple(JointSpec(j.planks) for j in geometry.joints))

@@ -140,7 +140,7 @@ def follow(geometry: Geometry, design: Design) -> Geometry:
     return replace(geometry, joints=tuple(joints), contacts=tuple(contacts))
 
 
-# --- joints ----------------------------------------------------------------------------------
+# --- joints -----------------------------------------------------------------------------------
 
 def nail_count(length: float, spacing: float) -> int:
     """max(1, floor(L / spacing)), with a little slack against round-off (300/20 -> 15)."""
@@ -360,7 +360,40 @@ def _apart_message(design: Design, i: int, j: int) -> str:
             f"(closest corners {_fmt_len(gap, design)} apart)")
 
 
-# --- ground, components ------------------------------------------------------------------------
+def interpenetrations(design: Design) -> list[tuple[str, str, float]]:
+    """Plank pairs whose boxes overlap deeper than the tolerance: (id, id, depth m).
+
+    Separating-axis test of two oriented boxes over their 15 candidate axes; the depth is
+    the smallest overlap of their projections.  Planks meeting at a joint only touch, so
+    their depth is ~0.  (Not a violation of the contract's kinds: furncheck uses it to
+    refuse design edits that would push one plank through another.)
+    """
+    slack = design.tolerance + _GEOMETRY_EPS
+    lo, hi = _bounding_boxes(design.planks)
+    overlap = np.all((lo[:, None, :] < hi[None, :, :] - slack)
+                     & (lo[None, :, :] < hi[:, None, :] - slack), axis=2)
+    pairs = np.argwhere(np.triu(overlap, k=1))
+    if len(pairs) == 0:
+        return []
+    rot = np.stack([p.rotation_matrix for p in design.planks])
+    half = np.stack([p.half_extents for p in design.planks])
+    centre = np.stack([p.center_array for p in design.planks])
+    a, b = pairs[:, 0], pairs[:, 1]
+    ra, rb = np.transpose(rot[a], (0, 2, 1)), np.transpose(rot[b], (0, 2, 1))  # rows = axes
+    crosses = np.cross(ra[:, :, None, :], rb[:, None, :, :]).reshape(-1, 9, 3)
+    axes = np.concatenate([ra, rb, crosses], axis=1)                            # (P, 15, 3)
+    norms = np.linalg.norm(axes, axis=2)
+    usable = norms > 1e-9
+    axes = axes / np.where(usable, norms, 1.0)[:, :, None]
+    radius_a = (np.abs(np.einsum("pka,pia->pki", axes, ra)) * half[a][:, None, :]).sum(axis=2)
+    radius_b = (np.abs(np.einsum("pka,pia->pki", axes, rb)) * half[b][:, None, :]).sum(axis=2)
+    distance = np.abs(np.einsum("pka,pa->pk", axes, centre[b] - centre[a]))
+    depth = np.where(usable, radius_a + radius_b - distance, np.inf).min(axis=1)
+    return [(design.planks[i].id, design.planks[j].id, float(d))
+            for (i, j), d in zip(pairs, depth) if d > slack]
+
+
+# --- ground, components -----------------------------------------------------------------------
 
 def _ground_contacts(design: Design, violations: list[Violation]) -> list[Contact]:
     """Corners with z <= tolerance touch the ground; those below -tolerance penetrate it."""
@@ -426,7 +459,7 @@ def _connectivity_violations(design: Design, joints: list[Joint],
                 design.line_of(f"planks[{component[0]}]")))
 
 
-# --- formatting helpers for messages ------------------------------------------------------------
+# --- formatting helpers for messages ----------------------------------------------------------
 
 def _fmt_len(value_m: float, design: Design) -> str:
     return f"{value_m / design.unit_scale:.4g} {design.units}"

@@ -22,7 +22,7 @@ import numpy as np
 
 from furncheck import tolerances as tol
 from furncheck.design.model import Design, LoadCase
-from furncheck.dofs import Blocked, Dof, Structure, apply_dof, structure
+from furncheck.dofs import Blocked, Dof, OutOfReach, Structure, apply_dof, structure
 from furncheck.geometry import Geometry, analyze, follow
 from furncheck.statics import build_model, external_forces, solve_case, solve_system, system_matrix
 
@@ -91,6 +91,9 @@ class Linearization:
             except Blocked as why:
                 blocked[dof.name] = why.reason
                 continue
+            except OutOfReach as why:      # cannot happen for the tiny difference step
+                blocked[dof.name] = str(why)
+                continue
             columns.append((b_plus - b_minus) / (2 * h) - ((a_plus - a_minus) @ self.state)
                            / (2 * h))
             map_rates.append((maps_plus - maps_minus) / (2 * h))
@@ -109,7 +112,7 @@ class Linearization:
         contact_rates = []
         for column, map_rate in enumerate(map_rates):
             dq = rates[:n, column].reshape(-1, 6)[model.contact_plank]
-            dw = (map_rate @ q[:, :, None])[:, :, 0] + (model.contact_maps @ dq[:, :, None])[:, :, 0]
+            dw = ((map_rate @ q[:, :, None]) + (model.contact_maps @ dq[:, :, None]))[:, :, 0]
             contact_rates.append(-(springs @ dw[:, :, None])[:, :, 0])
         return Sensitivity(self.case.name, tuple(moving), joint_rates, np.array(contact_rates),
                            blocked)

@@ -70,7 +70,7 @@ class StaticsModel:
         return 6 * len(self.planks)
 
     @cached_property
-    def condensation(self) -> "_Condensation | None":
+    def condensation(self) -> _Condensation | None:
         """The contact-free part of the system, condensed onto the grounded planks."""
         return _condense(self)
 
@@ -232,7 +232,7 @@ class _ActiveSet:
         self.disp_tol = self.force_tol / tol.CONTACT_STIFFNESS
         self.mu = model.friction
 
-    # -- phases --------------------------------------------------------------------------
+    # -- phases --------------------------------------------------------------------------------
     def normal_phase(self, status: np.ndarray, one_at_a_time: bool):
         """Lift contacts that pull, re-seat those that sink, friction unlimited.
 
@@ -282,7 +282,7 @@ class _ActiveSet:
             caps = new_caps
         return None
 
-    # -- results -----------------------------------------------------------------------------
+    # -- results -------------------------------------------------------------------------------
     def stable(self, solution: _Solution, status: np.ndarray) -> CaseStatics:
         return CaseStatics("stable", _wrenches(solution.h), solution.contact_forces,
                            state=np.concatenate([solution.q, solution.h]),
@@ -348,7 +348,7 @@ class _ActiveSet:
         tangential = np.hypot(forces[:, 0], forces[:, 1])
         return bool(np.all(tangential <= self.mu * forces[:, 2] + self.force_tol))
 
-    # -- the linear solve ------------------------------------------------------------------------
+    # -- the linear solve ----------------------------------------------------------------------
     def solve(self, status: np.ndarray, stiffness_scale: float = 1.0) -> _Solution | None:
         """Solve the mixed system for the given contact states; None if it is a mechanism.
 
@@ -385,7 +385,7 @@ class _ActiveSet:
     def _restrained(self, springs: np.ndarray) -> bool:
         """Every grounded component is held in all six rigid directions by its contacts."""
         model = self.model
-        for c, component in enumerate(model.components):
+        for c in range(len(model.components)):
             members = model.contact_component == c
             if not members.any():
                 return False
@@ -402,7 +402,7 @@ class _ActiveSet:
                 return False
         return True
 
-    # -- state updates ------------------------------------------------------------------------------
+    # -- state updates -------------------------------------------------------------------------
     def _update_normals(self, solution: _Solution, status: np.ndarray,
                         one_at_a_time: bool = False) -> bool:
         normal = solution.contact_forces[:, 2]
@@ -452,7 +452,7 @@ def _condensed_stiffness(model: StaticsModel, springs: np.ndarray) -> np.ndarray
 def system_matrix(model: StaticsModel, holding: np.ndarray) -> sp.csr_matrix:
     """The full mixed matrix [[K_c, G^T], [G, -E]] with anchor springs at the holding
     contacts (sparse, (6 nP + 6 nJ) square): the A of the paper's eq. 6."""
-    n, m = model.n_dof, model.G.shape[0]
+    n = model.n_dof
     maps = model.contact_maps
     blocks = np.transpose(maps, (0, 2, 1)) @ (_anchor_springs(holding) @ maps)
     base = 6 * model.contact_plank[:, None, None]
@@ -585,7 +585,7 @@ class _FrictionEnergy:
         return self.solver.assemble(x, forces, displacement)
 
 
-# --- existence of an admissible equilibrium (linear programs) -------------------------------
+# --- existence of an admissible equilibrium (linear programs) ---------------------------------
 
 def _component_problem(model: StaticsModel, f: np.ndarray, component: int):
     """Equilibrium rows (6, 3 nk) for the component's contact forces and the applied wrench
@@ -648,7 +648,7 @@ def _cone_solution(model: StaticsModel, f: np.ndarray) -> np.ndarray | None:
     return forces
 
 
-# --- small helpers -----------------------------------------------------------------------------------
+# --- small helpers ----------------------------------------------------------------------------
 
 @dataclass(frozen=True)
 class _Condensation:

@@ -14,9 +14,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import catalog_tools
 import pytest
 
-import catalog_tools
 from furncheck.result import VIOLATION_KINDS
 
 DESIGNS = Path(__file__).resolve().parents[1] / "designs"

@@ -14,12 +14,9 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-
-ROOT = Path(__file__).resolve().parents[1]
-
-
 from furncheck.cli import validate as validate_module
 from furncheck.cli.main import main
+
 from furncheck.result import (
     BatchReport,
     CaseResult,
@@ -27,6 +24,8 @@ from furncheck.result import (
     JointResult,
     Violation,
 )
+
+ROOT = Path(__file__).resolve().parents[1]
 
 
 def fake_check_file(path: str) -> DesignReport:

@@ -12,7 +12,6 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-
 from furncheck.cli.main import main
 
 GOOD = """\

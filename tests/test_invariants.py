@@ -25,12 +25,12 @@ import warnings
 from pathlib import Path
 
 import numpy as np
+import physics_designs as pd
 import pytest
 import yaml
 from hypothesis import HealthCheck, Phase, example, given, settings
 from hypothesis import strategies as st
 
-import physics_designs as pd
 from furncheck.check import check_design
 from furncheck.design import parse_design
 from furncheck.errors import DesignError

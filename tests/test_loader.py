@@ -17,8 +17,18 @@ import numpy as np
 import pytest
 import yaml
 
-from furncheck.design import (Design, JointSpec, Load, LoadCase, Material, Plank,
-                              design_to_document, load_design, parse_design, write_design)
+from furncheck.design import (
+    Design,
+    JointSpec,
+    Load,
+    LoadCase,
+    Material,
+    Plank,
+    design_to_document,
+    load_design,
+    parse_design,
+    write_design,
+)
 from furncheck.design import load as load_module
 from furncheck.errors import DesignError
 from furncheck.tolerances import GRAVITY

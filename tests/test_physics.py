@@ -9,9 +9,9 @@ Relative tolerance of hand-calculated forces and moments: 0.5 %.
 from __future__ import annotations
 
 import numpy as np
+import physics_designs as pd
 import pytest
 
-import physics_designs as pd
 from furncheck.check import check_design
 from furncheck.design import parse_design
 
@@ -226,7 +226,7 @@ def test_shelf_plank_equilibrium():
     p = np.array(joint.point) / 1000.0
     force = np.array(joint.force, dtype=float)
     moment = np.array(joint.moment, dtype=float)
-    for owner, f, point in pd_applied_on(design, "shelf"):
+    for _owner, f, point in pd_applied_on(design, "shelf"):
         force += f
         moment += np.cross(point - p, f)
     scale = (10.0 + SHELF_MASS) * G

@@ -105,7 +105,7 @@ class Load:
     mass: float | None = None
 
     @staticmethod
-    def of_mass(plank: str, mass: float, point: Vec3 | None = None) -> "Load":
+    def of_mass(plank: str, mass: float, point: Vec3 | None = None) -> Load:
         return Load(plank, (0.0, 0.0, -mass * GRAVITY), point, mass)
 
 

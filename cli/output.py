@@ -1,0 +1,50 @@
+"""Writing a command's report (stdout or ``-o FILE``) and failing with one line, exit 2."""
+
+from __future__ import annotations
+
+import os
+from typing import NoReturn
+
+import click
+
+from furncheck import exitcodes
+
+
+def fail(message: str) -> NoReturn:
+    """One line on stderr, exit code 2 (bad input or usage)."""
+    click.echo(f"furncheck: {message}", err=True)
+    raise click.exceptions.Exit(exitcodes.BAD_INPUT)
+
+
+def output_problem(output: str) -> str | None:
+    """Why ``-o output`` cannot be written, found before any work is done, or None."""
+    if os.path.isdir(output):
+        return "it is a directory"
+    parent = os.path.dirname(os.path.abspath(output))
+    if not os.path.isdir(parent):
+        return f"no such directory {os.path.dirname(output) or parent}"
+    if os.path.exists(output) and not os.access(output, os.W_OK):
+        return "permission denied"
+    if not os.path.exists(output) and not os.access(parent, os.W_OK):
+        return "permission denied"
+    return None
+
+
+def check_output(output: str | None) -> None:
+    """Fail early if ``-o output`` cannot be written ('-' and None mean stdout)."""
+    if output is not None and output != "-":
+        problem = output_problem(output)
+        if problem:
+            fail(f"cannot write the report to {output}: {problem}")
+
+
+def write_output(document: str, output: str | None) -> None:
+    """Write the report to stdout or to ``output``."""
+    if output is None or output == "-":
+        click.echo(document, nl=False)
+        return
+    try:
+        with open(output, "w", encoding="utf-8", newline="\n") as stream:
+            stream.write(document)
+    except OSError as error:
+        fail(f"cannot write the report to {output}: {error.strerror or error}")
