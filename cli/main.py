@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import click
+from furncheck.cli.range import range_command
 from furncheck.cli.validate import validate
 
 from furncheck import __version__
@@ -14,12 +15,14 @@ from furncheck import __version__
 def main() -> None:
     """Check nail-jointed plank furniture designs for durability and stability.
 
-    Exit codes: 0 all designs valid, 1 some design invalid, 2 unreadable or ill-formed
-    input, or a usage error.
+    validate: verdicts on design files; range: valid interval of each design DOF.
+    Exit codes: 0 all designs valid (or done), 1 some design invalid (validate), 2
+    unreadable or ill-formed input, or a usage error.
     """
 
 
 main.add_command(validate)
+main.add_command(range_command)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -1,0 +1,47 @@
+"""``furncheck range DESIGN [DOF...]``: the valid interval of each design DOF."""
+
+from __future__ import annotations
+
+import click
+
+from furncheck.cli.output import check_output, fail, write_output
+
+
+@click.command("range")
+@click.argument("design", metavar="DESIGN")
+@click.argument("dofs", metavar="[DOF...]", nargs=-1)
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text",
+              show_default=True, help="Report format.")
+@click.option("--lock", "locks", metavar="DOF", multiple=True,
+              help="A DOF that must not change, not even to keep joints together "
+                   "(repeatable), e.g. --lock seat.z.")
+@click.option("-o", "--output", metavar="FILE", default=None,
+              help="Write the report to FILE instead of standard output.")
+def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str, ...],
+                  output: str | None) -> None:
+    """Valid interval of each DOF of DESIGN, the others held fixed (their neighbours
+    adjusted to keep the joints).  DOFs are <plank>.x|y|z (translation, length unit),
+    <plank>.rx|ry|rz (rotation about world axes, degrees) and <plank>.length|width;
+    with none named, all are listed.
+
+    Exit code 0: done; 2: unreadable or ill-formed design, unknown DOF or plank.
+    """
+    from furncheck.design import load_design
+    from furncheck.dofs import parse_dof
+    from furncheck.errors import DesignError, DofError
+    from furncheck.ranges import RangeFinder
+    from furncheck.report.ranges import render_json, render_text
+
+    check_output(output)
+    try:
+        loaded = load_design(design)
+    except DesignError as error:
+        fail(str(error))
+    try:
+        for name in (*dofs, *locks):
+            parse_dof(loaded, name)
+    except DofError as error:
+        fail(f"{design}: {error}")
+    ranges = RangeFinder(loaded, tuple(locks)).ranges(list(dofs) or None)
+    render = render_json if fmt == "json" else render_text
+    write_output(render(design, ranges), output)

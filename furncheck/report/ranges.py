@@ -1,0 +1,39 @@
+"""Reports of ``furncheck range``: a readable table, or the JSON of contract section 4."""
+
+from __future__ import annotations
+
+import json
+
+from furncheck.ranges import DofRange
+from furncheck.report.numbers import format_number, json_ready
+
+
+def render_json(design: str, ranges: list[DofRange]) -> str:
+    """``{"design": ..., "ranges": [{"dof", "value", "valid", "unit"[, "reason"]}]}``."""
+    entries = []
+    for item in ranges:
+        entry = {"dof": item.dof, "value": item.value,
+                 "valid": list(item.valid) if item.valid is not None else None,
+                 "unit": item.unit}
+        if item.reason:
+            entry["reason"] = item.reason
+        entries.append(entry)
+    return json.dumps(json_ready({"design": design, "ranges": entries}), indent=2,
+                      allow_nan=False) + "\n"
+
+
+def render_text(design: str, ranges: list[DofRange]) -> str:
+    """One row per DOF: name, current value, valid interval, unit, and why when a DOF
+    cannot move (or the current value is invalid)."""
+    rows = [("DOF", "value", "valid range", "unit", "")]
+    for item in ranges:
+        interval = "-" if item.valid is None else \
+            f"{format_number(item.valid[0], 5)} .. {format_number(item.valid[1], 5)}"
+        rows.append((item.dof, format_number(item.value, 5), interval, item.unit,
+                     item.reason or ""))
+    widths = [max(len(row[i]) for row in rows) for i in range(4)]
+    lines = [f"{design}:"]
+    for dof, value, interval, unit, reason in rows:
+        lines.append(f"  {dof:<{widths[0]}}  {value:>{widths[1]}}  {interval:<{widths[2]}}  "
+                     f"{unit:<{widths[3]}}  {reason}".rstrip())
+    return "\n".join(lines) + "\n"
