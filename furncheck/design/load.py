@@ -4,13 +4,13 @@ Reading goes in three steps:
 
 1. bytes -> text (``load_design``): the file must exist, be a regular file of at most
    ``MAX_FILE_BYTES``, hold no NUL bytes and be UTF-8;
-2. text -> a plain tree of dicts, lists and scalars (``_read_yaml`` / ``_read_json``).  YAML
-   is read event by event, never constructed: aliases are refused before anything is
-   expanded, duplicate keys are refused, and the line of every key path is recorded.  A
-   YAML scalar stays a ``_Scalar`` (its text and whether it was quoted) until the schema
-   knows whether a number or a text belongs there;
+2. text -> a plain tree of dicts, lists and scalars, with the line of every key path;
 3. tree -> ``Design`` (``_design`` and the helpers below it, key by key as in the contract),
    converting lengths to metres.
+
+Steps 1 and 2 are in ``furncheck.design.source`` (which refuses YAML aliases before anything
+is expanded and duplicate keys, and keeps YAML scalars as ``_Scalar`` until the schema knows
+whether a number or a text belongs there); this module is step 3, the schema.
 
 Every problem raises ``DesignError(file, key path, line, message)``.  Key paths read
 ``planks[1].size``, ``load_cases.sit[0].mass``; '' is the whole file.  For JSON, the line of
@@ -19,26 +19,36 @@ a key path is looked up only when an error is raised (by reading the text as YAM
 
 from __future__ import annotations
 
-import codecs
 import difflib
-import json
 import math
-import os
 import re
-import stat
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, NoReturn
 
 import numpy as np
-import yaml
 
 from furncheck import tolerances as tol
 from furncheck.design.model import Design, JointSpec, Load, LoadCase, Material, Plank
+from furncheck.design.source import (
+    _NO_DOCUMENT,
+    _PATH_SAFE_KEY,
+    FORMATS,  # noqa: F401  (re-exported: still importable from here)
+    _check_regular_file,
+    _checked_text,
+    _child,
+    _decode,
+    _format_of,
+    _json_lines,
+    _one_line,
+    _quote,
+    _read_json,
+    _read_yaml,
+    _Scalar,
+    _too_large,
+)
 from furncheck.errors import DesignError
 
-FORMATS = {".yaml": "yaml", ".yml": "yaml", ".json": "json"}
-"""File extension -> format."""
 UNIT_SCALES = {"mm": 0.001, "m": 1.0}
 """Length unit -> metres per unit."""
 
@@ -49,16 +59,8 @@ PLANK_KEYS = ("id", "size", "center", "rotation", "thickness")
 JOINT_KEYS = ("planks", "nails")
 LOAD_KEYS = ("plank", "mass", "force", "at")
 
-_IDENTIFIER = re.compile(r"[A-Za-z0-9_.-]+")
-_PATH_SAFE_KEY = _IDENTIFIER
+_IDENTIFIER = _PATH_SAFE_KEY   # plank ids and case names: what a key path shows bare
 _AXES = ("length", "width", "thickness")
-_QUOTE_LIMIT = 40            # characters of a user's text repeated in a message
-
-_Loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
-_YAML_TAG = "tag:yaml.org,2002:"
-_TEXT_TAGS = {"!", _YAML_TAG + "str"}
-_PLAIN_TAGS = {_YAML_TAG + name for name in ("int", "float", "bool", "null")}
-_CONTAINER_TAGS = {"!", _YAML_TAG + "map", _YAML_TAG + "seq"}
 _NULL_WORDS = {"", "~", "null", "Null", "NULL"}
 _BOOL_WORDS = {word: value for value, words in
                ((True, ("yes", "true", "on")), (False, ("no", "false", "off")))
@@ -96,34 +98,11 @@ def parse_design(text: str, source: str, fmt: str) -> Design:
     return _design(doc, tree)
 
 
-# --- step 1: bytes -> text ----------------------------------------------------------------------
-
-def _format_of(path: str) -> str:
-    fmt = FORMATS.get(Path(path).suffix.lower())
-    if fmt is None:
-        raise DesignError(path, "", None, f"unknown file type {_quote(Path(path).suffix)}; "
-                                          "design files end in .yaml, .yml or .json")
-    return fmt
-
-
-def _check_regular_file(path: str) -> None:
-    """Refuse a missing path, a directory, a special file and a file over the size limit."""
-    try:
-        info = os.stat(path)
-    except FileNotFoundError:
-        raise DesignError(path, "", None, "no such file") from None
-    except OSError as error:
-        raise DesignError(path, "", None, f"cannot read file: {error.strerror}") from None
-    if stat.S_ISDIR(info.st_mode):
-        raise DesignError(path, "", None, "is a directory, not a design file")
-    if not stat.S_ISREG(info.st_mode):
-        raise DesignError(path, "", None, "not a regular file")
-    if info.st_size > tol.MAX_FILE_BYTES:
-        raise _too_large(path, info.st_size)
-
+# --- step 1: the file's bytes (the rest of steps 1-2 is in source.py) ---------------------------
 
 def _read_bytes(path: str) -> bytes:
-    """The file's bytes, at most ``MAX_FILE_BYTES`` of them."""
+    """The file's bytes, at most ``MAX_FILE_BYTES`` of them.  (Kept here, where the file is
+    opened, so that a test can replace this module's ``open``.)"""
     try:
         with open(path, "rb") as handle:
             data = handle.read(tol.MAX_FILE_BYTES + 1)
@@ -132,248 +111,6 @@ def _read_bytes(path: str) -> bytes:
     if len(data) > tol.MAX_FILE_BYTES:
         raise _too_large(path, len(data))
     return data
-
-
-def _too_large(source: str, size: int) -> DesignError:
-    limit_mb = tol.MAX_FILE_BYTES / 2**20
-    return DesignError(source, "", None,
-                       f"file too large ({size / 2**20:.1f} MB; the limit is {limit_mb:g} MB)")
-
-
-def _decode(data: bytes, path: str) -> str:
-    if b"\x00" in data:
-        raise DesignError(path, "", None, "not a text file (it holds NUL bytes)")
-    if data.startswith(codecs.BOM_UTF8):
-        data = data[len(codecs.BOM_UTF8):]
-    try:
-        return data.decode("utf-8")
-    except UnicodeDecodeError:
-        raise DesignError(path, "", None, "not a text file (not UTF-8)") from None
-
-
-def _checked_text(text: str, source: str) -> str:
-    """``text`` without a byte-order mark; refuses oversized, binary and empty text."""
-    if not isinstance(text, str):
-        raise DesignError(source, "", None, "not a text file")
-    if len(text) > tol.MAX_FILE_BYTES:
-        raise _too_large(source, len(text))
-    if "\x00" in text:
-        raise DesignError(source, "", None, "not a text file (it holds NUL bytes)")
-    try:
-        text.encode("utf-8")
-    except UnicodeEncodeError:
-        raise DesignError(source, "", None, "not a text file (not UTF-8)") from None
-    text = text.removeprefix("\ufeff")
-    if not text.strip():
-        raise DesignError(source, "", None, "empty file")
-    return text
-
-
-# --- step 2a: YAML text -> tree -----------------------------------------------------------------
-
-@dataclass(frozen=True)
-class _Scalar:
-    """A YAML scalar as written: its text, and ``plain`` when it was not quoted (so its
-    meaning, number, boolean, null or text, is decided by where it stands)."""
-
-    text: str
-    plain: bool
-
-
-_NO_DOCUMENT = object()
-
-
-@dataclass
-class _Frame:
-    """An open YAML mapping or list while its events are read."""
-
-    value: dict | list
-    path: str
-    key: str | None = None            # mapping: key waiting for its value
-    key_lines: dict | None = None     # mapping: key -> line
-
-
-def _read_yaml(text: str, source: str) -> tuple[Any, dict[str, int]]:
-    """(tree, lines): dicts, lists and ``_Scalar``; key path -> 1-based line."""
-    loader = None
-    try:
-        loader = _Loader(text)           # the pure-Python reader checks characters here
-        return _build_yaml_tree(loader, source)
-    except yaml.YAMLError as error:
-        raise _yaml_syntax_error(error, text, source) from None
-    finally:
-        if loader is not None:
-            loader.dispose()
-
-
-def _build_yaml_tree(loader, source: str) -> tuple[Any, dict[str, int]]:
-    lines: dict[str, int] = {}
-    stack: list[_Frame] = []
-    root: Any = _NO_DOCUMENT
-    documents = 0
-    while loader.check_event():
-        event = loader.get_event()
-        line = event.start_mark.line + 1
-        if isinstance(event, yaml.DocumentStartEvent):
-            documents += 1
-            if documents > 1:
-                raise DesignError(source, "", line, "several YAML documents (the second starts "
-                                                    "here); put one design in each file")
-        elif isinstance(event, (yaml.MappingEndEvent, yaml.SequenceEndEvent)):
-            frame = stack.pop()
-            root = _place(stack, frame.value, root)
-        elif isinstance(event, yaml.NodeEvent):
-            path = _slot_path(stack, event, line, lines, source)
-            if path is None:
-                continue                      # the event was a mapping key
-            if isinstance(event, yaml.AliasEvent):
-                raise DesignError(source, path, line, f"YAML aliases (*{event.anchor}) are not "
-                                                      "allowed; write the value out")
-            if isinstance(event, yaml.ScalarEvent):
-                root = _place(stack, _yaml_scalar(event, path, line, source), root)
-            else:
-                _check_container_tag(event, path, line, source)
-                if len(stack) >= tol.MAX_NESTING:
-                    raise DesignError(source, path, line, "nested too deeply")
-                is_map = isinstance(event, yaml.MappingStartEvent)
-                stack.append(_Frame({} if is_map else [], path, None, {} if is_map else None))
-    return root, lines
-
-
-def _slot_path(stack: list[_Frame], event, line: int, lines: dict[str, int],
-               source: str) -> str | None:
-    """Key path of the node that ``event`` starts, recording its line; None when the event
-    is a mapping key (then it is held until its value arrives)."""
-    if not stack:
-        return ""
-    frame = stack[-1]
-    if isinstance(frame.value, list):
-        path = f"{frame.path}[{len(frame.value)}]"
-        lines[path] = line
-        return path
-    if frame.key is not None:
-        return _child(frame.path, frame.key)
-    if isinstance(event, yaml.AliasEvent):
-        raise DesignError(source, frame.path, line, f"YAML aliases (*{event.anchor}) are not "
-                                                    "allowed; write the value out")
-    if not isinstance(event, yaml.ScalarEvent):
-        raise DesignError(source, frame.path, line, "mapping keys must be plain text")
-    key = event.value
-    path = _child(frame.path, key)
-    if key in frame.key_lines:
-        raise DesignError(source, path, line, f"duplicate key {_quote(key)} (first on line "
-                                              f"{frame.key_lines[key]})")
-    frame.key_lines[key] = line
-    frame.key = key
-    lines[path] = line
-    return None
-
-
-def _place(stack: list[_Frame], value: Any, root: Any) -> Any:
-    """Put a finished node into its parent; returns the (possibly new) root."""
-    if not stack:
-        return value
-    frame = stack[-1]
-    if isinstance(frame.value, list):
-        frame.value.append(value)
-    else:
-        frame.value[frame.key] = value
-        frame.key = None
-    return root
-
-
-def _yaml_scalar(event, path: str, line: int, source: str) -> _Scalar:
-    tag = event.tag
-    if tag is None:
-        return _Scalar(event.value, plain=event.style in (None, "") and event.implicit[0])
-    if tag in _TEXT_TAGS:
-        return _Scalar(event.value, plain=False)
-    if tag in _PLAIN_TAGS:
-        return _Scalar(event.value, plain=True)
-    raise _tag_error(tag, path, line, source)
-
-
-def _check_container_tag(event, path: str, line: int, source: str) -> None:
-    if event.tag is not None and event.tag not in _CONTAINER_TAGS:
-        raise _tag_error(event.tag, path, line, source)
-
-
-def _tag_error(tag: str, path: str, line: int, source: str) -> DesignError:
-    shown = "!!" + tag[len(_YAML_TAG):] if tag.startswith(_YAML_TAG) else tag
-    return DesignError(source, path, line, f"unsupported YAML tag {_quote(shown)}")
-
-
-def _yaml_syntax_error(error: yaml.YAMLError, text: str, source: str) -> DesignError:
-    mark = getattr(error, "problem_mark", None) or getattr(error, "context_mark", None)
-    problem = getattr(error, "problem", None)
-    if problem is None and hasattr(error, "reason"):          # yaml.reader.ReaderError
-        line = text.count("\n", 0, max(0, error.position)) + 1
-        return DesignError(source, "", line, f"not a text file ({error.reason})")
-    context = getattr(error, "context", None)
-    message = problem or "cannot be read"
-    if context:
-        message = f"{message} ({context})"
-    return DesignError(source, "", mark.line + 1 if mark else None,
-                       _one_line(f"YAML syntax error: {message}"))
-
-
-# --- step 2b: JSON text -> tree -----------------------------------------------------------------
-
-class _DuplicateKey(Exception):
-    def __init__(self, key: str):
-        super().__init__(key)
-        self.key = key
-
-
-def _json_object(pairs: list[tuple[str, Any]]) -> dict:
-    mapping: dict = {}
-    for key, value in pairs:
-        if key in mapping:
-            raise _DuplicateKey(key)
-        mapping[key] = value
-    return mapping
-
-
-def _json_constant(name: str) -> float:
-    """NaN / Infinity / -Infinity become floats that every number check refuses as 'not a
-    finite number', naming their key path."""
-    return float(name.replace("Infinity", "inf"))
-
-
-def _read_json(text: str, source: str) -> Any:
-    """Tree of dicts, lists, str, float (every number), bool and None."""
-    try:
-        return json.loads(text, object_pairs_hook=_json_object, parse_constant=_json_constant,
-                          parse_int=float, parse_float=float)
-    except _DuplicateKey as duplicate:
-        raise _json_duplicate_error(text, source, duplicate.key) from None
-    except json.JSONDecodeError as error:
-        raise DesignError(source, "", error.lineno,
-                          f"JSON syntax error: {error.msg} (column {error.colno})") from None
-    except RecursionError:
-        raise DesignError(source, "", None, "nested too deeply") from None
-    except ValueError as error:
-        raise DesignError(source, "", None, _one_line(f"JSON syntax error: {error}")) from None
-
-
-def _json_duplicate_error(text: str, source: str, key: str) -> DesignError:
-    """The duplicate key's path and line, found by reading the JSON text as YAML."""
-    try:
-        _read_yaml(text, source)
-    except DesignError as error:
-        if error.message.startswith("duplicate key"):
-            return error
-    except (yaml.YAMLError, ValueError, RecursionError):
-        pass
-    return DesignError(source, "", None, f"duplicate key {_quote(key)}")
-
-
-def _json_lines(text: str, source: str) -> dict[str, int]:
-    """Best effort: key path -> line of a JSON text, read as YAML; {} when that fails."""
-    try:
-        return _read_yaml(text, source)[1]
-    except (DesignError, yaml.YAMLError, ValueError, RecursionError):
-        return {}
 
 
 # --- values: what the schema reads from the tree ------------------------------------------------
@@ -488,23 +225,6 @@ def _describe(node: Any) -> str:
     if isinstance(value, float):
         return f"a number ({_one_line(node.text) if isinstance(node, _Scalar) else f'{value:g}'})"
     return f"text {_quote(value)}"
-
-
-def _quote(text: str) -> str:
-    """``text`` in double quotes on one line, shortened, unprintable characters escaped."""
-    short = text if len(text) <= _QUOTE_LIMIT else text[:_QUOTE_LIMIT] + "..."
-    return '"' + _one_line(short) + '"'
-
-
-def _one_line(text: str) -> str:
-    return "".join(c if c.isprintable() else f"\\u{ord(c):04x}" for c in text)
-
-
-def _child(path: str, key: str) -> str:
-    """Key path of mapping entry ``key`` under ``path``; odd keys are written ``["..."]``."""
-    if not _PATH_SAFE_KEY.fullmatch(key):
-        return f"{path}[{_quote(key)}]"
-    return f"{path}.{key}" if path else key
 
 
 def _unknown_key_message(name: str, allowed: tuple[str, ...]) -> str:
