@@ -125,11 +125,12 @@ def follow(geometry: Geometry, design: Design) -> Geometry:
         edge_index, face_index = design.plank_index[joint.edge], design.plank_index[joint.face]
         f = 2 * joint.edge_face[0] + (0 if joint.edge_face[1] > 0 else 1)
         g = 0 if joint.face_side > 0 else 1
-        normal = faces.broad_normal[face_index, g]
         corners = faces.narrow_corners[edge_index, f]
-        gap = float(((corners @ normal) - faces.broad_offset[face_index, g]).min())
-        touch = _touch_region(design.planks[face_index], design.planks[edge_index], corners,
-                              faces.narrow_long[edge_index, f], normal, gap, 1.0)
+        gap = float(((corners @ faces.broad_normal[face_index, g])
+                     - faces.broad_offset[face_index, g]).min())
+        touch = _touch_regions(design, faces, np.array([edge_index]), np.array([face_index]),
+                               np.array([f]), np.array([g]), np.array([gap]),
+                               np.array([1.0]))[0]
         joints.append(joint if touch is None else replace(
             joint, point=touch.point, length=touch.length, frame=touch.frame,
             edge_thickness=touch.edge.thickness))
@@ -251,16 +252,15 @@ def _best_touches(design: Design, pairs: np.ndarray, slack: float, keep_deep: bo
         candidates &= gap >= -slack
     best: dict[tuple[int, int], _Touch] = {}
     n_pairs = len(pairs)
-    for p, f, g in np.argwhere(candidates):
-        touch = _touch_region(design.planks[face[p]], design.planks[edge[p]],
-                              faces.narrow_corners[edge[p], f], faces.narrow_long[edge[p], f],
-                              faces.broad_normal[face[p], g], float(gap[p, f, g]),
-                              float(alignment[p, f, g]))
+    chosen = np.argwhere(candidates)
+    p, f, g = chosen[:, 0], chosen[:, 1], chosen[:, 2]
+    touches = _touch_regions(design, faces, edge[p], face[p], f, g, gap[p, f, g],
+                             alignment[p, f, g])
+    for (p_k, f_k, g_k), touch in zip(chosen.tolist(), touches):
         if touch is None:
             continue
-        touch = replace(touch, edge_face=(int(f) // 2, 1 - 2 * (int(f) % 2)),
-                        face_side=1 - 2 * int(g))
-        key = tuple(int(v) for v in pairs[p % n_pairs])
+        touch = replace(touch, edge_face=(f_k // 2, 1 - 2 * (f_k % 2)), face_side=1 - 2 * g_k)
+        key = tuple(int(v) for v in pairs[p_k % n_pairs])
         rank = (touch.gap >= -slack, round(touch.alignment, 9), touch.area)
         current = best.get(key)
         if current is None or rank > (current.gap >= -slack, round(current.alignment, 9),
@@ -269,33 +269,53 @@ def _best_touches(design: Design, pairs: np.ndarray, slack: float, keep_deep: bo
     return best
 
 
-def _touch_region(face: Plank, edge: Plank, corners: np.ndarray, joint_dir: np.ndarray,
-                  n_face: np.ndarray, gap: float, alignment: float) -> _Touch | None:
-    """Clip the edge face's projection (corners (4, 3)) to the face plank's broad face."""
-    r_f = face.rotation_matrix
-    h_f = face.half_extents
-    face_center = face.center_array + h_f[2] * n_face
-    local = ((corners - face_center) @ r_f[:, :2]).tolist()   # 4 points in the face's plane
-    polygon = _clip_to_rectangle(local, float(h_f[0]), float(h_f[1]))
-    if len(polygon) < 3:
-        return None
-    area, cx, cy = _polygon_area_centroid(polygon)
-    face_area = 4.0 * edge.half_extents[2] * max(edge.half_extents[0], edge.half_extents[1])
-    if area <= tol.MIN_JOINT_AREA_FRACTION * face_area:
-        return None
-    along = joint_dir - (joint_dir @ n_face) * n_face
-    ax, ay = (along @ r_f[:, :2]).tolist()
-    norm = (ax * ax + ay * ay) ** 0.5
-    extent = [(x * ax + y * ay) / norm for x, y in polygon]
-    length = max(extent) - min(extent)
-    point = face_center + r_f[:, 0] * cx + r_f[:, 1] * cy
-    x_axis = edge.rotation_matrix[:, 2] - (edge.rotation_matrix[:, 2] @ n_face) * n_face
-    x_axis /= np.linalg.norm(x_axis)
-    y_axis = np.array([n_face[1] * x_axis[2] - n_face[2] * x_axis[1],
-                       n_face[2] * x_axis[0] - n_face[0] * x_axis[2],
-                       n_face[0] * x_axis[1] - n_face[1] * x_axis[0]])     # n x x
-    frame = np.column_stack([x_axis, y_axis, n_face])
-    return _Touch(face, edge, point, length, frame, gap, alignment, area)
+def _touch_regions(design: Design, faces: _Faces, edge: np.ndarray, face: np.ndarray,
+                   f: np.ndarray, g: np.ndarray, gap: np.ndarray,
+                   alignment: np.ndarray) -> list[_Touch | None]:
+    """For candidate contacts c (edge plank edge[c]'s narrow face f[c] on face plank
+    face[c]'s broad face g[c]): clip the narrow face's projection to the broad face (in the
+    face plank's local x-y) and measure the touching region; None where it is empty."""
+    planks = design.planks
+    if len(edge) == 0:
+        return []
+    rot_f = np.stack([planks[i].rotation_matrix for i in face])          # (C, 3, 3)
+    half_f = np.stack([planks[i].half_extents for i in face])            # (C, 3)
+    rot_e = np.stack([planks[i].rotation_matrix for i in edge])
+    half_e = np.stack([planks[i].half_extents for i in edge])
+    normal = faces.broad_normal[face, g]                                  # (C, 3)
+    face_center = faces.centers[face] + half_f[:, 2:3] * normal
+    corners = faces.narrow_corners[edge, f]                               # (C, 4, 3)
+    local = np.einsum("cka,cab->ckb", corners - face_center[:, None, :], rot_f[:, :, :2])
+    joint_dir = faces.narrow_long[edge, f]
+    along = joint_dir - np.einsum("ca,ca->c", joint_dir, normal)[:, None] * normal
+    along_2d = np.einsum("ca,cab->cb", along, rot_f[:, :, :2])
+    along_2d /= np.linalg.norm(along_2d, axis=1, keepdims=True)
+    face_area = 4.0 * half_e[:, 2] * half_e[:, :2].max(axis=1)
+    regions = []
+    for quad, (hx, hy), (ax, ay), least in zip(local.tolist(), half_f[:, :2].tolist(),
+                                               along_2d.tolist(),
+                                               (tol.MIN_JOINT_AREA_FRACTION * face_area)):
+        polygon = _clip_to_rectangle(quad, hx, hy)
+        if len(polygon) < 3:
+            regions.append(None)
+            continue
+        area, cx, cy = _polygon_area_centroid(polygon)
+        extent = [x * ax + y * ay for x, y in polygon]
+        regions.append((area, cx, cy, max(extent) - min(extent)) if area > least else None)
+    thickness_normal = rot_e[:, :, 2]
+    x_axis = thickness_normal - np.einsum("ca,ca->c", thickness_normal, normal)[:, None] * normal
+    x_axis /= np.linalg.norm(x_axis, axis=1, keepdims=True)
+    frames = np.stack([x_axis, np.cross(normal, x_axis), normal], axis=2)  # columns x, y, n
+    touches: list[_Touch | None] = []
+    for c, region in enumerate(regions):
+        if region is None:
+            touches.append(None)
+            continue
+        area, cx, cy, length = region
+        point = face_center[c] + rot_f[c, :, 0] * cx + rot_f[c, :, 1] * cy
+        touches.append(_Touch(planks[face[c]], planks[edge[c]], point, length, frames[c],
+                              float(gap[c]), float(alignment[c]), area))
+    return touches
 
 
 def _clip_to_rectangle(polygon: list, half_x: float, half_y: float) -> list:
