@@ -496,18 +496,24 @@ class _FrictionEnergy:
     def __init__(self, solver: _ActiveSet, active: np.ndarray, caps: np.ndarray):
         self.solver = solver
         condensed = solver.condensed
-        self.maps = condensed.ground_maps[active]               # (na, 3, n_g)
-        self.flat_maps = self.maps.reshape(-1, self.maps.shape[2])
+        self.model = solver.model
+        self.maps = solver.model.contact_maps[active]           # (na, 3, 6)
+        self.block = condensed.contact_block[active]            # plank block of each
+        self.blocks = len(condensed.plank_offsets)
         self.caps = caps[active]
         self.active = active
         self.schur = condensed.schur
         self.rhs = solver.ground_rhs
         self.k = tol.CONTACT_STIFFNESS
 
+    def _displacements(self, x: np.ndarray) -> np.ndarray:
+        """(na, 3): w_k = M_k x, each contact from its plank's six displacements."""
+        return (self.maps @ x.reshape(-1, 6)[self.block][:, :, None])[:, :, 0]
+
     def _forces(self, x: np.ndarray):
         """Contact displacements w (na, 3), |w_t|, sticking mask and forces (na, 3) at x."""
         k, caps = self.k, self.caps
-        w = (self.flat_maps @ x).reshape(-1, 3)
+        w = self._displacements(x)
         r = np.hypot(w[:, 0], w[:, 1])
         sticking = k * r <= caps
         safe_r = np.where(r > 0.0, r, 1.0)
@@ -518,7 +524,10 @@ class _FrictionEnergy:
     def _gradient(self, x: np.ndarray) -> np.ndarray:
         """dPhi/dx: the out-of-balance generalized force on the grounded planks."""
         force = self._forces(x)[3]
-        return self.schur @ x - self.rhs - self.flat_maps.T @ force.ravel()
+        generalized = (np.transpose(self.maps, (0, 2, 1)) @ force[:, :, None])[:, :, 0]
+        per_block = np.zeros((self.blocks, 6))
+        np.add.at(per_block, self.block, generalized)
+        return self.schur @ x - self.rhs - per_block.ravel()
 
     def _hessian(self, x: np.ndarray) -> np.ndarray:
         """d2Phi/dx2: S0 plus each contact's tangent stiffness (a slipping spring keeps
@@ -529,11 +538,10 @@ class _FrictionEnergy:
         tangent = np.where(sticking[:, None, None], k * np.eye(2),
                            (caps / safe_r)[:, None, None]
                            * (np.eye(2) - unit[:, :, None] * unit[:, None, :]))
-        local = np.zeros((len(w), 3, 3))
-        local[:, :2, :2] = tangent
-        local[:, 2, 2] = k
-        weighted = (local @ self.maps).reshape(-1, self.maps.shape[2])
-        return self.schur + self.flat_maps.T @ weighted
+        springs = np.zeros((len(self.active), 3, 3))
+        springs[self.active, :2, :2] = tangent
+        springs[self.active, 2, 2] = k
+        return _condensed_stiffness(self.model, springs)
 
     def minimize(self, x: np.ndarray) -> np.ndarray | None:
         """Newton's method from x with an exact line search on the directional derivative
@@ -581,7 +589,7 @@ class _FrictionEnergy:
         forces = np.zeros((len(self.active), 3))
         forces[self.active] = force
         displacement = np.zeros((len(self.active), 3))
-        displacement[self.active] = self.maps @ x
+        displacement[self.active] = self._displacements(x)
         return self.solver.assemble(x, forces, displacement)
 
 
@@ -674,7 +682,6 @@ class _Condensation:
     contact_block: np.ndarray    # per contact, number of its plank's 6-block in x_g
     plank_offsets: np.ndarray    # offset of each grounded plank's block in x_g
     size: int
-    ground_maps: np.ndarray      # (nK, 3, n_g): contact displacement from x_g
 
     def load(self, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(y, b_g - A_gi y) for the plank loads f (the joint rows have no load)."""
@@ -715,12 +722,8 @@ def _condense(model: StaticsModel) -> _Condensation | None:
             return None
         reduced = lu.solve(coupling.toarray()) if len(ground) else reduced
     schur = permuted[ni:, ni:].toarray() - np.asarray(coupling.T @ reduced)
-    ground_maps = np.zeros((len(model.contact_plank), 3, len(ground)))
-    for row, block in enumerate(contact_block):
-        ground_maps[row, :, 6 * block:6 * block + 6] = model.contact_maps[row]
     return _Condensation(ground, inner, lu, coupling, reduced, schur,
-                         contact_block.astype(int), 6 * np.arange(len(grounded)), n + m,
-                         ground_maps)
+                         contact_block.astype(int), 6 * np.arange(len(grounded)), n + m)
 
 
 def _factor(A: sp.csc_matrix, probe: np.ndarray):
