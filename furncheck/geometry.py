@@ -474,7 +474,8 @@ def _connectivity_violations(design: Design, joints: list[Joint],
             lowest = min(float(design.planks[i].corners[:, 2].min()) for i in component)
             violations.append(Violation(
                 "floating", ",".join(ids), None,
-                f"{_plural(len(ids), 'plank')} touch the ground nowhere (lowest corner "
+                f"{_plural(len(ids), 'plank')} {'touch' if len(ids) > 1 else 'touches'} the "
+                f"ground nowhere (lowest corner "
                 f"{_fmt_len(lowest, design)} above it)",
                 design.line_of(f"planks[{component[0]}]")))
 

@@ -6,7 +6,7 @@ of units, changes no verdict and no force magnitude; forces always balance the l
     with the design (so their magnitudes do not change), per-nail forces do not change.
 (b) The same design written in metres instead of millimetres (or the reverse), or as JSON
     instead of YAML, changes nothing: verdicts, forces, moments, per-nail forces.
-(c) On every design of the catalog (``designs/``) and every stable load case, the ground's
+(c) On every design of the catalog (``designs/``) and every load case with ground forces, the ground's
     contact forces balance self-weight and loads (0.1 %), in force and in moment.
 (d) A vertical load anywhere inside the support polygon never reads as lift-off (contract
     section 3), nor as sliding (vertical loads need no friction).
@@ -264,9 +264,11 @@ CATALOG = catalog_files()
 @pytest.mark.skipif(not CATALOG, reason="designs/ holds no design files yet")
 @pytest.mark.parametrize("path", CATALOG, ids=[str(p.relative_to(CATALOG_DIR)) for p in CATALOG])
 def test_catalog_contact_forces_balance_loads(path):
-    """(c): for every stable case, sum of contact forces + self-weight + loads = 0 over the
-    grounded planks, to 0.1 % of the sum of applied force magnitudes; moments about the mean
-    contact point to 0.1 % of that scale x 1 m."""
+    """(c): for every case with contact forces (stable ones; a toppling case's as if bolted
+    down and a sliding case's with unlimited friction are equilibria too), sum of contact
+    forces + self-weight + loads = 0 over the grounded planks, to 0.1 % of the sum of
+    applied force magnitudes; moments about the mean contact point to 0.1 % of that scale x
+    1 m."""
     text = path.read_text(encoding="utf-8")
     try:
         model = parse_design(text, str(path), fmt_of(path))
@@ -276,7 +278,7 @@ def test_catalog_contact_forces_balance_loads(path):
     checked = 0
     for case_model, case in zip(model.load_cases, report.cases):
         assert case.name == case_model.name
-        if not case.stable or not case.contacts:
+        if not case.contacts:
             continue
         planks = grounded_planks(case)
         points = np.array([c.point for c in case.contacts], dtype=float) * model.unit_scale
@@ -304,7 +306,7 @@ def test_catalog_contact_forces_balance_loads(path):
         assert np.linalg.norm(moment) <= BALANCE * scale, (case.name, moment, scale)
         checked += 1
     if not checked:
-        pytest.skip("no stable load case")
+        pytest.skip("no load case with ground forces (the design floats)")
 
 
 # --- (d) a load inside the support polygon never topples ----------

@@ -1,0 +1,149 @@
+"""Joint detection, roles, frames and ground contacts (contract section 2), for axis-aligned
+and rotated planks, and the statics' refusal to return numbers for a mechanism."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from furncheck.check import check_design
+from furncheck.design import parse_design
+from furncheck.geometry import analyze, interpenetrations
+
+CANTILEVER = """\
+furncheck: 1
+planks:
+  - {id: base, size: [400, 300], center: [0, 0, 6]}
+  - {id: post, size: [700, 300], center: [0, 0, 362], rotation: [0, 90, 0]}
+  - {id: shelf, size: [300, 300], center: [156, 0, 600]}
+"""
+
+
+def design(text: str):
+    return parse_design(text, "test.yaml", "yaml")
+
+
+def turned(text: str, degrees: float):
+    """The cantilever turned about world z by ``degrees`` (centres and rotations)."""
+    phi = np.radians(degrees)
+    c, s = np.cos(phi), np.sin(phi)
+    out = design(text)
+    planks = []
+    from dataclasses import replace
+
+    from furncheck.design.model import rotation_matrix
+
+    for plank in out.planks:
+        x, y, z = plank.center
+        matrix = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]]) @ rotation_matrix(plank.rotation)
+        ry = np.degrees(np.arcsin(-matrix[2, 0]))
+        rx = np.degrees(np.arctan2(matrix[2, 1], matrix[2, 2]))
+        rz = np.degrees(np.arctan2(matrix[1, 0], matrix[0, 0]))
+        planks.append(replace(plank, center=(c * x - s * y, s * x + c * y, z),
+                              rotation=(rx, ry, rz)))
+    return replace(out, planks=tuple(planks))
+
+
+def test_roles_point_length_nails_and_frame():
+    """post/shelf: the shelf's -x end face (300 x 12 mm) lies on the post's +x face.
+
+    Face plank first: planks = (post, shelf); point = centroid of the 300 x 12 mm region at
+    x = 6 mm, z = 600 mm; L = 300 mm along y, floor(300 / 20) = 15 nails; frame n = +x
+    (post face into the shelf), x = shelf's thickness normal (+z) made orthogonal to n,
+    y = n x x = -y.
+    """
+    geometry = analyze(design(CANTILEVER))
+    joints = {j.planks: j for j in geometry.joints}
+    assert set(joints) == {("base", "post"), ("post", "shelf")}
+    joint = joints[("post", "shelf")]
+    assert (joint.face, joint.edge) == ("post", "shelf")
+    assert np.allclose(joint.point, [0.006, 0.0, 0.600], atol=1e-9)
+    assert joint.length == pytest.approx(0.300)
+    assert joint.nails == 15
+    assert np.allclose(joint.frame[:, 2], [1, 0, 0])     # n
+    assert np.allclose(joint.frame[:, 0], [0, 0, 1])     # x
+    assert np.allclose(joint.frame[:, 1], [0, -1, 0])    # y = n x x
+    assert joint.edge_face == (0, -1)                    # the shelf's -x end
+    assert joint.edge_thickness == pytest.approx(0.012)
+
+
+@pytest.mark.parametrize("degrees", [30.0, -115.0])
+def test_detection_turns_with_the_design(degrees):
+    """Turned about z, the same joints with the same lengths, nails and turned frames."""
+    straight = {j.planks: j for j in analyze(design(CANTILEVER)).joints}
+    turn = turned(CANTILEVER, degrees)
+    rotated = {j.planks: j for j in analyze(turn).joints}
+    assert set(rotated) == set(straight)
+    phi = np.radians(degrees)
+    rz = np.array([[np.cos(phi), -np.sin(phi), 0], [np.sin(phi), np.cos(phi), 0], [0, 0, 1]])
+    for key, joint in straight.items():
+        other = rotated[key]
+        assert other.nails == joint.nails and other.length == pytest.approx(joint.length)
+        assert np.allclose(other.point, rz @ joint.point, atol=1e-9)
+        assert np.allclose(other.frame, rz @ joint.frame, atol=1e-9)
+
+
+def test_tilted_edge_plank_still_forms_a_joint():
+    """A brace whose end is bevelled by its tilt: a plank tilted 10 degrees about y resting
+    with its lower end edge on the base still touches (nearest corner at the face)."""
+    tilt = 10.0
+    half_length, half_t = 0.2, 0.006
+    # the end face's lowest corner on z = 12 mm: centre height = 12 + L/2 cos + t/2 sin
+    z = 12 + 1000 * (half_length * np.cos(np.radians(tilt)) + half_t * np.sin(np.radians(tilt)))
+    text = (CANTILEVER.split("  - {id: post")[0]
+            + f"  - {{id: brace, size: [400, 100], center: [50, 0, {z:.9f}], "
+              f"rotation: [0, {90 - tilt}, 0]}}\n")
+    joints = analyze(design(text)).joints
+    assert [j.planks for j in joints] == [("base", "brace")]
+    assert joints[0].nails == 5                     # floor(100 / 20)
+
+
+def test_ground_contacts_penetration_and_floating():
+    """Corners within tolerance of z = 0 are contacts; deeper ones penetrate; a design
+    touching the ground nowhere floats."""
+    assert len(analyze(design(CANTILEVER)).contacts) == 4       # the base's lower corners
+    sunk = analyze(design(CANTILEVER.replace("center: [0, 0, 6]", "center: [0, 0, 5]")))
+    assert [v.kind for v in sunk.violations].count("penetration") == 1
+    lifted = CANTILEVER.replace("[0, 0, 6]", "[0, 0, 16]").replace("362", "372") \
+        .replace("600]", "610]")
+    floating = analyze(design(lifted))
+    assert [v.kind for v in floating.violations] == ["floating"]
+
+
+def test_plank_joined_to_nothing_is_disconnected():
+    text = CANTILEVER + "  - {id: lamp, size: [100, 100], center: [900, 0, 6]}\n"
+    report = check_design(design(text))
+    assert report.valid is False
+    assert [(v.kind, v.where) for v in report.violations] == [("disconnected", "lamp")]
+
+
+def test_balanced_on_an_edge_is_reported_in_words_not_numbers():
+    """A lone plank standing on one long edge (two collinear ground corners) cannot be held
+    even bolted down: the statics reports a mechanism (as lift-off) and no forces."""
+    text = """\
+furncheck: 1
+planks:
+  - {id: board, size: [400, 300], center: [0, 0, 150], rotation: [90, 0, 0]}
+"""
+    tipped = text.replace("rotation: [90, 0, 0]", "rotation: [90, 0, 0]")
+    board = design(tipped)
+    assert len(analyze(board).contacts) == 4       # thin edge: 2 x 2 corners 12 mm apart
+    single = design(text.replace("center: [0, 0, 150]", "center: [0, 0, 110.308658284]")
+                    .replace("rotation: [90, 0, 0]", "rotation: [45, 0, 0]"))
+    assert len(analyze(single).contacts) == 2      # resting on one corner line
+    report = check_design(single)
+    assert report.valid is False
+    case = report.cases[0]
+    assert case.stability in ("lift-off", "mechanism") and not case.stable
+    assert case.joints == () and case.contacts == ()
+    assert report.violations[0].kind == "lift-off"
+    assert "one line" in report.violations[0].message
+
+
+def test_catalog_planks_do_not_cut_into_each_other():
+    from pathlib import Path
+
+    from furncheck.design import load_design
+
+    for path in sorted((Path(__file__).resolve().parents[1] / "designs").glob("*.yaml")):
+        assert interpenetrations(load_design(str(path))) == [], path.name
