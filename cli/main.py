@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 import click
-from furncheck.cli.range import range_command
-from furncheck.cli.validate import validate
 
 from furncheck import __version__
+from furncheck.cli.range import range_command
+from furncheck.cli.validate import validate
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})

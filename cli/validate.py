@@ -14,8 +14,8 @@ import os
 from pathlib import Path, PurePath
 
 import click
-from furncheck.cli.output import check_output, fail, write_output
 
+from furncheck.cli.output import check_output, fail, write_output
 from furncheck.report import REPORTERS, render
 from furncheck.result import BatchReport, DesignReport
 

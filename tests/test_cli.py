@@ -14,9 +14,9 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+
 from furncheck.cli import validate as validate_module
 from furncheck.cli.main import main
-
 from furncheck.result import (
     BatchReport,
     CaseResult,

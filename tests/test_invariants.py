@@ -6,8 +6,8 @@ of units, changes no verdict and no force magnitude; forces always balance the l
     with the design (so their magnitudes do not change), per-nail forces do not change.
 (b) The same design written in metres instead of millimetres (or the reverse), or as JSON
     instead of YAML, changes nothing: verdicts, forces, moments, per-nail forces.
-(c) On every design of the catalog (``designs/``) and every load case with ground forces, the ground's
-    contact forces balance self-weight and loads (0.1 %), in force and in moment.
+(c) On every design of the catalog (``designs/``) and every load case with ground forces,
+    the ground's contact forces balance self-weight and loads (0.1 %), in force and moment.
 (d) A vertical load anywhere inside the support polygon never reads as lift-off (contract
     section 3), nor as sliding (vertical loads need no friction).
 
