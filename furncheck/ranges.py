@@ -138,7 +138,9 @@ class RangeFinder:
 
     def _bisect(self, dof: Dof, sign: float, good: float, bad: float,
                 resolution: float) -> float:
-        while bad - good > resolution:
+        """Close a bracket of a valid step ``good`` and an invalid step ``bad`` (either may
+        be the larger) to ``resolution``; returns the valid end."""
+        while abs(bad - good) > resolution:
             middle = 0.5 * (good + bad)
             if self.valid_at(dof, sign * middle):
                 good = middle
@@ -155,7 +157,7 @@ class RangeFinder:
         for previous, step in zip([0.0] + samples, samples):
             for sign in order:
                 if self.valid_at(dof, sign * step):
-                    inner = self._bisect_inward(dof, sign, previous, step, resolution)
+                    inner = self._bisect(dof, sign, step, previous, resolution)
                     outer = self._side_from(dof, sign, step, limit, resolution)
                     ends = sorted((value + sign * inner, value + sign * outer))
                     return DofRange(dof.name, value, (ends[0], ends[1]), unit,
@@ -163,16 +165,6 @@ class RangeFinder:
                                     "valid interval")
         return DofRange(dof.name, value, None, unit,
                         f"no valid value within {limit:g} {unit} either way")
-
-    def _bisect_inward(self, dof: Dof, sign: float, invalid: float, valid: float,
-                       resolution: float) -> float:
-        while valid - invalid > resolution:
-            middle = 0.5 * (invalid + valid)
-            if self.valid_at(dof, sign * middle):
-                valid = middle
-            else:
-                invalid = middle
-        return valid
 
     def _side_from(self, dof: Dof, sign: float, start: float, limit: float,
                    resolution: float) -> float:
