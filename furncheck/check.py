@@ -28,6 +28,20 @@ def check_design(design: Design, geometry: Geometry | None = None) -> DesignRepo
                         violations=tuple(violations), cases=tuple(cases), units=design.units)
 
 
+def is_valid(design: Design, geometry: Geometry | None = None) -> bool:
+    """Whether the design is valid: ``check_design(...).valid``, stopping at the first
+    load case with a violation (for searches that only need the verdict)."""
+    geometry = geometry or analyze(design)
+    if geometry.violations:
+        return False
+    model = build_model(design, geometry)
+    for case in design.load_cases:
+        statics = solve_case(model, external_forces(model, case))
+        if evaluate_case(design, geometry, model, case, statics)[1]:
+            return False
+    return True
+
+
 def check_file(path: str) -> DesignReport:
     """Load and validate one file; an unreadable or ill-formed file gives an error report."""
     from furncheck.design import load_design

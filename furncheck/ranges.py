@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from furncheck.check import check_design
+from furncheck.check import check_design, is_valid
 from furncheck.design.model import Design
 from furncheck.dofs import (
     Blocked,
@@ -94,8 +94,9 @@ class RangeFinder:
             return DofRange(dof.name, value, None, unit, why.reason)
 
     # -- validity of one step ------------------------------------------------------------------
-    def valid_at(self, dof: Dof, step: float) -> bool:
-        """Whether the design with ``dof`` changed by ``step`` is valid (full check)."""
+    def valid_at(self, dof: Dof, step: float, full: bool = True) -> bool:
+        """Whether the design with ``dof`` changed by ``step`` keeps its joints and ground
+        contacts and (``full``) is valid in every load case."""
         try:
             edited = apply_dof(self.design, self.frame, dof, step)
         except OutOfReach:
@@ -107,42 +108,51 @@ class RangeFinder:
         problem, geometry = check_edit(self.geometry, edited)
         if problem is not None:
             return False
-        return bool(check_design(edited, geometry).valid)
+        return is_valid(edited, geometry) if full else True
 
     # -- searches ------------------------------------------------------------------------------
     def _side(self, dof: Dof, sign: float, limit: float, resolution: float,
               predicted: float | None) -> float:
         """The furthest step (>= 0) in direction ``sign`` up to which the design was found
-        valid, assuming it is valid now."""
-        good, bad = 0.0, None
-        if predicted is not None and predicted < limit:
+        valid, assuming it is valid now: first how far the geometry reaches (cheap checks
+        without statics), then, if the design is not valid there, the physical limit inside
+        it, bracketed around the sensitivity's prediction."""
+        reach = self._expand(dof, sign, 0.0, limit, resolution, full=False)
+        if reach <= 0.0 or self.valid_at(dof, sign * reach):
+            return reach
+        good, bad = 0.0, reach
+        if predicted is not None and predicted < reach:
             inside = max(predicted * (1.0 - PREDICTION_BRACKET), resolution)
-            outside = min(max(predicted * (1.0 + PREDICTION_BRACKET), inside + resolution),
-                          limit)
-            if self.valid_at(dof, sign * inside):
-                good = inside
-                if not self.valid_at(dof, sign * outside):
-                    bad = outside
-                else:
-                    good = outside
-            else:
+            outside = min(predicted * (1.0 + PREDICTION_BRACKET), reach)
+            if not self.valid_at(dof, sign * inside):
                 bad = inside
-        if bad is None:
-            if good == 0.0:
-                first = limit / 16.0
-                if not self.valid_at(dof, sign * first):
-                    return self._bisect(dof, sign, 0.0, first, resolution)
-                good = first
-            return self._side_from(dof, sign, good, limit, resolution)
+            elif outside > inside and not self.valid_at(dof, sign * outside):
+                good, bad = inside, outside
+            else:
+                good = max(inside, outside)
         return self._bisect(dof, sign, good, bad, resolution)
 
+    def _expand(self, dof: Dof, sign: float, start: float, limit: float, resolution: float,
+                full: bool = True) -> float:
+        """From a valid step ``start``, double outward (from limit / 16) until invalid or
+        at the limit, then bisect the last bracket; returns the furthest valid step."""
+        good, step = start, max(start, limit / 16.0)
+        while True:
+            if step > good:
+                if not self.valid_at(dof, sign * step, full):
+                    return self._bisect(dof, sign, good, step, resolution, full)
+                good = step
+            if good >= limit:
+                return limit
+            step = min(2.0 * good, limit)
+
     def _bisect(self, dof: Dof, sign: float, good: float, bad: float,
-                resolution: float) -> float:
+                resolution: float, full: bool = True) -> float:
         """Close a bracket of a valid step ``good`` and an invalid step ``bad`` (either may
         be the larger) to ``resolution``; returns the valid end."""
         while abs(bad - good) > resolution:
             middle = 0.5 * (good + bad)
-            if self.valid_at(dof, sign * middle):
+            if self.valid_at(dof, sign * middle, full):
                 good = middle
             else:
                 bad = middle
@@ -158,25 +168,13 @@ class RangeFinder:
             for sign in order:
                 if self.valid_at(dof, sign * step):
                     inner = self._bisect(dof, sign, step, previous, resolution)
-                    outer = self._side_from(dof, sign, step, limit, resolution)
+                    outer = self._expand(dof, sign, step, limit, resolution)
                     ends = sorted((value + sign * inner, value + sign * outer))
                     return DofRange(dof.name, value, (ends[0], ends[1]), unit,
                                     "the current value is invalid; this is the nearest "
                                     "valid interval")
         return DofRange(dof.name, value, None, unit,
                         f"no valid value within {limit:g} {unit} either way")
-
-    def _side_from(self, dof: Dof, sign: float, start: float, limit: float,
-                   resolution: float) -> float:
-        good, step = start, start
-        while True:
-            step = min(2.0 * step, limit)
-            if step <= good:
-                return good
-            if self.valid_at(dof, sign * step):
-                good = step
-            else:
-                return self._bisect(dof, sign, good, step, resolution)
 
     # -- predictions from the sensitivity ------------------------------------------------------
     def _linearizations(self) -> list[Linearization]:
