@@ -1,0 +1,35 @@
+"""Static equilibrium of rigid planks: the paper's mixed formulation (section 5.1).
+
+Unknowns are a small rigid displacement per plank, q_i = (u_i, theta_i) (m, rad, about the
+plank centre), and the wrench of every nail joint, h_j = (h^t, h^r) (N, N m, world frame,
+what the joint's first plank exerts on its second, moment about the joint point).  With
+G the linearized joint deviation map (d = G q) and E = diag(eps^t, eps^r) the joint
+compliances, stationarity of the potential energy (paper eq. 3) is the sparse system
+
+    [ K_c  G^T ] [q]   [f]
+    [ G    -E  ] [h] = [0]
+
+where f holds self-weight and loads (force, moment about each centre) and K_c the ground
+contact springs.  Contacts are unilateral penalty springs with friction anchors (section 5.2):
+a contact is *stick* (three springs to its anchor), *slip* (normal spring; friction mu N along
+a fixed direction, i.e. the anchor relocated to the cone's edge) or *lifted* (no force).  An
+active-set loop switches contacts until every force is admissible.  When that loop cannot
+finish, small linear programs decide whether any admissible equilibrium exists at all, so
+the verdicts 'lift-off' and 'sliding' mean exactly what contract section 3 says.
+
+The package, by job:
+
+    model        StaticsModel, CaseStatics; build_model (joint map G, contact maps) and
+                 external_forces (self-weight and loads)
+    condense     static condensation onto the grounded planks, the sparse LU, the full
+                 mixed matrix (system_matrix) and its solve (solve_system)
+    contacts     solve_case: the contact active set and the friction energy
+    feasibility  linear programs: does any admissible equilibrium exist?
+"""
+
+from furncheck.statics.condense import solve_system, system_matrix
+from furncheck.statics.contacts import LIFT, STICK, solve_case
+from furncheck.statics.model import CaseStatics, StaticsModel, build_model, external_forces
+
+__all__ = ["LIFT", "STICK", "CaseStatics", "StaticsModel", "build_model", "external_forces",
+           "solve_case", "solve_system", "system_matrix"]

@@ -1,0 +1,192 @@
+"""The load-independent statics model of a design, and the load vector of a case.
+
+``StaticsModel`` (the joint deviation map G, joint compliances and contact maps of the
+grounded components), ``CaseStatics`` (one case's result), ``build_model``,
+``external_forces`` and the small rotation helpers they share.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+from typing import TYPE_CHECKING
+
+import numpy as np
+import scipy.sparse as sp
+
+from furncheck import tolerances as tol
+from furncheck.design.model import Design, LoadCase
+from furncheck.geometry import Geometry
+
+if TYPE_CHECKING:
+    from furncheck.statics.condense import _Condensation
+
+_SIX = np.arange(6)
+
+
+@dataclass(frozen=True)
+class StaticsModel:
+    """The load-independent part of a design's statics.
+
+    planks   : design plank indices taking part (those of grounded components)
+    joints   : geometry joint indices taking part
+    contacts : geometry contact indices taking part
+    G        : (6 nJ, 6 nP) sparse joint deviation map
+    contact_maps : (nK, 3, 6) displacement of each contact point from its plank's q
+    contact_plank : (nK,) local plank number of each contact
+    contact_component : (nK,) component number of each contact
+    components : local plank numbers of each grounded component
+    """
+
+    design: Design
+    geometry: Geometry
+    planks: tuple[int, ...]
+    joints: tuple[int, ...]
+    contacts: tuple[int, ...]
+    G: sp.csr_matrix
+    compliance: np.ndarray
+    contact_maps: np.ndarray
+    contact_plank: np.ndarray
+    contact_points: np.ndarray
+    contact_component: np.ndarray
+    components: tuple[tuple[int, ...], ...]
+    friction: float
+
+    @property
+    def n_dof(self) -> int:
+        return 6 * len(self.planks)
+
+    @cached_property
+    def condensation(self) -> _Condensation | None:
+        """The contact-free part of the system, condensed onto the grounded planks."""
+        from furncheck.statics.condense import _condense  # here: condense imports this module
+
+        return _condense(self)
+
+
+@dataclass(frozen=True)
+class CaseStatics:
+    """Solution of one load case.
+
+    stability : 'stable', 'lift-off', 'sliding', or 'mechanism' (no force state could be
+                computed: the planks are free to move even when held at every contact)
+    joint_wrenches : (nJ, 6) force N and moment N m per model joint, or None (mechanism)
+    contact_forces : (nK, 3) N, the ground's force on each model contact, or None
+    culprits  : plank ids whose contacts lift or slide (for messages)
+    detail    : a sentence with the numbers behind an unstable verdict
+    """
+
+    stability: str
+    joint_wrenches: np.ndarray | None
+    contact_forces: np.ndarray | None
+    culprits: tuple[str, ...] = ()
+    detail: str = ""
+    state: np.ndarray | None = None     # the solution [q; h] of a stable case
+    holding: np.ndarray | None = None   # (nK,) bool: contacts on the ground (not lifted)
+
+
+def build_model(design: Design, geometry: Geometry) -> StaticsModel:
+    """Assemble G, the compliances and the contact maps for the grounded components."""
+    grounded_planks = sorted(i for comp, g in zip(geometry.components, geometry.grounded)
+                             if g for i in comp)
+    local = {plank: k for k, plank in enumerate(grounded_planks)}
+    joints = [j for j, joint in enumerate(geometry.joints)
+              if design.plank_index[joint.planks[0]] in local]
+    plank_of = {design.planks[i].id: i for i in grounded_planks}
+    contacts = [k for k, c in enumerate(geometry.contacts) if c.plank in plank_of]
+
+    G = _joint_map(design, geometry, joints, local)
+    compliance = np.concatenate([
+        np.r_[np.full(3, tol.JOINT_COMPLIANCE_T),
+              np.full(3, tol.joint_compliance_r(geometry.joints[j].edge_thickness))]
+        for j in joints]) if joints else np.zeros(0)
+
+    maps, owner, points = [], [], []
+    for k in contacts:
+        contact = geometry.contacts[k]
+        plank_index = design.plank_index[contact.plank]
+        maps.append(_point_map(contact.point - design.planks[plank_index].center_array))
+        owner.append(local[plank_index])
+        points.append(contact.point)
+    components = tuple(tuple(local[i] for i in comp)
+                       for comp, g in zip(geometry.components, geometry.grounded) if g)
+    component_of = {p: c for c, comp in enumerate(components) for p in comp}
+    return StaticsModel(
+        design=design, geometry=geometry, planks=tuple(grounded_planks), joints=tuple(joints),
+        contacts=tuple(contacts), G=G, compliance=compliance,
+        contact_maps=np.array(maps).reshape(-1, 3, 6),
+        contact_plank=np.array(owner, dtype=int),
+        contact_points=np.array(points).reshape(-1, 3),
+        contact_component=np.array([component_of[p] for p in owner], dtype=int),
+        components=components, friction=design.material.friction)
+
+
+def _joint_map(design: Design, geometry: Geometry, joints: list[int],
+               local: dict[int, int]) -> sp.csr_matrix:
+    """(6 nJ, 6 nP) linearized joint deviations d = G q (paper eq. 1, small rotations):
+
+        d^t = (u_a + theta_a x r_a) - (u_b + theta_b x r_b),   d^r = theta_a - theta_b
+
+    with a, b the joint's first and second plank and r = joint point - plank centre.
+    """
+    n_joints = len(joints)
+    if n_joints == 0:
+        return sp.csr_matrix((0, 6 * len(local)))
+    points = np.array([geometry.joints[j].point for j in joints])
+    rows, cols, vals = [], [], []
+    for side, position in ((1.0, 0), (-1.0, 1)):
+        planks = np.array([design.plank_index[geometry.joints[j].planks[position]]
+                           for j in joints])
+        centres = np.array([design.planks[i].center_array for i in planks])
+        blocks = np.zeros((n_joints, 6, 6))
+        blocks[:, :3, :3] = np.eye(3)
+        blocks[:, :3, 3:] = -_skew_many(points - centres)
+        blocks[:, 3:, 3:] = np.eye(3)
+        base_col = 6 * np.array([local[i] for i in planks])
+        rows.append(np.broadcast_to(6 * np.arange(n_joints)[:, None, None] + _SIX[None, :, None],
+                                    blocks.shape).ravel())
+        cols.append(np.broadcast_to(base_col[:, None, None] + _SIX[None, None, :],
+                                    blocks.shape).ravel())
+        vals.append(side * blocks.ravel())
+    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                         shape=(6 * n_joints, 6 * len(local)))
+
+
+def external_forces(model: StaticsModel, case: LoadCase) -> np.ndarray:
+    """(6 nP,) self-weight and the case's loads: force (N) and moment about the centre (N m)."""
+    design = model.design
+    f = np.zeros(model.n_dof)
+    local = {design.planks[i].id: k for k, i in enumerate(model.planks)}
+    for k, i in enumerate(model.planks):
+        plank = design.planks[i]
+        f[6 * k + 2] -= design.plank_mass(plank) * tol.GRAVITY
+    for load in case.loads:
+        if load.plank not in local:
+            continue
+        k = local[load.plank]
+        plank = design.planks[model.planks[k]]
+        force = np.asarray(load.force, dtype=float)
+        f[6 * k:6 * k + 3] += force
+        if load.point is not None:
+            f[6 * k + 3:6 * k + 6] += np.cross(np.asarray(load.point) - plank.center_array, force)
+    return f
+
+
+# --- small helpers ----------------------------------------------------------------------------
+
+def _skew(v: np.ndarray) -> np.ndarray:
+    """[v]x, so that _skew(v) @ w = v x w."""
+    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+
+
+def _skew_many(v: np.ndarray) -> np.ndarray:
+    out = np.zeros((len(v), 3, 3))
+    out[:, 0, 1], out[:, 0, 2] = -v[:, 2], v[:, 1]
+    out[:, 1, 0], out[:, 1, 2] = v[:, 2], -v[:, 0]
+    out[:, 2, 0], out[:, 2, 1] = -v[:, 1], v[:, 0]
+    return out
+
+
+def _point_map(r: np.ndarray) -> np.ndarray:
+    """(3, 6): displacement of a point at offset r from the centre, [I, -[r]x] @ (u, theta)."""
+    return np.hstack([np.eye(3), -_skew(r)])
