@@ -186,9 +186,13 @@ def _carried(load: Load, before: Plank, after: Plank) -> Load:
 def _translate(design: Design, frame: Structure, planks: dict[str, Plank], plank: Plank,
                axis: int, amount: float) -> None:
     direction = np.eye(3)[axis]
-    for end in frame.ends[plank.id]:
-        if abs(direction @ end.normal) > _PARALLEL_EPS:
-            raise Blocked(_end_reason(plank.id, end, "moving it along " + "xyz"[axis]))
+    held = [end for end in frame.ends[plank.id] if abs(direction @ end.normal) > _PARALLEL_EPS]
+    if len(held) > 1:
+        names = " and ".join(sorted({end.on or "the ground" for end in held}))
+        raise Blocked(f"both ends jointed ({names}): moving {plank.id} along "
+                      f"{'xyz'[axis]} would open or press into a joint")
+    if held:
+        raise Blocked(_end_reason(plank.id, held[0], "moving it along " + "xyz"[axis]))
     if plank.id in frame.lies_flat and axis == 2:
         raise Blocked(f"{plank.id} lies on the ground")
     planks[plank.id] = _moved(plank, direction * amount)
