@@ -28,7 +28,11 @@ from furncheck.statics import build_model, external_forces, solve_case, solve_sy
 
 ASSEMBLY_STEP = 1e-4
 """Step of the central difference of the assembly, as a fraction of the design's size
-(lengths) or in degrees (rotations).  The assembly is smooth, so this is exact to ~1e-8."""
+(lengths) or in degrees (rotations).  Where the assembly is smooth this is exact to ~1e-8.
+Where it has a kink -- a flush end face that a rotation tilts rests on one edge or the other
+depending on the sign of the turn -- the derivative is the mean of the two one-sided
+slopes; ranges do not rely on it beyond a first guess (every end is confirmed by the full
+check)."""
 
 
 @dataclass(frozen=True)
@@ -60,9 +64,10 @@ class Linearization:
         self.frame = frame or structure(design, self.geometry)
         self.model = build_model(design, self.geometry)
         self.statics = solve_case(self.model, external_forces(self.model, case))
-        if self.statics.stability != "stable":
-            raise ValueError(f"case {case.name!r} is not stable ({self.statics.stability}): "
-                             "no equilibrium to differentiate")
+        if self.statics.stability != "stable" or self.statics.state is None:
+            raise ValueError(f"case {case.name!r} has no solved equilibrium to differentiate "
+                             f"({self.statics.stability}; nothing grounded, or the contact "
+                             "forces came from the feasibility program)")
         self.holding = self.statics.holding
         self.state = self.statics.state
         self.size = _design_size(design)

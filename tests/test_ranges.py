@@ -1,0 +1,466 @@
+"""Valid ranges of design DOFs (contract section 4 ``range``, paper sections 6.1-6.3).
+
+Hand-made designs come from ``range_designs`` (millimetres; geometry described there).
+g = 9.81 m/s^2, plank mass = 750 kg/m^3 x volume, 12 mm planks, 700 N nail pull.
+
+A range end is "the last value found valid; one resolution step beyond was found invalid
+unless the end is the search limit" (``furncheck.ranges``), so a hand-calculated limit X is
+met by a reported end E with |E - X| <= 1 resolution; the tests allow 2 resolutions
+(resolution = RANGE_RESOLUTION x the design's largest bounding-box edge, or
+100 x RANGE_RESOLUTION degrees).
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import math
+from pathlib import Path
+
+import pytest
+import range_designs as rd
+from click.testing import CliRunner
+
+from furncheck.check import check_design
+from furncheck.cli.main import main
+from furncheck.design import load_design
+from furncheck.dofs import (
+    OutOfReach,
+    all_dofs,
+    apply_dof,
+    check_edit,
+    dof_value,
+    parse_dof,
+    structure,
+)
+from furncheck.geometry import analyze
+from furncheck.ranges import RANGE_RESOLUTION, SEARCH_LIMIT, RangeFinder, dof_ranges
+
+DESIGNS = Path(__file__).resolve().parent.parent / "designs"
+CATALOG = sorted(DESIGNS.glob("*.yaml"))
+G = rd.G
+
+
+def length_resolution(size_mm: float) -> float:
+    return RANGE_RESOLUTION * size_mm
+
+
+def one_range(design, name: str, locked: tuple[str, ...] = ()):
+    return RangeFinder(design, locked).range(parse_dof(design, name))
+
+
+# --- a. cantilevered shelf: nail pull limits its length ---------------------------------------
+
+def test_cantilever_shelf_length_ends_where_the_nails_pull_700_n():
+    """Shelf (300 wide, t = 12 mm) nailed by its end to the post with 15 nails; m = 10 kg rides
+    at the fraction f = 0.75 of the shelf's length L from the post face (loads ride
+    proportionally).  Moment about the joint line (the shelf is held only by that joint, and
+    all its loads are vertical, so the nail-axis force F_n = 0):
+
+        M(L) = m g f L + rho t w g L^2 / 2
+        m g f = 10 x 9.81 x 0.75 = 73.575 N;  rho t w g = 750 x 0.012 x 0.3 x 9.81 = 26.487 N/m
+        pull = 2 M / t / nails = 700 N  ->  M* = 700 x 15 x 0.012 / 2 = 63 N m
+        13.2435 L^2 + 73.575 L - 63 = 0  ->  L* = (-73.575 + sqrt(73.575^2 + 4 x 13.2435 x 63))
+                                                 / (2 x 13.2435) = 0.75395 m = 753.95 mm.
+
+    The base spans x -200..600 under the shelf and the post/base joint has 40 nails, so
+    neither tipping nor the base joint comes first (at L* the centre of mass of base 2.88 kg
+    at x = 200, post 2.88 kg at -150, shelf 2.04 kg at 233 and load 10 kg at 421.5 is at
+    x = 272 mm < 600; the base joint carries 98.1 N x 0.5715 m + 20.0 N x 0.383 m = 63.7 N m
+    and 146 N of compression: (2 x 63.7 / 0.012 - 146) / 40 = 262 N per nail).  Size = 812 mm
+    (post top), resolution 0.812 mm.  The lower end: the shelf stays valid down to a sliver
+    (the load keeps its fraction), so the lower end is within 2 resolutions of 0.
+    """
+    design = rd.parse(rd.cantilever(mass=10.0, fraction=0.75))
+    assert check_design(design).valid
+    mgf = 10 * G * 0.75
+    a = 750 * 0.012 * 0.300 * G / 2
+    m_star = 700 * rd.CANTI_SHELF_NAILS * 0.012 / 2
+    l_star = (-mgf + math.sqrt(mgf ** 2 + 4 * a * m_star)) / (2 * a) * 1000.0   # mm
+    assert l_star == pytest.approx(753.95, abs=0.01)
+
+    finder = RangeFinder(design)
+    assert finder.size == pytest.approx(rd.CANTI_SIZE)
+    found = finder.range(parse_dof(design, "shelf.length"))
+    resolution = length_resolution(rd.CANTI_SIZE)
+    assert found.value == 300.0 and found.unit == "mm" and found.reason is None
+    low, high = found.valid
+    assert abs(high - l_star) <= 2 * resolution, (high, l_star)
+    assert 0.0 < low <= 2 * resolution
+
+
+def test_cantilever_joint_pull_at_the_range_end_is_the_capacity():
+    """Cross-check of the hand formula with the full check: at the reported end L_e the pull
+    of post/shelf is 2 M(L_e) / t / 15 (hand) and <= 700 N; one resolution step further it
+    exceeds 700 N (invalid with a non-durable post/shelf violation)."""
+    design = rd.parse(rd.cantilever(mass=10.0, fraction=0.75))
+    found = one_range(design, "shelf.length")
+    high = found.valid[1]
+    frame = structure(design, analyze(design))
+    dof = parse_dof(design, "shelf.length")
+    resolution = length_resolution(rd.CANTI_SIZE)
+
+    def pull(length_mm):
+        report = check_design(apply_dof(design, frame, dof, length_mm - 300.0))
+        joint = next(j for j in report.cases[0].joints if set(j.planks) == {"post", "shelf"})
+        return report, joint.pull
+
+    report, at_end = pull(high)
+    length = high / 1000.0
+    moment = 10 * G * 0.75 * length + 750 * 0.012 * 0.3 * G * length ** 2 / 2
+    assert at_end == pytest.approx(2 * moment / 0.012 / 15, rel=1e-4)
+    assert report.valid and at_end <= 700.0 * (1 + 1e-9)
+    report, beyond = pull(high + resolution)
+    assert beyond > 700.0 and not report.valid
+    assert [(v.kind, v.where) for v in report.violations] == [("non-durable", "post/shelf")]
+
+
+def test_overloaded_cantilever_nearest_valid_length_is_the_hand_limit():
+    """designs/shelf-cantilever-overloaded.yaml is invalid (post/shelf pulls 1004 N per nail):
+    the shelf (300 wide, 15 nails) is 400 long with 30 kg at 300 mm from the post face, so
+    the load rides at f = 0.75.  As in the test above, M(L) = m g f L + rho t w g L^2 / 2 = 63
+    N m with m g f = 30 x 9.81 x 0.75 = 220.725 N:
+    L* = (-220.725 + sqrt(220.725^2 + 4 x 13.2435 x 63)) / (2 x 13.2435) = 0.28070 m.
+    The reported interval is the nearest valid one, below the current 400 mm, ending at L*
+    (size 812 mm: resolution 0.812 mm), with a reason saying the current value is invalid."""
+    design = load_design(str(DESIGNS / "shelf-cantilever-overloaded.yaml"))
+    assert not check_design(design).valid
+    mgf = 30 * G * 0.75
+    a = 750 * 0.012 * 0.300 * G / 2
+    l_star = (-mgf + math.sqrt(mgf ** 2 + 4 * a * 63.0)) / (2 * a) * 1000.0
+    assert l_star == pytest.approx(280.70, abs=0.01)
+    found = one_range(design, "shelf.length")
+    low, high = found.valid
+    assert abs(high - l_star) <= 2 * length_resolution(812.0), (high, l_star)
+    assert 0.0 < low < high < 400.0
+    assert "invalid" in found.reason
+
+
+def test_ranges_do_not_depend_on_the_length_unit():
+    """The cantilever written in metres (every length / 1000) has the same ranges / 1000
+    (within a resolution: 0.812 mm = 0.000812 m) and the same rotation ranges; units are
+    reported as 'm' and 'deg'."""
+    data = rd.cantilever()
+    metres = rd.cantilever()
+    metres["units"] = "m"
+    metres["material"] = {"thickness": 0.012, "nail_spacing": 0.020}
+    for plank in metres["planks"]:
+        plank["size"] = [v / 1000 for v in plank["size"]]
+        plank["center"] = [v / 1000 for v in plank["center"]]
+    for load in metres["loads"]:
+        load["at"] = [v / 1000 for v in load["at"]]
+    names = ["shelf.length", "shelf.z", "post.ry", "base.x"]
+    in_mm = dof_ranges(rd.parse(data), names)
+    in_m = dof_ranges(rd.parse(metres), names)
+    resolution = length_resolution(rd.CANTI_SIZE)
+    for mm, m in zip(in_mm, in_m):
+        rotation = mm.unit == "deg"
+        assert m.unit == ("deg" if rotation else "m")
+        factor = 1.0 if rotation else 1000.0
+        step = 100 * RANGE_RESOLUTION if rotation else resolution
+        assert m.value * factor == pytest.approx(mm.value)
+        for a, b in zip(mm.valid, m.valid):
+            assert abs(a - b * factor) <= step, (mm, m)
+
+
+# --- b. table top sliding over central legs: tipping -------------------------------------------
+
+def test_sliding_table_top_x_ends_where_it_tips():
+    """Top 1000 x 400 (3.6 kg) with m = 10 kg at its centre slides over four 400 x 60 legs
+    (0.216 kg each) whose outer faces are at x = +-106 (support polygon |x| <= 106, friction
+    1.0).  Moving top.x by s moves the top and the load (they ride on it) by s; the legs
+    stay.  It tips when the total centre of mass reaches the leg line x = 106:
+
+        (3.6 + 10) s + 4 x 0.216 x 0 = (3.6 + 10 + 0.864) x 106
+        s* = 106 x 14.464 / 13.6 = 112.73 mm   (symmetric: -112.73 the other way).
+
+    The geometric limit comes much later: the far legs' end faces (at x = -+94..-+106) leave
+    the top (x from -500 + s) only at s = 500 - 94 = 406 mm.  Nails: 3 per leg, the legs only
+    in compression.  Size 1000 mm, resolution 1 mm.
+    """
+    design = rd.parse(rd.slide_table(mass=10.0))
+    assert check_design(design).valid
+    top = rd.plank_mass(*rd.SLIDE_TOP)
+    legs = 4 * rd.plank_mass(*rd.SLIDE_LEG)
+    assert top == pytest.approx(3.6) and legs == pytest.approx(0.864)
+    s_star = rd.SLIDE_LEG_OUTER_X * (top + 10.0 + legs) / (top + 10.0)
+    assert s_star == pytest.approx(112.73, abs=0.01)
+
+    finder = RangeFinder(design)
+    assert finder.size == pytest.approx(rd.SLIDE_SIZE)
+    found = finder.range(parse_dof(design, "top.x"))
+    resolution = length_resolution(rd.SLIDE_SIZE)
+    low, high = found.valid
+    assert found.value == 0.0
+    assert abs(high - s_star) <= 2 * resolution, (high, s_star)
+    assert abs(low + s_star) <= 2 * resolution, (low, -s_star)
+
+    # just beyond the end the design topples (lift-off), it is not refused geometrically
+    frame = structure(design, analyze(design))
+    beyond = apply_dof(design, frame, parse_dof(design, "top.x"), high + 2 * resolution)
+    assert check_edit(analyze(design), beyond)[0] is None
+    assert {v.kind for v in check_design(beyond).violations} == {"lift-off"}
+
+
+# --- c. shelf nailed between two sides: geometric limits ---------------------------------------
+
+def test_shelf_between_sides_z_is_limited_by_the_sides_and_the_ground():
+    """Shelf (12 thick) between two 600 mm tall sides; it slides along z (its end normals are
+    +-x, so z does not open its joints).  Mid-plane height z:
+
+    * down: its bottom corners (z - 6) touch the ground within the tolerance 0.5 mm, a new
+      ground contact -> refused: z_low = 6 + 0.5 = 6.5 mm;
+    * up: its end faces (z - 6 .. z + 6) leave the sides' faces (z 0..600) at
+      z - 6 = 600 -> z_high = 606 mm.
+
+    Size 600 mm (side height), resolution 0.6 mm.
+    """
+    design = rd.parse(rd.bay())
+    assert check_design(design).valid
+    found = one_range(design, "shelf.z")
+    resolution = length_resolution(rd.BAY_SIZE)
+    low, high = found.valid
+    assert found.value == 300.0
+    assert abs(low - 6.5) <= 2 * resolution, low
+    assert abs(high - 606.0) <= 2 * resolution, high
+
+
+def test_shelf_between_sides_z_is_limited_by_another_plank():
+    """The same bay with a second shelf 400 x 300 at mid-plane z = 450 (its bottom face at
+    444).  The lower shelf's top face (z + 6) reaches 444 at z = 438 and would cut into the
+    upper shelf deeper than the tolerance (0.5 mm) beyond z = 438.5: z_high = 438.5 mm;
+    z_low is still 6.5 mm (the ground).  Size 600 mm, resolution 0.6 mm."""
+    data = rd.bay()
+    data["planks"].append({"id": "shelf2", "size": [400, 300], "center": [0, 0, 450]})
+    design = rd.parse(data)
+    assert check_design(design).valid
+    low, high = one_range(design, "shelf.z").valid
+    resolution = length_resolution(rd.BAY_SIZE)
+    assert abs(low - 6.5) <= 2 * resolution, low
+    assert abs(high - 438.5) <= 2 * resolution, high
+
+
+@pytest.mark.parametrize("name", ["shelf.x", "shelf.length"])
+def test_shelf_between_sides_cannot_move_along_its_length(name):
+    """Both ends of the shelf are nailed (to side_l and side_r): moving it along x or changing
+    its length would open or press into a joint whichever way -- the paper's Figure 12b, the
+    contract's "both ends jointed".  The reason names both ends (both sides' ids, or says
+    "both")."""
+    design = rd.parse(rd.bay())
+    found = one_range(design, name)
+    assert found.valid is None
+    assert found.reason
+    assert "both" in found.reason or ("side_l" in found.reason and "side_r" in found.reason), \
+        found.reason
+
+
+# --- d. inside valid, outside invalid, on catalog designs ---------------------------------------
+
+# A handful of DOFs per design, not all: every DOF of these four designs takes ~10 s.  The
+# last two designs are invalid: their intervals are the nearest valid ones (paper 6.3).
+CATALOG_DOFS = [
+    ("shelf-cantilever", ["shelf.length", "shelf.z", "post.x", "base.width", "shelf.ry"]),
+    ("table", ["top.x", "top.y", "leg_l.rx", "apron.width"]),
+    ("stool", ["seat.x", "rung.z", "leg_r.ry"]),
+    ("chair-upright", ["back.ry", "seat.length", "rung.z", "side_l.x"]),
+    ("shelf-cantilever-overloaded", ["shelf.length", "post.ry"]),
+    ("bench-tips", ["seat.x", "leg_r.x"]),
+]
+
+
+@functools.cache
+def catalog_finder(name: str) -> RangeFinder:
+    return RangeFinder(load_design(str(DESIGNS / f"{name}.yaml")))
+
+
+def edited_verdict(design, geometry, frame, dof, target: float) -> str:
+    """'valid', 'invalid' (full check) or 'refused' (geometry: step out of reach, joints or
+    contacts changed, planks cutting, no length left)."""
+    try:
+        edited = apply_dof(design, frame, dof, target - dof_value(design, dof))
+    except OutOfReach:
+        return "refused"
+    if check_edit(geometry, edited)[0] is not None:
+        return "refused"
+    return "valid" if check_design(edited).valid else "invalid"
+
+
+@pytest.mark.parametrize("design_name,dof_name",
+                         [(d, n) for d, names in CATALOG_DOFS for n in names])
+def test_catalog_range_is_valid_inside_and_invalid_beyond(design_name, dof_name):
+    """For each reported interval [lo, hi]: lo + (0.05, 0.5, 0.95)(hi - lo) are valid designs
+    with the original joints and contacts; lo - 2 res and hi + 2 res are invalid or refused
+    (unless that end is the search limit, value -+ SEARCH_LIMIT x size or x 90 degrees).
+    The interval contains the current value iff the design is valid."""
+    finder = catalog_finder(design_name)
+    design = finder.design
+    valid_now = check_design(design).valid
+    geometry = analyze(design)
+    frame = structure(design, geometry)
+    dof = parse_dof(design, dof_name)
+    found = finder.range(dof)
+    assert found.valid is not None, found.reason
+    value = dof_value(design, dof)
+    assert found.value == value
+    low, high = found.valid
+    if valid_now:
+        assert low <= value <= high and found.reason is None
+    else:
+        assert not low <= value <= high and "invalid" in found.reason
+    assert low < high, "a degenerate interval leaves nothing to test inside"
+    if dof.is_rotation:
+        limit, resolution = 90.0 * SEARCH_LIMIT, 100.0 * RANGE_RESOLUTION
+    else:
+        limit, resolution = finder.size * SEARCH_LIMIT, finder.size * RANGE_RESOLUTION
+    for fraction in (0.05, 0.5, 0.95):
+        target = low + fraction * (high - low)
+        assert edited_verdict(design, geometry, frame, dof, target) == "valid", \
+            f"{dof_name} = {target} inside {found.valid} is not valid"
+    for end, sign in ((high, 1.0), (low, -1.0)):
+        if math.isclose(abs(end - value), limit, rel_tol=1e-9):
+            continue
+        target = end + sign * 2 * resolution
+        assert edited_verdict(design, geometry, frame, dof, target) != "valid", \
+            f"{dof_name} = {target} beyond the end {end} is valid"
+
+
+# --- e. locks ------------------------------------------------------------------------------------
+
+def test_lock_blocks_a_dof_whose_neighbour_adjustment_changes_the_locked_dof():
+    """In the bay, moving side_r along x makes the shelf (nailed to it) follow by changing its
+    length; with shelf.length locked, side_r.x cannot move: valid None, the reason names the
+    lock.  side_r.y (the shelf's end slides along the side's face, no length change) and
+    shelf.z keep exactly their unlocked ranges; the locked DOF itself reads 'locked'."""
+    design = rd.parse(rd.bay())
+    unlocked = {r.dof: r for r in dof_ranges(design, ["side_r.x", "side_r.y", "shelf.z"])}
+    assert unlocked["side_r.x"].valid is not None
+    locked = {r.dof: r for r in dof_ranges(design, ["side_r.x", "side_r.y", "shelf.z",
+                                                    "shelf.length"], locked=("shelf.length",))}
+    assert locked["side_r.x"].valid is None
+    assert "shelf.length" in locked["side_r.x"].reason
+    assert locked["shelf.length"].valid is None and locked["shelf.length"].reason == "locked"
+    assert locked["side_r.y"] == unlocked["side_r.y"]
+    assert locked["shelf.z"] == unlocked["shelf.z"]
+
+
+def test_lock_on_the_catalog_cantilever():
+    """shelf-cantilever: the shelf hangs on the post only, so moving the post along x carries
+    the shelf rigidly (shelf.x changes): locked shelf.x blocks post.x; a locked DOF that is
+    blocked anyway still reads 'locked'; base.y (nothing follows along y) keeps its range."""
+    design = load_design(str(DESIGNS / "shelf-cantilever.yaml"))
+    ranges = {r.dof: r for r in RangeFinder(design, ("shelf.x",)).ranges(
+        ["post.x", "shelf.x", "base.y"])}
+    assert ranges["post.x"].valid is None and "shelf.x" in ranges["post.x"].reason
+    assert ranges["shelf.x"].valid is None and ranges["shelf.x"].reason == "locked"
+    assert ranges["base.y"] == one_range(design, "base.y")
+
+
+# --- f. command line -----------------------------------------------------------------------------
+
+def run(*args: str):
+    return CliRunner().invoke(main, ["range", *args])
+
+
+def test_cli_json_matches_the_contract_and_is_deterministic(tmp_path):
+    """`furncheck range shelf-cantilever.yaml --format json` with no DOF named lists every DOF
+    (8 per plank, file order) as {"dof", "value", "valid", "unit"[, "reason"]}; valid is
+    [lo, hi] around the value or null with a reason.  A second run (and -o FILE) gives the
+    same bytes."""
+    path = str(DESIGNS / "shelf-cantilever.yaml")
+    first = run(path, "--format", "json")
+    assert first.exit_code == 0, first.output
+    document = json.loads(first.stdout)
+    assert set(document) == {"design", "ranges"}
+    assert document["design"] == path
+    design = load_design(path)
+    assert [r["dof"] for r in document["ranges"]] == [d.name for d in all_dofs(design)]
+    for entry in document["ranges"]:
+        dof = parse_dof(design, entry["dof"])
+        assert set(entry) in ({"dof", "value", "valid", "unit"},
+                              {"dof", "value", "valid", "unit", "reason"}), entry
+        assert entry["unit"] == ("deg" if dof.is_rotation else "mm")
+        assert isinstance(entry["value"], (int, float))
+        assert entry["value"] == pytest.approx(dof_value(design, dof), abs=1e-6)
+        if entry["valid"] is None:
+            assert isinstance(entry.get("reason"), str) and entry["reason"]
+        else:
+            low, high = entry["valid"]
+            assert low <= entry["value"] <= high
+    by_name = {r["dof"]: r for r in document["ranges"]}
+    assert by_name["shelf.length"]["value"] == 300.0
+    assert by_name["post.z"]["valid"] is None
+    second = run(path, "--format", "json")
+    assert second.exit_code == 0 and second.stdout_bytes == first.stdout_bytes
+    target = tmp_path / "ranges.json"
+    third = run(path, "--format", "json", "-o", str(target))
+    assert third.exit_code == 0 and third.stdout == ""
+    assert target.read_bytes() == first.stdout_bytes
+
+
+def test_cli_text_is_a_table_of_the_named_dofs():
+    path = str(DESIGNS / "shelf-cantilever.yaml")
+    result = run(path, "shelf.length", "post.z", "shelf.rz")
+    assert result.exit_code == 0, result.output
+    lines = result.stdout.splitlines()
+    assert path in lines[0]
+    assert lines[1].split()[0] == "DOF"
+    rows = lines[2:]
+    assert [row.split()[0] for row in rows] == ["shelf.length", "post.z", "shelf.rz"]
+    assert "mm" in rows[0] and "deg" in rows[2]
+    assert "post" in rows[1] and "base" in rows[1]          # the reason it is blocked
+
+
+def test_cli_lock_option():
+    path = str(DESIGNS / "shelf-cantilever.yaml")
+    result = run(path, "post.x", "shelf.x", "--lock", "shelf.x", "--format", "json")
+    assert result.exit_code == 0, result.output
+    entries = {e["dof"]: e for e in json.loads(result.stdout)["ranges"]}
+    assert entries["post.x"]["valid"] is None and "shelf.x" in entries["post.x"]["reason"]
+    assert entries["shelf.x"] == {"dof": "shelf.x", "value": 6.0, "valid": None, "unit": "mm",
+                                  "reason": "locked"}
+
+
+@pytest.mark.parametrize("args,name", [
+    (["shelf.height"], "shelf.height"),          # unknown DOF kind
+    (["shelve.length"], "shelve"),               # unknown plank
+    (["shelf.length", "--lock", "post.tilt"], "post.tilt"),
+    (["--lock", "wall.x"], "wall"),
+    (["shelf"], "shelf"),                        # no kind at all
+])
+def test_cli_unknown_dof_or_plank_is_exit_2(args, name):
+    result = run(str(DESIGNS / "shelf-cantilever.yaml"), *args)
+    assert result.exit_code == 2, result.output
+    assert name in result.stderr
+    assert len(result.stderr.strip().splitlines()) == 1
+    assert "Traceback" not in result.output
+
+
+@pytest.mark.parametrize("content", [
+    "furncheck: 1\nplanks:\n  - {id: a, size: [100, 100], center: [0, 0, 6], colour: red}\n",
+    "furncheck: 1\nplanks: [\n",
+    None,                                          # missing file
+])
+def test_cli_bad_design_is_exit_2(tmp_path, content):
+    path = tmp_path / "bad.yaml"
+    if content is not None:
+        path.write_text(content)
+    result = run(str(path), "a.x")
+    assert result.exit_code == 2, result.output
+    assert "bad.yaml" in result.stderr
+    assert len(result.stderr.strip().splitlines()) == 1
+    assert "Traceback" not in result.output
+
+
+# Every DOF of every catalog design is too slow for the suite (the 28-plank cabinet alone has
+# 224 DOFs); the first plank's x and length exercise both the valid-design search and, on the
+# invalid designs, the nearest-valid-interval search.
+@pytest.mark.parametrize("path", CATALOG, ids=lambda p: p.stem)
+def test_cli_runs_on_every_catalog_design(path):
+    design = load_design(str(path))
+    first = design.planks[0].id
+    result = run(str(path), f"{first}.x", f"{first}.length", "--format", "json")
+    assert result.exit_code == 0, (result.output, result.exception)
+    entries = json.loads(result.stdout)["ranges"]
+    assert [e["dof"] for e in entries] == [f"{first}.x", f"{first}.length"]
+    for entry in entries:
+        assert entry["valid"] is not None or entry.get("reason")
