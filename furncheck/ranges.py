@@ -32,6 +32,7 @@ from furncheck.dofs import (
 )
 from furncheck.geometry import Geometry, analyze
 from furncheck.sensitivity import Linearization, Sensitivity
+from furncheck.validity import nail_pull_shear
 
 RANGE_RESOLUTION = 1e-3
 """Bisection stops when the bracket is this fraction of the design's size (lengths) or
@@ -228,8 +229,6 @@ class RangeFinder:
 def _margins(linear: Linearization, sens: Sensitivity):
     """(rate, margin) pairs, margin >= 0 meaning valid: per joint 1 - utilization (its pull
     and shear linearized), per holding contact its normal force over the case's weight."""
-    from furncheck.validity import nail_pull_shear
-
     model, design = linear.model, linear.design
     joints = [linear.geometry.joints[j] for j in model.joints]
     wrenches = linear.statics.joint_wrenches

@@ -65,7 +65,8 @@ class ContactResult:
 
 @dataclass(frozen=True)
 class CaseResult:
-    """One load case.  ``stability`` is 'stable', 'lift-off', 'sliding' or 'unsolved'."""
+    """One load case.  ``stability`` is 'stable', 'lift-off', 'sliding' or 'mechanism'
+    (no equilibrium and no force state: the planks rest on one line of ground points)."""
 
     name: str
     durable: bool

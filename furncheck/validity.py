@@ -43,14 +43,6 @@ class NailForces:
         return self.pull <= self.pull_capacity * slack and self.shear <= self.shear_capacity * slack
 
 
-def nail_forces(joint: Joint, wrench: np.ndarray, design: Design) -> NailForces:
-    """Per-nail pull and shear of a joint from its wrench (6,) = first plank on second."""
-    pull, shear = nail_pull_shear([joint], np.asarray(wrench, dtype=float)[None, :])
-    material = design.material
-    return NailForces(float(pull[0]), float(shear[0]), material.nail_pull / design.safety_factor,
-                      material.nail_shear / design.safety_factor)
-
-
 def nail_pull_shear(joints: list[Joint], wrenches: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Per-nail pull and shear (N) of many joints; wrenches (nJ, 6) first plank on second.
 

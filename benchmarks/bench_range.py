@@ -1,0 +1,43 @@
+"""Benchmark: `range` for every DOF of catalog designs, in-process.
+
+Prints, per design: planks, DOFs, DOFs that can move, full-check evaluations, total time
+and time per movable DOF.  The issue's target for the ~28-plank catalog design (all DOFs)
+is 1 s on the project's 2-core machine.
+
+    python benchmarks/bench_range.py [DESIGN ...]     (default: a few catalog designs)
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+from furncheck.design import load_design
+from furncheck.ranges import RangeFinder
+
+CATALOG = Path(__file__).resolve().parent.parent / "designs"
+DEFAULT = ("shelf-cantilever.yaml", "stool.yaml", "table.yaml", "bookshelf-20.yaml",
+           "cabinet-28.yaml")
+
+
+def main(paths: list[str]) -> None:
+    print("| design                  | planks | DOFs | movable | evaluations | time (s) |"
+          " ms per movable DOF |")
+    print("|-------------------------|-------:|-----:|--------:|------------:|---------:|"
+          "-------------------:|")
+    for path in paths:
+        design = load_design(path)
+        start = time.perf_counter()
+        finder = RangeFinder(design)
+        ranges = finder.ranges()
+        seconds = time.perf_counter() - start
+        movable = sum(r.valid is not None or (r.reason or "").startswith("the current")
+                      for r in ranges)
+        print(f"| {Path(path).name:<23} | {len(design.planks):>6} | {len(ranges):>4} | "
+              f"{movable:>7} | {finder.evaluations:>11} | {seconds:>8.2f} | "
+              f"{1000 * seconds / max(movable, 1):>18.0f} |")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:] or [str(CATALOG / name) for name in DEFAULT])
