@@ -157,9 +157,9 @@ def apply_dof(design: Design, frame: Structure, dof: Dof, step: float) -> Design
     planks = {p.id: p for p in design.planks}
     plank = planks[dof.plank]
     if dof.kind in ("x", "y", "z"):
-        _translate(design, frame, planks, plank, _AXIS[dof.kind], step * design.unit_scale)
+        _translate(frame, planks, plank, _AXIS[dof.kind], step * design.unit_scale)
     elif dof.is_rotation:
-        _rotate(design, frame, planks, plank, _AXIS[dof.kind], math.radians(step))
+        _rotate(frame, planks, plank, _AXIS[dof.kind], math.radians(step))
     else:
         _resize(frame, planks, plank, 0 if dof.kind == "length" else 1,
                 step * design.unit_scale)
@@ -183,8 +183,8 @@ def _carried(load: Load, before: Plank, after: Plank) -> Load:
     return replace(load, point=tuple(float(v) for v in point))
 
 
-def _translate(design: Design, frame: Structure, planks: dict[str, Plank], plank: Plank,
-               axis: int, amount: float) -> None:
+def _translate(frame: Structure, planks: dict[str, Plank], plank: Plank, axis: int,
+               amount: float) -> None:
     direction = np.eye(3)[axis]
     held = [end for end in frame.ends[plank.id] if abs(direction @ end.normal) > _PARALLEL_EPS]
     if len(held) > 1:
@@ -207,14 +207,14 @@ def _translate(design: Design, frame: Structure, planks: dict[str, Plank], plank
             planks[edge_id] = _extend_to_face(edge, end, shift)
 
 
-def _rotate(design: Design, frame: Structure, planks: dict[str, Plank], plank: Plank,
-            axis: int, angle: float) -> None:
+def _rotate(frame: Structure, planks: dict[str, Plank], plank: Plank, axis: int,
+            angle: float) -> None:
     turn = _axis_rotation(axis, angle)
     if plank.id in frame.lies_flat and axis != 2:
         raise Blocked(f"{plank.id} lies on the ground")
     old_faces = {}
     for edge_id, end in frame.attached[plank.id]:
-        old_faces[edge_id] = _face_plane(plank, end)
+        old_faces[edge_id] = _support_plane(plank, end)
     rotated = _turned(plank, turn, plank.center_array)
     # the plank's own held ends stay on their faces: change its size at those ends
     for end in frame.ends[plank.id]:
@@ -226,7 +226,7 @@ def _rotate(design: Design, frame: Structure, planks: dict[str, Plank], plank: P
         if _is_free(frame, edge_id):
             planks[edge_id] = _turned(edge, turn, plank.center_array)
             continue
-        point, normal = _face_plane(rotated, end)
+        point, normal = _support_plane(rotated, end)
         height_before = _end_height(edge, end, *old_faces[edge_id])
         height_after = _end_height(edge, end, point, normal)
         along = _end_direction(edge, end) @ normal
@@ -304,10 +304,6 @@ def _support_plane(support: Plank, end: End) -> tuple[np.ndarray, np.ndarray]:
     side = 1.0 if normal @ support.rotation_matrix[:, 2] > 0 else -1.0
     face_normal = side * support.rotation_matrix[:, 2]
     return support.center_array + support.half_extents[2] * face_normal, face_normal
-
-
-def _face_plane(face_plank: Plank, end: End) -> tuple[np.ndarray, np.ndarray]:
-    return _support_plane(face_plank, end)
 
 
 def _end_direction(plank: Plank, end: End) -> np.ndarray:
