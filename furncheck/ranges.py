@@ -70,6 +70,8 @@ class RangeFinder:
         corners = np.vstack([p.corners for p in design.planks])
         self.size = float((corners.max(axis=0) - corners.min(axis=0)).max()) / design.unit_scale
         self._linear: list[Linearization] | None = None
+        self._shared: dict = {}
+        self._predictions: dict[Dof, tuple[float | None, float | None]] = {}
         self.evaluations = 0
 
     # -- public --------------------------------------------------------------------------------
@@ -86,9 +88,8 @@ class RangeFinder:
         limit, resolution = self._scales(dof)
         try:
             if self.valid_now:
-                predicted = self._predicted(dof)
-                low = self._side(dof, -1.0, limit, resolution, predicted[0])
-                high = self._side(dof, 1.0, limit, resolution, predicted[1])
+                low = self._side(dof, -1.0, limit, resolution)
+                high = self._side(dof, 1.0, limit, resolution)
                 return DofRange(dof.name, value, (value - low, value + high), unit)
             return self._nearest_valid(dof, value, unit, limit, resolution)
         except Blocked as why:
@@ -112,8 +113,7 @@ class RangeFinder:
         return is_valid(edited, geometry) if full else True
 
     # -- searches ------------------------------------------------------------------------------
-    def _side(self, dof: Dof, sign: float, limit: float, resolution: float,
-              predicted: float | None) -> float:
+    def _side(self, dof: Dof, sign: float, limit: float, resolution: float) -> float:
         """The furthest step (>= 0) in direction ``sign`` up to which the design was found
         valid, assuming it is valid now: first how far the geometry reaches (cheap checks
         without statics), then, if the design is not valid there, the physical limit inside
@@ -122,6 +122,7 @@ class RangeFinder:
         if reach <= 0.0 or self.valid_at(dof, sign * reach):
             return reach
         good, bad = 0.0, reach
+        predicted = self._predicted(dof)[0 if sign < 0 else 1]
         if predicted is not None and predicted < reach:
             inside = max(predicted * (1.0 - PREDICTION_BRACKET), resolution)
             outside = min(predicted * (1.0 + PREDICTION_BRACKET), reach)
@@ -184,7 +185,7 @@ class RangeFinder:
             for case in self.design.load_cases:
                 try:
                     self._linear.append(Linearization(self.design, case, self.geometry,
-                                                      self.frame))
+                                                      self.frame, self._shared))
                 except ValueError:
                     continue
         return self._linear
@@ -201,6 +202,8 @@ class RangeFinder:
     def _predicted(self, dof: Dof) -> tuple[float | None, float | None]:
         """Linear predictions of the steps (down, up) at which a joint reaches capacity or
         a holding contact's normal force reaches zero; None where nothing is predicted."""
+        if dof in self._predictions:
+            return self._predictions[dof]
         down, up = np.inf, np.inf
         for linear, sens in self._sensitivities(dof):
             for rate, current in _margins(linear, sens):
@@ -208,8 +211,10 @@ class RangeFinder:
                     up = min(up, current / -rate)
                 elif rate > 0:
                     down = min(down, current / rate)
-        return (None if not np.isfinite(down) else float(down),
-                None if not np.isfinite(up) else float(up))
+        self._shared.clear()
+        self._predictions[dof] = (None if not np.isfinite(down) else float(down),
+                                  None if not np.isfinite(up) else float(up))
+        return self._predictions[dof]
 
     def _favoured_sign(self, dof: Dof) -> float:
         """+1 if increasing the DOF improves the worst margin (linearly), else -1."""

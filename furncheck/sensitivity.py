@@ -57,7 +57,8 @@ class Linearization:
     """A solved load case of a design, ready for eq. 6 with any DOFs."""
 
     def __init__(self, design: Design, case: LoadCase, geometry: Geometry | None = None,
-                 frame: Structure | None = None):
+                 frame: Structure | None = None, shared: dict | None = None):
+        self.shared = {} if shared is None else shared   # edited models, across load cases
         self.design = design
         self.case = case
         self.geometry = geometry or analyze(design)
@@ -78,9 +79,13 @@ class Linearization:
 
     def assembly(self, dof: Dof, amount: float) -> tuple:
         """(A, b, contact maps) of the design with ``dof`` stepped by ``amount``, contact
-        states and structure held."""
-        edited = apply_dof(self.design, self.frame, dof, amount)
-        model = build_model(edited, follow(self.geometry, edited))
+        states and structure held.  The edited design and its model are kept in ``shared``
+        (pass one dict to the linearizations of all load cases of a design)."""
+        key = (dof, amount)
+        if key not in self.shared:
+            edited = apply_dof(self.design, self.frame, dof, amount)
+            self.shared[key] = (edited, build_model(edited, follow(self.geometry, edited)))
+        edited, model = self.shared[key]
         case = next(c for c in edited.load_cases if c.name == self.case.name)
         b = np.concatenate([external_forces(model, case), np.zeros(model.G.shape[0])])
         return system_matrix(model, self.holding), b, model.contact_maps
