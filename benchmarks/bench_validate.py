@@ -72,7 +72,8 @@ def main() -> None:
         if (CATALOG / name).exists():
             print(_row(f"designs/{name}", CATALOG / name, args.repeat))
 
-    command = shutil.which("furncheck")
+    beside = Path(sys.executable).with_name("furncheck")
+    command = str(beside) if beside.exists() else shutil.which("furncheck")
     small = CATALOG / "stool.yaml"
     if command and small.exists():
         runs = []
