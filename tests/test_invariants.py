@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import json
 import math
-import warnings
 from pathlib import Path
 
 import numpy as np
@@ -34,17 +33,6 @@ from hypothesis import strategies as st
 from furncheck.check import check_design
 from furncheck.design import parse_design
 from furncheck.errors import DesignError
-
-# When a property fails, hypothesis' pytest plugin imports hypothesis.extra._patching, which
-# imports libcst, which trips a DeprecationWarning (mypy_extensions.TypedDict); under the
-# project's filterwarnings = error that becomes a pytest INTERNALERROR hiding the failure.
-# Import it once here with that warning silenced.
-with warnings.catch_warnings():
-    warnings.simplefilter("ignore", DeprecationWarning)
-    try:
-        import hypothesis.extra._patching  # noqa: F401
-    except ImportError:
-        pass
 
 ROOT = Path(__file__).resolve().parents[1]
 CATALOG_DIR = ROOT / "designs"

@@ -11,7 +11,6 @@ from __future__ import annotations
 import json
 import os
 import tempfile
-import warnings
 
 import yaml
 from hypothesis import HealthCheck, given, settings
@@ -19,15 +18,6 @@ from hypothesis import strategies as st
 
 from furncheck.design import Design, design_to_document, load_design, parse_design
 from furncheck.errors import DesignError
-
-# See test_invariants: hypothesis' failure reporting imports libcst, which warns under
-# filterwarnings = error and would hide the failure.
-with warnings.catch_warnings():
-    warnings.simplefilter("ignore", DeprecationWarning)
-    try:
-        import hypothesis.extra._patching  # noqa: F401
-    except ImportError:
-        pass
 
 FUZZ = settings(deadline=None, max_examples=150, derandomize=True,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
