@@ -256,10 +256,9 @@ def _best_touches(design: Design, pairs: np.ndarray, slack: float, keep_deep: bo
     p, f, g = chosen[:, 0], chosen[:, 1], chosen[:, 2]
     touches = _touch_regions(design, faces, edge[p], face[p], f, g, gap[p, f, g],
                              alignment[p, f, g])
-    for (p_k, f_k, g_k), touch in zip(chosen.tolist(), touches):
+    for p_k, touch in zip(chosen[:, 0].tolist(), touches):
         if touch is None:
             continue
-        touch = replace(touch, edge_face=(f_k // 2, 1 - 2 * (f_k % 2)), face_side=1 - 2 * g_k)
         key = tuple(int(v) for v in pairs[p_k % n_pairs])
         rank = (touch.gap >= -slack, round(touch.alignment, 9), touch.area)
         current = best.get(key)
@@ -313,8 +312,10 @@ def _touch_regions(design: Design, faces: _Faces, edge: np.ndarray, face: np.nda
             continue
         area, cx, cy, length = region
         point = face_center[c] + rot_f[c, :, 0] * cx + rot_f[c, :, 1] * cy
+        f_c, g_c = int(f[c]), int(g[c])
         touches.append(_Touch(planks[face[c]], planks[edge[c]], point, length, frames[c],
-                              float(gap[c]), float(alignment[c]), area))
+                              float(gap[c]), float(alignment[c]), area,
+                              edge_face=(f_c // 2, 1 - 2 * (f_c % 2)), face_side=1 - 2 * g_c))
     return touches
 
 
