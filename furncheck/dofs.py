@@ -369,13 +369,15 @@ def _euler_degrees(matrix: np.ndarray, previous: tuple[float, float, float]) -> 
 
 # --- checking an edit -------------------------------------------------------------------------
 
-def check_edit(original: Geometry, edited: Design) -> tuple[str | None, Geometry | None]:
+def check_edit(original: Geometry, edited: Design,
+               design: Design | None = None) -> tuple[str | None, Geometry | None]:
     """Why the edited design no longer has the original's joints and contacts (or None),
-    and the edited design's geometry (None when a plank lost its length)."""
+    and the edited design's geometry (None when a plank lost its length).  With the
+    original ``design``, joints between unchanged planks are not detected again."""
     for plank in edited.planks:
         if plank.length <= 0 or plank.width <= 0:
             return f"{plank.id} would have no length left", None
-    geometry = analyze(edited)
+    geometry = analyze(edited, None if design is None else (design, original))
     problem = _edit_problem(original, geometry)
     if problem is None:
         cutting = interpenetrations(edited)

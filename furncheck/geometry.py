@@ -99,11 +99,16 @@ class _Touch:
     face_side: int = 1
 
 
-def analyze(design: Design) -> Geometry:
-    """Detect or check joints, find ground contacts and connected components."""
+def analyze(design: Design, previous: tuple[Design, Geometry] | None = None) -> Geometry:
+    """Detect or check joints, find ground contacts and connected components.
+
+    ``previous``: an earlier version of the same design (same planks, in the same order)
+    and its analysis; joints between planks that did not change are taken from it instead
+    of being detected again (the result is the same, only faster: for design edits).
+    """
     violations: list[Violation] = []
     if design.joints is None:
-        joints = _detect_joints(design)
+        joints = _detect_joints(design, previous)
     else:
         joints = _listed_joints(design, violations)
     contacts = _ground_contacts(design, violations)
@@ -148,20 +153,52 @@ def nail_count(length: float, spacing: float) -> int:
     return max(1, int(np.floor(length / spacing * (1.0 + tol.NAIL_COUNT_EPS))))
 
 
-def _detect_joints(design: Design) -> list[Joint]:
+def _detect_joints(design: Design,
+                   previous: tuple[Design, Geometry] | None = None) -> list[Joint]:
     slack = design.tolerance + _GEOMETRY_EPS
     lo, hi = _bounding_boxes(design.planks)
     overlap = np.all((lo[:, None, :] <= hi[None, :, :] + slack)
                      & (lo[None, :, :] <= hi[:, None, :] + slack), axis=2)
     pairs = np.argwhere(np.triu(overlap, k=1))
-    best = _best_touches(design, pairs, slack, keep_deep=False)
+    known = _unchanged_joints(design, previous)
+    if known is None:
+        fresh = np.ones(len(pairs), dtype=bool)
+        known = {}
+    else:
+        changed = np.array([plank.id not in known["planks"] for plank in design.planks])
+        fresh = changed[pairs[:, 0]] | changed[pairs[:, 1]] if len(pairs) else \
+            np.zeros(0, dtype=bool)
+    best = _best_touches(design, pairs[fresh], slack, keep_deep=False)
     joints = []
-    for i, j in pairs:
-        touch = best.get((int(i), int(j)))
+    for (i, j), detect in zip(pairs.tolist(), fresh.tolist()):
+        if not detect:
+            if (i, j) in known:
+                joints.append(known[(i, j)])
+            continue
+        touch = best.get((i, j))
         if touch is not None and touch.gap >= -slack:
             nails = nail_count(touch.length, design.material.nail_spacing)
             joints.append(_joint_from_touch(touch, (touch.face.id, touch.edge.id), nails, ""))
     return joints
+
+
+def _unchanged_joints(design: Design, previous: tuple[Design, Geometry] | None):
+    """From an earlier version of the design: {(i, j): joint} for pairs of planks that are
+    both unchanged, plus 'planks': the ids of the unchanged planks; None if unusable."""
+    if previous is None:
+        return None
+    before, geometry = previous
+    if before.joints is not None or [p.id for p in before.planks] != \
+            [p.id for p in design.planks] or before.material != design.material or \
+            before.tolerance != design.tolerance:
+        return None
+    same = {new.id for old, new in zip(before.planks, design.planks) if old == new}
+    known: dict = {"planks": same}
+    for joint in geometry.joints:
+        if joint.face in same and joint.edge in same:
+            i, j = sorted((design.plank_index[joint.face], design.plank_index[joint.edge]))
+            known[(i, j)] = joint
+    return known
 
 
 def _listed_joints(design: Design, violations: list[Violation]) -> list[Joint]:

@@ -107,7 +107,7 @@ class RangeFinder:
             if abs(dof_value(edited, lock) - dof_value(self.design, lock)) > 1e-9:
                 raise Blocked(f"it would change the locked {lock.name}")
         self.evaluations += 1
-        problem, geometry = check_edit(self.geometry, edited)
+        problem, geometry = check_edit(self.geometry, edited, self.design)
         if problem is not None:
             return False
         return is_valid(edited, geometry) if full else True

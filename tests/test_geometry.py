@@ -147,3 +147,37 @@ def test_catalog_planks_do_not_cut_into_each_other():
 
     for path in sorted((Path(__file__).resolve().parents[1] / "designs").glob("*.yaml")):
         assert interpenetrations(load_design(str(path))) == [], path.name
+
+
+def test_reanalysis_of_an_edit_equals_a_fresh_analysis():
+    """analyze(edited, previous=(design, geometry)) reuses joints between unchanged planks;
+    on random DOF edits of catalog designs it must give exactly what analyze(edited) gives."""
+    import random
+    from pathlib import Path
+
+    from furncheck.design import load_design
+    from furncheck.dofs import Blocked, OutOfReach, all_dofs, apply_dof, structure
+
+    rng = random.Random(7)
+    compared = 0
+    for name in ("shelf-cantilever.yaml", "chair-tilted.yaml", "bookshelf-20.yaml",
+                 "magazine-rack.yaml"):
+        original = load_design(str(Path(__file__).resolve().parents[1] / "designs" / name))
+        geometry = analyze(original)
+        frame = structure(original, geometry)
+        for dof in rng.sample(all_dofs(original), 24):
+            try:
+                edited = apply_dof(original, frame, dof, rng.uniform(-40.0, 40.0))
+            except (Blocked, OutOfReach):
+                continue
+            if any(p.length <= 0 or p.width <= 0 for p in edited.planks):
+                continue
+            fresh, reused = analyze(edited), analyze(edited, (original, geometry))
+            assert [(j.planks, j.nails, j.edge_face) for j in fresh.joints] == \
+                [(j.planks, j.nails, j.edge_face) for j in reused.joints], dof.name
+            for a, b in zip(fresh.joints, reused.joints):
+                assert np.allclose(a.point, b.point) and np.allclose(a.frame, b.frame)
+            assert fresh.violations == reused.violations
+            assert fresh.components == reused.components
+            compared += 1
+    assert compared > 30
