@@ -81,6 +81,13 @@ def parse_dof(design: Design, name: str) -> Dof:
     return Dof(plank, kind)
 
 
+def design_size(design: Design) -> float:
+    """The largest bounding-box edge of the design, in its file unit: the scale of the
+    translation and length DOFs (the paper makes them dimensionless by it)."""
+    corners = np.vstack([p.corners for p in design.planks])
+    return float((corners.max(axis=0) - corners.min(axis=0)).max()) / design.unit_scale
+
+
 def all_dofs(design: Design) -> list[Dof]:
     """Every DOF of the design, plank by plank in file order."""
     return [Dof(p.id, kind) for p in design.planks for kind in DOF_KINDS]

@@ -26,6 +26,7 @@ from furncheck.dofs import (
     all_dofs,
     apply_dof,
     check_edit,
+    design_size,
     dof_value,
     parse_dof,
     structure,
@@ -67,8 +68,7 @@ class RangeFinder:
         self.frame: Structure = structure(design, self.geometry)
         self.locked = tuple(parse_dof(design, name) for name in locked)
         self.valid_now = check_design(design, self.geometry).valid
-        corners = np.vstack([p.corners for p in design.planks])
-        self.size = float((corners.max(axis=0) - corners.min(axis=0)).max()) / design.unit_scale
+        self.size = design_size(design)
         self._linear: list[Linearization] | None = None
         self._shared: dict = {}
         self._predictions: dict[Dof, tuple[float | None, float | None]] = {}

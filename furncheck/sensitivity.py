@@ -20,11 +20,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from furncheck import tolerances as tol
 from furncheck.design.model import Design, LoadCase
-from furncheck.dofs import Blocked, Dof, OutOfReach, Structure, apply_dof, structure
+from furncheck.dofs import Blocked, Dof, OutOfReach, Structure, apply_dof, design_size, structure
 from furncheck.geometry import Geometry, analyze, follow
-from furncheck.statics import build_model, external_forces, solve_case, solve_system, system_matrix
+from furncheck.statics import (
+    anchor_springs,
+    build_model,
+    external_forces,
+    solve_case,
+    solve_system,
+    system_matrix,
+)
 
 ASSEMBLY_STEP = 1e-4
 """Step of the central difference of the assembly, as a fraction of the design's size
@@ -71,7 +77,7 @@ class Linearization:
                              "forces came from the feasibility program)")
         self.holding = self.statics.holding
         self.state = self.statics.state
-        self.size = _design_size(design)
+        self.size = design_size(design)
 
     def step(self, dof: Dof) -> float:
         """The difference step for ``dof`` in its own unit."""
@@ -117,8 +123,7 @@ class Linearization:
         n = model.n_dof
         joint_rates = rates[n:].T.reshape(len(moving), n_joints, 6)
         q = self.state[:n].reshape(-1, 6)[model.contact_plank]               # (nK, 6)
-        springs = np.zeros((n_contacts, 3, 3))
-        springs[self.holding] = np.eye(3) * tol.CONTACT_STIFFNESS
+        springs = anchor_springs(self.holding)
         contact_rates = []
         for column, map_rate in enumerate(map_rates):
             dq = rates[:n, column].reshape(-1, 6)[model.contact_plank]
@@ -134,10 +139,3 @@ def sensitivity(design: Design, dofs: list[Dof], case_name: str | None = None) -
     case = design.load_cases[0] if case_name is None else \
         next(c for c in design.load_cases if c.name == case_name)
     return Linearization(design, case).derivatives(dofs)
-
-
-def _design_size(design: Design) -> float:
-    """The largest bounding-box edge of the design, in its file unit (the paper scales
-    translation and length DOFs by it)."""
-    corners = np.vstack([p.corners for p in design.planks])
-    return float((corners.max(axis=0) - corners.min(axis=0)).max()) / design.unit_scale

@@ -27,9 +27,9 @@ The package, by job:
     feasibility  linear programs: does any admissible equilibrium exist?
 """
 
-from furncheck.statics.condense import solve_system, system_matrix
+from furncheck.statics.condense import anchor_springs, solve_system, system_matrix
 from furncheck.statics.contacts import LIFT, STICK, solve_case
 from furncheck.statics.model import CaseStatics, StaticsModel, build_model, external_forces
 
-__all__ = ["LIFT", "STICK", "CaseStatics", "StaticsModel", "build_model", "external_forces",
-           "solve_case", "solve_system", "system_matrix"]
+__all__ = ["LIFT", "STICK", "CaseStatics", "StaticsModel", "anchor_springs", "build_model",
+           "external_forces", "solve_case", "solve_system", "system_matrix"]

@@ -119,7 +119,7 @@ _SYMMETRIC_LU = {"permc_spec": "MMD_AT_PLUS_A", "diag_pivot_thresh": 0.0,
                  "options": {"SymmetricMode": True}}
 
 
-def _anchor_springs(holding: np.ndarray) -> np.ndarray:
+def anchor_springs(holding: np.ndarray) -> np.ndarray:
     """(nK, 3, 3): contact force = -S w for contact point displacement w: springs to the
     anchor in all three directions where the contact holds, none where it lifted."""
     springs = np.zeros((len(holding), 3, 3))
@@ -145,7 +145,7 @@ def system_matrix(model: StaticsModel, holding: np.ndarray) -> sp.csr_matrix:
     contacts (sparse, (6 nP + 6 nJ) square): the A of the paper's eq. 6."""
     n = model.n_dof
     maps = model.contact_maps
-    blocks = np.transpose(maps, (0, 2, 1)) @ (_anchor_springs(holding) @ maps)
+    blocks = np.transpose(maps, (0, 2, 1)) @ (anchor_springs(holding) @ maps)
     base = 6 * model.contact_plank[:, None, None]
     rows = np.broadcast_to(base + _SIX[None, :, None], blocks.shape).ravel()
     cols = np.broadcast_to(base + _SIX[None, None, :], blocks.shape).ravel()
@@ -163,7 +163,7 @@ def solve_system(model: StaticsModel, holding: np.ndarray, rhs: np.ndarray) -> n
     inner = condensed.lu.solve(R[condensed.inner]) if len(condensed.inner) else \
         np.zeros((0, R.shape[1]))
     ground_rhs = R[condensed.ground] - condensed.coupling.T @ inner
-    ground = np.linalg.solve(_condensed_stiffness(model, _anchor_springs(holding)), ground_rhs)
+    ground = np.linalg.solve(_condensed_stiffness(model, anchor_springs(holding)), ground_rhs)
     out = np.zeros_like(R)
     out[condensed.ground] = ground
     out[condensed.inner] = inner - condensed.reduced @ ground

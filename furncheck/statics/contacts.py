@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.statics.condense import _accurate, _anchor_springs, _condensed_stiffness
+from furncheck.statics.condense import _accurate, _condensed_stiffness, anchor_springs
 from furncheck.statics.feasibility import _cone_solution, _unilateral_feasible
 from furncheck.statics.model import CaseStatics, StaticsModel, _skew_many
 
@@ -219,7 +219,7 @@ class _ActiveSet:
                          ground)
 
     def _spring_matrices(self, status: np.ndarray) -> np.ndarray:
-        return _anchor_springs(status == STICK)
+        return anchor_springs(status == STICK)
 
     def _restrained(self, springs: np.ndarray) -> bool:
         """Every grounded component is held in all six rigid directions by its contacts."""
