@@ -6,6 +6,7 @@ import click
 
 from furncheck import __version__
 from furncheck.cli.range import range_command
+from furncheck.cli.suggest import suggest
 from furncheck.cli.validate import validate
 
 
@@ -15,7 +16,8 @@ from furncheck.cli.validate import validate
 def main() -> None:
     """Check nail-jointed plank furniture designs for durability and stability.
 
-    validate: verdicts on design files; range: valid interval of each design DOF.
+    validate: verdicts on design files; suggest: ranked changes that make an invalid
+    design valid; range: valid interval of each design DOF.
     Exit codes: 0 all designs valid (or done), 1 some design invalid (validate), 2
     unreadable or ill-formed input, or a usage error.
     """
@@ -23,6 +25,7 @@ def main() -> None:
 
 main.add_command(validate)
 main.add_command(range_command)
+main.add_command(suggest)
 
 
 if __name__ == "__main__":  # pragma: no cover

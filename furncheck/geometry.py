@@ -125,20 +125,17 @@ def follow(geometry: Geometry, design: Design) -> Geometry:
     their points, frames and lengths recomputed: the structure a small design change keeps,
     for derivatives.  Joints whose faces no longer overlap keep their old values."""
     faces = _face_tables(design.planks)
-    joints = []
-    for joint in geometry.joints:
-        edge_index, face_index = design.plank_index[joint.edge], design.plank_index[joint.face]
-        f = 2 * joint.edge_face[0] + (0 if joint.edge_face[1] > 0 else 1)
-        g = 0 if joint.face_side > 0 else 1
-        corners = faces.narrow_corners[edge_index, f]
-        gap = float(((corners @ faces.broad_normal[face_index, g])
-                     - faces.broad_offset[face_index, g]).min())
-        touch = _touch_regions(design, faces, np.array([edge_index]), np.array([face_index]),
-                               np.array([f]), np.array([g]), np.array([gap]),
-                               np.array([1.0]))[0]
-        joints.append(joint if touch is None else replace(
-            joint, point=touch.point, length=touch.length, frame=touch.frame,
-            edge_thickness=touch.edge.thickness))
+    edge = np.array([design.plank_index[j.edge] for j in geometry.joints], dtype=int)
+    face = np.array([design.plank_index[j.face] for j in geometry.joints], dtype=int)
+    f = np.array([2 * j.edge_face[0] + (0 if j.edge_face[1] > 0 else 1)
+                  for j in geometry.joints], dtype=int)
+    g = np.array([0 if j.face_side > 0 else 1 for j in geometry.joints], dtype=int)
+    gap = (np.einsum("cka,ca->ck", faces.narrow_corners[edge, f], faces.broad_normal[face, g])
+           - faces.broad_offset[face, g][:, None]).min(axis=1, initial=np.inf)
+    touches = _touch_regions(design, faces, edge, face, f, g, gap, np.ones(len(edge)))
+    joints = [joint if touch is None else replace(
+        joint, point=touch.point, length=touch.length, frame=touch.frame,
+        edge_thickness=touch.edge.thickness) for joint, touch in zip(geometry.joints, touches)]
     contacts = []
     for contact in geometry.contacts:
         x, y, _ = design.plank(contact.plank).corners[contact.corner]

@@ -55,19 +55,22 @@ def design_to_document(design: Design) -> dict[str, Any]:
     return doc
 
 
+def design_text(design: Design, fmt: str) -> str:
+    """The design file's text: ``fmt`` 'yaml' or 'json'."""
+    doc = design_to_document(design)
+    if fmt == "json":
+        return json.dumps(doc, indent=2, ensure_ascii=False) + "\n"
+    return yaml.dump(doc, Dumper=_Dumper, sort_keys=False, default_flow_style=None,
+                     allow_unicode=True, width=100)
+
+
 def write_design(design: Design, path: str) -> None:
     """Write ``design`` to ``path`` as YAML (.yaml, .yml) or JSON (.json), UTF-8."""
     fmt = _FORMATS.get(Path(path).suffix.lower())
     if fmt is None:
         raise DesignError(path, "", None, f"unknown file type {Path(path).suffix!r}; "
                                           "design files end in .yaml, .yml or .json")
-    doc = design_to_document(design)
-    if fmt == "json":
-        text = json.dumps(doc, indent=2, ensure_ascii=False) + "\n"
-    else:
-        text = yaml.dump(doc, Dumper=_Dumper, sort_keys=False, default_flow_style=None,
-                         allow_unicode=True, width=100)
-    Path(path).write_text(text, encoding="utf-8")
+    Path(path).write_text(design_text(design, fmt), encoding="utf-8")
 
 
 def _in_unit(metres: float, scale: float) -> float:

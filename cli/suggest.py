@@ -1,0 +1,68 @@
+"""``furncheck suggest DESIGN``: ranked changes that make an invalid design valid."""
+
+from __future__ import annotations
+
+import click
+
+from furncheck.cli.output import check_output, fail, write_output
+
+
+@click.command("suggest")
+@click.argument("design", metavar="DESIGN")
+@click.option("--max-dofs", "max_dofs", type=click.IntRange(1, 4), default=3,
+              show_default=True, help="Most DOFs changed together by one suggestion.")
+@click.option("--max-suggestions", "max_suggestions", type=click.IntRange(1, 100),
+              default=8, show_default=True, help="Most suggestions listed.")
+@click.option("--lock", "locks", metavar="DOF", multiple=True,
+              help="A DOF that must not change, not even to keep joints together "
+                   "(repeatable), e.g. --lock seat.z.")
+@click.option("--out", "out_dir", metavar="DIR", default=None,
+              help="Write each suggestion there: suggestion-NN.yaml (a complete design "
+                   "file), .glb and .obj meshes and a force-space plot (meshes and plots "
+                   "need the export extra).")
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text",
+              show_default=True, help="Report format.")
+@click.option("-o", "--output", metavar="FILE", default=None,
+              help="Write the report to FILE instead of standard output.")
+def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, ...],
+            out_dir: str | None, fmt: str, output: str | None) -> None:
+    """Ranked continuous suggestions for DESIGN: small changes of one to --max-dofs
+    plank positions, angles and sizes (paper section 6.4), each checked with the full
+    statics.  Each suggestion's design is the middle of its valid interval; every file
+    written with --out validates as valid.
+
+    Exit code 0: done (also when the design is valid already, or no suggestion was
+    found); 2: unreadable or ill-formed design, unknown DOF or plank, unwritable --out.
+    """
+    from furncheck.design import load_design
+    from furncheck.dofs import parse_dof
+    from furncheck.errors import DesignError, DofError
+    from furncheck.export.suggestions import ExportUnavailable, prepare_out_dir, write_files
+    from furncheck.report.suggestions import render_json, render_text
+    from furncheck.suggest import suggest_design
+
+    check_output(output)
+    try:
+        loaded = load_design(design)
+    except DesignError as error:
+        fail(str(error))
+    try:
+        locked = tuple(parse_dof(loaded, name) for name in locks)
+    except DofError as error:
+        fail(f"{design}: {error}")
+    if out_dir is not None:
+        problem = prepare_out_dir(out_dir)
+        if problem:
+            fail(f"cannot write suggestions to {out_dir}: {problem}")
+    result = suggest_design(loaded, max_dofs, max_suggestions, locked)
+    written = {}
+    if out_dir is not None:
+        try:
+            written = write_files(result, out_dir)
+        except ExportUnavailable as missing:
+            written = write_files(result, out_dir, meshes=False)
+            click.echo(f"furncheck: meshes and plots not written: {missing}", err=True)
+        except OSError as error:
+            fail(f"cannot write suggestions to {out_dir}: {error.strerror or error}")
+    render = render_json if fmt == "json" else render_text
+    write_output(render(result, loaded, written), output)

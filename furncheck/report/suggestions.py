@@ -1,0 +1,148 @@
+"""Reports of ``furncheck suggest``: advice a maker can act on, or the JSON of contract
+section 4.
+
+    designs/shelf-cantilever-overloaded.yaml: INVALID, 1 violation
+      non-durable: post/shelf in case 'default': pull 1005 N per nail exceeds 700 N
+    1 suggestion:
+      1. Shorten shelf by 180 mm (valid for 118-236 mm). Restores durability.
+         design: out/suggestion-01.yaml
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+import numpy as np
+
+from furncheck.design.model import Design
+from furncheck.export.suggestions import Written
+from furncheck.report.common import plural
+from furncheck.report.numbers import format_number, json_ready
+from furncheck.report.text import INDENT, design_lines
+from furncheck.suggest import Suggestion, SuggestionReport
+
+ADVICE_DIGITS = 3
+"""Significant digits of the amounts in the advice (the JSON keeps REPORT digits)."""
+
+TOWARD_COSINE = 0.5
+"""A plank is 'toward' which a move goes when the direction to its centre is within 60
+degrees of the move."""
+
+
+def advice(suggestion: Suggestion, original: Design) -> str:
+    """'Move shelf 42 mm toward post and tilt it 3 degrees about y (valid for 18-61 mm).'"""
+    phrases = []
+    for k, (name, change, unit) in enumerate(zip(suggestion.dofs, suggestion.changes,
+                                                 suggestion.units)):
+        plank, _, kind = name.rpartition(".")
+        subject = plank if k == 0 or suggestion.dofs[k - 1].rpartition(".")[0] != plank \
+            else "it"
+        phrases.append(_phrase(original, plank, subject, kind, change, unit))
+    sentence = " and ".join(phrases)
+    low, high = suggestion.range
+    step = suggestion.step
+    lead = abs(suggestion.changes[0]) / step if step else 0.0
+    unit = suggestion.units[0]
+    valid_for = (f"valid for {_amount(low * lead)}-{_amount(high * lead)} {_unit(unit)}"
+                 + (" of the first change" if len(suggestion.dofs) > 1 else ""))
+    return f"{sentence[0].upper()}{sentence[1:]} ({valid_for})."
+
+
+def _phrase(design: Design, plank: str, subject: str, kind: str, change: float,
+            unit: str) -> str:
+    amount = f"{_amount(abs(change))} {_unit(unit)}"
+    if kind == "z":
+        return f"{'raise' if change > 0 else 'lower'} {subject} by {amount}"
+    if kind in ("x", "y"):
+        target = _toward(design, plank, "xy".index(kind), 1.0 if change > 0 else -1.0)
+        where = f"toward {target}" if target else f"along {'+' if change > 0 else '-'}{kind}"
+        return f"move {subject} {amount} {where}"
+    if kind == "length":
+        return f"{'lengthen' if change > 0 else 'shorten'} {subject} by {amount}"
+    if kind == "width":
+        return f"{'widen' if change > 0 else 'narrow'} {subject} by {amount}"
+    verb = "turn" if kind == "rz" else "tilt"
+    sign = "+" if change > 0 else "-"
+    return f"{verb} {subject} by {sign}{amount} about {kind[1]}"
+
+
+def _toward(design: Design, plank_id: str, axis: int, sign: float) -> str | None:
+    """The nearest other plank whose centre lies ahead of a move along ``axis``."""
+    centre = design.plank(plank_id).center_array
+    best, best_distance = None, np.inf
+    for plank in design.planks:
+        if plank.id == plank_id:
+            continue
+        offset = plank.center_array - centre
+        distance = float(np.linalg.norm(offset))
+        if distance > 0 and sign * offset[axis] >= TOWARD_COSINE * distance \
+                and distance < best_distance:
+            best, best_distance = plank.id, distance
+    return best
+
+
+def _amount(value: float) -> str:
+    return format_number(value, ADVICE_DIGITS)
+
+
+def _unit(unit: str) -> str:
+    return "degrees" if unit == "deg" else unit
+
+
+def render_text(result: SuggestionReport, original: Design,
+                written: dict[int, Written]) -> str:
+    """The verdict, then one numbered piece of advice per suggestion and its files."""
+    lines = design_lines(result.report)
+    if result.valid:
+        lines.append("Nothing needs to change: the design is valid.")
+        return "\n".join(lines) + "\n"
+    if not result.suggestions:
+        lines.append("No suggestion: no change of the allowed DOFs was found that makes "
+                     "the design valid.")
+        return "\n".join(lines) + "\n"
+    lines.append(f"{plural(len(result.suggestions), 'suggestion')}:")
+    for suggestion in result.suggestions:
+        restores = " and ".join(suggestion.restores)
+        lines.append(f"{INDENT}{suggestion.rank}. {advice(suggestion, original)} "
+                     f"Restores {restores}.")
+        files = written.get(suggestion.rank)
+        if files is not None and files.design_file:
+            lines.append(f"{INDENT}   design: {files.design_file}")
+            for path in (*files.meshes, *files.plots):
+                lines.append(f"{INDENT}   {path}")
+    return "\n".join(lines) + "\n"
+
+
+def render_json(result: SuggestionReport, original: Design,
+                written: dict[int, Written]) -> str:
+    """Contract section 4: design, valid, violations, suggestions (with ``advice`` and
+    ``plots`` added; files null/empty without ``--out``)."""
+    report = result.report
+    document: dict[str, Any] = {
+        "design": result.design,
+        "valid": result.valid,
+        "violations": [{"kind": v.kind, "where": v.where, "case": v.case,
+                        "message": v.message} for v in report.violations],
+        "suggestions": [_suggestion_dict(s, original, written.get(s.rank, Written()))
+                        for s in result.suggestions],
+    }
+    return json.dumps(json_ready(document), indent=2, allow_nan=False) + "\n"
+
+
+def _suggestion_dict(suggestion: Suggestion, original: Design,
+                     files: Written) -> dict[str, Any]:
+    return {
+        "rank": suggestion.rank,
+        "kind": suggestion.kind,
+        "restores": list(suggestion.restores),
+        "dofs": list(suggestion.dofs),
+        "direction": list(suggestion.direction),
+        "range": list(suggestion.range),
+        "step": suggestion.step,
+        "changes": dict(zip(suggestion.dofs, suggestion.changes)),
+        "advice": advice(suggestion, original),
+        "design_file": files.design_file,
+        "meshes": list(files.meshes),
+        "plots": list(files.plots),
+    }

@@ -1,0 +1,144 @@
+"""Moving a design along a direction of several DOFs, and deciding whether the result is a
+design the suggestion may offer (paper sections 6.1 and 6.4).
+
+A direction is a unit vector ``s`` over m DOFs in *scaled* units (paper 6.1): a length DOF
+is divided by the design's size (its largest bounding-box edge), a rotation is in radians,
+so a step ``t`` along ``s`` changes DOF k by ``t s_k`` of its scale.  The DOFs are applied
+one after the other with the geometric constraints of ``dofs`` (neighbours follow); between
+them the constraint structure is carried along (``_carried``), so a turned face plank keeps
+its edge planks' ends on its turned face.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+
+from furncheck.check import is_valid
+from furncheck.design.model import Design
+from furncheck.dofs import (
+    Blocked,
+    Dof,
+    End,
+    OutOfReach,
+    Structure,
+    apply_dof,
+    design_size,
+    dof_value,
+)
+from furncheck.geometry import Geometry, analyze, interpenetrations
+
+LOCK_EPS = 1e-9
+"""A locked DOF counts as changed when it moves by more than this (its unit)."""
+
+
+def dof_scale(design: Design, dof: Dof) -> float:
+    """The DOF's change (file unit or degrees) per scaled unit: the design's size for
+    lengths, 180 / pi for rotations (paper 6.1: dimensionless like radians)."""
+    return math.degrees(1.0) if dof.is_rotation else design_size(design)
+
+
+class Editor:
+    """Designs along directions from one design: ``moved`` applies DOF changes, ``accepts``
+    says whether a moved design may be suggested."""
+
+    def __init__(self, design: Design, geometry: Geometry, frame: Structure,
+                 locked: tuple[Dof, ...] = ()):
+        self.design = design
+        self.geometry = geometry
+        self.frame = frame
+        self.locked = locked
+        self.scales: dict[Dof, float] = {}
+        self._joints = _joint_set(geometry)
+        self.checks = 0
+
+    def scale(self, dof: Dof) -> float:
+        if dof not in self.scales:
+            self.scales[dof] = dof_scale(self.design, dof)
+        return self.scales[dof]
+
+    def changes(self, dofs: tuple[Dof, ...], direction: np.ndarray,
+                step: float) -> tuple[float, ...]:
+        """Each DOF's change (its unit) at ``step`` along ``direction``."""
+        return tuple(float(step * s * self.scale(dof)) for dof, s in zip(dofs, direction))
+
+    def moved(self, dofs: tuple[Dof, ...], changes: tuple[float, ...]) -> Design:
+        """The design with each DOF changed by its amount, in order, neighbours following.
+        Raises Blocked or OutOfReach when a change cannot be made, and Blocked when it
+        would move a locked DOF."""
+        design, frame = self.design, self.frame
+        for dof, change in zip(dofs, changes):
+            if change == 0.0:
+                continue
+            edited = apply_dof(design, frame, dof, change)
+            frame = _carried(frame, design, edited)
+            design = edited
+        moved_lock = self.moved_lock(design)
+        if moved_lock is not None:
+            raise Blocked(f"it would change the locked {moved_lock}")
+        return design
+
+    def moved_lock(self, edited: Design) -> str | None:
+        """The first locked DOF that ``edited`` changes, or None."""
+        for lock in self.locked:
+            if abs(dof_value(edited, lock) - dof_value(self.design, lock)) > LOCK_EPS:
+                return lock.name
+        return None
+
+    def accepts(self, edited: Design) -> bool:
+        """Whether ``edited`` is valid (every case, contract section 3) and ``keeps`` the
+        design's joints."""
+        geometry = self.keeps(edited)
+        return geometry is not None and is_valid(edited, geometry)
+
+    def keeps(self, edited: Design) -> Geometry | None:
+        """The geometry of ``edited`` if it has no geometric violation, keeps the joints of
+        the design (none lost; none added unless the joints are listed in the file) and no
+        two planks cut into each other; else None.  Ground contacts may change: standing a
+        hovering leg on the floor is the point of some suggestions."""
+        self.checks += 1
+        geometry = analyze(edited, (self.design, self.geometry))
+        if geometry.violations:
+            return None
+        joints = _joint_set(geometry)
+        if not self._joints <= joints or (self.design.joints is None and joints != self._joints):
+            return None
+        if interpenetrations(edited):
+            return None
+        return geometry
+
+    def valid_at(self, dofs: tuple[Dof, ...], direction: np.ndarray, step: float) -> bool:
+        """``accepts`` of the design ``step`` along ``direction``; False where the step
+        cannot be made."""
+        try:
+            edited = self.moved(dofs, self.changes(dofs, direction, step))
+        except (Blocked, OutOfReach):
+            return False
+        return self.accepts(edited)
+
+
+def _joint_set(geometry: Geometry) -> set[tuple]:
+    return {(j.face, j.edge, j.edge_face) for j in geometry.joints}
+
+
+def _carried(frame: Structure, before: Design, after: Design) -> Structure:
+    """The constraint structure after an edit: the supporting-face normal of every held
+    end turns with the plank it rests on (ground ends keep the vertical)."""
+    turns = {}
+    for old, new in zip(before.planks, after.planks):
+        if old.rotation != new.rotation:
+            turns[old.id] = new.rotation_matrix @ old.rotation_matrix.T
+    if not turns:
+        return frame
+
+    def turned(end: End) -> End:
+        if end.on not in turns:
+            return end
+        return replace(end, normal=turns[end.on] @ end.normal)
+
+    ends = {plank: tuple(turned(end) for end in held) for plank, held in frame.ends.items()}
+    attached = {plank: tuple((edge, turned(end)) for edge, end in items)
+                for plank, items in frame.attached.items()}
+    return replace(frame, ends=ends, attached=attached)

@@ -1,0 +1,308 @@
+"""What a suggestion has to restore: the design's validity margins and their rates.
+
+Every check of contract section 3 that can fail by degrees becomes a *margin*, a
+dimensionless number that is >= 0 exactly where the design passes it, with its derivative
+(``rates``) with respect to each free DOF in scaled units (``edits``):
+
+* durability (paper eq. 7, our eq. 4/5 per nail), per joint and stable load case:
+  ``1 - pull / pull capacity`` and ``1 - shear / shear capacity``; rates from the force
+  sensitivity (eq. 6) of the solved case;
+* stability, for a case that topples (paper eq. 8): each ground contact's normal force in
+  the case's *bolted* state (every contact held), over the case's weight -- all of them
+  non-negative means the load's line of action is back inside the support; rates from eq. 6
+  of the bolted state;
+* stability, for a case that slides: ``(mu W - H) / W`` per grounded component, W the
+  weight it stands on, H the sideways load it must resist (nothing else can change what
+  friction gives: only W does, through the planks' own weight);
+* geometry, for a design whose joints or ground contacts are wrong: ``(tolerance -
+  distance) / size`` for the gap of a listed joint, the depth of a corner in the ground and
+  the height of a hovering plank above it; rates by central differences of the geometry.
+
+The paper approximates the durable region by a cuboid in joint-bending space; these margins
+are its faces (one per nail force and joint), so the ray test of eq. 10 is a slab test on
+them (``candidates``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from furncheck.design.model import Design
+from furncheck.dofs import Blocked, Dof, OutOfReach, design_size
+from furncheck.geometry import Geometry
+from furncheck.geometry import _best_touches as best_touches
+from furncheck.result import DesignReport
+from furncheck.sensitivity import Linearization, Sensitivity
+from furncheck.suggest.edits import Editor
+from furncheck.tolerances import GRAVITY
+from furncheck.validity import nail_pull_shear
+
+GEOMETRY_STEP = 1e-4
+"""Central-difference step of the geometric margins, in scaled DOF units."""
+
+NAIL_FORCE_STEP = 1e-6
+"""Step (N, N m per unit rate) of the difference that turns wrench rates into pull and
+shear rates (both are piecewise linear in the wrench)."""
+
+HOVER_BAND = 0.02
+"""A hovering plank counts as one that should reach the floor when its lowest corner is
+within this fraction of the design's size above the component's lowest corner."""
+
+
+@dataclass(frozen=True)
+class Margin:
+    """One validity margin (see the module docstring).
+
+    restores : 'durability', 'stability' or 'geometry' (the contract's ``restores``)
+    where    : joint 'a/b', plank id or component, for messages
+    case     : load case name, None for geometry
+    value    : dimensionless, >= 0 where the design passes
+    rates    : (n_free,) d value / d DOF, scaled DOF units, in ``Margins.dofs`` order
+    target   : the value a direction aims at for a violated margin
+    """
+
+    restores: str
+    where: str
+    case: str | None
+    value: float
+    rates: np.ndarray
+    target: float
+
+
+class Margins:
+    """The margins of an invalid design over its free DOFs.
+
+    dofs    : the free DOFs (not locked, able to move), in design order
+    blocked : DOF name -> why it cannot be part of a suggestion
+    margins : every margin; ``violated`` those below zero
+    """
+
+    def __init__(self, design: Design, geometry: Geometry, report: DesignReport,
+                 editor: Editor, dofs: list[Dof]):
+        self.design = design
+        self.geometry = geometry
+        self.editor = editor
+        self.size = design_size(design)
+        self.blocked: dict[str, str] = {}
+        self._edited: dict[Dof, tuple[float, Design, Design]] = {}
+        if geometry.violations:
+            self.dofs = [dof for dof in dofs if self._movable(dof)]
+            self.margins = self._geometric(report)
+        else:
+            self.dofs, self.margins = self._physical(dofs)
+
+    @property
+    def violated(self) -> list[Margin]:
+        return [m for m in self.margins if m.value < 0.0]
+
+    # -- DOFs ------------------------------------------------------------------------------
+    def _movable(self, dof: Dof) -> bool:
+        """Whether the DOF can move both ways by a small step (locked DOFs unchanged);
+        the edited designs are kept for the differences."""
+        step = GEOMETRY_STEP * self.editor.scale(dof)
+        try:
+            plus = self.editor.moved((dof,), (step,))
+            minus = self.editor.moved((dof,), (-step,))
+        except (Blocked, OutOfReach) as why:
+            self.blocked[dof.name] = getattr(why, "reason", str(why))
+            return False
+        self._edited[dof] = (step, plus, minus)
+        return True
+
+    def _difference(self, measure) -> np.ndarray:
+        """Central differences of ``measure(design) -> (k,) array`` over the free DOFs:
+        (k, n_free), per scaled unit."""
+        columns = []
+        for dof in self.dofs:
+            step, plus, minus = self._edited[dof]
+            columns.append((measure(plus) - measure(minus)) / (2.0 * step)
+                           * self.editor.scale(dof))
+        if not columns:
+            return np.zeros((len(measure(self.design)), 0))
+        return np.column_stack(columns)
+
+    # -- physics ---------------------------------------------------------------------------
+    def _physical(self, dofs: list[Dof]) -> tuple[list[Dof], list[Margin]]:
+        """The free DOFs and the margins of every load case that has a state to
+        linearize (its own, or the bolted one when it topples or slides)."""
+        shared: dict = {}
+        linears = []
+        for case in self.design.load_cases:
+            try:
+                linears.append(Linearization(self.design, case, self.geometry,
+                                             self.editor.frame, shared, bolted=True))
+            except ValueError:
+                continue
+        if not linears:
+            return [], []
+        first = linears[0].derivatives(dofs)
+        self.blocked.update(first.blocked)
+        free = []
+        for dof in first.dofs:
+            stepped = shared[dof]
+            lock = self.editor.moved_lock(stepped.plus[0]) or \
+                self.editor.moved_lock(stepped.minus[0])
+            if lock is not None:
+                self.blocked[dof.name] = f"it would change the locked {lock}"
+                continue
+            self._edited[dof] = (stepped.h, stepped.plus[0], stepped.minus[0])
+            free.append(dof)
+        self.dofs = free
+        scales = np.array([self.editor.scale(dof) for dof in free])
+        margins = []
+        for linear in linears:
+            if linear.statics.stability == "sliding":
+                margins.extend(self._sliding(linear))
+                continue
+            sens = first if linear is linears[0] and len(free) == len(first.dofs) \
+                else linear.derivatives(free)
+            if linear.statics.stability == "lift-off":
+                margins.extend(_toppling(linear, sens.contact_forces, scales))
+            else:       # stable (bolted only when its forces came from the feasibility LP)
+                margins.extend(_durability(linear, sens, scales))
+        return free, margins
+
+    def _sliding(self, linear: Linearization) -> list[Margin]:
+        """``(mu W - H) / W0`` per grounded component: W the downward load on it, H the
+        sideways load (the ground must supply minus both), W0 the case's whole weight."""
+        model, mu = linear.model, self.design.material.friction
+        components = [[model.planks[k] for k in component] for component in model.components]
+
+        def margins(design: Design) -> np.ndarray:
+            totals = _component_loads(design, components, linear.case.name)
+            return mu * -totals[:, 2] - np.hypot(totals[:, 0], totals[:, 1])
+
+        weight = max(float(-_component_loads(self.design, components, linear.case.name)[:, 2]
+                           .sum()), 1e-12)
+        values, rates = margins(self.design), self._difference(margins)
+        return [Margin("stability", ",".join(self.design.planks[i].id for i in component),
+                       linear.case.name, float(values[c] / weight), rates[c] / weight, 0.0)
+                for c, component in enumerate(components)]
+
+    # -- geometry --------------------------------------------------------------------------
+    def _geometric(self, report: DesignReport) -> list[Margin]:
+        """Margins of the geometric violations: a listed joint's gap, a corner in the
+        ground, a hovering component (its lowest planks)."""
+        design, tolerance = self.design, self.design.tolerance
+        measures: list[tuple[str, object]] = []
+        for violation in report.violations:
+            if violation.kind == "penetration":
+                plank = design.plank_index[violation.where]
+                measures.append((violation.where, _depth(plank)))
+            elif violation.kind == "floating":
+                ids = violation.where.split(",")
+                lows = {i: float(design.planks[design.plank_index[i]].corners[:, 2].min())
+                        for i in ids}
+                lowest = min(lows.values())
+                for plank_id in ids:
+                    if lows[plank_id] <= lowest + HOVER_BAND * self.size * design.unit_scale:
+                        measures.append((plank_id, _height(design.plank_index[plank_id])))
+            elif violation.kind == "disconnected" and "/" in violation.where:
+                a, b = violation.where.split("/", 1)
+                pair = (design.plank_index[a], design.plank_index[b])
+                if _gap(design, pair) is not None:
+                    measures.append((violation.where, _gap_measure(pair)))
+        if not measures:
+            return []
+
+        def distances(edited: Design) -> np.ndarray:
+            return np.array([measure(edited) for _, measure in measures])
+
+        scale = self.size * design.unit_scale
+        values = (tolerance - distances(design)) / scale
+        rates = -self._difference(distances) / scale
+        return [Margin("geometry", where, None, float(values[k]), rates[k],
+                       tolerance / scale) for k, (where, _) in enumerate(measures)]
+
+
+def _durability(linear: Linearization, sens: Sensitivity,
+                scales: np.ndarray) -> list[Margin]:
+    """Per joint: 1 - pull / capacity and 1 - shear / capacity, with rates.
+
+    Pull and shear are per nail, and the nail count follows the joint's length in whole
+    nails; its smooth trend (forces per nail ~ 1 / length) is added to the rates, so that
+    widening a plank at a failing joint reads as the help it is.
+    """
+    design = linear.design
+    joints = [linear.geometry.joints[j] for j in linear.model.joints]
+    if not joints:
+        return []
+    wrenches = linear.joint_wrenches
+    pull_cap = design.material.nail_pull / design.safety_factor
+    shear_cap = design.material.nail_shear / design.safety_factor
+    pull, shear = nail_pull_shear(joints, wrenches)
+    n = len(scales)
+    stepped = wrenches[None] + NAIL_FORCE_STEP * sens.joint_wrenches              # (n, nJ, 6)
+    p, s = nail_pull_shear(joints * n, stepped.reshape(-1, 6))
+    pull_rates = (p.reshape(n, -1) - pull) / NAIL_FORCE_STEP                       # (n, nJ)
+    shear_rates = (s.reshape(n, -1) - shear) / NAIL_FORCE_STEP
+    counted = np.array([0.0 if _nails_listed(design, joint) else 1.0 / joint.length
+                        for joint in joints])
+    relative = sens.joint_lengths * counted                                        # dL / L
+    pull_rates = ((pull_rates - pull * relative) * scales[:, None]).T              # (nJ, n)
+    shear_rates = ((shear_rates - shear * relative) * scales[:, None]).T
+    margins = []
+    for k, joint in enumerate(joints):
+        margins.append(Margin("durability", joint.name, linear.case.name,
+                              1.0 - pull[k] / pull_cap, -pull_rates[k] / pull_cap, 0.0))
+        margins.append(Margin("durability", joint.name, linear.case.name,
+                              1.0 - shear[k] / shear_cap, -shear_rates[k] / shear_cap, 0.0))
+    return margins
+
+
+def _nails_listed(design: Design, joint) -> bool:
+    """Whether the joint's nail count is given in the file (not from its length)."""
+    if not joint.key or design.joints is None:
+        return False
+    index = int(joint.key.split("[", 1)[1].rstrip("]"))
+    return design.joints[index].nails is not None
+
+
+def _toppling(linear: Linearization, force_rates: np.ndarray,
+              scales: np.ndarray) -> list[Margin]:
+    """Per contact of the bolted state: normal force / the case's weight."""
+    forces = linear.contact_forces
+    weight = max(float(forces[:, 2].sum()), 1e-12)
+    rates = force_rates[:, :, 2].T * scales / weight                     # (nK, n)
+    planks = linear.design.planks
+    model = linear.model
+    return [Margin("stability", planks[model.planks[model.contact_plank[k]]].id,
+                   linear.case.name, float(forces[k, 2] / weight), rates[k], 0.0)
+            for k in range(len(forces))]
+
+
+def _component_loads(design: Design, components: list[list[int]], case_name: str) -> np.ndarray:
+    """(n_components, 3) N: the planks' weight and the case's loads on each component."""
+    case = next(c for c in design.load_cases if c.name == case_name)
+    per_plank = np.zeros((len(design.planks), 3))
+    for i, plank in enumerate(design.planks):
+        per_plank[i, 2] -= design.plank_mass(plank) * GRAVITY
+    for load in case.loads:
+        per_plank[design.plank_index[load.plank]] += load.force
+    return np.array([per_plank[component].sum(axis=0) for component in components])
+
+
+def _depth(plank: int):
+    """How deep (m) the plank's lowest corner is below the ground."""
+    return lambda design: -float(design.planks[plank].corners[:, 2].min())
+
+
+def _height(plank: int):
+    """How high (m) the plank's lowest corner is above the ground."""
+    return lambda design: float(design.planks[plank].corners[:, 2].min())
+
+
+def _gap(design: Design, pair: tuple[int, int]) -> float | None:
+    """The distance (m) between a listed joint's end face and the face it should rest on,
+    None when neither plank's end faces the other."""
+    touch = best_touches(design, np.array([pair]), slack=np.inf, keep_deep=False).get(pair)
+    return None if touch is None else abs(float(touch.gap))
+
+
+def _gap_measure(pair: tuple[int, int]):
+    def measure(design: Design) -> float:
+        gap = _gap(design, pair)
+        return np.inf if gap is None else gap
+    return measure

@@ -1,0 +1,248 @@
+"""Continuous suggestions (paper 6.4) and ``furncheck suggest``.
+
+The promise of contract section 4: every listed suggestion's design file validates as
+valid.  Hand calculations pin the smallest change of the suggestions a woodworker expects:
+shortening an overloaded cantilevered shelf, widening a bench's stance.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from furncheck.check import check_design, check_file
+from furncheck.cli.main import main
+from furncheck.design import load_design
+from furncheck.dofs import dof_value, parse_dof
+from furncheck.suggest import suggest_design
+from furncheck.suggest.edits import dof_scale
+
+ROOT = Path(__file__).resolve().parents[1]
+CATALOG = ROOT / "designs"
+INVALID = sorted(p.name for p in CATALOG.glob("*.yaml") if not check_file(str(p)).valid)
+G = 9.81
+MDF = 750.0            # kg/m^3, the catalog's density
+T = 0.012              # m, plank thickness
+
+
+@pytest.fixture(scope="module")
+def results() -> dict:
+    """suggest_design on every invalid catalog design (shared: the line searches are the
+    slow part)."""
+    return {name: suggest_design(load_design(str(CATALOG / name))) for name in INVALID}
+
+
+def test_catalog_has_invalid_designs_of_every_kind():
+    kinds = {v.kind for name in INVALID for v in check_file(str(CATALOG / name)).violations}
+    assert kinds == {"disconnected", "penetration", "floating", "non-durable", "lift-off",
+                     "sliding"}
+
+
+@pytest.mark.parametrize("name", INVALID)
+def test_every_invalid_catalog_design_gets_a_valid_suggestion(results, name, tmp_path):
+    """At least one suggestion, and each one's design text, written to a file and read
+    back by the loader, validates as valid (the contract's promise)."""
+    result = results[name]
+    assert not result.valid
+    assert result.suggestions, f"{name}: no suggestion"
+    for suggestion in result.suggestions:
+        path = tmp_path / f"suggestion-{suggestion.rank:02d}.yaml"
+        path.write_text(suggestion.text, encoding="utf-8")
+        report = check_file(str(path))
+        assert report.valid, (name, suggestion.dofs, report.violations)
+
+
+@pytest.mark.parametrize("name", INVALID)
+def test_suggestions_are_consistent(results, name):
+    """Ranks 1..n; unit directions; changes = step x direction x DOF scale; the step is
+    the middle of a non-empty range; the representative design has exactly these DOF
+    changes for translations and sizes of the moved planks (rotations: the angle
+    changes); ids, loads cases and material are kept."""
+    result = results[name]
+    design = load_design(str(CATALOG / name))
+    for rank, suggestion in enumerate(result.suggestions, start=1):
+        assert suggestion.rank == rank
+        assert math.isclose(np.linalg.norm(suggestion.direction), 1.0, rel_tol=1e-9)
+        low, high = suggestion.range
+        assert 0.0 < low <= high
+        assert math.isclose(suggestion.step, 0.5 * (low + high), rel_tol=1e-12)
+        for name_, s, change in zip(suggestion.dofs, suggestion.direction, suggestion.changes):
+            scale = dof_scale(design, parse_dof(design, name_))
+            assert math.isclose(change, suggestion.step * s * scale, rel_tol=1e-9)
+        written = suggestion.design
+        assert [p.id for p in written.planks] == [p.id for p in design.planks]
+        assert [c.name for c in written.load_cases] == [c.name for c in design.load_cases]
+        assert written.material == design.material
+        if len(suggestion.dofs) == 1:
+            dof = parse_dof(design, suggestion.dofs[0])
+            moved = dof_value(written, dof) - dof_value(design, dof)
+            assert math.isclose(moved, suggestion.changes[0], rel_tol=1e-6, abs_tol=1e-6)
+
+
+def test_overloaded_cantilever_is_told_to_shorten_the_shelf(results):
+    """shelf-cantilever-overloaded: a shelf of length L nailed by its end to the post face
+    (15 nails, t = 12 mm), books of 30 kg riding at 3/4 of its length from the post.
+    Moment at the joint M = 294.3 N x 0.75 L + (2.7 L kg x g) x L / 2; the pull per nail
+    2 M / t / 15 reaches 700 N at M = 63 N m, i.e. L* = 280.8 mm: shorten by 119.2 mm.
+    The shortening must be among the first two suggestions, and its range must start
+    there (bisection to 2 % of the step)."""
+    load_arm, pull = 294.3 * 0.75, 700.0 * 15 * T / 2
+    shelf_weight = MDF * 0.3 * T * G                        # N per m of length
+    length = (-load_arm + math.sqrt(load_arm ** 2 + 2 * shelf_weight * pull)) / shelf_weight
+    needed = 400.0 - 1000.0 * length
+    assert math.isclose(needed, 119.2, abs_tol=0.2)
+    result = results["shelf-cantilever-overloaded.yaml"]
+    shorten = [s for s in result.suggestions[:2] if s.dofs == ("shelf.length",)]
+    assert shorten, [s.dofs for s in result.suggestions]
+    suggestion = shorten[0]
+    scale = suggestion.changes[0] / suggestion.step
+    assert scale < 0
+    assert math.isclose(-suggestion.range[0] * scale, needed, rel_tol=0.03)
+
+
+def test_tipping_bench_is_given_a_wider_stance(results):
+    """bench-tips: it topples over the right panel (outer face x = 306 mm) with 80 kg at
+    x = 560 mm.  Moving leg_r out by d (the stretcher lengthening with it) stands the
+    bench when the centre of mass x_G(d) <= 306 + d; solved here from the planks' masses.
+    A 'move leg_r along +x' suggestion is among the first three, starting there."""
+    seat = MDF * 1.2 * 0.3 * T
+    leg = MDF * 0.438 * 0.3 * T
+
+    def excess(d: float) -> float:
+        stretcher = MDF * (0.588 + d) * 0.08 * T
+        moment = 80 * 0.560 + leg * -0.300 + leg * (0.300 + d) + stretcher * d / 2
+        return moment / (80 + seat + 2 * leg + stretcher) - (0.306 + d)
+
+    low, high = 0.0, 0.5
+    for _ in range(60):
+        middle = 0.5 * (low + high)
+        low, high = (middle, high) if excess(middle) > 0 else (low, middle)
+    needed = 1000.0 * high
+    result = results["bench-tips.yaml"]
+    wider = [s for s in result.suggestions[:3] if s.dofs == ("leg_r.x",)]
+    assert wider, [s.dofs for s in result.suggestions]
+    scale = wider[0].changes[0] / wider[0].step
+    assert scale > 0
+    assert math.isclose(wider[0].range[0] * scale, needed, rel_tol=0.03)
+
+
+def test_geometric_repairs_close_the_measured_gap(results):
+    """bookshelf-gap: the shelf ends 3 mm short of side_r (tolerance 0.5 mm): lengthening
+    it by 2.5 to 3.5 mm joins it.  bench-long-leg: the middle leg is 2 mm too long:
+    shortening it by 1.5 mm or more (within the 2x reach) stands it on the floor."""
+    gap = results["bookshelf-gap.yaml"]
+    shelf = next(s for s in gap.suggestions if s.dofs == ("shelf.length",))
+    assert 2.5 <= shelf.changes[0] <= 3.5
+    leg = next(s for s in results["bench-long-leg.yaml"].suggestions
+               if s.dofs == ("leg_m.length",))
+    assert -3.0 <= leg.changes[0] <= -1.5
+
+
+def test_locked_dofs_never_change():
+    """--lock shelf.length: no suggestion uses it and no representative changes it (the
+    widening remains); --lock leg_r.x likewise for the bench."""
+    for name, lock in (("shelf-cantilever-overloaded.yaml", "shelf.length"),
+                       ("bench-tips.yaml", "leg_r.x")):
+        design = load_design(str(CATALOG / name))
+        dof = parse_dof(design, lock)
+        result = suggest_design(design, locked=(dof,))
+        assert result.suggestions
+        for suggestion in result.suggestions:
+            assert lock not in suggestion.dofs
+            assert math.isclose(dof_value(suggestion.design, dof), dof_value(design, dof),
+                                abs_tol=1e-6)
+
+
+def test_max_dofs_and_max_suggestions_are_respected():
+    design = load_design(str(CATALOG / "side-table-hovering.yaml"))
+    assert suggest_design(design, max_dofs=1).suggestions == ()     # needs both legs
+    two = suggest_design(design, max_dofs=2)
+    assert two.suggestions and all(len(s.dofs) <= 2 for s in two.suggestions)
+    design = load_design(str(CATALOG / "bench-tips.yaml"))
+    assert len(suggest_design(design, max_suggestions=1).suggestions) == 1
+
+
+def test_valid_design_needs_nothing():
+    result = suggest_design(load_design(str(CATALOG / "stool.yaml")))
+    assert result.valid and result.suggestions == ()
+
+
+# --- the command ------------------------------------------------------------------------------
+
+def run(*args: str):
+    return CliRunner().invoke(main, list(args), catch_exceptions=False)
+
+
+def test_cli_text_reads_like_advice():
+    result = run("suggest", str(CATALOG / "shelf-cantilever-overloaded.yaml"))
+    assert result.exit_code == 0
+    assert "1. Shorten shelf by" in result.output
+    assert "Restores durability." in result.output
+    valid = run("suggest", str(CATALOG / "stool.yaml"))
+    assert valid.exit_code == 0 and "Nothing needs to change" in valid.output
+
+
+def test_cli_json_follows_the_contract_and_is_deterministic(tmp_path):
+    path = str(CATALOG / "bench-tips.yaml")
+    first = run("suggest", path, "--format", "json")
+    second = run("suggest", path, "--format", "json")
+    assert first.exit_code == 0 and first.output == second.output
+    document = json.loads(first.output)
+    assert list(document) == ["design", "valid", "violations", "suggestions"]
+    assert document["valid"] is False and document["violations"][0]["kind"] == "lift-off"
+    entry = document["suggestions"][0]
+    assert list(entry)[:9] == ["rank", "kind", "restores", "dofs", "direction", "range",
+                              "step", "changes", "advice"]
+    assert entry["kind"] == "continuous" and entry["restores"] == ["stability"]
+    assert entry["design_file"] is None and entry["meshes"] == []
+
+
+def test_cli_out_writes_files_that_validate(tmp_path):
+    out = tmp_path / "out" / "nested"
+    result = run("suggest", str(CATALOG / "bookshelf-gap.yaml"), "--out", str(out),
+                 "--format", "json")
+    assert result.exit_code == 0, result.output
+    document = json.loads(result.output)
+    assert document["suggestions"]
+    for entry in document["suggestions"]:
+        assert check_file(entry["design_file"]).valid
+        pytest.importorskip("trimesh")
+        assert [Path(m).suffix for m in entry["meshes"]] == [".glb", ".obj"]
+        assert all(Path(m).stat().st_size > 0 for m in entry["meshes"] + entry["plots"])
+
+
+@pytest.mark.parametrize("args, message", [
+    (("--lock", "shelf.height"), "unknown DOF kind"),
+    (("--lock", "nosuch.x"), "no plank 'nosuch'"),
+    (("--max-dofs", "0"), "--max-dofs"),
+])
+def test_cli_bad_input_is_one_line_and_exit_2(args, message):
+    result = CliRunner().invoke(main, ["suggest", str(CATALOG / "bench-tips.yaml"), *args])
+    assert result.exit_code == 2
+    assert message in result.output
+    assert "Traceback" not in result.output
+
+
+def test_cli_missing_design_and_unusable_out(tmp_path):
+    missing = CliRunner().invoke(main, ["suggest", str(tmp_path / "none.yaml")])
+    assert missing.exit_code == 2 and "Traceback" not in missing.output
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    out = CliRunner().invoke(main, ["suggest", str(CATALOG / "bench-tips.yaml"),
+                                    "--out", str(blocker)])
+    assert out.exit_code == 2 and "not a directory" in out.output
+
+
+def test_representative_is_valid_in_every_case():
+    """table-slides fails only its 'shove' case; the suggestion must keep 'default' valid
+    too (check_design of the representative covers all cases)."""
+    design = load_design(str(CATALOG / "table-slides.yaml"))
+    result = suggest_design(design, max_suggestions=1)
+    assert result.suggestions
+    report = check_design(result.suggestions[0].design)
+    assert report.valid and {c.name for c in report.cases} == {"default", "shove"}
