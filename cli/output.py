@@ -48,3 +48,25 @@ def write_output(document: str, output: str | None) -> None:
             stream.write(document)
     except OSError as error:
         fail(f"cannot write the report to {output}: {error.strerror or error}")
+
+
+def load_or_fail(path: str):
+    """The design at ``path``, or one line and exit 2 when it cannot be read."""
+    from furncheck.design import load_design
+    from furncheck.errors import DesignError
+
+    try:
+        return load_design(path)
+    except DesignError as error:
+        fail(str(error))
+
+
+def dofs_or_fail(path: str, design, names) -> tuple:
+    """The named DOFs of ``design``, or one line naming the bad one and exit 2."""
+    from furncheck.dofs import parse_dof
+    from furncheck.errors import DofError
+
+    try:
+        return tuple(parse_dof(design, name) for name in names)
+    except DofError as error:
+        fail(f"{path}: {error}")

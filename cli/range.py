@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from furncheck.cli.output import check_output, fail, write_output
+from furncheck.cli.output import check_output, dofs_or_fail, load_or_fail, write_output
 
 
 @click.command("range")
@@ -26,22 +26,12 @@ def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str
 
     Exit code 0: done; 2: unreadable or ill-formed design, unknown DOF or plank.
     """
-    from furncheck.design import load_design
-    from furncheck.dofs import parse_dof
-    from furncheck.errors import DesignError, DofError
     from furncheck.ranges import RangeFinder
     from furncheck.report.ranges import render_json, render_text
 
     check_output(output)
-    try:
-        loaded = load_design(design)
-    except DesignError as error:
-        fail(str(error))
-    try:
-        for name in (*dofs, *locks):
-            parse_dof(loaded, name)
-    except DofError as error:
-        fail(f"{design}: {error}")
+    loaded = load_or_fail(design)
+    dofs_or_fail(design, loaded, (*dofs, *locks))
     ranges = RangeFinder(loaded, tuple(locks)).ranges(list(dofs) or None)
     render = render_json if fmt == "json" else render_text
     write_output(render(design, ranges), output)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from furncheck.cli.output import check_output, fail, write_output
+from furncheck.cli.output import check_output, dofs_or_fail, fail, load_or_fail, write_output
 
 
 @click.command("suggest")
@@ -34,22 +34,13 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
     Exit code 0: done (also when the design is valid already, or no suggestion was
     found); 2: unreadable or ill-formed design, unknown DOF or plank, unwritable --out.
     """
-    from furncheck.design import load_design
-    from furncheck.dofs import parse_dof
-    from furncheck.errors import DesignError, DofError
     from furncheck.export.suggestions import ExportUnavailable, prepare_out_dir, write_files
     from furncheck.report.suggestions import render_json, render_text
     from furncheck.suggest import suggest_design
 
     check_output(output)
-    try:
-        loaded = load_design(design)
-    except DesignError as error:
-        fail(str(error))
-    try:
-        locked = tuple(parse_dof(loaded, name) for name in locks)
-    except DofError as error:
-        fail(f"{design}: {error}")
+    loaded = load_or_fail(design)
+    locked = dofs_or_fail(design, loaded, locks)
     if out_dir is not None:
         problem = prepare_out_dir(out_dir)
         if problem:

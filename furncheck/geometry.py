@@ -124,23 +124,56 @@ def follow(geometry: Geometry, design: Design) -> Geometry:
     """The same joints (same faces) and ground contacts (same corners) on an edited design,
     their points, frames and lengths recomputed: the structure a small design change keeps,
     for derivatives.  Joints whose faces no longer overlap keep their old values."""
-    faces = _face_tables(design.planks)
-    edge = np.array([design.plank_index[j.edge] for j in geometry.joints], dtype=int)
-    face = np.array([design.plank_index[j.face] for j in geometry.joints], dtype=int)
-    f = np.array([2 * j.edge_face[0] + (0 if j.edge_face[1] > 0 else 1)
-                  for j in geometry.joints], dtype=int)
-    g = np.array([0 if j.face_side > 0 else 1 for j in geometry.joints], dtype=int)
-    gap = (np.einsum("cka,ca->ck", faces.narrow_corners[edge, f], faces.broad_normal[face, g])
-           - faces.broad_offset[face, g][:, None]).min(axis=1, initial=np.inf)
-    touches = _touch_regions(design, faces, edge, face, f, g, gap, np.ones(len(edge)))
-    joints = [joint if touch is None else replace(
-        joint, point=touch.point, length=touch.length, frame=touch.frame,
-        edge_thickness=touch.edge.thickness) for joint, touch in zip(geometry.joints, touches)]
-    contacts = []
-    for contact in geometry.contacts:
-        x, y, _ = design.plank(contact.plank).corners[contact.corner]
-        contacts.append(replace(contact, point=np.array([x, y, 0.0])))
-    return replace(geometry, joints=tuple(joints), contacts=tuple(contacts))
+    joints, contacts = follow_many(geometry, [(design, range(len(geometry.joints)),
+                                               range(len(geometry.contacts)))])[0]
+    return replace(geometry, joints=joints, contacts=contacts)
+
+
+def follow_many(geometry: Geometry, edits: list) -> list[tuple[tuple[Joint, ...],
+                                                               tuple[Contact, ...]]]:
+    """``follow`` of chosen joints and contacts on many edited versions of one design at
+    once (for the sensitivity of every DOF): ``edits`` is a list of (edited design, joint
+    indices, contact indices into ``geometry``); returns per edit the followed joints and
+    contacts in that order.  All touching regions are measured in one vectorized pass; a
+    plank shared by several edits (the same object) is tabled once."""
+    planks: list[Plank] = []
+    slot: dict[int, int] = {}
+
+    def tabled(plank: Plank) -> int:
+        if id(plank) not in slot:
+            slot[id(plank)] = len(planks)
+            planks.append(plank)
+        return slot[id(plank)]
+
+    rows, owners, contacts_out = [], [], []
+    for k, (design, joint_ids, contact_ids) in enumerate(edits):
+        index = design.plank_index
+        for j in joint_ids:
+            joint = geometry.joints[j]
+            rows.append((tabled(design.planks[index[joint.edge]]),
+                         tabled(design.planks[index[joint.face]]),
+                         2 * joint.edge_face[0] + (0 if joint.edge_face[1] > 0 else 1),
+                         0 if joint.face_side > 0 else 1))
+            owners.append((k, joint))
+        followed = []
+        for c in contact_ids:
+            contact = geometry.contacts[c]
+            x, y, _ = design.planks[index[contact.plank]].corners[contact.corner]
+            followed.append(replace(contact, point=np.array([x, y, 0.0])))
+        contacts_out.append(tuple(followed))
+    joints_out: list[list[Joint]] = [[] for _ in edits]
+    if rows:
+        edge, face, f, g = (np.array(column, dtype=int) for column in zip(*rows))
+        faces = _face_tables(tuple(planks))
+        gap = (np.einsum("cka,ca->ck", faces.narrow_corners[edge, f],
+                         faces.broad_normal[face, g])
+               - faces.broad_offset[face, g][:, None]).min(axis=1)
+        touches = _touch_regions(planks, faces, edge, face, f, g, gap, np.ones(len(edge)))
+        for (k, joint), touch in zip(owners, touches):
+            joints_out[k].append(joint if touch is None else replace(
+                joint, point=touch.point, length=touch.length, frame=touch.frame,
+                edge_thickness=touch.edge.thickness))
+    return [(tuple(joints), contacts) for joints, contacts in zip(joints_out, contacts_out)]
 
 
 # --- joints -----------------------------------------------------------------------------------
@@ -288,7 +321,7 @@ def _best_touches(design: Design, pairs: np.ndarray, slack: float, keep_deep: bo
     n_pairs = len(pairs)
     chosen = np.argwhere(candidates)
     p, f, g = chosen[:, 0], chosen[:, 1], chosen[:, 2]
-    touches = _touch_regions(design, faces, edge[p], face[p], f, g, gap[p, f, g],
+    touches = _touch_regions(design.planks, faces, edge[p], face[p], f, g, gap[p, f, g],
                              alignment[p, f, g])
     for p_k, touch in zip(chosen[:, 0].tolist(), touches):
         if touch is None:
@@ -302,13 +335,13 @@ def _best_touches(design: Design, pairs: np.ndarray, slack: float, keep_deep: bo
     return best
 
 
-def _touch_regions(design: Design, faces: _Faces, edge: np.ndarray, face: np.ndarray,
+def _touch_regions(planks, faces: _Faces, edge: np.ndarray, face: np.ndarray,
                    f: np.ndarray, g: np.ndarray, gap: np.ndarray,
                    alignment: np.ndarray) -> list[_Touch | None]:
     """For candidate contacts c (edge plank edge[c]'s narrow face f[c] on face plank
-    face[c]'s broad face g[c]): clip the narrow face's projection to the broad face (in the
-    face plank's local x-y) and measure the touching region; None where it is empty."""
-    planks = design.planks
+    face[c]'s broad face g[c], indices into ``planks`` and ``faces``): clip the narrow
+    face's projection to the broad face (in the face plank's local x-y) and measure the
+    touching region; None where it is empty."""
     if len(edge) == 0:
         return []
     rot_f = np.stack([planks[i].rotation_matrix for i in face])          # (C, 3, 3)
@@ -528,3 +561,122 @@ def _fmt_point(point_m: np.ndarray, design: Design) -> str:
 
 def _plural(n: int, word: str) -> str:
     return f"{n} {word}s" if n != 1 else f"1 {word}"
+
+
+# --- margins of an edit -----------------------------------------------------------------------
+
+def edit_margins(design: Design, original: Geometry,
+                 changed: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray]:
+    """Continuous margins (m, or cosines) of the criteria that decide whether an edit of a
+    design keeps ``original``'s joints and ground contacts (``dofs.check_edit``), for the
+    planks ``changed`` (indices) of the edited ``design``:
+
+    required  : (R,) must stay > 0: for every original joint of a changed plank its gap
+                within +-slack, its tilt, its edge plank outside the face, and the overlap of
+                the end face with the face (2-D separating axes); per changed plank its
+                size and its ground contact (grounded planks keep one, others stay clear,
+                nothing sinks deeper than the slack).
+    forbidden : (F, A) groups that must not all become > 0: every other narrow face on a
+                broad face among pairs with a changed plank (a new joint; only when joints
+                are detected), and per such pair the separating-axis overlaps beyond the
+                slack (one plank cutting into the other, ``interpenetrations``).
+
+    The rows depend only on ``original``, ``changed`` and the plank count, so margins of
+    two steps of one DOF compare entry by entry.  Under a translation or a size change
+    every margin is linear in the step; a search can predict where the first criterion
+    flips and confirm it with ``check_edit``, instead of bisecting blindly.
+    """
+    slack = design.tolerance + _GEOMETRY_EPS
+    planks = design.planks
+    n = len(planks)
+    changed_set = set(changed)
+    pairs = np.array(sorted({(min(c, k), max(c, k)) for c in changed for k in range(n)
+                             if k != c}), dtype=int).reshape(-1, 2)
+    faces = _face_tables(planks)
+    joint_combos = {(design.plank_index[j.edge], j.edge_face, design.plank_index[j.face],
+                     j.face_side) for j in original.joints}
+    ordered = np.vstack([pairs, pairs[:, ::-1]])                       # (edge, face) both ways
+    edge = np.repeat(ordered[:, 0], 8)
+    face = np.repeat(ordered[:, 1], 8)
+    f = np.tile(np.repeat(np.arange(4), 2), len(ordered))
+    g = np.tile(np.arange(2), 4 * len(ordered))
+    combos = _combo_margins(planks, faces, edge, face, f, g, slack)     # (C, 12)
+    is_joint = np.array([(e, (fi // 2, 1 - 2 * (fi % 2)), p, 1 - 2 * gi) in joint_combos
+                         for e, p, fi, gi in zip(edge.tolist(), face.tolist(), f.tolist(),
+                                                 g.tolist())], dtype=bool)
+    required = [combos[is_joint].ravel()]
+    forbidden = [combos[~is_joint]] if design.joints is None else []
+    grounded = {c.plank for c in original.contacts}
+    sunk = {v.where for v in original.violations if v.kind == "penetration"}
+    for index in sorted(changed_set):
+        plank = planks[index]
+        lowest = float(plank.corners[:, 2].min())
+        required.append(np.array([plank.length, plank.width]))
+        if plank.id not in grounded:
+            required.append(np.array([lowest - slack]))
+            continue
+        required.append(np.array([slack - lowest]))
+        if plank.id not in sunk:
+            required.append(np.array([lowest + slack]))
+    cutting = _cut_margins(planks, pairs, slack)                         # (P, 36)
+    width = max(combos.shape[1], cutting.shape[1])
+    groups = [np.pad(block, ((0, 0), (0, width - block.shape[1])), constant_values=1.0)
+              for block in forbidden + [cutting]]
+    return np.concatenate(required), np.vstack(groups)
+
+
+def _combo_margins(planks, faces: _Faces, edge: np.ndarray, face: np.ndarray, f: np.ndarray,
+                   g: np.ndarray, slack: float) -> np.ndarray:
+    """(C, 12) margins of narrow face f of plank edge resting on broad face g of plank face:
+    gap + slack, slack - gap, tilt (alignment - cos of the largest tilt), height of the edge
+    plank's centre above the face, and the overlap of the end face's projection with the
+    face along the face's two axes and the projection's two edge normals (both ends each)."""
+    normal = faces.broad_normal[face, g]                                   # (C, 3)
+    offset = faces.broad_offset[face, g]
+    corners = faces.narrow_corners[edge, f]                                # (C, 4, 3)
+    gap = (np.einsum("cka,ca->ck", corners, normal) - offset[:, None]).min(axis=1)
+    alignment = -np.einsum("ca,ca->c", faces.narrow_normal[edge, f], normal)
+    outside = np.einsum("ca,ca->c", faces.centers[edge], normal) - offset
+    rot_f = np.stack([p.rotation_matrix for p in planks])[face]           # (C, 3, 3)
+    half_f = np.stack([p.half_extents for p in planks])[face]
+    face_center = faces.centers[face] + half_f[:, 2:3] * normal
+    quad = np.einsum("cka,cab->ckb", corners - face_center[:, None, :], rot_f[:, :, :2])
+    sides = np.stack([quad[:, 1] - quad[:, 0], quad[:, 2] - quad[:, 1]], axis=1)  # (C, 2, 2)
+    normals = np.stack([-sides[:, :, 1], sides[:, :, 0]], axis=2)
+    length = np.linalg.norm(normals, axis=2, keepdims=True)
+    usable = length[:, :, 0] > _GEOMETRY_EPS * _GEOMETRY_EPS
+    normals = normals / np.where(length > 0.0, length, 1.0)
+    axes = np.concatenate([np.broadcast_to(np.eye(2), (len(edge), 2, 2)), normals], axis=1)
+    projected = np.einsum("ckb,cxb->cxk", quad, axes)                      # (C, 4 axes, 4)
+    radius = np.abs(axes) @ half_f[:, :2, None]                            # (C, 4, 1)
+    overlap = np.concatenate([radius[:, :, 0] - projected.min(axis=2),
+                              projected.max(axis=2) + radius[:, :, 0]], axis=1)
+    overlap[:, [2, 3, 6, 7]] = np.where(np.tile(usable, 2), overlap[:, [2, 3, 6, 7]], 1.0)
+    return np.column_stack([gap + slack, slack - gap, alignment - _COS_MAX_TILT, outside,
+                            overlap])
+
+
+def _cut_margins(planks, pairs: np.ndarray, slack: float) -> np.ndarray:
+    """(P, 36) margins whose all being > 0 means the pair's boxes overlap deeper than the
+    slack (``interpenetrations``): per separating axis both ends of the overlap of their
+    projections beyond the slack (1.0 for degenerate axes), then the bounding boxes'."""
+    if len(pairs) == 0:
+        return np.zeros((0, 36))
+    rot = np.stack([p.rotation_matrix for p in planks])
+    half = np.stack([p.half_extents for p in planks])
+    centre = np.stack([p.center_array for p in planks])
+    a, b = pairs[:, 0], pairs[:, 1]
+    ra, rb = np.transpose(rot[a], (0, 2, 1)), np.transpose(rot[b], (0, 2, 1))
+    crosses = np.cross(ra[:, :, None, :], rb[:, None, :, :]).reshape(-1, 9, 3)
+    axes = np.concatenate([ra, rb, crosses], axis=1)                            # (P, 15, 3)
+    norms = np.linalg.norm(axes, axis=2)
+    usable = norms > 1e-9
+    axes = axes / np.where(usable, norms, 1.0)[:, :, None]
+    radius = ((np.abs(np.einsum("pka,pia->pki", axes, ra)) * half[a][:, None, :]).sum(axis=2)
+              + (np.abs(np.einsum("pka,pia->pki", axes, rb)) * half[b][:, None, :]).sum(axis=2))
+    distance = np.einsum("pka,pa->pk", axes, centre[b] - centre[a])
+    sat = np.concatenate([radius - slack - distance, radius - slack + distance], axis=1)
+    sat = np.where(np.tile(usable, 2), sat, 1.0)
+    lo, hi = _bounding_boxes(planks)
+    boxes = np.concatenate([hi[b] - slack - lo[a], hi[a] - slack - lo[b]], axis=1)
+    return np.concatenate([sat, boxes], axis=1)

@@ -18,14 +18,14 @@ a DOF costs about as much as its few moved planks, not a new assembly of the des
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 
 from furncheck.design.model import Design, LoadCase
 from furncheck.dofs import Blocked, Dof, OutOfReach, Structure, apply_dof, design_size, structure
-from furncheck.geometry import Geometry, analyze, follow
+from furncheck.geometry import Contact, Geometry, Joint, analyze, follow_many
 from furncheck.statics import (
     anchor_springs,
     build_model,
@@ -117,39 +117,55 @@ class Linearization:
 
     def stepped(self, dof: Dof) -> _Stepped:
         """The design with ``dof`` stepped by +-h and the joints and contacts the step
-        moves, followed on both; kept in ``shared`` (pass one dict to the linearizations
-        of all load cases of a design)."""
-        if dof not in self.shared:
+        moves, followed on both (raises Blocked or OutOfReach)."""
+        self._step([dof])
+        outcome = self.shared[dof]
+        if isinstance(outcome, Exception):
+            raise outcome
+        return outcome
+
+    def _step(self, dofs: list[Dof]) -> None:
+        """Step every DOF not stepped yet and follow all their joints in one pass; the
+        results (or the Blocked / OutOfReach of a DOF) are kept in ``shared`` (pass one
+        dict to the linearizations of all load cases of a design)."""
+        pending, edits = [], []
+        geometry = self.geometry
+        for dof in dofs:
+            if dof in self.shared:
+                continue
             h = self.step(dof)
-            plus = apply_dof(self.design, self.frame, dof, h)
-            minus = apply_dof(self.design, self.frame, dof, -h)
+            try:
+                plus = apply_dof(self.design, self.frame, dof, h)
+                minus = apply_dof(self.design, self.frame, dof, -h)
+            except (Blocked, OutOfReach) as why:
+                self.shared[dof] = why
+                continue
             changed = tuple(i for i, (p, a, b) in enumerate(zip(self.design.planks, plus.planks,
                                                                    minus.planks))
                             if a != p or b != p)
             ids = {self.design.planks[i].id for i in changed}
-            geometry = self.geometry
             joints = tuple(j for j, joint in enumerate(geometry.joints)
                            if joint.edge in ids or joint.face in ids)
             contacts = tuple(k for k, contact in enumerate(geometry.contacts)
                              if contact.plank in ids)
-            moved = replace(geometry, joints=tuple(geometry.joints[j] for j in joints),
-                            contacts=tuple(geometry.contacts[k] for k in contacts))
+            pending.append((dof, h, changed, joints, contacts, plus, minus))
+            edits += [(plus, joints, contacts), (minus, joints, contacts)]
+        followed = follow_many(geometry, edits)
+        for k, (dof, h, changed, joints, contacts, plus, minus) in enumerate(pending):
             self.shared[dof] = _Stepped(h, changed, joints, contacts,
-                                        (plus, follow(moved, plus)),
-                                        (minus, follow(moved, minus)))
-        return self.shared[dof]
+                                        (plus, *followed[2 * k]), (minus, *followed[2 * k + 1]))
 
     def derivatives(self, dofs: list[Dof]) -> Sensitivity:
         """Eq. 6 for every DOF that can move."""
         moving, columns, map_rates, length_rates, blocked = [], [], [], [], {}
+        self._step(dofs)
         for dof in dofs:
-            try:
-                stepped = self.stepped(dof)
-            except Blocked as why:
-                blocked[dof.name] = why.reason
+            stepped = self.shared[dof]
+            if isinstance(stepped, Blocked):
+                blocked[dof.name] = stepped.reason
                 continue
-            except OutOfReach as why:      # cannot happen for the tiny difference step
-                blocked[dof.name] = str(why)
+            if isinstance(stepped, OutOfReach):     # not for the tiny difference step
+                blocked[dof.name] = str(stepped)
                 continue
             plus, minus = self._local(stepped, *stepped.plus), \
                 self._local(stepped, *stepped.minus)
@@ -176,8 +192,8 @@ class Linearization:
         return Sensitivity(self.case.name, tuple(moving), joint_rates, np.array(contact_rates),
                            blocked, np.array(length_rates))
 
-    def _local(self, stepped: _Stepped, design: Design,
-               followed: Geometry) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def _local(self, stepped: _Stepped, design: Design, joints: tuple[Joint, ...],
+               contacts: tuple[Contact, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The parts of b - A x that a step changes, evaluated on the stepped ``design``
         (x the linearized state; every other entry is the same on both sides of the
         difference and left zero), its contact maps and its joint lengths.
@@ -195,7 +211,7 @@ class Linearization:
         maps = np.zeros_like(model.contact_maps)
         lengths = np.zeros(len(model.joints))
         index = design.plank_index
-        for j, joint in zip(stepped.joints, followed.joints):
+        for j, joint in zip(stepped.joints, joints):
             row = self._joint_row.get(j)
             if row is None:
                 continue
@@ -208,7 +224,7 @@ class Linearization:
             residual[6 * b + 3:6 * b + 6] += _cross(r_b, wrench[row, :3])
             lengths[row] = joint.length
         springs = anchor_springs(self.holding)
-        for k, contact in zip(stepped.contacts, followed.contacts):
+        for k, contact in zip(stepped.contacts, contacts):
             row = self._contact_row.get(k)
             if row is None:
                 continue
@@ -250,14 +266,15 @@ def _cross(u, v) -> np.ndarray:
 @dataclass(frozen=True)
 class _Stepped:
     """A DOF stepped by +-h: the planks it changes (design indices), the geometry joints
-    and contacts on them, and (design, those joints and contacts followed) per side."""
+    and contacts on them, and (design, those joints followed, those contacts followed)
+    per side."""
 
     h: float
     changed: tuple[int, ...]
     joints: tuple[int, ...]
     contacts: tuple[int, ...]
-    plus: tuple[Design, Geometry]
-    minus: tuple[Design, Geometry]
+    plus: tuple[Design, tuple[Joint, ...], tuple[Contact, ...]]
+    minus: tuple[Design, tuple[Joint, ...], tuple[Contact, ...]]
 
 
 def sensitivity(design: Design, dofs: list[Dof], case_name: str | None = None) -> Sensitivity:

@@ -4,9 +4,10 @@
    statics' factorization).
 2. Directions of one to M DOFs, culled by the slab test (``candidates``, eq. 10-13).
 3. For each direction, nearest first, a line search with the full nonlinear checks: probes
-   from the predicted step outward until a valid design is met, then bisection of the
-   lower end (the smallest change that works) and of the upper end, searched up to REACH
-   times the lower end.
+   from the predicted step outward until a valid design is met, then the lower end (the
+   smallest change that works) and the upper end (searched up to REACH times the lower
+   end), each by regula falsi on the joints' margin, or bisection where that margin is
+   not continuous (geometry, toppling, sliding).
 4. Ranking by the valid interval and the size of the change; each suggestion's design is
    the middle of its interval, written as a design file and validated from that text --
    a representative that does not validate is dropped, never listed.
@@ -16,6 +17,8 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field, replace
+
+import numpy as np
 
 from furncheck.check import check_design
 from furncheck.design.load import parse_design
@@ -47,6 +50,9 @@ not by half its length although that would be valid too)."""
 
 UPPER_RESOLUTION = 0.05
 """The upper end is bisected to this fraction of the lower end."""
+
+INTERPOLATION_GUARD = 0.1
+"""Regula falsi probes stay this fraction of the bracket away from its ends."""
 
 MIN_RESOLUTION = 1e-4
 """No end is bisected finer than this (scaled units)."""
@@ -169,40 +175,56 @@ def _line_search(editor: Editor, dofs: tuple[Dof, ...],
     predicted step, or None if no probe is valid."""
     direction = candidate.direction
 
-    def valid(step: float) -> bool:
-        return editor.valid_at(dofs, direction, step)
+    def margin(step: float) -> float:
+        return editor.margin_at(dofs, direction, step)
 
     probes = sorted({min(candidate.enter * factor, MAX_STEP) for factor in PROBES} | {MAX_STEP})
-    below, first = 0.0, None
+    below, first = (0.0, -np.inf), None
     for step in probes:
-        if valid(step):
-            first = step
+        value = margin(step)
+        if value >= 0.0:
+            first = (step, value)
             break
-        below = step
+        below = (step, value)
     if first is None:
         return None
-    if below == 0.0 and candidate.enter * PROBE_BELOW < first:
+    if below[0] == 0.0 and candidate.enter * PROBE_BELOW < first[0]:
         guess = candidate.enter * PROBE_BELOW
-        if valid(guess):
-            first = guess
+        value = margin(guess)
+        if value >= 0.0:
+            first = (guess, value)
         else:
-            below = guess
-    low = _bisect(valid, first, below, max(LOWER_RESOLUTION * first, MIN_RESOLUTION))
+            below = (guess, value)
+    low = _boundary(margin, first, below, max(LOWER_RESOLUTION * first[0], MIN_RESOLUTION))
     reach = min(REACH * low, MAX_STEP)
-    if reach <= first or valid(reach):
-        return low, max(reach, first)
-    return low, _bisect(valid, first, reach, max(UPPER_RESOLUTION * low, MIN_RESOLUTION))
+    if reach <= first[0]:
+        return low, first[0]
+    end = margin(reach)
+    if end >= 0.0:
+        return low, reach
+    return low, _boundary(margin, first, (reach, end),
+                          max(UPPER_RESOLUTION * low, MIN_RESOLUTION))
 
 
-def _bisect(valid, good: float, bad: float, resolution: float) -> float:
-    """Close a bracket of a valid step ``good`` and an invalid ``bad``; the valid end."""
-    while abs(bad - good) > resolution:
-        middle = 0.5 * (good + bad)
-        if valid(middle):
-            good = middle
+def _boundary(margin, good: tuple[float, float], bad: tuple[float, float],
+              resolution: float) -> float:
+    """Close a bracket of a valid (step, margin) ``good`` and an invalid ``bad`` to
+    ``resolution``; returns the valid end.  Where both margins are finite the next probe
+    is where the straight line through them crosses zero (regula falsi), kept within the
+    middle 80 % of the bracket so that it always shrinks; else the middle."""
+    while abs(bad[0] - good[0]) > resolution:
+        (g, mg), (b, mb) = good, bad
+        if np.isfinite(mb) and mg - mb > 0.0:
+            fraction = min(max(mg / (mg - mb), INTERPOLATION_GUARD), 1.0 - INTERPOLATION_GUARD)
         else:
-            bad = middle
-    return good
+            fraction = 0.5
+        step = g + fraction * (b - g)
+        value = margin(step)
+        if value >= 0.0:
+            good = (step, value)
+        else:
+            bad = (step, value)
+    return good[0]
 
 
 def _representative(editor: Editor, margins: Margins, found: _Found, rank: int,

@@ -16,7 +16,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from furncheck.check import is_valid
+from furncheck.check import check_design, is_valid
 from furncheck.design.model import Design
 from furncheck.dofs import (
     Blocked,
@@ -29,6 +29,10 @@ from furncheck.dofs import (
     dof_value,
 )
 from furncheck.geometry import Geometry, analyze, interpenetrations
+
+MARGIN_EPS = 1e-12
+"""The margin of an invalid design is at most -MARGIN_EPS (a joint within the capacity's
+round-off slack of failing still counts as failing when the verdict says so)."""
 
 LOCK_EPS = 1e-9
 """A locked DOF counts as changed when it moves by more than this (its unit)."""
@@ -109,14 +113,25 @@ class Editor:
             return None
         return geometry
 
-    def valid_at(self, dofs: tuple[Dof, ...], direction: np.ndarray, step: float) -> bool:
-        """``accepts`` of the design ``step`` along ``direction``; False where the step
-        cannot be made."""
+    def margin_at(self, dofs: tuple[Dof, ...], direction: np.ndarray, step: float) -> float:
+        """How valid the design ``step`` along ``direction`` is: >= 0 exactly when it is
+        valid and keeps the design's joints (``keeps``).  Where only joints fail (or none)
+        it is the smallest 1 - utilization over all joints and cases, continuous in the
+        step, so that a line search can interpolate; every other failure (a step that
+        cannot be made, a geometric problem, a case that topples or slides) is -inf."""
         try:
             edited = self.moved(dofs, self.changes(dofs, direction, step))
         except (Blocked, OutOfReach):
-            return False
-        return self.accepts(edited)
+            return -math.inf
+        geometry = self.keeps(edited)
+        if geometry is None:
+            return -math.inf
+        report = check_design(edited, geometry)
+        if any(v.kind != "non-durable" for v in report.violations):
+            return -math.inf
+        worst = min((1.0 - joint.utilization for case in report.cases for joint in case.joints),
+                    default=1.0)
+        return max(worst, 0.0) if report.valid else min(worst, -MARGIN_EPS)
 
 
 def _joint_set(geometry: Geometry) -> set[tuple]:
