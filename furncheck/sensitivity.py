@@ -33,7 +33,7 @@ from furncheck.statics import (
     solve_case,
     solve_system,
 )
-from furncheck.statics.model import _point_map
+from furncheck.statics.model import _point_maps
 from furncheck.tolerances import GRAVITY
 
 ASSEMBLY_STEP = 1e-4
@@ -157,7 +157,7 @@ class Linearization:
 
     def derivatives(self, dofs: list[Dof]) -> Sensitivity:
         """Eq. 6 for every DOF that can move."""
-        moving, columns, map_rates, length_rates, blocked = [], [], [], [], {}
+        moving, sides, blocked = [], [], {}
         self._step(dofs)
         for dof in dofs:
             stepped = self.shared[dof]
@@ -167,36 +167,33 @@ class Linearization:
             if isinstance(stepped, OutOfReach):     # not for the tiny difference step
                 blocked[dof.name] = str(stepped)
                 continue
-            plus, minus = self._local(stepped, *stepped.plus), \
-                self._local(stepped, *stepped.minus)
-            scale = 1.0 / (2.0 * stepped.h)
-            columns.append((plus[0] - minus[0]) * scale)
-            map_rates.append((plus[1] - minus[1]) * scale)
-            length_rates.append((plus[2] - minus[2]) * scale)
+            weight = 1.0 / (2.0 * stepped.h)
+            sides += [(len(moving), weight, stepped, *stepped.plus),
+                      (len(moving), -weight, stepped, *stepped.minus)]
             moving.append(dof)
         model = self.model
         n_joints, n_contacts = model.G.shape[0] // 6, len(model.contacts)
         if not moving:
             return Sensitivity(self.case.name, (), np.zeros((0, n_joints, 6)),
                                np.zeros((0, n_contacts, 3)), blocked, np.zeros((0, n_joints)))
-        rates = solve_system(model, self.holding, np.column_stack(columns))   # (n, n_dofs)
+        columns, map_rates, length_rates = self._local(sides, len(moving))
+        rates = solve_system(model, self.holding, columns)                   # (n, n_dofs)
         n = model.n_dof
         joint_rates = rates[n:].T.reshape(len(moving), n_joints, 6)
         q = self.state[:n].reshape(-1, 6)[model.contact_plank]               # (nK, 6)
-        springs = anchor_springs(self.holding)
-        contact_rates = []
-        for column, map_rate in enumerate(map_rates):
-            dq = rates[:n, column].reshape(-1, 6)[model.contact_plank]
-            dw = ((map_rate @ q[:, :, None]) + (model.contact_maps @ dq[:, :, None]))[:, :, 0]
-            contact_rates.append(-(springs @ dw[:, :, None])[:, :, 0])
-        return Sensitivity(self.case.name, tuple(moving), joint_rates, np.array(contact_rates),
-                           blocked, np.array(length_rates))
+        dq = rates[:n].T.reshape(len(moving), -1, 6)[:, model.contact_plank]  # (D, nK, 6)
+        dw = (np.einsum("dkab,kb->dka", map_rates, q)
+              + np.einsum("kab,dkb->dka", model.contact_maps, dq))
+        contact_rates = -np.einsum("kab,dkb->dka", anchor_springs(self.holding), dw)
+        return Sensitivity(self.case.name, tuple(moving), joint_rates, contact_rates,
+                           blocked, length_rates)
 
-    def _local(self, stepped: _Stepped, design: Design, joints: tuple[Joint, ...],
-               contacts: tuple[Contact, ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The parts of b - A x that a step changes, evaluated on the stepped ``design``
-        (x the linearized state; every other entry is the same on both sides of the
-        difference and left zero), its contact maps and its joint lengths.
+    def _local(self, sides: list, n_dofs: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The central differences of the parts of b - A x that the steps change (x the
+        linearized state; every other entry is the same on both sides of a difference),
+        of the contact maps and of the joint lengths: (N, D), (D, nK, 3, 6), (D, nJ).
+        ``sides``: per stepped design (DOF column, +-1 / 2h, stepped, design, followed
+        joints, followed contacts).
 
         With r = joint point - plank centre, a joint enters A x through its deviation
         rows (theta_a x r_a - theta_b x r_b) and its planks' moment rows (+-r x h^t); a
@@ -207,41 +204,66 @@ class Linearization:
         n = model.n_dof
         q = self.state[:n].reshape(-1, 6)
         wrench = self.state[n:].reshape(-1, 6)
-        residual = np.zeros(len(self.state))
-        maps = np.zeros_like(model.contact_maps)
-        lengths = np.zeros(len(model.joints))
-        index = design.plank_index
-        for j, joint in zip(stepped.joints, joints):
-            row = self._joint_row.get(j)
-            if row is None:
-                continue
-            a, b = (self._local_plank[index[plank]] for plank in joint.planks)
-            r_a = joint.point - design.planks[model.planks[a]].center_array
-            r_b = joint.point - design.planks[model.planks[b]].center_array
-            residual[n + 6 * row:n + 6 * row + 3] -= (_cross(q[a, 3:], r_a)
-                                                      - _cross(q[b, 3:], r_b))
-            residual[6 * a + 3:6 * a + 6] -= _cross(r_a, wrench[row, :3])
-            residual[6 * b + 3:6 * b + 6] += _cross(r_b, wrench[row, :3])
-            lengths[row] = joint.length
-        springs = anchor_springs(self.holding)
-        for k, contact in zip(stepped.contacts, contacts):
-            row = self._contact_row.get(k)
-            if row is None:
-                continue
-            a = model.contact_plank[row]
-            maps[row] = _point_map(contact.point - design.planks[model.planks[a]].center_array)
-            residual[6 * a:6 * a + 6] -= maps[row].T @ (springs[row] @ (maps[row] @ q[a]))
-        case = next(c for c in design.load_cases if c.name == self.case.name)
-        for i in stepped.changed:
-            a = self._local_plank.get(i)
-            if a is None:
-                continue
-            plank = design.planks[i]
-            residual[6 * a + 2] -= design.plank_mass(plank) * GRAVITY
-            for load in case.loads:
-                if load.plank == plank.id and load.point is not None:
-                    residual[6 * a + 3:6 * a + 6] += _cross(
-                        np.asarray(load.point) - plank.center_array, load.force)
+        residual = np.zeros((len(self.state), n_dofs))
+        maps = np.zeros((n_dofs, *model.contact_maps.shape))
+        lengths = np.zeros((n_dofs, len(model.joints)))
+        joint_rows, contact_rows, plank_rows = [], [], []
+        for column, weight, stepped, design, joints, contacts in sides:
+            index = design.plank_index
+            for j, joint in zip(stepped.joints, joints):
+                row = self._joint_row.get(j)
+                if row is None:
+                    continue
+                a, b = (self._local_plank[index[plank]] for plank in joint.planks)
+                joint_rows.append((column, weight, row, a, b, *joint.point,
+                                   *design.planks[model.planks[a]].center_array,
+                                   *design.planks[model.planks[b]].center_array, joint.length))
+            for k, contact in zip(stepped.contacts, contacts):
+                row = self._contact_row.get(k)
+                if row is not None:
+                    a = model.contact_plank[row]
+                    contact_rows.append((column, weight, row, a, *(
+                        contact.point - design.planks[model.planks[a]].center_array)))
+            case = next(c for c in design.load_cases if c.name == self.case.name)
+            for i in stepped.changed:
+                a = self._local_plank.get(i)
+                if a is None:
+                    continue
+                plank = design.planks[i]
+                moment = np.zeros(3)
+                for load in case.loads:
+                    if load.plank == plank.id and load.point is not None:
+                        moment += _cross(np.asarray(load.point) - plank.center_array,
+                                         load.force)
+                plank_rows.append((column, weight, a,
+                                   -design.plank_mass(plank) * GRAVITY, *moment))
+        if joint_rows:
+            table = np.array(joint_rows)
+            column, weight = table[:, 0].astype(int), table[:, 1:2]
+            row, a, b = (table[:, k].astype(int) for k in (2, 3, 4))
+            point, centre_a, centre_b = table[:, 5:8], table[:, 8:11], table[:, 11:14]
+            r_a, r_b = point - centre_a, point - centre_b
+            force = wrench[row, :3]
+            deviation = -(np.cross(q[a, 3:], r_a) - np.cross(q[b, 3:], r_b)) * weight
+            _add(residual, n + 6 * row, column, deviation)
+            _add(residual, 6 * a + 3, column, -np.cross(r_a, force) * weight)
+            _add(residual, 6 * b + 3, column, np.cross(r_b, force) * weight)
+            np.add.at(lengths, (column, row), table[:, 14] * weight[:, 0])
+        if contact_rows:
+            table = np.array(contact_rows)
+            column, weight = table[:, 0].astype(int), table[:, 1]
+            row, a = table[:, 2].astype(int), table[:, 3].astype(int)
+            point_maps = _point_maps(table[:, 4:7])                           # (E, 3, 6)
+            springs = anchor_springs(self.holding)[row]
+            force = -np.einsum("eba,ebc,ecd,ed->ea", point_maps, springs, point_maps, q[a])
+            _add(residual, 6 * a, column, force * weight[:, None])
+            np.add.at(maps, (column, row), point_maps * weight[:, None, None])
+        if plank_rows:
+            table = np.array(plank_rows)
+            column, weight = table[:, 0].astype(int), table[:, 1]
+            a = table[:, 2].astype(int)
+            np.add.at(residual, (6 * a + 2, column), table[:, 3] * weight)
+            _add(residual, 6 * a + 3, column, table[:, 4:7] * weight[:, None])
         return residual, maps, lengths
 
     @cached_property
@@ -255,6 +277,14 @@ class Linearization:
     @cached_property
     def _contact_row(self) -> dict[int, int]:
         return {k: row for row, k in enumerate(self.model.contacts)}
+
+
+def _add(matrix: np.ndarray, first_row: np.ndarray, column: np.ndarray,
+         values: np.ndarray) -> None:
+    """matrix[first_row + i, column] += values[:, i] for each entry (repeats add up)."""
+    width = values.shape[1]
+    rows = first_row[:, None] + np.arange(width)[None, :]
+    np.add.at(matrix, (rows, np.broadcast_to(column[:, None], rows.shape)), values)
 
 
 def _cross(u, v) -> np.ndarray:

@@ -187,7 +187,7 @@ def test_plot_draws_both_force_spaces(tipping_change) -> None:
     assert [c.stability for c in after.cases] == ["stable"]
     figure = force_space_figure(before, after)
     durability, stability = figure.axes[:2]
-    assert "bench-tips" in durability.get_title() and "'default'" in durability.get_title()
+    assert "bench-tips" in figure.get_suptitle() and "'default'" in durability.get_title()
     assert stability.get_title().endswith("stability (lift-off -> stable)")
 
     # stability: one bar per contact before and after, heights = ground normal forces

@@ -67,6 +67,9 @@ def test_suggestions_are_consistent(results, name):
     design = load_design(str(CATALOG / name))
     for rank, suggestion in enumerate(result.suggestions, start=1):
         assert suggestion.rank == rank
+        if suggestion.kind == "discrete":
+            assert len(suggestion.design.planks) == len(design.planks) + 1
+            continue
         assert math.isclose(np.linalg.norm(suggestion.direction), 1.0, rel_tol=1e-9)
         low, high = suggestion.range
         assert 0.0 < low <= high
@@ -103,6 +106,23 @@ def test_overloaded_cantilever_is_told_to_shorten_the_shelf(results):
     scale = suggestion.changes[0] / suggestion.step
     assert scale < 0
     assert math.isclose(-suggestion.range[0] * scale, needed, rel_tol=0.03)
+
+
+def test_overloaded_cantilever_is_offered_a_support_plank(results):
+    """Paper 6.5: shelf and base are parallel, the post joins both and its joint with the
+    shelf fails: a support across the gap between the shelf's underside (z = 594 mm) and
+    the base's top (z = 12 mm), 582 mm long, at the shelf's far end (x = 256 - 6 mm),
+    as wide as the shelf (300 mm), after the continuous suggestions."""
+    result = results["shelf-cantilever-overloaded.yaml"]
+    discrete = [s for s in result.suggestions if s.kind == "discrete"]
+    assert discrete and discrete[0].rank > max(s.rank for s in result.suggestions
+                                               if s.kind == "continuous")
+    (support,) = discrete[0].adds
+    assert sorted(discrete[0].between) == ["base", "shelf"]
+    assert support.length == pytest.approx(0.582) and support.width == pytest.approx(0.3)
+    assert support.center == pytest.approx((0.25, 0.0, 0.303))
+    joints = {frozenset(j.planks) for case in discrete[0].report.cases for j in case.joints}
+    assert {frozenset(("shelf", support.id)), frozenset(("base", support.id))} <= joints
 
 
 def test_tipping_bench_is_given_a_wider_stance(results):
@@ -200,6 +220,20 @@ def test_cli_json_follows_the_contract_and_is_deterministic(tmp_path):
                               "step", "changes", "advice"]
     assert entry["kind"] == "continuous" and entry["restores"] == ["stability"]
     assert entry["design_file"] is None and entry["meshes"] == []
+
+
+def test_cli_json_of_a_discrete_suggestion():
+    result = run("suggest", str(CATALOG / "shelf-cantilever-overloaded.yaml"), "--format",
+                 "json")
+    entries = json.loads(result.output)["suggestions"]
+    discrete = [e for e in entries if e["kind"] == "discrete"]
+    assert discrete
+    entry = discrete[0]
+    assert list(entry) == ["rank", "kind", "restores", "adds", "between", "advice",
+                           "design_file", "meshes", "plots"]
+    assert entry["adds"][0] == {"id": "support-1", "size": [582.0, 300.0],
+                                "center": [250.0, 0.0, 303.0], "rotation": [0.0, 90.0, 0.0]}
+    assert entry["advice"].startswith("Add support-1 (582 x 300 mm) between shelf and base")
 
 
 def test_cli_out_writes_files_that_validate(tmp_path):

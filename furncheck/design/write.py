@@ -39,7 +39,7 @@ def design_to_document(design: Design) -> dict[str, Any]:
             "nail_shear": design.material.nail_shear,
             "friction": design.material.friction,
         },
-        "planks": [_plank_entry(plank, design) for plank in design.planks],
+        "planks": [plank_entry(plank, design) for plank in design.planks],
     }
     if design.joints is not None:
         doc["joints"] = [_joint_entry(joint) for joint in design.joints]
@@ -82,7 +82,9 @@ def _vector_in_unit(metres, scale: float) -> list[float]:
     return [_in_unit(float(v), scale) for v in metres]
 
 
-def _plank_entry(plank: Plank, design: Design) -> dict[str, Any]:
+def plank_entry(plank: Plank, design: Design) -> dict[str, Any]:
+    """A plank as the design file writes it (file units; thickness only when it is not
+    the material's)."""
     scale = design.unit_scale
     entry: dict[str, Any] = {
         "id": plank.id,

@@ -94,11 +94,9 @@ def force_space_figure(before: DesignReport, after: DesignReport) -> Figure:
     rows = figure.subplots(len(names), 2, squeeze=False)
     for (durability, stability), name in zip(rows, names):
         old, new = old_cases.get(name), new_cases.get(name)
-        durability.set_title(f"{design_name}, case '{name}': durability "
-                             f"({_durability_change(old, new)})")
+        durability.set_title(f"case '{name}': durability ({_durability_change(old, new)})")
         _draw_durability(durability, old, new)
-        stability.set_title(f"{design_name}, case '{name}': stability "
-                            f"({_stability_change(old, new)})")
+        stability.set_title(f"case '{name}': stability ({_stability_change(old, new)})")
         _draw_stability(stability, old, new)
     figure.suptitle(f"{design_name}: force space before (grey) and after the change")
     figure.legend(handles=_legend_handles(), loc="outside lower center", ncols=7)

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from furncheck.design.model import Design
+from furncheck.design.write import plank_entry
 from furncheck.export.suggestions import Written
 from furncheck.report.common import plural
 from furncheck.report.numbers import format_number, json_ready
@@ -31,7 +32,11 @@ degrees of the move."""
 
 
 def advice(suggestion: Suggestion, original: Design) -> str:
-    """'Move shelf 42 mm toward post and tilt it 3 degrees about y (valid for 18-61 mm).'"""
+    """'Move shelf 42 mm toward post and tilt it 3 degrees about y (valid for 18-61 mm).'
+    or 'Add support-1 (582 x 300 mm) between shelf and base, centred at (250, 0, 303) mm,
+    nailed to both.'"""
+    if suggestion.kind == "discrete":
+        return _support_advice(suggestion, original)
     phrases = []
     for k, (name, change, unit) in enumerate(zip(suggestion.dofs, suggestion.changes,
                                                  suggestion.units)):
@@ -47,6 +52,17 @@ def advice(suggestion: Suggestion, original: Design) -> str:
     valid_for = (f"valid for {_amount(low * lead)}-{_amount(high * lead)} {_unit(unit)}"
                  + (" of the first change" if len(suggestion.dofs) > 1 else ""))
     return f"{sentence[0].upper()}{sentence[1:]} ({valid_for})."
+
+
+def _support_advice(suggestion: Suggestion, original: Design) -> str:
+    scale, unit = original.unit_scale, original.units
+    parts = []
+    for plank in suggestion.adds:
+        size = " x ".join(_amount(v / scale) for v in (plank.length, plank.width))
+        centre = ", ".join(_amount(v / scale) for v in plank.center)
+        parts.append(f"{plank.id} ({size} {unit}) between {' and '.join(suggestion.between)}, "
+                     f"centred at ({centre}) {unit}")
+    return f"Add {'; '.join(parts)}, nailed to both."
 
 
 def _phrase(design: Design, plank: str, subject: str, kind: str, change: float,
@@ -132,6 +148,18 @@ def render_json(result: SuggestionReport, original: Design,
 
 def _suggestion_dict(suggestion: Suggestion, original: Design,
                      files: Written) -> dict[str, Any]:
+    if suggestion.kind == "discrete":
+        return {
+            "rank": suggestion.rank,
+            "kind": suggestion.kind,
+            "restores": list(suggestion.restores),
+            "adds": [plank_entry(plank, original) for plank in suggestion.adds],
+            "between": list(suggestion.between),
+            "advice": advice(suggestion, original),
+            "design_file": files.design_file,
+            "meshes": list(files.meshes),
+            "plots": list(files.plots),
+        }
     return {
         "rank": suggestion.rank,
         "kind": suggestion.kind,

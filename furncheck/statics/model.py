@@ -96,27 +96,26 @@ def build_model(design: Design, geometry: Geometry) -> StaticsModel:
     contacts = [k for k, c in enumerate(geometry.contacts) if c.plank in plank_of]
 
     G = _joint_map(design, geometry, joints, local)
-    compliance = np.concatenate([
-        np.r_[np.full(3, tol.JOINT_COMPLIANCE_T),
-              np.full(3, tol.joint_compliance_r(geometry.joints[j].edge_thickness))]
-        for j in joints]) if joints else np.zeros(0)
+    thickness = np.array([geometry.joints[j].edge_thickness for j in joints], dtype=float)
+    compliance = np.empty((len(joints), 6))
+    compliance[:, :3] = tol.JOINT_COMPLIANCE_T
+    compliance[:, 3:] = tol.joint_compliance_r(thickness)[:, None]
 
-    maps, owner, points = [], [], []
-    for k in contacts:
-        contact = geometry.contacts[k]
-        plank_index = design.plank_index[contact.plank]
-        maps.append(_point_map(contact.point - design.planks[plank_index].center_array))
-        owner.append(local[plank_index])
-        points.append(contact.point)
+    plank_of_contact = [design.plank_index[geometry.contacts[k].plank] for k in contacts]
+    owner = [local[i] for i in plank_of_contact]
+    points = np.array([geometry.contacts[k].point for k in contacts],
+                      dtype=float).reshape(-1, 3)
+    centres = np.array([design.planks[i].center_array for i in plank_of_contact],
+                       dtype=float).reshape(-1, 3)
     components = tuple(tuple(local[i] for i in comp)
                        for comp, g in zip(geometry.components, geometry.grounded) if g)
     component_of = {p: c for c, comp in enumerate(components) for p in comp}
     return StaticsModel(
         design=design, geometry=geometry, planks=tuple(grounded_planks), joints=tuple(joints),
-        contacts=tuple(contacts), G=G, compliance=compliance,
-        contact_maps=np.array(maps).reshape(-1, 3, 6),
+        contacts=tuple(contacts), G=G, compliance=compliance.ravel(),
+        contact_maps=_point_maps(points - centres),
         contact_plank=np.array(owner, dtype=int),
-        contact_points=np.array(points).reshape(-1, 3),
+        contact_points=points,
         contact_component=np.array([component_of[p] for p in owner], dtype=int),
         components=components, friction=design.material.friction)
 
@@ -190,3 +189,12 @@ def _skew_many(v: np.ndarray) -> np.ndarray:
 def _point_map(r: np.ndarray) -> np.ndarray:
     """(3, 6): displacement of a point at offset r from the centre, [I, -[r]x] @ (u, theta)."""
     return np.hstack([np.eye(3), -_skew(r)])
+
+
+def _point_maps(r: np.ndarray) -> np.ndarray:
+    """(n, 3, 6): displacement of points at offsets r (n, 3) from their planks' centres,
+    [I, -[r]x] @ (u, theta)."""
+    maps = np.zeros((len(r), 3, 6))
+    maps[:, :, :3] = np.eye(3)
+    maps[:, :, 3:] = -_skew_many(r)
+    return maps

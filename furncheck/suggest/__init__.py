@@ -1,5 +1,11 @@
-"""Suggestions that make an invalid design valid (paper sections 6.4 and 6.5)."""
+"""Suggestions that make an invalid design valid (paper sections 6.4 and 6.5).
 
-from furncheck.suggest.continuous import Suggestion, SuggestionReport, suggest_design
+    margins, candidates, continuous, edits   continuous suggestions (Algorithm 1)
+    discrete                                 an added support plank
+    ranking                                  ``suggest_design``: both, ranked and validated
+"""
+
+from furncheck.suggest.ranking import suggest_design
+from furncheck.suggest.suggestion import Suggestion, SuggestionReport
 
 __all__ = ["Suggestion", "SuggestionReport", "suggest_design"]

@@ -1,4 +1,4 @@
-"""Continuous suggestions (paper section 6.4, Algorithm 1): ``suggest_design``.
+"""Continuous suggestions (paper section 6.4, Algorithm 1): ``ContinuousSearch``.
 
 1. The margins of the invalid design and their rates (``margins``, eq. 6 reusing the
    statics' factorization).
@@ -9,35 +9,38 @@
    end), each by regula falsi on the joints' margin, or bisection where that margin is
    not continuous (geometry, toppling, sliding).
 4. Ranking by the valid interval and the size of the change; each suggestion's design is
-   the middle of its interval, written as a design file and validated from that text --
-   a representative that does not validate is dropped, never listed.
+   the middle of its interval (``representative``; ``ranking`` writes and validates it).
 """
 
 from __future__ import annotations
 
-import time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
-from furncheck.check import check_design
-from furncheck.design.load import parse_design
 from furncheck.design.model import Design
-from furncheck.design.write import design_text
 from furncheck.dofs import Blocked, Dof, OutOfReach, all_dofs, structure
-from furncheck.geometry import Geometry, analyze
+from furncheck.geometry import Geometry
 from furncheck.result import DesignReport
 from furncheck.suggest.candidates import MAX_STEP, Candidate, candidates
-from furncheck.suggest.edits import Editor
+from furncheck.suggest.edits import Editor, joint_margin
 from furncheck.suggest.margins import Margins
 
-PROBES = (1.05, 1.4, 2.0, 3.0)
-"""Steps tried first, as multiples of the predicted step (the linear prediction is rarely
-far off; when it is, MAX_STEP is tried last)."""
+FIRST_PROBE = 1.05
+"""The first step tried, as a multiple of the predicted step (the linear prediction is
+rarely far off)."""
+
+MAX_PROBES = 5
+"""Steps tried before a direction is given up."""
+
+GROWTH = (1.2, 1.5, 3.0)
+"""Each further probe is at least the first, at most the last factor times the previous
+one: the secant's crossing of the joints' margin where it is continuous, else the
+middle factor."""
 
 PROBE_BELOW = 0.85
-"""When the first probe is valid, this multiple of the prediction is tried to bracket the
-lower end tightly."""
+"""When the first probe is valid and nothing below it is known, this multiple of the
+prediction is tried to bracket the lower end tightly."""
 
 LOWER_RESOLUTION = 0.02
 """The lower end is bisected to this fraction of the first valid step."""
@@ -62,54 +65,11 @@ LINE_SEARCHES_PER_SUGGESTION = 3
 
 
 @dataclass(frozen=True)
-class Suggestion:
-    """One ranked continuous suggestion.
+class Found:
+    """A direction with its valid interval of steps, ready to become a suggestion."""
 
-    dofs      : DOF names; ``direction`` (unit, scaled units) over them
-    range     : (low, high) valid steps along the direction, scaled units
-    step      : the representative step (middle of ``range``)
-    changes   : each DOF's change at ``step``, its own unit (file length unit or degrees)
-    restores  : the kinds of violation it removes ('durability', 'stability', 'geometry')
-    design    : the representative design; ``text`` its YAML file, validated;
-                ``report`` its validation
-    """
-
-    rank: int
-    kind: str
-    restores: tuple[str, ...]
-    dofs: tuple[str, ...]
-    direction: tuple[float, ...]
-    range: tuple[float, float]
-    step: float
-    changes: tuple[float, ...]
-    units: tuple[str, ...]
-    design: Design
-    text: str
-    report: DesignReport
-
-
-@dataclass(frozen=True)
-class SuggestionReport:
-    """Everything ``furncheck suggest`` says about one design."""
-
-    design: str
-    name: str
-    report: DesignReport
-    suggestions: tuple[Suggestion, ...]
-    searched: int = 0          # directions line-searched
-    checks: int = 0            # full validity checks made
-    seconds: dict[str, float] = field(default_factory=dict, compare=False)
-    """Wall time of the phases ('candidates': margins, sensitivities and directions;
-    'line search': line searches and representatives), for benchmarks; never reported."""
-
-    @property
-    def valid(self) -> bool:
-        return bool(self.report.valid)
-
-
-@dataclass(frozen=True)
-class _Found:
-    candidate: Candidate
+    dofs: tuple[Dof, ...]
+    direction: np.ndarray
     low: float
     high: float
 
@@ -119,40 +79,48 @@ class _Found:
         return (self.high - self.low) - self.low
 
 
-def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
-                   locked: tuple[Dof, ...] = ()) -> SuggestionReport:
-    """Ranked continuous suggestions for ``design`` (none when it is valid already)."""
-    geometry = analyze(design)
-    report = check_design(design, geometry)
-    if report.valid or max_suggestions <= 0:
-        return SuggestionReport(design.source, design.name, report, ())
-    start = time.perf_counter()
-    editor = Editor(design, geometry, structure(design, _standing(geometry)), locked)
-    margins = Margins(design, geometry, report, editor,
-                      [dof for dof in all_dofs(design) if dof not in locked])
-    directions = candidates(margins, max_dofs)
-    searching = time.perf_counter()
-    found: list[_Found] = []
-    budget = LINE_SEARCHES_PER_SUGGESTION * max_suggestions
-    searched = 0
-    for candidate in directions:
-        if len(found) >= max_suggestions or searched >= budget:
-            break
-        searched += 1
-        interval = _line_search(editor, _dofs(margins, candidate), candidate)
-        if interval is not None:
-            found.append(_Found(candidate, *interval))
-    found.sort(key=lambda f: (-f.score, len(f.candidate.dofs), f.candidate.dofs))
-    restores = tuple(sorted({m.restores for m in margins.violated}))
-    suggestions: list[Suggestion] = []
-    for item in found:
-        suggestion = _representative(editor, margins, item, len(suggestions) + 1, restores)
-        if suggestion is not None:
-            suggestions.append(suggestion)
-    end = time.perf_counter()
-    return SuggestionReport(design.source, design.name, report, tuple(suggestions), searched,
-                            editor.checks, {"candidates": searching - start,
-                                            "line search": end - searching})
+class ContinuousSearch:
+    """Algorithm 1 for one invalid design: ``run`` gives the directions found, best
+    first; ``representative`` turns one into its design."""
+
+    def __init__(self, design: Design, geometry: Geometry, report: DesignReport,
+                 locked: tuple[Dof, ...] = ()):
+        self.report = report
+        self.editor = Editor(design, geometry, structure(design, _standing(geometry)), locked)
+        self.margins = Margins(design, geometry, report, self.editor,
+                               [dof for dof in all_dofs(design) if dof not in locked])
+        self.searched = 0
+
+    @property
+    def restores(self) -> tuple[str, ...]:
+        return tuple(sorted({m.restores for m in self.margins.violated}))
+
+    def run(self, max_dofs: int, wanted: int) -> list[Found]:
+        """Line-search directions, nearest first, until ``wanted`` have a valid interval
+        (at most LINE_SEARCHES_PER_SUGGESTION x wanted searches); ranked by score."""
+        margins = self.margins
+        own_margin = joint_margin(self.report)
+        found: list[Found] = []
+        for candidate in candidates(margins, max_dofs):
+            if len(found) >= wanted or self.searched >= LINE_SEARCHES_PER_SUGGESTION * wanted:
+                break
+            self.searched += 1
+            dofs = tuple(margins.dofs[i] for i in candidate.dofs)
+            interval = _line_search(self.editor, dofs, candidate, own_margin)
+            if interval is not None:
+                found.append(Found(dofs, candidate.direction, *interval))
+        found.sort(key=lambda f: (-f.score, len(f.dofs), [d.name for d in f.dofs]))
+        return found
+
+    def representative(self, found: Found) -> tuple[Design, float, tuple[float, ...]] | None:
+        """The design at the middle of the interval, its step and DOF changes (None if
+        that step cannot be made)."""
+        step = 0.5 * (found.low + found.high)
+        changes = self.editor.changes(found.dofs, found.direction, step)
+        try:
+            return self.editor.moved(found.dofs, changes), step, changes
+        except (Blocked, OutOfReach):
+            return None
 
 
 def _standing(geometry: Geometry) -> Geometry:
@@ -165,36 +133,24 @@ def _standing(geometry: Geometry) -> Geometry:
                                             if c.plank not in sunk))
 
 
-def _dofs(margins: Margins, candidate: Candidate) -> tuple[Dof, ...]:
-    return tuple(margins.dofs[i] for i in candidate.dofs)
-
-
-def _line_search(editor: Editor, dofs: tuple[Dof, ...],
-                 candidate: Candidate) -> tuple[float, float] | None:
+def _line_search(editor: Editor, dofs: tuple[Dof, ...], candidate: Candidate,
+                 start: float) -> tuple[float, float] | None:
     """The valid interval (low, high) of steps along the candidate's direction nearest its
-    predicted step, or None if no probe is valid."""
+    predicted step, or None if none is found.  ``start`` is the design's own margin
+    (``Editor.margin_at`` at step 0)."""
     direction = candidate.direction
 
     def margin(step: float) -> float:
         return editor.margin_at(dofs, direction, step)
 
-    probes = sorted({min(candidate.enter * factor, MAX_STEP) for factor in PROBES} | {MAX_STEP})
-    below, first = (0.0, -np.inf), None
-    for step in probes:
-        value = margin(step)
-        if value >= 0.0:
-            first = (step, value)
-            break
-        below = (step, value)
-    if first is None:
+    found = _first_valid(margin, candidate.enter, start)
+    if found is None:
         return None
-    if below[0] == 0.0 and candidate.enter * PROBE_BELOW < first[0]:
-        guess = candidate.enter * PROBE_BELOW
-        value = margin(guess)
-        if value >= 0.0:
-            first = (guess, value)
-        else:
-            below = (guess, value)
+    below, first = found
+    if below[0] == 0.0 and not np.isfinite(below[1]) and \
+            candidate.enter * PROBE_BELOW < first[0]:
+        guess = (candidate.enter * PROBE_BELOW, margin(candidate.enter * PROBE_BELOW))
+        below, first = (below, guess) if guess[1] >= 0.0 else (guess, first)
     low = _boundary(margin, first, below, max(LOWER_RESOLUTION * first[0], MIN_RESOLUTION))
     reach = min(REACH * low, MAX_STEP)
     if reach <= first[0]:
@@ -206,52 +162,54 @@ def _line_search(editor: Editor, dofs: tuple[Dof, ...],
                           max(UPPER_RESOLUTION * low, MIN_RESOLUTION))
 
 
+def _first_valid(margin, predicted: float, start: float):
+    """Probe outward from the predicted step until a valid step: ((step, margin) of the
+    last invalid one, or (0, start); (step, margin) of the valid one), or None when
+    MAX_PROBES or MAX_STEP are used up, or the joints' margin stops growing (the linear
+    prediction was wrong: a nail count that cannot grow, a load that does not move)."""
+    previous = (0.0, start)
+    step = min(predicted * FIRST_PROBE, MAX_STEP)
+    for _ in range(MAX_PROBES):
+        value = margin(step)
+        if value >= 0.0:
+            return previous, (step, value)
+        if step >= MAX_STEP:
+            return None
+        growth = GROWTH[1]
+        if np.isfinite(value) and np.isfinite(previous[1]):
+            if value <= previous[1]:
+                return None
+            crossing = step - value * (step - previous[0]) / (value - previous[1])
+            growth = min(max(crossing * FIRST_PROBE / step, GROWTH[0]), GROWTH[2])
+        previous, step = (step, value), min(step * growth, MAX_STEP)
+    return None
+
+
 def _boundary(margin, good: tuple[float, float], bad: tuple[float, float],
               resolution: float) -> float:
     """Close a bracket of a valid (step, margin) ``good`` and an invalid ``bad`` to
-    ``resolution``; returns the valid end.  Where both margins are finite the next probe
-    is where the straight line through them crosses zero (regula falsi), kept within the
-    middle 80 % of the bracket so that it always shrinks; else the middle."""
+    ``resolution``; returns the valid end.
+
+    Where both margins are finite the next probe is where the straight line through them
+    crosses zero (regula falsi), nudged by 0.4 x resolution toward the end that did not
+    move last time -- so that a nearly linear margin is bracketed within the resolution in
+    two probes -- and kept within the middle 80 % of the bracket so that it always
+    shrinks; elsewhere the middle (bisection).
+    """
+    moved_good = False
     while abs(bad[0] - good[0]) > resolution:
         (g, mg), (b, mb) = good, bad
         if np.isfinite(mb) and mg - mb > 0.0:
-            fraction = min(max(mg / (mg - mb), INTERPOLATION_GUARD), 1.0 - INTERPOLATION_GUARD)
+            nudge = 0.4 * resolution / abs(b - g)
+            fraction = mg / (mg - mb) + (nudge if moved_good else -nudge)
+            fraction = min(max(fraction, INTERPOLATION_GUARD), 1.0 - INTERPOLATION_GUARD)
         else:
             fraction = 0.5
         step = g + fraction * (b - g)
         value = margin(step)
-        if value >= 0.0:
+        moved_good = value >= 0.0
+        if moved_good:
             good = (step, value)
         else:
             bad = (step, value)
     return good[0]
-
-
-def _representative(editor: Editor, margins: Margins, found: _Found, rank: int,
-                    restores: tuple[str, ...]) -> Suggestion | None:
-    """The suggestion's design at the middle of its interval, written and validated from
-    its own text; None if that text does not validate (the contract's promise)."""
-    candidate = found.candidate
-    dofs = _dofs(margins, candidate)
-    step = 0.5 * (found.low + found.high)
-    changes = editor.changes(dofs, candidate.direction, step)
-    try:
-        moved = editor.moved(dofs, changes)
-    except (Blocked, OutOfReach):
-        return None
-    design = editor.design
-    name = f"{design.name}-suggestion-{rank:02d}"
-    text = design_text(_renamed(moved, name), "yaml")
-    written = parse_design(text, f"suggestion-{rank:02d}.yaml", "yaml")
-    geometry = editor.keeps(written)
-    report = None if geometry is None else check_design(written, geometry)
-    if report is None or not report.valid:
-        return None
-    return Suggestion(rank, "continuous", restores, tuple(d.name for d in dofs),
-                      tuple(float(v) for v in candidate.direction), (found.low, found.high),
-                      step, changes, tuple(d.unit(design) for d in dofs), written, text,
-                      report)
-
-
-def _renamed(design: Design, name: str) -> Design:
-    return replace(design, name=name)

@@ -29,6 +29,7 @@ from furncheck.dofs import (
     dof_value,
 )
 from furncheck.geometry import Geometry, analyze, interpenetrations
+from furncheck.result import DesignReport
 
 MARGIN_EPS = 1e-12
 """The margin of an invalid design is at most -MARGIN_EPS (a joint within the capacity's
@@ -126,12 +127,17 @@ class Editor:
         geometry = self.keeps(edited)
         if geometry is None:
             return -math.inf
-        report = check_design(edited, geometry)
-        if any(v.kind != "non-durable" for v in report.violations):
-            return -math.inf
-        worst = min((1.0 - joint.utilization for case in report.cases for joint in case.joints),
-                    default=1.0)
-        return max(worst, 0.0) if report.valid else min(worst, -MARGIN_EPS)
+        return joint_margin(check_design(edited, geometry))
+
+
+def joint_margin(report: DesignReport) -> float:
+    """>= 0 exactly when the report is valid: the smallest 1 - utilization of its joints
+    where at most joints fail, else -inf (see ``Editor.margin_at``)."""
+    if any(v.kind != "non-durable" for v in report.violations):
+        return -math.inf
+    worst = min((1.0 - joint.utilization for case in report.cases for joint in case.joints),
+                default=1.0)
+    return max(worst, 0.0) if report.valid else min(worst, -MARGIN_EPS)
 
 
 def _joint_set(geometry: Geometry) -> set[tuple]:

@@ -1,0 +1,146 @@
+"""Discrete suggestions (paper section 6.5): add a support plank.
+
+When a joint is not durable, a support is added between two nearly parallel planks P_i
+and P_j that a third plank P_k joins, where the failing joint is P_k's joint with one of
+them -- a shelf nailed to a post gets a support standing on the base, a chair's seat a
+post down to the stretcher.  The support stands across the gap between the faces of P_i
+and P_j that face each other, its ends nailed to both (so it becomes the edge plank of two
+new joints), its broad face turned toward P_k; candidate places are the far side of the
+overlap of P_i and P_j from P_k (a triangle with the joint that fails: the woodworker's
+bracket) and its middle.  Each candidate design is checked in full -- valid in every
+case, the new plank joined to P_i and P_j only, no plank cutting another -- and only
+working supports are suggested.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from furncheck.check import check_design
+from furncheck.design.model import Design, JointSpec, Plank
+from furncheck.dofs import _euler_degrees
+from furncheck.geometry import Geometry, analyze, interpenetrations
+from furncheck.result import DesignReport
+
+PARALLEL_COS = 0.95
+"""P_i and P_j count as parallel when their face normals' cosine is at least this."""
+
+PLACES = (("far", 1.0), ("middle", 0.0))
+"""Candidate places across the overlap, away from P_k: its far edge (1) and middle (0)."""
+
+MIN_OVERLAP = 3.0
+"""The overlap of P_i and P_j must be at least this many plank thicknesses wide (in
+both directions) to hold a support."""
+
+MAX_DISCRETE = 2
+"""At most this many support planks are suggested."""
+
+
+@dataclass(frozen=True)
+class Support:
+    """A working support plank: the plank, between which planks, where, the design with
+    it and that design's validation."""
+
+    plank: Plank
+    between: tuple[str, str]
+    place: str
+    design: Design
+    report: DesignReport
+
+
+def support_planks(design: Design, geometry: Geometry, report: DesignReport,
+                   limit: int = MAX_DISCRETE) -> list[Support]:
+    """Working support planks for the non-durable joints of ``report`` (see the module
+    docstring), at most ``limit``, in the order tried: failing joints as reported,
+    then P_k, P_i, P_j, places."""
+    if geometry.violations or not report.violations or \
+            any(v.kind != "non-durable" for v in report.violations):
+        return []
+    neighbours: dict[str, list[str]] = {p.id: [] for p in design.planks}
+    for joint in geometry.joints:
+        a, b = joint.planks
+        neighbours[a].append(b)
+        neighbours[b].append(a)
+    found: list[Support] = []
+    tried: set[tuple] = set()
+    failing = dict.fromkeys(v.where for v in report.violations)
+    for where in failing:
+        pair = where.split("/", 1)
+        for k, i in (pair, pair[::-1]):
+            for j in neighbours[k]:
+                if j == i or not _parallel(design.plank(i), design.plank(j)):
+                    continue
+                for place, position in PLACES:
+                    key = (*sorted((i, j)), place)
+                    if key in tried or len(found) >= limit:
+                        continue
+                    tried.add(key)
+                    support = _try(design, geometry, k, i, j, place, position)
+                    if support is not None:
+                        found.append(support)
+    return found
+
+
+def _parallel(a: Plank, b: Plank) -> bool:
+    return abs(float(a.rotation_matrix[:, 2] @ b.rotation_matrix[:, 2])) >= PARALLEL_COS
+
+
+def _try(design: Design, geometry: Geometry, k: str, i: str, j: str, place: str,
+         position: float) -> Support | None:
+    """The design with a support between i and j at ``position`` (1 far side, 0 middle)
+    of their overlap, away from k; None when it does not fit or does not work."""
+    plank = _support(design, design.plank(k), design.plank(i), design.plank(j), position)
+    if plank is None:
+        return None
+    joints = None if design.joints is None else \
+        (*design.joints, JointSpec((i, plank.id)), JointSpec((j, plank.id)))
+    edited = replace(design, planks=(*design.planks, plank), joints=joints)
+    after = analyze(edited)
+    new = {frozenset(joint.planks) for joint in after.joints if plank.id in joint.planks}
+    if after.violations or new != {frozenset((i, plank.id)), frozenset((j, plank.id))}:
+        return None
+    if len(after.joints) != len(geometry.joints) + 2 or interpenetrations(edited):
+        return None
+    report = check_design(edited, after)
+    if not report.valid:
+        return None
+    return Support(plank, (i, j), place, edited, report)
+
+
+def _support(design: Design, k: Plank, i: Plank, j: Plank, position: float) -> Plank | None:
+    """The support plank between the facing broad faces of i and j (None if they do not
+    face each other over an overlap wide enough)."""
+    normal = i.rotation_matrix[:, 2]
+    offset = float((j.center_array - i.center_array) @ normal)
+    if offset < 0:
+        normal, offset = -normal, -offset
+    gap = offset - i.half_extents[2] - j.half_extents[2]
+    thickness = design.material.thickness
+    if gap <= thickness:
+        return None
+    axes = i.rotation_matrix[:, :2]                                   # in-plane x, y of i
+    corners_j = (j.corners - i.center_array) @ axes                   # j seen in i's plane
+    low = np.maximum(-i.half_extents[:2], corners_j.min(axis=0))
+    high = np.minimum(i.half_extents[:2], corners_j.max(axis=0))
+    if np.any(high - low < MIN_OVERLAP * thickness):
+        return None
+    away = (k.center_array - i.center_array) @ axes                   # where k stands
+    along = int(np.argmax(np.abs(away)))                              # axis away from k
+    sign = -1.0 if away[along] > 0 else 1.0
+    middle = 0.5 * (low + high)
+    half_span = 0.5 * (high[along] - low[along]) - 0.5 * thickness
+    spot = middle.copy()
+    spot[along] += sign * position * half_span
+    across = 1 - along
+    width = float(high[across] - low[across])
+    centre = i.center_array + axes @ spot + normal * (i.half_extents[2] + 0.5 * gap)
+    x_axis = normal                                                   # its length spans the gap
+    z_axis = axes[:, along] * sign                                    # its face looks at k
+    y_axis = np.cross(z_axis, x_axis)
+    rotation = _euler_degrees(np.column_stack([x_axis, y_axis, z_axis]), (0.0, 0.0, 0.0))
+    taken = {p.id for p in design.planks}
+    name = next(f"support-{n}" for n in range(1, len(taken) + 2) if f"support-{n}" not in taken)
+    return Plank(name, float(gap), width, thickness, tuple(float(v) for v in centre),
+                 tuple(float(v) for v in rotation))

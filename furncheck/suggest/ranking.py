@@ -1,0 +1,78 @@
+"""``suggest_design``: continuous and discrete suggestions, ranked, each written as a
+design file and validated from that very text (contract section 4: every listed
+suggestion's file is valid; one that is not is dropped, never listed).
+
+Order: the continuous suggestions by their score (the valid interval's width minus its
+lower end), then the discrete ones (an added plank is a bigger change than moving one);
+when both kinds are found and there are more than K, at least one discrete suggestion is
+kept.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import replace
+
+from furncheck.check import check_design
+from furncheck.design.load import parse_design
+from furncheck.design.model import Design
+from furncheck.design.write import design_text
+from furncheck.dofs import Dof
+from furncheck.geometry import analyze
+from furncheck.suggest.continuous import ContinuousSearch
+from furncheck.suggest.discrete import support_planks
+from furncheck.suggest.suggestion import Suggestion, SuggestionReport
+
+
+def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
+                   locked: tuple[Dof, ...] = ()) -> SuggestionReport:
+    """Ranked suggestions for ``design`` (none when it is valid already)."""
+    geometry = analyze(design)
+    report = check_design(design, geometry)
+    if report.valid or max_suggestions <= 0:
+        return SuggestionReport(design.source, design.name, report, ())
+    start = time.perf_counter()
+    search = ContinuousSearch(design, geometry, report, locked)
+    searching = time.perf_counter()
+    continuous = search.run(max_dofs, max_suggestions)
+    discrete_start = time.perf_counter()
+    supports = support_planks(design, geometry, report)
+    end = time.perf_counter()
+    if supports and len(continuous) + len(supports) > max_suggestions:
+        keep = max(1, max_suggestions - len(continuous))
+        supports = supports[:keep]
+        continuous = continuous[:max_suggestions - len(supports)]
+    suggestions: list[Suggestion] = []
+    for found in continuous:
+        moved = search.representative(found)
+        if moved is None:
+            continue
+        edited, step, changes = moved
+        written = _written(edited, len(suggestions) + 1)
+        if written is not None:
+            suggestions.append(Suggestion(
+                len(suggestions) + 1, "continuous", search.restores, *written,
+                dofs=tuple(d.name for d in found.dofs),
+                direction=tuple(float(v) for v in found.direction),
+                range=(found.low, found.high), step=step, changes=changes,
+                units=tuple(d.unit(design) for d in found.dofs)))
+    for support in supports:
+        written = _written(support.design, len(suggestions) + 1)
+        if written is not None:
+            suggestions.append(Suggestion(len(suggestions) + 1, "discrete", ("durability",),
+                                          *written, adds=(support.plank,),
+                                          between=support.between))
+    return SuggestionReport(design.source, design.name, report, tuple(suggestions),
+                            search.searched, search.editor.checks,
+                            {"candidates": searching - start,
+                             "line search": discrete_start - searching,
+                             "discrete": end - discrete_start})
+
+
+def _written(design: Design, rank: int):
+    """(design, text, report) of the suggestion's design file, parsed back from its text
+    and validated; None if it is not valid."""
+    text = design_text(replace(design, name=f"{design.name}-suggestion-{rank:02d}"), "yaml")
+    written = parse_design(text, f"suggestion-{rank:02d}.yaml", "yaml")
+    report = check_design(written)
+    return (written, text, report) if report.valid else None

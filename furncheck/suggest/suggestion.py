@@ -1,0 +1,58 @@
+"""What ``furncheck suggest`` produces: ``Suggestion`` and ``SuggestionReport`` values."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from furncheck.design.model import Design, Plank
+from furncheck.result import DesignReport
+
+
+@dataclass(frozen=True)
+class Suggestion:
+    """One ranked suggestion, continuous (changed DOFs) or discrete (added planks).
+
+    dofs      : DOF names; ``direction`` (unit, scaled units) over them (continuous)
+    range     : (low, high) valid steps along the direction, scaled units, or None
+    step      : the representative step (middle of ``range``), or None
+    changes   : each DOF's change at ``step``, its own unit (file length unit or degrees)
+    adds      : planks added (discrete); ``between`` the planks a support joins
+    restores  : the kinds of violation it removes ('durability', 'stability', 'geometry')
+    design    : the representative design, parsed from ``text`` (its YAML file), and
+                ``report`` its validation (valid: suggestions that are not are dropped)
+    """
+
+    rank: int
+    kind: str
+    restores: tuple[str, ...]
+    design: Design
+    text: str
+    report: DesignReport
+    dofs: tuple[str, ...] = ()
+    direction: tuple[float, ...] = ()
+    range: tuple[float, float] | None = None
+    step: float | None = None
+    changes: tuple[float, ...] = ()
+    units: tuple[str, ...] = ()
+    adds: tuple[Plank, ...] = ()
+    between: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class SuggestionReport:
+    """Everything ``furncheck suggest`` says about one design."""
+
+    design: str
+    name: str
+    report: DesignReport
+    suggestions: tuple[Suggestion, ...]
+    searched: int = 0          # directions line-searched
+    checks: int = 0            # full validity checks of continuous candidates
+    seconds: dict[str, float] = field(default_factory=dict, compare=False)
+    """Wall time of the phases ('candidates': margins, sensitivities and directions;
+    'line search': line searches; 'discrete': support planks), for benchmarks; never
+    reported."""
+
+    @property
+    def valid(self) -> bool:
+        return bool(self.report.valid)
