@@ -26,10 +26,11 @@ from furncheck.cli.output import check_output, dofs_or_fail, fail, load_or_fail,
               help="Write the report to FILE instead of standard output.")
 def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, ...],
             out_dir: str | None, fmt: str, output: str | None) -> None:
-    """Ranked continuous suggestions for DESIGN: small changes of one to --max-dofs
-    plank positions, angles and sizes (paper section 6.4), each checked with the full
-    statics.  Each suggestion's design is the middle of its valid interval; every file
-    written with --out validates as valid.
+    """Ranked suggestions that make DESIGN valid: small changes of one to --max-dofs
+    plank positions, angles and sizes (continuous, paper section 6.4), then support
+    planks to add (discrete, 6.5), each checked with the full statics.  A continuous
+    suggestion's design is the middle of its valid interval; every file written with
+    --out validates as valid.
 
     Exit code 0: done (also when the design is valid already, or no suggestion was
     found); 2: unreadable or ill-formed design, unknown DOF or plank, unwritable --out.
