@@ -4,7 +4,11 @@ Prints, per design: planks, DOFs, DOFs that can move, full-check evaluations, to
 and time per movable DOF.  The issue's target for the ~28-plank catalog design (all DOFs)
 is 1 s on the project's 2-core machine.
 
-    python benchmarks/bench_range.py [DESIGN ...]     (default: a few catalog designs)
+    python benchmarks/bench_range.py [--jobs N] [DESIGN ...]   (default: a few catalog
+                                                                designs, one process)
+
+With ``--jobs 2`` the DOFs are searched in two worker processes; that pays only with a
+single-threaded BLAS (``OPENBLAS_NUM_THREADS=1``), see ``RangeFinder.ranges``.
 """
 
 from __future__ import annotations
@@ -21,7 +25,7 @@ DEFAULT = ("shelf-cantilever.yaml", "stool.yaml", "table.yaml", "bookshelf-20.ya
            "cabinet-28.yaml")
 
 
-def main(paths: list[str]) -> None:
+def main(paths: list[str], jobs: int = 1) -> None:
     print("| design                  | planks | DOFs | movable | evaluations | time (s) |"
           " ms per movable DOF |")
     print("|-------------------------|-------:|-----:|--------:|------------:|---------:|"
@@ -30,7 +34,7 @@ def main(paths: list[str]) -> None:
         design = load_design(path)
         start = time.perf_counter()
         finder = RangeFinder(design)
-        ranges = finder.ranges()
+        ranges = finder.ranges(jobs=jobs)
         seconds = time.perf_counter() - start
         movable = sum(r.valid is not None or (r.reason or "").startswith("the current")
                       for r in ranges)
@@ -40,4 +44,8 @@ def main(paths: list[str]) -> None:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:] or [str(CATALOG / name) for name in DEFAULT])
+    arguments = sys.argv[1:]
+    workers = 1
+    if arguments[:1] == ["--jobs"]:
+        workers, arguments = int(arguments[1]), arguments[2:]
+    main(arguments or [str(CATALOG / name) for name in DEFAULT], workers)

@@ -9,7 +9,7 @@ from furncheck.errors import DesignError
 from furncheck.geometry import Geometry, analyze
 from furncheck.result import DesignReport
 from furncheck.statics import build_model, external_forces, solve_case
-from furncheck.validity import evaluate_case
+from furncheck.validity import case_holds, evaluate_case
 
 
 def check_design(design: Design, geometry: Geometry | None = None) -> DesignReport:
@@ -37,7 +37,7 @@ def is_valid(design: Design, geometry: Geometry | None = None) -> bool:
     model = build_model(design, geometry)
     for case in design.load_cases:
         statics = solve_case(model, external_forces(model, case))
-        if evaluate_case(design, geometry, model, case, statics)[1]:
+        if not case_holds(design, geometry, model, statics):
             return False
     return True
 

@@ -34,6 +34,9 @@ from furncheck.geometry import Geometry, analyze, interpenetrations
 DOF_KINDS = ("x", "y", "z", "rx", "ry", "rz", "length", "width")
 _AXIS = {"x": 0, "y": 1, "z": 2, "rx": 0, "ry": 1, "rz": 2}
 _PARALLEL_EPS = 1e-9
+_CORNER_SIGNS = np.array([[1 if c & 1 else -1, 1 if c & 2 else -1, 1 if c & 4 else -1]
+                          for c in range(8)])
+"""(8, 3) local sign pattern of each corner of ``Plank.corners``."""
 
 
 @dataclass(frozen=True)
@@ -143,8 +146,7 @@ def structure(design: Design, geometry: Geometry) -> Structure:
         corners = sorted({c.corner for c in geometry.contacts if c.plank == plank.id})
         if not corners:
             continue
-        signs = np.array([[1 if c & 1 else -1, 1 if c & 2 else -1, 1 if c & 4 else -1]
-                          for c in corners])
+        signs = _CORNER_SIGNS[corners]
         for axis in (0, 1):
             if np.all(signs[:, axis] == signs[0, axis]):
                 ends[plank.id].append(End(axis, int(signs[0, axis]), None,
@@ -173,7 +175,8 @@ def apply_dof(design: Design, frame: Structure, dof: Dof, step: float) -> Design
     edited = tuple(planks[p.id] for p in design.planks)
     return replace(design, planks=edited,
                    load_cases=tuple(replace(case, loads=tuple(
-                       _carried(load, design.plank(load.plank), planks[load.plank])
+                       _carried(load, design.planks[design.plank_index[load.plank]],
+                                planks[load.plank])
                        for load in case.loads)) for case in design.load_cases))
 
 
@@ -182,7 +185,7 @@ def _carried(load: Load, before: Plank, after: Plank) -> Load:
     fraction of the plank's length and width (a load at the end of a shelf stays at the
     end when the shelf grows), at the same height above its face.  The force keeps its
     world direction (gravity does not turn with the plank)."""
-    if load.point is None or before == after:
+    if load.point is None or before is after or before == after:
         return load
     local = before.to_local(np.asarray(load.point)[None, :])[0]
     scale = np.array([after.length / before.length, after.width / before.width, 1.0])
@@ -320,9 +323,7 @@ def _end_direction(plank: Plank, end: End) -> np.ndarray:
 
 def _end_height(plank: Plank, end: End, point: np.ndarray, normal: np.ndarray) -> float:
     """m: height of the end face's lowest corner above the plane (point, normal)."""
-    local = np.array([[1 if c & 1 else -1, 1 if c & 2 else -1, 1 if c & 4 else -1]
-                      for c in range(8)])
-    on_end = local[:, end.axis] == end.sign
+    on_end = _CORNER_SIGNS[:, end.axis] == end.sign
     return float(((plank.corners[on_end] - point) @ normal).min())
 
 

@@ -107,12 +107,17 @@ def analyze(design: Design, previous: tuple[Design, Geometry] | None = None) -> 
     of being detected again (the result is the same, only faster: for design edits).
     """
     violations: list[Violation] = []
+    same = _unchanged_planks(design, previous)
     if design.joints is None:
-        joints = _detect_joints(design, previous)
+        joints = _detect_joints(design, _unchanged_joints(design, previous, same))
     else:
         joints = _listed_joints(design, violations)
-    contacts = _ground_contacts(design, violations)
-    components = _components(design, joints)
+    earlier = None if same is None else previous[1]
+    contacts = _ground_contacts(design, violations, earlier, same)
+    if earlier is not None and [j.planks for j in joints] == [j.planks for j in earlier.joints]:
+        components = earlier.components          # they follow from the joined pairs alone
+    else:
+        components = _components(design, joints)
     plank_has_contact = {c.plank for c in contacts}
     grounded = tuple(any(design.planks[i].id in plank_has_contact for i in comp)
                      for comp in components)
@@ -183,14 +188,13 @@ def nail_count(length: float, spacing: float) -> int:
     return max(1, int(np.floor(length / spacing * (1.0 + tol.NAIL_COUNT_EPS))))
 
 
-def _detect_joints(design: Design,
-                   previous: tuple[Design, Geometry] | None = None) -> list[Joint]:
+def _detect_joints(design: Design, known: dict | None = None) -> list[Joint]:
+    """Joints detected from the geometry; ``known``: see ``_unchanged_joints``."""
     slack = design.tolerance + _GEOMETRY_EPS
     lo, hi = _bounding_boxes(design.planks)
     overlap = np.all((lo[:, None, :] <= hi[None, :, :] + slack)
                      & (lo[None, :, :] <= hi[:, None, :] + slack), axis=2)
     pairs = np.argwhere(np.triu(overlap, k=1))
-    known = _unchanged_joints(design, previous)
     if known is None:
         fresh = np.ones(len(pairs), dtype=bool)
         known = {}
@@ -212,19 +216,30 @@ def _detect_joints(design: Design,
     return joints
 
 
-def _unchanged_joints(design: Design, previous: tuple[Design, Geometry] | None):
-    """From an earlier version of the design: {(i, j): joint} for pairs of planks that are
-    both unchanged, plus 'planks': the ids of the unchanged planks; None if unusable."""
+def _unchanged_planks(design: Design,
+                      previous: tuple[Design, Geometry] | None) -> frozenset[str] | None:
+    """The ids of the planks that an earlier version of the design has unchanged, or None
+    if that version cannot stand in for them (other planks or order, material, tolerance,
+    units or joint list)."""
     if previous is None:
         return None
-    before, geometry = previous
-    if before.joints is not None or [p.id for p in before.planks] != \
-            [p.id for p in design.planks] or before.material != design.material or \
-            before.tolerance != design.tolerance:
+    before = previous[0]
+    if [p.id for p in before.planks] != [p.id for p in design.planks] or \
+            before.material != design.material or before.tolerance != design.tolerance or \
+            before.units != design.units or before.joints != design.joints or \
+            before.lines != design.lines:
         return None
-    same = {new.id for old, new in zip(before.planks, design.planks) if old == new}
+    return frozenset(new.id for old, new in zip(before.planks, design.planks) if old == new)
+
+
+def _unchanged_joints(design: Design, previous: tuple[Design, Geometry] | None,
+                      same: frozenset[str] | None) -> dict | None:
+    """From an earlier version of the design with the planks ``same`` unchanged: {(i, j):
+    joint} for detected joints between two unchanged planks, plus 'planks': ``same``."""
+    if same is None or design.joints is not None:
+        return None
     known: dict = {"planks": same}
-    for joint in geometry.joints:
+    for joint in previous[1].joints:
         if joint.face in same and joint.edge in same:
             i, j = sorted((design.plank_index[joint.face], design.plank_index[joint.edge]))
             known[(i, j)] = joint
@@ -483,11 +498,25 @@ def interpenetrations(design: Design) -> list[tuple[str, str, float]]:
 
 # --- ground, components -----------------------------------------------------------------------
 
-def _ground_contacts(design: Design, violations: list[Violation]) -> list[Contact]:
-    """Corners with z <= tolerance touch the ground; those below -tolerance penetrate it."""
+def _ground_contacts(design: Design, violations: list[Violation],
+                     earlier: Geometry | None = None,
+                     same: frozenset[str] | None = None) -> list[Contact]:
+    """Corners with z <= tolerance touch the ground; those below -tolerance penetrate it.
+    The contacts and penetrations of the planks ``same`` are taken from ``earlier``."""
     slack = design.tolerance + _GEOMETRY_EPS
-    contacts = []
+    contacts: list[Contact] = []
+    reused: dict[str, list] = {}
+    if earlier is not None:
+        for contact in earlier.contacts:
+            reused.setdefault(contact.plank, []).append(contact)
+        for violation in earlier.violations:
+            if violation.kind == "penetration":
+                reused.setdefault(violation.where, []).append(violation)
     for index, plank in enumerate(design.planks):
+        if same is not None and plank.id in same:
+            for item in reused.get(plank.id, ()):
+                (contacts if isinstance(item, Contact) else violations).append(item)
+            continue
         z = plank.corners[:, 2]
         for corner in np.nonzero(z <= slack)[0]:
             x, y, _ = plank.corners[corner]
@@ -565,106 +594,160 @@ def _plural(n: int, word: str) -> str:
 
 # --- margins of an edit -----------------------------------------------------------------------
 
-def edit_margins(design: Design, original: Geometry,
-                 changed: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray]:
+class EditMargins:
     """Continuous margins (m, or cosines) of the criteria that decide whether an edit of a
-    design keeps ``original``'s joints and ground contacts (``dofs.check_edit``), for the
-    planks ``changed`` (indices) of the edited ``design``:
+    design keeps its joints and ground contacts (``dofs.check_edit``), for edits that
+    change the planks ``changed`` (indices) only.  Calling it on an edited design gives
 
-    required  : (R,) must stay > 0: for every original joint of a changed plank its gap
-                within +-slack, its tilt, its edge plank outside the face, and the overlap of
-                the end face with the face (2-D separating axes); per changed plank its
-                size and its ground contact (grounded planks keep one, others stay clear,
+    required  : (R,) must stay > 0: for every joint of a changed plank its gap within
+                +-slack, its tilt, its edge plank outside the face, and the overlap of the
+                end face with the face (2-D separating axes); per changed plank its size
+                and its ground contact (grounded planks keep one, others stay clear, and
                 nothing sinks deeper than the slack).
     forbidden : (F, A) groups that must not all become > 0: every other narrow face on a
                 broad face among pairs with a changed plank (a new joint; only when joints
                 are detected), and per such pair the separating-axis overlaps beyond the
                 slack (one plank cutting into the other, ``interpenetrations``).
 
-    The rows depend only on ``original``, ``changed`` and the plank count, so margins of
-    two steps of one DOF compare entry by entry.  Under a translation or a size change
-    every margin is linear in the step; a search can predict where the first criterion
-    flips and confirm it with ``check_edit``, instead of bisecting blindly.
+    The rows are fixed at construction, so the margins of two steps of one DOF compare
+    entry by entry.  Under a translation or a size change every margin is linear in the
+    step: a search can predict where the first criterion flips and confirm it with
+    ``check_edit`` instead of bisecting blindly.  The criteria mirror ``analyze`` closely,
+    not exactly (the clipped area of a touching region is approximated by its separating
+    axes): a prediction is only ever a guess to be confirmed.
     """
-    slack = design.tolerance + _GEOMETRY_EPS
-    planks = design.planks
-    n = len(planks)
-    changed_set = set(changed)
-    pairs = np.array(sorted({(min(c, k), max(c, k)) for c in changed for k in range(n)
-                             if k != c}), dtype=int).reshape(-1, 2)
-    faces = _face_tables(planks)
-    joint_combos = {(design.plank_index[j.edge], j.edge_face, design.plank_index[j.face],
-                     j.face_side) for j in original.joints}
-    ordered = np.vstack([pairs, pairs[:, ::-1]])                       # (edge, face) both ways
-    edge = np.repeat(ordered[:, 0], 8)
-    face = np.repeat(ordered[:, 1], 8)
-    f = np.tile(np.repeat(np.arange(4), 2), len(ordered))
-    g = np.tile(np.arange(2), 4 * len(ordered))
-    combos = _combo_margins(planks, faces, edge, face, f, g, slack)     # (C, 12)
-    is_joint = np.array([(e, (fi // 2, 1 - 2 * (fi % 2)), p, 1 - 2 * gi) in joint_combos
-                         for e, p, fi, gi in zip(edge.tolist(), face.tolist(), f.tolist(),
-                                                 g.tolist())], dtype=bool)
-    required = [combos[is_joint].ravel()]
-    forbidden = [combos[~is_joint]] if design.joints is None else []
-    grounded = {c.plank for c in original.contacts}
-    sunk = {v.where for v in original.violations if v.kind == "penetration"}
-    for index in sorted(changed_set):
-        plank = planks[index]
-        lowest = float(plank.corners[:, 2].min())
-        required.append(np.array([plank.length, plank.width]))
-        if plank.id not in grounded:
-            required.append(np.array([lowest - slack]))
-            continue
-        required.append(np.array([slack - lowest]))
-        if plank.id not in sunk:
-            required.append(np.array([lowest + slack]))
-    cutting = _cut_margins(planks, pairs, slack)                         # (P, 36)
-    width = max(combos.shape[1], cutting.shape[1])
-    groups = [np.pad(block, ((0, 0), (0, width - block.shape[1])), constant_values=1.0)
-              for block in forbidden + [cutting]]
-    return np.concatenate(required), np.vstack(groups)
+
+    def __init__(self, design: Design, geometry: Geometry, changed: tuple[int, ...],
+                 turn: float = 180.0):
+        """``turn``: the most (degrees) that the edits turn any plank; a narrow face tilted
+        further than that beyond the largest joint tilt from a broad face can never come to
+        rest on it, and is left out (translations and size changes turn nothing).  Every
+        pair with a changed plank is watched, however far apart: a plank that a search
+        could push through another must not be found valid on the far side of it."""
+        n = len(design.planks)
+        self.changed = tuple(sorted(set(changed)))
+        self.slack = design.tolerance + _GEOMETRY_EPS
+        self.pairs = np.array(sorted({(min(c, k), max(c, k)) for c in self.changed
+                                      for k in range(n) if k != c}), dtype=int).reshape(-1, 2)
+        ordered = np.vstack([self.pairs, self.pairs[:, ::-1]])          # (edge, face) both ways
+        self.edge = np.repeat(ordered[:, 0], 8)
+        self.face = np.repeat(ordered[:, 1], 8)
+        self.f = np.tile(np.repeat(np.arange(4), 2), len(ordered))
+        self.g = np.tile(np.arange(2), 4 * len(ordered))
+        joints = {(design.plank_index[j.edge], 2 * j.edge_face[0] + (j.edge_face[1] < 0),
+                   design.plank_index[j.face], int(j.face_side < 0)) for j in geometry.joints}
+        self.is_joint = np.array([key in joints for key in zip(
+            self.edge.tolist(), self.f.tolist(), self.face.tolist(), self.g.tolist())],
+            dtype=bool)
+        if turn < 180.0 - tol.JOINT_MAX_TILT_DEG:
+            faces = _face_tables(design.planks)
+            tilt = -(faces.narrow_normal[self.edge, self.f]
+                     * faces.broad_normal[self.face, self.g]).sum(axis=1)
+            keep = self.is_joint | (tilt >= np.cos(np.radians(tol.JOINT_MAX_TILT_DEG + turn))
+                                    - _GEOMETRY_EPS)
+            self.edge, self.face, self.f, self.g, self.is_joint = (
+                self.edge[keep], self.face[keep], self.f[keep], self.g[keep], self.is_joint[keep])
+        self.detected = design.joints is None
+        grounded = {c.plank for c in geometry.contacts}
+        sunk = {v.where for v in geometry.violations if v.kind == "penetration"}
+        self.grounded = [design.planks[i].id in grounded for i in self.changed]
+        self.sunk = [design.planks[i].id in sunk for i in self.changed]
+        self.unchanged_tables = self._all_tables(design.planks)
+
+    @staticmethod
+    def _all_tables(planks) -> tuple:
+        """Face tables, rotations, half extents and bounding boxes of ``planks``."""
+        return (_face_tables(planks), np.stack([p.rotation_matrix for p in planks]),
+                np.stack([p.half_extents for p in planks]), _bounding_boxes(planks))
+
+    def _tables(self, planks) -> tuple:
+        """``_all_tables`` of an edited design: the unchanged planks' rows are kept from
+        the design the margins were made for, only the changed planks' are computed."""
+        faces, rot, half, (lo, hi) = self.unchanged_tables
+        new_faces, new_rot, new_half, (new_lo, new_hi) = self._all_tables(
+            tuple(planks[i] for i in self.changed))
+        rows = list(self.changed)
+
+        def updated(table: np.ndarray, new: np.ndarray) -> np.ndarray:
+            table = table.copy()
+            table[rows] = new
+            return table
+
+        faces = _Faces(*(updated(getattr(faces, name), getattr(new_faces, name))
+                         for name in _Faces.__dataclass_fields__))
+        return faces, updated(rot, new_rot), updated(half, new_half), \
+            (updated(lo, new_lo), updated(hi, new_hi))
+
+    def __call__(self, design: Design) -> tuple[np.ndarray, np.ndarray]:
+        slack, planks = self.slack, design.planks
+        faces, rot, half, boxes = self._tables(planks)
+        combos = _combo_margins(faces, rot, half, boxes, self.edge, self.face, self.f, self.g,
+                                slack)                                     # (C, 18)
+        required = [combos[self.is_joint].ravel()]
+        for index, grounded, sunk in zip(self.changed, self.grounded, self.sunk):
+            plank = planks[index]
+            lowest = float(plank.corners[:, 2].min())
+            required.append([plank.length, plank.width])
+            if not grounded:
+                required.append([lowest - slack])
+                continue
+            required.append([slack - lowest])
+            if not sunk:
+                required.append([lowest + slack])
+        cutting = _cut_margins(rot, half, faces.centers, boxes, self.pairs, slack)
+        groups = [cutting]
+        if self.detected:
+            others = combos[~self.is_joint]
+            groups.append(np.pad(others, ((0, 0), (0, cutting.shape[1] - others.shape[1])),
+                                 constant_values=1.0))
+        return np.concatenate([np.asarray(r, dtype=float) for r in required]), \
+            np.vstack(groups)
 
 
-def _combo_margins(planks, faces: _Faces, edge: np.ndarray, face: np.ndarray, f: np.ndarray,
-                   g: np.ndarray, slack: float) -> np.ndarray:
-    """(C, 12) margins of narrow face f of plank edge resting on broad face g of plank face:
-    gap + slack, slack - gap, tilt (alignment - cos of the largest tilt), height of the edge
-    plank's centre above the face, and the overlap of the end face's projection with the
-    face along the face's two axes and the projection's two edge normals (both ends each)."""
+def _combo_margins(faces: _Faces, rot: np.ndarray, half: np.ndarray,
+                   boxes: tuple[np.ndarray, np.ndarray], edge: np.ndarray, face: np.ndarray,
+                   f: np.ndarray, g: np.ndarray, slack: float) -> np.ndarray:
+    """(C, 18) margins of narrow face f of plank edge resting on broad face g of plank face
+    (``rot`` (n, 3, 3), ``half`` (n, 3), ``boxes``: all planks' rotations, half extents
+    and bounding boxes): gap + slack, slack - gap, tilt (alignment - cos of the largest
+    tilt), height of the edge plank's centre above the face, the overlap of the end face's
+    projection with the face along the face's two axes and the projection's two edge
+    normals (both ends each, less a round-off slack: faces that only share an edge do not
+    overlap), and the overlap of the two bounding boxes within the slack (``analyze`` looks
+    only at pairs whose boxes meet: a tilted end can touch a face while its box clears)."""
     normal = faces.broad_normal[face, g]                                   # (C, 3)
     offset = faces.broad_offset[face, g]
     corners = faces.narrow_corners[edge, f]                                # (C, 4, 3)
-    gap = (np.einsum("cka,ca->ck", corners, normal) - offset[:, None]).min(axis=1)
-    alignment = -np.einsum("ca,ca->c", faces.narrow_normal[edge, f], normal)
-    outside = np.einsum("ca,ca->c", faces.centers[edge], normal) - offset
-    rot_f = np.stack([p.rotation_matrix for p in planks])[face]           # (C, 3, 3)
-    half_f = np.stack([p.half_extents for p in planks])[face]
+    gap = ((corners * normal[:, None, :]).sum(axis=2) - offset[:, None]).min(axis=1)
+    alignment = -(faces.narrow_normal[edge, f] * normal).sum(axis=1)
+    outside = (faces.centers[edge] * normal).sum(axis=1) - offset
+    half_f = half[face]
     face_center = faces.centers[face] + half_f[:, 2:3] * normal
-    quad = np.einsum("cka,cab->ckb", corners - face_center[:, None, :], rot_f[:, :, :2])
+    quad = (corners - face_center[:, None, :]) @ rot[face][:, :, :2]       # (C, 4, 2)
     sides = np.stack([quad[:, 1] - quad[:, 0], quad[:, 2] - quad[:, 1]], axis=1)  # (C, 2, 2)
     normals = np.stack([-sides[:, :, 1], sides[:, :, 0]], axis=2)
     length = np.linalg.norm(normals, axis=2, keepdims=True)
     usable = length[:, :, 0] > _GEOMETRY_EPS * _GEOMETRY_EPS
     normals = normals / np.where(length > 0.0, length, 1.0)
     axes = np.concatenate([np.broadcast_to(np.eye(2), (len(edge), 2, 2)), normals], axis=1)
-    projected = np.einsum("ckb,cxb->cxk", quad, axes)                      # (C, 4 axes, 4)
-    radius = np.abs(axes) @ half_f[:, :2, None]                            # (C, 4, 1)
-    overlap = np.concatenate([radius[:, :, 0] - projected.min(axis=2),
-                              projected.max(axis=2) + radius[:, :, 0]], axis=1)
+    projected = quad @ np.transpose(axes, (0, 2, 1))                       # (C, 4, 4 axes)
+    radius = (np.abs(axes) * half_f[:, None, :2]).sum(axis=2)             # (C, 4 axes)
+    overlap = np.concatenate([radius - projected.min(axis=1),
+                              projected.max(axis=1) + radius], axis=1) - _GEOMETRY_EPS
     overlap[:, [2, 3, 6, 7]] = np.where(np.tile(usable, 2), overlap[:, [2, 3, 6, 7]], 1.0)
+    lo, hi = boxes
     return np.column_stack([gap + slack, slack - gap, alignment - _COS_MAX_TILT, outside,
-                            overlap])
+                            overlap, hi[face] + slack - lo[edge], hi[edge] + slack - lo[face]])
 
 
-def _cut_margins(planks, pairs: np.ndarray, slack: float) -> np.ndarray:
+def _cut_margins(rot: np.ndarray, half: np.ndarray, centre: np.ndarray,
+                 boxes: tuple[np.ndarray, np.ndarray], pairs: np.ndarray,
+                 slack: float) -> np.ndarray:
     """(P, 36) margins whose all being > 0 means the pair's boxes overlap deeper than the
     slack (``interpenetrations``): per separating axis both ends of the overlap of their
     projections beyond the slack (1.0 for degenerate axes), then the bounding boxes'."""
     if len(pairs) == 0:
         return np.zeros((0, 36))
-    rot = np.stack([p.rotation_matrix for p in planks])
-    half = np.stack([p.half_extents for p in planks])
-    centre = np.stack([p.center_array for p in planks])
     a, b = pairs[:, 0], pairs[:, 1]
     ra, rb = np.transpose(rot[a], (0, 2, 1)), np.transpose(rot[b], (0, 2, 1))
     crosses = np.cross(ra[:, :, None, :], rb[:, None, :, :]).reshape(-1, 9, 3)
@@ -672,11 +755,10 @@ def _cut_margins(planks, pairs: np.ndarray, slack: float) -> np.ndarray:
     norms = np.linalg.norm(axes, axis=2)
     usable = norms > 1e-9
     axes = axes / np.where(usable, norms, 1.0)[:, :, None]
-    radius = ((np.abs(np.einsum("pka,pia->pki", axes, ra)) * half[a][:, None, :]).sum(axis=2)
-              + (np.abs(np.einsum("pka,pia->pki", axes, rb)) * half[b][:, None, :]).sum(axis=2))
-    distance = np.einsum("pka,pa->pk", axes, centre[b] - centre[a])
+    radius = ((np.abs(axes @ rot[a]) * half[a][:, None, :]).sum(axis=2)
+              + (np.abs(axes @ rot[b]) * half[b][:, None, :]).sum(axis=2))
+    distance = (axes @ (centre[b] - centre[a])[:, :, None])[:, :, 0]
     sat = np.concatenate([radius - slack - distance, radius - slack + distance], axis=1)
     sat = np.where(np.tile(usable, 2), sat, 1.0)
-    lo, hi = _bounding_boxes(planks)
-    boxes = np.concatenate([hi[b] - slack - lo[a], hi[a] - slack - lo[b]], axis=1)
-    return np.concatenate([sat, boxes], axis=1)
+    lo, hi = boxes
+    return np.concatenate([sat, hi[b] - slack - lo[a], hi[a] - slack - lo[b]], axis=1)

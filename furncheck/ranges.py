@@ -3,15 +3,27 @@
 For one DOF, the others held (its neighbours adjusted by the geometric constraints of
 ``dofs``), the valid range is the interval of values around the current one for which the
 design stays valid: every joint durable, stable in every load case, the same joints and
-ground contacts.  The force sensitivity (eq. 6) predicts where the first joint reaches its
-nail capacity or the first contact lets go; the full statics then confirms: a bracket of
-one valid and one invalid value is closed by bisection to ``RANGE_RESOLUTION``, every probe
-a complete ``check_design`` of the edited design.  The reported end is the last value found
-valid; a value one resolution step beyond it was found invalid (or is the search limit).
+ground contacts.  Each side is searched in two stages:
+
+* how far the geometry reaches (the same joints and contacts, ``check_edit``): the margins
+  of its criteria (``geometry.EditMargins``; linear in the step for translations and size
+  changes) predict the first one to flip, and two geometry checks confirm it, one half a
+  resolution before (valid) and one half after (not); a rotation's prediction is refined
+  on its margins first; a wrong prediction falls back to bisection;
+* if the design is not valid at that reach, the physical limit inside it: the force
+  sensitivity (eq. 6) predicts where the first joint reaches its nail capacity or the
+  first contact lets go, and a bracket of one valid and one invalid value is closed by
+  bisection to ``RANGE_RESOLUTION``, every probe a full check of the edited design.
+
+The reported end is the last value found valid (by a full check); a value at most one
+resolution step beyond it was found invalid (or the end is the search limit).
 """
 
 from __future__ import annotations
 
+import multiprocessing
+from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 
 import numpy as np
@@ -31,7 +43,7 @@ from furncheck.dofs import (
     parse_dof,
     structure,
 )
-from furncheck.geometry import Geometry, analyze
+from furncheck.geometry import EditMargins, Geometry, analyze
 from furncheck.sensitivity import Linearization, Sensitivity
 from furncheck.validity import nail_pull_shear
 
@@ -45,6 +57,26 @@ degrees for rotations."""
 
 PREDICTION_BRACKET = 0.02
 """Relative half-width of the first bracket put around a predicted limit."""
+
+PARALLEL_MIN_DOFS = 16
+"""Fewer DOFs than this are searched in this process: starting workers would cost more."""
+
+DOFS_PER_TASK = 4
+"""DOFs per task of a worker process (small tasks balance the uneven DOFs)."""
+
+REACH_PREDICTIONS = 4
+"""Most predictions of the geometric reach of one side of a DOF before it is bisected."""
+
+ROTATION_WATCH = 15.0
+"""Degrees: a rotation's reach is first predicted within this turn, watching only the
+faces that so small a turn can bring to rest on one another (far fewer than all); past
+it, all of them."""
+
+REACH_PROBE = 0.25
+"""The margins' slope is taken over this fraction of the resolution."""
+
+REACH_SECANTS = 8
+"""Most refinements of a rotation's predicted reach."""
 
 
 @dataclass(frozen=True)
@@ -72,13 +104,48 @@ class RangeFinder:
         self._linear: list[Linearization] | None = None
         self._shared: dict = {}
         self._predictions: dict[Dof, tuple[float | None, float | None]] = {}
+        self._margins: dict[tuple[Dof, float], tuple[EditMargins, tuple]] = {}
+        self._kept_edit: tuple = (None, None, None, None, None)
         self.evaluations = 0
 
     # -- public --------------------------------------------------------------------------------
-    def ranges(self, names: list[str] | None = None) -> list[DofRange]:
+    def ranges(self, names: list[str] | None = None, jobs: int = 1) -> list[DofRange]:
+        """The ranges of the named DOFs (all when None), in order.  With ``jobs`` > 1 many
+        DOFs are searched in that many worker processes; every DOF's search is independent
+        of the others, so the result is the same either way.
+
+        One process is the default: the statics' small dense solves gain nothing from a
+        multi-threaded BLAS, but its threads spin on the cores that the workers need
+        (2 workers on 2 cores run twice as fast as one process only with
+        OPENBLAS_NUM_THREADS=1; with threaded BLAS they are slower than one process)."""
         dofs = all_dofs(self.design) if names is None else \
             [parse_dof(self.design, name) for name in names]
+        if jobs > 1 and len(dofs) >= PARALLEL_MIN_DOFS:
+            found = self._ranges_in_workers(dofs, jobs)
+            if found is not None:
+                return found
         return [self.range(dof) for dof in dofs]
+
+    def _ranges_in_workers(self, dofs: list[Dof], jobs: int) -> list[DofRange] | None:
+        """``range`` of every DOF in forked worker processes (which inherit this finder),
+        a few DOFs per task; None when processes cannot be forked here."""
+        global _WORKER_FINDER
+        try:
+            context = multiprocessing.get_context("fork")
+        except ValueError:          # no fork on this platform
+            return None
+        tasks = [dofs[k:k + DOFS_PER_TASK] for k in range(0, len(dofs), DOFS_PER_TASK)]
+        _WORKER_FINDER = self
+        try:
+            with ProcessPoolExecutor(max_workers=min(jobs, len(tasks)),
+                                     mp_context=context) as pool:
+                done = list(pool.map(_ranges_of, tasks))
+        except (OSError, BrokenProcessPool):
+            return None
+        finally:
+            _WORKER_FINDER = None
+        self.evaluations += sum(evaluations for _, evaluations in done)
+        return [found for ranges, _ in done for found in ranges]
 
     def range(self, dof: Dof) -> DofRange:
         value = dof_value(self.design, dof)
@@ -98,16 +165,23 @@ class RangeFinder:
     # -- validity of one step ------------------------------------------------------------------
     def valid_at(self, dof: Dof, step: float, full: bool = True) -> bool:
         """Whether the design with ``dof`` changed by ``step`` keeps its joints and ground
-        contacts and (``full``) is valid in every load case."""
-        try:
-            edited = apply_dof(self.design, self.frame, dof, step)
-        except OutOfReach:
-            return False
-        for lock in self.locked:
-            if abs(dof_value(edited, lock) - dof_value(self.design, lock)) > 1e-9:
-                raise Blocked(f"it would change the locked {lock.name}")
-        self.evaluations += 1
-        problem, geometry = check_edit(self.geometry, edited, self.design)
+        contacts and (``full``) is valid in every load case.  The geometry of the last
+        step found to keep them is kept: the full check of a geometric reach follows the
+        geometry checks that found it."""
+        if self._kept_edit[:2] == (dof, step):
+            edited, problem, geometry = self._kept_edit[2:]
+        else:
+            try:
+                edited = apply_dof(self.design, self.frame, dof, step)
+            except OutOfReach:
+                return False
+            for lock in self.locked:
+                if abs(dof_value(edited, lock) - dof_value(self.design, lock)) > 1e-9:
+                    raise Blocked(f"it would change the locked {lock.name}")
+            self.evaluations += 1
+            problem, geometry = check_edit(self.geometry, edited, self.design)
+            if problem is None:
+                self._kept_edit = (dof, step, edited, problem, geometry)
         if problem is not None:
             return False
         return is_valid(edited, geometry) if full else True
@@ -118,7 +192,7 @@ class RangeFinder:
         valid, assuming it is valid now: first how far the geometry reaches (cheap checks
         without statics), then, if the design is not valid there, the physical limit inside
         it, bracketed around the sensitivity's prediction."""
-        reach = self._expand(dof, sign, 0.0, limit, resolution, full=False)
+        reach = self._geometric_reach(dof, sign, limit, resolution)
         if reach <= 0.0 or self.valid_at(dof, sign * reach):
             return reach
         good, bad = 0.0, reach
@@ -133,6 +207,105 @@ class RangeFinder:
             else:
                 good = max(inside, outside)
         return self._bisect(dof, sign, good, bad, resolution)
+
+    def _geometric_reach(self, dof: Dof, sign: float, limit: float, resolution: float) -> float:
+        """The furthest step (>= 0) in direction ``sign`` keeping the joints and contacts
+        (``check_edit``, no statics), within ``resolution``.
+
+        The margins of the criteria (``EditMargins``) predict the step at which the first
+        one flips; two checks confirm it: the step half a resolution before is valid, the
+        one half a resolution after is not.  A flip that changes nothing (two faces that
+        meet but do not outrank the joint's) is passed and the next one predicted; a check
+        failing before the prediction falls back to bisection, as does a DOF whose
+        margins cannot be computed.
+        """
+        good = 0.0
+        for _ in range(REACH_PREDICTIONS):
+            if good >= limit:
+                return limit
+            predicted = self._predicted_reach(dof, sign, good, limit, resolution)
+            if predicted is None:
+                break
+            end = limit if predicted >= limit else predicted - 0.5 * resolution
+            if end >= good + 0.5 * resolution:      # else one step past good is past the flip
+                if not self.valid_at(dof, sign * end, full=False):
+                    return self._bisect(dof, sign, good, end, resolution, full=False)
+                good = end
+            if good >= limit:
+                return limit
+            beyond = min(good + resolution, limit)
+            if not self.valid_at(dof, sign * beyond, full=False):
+                return good
+            good = beyond
+        return self._expand(dof, sign, good, limit, resolution, full=False)
+
+    def _predicted_reach(self, dof: Dof, sign: float, start: float, limit: float,
+                         resolution: float) -> float | None:
+        """The step (>= ``start``, at most ``limit``; for a rotation first at most
+        ROTATION_WATCH) at which the first criterion of ``EditMargins`` flips, the margins
+        taken as linear in the step through their values at ``start`` and one nearby
+        step.  A rotation's margins are not linear: there the prediction is checked
+        against the margins at the predicted step, and a bracket of an unflipped and a
+        flipped step is narrowed by the same linear prediction between its ends (halved
+        when only one end moves).  None if an edited design cannot be made."""
+        turn = 0.0
+        if dof.is_rotation:     # watch the faces that a turn up to the horizon can align
+            turn = ROTATION_WATCH if start < ROTATION_WATCH else limit
+            limit = min(limit, turn)
+        margins, now = self._edit_margins(dof, turn)
+        try:
+            at_start = now if start == 0.0 else margins(self._edited(dof, sign * start))
+            step = start + REACH_PROBE * resolution
+            predicted = _first_flip(at_start, margins(self._edited(dof, sign * step)),
+                                    start, step, limit)
+            if not dof.is_rotation:
+                return predicted
+            low, at_low, high, at_high = start, at_start, None, None
+            moved = []                  # which end each step moved
+            for _ in range(REACH_SECANTS):
+                if high is None and predicted >= limit:
+                    return limit
+                at_predicted = margins(self._edited(dof, sign * predicted))
+                if _flipped(at_start, at_predicted):
+                    high, at_high = predicted, at_predicted
+                else:
+                    low, at_low = predicted, at_predicted
+                moved.append(predicted == high)
+                if high is None:        # the margins at start and here: a longer chord
+                    predicted = _first_flip(at_start, at_low, start, low, limit)
+                elif high - low <= 0.5 * resolution:
+                    return high
+                elif moved[-2:] in ([True, True], [False, False]):     # one-sided: halve
+                    predicted = 0.5 * (low + high)
+                else:
+                    predicted = min(max(_first_flip(at_low, at_high, low, high, high),
+                                        low + REACH_PROBE * resolution),
+                                    high - REACH_PROBE * resolution)
+        except OutOfReach:
+            return None
+        return predicted
+
+    def _edited(self, dof: Dof, step: float) -> Design:
+        return apply_dof(self.design, self.frame, dof, step) if step else self.design
+
+    def _edit_margins(self, dof: Dof, turn: float) -> tuple[EditMargins, tuple]:
+        """The margins of the planks that ``dof`` changes (one small step either way) for
+        steps turning them at most ``turn`` degrees, and their values for the design
+        itself; the last DOF's are kept."""
+        if (dof, turn) not in self._margins:
+            changed = set()
+            for sign in (-1.0, 1.0):
+                try:
+                    edited = self._edited(dof, sign * REACH_PROBE * self._scales(dof)[1])
+                except OutOfReach:
+                    continue
+                changed |= {i for i, (a, b) in enumerate(zip(self.design.planks,
+                                                             edited.planks)) if a != b}
+            margins = EditMargins(self.design, self.geometry, tuple(changed), turn)
+            self._margins = {key: kept for key, kept in self._margins.items()
+                             if key[0] == dof}          # only the current DOF's
+            self._margins[(dof, turn)] = (margins, margins(self.design))
+        return self._margins[(dof, turn)]
 
     def _expand(self, dof: Dof, sign: float, start: float, limit: float, resolution: float,
                 full: bool = True) -> float:
@@ -229,6 +402,48 @@ class RangeFinder:
         if dof.is_rotation:
             return 90.0 * SEARCH_LIMIT, 100.0 * RANGE_RESOLUTION
         return self.size * SEARCH_LIMIT, self.size * RANGE_RESOLUTION
+
+
+_WORKER_FINDER: RangeFinder | None = None
+"""The finder whose DOFs a forked worker process searches (set while its pool runs)."""
+
+
+def _ranges_of(dofs: list[Dof]) -> tuple[list[DofRange], int]:
+    """In a worker process: the ranges of ``dofs`` and the evaluations they took."""
+    finder = _WORKER_FINDER
+    before = finder.evaluations
+    found = [finder.range(dof) for dof in dofs]
+    return found, finder.evaluations - before
+
+
+def _flipped(before: tuple[np.ndarray, np.ndarray],
+             after: tuple[np.ndarray, np.ndarray]) -> bool:
+    """Whether a required margin is no longer positive in ``after`` or a forbidden group
+    not all positive in ``before`` is all positive in ``after``."""
+    (_, forbidden), (required_at, forbidden_at) = before, after
+    entered = (forbidden_at > 0.0).all(axis=1) & ~(forbidden > 0.0).all(axis=1)
+    return bool((required_at <= 0.0).any() or entered.any())
+
+
+def _first_flip(before: tuple[np.ndarray, np.ndarray], after: tuple[np.ndarray, np.ndarray],
+                start: float, step: float, limit: float) -> float:
+    """The first step >= ``start`` (at most ``limit``) at which, the margins taken as
+    linear through their values at ``start`` (``before``) and ``step`` (``after``), a
+    required margin reaches 0 or all margins of a forbidden group become positive."""
+    (required, forbidden), (required_at, forbidden_at) = before, after
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rate = (required_at - required) / (step - start)
+        falling = rate < 0.0
+        first = float(np.min(start + np.maximum(required[falling], 0.0) / -rate[falling],
+                             initial=limit))
+        rate = (forbidden_at - forbidden) / (step - start)
+        positive = forbidden > 0.0
+        enters = np.where(positive, start, np.where(rate > 0.0, start - forbidden / rate,
+                                                    np.inf))
+        leaves = np.where(positive & (rate < 0.0), start - forbidden / rate, np.inf)
+        begin, end = enters.max(axis=1), leaves.min(axis=1)
+    closed = ~positive.all(axis=1) & (begin < end)
+    return min(first, float(np.min(begin[closed], initial=limit)))
 
 
 def _margins(linear: Linearization, sens: Sensitivity):

@@ -39,8 +39,15 @@ class NailForces:
 
     @property
     def durable(self) -> bool:
-        slack = 1.0 + tol.CAPACITY_REL_TOL
-        return self.pull <= self.pull_capacity * slack and self.shear <= self.shear_capacity * slack
+        return bool(within_capacity(self.pull, self.shear, self.pull_capacity,
+                                    self.shear_capacity))
+
+
+def within_capacity(pull, shear, pull_capacity: float, shear_capacity: float):
+    """Whether per-nail pull and shear (N; floats or arrays) are within their capacities,
+    up to the relative slack CAPACITY_REL_TOL: the durability verdict of a joint."""
+    slack = 1.0 + tol.CAPACITY_REL_TOL
+    return (pull <= pull_capacity * slack) & (shear <= shear_capacity * slack)
 
 
 def nail_pull_shear(joints: list[Joint], wrenches: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -104,6 +111,22 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
     result = CaseResult(case.name, all(j.durable for j in joints), stable, tuple(joints),
                         tuple(contacts), statics.stability)
     return result, violations
+
+
+def case_holds(design: Design, geometry: Geometry, model: StaticsModel,
+               statics: CaseStatics) -> bool:
+    """Whether a case has no violation: ``not evaluate_case(...)[1]`` without building its
+    result (for searches that only need the verdict).  A case holds iff it is stable and
+    every joint is durable (a sliding case is a violation whatever its joints do)."""
+    if statics.stability != "stable":
+        return False
+    if statics.joint_wrenches is None or not model.joints:
+        return True
+    pulls, shears = nail_pull_shear([geometry.joints[j] for j in model.joints],
+                                    statics.joint_wrenches)
+    return bool(np.all(within_capacity(pulls, shears,
+                                       design.material.nail_pull / design.safety_factor,
+                                       design.material.nail_shear / design.safety_factor)))
 
 
 def _durability_message(nails: NailForces, design: Design) -> str:

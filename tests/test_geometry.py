@@ -181,3 +181,39 @@ def test_reanalysis_of_an_edit_equals_a_fresh_analysis():
             assert fresh.components == reused.components
             compared += 1
     assert compared > 30
+
+
+def test_edit_margins_are_linear_in_a_translation_and_vanish_where_the_checks_flip():
+    """A shelf (12 thick, mid-plane z = 300) between two 600 mm sides, moved along z by s:
+    its end faces span z 294 + s .. 306 + s on the sides' faces (z 0..600), so the overlap
+    margin of both joints is 600 - (294 + s) mm and reaches 0 at s = 306; its lowest
+    corner (294 + s) comes within the tolerance 0.5 mm of the ground at s = -293.5.  Every
+    margin is linear in s (a translation), and check_edit agrees on both sides of both
+    flips."""
+    import range_designs as rd
+
+    from furncheck.dofs import apply_dof, check_edit, parse_dof, structure
+    from furncheck.geometry import EditMargins
+
+    bay = rd.parse(rd.bay())
+    geometry = analyze(bay)
+    frame, dof = structure(bay, geometry), parse_dof(bay, "shelf.z")
+    margins = EditMargins(bay, geometry, (bay.plank_index["shelf"],), turn=0.0)
+
+    def at(step):
+        return margins(apply_dof(bay, frame, dof, step))
+
+    (required, forbidden), (up, forbidden_up) = at(0.0), at(100.0)
+    assert required.min() > 0 and not (forbidden > 0).all(axis=1).any()
+    for step in (-200.0, 50.0, 250.0):            # linear: values on the line through 0, 100
+        values, groups = at(step)
+        assert np.allclose(values, required + step / 100.0 * (up - required), atol=1e-12)
+        assert np.allclose(groups, forbidden + step / 100.0 * (forbidden_up - forbidden),
+                           atol=1e-12)
+    rate = (up - required) / 100.0
+    falling = rate < 0
+    assert (required[falling] / -rate[falling]).min() == pytest.approx(306.0, abs=1e-3)
+    rising = rate > 0
+    assert (required[rising] / rate[rising]).min() == pytest.approx(293.5, abs=1e-3)
+    for step, kept in ((305.9, True), (306.1, False), (-293.4, True), (-293.6, False)):
+        assert (check_edit(geometry, apply_dof(bay, frame, dof, step), bay)[0] is None) == kept

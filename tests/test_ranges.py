@@ -355,6 +355,15 @@ def test_lock_on_the_catalog_cantilever():
     assert ranges["base.y"] == one_range(design, "base.y")
 
 
+def test_ranges_in_worker_processes_equal_the_ranges_in_one():
+    """Every DOF's search is independent of the others: two worker processes give the same
+    ranges, in the same order, and the same evaluation count as one process."""
+    design = load_design(str(DESIGNS / "shelf-cantilever.yaml"))
+    alone, shared = RangeFinder(design), RangeFinder(design)
+    assert shared.ranges(jobs=2) == alone.ranges(jobs=1)
+    assert shared.evaluations == alone.evaluations
+
+
 # --- f. command line -----------------------------------------------------------------------------
 
 def run(*args: str):

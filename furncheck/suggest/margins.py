@@ -86,7 +86,7 @@ class Margins:
         self.editor = editor
         self.size = design_size(design)
         self.blocked: dict[str, str] = {}
-        self._edited: dict[Dof, tuple[float, Design, Design]] = {}
+        self._edited: dict[Dof, tuple[float, Design, Design]] = {}   # (step apart, +, -)
         if geometry.violations:
             self.dofs = [dof for dof in dofs if self._movable(dof)]
             self.margins = self._geometric(report)
@@ -108,7 +108,7 @@ class Margins:
         except (Blocked, OutOfReach) as why:
             self.blocked[dof.name] = getattr(why, "reason", str(why))
             return False
-        self._edited[dof] = (step, plus, minus)
+        self._edited[dof] = (2.0 * step, plus, minus)
         return True
 
     def _difference(self, measure) -> np.ndarray:
@@ -116,9 +116,8 @@ class Margins:
         (k, n_free), per scaled unit."""
         columns = []
         for dof in self.dofs:
-            step, plus, minus = self._edited[dof]
-            columns.append((measure(plus) - measure(minus)) / (2.0 * step)
-                           * self.editor.scale(dof))
+            span, plus, minus = self._edited[dof]
+            columns.append((measure(plus) - measure(minus)) / span * self.editor.scale(dof))
         if not columns:
             return np.zeros((len(measure(self.design)), 0))
         return np.column_stack(columns)
@@ -132,7 +131,8 @@ class Margins:
         for case in self.design.load_cases:
             try:
                 linears.append(Linearization(self.design, case, self.geometry,
-                                             self.editor.frame, shared, bolted=True))
+                                             self.editor.frame, shared, bolted=True,
+                                             one_sided=True))
             except ValueError:
                 continue
         if not linears:
@@ -147,7 +147,7 @@ class Margins:
             if lock is not None:
                 self.blocked[dof.name] = f"it would change the locked {lock}"
                 continue
-            self._edited[dof] = (stepped.h, stepped.plus[0], stepped.minus[0])
+            self._edited[dof] = (stepped.h, stepped.plus[0], stepped.minus[0])  # one-sided
             free.append(dof)
         self.dofs = free
         scales = np.array([self.editor.scale(dof) for dof in free])
