@@ -7,8 +7,9 @@ is 1 s on the project's 2-core machine.
     python benchmarks/bench_range.py [--jobs N] [DESIGN ...]   (default: a few catalog
                                                                 designs, one process)
 
-With ``--jobs 2`` the DOFs are searched in two worker processes; that pays only with a
-single-threaded BLAS (``OPENBLAS_NUM_THREADS=1``), see ``RangeFinder.ranges``.
+With ``--jobs 2`` the DOFs are searched in two worker processes.  Like the command line
+(``furncheck.cli``), the benchmark runs numpy with one BLAS thread (see
+``RangeFinder.ranges``).
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ import sys
 import time
 from pathlib import Path
 
+import furncheck.cli  # noqa: F401  (first: one BLAS thread, as the command line runs)
 from furncheck.design import load_design
 from furncheck.ranges import RangeFinder
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+
 import click
 
 from furncheck.cli.output import check_output, dofs_or_fail, load_or_fail, write_output
@@ -17,8 +19,11 @@ from furncheck.cli.output import check_output, dofs_or_fail, load_or_fail, write
                    "(repeatable), e.g. --lock seat.z.")
 @click.option("-o", "--output", metavar="FILE", default=None,
               help="Write the report to FILE instead of standard output.")
+@click.option("-j", "--jobs", type=click.IntRange(min=1), default=None,
+              help="Worker processes for many DOFs (default: all cores); the output is the "
+                   "same.")
 def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str, ...],
-                  output: str | None) -> None:
+                  output: str | None, jobs: int | None) -> None:
     """Valid interval of each DOF of DESIGN, the others held fixed (their neighbours
     adjusted to keep the joints).  DOFs are <plank>.x|y|z (translation, length unit),
     <plank>.rx|ry|rz (rotation about world axes, degrees) and <plank>.length|width;
@@ -32,6 +37,7 @@ def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str
     check_output(output)
     loaded = load_or_fail(design)
     dofs_or_fail(design, loaded, (*dofs, *locks))
-    ranges = RangeFinder(loaded, tuple(locks)).ranges(list(dofs) or None)
+    ranges = RangeFinder(loaded, tuple(locks)).ranges(list(dofs) or None,
+                                                      jobs or os.cpu_count() or 1)
     render = render_json if fmt == "json" else render_text
     write_output(render(design, ranges), output)

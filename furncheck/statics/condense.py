@@ -8,9 +8,11 @@ matrix and its solve to the sensitivity analysis.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
@@ -35,8 +37,8 @@ class _Condensation:
 
     ground: np.ndarray           # indices of g in the full unknown vector
     inner: np.ndarray            # indices of i
-    lu: object                   # SuperLU of A_ii
-    coupling: sp.csc_matrix      # A_ig (n_i, n_g)
+    lu: object                   # SuperLU (or _DenseLU) of A_ii
+    coupling: sp.csc_matrix      # A_ig (n_i, n_g); dense for a small system
     reduced: np.ndarray          # X = A_ii^-1 A_ig
     schur: np.ndarray            # S0
     contact_block: np.ndarray    # per contact, number of its plank's 6-block in x_g
@@ -60,28 +62,40 @@ class _Condensation:
 
 def _condense(model: StaticsModel) -> _Condensation | None:
     """Build the condensation; None if the contact-free part is singular (a plank that
-    is neither grounded nor jointed to a grounded plank cannot be held)."""
+    is neither grounded nor jointed to a grounded plank cannot be held).  Small systems
+    (DENSE_SYSTEM_MAX) are factored densely, larger ones by SuperLU."""
     n, m = model.n_dof, model.G.shape[0]
     G = model.G.tocoo()
     diagonal = n + np.arange(m)
-    A = sp.csc_matrix((np.concatenate([G.data, G.data, -model.compliance]),
-                       (np.concatenate([G.col, n + G.row, diagonal]),
-                        np.concatenate([n + G.row, G.col, diagonal]))), shape=(n + m, n + m))
+    rows = np.concatenate([G.col, n + G.row, diagonal])
+    cols = np.concatenate([n + G.row, G.col, diagonal])
+    values = np.concatenate([G.data, G.data, -model.compliance])
     grounded, contact_block = np.unique(model.contact_plank, return_inverse=True)
     ground = (6 * grounded[:, None] + _SIX[None, :]).ravel()
     inner = np.setdiff1d(np.arange(n + m), ground)
     ni = len(inner)
     order = np.concatenate([inner, ground])
-    permuted = A[order][:, order].tocsc()
-    A_ii = permuted[:ni, :ni].tocsc()
-    coupling = permuted[:ni, ni:].tocsc()
+    dense = n + m <= tol.DENSE_SYSTEM_MAX
+    if dense:
+        A = np.zeros((n + m, n + m))
+        np.add.at(A, (rows, cols), values)
+        permuted = A[np.ix_(order, order)]
+        A_ii, coupling = permuted[:ni, :ni], permuted[:ni, ni:]
+    else:
+        A = sp.csc_matrix((values, (rows, cols)), shape=(n + m, n + m))
+        permuted = A[order][:, order].tocsc()
+        A_ii = permuted[:ni, :ni].tocsc()
+        coupling = permuted[:ni, ni:].tocsc()
     lu, reduced = None, np.zeros((ni, len(ground)))
     if ni:
-        lu = _factor(A_ii, np.asarray(coupling.sum(axis=1)).ravel())
+        probe = np.asarray(coupling.sum(axis=1)).ravel()
+        lu = _factor_dense(A_ii, probe) if dense else _factor(A_ii, probe)
         if lu is None:
             return None
-        reduced = lu.solve(coupling.toarray()) if len(ground) else reduced
-    schur = permuted[ni:, ni:].toarray() - np.asarray(coupling.T @ reduced)
+        if len(ground):
+            reduced = lu.solve(coupling if dense else coupling.toarray())
+    corner = permuted[ni:, ni:]
+    schur = (corner if dense else corner.toarray()) - np.asarray(coupling.T @ reduced)
     return _Condensation(ground, inner, lu, coupling, reduced, schur,
                          contact_block.astype(int), 6 * np.arange(len(grounded)), n + m)
 
@@ -103,6 +117,29 @@ def _factor(A: sp.csc_matrix, probe: np.ndarray):
         if _accurate(A, lu.solve(rhs), rhs):
             return lu
     return None
+
+
+class _DenseLU:
+    """LAPACK LU factors of a small dense matrix, solved like SuperLU's ``solve``."""
+
+    def __init__(self, factors):
+        self.factors = factors
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        return sla.lu_solve(self.factors, rhs, check_finite=False)
+
+
+def _factor_dense(A: np.ndarray, probe: np.ndarray) -> _DenseLU | None:
+    """Dense LU (partial pivoting) of A, or None if it is singular: an exactly zero pivot,
+    or a poor solve of the right-hand side ``probe``."""
+    rhs = probe if np.any(probe) else np.ones(A.shape[0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", sla.LinAlgWarning)   # a zero pivot: checked below
+        factors = sla.lu_factor(A, check_finite=False)
+    if not np.all(np.diag(factors[0])):
+        return None
+    lu = _DenseLU(factors)
+    return lu if _accurate(A, lu.solve(rhs), rhs) else None
 
 
 def _accurate(A, x: np.ndarray, b: np.ndarray) -> bool:
