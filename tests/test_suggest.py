@@ -280,3 +280,21 @@ def test_representative_is_valid_in_every_case():
     assert result.suggestions
     report = check_design(result.suggestions[0].design)
     assert report.valid and {c.name for c in report.cases} == {"default", "shove"}
+
+
+def test_cli_out_without_the_export_extra_still_writes_design_files(tmp_path, monkeypatch):
+    """Without trimesh (the export extra), --out writes the design files, says on stderr
+    that meshes and plots were skipped, and exits 0."""
+    import importlib.util
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec",
+                        lambda name, *args: None if name == "trimesh" else real(name, *args))
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["suggest", str(CATALOG / "bench-long-leg.yaml"),
+                                       "--out", str(out)])
+    assert result.exit_code == 0
+    assert "meshes and plots not written" in result.output
+    written = sorted(p.name for p in out.iterdir())
+    assert written and all(name.endswith(".yaml") for name in written)
+    assert all(check_file(str(out / name)).valid for name in written)
