@@ -129,7 +129,7 @@ def test_tipping_bench_is_given_a_wider_stance(results):
     """bench-tips: it topples over the right panel (outer face x = 306 mm) with 80 kg at
     x = 560 mm.  Moving leg_r out by d (the stretcher lengthening with it) stands the
     bench when the centre of mass x_G(d) <= 306 + d; solved here from the planks' masses.
-    A 'move leg_r along +x' suggestion is among the first three, starting there."""
+    A 'move leg_r away from leg_l' suggestion is among the first three, starting there."""
     seat = MDF * 1.2 * 0.3 * T
     leg = MDF * 0.438 * 0.3 * T
 
@@ -203,6 +203,9 @@ def test_cli_text_reads_like_advice():
     assert result.exit_code == 0
     assert "1. Shorten shelf by" in result.output
     assert "Restores durability." in result.output
+    assert "Add support-1 (582 x 300 mm) between shelf and base" in result.output
+    bench = run("suggest", str(CATALOG / "bench-tips.yaml"))
+    assert "Move leg_r 262 mm away from leg_l (valid for" in bench.output
     valid = run("suggest", str(CATALOG / "stool.yaml"))
     assert valid.exit_code == 0 and "Nothing needs to change" in valid.output
 

@@ -26,6 +26,9 @@ from furncheck.suggest import Suggestion, SuggestionReport
 ADVICE_DIGITS = 3
 """Significant digits of the amounts in the advice (the JSON keeps REPORT digits)."""
 
+PARALLEL_COSINE = 0.95
+"""Planks whose face normals' cosine exceeds this count as parallel."""
+
 TOWARD_COSINE = 0.5
 """A plank is 'toward' which a move goes when the direction to its centre is within 60
 degrees of the move."""
@@ -71,8 +74,11 @@ def _phrase(design: Design, plank: str, subject: str, kind: str, change: float,
     if kind == "z":
         return f"{'raise' if change > 0 else 'lower'} {subject} by {amount}"
     if kind in ("x", "y"):
-        target = _toward(design, plank, "xy".index(kind), 1.0 if change > 0 else -1.0)
-        where = f"toward {target}" if target else f"along {'+' if change > 0 else '-'}{kind}"
+        sign = 1.0 if change > 0 else -1.0
+        ahead = _toward(design, plank, "xy".index(kind), sign)
+        behind = _toward(design, plank, "xy".index(kind), -sign)
+        where = f"toward {ahead}" if ahead else f"away from {behind}" if behind else \
+            f"along {'+' if change > 0 else '-'}{kind}"
         return f"move {subject} {amount} {where}"
     if kind == "length":
         return f"{'lengthen' if change > 0 else 'shorten'} {subject} by {amount}"
@@ -84,17 +90,21 @@ def _phrase(design: Design, plank: str, subject: str, kind: str, change: float,
 
 
 def _toward(design: Design, plank_id: str, axis: int, sign: float) -> str | None:
-    """The nearest other plank whose centre lies ahead of a move along ``axis``."""
-    centre = design.plank(plank_id).center_array
-    best, best_distance = None, np.inf
+    """The plank ahead of a move along ``axis``: among the others whose centre lies
+    within 60 degrees of the move, a parallel one (the other leg of a pair) before the
+    rest, then the nearest."""
+    moved = design.plank(plank_id)
+    normal = moved.rotation_matrix[:, 2]
+    best, best_key = None, None
     for plank in design.planks:
-        if plank.id == plank_id:
-            continue
-        offset = plank.center_array - centre
+        offset = plank.center_array - moved.center_array
         distance = float(np.linalg.norm(offset))
-        if distance > 0 and sign * offset[axis] >= TOWARD_COSINE * distance \
-                and distance < best_distance:
-            best, best_distance = plank.id, distance
+        if plank.id == plank_id or distance == 0 or sign * offset[axis] < TOWARD_COSINE * distance:
+            continue
+        parallel = abs(float(plank.rotation_matrix[:, 2] @ normal)) > PARALLEL_COSINE
+        key = (not parallel, distance)
+        if best_key is None or key < best_key:
+            best, best_key = plank.id, key
     return best
 
 
