@@ -269,7 +269,7 @@ def _moved(plank: Plank, offset: np.ndarray) -> Plank:
 def _turned(plank: Plank, turn: np.ndarray, pivot: np.ndarray) -> Plank:
     center = pivot + turn @ (plank.center_array - pivot)
     return replace(plank, center=tuple(float(v) for v in center),
-                   rotation=_euler_degrees(turn @ plank.rotation_matrix, plank.rotation))
+                   rotation=euler_degrees(turn @ plank.rotation_matrix, plank.rotation))
 
 
 def _with_size(plank: Plank, axis: int, size: float, center: np.ndarray) -> Plank:
@@ -348,7 +348,7 @@ def _axis_rotation(axis: int, angle: float) -> np.ndarray:
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
-def _euler_degrees(matrix: np.ndarray, previous: tuple[float, float, float]) -> tuple:
+def euler_degrees(matrix: np.ndarray, previous: tuple[float, float, float]) -> tuple:
     """Angles (degrees) about x, then y, then z with R = Rz @ Ry @ Rx.
 
     Of the two angle triples giving the same matrix (ry and 180 - ry), and of their

@@ -447,11 +447,22 @@ def _bounding_boxes(planks: tuple[Plank, ...]) -> tuple[np.ndarray, np.ndarray]:
     return corners.min(axis=1), corners.max(axis=1)
 
 
+def end_gap(design: Design, i: int, j: int) -> float | None:
+    """How far (m) the end face of one of planks i, j is from the broad face of the other
+    that it faces (its gap, or its depth when it cuts in), None when neither plank's end
+    faces the other: what keeps a listed joint from closing."""
+    touch = _nearest_touch(design, i, j)
+    return None if touch is None else abs(float(touch.gap))
+
+
+def _nearest_touch(design: Design, i: int, j: int) -> _Touch | None:
+    return _best_touches(design, np.array([[i, j]]), slack=np.inf, keep_deep=False).get((i, j))
+
+
 def _apart_message(design: Design, i: int, j: int) -> str:
     """Why two listed planks form no joint, with the gap between the end face and the face
     it should rest on when one faces the other."""
-    near = _best_touches(design, np.array([[i, j]]), slack=np.inf, keep_deep=False)
-    touch = near.get((i, j))
+    touch = _nearest_touch(design, i, j)
     if touch is not None and touch.gap > 0:
         return (f"planks do not touch: the end of {touch.edge.id} is "
                 f"{_fmt_len(touch.gap, design)} from the face of {touch.face.id} "

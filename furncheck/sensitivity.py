@@ -33,7 +33,7 @@ from furncheck.statics import (
     solve_case,
     solve_system,
 )
-from furncheck.statics.model import _point_maps
+from furncheck.statics.model import point_maps
 from furncheck.tolerances import GRAVITY
 
 ASSEMBLY_STEP = 1e-4
@@ -262,11 +262,12 @@ class Linearization:
             table = np.array(contact_rows)
             column, weight = table[:, 0].astype(int), table[:, 1]
             row, a = table[:, 2].astype(int), table[:, 3].astype(int)
-            point_maps = _point_maps(table[:, 4:7])                           # (E, 3, 6)
+            stepped_maps = point_maps(table[:, 4:7])                         # (E, 3, 6)
             springs = anchor_springs(self.holding)[row]
-            force = -np.einsum("eba,ebc,ecd,ed->ea", point_maps, springs, point_maps, q[a])
+            force = -np.einsum("eba,ebc,ecd,ed->ea", stepped_maps, springs, stepped_maps,
+                               q[a])
             _add(residual, 6 * a, column, force * weight[:, None])
-            np.add.at(maps, (column, row), point_maps * weight[:, None, None])
+            np.add.at(maps, (column, row), stepped_maps * weight[:, None, None])
         if plank_rows:
             table = np.array(plank_rows)
             column, weight = table[:, 0].astype(int), table[:, 1]

@@ -113,7 +113,7 @@ def build_model(design: Design, geometry: Geometry) -> StaticsModel:
     return StaticsModel(
         design=design, geometry=geometry, planks=tuple(grounded_planks), joints=tuple(joints),
         contacts=tuple(contacts), G=G, compliance=compliance.ravel(),
-        contact_maps=_point_maps(points - centres),
+        contact_maps=point_maps(points - centres),
         contact_plank=np.array(owner, dtype=int),
         contact_points=points,
         contact_component=np.array([component_of[p] for p in owner], dtype=int),
@@ -186,12 +186,7 @@ def _skew_many(v: np.ndarray) -> np.ndarray:
     return out
 
 
-def _point_map(r: np.ndarray) -> np.ndarray:
-    """(3, 6): displacement of a point at offset r from the centre, [I, -[r]x] @ (u, theta)."""
-    return np.hstack([np.eye(3), -_skew(r)])
-
-
-def _point_maps(r: np.ndarray) -> np.ndarray:
+def point_maps(r: np.ndarray) -> np.ndarray:
     """(n, 3, 6): displacement of points at offsets r (n, 3) from their planks' centres,
     [I, -[r]x] @ (u, theta)."""
     maps = np.zeros((len(r), 3, 6))

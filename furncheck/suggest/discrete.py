@@ -20,7 +20,7 @@ import numpy as np
 
 from furncheck.check import check_design
 from furncheck.design.model import Design, JointSpec, Plank
-from furncheck.dofs import _euler_degrees
+from furncheck.dofs import euler_degrees
 from furncheck.geometry import Geometry, analyze, interpenetrations
 from furncheck.result import DesignReport
 
@@ -139,7 +139,7 @@ def _support(design: Design, k: Plank, i: Plank, j: Plank, position: float) -> P
     x_axis = normal                                                   # its length spans the gap
     z_axis = axes[:, along] * sign                                    # its face looks at k
     y_axis = np.cross(z_axis, x_axis)
-    rotation = _euler_degrees(np.column_stack([x_axis, y_axis, z_axis]), (0.0, 0.0, 0.0))
+    rotation = euler_degrees(np.column_stack([x_axis, y_axis, z_axis]), (0.0, 0.0, 0.0))
     taken = {p.id for p in design.planks}
     name = next(f"support-{n}" for n in range(1, len(taken) + 2) if f"support-{n}" not in taken)
     return Plank(name, float(gap), width, thickness, tuple(float(v) for v in centre),

@@ -31,8 +31,7 @@ import numpy as np
 
 from furncheck.design.model import Design
 from furncheck.dofs import Blocked, Dof, OutOfReach, design_size
-from furncheck.geometry import Geometry
-from furncheck.geometry import _best_touches as best_touches
+from furncheck.geometry import Geometry, end_gap
 from furncheck.result import DesignReport
 from furncheck.sensitivity import Linearization, Sensitivity
 from furncheck.suggest.edits import Editor
@@ -202,7 +201,7 @@ class Margins:
             elif violation.kind == "disconnected" and "/" in violation.where:
                 a, b = violation.where.split("/", 1)
                 pair = (design.plank_index[a], design.plank_index[b])
-                if _gap(design, pair) is not None:
+                if end_gap(design, *pair) is not None:
                     measures.append((violation.where, _gap_measure(pair)))
         if not measures:
             return []
@@ -294,15 +293,8 @@ def _height(plank: int):
     return lambda design: float(design.planks[plank].corners[:, 2].min())
 
 
-def _gap(design: Design, pair: tuple[int, int]) -> float | None:
-    """The distance (m) between a listed joint's end face and the face it should rest on,
-    None when neither plank's end faces the other."""
-    touch = best_touches(design, np.array([pair]), slack=np.inf, keep_deep=False).get(pair)
-    return None if touch is None else abs(float(touch.gap))
-
-
 def _gap_measure(pair: tuple[int, int]):
     def measure(design: Design) -> float:
-        gap = _gap(design, pair)
+        gap = end_gap(design, *pair)
         return np.inf if gap is None else gap
     return measure
