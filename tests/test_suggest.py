@@ -151,6 +151,30 @@ def test_tipping_bench_is_given_a_wider_stance(results):
     assert math.isclose(wider[0].range[0] * scale, needed, rel_tol=0.03)
 
 
+def test_table_pushed_past_tipping_gets_a_wider_stance(tmp_path):
+    """designs/table.yaml with its 'lean' load raised to 150 kg at x = 495 mm tips over
+    leg_r (outer face x = 436 mm).  Moving leg_r out by d (the apron lengthening with it:
+    0.9 kg/m) stands it when the centre of mass is inside: with the top 5.4 kg at 0, the
+    legs 3.24 kg at -0.43 and 0.43 + d and the apron 0.763 + 0.9 d kg at d / 2,
+    74.25 + 3.6215 d + 0.45 d^2 <= (0.436 + d)(162.643 + 0.9 d), i.e. d >= 20.9 mm.  A
+    'move leg_r away from leg_l' and a splay of leg_r are among the first three."""
+    text = (CATALOG / "table.yaml").read_text()
+    path = tmp_path / "table-tips.yaml"
+    path.write_text(text.replace("mass: 50, at: [480, 0, 732]", "mass: 150, at: [495, 0, 732]"))
+    design = load_design(str(path))
+    assert [v.kind for v in check_design(design).violations] == ["lift-off"]
+    a, b, c = 0.45, 162.643 + 0.3924 - 3.6215, 70.912 - 74.25       # 0.45 d^2 + b d + c
+    needed = 1000 * (-b + math.sqrt(b * b - 4 * a * c)) / (2 * a)
+    assert needed == pytest.approx(20.9, abs=0.1)
+    result = suggest_design(design)
+    first = result.suggestions[:3]
+    assert any(s.dofs == ("leg_r.ry",) for s in first)
+    wider = [s for s in first if s.dofs == ("leg_r.x",)]
+    assert wider and wider[0].changes[0] > 0
+    lead = wider[0].changes[0] / wider[0].step
+    assert wider[0].range[0] * lead == pytest.approx(needed, rel=0.03)
+
+
 def test_geometric_repairs_close_the_measured_gap(results):
     """bookshelf-gap: the shelf ends 3 mm short of side_r (tolerance 0.5 mm): lengthening
     it by 2.5 to 3.5 mm joins it.  bench-long-leg: the middle leg is 2 mm too long:
