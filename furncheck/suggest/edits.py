@@ -16,7 +16,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from furncheck.check import check_design, is_valid
+from furncheck.check import check_design
 from furncheck.design.model import Design
 from furncheck.dofs import (
     Blocked,
@@ -46,8 +46,8 @@ def dof_scale(design: Design, dof: Dof) -> float:
 
 
 class Editor:
-    """Designs along directions from one design: ``moved`` applies DOF changes, ``accepts``
-    says whether a moved design may be suggested."""
+    """Designs along directions from one design: ``moved`` applies DOF changes, ``keeps``
+    and ``margin_at`` say whether a moved design may be suggested."""
 
     def __init__(self, design: Design, geometry: Geometry, frame: Structure,
                  locked: tuple[Dof, ...] = ()):
@@ -91,12 +91,6 @@ class Editor:
             if abs(dof_value(edited, lock) - dof_value(self.design, lock)) > LOCK_EPS:
                 return lock.name
         return None
-
-    def accepts(self, edited: Design) -> bool:
-        """Whether ``edited`` is valid (every case, contract section 3) and ``keeps`` the
-        design's joints."""
-        geometry = self.keeps(edited)
-        return geometry is not None and is_valid(edited, geometry)
 
     def keeps(self, edited: Design) -> Geometry | None:
         """The geometry of ``edited`` if it has no geometric violation, keeps the joints of
