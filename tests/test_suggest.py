@@ -325,3 +325,27 @@ def test_cli_out_without_the_export_extra_still_writes_design_files(tmp_path, mo
     written = sorted(p.name for p in out.iterdir())
     assert written and all(name.endswith(".yaml") for name in written)
     assert all(check_file(str(out / name)).valid for name in written)
+
+
+def test_a_ledge_gets_a_leg_down_to_the_floor():
+    """The 9-plank Table-1 bookcase: its 350 x 160 mm ledge, nailed by one end to the
+    outside of the right side at z = 1100..1112 mm, fails.  No parallel plank lies under
+    it, so the floor serves: a support 1100 mm long (the ledge's underside height) and as
+    wide as the ledge (160 mm), standing on the floor under its far end; the design file
+    validates."""
+    import sys
+
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    from table1_designs import table1_design
+
+    design = table1_design(9)
+    result = suggest_design(design)
+    legs = [s for s in result.suggestions if s.kind == "discrete"]
+    assert legs and legs[0].between == ("ledge", "the floor")
+    (leg,) = legs[0].adds
+    ledge = design.plank("ledge")
+    assert leg.length == pytest.approx(ledge.corners[:, 2].min())
+    assert leg.width == pytest.approx(ledge.width)
+    assert leg.center[0] > ledge.center[0]                 # under the far end
+    assert any(c.plank == leg.id for case in legs[0].report.cases for c in case.contacts)
+    assert legs[0].report.valid

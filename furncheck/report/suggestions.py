@@ -37,7 +37,7 @@ degrees of the move."""
 def advice(suggestion: Suggestion, original: Design) -> str:
     """'Move shelf 42 mm toward post and tilt it 3 degrees about y (valid for 18-61 mm).'
     or 'Add support-1 (582 x 300 mm) between shelf and base, centred at (250, 0, 303) mm,
-    nailed to both.'"""
+    nailed to both.' (or 'under ledge, standing on the floor, ...')"""
     if suggestion.kind == "discrete":
         return _support_advice(suggestion, original)
     phrases = []
@@ -59,13 +59,18 @@ def advice(suggestion: Suggestion, original: Design) -> str:
 
 def _support_advice(suggestion: Suggestion, original: Design) -> str:
     scale, unit = original.unit_scale, original.units
+    upper, lower = suggestion.between
     parts = []
     for plank in suggestion.adds:
         size = " x ".join(_amount(v / scale) for v in (plank.length, plank.width))
         centre = ", ".join(_amount(v / scale) for v in plank.center)
-        parts.append(f"{plank.id} ({size} {unit}) between {' and '.join(suggestion.between)}, "
-                     f"centred at ({centre}) {unit}")
-    return f"Add {'; '.join(parts)}, nailed to both."
+        if lower == "the floor":
+            parts.append(f"{plank.id} ({size} {unit}) under {upper}, standing on the floor, "
+                         f"centred at ({centre}) {unit}, nailed to {upper}")
+        else:
+            parts.append(f"{plank.id} ({size} {unit}) between {upper} and {lower}, centred "
+                         f"at ({centre}) {unit}, nailed to both")
+    return f"Add {'; '.join(parts)}."
 
 
 def _phrase(design: Design, plank: str, subject: str, kind: str, change: float,
@@ -109,7 +114,9 @@ def _toward(design: Design, plank_id: str, axis: int, sign: float) -> str | None
 
 
 def _amount(value: float) -> str:
-    return format_number(value, ADVICE_DIGITS)
+    """ADVICE_DIGITS significant digits, but whole units at least (1250 mm, not 1.25e+03)."""
+    whole = len(str(int(abs(round(value)))))
+    return format_number(value, max(ADVICE_DIGITS, whole))
 
 
 def _unit(unit: str) -> str:

@@ -3,13 +3,14 @@
 When a joint is not durable, a support is added between two nearly parallel planks P_i
 and P_j that a third plank P_k joins, where the failing joint is P_k's joint with one of
 them -- a shelf nailed to a post gets a support standing on the base, a chair's seat a
-post down to the stretcher.  The support stands across the gap between the faces of P_i
-and P_j that face each other, its ends nailed to both (so it becomes the edge plank of two
-new joints), its broad face turned toward P_k; candidate places are the far side of the
-overlap of P_i and P_j from P_k (a triangle with the joint that fails: the woodworker's
-bracket) and its middle.  Each candidate design is checked in full -- valid in every
-case, the new plank joined to P_i and P_j only, no plank cutting another -- and only
-working supports are suggested.
+post down to the stretcher.  Under a level P_i the floor serves as P_j too: a leg under a
+ledge nailed to the outside of a bookcase.  The support stands across the gap between the
+faces of P_i and P_j that face each other, its ends nailed to both (it becomes the edge
+plank of two new joints; on the floor it just stands), its broad face turned toward P_k.
+Candidate places are the far side of the overlap of P_i and P_j from P_k (a triangle with
+the joint that fails: the woodworker's bracket) and its middle.  Each candidate design is
+checked in full -- valid in every case, the new plank joined to P_i and P_j only, no
+plank cutting another -- and only working supports are suggested.
 """
 
 from __future__ import annotations
@@ -34,8 +35,9 @@ MIN_OVERLAP = 3.0
 """The overlap of P_i and P_j must be at least this many plank thicknesses wide (in
 both directions) to hold a support."""
 
-MAX_DISCRETE = 2
-"""At most this many support planks are suggested."""
+MAX_DISCRETE = 1
+"""At most this many support planks are suggested (the paper lists one or two): the first
+that works, far side before middle."""
 
 
 @dataclass(frozen=True)
@@ -69,11 +71,13 @@ def support_planks(design: Design, geometry: Geometry, report: DesignReport,
     for where in failing:
         pair = where.split("/", 1)
         for k, i in (pair, pair[::-1]):
-            for j in neighbours[k]:
-                if j == i or not _parallel(design.plank(i), design.plank(j)):
-                    continue
+            partners = [j for j in neighbours[k]
+                        if j != i and _parallel(design.plank(i), design.plank(j))]
+            if _level(design.plank(i)):
+                partners.append(None)                    # the floor, under a level plank
+            for j in partners:
                 for place, position in PLACES:
-                    key = (*sorted((i, j)), place)
+                    key = (*sorted((i, j or "")), place)
                     if key in tried or len(found) >= limit:
                         continue
                     tried.add(key)
@@ -83,47 +87,63 @@ def support_planks(design: Design, geometry: Geometry, report: DesignReport,
     return found
 
 
+def _level(plank: Plank) -> bool:
+    """Whether the plank lies level (its broad faces horizontal)."""
+    return abs(float(plank.rotation_matrix[2, 2])) >= PARALLEL_COS
+
+
 def _parallel(a: Plank, b: Plank) -> bool:
     return abs(float(a.rotation_matrix[:, 2] @ b.rotation_matrix[:, 2])) >= PARALLEL_COS
 
 
-def _try(design: Design, geometry: Geometry, k: str, i: str, j: str, place: str,
+def _try(design: Design, geometry: Geometry, k: str, i: str, j: str | None, place: str,
          position: float) -> Support | None:
-    """The design with a support between i and j at ``position`` (1 far side, 0 middle)
-    of their overlap, away from k; None when it does not fit or does not work."""
-    plank = _support(design, design.plank(k), design.plank(i), design.plank(j), position)
+    """The design with a support between i and j (None: the floor) at ``position`` (1 far
+    side, 0 middle) of their overlap, away from k; None when it does not fit or does not
+    work."""
+    other = None if j is None else design.plank(j)
+    plank = _support(design, design.plank(k), design.plank(i), other, position)
     if plank is None:
         return None
+    ends = (i,) if j is None else (i, j)
     joints = None if design.joints is None else \
-        (*design.joints, JointSpec((i, plank.id)), JointSpec((j, plank.id)))
+        (*design.joints, *(JointSpec((end, plank.id)) for end in ends))
     edited = replace(design, planks=(*design.planks, plank), joints=joints)
     after = analyze(edited)
     new = {frozenset(joint.planks) for joint in after.joints if plank.id in joint.planks}
-    if after.violations or new != {frozenset((i, plank.id)), frozenset((j, plank.id))}:
+    if after.violations or new != {frozenset((end, plank.id)) for end in ends}:
         return None
-    if len(after.joints) != len(geometry.joints) + 2 or interpenetrations(edited):
+    if len(after.joints) != len(geometry.joints) + len(ends) or interpenetrations(edited):
         return None
     report = check_design(edited, after)
     if not report.valid:
         return None
-    return Support(plank, (i, j), place, edited, report)
+    return Support(plank, (i, j or "the floor"), place, edited, report)
 
 
-def _support(design: Design, k: Plank, i: Plank, j: Plank, position: float) -> Plank | None:
-    """The support plank between the facing broad faces of i and j (None if they do not
-    face each other over an overlap wide enough)."""
+def _support(design: Design, k: Plank, i: Plank, j: Plank | None,
+             position: float) -> Plank | None:
+    """The support plank between the facing broad faces of i and j, or between i's
+    underside and the floor (j None); None if they do not face each other over an
+    overlap wide enough."""
     normal = i.rotation_matrix[:, 2]
-    offset = float((j.center_array - i.center_array) @ normal)
-    if offset < 0:
-        normal, offset = -normal, -offset
-    gap = offset - i.half_extents[2] - j.half_extents[2]
+    if j is None:
+        normal = -normal if normal[2] > 0 else normal                 # down, to the floor
+        gap = float(i.corners[:, 2].min())
+    else:
+        offset = float((j.center_array - i.center_array) @ normal)
+        if offset < 0:
+            normal, offset = -normal, -offset
+        gap = offset - i.half_extents[2] - j.half_extents[2]
     thickness = design.material.thickness
     if gap <= thickness:
         return None
     axes = i.rotation_matrix[:, :2]                                   # in-plane x, y of i
-    corners_j = (j.corners - i.center_array) @ axes                   # j seen in i's plane
-    low = np.maximum(-i.half_extents[:2], corners_j.min(axis=0))
-    high = np.minimum(i.half_extents[:2], corners_j.max(axis=0))
+    low, high = -i.half_extents[:2], i.half_extents[:2].copy()
+    if j is not None:
+        corners_j = (j.corners - i.center_array) @ axes               # j seen in i's plane
+        low = np.maximum(low, corners_j.min(axis=0))
+        high = np.minimum(high, corners_j.max(axis=0))
     if np.any(high - low < MIN_OVERLAP * thickness):
         return None
     away = (k.center_array - i.center_array) @ axes                   # where k stands
