@@ -95,13 +95,17 @@ class ContinuousSearch:
     def restores(self) -> tuple[str, ...]:
         return tuple(sorted({m.restores for m in self.margins.violated}))
 
-    def run(self, max_dofs: int, wanted: int) -> list[Found]:
-        """Line-search directions, nearest first, until ``wanted`` have a valid interval
-        (at most LINE_SEARCHES_PER_SUGGESTION x wanted searches); ranked by score."""
+    def directions(self, max_dofs: int) -> list[Candidate]:
+        """The kept directions of 1..max_dofs DOFs, nearest first (``candidates``)."""
+        return candidates(self.margins, max_dofs)
+
+    def run(self, directions: list[Candidate], wanted: int) -> list[Found]:
+        """Line-search the directions in order until ``wanted`` have a valid interval (at
+        most LINE_SEARCHES_PER_SUGGESTION x wanted searches); ranked by score."""
         margins = self.margins
         own_margin = joint_margin(self.report)
         found: list[Found] = []
-        for candidate in candidates(margins, max_dofs):
+        for candidate in directions:
             if len(found) >= wanted or self.searched >= LINE_SEARCHES_PER_SUGGESTION * wanted:
                 break
             self.searched += 1

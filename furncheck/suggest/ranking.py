@@ -33,8 +33,9 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
         return SuggestionReport(design.source, design.name, report, ())
     start = time.perf_counter()
     search = ContinuousSearch(design, geometry, report, locked)
+    directions = search.directions(max_dofs)
     searching = time.perf_counter()
-    continuous = search.run(max_dofs, max_suggestions)
+    continuous = search.run(directions, max_suggestions)
     discrete_start = time.perf_counter()
     supports = support_planks(design, geometry, report)
     end = time.perf_counter()
@@ -49,7 +50,7 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
             continue
         edited, step, changes = moved
         written = _written(edited, len(suggestions) + 1)
-        if written is not None:
+        if written is not None and search.editor.keeps(written[0]) is not None:
             suggestions.append(Suggestion(
                 len(suggestions) + 1, "continuous", search.restores, *written,
                 dofs=tuple(d.name for d in found.dofs),
