@@ -3,9 +3,10 @@ section 4.
 
     designs/shelf-cantilever-overloaded.yaml: INVALID, 1 violation
       non-durable: post/shelf in case 'default': pull 1005 N per nail exceeds 700 N
-    1 suggestion:
-      1. Shorten shelf by 180 mm (valid for 118-236 mm). Restores durability.
+    3 suggestions:
+      1. Shorten shelf by 180 mm (valid for 120-241 mm). Restores durability.
          design: out/suggestion-01.yaml
+      ...
 """
 
 from __future__ import annotations
