@@ -118,15 +118,24 @@ def case_holds(design: Design, geometry: Geometry, model: StaticsModel,
     """Whether a case has no violation: ``not evaluate_case(...)[1]`` without building its
     result (for searches that only need the verdict).  A case holds iff it is stable and
     every joint is durable (a sliding case is a violation whatever its joints do)."""
+    return case_margin(design, geometry, model, statics)[1]
+
+
+def case_margin(design: Design, geometry: Geometry, model: StaticsModel,
+                statics: CaseStatics) -> tuple[float, bool]:
+    """(smallest 1 - utilization of the case's joints (1.0 without joints; -inf when the
+    case is not stable), whether the case holds), without building its result."""
     if statics.stability != "stable":
-        return False
+        return -np.inf, False
     if statics.joint_wrenches is None or not model.joints:
-        return True
+        return 1.0, True
     pulls, shears = nail_pull_shear([geometry.joints[j] for j in model.joints],
                                     statics.joint_wrenches)
-    return bool(np.all(within_capacity(pulls, shears,
-                                       design.material.nail_pull / design.safety_factor,
-                                       design.material.nail_shear / design.safety_factor)))
+    pull_cap = design.material.nail_pull / design.safety_factor
+    shear_cap = design.material.nail_shear / design.safety_factor
+    utilization = np.maximum(pulls / pull_cap, shears / shear_cap)
+    return (1.0 - float(utilization.max()),
+            bool(np.all(within_capacity(pulls, shears, pull_cap, shear_cap))))
 
 
 def _durability_message(nails: NailForces, design: Design) -> str:

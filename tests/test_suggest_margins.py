@@ -94,3 +94,25 @@ def test_regula_falsi_needs_fewer_checks_than_bisection():
     high = _boundary(lambda s: 1.0 if s < 0.6 else -math.inf, (0.0, 1.0), (1.0, -math.inf),
                      1e-3)
     assert 0.599 <= high < 0.6
+
+
+@pytest.mark.parametrize("name, dof", [("shelf-cantilever-overloaded.yaml", "shelf.length"),
+                                       ("bench-tips.yaml", "leg_r.x"),
+                                       ("shelf-cantilever-overloaded.yaml", "shelf.width")])
+def test_margin_at_agrees_with_the_full_report(name, dof):
+    """The line search's lean margin equals joint_margin(check_design(...)) of the moved
+    design, valid and invalid steps alike."""
+    import numpy as np
+
+    from furncheck.dofs import parse_dof
+    from furncheck.suggest.edits import joint_margin
+
+    margins = margins_of(name)
+    editor, design = margins.editor, margins.design
+    dofs = (parse_dof(design, dof),)
+    for step in (-0.3, -0.15, -0.05, 0.05, 0.15, 0.3):
+        lean = editor.margin_at(dofs, np.array([1.0]), step)
+        moved = editor.moved(dofs, editor.changes(dofs, np.array([1.0]), step))
+        geometry = editor.keeps(moved)
+        full = -math.inf if geometry is None else joint_margin(check_design(moved, geometry))
+        assert lean == pytest.approx(full, abs=1e-12) or lean == full == -math.inf

@@ -16,7 +16,6 @@ from dataclasses import replace
 
 import numpy as np
 
-from furncheck.check import check_design
 from furncheck.design.model import Design
 from furncheck.dofs import (
     Blocked,
@@ -30,6 +29,8 @@ from furncheck.dofs import (
 )
 from furncheck.geometry import Geometry, analyze, interpenetrations
 from furncheck.result import DesignReport
+from furncheck.statics import build_model, external_forces, solve_case
+from furncheck.validity import case_margin
 
 MARGIN_EPS = 1e-12
 """The margin of an invalid design is at most -MARGIN_EPS (a joint within the capacity's
@@ -113,7 +114,9 @@ class Editor:
         valid and keeps the design's joints (``keeps``).  Where only joints fail (or none)
         it is the smallest 1 - utilization over all joints and cases, continuous in the
         step, so that a line search can interpolate; every other failure (a step that
-        cannot be made, a geometric problem, a case that topples or slides) is -inf."""
+        cannot be made, a geometric problem, a case that topples or slides) is -inf.
+        The same verdict as ``joint_margin(check_design(...))``, without building the
+        report."""
         try:
             edited = self.moved(dofs, self.changes(dofs, direction, step))
         except (Blocked, OutOfReach):
@@ -121,7 +124,15 @@ class Editor:
         geometry = self.keeps(edited)
         if geometry is None:
             return -math.inf
-        return joint_margin(check_design(edited, geometry))
+        model = build_model(edited, geometry)
+        worst, holds = 1.0, True
+        for case in edited.load_cases:
+            margin, case_ok = case_margin(edited, geometry, model,
+                                          solve_case(model, external_forces(model, case)))
+            if margin == -math.inf:
+                return -math.inf
+            worst, holds = min(worst, margin), holds and case_ok
+        return max(worst, 0.0) if holds else min(worst, -MARGIN_EPS)
 
 
 def joint_margin(report: DesignReport) -> float:
