@@ -13,6 +13,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from furncheck.export.errors import ExportUnavailable
+from furncheck.export.meshes import write_meshes
+from furncheck.export.plots import plot_force_space
 from furncheck.suggest import SuggestionReport
 
 __all__ = ["ExportUnavailable", "Written", "prepare_out_dir", "write_files"]
@@ -57,9 +59,6 @@ def write_files(result: SuggestionReport, out_dir: str,
         mesh_files: tuple[str, ...] = ()
         plots: tuple[str, ...] = ()
         if meshes:
-            from furncheck.export.meshes import write_meshes
-            from furncheck.export.plots import plot_force_space
-
             mesh_files = tuple(write_meshes(suggestion.design, stem))
             plots = (plot_force_space(result.report, suggestion.report,
                                       Path(f"{stem}-forces.png")),)

@@ -90,7 +90,7 @@ class Margins:
             self.dofs = [dof for dof in dofs if self._movable(dof)]
             self.margins = self._geometric(report)
         else:
-            self.dofs, self.margins = self._physical(dofs)
+            self.margins = self._physical(dofs)
 
     @property
     def violated(self) -> list[Margin]:
@@ -122,9 +122,9 @@ class Margins:
         return np.column_stack(columns)
 
     # -- physics ---------------------------------------------------------------------------
-    def _physical(self, dofs: list[Dof]) -> tuple[list[Dof], list[Margin]]:
-        """The free DOFs and the margins of every load case that has a state to
-        linearize (its own, or the bolted one when it topples or slides)."""
+    def _physical(self, dofs: list[Dof]) -> list[Margin]:
+        """The margins of every load case that has a state to linearize (its own, or the
+        bolted one when it topples or slides); sets ``dofs`` to the free ones."""
         shared: dict = {}
         linears = []
         for case in self.design.load_cases:
@@ -135,7 +135,8 @@ class Margins:
             except ValueError:
                 continue
         if not linears:
-            return [], []
+            self.dofs = []
+            return []
         first = linears[0].derivatives(dofs)
         self.blocked.update(first.blocked)
         free = []
@@ -161,7 +162,7 @@ class Margins:
                 margins.extend(_toppling(linear, sens.contact_forces, scales))
             else:       # stable (bolted only when its forces came from the feasibility LP)
                 margins.extend(_durability(linear, sens, scales))
-        return free, margins
+        return margins
 
     def _sliding(self, linear: Linearization) -> list[Margin]:
         """``(mu W - H) / W0`` per grounded component: W the downward load on it, H the
@@ -169,13 +170,16 @@ class Margins:
         model, mu = linear.model, self.design.material.friction
         components = [[model.planks[k] for k in component] for component in model.components]
 
-        def margins(design: Design) -> np.ndarray:
-            totals = _component_loads(design, components, linear.case.name)
+        def margins(totals: np.ndarray) -> np.ndarray:
             return mu * -totals[:, 2] - np.hypot(totals[:, 0], totals[:, 1])
 
-        weight = max(float(-_component_loads(self.design, components, linear.case.name)[:, 2]
-                           .sum()), 1e-12)
-        values, rates = margins(self.design), self._difference(margins)
+        def loads(design: Design) -> np.ndarray:
+            return _component_loads(design, components, linear.case.name)
+
+        totals = loads(self.design)
+        weight = max(float(-totals[:, 2].sum()), 1e-12)
+        values = margins(totals)
+        rates = self._difference(lambda design: margins(loads(design)))
         return [Margin("stability", ",".join(self.design.planks[i].id for i in component),
                        linear.case.name, float(values[c] / weight), rates[c] / weight, 0.0)
                 for c, component in enumerate(components)]

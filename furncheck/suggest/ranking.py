@@ -49,8 +49,8 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
         if moved is None:
             continue
         edited, step, changes = moved
-        written = _written(edited, len(suggestions) + 1)
-        if written is not None and search.editor.keeps(written[0]) is not None:
+        written = _written(edited, len(suggestions) + 1, search.editor.keeps)
+        if written is not None:
             suggestions.append(Suggestion(
                 len(suggestions) + 1, "continuous", search.restores, *written,
                 dofs=tuple(d.name for d in found.dofs),
@@ -70,10 +70,12 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
                              "discrete": end - discrete_start})
 
 
-def _written(design: Design, rank: int):
+def _written(design: Design, rank: int, keeps=analyze):
     """(design, text, report) of the suggestion's design file, parsed back from its text
-    and validated; None if it is not valid."""
+    and validated; None if it is not valid.  ``keeps``: the parsed design's geometry, or
+    None when it must be refused (a continuous suggestion must keep the joints)."""
     text = design_text(replace(design, name=f"{design.name}-suggestion-{rank:02d}"), "yaml")
     written = parse_design(text, f"suggestion-{rank:02d}.yaml", "yaml")
-    report = check_design(written)
-    return (written, text, report) if report.valid else None
+    geometry = keeps(written)
+    report = None if geometry is None else check_design(written, geometry)
+    return (written, text, report) if report is not None and report.valid else None
