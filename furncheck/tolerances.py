@@ -78,12 +78,10 @@ SOLVE_RESIDUAL = 1e-10
 """Largest accepted normwise backward error of a linear solve (residual over
 |A| |x| + |b|); larger means a singular or badly pivoted system."""
 
-DENSE_SYSTEM_MAX = 200
-"""Mixed systems with at most this many unknowns (6 per plank and per joint: a design of
-up to about ten planks) are condensed with dense LAPACK LU instead of SuperLU: there the
-sparse bookkeeping costs more than the arithmetic (measured, model and condensation of a
-9-plank bookcase, 132 unknowns: 2.0 ms dense, 2.9 ms sparse; at 318 unknowns 8.4 ms
-dense, 3.9 ms sparse)."""
+DENSE_PLANKS_MAX = 360
+"""Designs with at most this many plank displacements (6 per plank, i.e. up to 60
+planks) are condensed through the planks with a dense joint stiffness matrix
+(``statics.condense._PlankCondensation``); larger ones through the sparse mixed system."""
 
 MECHANISM_RCOND = 1e-10
 """Smallest singular value (relative) of a component's ground-support stiffness below

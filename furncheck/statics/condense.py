@@ -1,14 +1,15 @@
 """Static condensation of the mixed system onto the grounded planks, and its solves.
 
-``_Condensation`` / ``_condense`` (one sparse LU of the contact-free part per design, checked
-by ``_factor`` / ``_accurate``), the contact springs ``_anchor_springs`` and the condensed
+``_condense`` gives, once per design, ``_PlankCondensation`` (up to 60 planks: the joints
+eliminated, a dense Cholesky factor of the planks' joint stiffness) or ``_Condensation``
+(larger designs: one sparse LU of the contact-free mixed system, checked by ``_factor`` /
+``_accurate``); then the contact springs ``_anchor_springs`` and the condensed
 matrix ``_condensed_stiffness``; ``system_matrix`` and ``solve_system`` give the full mixed
 matrix and its solve to the sensitivity analysis.
 """
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -37,7 +38,7 @@ class _Condensation:
 
     ground: np.ndarray           # indices of g in the full unknown vector
     inner: np.ndarray            # indices of i
-    lu: object                   # SuperLU (or _DenseLU) of A_ii
+    lu: object                   # SuperLU of A_ii
     coupling: sp.csc_matrix      # A_ig (n_i, n_g); dense for a small system
     reduced: np.ndarray          # X = A_ii^-1 A_ig
     schur: np.ndarray            # S0
@@ -45,59 +46,149 @@ class _Condensation:
     plank_offsets: np.ndarray    # offset of each grounded plank's block in x_g
     size: int
 
-    def load(self, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def load(self, f: np.ndarray):
         """(y, b_g - A_gi y) for the plank loads f (the joint rows have no load)."""
         b = np.zeros(self.size)
         b[:len(f)] = f
-        inner = self.lu.solve(b[self.inner]) if len(self.inner) else np.zeros(0)
-        return inner, b[self.ground] - self.coupling.T @ inner
+        return self.split(b)
+
+    def split(self, rhs: np.ndarray):
+        """(y, b_g - A_gi y) for a right-hand side of the whole system, (size,) or
+        (size, k): y is what ``expand`` needs besides x_g."""
+        inner = self.lu.solve(rhs[self.inner]) if len(self.inner) else \
+            np.zeros((0,) + rhs.shape[1:])
+        return inner, rhs[self.ground] - self.coupling.T @ inner
 
     def expand(self, inner_part: np.ndarray, ground: np.ndarray) -> np.ndarray:
-        """The full unknown vector [q; h] from x_g."""
-        x = np.zeros(self.size)
+        """The full unknown vector [q; h] (or k of them, columns) from x_g."""
+        x = np.zeros((self.size,) + ground.shape[1:])
         x[self.ground] = ground
         x[self.inner] = inner_part - self.reduced @ ground
         return x
 
 
-def _condense(model: StaticsModel) -> _Condensation | None:
-    """Build the condensation; None if the contact-free part is singular (a plank that
-    is neither grounded nor jointed to a grounded plank cannot be held).  Small systems
-    (DENSE_SYSTEM_MAX) are factored densely, larger ones by SuperLU."""
+@dataclass(frozen=True)
+class _PlankCondensation:
+    """The same condensation for a design of few planks, through the planks alone.
+
+    The joint rows of the mixed system give h = W (G q - r_h), W = E^-1 (diagonal), so the
+    planks' displacements solve K q = r_q + G^T W r_h with the joint stiffness
+    K = G^T W G (dense, 6 nP square; positive definite on the planks that are not
+    grounded, every one of which is jointed, directly or not, to a grounded one).
+    Condensed onto the grounded planks g, with i the others (a dense Cholesky factor):
+
+        S0 = K_gg - K_gi K_ii^-1 K_ig,   X = K_ii^-1 K_ig,   y = K_ii^-1 f_i
+
+    and as in ``_Condensation`` each contact-state iteration solves (S0 + K_c) x_g =
+    f_g - K_gi y, then q_i = y - X x_g and h = W (G q - r_h).
+    """
+
+    ground: np.ndarray           # indices of g among the plank displacements
+    inner: np.ndarray            # indices of i
+    factor: tuple                # Cholesky factor of K_ii (scipy.linalg.cho_factor)
+    coupling: np.ndarray         # K_ig
+    reduced: np.ndarray          # X
+    schur: np.ndarray            # S0
+    contact_block: np.ndarray
+    plank_offsets: np.ndarray
+    G: sp.csr_matrix
+    G_inner: sp.csr_matrix       # G's columns of i
+    wrench_map: np.ndarray       # Z = W (G_g - G_i X): the wrenches per x_g
+    stiffness: np.ndarray        # W, the joints' stiffnesses (6 nJ,)
+    size: int
+
+    def load(self, f: np.ndarray):
+        b = np.zeros(self.size)
+        b[:len(f)] = f
+        return self.split(b)
+
+    def split(self, rhs: np.ndarray):
+        """(the part of the solution x_g does not change, f_g - K_gi y) for a right-hand
+        side [r_q; r_h] of the whole mixed system, (size,) or (size, k)."""
+        n = self.G.shape[1]
+        r_h = rhs[n:]
+        f = rhs[:n] + self.G.T @ (self.stiffness.reshape((-1,) + (1,) * (rhs.ndim - 1))
+                                  * r_h)
+        inner = sla.cho_solve(self.factor, f[self.inner], check_finite=False) \
+            if len(self.inner) else np.zeros((0,) + rhs.shape[1:])
+        return (inner, r_h), f[self.ground] - self.coupling.T @ inner
+
+    def expand(self, inner_part, ground: np.ndarray) -> np.ndarray:
+        """[q; h] from x_g.  The wrenches are taken as W (G_i y - r_h) + Z x_g rather than
+        from q: q is mostly the whole design's motion on its soft contact springs, and the
+        joints' deformation, 1e-5 of it, would lose five digits in G q."""
+        inner, r_h = inner_part
+        n = self.G.shape[1]
+        q = np.zeros((n,) + ground.shape[1:])
+        q[self.ground] = ground
+        q[self.inner] = inner - self.reduced @ ground
+        weights = self.stiffness.reshape((-1,) + (1,) * (ground.ndim - 1))
+        h = weights * (self.G_inner @ inner - r_h) + self.wrench_map @ ground
+        return np.concatenate([q, h])
+
+
+def _condense_planks(model: StaticsModel, ground: np.ndarray,
+                     contact_block: np.ndarray, plank_offsets: np.ndarray):
+    """``_PlankCondensation`` of the model; None if K_ii is singular."""
     n, m = model.n_dof, model.G.shape[0]
+    weights = 1.0 / model.compliance
+    G = model.G.tocsr()
+    K = (G.T @ sp.diags(weights) @ G).toarray()
+    inner = np.setdiff1d(np.arange(n), ground)
+    coupling = K[np.ix_(inner, ground)]
+    reduced = np.zeros((len(inner), len(ground)))
+    factor = (np.zeros((0, 0)), False)
+    if len(inner):
+        K_ii = K[np.ix_(inner, inner)]
+        try:
+            factor = sla.cho_factor(K_ii, check_finite=False)
+        except np.linalg.LinAlgError:
+            return None
+        probe = coupling.sum(axis=1) if len(ground) else np.ones(len(inner))
+        rhs = probe if np.any(probe) else np.ones(len(inner))
+        if not _accurate(K_ii, sla.cho_solve(factor, rhs, check_finite=False), rhs):
+            return None
+        if len(ground):
+            reduced = sla.cho_solve(factor, coupling, check_finite=False)
+    schur = K[np.ix_(ground, ground)] - coupling.T @ reduced
+    G_inner = G[:, inner]
+    wrench_map = weights[:, None] * (G[:, ground].toarray() - G_inner @ reduced)
+    return _PlankCondensation(ground, inner, factor, coupling, reduced, schur, contact_block,
+                              plank_offsets, G, G_inner.tocsr(), wrench_map, weights, n + m)
+
+
+def _condense(model: StaticsModel) -> _Condensation | _PlankCondensation | None:
+    """Build the condensation; None if the contact-free part is singular (a plank that
+    is neither grounded nor jointed to a grounded plank cannot be held).  Designs of up
+    to DENSE_PLANKS_MAX plank displacements go through the planks with dense matrices
+    (``_PlankCondensation``), larger ones through the sparse mixed system by SuperLU."""
+    n, m = model.n_dof, model.G.shape[0]
+    grounded, contact_block = np.unique(model.contact_plank, return_inverse=True)
+    ground = (6 * grounded[:, None] + _SIX[None, :]).ravel()
+    contact_block, plank_offsets = contact_block.astype(int), 6 * np.arange(len(grounded))
+    if n <= tol.DENSE_PLANKS_MAX:
+        return _condense_planks(model, ground, contact_block, plank_offsets)
     G = model.G.tocoo()
     diagonal = n + np.arange(m)
     rows = np.concatenate([G.col, n + G.row, diagonal])
     cols = np.concatenate([n + G.row, G.col, diagonal])
     values = np.concatenate([G.data, G.data, -model.compliance])
-    grounded, contact_block = np.unique(model.contact_plank, return_inverse=True)
-    ground = (6 * grounded[:, None] + _SIX[None, :]).ravel()
     inner = np.setdiff1d(np.arange(n + m), ground)
     ni = len(inner)
     order = np.concatenate([inner, ground])
-    dense = n + m <= tol.DENSE_SYSTEM_MAX
-    if dense:
-        A = np.zeros((n + m, n + m))
-        np.add.at(A, (rows, cols), values)
-        permuted = A[np.ix_(order, order)]
-        A_ii, coupling = permuted[:ni, :ni], permuted[:ni, ni:]
-    else:
-        A = sp.csc_matrix((values, (rows, cols)), shape=(n + m, n + m))
-        permuted = A[order][:, order].tocsc()
-        A_ii = permuted[:ni, :ni].tocsc()
-        coupling = permuted[:ni, ni:].tocsc()
+    A = sp.csc_matrix((values, (rows, cols)), shape=(n + m, n + m))
+    permuted = A[order][:, order].tocsc()
+    coupling = permuted[:ni, ni:].tocsc()
     lu, reduced = None, np.zeros((ni, len(ground)))
     if ni:
-        probe = np.asarray(coupling.sum(axis=1)).ravel()
-        lu = _factor_dense(A_ii, probe) if dense else _factor(A_ii, probe)
+        lu = _factor(permuted[:ni, :ni].tocsc(), np.asarray(coupling.sum(axis=1)).ravel())
         if lu is None:
             return None
         if len(ground):
-            reduced = lu.solve(coupling if dense else coupling.toarray())
-    corner = permuted[ni:, ni:]
-    schur = (corner if dense else corner.toarray()) - np.asarray(coupling.T @ reduced)
-    return _Condensation(ground, inner, lu, coupling, reduced, schur,
-                         contact_block.astype(int), 6 * np.arange(len(grounded)), n + m)
+            reduced = lu.solve(coupling.toarray())
+    schur = permuted[ni:, ni:].toarray() - np.asarray(coupling.T @ reduced)
+    return _Condensation(ground, inner, lu, coupling, reduced, schur, contact_block,
+                         plank_offsets, n + m)
 
 
 def _factor(A: sp.csc_matrix, probe: np.ndarray):
@@ -117,29 +208,6 @@ def _factor(A: sp.csc_matrix, probe: np.ndarray):
         if _accurate(A, lu.solve(rhs), rhs):
             return lu
     return None
-
-
-class _DenseLU:
-    """LAPACK LU factors of a small dense matrix, solved like SuperLU's ``solve``."""
-
-    def __init__(self, factors):
-        self.factors = factors
-
-    def solve(self, rhs: np.ndarray) -> np.ndarray:
-        return sla.lu_solve(self.factors, rhs, check_finite=False)
-
-
-def _factor_dense(A: np.ndarray, probe: np.ndarray) -> _DenseLU | None:
-    """Dense LU (partial pivoting) of A, or None if it is singular: an exactly zero pivot,
-    or a poor solve of the right-hand side ``probe``."""
-    rhs = probe if np.any(probe) else np.ones(A.shape[0])
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", sla.LinAlgWarning)   # a zero pivot: checked below
-        factors = sla.lu_factor(A, check_finite=False)
-    if not np.all(np.diag(factors[0])):
-        return None
-    lu = _DenseLU(factors)
-    return lu if _accurate(A, lu.solve(rhs), rhs) else None
 
 
 def _accurate(A, x: np.ndarray, b: np.ndarray) -> bool:
@@ -194,14 +262,6 @@ def solve_system(model: StaticsModel, holding: np.ndarray, rhs: np.ndarray) -> n
     """A^-1 rhs for ``system_matrix(model, holding)`` and rhs (n,) or (n, k), reusing the
     design's condensation (one sparse LU per design): the solve behind eq. 6."""
     condensed = model.condensation
-    rhs = np.asarray(rhs, dtype=float)
-    single = rhs.ndim == 1
-    R = rhs[:, None] if single else rhs
-    inner = condensed.lu.solve(R[condensed.inner]) if len(condensed.inner) else \
-        np.zeros((0, R.shape[1]))
-    ground_rhs = R[condensed.ground] - condensed.coupling.T @ inner
+    inner, ground_rhs = condensed.split(np.asarray(rhs, dtype=float))
     ground = np.linalg.solve(_condensed_stiffness(model, anchor_springs(holding)), ground_rhs)
-    out = np.zeros_like(R)
-    out[condensed.ground] = ground
-    out[condensed.inner] = inner - condensed.reduced @ ground
-    return out[:, 0] if single else out
+    return condensed.expand(inner, ground)
