@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
+
 from furncheck.design import Design
 from furncheck.errors import DesignError
 from furncheck.geometry import Geometry, analyze
@@ -28,18 +30,30 @@ def check_design(design: Design, geometry: Geometry | None = None) -> DesignRepo
                         violations=tuple(violations), cases=tuple(cases), units=design.units)
 
 
-def is_valid(design: Design, geometry: Geometry | None = None) -> bool:
+def is_valid(design: Design, geometry: Geometry | None = None,
+             starts: tuple[np.ndarray | None, ...] | None = None) -> bool:
     """Whether the design is valid: ``check_design(...).valid``, stopping at the first
-    load case with a violation (for searches that only need the verdict)."""
+    load case with a violation (for searches that only need the verdict).  ``starts``:
+    per load case, the contacts expected to hold (``holding_states`` of a design this
+    one is a small edit of; see ``solve_case``)."""
     geometry = geometry or analyze(design)
     if geometry.violations:
         return False
     model = build_model(design, geometry)
-    for case in design.load_cases:
-        statics = solve_case(model, external_forces(model, case))
+    for k, case in enumerate(design.load_cases):
+        statics = solve_case(model, external_forces(model, case),
+                             None if starts is None else starts[k])
         if not case_holds(design, geometry, model, statics):
             return False
     return True
+
+
+def holding_states(design: Design, geometry: Geometry) -> tuple[np.ndarray | None, ...]:
+    """Per load case, which ground contacts hold (None for a case without a stable
+    equilibrium): the ``starts`` of ``is_valid`` for edits of this design."""
+    model = build_model(design, geometry)
+    return tuple(solve_case(model, external_forces(model, case)).holding
+                 for case in design.load_cases)
 
 
 def check_file(path: str) -> DesignReport:

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from furncheck.check import check_design, is_valid
+from furncheck.check import check_design, holding_states, is_valid
 from furncheck.design.model import Design
 from furncheck.dofs import (
     Blocked,
@@ -100,6 +100,7 @@ class RangeFinder:
         self.frame: Structure = structure(design, self.geometry)
         self.locked = tuple(parse_dof(design, name) for name in locked)
         self.valid_now = check_design(design, self.geometry).valid
+        self.starts = holding_states(design, self.geometry)
         self.size = design_size(design)
         self._linear: list[Linearization] | None = None
         self._shared: dict = {}
@@ -184,7 +185,7 @@ class RangeFinder:
                 self._kept_edit = (dof, step, edited, problem, geometry)
         if problem is not None:
             return False
-        return is_valid(edited, geometry) if full else True
+        return is_valid(edited, geometry, self.starts) if full else True
 
     # -- searches ------------------------------------------------------------------------------
     def _side(self, dof: Dof, sign: float, limit: float, resolution: float) -> float:

@@ -234,15 +234,38 @@ def anchor_springs(holding: np.ndarray) -> np.ndarray:
 
 def _condensed_stiffness(model: StaticsModel, springs: np.ndarray) -> np.ndarray:
     """S0 + K_c: the condensed system's matrix with the contact springs (n_g, n_g)."""
-    condensed = model.condensation
     maps = model.contact_maps
     blocks = np.transpose(maps, (0, 2, 1)) @ (springs @ maps)       # (nK, 6, 6)
-    per_plank = np.zeros((len(condensed.plank_offsets), 6, 6))
-    np.add.at(per_plank, condensed.contact_block, blocks)
+    return _with_contact_blocks(model, blocks)
+
+
+def _anchored_stiffness(model: StaticsModel, holding: np.ndarray,
+                        scale: float = 1.0) -> np.ndarray:
+    """``_condensed_stiffness`` for the anchor springs of ``holding`` (x ``scale``): each
+    holding contact adds scale k M^T M, M^T M kept once per model."""
+    blocks = model.contact_gram * (scale * tol.CONTACT_STIFFNESS
+                                   * holding.astype(float))[:, None, None]
+    return _with_contact_blocks(model, blocks)
+
+
+def _with_contact_blocks(model: StaticsModel, blocks: np.ndarray) -> np.ndarray:
+    """S0 with each contact's (6, 6) block added to its plank's diagonal block."""
+    condensed = model.condensation
+    per_plank = np.zeros((len(condensed.plank_offsets), 36))
+    np.add.at(per_plank, condensed.contact_block, blocks.reshape(-1, 36))
     stiffness = condensed.schur.copy()
-    for block, offset in zip(per_plank, condensed.plank_offsets):
-        stiffness[offset:offset + 6, offset:offset + 6] += block
+    rows, cols = _diagonal_blocks(len(condensed.plank_offsets))
+    stiffness[rows, cols] += per_plank.ravel()
     return stiffness
+
+
+def _diagonal_blocks(count: int) -> tuple[np.ndarray, np.ndarray]:
+    """Row and column indices of the entries of ``count`` consecutive (6, 6) diagonal
+    blocks, block by block, row-major."""
+    base = 6 * np.arange(count)[:, None, None]
+    rows = np.broadcast_to(base + _SIX[None, :, None], (count, 6, 6)).ravel()
+    cols = np.broadcast_to(base + _SIX[None, None, :], (count, 6, 6)).ravel()
+    return rows, cols
 
 
 def system_matrix(model: StaticsModel, holding: np.ndarray) -> sp.csr_matrix:
@@ -263,5 +286,5 @@ def solve_system(model: StaticsModel, holding: np.ndarray, rhs: np.ndarray) -> n
     design's condensation (one sparse LU per design): the solve behind eq. 6."""
     condensed = model.condensation
     inner, ground_rhs = condensed.split(np.asarray(rhs, dtype=float))
-    ground = np.linalg.solve(_condensed_stiffness(model, anchor_springs(holding)), ground_rhs)
+    ground = np.linalg.solve(_anchored_stiffness(model, holding), ground_rhs)
     return condensed.expand(inner, ground)

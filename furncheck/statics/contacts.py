@@ -13,22 +13,37 @@ from dataclasses import dataclass
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.statics.condense import _accurate, _condensed_stiffness, anchor_springs
+from furncheck.statics.condense import (
+    _accurate,
+    _anchored_stiffness,
+    _condensed_stiffness,
+    anchor_springs,
+)
 from furncheck.statics.feasibility import _cone_solution, _unilateral_feasible
-from furncheck.statics.model import CaseStatics, StaticsModel, _skew_many
+from furncheck.statics.model import CaseStatics, StaticsModel
 
 STICK, LIFT = 0, 2
 _MECHANISM_DETAIL = ("the planks rest on too few ground points to be held even if bolted "
                      "down (all their ground contacts lie on one line)")
 
 
-def solve_case(model: StaticsModel, f: np.ndarray) -> CaseStatics:
-    """Equilibrium of one load case with unilateral, frictional ground contacts."""
+def solve_case(model: StaticsModel, f: np.ndarray,
+               start: np.ndarray | None = None) -> CaseStatics:
+    """Equilibrium of one load case with unilateral, frictional ground contacts.
+
+    ``start`` (bool per contact, optional): the contacts expected to hold, e.g. those
+    that held in a design of which this one is a small edit.  The active set starts
+    there instead of from every contact holding; the equilibrium it finds is the same
+    (the contact problem's solution is unique), only sooner.
+    """
     if not model.planks:
         return CaseStatics("stable", np.zeros((0, 6)), np.zeros((0, 3)))
     solver = _ActiveSet(model, f, _force_scale(model, f))
     all_stick = np.full(len(model.contacts), STICK)
-    normal = solver.normal_phase(all_stick, one_at_a_time=False) \
+    normal = None
+    if start is not None and len(start) == len(all_stick) and not start.all():
+        normal = solver.normal_phase(np.where(start, STICK, LIFT), one_at_a_time=False)
+    normal = normal or solver.normal_phase(all_stick, one_at_a_time=False) \
         or solver.normal_phase(all_stick, one_at_a_time=True)
     if normal is None:
         if not _unilateral_feasible(model, f):
@@ -195,11 +210,11 @@ class _ActiveSet:
         system, see ``_Condensation``); the rest follows by one matrix-vector product.
         """
         model, condensed = self.model, self.condensed
-        springs = self._spring_matrices(status) * stiffness_scale
-        if condensed is None or not self._restrained(springs):
+        if condensed is None or not self._restrained(status == STICK):
             return None
+        springs = self._spring_matrices(status) * stiffness_scale
         maps = model.contact_maps
-        stiffness = _condensed_stiffness(model, springs)
+        stiffness = _anchored_stiffness(model, status == STICK, stiffness_scale)
         try:
             ground = np.linalg.solve(stiffness, self.ground_rhs)
         except np.linalg.LinAlgError:
@@ -221,21 +236,16 @@ class _ActiveSet:
     def _spring_matrices(self, status: np.ndarray) -> np.ndarray:
         return anchor_springs(status == STICK)
 
-    def _restrained(self, springs: np.ndarray) -> bool:
-        """Every grounded component is held in all six rigid directions by its contacts."""
+    def _restrained(self, holding: np.ndarray) -> bool:
+        """Every grounded component is held in all six rigid directions by its holding
+        contacts (springs to their anchors in all three directions)."""
         model = self.model
+        grams = model.rigid_grams
         for c in range(len(model.components)):
-            members = model.contact_component == c
+            members = (model.contact_component == c) & holding
             if not members.any():
                 return False
-            points = model.contact_points[members]
-            reference = points.mean(axis=0)
-            arm = points - reference
-            length = max(float(np.abs(arm).max()), 1e-6)
-            rigid = np.zeros((len(points), 3, 6))
-            rigid[:, :, :3] = np.eye(3)
-            rigid[:, :, 3:] = -_skew_many(arm) / length
-            stiffness = (np.transpose(rigid, (0, 2, 1)) @ springs[members] @ rigid).sum(axis=0)
+            stiffness = grams[members].sum(axis=0)
             singular = np.linalg.svd(stiffness, compute_uv=False)
             if singular[-1] <= tol.MECHANISM_RCOND * max(singular[0], 1e-300):
                 return False

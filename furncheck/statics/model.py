@@ -57,6 +57,32 @@ class StaticsModel:
         return 6 * len(self.planks)
 
     @cached_property
+    def contact_gram(self) -> np.ndarray:
+        """(nK, 6, 6) M^T M of each contact map: its anchor springs' stiffness per unit k."""
+        maps = self.contact_maps
+        return np.transpose(maps, (0, 2, 1)) @ maps
+
+    @cached_property
+    def rigid_grams(self) -> np.ndarray:
+        """(nK, 6, 6) R^T R per contact, R its point's displacement under a rigid motion of
+        its component (translation, and rotation x the spread of the component's contact
+        points, about their mean): summed over a component's holding contacts, singular
+        iff they cannot hold all six rigid motions (``contacts._ActiveSet._restrained``)."""
+        grams = np.zeros((len(self.contacts), 6, 6))
+        for c in range(len(self.components)):
+            members = self.contact_component == c
+            if not members.any():
+                continue
+            points = self.contact_points[members]
+            arm = points - points.mean(axis=0)
+            length = max(float(np.abs(arm).max()), 1e-6)
+            rigid = np.zeros((len(points), 3, 6))
+            rigid[:, :, :3] = np.eye(3)
+            rigid[:, :, 3:] = -_skew_many(arm) / length
+            grams[members] = np.transpose(rigid, (0, 2, 1)) @ rigid
+        return grams
+
+    @cached_property
     def condensation(self) -> _Condensation | None:
         """The contact-free part of the system, condensed onto the grounded planks."""
         from furncheck.statics.condense import _condense  # here: condense imports this module
