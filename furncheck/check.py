@@ -11,7 +11,7 @@ from furncheck.errors import DesignError
 from furncheck.geometry import Geometry, analyze
 from furncheck.result import DesignReport
 from furncheck.statics import build_model, external_forces, solve_case
-from furncheck.validity import case_holds, evaluate_case
+from furncheck.validity import case_holds, evaluate_case, joint_utilization
 
 
 def check_design(design: Design, geometry: Geometry | None = None) -> DesignReport:
@@ -46,6 +46,33 @@ def is_valid(design: Design, geometry: Geometry | None = None,
         if not case_holds(design, geometry, model, statics):
             return False
     return True
+
+
+def margin_of(design: Design, geometry: Geometry,
+              starts: tuple[np.ndarray | None, ...] | None = None
+              ) -> tuple[bool, float, np.ndarray]:
+    """(whether the design is valid, its durability margin, each joint's utilization):
+    the margin is the smallest 1 - utilization of any joint in any load case, -inf if a
+    case is not stable; the utilization (``validity.joint_utilization``) is per joint of
+    ``geometry.joints``, the largest of the load cases (0 for a joint outside the
+    statics).  Every case is solved, except that an unstable one ends the search.  The
+    geometry must have no violations."""
+    model = build_model(design, geometry)
+    utilization = np.zeros(len(geometry.joints))
+    valid, margin = True, np.inf
+    for k, case in enumerate(design.load_cases):
+        statics = solve_case(model, external_forces(model, case),
+                             None if starts is None else starts[k])
+        if statics.stability != "stable":
+            return False, -np.inf, utilization
+        if statics.joint_wrenches is None or not model.joints:
+            continue
+        used, holds = joint_utilization(design, geometry, model, statics)
+        joints = np.asarray(model.joints, dtype=int)
+        utilization[joints] = np.maximum(utilization[joints], used)
+        valid = valid and bool(np.all(holds))
+    margin = 1.0 - float(utilization.max(initial=0.0))
+    return valid, margin, utilization
 
 
 def holding_states(design: Design, geometry: Geometry) -> tuple[np.ndarray | None, ...]:

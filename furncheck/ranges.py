@@ -10,10 +10,13 @@ ground contacts.  Each side is searched in two stages:
   changes) predict the first one to flip, and two geometry checks confirm it, one half a
   resolution before (valid) and one half after (not); a rotation's prediction is refined
   on its margins first; a wrong prediction falls back to bisection;
-* if the design is not valid at that reach, the physical limit inside it: the force
-  sensitivity (eq. 6) predicts where the first joint reaches its nail capacity or the
-  first contact lets go, and a bracket of one valid and one invalid value is closed by
-  bisection to ``RANGE_RESOLUTION``, every probe a full check of the edited design.
+* if the design is not valid at that reach, the physical limit inside it: a bracket of
+  one valid and one invalid value is closed to ``RANGE_RESOLUTION``, every probe a full
+  check of the edited design.  The probes go where validity is likely to change: just
+  past the step where a loaded joint loses a nail (its length interpolated between the
+  bracket's geometries), else at the force sensitivity's prediction (eq. 6) of where the
+  first joint reaches its nail capacity or the first contact lets go, else by regula
+  falsi on the design's margin; bisection where these do not halve the bracket.
 
 The reported end is the last value found valid (by a full check); a value at most one
 resolution step beyond it was found invalid (or the end is the search limit).
@@ -28,7 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from furncheck.check import check_design, holding_states, is_valid
+from furncheck.check import check_design, holding_states, is_valid, margin_of
 from furncheck.design.model import Design
 from furncheck.dofs import (
     Blocked,
@@ -45,6 +48,7 @@ from furncheck.dofs import (
 )
 from furncheck.geometry import EditMargins, Geometry, analyze
 from furncheck.sensitivity import Linearization, Sensitivity
+from furncheck.tolerances import NAIL_COUNT_EPS
 from furncheck.validity import nail_pull_shear
 
 RANGE_RESOLUTION = 1e-3
@@ -54,9 +58,6 @@ this many degrees x 100 (rotations: 0.1 degree)."""
 SEARCH_LIMIT = 1.0
 """How far a range is searched: this fraction of the design's size for lengths, x 90
 degrees for rotations."""
-
-PREDICTION_BRACKET = 0.02
-"""Relative half-width of the first bracket put around a predicted limit."""
 
 PARALLEL_MIN_DOFS = 16
 """Fewer DOFs than this are searched in this process: starting workers would cost more."""
@@ -101,12 +102,14 @@ class RangeFinder:
         self.locked = tuple(parse_dof(design, name) for name in locked)
         self.valid_now = check_design(design, self.geometry).valid
         self.starts = holding_states(design, self.geometry)
+        _, self.margin_now, self.utilization_now = margin_of(design, self.geometry,
+                                                             self.starts)
         self.size = design_size(design)
         self._linear: list[Linearization] | None = None
         self._shared: dict = {}
         self._predictions: dict[Dof, tuple[float | None, float | None]] = {}
         self._margins: dict[tuple[Dof, float], tuple[EditMargins, tuple]] = {}
-        self._kept_edit: tuple = (None, None, None, None, None)
+        self._kept_edit: tuple = (None, None, None, None)
         self.evaluations = 0
 
     # -- public --------------------------------------------------------------------------------
@@ -166,48 +169,105 @@ class RangeFinder:
     # -- validity of one step ------------------------------------------------------------------
     def valid_at(self, dof: Dof, step: float, full: bool = True) -> bool:
         """Whether the design with ``dof`` changed by ``step`` keeps its joints and ground
-        contacts and (``full``) is valid in every load case.  The geometry of the last
-        step found to keep them is kept: the full check of a geometric reach follows the
-        geometry checks that found it."""
-        if self._kept_edit[:2] == (dof, step):
-            edited, problem, geometry = self._kept_edit[2:]
-        else:
-            try:
-                edited = apply_dof(self.design, self.frame, dof, step)
-            except OutOfReach:
-                return False
-            for lock in self.locked:
-                if abs(dof_value(edited, lock) - dof_value(self.design, lock)) > 1e-9:
-                    raise Blocked(f"it would change the locked {lock.name}")
-            self.evaluations += 1
-            problem, geometry = check_edit(self.geometry, edited, self.design)
-            if problem is None:
-                self._kept_edit = (dof, step, edited, problem, geometry)
-        if problem is not None:
+        contacts and (``full``) is valid in every load case."""
+        edited, geometry = self._kept(dof, step)
+        if geometry is None:
             return False
         return is_valid(edited, geometry, self.starts) if full else True
+
+    def _kept(self, dof: Dof, step: float) -> tuple[Design | None, Geometry | None]:
+        """The design with ``dof`` changed by ``step`` and its geometry if it keeps the
+        joints and ground contacts, else (None, None).  The last one that keeps them is
+        remembered: the full check of a geometric reach follows the geometry checks that
+        found it."""
+        if self._kept_edit[:2] == (dof, step):
+            return self._kept_edit[2:]
+        try:
+            edited = apply_dof(self.design, self.frame, dof, step)
+        except OutOfReach:
+            return None, None
+        for lock in self.locked:
+            if abs(dof_value(edited, lock) - dof_value(self.design, lock)) > 1e-9:
+                raise Blocked(f"it would change the locked {lock.name}")
+        self.evaluations += 1
+        problem, geometry = check_edit(self.geometry, edited, self.design)
+        if problem is not None:
+            return None, None
+        self._kept_edit = (dof, step, edited, geometry)
+        return edited, geometry
+
+    def _probe(self, dof: Dof, sign: float, step: float) -> _Probe:
+        """The full check of one step (>= 0) in direction ``sign``, with the design's
+        margin (``check.margin_of``)."""
+        edited, geometry = self._kept(dof, sign * step)
+        if geometry is None:
+            return _Probe(step, False, -np.inf, None, None)
+        valid, margin, utilization = margin_of(edited, geometry, self.starts)
+        return _Probe(step, valid, margin, utilization, geometry)
 
     # -- searches ------------------------------------------------------------------------------
     def _side(self, dof: Dof, sign: float, limit: float, resolution: float) -> float:
         """The furthest step (>= 0) in direction ``sign`` up to which the design was found
         valid, assuming it is valid now: first how far the geometry reaches (cheap checks
         without statics), then, if the design is not valid there, the physical limit inside
-        it, bracketed around the sensitivity's prediction."""
+        it (``_physical_limit``)."""
         reach = self._geometric_reach(dof, sign, limit, resolution)
-        if reach <= 0.0 or self.valid_at(dof, sign * reach):
+        if reach <= 0.0:
             return reach
-        good, bad = 0.0, reach
+        at_reach = self._probe(dof, sign, reach)
+        if at_reach.valid:
+            return reach
+        return self._physical_limit(dof, sign, at_reach, resolution)
+
+    def _physical_limit(self, dof: Dof, sign: float, at_reach: _Probe,
+                        resolution: float) -> float:
+        """The furthest valid step below the geometric reach, where the design is not
+        valid, to ``resolution``: a bracket of a valid and an invalid step (full checks)
+        is narrowed by probes placed where validity is likely to change.
+
+        The margin (``check.margin_of``) is continuous in the step except where a joint
+        gets shorter than its nail count's length (one nail fewer: every nail of it
+        carries more) or a case stops being stable.  Where the bracket's two geometries
+        differ in a joint's nails, the length at which it loses a nail is interpolated
+        (``_nail_drops``) and the probe goes just past that step, or just before it once
+        the invalid end is there; elsewhere the sensitivity's prediction (eq. 6) is tried
+        first, then regula falsi on the margin, each probe a little past the estimated
+        zero towards the end that has not moved; bisection when the bracket did not halve
+        in three probes or the margin is -inf.
+        """
+        good = _Probe(0.0, True, self.margin_now, self.utilization_now, self.geometry)
+        bad = at_reach
         predicted = self._predicted(dof)[0 if sign < 0 else 1]
-        if predicted is not None and predicted < reach:
-            inside = max(predicted * (1.0 - PREDICTION_BRACKET), resolution)
-            outside = min(predicted * (1.0 + PREDICTION_BRACKET), reach)
-            if not self.valid_at(dof, sign * inside):
-                bad = inside
-            elif outside > inside and not self.valid_at(dof, sign * outside):
-                good, bad = inside, outside
+        spacing = self.design.material.nail_spacing
+        widths, moves = [bad.step], []
+        while bad.step - good.step > resolution:
+            low, high = good.step + 0.05 * resolution, bad.step - 0.05 * resolution
+            drops = _nail_drops(good, bad, spacing)
+            if drops:
+                drop = drops[len(drops) // 2]
+                step = drop + 0.45 * resolution if drop + 0.45 * resolution < high else \
+                    drop - 0.45 * resolution
+            elif predicted is not None and low < predicted < high:
+                step = predicted
+            elif np.isfinite(bad.margin) and good.margin > bad.margin:
+                zero = good.step + (bad.step - good.step) * good.margin / (good.margin
+                                                                             - bad.margin)
+                step = zero + (0.45 if moves[-1:] == [True] else -0.45) * resolution
             else:
-                good = max(inside, outside)
-        return self._bisect(dof, sign, good, bad, resolution)
+                step = 0.5 * (good.step + bad.step)
+            if moves[-2:] in ([True, True], [False, False]):    # one end stuck: halve
+                step = 0.5 * (step + (bad.step if moves[-1] else good.step))
+            if len(widths) > 3 and widths[-1] > 0.5 * widths[-4]:
+                step = 0.5 * (good.step + bad.step)
+            predicted = None
+            probe = self._probe(dof, sign, min(max(step, low), high))
+            moves.append(probe.valid)
+            if probe.valid:
+                good = probe
+            else:
+                bad = probe
+            widths.append(bad.step - good.step)
+        return good.step
 
     def _geometric_reach(self, dof: Dof, sign: float, limit: float, resolution: float) -> float:
         """The furthest step (>= 0) in direction ``sign`` keeping the joints and contacts
@@ -403,6 +463,46 @@ class RangeFinder:
         if dof.is_rotation:
             return 90.0 * SEARCH_LIMIT, 100.0 * RANGE_RESOLUTION
         return self.size * SEARCH_LIMIT, self.size * RANGE_RESOLUTION
+
+
+@dataclass(frozen=True)
+class _Probe:
+    """A full check of one step (``check.margin_of``): valid, the margin, each joint's
+    utilization and the geometry (the last two None where the step does not keep the
+    joints and contacts)."""
+
+    step: float
+    valid: bool
+    margin: float
+    utilization: np.ndarray | None
+    geometry: Geometry | None
+
+
+def _nail_drops(good: _Probe, bad: _Probe, spacing: float) -> list[float]:
+    """Steps between ``good`` and ``bad`` at which a joint may lose a nail it cannot
+    spare, sorted.  For each joint with n nails at ``good`` and m < n at ``bad``: where
+    its length, taken as linear in the step between the two geometries, falls below
+    k x spacing (k = n, ..., m + 1; ``geometry.nail_count``), if its load then exceeds
+    what k - 1 nails carry: utilization x nails, the larger of the two ends, over k - 1
+    is above 1.  Losing a nail the joint can spare changes no verdict."""
+    if good.geometry is None or bad.geometry is None or bad.utilization is None:
+        return []
+    before = {(j.face, j.edge, j.edge_face): (n, j)
+              for n, j in enumerate(good.geometry.joints)}
+    steps = []
+    for after, joint in enumerate(bad.geometry.joints):
+        index, start = before.get((joint.face, joint.edge, joint.edge_face), (None, None))
+        if start is None or joint.nails >= start.nails or joint.length >= start.length:
+            continue
+        load = max(good.utilization[index] * start.nails,
+                   bad.utilization[after] * joint.nails)
+        for k in range(joint.nails + 1, start.nails + 1):
+            if load <= k - 1:
+                continue
+            length = k * spacing / (1.0 + NAIL_COUNT_EPS)
+            fraction = (start.length - length) / (start.length - joint.length)
+            steps.append(good.step + (bad.step - good.step) * min(max(fraction, 0.0), 1.0))
+    return sorted(steps)
 
 
 _WORKER_FINDER: RangeFinder | None = None

@@ -129,13 +129,20 @@ def case_margin(design: Design, geometry: Geometry, model: StaticsModel,
         return -np.inf, False
     if statics.joint_wrenches is None or not model.joints:
         return 1.0, True
+    utilization, holds = joint_utilization(design, geometry, model, statics)
+    return 1.0 - float(utilization.max()), bool(np.all(holds))
+
+
+def joint_utilization(design: Design, geometry: Geometry, model: StaticsModel,
+                      statics: CaseStatics) -> tuple[np.ndarray, np.ndarray]:
+    """Per model joint of a solved case: max(pull / pull capacity, shear / shear
+    capacity), and whether it is within capacity (``within_capacity``)."""
     pulls, shears = nail_pull_shear([geometry.joints[j] for j in model.joints],
                                     statics.joint_wrenches)
     pull_cap = design.material.nail_pull / design.safety_factor
     shear_cap = design.material.nail_shear / design.safety_factor
-    utilization = np.maximum(pulls / pull_cap, shears / shear_cap)
-    return (1.0 - float(utilization.max()),
-            bool(np.all(within_capacity(pulls, shears, pull_cap, shear_cap))))
+    return (np.maximum(pulls / pull_cap, shears / shear_cap),
+            within_capacity(pulls, shears, pull_cap, shear_cap))
 
 
 def _durability_message(nails: NailForces, design: Design) -> str:

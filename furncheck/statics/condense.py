@@ -91,9 +91,8 @@ class _PlankCondensation:
     schur: np.ndarray            # S0
     contact_block: np.ndarray
     plank_offsets: np.ndarray
-    G: sp.csr_matrix
-    G_inner: sp.csr_matrix       # G's columns of i
-    wrench_map: np.ndarray       # Z = W (G_g - G_i X): the wrenches per x_g
+    model: StaticsModel          # its joint blocks apply G and G^T
+    wrench_map: np.ndarray       # Z = W G [I; -X] (rows g; i): the wrenches per x_g
     stiffness: np.ndarray        # W, the joints' stiffnesses (6 nJ,)
     size: int
 
@@ -105,35 +104,44 @@ class _PlankCondensation:
     def split(self, rhs: np.ndarray):
         """(the part of the solution x_g does not change, f_g - K_gi y) for a right-hand
         side [r_q; r_h] of the whole mixed system, (size,) or (size, k)."""
-        n = self.G.shape[1]
+        n = self.model.n_dof
         r_h = rhs[n:]
-        f = rhs[:n] + self.G.T @ (self.stiffness.reshape((-1,) + (1,) * (rhs.ndim - 1))
-                                  * r_h)
+        f = rhs[:n]
+        if np.any(r_h):
+            f = f + self.model.reactions(self._weights(r_h.ndim) * r_h)
         inner = sla.cho_solve(self.factor, f[self.inner], check_finite=False) \
             if len(self.inner) else np.zeros((0,) + rhs.shape[1:])
         return (inner, r_h), f[self.ground] - self.coupling.T @ inner
 
     def expand(self, inner_part, ground: np.ndarray) -> np.ndarray:
-        """[q; h] from x_g.  The wrenches are taken as W (G_i y - r_h) + Z x_g rather than
-        from q: q is mostly the whole design's motion on its soft contact springs, and the
-        joints' deformation, 1e-5 of it, would lose five digits in G q."""
+        """[q; h] from x_g.  The wrenches are taken as W (G [0; y] - r_h) + Z x_g rather
+        than from q: q is mostly the whole design's motion on its soft contact springs, and
+        the joints' deformation, 1e-5 of it, would lose five digits in G q."""
         inner, r_h = inner_part
-        n = self.G.shape[1]
-        q = np.zeros((n,) + ground.shape[1:])
+        q = np.zeros((self.model.n_dof,) + ground.shape[1:])
+        q[self.inner] = inner
+        h = self._weights(ground.ndim) * (self.model.deviations(q) - r_h) \
+            + self.wrench_map @ ground
         q[self.ground] = ground
         q[self.inner] = inner - self.reduced @ ground
-        weights = self.stiffness.reshape((-1,) + (1,) * (ground.ndim - 1))
-        h = weights * (self.G_inner @ inner - r_h) + self.wrench_map @ ground
         return np.concatenate([q, h])
+
+    def _weights(self, ndim: int) -> np.ndarray:
+        return self.stiffness.reshape((-1,) + (1,) * (ndim - 1))
 
 
 def _condense_planks(model: StaticsModel, ground: np.ndarray,
                      contact_block: np.ndarray, plank_offsets: np.ndarray):
-    """``_PlankCondensation`` of the model; None if K_ii is singular."""
-    n, m = model.n_dof, model.G.shape[0]
+    """``_PlankCondensation`` of the model; None if K_ii is singular.  K is summed from
+    the joints' blocks, B_s^T W B_t into the block of planks (s, t)."""
+    n, m = model.n_dof, 6 * len(model.joints)
     weights = 1.0 / model.compliance
-    G = model.G.tocsr()
-    K = (G.T @ sp.diags(weights) @ G).toarray()
+    blocks, planks = model.joint_blocks, model.joint_planks
+    pairs = np.swapaxes(blocks, 2, 3)[:, :, None] \
+        @ (weights.reshape(-1, 1, 6, 1) * blocks)[:, None]            # (nJ, 2, 2, 6, 6)
+    per_pair = np.zeros((len(model.planks), len(model.planks), 6, 6))
+    np.add.at(per_pair, (planks[:, :, None], planks[:, None, :]), pairs)
+    K = per_pair.transpose(0, 2, 1, 3).reshape(n, n)
     inner = np.setdiff1d(np.arange(n), ground)
     coupling = K[np.ix_(inner, ground)]
     reduced = np.zeros((len(inner), len(ground)))
@@ -151,10 +159,12 @@ def _condense_planks(model: StaticsModel, ground: np.ndarray,
         if len(ground):
             reduced = sla.cho_solve(factor, coupling, check_finite=False)
     schur = K[np.ix_(ground, ground)] - coupling.T @ reduced
-    G_inner = G[:, inner]
-    wrench_map = weights[:, None] * (G[:, ground].toarray() - G_inner @ reduced)
+    per_ground = np.zeros((n, len(ground)))
+    per_ground[ground, np.arange(len(ground))] = 1.0
+    per_ground[inner] = -reduced
+    wrench_map = weights[:, None] * model.deviations(per_ground)
     return _PlankCondensation(ground, inner, factor, coupling, reduced, schur, contact_block,
-                              plank_offsets, G, G_inner.tocsr(), wrench_map, weights, n + m)
+                              plank_offsets, model, wrench_map, weights, n + m)
 
 
 def _condense(model: StaticsModel) -> _Condensation | _PlankCondensation | None:
@@ -162,7 +172,7 @@ def _condense(model: StaticsModel) -> _Condensation | _PlankCondensation | None:
     is neither grounded nor jointed to a grounded plank cannot be held).  Designs of up
     to DENSE_PLANKS_MAX plank displacements go through the planks with dense matrices
     (``_PlankCondensation``), larger ones through the sparse mixed system by SuperLU."""
-    n, m = model.n_dof, model.G.shape[0]
+    n, m = model.n_dof, 6 * len(model.joints)
     grounded, contact_block = np.unique(model.contact_plank, return_inverse=True)
     ground = (6 * grounded[:, None] + _SIX[None, :]).ravel()
     contact_block, plank_offsets = contact_block.astype(int), 6 * np.arange(len(grounded))

@@ -31,7 +31,8 @@ class StaticsModel:
     planks   : design plank indices taking part (those of grounded components)
     joints   : geometry joint indices taking part
     contacts : geometry contact indices taking part
-    G        : (6 nJ, 6 nP) sparse joint deviation map
+    joint_planks, joint_blocks : (nJ, 2) local planks and (nJ, 2, 6, 6) signed blocks of
+               the joint deviation map G (``G``: the same as a sparse (6 nJ, 6 nP) matrix)
     contact_maps : (nK, 3, 6) displacement of each contact point from its plank's q
     contact_plank : (nK,) local plank number of each contact
     contact_component : (nK,) component number of each contact
@@ -43,7 +44,8 @@ class StaticsModel:
     planks: tuple[int, ...]
     joints: tuple[int, ...]
     contacts: tuple[int, ...]
-    G: sp.csr_matrix
+    joint_planks: np.ndarray
+    joint_blocks: np.ndarray
     compliance: np.ndarray
     contact_maps: np.ndarray
     contact_plank: np.ndarray
@@ -55,6 +57,32 @@ class StaticsModel:
     @property
     def n_dof(self) -> int:
         return 6 * len(self.planks)
+
+    @cached_property
+    def G(self) -> sp.csr_matrix:
+        """(6 nJ, 6 nP) sparse joint deviation map, d = G q."""
+        n_joints = len(self.joints)
+        shape = (n_joints, 2, 6, 6)
+        rows = np.broadcast_to(6 * np.arange(n_joints)[:, None, None, None]
+                               + _SIX[None, None, :, None], shape).ravel()
+        cols = np.broadcast_to(6 * self.joint_planks[:, :, None, None]
+                               + _SIX[None, None, None, :], shape).ravel()
+        return sp.csr_matrix((self.joint_blocks.ravel(), (rows, cols)),
+                             shape=(6 * n_joints, self.n_dof))
+
+    def deviations(self, q: np.ndarray) -> np.ndarray:
+        """G q for plank displacements q, (6 nP,) or (6 nP, k), by blocks."""
+        columns = q.reshape(len(self.planks), 6, -1)[self.joint_planks]   # (nJ, 2, 6, k)
+        out = (self.joint_blocks @ columns).sum(axis=1)                    # (nJ, 6, k)
+        return out.reshape((-1,) + q.shape[1:])
+
+    def reactions(self, h: np.ndarray) -> np.ndarray:
+        """G^T h for joint values h, (6 nJ,) or (6 nJ, k), by blocks."""
+        per_joint = np.einsum("jsab,ja...->jsb...", self.joint_blocks,
+                              h.reshape((-1, 6) + h.shape[1:]))
+        out = np.zeros((len(self.planks), 6) + h.shape[1:])
+        np.add.at(out, self.joint_planks.ravel(), per_joint.reshape((-1, 6) + h.shape[1:]))
+        return out.reshape((-1,) + h.shape[1:])
 
     @cached_property
     def contact_gram(self) -> np.ndarray:
@@ -121,7 +149,7 @@ def build_model(design: Design, geometry: Geometry) -> StaticsModel:
     plank_of = {design.planks[i].id: i for i in grounded_planks}
     contacts = [k for k, c in enumerate(geometry.contacts) if c.plank in plank_of]
 
-    G = _joint_map(design, geometry, joints, local)
+    joint_planks, joint_blocks = _joint_blocks(design, geometry, joints, local)
     thickness = np.array([geometry.joints[j].edge_thickness for j in joints], dtype=float)
     compliance = np.empty((len(joints), 6))
     compliance[:, :3] = tol.JOINT_COMPLIANCE_T
@@ -138,7 +166,8 @@ def build_model(design: Design, geometry: Geometry) -> StaticsModel:
     component_of = {p: c for c, comp in enumerate(components) for p in comp}
     return StaticsModel(
         design=design, geometry=geometry, planks=tuple(grounded_planks), joints=tuple(joints),
-        contacts=tuple(contacts), G=G, compliance=compliance.ravel(),
+        contacts=tuple(contacts), joint_planks=joint_planks, joint_blocks=joint_blocks,
+        compliance=compliance.ravel(),
         contact_maps=point_maps(points - centres),
         contact_plank=np.array(owner, dtype=int),
         contact_points=points,
@@ -146,35 +175,29 @@ def build_model(design: Design, geometry: Geometry) -> StaticsModel:
         components=components, friction=design.material.friction)
 
 
-def _joint_map(design: Design, geometry: Geometry, joints: list[int],
-               local: dict[int, int]) -> sp.csr_matrix:
-    """(6 nJ, 6 nP) linearized joint deviations d = G q (paper eq. 1, small rotations):
+def _joint_blocks(design: Design, geometry: Geometry, joints: list[int],
+                  local: dict[int, int]) -> tuple[np.ndarray, np.ndarray]:
+    """The joint deviation map G (paper eq. 1, small rotations) by blocks: the two planks
+    (local numbers, (nJ, 2)) of each joint and its signed (6, 6) blocks ((nJ, 2, 6, 6)),
 
         d^t = (u_a + theta_a x r_a) - (u_b + theta_b x r_b),   d^r = theta_a - theta_b
 
     with a, b the joint's first and second plank and r = joint point - plank centre.
     """
     n_joints = len(joints)
+    planks = np.zeros((n_joints, 2), dtype=int)
+    blocks = np.zeros((n_joints, 2, 6, 6))
     if n_joints == 0:
-        return sp.csr_matrix((0, 6 * len(local)))
+        return planks, blocks
     points = np.array([geometry.joints[j].point for j in joints])
-    rows, cols, vals = [], [], []
-    for side, position in ((1.0, 0), (-1.0, 1)):
-        planks = np.array([design.plank_index[geometry.joints[j].planks[position]]
-                           for j in joints])
-        centres = np.array([design.planks[i].center_array for i in planks])
-        blocks = np.zeros((n_joints, 6, 6))
-        blocks[:, :3, :3] = np.eye(3)
-        blocks[:, :3, 3:] = -_skew_many(points - centres)
-        blocks[:, 3:, 3:] = np.eye(3)
-        base_col = 6 * np.array([local[i] for i in planks])
-        rows.append(np.broadcast_to(6 * np.arange(n_joints)[:, None, None] + _SIX[None, :, None],
-                                    blocks.shape).ravel())
-        cols.append(np.broadcast_to(base_col[:, None, None] + _SIX[None, None, :],
-                                    blocks.shape).ravel())
-        vals.append(side * blocks.ravel())
-    return sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                         shape=(6 * n_joints, 6 * len(local)))
+    for position, side in ((0, 1.0), (1, -1.0)):
+        indices = [design.plank_index[geometry.joints[j].planks[position]] for j in joints]
+        centres = np.array([design.planks[i].center_array for i in indices])
+        planks[:, position] = [local[i] for i in indices]
+        blocks[:, position, :3, :3] = side * np.eye(3)
+        blocks[:, position, :3, 3:] = -side * _skew_many(points - centres)
+        blocks[:, position, 3:, 3:] = side * np.eye(3)
+    return planks, blocks
 
 
 def external_forces(model: StaticsModel, case: LoadCase) -> np.ndarray:
