@@ -273,18 +273,24 @@ class RangeFinder:
         """The furthest step (>= 0) in direction ``sign`` keeping the joints and contacts
         (``check_edit``, no statics), within ``resolution``.
 
-        The margins of the criteria (``EditMargins``) predict the step at which the first
-        one flips; two checks confirm it: the step half a resolution before is valid, the
+        A rotation is first checked one resolution step out: most turns that change
+        anything do so at once.  The margins of the criteria (``EditMargins``) predict
+        the step at which the first one flips; two checks confirm it: the step half a resolution before is valid, the
         one half a resolution after is not.  A flip that changes nothing (two faces that
         meet but do not outrank the joint's) is passed and the next one predicted; a check
         failing before the prediction falls back to bisection, as does a DOF whose
         margins cannot be computed.
         """
         good = 0.0
+        if dof.is_rotation:     # most turns that part a joint or cut a neighbour do it at once
+            if not self.valid_at(dof, sign * resolution, full=False):
+                return 0.0
+            good = resolution
         for _ in range(REACH_PREDICTIONS):
             if good >= limit:
                 return limit
-            predicted = self._predicted_reach(dof, sign, good, limit, resolution)
+            predicted = self._predicted_reach(dof, sign, good if good > resolution else 0.0,
+                                              limit, resolution)
             if predicted is None:
                 break
             end = limit if predicted >= limit else predicted - 0.5 * resolution
