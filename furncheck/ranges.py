@@ -110,6 +110,7 @@ class RangeFinder:
         self._predictions: dict[Dof, tuple[float | None, float | None]] = {}
         self._margins: dict[tuple[Dof, float], tuple[EditMargins, tuple]] = {}
         self._kept_edit: tuple = (None, None, None, None)
+        self._edits: tuple[Dof | None, dict[float, Design]] = (None, {})
         self.evaluations = 0
 
     # -- public --------------------------------------------------------------------------------
@@ -275,11 +276,11 @@ class RangeFinder:
 
         A rotation is first checked one resolution step out: most turns that change
         anything do so at once.  The margins of the criteria (``EditMargins``) predict
-        the step at which the first one flips; two checks confirm it: the step half a resolution before is valid, the
-        one half a resolution after is not.  A flip that changes nothing (two faces that
-        meet but do not outrank the joint's) is passed and the next one predicted; a check
-        failing before the prediction falls back to bisection, as does a DOF whose
-        margins cannot be computed.
+        the step at which the first one flips; two checks confirm it: the step half a
+        resolution before is valid, the one half a resolution after is not.  A flip that
+        changes nothing (two faces that meet but do not outrank the joint's) is passed and
+        the next one predicted; a check failing before the prediction falls back to
+        bisection, as does a DOF whose margins cannot be computed.
         """
         good = 0.0
         if dof.is_rotation:     # most turns that part a joint or cut a neighbour do it at once
@@ -353,7 +354,15 @@ class RangeFinder:
         return predicted
 
     def _edited(self, dof: Dof, step: float) -> Design:
-        return apply_dof(self.design, self.frame, dof, step) if step else self.design
+        """The design with ``dof`` changed by ``step``; the current DOF's are kept (the
+        margins' probe steps are the same for both turn horizons)."""
+        if not step:
+            return self.design
+        if self._edits[0] != dof:
+            self._edits = (dof, {})
+        if step not in self._edits[1]:
+            self._edits[1][step] = apply_dof(self.design, self.frame, dof, step)
+        return self._edits[1][step]
 
     def _edit_margins(self, dof: Dof, turn: float) -> tuple[EditMargins, tuple]:
         """The margins of the planks that ``dof`` changes (one small step either way) for
