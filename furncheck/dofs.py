@@ -263,7 +263,15 @@ def _resize(frame: Structure, planks: dict[str, Plank], plank: Plank, axis: int,
 # --- plank edits (all SI) ---------------------------------------------------------------------
 
 def _moved(plank: Plank, offset: np.ndarray) -> Plank:
-    return replace(plank, center=tuple(float(v) for v in plank.center_array + offset))
+    return _same_turn(replace(plank, center=tuple(float(v) for v in
+                                                  plank.center_array + offset)), plank)
+
+
+def _same_turn(edited: Plank, plank: Plank) -> Plank:
+    """``edited``, a copy of ``plank`` with the same rotation, given its rotation matrix
+    (a cached property) rather than computing it again."""
+    edited.__dict__["rotation_matrix"] = plank.rotation_matrix
+    return edited
 
 
 def _turned(plank: Plank, turn: np.ndarray, pivot: np.ndarray) -> Plank:
@@ -275,7 +283,7 @@ def _turned(plank: Plank, turn: np.ndarray, pivot: np.ndarray) -> Plank:
 def _with_size(plank: Plank, axis: int, size: float, center: np.ndarray) -> Plank:
     sizes = {"length": plank.length, "width": plank.width}
     sizes["length" if axis == 0 else "width"] = float(size)
-    return replace(plank, center=tuple(float(v) for v in center), **sizes)
+    return _same_turn(replace(plank, center=tuple(float(v) for v in center), **sizes), plank)
 
 
 def _resized(plank: Plank, axis: int, sign: int, amount: float) -> Plank:
@@ -322,9 +330,16 @@ def _end_direction(plank: Plank, end: End) -> np.ndarray:
 
 
 def _end_height(plank: Plank, end: End, point: np.ndarray, normal: np.ndarray) -> float:
-    """m: height of the end face's lowest corner above the plane (point, normal)."""
-    on_end = _CORNER_SIGNS[:, end.axis] == end.sign
-    return float(((plank.corners[on_end] - point) @ normal).min())
+    """m: height of the end face's lowest corner above the plane (point, normal).
+
+    The end face's corners are c + s h_a R_a + sum over the other local axes b of
+    +-h_b R_b (R_a the plank's local axes, h its half extents, s the end's sign), so
+    the lowest is (c - p).n + s h_a (R_a.n) - sum_b h_b |R_b.n|."""
+    along = plank.rotation_matrix.T @ normal                  # R_a . n for each axis a
+    spread = np.abs(plank.half_extents * along)      # |h_b| |R_b.n|: a size may be < 0 here
+    return float((plank.center_array - point) @ normal
+                 + end.sign * plank.half_extents[end.axis] * along[end.axis]
+                 - (spread.sum() - spread[end.axis]))
 
 
 def _is_free(frame: Structure, plank_id: str) -> bool:
