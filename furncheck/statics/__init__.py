@@ -21,8 +21,9 @@ The package, by job:
 
     model        StaticsModel, CaseStatics; build_model (joint map G, contact maps) and
                  external_forces (self-weight and loads)
-    condense     static condensation onto the grounded planks, the sparse LU, the full
-                 mixed matrix (system_matrix) and its solve (solve_system)
+    condense     static condensation onto the grounded planks (through the planks with a
+                 dense Cholesky factor up to 60 planks, else the sparse LU of the mixed
+                 system), the full mixed matrix (system_matrix) and its solve (solve_system)
     contacts     solve_case: the contact active set and the friction energy
     feasibility  linear programs: does any admissible equilibrium exist?
 """
