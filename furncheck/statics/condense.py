@@ -22,7 +22,29 @@ from furncheck.statics.model import _SIX, StaticsModel
 
 
 @dataclass(frozen=True)
-class _Condensation:
+class _Condensed:
+    """What the contact iterations use of a condensation onto the grounded planks g
+    (i: the other unknowns): S0, the coupling and X = (i-i block)^-1 (i-g block); each
+    kind adds its factor and ``split`` / ``expand``."""
+
+    ground: np.ndarray           # indices of g
+    inner: np.ndarray            # indices of i
+    coupling: object             # the i-g block (sparse or dense)
+    reduced: np.ndarray          # X
+    schur: np.ndarray            # S0
+    contact_block: np.ndarray    # per contact, number of its plank's 6-block in x_g
+    plank_offsets: np.ndarray    # offset of each grounded plank's block in x_g
+    size: int                    # unknowns of the whole mixed system
+
+    def load(self, f: np.ndarray):
+        """``split`` of the plank loads f (the joint rows have no load)."""
+        b = np.zeros(self.size)
+        b[:len(f)] = f
+        return self.split(b)
+
+
+@dataclass(frozen=True)
+class _Condensation(_Condensed):
     """Static condensation of the mixed system onto the grounded planks.
 
     Order the unknowns as g (the six displacements of each plank with ground contacts) and
@@ -36,21 +58,7 @@ class _Condensation:
     6 x (grounded planks); then x_i = y - X x_g.
     """
 
-    ground: np.ndarray           # indices of g in the full unknown vector
-    inner: np.ndarray            # indices of i
-    lu: object                   # SuperLU of A_ii
-    coupling: sp.csc_matrix      # A_ig (n_i, n_g); dense for a small system
-    reduced: np.ndarray          # X = A_ii^-1 A_ig
-    schur: np.ndarray            # S0
-    contact_block: np.ndarray    # per contact, number of its plank's 6-block in x_g
-    plank_offsets: np.ndarray    # offset of each grounded plank's block in x_g
-    size: int
-
-    def load(self, f: np.ndarray):
-        """(y, b_g - A_gi y) for the plank loads f (the joint rows have no load)."""
-        b = np.zeros(self.size)
-        b[:len(f)] = f
-        return self.split(b)
+    lu: object = None            # SuperLU of A_ii (the coupling is A_ig, sparse)
 
     def split(self, rhs: np.ndarray):
         """(y, b_g - A_gi y) for a right-hand side of the whole system, (size,) or
@@ -68,7 +76,7 @@ class _Condensation:
 
 
 @dataclass(frozen=True)
-class _PlankCondensation:
+class _PlankCondensation(_Condensed):
     """The same condensation for a design of few planks, through the planks alone.
 
     The joint rows of the mixed system give h = W (G q - r_h), W = E^-1 (diagonal), so the
@@ -83,23 +91,10 @@ class _PlankCondensation:
     f_g - K_gi y, then q_i = y - X x_g and h = W (G q - r_h).
     """
 
-    ground: np.ndarray           # indices of g among the plank displacements
-    inner: np.ndarray            # indices of i
-    factor: tuple                # Cholesky factor of K_ii (scipy.linalg.cho_factor)
-    coupling: np.ndarray         # K_ig
-    reduced: np.ndarray          # X
-    schur: np.ndarray            # S0
-    contact_block: np.ndarray
-    plank_offsets: np.ndarray
-    model: StaticsModel          # its joint blocks apply G and G^T
-    wrench_map: np.ndarray       # Z = W G [I; -X] (rows g; i): the wrenches per x_g
-    stiffness: np.ndarray        # W, the joints' stiffnesses (6 nJ,)
-    size: int
-
-    def load(self, f: np.ndarray):
-        b = np.zeros(self.size)
-        b[:len(f)] = f
-        return self.split(b)
+    factor: tuple = ()           # Cholesky factor of K_ii (the coupling is K_ig, dense)
+    model: StaticsModel | None = None    # its joint blocks apply G and G^T
+    wrench_map: np.ndarray | None = None  # Z = W G [I; -X]: the wrenches per x_g
+    stiffness: np.ndarray | None = None   # W, the joints' stiffnesses (6 nJ,)
 
     def split(self, rhs: np.ndarray):
         """(the part of the solution x_g does not change, f_g - K_gi y) for a right-hand
@@ -163,11 +158,12 @@ def _condense_planks(model: StaticsModel, ground: np.ndarray,
     per_ground[ground, np.arange(len(ground))] = 1.0
     per_ground[inner] = -reduced
     wrench_map = weights[:, None] * model.deviations(per_ground)
-    return _PlankCondensation(ground, inner, factor, coupling, reduced, schur, contact_block,
-                              plank_offsets, model, wrench_map, weights, n + m)
+    return _PlankCondensation(ground, inner, coupling, reduced, schur, contact_block,
+                              plank_offsets, n + m, factor=factor, model=model,
+                              wrench_map=wrench_map, stiffness=weights)
 
 
-def _condense(model: StaticsModel) -> _Condensation | _PlankCondensation | None:
+def _condense(model: StaticsModel) -> _Condensed | None:
     """Build the condensation; None if the contact-free part is singular (a plank that
     is neither grounded nor jointed to a grounded plank cannot be held).  Designs of up
     to DENSE_PLANKS_MAX plank displacements go through the planks with dense matrices
@@ -197,8 +193,8 @@ def _condense(model: StaticsModel) -> _Condensation | _PlankCondensation | None:
         if len(ground):
             reduced = lu.solve(coupling.toarray())
     schur = permuted[ni:, ni:].toarray() - np.asarray(coupling.T @ reduced)
-    return _Condensation(ground, inner, lu, coupling, reduced, schur, contact_block,
-                         plank_offsets, n + m)
+    return _Condensation(ground, inner, coupling, reduced, schur, contact_block,
+                         plank_offsets, n + m, lu=lu)
 
 
 def _factor(A: sp.csc_matrix, probe: np.ndarray):

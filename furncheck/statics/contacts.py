@@ -207,7 +207,7 @@ class _ActiveSet:
         """Solve the mixed system for the given contact states; None if it is a mechanism.
 
         Only the grounded planks' six displacements each are solved for here (a small dense
-        system, see ``_Condensation``); the rest follows by one matrix-vector product.
+        system, see ``_Condensed``); the rest follows by one matrix-vector product.
         """
         model, condensed = self.model, self.condensed
         if condensed is None or not self._restrained(status == STICK):
@@ -280,7 +280,7 @@ terms of double precision)."""
 class _FrictionEnergy:
     """The condensed potential energy with elastic-perfectly-plastic friction springs.
 
-    For the grounded planks' displacements x (x_g of ``_Condensation``), with w_k = M_k x
+    For the grounded planks' displacements x (x_g of ``_Condensed``), with w_k = M_k x
     the displacement of contact k, k the spring stiffness and c_k = mu N_k its friction cap:
 
         Phi(x) = 1/2 x.S0.x - b.x + sum_active [ 1/2 k w_z^2 + psi(|w_t|) ]

@@ -19,7 +19,7 @@ from furncheck.design.model import Design, LoadCase
 from furncheck.geometry import Geometry
 
 if TYPE_CHECKING:
-    from furncheck.statics.condense import _Condensation
+    from furncheck.statics.condense import _Condensed
 
 _SIX = np.arange(6)
 
@@ -111,7 +111,7 @@ class StaticsModel:
         return grams
 
     @cached_property
-    def condensation(self) -> _Condensation | None:
+    def condensation(self) -> _Condensed | None:
         """The contact-free part of the system, condensed onto the grounded planks."""
         from furncheck.statics.condense import _condense  # here: condense imports this module
 
