@@ -59,6 +59,14 @@ SEARCH_LIMIT = 1.0
 """How far a range is searched: this fraction of the design's size for lengths, x 90
 degrees for rotations."""
 
+PAST_ESTIMATE = 0.45
+"""A physical-limit probe goes this fraction of the resolution past the estimated step
+where validity changes (a lost nail, or the margin's zero): when the estimate is right,
+that probe and one the same distance before it close the bracket."""
+
+INSIDE_BRACKET = 0.05
+"""Probes stay this fraction of the resolution inside the bracket, so each one narrows it."""
+
 PARALLEL_MIN_DOFS = 16
 """Fewer DOFs than this are searched in this process: starting workers would cost more."""
 
@@ -242,18 +250,19 @@ class RangeFinder:
         spacing = self.design.material.nail_spacing
         widths, moves = [bad.step], []
         while bad.step - good.step > resolution:
-            low, high = good.step + 0.05 * resolution, bad.step - 0.05 * resolution
+            low = good.step + INSIDE_BRACKET * resolution
+            high = bad.step - INSIDE_BRACKET * resolution
+            past = PAST_ESTIMATE * resolution
             drops = _nail_drops(good, bad, spacing)
             if drops:
                 drop = drops[len(drops) // 2]
-                step = drop + 0.45 * resolution if drop + 0.45 * resolution < high else \
-                    drop - 0.45 * resolution
+                step = drop + past if drop + past < high else drop - past
             elif predicted is not None and low < predicted < high:
                 step = predicted
             elif np.isfinite(bad.margin) and good.margin > bad.margin:
                 zero = good.step + (bad.step - good.step) * good.margin / (good.margin
                                                                              - bad.margin)
-                step = zero + (0.45 if moves[-1:] == [True] else -0.45) * resolution
+                step = zero + (past if moves[-1:] == [True] else -past)
             else:
                 step = 0.5 * (good.step + bad.step)
             if moves[-2:] in ([True, True], [False, False]):    # one end stuck: halve
