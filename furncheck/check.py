@@ -59,7 +59,7 @@ def margin_of(design: Design, geometry: Geometry,
     geometry must have no violations."""
     model = build_model(design, geometry)
     utilization = np.zeros(len(geometry.joints))
-    valid, margin = True, np.inf
+    valid = True
     for k, case in enumerate(design.load_cases):
         statics = solve_case(model, external_forces(model, case),
                              None if starts is None else starts[k])
@@ -71,8 +71,7 @@ def margin_of(design: Design, geometry: Geometry,
         joints = np.asarray(model.joints, dtype=int)
         utilization[joints] = np.maximum(utilization[joints], used)
         valid = valid and bool(np.all(holds))
-    margin = 1.0 - float(utilization.max(initial=0.0))
-    return valid, margin, utilization
+    return valid, 1.0 - float(utilization.max(initial=0.0)), utilization
 
 
 def holding_states(design: Design, geometry: Geometry) -> tuple[np.ndarray | None, ...]:
