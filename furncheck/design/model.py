@@ -75,6 +75,22 @@ class Plank:
         """(3,) float, m: half length, half width, half thickness."""
         return 0.5 * np.array([self.length, self.width, self.thickness])
 
+    # Plain-float views of the same numbers, for code that does a few scalar operations per
+    # plank many times over (``furncheck.dofs``): on 3-vectors numpy's per-call overhead is
+    # far larger than the arithmetic.
+
+    @cached_property
+    def axes(self) -> tuple[Vec3, Vec3, Vec3]:
+        """The local x, y, z axes in world coordinates (the columns of ``rotation_matrix``)
+        as tuples of floats."""
+        x_axis, y_axis, z_axis = self.rotation_matrix.T.tolist()
+        return tuple(x_axis), tuple(y_axis), tuple(z_axis)
+
+    @cached_property
+    def half_sizes(self) -> Vec3:
+        """m: half length, half width, half thickness as floats (= ``half_extents``)."""
+        return 0.5 * self.length, 0.5 * self.width, 0.5 * self.thickness
+
     @property
     def volume(self) -> float:
         """m^3."""
