@@ -24,10 +24,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
 
-from furncheck.design.model import Design, Load, Plank
+from furncheck.design.model import Design, Load, LoadCase, Plank, Vec3
 from furncheck.errors import DofError
 from furncheck.geometry import Geometry, analyze, interpenetrations
 
@@ -119,6 +120,12 @@ class End:
     on: str | None
     normal: np.ndarray      # unit normal of the supporting face, pointing at this plank
 
+    @cached_property
+    def normal_xyz(self) -> Vec3:
+        """``normal`` as a tuple of floats (for the scalar arithmetic of ``apply_dof``)."""
+        x, y, z = self.normal.tolist()
+        return x, y, z
+
 
 @dataclass(frozen=True)
 class Structure:
@@ -128,6 +135,20 @@ class Structure:
     attached: dict[str, tuple[tuple[str, End], ...]]   # plank -> (edge plank, its end)
     lies_flat: frozenset[str]                          # planks lying on a broad face
     joint_count: dict[str, int]
+
+    @cached_property
+    def free(self) -> frozenset[str]:
+        """Planks held by one joint only and not standing or lying on the ground: they may
+        simply move along with the plank they are jointed to."""
+        return frozenset(plank for plank, count in self.joint_count.items()
+                         if count == 1 and plank not in self.lies_flat
+                         and not any(end.on is None for end in self.ends[plank]))
+
+    @cached_property
+    def turn_starts(self) -> dict[str, _TurnStart]:
+        """plank id -> the angle-independent part of its last turn (``_turn_start``): a
+        cache, filled by ``apply_dof``."""
+        return {}
 
 
 def structure(design: Design, geometry: Geometry) -> Structure:
@@ -159,25 +180,44 @@ def structure(design: Design, geometry: Geometry) -> Structure:
 
 
 # --- applying a DOF change --------------------------------------------------------------------
+#
+# ``apply_dof`` is the inner loop of the range search, so the per-plank arithmetic below is
+# done on tuples of floats (``Plank.axes``, ``Plank.half_sizes``, ``End.normal_xyz``): on
+# 3-vectors numpy's call overhead is many times the arithmetic.  Each formula keeps the
+# operation order of the numpy expression it replaces (dot products summed left to right),
+# so the results are the same to the last bit.  Products with a rotation matrix on the left
+# (turning a plank in ``_turned``, placing a carried load) stay in numpy: BLAS may compute
+# them with fused multiply-adds, which Python floats cannot reproduce.  What does not depend
+# on the step is computed once per design and plank (``_turn_start``).
 
 def apply_dof(design: Design, frame: Structure, dof: Dof, step: float) -> Design:
     """The design with ``dof`` changed by ``step`` (file unit or degrees) and its
     neighbours adjusted (module docstring).  Raises Blocked if the DOF cannot move."""
-    planks = {p.id: p for p in design.planks}
+    before = {p.id: p for p in design.planks}
+    planks = dict(before)
     plank = planks[dof.plank]
     if dof.kind in ("x", "y", "z"):
         _translate(frame, planks, plank, _AXIS[dof.kind], step * design.unit_scale)
     elif dof.is_rotation:
-        _rotate(frame, planks, plank, _AXIS[dof.kind], math.radians(step))
+        _rotate(frame, planks, plank, _AXIS[dof.kind], math.radians(step), design.planks)
     else:
         _resize(frame, planks, plank, 0 if dof.kind == "length" else 1,
                 step * design.unit_scale)
     edited = tuple(planks[p.id] for p in design.planks)
+    changed = {plank_id for plank_id, p in planks.items() if p is not before[plank_id]}
     return replace(design, planks=edited,
-                   load_cases=tuple(replace(case, loads=tuple(
-                       _carried(load, design.planks[design.plank_index[load.plank]],
-                                planks[load.plank])
-                       for load in case.loads)) for case in design.load_cases))
+                   load_cases=tuple(_carried_case(case, before, planks, changed)
+                                    for case in design.load_cases))
+
+
+def _carried_case(case: LoadCase, before: dict[str, Plank], after: dict[str, Plank],
+                  changed: set[str]) -> LoadCase:
+    """The load case with its loads carried by their edited planks (``_carried``); the
+    case itself when none of its loaded planks changed."""
+    if not any(load.plank in changed for load in case.loads):
+        return case
+    return replace(case, loads=tuple(_carried(load, before[load.plank], after[load.plank])
+                                     for load in case.loads))
 
 
 def _carried(load: Load, before: Plank, after: Plank) -> Load:
@@ -187,16 +227,20 @@ def _carried(load: Load, before: Plank, after: Plank) -> Load:
     world direction (gravity does not turn with the plank)."""
     if load.point is None or before is after or before == after:
         return load
-    local = before.to_local(np.asarray(load.point)[None, :])[0]
-    scale = np.array([after.length / before.length, after.width / before.width, 1.0])
-    point = after.center_array + after.rotation_matrix @ (local * scale)
-    return replace(load, point=tuple(float(v) for v in point))
+    (px, py, pz), (cx, cy, cz) = load.point, before.center
+    offset = (px - cx, py - cy, pz - cz)
+    x_axis, y_axis, z_axis = before.axes                      # local = R^T (p - c), scaled
+    scaled = np.array([_dot(offset, x_axis) * (after.length / before.length),
+                       _dot(offset, y_axis) * (after.width / before.width),
+                       _dot(offset, z_axis)])
+    (ox, oy, oz), (cx, cy, cz) = (after.rotation_matrix @ scaled).tolist(), after.center
+    return Load(load.plank, load.force, (cx + ox, cy + oy, cz + oz), load.mass)
 
 
 def _translate(frame: Structure, planks: dict[str, Plank], plank: Plank, axis: int,
                amount: float) -> None:
-    direction = np.eye(3)[axis]
-    held = [end for end in frame.ends[plank.id] if abs(direction @ end.normal) > _PARALLEL_EPS]
+    # moving along world axis ``axis``: the component of a normal n along it is n[axis]
+    held = [end for end in frame.ends[plank.id] if abs(end.normal_xyz[axis]) > _PARALLEL_EPS]
     if len(held) > 1:
         names = " and ".join(sorted({end.on or "the ground" for end in held}))
         raise Blocked(f"both ends jointed ({names}): moving {plank.id} along "
@@ -205,45 +249,82 @@ def _translate(frame: Structure, planks: dict[str, Plank], plank: Plank, axis: i
         raise Blocked(_end_reason(plank.id, held[0], "moving it along " + "xyz"[axis]))
     if plank.id in frame.lies_flat and axis == 2:
         raise Blocked(f"{plank.id} lies on the ground")
-    planks[plank.id] = _moved(plank, direction * amount)
+    offset = _axis_offset(axis, amount)
+    planks[plank.id] = _moved(plank, offset)
     for edge_id, end in frame.attached[plank.id]:
-        shift = amount * float(direction @ end.normal)     # face moves along its normal
+        shift = amount * end.normal_xyz[axis]              # face moves along its normal
         if abs(shift) <= _PARALLEL_EPS * max(abs(amount), 1.0):
             continue
         edge = planks[edge_id]
-        if _is_free(frame, edge_id):
-            planks[edge_id] = _moved(edge, direction * amount)
+        if edge_id in frame.free:
+            planks[edge_id] = _moved(edge, offset)
         else:
             planks[edge_id] = _extend_to_face(edge, end, shift)
 
 
 def _rotate(frame: Structure, planks: dict[str, Plank], plank: Plank, axis: int,
-            angle: float) -> None:
+            angle: float, design_planks: tuple[Plank, ...]) -> None:
     turn = _axis_rotation(axis, angle)
     if plank.id in frame.lies_flat and axis != 2:
         raise Blocked(f"{plank.id} lies on the ground")
-    old_faces = {}
-    for edge_id, end in frame.attached[plank.id]:
-        old_faces[edge_id] = _support_plane(plank, end)
+    start = _turn_start(frame, planks, plank, design_planks)
     rotated = _turned(plank, turn, plank.center_array)
     # the plank's own held ends stay on their faces: change its size at those ends
-    for end in frame.ends[plank.id]:
-        support = (planks[end.on] if end.on is not None else None)
-        rotated = _reseat_end(rotated, plank, end, support)
+    for end, (point, normal, height) in zip(frame.ends[plank.id], start.ends):
+        rotated = _reseat_end(rotated, plank.id, end, point, normal, height)
     planks[plank.id] = rotated
-    for edge_id, end in frame.attached[plank.id]:
+    for (edge_id, end), height_before in zip(frame.attached[plank.id], start.attached):
         edge = planks[edge_id]
-        if _is_free(frame, edge_id):
+        if height_before is None:
             planks[edge_id] = _turned(edge, turn, plank.center_array)
             continue
         point, normal = _support_plane(rotated, end)
-        height_before = _end_height(edge, end, *old_faces[edge_id])
         height_after = _end_height(edge, end, point, normal)
-        along = _end_direction(edge, end) @ normal
+        along = _dot(_end_direction(edge, end), normal)
         if abs(along) <= _PARALLEL_EPS:
             raise OutOfReach(f"{edge_id} would lie along the turned face of {plank.id}")
         planks[edge_id] = _resized(edge, end.axis, end.sign, (height_before - height_after)
                                    / along)
+
+
+@dataclass(frozen=True)
+class _TurnStart:
+    """The part of turning a plank that does not depend on the angle (``_rotate``).
+
+    planks   : the design's planks it was computed from
+    ends     : per held end of the plank (``Structure.ends`` order): the supporting plane
+               (point, normal; the ground for an end on the ground) and the end's height
+               above it
+    attached : per attached edge plank (``Structure.attached`` order): the height of its
+               end above the plank's face, or None for a free plank (it turns along)
+    """
+
+    planks: tuple[Plank, ...]
+    ends: tuple[tuple[Vec3, Vec3, float], ...]
+    attached: tuple[float | None, ...]
+
+
+def _turn_start(frame: Structure, planks: dict[str, Plank], plank: Plank,
+                design_planks: tuple[Plank, ...]) -> _TurnStart:
+    """The ``_TurnStart`` of ``plank`` in the design of ``design_planks`` (still unedited
+    in ``planks``), remembered in ``frame.turn_starts`` while that design is the one
+    being turned: the range search turns the planks of one design thousands of times."""
+    start = frame.turn_starts.get(plank.id)
+    if start is not None and start.planks is design_planks:
+        return start
+    ends = []
+    for end in frame.ends[plank.id]:
+        if end.on is None:
+            point, normal = (0.0, 0.0, 0.0), (0.0, 0.0, 1.0)
+        else:
+            point, normal = _support_plane(planks[end.on], end)
+        ends.append((point, normal, _end_height(plank, end, point, normal)))
+    attached = tuple(None if edge_id in frame.free else
+                     _end_height(planks[edge_id], end, *_support_plane(plank, end))
+                     for edge_id, end in frame.attached[plank.id])
+    start = _TurnStart(design_planks, tuple(ends), attached)
+    frame.turn_starts[plank.id] = start
+    return start
 
 
 def _resize(frame: Structure, planks: dict[str, Plank], plank: Plank, axis: int,
@@ -257,95 +338,114 @@ def _resize(frame: Structure, planks: dict[str, Plank], plank: Plank, axis: int,
         planks[plank.id] = _resized(plank, axis, -held[0].sign, amount)
     else:
         size = (plank.length, plank.width)[axis] + amount
-        planks[plank.id] = _with_size(plank, axis, size, plank.center_array)
+        planks[plank.id] = _with_size(plank, axis, size, plank.center)
 
 
 # --- plank edits (all SI) ---------------------------------------------------------------------
 
-def _moved(plank: Plank, offset: np.ndarray) -> Plank:
-    return _same_turn(replace(plank, center=tuple(float(v) for v in
-                                                  plank.center_array + offset)), plank)
+def _dot(a: Vec3, b: Vec3) -> float:
+    """a . b, summed left to right as numpy's dot of two 3-vectors (and R^T n) does."""
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
-def _same_turn(edited: Plank, plank: Plank) -> Plank:
-    """``edited``, a copy of ``plank`` with the same rotation, given its rotation matrix
-    (a cached property) rather than computing it again."""
+def _axis_offset(axis: int, amount: float) -> Vec3:
+    """``amount`` along world axis ``axis``: amount e_axis, the other components 0 * amount
+    (+-0.0, as numpy's e_axis * amount, so that a centre at -0.0 comes out the same)."""
+    return amount * float(axis == 0), amount * float(axis == 1), amount * float(axis == 2)
+
+
+def _moved(plank: Plank, offset: Vec3) -> Plank:
+    (x, y, z), (dx, dy, dz) = plank.center, offset
+    return _same_turn(plank, plank.length, plank.width, (x + dx, y + dy, z + dz))
+
+
+def _same_turn(plank: Plank, length: float, width: float, center: Vec3) -> Plank:
+    """A copy of ``plank`` with a new size and centre and the same rotation, given its
+    rotation matrix and axes (cached properties) rather than computing them again."""
+    edited = Plank(plank.id, length, width, plank.thickness,
+                   (float(center[0]), float(center[1]), float(center[2])), plank.rotation)
     edited.__dict__["rotation_matrix"] = plank.rotation_matrix
+    edited.__dict__["axes"] = plank.axes
     return edited
 
 
 def _turned(plank: Plank, turn: np.ndarray, pivot: np.ndarray) -> Plank:
-    center = pivot + turn @ (plank.center_array - pivot)
-    return replace(plank, center=tuple(float(v) for v in center),
-                   rotation=euler_degrees(turn @ plank.rotation_matrix, plank.rotation))
+    """``plank`` turned by the rotation matrix ``turn`` about the point ``pivot``."""
+    center = (pivot + turn @ (plank.center_array - pivot)).tolist()
+    rotation = euler_degrees(turn @ plank.rotation_matrix, plank.rotation)
+    return Plank(plank.id, plank.length, plank.width, plank.thickness, tuple(center), rotation)
 
 
-def _with_size(plank: Plank, axis: int, size: float, center: np.ndarray) -> Plank:
-    sizes = {"length": plank.length, "width": plank.width}
-    sizes["length" if axis == 0 else "width"] = float(size)
-    return _same_turn(replace(plank, center=tuple(float(v) for v in center), **sizes), plank)
+def _with_size(plank: Plank, axis: int, size: float, center: Vec3) -> Plank:
+    if axis == 0:
+        return _same_turn(plank, float(size), plank.width, center)
+    return _same_turn(plank, plank.length, float(size), center)
 
 
 def _resized(plank: Plank, axis: int, sign: int, amount: float) -> Plank:
-    """``plank`` grown by ``amount`` at its (axis, sign) end; the opposite end stays."""
-    direction = sign * plank.rotation_matrix[:, axis]
+    """``plank`` grown by ``amount`` at its (axis, sign) end; the opposite end stays: the
+    centre moves by amount / 2 along the end's outward direction s R_a."""
+    (x, y, z), half = plank.center, 0.5 * amount
+    ux, uy, uz = _end_direction_of(plank, axis, sign)
     size = (plank.length, plank.width)[axis] + amount
-    return _with_size(plank, axis, size, plank.center_array + 0.5 * amount * direction)
+    return _with_size(plank, axis, size, (x + half * ux, y + half * uy, z + half * uz))
 
 
 def _extend_to_face(edge: Plank, end: End, shift: float) -> Plank:
     """The edge plank's end follows its face plank's face, moved ``shift`` along the face
     normal n (which points at the edge plank): the end, outward normal u, grows by
     shift / (u . n)."""
-    along = float(_end_direction(edge, end) @ end.normal)
+    along = _dot(_end_direction(edge, end), end.normal_xyz)
     return _resized(edge, end.axis, end.sign, shift / along if abs(along) > 0 else 0.0)
 
 
-def _reseat_end(rotated: Plank, original: Plank, end: End, support: Plank | None) -> Plank:
+def _reseat_end(rotated: Plank, plank_id: str, end: End, point: Vec3, normal: Vec3,
+                before: float) -> Plank:
     """Grow or shrink the rotated plank at ``end`` so its nearest corner is as high above
-    the supporting face (or the ground) as it was before the rotation."""
-    if support is None:
-        point, normal = np.zeros(3), np.array([0.0, 0.0, 1.0])
-    else:
-        point, normal = _support_plane(support, end)
-    before = _end_height(original, end, point, normal)
+    the supporting plane (point, normal) as it was before the rotation (``before``)."""
     after = _end_height(rotated, end, point, normal)
-    along = float(_end_direction(rotated, end) @ normal)
+    along = _dot(_end_direction(rotated, end), normal)
     if abs(along) <= _PARALLEL_EPS:
-        raise OutOfReach(f"{original.id}'s end would lie along its support")
+        raise OutOfReach(f"{plank_id}'s end would lie along its support")
     return _resized(rotated, end.axis, end.sign, (before - after) / along)
 
 
-def _support_plane(support: Plank, end: End) -> tuple[np.ndarray, np.ndarray]:
-    """Point and normal of the broad face of ``support`` that faces ``end``'s plank."""
-    normal = end.normal
-    side = 1.0 if normal @ support.rotation_matrix[:, 2] > 0 else -1.0
-    face_normal = side * support.rotation_matrix[:, 2]
-    return support.center_array + support.half_extents[2] * face_normal, face_normal
+def _support_plane(support: Plank, end: End) -> tuple[Vec3, Vec3]:
+    """Point p and normal n of the broad face of ``support`` that faces ``end``'s plank:
+    n = +-R_z (the plank's local z) on the side of ``end.normal``, p = c + h_z n."""
+    zx, zy, zz = support.axes[2]
+    side = 1.0 if _dot(end.normal_xyz, (zx, zy, zz)) > 0 else -1.0
+    nx, ny, nz = side * zx, side * zy, side * zz
+    (x, y, z), h = support.center, support.half_sizes[2]
+    return (x + h * nx, y + h * ny, z + h * nz), (nx, ny, nz)
 
 
-def _end_direction(plank: Plank, end: End) -> np.ndarray:
+def _end_direction(plank: Plank, end: End) -> Vec3:
     """Outward unit normal of the plank's held narrow face."""
-    return end.sign * plank.rotation_matrix[:, end.axis]
+    return _end_direction_of(plank, end.axis, end.sign)
 
 
-def _end_height(plank: Plank, end: End, point: np.ndarray, normal: np.ndarray) -> float:
+def _end_direction_of(plank: Plank, axis: int, sign: int) -> Vec3:
+    """Outward unit normal s R_a of the plank's narrow face (axis a, sign s)."""
+    ux, uy, uz = plank.axes[axis]
+    return sign * ux, sign * uy, sign * uz
+
+
+def _end_height(plank: Plank, end: End, point: Vec3, normal: Vec3) -> float:
     """m: height of the end face's lowest corner above the plane (point, normal).
 
     The end face's corners are c + s h_a R_a + sum over the other local axes b of
     +-h_b R_b (R_a the plank's local axes, h its half extents, s the end's sign), so
     the lowest is (c - p).n + s h_a (R_a.n) - sum_b h_b |R_b.n|."""
-    along = plank.rotation_matrix.T @ normal                  # R_a . n for each axis a
-    spread = np.abs(plank.half_extents * along)      # |h_b| |R_b.n|: a size may be < 0 here
-    return float((plank.center_array - point) @ normal
-                 + end.sign * plank.half_extents[end.axis] * along[end.axis]
-                 - (spread.sum() - spread[end.axis]))
-
-
-def _is_free(frame: Structure, plank_id: str) -> bool:
-    """Held by one joint only and not standing on the ground: it may simply move along."""
-    return frame.joint_count[plank_id] == 1 and not any(
-        end.on is None for end in frame.ends[plank_id]) and plank_id not in frame.lies_flat
+    x_axis, y_axis, z_axis = plank.axes
+    along = (_dot(x_axis, normal), _dot(y_axis, normal), _dot(z_axis, normal))   # R_a . n
+    half = plank.half_sizes
+    spread = (abs(half[0] * along[0]), abs(half[1] * along[1]),   # |h_b| |R_b.n|: a size
+              abs(half[2] * along[2]))                            # may be < 0 here
+    (x, y, z), (px, py, pz) = plank.center, point
+    offset = _dot((x - px, y - py, z - pz), normal)
+    return (offset + end.sign * half[end.axis] * along[end.axis]
+            - (spread[0] + spread[1] + spread[2] - spread[end.axis]))
 
 
 def _end_reason(plank_id: str, end: End, action: str) -> str:

@@ -86,9 +86,10 @@ class Plank:
         x_axis, y_axis, z_axis = self.rotation_matrix.T.tolist()
         return tuple(x_axis), tuple(y_axis), tuple(z_axis)
 
-    @cached_property
+    @property
     def half_sizes(self) -> Vec3:
-        """m: half length, half width, half thickness as floats (= ``half_extents``)."""
+        """m: half length, half width, half thickness as floats (= ``half_extents``; not
+        cached: planks edited in a loop are mostly read once)."""
         return 0.5 * self.length, 0.5 * self.width, 0.5 * self.thickness
 
     @property
