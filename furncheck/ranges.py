@@ -85,7 +85,16 @@ REACH_PROBE = 0.25
 """The margins' slope is taken over this fraction of the resolution."""
 
 REACH_SECANTS = 8
-"""Most refinements of a rotation's predicted reach."""
+"""Most evaluations of the margins refining a rotation's predicted reach."""
+
+MODEL_OFFSET = 0.2
+"""A rotation's margins are evaluated this fraction of the resolution past the modelled
+flip (before it, once the last evaluation was flipped): a good model closes the bracket
+to half a resolution in two evaluations."""
+
+MODEL_GRID = 64
+"""The modelled margins are scanned for their first flip on this many turns, twice (the
+second time within the first scan's step)."""
 
 
 @dataclass(frozen=True)
@@ -318,48 +327,86 @@ class RangeFinder:
 
     def _predicted_reach(self, dof: Dof, sign: float, start: float, limit: float,
                          resolution: float) -> float | None:
-        """The step (>= ``start``, at most ``limit``; for a rotation first at most
-        ROTATION_WATCH) at which the first criterion of ``EditMargins`` flips, the margins
-        taken as linear in the step through their values at ``start`` and one nearby
-        step.  A rotation's margins are not linear: there the prediction is checked
-        against the margins at the predicted step, and a bracket of an unflipped and a
-        flipped step is narrowed by the same linear prediction between its ends (halved
-        when only one end moves).  None if an edited design cannot be made."""
-        turn = 0.0
-        if dof.is_rotation:     # watch the faces that a turn up to the horizon can align
-            turn = ROTATION_WATCH if start < ROTATION_WATCH else limit
-            limit = min(limit, turn)
-        margins, now = self._edit_margins(dof, turn)
+        """The step (>= ``start``, at most ``limit``) at which the first criterion of
+        ``EditMargins`` flips, the margins taken as linear in the step through their
+        values at ``start`` and one nearby step; None if an edited design cannot be made.
+
+        A rotation's margins are not linear (a corner's height changes with the cosine of
+        the turn): ``_predicted_turn`` refines the prediction on the margins themselves,
+        first within ROTATION_WATCH degrees watching only the faces that so small a turn
+        can bring to rest on one another, then, if nothing flips there, from that turn on
+        watching all of them."""
         try:
+            if dof.is_rotation:
+                horizons = (ROTATION_WATCH, limit) if start < ROTATION_WATCH < limit \
+                    else (limit,)
+                for horizon in horizons:
+                    predicted = self._predicted_turn(dof, sign, start, horizon, resolution)
+                    if predicted < horizon:
+                        return predicted
+                    start = horizon
+                return limit
+            margins, now = self._edit_margins(dof, 0.0)
             at_start = now if start == 0.0 else margins(self._edited(dof, sign * start))
             step = start + REACH_PROBE * resolution
-            predicted = _first_flip(at_start, margins(self._edited(dof, sign * step)),
-                                    start, step, limit)
-            if not dof.is_rotation:
-                return predicted
-            low, at_low, high, at_high = start, at_start, None, None
-            moved = []                  # which end each step moved
-            for _ in range(REACH_SECANTS):
-                if high is None and predicted >= limit:
-                    return limit
-                at_predicted = margins(self._edited(dof, sign * predicted))
-                if _flipped(at_start, at_predicted):
-                    high, at_high = predicted, at_predicted
-                else:
-                    low, at_low = predicted, at_predicted
-                moved.append(predicted == high)
-                if high is None:        # the margins at start and here: a longer chord
-                    predicted = _first_flip(at_start, at_low, start, low, limit)
-                elif high - low <= 0.5 * resolution:
-                    return high
-                elif moved[-2:] in ([True, True], [False, False]):     # one-sided: halve
-                    predicted = 0.5 * (low + high)
-                else:
-                    predicted = min(max(_first_flip(at_low, at_high, low, high, high),
-                                        low + REACH_PROBE * resolution),
-                                    high - REACH_PROBE * resolution)
+            return _first_flip(at_start, margins(self._edited(dof, sign * step)), start, step,
+                               limit)
         except OutOfReach:
             return None
+
+    def _predicted_turn(self, dof: Dof, sign: float, start: float, horizon: float,
+                        resolution: float) -> float:
+        """For a rotation: the turn (>= ``start``) at which the first criterion of
+        ``EditMargins`` (faces within ``horizon`` degrees of resting on one another)
+        flips, ``horizon`` if none does up to there.
+
+        Every margin is modelled as a quadratic in the turn through three evaluated turns
+        (``_modelled_flip``; at first the start, a turn just past it and the linear
+        prediction from the slope there), the modelled flip is evaluated a little past
+        (or before) itself, so that two good predictions close a bracket of an unflipped
+        and a flipped turn to half a resolution; the horizon is evaluated before it is
+        returned.  A bracket whose same end moves twice, or whose flipped end is a turn
+        the DOF cannot make, is halved.  At most REACH_SECANTS evaluations: the last
+        prediction is returned, to be confirmed."""
+        margins, now = self._edit_margins(dof, horizon)
+        at_start = now if start == 0.0 else margins(self._edited(dof, sign * start))
+        step = start + REACH_PROBE * resolution
+        at_step = margins(self._edited(dof, sign * step))
+        samples = [(start, at_start), (step, at_step)]
+        predicted = _first_flip(at_start, at_step, start, step, horizon)
+        low, high, at_high = start, None, None
+        offset = MODEL_OFFSET * resolution
+        moved = []                      # whether each evaluation moved the flipped end
+        for _ in range(REACH_SECANTS):
+            try:
+                at_predicted = margins(self._edited(dof, sign * predicted))
+                flipped = _flipped(at_start, at_predicted)
+                samples.append((predicted, at_predicted))
+            except OutOfReach:          # no such design: past the reach as well
+                at_predicted, flipped = None, True
+            if flipped:
+                high, at_high = predicted, at_predicted
+            elif predicted >= horizon:
+                return horizon
+            else:
+                low = predicted
+            moved.append(flipped)
+            end = horizon if high is None else high
+            if high is not None and high - low <= 0.5 * resolution:
+                return high
+            if high is not None and (at_high is None or moved[-3:] in ([True] * 3,
+                                                                      [False] * 3)):
+                predicted = 0.5 * (low + high)
+                continue
+            nearest = sorted(samples, key=lambda sample: min(abs(sample[0] - low),
+                                                             abs(sample[0] - end)))[:3]
+            modelled = _modelled_flip(nearest, at_start, low, end)
+            if modelled >= end and high is None:
+                predicted = horizon
+                continue
+            predicted = modelled + (-offset if flipped else offset)
+            predicted = min(max(predicted, low + REACH_PROBE * resolution),
+                            end - REACH_PROBE * resolution)
         return predicted
 
     def _edited(self, dof: Dof, step: float) -> Design:
@@ -569,6 +616,31 @@ def _first_flip(before: tuple[np.ndarray, np.ndarray], after: tuple[np.ndarray, 
         begin, end = enters.max(axis=1), leaves.min(axis=1)
     closed = ~positive.all(axis=1) & (begin < end)
     return min(first, float(np.min(begin[closed], initial=limit)))
+
+
+def _modelled_flip(samples: list, at_start: tuple[np.ndarray, np.ndarray], low: float,
+                   high: float) -> float:
+    """The first turn in (``low``, ``high``] at which the margins flip (``_flipped``
+    against ``at_start``): a required margin, or the smallest margin of a forbidden
+    group not all positive at the start, each modelled as the quadratic in the turn
+    through its values at the three ``samples`` (turn, margins), reaches zero; ``high``
+    if none does.  The model is scanned on MODEL_GRID turns, then on as many within the
+    first flipped step."""
+    open_groups = ~(at_start[1] > 0.0).all(axis=1)
+    turns = np.array([turn for turn, _ in samples])
+    values = np.stack([np.concatenate([required, -forbidden[open_groups].min(axis=1)])
+                       for _, (required, forbidden) in samples])
+    coefficients = np.linalg.solve(np.vander(turns - turns[0], 3, increasing=True), values)
+    # rows: 1, t, t^2 of each turn t (from the first sample's); columns: the margins
+    for _ in range(2):
+        grid = np.linspace(low, high, MODEL_GRID + 1)[1:]
+        modelled = np.vander(grid - turns[0], 3, increasing=True) @ coefficients
+        flipped = (modelled <= 0.0).any(axis=1)
+        if not flipped.any():
+            return high
+        first = int(np.argmax(flipped))
+        low, high = (grid[first - 1] if first else low), grid[first]
+    return float(high)
 
 
 def _margins(linear: Linearization, sens: Sensitivity):
