@@ -287,6 +287,7 @@ class _Faces:
     narrow_normal (n, 4, 3), narrow_corners (n, 4, 4, 3), narrow_long (n, 4, 3) unit joint
     line of each narrow face; broad_normal (n, 2, 3), broad_offset (n, 2) = n . face centre.
     Narrow faces in the order +x, -x, +y, -y of the plank's local axes; broad faces +z, -z.
+    centers (n, 3), rotations (n, 3, 3) and halves (n, 3): the planks' own.
     """
 
     narrow_normal: np.ndarray
@@ -295,6 +296,8 @@ class _Faces:
     broad_normal: np.ndarray
     broad_offset: np.ndarray
     centers: np.ndarray
+    rotations: np.ndarray
+    halves: np.ndarray
 
 
 def _face_tables(planks: tuple[Plank, ...]) -> _Faces:
@@ -311,7 +314,7 @@ def _face_tables(planks: tuple[Plank, ...]) -> _Faces:
     broad_normal = rot[:, :, 2][:, None, :] * np.array([1.0, -1.0])[None, :, None]
     broad_center = centers[:, None, :] + broad_normal * half[:, 2][:, None, None]
     broad_offset = np.einsum("nga,nga->ng", broad_normal, broad_center)
-    return _Faces(normal, corners, long_unit, broad_normal, broad_offset, centers)
+    return _Faces(normal, corners, long_unit, broad_normal, broad_offset, centers, rot, half)
 
 
 def _best_touches(design: Design, pairs: np.ndarray, slack: float, keep_deep: bool) -> dict:
@@ -359,10 +362,8 @@ def _touch_regions(planks, faces: _Faces, edge: np.ndarray, face: np.ndarray,
     touching region; None where it is empty."""
     if len(edge) == 0:
         return []
-    rot_f = np.stack([planks[i].rotation_matrix for i in face])          # (C, 3, 3)
-    half_f = np.stack([planks[i].half_extents for i in face])            # (C, 3)
-    rot_e = np.stack([planks[i].rotation_matrix for i in edge])
-    half_e = np.stack([planks[i].half_extents for i in edge])
+    rot_f, half_f = faces.rotations[face], faces.halves[face]            # (C, 3, 3), (C, 3)
+    rot_e, half_e = faces.rotations[edge], faces.halves[edge]
     normal = faces.broad_normal[face, g]                                  # (C, 3)
     face_center = faces.centers[face] + half_f[:, 2:3] * normal
     corners = faces.narrow_corners[edge, f]                               # (C, 4, 3)
@@ -387,17 +388,16 @@ def _touch_regions(planks, faces: _Faces, edge: np.ndarray, face: np.ndarray,
     x_axis = thickness_normal - np.einsum("ca,ca->c", thickness_normal, normal)[:, None] * normal
     x_axis /= np.linalg.norm(x_axis, axis=1, keepdims=True)
     frames = np.stack([x_axis, np.cross(normal, x_axis), normal], axis=2)  # columns x, y, n
+    centroids = np.array([(0.0, 0.0) if region is None else region[1:3] for region in regions])
+    points = face_center + rot_f[:, :, 0] * centroids[:, :1] + rot_f[:, :, 1] * centroids[:, 1:]
     touches: list[_Touch | None] = []
-    for c, region in enumerate(regions):
-        if region is None:
-            touches.append(None)
-            continue
-        area, cx, cy, length = region
-        point = face_center[c] + rot_f[c, :, 0] * cx + rot_f[c, :, 1] * cy
-        f_c, g_c = int(f[c]), int(g[c])
-        touches.append(_Touch(planks[face[c]], planks[edge[c]], point, length, frames[c],
-                              float(gap[c]), float(alignment[c]), area,
-                              edge_face=(f_c // 2, 1 - 2 * (f_c % 2)), face_side=1 - 2 * g_c))
+    for c, (region, face_c, edge_c, f_c, g_c, gap_c, alignment_c) in enumerate(zip(
+            regions, face.tolist(), edge.tolist(), f.tolist(), g.tolist(), gap.tolist(),
+            alignment.tolist())):
+        touches.append(None if region is None else _Touch(
+            planks[face_c], planks[edge_c], points[c], region[3], frames[c], gap_c,
+            alignment_c, region[0], edge_face=(f_c // 2, 1 - 2 * (f_c % 2)),
+            face_side=1 - 2 * g_c))
     return touches
 
 
@@ -629,12 +629,14 @@ class EditMargins:
     """
 
     def __init__(self, design: Design, geometry: Geometry, changed: tuple[int, ...],
-                 turn: float = 180.0):
+                 turn: float = 180.0, turning: tuple[int, ...] | None = None):
         """``turn``: the most (degrees) that the edits turn any plank; a narrow face tilted
         further than that beyond the largest joint tilt from a broad face can never come to
-        rest on it, and is left out (translations and size changes turn nothing).  Every
-        pair with a changed plank is watched, however far apart: a plank that a search
-        could push through another must not be found valid on the far side of it."""
+        rest on it, and is left out (translations and size changes turn nothing).
+        ``turning``: the changed planks that the edits turn (None: all of them); between
+        two planks that do not turn the tilt stays as it is.  Every pair with a changed
+        plank is watched, however far apart: a plank that a search could push through
+        another must not be found valid on the far side of it."""
         n = len(design.planks)
         self.changed = tuple(sorted(set(changed)))
         self.slack = design.tolerance + _GEOMETRY_EPS
@@ -650,12 +652,15 @@ class EditMargins:
         self.is_joint = np.array([key in joints for key in zip(
             self.edge.tolist(), self.f.tolist(), self.face.tolist(), self.g.tolist())],
             dtype=bool)
-        if turn < 180.0 - tol.JOINT_MAX_TILT_DEG:
+        turns = np.zeros(n, dtype=bool)
+        turns[list(self.changed if turning is None else turning)] = True
+        reach = np.where(turns[self.edge] | turns[self.face],
+                         min(tol.JOINT_MAX_TILT_DEG + turn, 180.0), tol.JOINT_MAX_TILT_DEG)
+        if reach.min(initial=180.0) < 180.0:
             faces = _face_tables(design.planks)
             tilt = -(faces.narrow_normal[self.edge, self.f]
                      * faces.broad_normal[self.face, self.g]).sum(axis=1)
-            keep = self.is_joint | (tilt >= np.cos(np.radians(tol.JOINT_MAX_TILT_DEG + turn))
-                                    - _GEOMETRY_EPS)
+            keep = self.is_joint | (tilt >= np.cos(np.radians(reach)) - _GEOMETRY_EPS)
             self.edge, self.face, self.f, self.g, self.is_joint = (
                 self.edge[keep], self.face[keep], self.f[keep], self.g[keep], self.is_joint[keep])
         self.detected = design.joints is None
@@ -666,17 +671,15 @@ class EditMargins:
         self.unchanged_tables = self._all_tables(design.planks)
 
     @staticmethod
-    def _all_tables(planks) -> tuple:
-        """Face tables, rotations, half extents and bounding boxes of ``planks``."""
-        return (_face_tables(planks), np.stack([p.rotation_matrix for p in planks]),
-                np.stack([p.half_extents for p in planks]), _bounding_boxes(planks))
+    def _all_tables(planks) -> tuple[_Faces, tuple[np.ndarray, np.ndarray]]:
+        """Face tables and bounding boxes of ``planks``."""
+        return _face_tables(planks), _bounding_boxes(planks)
 
-    def _tables(self, planks) -> tuple:
+    def _tables(self, planks) -> tuple[_Faces, tuple[np.ndarray, np.ndarray]]:
         """``_all_tables`` of an edited design: the unchanged planks' rows are kept from
         the design the margins were made for, only the changed planks' are computed."""
-        faces, rot, half, (lo, hi) = self.unchanged_tables
-        new_faces, new_rot, new_half, (new_lo, new_hi) = self._all_tables(
-            tuple(planks[i] for i in self.changed))
+        faces, (lo, hi) = self.unchanged_tables
+        new_faces, (new_lo, new_hi) = self._all_tables(tuple(planks[i] for i in self.changed))
         rows = list(self.changed)
 
         def updated(table: np.ndarray, new: np.ndarray) -> np.ndarray:
@@ -686,12 +689,12 @@ class EditMargins:
 
         faces = _Faces(*(updated(getattr(faces, name), getattr(new_faces, name))
                          for name in _Faces.__dataclass_fields__))
-        return faces, updated(rot, new_rot), updated(half, new_half), \
-            (updated(lo, new_lo), updated(hi, new_hi))
+        return faces, (updated(lo, new_lo), updated(hi, new_hi))
 
     def __call__(self, design: Design) -> tuple[np.ndarray, np.ndarray]:
         slack, planks = self.slack, design.planks
-        faces, rot, half, boxes = self._tables(planks)
+        faces, boxes = self._tables(planks)
+        rot, half = faces.rotations, faces.halves
         combos = _combo_margins(faces, rot, half, boxes, self.edge, self.face, self.f, self.g,
                                 slack)                                     # (C, 18)
         required = [combos[self.is_joint].ravel()]

@@ -46,7 +46,7 @@ from furncheck.dofs import (
     parse_dof,
     structure,
 )
-from furncheck.geometry import EditMargins, Geometry, analyze
+from furncheck.geometry import EditMargins, Geometry, analyze, follow_many
 from furncheck.sensitivity import Linearization, Sensitivity
 from furncheck.tolerances import NAIL_COUNT_EPS
 from furncheck.validity import nail_pull_shear
@@ -66,6 +66,12 @@ that probe and one the same distance before it close the bracket."""
 
 INSIDE_BRACKET = 0.05
 """Probes stay this fraction of the resolution inside the bracket, so each one narrows it."""
+
+DROP_RESOLUTION = 0.1
+"""The step at which a joint loses a nail is found to this fraction of the resolution."""
+
+DROP_STEPS = 6
+"""Most geometry evaluations finding the step at which a joint loses a nail."""
 
 PARALLEL_MIN_DOFS = 16
 """Fewer DOFs than this are searched in this process: starting workers would cost more."""
@@ -122,6 +128,8 @@ class RangeFinder:
         _, self.margin_now, self.utilization_now = margin_of(design, self.geometry,
                                                              self.starts)
         self.size = design_size(design)
+        self._joint_index = {(j.face, j.edge, j.edge_face): n
+                             for n, j in enumerate(self.geometry.joints)}
         self._linear: list[Linearization] | None = None
         self._shared: dict = {}
         self._predictions: dict[Dof, tuple[float | None, float | None]] = {}
@@ -246,32 +254,34 @@ class RangeFinder:
         The margin (``check.margin_of``) is continuous in the step except where a joint
         gets shorter than its nail count's length (one nail fewer: every nail of it
         carries more) or a case stops being stable.  Where the bracket's two geometries
-        differ in a joint's nails, the length at which it loses a nail is interpolated
-        (``_nail_drops``) and the probe goes just past that step, or just before it once
-        the invalid end is there; elsewhere the sensitivity's prediction (eq. 6) is tried
-        first, then regula falsi on the margin, each probe a little past the estimated
-        zero towards the end that has not moved; bisection when the bracket did not halve
-        in three probes or the margin is -inf.
+        differ in a joint's nails, the step at which it loses a nail is found from its
+        length alone (``_nail_drops``, ``_drop_step``: no statics) and the probe goes just
+        past that step, or just before it once the invalid end is there; elsewhere the
+        sensitivity's prediction (eq. 6) is tried first, then the margin's zero
+        interpolated through the probes (``_margin_zero``), each probe a little past the
+        estimated zero towards the end that has not moved (two good estimates close the
+        bracket); bisection when the bracket did not halve in three probes or the margin
+        is -inf.
         """
         good = _Probe(0.0, True, self.margin_now, self.utilization_now, self.geometry)
         bad = at_reach
         predicted = self._predicted(dof)[0 if sign < 0 else 1]
         spacing = self.design.material.nail_spacing
-        widths, moves = [bad.step], []
+        widths, moves, probes = [bad.step], [], [good, bad]
         while bad.step - good.step > resolution:
             low = good.step + INSIDE_BRACKET * resolution
             high = bad.step - INSIDE_BRACKET * resolution
             past = PAST_ESTIMATE * resolution
             drops = _nail_drops(good, bad, spacing)
             if drops:
-                drop = drops[len(drops) // 2]
+                drop = self._drop_step(dof, sign, good, bad, *drops[len(drops) // 2][1:],
+                                       resolution)
                 step = drop + past if drop + past < high else drop - past
             elif predicted is not None and low < predicted < high:
                 step = predicted
             elif np.isfinite(bad.margin) and good.margin > bad.margin:
-                zero = good.step + (bad.step - good.step) * good.margin / (good.margin
-                                                                             - bad.margin)
-                step = zero + (past if moves[-1:] == [True] else -past)
+                step = _margin_zero(good, bad, probes) + (past if moves[-1:] == [True]
+                                                          else -past)
             else:
                 step = 0.5 * (good.step + bad.step)
             if moves[-2:] in ([True, True], [False, False]):    # one end stuck: halve
@@ -280,6 +290,7 @@ class RangeFinder:
                 step = 0.5 * (good.step + bad.step)
             predicted = None
             probe = self._probe(dof, sign, min(max(step, low), high))
+            probes.append(probe)
             moves.append(probe.valid)
             if probe.valid:
                 good = probe
@@ -287,6 +298,40 @@ class RangeFinder:
                 bad = probe
             widths.append(bad.step - good.step)
         return good.step
+
+    def _drop_step(self, dof: Dof, sign: float, good: _Probe, bad: _Probe, key: tuple,
+                   length: float, resolution: float) -> float:
+        """The step between ``good`` and ``bad`` at which the joint ``key`` (face, edge,
+        edge face) gets shorter than ``length``: regula falsi (Illinois) on its length,
+        the touching region of the original joint followed on each edited design
+        (``geometry.follow_many``), to DROP_RESOLUTION x ``resolution`` or DROP_STEPS
+        evaluations.  A joint's length bends with a turn (an end face sliding off a
+        shrinking overlap): interpolating it between the bracket's ends is too coarse."""
+        index = self._joint_index[key]
+        low, high = good.step, bad.step
+        over_low = _joint_length(good.geometry, key) - length
+        over_high = _joint_length(bad.geometry, key) - length
+        side = 0
+        for _ in range(DROP_STEPS):
+            if high - low <= DROP_RESOLUTION * resolution or over_low <= 0.0 <= over_high:
+                break
+            step = low + (high - low) * over_low / (over_low - over_high)
+            step = min(max(step, low + 0.01 * (high - low)), high - 0.01 * (high - low))
+            try:
+                edited = self._edited(dof, sign * step)
+            except OutOfReach:
+                break
+            (joints, _), = follow_many(self.geometry, [(edited, [index], [])])
+            over = joints[0].length - length
+            if over > 0.0:
+                low, over_low = step, over
+                over_high *= 0.5 if side > 0 else 1.0
+                side = 1
+            else:
+                high, over_high = step, over
+                over_low *= 0.5 if side < 0 else 1.0
+                side = -1
+        return 0.5 * (low + high)
 
     def _geometric_reach(self, dof: Dof, sign: float, limit: float, resolution: float) -> float:
         """The furthest step (>= 0) in direction ``sign`` keeping the joints and contacts
@@ -425,15 +470,19 @@ class RangeFinder:
         steps turning them at most ``turn`` degrees, and their values for the design
         itself; the last DOF's are kept."""
         if (dof, turn) not in self._margins:
-            changed = set()
+            changed, turning = set(), set()
             for sign in (-1.0, 1.0):
                 try:
                     edited = self._edited(dof, sign * REACH_PROBE * self._scales(dof)[1])
                 except OutOfReach:
                     continue
-                changed |= {i for i, (a, b) in enumerate(zip(self.design.planks,
-                                                             edited.planks)) if a != b}
-            margins = EditMargins(self.design, self.geometry, tuple(changed), turn)
+                for i, (a, b) in enumerate(zip(self.design.planks, edited.planks)):
+                    if a != b:
+                        changed.add(i)
+                    if a.rotation != b.rotation:
+                        turning.add(i)
+            margins = EditMargins(self.design, self.geometry, tuple(changed), turn,
+                                  tuple(turning))
             self._margins = {key: kept for key, kept in self._margins.items()
                              if key[0] == dof}          # only the current DOF's
             self._margins[(dof, turn)] = (margins, margins(self.design))
@@ -549,13 +598,42 @@ class _Probe:
     geometry: Geometry | None
 
 
-def _nail_drops(good: _Probe, bad: _Probe, spacing: float) -> list[float]:
-    """Steps between ``good`` and ``bad`` at which a joint may lose a nail it cannot
-    spare, sorted.  For each joint with n nails at ``good`` and m < n at ``bad``: where
-    its length, taken as linear in the step between the two geometries, falls below
-    k x spacing (k = n, ..., m + 1; ``geometry.nail_count``), if its load then exceeds
-    what k - 1 nails carry: utilization x nails, the larger of the two ends, over k - 1
-    is above 1.  Losing a nail the joint can spare changes no verdict."""
+def _joint_length(geometry: Geometry, key: tuple) -> float:
+    """The length (m) of the joint ``key`` (face, edge, edge face) of ``geometry``."""
+    return next(j.length for j in geometry.joints if (j.face, j.edge, j.edge_face) == key)
+
+
+def _margin_zero(good: _Probe, bad: _Probe, probes: list[_Probe]) -> float:
+    """Where the margin reaches zero between the valid ``good`` and the invalid ``bad``
+    (finite margins, good's the larger): inverse quadratic interpolation through the two
+    and the latest other probe with a finite margin (the margin bends, e.g. a joint's
+    load grows with the square of a lever), if that lies inside the bracket; else the
+    secant between the two (regula falsi)."""
+    points = [(good.step, good.margin), (bad.step, bad.margin)]
+    others = [p for p in probes if p is not good and p is not bad and np.isfinite(p.margin)
+              and p.margin not in (good.margin, bad.margin)]
+    if others:
+        points.append((others[-1].step, others[-1].margin))
+        zero = 0.0
+        for i, (step, margin) in enumerate(points):
+            weight = 1.0
+            for j, (_, other) in enumerate(points):
+                if j != i:
+                    weight *= -other / (margin - other)
+            zero += weight * step
+        if good.step < zero < bad.step or bad.step < zero < good.step:
+            return zero
+    return good.step + (bad.step - good.step) * good.margin / (good.margin - bad.margin)
+
+
+def _nail_drops(good: _Probe, bad: _Probe, spacing: float) -> list[tuple[float, tuple, float]]:
+    """Where between ``good`` and ``bad`` a joint may lose a nail it cannot spare, sorted:
+    (estimated step, the joint's key (face, edge, edge face), its length there).  For
+    each joint with n nails at ``good`` and m < n at ``bad``: where its length, taken as
+    linear in the step between the two geometries, falls below k x spacing (k = n, ...,
+    m + 1; ``geometry.nail_count``), if its load then exceeds what k - 1 nails carry:
+    utilization x nails, the larger of the two ends, over k - 1 is above 1.  Losing a
+    nail the joint can spare changes no verdict."""
     if good.geometry is None or bad.geometry is None or bad.utilization is None:
         return []
     before = {(j.face, j.edge, j.edge_face): (n, j)
@@ -572,7 +650,8 @@ def _nail_drops(good: _Probe, bad: _Probe, spacing: float) -> list[float]:
                 continue
             length = k * spacing / (1.0 + NAIL_COUNT_EPS)
             fraction = (start.length - length) / (start.length - joint.length)
-            steps.append(good.step + (bad.step - good.step) * min(max(fraction, 0.0), 1.0))
+            steps.append((good.step + (bad.step - good.step) * min(max(fraction, 0.0), 1.0),
+                          (joint.face, joint.edge, joint.edge_face), length))
     return sorted(steps)
 
 
