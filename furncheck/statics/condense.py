@@ -10,6 +10,7 @@ matrix and its solve to the sensitivity analysis.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -18,7 +19,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from furncheck import tolerances as tol
-from furncheck.statics.model import _SIX, StaticsModel
+from furncheck.statics.model import _SIX, StaticsModel, block_sums
 
 
 @dataclass(frozen=True)
@@ -134,10 +135,11 @@ def _condense_planks(model: StaticsModel, ground: np.ndarray,
     blocks, planks = model.joint_blocks, model.joint_planks
     pairs = np.swapaxes(blocks, 2, 3)[:, :, None] \
         @ (weights.reshape(-1, 1, 6, 1) * blocks)[:, None]            # (nJ, 2, 2, 6, 6)
-    per_pair = np.zeros((len(model.planks), len(model.planks), 6, 6))
-    np.add.at(per_pair, (planks[:, :, None], planks[:, None, :]), pairs)
-    K = per_pair.transpose(0, 2, 1, 3).reshape(n, n)
-    inner = np.setdiff1d(np.arange(n), ground)
+    n_planks = len(model.planks)
+    per_pair = block_sums((planks[:, :, None] * n_planks + planks[:, None, :]).ravel(),
+                          pairs.reshape(-1, 36), n_planks * n_planks)
+    K = per_pair.reshape(n_planks, n_planks, 6, 6).transpose(0, 2, 1, 3).reshape(n, n)
+    inner = _others(n, ground)
     coupling = K[np.ix_(inner, ground)]
     reduced = np.zeros((len(inner), len(ground)))
     factor = (np.zeros((0, 0)), False)
@@ -179,7 +181,7 @@ def _condense(model: StaticsModel) -> _Condensed | None:
     rows = np.concatenate([G.col, n + G.row, diagonal])
     cols = np.concatenate([n + G.row, G.col, diagonal])
     values = np.concatenate([G.data, G.data, -model.compliance])
-    inner = np.setdiff1d(np.arange(n + m), ground)
+    inner = _others(n + m, ground)
     ni = len(inner)
     order = np.concatenate([inner, ground])
     A = sp.csc_matrix((values, (rows, cols)), shape=(n + m, n + m))
@@ -195,6 +197,13 @@ def _condense(model: StaticsModel) -> _Condensed | None:
     schur = permuted[ni:, ni:].toarray() - np.asarray(coupling.T @ reduced)
     return _Condensation(ground, inner, coupling, reduced, schur, contact_block,
                          plank_offsets, n + m, lu=lu)
+
+
+def _others(n: int, chosen: np.ndarray) -> np.ndarray:
+    """0 ... n - 1 without ``chosen``, in order."""
+    keep = np.ones(n, dtype=bool)
+    keep[chosen] = False
+    return np.flatnonzero(keep)
 
 
 def _factor(A: sp.csc_matrix, probe: np.ndarray):
@@ -257,17 +266,19 @@ def _anchored_stiffness(model: StaticsModel, holding: np.ndarray,
 def _with_contact_blocks(model: StaticsModel, blocks: np.ndarray) -> np.ndarray:
     """S0 with each contact's (6, 6) block added to its plank's diagonal block."""
     condensed = model.condensation
-    per_plank = np.zeros((len(condensed.plank_offsets), 36))
-    np.add.at(per_plank, condensed.contact_block, blocks.reshape(-1, 36))
+    per_plank = block_sums(condensed.contact_block, blocks.reshape(-1, 36),
+                           len(condensed.plank_offsets))
     stiffness = condensed.schur.copy()
     rows, cols = _diagonal_blocks(len(condensed.plank_offsets))
     stiffness[rows, cols] += per_plank.ravel()
     return stiffness
 
 
+@functools.lru_cache(maxsize=64)
 def _diagonal_blocks(count: int) -> tuple[np.ndarray, np.ndarray]:
     """Row and column indices of the entries of ``count`` consecutive (6, 6) diagonal
-    blocks, block by block, row-major."""
+    blocks, block by block, row-major (kept per count: every contact solve uses them;
+    read only)."""
     base = 6 * np.arange(count)[:, None, None]
     rows = np.broadcast_to(base + _SIX[None, :, None], (count, 6, 6)).ravel()
     cols = np.broadcast_to(base + _SIX[None, None, :], (count, 6, 6)).ravel()

@@ -20,7 +20,7 @@ from furncheck.statics.condense import (
     anchor_springs,
 )
 from furncheck.statics.feasibility import _cone_solution, _unilateral_feasible
-from furncheck.statics.model import CaseStatics, StaticsModel
+from furncheck.statics.model import CaseStatics, StaticsModel, block_sums
 
 STICK, LIFT = 0, 2
 _MECHANISM_DETAIL = ("the planks rest on too few ground points to be held even if bolted "
@@ -323,8 +323,7 @@ class _FrictionEnergy:
         """dPhi/dx: the out-of-balance generalized force on the grounded planks."""
         force = self._forces(x)[3]
         generalized = (np.transpose(self.maps, (0, 2, 1)) @ force[:, :, None])[:, :, 0]
-        per_block = np.zeros((self.blocks, 6))
-        np.add.at(per_block, self.block, generalized)
+        per_block = block_sums(self.block, generalized, self.blocks)
         return self.schur @ x - self.rhs - per_block.ravel()
 
     def _hessian(self, x: np.ndarray) -> np.ndarray:
