@@ -13,10 +13,11 @@ ground contacts.  Each side is searched in two stages:
 * if the design is not valid at that reach, the physical limit inside it: a bracket of
   one valid and one invalid value is closed to ``RANGE_RESOLUTION``, every probe a full
   check of the edited design.  The probes go where validity is likely to change: just
-  past the step where a loaded joint loses a nail (its length interpolated between the
-  bracket's geometries), else at the force sensitivity's prediction (eq. 6) of where the
-  first joint reaches its nail capacity or the first contact lets go, else by regula
-  falsi on the design's margin; bisection where these do not halve the bracket.
+  past the step where a loaded joint loses a nail (found from the joint's length, without
+  statics), else at the force sensitivity's prediction (eq. 6) of where the first joint
+  reaches its nail capacity or the first contact lets go, else at the zero of the
+  design's margin interpolated through the probes; bisection where these do not halve
+  the bracket.
 
 The reported end is the last value found valid (by a full check); a value at most one
 resolution step beyond it was found invalid (or the end is the search limit).

@@ -265,6 +265,10 @@ CATALOG_DOFS = [
     ("chair-upright", ["back.ry", "seat.length", "rung.z", "side_l.x"]),
     ("shelf-cantilever-overloaded", ["shelf.length", "post.ry"]),
     ("bench-tips", ["seat.x", "leg_r.x"]),
+    # the cabinet: a turn whose joint loses its nails fast (side_r.rx), turns limited by a
+    # joint's tilt (shelf_a1.ry, 60 degrees) and a rotation's watch horizon (cap.rx),
+    # a margin that bends (side_r.x)
+    ("cabinet-28", ["side_r.rx", "shelf_b1.rz", "cap.rx", "shelf_a1.ry", "side_r.x"]),
 ]
 
 

@@ -1,0 +1,99 @@
+"""The root-finding pieces of the range search (``furncheck.ranges``), on functions and
+catalog edits whose answers are known exactly."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from furncheck.design import load_design
+from furncheck.dofs import parse_dof
+from furncheck.ranges import (
+    MODEL_GRID,
+    RangeFinder,
+    _margin_zero,
+    _modelled_flip,
+    _Probe,
+)
+
+DESIGNS = Path(__file__).resolve().parent.parent / "designs"
+
+
+def probe(step: float, margin: float) -> _Probe:
+    return _Probe(step, margin > 0.0, margin, None, None)
+
+
+def test_margin_zero_is_exact_for_a_margin_quadratic_in_its_inverse():
+    """Inverse quadratic interpolation: if the step is a quadratic in the margin,
+    s(m) = 10 - 40 m + 30 m^2, three probes give its zero s(0) = 10 exactly."""
+    def step_of(m):
+        return 10.0 - 40.0 * m + 30.0 * m * m
+
+    good, bad, other = probe(step_of(0.2), 0.2), probe(step_of(-0.1), -0.1), \
+        probe(step_of(0.5), 0.5)
+    assert _margin_zero(good, bad, [other, good, bad]) == pytest.approx(10.0, abs=1e-12)
+
+
+def test_margin_zero_falls_back_to_the_secant_between_the_bracket():
+    """With no third probe: the secant through (0, 0.3) and (3, -0.3) crosses at 1.5."""
+    good, bad = probe(0.0, 0.3), probe(3.0, -0.3)
+    assert _margin_zero(good, bad, [good, bad]) == pytest.approx(1.5, abs=1e-12)
+
+
+def test_modelled_flip_finds_the_zero_of_a_quadratic_margin():
+    """Required margins 1 - t^2 / 64 (zero at t = 8) and 2 - t / 5 (zero at 10): the
+    model through three samples is exact, and the first flip is t = 8 to the second
+    scan's step, (high - low) / MODEL_GRID^2."""
+    def margins(t):
+        return np.array([1.0 - t * t / 64.0, 2.0 - t / 5.0]), np.ones((1, 3))
+
+    samples = [(t, margins(t)) for t in (0.0, 0.025, 5.0)]
+    found = _modelled_flip(samples, margins(0.0), 0.0, 15.0)
+    assert 8.0 <= found <= 8.0 + 15.0 / MODEL_GRID ** 2
+
+
+def test_modelled_flip_sees_a_forbidden_group_close():
+    """A forbidden group (t - 3, 2, 9 - t) is all positive for 3 < t < 9: it closes at
+    t = 3 (its smallest margin, t - 3 at the samples, is what is modelled); a required
+    margin that stays positive does not flip."""
+    def margins(t):
+        return np.array([5.0]), np.array([[t - 3.0, 2.0, 9.0 - t]])
+
+    samples = [(t, margins(t)) for t in (0.0, 0.025, 4.5)]
+    found = _modelled_flip(samples, margins(0.0), 0.0, 15.0)
+    assert 3.0 <= found <= 3.0 + 15.0 / MODEL_GRID ** 2
+
+
+def test_modelled_flip_returns_high_when_nothing_flips():
+    def margins(t):
+        return np.array([1.0 + t]), np.zeros((0, 3))
+
+    samples = [(t, margins(t)) for t in (0.0, 0.025, 4.0)]
+    assert _modelled_flip(samples, margins(0.0), 0.0, 15.0) == 15.0
+
+
+def test_drop_step_is_where_the_joint_loses_its_nail():
+    """Turning the cabinet's right side about x shortens its joint with the kick board
+    from 3 nails to 1 within 0.15 degrees.  The step found from the joint's followed length
+    lies, to a tenth of the resolution, where the nail count changes: the joint has more
+    nails just before it than just after."""
+    design = load_design(str(DESIGNS / "cabinet-28.yaml"))
+    finder = RangeFinder(design)
+    dof = parse_dof(design, "side_r.rx")
+    resolution = finder._scales(dof)[1]
+    good, bad = finder._probe(dof, 1.0, 1.40), finder._probe(dof, 1.0, 1.55)
+    key = ("side_r", "kick", next(j.edge_face for j in finder.geometry.joints
+                                  if (j.face, j.edge) == ("side_r", "kick")))
+    spacing = design.material.nail_spacing
+
+    def nails(step):
+        geometry = finder._probe(dof, 1.0, step).geometry
+        return next(j.nails for j in geometry.joints if (j.face, j.edge, j.edge_face) == key)
+
+    assert nails(good.step) > nails(bad.step)
+    length = (nails(bad.step) + 1) * spacing / (1.0 + 1e-9)
+    drop = finder._drop_step(dof, 1.0, good, bad, key, length, resolution)
+    assert good.step < drop < bad.step
+    assert nails(drop - 0.1 * resolution) > nails(drop + 0.1 * resolution)
