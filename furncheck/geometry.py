@@ -647,17 +647,18 @@ class EditMargins:
         self.face = np.repeat(ordered[:, 1], 8)
         self.f = np.tile(np.repeat(np.arange(4), 2), len(ordered))
         self.g = np.tile(np.arange(2), 4 * len(ordered))
-        joints = {(design.plank_index[j.edge], 2 * j.edge_face[0] + (j.edge_face[1] < 0),
-                   design.plank_index[j.face], int(j.face_side < 0)) for j in geometry.joints}
-        self.is_joint = np.array([key in joints for key in zip(
-            self.edge.tolist(), self.f.tolist(), self.face.tolist(), self.g.tolist())],
-            dtype=bool)
+        joints = [((design.plank_index[j.edge] * 4 + 2 * j.edge_face[0]
+                    + (j.edge_face[1] < 0)) * n + design.plank_index[j.face]) * 2
+                  + int(j.face_side < 0) for j in geometry.joints]
+        self.is_joint = np.isin(((self.edge * 4 + self.f) * n + self.face) * 2 + self.g,
+                                joints)             # (edge, f, face, g) as one number
         turns = np.zeros(n, dtype=bool)
         turns[list(self.changed if turning is None else turning)] = True
         reach = np.where(turns[self.edge] | turns[self.face],
                          min(tol.JOINT_MAX_TILT_DEG + turn, 180.0), tol.JOINT_MAX_TILT_DEG)
+        self.unchanged_tables = self._all_tables(design.planks)
         if reach.min(initial=180.0) < 180.0:
-            faces = _face_tables(design.planks)
+            faces = self.unchanged_tables[0]
             tilt = -(faces.narrow_normal[self.edge, self.f]
                      * faces.broad_normal[self.face, self.g]).sum(axis=1)
             keep = self.is_joint | (tilt >= np.cos(np.radians(reach)) - _GEOMETRY_EPS)
@@ -668,7 +669,6 @@ class EditMargins:
         sunk = {v.where for v in geometry.violations if v.kind == "penetration"}
         self.grounded = [design.planks[i].id in grounded for i in self.changed]
         self.sunk = [design.planks[i].id in sunk for i in self.changed]
-        self.unchanged_tables = self._all_tables(design.planks)
 
     @staticmethod
     def _all_tables(planks) -> tuple[_Faces, tuple[np.ndarray, np.ndarray]]:
