@@ -88,6 +88,9 @@ ROTATION_WATCH = 15.0
 faces that so small a turn can bring to rest on one another (far fewer than all); past
 it, all of them."""
 
+MARGINS_KEPT = 32
+"""How many ``EditMargins`` (with their values for the design) a finder keeps."""
+
 REACH_PROBE = 0.25
 """The margins' slope is taken over this fraction of the resolution."""
 
@@ -134,7 +137,7 @@ class RangeFinder:
         self._linear: list[Linearization] | None = None
         self._shared: dict = {}
         self._predictions: dict[Dof, tuple[float | None, float | None]] = {}
-        self._margins: dict[tuple[Dof, float], tuple[EditMargins, tuple]] = {}
+        self._margins: dict[tuple, tuple[EditMargins, tuple]] = {}
         self._kept_edit: tuple = (None, None, None, None)
         self._edits: tuple[Dof | None, dict[float, Design]] = (None, {})
         self.evaluations = 0
@@ -469,25 +472,26 @@ class RangeFinder:
     def _edit_margins(self, dof: Dof, turn: float) -> tuple[EditMargins, tuple]:
         """The margins of the planks that ``dof`` changes (one small step either way) for
         steps turning them at most ``turn`` degrees, and their values for the design
-        itself; the last DOF's are kept."""
-        if (dof, turn) not in self._margins:
-            changed, turning = set(), set()
-            for sign in (-1.0, 1.0):
-                try:
-                    edited = self._edited(dof, sign * REACH_PROBE * self._scales(dof)[1])
-                except OutOfReach:
-                    continue
-                for i, (a, b) in enumerate(zip(self.design.planks, edited.planks)):
-                    if a != b:
-                        changed.add(i)
-                    if a.rotation != b.rotation:
-                        turning.add(i)
-            margins = EditMargins(self.design, self.geometry, tuple(changed), turn,
-                                  tuple(turning))
-            self._margins = {key: kept for key, kept in self._margins.items()
-                             if key[0] == dof}          # only the current DOF's
-            self._margins[(dof, turn)] = (margins, margins(self.design))
-        return self._margins[(dof, turn)]
+        itself.  They depend only on which planks change and turn, so DOFs that change
+        the same planks share them (the last MARGINS_KEPT are kept)."""
+        changed, turning = set(), set()
+        for sign in (-1.0, 1.0):
+            try:
+                edited = self._edited(dof, sign * REACH_PROBE * self._scales(dof)[1])
+            except OutOfReach:
+                continue
+            for i, (a, b) in enumerate(zip(self.design.planks, edited.planks)):
+                if a != b:
+                    changed.add(i)
+                if a.rotation != b.rotation:
+                    turning.add(i)
+        key = (tuple(sorted(changed)), tuple(sorted(turning)), turn if turning else 0.0)
+        if key not in self._margins:
+            margins = EditMargins(self.design, self.geometry, key[0], turn, key[1])
+            if len(self._margins) >= MARGINS_KEPT:
+                del self._margins[next(iter(self._margins))]
+            self._margins[key] = (margins, margins(self.design))
+        return self._margins[key]
 
     def _expand(self, dof: Dof, sign: float, start: float, limit: float, resolution: float,
                 full: bool = True) -> float:
