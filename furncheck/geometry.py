@@ -654,6 +654,8 @@ class EditMargins:
                                 joints)             # (edge, f, face, g) as one number
         turns = np.zeros(n, dtype=bool)
         turns[list(self.changed if turning is None else turning)] = True
+        # per row, the largest tilt (degrees) between its faces that can still become a
+        # joint: the largest joint tilt, plus the turn where one of the planks turns
         reach = np.where(turns[self.edge] | turns[self.face],
                          min(tol.JOINT_MAX_TILT_DEG + turn, 180.0), tol.JOINT_MAX_TILT_DEG)
         self.unchanged_tables = self._all_tables(design.planks)

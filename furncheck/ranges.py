@@ -414,8 +414,8 @@ class RangeFinder:
         prediction from the slope there), the modelled flip is evaluated a little past
         (or before) itself, so that two good predictions close a bracket of an unflipped
         and a flipped turn to half a resolution; the horizon is evaluated before it is
-        returned.  A bracket whose same end moves twice, or whose flipped end is a turn
-        the DOF cannot make, is halved.  At most REACH_SECANTS evaluations: the last
+        returned.  A bracket whose same end moves three times running, or whose flipped
+        end is a turn the DOF cannot make, is halved.  At most REACH_SECANTS evaluations: the last
         prediction is returned, to be confirmed."""
         margins, now = self._edit_margins(dof, horizon)
         at_start = now if start == 0.0 else margins(self._edited(dof, sign * start))
@@ -714,7 +714,10 @@ def _modelled_flip(samples: list, at_start: tuple[np.ndarray, np.ndarray], low: 
     turns = np.array([turn for turn, _ in samples])
     values = np.stack([np.concatenate([required, -forbidden[open_groups].min(axis=1)])
                        for _, (required, forbidden) in samples])
-    coefficients = np.linalg.solve(np.vander(turns - turns[0], 3, increasing=True), values)
+    try:
+        coefficients = np.linalg.solve(np.vander(turns - turns[0], 3, increasing=True), values)
+    except np.linalg.LinAlgError:       # turns too close to tell a curve: no prediction
+        return high
     # rows: 1, t, t^2 of each turn t (from the first sample's); columns: the margins
     for _ in range(2):
         grid = np.linspace(low, high, MODEL_GRID + 1)[1:]

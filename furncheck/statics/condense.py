@@ -282,6 +282,7 @@ def _diagonal_blocks(count: int) -> tuple[np.ndarray, np.ndarray]:
     base = 6 * np.arange(count)[:, None, None]
     rows = np.broadcast_to(base + _SIX[None, :, None], (count, 6, 6)).ravel()
     cols = np.broadcast_to(base + _SIX[None, None, :], (count, 6, 6)).ravel()
+    rows.flags.writeable = cols.flags.writeable = False
     return rows, cols
 
 
