@@ -217,3 +217,26 @@ def test_edit_margins_are_linear_in_a_translation_and_vanish_where_the_checks_fl
     assert (required[rising] / rate[rising]).min() == pytest.approx(293.5, abs=1e-3)
     for step, kept in ((305.9, True), (306.1, False), (-293.4, True), (-293.6, False)):
         assert (check_edit(geometry, apply_dof(bay, frame, dof, step), bay)[0] is None) == kept
+
+
+def test_edit_margins_watch_tilts_only_where_a_plank_turns():
+    """Between planks that an edit does not turn, the tilt of a narrow face to a broad
+    face stays as it is: only faces within the largest joint tilt (60 degrees) can come to
+    rest.  With the shelf of the bay listed as changed but not turning, a 90-degree turn
+    horizon watches as many face pairs as no turn at all, and fewer than when the shelf
+    turns; every joint's row is kept either way."""
+    import range_designs as rd
+
+    from furncheck.geometry import EditMargins
+
+    bay = rd.parse(rd.bay())
+    geometry = analyze(bay)
+    shelf = (bay.plank_index["shelf"],)
+    still = EditMargins(bay, geometry, shelf, turn=90.0, turning=())
+    flat = EditMargins(bay, geometry, shelf, turn=0.0)
+    turning = EditMargins(bay, geometry, shelf, turn=90.0, turning=shelf)
+    assert len(still.edge) == len(flat.edge) < len(turning.edge)
+    assert still.is_joint.sum() == flat.is_joint.sum() == turning.is_joint.sum() == 2
+    for margins in (still, turning):
+        required, _ = margins(bay)
+        assert required.min() > 0
