@@ -29,6 +29,7 @@ import multiprocessing
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -278,7 +279,7 @@ class RangeFinder:
             past = PAST_ESTIMATE * resolution
             drops = _nail_drops(good, bad, spacing)
             if drops:
-                drop = self._drop_step(dof, sign, good, bad, *drops[len(drops) // 2][1:],
+                drop = self._drop_step(dof, sign, good, bad, drops[len(drops) // 2],
                                        resolution)
                 step = drop + past if drop + past < high else drop - past
             elif predicted is not None and low < predicted < high:
@@ -303,18 +304,17 @@ class RangeFinder:
             widths.append(bad.step - good.step)
         return good.step
 
-    def _drop_step(self, dof: Dof, sign: float, good: _Probe, bad: _Probe, key: tuple,
-                   length: float, resolution: float) -> float:
-        """The step between ``good`` and ``bad`` at which the joint ``key`` (face, edge,
-        edge face) gets shorter than ``length``: regula falsi (Illinois) on its length,
+    def _drop_step(self, dof: Dof, sign: float, good: _Probe, bad: _Probe, drop: _Drop,
+                   resolution: float) -> float:
+        """The step between ``good`` and ``bad`` at which the joint of ``drop`` gets
+        shorter than ``drop.length``: regula falsi (Illinois) on its length,
         the touching region of the original joint followed on each edited design
         (``geometry.follow_many``), to DROP_RESOLUTION x ``resolution`` or DROP_STEPS
         evaluations.  A joint's length bends with a turn (an end face sliding off a
         shrinking overlap): interpolating it between the bracket's ends is too coarse."""
-        index = self._joint_index[key]
+        index, length = self._joint_index[drop.key], drop.length
         low, high = good.step, bad.step
-        over_low = _joint_length(good.geometry, key) - length
-        over_high = _joint_length(bad.geometry, key) - length
+        over_low, over_high = drop.at_good - length, drop.at_bad - length
         side = 0
         for _ in range(DROP_STEPS):
             if high - low <= DROP_RESOLUTION * resolution or over_low <= 0.0 <= over_high:
@@ -603,11 +603,6 @@ class _Probe:
     geometry: Geometry | None
 
 
-def _joint_length(geometry: Geometry, key: tuple) -> float:
-    """The length (m) of the joint ``key`` (face, edge, edge face) of ``geometry``."""
-    return next(j.length for j in geometry.joints if (j.face, j.edge, j.edge_face) == key)
-
-
 def _margin_zero(good: _Probe, bad: _Probe, probes: list[_Probe]) -> float:
     """Where the margin reaches zero between the valid ``good`` and the invalid ``bad``
     (finite margins, good's the larger): inverse quadratic interpolation through the two
@@ -631,14 +626,23 @@ def _margin_zero(good: _Probe, bad: _Probe, probes: list[_Probe]) -> float:
     return good.step + (bad.step - good.step) * good.margin / (good.margin - bad.margin)
 
 
-def _nail_drops(good: _Probe, bad: _Probe, spacing: float) -> list[tuple[float, tuple, float]]:
-    """Where between ``good`` and ``bad`` a joint may lose a nail it cannot spare, sorted:
-    (estimated step, the joint's key (face, edge, edge face), its length there).  For
-    each joint with n nails at ``good`` and m < n at ``bad``: where its length, taken as
-    linear in the step between the two geometries, falls below k x spacing (k = n, ...,
-    m + 1; ``geometry.nail_count``), if its load then exceeds what k - 1 nails carry:
-    utilization x nails, the larger of the two ends, over k - 1 is above 1.  Losing a
-    nail the joint can spare changes no verdict."""
+class _Drop(NamedTuple):
+    """A step at which a joint may lose a nail (``_nail_drops``)."""
+
+    step: float         # estimated: the joint's length taken as linear in the step
+    key: tuple          # the joint's face, edge and edge face
+    length: float       # m: below this length it has one nail fewer
+    at_good: float      # m: its length at the bracket's valid end
+    at_bad: float       # m: and at its invalid end
+
+
+def _nail_drops(good: _Probe, bad: _Probe, spacing: float) -> list[_Drop]:
+    """Where between ``good`` and ``bad`` a joint may lose a nail it cannot spare, sorted
+    by step.  For each joint with n nails at ``good`` and m < n at ``bad``: where its
+    length, taken as linear in the step between the two geometries, falls below
+    k x spacing (k = n, ..., m + 1; ``geometry.nail_count``), if its load then exceeds
+    what k - 1 nails carry: utilization x nails, the larger of the two ends, over k - 1
+    is above 1.  Losing a nail the joint can spare changes no verdict."""
     if good.geometry is None or bad.geometry is None or bad.utilization is None:
         return []
     before = {(j.face, j.edge, j.edge_face): (n, j)
@@ -655,8 +659,9 @@ def _nail_drops(good: _Probe, bad: _Probe, spacing: float) -> list[tuple[float, 
                 continue
             length = k * spacing / (1.0 + NAIL_COUNT_EPS)
             fraction = (start.length - length) / (start.length - joint.length)
-            steps.append((good.step + (bad.step - good.step) * min(max(fraction, 0.0), 1.0),
-                          (joint.face, joint.edge, joint.edge_face), length))
+            steps.append(_Drop(good.step + (bad.step - good.step) * min(max(fraction, 0.0), 1.0),
+                               (joint.face, joint.edge, joint.edge_face), length,
+                               start.length, joint.length))
     return sorted(steps)
 
 

@@ -13,10 +13,12 @@ from furncheck.dofs import parse_dof
 from furncheck.ranges import (
     MODEL_GRID,
     RangeFinder,
+    _Drop,
     _margin_zero,
     _modelled_flip,
     _Probe,
 )
+from furncheck.tolerances import NAIL_COUNT_EPS
 
 DESIGNS = Path(__file__).resolve().parent.parent / "designs"
 
@@ -93,7 +95,14 @@ def test_drop_step_is_where_the_joint_loses_its_nail():
         return next(j.nails for j in geometry.joints if (j.face, j.edge, j.edge_face) == key)
 
     assert nails(good.step) > nails(bad.step)
-    length = (nails(bad.step) + 1) * spacing / (1.0 + 1e-9)
-    drop = finder._drop_step(dof, 1.0, good, bad, key, length, resolution)
+    length = (nails(bad.step) + 1) * spacing / (1.0 + NAIL_COUNT_EPS)
+
+    def joint_length(probe):
+        return next(j.length for j in probe.geometry.joints
+                    if (j.face, j.edge, j.edge_face) == key)
+
+    drop = finder._drop_step(dof, 1.0, good, bad, _Drop(good.step, key, length,
+                                                         joint_length(good),
+                                                         joint_length(bad)), resolution)
     assert good.step < drop < bad.step
     assert nails(drop - 0.1 * resolution) > nails(drop + 0.1 * resolution)
