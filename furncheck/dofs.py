@@ -510,6 +510,12 @@ def check_edit(original: Geometry, edited: Design,
     return problem, geometry
 
 
+def check_edit_many(original: Geometry, edits: list[Design],
+                    design: Design) -> list[tuple[str | None, Geometry | None]]:
+    """``check_edit`` of many edits of ``design`` (whose geometry is ``original``)."""
+    return [check_edit(original, edited, design) for edited in edits]
+
+
 def _edit_problem(original: Geometry, geometry: Geometry) -> str | None:
     known = {(v.kind, v.where) for v in original.violations}
     problems = [v for v in geometry.violations if (v.kind, v.where) not in known]

@@ -26,6 +26,7 @@ resolution step beyond it was found invalid (or the end is the search limit).
 from __future__ import annotations
 
 import multiprocessing
+from collections.abc import Generator
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
@@ -36,13 +37,14 @@ import numpy as np
 from furncheck.check import check_design, holding_states, is_valid, margin_of
 from furncheck.design.model import Design
 from furncheck.dofs import (
+    DOF_KINDS,
     Blocked,
     Dof,
     OutOfReach,
     Structure,
     all_dofs,
     apply_dof,
-    check_edit,
+    check_edit_many,
     design_size,
     dof_value,
     parse_dof,
@@ -78,8 +80,9 @@ DROP_STEPS = 6
 PARALLEL_MIN_DOFS = 16
 """Fewer DOFs than this are searched in this process: starting workers would cost more."""
 
-DOFS_PER_TASK = 4
-"""DOFs per task of a worker process (small tasks balance the uneven DOFs)."""
+TASKS_PER_WORKER = 2
+"""Tasks per worker process: each task's DOFs are searched together (the more DOFs, the
+larger the batches of evaluations), a few tasks per worker balance the uneven DOFs."""
 
 REACH_PREDICTIONS = 4
 """Most predictions of the geometric reach of one side of a DOF before it is bisected."""
@@ -139,14 +142,14 @@ class RangeFinder:
         self._shared: dict = {}
         self._predictions: dict[Dof, tuple[float | None, float | None]] = {}
         self._margins: dict[tuple, tuple[EditMargins, tuple]] = {}
-        self._kept_edit: tuple = (None, None, None, None)
-        self._edits: tuple[Dof | None, dict[float, Design]] = (None, {})
+        self._kept: dict[Dof, dict[float, tuple]] = {}
+        self._edits: dict[Dof, dict[float, Design]] = {}
         self.evaluations = 0
 
     # -- public --------------------------------------------------------------------------------
     def ranges(self, names: list[str] | None = None, jobs: int = 1) -> list[DofRange]:
-        """The ranges of the named DOFs (all when None), in order.  With ``jobs`` > 1 many
-        DOFs are searched in that many worker processes; every DOF's search is independent
+        """The ranges of the named DOFs (all when None), in order.  With ``jobs`` > 1 the
+        DOFs are shared among that many worker processes; every DOF's search is independent
         of the others, so the result is the same either way.
 
         One process is the default: the statics' small dense solves gain nothing from a
@@ -159,81 +162,197 @@ class RangeFinder:
             found = self._ranges_in_workers(dofs, jobs)
             if found is not None:
                 return found
-        return [self.range(dof) for dof in dofs]
+        return self._ranges_together(dofs)
+
+    def range(self, dof: Dof) -> DofRange:
+        return self._ranges_together([dof])[0]
 
     def _ranges_in_workers(self, dofs: list[Dof], jobs: int) -> list[DofRange] | None:
-        """``range`` of every DOF in forked worker processes (which inherit this finder),
-        a few DOFs per task; None when processes cannot be forked here."""
+        """The ranges of ``dofs`` in forked worker processes (which inherit this finder):
+        TASKS_PER_WORKER tasks per worker, the DOFs of each kind dealt out in turn (DOFs of
+        one kind are alike in cost: rotations cost most); None when processes cannot be
+        forked here."""
         global _WORKER_FINDER
         try:
             context = multiprocessing.get_context("fork")
         except ValueError:          # no fork on this platform
             return None
-        tasks = [dofs[k:k + DOFS_PER_TASK] for k in range(0, len(dofs), DOFS_PER_TASK)]
+        count = min(jobs * TASKS_PER_WORKER, len(dofs))
+        order = sorted(range(len(dofs)), key=lambda n: (DOF_KINDS.index(dofs[n].kind), n))
+        shares = [order[k::count] for k in range(count)]
         _WORKER_FINDER = self
         try:
-            with ProcessPoolExecutor(max_workers=min(jobs, len(tasks)),
+            with ProcessPoolExecutor(max_workers=min(jobs, count),
                                      mp_context=context) as pool:
-                done = list(pool.map(_ranges_of, tasks))
+                done = list(pool.map(_ranges_of, [[dofs[n] for n in share]
+                                                  for share in shares]))
         except (OSError, BrokenProcessPool):
             return None
         finally:
             _WORKER_FINDER = None
         self.evaluations += sum(evaluations for _, evaluations in done)
-        return [found for ranges, _ in done for found in ranges]
+        found: list[DofRange | None] = [None] * len(dofs)
+        for share, (ranges, _) in zip(shares, done):
+            for n, dof_range in zip(share, ranges):
+                found[n] = dof_range
+        return found
 
-    def range(self, dof: Dof) -> DofRange:
-        value = dof_value(self.design, dof)
-        unit = dof.unit(self.design)
-        if dof in self.locked:
-            return DofRange(dof.name, value, None, unit, "locked")
-        limit, resolution = self._scales(dof)
-        try:
+    def _ranges_together(self, dofs: list[Dof]) -> list[DofRange]:
+        """The ranges of ``dofs``, all their searches advanced together (``_run``): each
+        side of each DOF is a generator of the evaluations it needs, and the evaluations
+        that the searches wait for at one time are made as one batch."""
+        searches: dict[tuple[int, float], Generator] = {}
+        for n, dof in enumerate(dofs):
+            if dof in self.locked:
+                continue
+            value, unit = dof_value(self.design, dof), dof.unit(self.design)
+            limit, resolution = self._scales(dof)
             if self.valid_now:
-                low = self._side(dof, -1.0, limit, resolution)
-                high = self._side(dof, 1.0, limit, resolution)
-                return DofRange(dof.name, value, (value - low, value + high), unit)
-            return self._nearest_valid(dof, value, unit, limit, resolution)
-        except Blocked as why:
-            return DofRange(dof.name, value, None, unit, why.reason)
+                searches[(n, -1.0)] = self._side(dof, -1.0, limit, resolution)
+                searches[(n, 1.0)] = self._side(dof, 1.0, limit, resolution)
+            else:
+                searches[(n, 0.0)] = self._nearest_valid(dof, value, unit, limit, resolution)
+        found = self._run(searches, dofs)
+        out = []
+        for n, dof in enumerate(dofs):
+            value, unit = dof_value(self.design, dof), dof.unit(self.design)
+            if dof in self.locked:
+                out.append(DofRange(dof.name, value, None, unit, "locked"))
+                continue
+            ends = [found[(n, sign)] for sign in ((-1.0, 1.0) if self.valid_now else (0.0,))]
+            blocked = [end for end in ends if isinstance(end, Blocked)]
+            if blocked:
+                out.append(DofRange(dof.name, value, None, unit, blocked[0].reason))
+            elif self.valid_now:
+                out.append(DofRange(dof.name, value, (value - ends[0], value + ends[1]), unit))
+            else:
+                out.append(ends[0])
+        return out
 
-    # -- validity of one step ------------------------------------------------------------------
-    def valid_at(self, dof: Dof, step: float, full: bool = True) -> bool:
+    # -- running searches ----------------------------------------------------------------------
+    def _run(self, searches: dict[tuple[int, float], Generator],
+             dofs: list[Dof]) -> dict[tuple[int, float], object]:
+        """Advance the ``searches`` ((DOF number, side) -> generator) until each returns or
+        raises Blocked: every round, the evaluations they all wait for (``_Kept``,
+        ``_Margins``, ``_Statics``) are made together (``_answer``) and sent back.  Once
+        the lower side of a DOF is blocked its upper side is dropped (the lower side's
+        reason is reported, as when the sides are searched one after the other).  A DOF's
+        cached edits are dropped when its last search ends."""
+        found: dict[tuple[int, float], object] = {}
+        waiting: dict[tuple[int, float], object] = {}
+        active = {dof: 0 for dof in dofs}
+        for n, _ in searches:
+            active[dofs[n]] += 1
+
+        def ended(key: tuple[int, float], result: object) -> None:
+            found[key] = result
+            dof = dofs[key[0]]
+            active[dof] -= 1
+            if not active[dof]:
+                self._edits.pop(dof, None)
+                self._kept.pop(dof, None)
+
+        def advance(key: tuple[int, float], answer: tuple) -> None:
+            value, error = answer
+            try:
+                request = searches[key].send(value) if error is None else \
+                    searches[key].throw(error)
+            except StopIteration as stop:
+                ended(key, stop.value)
+            except Blocked as why:
+                ended(key, why)
+                upper = (key[0], 1.0)
+                if key[1] < 0.0 and upper in waiting:
+                    searches[upper].close()
+                    del waiting[upper]
+                    ended(upper, None)
+            else:
+                waiting[key] = request
+
+        for key in searches:
+            advance(key, (None, None))
+        while waiting:
+            batch, waiting = waiting, {}
+            for key, answer in zip(batch, self._answer(list(batch.values()))):
+                advance(key, answer)
+        return found
+
+    def _now(self, search: Generator, dof: Dof):
+        """Run one search (a generator of evaluations) of ``dof`` to its end: its result."""
+        return self._run({(0, 0.0): search}, [dof])[(0, 0.0)]
+
+    def _answer(self, requests: list) -> list[tuple[object, Exception | None]]:
+        """(value, error) per request: ``_Kept`` checks all at once
+        (``dofs.check_edit_many``), then ``_Margins`` and ``_Statics``."""
+        answers: list = [None] * len(requests)
+        kept = [k for k, request in enumerate(requests) if isinstance(request, _Kept)]
+        for k, answer in zip(kept, self._kept_many([requests[k] for k in kept])):
+            answers[k] = answer
+        for k, request in enumerate(requests):
+            if isinstance(request, _Margins):
+                answers[k] = (request.margins(request.design), None)
+            elif isinstance(request, _Statics):
+                if request.margin:
+                    answers[k] = (margin_of(request.design, request.geometry, self.starts),
+                                  None)
+                else:
+                    answers[k] = (is_valid(request.design, request.geometry, self.starts),
+                                  None)
+        return answers
+
+    def _kept_many(self, requests: list[_Kept]) -> list[tuple[object, Exception | None]]:
+        """Per request: the design with its DOF changed by its step and the geometry if
+        it keeps the joints and ground contacts, else (None, None); Blocked as the error
+        if the step would change a locked DOF.  Answers are kept per DOF (while its
+        search runs): the full check of a geometric reach follows the geometry check
+        that found it."""
+        answers: list = [None] * len(requests)
+        todo = []
+        for k, (dof, step) in enumerate(requests):
+            known = self._kept.setdefault(dof, {})
+            if step in known:
+                answers[k] = (known[step], None)
+                continue
+            try:
+                edited = apply_dof(self.design, self.frame, dof, step)
+            except OutOfReach:
+                known[step] = (None, None)
+                answers[k] = (known[step], None)
+                continue
+            except Blocked as why:
+                answers[k] = (None, why)
+                continue
+            moved_lock = next((lock for lock in self.locked if abs(
+                dof_value(edited, lock) - dof_value(self.design, lock)) > 1e-9), None)
+            if moved_lock is not None:
+                answers[k] = (None, Blocked(f"it would change the locked {moved_lock.name}"))
+                continue
+            todo.append((k, dof, step, edited))
+        self.evaluations += len(todo)
+        checks = check_edit_many(self.geometry, [edited for *_, edited in todo], self.design)
+        for (k, dof, step, edited), (problem, geometry) in zip(todo, checks):
+            self._kept[dof][step] = (None, None) if problem is not None else (edited, geometry)
+            answers[k] = (self._kept[dof][step], None)
+        return answers
+
+    # -- validity of one step (searches: generators of evaluations) ---------------------------
+    def _valid_at(self, dof: Dof, step: float, full: bool = True):
         """Whether the design with ``dof`` changed by ``step`` keeps its joints and ground
         contacts and (``full``) is valid in every load case."""
-        edited, geometry = self._kept(dof, step)
+        edited, geometry = yield _Kept(dof, step)
         if geometry is None:
             return False
-        return is_valid(edited, geometry, self.starts) if full else True
+        if not full:
+            return True
+        return (yield _Statics(edited, geometry, False))
 
-    def _kept(self, dof: Dof, step: float) -> tuple[Design | None, Geometry | None]:
-        """The design with ``dof`` changed by ``step`` and its geometry if it keeps the
-        joints and ground contacts, else (None, None).  The last one that keeps them is
-        remembered: the full check of a geometric reach follows the geometry checks that
-        found it."""
-        if self._kept_edit[:2] == (dof, step):
-            return self._kept_edit[2:]
-        try:
-            edited = apply_dof(self.design, self.frame, dof, step)
-        except OutOfReach:
-            return None, None
-        for lock in self.locked:
-            if abs(dof_value(edited, lock) - dof_value(self.design, lock)) > 1e-9:
-                raise Blocked(f"it would change the locked {lock.name}")
-        self.evaluations += 1
-        problem, geometry = check_edit(self.geometry, edited, self.design)
-        if problem is not None:
-            return None, None
-        self._kept_edit = (dof, step, edited, geometry)
-        return edited, geometry
-
-    def _probe(self, dof: Dof, sign: float, step: float) -> _Probe:
+    def _probe(self, dof: Dof, sign: float, step: float):
         """The full check of one step (>= 0) in direction ``sign``, with the design's
-        margin (``check.margin_of``)."""
-        edited, geometry = self._kept(dof, sign * step)
+        margin (``check.margin_of``): a ``_Probe``."""
+        edited, geometry = yield _Kept(dof, sign * step)
         if geometry is None:
             return _Probe(step, False, -np.inf, None, None)
-        valid, margin, utilization = margin_of(edited, geometry, self.starts)
+        valid, margin, utilization = yield _Statics(edited, geometry, True)
         return _Probe(step, valid, margin, utilization, geometry)
 
     # -- searches ------------------------------------------------------------------------------
@@ -242,13 +361,13 @@ class RangeFinder:
         valid, assuming it is valid now: first how far the geometry reaches (cheap checks
         without statics), then, if the design is not valid there, the physical limit inside
         it (``_physical_limit``)."""
-        reach = self._geometric_reach(dof, sign, limit, resolution)
+        reach = yield from self._geometric_reach(dof, sign, limit, resolution)
         if reach <= 0.0:
             return reach
-        at_reach = self._probe(dof, sign, reach)
+        at_reach = yield from self._probe(dof, sign, reach)
         if at_reach.valid:
             return reach
-        return self._physical_limit(dof, sign, at_reach, resolution)
+        return (yield from self._physical_limit(dof, sign, at_reach, resolution))
 
     def _physical_limit(self, dof: Dof, sign: float, at_reach: _Probe,
                         resolution: float) -> float:
@@ -294,7 +413,7 @@ class RangeFinder:
             if len(widths) > 3 and widths[-1] > 0.5 * widths[-4]:
                 step = 0.5 * (good.step + bad.step)
             predicted = None
-            probe = self._probe(dof, sign, min(max(step, low), high))
+            probe = yield from self._probe(dof, sign, min(max(step, low), high))
             probes.append(probe)
             moves.append(probe.valid)
             if probe.valid:
@@ -351,28 +470,29 @@ class RangeFinder:
         """
         good = 0.0
         if dof.is_rotation:     # most turns that part a joint or cut a neighbour do it at once
-            if not self.valid_at(dof, sign * resolution, full=False):
+            if not (yield from self._valid_at(dof, sign * resolution, full=False)):
                 return 0.0
             good = resolution
         for _ in range(REACH_PREDICTIONS):
             if good >= limit:
                 return limit
-            predicted = self._predicted_reach(dof, sign, good if good > resolution else 0.0,
-                                              limit, resolution)
+            predicted = yield from self._predicted_reach(
+                dof, sign, good if good > resolution else 0.0, limit, resolution)
             if predicted is None:
                 break
             end = limit if predicted >= limit else predicted - 0.5 * resolution
             if end >= good + 0.5 * resolution:      # else one step past good is past the flip
-                if not self.valid_at(dof, sign * end, full=False):
-                    return self._bisect(dof, sign, good, end, resolution, full=False)
+                if not (yield from self._valid_at(dof, sign * end, full=False)):
+                    return (yield from self._bisect(dof, sign, good, end, resolution,
+                                                    full=False))
                 good = end
             if good >= limit:
                 return limit
             beyond = min(good + resolution, limit)
-            if not self.valid_at(dof, sign * beyond, full=False):
+            if not (yield from self._valid_at(dof, sign * beyond, full=False)):
                 return good
             good = beyond
-        return self._expand(dof, sign, good, limit, resolution, full=False)
+        return (yield from self._expand(dof, sign, good, limit, resolution, full=False))
 
     def _predicted_reach(self, dof: Dof, sign: float, start: float, limit: float,
                          resolution: float) -> float | None:
@@ -390,16 +510,18 @@ class RangeFinder:
                 horizons = (ROTATION_WATCH, limit) if start < ROTATION_WATCH < limit \
                     else (limit,)
                 for horizon in horizons:
-                    predicted = self._predicted_turn(dof, sign, start, horizon, resolution)
+                    predicted = yield from self._predicted_turn(dof, sign, start, horizon,
+                                                                resolution)
                     if predicted < horizon:
                         return predicted
                     start = horizon
                 return limit
             margins, now = self._edit_margins(dof, 0.0)
-            at_start = now if start == 0.0 else margins(self._edited(dof, sign * start))
+            at_start = now if start == 0.0 else \
+                (yield _Margins(margins, self._edited(dof, sign * start)))
             step = start + REACH_PROBE * resolution
-            return _first_flip(at_start, margins(self._edited(dof, sign * step)), start, step,
-                               limit)
+            at_step = yield _Margins(margins, self._edited(dof, sign * step))
+            return _first_flip(at_start, at_step, start, step, limit)
         except OutOfReach:
             return None
 
@@ -418,9 +540,10 @@ class RangeFinder:
         end is a turn the DOF cannot make, is halved.  At most REACH_SECANTS evaluations: the last
         prediction is returned, to be confirmed."""
         margins, now = self._edit_margins(dof, horizon)
-        at_start = now if start == 0.0 else margins(self._edited(dof, sign * start))
+        at_start = now if start == 0.0 else \
+            (yield _Margins(margins, self._edited(dof, sign * start)))
         step = start + REACH_PROBE * resolution
-        at_step = margins(self._edited(dof, sign * step))
+        at_step = yield _Margins(margins, self._edited(dof, sign * step))
         samples = [(start, at_start), (step, at_step)]
         predicted = _first_flip(at_start, at_step, start, step, horizon)
         low, high, at_high = start, None, None
@@ -428,7 +551,7 @@ class RangeFinder:
         moved = []                      # whether each evaluation moved the flipped end
         for _ in range(REACH_SECANTS):
             try:
-                at_predicted = margins(self._edited(dof, sign * predicted))
+                at_predicted = yield _Margins(margins, self._edited(dof, sign * predicted))
                 flipped = _flipped(at_start, at_predicted)
                 samples.append((predicted, at_predicted))
             except OutOfReach:          # no such design: past the reach as well
@@ -463,11 +586,10 @@ class RangeFinder:
         margins' probe steps are the same for both turn horizons)."""
         if not step:
             return self.design
-        if self._edits[0] != dof:
-            self._edits = (dof, {})
-        if step not in self._edits[1]:
-            self._edits[1][step] = apply_dof(self.design, self.frame, dof, step)
-        return self._edits[1][step]
+        edits = self._edits.setdefault(dof, {})
+        if step not in edits:
+            edits[step] = apply_dof(self.design, self.frame, dof, step)
+        return edits[step]
 
     def _edit_margins(self, dof: Dof, turn: float) -> tuple[EditMargins, tuple]:
         """The margins of the planks that ``dof`` changes (one small step either way) for
@@ -500,8 +622,8 @@ class RangeFinder:
         good, step = start, max(start, limit / 16.0)
         while True:
             if step > good:
-                if not self.valid_at(dof, sign * step, full):
-                    return self._bisect(dof, sign, good, step, resolution, full)
+                if not (yield from self._valid_at(dof, sign * step, full)):
+                    return (yield from self._bisect(dof, sign, good, step, resolution, full))
                 good = step
             if good >= limit:
                 return limit
@@ -513,7 +635,7 @@ class RangeFinder:
         be the larger) to ``resolution``; returns the valid end."""
         while abs(bad - good) > resolution:
             middle = 0.5 * (good + bad)
-            if self.valid_at(dof, sign * middle, full):
+            if (yield from self._valid_at(dof, sign * middle, full)):
                 good = middle
             else:
                 bad = middle
@@ -527,9 +649,9 @@ class RangeFinder:
         order = (1.0, -1.0) if self._favoured_sign(dof) > 0 else (-1.0, 1.0)
         for previous, step in zip([0.0] + samples, samples):
             for sign in order:
-                if self.valid_at(dof, sign * step):
-                    inner = self._bisect(dof, sign, step, previous, resolution)
-                    outer = self._expand(dof, sign, step, limit, resolution)
+                if (yield from self._valid_at(dof, sign * step)):
+                    inner = yield from self._bisect(dof, sign, step, previous, resolution)
+                    outer = yield from self._expand(dof, sign, step, limit, resolution)
                     ends = sorted((value + sign * inner, value + sign * outer))
                     return DofRange(dof.name, value, (ends[0], ends[1]), unit,
                                     "the current value is invalid; this is the nearest "
@@ -603,6 +725,30 @@ class _Probe:
     geometry: Geometry | None
 
 
+class _Kept(NamedTuple):
+    """Evaluation request of a search: the design with ``dof`` changed by ``step`` and its
+    geometry if that keeps the joints and contacts, else (None, None)."""
+
+    dof: Dof
+    step: float
+
+
+class _Margins(NamedTuple):
+    """Evaluation request: ``margins`` (an ``EditMargins``) of an edited ``design``."""
+
+    margins: EditMargins
+    design: Design
+
+
+class _Statics(NamedTuple):
+    """Evaluation request: the full check of an edited design that keeps the joints and
+    contacts, ``check.margin_of`` if ``margin`` else ``check.is_valid``."""
+
+    design: Design
+    geometry: Geometry
+    margin: bool
+
+
 def _margin_zero(good: _Probe, bad: _Probe, probes: list[_Probe]) -> float:
     """Where the margin reaches zero between the valid ``good`` and the invalid ``bad``
     (finite margins, good's the larger): inverse quadratic interpolation through the two
@@ -673,7 +819,7 @@ def _ranges_of(dofs: list[Dof]) -> tuple[list[DofRange], int]:
     """In a worker process: the ranges of ``dofs`` and the evaluations they took."""
     finder = _WORKER_FINDER
     before = finder.evaluations
-    found = [finder.range(dof) for dof in dofs]
+    found = finder._ranges_together(dofs)
     return found, finder.evaluations - before
 
 

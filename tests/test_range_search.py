@@ -85,13 +85,13 @@ def test_drop_step_is_where_the_joint_loses_its_nail():
     finder = RangeFinder(design)
     dof = parse_dof(design, "side_r.rx")
     resolution = finder._scales(dof)[1]
-    good, bad = finder._probe(dof, 1.0, 1.40), finder._probe(dof, 1.0, 1.55)
+    good, bad = (finder._now(finder._probe(dof, 1.0, step), dof) for step in (1.40, 1.55))
     key = ("side_r", "kick", next(j.edge_face for j in finder.geometry.joints
                                   if (j.face, j.edge) == ("side_r", "kick")))
     spacing = design.material.nail_spacing
 
     def nails(step):
-        geometry = finder._probe(dof, 1.0, step).geometry
+        geometry = finder._now(finder._probe(dof, 1.0, step), dof).geometry
         return next(j.nails for j in geometry.joints if (j.face, j.edge, j.edge_face) == key)
 
     assert nails(good.step) > nails(bad.step)
