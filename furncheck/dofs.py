@@ -30,7 +30,7 @@ import numpy as np
 
 from furncheck.design.model import Design, Load, LoadCase, Plank, Vec3
 from furncheck.errors import DofError
-from furncheck.geometry import Geometry, analyze, interpenetrations
+from furncheck.geometry import EditedTables, Geometry, analyze, interpenetrations
 
 DOF_KINDS = ("x", "y", "z", "rx", "ry", "rz", "length", "width")
 _AXIS = {"x": 0, "y": 1, "z": 2, "rx": 0, "ry": 1, "rz": 2}
@@ -497,23 +497,45 @@ def check_edit(original: Geometry, edited: Design,
     """Why the edited design no longer has the original's joints and contacts (or None),
     and the edited design's geometry (None when a plank lost its length).  With the
     original ``design``, joints between unchanged planks are not detected again."""
-    for plank in edited.planks:
-        if plank.length <= 0 or plank.width <= 0:
-            return f"{plank.id} would have no length left", None
-    geometry = analyze(edited, None if design is None else (design, original))
-    problem = _edit_problem(original, geometry)
-    if problem is None:
-        cutting = interpenetrations(edited)
-        if cutting:
-            a, b, depth = cutting[0]
-            problem = f"{a} would cut {depth / edited.unit_scale:.3g} {edited.units} into {b}"
-    return problem, geometry
+    if design is not None:
+        return check_edit_many(original, [edited], design)[0]
+    problem = _size_problem(edited)
+    if problem is not None:
+        return problem, None
+    geometry = analyze(edited)
+    return _edit_problem(original, geometry) or _cut_problem(edited, interpenetrations(edited)), \
+        geometry
 
 
 def check_edit_many(original: Geometry, edits: list[Design],
                     design: Design) -> list[tuple[str | None, Geometry | None]]:
-    """``check_edit`` of many edits of ``design`` (whose geometry is ``original``)."""
-    return [check_edit(original, edited, design) for edited in edits]
+    """``check_edit`` of many edits of ``design`` (whose geometry is ``original``), their
+    geometries and plank cuts measured together (``geometry.EditedTables``)."""
+    out: list = [(_size_problem(edited), None) for edited in edits]
+    sized = [k for k, (problem, _) in enumerate(out) if problem is None]
+    tables = EditedTables(design, original, [edits[k] for k in sized])
+    geometries = tables.geometries()
+    problems = [_edit_problem(original, geometry) for geometry in geometries]
+    clear = [n for n, problem in enumerate(problems) if problem is None]
+    for n, cutting in zip(clear, tables.cuts(clear)):
+        problems[n] = _cut_problem(edits[sized[n]], cutting)
+    for k, problem, geometry in zip(sized, problems, geometries):
+        out[k] = (problem, geometry)
+    return out
+
+
+def _size_problem(edited: Design) -> str | None:
+    for plank in edited.planks:
+        if plank.length <= 0 or plank.width <= 0:
+            return f"{plank.id} would have no length left"
+    return None
+
+
+def _cut_problem(edited: Design, cutting: list[tuple[str, str, float]]) -> str | None:
+    if not cutting:
+        return None
+    a, b, depth = cutting[0]
+    return f"{a} would cut {depth / edited.unit_scale:.3g} {edited.units} into {b}"
 
 
 def _edit_problem(original: Geometry, geometry: Geometry) -> str | None:

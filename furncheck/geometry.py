@@ -112,7 +112,14 @@ def analyze(design: Design, previous: tuple[Design, Geometry] | None = None) -> 
         joints = _detect_joints(design, _unchanged_joints(design, previous, same))
     else:
         joints = _listed_joints(design, violations)
-    earlier = None if same is None else previous[1]
+    return _completed(design, joints, violations, None if same is None else previous[1], same)
+
+
+def _completed(design: Design, joints: list[Joint], violations: list[Violation],
+               earlier: Geometry | None, same: frozenset[str] | None) -> Geometry:
+    """The geometry of a design with these joints: its ground contacts, components and
+    connectivity violations added (``earlier``: the analysis of a version in which the
+    planks ``same`` are the same, see ``analyze``)."""
     contacts = _ground_contacts(design, violations, earlier, same)
     if earlier is not None and [j.planks for j in joints] == [j.planks for j in earlier.joints]:
         components = earlier.components          # they follow from the joined pairs alone
@@ -190,19 +197,33 @@ def nail_count(length: float, spacing: float) -> int:
 
 def _detect_joints(design: Design, known: dict | None = None) -> list[Joint]:
     """Joints detected from the geometry; ``known``: see ``_unchanged_joints``."""
+    pairs, fresh = _pairs_to_detect(design, *_bounding_boxes(design.planks), known)
+    best = _best_touches(design.planks, pairs[fresh], design.tolerance + _GEOMETRY_EPS,
+                         keep_deep=False)
+    return _detected_joints(design, pairs, fresh, known, best)
+
+
+def _pairs_to_detect(design: Design, lo: np.ndarray, hi: np.ndarray,
+                     known: dict | None) -> tuple[np.ndarray, np.ndarray]:
+    """The plank pairs (i < j) whose boxes (``lo``, ``hi``) meet within the slack, and
+    whether each must be detected (not both planks among the ``known`` unchanged ones)."""
     slack = design.tolerance + _GEOMETRY_EPS
-    lo, hi = _bounding_boxes(design.planks)
     overlap = np.all((lo[:, None, :] <= hi[None, :, :] + slack)
                      & (lo[None, :, :] <= hi[:, None, :] + slack), axis=2)
     pairs = np.argwhere(np.triu(overlap, k=1))
     if known is None:
-        fresh = np.ones(len(pairs), dtype=bool)
-        known = {}
-    else:
-        changed = np.array([plank.id not in known["planks"] for plank in design.planks])
-        fresh = changed[pairs[:, 0]] | changed[pairs[:, 1]] if len(pairs) else \
-            np.zeros(0, dtype=bool)
-    best = _best_touches(design, pairs[fresh], slack, keep_deep=False)
+        return pairs, np.ones(len(pairs), dtype=bool)
+    changed = np.array([plank.id not in known["planks"] for plank in design.planks])
+    fresh = changed[pairs[:, 0]] | changed[pairs[:, 1]] if len(pairs) else \
+        np.zeros(0, dtype=bool)
+    return pairs, fresh
+
+
+def _detected_joints(design: Design, pairs: np.ndarray, fresh: np.ndarray,
+                     known: dict | None, best: dict) -> list[Joint]:
+    """The joints of ``pairs`` in order: a known one where the pair is not ``fresh``, else
+    from its best touch (``best``, keyed by the pair) if that lies within the slack."""
+    slack = design.tolerance + _GEOMETRY_EPS
     joints = []
     for (i, j), detect in zip(pairs.tolist(), fresh.tolist()):
         if not detect:
@@ -251,7 +272,7 @@ def _listed_joints(design: Design, violations: list[Violation]) -> list[Joint]:
     specs = design.joints or ()
     pairs = np.array([[design.plank_index[a], design.plank_index[b]] for a, b in
                       (spec.planks for spec in specs)], dtype=int).reshape(-1, 2)
-    best = _best_touches(design, pairs, slack, keep_deep=True)
+    best = _best_touches(design.planks, pairs, slack, keep_deep=True)
     joints = []
     for index, (spec, (i, j)) in enumerate(zip(specs, pairs)):
         key = f"joints[{index}]"
@@ -317,13 +338,15 @@ def _face_tables(planks: tuple[Plank, ...]) -> _Faces:
     return _Faces(normal, corners, long_unit, broad_normal, broad_offset, centers, rot, half)
 
 
-def _best_touches(design: Design, pairs: np.ndarray, slack: float, keep_deep: bool) -> dict:
-    """For each plank pair (i, j), the best narrow-face-on-broad-face contact either way
-    round: contacts within the slack beat deeper ones, then the flushest, then the largest.
-    ``keep_deep`` keeps faces sunk deeper than the slack (to report interpenetration)."""
+def _best_touches(planks: tuple[Plank, ...], pairs: np.ndarray, slack: float, keep_deep: bool,
+                  faces: _Faces | None = None) -> dict:
+    """For each plank pair (i, j) (indices into ``planks``, whose face tables ``faces`` are
+    when given), the best narrow-face-on-broad-face contact either way round: contacts
+    within the slack beat deeper ones, then the flushest, then the largest.  ``keep_deep``
+    keeps faces sunk deeper than the slack (to report interpenetration)."""
     if len(pairs) == 0:
         return {}
-    faces = _face_tables(design.planks)
+    faces = _face_tables(planks) if faces is None else faces
     ordered = np.vstack([pairs, pairs[:, ::-1]])                 # (edge, face) both ways
     edge, face = ordered[:, 0], ordered[:, 1]
     alignment = -np.einsum("pfa,pga->pfg", faces.narrow_normal[edge], faces.broad_normal[face])
@@ -339,7 +362,7 @@ def _best_touches(design: Design, pairs: np.ndarray, slack: float, keep_deep: bo
     n_pairs = len(pairs)
     chosen = np.argwhere(candidates)
     p, f, g = chosen[:, 0], chosen[:, 1], chosen[:, 2]
-    touches = _touch_regions(design.planks, faces, edge[p], face[p], f, g, gap[p, f, g],
+    touches = _touch_regions(planks, faces, edge[p], face[p], f, g, gap[p, f, g],
                              alignment[p, f, g])
     for p_k, touch in zip(chosen[:, 0].tolist(), touches):
         if touch is None:
@@ -456,7 +479,8 @@ def end_gap(design: Design, i: int, j: int) -> float | None:
 
 
 def _nearest_touch(design: Design, i: int, j: int) -> _Touch | None:
-    return _best_touches(design, np.array([[i, j]]), slack=np.inf, keep_deep=False).get((i, j))
+    return _best_touches(design.planks, np.array([[i, j]]), slack=np.inf,
+                         keep_deep=False).get((i, j))
 
 
 def _apart_message(design: Design, i: int, j: int) -> str:
@@ -483,15 +507,27 @@ def interpenetrations(design: Design) -> list[tuple[str, str, float]]:
     refuse design edits that would push one plank through another.)
     """
     slack = design.tolerance + _GEOMETRY_EPS
-    lo, hi = _bounding_boxes(design.planks)
-    overlap = np.all((lo[:, None, :] < hi[None, :, :] - slack)
-                     & (lo[None, :, :] < hi[:, None, :] - slack), axis=2)
-    pairs = np.argwhere(np.triu(overlap, k=1))
+    pairs = _overlapping(*_bounding_boxes(design.planks), slack)
     if len(pairs) == 0:
         return []
-    rot = np.stack([p.rotation_matrix for p in design.planks])
-    half = np.stack([p.half_extents for p in design.planks])
-    centre = np.stack([p.center_array for p in design.planks])
+    depth = _box_depths(np.stack([p.rotation_matrix for p in design.planks]),
+                        np.stack([p.half_extents for p in design.planks]),
+                        np.stack([p.center_array for p in design.planks]), pairs)
+    return [(design.planks[i].id, design.planks[j].id, float(d))
+            for (i, j), d in zip(pairs, depth) if d > slack]
+
+
+def _overlapping(lo: np.ndarray, hi: np.ndarray, slack: float) -> np.ndarray:
+    """Pairs (i < j) of boxes that overlap by more than the slack along every axis."""
+    overlap = np.all((lo[:, None, :] < hi[None, :, :] - slack)
+                     & (lo[None, :, :] < hi[:, None, :] - slack), axis=2)
+    return np.argwhere(np.triu(overlap, k=1))
+
+
+def _box_depths(rot: np.ndarray, half: np.ndarray, centre: np.ndarray,
+                pairs: np.ndarray) -> np.ndarray:
+    """Per pair (a, b) of planks (rotations, half extents, centres): how deep their boxes
+    overlap, the smallest overlap of their projections on the 15 separating axes."""
     a, b = pairs[:, 0], pairs[:, 1]
     ra, rb = np.transpose(rot[a], (0, 2, 1)), np.transpose(rot[b], (0, 2, 1))  # rows = axes
     crosses = np.cross(ra[:, :, None, :], rb[:, None, :, :]).reshape(-1, 9, 3)
@@ -502,9 +538,75 @@ def interpenetrations(design: Design) -> list[tuple[str, str, float]]:
     radius_a = (np.abs(np.einsum("pka,pia->pki", axes, ra)) * half[a][:, None, :]).sum(axis=2)
     radius_b = (np.abs(np.einsum("pka,pia->pki", axes, rb)) * half[b][:, None, :]).sum(axis=2)
     distance = np.abs(np.einsum("pka,pa->pk", axes, centre[b] - centre[a]))
-    depth = np.where(usable, radius_a + radius_b - distance, np.inf).min(axis=1)
-    return [(design.planks[i].id, design.planks[j].id, float(d))
-            for (i, j), d in zip(pairs, depth) if d > slack]
+    return np.where(usable, radius_a + radius_b - distance, np.inf).min(axis=1)
+
+
+class EditedTables:
+    """The face tables and boxes of many edits of one design at once: the design's own
+    rows, then the rows of the planks that each edit changes (its ``index`` maps the
+    edit's plank numbers to rows).  Edits that do not keep the design's planks, material
+    and tolerance (``_unchanged_planks``) have no rows (``same`` None)."""
+
+    def __init__(self, design: Design, geometry: Geometry, edits: list[Design]):
+        self.design, self.geometry, self.edits = design, geometry, edits
+        count = len(design.planks)
+        self.same, self.index, changed = [], [], []
+        for edited in edits:
+            same = _unchanged_planks(edited, (design, geometry))
+            self.same.append(same)
+            index = np.arange(count)
+            if same is not None:
+                moved = [i for i, plank in enumerate(edited.planks) if plank.id not in same]
+                index[moved] = count + len(changed) + np.arange(len(moved))
+                changed.extend(edited.planks[i] for i in moved)
+            self.index.append(index)
+        self.planks = design.planks + tuple(changed)
+        self.faces = _face_tables(self.planks)
+        self.lo, self.hi = _bounding_boxes(self.planks)
+
+    def geometries(self) -> list[Geometry]:
+        """``analyze(edited, (design, geometry))`` of every edit, the joints of all edits'
+        changed planks detected together."""
+        design, geometry = self.design, self.geometry
+        slack = design.tolerance + _GEOMETRY_EPS
+        found: list = [None] * len(self.edits)
+        detect = []
+        for k, (edited, same, index) in enumerate(zip(self.edits, self.same, self.index)):
+            if same is None or edited.joints is not None:
+                found[k] = analyze(edited, (design, geometry))
+                continue
+            known = _unchanged_joints(edited, (design, geometry), same)
+            pairs, fresh = _pairs_to_detect(edited, self.lo[index], self.hi[index], known)
+            detect.append((k, known, pairs, fresh))
+        rows = [self.index[k][pairs[fresh]] for k, _, pairs, fresh in detect]
+        best = _best_touches(self.planks, np.concatenate(rows) if rows else
+                             np.zeros((0, 2), dtype=int), slack, False, self.faces)
+        for k, known, pairs, fresh in detect:
+            edited, index = self.edits[k], self.index[k]
+            mine = {(i, j): best[key] for i, j in pairs[fresh].tolist()
+                    if (key := (int(index[i]), int(index[j]))) in best}
+            joints = _detected_joints(edited, pairs, fresh, known, mine)
+            found[k] = _completed(edited, joints, [], geometry, self.same[k])
+        return found
+
+    def cuts(self, which: list[int]) -> list[list[tuple[str, str, float]]]:
+        """``interpenetrations`` of the edits numbered ``which``, their depths at once
+        (an edit without rows on its own)."""
+        found = {k: interpenetrations(self.edits[k]) for k in which if self.same[k] is None}
+        tabled = [k for k in which if k not in found]
+        slack = self.design.tolerance + _GEOMETRY_EPS
+        pairs = [_overlapping(self.lo[self.index[k]], self.hi[self.index[k]], slack)
+                 for k in tabled]
+        rows = [self.index[k][mine] for k, mine in zip(tabled, pairs)]
+        depth = _box_depths(self.faces.rotations, self.faces.halves, self.faces.centers,
+                            np.concatenate(rows)) if rows else np.zeros(0)
+        start = 0
+        for k, mine in zip(tabled, pairs):
+            planks = self.edits[k].planks
+            found[k] = [(planks[i].id, planks[j].id, float(d)) for (i, j), d in
+                        zip(mine, depth[start:start + len(mine)]) if d > slack]
+            start += len(mine)
+        return [found[k] for k in which]
 
 
 # --- ground, components -----------------------------------------------------------------------
@@ -658,6 +760,7 @@ class EditMargins:
         # joint: the largest joint tilt, plus the turn where one of the planks turns
         reach = np.where(turns[self.edge] | turns[self.face],
                          min(tol.JOINT_MAX_TILT_DEG + turn, 180.0), tol.JOINT_MAX_TILT_DEG)
+        self.planks = design.planks
         self.unchanged_tables = self._all_tables(design.planks)
         if reach.min(initial=180.0) < 180.0:
             faces = self.unchanged_tables[0]
@@ -677,31 +780,52 @@ class EditMargins:
         """Face tables and bounding boxes of ``planks``."""
         return _face_tables(planks), _bounding_boxes(planks)
 
-    def _tables(self, planks) -> tuple[_Faces, tuple[np.ndarray, np.ndarray]]:
-        """``_all_tables`` of an edited design: the unchanged planks' rows are kept from
-        the design the margins were made for, only the changed planks' are computed."""
-        faces, (lo, hi) = self.unchanged_tables
-        new_faces, (new_lo, new_hi) = self._all_tables(tuple(planks[i] for i in self.changed))
-        rows = list(self.changed)
-
-        def updated(table: np.ndarray, new: np.ndarray) -> np.ndarray:
-            table = table.copy()
-            table[rows] = new
-            return table
-
-        faces = _Faces(*(updated(getattr(faces, name), getattr(new_faces, name))
-                         for name in _Faces.__dataclass_fields__))
-        return faces, (updated(lo, new_lo), updated(hi, new_hi))
-
     def __call__(self, design: Design) -> tuple[np.ndarray, np.ndarray]:
-        slack, planks = self.slack, design.planks
-        faces, boxes = self._tables(planks)
-        rot, half = faces.rotations, faces.halves
-        combos = _combo_margins(faces, rot, half, boxes, self.edge, self.face, self.f, self.g,
-                                slack)                                     # (C, 18)
-        required = [combos[self.is_joint].ravel()]
-        for index, grounded, sunk in zip(self.changed, self.grounded, self.sunk):
-            plank = planks[index]
+        return edit_margins_many([(self, design)])[0]
+
+
+def edit_margins_many(requests: list[tuple[EditMargins, Design]]
+                      ) -> list[tuple[np.ndarray, np.ndarray]]:
+    """``margins(edited)`` for each (margins, edited) of ``requests``, all margins made for
+    one design: every row of all of them in one vectorized pass.  The tables are the
+    design's (``unchanged_tables``) with the changed planks of every edit appended; each
+    request's rows index its own changed planks there."""
+    if not requests:
+        return []
+    first = requests[0][0]
+    if any(margins.planks is not first.planks for margins, _ in requests):
+        raise ValueError("edit_margins_many: margins made for different designs")
+    faces, (lo, hi) = first.unchanged_tables
+    count = len(lo)
+    changed: list[Plank] = []
+    rows = {"edge": [], "face": [], "pairs": []}
+    for margins, edited in requests:
+        index = np.arange(count)
+        index[list(margins.changed)] = count + len(changed) + np.arange(len(margins.changed))
+        changed.extend(edited.planks[i] for i in margins.changed)
+        for name, table in rows.items():
+            table.append(index[getattr(margins, name)])
+    new_faces, (new_lo, new_hi) = EditMargins._all_tables(tuple(changed))
+    faces = _Faces(*(np.concatenate([getattr(faces, name), getattr(new_faces, name)])
+                     for name in _Faces.__dataclass_fields__))
+    boxes = (np.concatenate([lo, new_lo]), np.concatenate([hi, new_hi]))
+    slack = first.slack
+    combos = _combo_margins(faces, faces.rotations, faces.halves, boxes,
+                            np.concatenate(rows["edge"]), np.concatenate(rows["face"]),
+                            np.concatenate([margins.f for margins, _ in requests]),
+                            np.concatenate([margins.g for margins, _ in requests]), slack)
+    cuts = _cut_margins(faces.rotations, faces.halves, faces.centers, boxes,
+                        np.concatenate(rows["pairs"]), slack)
+    out = []
+    combo_start = cut_start = 0
+    for margins, edited in requests:
+        mine = combos[combo_start:combo_start + len(margins.edge)]
+        cutting = cuts[cut_start:cut_start + len(margins.pairs)]
+        combo_start += len(margins.edge)
+        cut_start += len(margins.pairs)
+        required = [mine[margins.is_joint].ravel()]
+        for index, grounded, sunk in zip(margins.changed, margins.grounded, margins.sunk):
+            plank = edited.planks[index]
             lowest = float(plank.corners[:, 2].min())
             required.append([plank.length, plank.width])
             if not grounded:
@@ -710,14 +834,14 @@ class EditMargins:
             required.append([slack - lowest])
             if not sunk:
                 required.append([lowest + slack])
-        cutting = _cut_margins(rot, half, faces.centers, boxes, self.pairs, slack)
         groups = [cutting]
-        if self.detected:
-            others = combos[~self.is_joint]
+        if margins.detected:
+            others = mine[~margins.is_joint]
             groups.append(np.pad(others, ((0, 0), (0, cutting.shape[1] - others.shape[1])),
                                  constant_values=1.0))
-        return np.concatenate([np.asarray(r, dtype=float) for r in required]), \
-            np.vstack(groups)
+        out.append((np.concatenate([np.asarray(r, dtype=float) for r in required]),
+                    np.vstack(groups)))
+    return out
 
 
 def _combo_margins(faces: _Faces, rot: np.ndarray, half: np.ndarray,

@@ -50,7 +50,7 @@ from furncheck.dofs import (
     parse_dof,
     structure,
 )
-from furncheck.geometry import EditMargins, Geometry, analyze, follow_many
+from furncheck.geometry import EditMargins, Geometry, analyze, edit_margins_many, follow_many
 from furncheck.sensitivity import Linearization, Sensitivity
 from furncheck.tolerances import NAIL_COUNT_EPS
 from furncheck.validity import nail_pull_shear
@@ -283,15 +283,17 @@ class RangeFinder:
 
     def _answer(self, requests: list) -> list[tuple[object, Exception | None]]:
         """(value, error) per request: ``_Kept`` checks all at once
-        (``dofs.check_edit_many``), then ``_Margins`` and ``_Statics``."""
+        (``dofs.check_edit_many``), ``_Margins`` all at once (``geometry.edit_margins_many``),
+        then ``_Statics`` one by one."""
         answers: list = [None] * len(requests)
         kept = [k for k, request in enumerate(requests) if isinstance(request, _Kept)]
         for k, answer in zip(kept, self._kept_many([requests[k] for k in kept])):
             answers[k] = answer
+        measured = [k for k, request in enumerate(requests) if isinstance(request, _Margins)]
+        for k, values in zip(measured, edit_margins_many([requests[k] for k in measured])):
+            answers[k] = (values, None)
         for k, request in enumerate(requests):
-            if isinstance(request, _Margins):
-                answers[k] = (request.margins(request.design), None)
-            elif isinstance(request, _Statics):
+            if isinstance(request, _Statics):
                 if request.margin:
                     answers[k] = (margin_of(request.design, request.geometry, self.starts),
                                   None)
