@@ -92,7 +92,7 @@ ROTATION_WATCH = 15.0
 faces that so small a turn can bring to rest on one another (far fewer than all); past
 it, all of them."""
 
-MARGINS_KEPT = 32
+MARGINS_KEPT = 128
 """How many ``EditMargins`` (with their values for the design) a finder keeps."""
 
 REACH_PROBE = 0.25
@@ -142,6 +142,7 @@ class RangeFinder:
         self._shared: dict = {}
         self._predictions: dict[Dof, tuple[float | None, float | None]] = {}
         self._margins: dict[tuple, tuple[EditMargins, tuple]] = {}
+        self._changes: dict[Dof, tuple[tuple[int, ...], tuple[int, ...]]] = {}
         self._kept: dict[Dof, dict[float, tuple]] = {}
         self._edits: dict[Dof, dict[float, Design]] = {}
         self.evaluations = 0
@@ -597,21 +598,26 @@ class RangeFinder:
         """The margins of the planks that ``dof`` changes (one small step either way) for
         steps turning them at most ``turn`` degrees, and their values for the design
         itself.  They depend only on which planks change and turn, so DOFs that change
-        the same planks share them (the last MARGINS_KEPT are kept)."""
-        changed, turning = set(), set()
-        for sign in (-1.0, 1.0):
-            try:
-                edited = self._edited(dof, sign * REACH_PROBE * self._scales(dof)[1])
-            except OutOfReach:
-                continue
-            for i, (a, b) in enumerate(zip(self.design.planks, edited.planks)):
-                if a != b:
-                    changed.add(i)
-                if a.rotation != b.rotation:
-                    turning.add(i)
-        key = (tuple(sorted(changed)), tuple(sorted(turning)), turn if turning else 0.0)
-        if key not in self._margins:
-            margins = EditMargins(self.design, self.geometry, key[0], turn, key[1])
+        the same planks share them (the MARGINS_KEPT used last are kept)."""
+        if dof not in self._changes:
+            changed, turning = set(), set()
+            for sign in (-1.0, 1.0):
+                try:
+                    edited = self._edited(dof, sign * REACH_PROBE * self._scales(dof)[1])
+                except OutOfReach:
+                    continue
+                for i, (a, b) in enumerate(zip(self.design.planks, edited.planks)):
+                    if a != b:
+                        changed.add(i)
+                    if a.rotation != b.rotation:
+                        turning.add(i)
+            self._changes[dof] = (tuple(sorted(changed)), tuple(sorted(turning)))
+        changed, turning = self._changes[dof]
+        key = (changed, turning, turn if turning else 0.0)
+        if key in self._margins:
+            self._margins[key] = self._margins.pop(key)        # used last
+        else:
+            margins = EditMargins(self.design, self.geometry, changed, turn, turning)
             if len(self._margins) >= MARGINS_KEPT:
                 del self._margins[next(iter(self._margins))]
             self._margins[key] = (margins, margins(self.design))
