@@ -21,6 +21,14 @@ ground contacts.  Each side is searched in two stages:
 
 The reported end is the last value found valid (by a full check); a value at most one
 resolution step beyond it was found invalid (or the end is the search limit).
+
+Each side's search is a generator: it yields the evaluations it needs (``_Kept``: an edit
+and its geometry check; ``_Margins``: geometric margins of an edit; ``_Statics``: a full
+check) and receives their results.  ``RangeFinder._run`` advances the searches of all
+DOFs together, and every round answers the evaluations they wait for as one batch: the
+geometry checks and the margins of all of them in one vectorized pass each
+(``dofs.check_edit_many``, ``geometry.edit_margins_many``).  No search depends on
+another's results, so the ranges are the same however the DOFs are batched.
 """
 
 from __future__ import annotations
@@ -84,6 +92,13 @@ TASKS_PER_WORKER = 2
 """Tasks per worker process: each task's DOFs are searched together (the more DOFs, the
 larger the batches of evaluations), a few tasks per worker balance the uneven DOFs."""
 
+SEARCHES_IN_FLIGHT = 64
+"""Most searches (sides of DOFs) advanced together: their evaluations are batched, their
+edits kept while they run."""
+
+MARGIN_ROWS = 1 << 14
+"""Most rows of geometric margins evaluated in one batch (each row 18 margins)."""
+
 REACH_PREDICTIONS = 4
 """Most predictions of the geometric reach of one side of a DOF before it is bisected."""
 
@@ -92,7 +107,7 @@ ROTATION_WATCH = 15.0
 faces that so small a turn can bring to rest on one another (far fewer than all); past
 it, all of them."""
 
-MARGINS_KEPT = 128
+MARGINS_KEPT = 32
 """How many ``EditMargins`` (with their values for the design) a finder keeps."""
 
 REACH_PROBE = 0.25
@@ -235,7 +250,8 @@ class RangeFinder:
              dofs: list[Dof]) -> dict[tuple[int, float], object]:
         """Advance the ``searches`` ((DOF number, side) -> generator) until each returns or
         raises Blocked: every round, the evaluations they all wait for (``_Kept``,
-        ``_Margins``, ``_Statics``) are made together (``_answer``) and sent back.  Once
+        ``_Margins``, ``_Statics``) are made together (``_answer``) and sent back; at most
+        SEARCHES_IN_FLIGHT run at a time (the others start as they end).  Once
         the lower side of a DOF is blocked its upper side is dropped (the lower side's
         reason is reported, as when the sides are searched one after the other).  A DOF's
         cached edits are dropped when its last search ends."""
@@ -244,6 +260,7 @@ class RangeFinder:
         active = {dof: 0 for dof in dofs}
         for n, _ in searches:
             active[dofs[n]] += 1
+        queued = list(searches)[::-1]
 
         def ended(key: tuple[int, float], result: object) -> None:
             found[key] = result
@@ -270,9 +287,9 @@ class RangeFinder:
             else:
                 waiting[key] = request
 
-        for key in searches:
-            advance(key, (None, None))
-        while waiting:
+        while waiting or queued:
+            while queued and len(waiting) < SEARCHES_IN_FLIGHT:
+                advance(queued.pop(), (None, None))
             batch, waiting = waiting, {}
             for key, answer in zip(batch, self._answer(list(batch.values()))):
                 advance(key, answer)
@@ -291,8 +308,12 @@ class RangeFinder:
         for k, answer in zip(kept, self._kept_many([requests[k] for k in kept])):
             answers[k] = answer
         measured = [k for k, request in enumerate(requests) if isinstance(request, _Margins)]
-        for k, values in zip(measured, edit_margins_many([requests[k] for k in measured])):
-            answers[k] = (values, None)
+        while measured:         # at most MARGIN_ROWS rows at a time (memory)
+            rows = np.cumsum([len(requests[k].margins.edge) for k in measured])
+            count = max(1, int(np.searchsorted(rows, MARGIN_ROWS, side="right")))
+            chunk, measured = measured[:count], measured[count:]
+            for k, values in zip(chunk, edit_margins_many([requests[k] for k in chunk])):
+                answers[k] = (values, None)
         for k, request in enumerate(requests):
             if isinstance(request, _Statics):
                 if request.margin:
@@ -547,20 +568,25 @@ class RangeFinder:
             (yield _Margins(margins, self._edited(dof, sign * start)))
         step = start + REACH_PROBE * resolution
         at_step = yield _Margins(margins, self._edited(dof, sign * step))
-        samples = [(start, at_start), (step, at_step)]
+        closed = _open_groups(at_start)
+        samples = [(start, _flip_values(closed, at_start)),
+                   (step, _flip_values(closed, at_step))]
         predicted = _first_flip(at_start, at_step, start, step, horizon)
-        low, high, at_high = start, None, None
+        del at_start, at_step           # kept while the search waits: large for big designs
+        low, high, high_made = start, None, True
         offset = MODEL_OFFSET * resolution
         moved = []                      # whether each evaluation moved the flipped end
         for _ in range(REACH_SECANTS):
             try:
-                at_predicted = yield _Margins(margins, self._edited(dof, sign * predicted))
-                flipped = _flipped(at_start, at_predicted)
-                samples.append((predicted, at_predicted))
+                measured = yield _Margins(margins, self._edited(dof, sign * predicted))
+                flipped = _flipped(closed, measured)
+                samples.append((predicted, _flip_values(closed, measured)))
+                made = True
+                del measured
             except OutOfReach:          # no such design: past the reach as well
-                at_predicted, flipped = None, True
+                flipped, made = True, False
             if flipped:
-                high, at_high = predicted, at_predicted
+                high, high_made = predicted, made
             elif predicted >= horizon:
                 return horizon
             else:
@@ -569,13 +595,13 @@ class RangeFinder:
             end = horizon if high is None else high
             if high is not None and high - low <= 0.5 * resolution:
                 return high
-            if high is not None and (at_high is None or moved[-3:] in ([True] * 3,
-                                                                      [False] * 3)):
+            if high is not None and (not high_made or moved[-3:] in ([True] * 3,
+                                                                    [False] * 3)):
                 predicted = 0.5 * (low + high)
                 continue
             nearest = sorted(samples, key=lambda sample: min(abs(sample[0] - low),
                                                              abs(sample[0] - end)))[:3]
-            modelled = _modelled_flip(nearest, at_start, low, end)
+            modelled = _modelled_flip(nearest, low, end)
             if modelled >= end and high is None:
                 predicted = horizon
                 continue
@@ -831,13 +857,16 @@ def _ranges_of(dofs: list[Dof]) -> tuple[list[DofRange], int]:
     return found, finder.evaluations - before
 
 
-def _flipped(before: tuple[np.ndarray, np.ndarray],
-             after: tuple[np.ndarray, np.ndarray]) -> bool:
+def _open_groups(at_start: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
+    """Which forbidden groups of the margins at the start are not all positive."""
+    return ~(at_start[1] > 0.0).all(axis=1)
+
+
+def _flipped(closed: np.ndarray, after: tuple[np.ndarray, np.ndarray]) -> bool:
     """Whether a required margin is no longer positive in ``after`` or a forbidden group
-    not all positive in ``before`` is all positive in ``after``."""
-    (_, forbidden), (required_at, forbidden_at) = before, after
-    entered = (forbidden_at > 0.0).all(axis=1) & ~(forbidden > 0.0).all(axis=1)
-    return bool((required_at <= 0.0).any() or entered.any())
+    not all positive at the start (``closed``, ``_open_groups``) is all positive."""
+    required_at, forbidden_at = after
+    return bool((required_at <= 0.0).any() or ((forbidden_at > 0.0).all(axis=1) & closed).any())
 
 
 def _first_flip(before: tuple[np.ndarray, np.ndarray], after: tuple[np.ndarray, np.ndarray],
@@ -861,18 +890,22 @@ def _first_flip(before: tuple[np.ndarray, np.ndarray], after: tuple[np.ndarray, 
     return min(first, float(np.min(begin[closed], initial=limit)))
 
 
-def _modelled_flip(samples: list, at_start: tuple[np.ndarray, np.ndarray], low: float,
-                   high: float) -> float:
-    """The first turn in (``low``, ``high``] at which the margins flip (``_flipped``
-    against ``at_start``): a required margin, or the smallest margin of a forbidden
-    group not all positive at the start, each modelled as the quadratic in the turn
-    through its values at the three ``samples`` (turn, margins), reaches zero; ``high``
-    if none does.  The model is scanned on MODEL_GRID turns, then on as many within the
-    first flipped step."""
-    open_groups = ~(at_start[1] > 0.0).all(axis=1)
+def _flip_values(closed: np.ndarray, margins: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
+    """What ``_modelled_flip`` models of ``margins``: every required margin and, per
+    forbidden group not all positive at the start (``closed``, ``_open_groups``), minus
+    its smallest margin; the margins have flipped (``_flipped``) when one of these is
+    <= 0."""
+    required, forbidden = margins
+    return np.concatenate([required, -forbidden[closed].min(axis=1)])
+
+
+def _modelled_flip(samples: list, low: float, high: float) -> float:
+    """The first turn in (``low``, ``high``] at which one of the ``_flip_values``,
+    each modelled as the quadratic in the turn through its values at the three
+    ``samples`` (turn, values), reaches zero; ``high`` if none does.  The model is
+    scanned on MODEL_GRID turns, then on as many within the first flipped step."""
     turns = np.array([turn for turn, _ in samples])
-    values = np.stack([np.concatenate([required, -forbidden[open_groups].min(axis=1)])
-                       for _, (required, forbidden) in samples])
+    values = np.stack([values for _, values in samples])
     try:
         coefficients = np.linalg.solve(np.vander(turns - turns[0], 3, increasing=True), values)
     except np.linalg.LinAlgError:       # turns too close to tell a curve: no prediction

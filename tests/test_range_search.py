@@ -14,8 +14,10 @@ from furncheck.ranges import (
     MODEL_GRID,
     RangeFinder,
     _Drop,
+    _flip_values,
     _margin_zero,
     _modelled_flip,
+    _open_groups,
     _Probe,
 )
 from furncheck.tolerances import NAIL_COUNT_EPS
@@ -51,8 +53,8 @@ def test_modelled_flip_finds_the_zero_of_a_quadratic_margin():
     def margins(t):
         return np.array([1.0 - t * t / 64.0, 2.0 - t / 5.0]), np.ones((1, 3))
 
-    samples = [(t, margins(t)) for t in (0.0, 0.025, 5.0)]
-    found = _modelled_flip(samples, margins(0.0), 0.0, 15.0)
+    samples = [(t, _flip_values(_open_groups(margins(0.0)), margins(t))) for t in (0.0, 0.025, 5.0)]
+    found = _modelled_flip(samples, 0.0, 15.0)
     assert 8.0 <= found <= 8.0 + 15.0 / MODEL_GRID ** 2
 
 
@@ -63,8 +65,8 @@ def test_modelled_flip_sees_a_forbidden_group_close():
     def margins(t):
         return np.array([5.0]), np.array([[t - 3.0, 2.0, 9.0 - t]])
 
-    samples = [(t, margins(t)) for t in (0.0, 0.025, 4.5)]
-    found = _modelled_flip(samples, margins(0.0), 0.0, 15.0)
+    samples = [(t, _flip_values(_open_groups(margins(0.0)), margins(t))) for t in (0.0, 0.025, 4.5)]
+    found = _modelled_flip(samples, 0.0, 15.0)
     assert 3.0 <= found <= 3.0 + 15.0 / MODEL_GRID ** 2
 
 
@@ -72,8 +74,8 @@ def test_modelled_flip_returns_high_when_nothing_flips():
     def margins(t):
         return np.array([1.0 + t]), np.zeros((0, 3))
 
-    samples = [(t, margins(t)) for t in (0.0, 0.025, 4.0)]
-    assert _modelled_flip(samples, margins(0.0), 0.0, 15.0) == 15.0
+    samples = [(t, _flip_values(_open_groups(margins(0.0)), margins(t))) for t in (0.0, 0.025, 4.0)]
+    assert _modelled_flip(samples, 0.0, 15.0) == 15.0
 
 
 def test_drop_step_is_where_the_joint_loses_its_nail():
