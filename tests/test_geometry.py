@@ -152,35 +152,103 @@ def test_catalog_planks_do_not_cut_into_each_other():
 def test_reanalysis_of_an_edit_equals_a_fresh_analysis():
     """analyze(edited, previous=(design, geometry)) reuses joints between unchanged planks;
     on random DOF edits of catalog designs it must give exactly what analyze(edited) gives."""
+    compared = 0
+    for original, geometry, edited in _catalog_edits(
+            ("shelf-cantilever.yaml", "chair-tilted.yaml", "bookshelf-20.yaml",
+             "magazine-rack.yaml"), 24, 7):
+        if any(p.length <= 0 or p.width <= 0 for p in edited.planks):
+            continue
+        fresh, reused = analyze(edited), analyze(edited, (original, geometry))
+        assert [(j.planks, j.nails, j.edge_face) for j in fresh.joints] == \
+            [(j.planks, j.nails, j.edge_face) for j in reused.joints]
+        for a, b in zip(fresh.joints, reused.joints):
+            assert np.allclose(a.point, b.point) and np.allclose(a.frame, b.frame)
+        assert fresh.violations == reused.violations
+        assert fresh.components == reused.components
+        compared += 1
+    assert compared > 30
+
+
+def _catalog_edits(names, per_design, seed, largest=40.0):
+    """(design, geometry, edited) for random DOF edits of catalog designs."""
     import random
     from pathlib import Path
 
     from furncheck.design import load_design
     from furncheck.dofs import Blocked, OutOfReach, all_dofs, apply_dof, structure
 
-    rng = random.Random(7)
-    compared = 0
-    for name in ("shelf-cantilever.yaml", "chair-tilted.yaml", "bookshelf-20.yaml",
-                 "magazine-rack.yaml"):
+    rng = random.Random(seed)
+    for name in names:
         original = load_design(str(Path(__file__).resolve().parents[1] / "designs" / name))
         geometry = analyze(original)
         frame = structure(original, geometry)
-        for dof in rng.sample(all_dofs(original), 24):
+        for dof in rng.sample(all_dofs(original), per_design):
             try:
-                edited = apply_dof(original, frame, dof, rng.uniform(-40.0, 40.0))
+                edited = apply_dof(original, frame, dof, rng.uniform(-largest, largest))
             except (Blocked, OutOfReach):
                 continue
-            if any(p.length <= 0 or p.width <= 0 for p in edited.planks):
+            yield original, geometry, edited
+
+
+def test_edits_checked_together_are_checked_as_alone():
+    """check_edit_many (the geometries and plank cuts of many edits in one pass) gives,
+    edit by edit, what check_edit gives for the edit on its own with a fresh analysis:
+    the same problem (or none) and the same joints, contacts and violations.  The random
+    edits of three catalog designs include kept ones, parted and new joints, cuts and
+    planks left without length."""
+    from furncheck.dofs import check_edit, check_edit_many
+
+    batches: dict[int, tuple] = {}
+    for original, geometry, edited in _catalog_edits(
+            ("cabinet-28.yaml", "chair-tilted.yaml", "bookshelf-20.yaml"), 40, 11, 120.0):
+        batches.setdefault(id(original), (original, geometry, []))[2].append(edited)
+    problems = set()
+    for original, geometry, edits in batches.values():
+        together = check_edit_many(geometry, edits, original)
+        for edited, (problem, found) in zip(edits, together):
+            alone, fresh = check_edit(geometry, edited)
+            assert problem == alone
+            problems.add(None if problem is None else problem.split()[0])
+            if fresh is None:
+                assert found is None
                 continue
-            fresh, reused = analyze(edited), analyze(edited, (original, geometry))
-            assert [(j.planks, j.nails, j.edge_face) for j in fresh.joints] == \
-                [(j.planks, j.nails, j.edge_face) for j in reused.joints], dof.name
-            for a, b in zip(fresh.joints, reused.joints):
-                assert np.allclose(a.point, b.point) and np.allclose(a.frame, b.frame)
-            assert fresh.violations == reused.violations
-            assert fresh.components == reused.components
-            compared += 1
-    assert compared > 30
+            assert [(j.planks, j.nails, j.edge_face, j.face_side) for j in found.joints] == \
+                [(j.planks, j.nails, j.edge_face, j.face_side) for j in fresh.joints]
+            for a, b in zip(found.joints, fresh.joints):
+                assert np.allclose(a.point, b.point) and a.length == pytest.approx(b.length)
+            assert [(c.plank, c.corner) for c in found.contacts] == \
+                [(c.plank, c.corner) for c in fresh.contacts]
+            assert found.violations == fresh.violations
+            assert found.components == fresh.components
+    assert None in problems and len(problems) >= 3, problems
+
+
+def test_edit_margins_of_many_edits_are_each_edits_own():
+    """edit_margins_many evaluates the margins of different edits (different changed
+    planks) in one pass: each edit's values are exactly those of evaluating its margins
+    alone, in any batch."""
+    import range_designs as rd
+
+    from furncheck.dofs import apply_dof, parse_dof, structure
+    from furncheck.geometry import EditMargins, edit_margins_many
+
+    bay = rd.parse(rd.bay())
+    geometry = analyze(bay)
+    frame = structure(bay, geometry)
+    requests = []
+    for name, step in (("shelf.z", 40.0), ("side_r.x", -3.0), ("shelf.rx", 2.0),
+                       ("shelf.z", -120.0)):
+        dof = parse_dof(bay, name)
+        edited = apply_dof(bay, frame, dof, step)
+        changed = tuple(i for i, (a, b) in enumerate(zip(bay.planks, edited.planks)) if a != b)
+        requests.append((EditMargins(bay, geometry, changed, turn=5.0), edited))
+    together = edit_margins_many(requests)
+    backwards = edit_margins_many(requests[::-1])[::-1]
+    for (margins, edited), values, other in zip(requests, together, backwards):
+        alone = margins(edited)
+        for a, b, c in zip(values, alone, other):
+            assert a.shape == b.shape and np.array_equal(a, b) and np.array_equal(a, c)
+    assert len({len(values[0]) for values in together}) > 1     # different rows
 
 
 def test_edit_margins_are_linear_in_a_translation_and_vanish_where_the_checks_flip():
