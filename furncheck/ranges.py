@@ -88,9 +88,9 @@ DROP_STEPS = 6
 PARALLEL_MIN_DOFS = 16
 """Fewer DOFs than this are searched in this process: starting workers would cost more."""
 
-TASKS_PER_WORKER = 2
-"""Tasks per worker process: each task's DOFs are searched together (the more DOFs, the
-larger the batches of evaluations), a few tasks per worker balance the uneven DOFs."""
+DOFS_PER_TASK = 16
+"""DOFs per task of a worker process: a task's DOFs are searched together (the more, the
+larger the batches of evaluations); small tasks balance the uneven DOFs."""
 
 SEARCHES_IN_FLIGHT = 64
 """Most searches (sides of DOFs) advanced together: their evaluations are batched, their
@@ -185,15 +185,15 @@ class RangeFinder:
 
     def _ranges_in_workers(self, dofs: list[Dof], jobs: int) -> list[DofRange] | None:
         """The ranges of ``dofs`` in forked worker processes (which inherit this finder):
-        TASKS_PER_WORKER tasks per worker, the DOFs of each kind dealt out in turn (DOFs of
-        one kind are alike in cost: rotations cost most); None when processes cannot be
-        forked here."""
+        tasks of at most DOFS_PER_TASK DOFs, at least two per worker, the DOFs of each kind
+        dealt out in turn (DOFs of one kind are alike in cost: rotations cost most); None
+        when processes cannot be forked here."""
         global _WORKER_FINDER
         try:
             context = multiprocessing.get_context("fork")
         except ValueError:          # no fork on this platform
             return None
-        count = min(jobs * TASKS_PER_WORKER, len(dofs))
+        count = min(len(dofs), max(2 * jobs, -(-len(dofs) // DOFS_PER_TASK)))
         order = sorted(range(len(dofs)), key=lambda n: (DOF_KINDS.index(dofs[n].kind), n))
         shares = [order[k::count] for k in range(count)]
         _WORKER_FINDER = self
