@@ -58,19 +58,24 @@ def margin_of(design: Design, geometry: Geometry,
     statics).  Every case is solved, except that an unstable one ends the search.  The
     geometry must have no violations."""
     model = build_model(design, geometry)
-    utilization = np.zeros(len(geometry.joints))
-    valid = True
+    wrenches = []
+    stable = True
     for k, case in enumerate(design.load_cases):
         statics = solve_case(model, external_forces(model, case),
                              None if starts is None else starts[k])
         if statics.stability != "stable":
-            return False, -np.inf, utilization
-        if statics.joint_wrenches is None or not model.joints:
-            continue
-        used, holds = joint_utilization(design, geometry, model, statics)
-        joints = np.asarray(model.joints, dtype=int)
-        utilization[joints] = np.maximum(utilization[joints], used)
+            stable = False
+            break
+        if statics.joint_wrenches is not None and model.joints:
+            wrenches.append(statics.joint_wrenches)
+    utilization = np.zeros(len(geometry.joints))
+    valid = stable
+    if wrenches:        # the joints' utilization in all those cases at once
+        used, holds = joint_utilization(design, geometry, model, np.stack(wrenches))
+        utilization[np.asarray(model.joints, dtype=int)] = used.max(axis=0)
         valid = valid and bool(np.all(holds))
+    if not stable:
+        return False, -np.inf, utilization
     return valid, 1.0 - float(utilization.max(initial=0.0)), utilization
 
 

@@ -51,22 +51,23 @@ def within_capacity(pull, shear, pull_capacity: float, shear_capacity: float):
 
 
 def nail_pull_shear(joints: list[Joint], wrenches: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Per-nail pull and shear (N) of many joints; wrenches (nJ, 6) first plank on second.
+    """Per-nail pull and shear (N) of many joints; wrenches (nJ, 6) first plank on second
+    (or (k, nJ, 6): k sets of them at once, e.g. one per load case).
 
     The wrench is turned into the face plank's action on the edge plank and expressed in
     the joint frame (x edge thickness normal, y joint line, n nail axis):
     pull = (2 |M_y| / t - F_n) / nails, shear = |(F_x, F_y)| / nails.
     """
     if not joints:
-        return np.zeros(0), np.zeros(0)
+        return np.zeros(wrenches.shape[:-1]), np.zeros(wrenches.shape[:-1])
     frames = np.stack([j.frame for j in joints])                       # (nJ, 3, 3)
     sign = np.array([1.0 if j.planks[0] == j.face else -1.0 for j in joints])[:, None]
-    force = np.einsum("jab,ja->jb", frames, sign * wrenches[:, :3])    # frame^T F
-    moment_y = np.einsum("ja,ja->j", frames[:, :, 1], sign * wrenches[:, 3:])
+    force = np.einsum("jab,...ja->...jb", frames, sign * wrenches[..., :3])   # frame^T F
+    moment_y = np.einsum("ja,...ja->...j", frames[:, :, 1], sign * wrenches[..., 3:])
     thickness = np.array([j.edge_thickness for j in joints])
     nails = np.array([j.nails for j in joints], dtype=float)
-    pull = (2.0 * np.abs(moment_y) / thickness - force[:, 2]) / nails
-    shear = np.hypot(force[:, 0], force[:, 1]) / nails
+    pull = (2.0 * np.abs(moment_y) / thickness - force[..., 2]) / nails
+    shear = np.hypot(force[..., 0], force[..., 1]) / nails
     return pull, shear
 
 
@@ -129,16 +130,16 @@ def case_margin(design: Design, geometry: Geometry, model: StaticsModel,
         return -np.inf, False
     if statics.joint_wrenches is None or not model.joints:
         return 1.0, True
-    utilization, holds = joint_utilization(design, geometry, model, statics)
+    utilization, holds = joint_utilization(design, geometry, model, statics.joint_wrenches)
     return 1.0 - float(utilization.max()), bool(np.all(holds))
 
 
 def joint_utilization(design: Design, geometry: Geometry, model: StaticsModel,
-                      statics: CaseStatics) -> tuple[np.ndarray, np.ndarray]:
-    """Per model joint of a solved case: max(pull / pull capacity, shear / shear
-    capacity), and whether it is within capacity (``within_capacity``)."""
-    pulls, shears = nail_pull_shear([geometry.joints[j] for j in model.joints],
-                                    statics.joint_wrenches)
+                      wrenches: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per model joint, for its wrenches in a solved case ((nJ, 6), or (k, nJ, 6) for k
+    cases): max(pull / pull capacity, shear / shear capacity), and whether it is within
+    capacity (``within_capacity``)."""
+    pulls, shears = nail_pull_shear([geometry.joints[j] for j in model.joints], wrenches)
     pull_cap = design.material.nail_pull / design.safety_factor
     shear_cap = design.material.nail_shear / design.safety_factor
     return (np.maximum(pulls / pull_cap, shears / shear_cap),
