@@ -1,0 +1,31 @@
+"""Joints, ground contacts and connectivity of a design (contract section 2).
+
+A nail joint joins an *edge plank* (one of its four narrow faces rests on the other plank)
+to a *face plank* (its broad face receives the nails).  Everything here is SI (metres) and
+works for arbitrary plank rotations: faces are handled as oriented rectangles, the touching
+region is the edge face's projection clipped to the face plank's face.
+
+The package, by job:
+
+    model     Joint, Contact, Geometry (what the statics needs) and the numeric slack
+    faces     face tables of planks, touching regions of a narrow face on a broad face,
+              bounding boxes and box overlaps
+    analysis  analyze (joints detected or checked, ground contacts, components,
+              violations), follow / follow_many (a structure's joints on edited designs)
+    edits     what decides whether an edit keeps the joints: interpenetrations, many
+              edits checked at once (EditedTables) and the edits' continuous margins
+              (EditMargins, edit_margins_many)
+"""
+
+from furncheck.geometry.analysis import analyze, end_gap, follow, follow_many, nail_count
+from furncheck.geometry.edits import (
+    EditedTables,
+    EditMargins,
+    edit_margins_many,
+    interpenetrations,
+)
+from furncheck.geometry.model import Contact, Geometry, Joint
+
+__all__ = ["Contact", "EditMargins", "EditedTables", "Geometry", "Joint", "analyze",
+           "edit_margins_many", "end_gap", "follow", "follow_many", "interpenetrations",
+           "nail_count"]

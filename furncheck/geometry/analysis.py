@@ -1,0 +1,351 @@
+"""Joints, ground contacts and connectivity of a design (contract section 2).
+
+``analyze`` detects the joints (or checks the listed ones), finds the ground contacts and
+the connected components and reports the geometric violations; given an earlier version of
+the design it detects only the joints of the planks that changed.  ``follow_many`` measures
+a structure's joints again on edited designs (for derivatives).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from furncheck import tolerances as tol
+from furncheck.design.model import Design, Plank
+from furncheck.geometry.faces import (
+    _best_touches,
+    _bounding_boxes,
+    _face_tables,
+    _Touch,
+    _touch_regions,
+)
+from furncheck.geometry.model import _GEOMETRY_EPS, Contact, Geometry, Joint
+from furncheck.result import Violation
+
+
+def analyze(design: Design, previous: tuple[Design, Geometry] | None = None) -> Geometry:
+    """Detect or check joints, find ground contacts and connected components.
+
+    ``previous``: an earlier version of the same design (same planks, in the same order)
+    and its analysis; joints between planks that did not change are taken from it instead
+    of being detected again (the result is the same, only faster: for design edits).
+    """
+    violations: list[Violation] = []
+    same = _unchanged_planks(design, previous)
+    if design.joints is None:
+        joints = _detect_joints(design, _unchanged_joints(design, previous, same))
+    else:
+        joints = _listed_joints(design, violations)
+    return _completed(design, joints, violations, None if same is None else previous[1], same)
+
+
+def _completed(design: Design, joints: list[Joint], violations: list[Violation],
+               earlier: Geometry | None, same: frozenset[str] | None) -> Geometry:
+    """The geometry of a design with these joints: its ground contacts, components and
+    connectivity violations added (``earlier``: the analysis of a version in which the
+    planks ``same`` are the same, see ``analyze``)."""
+    contacts = _ground_contacts(design, violations, earlier, same)
+    if earlier is not None and [j.planks for j in joints] == [j.planks for j in earlier.joints]:
+        components = earlier.components          # they follow from the joined pairs alone
+    else:
+        components = _components(design, joints)
+    plank_has_contact = {c.plank for c in contacts}
+    grounded = tuple(any(design.planks[i].id in plank_has_contact for i in comp)
+                     for comp in components)
+    _connectivity_violations(design, joints, components, grounded, violations)
+    return Geometry(tuple(joints), tuple(contacts), components, grounded, tuple(violations))
+
+
+def follow(geometry: Geometry, design: Design) -> Geometry:
+    """The same joints (same faces) and ground contacts (same corners) on an edited design,
+    their points, frames and lengths recomputed: the structure a small design change keeps,
+    for derivatives.  Joints whose faces no longer overlap keep their old values."""
+    joints, contacts = follow_many(geometry, [(design, range(len(geometry.joints)),
+                                               range(len(geometry.contacts)))])[0]
+    return replace(geometry, joints=joints, contacts=contacts)
+
+
+def follow_many(geometry: Geometry, edits: list) -> list[tuple[tuple[Joint, ...],
+                                                               tuple[Contact, ...]]]:
+    """``follow`` of chosen joints and contacts on many edited versions of one design at
+    once (for the sensitivity of every DOF): ``edits`` is a list of (edited design, joint
+    indices, contact indices into ``geometry``); returns per edit the followed joints and
+    contacts in that order.  All touching regions are measured in one vectorized pass; a
+    plank shared by several edits (the same object) is tabled once."""
+    planks: list[Plank] = []
+    slot: dict[int, int] = {}
+
+    def tabled(plank: Plank) -> int:
+        if id(plank) not in slot:
+            slot[id(plank)] = len(planks)
+            planks.append(plank)
+        return slot[id(plank)]
+
+    rows, owners, contacts_out = [], [], []
+    for k, (design, joint_ids, contact_ids) in enumerate(edits):
+        index = design.plank_index
+        for j in joint_ids:
+            joint = geometry.joints[j]
+            rows.append((tabled(design.planks[index[joint.edge]]),
+                         tabled(design.planks[index[joint.face]]),
+                         2 * joint.edge_face[0] + (0 if joint.edge_face[1] > 0 else 1),
+                         0 if joint.face_side > 0 else 1))
+            owners.append((k, joint))
+        followed = []
+        for c in contact_ids:
+            contact = geometry.contacts[c]
+            x, y, _ = design.planks[index[contact.plank]].corners[contact.corner]
+            followed.append(replace(contact, point=np.array([x, y, 0.0])))
+        contacts_out.append(tuple(followed))
+    joints_out: list[list[Joint]] = [[] for _ in edits]
+    if rows:
+        edge, face, f, g = (np.array(column, dtype=int) for column in zip(*rows))
+        faces = _face_tables(tuple(planks))
+        gap = (np.einsum("cka,ca->ck", faces.narrow_corners[edge, f],
+                         faces.broad_normal[face, g])
+               - faces.broad_offset[face, g][:, None]).min(axis=1)
+        touches = _touch_regions(planks, faces, edge, face, f, g, gap, np.ones(len(edge)))
+        for (k, joint), touch in zip(owners, touches):
+            joints_out[k].append(joint if touch is None else replace(
+                joint, point=touch.point, length=touch.length, frame=touch.frame,
+                edge_thickness=touch.edge.thickness))
+    return [(tuple(joints), contacts) for joints, contacts in zip(joints_out, contacts_out)]
+
+
+# --- joints -----------------------------------------------------------------------------------
+
+def nail_count(length: float, spacing: float) -> int:
+    """max(1, floor(L / spacing)), with a little slack against round-off (300/20 -> 15)."""
+    return max(1, int(np.floor(length / spacing * (1.0 + tol.NAIL_COUNT_EPS))))
+
+
+def _detect_joints(design: Design, known: dict | None = None) -> list[Joint]:
+    """Joints detected from the geometry; ``known``: see ``_unchanged_joints``."""
+    pairs, fresh = _pairs_to_detect(design, *_bounding_boxes(design.planks), known)
+    best = _best_touches(design.planks, pairs[fresh], design.tolerance + _GEOMETRY_EPS,
+                         keep_deep=False)
+    return _detected_joints(design, pairs, fresh, known, best)
+
+
+def _pairs_to_detect(design: Design, lo: np.ndarray, hi: np.ndarray,
+                     known: dict | None) -> tuple[np.ndarray, np.ndarray]:
+    """The plank pairs (i < j) whose boxes (``lo``, ``hi``) meet within the slack, and
+    whether each must be detected (not both planks among the ``known`` unchanged ones)."""
+    slack = design.tolerance + _GEOMETRY_EPS
+    overlap = np.all((lo[:, None, :] <= hi[None, :, :] + slack)
+                     & (lo[None, :, :] <= hi[:, None, :] + slack), axis=2)
+    pairs = np.argwhere(np.triu(overlap, k=1))
+    if known is None:
+        return pairs, np.ones(len(pairs), dtype=bool)
+    changed = np.array([plank.id not in known["planks"] for plank in design.planks])
+    fresh = changed[pairs[:, 0]] | changed[pairs[:, 1]] if len(pairs) else \
+        np.zeros(0, dtype=bool)
+    return pairs, fresh
+
+
+def _detected_joints(design: Design, pairs: np.ndarray, fresh: np.ndarray,
+                     known: dict | None, best: dict) -> list[Joint]:
+    """The joints of ``pairs`` in order: a known one where the pair is not ``fresh``, else
+    from its best touch (``best``, keyed by the pair) if that lies within the slack."""
+    slack = design.tolerance + _GEOMETRY_EPS
+    joints = []
+    for (i, j), detect in zip(pairs.tolist(), fresh.tolist()):
+        if not detect:
+            if (i, j) in known:
+                joints.append(known[(i, j)])
+            continue
+        touch = best.get((i, j))
+        if touch is not None and touch.gap >= -slack:
+            nails = nail_count(touch.length, design.material.nail_spacing)
+            joints.append(_joint_from_touch(touch, (touch.face.id, touch.edge.id), nails, ""))
+    return joints
+
+
+def _unchanged_planks(design: Design,
+                      previous: tuple[Design, Geometry] | None) -> frozenset[str] | None:
+    """The ids of the planks that an earlier version of the design has unchanged, or None
+    if that version cannot stand in for them (other planks or order, material, tolerance,
+    units or joint list)."""
+    if previous is None:
+        return None
+    before = previous[0]
+    if [p.id for p in before.planks] != [p.id for p in design.planks] or \
+            before.material != design.material or before.tolerance != design.tolerance or \
+            before.units != design.units or before.joints != design.joints or \
+            before.lines != design.lines:
+        return None
+    return frozenset(new.id for old, new in zip(before.planks, design.planks) if old == new)
+
+
+def _unchanged_joints(design: Design, previous: tuple[Design, Geometry] | None,
+                      same: frozenset[str] | None) -> dict | None:
+    """From an earlier version of the design with the planks ``same`` unchanged: {(i, j):
+    joint} for detected joints between two unchanged planks, plus 'planks': ``same``."""
+    if same is None or design.joints is not None:
+        return None
+    known: dict = {"planks": same}
+    for joint in previous[1].joints:
+        if joint.face in same and joint.edge in same:
+            i, j = sorted((design.plank_index[joint.face], design.plank_index[joint.edge]))
+            known[(i, j)] = joint
+    return known
+
+
+def _listed_joints(design: Design, violations: list[Violation]) -> list[Joint]:
+    slack = design.tolerance + _GEOMETRY_EPS
+    specs = design.joints or ()
+    pairs = np.array([[design.plank_index[a], design.plank_index[b]] for a, b in
+                      (spec.planks for spec in specs)], dtype=int).reshape(-1, 2)
+    best = _best_touches(design.planks, pairs, slack, keep_deep=True)
+    joints = []
+    for index, (spec, (i, j)) in enumerate(zip(specs, pairs)):
+        key = f"joints[{index}]"
+        touch = best.get((int(i), int(j)))
+        name = f"{spec.planks[0]}/{spec.planks[1]}"
+        line = design.line_of(key)
+        if touch is None:
+            violations.append(Violation("disconnected", name, None,
+                                        _apart_message(design, int(i), int(j)), line))
+            continue
+        if touch.gap < -slack:
+            violations.append(Violation(
+                "disconnected", name, None,
+                f"planks interpenetrate by {_fmt_len(-touch.gap, design)}, more than the "
+                f"tolerance {_fmt_len(design.tolerance, design)}", line))
+            continue
+        nails = spec.nails or nail_count(touch.length, design.material.nail_spacing)
+        joints.append(_joint_from_touch(touch, spec.planks, nails, key))
+    return joints
+
+
+def _joint_from_touch(touch: _Touch, planks: tuple[str, str], nails: int, key: str) -> Joint:
+    return Joint(planks=tuple(planks), face=touch.face.id, edge=touch.edge.id,
+                 point=touch.point, length=touch.length, nails=nails, frame=touch.frame,
+                 edge_thickness=touch.edge.thickness, edge_face=touch.edge_face,
+                 face_side=touch.face_side, key=key)
+
+
+def end_gap(design: Design, i: int, j: int) -> float | None:
+    """How far (m) the end face of one of planks i, j is from the broad face of the other
+    that it faces (its gap, or its depth when it cuts in), None when neither plank's end
+    faces the other: what keeps a listed joint from closing."""
+    touch = _nearest_touch(design, i, j)
+    return None if touch is None else abs(float(touch.gap))
+
+
+def _nearest_touch(design: Design, i: int, j: int) -> _Touch | None:
+    return _best_touches(design.planks, np.array([[i, j]]), slack=np.inf,
+                         keep_deep=False).get((i, j))
+
+
+def _apart_message(design: Design, i: int, j: int) -> str:
+    """Why two listed planks form no joint, with the gap between the end face and the face
+    it should rest on when one faces the other."""
+    touch = _nearest_touch(design, i, j)
+    if touch is not None and touch.gap > 0:
+        return (f"planks do not touch: the end of {touch.edge.id} is "
+                f"{_fmt_len(touch.gap, design)} from the face of {touch.face.id} "
+                f"(tolerance {_fmt_len(design.tolerance, design)})")
+    a, b = design.planks[i], design.planks[j]
+    diff = a.corners[:, None, :] - b.corners[None, :, :]
+    gap = float(np.sqrt((diff ** 2).sum(axis=2)).min())
+    return (f"planks do not touch: no end face of one lies on a face of the other "
+            f"(closest corners {_fmt_len(gap, design)} apart)")
+
+
+# --- ground, components -----------------------------------------------------------------------
+
+def _ground_contacts(design: Design, violations: list[Violation],
+                     earlier: Geometry | None = None,
+                     same: frozenset[str] | None = None) -> list[Contact]:
+    """Corners with z <= tolerance touch the ground; those below -tolerance penetrate it.
+    The contacts and penetrations of the planks ``same`` are taken from ``earlier``."""
+    slack = design.tolerance + _GEOMETRY_EPS
+    contacts: list[Contact] = []
+    reused: dict[str, list] = {}
+    if earlier is not None:
+        for contact in earlier.contacts:
+            reused.setdefault(contact.plank, []).append(contact)
+        for violation in earlier.violations:
+            if violation.kind == "penetration":
+                reused.setdefault(violation.where, []).append(violation)
+    for index, plank in enumerate(design.planks):
+        if same is not None and plank.id in same:
+            for item in reused.get(plank.id, ()):
+                (contacts if isinstance(item, Contact) else violations).append(item)
+            continue
+        z = plank.corners[:, 2]
+        for corner in np.nonzero(z <= slack)[0]:
+            x, y, _ = plank.corners[corner]
+            contacts.append(Contact(plank.id, np.array([x, y, 0.0]), int(corner)))
+        if z.min() < -slack:
+            deepest = plank.corners[int(np.argmin(z))]
+            violations.append(Violation(
+                "penetration", plank.id, None,
+                f"corner at {_fmt_point(deepest, design)} is {_fmt_len(-deepest[2], design)} "
+                f"below the ground (tolerance {_fmt_len(design.tolerance, design)})",
+                design.line_of(f"planks[{index}].center")))
+    return contacts
+
+
+def _components(design: Design, joints: list[Joint]) -> tuple[tuple[int, ...], ...]:
+    """Connected groups of planks through joints (union-find), each sorted."""
+    parent = list(range(len(design.planks)))
+
+    def root(k: int) -> int:
+        while parent[k] != k:
+            parent[k] = parent[parent[k]]
+            k = parent[k]
+        return k
+
+    for joint in joints:
+        a, b = (design.plank_index[pid] for pid in joint.planks)
+        ra, rb = root(a), root(b)
+        if ra != rb:
+            parent[max(ra, rb)] = min(ra, rb)
+    groups: dict[int, list[int]] = {}
+    for k in range(len(design.planks)):
+        groups.setdefault(root(k), []).append(k)
+    return tuple(tuple(g) for g in sorted(groups.values()))
+
+
+def _connectivity_violations(design: Design, joints: list[Joint],
+                             components: tuple[tuple[int, ...], ...],
+                             grounded: tuple[bool, ...], violations: list[Violation]) -> None:
+    if len(design.planks) > 1:
+        joined = {pid for joint in joints for pid in joint.planks}
+        listed = {pid for spec in design.joints or () for pid in spec.planks}
+        for index, plank in enumerate(design.planks):
+            if plank.id not in joined and plank.id not in listed:
+                violations.append(Violation(
+                    "disconnected", plank.id, None,
+                    "plank is joined to no other plank (no end face rests on a neighbour's "
+                    "face, and no neighbour's end face rests on it)",
+                    design.line_of(f"planks[{index}]")))
+    for component, is_grounded in zip(components, grounded):
+        if not is_grounded:
+            ids = [design.planks[i].id for i in component]
+            lowest = min(float(design.planks[i].corners[:, 2].min()) for i in component)
+            violations.append(Violation(
+                "floating", ",".join(ids), None,
+                f"{_plural(len(ids), 'plank')} {'touch' if len(ids) > 1 else 'touches'} the "
+                f"ground nowhere (lowest corner "
+                f"{_fmt_len(lowest, design)} above it)",
+                design.line_of(f"planks[{component[0]}]")))
+
+
+# --- formatting helpers for messages ----------------------------------------------------------
+
+def _fmt_len(value_m: float, design: Design) -> str:
+    return f"{value_m / design.unit_scale:.4g} {design.units}"
+
+
+def _fmt_point(point_m: np.ndarray, design: Design) -> str:
+    coords = ", ".join(f"{v / design.unit_scale:.4g}" for v in point_m)
+    return f"({coords}) {design.units}"
+
+
+def _plural(n: int, word: str) -> str:
+    return f"{n} {word}s" if n != 1 else f"1 {word}"

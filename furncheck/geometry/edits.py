@@ -1,0 +1,317 @@
+"""Whether edits of a design keep its joints and contacts, many at a time.
+
+``interpenetrations`` (planks cutting into each other), ``EditedTables`` (the geometry and
+the cuts of many edits of one design in one vectorized pass) and ``EditMargins`` /
+``edit_margins_many`` (continuous margins of those criteria, to predict where an edit
+stops keeping them).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from furncheck import tolerances as tol
+from furncheck.design.model import Design, Plank
+from furncheck.geometry.analysis import (
+    _completed,
+    _detected_joints,
+    _pairs_to_detect,
+    _unchanged_joints,
+    _unchanged_planks,
+    analyze,
+)
+from furncheck.geometry.faces import (
+    _best_touches,
+    _bounding_boxes,
+    _box_depths,
+    _face_tables,
+    _Faces,
+    _overlapping,
+)
+from furncheck.geometry.model import _COS_MAX_TILT, _GEOMETRY_EPS, Geometry
+
+
+def interpenetrations(design: Design) -> list[tuple[str, str, float]]:
+    """Plank pairs whose boxes overlap deeper than the tolerance: (id, id, depth m).
+
+    Separating-axis test of two oriented boxes over their 15 candidate axes; the depth is
+    the smallest overlap of their projections.  Planks meeting at a joint only touch, so
+    their depth is ~0.  (Not a violation of the contract's kinds: furncheck uses it to
+    refuse design edits that would push one plank through another.)
+    """
+    slack = design.tolerance + _GEOMETRY_EPS
+    pairs = _overlapping(*_bounding_boxes(design.planks), slack)
+    if len(pairs) == 0:
+        return []
+    depth = _box_depths(np.stack([p.rotation_matrix for p in design.planks]),
+                        np.stack([p.half_extents for p in design.planks]),
+                        np.stack([p.center_array for p in design.planks]), pairs)
+    return [(design.planks[i].id, design.planks[j].id, float(d))
+            for (i, j), d in zip(pairs, depth) if d > slack]
+
+
+class EditedTables:
+    """The face tables and boxes of many edits of one design at once: the design's own
+    rows, then the rows of the planks that each edit changes (its ``index`` maps the
+    edit's plank numbers to rows).  Edits that do not keep the design's planks, material
+    and tolerance (``_unchanged_planks``) have no rows (``same`` None)."""
+
+    def __init__(self, design: Design, geometry: Geometry, edits: list[Design]):
+        self.design, self.geometry, self.edits = design, geometry, edits
+        count = len(design.planks)
+        self.same, self.index, changed = [], [], []
+        for edited in edits:
+            same = _unchanged_planks(edited, (design, geometry))
+            self.same.append(same)
+            index = np.arange(count)
+            if same is not None:
+                moved = [i for i, plank in enumerate(edited.planks) if plank.id not in same]
+                index[moved] = count + len(changed) + np.arange(len(moved))
+                changed.extend(edited.planks[i] for i in moved)
+            self.index.append(index)
+        self.planks = design.planks + tuple(changed)
+        self.faces = _face_tables(self.planks)
+        self.lo, self.hi = _bounding_boxes(self.planks)
+
+    def geometries(self) -> list[Geometry]:
+        """``analyze(edited, (design, geometry))`` of every edit, the joints of all edits'
+        changed planks detected together."""
+        design, geometry = self.design, self.geometry
+        slack = design.tolerance + _GEOMETRY_EPS
+        found: list = [None] * len(self.edits)
+        detect = []
+        for k, (edited, same, index) in enumerate(zip(self.edits, self.same, self.index)):
+            if same is None or edited.joints is not None:
+                found[k] = analyze(edited, (design, geometry))
+                continue
+            known = _unchanged_joints(edited, (design, geometry), same)
+            pairs, fresh = _pairs_to_detect(edited, self.lo[index], self.hi[index], known)
+            detect.append((k, known, pairs, fresh))
+        rows = [self.index[k][pairs[fresh]] for k, _, pairs, fresh in detect]
+        best = _best_touches(self.planks, np.concatenate(rows) if rows else
+                             np.zeros((0, 2), dtype=int), slack, False, self.faces)
+        for k, known, pairs, fresh in detect:
+            edited, index = self.edits[k], self.index[k]
+            mine = {(i, j): best[key] for i, j in pairs[fresh].tolist()
+                    if (key := (int(index[i]), int(index[j]))) in best}
+            joints = _detected_joints(edited, pairs, fresh, known, mine)
+            found[k] = _completed(edited, joints, [], geometry, self.same[k])
+        return found
+
+    def cuts(self, which: list[int]) -> list[list[tuple[str, str, float]]]:
+        """``interpenetrations`` of the edits numbered ``which``, their depths at once
+        (an edit without rows on its own)."""
+        found = {k: interpenetrations(self.edits[k]) for k in which if self.same[k] is None}
+        tabled = [k for k in which if k not in found]
+        slack = self.design.tolerance + _GEOMETRY_EPS
+        pairs = [_overlapping(self.lo[self.index[k]], self.hi[self.index[k]], slack)
+                 for k in tabled]
+        rows = [self.index[k][mine] for k, mine in zip(tabled, pairs)]
+        depth = _box_depths(self.faces.rotations, self.faces.halves, self.faces.centers,
+                            np.concatenate(rows)) if rows else np.zeros(0)
+        start = 0
+        for k, mine in zip(tabled, pairs):
+            planks = self.edits[k].planks
+            found[k] = [(planks[i].id, planks[j].id, float(d)) for (i, j), d in
+                        zip(mine, depth[start:start + len(mine)]) if d > slack]
+            start += len(mine)
+        return [found[k] for k in which]
+
+
+# --- margins of an edit -----------------------------------------------------------------------
+
+class EditMargins:
+    """Continuous margins (m, or cosines) of the criteria that decide whether an edit of a
+    design keeps its joints and ground contacts (``dofs.check_edit``), for edits that
+    change the planks ``changed`` (indices) only.  Calling it on an edited design gives
+
+    required  : (R,) must stay > 0: for every joint of a changed plank its gap within
+                +-slack, its tilt, its edge plank outside the face, and the overlap of the
+                end face with the face (2-D separating axes); per changed plank its size
+                and its ground contact (grounded planks keep one, others stay clear, and
+                nothing sinks deeper than the slack).
+    forbidden : (F, A) groups that must not all become > 0: every other narrow face on a
+                broad face among pairs with a changed plank (a new joint; only when joints
+                are detected), and per such pair the separating-axis overlaps beyond the
+                slack (one plank cutting into the other, ``interpenetrations``).
+
+    The rows are fixed at construction, so the margins of two steps of one DOF compare
+    entry by entry.  Under a translation or a size change every margin is linear in the
+    step: a search can predict where the first criterion flips and confirm it with
+    ``check_edit`` instead of bisecting blindly.  The criteria mirror ``analyze`` closely,
+    not exactly (the clipped area of a touching region is approximated by its separating
+    axes): a prediction is only ever a guess to be confirmed.
+    """
+
+    def __init__(self, design: Design, geometry: Geometry, changed: tuple[int, ...],
+                 turn: float = 180.0, turning: tuple[int, ...] | None = None):
+        """``turn``: the most (degrees) that the edits turn any plank; a narrow face tilted
+        further than that beyond the largest joint tilt from a broad face can never come to
+        rest on it, and is left out (translations and size changes turn nothing).
+        ``turning``: the changed planks that the edits turn (None: all of them); between
+        two planks that do not turn the tilt stays as it is.  Every pair with a changed
+        plank is watched, however far apart: a plank that a search could push through
+        another must not be found valid on the far side of it."""
+        n = len(design.planks)
+        self.changed = tuple(sorted(set(changed)))
+        self.slack = design.tolerance + _GEOMETRY_EPS
+        self.pairs = np.array(sorted({(min(c, k), max(c, k)) for c in self.changed
+                                      for k in range(n) if k != c}), dtype=int).reshape(-1, 2)
+        ordered = np.vstack([self.pairs, self.pairs[:, ::-1]])          # (edge, face) both ways
+        self.edge = np.repeat(ordered[:, 0], 8)
+        self.face = np.repeat(ordered[:, 1], 8)
+        self.f = np.tile(np.repeat(np.arange(4), 2), len(ordered))
+        self.g = np.tile(np.arange(2), 4 * len(ordered))
+        joints = [((design.plank_index[j.edge] * 4 + 2 * j.edge_face[0]
+                    + (j.edge_face[1] < 0)) * n + design.plank_index[j.face]) * 2
+                  + int(j.face_side < 0) for j in geometry.joints]
+        self.is_joint = np.isin(((self.edge * 4 + self.f) * n + self.face) * 2 + self.g,
+                                joints)             # (edge, f, face, g) as one number
+        turns = np.zeros(n, dtype=bool)
+        turns[list(self.changed if turning is None else turning)] = True
+        # per row, the largest tilt (degrees) between its faces that can still become a
+        # joint: the largest joint tilt, plus the turn where one of the planks turns
+        reach = np.where(turns[self.edge] | turns[self.face],
+                         min(tol.JOINT_MAX_TILT_DEG + turn, 180.0), tol.JOINT_MAX_TILT_DEG)
+        self.planks = design.planks
+        self.unchanged_tables = self._all_tables(design.planks)
+        if reach.min(initial=180.0) < 180.0:
+            faces = self.unchanged_tables[0]
+            tilt = -(faces.narrow_normal[self.edge, self.f]
+                     * faces.broad_normal[self.face, self.g]).sum(axis=1)
+            keep = self.is_joint | (tilt >= np.cos(np.radians(reach)) - _GEOMETRY_EPS)
+            self.edge, self.face, self.f, self.g, self.is_joint = (
+                self.edge[keep], self.face[keep], self.f[keep], self.g[keep], self.is_joint[keep])
+        self.detected = design.joints is None
+        grounded = {c.plank for c in geometry.contacts}
+        sunk = {v.where for v in geometry.violations if v.kind == "penetration"}
+        self.grounded = [design.planks[i].id in grounded for i in self.changed]
+        self.sunk = [design.planks[i].id in sunk for i in self.changed]
+
+    @staticmethod
+    def _all_tables(planks) -> tuple[_Faces, tuple[np.ndarray, np.ndarray]]:
+        """Face tables and bounding boxes of ``planks``."""
+        return _face_tables(planks), _bounding_boxes(planks)
+
+    def __call__(self, design: Design) -> tuple[np.ndarray, np.ndarray]:
+        return edit_margins_many([(self, design)])[0]
+
+
+def edit_margins_many(requests: list[tuple[EditMargins, Design]]
+                      ) -> list[tuple[np.ndarray, np.ndarray]]:
+    """``margins(edited)`` for each (margins, edited) of ``requests``, all margins made for
+    one design: every row of all of them in one vectorized pass.  The tables are the
+    design's (``unchanged_tables``) with the changed planks of every edit appended; each
+    request's rows index its own changed planks there."""
+    if not requests:
+        return []
+    first = requests[0][0]
+    if any(margins.planks is not first.planks for margins, _ in requests):
+        raise ValueError("edit_margins_many: margins made for different designs")
+    faces, (lo, hi) = first.unchanged_tables
+    count = len(lo)
+    changed: list[Plank] = []
+    rows = {"edge": [], "face": [], "pairs": []}
+    for margins, edited in requests:
+        index = np.arange(count)
+        index[list(margins.changed)] = count + len(changed) + np.arange(len(margins.changed))
+        changed.extend(edited.planks[i] for i in margins.changed)
+        for name, table in rows.items():
+            table.append(index[getattr(margins, name)])
+    new_faces, (new_lo, new_hi) = EditMargins._all_tables(tuple(changed))
+    faces = _Faces(*(np.concatenate([getattr(faces, name), getattr(new_faces, name)])
+                     for name in _Faces.__dataclass_fields__))
+    boxes = (np.concatenate([lo, new_lo]), np.concatenate([hi, new_hi]))
+    slack = first.slack
+    combos = _combo_margins(faces, faces.rotations, faces.halves, boxes,
+                            np.concatenate(rows["edge"]), np.concatenate(rows["face"]),
+                            np.concatenate([margins.f for margins, _ in requests]),
+                            np.concatenate([margins.g for margins, _ in requests]), slack)
+    cuts = _cut_margins(faces.rotations, faces.halves, faces.centers, boxes,
+                        np.concatenate(rows["pairs"]), slack)
+    out = []
+    combo_start = cut_start = 0
+    for margins, edited in requests:
+        mine = combos[combo_start:combo_start + len(margins.edge)]
+        cutting = cuts[cut_start:cut_start + len(margins.pairs)]
+        combo_start += len(margins.edge)
+        cut_start += len(margins.pairs)
+        required = [mine[margins.is_joint].ravel()]
+        for index, grounded, sunk in zip(margins.changed, margins.grounded, margins.sunk):
+            plank = edited.planks[index]
+            lowest = float(plank.corners[:, 2].min())
+            required.append([plank.length, plank.width])
+            if not grounded:
+                required.append([lowest - slack])
+                continue
+            required.append([slack - lowest])
+            if not sunk:
+                required.append([lowest + slack])
+        groups = [cutting]
+        if margins.detected:
+            others = mine[~margins.is_joint]
+            groups.append(np.pad(others, ((0, 0), (0, cutting.shape[1] - others.shape[1])),
+                                 constant_values=1.0))
+        out.append((np.concatenate([np.asarray(r, dtype=float) for r in required]),
+                    np.vstack(groups)))
+    return out
+
+
+def _combo_margins(faces: _Faces, rot: np.ndarray, half: np.ndarray,
+                   boxes: tuple[np.ndarray, np.ndarray], edge: np.ndarray, face: np.ndarray,
+                   f: np.ndarray, g: np.ndarray, slack: float) -> np.ndarray:
+    """(C, 18) margins of narrow face f of plank edge resting on broad face g of plank face
+    (``rot`` (n, 3, 3), ``half`` (n, 3), ``boxes``: all planks' rotations, half extents
+    and bounding boxes): gap + slack, slack - gap, tilt (alignment - cos of the largest
+    tilt), height of the edge plank's centre above the face, the overlap of the end face's
+    projection with the face along the face's two axes and the projection's two edge
+    normals (both ends each, less a round-off slack: faces that only share an edge do not
+    overlap), and the overlap of the two bounding boxes within the slack (``analyze`` looks
+    only at pairs whose boxes meet: a tilted end can touch a face while its box clears)."""
+    normal = faces.broad_normal[face, g]                                   # (C, 3)
+    offset = faces.broad_offset[face, g]
+    corners = faces.narrow_corners[edge, f]                                # (C, 4, 3)
+    gap = ((corners * normal[:, None, :]).sum(axis=2) - offset[:, None]).min(axis=1)
+    alignment = -(faces.narrow_normal[edge, f] * normal).sum(axis=1)
+    outside = (faces.centers[edge] * normal).sum(axis=1) - offset
+    half_f = half[face]
+    face_center = faces.centers[face] + half_f[:, 2:3] * normal
+    quad = (corners - face_center[:, None, :]) @ rot[face][:, :, :2]       # (C, 4, 2)
+    sides = np.stack([quad[:, 1] - quad[:, 0], quad[:, 2] - quad[:, 1]], axis=1)  # (C, 2, 2)
+    normals = np.stack([-sides[:, :, 1], sides[:, :, 0]], axis=2)
+    length = np.linalg.norm(normals, axis=2, keepdims=True)
+    usable = length[:, :, 0] > _GEOMETRY_EPS * _GEOMETRY_EPS
+    normals = normals / np.where(length > 0.0, length, 1.0)
+    axes = np.concatenate([np.broadcast_to(np.eye(2), (len(edge), 2, 2)), normals], axis=1)
+    projected = quad @ np.transpose(axes, (0, 2, 1))                       # (C, 4, 4 axes)
+    radius = (np.abs(axes) * half_f[:, None, :2]).sum(axis=2)             # (C, 4 axes)
+    overlap = np.concatenate([radius - projected.min(axis=1),
+                              projected.max(axis=1) + radius], axis=1) - _GEOMETRY_EPS
+    overlap[:, [2, 3, 6, 7]] = np.where(np.tile(usable, 2), overlap[:, [2, 3, 6, 7]], 1.0)
+    lo, hi = boxes
+    return np.column_stack([gap + slack, slack - gap, alignment - _COS_MAX_TILT, outside,
+                            overlap, hi[face] + slack - lo[edge], hi[edge] + slack - lo[face]])
+
+
+def _cut_margins(rot: np.ndarray, half: np.ndarray, centre: np.ndarray,
+                 boxes: tuple[np.ndarray, np.ndarray], pairs: np.ndarray,
+                 slack: float) -> np.ndarray:
+    """(P, 36) margins whose all being > 0 means the pair's boxes overlap deeper than the
+    slack (``interpenetrations``): per separating axis both ends of the overlap of their
+    projections beyond the slack (1.0 for degenerate axes), then the bounding boxes'."""
+    if len(pairs) == 0:
+        return np.zeros((0, 36))
+    a, b = pairs[:, 0], pairs[:, 1]
+    ra, rb = np.transpose(rot[a], (0, 2, 1)), np.transpose(rot[b], (0, 2, 1))
+    crosses = np.cross(ra[:, :, None, :], rb[:, None, :, :]).reshape(-1, 9, 3)
+    axes = np.concatenate([ra, rb, crosses], axis=1)                            # (P, 15, 3)
+    norms = np.linalg.norm(axes, axis=2)
+    usable = norms > 1e-9
+    axes = axes / np.where(usable, norms, 1.0)[:, :, None]
+    radius = ((np.abs(axes @ rot[a]) * half[a][:, None, :]).sum(axis=2)
+              + (np.abs(axes @ rot[b]) * half[b][:, None, :]).sum(axis=2))
+    distance = (axes @ (centre[b] - centre[a])[:, :, None])[:, :, 0]
+    sat = np.concatenate([radius - slack - distance, radius - slack + distance], axis=1)
+    sat = np.where(np.tile(usable, 2), sat, 1.0)
+    lo, hi = boxes
+    return np.concatenate([sat, hi[b] - slack - lo[a], hi[a] - slack - lo[b]], axis=1)

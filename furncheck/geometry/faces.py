@@ -1,0 +1,225 @@
+"""Face tables of planks and the touching region of a narrow face on a broad face.
+
+Faces are handled as oriented rectangles; the touching region is the edge face's
+projection clipped to the face plank's face (in its local x-y), measured by its area,
+centroid and extent along the joint line.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from furncheck import tolerances as tol
+from furncheck.design.model import Plank
+from furncheck.geometry.model import _COS_MAX_TILT
+
+
+@dataclass(frozen=True)
+class _Touch:
+    """A narrow face of ``edge`` found on a broad face of ``face`` (before nail counting)."""
+
+    face: Plank
+    edge: Plank
+    point: np.ndarray
+    length: float
+    frame: np.ndarray
+    gap: float          # m, signed distance of the edge face's nearest corner (< 0: inside)
+    alignment: float    # -(edge face normal . face normal), 1 when flush
+    area: float         # m^2 of the touching region
+    edge_face: tuple[int, int] = (0, 1)
+    face_side: int = 1
+
+
+@dataclass(frozen=True)
+class _Faces:
+    """Face tables of all planks (n planks).
+
+    narrow_normal (n, 4, 3), narrow_corners (n, 4, 4, 3), narrow_long (n, 4, 3) unit joint
+    line of each narrow face; broad_normal (n, 2, 3), broad_offset (n, 2) = n . face centre.
+    Narrow faces in the order +x, -x, +y, -y of the plank's local axes; broad faces +z, -z.
+    centers (n, 3), rotations (n, 3, 3) and halves (n, 3): the planks' own.
+    """
+
+    narrow_normal: np.ndarray
+    narrow_corners: np.ndarray
+    narrow_long: np.ndarray
+    broad_normal: np.ndarray
+    broad_offset: np.ndarray
+    centers: np.ndarray
+    rotations: np.ndarray
+    halves: np.ndarray
+
+
+def _face_tables(planks: tuple[Plank, ...]) -> _Faces:
+    rot = np.stack([p.rotation_matrix for p in planks])          # (n, 3, 3) columns = axes
+    half = np.stack([p.half_extents for p in planks])            # (n, 3)
+    centers = np.stack([p.center_array for p in planks])         # (n, 3)
+    axes, signs, longs = [0, 0, 1, 1], np.array([1.0, -1.0, 1.0, -1.0]), [1, 1, 0, 0]
+    normal = np.transpose(rot[:, :, axes], (0, 2, 1)) * signs[None, :, None]
+    face_center = centers[:, None, :] + normal * half[:, axes][:, :, None]
+    long_unit = np.transpose(rot[:, :, longs], (0, 2, 1))
+    u = long_unit * half[:, longs][:, :, None]                   # (n, 4, 3)
+    w = (rot[:, :, 2] * half[:, 2:3])[:, None, :]                # (n, 1, 3)
+    corners = face_center[:, :, None, :] + np.stack([u + w, -u + w, -u - w, u - w], axis=2)
+    broad_normal = rot[:, :, 2][:, None, :] * np.array([1.0, -1.0])[None, :, None]
+    broad_center = centers[:, None, :] + broad_normal * half[:, 2][:, None, None]
+    broad_offset = np.einsum("nga,nga->ng", broad_normal, broad_center)
+    return _Faces(normal, corners, long_unit, broad_normal, broad_offset, centers, rot, half)
+
+
+def _best_touches(planks: tuple[Plank, ...], pairs: np.ndarray, slack: float, keep_deep: bool,
+                  faces: _Faces | None = None) -> dict:
+    """For each plank pair (i, j) (indices into ``planks``, whose face tables ``faces`` are
+    when given), the best narrow-face-on-broad-face contact either way round: contacts
+    within the slack beat deeper ones, then the flushest, then the largest.  ``keep_deep``
+    keeps faces sunk deeper than the slack (to report interpenetration)."""
+    if len(pairs) == 0:
+        return {}
+    faces = _face_tables(planks) if faces is None else faces
+    ordered = np.vstack([pairs, pairs[:, ::-1]])                 # (edge, face) both ways
+    edge, face = ordered[:, 0], ordered[:, 1]
+    alignment = -np.einsum("pfa,pga->pfg", faces.narrow_normal[edge], faces.broad_normal[face])
+    heights = (np.einsum("pfca,pga->pfgc", faces.narrow_corners[edge], faces.broad_normal[face])
+               - faces.broad_offset[face][:, None, :, None])
+    gap = heights.min(axis=3)                                     # (P, 4, 2)
+    outside = (np.einsum("pa,pga->pg", faces.centers[edge], faces.broad_normal[face])
+               - faces.broad_offset[face]) >= 0.0
+    candidates = (alignment >= _COS_MAX_TILT) & (gap <= slack) & outside[:, None, :]
+    if not keep_deep:
+        candidates &= gap >= -slack
+    best: dict[tuple[int, int], _Touch] = {}
+    n_pairs = len(pairs)
+    chosen = np.argwhere(candidates)
+    p, f, g = chosen[:, 0], chosen[:, 1], chosen[:, 2]
+    touches = _touch_regions(planks, faces, edge[p], face[p], f, g, gap[p, f, g],
+                             alignment[p, f, g])
+    for p_k, touch in zip(chosen[:, 0].tolist(), touches):
+        if touch is None:
+            continue
+        key = tuple(int(v) for v in pairs[p_k % n_pairs])
+        rank = (touch.gap >= -slack, round(touch.alignment, 9), touch.area)
+        current = best.get(key)
+        if current is None or rank > (current.gap >= -slack, round(current.alignment, 9),
+                                      current.area):
+            best[key] = touch
+    return best
+
+
+def _touch_regions(planks, faces: _Faces, edge: np.ndarray, face: np.ndarray,
+                   f: np.ndarray, g: np.ndarray, gap: np.ndarray,
+                   alignment: np.ndarray) -> list[_Touch | None]:
+    """For candidate contacts c (edge plank edge[c]'s narrow face f[c] on face plank
+    face[c]'s broad face g[c], indices into ``planks`` and ``faces``): clip the narrow
+    face's projection to the broad face (in the face plank's local x-y) and measure the
+    touching region; None where it is empty."""
+    if len(edge) == 0:
+        return []
+    rot_f, half_f = faces.rotations[face], faces.halves[face]            # (C, 3, 3), (C, 3)
+    rot_e, half_e = faces.rotations[edge], faces.halves[edge]
+    normal = faces.broad_normal[face, g]                                  # (C, 3)
+    face_center = faces.centers[face] + half_f[:, 2:3] * normal
+    corners = faces.narrow_corners[edge, f]                               # (C, 4, 3)
+    local = np.einsum("cka,cab->ckb", corners - face_center[:, None, :], rot_f[:, :, :2])
+    joint_dir = faces.narrow_long[edge, f]
+    along = joint_dir - np.einsum("ca,ca->c", joint_dir, normal)[:, None] * normal
+    along_2d = np.einsum("ca,cab->cb", along, rot_f[:, :, :2])
+    along_2d /= np.linalg.norm(along_2d, axis=1, keepdims=True)
+    face_area = 4.0 * half_e[:, 2] * half_e[:, :2].max(axis=1)
+    regions = []
+    for quad, (hx, hy), (ax, ay), least in zip(local.tolist(), half_f[:, :2].tolist(),
+                                               along_2d.tolist(),
+                                               (tol.MIN_JOINT_AREA_FRACTION * face_area)):
+        polygon = _clip_to_rectangle(quad, hx, hy)
+        if len(polygon) < 3:
+            regions.append(None)
+            continue
+        area, cx, cy = _polygon_area_centroid(polygon)
+        extent = [x * ax + y * ay for x, y in polygon]
+        regions.append((area, cx, cy, max(extent) - min(extent)) if area > least else None)
+    thickness_normal = rot_e[:, :, 2]
+    x_axis = thickness_normal - np.einsum("ca,ca->c", thickness_normal, normal)[:, None] * normal
+    x_axis /= np.linalg.norm(x_axis, axis=1, keepdims=True)
+    frames = np.stack([x_axis, np.cross(normal, x_axis), normal], axis=2)  # columns x, y, n
+    centroids = np.array([(0.0, 0.0) if region is None else region[1:3] for region in regions])
+    points = face_center + rot_f[:, :, 0] * centroids[:, :1] + rot_f[:, :, 1] * centroids[:, 1:]
+    touches: list[_Touch | None] = []
+    for c, (region, face_c, edge_c, f_c, g_c, gap_c, alignment_c) in enumerate(zip(
+            regions, face.tolist(), edge.tolist(), f.tolist(), g.tolist(), gap.tolist(),
+            alignment.tolist())):
+        touches.append(None if region is None else _Touch(
+            planks[face_c], planks[edge_c], points[c], region[3], frames[c], gap_c,
+            alignment_c, region[0], edge_face=(f_c // 2, 1 - 2 * (f_c % 2)),
+            face_side=1 - 2 * g_c))
+    return touches
+
+
+def _clip_to_rectangle(polygon: list, half_x: float, half_y: float) -> list:
+    """Sutherland-Hodgman clip of a convex polygon [(x, y), ...] to |x| <= half_x,
+    |y| <= half_y (plain floats: the polygons are tiny, numpy would only add overhead)."""
+    points = polygon
+    for axis, sign, limit in ((0, 1.0, half_x), (0, -1.0, half_x), (1, 1.0, half_y),
+                              (1, -1.0, half_y)):
+        kept = []
+        previous = points[-1]
+        prev_in = sign * previous[axis] <= limit
+        for current in points:
+            cur_in = sign * current[axis] <= limit
+            if cur_in != prev_in:
+                t = (sign * limit - previous[axis]) / (current[axis] - previous[axis])
+                kept.append((previous[0] + t * (current[0] - previous[0]),
+                             previous[1] + t * (current[1] - previous[1])))
+            if cur_in:
+                kept.append(current)
+            previous, prev_in = current, cur_in
+        points = kept
+        if not points:
+            break
+    return points
+
+
+def _polygon_area_centroid(polygon: list) -> tuple[float, float, float]:
+    """Area (m^2) and centroid x, y of a simple polygon [(x, y), ...] (shoelace formula)."""
+    twice_area = cx = cy = 0.0
+    x0, y0 = polygon[-1]
+    for x1, y1 in polygon:
+        cross = x0 * y1 - x1 * y0
+        twice_area += cross
+        cx += (x0 + x1) * cross
+        cy += (y0 + y1) * cross
+        x0, y0 = x1, y1
+    if abs(twice_area) < 1e-30:
+        xs, ys = zip(*polygon)
+        return 0.0, sum(xs) / len(xs), sum(ys) / len(ys)
+    return abs(0.5 * twice_area), cx / (3.0 * twice_area), cy / (3.0 * twice_area)
+
+
+def _bounding_boxes(planks: tuple[Plank, ...]) -> tuple[np.ndarray, np.ndarray]:
+    """World axis-aligned boxes (n, 3) lower and upper corners."""
+    corners = np.stack([p.corners for p in planks])
+    return corners.min(axis=1), corners.max(axis=1)
+
+
+def _overlapping(lo: np.ndarray, hi: np.ndarray, slack: float) -> np.ndarray:
+    """Pairs (i < j) of boxes that overlap by more than the slack along every axis."""
+    overlap = np.all((lo[:, None, :] < hi[None, :, :] - slack)
+                     & (lo[None, :, :] < hi[:, None, :] - slack), axis=2)
+    return np.argwhere(np.triu(overlap, k=1))
+
+
+def _box_depths(rot: np.ndarray, half: np.ndarray, centre: np.ndarray,
+                pairs: np.ndarray) -> np.ndarray:
+    """Per pair (a, b) of planks (rotations, half extents, centres): how deep their boxes
+    overlap, the smallest overlap of their projections on the 15 separating axes."""
+    a, b = pairs[:, 0], pairs[:, 1]
+    ra, rb = np.transpose(rot[a], (0, 2, 1)), np.transpose(rot[b], (0, 2, 1))  # rows = axes
+    crosses = np.cross(ra[:, :, None, :], rb[:, None, :, :]).reshape(-1, 9, 3)
+    axes = np.concatenate([ra, rb, crosses], axis=1)                            # (P, 15, 3)
+    norms = np.linalg.norm(axes, axis=2)
+    usable = norms > 1e-9
+    axes = axes / np.where(usable, norms, 1.0)[:, :, None]
+    radius_a = (np.abs(np.einsum("pka,pia->pki", axes, ra)) * half[a][:, None, :]).sum(axis=2)
+    radius_b = (np.abs(np.einsum("pka,pia->pki", axes, rb)) * half[b][:, None, :]).sum(axis=2)
+    distance = np.abs(np.einsum("pka,pa->pk", axes, centre[b] - centre[a]))
+    return np.where(usable, radius_a + radius_b - distance, np.inf).min(axis=1)
