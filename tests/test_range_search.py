@@ -1,5 +1,5 @@
-"""The root-finding pieces of the range search (``furncheck.ranges``), on functions and
-catalog edits whose answers are known exactly."""
+"""The root-finding pieces of the range search (``furncheck.ranges.estimates``), on
+functions and catalog edits whose answers are known exactly."""
 
 from __future__ import annotations
 
@@ -10,9 +10,9 @@ import pytest
 
 from furncheck.design import load_design
 from furncheck.dofs import parse_dof
-from furncheck.ranges import (
+from furncheck.ranges import RangeFinder
+from furncheck.ranges.estimates import (
     MODEL_GRID,
-    RangeFinder,
     _Drop,
     _flip_values,
     _margin_zero,

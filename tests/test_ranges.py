@@ -372,12 +372,12 @@ def test_ranges_do_not_depend_on_how_the_searches_are_batched(monkeypatch):
     """The searches of all DOFs advance together and their evaluations are answered in
     batches; searched one side at a time, each margin evaluation on its own, the ranges
     are the same."""
-    import furncheck.ranges as ranges_module
+    import furncheck.ranges.batches as batches
 
     design = load_design(str(DESIGNS / "stool.yaml"))
     together = RangeFinder(design).ranges()
-    monkeypatch.setattr(ranges_module, "SEARCHES_IN_FLIGHT", 1)
-    monkeypatch.setattr(ranges_module, "MARGIN_ROWS", 1)
+    monkeypatch.setattr(batches, "SEARCHES_IN_FLIGHT", 1)
+    monkeypatch.setattr(batches, "MARGIN_ROWS", 1)
     assert RangeFinder(design).ranges() == together
 
 

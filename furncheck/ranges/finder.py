@@ -1,34 +1,6 @@
-"""Valid ranges of design DOFs (paper section 6.3).
+"""Valid ranges of design DOFs: the searches of each side of a DOF (``RangeFinder``).
 
-For one DOF, the others held (its neighbours adjusted by the geometric constraints of
-``dofs``), the valid range is the interval of values around the current one for which the
-design stays valid: every joint durable, stable in every load case, the same joints and
-ground contacts.  Each side is searched in two stages:
-
-* how far the geometry reaches (the same joints and contacts, ``check_edit``): the margins
-  of its criteria (``geometry.EditMargins``; linear in the step for translations and size
-  changes) predict the first one to flip, and two geometry checks confirm it, one half a
-  resolution before (valid) and one half after (not); a rotation's prediction is refined
-  on its margins first; a wrong prediction falls back to bisection;
-* if the design is not valid at that reach, the physical limit inside it: a bracket of
-  one valid and one invalid value is closed to ``RANGE_RESOLUTION``, every probe a full
-  check of the edited design.  The probes go where validity is likely to change: just
-  past the step where a loaded joint loses a nail (found from the joint's length, without
-  statics), else at the force sensitivity's prediction (eq. 6) of where the first joint
-  reaches its nail capacity or the first contact lets go, else at the zero of the
-  design's margin interpolated through the probes; bisection where these do not halve
-  the bracket.
-
-The reported end is the last value found valid (by a full check); a value at most one
-resolution step beyond it was found invalid (or the end is the search limit).
-
-Each side's search is a generator: it yields the evaluations it needs (``_Kept``: an edit
-and its geometry check; ``_Margins``: geometric margins of an edit; ``_Statics``: a full
-check) and receives their results.  ``RangeFinder._run`` advances the searches of all
-DOFs together, and every round answers the evaluations they wait for as one batch: the
-geometry checks and the margins of all of them in one vectorized pass each
-(``dofs.check_edit_many``, ``geometry.edit_margins_many``).  No search depends on
-another's results, so the ranges are the same however the DOFs are batched.
+See the package's docstring for the two stages of a side's search.
 """
 
 from __future__ import annotations
@@ -38,30 +10,36 @@ from collections.abc import Generator
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
-from typing import NamedTuple
 
 import numpy as np
 
-from furncheck.check import check_design, holding_states, is_valid, margin_of
+from furncheck.check import check_design, margin_of
 from furncheck.design.model import Design
 from furncheck.dofs import (
     DOF_KINDS,
     Blocked,
     Dof,
     OutOfReach,
-    Structure,
     all_dofs,
-    apply_dof,
-    check_edit_many,
     design_size,
     dof_value,
     parse_dof,
-    structure,
 )
-from furncheck.geometry import EditMargins, Geometry, analyze, edit_margins_many, follow_many
+from furncheck.geometry import EditMargins, follow_many
+from furncheck.ranges.batches import Evaluator, _Margins
+from furncheck.ranges.estimates import (
+    _Drop,
+    _first_flip,
+    _flip_values,
+    _flipped,
+    _margin_zero,
+    _margins,
+    _modelled_flip,
+    _nail_drops,
+    _open_groups,
+    _Probe,
+)
 from furncheck.sensitivity import Linearization, Sensitivity
-from furncheck.tolerances import NAIL_COUNT_EPS
-from furncheck.validity import nail_pull_shear
 
 RANGE_RESOLUTION = 1e-3
 """Bisection stops when the bracket is this fraction of the design's size (lengths) or
@@ -92,13 +70,6 @@ DOFS_PER_TASK = 16
 """DOFs per task of a worker process: a task's DOFs are searched together (the more, the
 larger the batches of evaluations); small tasks balance the uneven DOFs."""
 
-SEARCHES_IN_FLIGHT = 64
-"""Most searches (sides of DOFs) advanced together: their evaluations are batched, their
-edits kept while they run."""
-
-MARGIN_ROWS = 1 << 14
-"""Most rows of geometric margins evaluated in one batch (each row 18 margins)."""
-
 REACH_PREDICTIONS = 4
 """Most predictions of the geometric reach of one side of a DOF before it is bisected."""
 
@@ -121,10 +92,6 @@ MODEL_OFFSET = 0.2
 flip (before it, once the last evaluation was flipped): a good model closes the bracket
 to half a resolution in two evaluations."""
 
-MODEL_GRID = 64
-"""The modelled margins are scanned for their first flip on this many turns, twice (the
-second time within the first scan's step)."""
-
 
 @dataclass(frozen=True)
 class DofRange:
@@ -138,16 +105,12 @@ class DofRange:
     reason: str | None = None
 
 
-class RangeFinder:
+class RangeFinder(Evaluator):
     """Valid ranges of the DOFs of one design, sharing its analysis and linearizations."""
 
     def __init__(self, design: Design, locked: tuple[str, ...] = ()):
-        self.design = design
-        self.geometry: Geometry = analyze(design)
-        self.frame: Structure = structure(design, self.geometry)
-        self.locked = tuple(parse_dof(design, name) for name in locked)
+        super().__init__(design, locked)
         self.valid_now = check_design(design, self.geometry).valid
-        self.starts = holding_states(design, self.geometry)
         _, self.margin_now, self.utilization_now = margin_of(design, self.geometry,
                                                              self.starts)
         self.size = design_size(design)
@@ -158,9 +121,6 @@ class RangeFinder:
         self._predictions: dict[Dof, tuple[float | None, float | None]] = {}
         self._margins: dict[tuple, tuple[EditMargins, tuple]] = {}
         self._changes: dict[Dof, tuple[tuple[int, ...], tuple[int, ...]]] = {}
-        self._kept: dict[Dof, dict[float, tuple]] = {}
-        self._edits: dict[Dof, dict[float, Design]] = {}
-        self.evaluations = 0
 
     # -- public --------------------------------------------------------------------------------
     def ranges(self, names: list[str] | None = None, jobs: int = 1) -> list[DofRange]:
@@ -244,140 +204,6 @@ class RangeFinder:
             else:
                 out.append(ends[0])
         return out
-
-    # -- running searches ----------------------------------------------------------------------
-    def _run(self, searches: dict[tuple[int, float], Generator],
-             dofs: list[Dof]) -> dict[tuple[int, float], object]:
-        """Advance the ``searches`` ((DOF number, side) -> generator) until each returns or
-        raises Blocked: every round, the evaluations they all wait for (``_Kept``,
-        ``_Margins``, ``_Statics``) are made together (``_answer``) and sent back; at most
-        SEARCHES_IN_FLIGHT run at a time (the others start as they end).  Once
-        the lower side of a DOF is blocked its upper side is dropped (the lower side's
-        reason is reported, as when the sides are searched one after the other).  A DOF's
-        cached edits are dropped when its last search ends."""
-        found: dict[tuple[int, float], object] = {}
-        waiting: dict[tuple[int, float], object] = {}
-        active = {dof: 0 for dof in dofs}
-        for n, _ in searches:
-            active[dofs[n]] += 1
-        queued = list(searches)[::-1]
-
-        def ended(key: tuple[int, float], result: object) -> None:
-            found[key] = result
-            dof = dofs[key[0]]
-            active[dof] -= 1
-            if not active[dof]:
-                self._edits.pop(dof, None)
-                self._kept.pop(dof, None)
-
-        def advance(key: tuple[int, float], answer: tuple) -> None:
-            value, error = answer
-            try:
-                request = searches[key].send(value) if error is None else \
-                    searches[key].throw(error)
-            except StopIteration as stop:
-                ended(key, stop.value)
-            except Blocked as why:
-                ended(key, why)
-                upper = (key[0], 1.0)
-                if key[1] < 0.0 and upper in waiting:
-                    searches[upper].close()
-                    del waiting[upper]
-                    ended(upper, None)
-            else:
-                waiting[key] = request
-
-        while waiting or queued:
-            while queued and len(waiting) < SEARCHES_IN_FLIGHT:
-                advance(queued.pop(), (None, None))
-            batch, waiting = waiting, {}
-            for key, answer in zip(batch, self._answer(list(batch.values()))):
-                advance(key, answer)
-        return found
-
-    def _now(self, search: Generator, dof: Dof):
-        """Run one search (a generator of evaluations) of ``dof`` to its end: its result."""
-        return self._run({(0, 0.0): search}, [dof])[(0, 0.0)]
-
-    def _answer(self, requests: list) -> list[tuple[object, Exception | None]]:
-        """(value, error) per request: ``_Kept`` checks all at once
-        (``dofs.check_edit_many``), ``_Margins`` all at once (``geometry.edit_margins_many``),
-        then ``_Statics`` one by one."""
-        answers: list = [None] * len(requests)
-        kept = [k for k, request in enumerate(requests) if isinstance(request, _Kept)]
-        for k, answer in zip(kept, self._kept_many([requests[k] for k in kept])):
-            answers[k] = answer
-        measured = [k for k, request in enumerate(requests) if isinstance(request, _Margins)]
-        while measured:         # at most MARGIN_ROWS rows at a time (memory)
-            rows = np.cumsum([len(requests[k].margins.edge) for k in measured])
-            count = max(1, int(np.searchsorted(rows, MARGIN_ROWS, side="right")))
-            chunk, measured = measured[:count], measured[count:]
-            for k, values in zip(chunk, edit_margins_many([requests[k] for k in chunk])):
-                answers[k] = (values, None)
-        for k, request in enumerate(requests):
-            if isinstance(request, _Statics):
-                if request.margin:
-                    answers[k] = (margin_of(request.design, request.geometry, self.starts),
-                                  None)
-                else:
-                    answers[k] = (is_valid(request.design, request.geometry, self.starts),
-                                  None)
-        return answers
-
-    def _kept_many(self, requests: list[_Kept]) -> list[tuple[object, Exception | None]]:
-        """Per request: the design with its DOF changed by its step and the geometry if
-        it keeps the joints and ground contacts, else (None, None); Blocked as the error
-        if the step would change a locked DOF.  Answers are kept per DOF (while its
-        search runs): the full check of a geometric reach follows the geometry check
-        that found it."""
-        answers: list = [None] * len(requests)
-        todo = []
-        for k, (dof, step) in enumerate(requests):
-            known = self._kept.setdefault(dof, {})
-            if step in known:
-                answers[k] = (known[step], None)
-                continue
-            try:
-                edited = apply_dof(self.design, self.frame, dof, step)
-            except OutOfReach:
-                known[step] = (None, None)
-                answers[k] = (known[step], None)
-                continue
-            except Blocked as why:
-                answers[k] = (None, why)
-                continue
-            moved_lock = next((lock for lock in self.locked if abs(
-                dof_value(edited, lock) - dof_value(self.design, lock)) > 1e-9), None)
-            if moved_lock is not None:
-                answers[k] = (None, Blocked(f"it would change the locked {moved_lock.name}"))
-                continue
-            todo.append((k, dof, step, edited))
-        self.evaluations += len(todo)
-        checks = check_edit_many(self.geometry, [edited for *_, edited in todo], self.design)
-        for (k, dof, step, edited), (problem, geometry) in zip(todo, checks):
-            self._kept[dof][step] = (None, None) if problem is not None else (edited, geometry)
-            answers[k] = (self._kept[dof][step], None)
-        return answers
-
-    # -- validity of one step (searches: generators of evaluations) ---------------------------
-    def _valid_at(self, dof: Dof, step: float, full: bool = True):
-        """Whether the design with ``dof`` changed by ``step`` keeps its joints and ground
-        contacts and (``full``) is valid in every load case."""
-        edited, geometry = yield _Kept(dof, step)
-        if geometry is None:
-            return False
-        if not full:
-            return True
-        return (yield _Statics(edited, geometry, False))
-
-    def _probe(self, dof: Dof, sign: float, step: float):
-        """The full check of one step (>= 0) in direction ``sign``, with the design's
-        margin (``check.margin_of``): a ``_Probe``."""
-        edited, geometry = yield _Kept(dof, sign * step)
-        if geometry is None:
-            return _Probe(step, False, -np.inf, None, None)
-        valid, margin, utilization = yield _Statics(edited, geometry, True)
-        return _Probe(step, valid, margin, utilization, geometry)
 
     # -- searches ------------------------------------------------------------------------------
     def _side(self, dof: Dof, sign: float, limit: float, resolution: float) -> float:
@@ -610,16 +436,6 @@ class RangeFinder:
                             end - REACH_PROBE * resolution)
         return predicted
 
-    def _edited(self, dof: Dof, step: float) -> Design:
-        """The design with ``dof`` changed by ``step``; the current DOF's are kept (the
-        margins' probe steps are the same for both turn horizons)."""
-        if not step:
-            return self.design
-        edits = self._edits.setdefault(dof, {})
-        if step not in edits:
-            edits[step] = apply_dof(self.design, self.frame, dof, step)
-        return edits[step]
-
     def _edit_margins(self, dof: Dof, turn: float) -> tuple[EditMargins, tuple]:
         """The margins of the planks that ``dof`` changes (one small step either way) for
         steps turning them at most ``turn`` degrees, and their values for the design
@@ -746,105 +562,6 @@ class RangeFinder:
         return self.size * SEARCH_LIMIT, self.size * RANGE_RESOLUTION
 
 
-@dataclass(frozen=True)
-class _Probe:
-    """A full check of one step (``check.margin_of``): valid, the margin, each joint's
-    utilization and the geometry (the last two None where the step does not keep the
-    joints and contacts)."""
-
-    step: float
-    valid: bool
-    margin: float
-    utilization: np.ndarray | None
-    geometry: Geometry | None
-
-
-class _Kept(NamedTuple):
-    """Evaluation request of a search: the design with ``dof`` changed by ``step`` and its
-    geometry if that keeps the joints and contacts, else (None, None)."""
-
-    dof: Dof
-    step: float
-
-
-class _Margins(NamedTuple):
-    """Evaluation request: ``margins`` (an ``EditMargins``) of an edited ``design``."""
-
-    margins: EditMargins
-    design: Design
-
-
-class _Statics(NamedTuple):
-    """Evaluation request: the full check of an edited design that keeps the joints and
-    contacts, ``check.margin_of`` if ``margin`` else ``check.is_valid``."""
-
-    design: Design
-    geometry: Geometry
-    margin: bool
-
-
-def _margin_zero(good: _Probe, bad: _Probe, probes: list[_Probe]) -> float:
-    """Where the margin reaches zero between the valid ``good`` and the invalid ``bad``
-    (finite margins, good's the larger): inverse quadratic interpolation through the two
-    and the latest other probe with a finite margin (the margin bends, e.g. a joint's
-    load grows with the square of a lever), if that lies inside the bracket; else the
-    secant between the two (regula falsi)."""
-    points = [(good.step, good.margin), (bad.step, bad.margin)]
-    others = [p for p in probes if p is not good and p is not bad and np.isfinite(p.margin)
-              and p.margin not in (good.margin, bad.margin)]
-    if others:
-        points.append((others[-1].step, others[-1].margin))
-        zero = 0.0
-        for i, (step, margin) in enumerate(points):
-            weight = 1.0
-            for j, (_, other) in enumerate(points):
-                if j != i:
-                    weight *= -other / (margin - other)
-            zero += weight * step
-        if good.step < zero < bad.step or bad.step < zero < good.step:
-            return zero
-    return good.step + (bad.step - good.step) * good.margin / (good.margin - bad.margin)
-
-
-class _Drop(NamedTuple):
-    """A step at which a joint may lose a nail (``_nail_drops``)."""
-
-    step: float         # estimated: the joint's length taken as linear in the step
-    key: tuple          # the joint's face, edge and edge face
-    length: float       # m: below this length it has one nail fewer
-    at_good: float      # m: its length at the bracket's valid end
-    at_bad: float       # m: and at its invalid end
-
-
-def _nail_drops(good: _Probe, bad: _Probe, spacing: float) -> list[_Drop]:
-    """Where between ``good`` and ``bad`` a joint may lose a nail it cannot spare, sorted
-    by step.  For each joint with n nails at ``good`` and m < n at ``bad``: where its
-    length, taken as linear in the step between the two geometries, falls below
-    k x spacing (k = n, ..., m + 1; ``geometry.nail_count``), if its load then exceeds
-    what k - 1 nails carry: utilization x nails, the larger of the two ends, over k - 1
-    is above 1.  Losing a nail the joint can spare changes no verdict."""
-    if good.geometry is None or bad.geometry is None or bad.utilization is None:
-        return []
-    before = {(j.face, j.edge, j.edge_face): (n, j)
-              for n, j in enumerate(good.geometry.joints)}
-    steps = []
-    for after, joint in enumerate(bad.geometry.joints):
-        index, start = before.get((joint.face, joint.edge, joint.edge_face), (None, None))
-        if start is None or joint.nails >= start.nails or joint.length >= start.length:
-            continue
-        load = max(good.utilization[index] * start.nails,
-                   bad.utilization[after] * joint.nails)
-        for k in range(joint.nails + 1, start.nails + 1):
-            if load <= k - 1:
-                continue
-            length = k * spacing / (1.0 + NAIL_COUNT_EPS)
-            fraction = (start.length - length) / (start.length - joint.length)
-            steps.append(_Drop(good.step + (bad.step - good.step) * min(max(fraction, 0.0), 1.0),
-                               (joint.face, joint.edge, joint.edge_face), length,
-                               start.length, joint.length))
-    return sorted(steps)
-
-
 _WORKER_FINDER: RangeFinder | None = None
 """The finder whose DOFs a forked worker process searches (set while its pool runs)."""
 
@@ -855,92 +572,6 @@ def _ranges_of(dofs: list[Dof]) -> tuple[list[DofRange], int]:
     before = finder.evaluations
     found = finder._ranges_together(dofs)
     return found, finder.evaluations - before
-
-
-def _open_groups(at_start: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
-    """Which forbidden groups of the margins at the start are not all positive."""
-    return ~(at_start[1] > 0.0).all(axis=1)
-
-
-def _flipped(closed: np.ndarray, after: tuple[np.ndarray, np.ndarray]) -> bool:
-    """Whether a required margin is no longer positive in ``after`` or a forbidden group
-    not all positive at the start (``closed``, ``_open_groups``) is all positive."""
-    required_at, forbidden_at = after
-    return bool((required_at <= 0.0).any() or ((forbidden_at > 0.0).all(axis=1) & closed).any())
-
-
-def _first_flip(before: tuple[np.ndarray, np.ndarray], after: tuple[np.ndarray, np.ndarray],
-                start: float, step: float, limit: float) -> float:
-    """The first step >= ``start`` (at most ``limit``) at which, the margins taken as
-    linear through their values at ``start`` (``before``) and ``step`` (``after``), a
-    required margin reaches 0 or all margins of a forbidden group become positive."""
-    (required, forbidden), (required_at, forbidden_at) = before, after
-    with np.errstate(divide="ignore", invalid="ignore"):
-        rate = (required_at - required) / (step - start)
-        falling = rate < 0.0
-        first = float(np.min(start + np.maximum(required[falling], 0.0) / -rate[falling],
-                             initial=limit))
-        rate = (forbidden_at - forbidden) / (step - start)
-        positive = forbidden > 0.0
-        enters = np.where(positive, start, np.where(rate > 0.0, start - forbidden / rate,
-                                                    np.inf))
-        leaves = np.where(positive & (rate < 0.0), start - forbidden / rate, np.inf)
-        begin, end = enters.max(axis=1), leaves.min(axis=1)
-    closed = ~positive.all(axis=1) & (begin < end)
-    return min(first, float(np.min(begin[closed], initial=limit)))
-
-
-def _flip_values(closed: np.ndarray, margins: tuple[np.ndarray, np.ndarray]) -> np.ndarray:
-    """What ``_modelled_flip`` models of ``margins``: every required margin and, per
-    forbidden group not all positive at the start (``closed``, ``_open_groups``), minus
-    its smallest margin; the margins have flipped (``_flipped``) when one of these is
-    <= 0."""
-    required, forbidden = margins
-    return np.concatenate([required, -forbidden[closed].min(axis=1)])
-
-
-def _modelled_flip(samples: list, low: float, high: float) -> float:
-    """The first turn in (``low``, ``high``] at which one of the ``_flip_values``,
-    each modelled as the quadratic in the turn through its values at the three
-    ``samples`` (turn, values), reaches zero; ``high`` if none does.  The model is
-    scanned on MODEL_GRID turns, then on as many within the first flipped step."""
-    turns = np.array([turn for turn, _ in samples])
-    values = np.stack([values for _, values in samples])
-    try:
-        coefficients = np.linalg.solve(np.vander(turns - turns[0], 3, increasing=True), values)
-    except np.linalg.LinAlgError:       # turns too close to tell a curve: no prediction
-        return high
-    # rows: 1, t, t^2 of each turn t (from the first sample's); columns: the margins
-    for _ in range(2):
-        grid = np.linspace(low, high, MODEL_GRID + 1)[1:]
-        modelled = np.vander(grid - turns[0], 3, increasing=True) @ coefficients
-        flipped = (modelled <= 0.0).any(axis=1)
-        if not flipped.any():
-            return high
-        first = int(np.argmax(flipped))
-        low, high = (grid[first - 1] if first else low), grid[first]
-    return float(high)
-
-
-def _margins(linear: Linearization, sens: Sensitivity):
-    """(rate, margin) pairs, margin >= 0 meaning valid: per joint 1 - utilization (its pull
-    and shear linearized), per holding contact its normal force over the case's weight."""
-    model, design = linear.model, linear.design
-    joints = [linear.geometry.joints[j] for j in model.joints]
-    wrenches = linear.statics.joint_wrenches
-    rates = sens.joint_wrenches[0]
-    pull_cap = design.material.nail_pull / design.safety_factor
-    shear_cap = design.material.nail_shear / design.safety_factor
-    pull, shear = nail_pull_shear(joints, wrenches)
-    eps = 1e-6
-    pull_next, shear_next = nail_pull_shear(joints, wrenches + eps * rates)
-    for p, s, p1, s1 in zip(pull, shear, pull_next, shear_next):
-        yield -(p1 - p) / eps / pull_cap, 1.0 - p / pull_cap
-        yield -(s1 - s) / eps / shear_cap, 1.0 - s / shear_cap
-    forces = linear.statics.contact_forces
-    weight = max(float(forces[:, 2].sum()), 1e-12)
-    for k in np.nonzero(linear.holding)[0]:
-        yield sens.contact_forces[0][k, 2] / weight, forces[k, 2] / weight
 
 
 def dof_ranges(design: Design, names: list[str] | None = None,
