@@ -371,14 +371,19 @@ def test_ranges_in_worker_processes_equal_the_ranges_in_one():
 def test_ranges_do_not_depend_on_how_the_searches_are_batched(monkeypatch):
     """The searches of all DOFs advance together and their evaluations are answered in
     batches; searched one side at a time, each margin evaluation on its own, the ranges
-    are the same."""
+    are the same, also where a lock blocks a DOF (the cantilever's post.x carries the
+    locked shelf.x) and the side searched second is dropped."""
     import furncheck.ranges.batches as batches
 
-    design = load_design(str(DESIGNS / "stool.yaml"))
-    together = RangeFinder(design).ranges()
+    cases = [(load_design(str(DESIGNS / name)), locked)
+             for name, locked in (("stool.yaml", ()), ("shelf-cantilever.yaml", ("shelf.x",)))]
+    together = [RangeFinder(design, locked).ranges() for design, locked in cases]
     monkeypatch.setattr(batches, "SEARCHES_IN_FLIGHT", 1)
     monkeypatch.setattr(batches, "MARGIN_ROWS", 1)
-    assert RangeFinder(design).ranges() == together
+    alone = [RangeFinder(design, locked).ranges() for design, locked in cases]
+    assert alone == together
+    post = next(r for r in together[1] if r.dof == "post.x")
+    assert post.valid is None and "shelf.x" in post.reason
 
 
 # --- f. command line -----------------------------------------------------------------------------

@@ -111,9 +111,11 @@ class Evaluator:
             except Blocked as why:
                 ended(key, why)
                 upper = (key[0], 1.0)
-                if key[1] < 0.0 and upper in waiting:
+                if key[1] < 0.0 and (upper in waiting or upper in queued):
                     searches[upper].close()
-                    del waiting[upper]
+                    waiting.pop(upper, None)
+                    if upper in queued:
+                        queued.remove(upper)
                     ended(upper, None)
             else:
                 waiting[key] = request
@@ -211,8 +213,8 @@ class Evaluator:
         return _Probe(step, valid, margin, utilization, geometry)
 
     def _edited(self, dof: Dof, step: float) -> Design:
-        """The design with ``dof`` changed by ``step``; the current DOF's are kept (the
-        margins' probe steps are the same for both turn horizons)."""
+        """The design with ``dof`` changed by ``step``, kept while the DOF's searches run
+        (both sides and both turn horizons make the same margin probes)."""
         if not step:
             return self.design
         edits = self._edits.setdefault(dof, {})
