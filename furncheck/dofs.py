@@ -503,8 +503,8 @@ def check_edit(original: Geometry, edited: Design,
     if problem is not None:
         return problem, None
     geometry = analyze(edited)
-    return _edit_problem(original, geometry) or _cut_problem(edited, interpenetrations(edited)), \
-        geometry
+    problem = _edit_problem(original, geometry) or _cut_problem(edited, interpenetrations(edited))
+    return problem, geometry
 
 
 def check_edit_many(original: Geometry, edits: list[Design],
