@@ -7,6 +7,7 @@ grounded components), ``CaseStatics`` (one case's result), ``build_model``,
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import cached_property
 from typing import TYPE_CHECKING
@@ -71,12 +72,18 @@ class StaticsModel:
                              shape=(6 * n_joints, self.n_dof))
 
     def deviations(self, q: np.ndarray) -> np.ndarray:
-        """G q for plank displacements q, (6 nP,) or (6 nP, k), by blocks."""
+        """G q for plank displacements q, (6 nP,) or (6 nP, k), by blocks: per joint its
+        (6, 12) rows of G times the 12 displacements of its two planks (one stacked
+        matmul; two to five times faster than the same contraction by einsum)."""
         columns = q.reshape((len(self.planks), 6) + q.shape[1:])[self.joint_planks]
-        # (nJ, 2, 6[, k]) -> (nJ, 6[, k]); one einsum, several times faster than a
-        # stacked matmul of (6, 6) blocks for many columns
-        out = np.einsum("jsab,jsb...->ja...", self.joint_blocks, columns)
-        return out.reshape((-1,) + q.shape[1:])
+        columns = columns.reshape((len(self.joints), 12, math.prod(q.shape[1:])))  # (nJ, 12, k)
+        return (self.joint_rows @ columns).reshape((-1,) + q.shape[1:])
+
+    @cached_property
+    def joint_rows(self) -> np.ndarray:
+        """(nJ, 6, 12): each joint's rows of G, its first plank's columns then its second's."""
+        return np.ascontiguousarray(np.transpose(self.joint_blocks, (0, 2, 1, 3))
+                                    .reshape(-1, 6, 12))
 
     def reactions(self, h: np.ndarray) -> np.ndarray:
         """G^T h for joint values h, (6 nJ,) or (6 nJ, k), by blocks."""
