@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.design.model import Design, Plank
+from furncheck.design.model import Design
 from furncheck.geometry.analysis import (
     _completed,
     _detected_joints,
@@ -24,9 +24,10 @@ from furncheck.geometry.faces import (
     _best_touches,
     _bounding_boxes,
     _box_depths,
-    _face_tables,
     _Faces,
     _overlapping,
+    _stacked_tables,
+    _tables,
 )
 from furncheck.geometry.model import _COS_MAX_TILT, _GEOMETRY_EPS, Geometry
 
@@ -58,20 +59,12 @@ class EditedTables:
 
     def __init__(self, design: Design, geometry: Geometry, edits: list[Design]):
         self.design, self.geometry, self.edits = design, geometry, edits
-        count = len(design.planks)
-        self.same, self.index, changed = [], [], []
-        for edited in edits:
-            same = _unchanged_planks(edited, (design, geometry))
-            self.same.append(same)
-            index = np.arange(count)
-            if same is not None:
-                moved = [i for i, plank in enumerate(edited.planks) if plank.id not in same]
-                index[moved] = count + len(changed) + np.arange(len(moved))
-                changed.extend(edited.planks[i] for i in moved)
-            self.index.append(index)
-        self.planks = design.planks + tuple(changed)
-        self.faces = _face_tables(self.planks)
-        self.lo, self.hi = _bounding_boxes(self.planks)
+        self.same = [_unchanged_planks(edited, (design, geometry)) for edited in edits]
+        changes = [([] if same is None else
+                    [i for i, plank in enumerate(edited.planks) if plank.id not in same],
+                    edited.planks) for edited, same in zip(edits, self.same)]
+        self.planks, self.faces, (self.lo, self.hi), self.index = _stacked_tables(
+            design.planks, _tables(design.planks), changes)
 
     def geometries(self) -> list[Geometry]:
         """``analyze(edited, (design, geometry))`` of every edit, the joints of all edits'
@@ -174,7 +167,7 @@ class EditMargins:
         reach = np.where(turns[self.edge] | turns[self.face],
                          min(tol.JOINT_MAX_TILT_DEG + turn, 180.0), tol.JOINT_MAX_TILT_DEG)
         self.planks = design.planks
-        self.unchanged_tables = self._all_tables(design.planks)
+        self.unchanged_tables = _tables(design.planks)
         if reach.min(initial=180.0) < 180.0:
             faces = self.unchanged_tables[0]
             tilt = -(faces.narrow_normal[self.edge, self.f]
@@ -187,11 +180,6 @@ class EditMargins:
         sunk = {v.where for v in geometry.violations if v.kind == "penetration"}
         self.grounded = [design.planks[i].id in grounded for i in self.changed]
         self.sunk = [design.planks[i].id in sunk for i in self.changed]
-
-    @staticmethod
-    def _all_tables(planks) -> tuple[_Faces, tuple[np.ndarray, np.ndarray]]:
-        """Face tables and bounding boxes of ``planks``."""
-        return _face_tables(planks), _bounding_boxes(planks)
 
     def __call__(self, design: Design) -> tuple[np.ndarray, np.ndarray]:
         return edit_margins_many([(self, design)])[0]
@@ -208,20 +196,11 @@ def edit_margins_many(requests: list[tuple[EditMargins, Design]]
     first = requests[0][0]
     if any(margins.planks is not first.planks for margins, _ in requests):
         raise ValueError("edit_margins_many: margins made for different designs")
-    faces, (lo, hi) = first.unchanged_tables
-    count = len(lo)
-    changed: list[Plank] = []
-    rows = {"edge": [], "face": [], "pairs": []}
-    for margins, edited in requests:
-        index = np.arange(count)
-        index[list(margins.changed)] = count + len(changed) + np.arange(len(margins.changed))
-        changed.extend(edited.planks[i] for i in margins.changed)
-        for name, table in rows.items():
-            table.append(index[getattr(margins, name)])
-    new_faces, (new_lo, new_hi) = EditMargins._all_tables(tuple(changed))
-    faces = _Faces(*(np.concatenate([getattr(faces, name), getattr(new_faces, name)])
-                     for name in _Faces.__dataclass_fields__))
-    boxes = (np.concatenate([lo, new_lo]), np.concatenate([hi, new_hi]))
+    _, faces, boxes, index = _stacked_tables(
+        first.planks, first.unchanged_tables,
+        [(list(margins.changed), edited.planks) for margins, edited in requests])
+    rows = {name: [slots[getattr(margins, name)] for (margins, _), slots in zip(requests, index)]
+            for name in ("edge", "face", "pairs")}
     slack = first.slack
     combos = _combo_margins(faces, faces.rotations, faces.halves, boxes,
                             np.concatenate(rows["edge"]), np.concatenate(rows["face"]),

@@ -201,6 +201,35 @@ def _bounding_boxes(planks: tuple[Plank, ...]) -> tuple[np.ndarray, np.ndarray]:
     return corners.min(axis=1), corners.max(axis=1)
 
 
+def _tables(planks: tuple[Plank, ...]) -> tuple[_Faces, tuple[np.ndarray, np.ndarray]]:
+    """Face tables and bounding boxes of ``planks``."""
+    return _face_tables(planks), _bounding_boxes(planks)
+
+
+def _stacked_tables(planks: tuple[Plank, ...],
+                    tables: tuple[_Faces, tuple[np.ndarray, np.ndarray]],
+                    changes: list[tuple[list[int], tuple[Plank, ...]]]) -> tuple:
+    """The tables of many edits of one design in one: the design's ``planks`` (their
+    ``tables``, from ``_tables``), then per edit of ``changes`` (the plank numbers it
+    changes, its planks) its changed planks.  Returns the stacked planks, face tables and
+    boxes, and per edit the row of each of its planks."""
+    count = len(planks)
+    appended: list[Plank] = []
+    index = []
+    for changed, edited in changes:
+        rows = np.arange(count)
+        rows[changed] = count + len(appended) + np.arange(len(changed))
+        appended.extend(edited[i] for i in changed)
+        index.append(rows)
+    faces, (lo, hi) = tables
+    if appended:
+        new_faces, (new_lo, new_hi) = _tables(tuple(appended))
+        faces = _Faces(*(np.concatenate([getattr(faces, name), getattr(new_faces, name)])
+                         for name in _Faces.__dataclass_fields__))
+        lo, hi = np.concatenate([lo, new_lo]), np.concatenate([hi, new_hi])
+    return planks + tuple(appended), faces, (lo, hi), index
+
+
 def _overlapping(lo: np.ndarray, hi: np.ndarray, slack: float) -> np.ndarray:
     """Pairs (i < j) of boxes that overlap by more than the slack along every axis."""
     overlap = np.all((lo[:, None, :] < hi[None, :, :] - slack)
