@@ -24,8 +24,10 @@ from furncheck.geometry.faces import (
     _best_touches,
     _bounding_boxes,
     _box_depths,
+    _dot,
     _Faces,
     _overlapping,
+    _separating_axes,
     _stacked_tables,
     _tables,
 )
@@ -250,26 +252,52 @@ def _combo_margins(faces: _Faces, rot: np.ndarray, half: np.ndarray,
     normal = faces.broad_normal[face, g]                                   # (C, 3)
     offset = faces.broad_offset[face, g]
     corners = faces.narrow_corners[edge, f]                                # (C, 4, 3)
-    gap = ((corners * normal[:, None, :]).sum(axis=2) - offset[:, None]).min(axis=1)
-    alignment = -(faces.narrow_normal[edge, f] * normal).sum(axis=1)
-    outside = (faces.centers[edge] * normal).sum(axis=1) - offset
+    # component by component (``_dot``, ``_least``, ``_most``): numpy's reductions and
+    # matmuls over axes of two to four entries cost many times the arithmetic
+    heights = _dot(corners, normal[:, None, :]) - offset[:, None]          # (C, 4)
+    gap = _least(heights)
+    alignment = -_dot(faces.narrow_normal[edge, f], normal)
+    outside = _dot(faces.centers[edge], normal) - offset
     half_f = half[face]
     face_center = faces.centers[face] + half_f[:, 2:3] * normal
-    quad = (corners - face_center[:, None, :]) @ rot[face][:, :, :2]       # (C, 4, 2)
-    sides = np.stack([quad[:, 1] - quad[:, 0], quad[:, 2] - quad[:, 1]], axis=1)  # (C, 2, 2)
-    normals = np.stack([-sides[:, :, 1], sides[:, :, 0]], axis=2)
-    length = np.linalg.norm(normals, axis=2, keepdims=True)
-    usable = length[:, :, 0] > _GEOMETRY_EPS * _GEOMETRY_EPS
-    normals = normals / np.where(length > 0.0, length, 1.0)
-    axes = np.concatenate([np.broadcast_to(np.eye(2), (len(edge), 2, 2)), normals], axis=1)
-    projected = quad @ np.transpose(axes, (0, 2, 1))                       # (C, 4, 4 axes)
-    radius = (np.abs(axes) * half_f[:, None, :2]).sum(axis=2)             # (C, 4 axes)
-    overlap = np.concatenate([radius - projected.min(axis=1),
-                              projected.max(axis=1) + radius], axis=1) - _GEOMETRY_EPS
-    overlap[:, [2, 3, 6, 7]] = np.where(np.tile(usable, 2), overlap[:, [2, 3, 6, 7]], 1.0)
+    relative = corners - face_center[:, None, :]
+    rot_f = rot[face]
+    qx = _dot(relative, rot_f[:, None, :, 0])                              # (C, 4) in the
+    qy = _dot(relative, rot_f[:, None, :, 1])                              # face's x-y
+    overlap = np.empty((len(edge), 8))
+    overlap[:, 0] = half_f[:, 0] - _least(qx)
+    overlap[:, 1] = half_f[:, 1] - _least(qy)
+    overlap[:, 4] = _most(qx) + half_f[:, 0]
+    overlap[:, 5] = _most(qy) + half_f[:, 1]
+    unusable = []
+    for k in range(2):             # the projection's edge normals, (-side_y, side_x)
+        nx, ny = qy[:, k] - qy[:, k + 1], qx[:, k + 1] - qx[:, k]
+        length = np.sqrt(nx * nx + ny * ny)
+        unusable.append(length <= _GEOMETRY_EPS * _GEOMETRY_EPS)
+        scale = np.where(length > 0.0, length, 1.0)
+        nx, ny = nx / scale, ny / scale
+        projected = qx * nx[:, None] + qy * ny[:, None]
+        radius = np.abs(nx) * half_f[:, 0] + np.abs(ny) * half_f[:, 1]
+        overlap[:, 2 + k] = radius - _least(projected)
+        overlap[:, 6 + k] = _most(projected) + radius
+    overlap -= _GEOMETRY_EPS
+    for k, mask in enumerate(unusable):
+        overlap[mask, 2 + k] = overlap[mask, 6 + k] = 1.0
     lo, hi = boxes
     return np.column_stack([gap + slack, slack - gap, alignment - _COS_MAX_TILT, outside,
                             overlap, hi[face] + slack - lo[edge], hi[edge] + slack - lo[face]])
+
+
+def _least(values: np.ndarray) -> np.ndarray:
+    """Smallest of the 4 columns of (C, 4) values."""
+    return np.minimum(np.minimum(values[:, 0], values[:, 1]),
+                      np.minimum(values[:, 2], values[:, 3]))
+
+
+def _most(values: np.ndarray) -> np.ndarray:
+    """Largest of the 4 columns of (C, 4) values."""
+    return np.maximum(np.maximum(values[:, 0], values[:, 1]),
+                      np.maximum(values[:, 2], values[:, 3]))
 
 
 def _cut_margins(rot: np.ndarray, half: np.ndarray, centre: np.ndarray,
@@ -281,15 +309,7 @@ def _cut_margins(rot: np.ndarray, half: np.ndarray, centre: np.ndarray,
     if len(pairs) == 0:
         return np.zeros((0, 36))
     a, b = pairs[:, 0], pairs[:, 1]
-    ra, rb = np.transpose(rot[a], (0, 2, 1)), np.transpose(rot[b], (0, 2, 1))
-    crosses = np.cross(ra[:, :, None, :], rb[:, None, :, :]).reshape(-1, 9, 3)
-    axes = np.concatenate([ra, rb, crosses], axis=1)                            # (P, 15, 3)
-    norms = np.linalg.norm(axes, axis=2)
-    usable = norms > 1e-9
-    axes = axes / np.where(usable, norms, 1.0)[:, :, None]
-    radius = ((np.abs(axes @ rot[a]) * half[a][:, None, :]).sum(axis=2)
-              + (np.abs(axes @ rot[b]) * half[b][:, None, :]).sum(axis=2))
-    distance = (axes @ (centre[b] - centre[a])[:, :, None])[:, :, 0]
+    usable, radius, distance = _separating_axes(rot, half, centre, pairs)
     sat = np.concatenate([radius - slack - distance, radius - slack + distance], axis=1)
     sat = np.where(np.tile(usable, 2), sat, 1.0)
     lo, hi = boxes

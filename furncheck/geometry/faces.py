@@ -241,14 +241,38 @@ def _box_depths(rot: np.ndarray, half: np.ndarray, centre: np.ndarray,
                 pairs: np.ndarray) -> np.ndarray:
     """Per pair (a, b) of planks (rotations, half extents, centres): how deep their boxes
     overlap, the smallest overlap of their projections on the 15 separating axes."""
+    usable, radius, distance = _separating_axes(rot, half, centre, pairs)
+    return np.where(usable, radius - np.abs(distance), np.inf).min(axis=1)
+
+
+def _separating_axes(rot: np.ndarray, half: np.ndarray, centre: np.ndarray,
+                     pairs: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The 15 candidate separating axes of each pair (a, b) of oriented boxes (rotations,
+    half extents, centres): the three axes of each box and the nine cross products of
+    one's with the other's.  Per pair and axis (P, 15): whether the axis is usable (not
+    a cross product of parallel axes), the sum of the two boxes' projected half extents
+    along it, and the distance of b's centre from a's along it (signed)."""
     a, b = pairs[:, 0], pairs[:, 1]
     ra, rb = np.transpose(rot[a], (0, 2, 1)), np.transpose(rot[b], (0, 2, 1))  # rows = axes
-    crosses = np.cross(ra[:, :, None, :], rb[:, None, :, :]).reshape(-1, 9, 3)
-    axes = np.concatenate([ra, rb, crosses], axis=1)                            # (P, 15, 3)
-    norms = np.linalg.norm(axes, axis=2)
+    u, v = ra[:, :, None, :], rb[:, None, :, :]
+    crosses = np.stack([u[..., 1] * v[..., 2] - u[..., 2] * v[..., 1],
+                        u[..., 2] * v[..., 0] - u[..., 0] * v[..., 2],
+                        u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]], axis=-1)
+    axes = np.concatenate([ra, rb, crosses.reshape(-1, 9, 3)], axis=1)          # (P, 15, 3)
+    norms = np.sqrt(_dot(axes, axes))
     usable = norms > 1e-9
     axes = axes / np.where(usable, norms, 1.0)[:, :, None]
-    radius_a = (np.abs(np.einsum("pka,pia->pki", axes, ra)) * half[a][:, None, :]).sum(axis=2)
-    radius_b = (np.abs(np.einsum("pka,pia->pki", axes, rb)) * half[b][:, None, :]).sum(axis=2)
-    distance = np.abs(np.einsum("pka,pa->pk", axes, centre[b] - centre[a]))
-    return np.where(usable, radius_a + radius_b - distance, np.inf).min(axis=1)
+    radius = 0.0
+    for box, rows in ((a, ra), (b, rb)):
+        extents = half[box]
+        for i in range(3):
+            radius = radius + np.abs(_dot(axes, rows[:, None, i])) * extents[:, None, i]
+    distance = _dot(axes, (centre[b] - centre[a])[:, None, :])
+    return usable, radius, distance
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Dot products along the last axis (3 entries), broadcast: component by component,
+    since numpy's reductions and matmuls over axes of a few entries cost many times the
+    arithmetic."""
+    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1] + a[..., 2] * b[..., 2]
