@@ -14,7 +14,7 @@ import functools
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg as sla
+import scipy.linalg.lapack as lapack
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
@@ -92,7 +92,7 @@ class _PlankCondensation(_Condensed):
     f_g - K_gi y, then q_i = y - X x_g and h = W (G q - r_h).
     """
 
-    factor: tuple = ()           # Cholesky factor of K_ii (the coupling is K_ig, dense)
+    factor: np.ndarray | None = None    # Cholesky factor of K_ii (the coupling is K_ig, dense)
     model: StaticsModel | None = None    # its joint blocks apply G and G^T
     wrench_map: np.ndarray | None = None  # Z = W G [I; -X]: the wrenches per x_g
     stiffness: np.ndarray | None = None   # W, the joints' stiffnesses (6 nJ,)
@@ -105,8 +105,8 @@ class _PlankCondensation(_Condensed):
         f = rhs[:n]
         if np.any(r_h):
             f = f + self.model.reactions(self._weights(r_h.ndim) * r_h)
-        inner = sla.cho_solve(self.factor, f[self.inner], check_finite=False) \
-            if len(self.inner) else np.zeros((0,) + rhs.shape[1:])
+        inner = _cholesky_solve(self.factor, f[self.inner]) if len(self.inner) else \
+            np.zeros((0,) + rhs.shape[1:])
         return (inner, r_h), f[self.ground] - self.coupling.T @ inner
 
     def expand(self, inner_part, ground: np.ndarray) -> np.ndarray:
@@ -142,19 +142,18 @@ def _condense_planks(model: StaticsModel, ground: np.ndarray,
     inner = _others(n, ground)
     coupling = K[np.ix_(inner, ground)]
     reduced = np.zeros((len(inner), len(ground)))
-    factor = (np.zeros((0, 0)), False)
+    factor = None
     if len(inner):
         K_ii = K[np.ix_(inner, inner)]
-        try:
-            factor = sla.cho_factor(K_ii, check_finite=False)
-        except np.linalg.LinAlgError:
+        factor = _cholesky(K_ii)
+        if factor is None:
             return None
         probe = coupling.sum(axis=1) if len(ground) else np.ones(len(inner))
         rhs = probe if np.any(probe) else np.ones(len(inner))
-        if not _accurate(K_ii, sla.cho_solve(factor, rhs, check_finite=False), rhs):
+        if not _accurate(K_ii, _cholesky_solve(factor, rhs), rhs):
             return None
         if len(ground):
-            reduced = sla.cho_solve(factor, coupling, check_finite=False)
+            reduced = _cholesky_solve(factor, coupling)
     schur = K[np.ix_(ground, ground)] - coupling.T @ reduced
     per_ground = np.zeros((n, len(ground)))
     per_ground[ground, np.arange(len(ground))] = 1.0
@@ -301,8 +300,59 @@ def system_matrix(model: StaticsModel, holding: np.ndarray) -> sp.csr_matrix:
 
 def solve_system(model: StaticsModel, holding: np.ndarray, rhs: np.ndarray) -> np.ndarray:
     """A^-1 rhs for ``system_matrix(model, holding)`` and rhs (n,) or (n, k), reusing the
-    design's condensation (one sparse LU per design): the solve behind eq. 6."""
+    design's condensation (one sparse LU per design) and the factor of the condensed
+    matrix of this contact state (``anchored_system``): the solve behind eq. 6."""
     condensed = model.condensation
     inner, ground_rhs = condensed.split(np.asarray(rhs, dtype=float))
-    ground = np.linalg.solve(_anchored_stiffness(model, holding), ground_rhs)
+    ground = anchored_system(model, holding).solve(ground_rhs)
+    if ground is None:
+        raise np.linalg.LinAlgError("singular condensed system")
     return condensed.expand(inner, ground)
+
+
+@dataclass(frozen=True)
+class _Factored:
+    """A symmetric matrix factored once for all the right-hand sides that meet it: by
+    Cholesky (positive definite: S0 + K_c of a contact state whose holding contacts
+    restrain every component, a Newton step's Hessian), else by LU."""
+
+    matrix: np.ndarray
+    factor: np.ndarray | None       # upper Cholesky factor, None: solved by LU
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray | None:
+        """x with matrix @ x = rhs, None if the matrix is singular."""
+        if self.factor is not None:
+            return _cholesky_solve(self.factor, rhs)
+        try:
+            return np.linalg.solve(self.matrix, rhs)
+        except np.linalg.LinAlgError:
+            return None
+
+
+def anchored_system(model: StaticsModel, holding: np.ndarray,
+                    scale: float = 1.0) -> _Factored:
+    """S0 + K_c of the anchor springs at ``holding`` (x ``scale``), ``_Factored``, kept per
+    model and contact state: the load cases of a design mostly start from the same state."""
+    key = (holding.tobytes(), scale)
+    systems = model.anchored_systems
+    if key not in systems:
+        matrix = _anchored_stiffness(model, holding, scale)
+        systems[key] = _Factored(matrix, _cholesky(matrix))
+    return systems[key]
+
+
+def _cholesky(matrix: np.ndarray) -> np.ndarray | None:
+    """The upper Cholesky factor of a symmetric matrix (its upper triangle read), None if
+    it is not positive definite (LAPACK's potrf directly: scipy's wrappers cost more than
+    the factoring of these small matrices)."""
+    factor, info = _POTRF(matrix, lower=0, clean=0)
+    return factor if info == 0 else None
+
+
+def _cholesky_solve(factor: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """x with U^T U x = rhs for the upper Cholesky factor U (``_cholesky``)."""
+    x, _ = _POTRS(factor, rhs, lower=0)
+    return x
+
+
+_POTRF, _POTRS = lapack.get_lapack_funcs(("potrf", "potrs"), (np.zeros(1),))

@@ -15,9 +15,10 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.statics.condense import (
     _accurate,
-    _anchored_stiffness,
+    _cholesky,
     _condensed_stiffness,
-    anchor_springs,
+    _Factored,
+    anchored_system,
 )
 from furncheck.statics.feasibility import _cone_solution, _unilateral_feasible
 from furncheck.statics.model import CaseStatics, StaticsModel, block_sums
@@ -207,23 +208,22 @@ class _ActiveSet:
         """Solve the mixed system for the given contact states; None if it is a mechanism.
 
         Only the grounded planks' six displacements each are solved for here (a small dense
-        system, see ``_Condensed``); the rest follows by one matrix-vector product.
+        system, see ``_Condensed``, factored once per contact state: ``anchored_system``);
+        the rest follows by one matrix-vector product.
         """
         model, condensed = self.model, self.condensed
-        if condensed is None or not self._restrained(status == STICK):
+        holding = status == STICK
+        if condensed is None or not self._restrained(holding):
             return None
-        springs = self._spring_matrices(status) * stiffness_scale
-        maps = model.contact_maps
-        stiffness = _anchored_stiffness(model, status == STICK, stiffness_scale)
-        try:
-            ground = np.linalg.solve(stiffness, self.ground_rhs)
-        except np.linalg.LinAlgError:
-            return None
-        if not _accurate(stiffness, ground, self.ground_rhs):
+        system = anchored_system(model, holding, stiffness_scale)
+        ground = system.solve(self.ground_rhs)
+        if ground is None or not _accurate(system.matrix, ground, self.ground_rhs):
             return None
         plank_q = ground.reshape(-1, 6)[condensed.contact_block]           # (nK, 6)
-        displacement = (maps @ plank_q[:, :, None])[:, :, 0]
-        forces = -(springs @ displacement[:, :, None])[:, :, 0]
+        displacement = (model.contact_maps @ plank_q[:, :, None])[:, :, 0]
+        # the anchor springs: k (x the scale) in all three directions where a contact holds
+        forces = -(tol.CONTACT_STIFFNESS * stiffness_scale) * displacement \
+            * holding[:, None]
         return self.assemble(ground, forces, displacement)
 
     def assemble(self, ground: np.ndarray, forces: np.ndarray,
@@ -233,23 +233,16 @@ class _ActiveSet:
         return _Solution(x[:self.model.n_dof], x[self.model.n_dof:], forces, displacement,
                          ground)
 
-    def _spring_matrices(self, status: np.ndarray) -> np.ndarray:
-        return anchor_springs(status == STICK)
-
     def _restrained(self, holding: np.ndarray) -> bool:
         """Every grounded component is held in all six rigid directions by its holding
-        contacts (springs to their anchors in all three directions)."""
+        contacts (springs to their anchors in all three directions): kept per model and
+        contact state."""
         model = self.model
-        grams = model.rigid_grams
-        for c in range(len(model.components)):
-            members = (model.contact_component == c) & holding
-            if not members.any():
-                return False
-            stiffness = grams[members].sum(axis=0)
-            singular = np.linalg.svd(stiffness, compute_uv=False)
-            if singular[-1] <= tol.MECHANISM_RCOND * max(singular[0], 1e-300):
-                return False
-        return True
+        key = holding.tobytes()
+        known = model.restrained_states
+        if key not in known:
+            known[key] = _restrained(model, holding)
+        return known[key]
 
     # -- state updates -------------------------------------------------------------------------
     def _update_normals(self, solution: _Solution, status: np.ndarray,
@@ -351,9 +344,9 @@ class _FrictionEnergy:
                 return x
             hessian = self._hessian(x)
             shift = tol.SOLVE_RESIDUAL * max(float(np.abs(np.diag(hessian)).max()), 1.0)
-            try:
-                step = np.linalg.solve(hessian + shift * np.eye(len(x)), -gradient)
-            except np.linalg.LinAlgError:
+            hessian[np.diag_indices(len(x))] += shift
+            step = _Factored(hessian, _cholesky(hessian)).solve(-gradient)
+            if step is None:
                 return None
             x = x + self._line_search(x, step) * step
             if np.abs(x).max() > tol.SLIDING_DISPLACEMENT:
@@ -388,6 +381,21 @@ class _FrictionEnergy:
         displacement = np.zeros((len(self.active), 3))
         displacement[self.active] = self._displacements(x)
         return self.solver.assemble(x, forces, displacement)
+
+
+def _restrained(model: StaticsModel, holding: np.ndarray) -> bool:
+    """Whether the ``holding`` contacts hold every grounded component of the model in all
+    six rigid directions."""
+    grams = model.rigid_grams
+    for c in range(len(model.components)):
+        members = (model.contact_component == c) & holding
+        if not members.any():
+            return False
+        stiffness = grams[members].sum(axis=0)
+        singular = np.linalg.svd(stiffness, compute_uv=False)
+        if singular[-1] <= tol.MECHANISM_RCOND * max(singular[0], 1e-300):
+            return False
+    return True
 
 
 def _force_scale(model: StaticsModel, f: np.ndarray) -> float:

@@ -133,6 +133,18 @@ class StaticsModel:
         return grams
 
     @cached_property
+    def restrained_states(self) -> dict:
+        """Contact state -> whether its holding contacts restrain every component (filled
+        by ``contacts._ActiveSet._restrained``)."""
+        return {}
+
+    @cached_property
+    def anchored_systems(self) -> dict:
+        """(contact state, spring scale) -> ``condense._Factored``, filled as the
+        contact iterations meet them (``condense.anchored_system``)."""
+        return {}
+
+    @cached_property
     def condensation(self) -> _Condensed | None:
         """The contact-free part of the system, condensed onto the grounded planks."""
         from furncheck.statics.condense import _condense  # here: condense imports this module
@@ -232,10 +244,11 @@ def external_forces(model: StaticsModel, case: LoadCase) -> np.ndarray:
             continue
         k = local[load.plank]
         plank = design.planks[model.planks[k]]
-        force = np.asarray(load.force, dtype=float)
-        f[6 * k:6 * k + 3] += force
-        if load.point is not None:
-            f[6 * k + 3:6 * k + 6] += np.cross(np.asarray(load.point) - plank.center_array, force)
+        fx, fy, fz = (float(v) for v in load.force)
+        f[6 * k:6 * k + 3] += (fx, fy, fz)
+        if load.point is not None:      # the moment r x F about the centre
+            rx, ry, rz = (float(p) - float(c) for p, c in zip(load.point, plank.center))
+            f[6 * k + 3:6 * k + 6] += (ry * fz - rz * fy, rz * fx - rx * fz, rx * fy - ry * fx)
     return f
 
 
