@@ -94,7 +94,6 @@ class _PlankCondensation(_Condensed):
 
     factor: np.ndarray | None = None    # Cholesky factor of K_ii (the coupling is K_ig, dense)
     model: StaticsModel | None = None    # its joint blocks apply G and G^T
-    wrench_map: np.ndarray | None = None  # Z = W G [I; -X]: the wrenches per x_g
     stiffness: np.ndarray | None = None   # W, the joints' stiffnesses (6 nJ,)
 
     def split(self, rhs: np.ndarray):
@@ -110,16 +109,19 @@ class _PlankCondensation(_Condensed):
         return (inner, r_h), f[self.ground] - self.coupling.T @ inner
 
     def expand(self, inner_part, ground: np.ndarray) -> np.ndarray:
-        """[q; h] from x_g.  The wrenches are taken as W (G [0; y] - r_h) + Z x_g rather
-        than from q: q is mostly the whole design's motion on its soft contact springs, and
-        the joints' deformation, 1e-5 of it, would lose five digits in G q."""
+        """[q; h] from x_g.  The wrenches are taken as W (G [0; y] - r_h) + W G [x_g; -X x_g]
+        rather than from q = [x_g; y - X x_g]: q is mostly the whole design's motion on its
+        soft contact springs, and y, the joints' deformation, 1e-5 of it, would lose five
+        digits in the sum."""
         inner, r_h = inner_part
-        q = np.zeros((self.model.n_dof,) + ground.shape[1:])
-        q[self.inner] = inner
-        h = self._weights(ground.ndim) * (self.model.deviations(q) - r_h) \
-            + self.wrench_map @ ground
-        q[self.ground] = ground
-        q[self.inner] = inner - self.reduced @ ground
+        n, shape = self.model.n_dof, ground.shape[1:]
+        parts = np.zeros((n, 2) + shape)          # [0; y] and [x_g; -X x_g] side by side
+        parts[self.inner, 0] = inner
+        parts[self.ground, 1] = ground
+        parts[self.inner, 1] = -(self.reduced @ ground)
+        deviations = self.model.deviations(parts.reshape((n, -1))).reshape((-1, 2) + shape)
+        h = self._weights(ground.ndim) * ((deviations[:, 0] - r_h) + deviations[:, 1])
+        q = parts[:, 0] + parts[:, 1]
         return np.concatenate([q, h])
 
     def _weights(self, ndim: int) -> np.ndarray:
@@ -155,13 +157,9 @@ def _condense_planks(model: StaticsModel, ground: np.ndarray,
         if len(ground):
             reduced = _cholesky_solve(factor, coupling)
     schur = K[np.ix_(ground, ground)] - coupling.T @ reduced
-    per_ground = np.zeros((n, len(ground)))
-    per_ground[ground, np.arange(len(ground))] = 1.0
-    per_ground[inner] = -reduced
-    wrench_map = weights[:, None] * model.deviations(per_ground)
     return _PlankCondensation(ground, inner, coupling, reduced, schur, contact_block,
                               plank_offsets, n + m, factor=factor, model=model,
-                              wrench_map=wrench_map, stiffness=weights)
+                              stiffness=weights)
 
 
 def _condense(model: StaticsModel) -> _Condensed | None:
