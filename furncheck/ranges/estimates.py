@@ -152,7 +152,11 @@ def _modelled_flip(samples: list, low: float, high: float) -> float:
         coefficients = np.linalg.solve(np.vander(turns - turns[0], 3, increasing=True), values)
     except np.linalg.LinAlgError:       # turns too close to tell a curve: no prediction
         return high
-    # rows: 1, t, t^2 of each turn t (from the first sample's); columns: the margins
+    # rows: 1, t, t^2 of each turn t (from the first sample's); columns: the margins.
+    # Only margins that may reach zero in the interval are scanned (the others cannot flip
+    # at any of its turns: their smallest value there is clearly positive).
+    coefficients = coefficients[:, _may_reach_zero(coefficients, low - turns[0],
+                                                   high - turns[0])]
     for _ in range(2):
         grid = np.linspace(low, high, MODEL_GRID + 1)[1:]
         modelled = np.vander(grid - turns[0], 3, increasing=True) @ coefficients
@@ -162,6 +166,26 @@ def _modelled_flip(samples: list, low: float, high: float) -> float:
         first = int(np.argmax(flipped))
         low, high = (grid[first - 1] if first else low), grid[first]
     return float(high)
+
+
+def _may_reach_zero(coefficients: np.ndarray, start: float, end: float) -> np.ndarray:
+    """Per column (a, b, c) of ``coefficients``: whether a + b t + c t^2 may be <= 0 for
+    some t in [start, end], i.e. its least value there (at an end, or at the vertex
+    -b / 2c when that lies inside and c > 0) is not above round-off of its terms."""
+    a, b, c = coefficients
+    least = np.minimum(a + b * start + c * start * start, a + b * end + c * end * end)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        vertex = np.where(c > 0.0, -b / (2.0 * c), start)
+    inside = (vertex > start) & (vertex < end)
+    least = np.where(inside, np.minimum(least, a + b * vertex + c * vertex * vertex), least)
+    reach = max(abs(start), abs(end))
+    scale = np.abs(a) + np.abs(b) * reach + np.abs(c) * reach * reach
+    return least <= _MODEL_ROUNDOFF * scale
+
+
+_MODEL_ROUNDOFF = 1e-9
+"""Relative slack of ``_may_reach_zero`` (far above the round-off of evaluating a
+quadratic, so that no margin the scan could find at zero is left out)."""
 
 
 def _margins(linear: Linearization, sens: Sensitivity):
