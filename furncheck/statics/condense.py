@@ -138,15 +138,23 @@ def _condense_planks(model: StaticsModel, ground: np.ndarray,
     pairs = np.swapaxes(blocks, 2, 3)[:, :, None] \
         @ (weights.reshape(-1, 1, 6, 1) * blocks)[:, None]            # (nJ, 2, 2, 6, 6)
     n_planks = len(model.planks)
-    per_pair = block_sums((planks[:, :, None] * n_planks + planks[:, None, :]).ravel(),
+    # K is assembled with the planks reordered, the others first and the grounded ones
+    # last, so that its parts are slices rather than gathered rows and columns
+    inner = _others(n, ground)
+    grounded = ground[::6] // 6
+    order = np.concatenate([inner[::6] // 6, grounded])
+    position = np.empty(n_planks, dtype=int)
+    position[order] = np.arange(n_planks)
+    placed = position[planks]
+    per_pair = block_sums((placed[:, :, None] * n_planks + placed[:, None, :]).ravel(),
                           pairs.reshape(-1, 36), n_planks * n_planks)
     K = per_pair.reshape(n_planks, n_planks, 6, 6).transpose(0, 2, 1, 3).reshape(n, n)
-    inner = _others(n, ground)
-    coupling = K[np.ix_(inner, ground)]
-    reduced = np.zeros((len(inner), len(ground)))
+    ni = len(inner)
+    coupling = K[:ni, ni:]
+    reduced = np.zeros((ni, len(ground)))
     factor = None
-    if len(inner):
-        K_ii = K[np.ix_(inner, inner)]
+    if ni:
+        K_ii = K[:ni, :ni]
         factor = _cholesky(K_ii)
         if factor is None:
             return None
@@ -156,7 +164,7 @@ def _condense_planks(model: StaticsModel, ground: np.ndarray,
             return None
         if len(ground):
             reduced = _cholesky_solve(factor, coupling)
-    schur = K[np.ix_(ground, ground)] - coupling.T @ reduced
+    schur = K[ni:, ni:] - coupling.T @ reduced
     return _PlankCondensation(ground, inner, coupling, reduced, schur, contact_block,
                               plank_offsets, n + m, factor=factor, model=model,
                               stiffness=weights)
