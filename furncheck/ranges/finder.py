@@ -5,6 +5,7 @@ See the package's docstring for the two stages of a side's search.
 
 from __future__ import annotations
 
+import gc
 import multiprocessing
 from collections.abc import Generator
 from concurrent.futures import ProcessPoolExecutor
@@ -157,6 +158,10 @@ class RangeFinder(Evaluator):
         order = sorted(range(len(dofs)), key=lambda n: (DOF_KINDS.index(dofs[n].kind), n))
         shares = [order[k::count] for k in range(count)]
         _WORKER_FINDER = self
+        # The workers inherit this process's objects; frozen, the garbage collector leaves
+        # them alone in the workers and does not copy their memory pages by touching them
+        # (measured: a tenth of the cabinet's work in the workers).
+        gc.freeze()
         try:
             with ProcessPoolExecutor(max_workers=min(jobs, count),
                                      mp_context=context) as pool:
@@ -165,6 +170,7 @@ class RangeFinder(Evaluator):
         except (OSError, BrokenProcessPool):
             return None
         finally:
+            gc.unfreeze()
             _WORKER_FINDER = None
         self.evaluations += sum(evaluations for _, evaluations in done)
         found: list[DofRange | None] = [None] * len(dofs)
