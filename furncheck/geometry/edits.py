@@ -217,24 +217,26 @@ def edit_margins_many(requests: list[tuple[EditMargins, Design]]
         cutting = cuts[cut_start:cut_start + len(margins.pairs)]
         combo_start += len(margins.edge)
         cut_start += len(margins.pairs)
-        required = [mine[margins.is_joint].ravel()]
+        per_plank = []
         for index, grounded, sunk in zip(margins.changed, margins.grounded, margins.sunk):
             plank = edited.planks[index]
             lowest = float(plank.corners[:, 2].min())
-            required.append([plank.length, plank.width])
+            per_plank += [plank.length, plank.width]
             if not grounded:
-                required.append([lowest - slack])
+                per_plank.append(lowest - slack)
                 continue
-            required.append([slack - lowest])
+            per_plank.append(slack - lowest)
             if not sunk:
-                required.append([lowest + slack])
-        groups = [cutting]
-        if margins.detected:
+                per_plank.append(lowest + slack)
+        required = np.concatenate([mine[margins.is_joint].ravel(), per_plank])
+        if margins.detected:        # the new touches' groups, padded with margins of 1.0
             others = mine[~margins.is_joint]
-            groups.append(np.pad(others, ((0, 0), (0, cutting.shape[1] - others.shape[1])),
-                                 constant_values=1.0))
-        out.append((np.concatenate([np.asarray(r, dtype=float) for r in required]),
-                    np.vstack(groups)))
+            forbidden = np.ones((len(cutting) + len(others), cutting.shape[1]))
+            forbidden[:len(cutting)] = cutting
+            forbidden[len(cutting):, :others.shape[1]] = others
+        else:
+            forbidden = cutting.copy()
+        out.append((required, forbidden))
     return out
 
 

@@ -138,7 +138,7 @@ def _flip_values(closed: np.ndarray, margins: tuple[np.ndarray, np.ndarray]) -> 
     its smallest margin; the margins have flipped (``_flipped``) when one of these is
     <= 0."""
     required, forbidden = margins
-    return np.concatenate([required, -forbidden[closed].min(axis=1)])
+    return np.concatenate([required, -forbidden.min(axis=1)[closed]])
 
 
 def _modelled_flip(samples: list, low: float, high: float) -> float:
