@@ -24,12 +24,12 @@ from furncheck.geometry.faces import (
     _best_touches,
     _bounding_boxes,
     _box_depths,
+    _design_tables,
     _dot,
     _Faces,
     _overlapping,
     _separating_axes,
     _stacked_tables,
-    _tables,
 )
 from furncheck.geometry.model import _COS_MAX_TILT, _GEOMETRY_EPS, Geometry
 
@@ -66,7 +66,7 @@ class EditedTables:
                     [i for i, plank in enumerate(edited.planks) if plank.id not in same],
                     edited.planks) for edited, same in zip(edits, self.same)]
         self.planks, self.faces, (self.lo, self.hi), self.index = _stacked_tables(
-            design.planks, _tables(design.planks), changes)
+            design.planks, _design_tables(design.planks), changes)
 
     def geometries(self) -> list[Geometry]:
         """``analyze(edited, (design, geometry))`` of every edit, the joints of all edits'
@@ -169,7 +169,7 @@ class EditMargins:
         reach = np.where(turns[self.edge] | turns[self.face],
                          min(tol.JOINT_MAX_TILT_DEG + turn, 180.0), tol.JOINT_MAX_TILT_DEG)
         self.planks = design.planks
-        self.unchanged_tables = _tables(design.planks)
+        self.unchanged_tables = _design_tables(design.planks)
         if reach.min(initial=180.0) < 180.0:
             faces = self.unchanged_tables[0]
             tilt = -(faces.narrow_normal[self.edge, self.f]

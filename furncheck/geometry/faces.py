@@ -7,6 +7,7 @@ centroid and extent along the joint line.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -159,6 +160,8 @@ def _touch_regions(planks, faces: _Faces, edge: np.ndarray, face: np.ndarray,
 def _clip_to_rectangle(polygon: list, half_x: float, half_y: float) -> list:
     """Sutherland-Hodgman clip of a convex polygon [(x, y), ...] to |x| <= half_x,
     |y| <= half_y (plain floats: the polygons are tiny, numpy would only add overhead)."""
+    if all(-half_x <= x <= half_x and -half_y <= y <= half_y for x, y in polygon):
+        return polygon          # inside already (most end faces lie within their face)
     points = polygon
     for axis, sign, limit in ((0, 1.0, half_x), (0, -1.0, half_x), (1, 1.0, half_y),
                               (1, -1.0, half_y)):
@@ -205,6 +208,16 @@ def _bounding_boxes(planks: tuple[Plank, ...]) -> tuple[np.ndarray, np.ndarray]:
 def _tables(planks: tuple[Plank, ...]) -> tuple[_Faces, tuple[np.ndarray, np.ndarray]]:
     """Face tables and bounding boxes of ``planks``."""
     return _face_tables(planks), _bounding_boxes(planks)
+
+
+@functools.lru_cache(maxsize=8)
+def _design_tables(planks: tuple[Plank, ...]) -> tuple[_Faces, tuple[np.ndarray, np.ndarray]]:
+    """``_tables`` of a design's own planks, kept for the design's many edits (read only:
+    the batches of edits stack them, ``_stacked_tables``, the margins index them)."""
+    faces, boxes = _tables(planks)
+    for array in (*(getattr(faces, name) for name in _Faces.__dataclass_fields__), *boxes):
+        array.flags.writeable = False
+    return faces, boxes
 
 
 def _stacked_tables(planks: tuple[Plank, ...],

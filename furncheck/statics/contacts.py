@@ -400,7 +400,8 @@ def _restrained(model: StaticsModel, holding: np.ndarray) -> bool:
 
 def _force_scale(model: StaticsModel, f: np.ndarray) -> float:
     """N: sum of the applied force magnitudes (the scale of the force tolerances)."""
-    return max(float(np.linalg.norm(f.reshape(-1, 6)[:, :3], axis=1).sum()), 1e-12)
+    forces = f.reshape(-1, 6)[:, :3]
+    return max(float(np.sqrt((forces * forces).sum(axis=1)).sum()), 1e-12)
 
 
 def _wrenches(h: np.ndarray) -> np.ndarray:
