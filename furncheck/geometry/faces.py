@@ -210,10 +210,17 @@ def _tables(planks: tuple[Plank, ...]) -> tuple[_Faces, tuple[np.ndarray, np.nda
     return _face_tables(planks), _bounding_boxes(planks)
 
 
-@functools.lru_cache(maxsize=8)
 def _design_tables(planks: tuple[Plank, ...]) -> tuple[_Faces, tuple[np.ndarray, np.ndarray]]:
     """``_tables`` of a design's own planks, kept for the design's many edits (read only:
     the batches of edits stack them, ``_stacked_tables``, the margins index them)."""
+    try:
+        return _kept_tables(planks)
+    except TypeError:           # a plank built with unhashable values: tabled afresh
+        return _tables(planks)
+
+
+@functools.lru_cache(maxsize=8)
+def _kept_tables(planks: tuple[Plank, ...]) -> tuple[_Faces, tuple[np.ndarray, np.ndarray]]:
     faces, boxes = _tables(planks)
     for array in (*(getattr(faces, name) for name in _Faces.__dataclass_fields__), *boxes):
         array.flags.writeable = False

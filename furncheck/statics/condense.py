@@ -3,9 +3,11 @@
 ``_condense`` gives, once per design, ``_PlankCondensation`` (up to 60 planks: the joints
 eliminated, a dense Cholesky factor of the planks' joint stiffness) or ``_Condensation``
 (larger designs: one sparse LU of the contact-free mixed system, checked by ``_factor`` /
-``_accurate``); then the contact springs ``_anchor_springs`` and the condensed
-matrix ``_condensed_stiffness``; ``system_matrix`` and ``solve_system`` give the full mixed
-matrix and its solve to the sensitivity analysis.
+``_accurate``); then the contact springs ``anchor_springs`` and the condensed
+matrix ``_condensed_stiffness``, and for a contact state its matrix factored once
+(``anchored_system``, a ``_Factored``: Cholesky by LAPACK directly, LU when that fails);
+``system_matrix`` and ``solve_system`` give the full mixed matrix and its solve to the
+sensitivity analysis.
 """
 
 from __future__ import annotations

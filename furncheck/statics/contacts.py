@@ -242,7 +242,7 @@ class _ActiveSet:
         key = holding.tobytes()
         known = model.restrained_states
         if key not in known:
-            known[key] = _restrained(model, holding)
+            known[key] = _rigidly_held(model, holding)
         return known[key]
 
     # -- state updates -------------------------------------------------------------------------
@@ -384,7 +384,7 @@ class _FrictionEnergy:
         return self.solver.assemble(x, forces, displacement)
 
 
-def _restrained(model: StaticsModel, holding: np.ndarray) -> bool:
+def _rigidly_held(model: StaticsModel, holding: np.ndarray) -> bool:
     """Whether the ``holding`` contacts hold every grounded component of the model in all
     six rigid directions."""
     grams = model.rigid_grams
