@@ -308,3 +308,25 @@ def test_edit_margins_watch_tilts_only_where_a_plank_turns():
     for margins in (still, turning):
         required, _ = margins(bay)
         assert required.min() > 0
+
+
+def test_a_designs_tables_are_kept_read_only_and_made_afresh_for_unhashable_planks():
+    """``_design_tables`` keeps the face tables of a design's planks for its many edits
+    (the same object again, its arrays read only); planks that cannot be hashed (a centre
+    given as an array) get fresh tables with the same values."""
+    from dataclasses import replace
+    from pathlib import Path
+
+    from furncheck.design import load_design
+    from furncheck.geometry.faces import _design_tables, _Faces, _tables
+
+    design = load_design(str(Path(__file__).resolve().parents[1] / "designs" / "stool.yaml"))
+    kept = _design_tables(design.planks)
+    assert _design_tables(design.planks) is kept
+    assert not kept[0].narrow_corners.flags.writeable and not kept[1][0].flags.writeable
+    planks = (replace(design.planks[0], center=np.array(design.planks[0].center)),) \
+        + design.planks[1:]
+    fresh, expected = _design_tables(planks), _tables(design.planks)
+    for name in _Faces.__dataclass_fields__:
+        assert np.array_equal(getattr(fresh[0], name), getattr(expected[0], name))
+    assert all(np.array_equal(a, b) for a, b in zip(fresh[1], expected[1]))

@@ -7,6 +7,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from furncheck.design import load_design
 from furncheck.dofs import parse_dof
@@ -16,6 +18,7 @@ from furncheck.ranges.estimates import (
     _Drop,
     _flip_values,
     _margin_zero,
+    _may_reach_zero,
     _modelled_flip,
     _open_groups,
     _Probe,
@@ -68,6 +71,45 @@ def test_modelled_flip_sees_a_forbidden_group_close():
     samples = [(t, _flip_values(_open_groups(margins(0.0)), margins(t))) for t in (0.0, 0.025, 4.5)]
     found = _modelled_flip(samples, 0.0, 15.0)
     assert 3.0 <= found <= 3.0 + 15.0 / MODEL_GRID ** 2
+
+
+def _scanned_flip(samples: list, low: float, high: float) -> float:
+    """``_modelled_flip`` as it was before margins that cannot reach zero were left out:
+    every modelled margin scanned on both grids."""
+    turns = np.array([turn for turn, _ in samples])
+    values = np.stack([values for _, values in samples])
+    coefficients = np.linalg.solve(np.vander(turns - turns[0], 3, increasing=True), values)
+    for _ in range(2):
+        grid = np.linspace(low, high, MODEL_GRID + 1)[1:]
+        flipped = ((np.vander(grid - turns[0], 3, increasing=True) @ coefficients)
+                   <= 0.0).any(axis=1)
+        if not flipped.any():
+            return high
+        first = int(np.argmax(flipped))
+        low, high = (grid[first - 1] if first else low), grid[first]
+    return float(high)
+
+
+_COEFFICIENT = st.floats(-10.0, 10.0, allow_nan=False)
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.tuples(_COEFFICIENT, _COEFFICIENT, _COEFFICIENT), min_size=1, max_size=40),
+       st.floats(0.0, 5.0), st.floats(0.1, 20.0))
+def test_margins_left_out_of_a_turn_scan_never_flip(margins, low, width):
+    """Leaving out the margins whose least value on the interval is positive
+    (``_may_reach_zero``) changes no modelled flip: a quadratic a + b t + c t^2 kept out
+    is above zero at every scanned turn, and the scan finds the same first flip as one
+    over all margins.  Samples at t = 0, 0.025 and 2 of random quadratics."""
+    coefficients = np.array(margins, dtype=float).T                     # (3, M)
+    high = low + width
+    kept = _may_reach_zero(coefficients, low, high)
+    grid = np.linspace(low, high, 4097)
+    values = np.vander(grid, 3, increasing=True) @ coefficients
+    assert not (values[:, ~kept] <= 0.0).any()
+    samples = [(t, np.vander(np.array([t]), 3, increasing=True)[0] @ coefficients)
+               for t in (0.0, 0.025, 2.0)]
+    assert _modelled_flip(samples, low, high) == _scanned_flip(samples, low, high)
 
 
 def test_modelled_flip_returns_high_when_nothing_flips():

@@ -174,9 +174,10 @@ def _may_reach_zero(coefficients: np.ndarray, start: float, end: float) -> np.nd
     -b / 2c when that lies inside and c > 0) is not above round-off of its terms."""
     a, b, c = coefficients
     least = np.minimum(a + b * start + c * start * start, a + b * end + c * end * end)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         vertex = np.where(c > 0.0, -b / (2.0 * c), start)
     inside = (vertex > start) & (vertex < end)
+    vertex = np.where(inside, vertex, start)
     least = np.where(inside, np.minimum(least, a + b * vertex + c * vertex * vertex), least)
     reach = max(abs(start), abs(end))
     scale = np.abs(a) + np.abs(b) * reach + np.abs(c) * reach * reach
