@@ -515,7 +515,8 @@ def check_edit_many(original: Geometry, edits: list[Design],
     sized = [k for k, (problem, _) in enumerate(out) if problem is None]
     tables = EditedTables(design, original, [edits[k] for k in sized])
     geometries = tables.geometries()
-    problems = [_edit_problem(original, geometry) for geometry in geometries]
+    problems = [None if kept else _edit_problem(original, geometry)
+                for kept, geometry in zip(tables.kept, geometries)]
     clear = [n for n, problem in enumerate(problems) if problem is None]
     for n, cutting in zip(clear, tables.cuts(clear)):
         problems[n] = _cut_problem(edits[sized[n]], cutting)

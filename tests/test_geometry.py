@@ -330,3 +330,41 @@ def test_a_designs_tables_are_kept_read_only_and_made_afresh_for_unhashable_plan
     for name in _Faces.__dataclass_fields__:
         assert np.array_equal(getattr(fresh[0], name), getattr(expected[0], name))
     assert all(np.array_equal(a, b) for a, b in zip(fresh[1], expected[1]))
+
+
+def test_edits_found_to_keep_the_structure_have_a_fresh_analysis_geometry():
+    """``EditedTables.geometries`` takes an edit's geometry from the design's when the
+    edit keeps every joint (the same faces) and ground contact (the same corners): on
+    random catalog edits, those edits' geometries equal a fresh ``analyze`` of the edit
+    (joints in order with their points, lengths, nails and frames; contacts; components;
+    no violations), and the others are told apart (a parted joint, a new one, a lifted
+    corner)."""
+    from furncheck.geometry.edits import EditedTables
+
+    batches: dict[int, tuple] = {}
+    for original, geometry, edited in _catalog_edits(
+            ("cabinet-28.yaml", "stool.yaml", "bookshelf-20.yaml"), 30, 5, 60.0):
+        if all(p.length > 0 and p.width > 0 for p in edited.planks):
+            batches.setdefault(id(original), (original, geometry, []))[2].append(edited)
+    kept_count = other_count = 0
+    for original, geometry, edits in batches.values():
+        tables = EditedTables(original, geometry, edits)
+        for edited, found, kept in zip(edits, tables.geometries(), tables.kept):
+            fresh = analyze(edited)
+            same = [(j.face, j.edge, j.edge_face, j.face_side) for j in fresh.joints] == \
+                [(j.face, j.edge, j.edge_face, j.face_side) for j in geometry.joints] and \
+                [(c.plank, c.corner) for c in fresh.contacts] == \
+                [(c.plank, c.corner) for c in geometry.contacts] and not fresh.violations
+            assert kept == same
+            if not kept:
+                other_count += 1
+                continue
+            kept_count += 1
+            for a, b in zip(found.joints, fresh.joints):
+                assert (a.planks, a.nails, a.length) == (b.planks, b.nails, b.length)
+                assert np.array_equal(a.point, b.point) and np.array_equal(a.frame, b.frame)
+            assert [(c.plank, c.corner, tuple(c.point)) for c in found.contacts] == \
+                [(c.plank, c.corner, tuple(c.point)) for c in fresh.contacts]
+            assert found.components == fresh.components and found.grounded == fresh.grounded
+            assert found.violations == ()
+    assert kept_count > 10 and other_count > 10, (kept_count, other_count)

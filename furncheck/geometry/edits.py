@@ -15,10 +15,12 @@ from furncheck.design.model import Design
 from furncheck.geometry.analysis import (
     _completed,
     _detected_joints,
+    _joint_from_touch,
     _pairs_to_detect,
     _unchanged_joints,
     _unchanged_planks,
     analyze,
+    nail_count,
 )
 from furncheck.geometry.faces import (
     _best_touches,
@@ -31,7 +33,7 @@ from furncheck.geometry.faces import (
     _separating_axes,
     _stacked_tables,
 )
-from furncheck.geometry.model import _COS_MAX_TILT, _GEOMETRY_EPS, Geometry
+from furncheck.geometry.model import _COS_MAX_TILT, _GEOMETRY_EPS, Contact, Geometry
 
 
 def interpenetrations(design: Design) -> list[tuple[str, str, float]]:
@@ -67,30 +69,40 @@ class EditedTables:
                     edited.planks) for edited, same in zip(edits, self.same)]
         self.planks, self.faces, (self.lo, self.hi), self.index = _stacked_tables(
             design.planks, _design_tables(design.planks), changes)
+        self.kept = [False] * len(edits)
 
     def geometries(self) -> list[Geometry]:
         """``analyze(edited, (design, geometry))`` of every edit, the joints of all edits'
-        changed planks detected together."""
+        changed planks detected together.  ``kept[k]`` tells whether edit k was found to
+        keep every joint (the same faces) and ground contact (the same corners) of the
+        design (``_KeptStructure``): its geometry is the design's with those joints and
+        contacts measured again, and it has no problem as an edit."""
         design, geometry = self.design, self.geometry
         slack = design.tolerance + _GEOMETRY_EPS
         found: list = [None] * len(self.edits)
+        structure = _KeptStructure(design, geometry)
         detect = []
         for k, (edited, same, index) in enumerate(zip(self.edits, self.same, self.index)):
             if same is None or edited.joints is not None:
                 found[k] = analyze(edited, (design, geometry))
                 continue
-            known = _unchanged_joints(edited, (design, geometry), same)
-            pairs, fresh = _pairs_to_detect(edited, self.lo[index], self.hi[index], known)
-            detect.append((k, known, pairs, fresh))
-        rows = [self.index[k][pairs[fresh]] for k, _, pairs, fresh in detect]
+            pairs, fresh = _pairs_to_detect(edited, self.lo[index], self.hi[index],
+                                            {"planks": same})
+            detect.append((k, pairs, fresh))
+        rows = [self.index[k][pairs[fresh]] for k, pairs, fresh in detect]
         best = _best_touches(self.planks, np.concatenate(rows) if rows else
                              np.zeros((0, 2), dtype=int), slack, False, self.faces)
-        for k, known, pairs, fresh in detect:
-            edited, index = self.edits[k], self.index[k]
+        for k, pairs, fresh in detect:
+            edited, index, same = self.edits[k], self.index[k], self.same[k]
             mine = {(i, j): best[key] for i, j in pairs[fresh].tolist()
                     if (key := (int(index[i]), int(index[j]))) in best}
+            kept = structure.of(edited, pairs[fresh].tolist(), mine, same)
+            if kept is not None:
+                found[k], self.kept[k] = kept, True
+                continue
+            known = _unchanged_joints(edited, (design, geometry), same)
             joints = _detected_joints(edited, pairs, fresh, known, mine)
-            found[k] = _completed(edited, joints, [], geometry, self.same[k])
+            found[k] = _completed(edited, joints, [], geometry, same)
         return found
 
     def cuts(self, which: list[int]) -> list[list[tuple[str, str, float]]]:
@@ -111,6 +123,69 @@ class EditedTables:
                         zip(mine, depth[start:start + len(mine)]) if d > slack]
             start += len(mine)
         return [found[k] for k in which]
+
+
+class _KeptStructure:
+    """The joints and ground contacts of a design without geometric violations, for
+    recognizing the edits that keep all of them (the range search's, mostly): an edit
+    whose changed planks' fresh pairs touch exactly as the design's joints of those
+    planks did (the same faces) and whose changed planks touch the ground at the same
+    corners (none sunk) has the design's geometry with those joints and contacts measured
+    again, in the same order; its components, grounding and (no) violations are the
+    design's.  What ``analyze`` would find, without the bookkeeping."""
+
+    def __init__(self, design: Design, geometry: Geometry):
+        self.original = geometry
+        self.usable = not geometry.violations and design.joints is None
+        self.slack = design.tolerance + _GEOMETRY_EPS
+        self.spacing = design.material.nail_spacing
+        index = design.plank_index
+        self.joint_of = {tuple(sorted((index[j.face], index[j.edge]))): n
+                         for n, j in enumerate(geometry.joints)}
+        self.contacts: dict[str, list[Contact]] = {}
+        for contact in geometry.contacts:
+            self.contacts.setdefault(contact.plank, []).append(contact)
+
+    def of(self, edited: Design, fresh: list, touches: dict,
+                 same: frozenset[str]) -> Geometry | None:
+        """The geometry of ``edited`` (whose planks ``same`` are the design's, and whose
+        plank pairs ``fresh`` (i < j) with a changed plank have the best ``touches``) if it
+        keeps every joint and contact of the design; None if it may not."""
+        if not self.usable:
+            return None
+        joints = list(self.original.joints)
+        replaced = 0
+        for i, j in fresh:
+            touch, n = touches.get((i, j)), self.joint_of.get((i, j))
+            if touch is None or touch.gap < -self.slack:
+                if n is not None:
+                    return None                 # the joint parts
+                continue
+            if n is None:
+                return None                     # a new joint
+            old = joints[n]
+            if (touch.face.id, touch.edge.id, touch.edge_face, touch.face_side) != \
+                    (old.face, old.edge, old.edge_face, old.face_side):
+                return None                     # the planks meet otherwise
+            joints[n] = _joint_from_touch(touch, (touch.face.id, touch.edge.id),
+                                          nail_count(touch.length, self.spacing), "")
+            replaced += 1
+        if replaced != sum(j.face not in same or j.edge not in same for j in joints):
+            return None                         # a joint of a changed plank was not found
+        contacts = []
+        for plank in edited.planks:
+            before = self.contacts.get(plank.id, [])
+            if plank.id in same:
+                contacts.extend(before)
+                continue
+            z = plank.corners[:, 2]
+            touching = np.nonzero(z <= self.slack)[0]
+            if z.min() < -self.slack or touching.tolist() != [c.corner for c in before]:
+                return None                     # sunk, or other corners on the ground
+            contacts.extend(Contact(plank.id, np.array([x, y, 0.0]), int(corner))
+                            for corner, (x, y, _) in zip(touching, plank.corners[touching]))
+        return Geometry(tuple(joints), tuple(contacts), self.original.components,
+                        self.original.grounded, ())
 
 
 # --- margins of an edit -----------------------------------------------------------------------
