@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from furncheck.check import check_design
 from furncheck.design import parse_design
@@ -368,3 +370,67 @@ def test_edits_found_to_keep_the_structure_have_a_fresh_analysis_geometry():
             assert found.components == fresh.components and found.grounded == fresh.grounded
             assert found.violations == ()
     assert kept_count > 10 and other_count > 10, (kept_count, other_count)
+
+
+def _clip_one(polygon, half_x, half_y):
+    """Reference: Sutherland-Hodgman of one convex polygon, vertex by vertex."""
+    points = list(polygon)
+    for axis, sign, limit in ((0, 1.0, half_x), (0, -1.0, half_x), (1, 1.0, half_y),
+                              (1, -1.0, half_y)):
+        kept, previous = [], points[-1] if points else None
+        for current in points:
+            cur_in, prev_in = sign * current[axis] <= limit, sign * previous[axis] <= limit
+            if cur_in != prev_in:
+                t = (sign * limit - previous[axis]) / (current[axis] - previous[axis])
+                kept.append((previous[0] + t * (current[0] - previous[0]),
+                             previous[1] + t * (current[1] - previous[1])))
+            if cur_in:
+                kept.append(current)
+            previous = current
+        points = kept
+    return points
+
+
+def test_quads_clipped_to_rectangles_by_hand():
+    """A 2 x 2 square centred at (1, 0) clipped to |x|, |y| <= 1 keeps x in [0, 1]: area
+    2, centroid (0.5, 0), extent 1 along x and 2 along y; a quad inside is kept as it is;
+    one outside leaves nothing."""
+    from furncheck.geometry.faces import _clipped_to_rectangles, _polygon_measures
+
+    xs = np.array([[0.0, 2.0, 2.0, 0.0], [-0.5, 0.5, 0.5, -0.5], [3.0, 4.0, 4.0, 3.0]])
+    ys = np.array([[-1.0, -1.0, 1.0, 1.0], [-0.2, -0.2, 0.2, 0.2], [0.0, 0.0, 1.0, 1.0]])
+    half = np.ones(3)
+    cx, cy, count = _clipped_to_rectangles(xs, ys, half, half)
+    assert count.tolist() == [4, 4, 0]
+    area, mx, my, extent = _polygon_measures(cx, cy, count, np.array([[1.0, 0.0]] * 3))
+    assert area[:2].tolist() == pytest.approx([2.0, 0.4]) and mx[0] == pytest.approx(0.5)
+    assert my[0] == pytest.approx(0.0, abs=1e-15) and extent[:2].tolist() == [1.0, 1.0]
+    assert np.array_equal(cx[1, :4], xs[1]) and np.array_equal(cy[1, :4], ys[1])
+    _, _, _, extent = _polygon_measures(cx, cy, count, np.array([[0.0, 1.0]] * 3))
+    assert extent[0] == 2.0
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.lists(st.floats(-2.0, 2.0), min_size=8, max_size=8),
+       st.floats(0.1, 1.5), st.floats(0.1, 1.5), st.floats(0.0, 6.3))
+def test_quads_are_clipped_as_one_at_a_time(coordinates, half_x, half_y, turn):
+    """The batched clip gives, vertex for vertex and to the last bit, what clipping the
+    one convex quad does (a random parallelogram-ish quad: a rectangle of random half
+    sizes, turned and moved); so do its area, centroid and extent."""
+    from furncheck.geometry.faces import _clipped_to_rectangles, _polygon_measures
+
+    a, b, ox, oy = abs(coordinates[0]) + 0.05, abs(coordinates[1]) + 0.05, *coordinates[2:4]
+    c, s = np.cos(turn), np.sin(turn)
+    quad = [(ox + c * x - s * y, oy + s * x + c * y)
+            for x, y in ((a, b), (-a, b), (-a, -b), (a, -b))]
+    xs, ys = np.array([[p[0] for p in quad]]), np.array([[p[1] for p in quad]])
+    cx, cy, count = _clipped_to_rectangles(xs, ys, np.array([half_x]), np.array([half_y]))
+    expected = _clip_one(quad, half_x, half_y)
+    assert int(count[0]) == len(expected)
+    assert [(float(x), float(y)) for x, y in zip(cx[0, :count[0]], cy[0, :count[0]])] == \
+        [(float(x), float(y)) for x, y in expected]
+    if len(expected) >= 3:
+        area, *_ = _polygon_measures(cx, cy, count, np.array([[1.0, 0.0]]))
+        twice = sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1)
+                    in zip(expected[-1:] + expected[:-1], expected))
+        assert area[0] == pytest.approx(abs(0.5 * twice), rel=1e-12, abs=1e-15)
