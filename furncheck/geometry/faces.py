@@ -129,12 +129,20 @@ def _touch_regions(planks, faces: _Faces, edge: np.ndarray, face: np.ndarray,
     along_2d = np.einsum("ca,cab->cb", along, rot_f[:, :, :2])
     along_2d /= np.linalg.norm(along_2d, axis=1, keepdims=True)
     face_area = 4.0 * half_e[:, 2] * half_e[:, :2].max(axis=1)
-    xs, ys, count = _clipped_to_rectangles(local[:, :, 0], local[:, :, 1], half_f[:, 0],
-                                           half_f[:, 1])
-    area, cx, cy, extent = _polygon_measures(xs, ys, count, along_2d)
-    found = (count >= 3) & (area > tol.MIN_JOINT_AREA_FRACTION * face_area)
-    regions = [(a, x, y, e) if ok else None for a, x, y, e, ok in
-               zip(area.tolist(), cx.tolist(), cy.tolist(), extent.tolist(), found.tolist())]
+    least = tol.MIN_JOINT_AREA_FRACTION * face_area
+    if len(edge) >= CLIP_AT_ONCE:
+        xs, ys, count = _clipped_to_rectangles(local[:, :, 0], local[:, :, 1], half_f[:, 0],
+                                               half_f[:, 1])
+        area, cx, cy, extent = _polygon_measures(xs, ys, count, along_2d)
+        found = (count >= 3) & (area > least)
+        regions = [(a, x, y, e) if ok else None for a, x, y, e, ok in
+                   zip(area.tolist(), cx.tolist(), cy.tolist(), extent.tolist(),
+                       found.tolist())]
+    else:
+        regions = [_clipped_region(quad, hx, hy, ax, ay, least_c)
+                   for quad, (hx, hy), (ax, ay), least_c in zip(
+                       local.tolist(), half_f[:, :2].tolist(), along_2d.tolist(),
+                       least.tolist())]
     thickness_normal = rot_e[:, :, 2]
     x_axis = thickness_normal - np.einsum("ca,ca->c", thickness_normal, normal)[:, None] * normal
     x_axis /= np.linalg.norm(x_axis, axis=1, keepdims=True)
@@ -152,44 +160,119 @@ def _touch_regions(planks, faces: _Faces, edge: np.ndarray, face: np.ndarray,
     return touches
 
 
+CLIP_AT_ONCE = 128
+"""From this many candidate faces on, their touching regions are clipped as arrays
+(``_clipped_to_rectangles``); fewer are clipped one by one in plain floats, which is faster
+for them (the two give the same numbers to the last bit)."""
+
+
+def _clipped_region(quad: list, half_x: float, half_y: float, along_x: float,
+                    along_y: float, least: float) -> tuple | None:
+    """(area, centroid x, y, extent along (along_x, along_y)) of the quad [(x, y), ...]
+    clipped to |x| <= half_x, |y| <= half_y, or None if less than ``least`` is left."""
+    polygon = _clip_to_rectangle(quad, half_x, half_y)
+    if len(polygon) < 3:
+        return None
+    area, cx, cy = _polygon_area_centroid(polygon)
+    extent = [x * along_x + y * along_y for x, y in polygon]
+    return (area, cx, cy, max(extent) - min(extent)) if area > least else None
+
+
+def _clip_to_rectangle(polygon: list, half_x: float, half_y: float) -> list:
+    """Sutherland-Hodgman clip of a convex polygon [(x, y), ...] to |x| <= half_x,
+    |y| <= half_y (plain floats: the polygons are tiny, numpy would only add overhead)."""
+    if all(-half_x <= x <= half_x and -half_y <= y <= half_y for x, y in polygon):
+        return polygon          # inside already (most end faces lie within their face)
+    points = polygon
+    for axis, sign, limit in ((0, 1.0, half_x), (0, -1.0, half_x), (1, 1.0, half_y),
+                              (1, -1.0, half_y)):
+        kept = []
+        previous = points[-1]
+        prev_in = sign * previous[axis] <= limit
+        for current in points:
+            cur_in = sign * current[axis] <= limit
+            if cur_in != prev_in:
+                t = (sign * limit - previous[axis]) / (current[axis] - previous[axis])
+                kept.append((previous[0] + t * (current[0] - previous[0]),
+                             previous[1] + t * (current[1] - previous[1])))
+            if cur_in:
+                kept.append(current)
+            previous, prev_in = current, cur_in
+        points = kept
+        if not points:
+            break
+    return points
+
+
+def _polygon_area_centroid(polygon: list) -> tuple[float, float, float]:
+    """Area (m^2) and centroid x, y of a simple polygon [(x, y), ...] (shoelace formula)."""
+    twice_area = cx = cy = 0.0
+    x0, y0 = polygon[-1]
+    for x1, y1 in polygon:
+        cross = x0 * y1 - x1 * y0
+        twice_area += cross
+        cx += (x0 + x1) * cross
+        cy += (y0 + y1) * cross
+        x0, y0 = x1, y1
+    if abs(twice_area) < 1e-30:
+        xs, ys = zip(*polygon)
+        return 0.0, sum(xs) / len(xs), sum(ys) / len(ys)
+    return abs(0.5 * twice_area), cx / (3.0 * twice_area), cy / (3.0 * twice_area)
+
+
 def _clipped_to_rectangles(xs: np.ndarray, ys: np.ndarray, half_x: np.ndarray,
                            half_y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Sutherland-Hodgman clip of C convex quadrilaterals (vertices ``xs``, ``ys``, (C, 4))
     to the rectangles |x| <= half_x, |y| <= half_y (C,), all at once: the clipped
     polygons' vertices (C, 8) in order, and how many each has (C,; fewer than 3 when
     nothing is left).  Each half-plane adds at most one vertex to a convex polygon;
-    vertices past a polygon's count are unused."""
-    rows = np.arange(len(xs))
+    vertices past a polygon's count are unused.  A half-plane is applied only to the
+    polygons with a vertex outside it (it leaves the others as they are)."""
     count = np.full(len(xs), xs.shape[1])
     xs = np.pad(xs, ((0, 0), (0, 8 - xs.shape[1])))
     ys = np.pad(ys, ((0, 0), (0, 8 - ys.shape[1])))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        for axis, sign, limit in ((0, 1.0, half_x), (0, -1.0, half_x), (1, 1.0, half_y),
-                                  (1, -1.0, half_y)):
-            along = xs if axis == 0 else ys
-            previous = np.maximum(count - 1, 0)
-            px, py, pa = xs[rows, previous], ys[rows, previous], along[rows, previous]
-            prev_in = sign * pa <= limit
-            kept_x, kept_y = np.zeros_like(xs), np.zeros_like(ys)
-            kept = np.zeros(len(xs), dtype=int)
-            for j in range(int(count.max(initial=0))):
-                active = j < count
-                cx, cy, ca = xs[:, j], ys[:, j], along[:, j]
-                cur_in = sign * ca <= limit
-                crossing = active & (cur_in != prev_in)
-                t = (sign * limit - pa) / (ca - pa)
-                where = rows[crossing]
-                kept_x[where, kept[crossing]] = (px + t * (cx - px))[crossing]
-                kept_y[where, kept[crossing]] = (py + t * (cy - py))[crossing]
-                kept += crossing
-                inside = active & cur_in
-                where = rows[inside]
-                kept_x[where, kept[inside]] = cx[inside]
-                kept_y[where, kept[inside]] = cy[inside]
-                kept += inside
-                px, py, pa, prev_in = cx, cy, ca, cur_in
-            xs, ys, count = kept_x, kept_y, kept
+    slots = np.arange(8)
+    for axis, sign, limit in ((0, 1.0, half_x), (0, -1.0, half_x), (1, 1.0, half_y),
+                              (1, -1.0, half_y)):
+        along = xs if axis == 0 else ys
+        outside = (sign * along > limit[:, None]) & (slots < count[:, None])
+        clipped = np.flatnonzero(outside.any(axis=1))
+        if len(clipped):
+            xs[clipped], ys[clipped], count[clipped] = _clipped_by(
+                xs[clipped], ys[clipped], count[clipped], axis, sign, limit[clipped])
     return xs, ys, count
+
+
+def _clipped_by(xs: np.ndarray, ys: np.ndarray, count: np.ndarray, axis: int, sign: float,
+                limit: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """One Sutherland-Hodgman step of ``_clipped_to_rectangles``: the polygons clipped to
+    sign * (x or y, by ``axis``) <= limit, vertex by vertex as the scalar algorithm goes
+    (the same arithmetic, so the same numbers)."""
+    rows = np.arange(len(xs))
+    along = xs if axis == 0 else ys
+    previous = np.maximum(count - 1, 0)
+    px, py, pa = xs[rows, previous], ys[rows, previous], along[rows, previous]
+    prev_in = sign * pa <= limit
+    kept_x, kept_y = np.zeros_like(xs), np.zeros_like(ys)
+    kept = np.zeros(len(xs), dtype=int)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for j in range(int(count.max(initial=0))):
+            active = j < count
+            cx, cy, ca = xs[:, j], ys[:, j], along[:, j]
+            cur_in = sign * ca <= limit
+            crossing = active & (cur_in != prev_in)
+            t = (sign * limit - pa) / (ca - pa)
+            where = rows[crossing]
+            kept_x[where, kept[crossing]] = (px + t * (cx - px))[crossing]
+            kept_y[where, kept[crossing]] = (py + t * (cy - py))[crossing]
+            kept += crossing
+            inside = active & cur_in
+            where = rows[inside]
+            kept_x[where, kept[inside]] = cx[inside]
+            kept_y[where, kept[inside]] = cy[inside]
+            kept += inside
+            px, py, pa, prev_in = cx, cy, ca, cur_in
+    return kept_x, kept_y, kept
 
 
 def _polygon_measures(xs: np.ndarray, ys: np.ndarray, count: np.ndarray,
