@@ -82,12 +82,14 @@ def _best_touches(planks: tuple[Plank, ...], pairs: np.ndarray, slack: float, ke
     faces = _face_tables(planks) if faces is None else faces
     ordered = np.vstack([pairs, pairs[:, ::-1]])                 # (edge, face) both ways
     edge, face = ordered[:, 0], ordered[:, 1]
-    alignment = -np.einsum("pfa,pga->pfg", faces.narrow_normal[edge], faces.broad_normal[face])
-    heights = (np.einsum("pfca,pga->pfgc", faces.narrow_corners[edge], faces.broad_normal[face])
-               - faces.broad_offset[face][:, None, :, None])
-    gap = heights.min(axis=3)                                     # (P, 4, 2)
-    outside = (np.einsum("pa,pga->pg", faces.centers[edge], faces.broad_normal[face])
-               - faces.broad_offset[face]) >= 0.0
+    broad = faces.broad_normal[face]                              # (P, 2, 3)
+    offset = faces.broad_offset[face]
+    alignment = -_dot(faces.narrow_normal[edge][:, :, None, :], broad[:, None, :, :])
+    heights = _dot(faces.narrow_corners[edge][:, :, None, :, :], broad[:, None, :, None, :]) \
+        - offset[:, None, :, None]                                # (P, 4, 2, 4 corners)
+    gap = np.minimum(np.minimum(heights[..., 0], heights[..., 1]),
+                     np.minimum(heights[..., 2], heights[..., 3]))            # (P, 4, 2)
+    outside = _dot(faces.centers[edge][:, None, :], broad) - offset >= 0.0
     candidates = (alignment >= _COS_MAX_TILT) & (gap <= slack) & outside[:, None, :]
     if not keep_deep:
         candidates &= gap >= -slack
@@ -97,10 +99,11 @@ def _best_touches(planks: tuple[Plank, ...], pairs: np.ndarray, slack: float, ke
     p, f, g = chosen[:, 0], chosen[:, 1], chosen[:, 2]
     touches = _touch_regions(planks, faces, edge[p], face[p], f, g, gap[p, f, g],
                              alignment[p, f, g])
+    keys = [(i, j) for i, j in pairs.tolist()]
     for p_k, touch in zip(chosen[:, 0].tolist(), touches):
         if touch is None:
             continue
-        key = tuple(int(v) for v in pairs[p_k % n_pairs])
+        key = keys[p_k % n_pairs]
         rank = (touch.gap >= -slack, round(touch.alignment, 9), touch.area)
         current = best.get(key)
         if current is None or rank > (current.gap >= -slack, round(current.alignment, 9),
