@@ -339,8 +339,10 @@ class _FrictionEnergy:
         (the energy itself is a sum of large terms that cancel, too noisy to compare near
         the minimum; its gradient is not).  None if Phi has no minimum (it falls without
         bound along a sliding motion) or Newton does not converge."""
+        gradient = None
         for _ in range(tol.FRICTION_NEWTON_ITERATIONS):
-            gradient = self._gradient(x)
+            if gradient is None:
+                gradient = self._gradient(x)
             if np.abs(gradient).max(initial=0.0) <= self._gradient_floor(x):
                 return x
             hessian = self._hessian(x)
@@ -349,17 +351,20 @@ class _FrictionEnergy:
             step = _Factored(hessian, _cholesky(hessian)).solve(-gradient)
             if step is None:
                 return None
-            x = x + self._line_search(x, step) * step
+            t, gradient = self._line_search(x, step)
+            x = x + t * step
             if np.abs(x).max() > tol.SLIDING_DISPLACEMENT:
                 return None
         return None
 
-    def _line_search(self, x: np.ndarray, step: np.ndarray) -> float:
+    def _line_search(self, x: np.ndarray, step: np.ndarray) -> tuple[float, np.ndarray | None]:
         """t in (0, 1] minimizing Phi(x + t step): Phi is convex, so its slope along the
         step rises with t; take the full step if the slope is still <= 0 there, else
-        bisect for the zero of the slope."""
-        if float(self._gradient(x + step) @ step) <= 0.0:
-            return 1.0
+        bisect for the zero of the slope.  With t, the gradient at x + t step when it was
+        computed (the full step), else None."""
+        gradient = self._gradient(x + step)
+        if float(gradient @ step) <= 0.0:
+            return 1.0, gradient
         low, high = 0.0, 1.0
         for _ in range(tol.LINE_SEARCH_BISECTIONS):
             middle = 0.5 * (low + high)
@@ -367,7 +372,7 @@ class _FrictionEnergy:
                 low = middle
             else:
                 high = middle
-        return max(low, 0.5 * high)
+        return max(low, 0.5 * high), None
 
     def _gradient_floor(self, x: np.ndarray) -> float:
         """N: the force tolerance, or the round-off floor of S0 x if that is larger."""
