@@ -67,6 +67,7 @@ class EditedTables:
         changes = [([] if same is None else
                     [i for i, plank in enumerate(edited.planks) if plank.id not in same],
                     edited.planks) for edited, same in zip(edits, self.same)]
+        self.changed = [changed for changed, _ in changes]
         self.planks, self.faces, (self.lo, self.hi), self.index = _stacked_tables(
             design.planks, _design_tables(design.planks), changes)
         self.kept = [False] * len(edits)
@@ -86,22 +87,23 @@ class EditedTables:
             if same is None or edited.joints is not None:
                 found[k] = analyze(edited, (design, geometry))
                 continue
-            pairs, fresh = _pairs_to_detect(edited, self.lo[index], self.hi[index],
-                                            {"planks": same})
-            detect.append((k, pairs, fresh))
-        rows = [self.index[k][pairs[fresh]] for k, pairs, fresh in detect]
+            detect.append((k, _fresh_pairs(self.changed[k], self.lo[index], self.hi[index],
+                                           slack)))
+        rows = [self.index[k][fresh] for k, fresh in detect]
         best = _best_touches(self.planks, np.concatenate(rows) if rows else
                              np.zeros((0, 2), dtype=int), slack, False, self.faces)
-        for k, pairs, fresh in detect:
+        for k, fresh in detect:
             edited, index, same = self.edits[k], self.index[k], self.same[k]
-            mine = {(i, j): best[key] for i, j in pairs[fresh].tolist()
+            fresh = fresh.tolist()
+            mine = {(i, j): best[key] for i, j in fresh
                     if (key := (int(index[i]), int(index[j]))) in best}
-            kept = structure.of(edited, pairs[fresh].tolist(), mine, same)
+            kept = structure.of(edited, fresh, mine, same)
             if kept is not None:
                 found[k], self.kept[k] = kept, True
                 continue
             known = _unchanged_joints(edited, (design, geometry), same)
-            joints = _detected_joints(edited, pairs, fresh, known, mine)
+            pairs, detected = _pairs_to_detect(edited, self.lo[index], self.hi[index], known)
+            joints = _detected_joints(edited, pairs, detected, known, mine)
             found[k] = _completed(edited, joints, [], geometry, same)
         return found
 
@@ -123,6 +125,23 @@ class EditedTables:
                         zip(mine, depth[start:start + len(mine)]) if d > slack]
             start += len(mine)
         return [found[k] for k in which]
+
+
+def _fresh_pairs(changed: list[int], lo: np.ndarray, hi: np.ndarray,
+                 slack: float) -> np.ndarray:
+    """The plank pairs (i < j, in order) with a plank of ``changed`` whose boxes (``lo``,
+    ``hi``) meet within the slack: the pairs ``analysis._pairs_to_detect`` marks fresh,
+    found from the changed planks' rows alone."""
+    if not changed:
+        return np.zeros((0, 2), dtype=int)
+    rows = np.array(changed)
+    meet = np.all((lo[rows][:, None, :] <= hi[None, :, :] + slack)
+                  & (lo[None, :, :] <= hi[rows][:, None, :] + slack), axis=2)
+    meet[np.arange(len(rows)), rows] = False
+    mine, other = np.nonzero(meet)
+    n = len(lo)
+    codes = np.unique(np.minimum(rows[mine], other) * n + np.maximum(rows[mine], other))
+    return np.column_stack([codes // n, codes % n])
 
 
 class _KeptStructure:
