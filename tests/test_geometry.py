@@ -421,3 +421,24 @@ def test_quads_are_clipped_at_once_as_one_at_a_time(coordinates, half_x, half_y,
     if region is not None:
         measured = _polygon_measures(cx, cy, count, np.array([along]))
         assert tuple(float(m[0]) for m in measured) == region
+
+
+def test_fresh_pairs_from_the_changed_planks_alone():
+    """``_fresh_pairs`` (from the changed planks' boxes) lists exactly the pairs that
+    ``_pairs_to_detect`` (all pairs of boxes that meet) marks for detection, in order."""
+    from furncheck.geometry.analysis import _pairs_to_detect, _unchanged_planks
+    from furncheck.geometry.edits import _fresh_pairs
+    from furncheck.geometry.faces import _bounding_boxes
+    from furncheck.geometry.model import _GEOMETRY_EPS
+
+    compared = 0
+    for original, geometry, edited in _catalog_edits(
+            ("cabinet-28.yaml", "chair-tilted.yaml", "magazine-rack.yaml"), 20, 3, 80.0):
+        same = _unchanged_planks(edited, (original, geometry))
+        changed = [i for i, plank in enumerate(edited.planks) if plank.id not in same]
+        lo, hi = _bounding_boxes(edited.planks)
+        pairs, fresh = _pairs_to_detect(edited, lo, hi, {"planks": same})
+        slack = edited.tolerance + _GEOMETRY_EPS
+        assert _fresh_pairs(changed, lo, hi, slack).tolist() == pairs[fresh].tolist()
+        compared += bool(changed)
+    assert compared > 20
