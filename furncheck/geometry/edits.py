@@ -166,7 +166,7 @@ class _KeptStructure:
             self.contacts.setdefault(contact.plank, []).append(contact)
 
     def of(self, edited: Design, fresh: list, touches: dict,
-                 same: frozenset[str]) -> Geometry | None:
+           same: frozenset[str]) -> Geometry | None:
         """The geometry of ``edited`` (whose planks ``same`` are the design's, and whose
         plank pairs ``fresh`` (i < j) with a changed plank have the best ``touches``) if it
         keeps every joint and contact of the design; None if it may not."""
