@@ -134,15 +134,21 @@ def _pairs_to_detect(design: Design, lo: np.ndarray, hi: np.ndarray,
     """The plank pairs (i < j) whose boxes (``lo``, ``hi``) meet within the slack, and
     whether each must be detected (not both planks among the ``known`` unchanged ones)."""
     slack = design.tolerance + _GEOMETRY_EPS
-    overlap = np.all((lo[:, None, :] <= hi[None, :, :] + slack)
-                     & (lo[None, :, :] <= hi[:, None, :] + slack), axis=2)
-    pairs = np.argwhere(np.triu(overlap, k=1))
+    pairs = np.argwhere(np.triu(_boxes_meet(lo, hi, lo, hi, slack), k=1))
     if known is None:
         return pairs, np.ones(len(pairs), dtype=bool)
     changed = np.array([plank.id not in known["planks"] for plank in design.planks])
     fresh = changed[pairs[:, 0]] | changed[pairs[:, 1]] if len(pairs) else \
         np.zeros(0, dtype=bool)
     return pairs, fresh
+
+
+def _boxes_meet(lo_a: np.ndarray, hi_a: np.ndarray, lo_b: np.ndarray, hi_b: np.ndarray,
+                slack: float) -> np.ndarray:
+    """(A, B): whether box a (lower, upper corners) and box b meet within the slack along
+    every axis."""
+    return np.all((lo_a[:, None, :] <= hi_b[None, :, :] + slack)
+                  & (lo_b[None, :, :] <= hi_a[:, None, :] + slack), axis=2)
 
 
 def _detected_joints(design: Design, pairs: np.ndarray, fresh: np.ndarray,

@@ -13,6 +13,7 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.design.model import Design
 from furncheck.geometry.analysis import (
+    _boxes_meet,
     _completed,
     _detected_joints,
     _joint_from_touch,
@@ -29,6 +30,8 @@ from furncheck.geometry.faces import (
     _design_tables,
     _dot,
     _Faces,
+    _least,
+    _most,
     _overlapping,
     _separating_axes,
     _stacked_tables,
@@ -135,8 +138,7 @@ def _fresh_pairs(changed: list[int], lo: np.ndarray, hi: np.ndarray,
     if not changed:
         return np.zeros((0, 2), dtype=int)
     rows = np.array(changed)
-    meet = np.all((lo[rows][:, None, :] <= hi[None, :, :] + slack)
-                  & (lo[None, :, :] <= hi[rows][:, None, :] + slack), axis=2)
+    meet = _boxes_meet(lo[rows], hi[rows], lo, hi, slack)
     meet[np.arange(len(rows)), rows] = False
     mine, other = np.nonzero(meet)
     n = len(lo)
@@ -382,18 +384,6 @@ def _combo_margins(faces: _Faces, rot: np.ndarray, half: np.ndarray,
     lo, hi = boxes
     return np.column_stack([gap + slack, slack - gap, alignment - _COS_MAX_TILT, outside,
                             overlap, hi[face] + slack - lo[edge], hi[edge] + slack - lo[face]])
-
-
-def _least(values: np.ndarray) -> np.ndarray:
-    """Smallest of the 4 columns of (C, 4) values."""
-    return np.minimum(np.minimum(values[:, 0], values[:, 1]),
-                      np.minimum(values[:, 2], values[:, 3]))
-
-
-def _most(values: np.ndarray) -> np.ndarray:
-    """Largest of the 4 columns of (C, 4) values."""
-    return np.maximum(np.maximum(values[:, 0], values[:, 1]),
-                      np.maximum(values[:, 2], values[:, 3]))
 
 
 def _cut_margins(rot: np.ndarray, half: np.ndarray, centre: np.ndarray,

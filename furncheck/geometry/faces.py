@@ -87,8 +87,7 @@ def _best_touches(planks: tuple[Plank, ...], pairs: np.ndarray, slack: float, ke
     alignment = -_dot(faces.narrow_normal[edge][:, :, None, :], broad[:, None, :, :])
     heights = _dot(faces.narrow_corners[edge][:, :, None, :, :], broad[:, None, :, None, :]) \
         - offset[:, None, :, None]                                # (P, 4, 2, 4 corners)
-    gap = np.minimum(np.minimum(heights[..., 0], heights[..., 1]),
-                     np.minimum(heights[..., 2], heights[..., 3]))            # (P, 4, 2)
+    gap = _least(heights)                                         # (P, 4, 2)
     outside = _dot(faces.centers[edge][:, None, :], broad) - offset >= 0.0
     candidates = (alignment >= _COS_MAX_TILT) & (gap <= slack) & outside[:, None, :]
     if not keep_deep:
@@ -404,3 +403,15 @@ def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     since numpy's reductions and matmuls over axes of a few entries cost many times the
     arithmetic."""
     return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1] + a[..., 2] * b[..., 2]
+
+
+def _least(values: np.ndarray) -> np.ndarray:
+    """Smallest of the 4 entries along the last axis (like ``_dot``, without a reduction)."""
+    return np.minimum(np.minimum(values[..., 0], values[..., 1]),
+                      np.minimum(values[..., 2], values[..., 3]))
+
+
+def _most(values: np.ndarray) -> np.ndarray:
+    """Largest of the 4 entries along the last axis."""
+    return np.maximum(np.maximum(values[..., 0], values[..., 1]),
+                      np.maximum(values[..., 2], values[..., 3]))
