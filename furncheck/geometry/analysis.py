@@ -177,20 +177,12 @@ def _unchanged_planks(design: Design,
     if previous is None:
         return None
     before = previous[0]
-    if len(before.planks) != len(design.planks) or \
-            any(old is not new and old.id != new.id
-                for old, new in zip(before.planks, design.planks)) or \
-            not _same(before.material, design.material) or \
-            before.tolerance != design.tolerance or before.units != design.units or \
-            not _same(before.joints, design.joints) or not _same(before.lines, design.lines):
+    if [p.id for p in before.planks] != [p.id for p in design.planks] or \
+            before.material != design.material or before.tolerance != design.tolerance or \
+            before.units != design.units or before.joints != design.joints or \
+            before.lines != design.lines:
         return None
-    return frozenset(new.id for old, new in zip(before.planks, design.planks)
-                     if old is new or old == new)
-
-
-def _same(a, b) -> bool:
-    """a == b, at once when they are one object (edits share their design's parts)."""
-    return a is b or a == b
+    return frozenset(new.id for old, new in zip(before.planks, design.planks) if old == new)
 
 
 def _unchanged_joints(design: Design, previous: tuple[Design, Geometry] | None,

@@ -232,21 +232,14 @@ def _factor(A: sp.csc_matrix, probe: np.ndarray):
     return None
 
 
-def _accurate(A, x: np.ndarray, b: np.ndarray, norm: float | None = None) -> bool:
+def _accurate(A, x: np.ndarray, b: np.ndarray) -> bool:
     """Whether x solves A x = b to a normwise backward error below SOLVE_RESIDUAL:
-    max|A x - b| <= tol (max row sum of |A| x max|x| + max|b|); ``norm``: that row sum of
-    A, when known."""
+    max|A x - b| <= tol (max row sum of |A| x max|x| + max|b|)."""
     if not np.all(np.isfinite(x)):
         return False
-    if norm is None:
-        norm = _row_sum_norm(A)
+    norm = float(abs(A).sum(axis=1).max()) if A.shape[0] else 0.0
     scale = norm * float(np.abs(x).max(initial=0.0)) + float(np.abs(b).max(initial=0.0))
     return float(np.abs(A @ x - b).max(initial=0.0)) <= tol.SOLVE_RESIDUAL * max(scale, 1e-300)
-
-
-def _row_sum_norm(A) -> float:
-    """The largest row sum of |A| (0 for an empty matrix)."""
-    return float(abs(A).sum(axis=1).max()) if A.shape[0] else 0.0
 
 
 _SYMMETRIC_LU = {"permc_spec": "MMD_AT_PLUS_A", "diag_pivot_thresh": 0.0,
@@ -333,11 +326,6 @@ class _Factored:
 
     matrix: np.ndarray
     factor: np.ndarray | None       # upper Cholesky factor, None: solved by LU
-
-    @functools.cached_property
-    def norm(self) -> float:
-        """The matrix's largest row sum of absolute values (``_accurate``), kept."""
-        return _row_sum_norm(self.matrix)
 
     def solve(self, rhs: np.ndarray) -> np.ndarray | None:
         """x with matrix @ x = rhs, None if the matrix is singular."""

@@ -217,8 +217,7 @@ class _ActiveSet:
             return None
         system = anchored_system(model, holding, stiffness_scale)
         ground = system.solve(self.ground_rhs)
-        if ground is None or not _accurate(system.matrix, ground, self.ground_rhs,
-                                           system.norm):
+        if ground is None or not _accurate(system.matrix, ground, self.ground_rhs):
             return None
         plank_q = ground.reshape(-1, 6)[condensed.contact_block]           # (nK, 6)
         displacement = (model.contact_maps @ plank_q[:, :, None])[:, :, 0]
