@@ -90,7 +90,7 @@ class Linearization:
         if not self.bolted:
             self.holding = self.statics.holding
             self.state = self.statics.state
-        elif bolted and self.statics.stability != "mechanism" and self.model.planks:
+        elif bolted and self.statics.joint_wrenches is not None and self.model.planks:
             self.holding = np.ones(len(self.model.contacts), dtype=bool)
             self.state = solve_system(self.model, self.holding,
                                       np.concatenate([f, np.zeros(self.model.G.shape[0])]))

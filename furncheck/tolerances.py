@@ -71,8 +71,15 @@ FORCE_REL_TOL = 1e-9
 """Relative force slack (of the total applied load) for contact sign and cone checks."""
 
 FRICTION_CONE_SIDES = 64
-"""Sides of the inner/outer polygonal friction pyramids in the sliding feasibility LP;
-between them the verdict is exact to 1 - cos(pi / 64) = 0.12 %."""
+"""Sides of the polygonal friction pyramids of the sliding feasibility program.  They are
+inscribed in the Coulomb cones, so a 'sliding' verdict from them is conservative by at
+most 1 - cos(pi / 64) = 0.12 % of the friction (the circumscribed pyramid, mu / cos(pi /
+64), would bound it from the other side)."""
+
+EQUILIBRIUM_WEIGHT = 1e6
+"""Weight of the equilibrium rows against the distance to the elastic forces when the
+admissible contact forces closest to them are sought (``feasibility.closest_admissible``):
+the equilibrium then holds to about 1e-12 of that distance."""
 
 SOLVE_RESIDUAL = 1e-10
 """Largest accepted normwise backward error of a linear solve (residual over

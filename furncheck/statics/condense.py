@@ -232,13 +232,15 @@ def _factor(A: sp.csc_matrix, probe: np.ndarray):
     return None
 
 
-def _accurate(A, x: np.ndarray, b: np.ndarray) -> bool:
+def _accurate(A, x: np.ndarray, b: np.ndarray, load_scale: float = 0.0) -> bool:
     """Whether x solves A x = b to a normwise backward error below SOLVE_RESIDUAL:
-    max|A x - b| <= tol (max row sum of |A| x max|x| + max|b|)."""
+    max|A x - b| <= tol (max row sum of |A| x max|x| + max(max|b|, load_scale)).
+    ``load_scale``: the size of the loads behind b when b is only their round-off."""
     if not np.all(np.isfinite(x)):
         return False
     norm = float(abs(A).sum(axis=1).max()) if A.shape[0] else 0.0
-    scale = norm * float(np.abs(x).max(initial=0.0)) + float(np.abs(b).max(initial=0.0))
+    scale = norm * float(np.abs(x).max(initial=0.0)) \
+        + max(float(np.abs(b).max(initial=0.0)), load_scale)
     return float(np.abs(A @ x - b).max(initial=0.0)) <= tol.SOLVE_RESIDUAL * max(scale, 1e-300)
 
 

@@ -20,12 +20,19 @@ from furncheck.statics.condense import (
     _Factored,
     anchored_system,
 )
-from furncheck.statics.feasibility import _cone_solution, _unilateral_feasible
+from furncheck.statics.feasibility import (
+    INFEASIBLE,
+    UNDECIDED,
+    Feasibility,
+    closest_admissible,
+    cone_solution,
+    unilateral_feasible,
+)
 from furncheck.statics.model import CaseStatics, StaticsModel, block_sums
 
 STICK, LIFT = 0, 2
-_MECHANISM_DETAIL = ("the planks rest on too few ground points to be held even if bolted "
-                     "down (all their ground contacts lie on one line)")
+_LINE_DETAIL = ("all its ground contacts lie on one line: it can at best balance on that "
+                "edge, and the least push about it tips the design over")
 
 
 def solve_case(model: StaticsModel, f: np.ndarray,
@@ -36,6 +43,12 @@ def solve_case(model: StaticsModel, f: np.ndarray,
     that held in a design of which this one is a small edit.  The active set starts
     there instead of from every contact holding; the equilibrium it finds is the same
     (the contact problem's solution is unique), only sooner.
+
+    When the active set or the friction phase cannot settle, the linear programs of
+    ``feasibility`` decide: 'lift-off' only when no equilibrium exists with normal forces
+    >= 0 even with unlimited friction, 'sliding' only when none exists inside the friction
+    cones; otherwise the case is stable with the admissible contact forces closest to the
+    elastic solution (``closest_admissible``) and the joint forces they imply.
     """
     if not model.planks:
         return CaseStatics("stable", np.zeros((0, 6)), np.zeros((0, 3)))
@@ -47,22 +60,20 @@ def solve_case(model: StaticsModel, f: np.ndarray,
     normal = normal or solver.normal_phase(all_stick, one_at_a_time=False) \
         or solver.normal_phase(all_stick, one_at_a_time=True)
     if normal is None:
-        if not _unilateral_feasible(model, f):
-            return solver.unstable("lift-off")
-        # An equilibrium exists but the active set did not find it: take one from the
-        # feasibility program itself.
-        forces = _cone_solution(model, f)
-        return solver.prescribed(forces) if forces is not None else solver.unstable("sliding")
+        feasible = unilateral_feasible(model, f)
+        if not feasible.exists:
+            return solver.unstable("lift-off", feasible)
+        bolted = solver.solve(all_stick)
+        target = np.zeros((len(model.contacts), 3)) if bolted is None \
+            else bolted.contact_forces
+        return solver.from_programs(target, on_failure=None)
     status, solution = normal
     if solver.within_cones(solution):
         return solver.stable(solution, status)
     frictional = solver.friction_phase(status, solution)
     if frictional is not None:
         return solver.stable(frictional[1], frictional[0])
-    forces = _cone_solution(model, f)
-    if forces is None:
-        return solver.sliding(solution)
-    return solver.prescribed(forces)
+    return solver.from_programs(solution.contact_forces, on_failure=solution)
 
 
 @dataclass
@@ -83,6 +94,7 @@ class _ActiveSet:
         self.condensed = model.condensation
         if self.condensed is not None:
             self.inner_part, self.ground_rhs = self.condensed.load(f)
+        self.scale = scale
         self.force_tol = tol.FORCE_REL_TOL * scale
         self.disp_tol = self.force_tol / tol.CONTACT_STIFFNESS
         self.mu = model.friction
@@ -164,11 +176,15 @@ class _ActiveSet:
         return CaseStatics("sliding", _wrenches(solution.h), forces, self._plank_ids(over),
                            detail)
 
-    def unstable(self, stability: str) -> CaseStatics:
-        """Report a case without admissible equilibrium: forces as if bolted to the ground."""
+    def unstable(self, stability: str, program: Feasibility | None = None) -> CaseStatics:
+        """Report a case without admissible equilibrium: forces as if bolted to the ground
+        (none when even bolted down the contacts, all on one line, cannot hold it)."""
         bolted = self.solve(np.full(len(self.model.contacts), STICK))
+        undecided = "" if program is None or program.status != UNDECIDED else (
+            f"; the solver could not prove it either way ({program.message}), so the "
+            "case is not passed")
         if bolted is None:
-            return CaseStatics("mechanism", None, None, (), _MECHANISM_DETAIL)
+            return CaseStatics(stability, None, None, (), _LINE_DETAIL + undecided)
         pulling = bolted.contact_forces[:, 2] < -self.force_tol
         if stability == "lift-off":
             detail = ("no equilibrium with the ground only pushing: the load's line of action "
@@ -176,27 +192,41 @@ class _ActiveSet:
                       f"(held down, the ground would have to pull "
                       f"{-bolted.contact_forces[pulling, 2].sum():.4g} N)")
         else:
-            detail = ("the contact iteration found no admissible contact state; forces shown "
-                      "as if the design were bolted to the ground")
+            detail = (f"no equilibrium within the friction cones (mu = {self.mu:g}); forces "
+                      "shown as if the design were bolted to the ground")
         return CaseStatics(stability, _wrenches(bolted.h), bolted.contact_forces,
-                           self._plank_ids(pulling), detail)
+                           self._plank_ids(pulling), detail + undecided)
+
+    def from_programs(self, target: np.ndarray, on_failure: _Solution | None) -> CaseStatics:
+        """The verdict of the friction program when the iterations could not settle:
+        stable with the admissible contact forces closest to ``target`` (the elastic
+        forces), else 'sliding' (with the forces of ``on_failure`` if given)."""
+        cone = cone_solution(self.model, self.f)
+        if not cone.exists:
+            if on_failure is not None and cone.status == INFEASIBLE:
+                return self.sliding(on_failure)
+            return self.unstable("sliding", cone)
+        return self.prescribed(closest_admissible(self.model, self.f, target))
 
     def prescribed(self, contact_forces: np.ndarray) -> CaseStatics:
         """Joint wrenches for contact forces fixed by a feasibility program.
 
         The contact forces enter as loads; feeble springs (CONTACT_STIFFNESS x 1e-9) only
-        remove the rigid motions and carry no force since the loads balance.
+        remove the rigid motions and carry no force since the loads balance (the solve is
+        judged against the loads' scale: its own right-hand side is round-off).
         """
         model = self.model
         f = self.f.copy()
         for row, force in enumerate(contact_forces):
             k = model.contact_plank[row]
             f[6 * k:6 * k + 6] += model.contact_maps[row].T @ force
-        feeble = _ActiveSet(model, f, 1.0)
-        solution = feeble.solve(np.full(len(model.contacts), STICK), stiffness_scale=1e-9)
+        feeble = _ActiveSet(model, f, self.scale)
+        solution = feeble.solve(np.full(len(model.contacts), STICK), stiffness_scale=1e-9,
+                                load_scale=self.scale)
         if solution is None:
-            return CaseStatics("mechanism", None, None, (), _MECHANISM_DETAIL)
-        return CaseStatics("stable", _wrenches(solution.h), contact_forces.copy())
+            return CaseStatics("lift-off", None, None, (), _LINE_DETAIL)
+        return CaseStatics("stable", _wrenches(solution.h), contact_forces.copy(),
+                           holding=contact_forces[:, 2] > self.force_tol)
 
     def within_cones(self, solution: _Solution) -> bool:
         forces = solution.contact_forces
@@ -204,8 +234,11 @@ class _ActiveSet:
         return bool(np.all(tangential <= self.mu * forces[:, 2] + self.force_tol))
 
     # -- the linear solve ----------------------------------------------------------------------
-    def solve(self, status: np.ndarray, stiffness_scale: float = 1.0) -> _Solution | None:
+    def solve(self, status: np.ndarray, stiffness_scale: float = 1.0,
+              load_scale: float = 0.0) -> _Solution | None:
         """Solve the mixed system for the given contact states; None if it is a mechanism.
+        ``load_scale`` (N): the loads' size, for judging a solve whose right-hand side is
+        far smaller (balanced loads).
 
         Only the grounded planks' six displacements each are solved for here (a small dense
         system, see ``_Condensed``, factored once per contact state: ``anchored_system``);
@@ -217,7 +250,7 @@ class _ActiveSet:
             return None
         system = anchored_system(model, holding, stiffness_scale)
         ground = system.solve(self.ground_rhs)
-        if ground is None or not _accurate(system.matrix, ground, self.ground_rhs):
+        if ground is None or not _accurate(system.matrix, ground, self.ground_rhs, load_scale):
             return None
         plank_q = ground.reshape(-1, 6)[condensed.contact_block]           # (nK, 6)
         displacement = (model.contact_maps @ plank_q[:, :, None])[:, :, 0]

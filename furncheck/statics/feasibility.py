@@ -1,75 +1,164 @@
 """Existence of an admissible equilibrium, decided by small linear programs.
 
-``_unilateral_feasible`` (can every component be held with normal forces >= 0, friction
-unlimited?) and ``_cone_solution`` (contact forces inside polygonal friction pyramids), both
-on the per-component equilibrium rows of ``_component_problem``.  scipy.optimize is slow to
-import, so ``linprog`` is imported inside the functions that use it.
+``unilateral_feasible`` (can every component be held with normal forces >= 0, friction
+unlimited?) and ``cone_solution`` (contact forces inside polygonal friction pyramids), both
+on the per-component equilibrium rows of ``_component_problem``; ``closest_admissible``
+picks, among all the admissible contact forces, the one closest to a given (elastic)
+solution, so that forces taken from a program are well defined.
+
+A program's answer is one of three (``Feasibility``): an equilibrium exists, none exists
+(HiGHS proved the program infeasible), or the solver gave up (iteration limit, numerical
+trouble): that one is tried once more with the other HiGHS method and, if still open,
+reported as such, never read as "no equilibrium".  The friction pyramids are inscribed in
+the Coulomb cones (FRICTION_CONE_SIDES sides): a case they cannot hold may still be held
+by the round cones, within 1 - cos(pi / sides) of the threshold, so 'sliding' is
+conservative by at most that.  scipy.optimize is slow to import, so it is imported inside
+the functions that use it.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 
 from furncheck import tolerances as tol
 from furncheck.statics.model import StaticsModel, _skew
 
+FEASIBLE, INFEASIBLE, UNDECIDED = "feasible", "infeasible", "undecided"
+
+
+@dataclass(frozen=True)
+class Feasibility:
+    """A program's verdict: ``status`` FEASIBLE, INFEASIBLE or UNDECIDED (the solver
+    stopped without proving either; ``message`` says why); ``forces`` (nK, 3) N, some
+    admissible contact forces when FEASIBLE and asked for."""
+
+    status: str
+    forces: np.ndarray | None = None
+    message: str = ""
+
+    @property
+    def exists(self) -> bool:
+        return self.status == FEASIBLE
+
 
 def _component_problem(model: StaticsModel, f: np.ndarray, component: int):
     """Equilibrium rows (6, 3 nk) for the component's contact forces and the applied wrench
-    (6,), both about the mean contact point."""
-    design = model.design
+    (6,), both about the mean contact point; the moment rows divided by the contacts'
+    spread (m), so that all six rows are forces."""
     members = np.nonzero(model.contact_component == component)[0]
     points = model.contact_points[members]
-    reference = points.mean(axis=0)
+    reference = points.mean(axis=0) if len(points) else np.zeros(3)
+    spread = max(float(np.abs(points - reference).max(initial=0.0)), 1e-6)
     rows = np.zeros((6, 3 * len(members)))
     for col, point in enumerate(points):
         rows[:3, 3 * col:3 * col + 3] = np.eye(3)
-        rows[3:, 3 * col:3 * col + 3] = _skew(point - reference)
+        rows[3:, 3 * col:3 * col + 3] = _skew(point - reference) / spread
     wrench = np.zeros(6)
     for k in model.components[component]:
-        centre = design.planks[model.planks[k]].center_array
+        centre = model.node_points[k]
         force, moment = f[6 * k:6 * k + 3], f[6 * k + 3:6 * k + 6]
         wrench[:3] += force
-        wrench[3:] += moment + np.cross(centre - reference, force)
+        wrench[3:] += (moment + np.cross(centre - reference, force)) / spread
     return members, rows, wrench
 
 
-def _unilateral_feasible(model: StaticsModel, f: np.ndarray) -> bool:
-    """Whether every component can be held with normal forces >= 0 (friction unlimited)."""
+def _linprog(c, **problem) -> tuple[str, object]:
+    """HiGHS on the program; an unproven answer is tried again with the other method."""
     from scipy.optimize import linprog
 
+    result = None
+    for method in ("highs-ds", "highs-ipm"):
+        result = linprog(c, method=method, **problem)
+        if result.status == 0:
+            return FEASIBLE, result
+        if result.status == 2:
+            return INFEASIBLE, result
+    return UNDECIDED, result
+
+
+def unilateral_feasible(model: StaticsModel, f: np.ndarray) -> Feasibility:
+    """Whether every component can be held with normal forces >= 0 (friction unlimited)."""
     for component in range(len(model.components)):
         members, rows, wrench = _component_problem(model, f, component)
         if len(members) == 0:
-            return False
+            return Feasibility(INFEASIBLE)
         bounds = [b for _ in members for b in ((None, None), (None, None), (0, None))]
-        result = linprog(np.zeros(3 * len(members)), A_eq=rows, b_eq=-wrench, bounds=bounds,
-                         method="highs")
-        if result.status != 0:
-            return False
-    return True
+        status, result = _linprog(np.zeros(3 * len(members)), A_eq=rows, b_eq=-wrench,
+                                  bounds=bounds)
+        if status != FEASIBLE:
+            return Feasibility(status, message=result.message)
+    return Feasibility(FEASIBLE)
 
 
-def _cone_solution(model: StaticsModel, f: np.ndarray) -> np.ndarray | None:
-    """Contact forces (nK, 3) holding every component inside polygonal friction pyramids
-    inscribed in the Coulomb cones (exact to 1 - cos(pi / FRICTION_CONE_SIDES)), or None
-    when there are none: the design slides."""
-    from scipy.optimize import linprog
-
+def _generators(mu: float, heading: float = 0.0) -> np.ndarray:
+    """(3, sides): the edges of the friction pyramid inscribed in the cone |f_t| <= mu f_n,
+    the first along the horizontal direction ``heading`` (rad).  The pyramids are turned
+    with the loads (``_heading``) so that a design turned about the vertical gets the
+    same verdict and forces."""
     sides = tol.FRICTION_CONE_SIDES
-    angles = 2.0 * np.pi * np.arange(sides) / sides
-    generators = np.column_stack([model.friction * np.cos(angles),
-                                  model.friction * np.sin(angles), np.ones(sides)]).T
+    angles = heading + 2.0 * np.pi * np.arange(sides) / sides
+    return np.column_stack([mu * np.cos(angles), mu * np.sin(angles), np.ones(sides)]).T
+
+
+def _heading(horizontal: np.ndarray) -> float:
+    """rad: the direction of a horizontal force (x, y), 0 when it has none."""
+    x, y = float(horizontal[0]), float(horizontal[1])
+    return float(np.arctan2(y, x)) if np.hypot(x, y) > 0.0 else 0.0
+
+
+def cone_solution(model: StaticsModel, f: np.ndarray) -> Feasibility:
+    """Whether contact forces inside the friction pyramids hold every component, and some
+    such forces ((nK, 3) N) when they do."""
     forces = np.zeros((len(model.contacts), 3))
     for component in range(len(model.components)):
         members, rows, wrench = _component_problem(model, f, component)
         if len(members) == 0:
-            return None
+            return Feasibility(INFEASIBLE)
+        generators = _generators(model.friction, _heading(-wrench[:2]))
         A = np.hstack([rows[:, 3 * c:3 * c + 3] @ generators for c in range(len(members))])
-        result = linprog(np.zeros(A.shape[1]), A_eq=A, b_eq=-wrench, bounds=(0, None),
-                         method="highs")
-        if result.status != 0:
-            return None
-        weights = result.x.reshape(len(members), sides)
-        forces[members] = weights @ generators.T
+        status, result = _linprog(np.zeros(A.shape[1]), A_eq=A, b_eq=-wrench, bounds=(0, None))
+        if status != FEASIBLE:
+            return Feasibility(status, message=result.message)
+        forces[members] = result.x.reshape(len(members), -1) @ generators.T
+    return Feasibility(FEASIBLE, forces)
+
+
+def closest_admissible(model: StaticsModel, f: np.ndarray, target: np.ndarray) -> np.ndarray:
+    """The contact forces (nK, 3) N inside the friction pyramids that hold every component
+    and lie closest (least squares) to ``target`` (nK, 3), e.g. the forces of the elastic
+    solution with unlimited friction: unlike a program's vertex, one set of forces for a
+    given design and load, so the joint forces that follow are well defined too.
+
+    Per component, with P the pyramid edges and A the equilibrium rows, the weights
+    lambda >= 0 minimize |A P lambda + w|^2 rho^2 + |P lambda - target|^2 (non-negative
+    least squares, scipy's ``nnls``): the equilibrium held to about 1 / rho^2 of the
+    distance to the target; the least-norm change that makes it exact follows (it moves
+    the forces by that much, far below the force tolerance).
+    Call it only where ``cone_solution`` found forces.
+    """
+    from scipy.optimize import nnls
+
+    sides = tol.FRICTION_CONE_SIDES
+    forces = np.zeros((len(model.contacts), 3))
+    weight = tol.EQUILIBRIUM_WEIGHT
+    for component in range(len(model.components)):
+        members, rows, wrench = _component_problem(model, f, component)
+        n = len(members)
+        edges = np.zeros((3 * n, n * sides))
+        for c, member in enumerate(members):     # each pyramid along its target's push
+            heading = _heading(target[member, :2]) if np.any(target[member, :2]) \
+                else _heading(-wrench[:2])
+            edges[3 * c:3 * c + 3, c * sides:(c + 1) * sides] = \
+                _generators(model.friction, heading)
+        system = np.vstack([weight * (rows @ edges), edges])
+        rhs = np.concatenate([-weight * wrench, target[members].ravel()])
+        scale = max(float(np.abs(rhs).max(initial=0.0)), 1e-300)
+        weights, _ = nnls(system, rhs / scale, maxiter=50 * system.shape[1])
+        chosen = edges @ weights * scale
+        # the least change that balances the component exactly (round-off of the weights'
+        # equilibrium, about 1e-12 of the forces), so the joint solve sees balanced loads
+        chosen -= np.linalg.lstsq(rows, rows @ chosen + wrench, rcond=None)[0]
+        forces[members] = chosen.reshape(n, 3)
     return forces

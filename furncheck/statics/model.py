@@ -102,6 +102,13 @@ class StaticsModel:
         return f
 
     @cached_property
+    def node_points(self) -> np.ndarray:
+        """(nP, 3) m: the point each six-displacement block q_k turns about (a rigid
+        plank's centre)."""
+        return np.array([self.design.planks[i].center_array for i in self.planks],
+                        dtype=float).reshape(-1, 3)
+
+    @cached_property
     def local_planks(self) -> dict[str, int]:
         """Plank id -> local plank number."""
         return {self.design.planks[i].id: k for k, i in enumerate(self.planks)}

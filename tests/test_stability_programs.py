@@ -1,0 +1,175 @@
+"""The stability verdicts when the contact iterations cannot settle (contract section 3).
+
+A case is 'lift-off' only when no equilibrium exists with normal forces >= 0 even with
+unlimited friction, and 'sliding' only when none exists inside the friction cones; where
+the iterations give up, the linear programs of ``statics.feasibility`` decide, and the
+forces of a stable case then come from ``closest_admissible`` (the admissible contact
+forces nearest the elastic ones: one answer, whatever vertex a program returns).
+
+The design below (an L-shaped shelf unit standing on one base, pushed sideways on the
+base near its sliding threshold) was reported 'lift-off' ("all their ground contacts lie
+on one line") before: the friction phase did not settle, the program's forces were fed to
+a re-solve whose accuracy check measured round-off against round-off, and the failure was
+read as a mechanism.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+import yaml
+
+from furncheck.check import check_design
+from furncheck.design import parse_design
+from furncheck.geometry import analyze
+from furncheck.statics import build_model, external_forces, feasibility, solve_case
+from furncheck.statics import contacts as contacts_module
+
+L_SHELF = (Path(__file__).resolve().parents[1] / "designs" / "l-shelf-pushed.yaml").read_text()
+PUSH = np.array([9.77091957, 14.0397457, 0.0])
+
+
+def _pushed(scale: float) -> str:
+    tree = yaml.safe_load(L_SHELF)
+    tree["loads"][0]["force"] = (PUSH * scale).tolist()
+    return yaml.safe_dump(tree, sort_keys=False)
+
+
+def _design(text: str):
+    return parse_design(text, "l-shelf.yaml", "yaml")
+
+
+def _weight(design) -> float:
+    """N: the planks' weight, density x volume x g."""
+    return sum(design.plank_mass(p) for p in design.planks) * 9.81
+
+
+def test_the_reported_l_shelf_stands():
+    """The issue's design (``designs/l-shelf-pushed.yaml``): pushed with 17.1 N, below
+    mu W = 0.8568 x 20.1 N = 17.25 N (the push acts 1.7 mm above the floor: no tipping
+    moment to speak of).  An equilibrium
+    inside the friction cones exists (the program finds one), so the case is stable and
+    its contact forces hold the loads: sum of contact forces = -(weight + push), each
+    inside its cone, no normal force < 0."""
+    design = _design(L_SHELF)
+    report = check_design(design)
+    case = report.cases[0]
+    assert case.stability == "stable" and report.valid is True
+    forces = np.array([c.force for c in case.contacts])
+    weight = _weight(design)
+    assert np.linalg.norm(PUSH) < design.material.friction * weight
+    expected = np.array([-PUSH[0], -PUSH[1], weight])
+    assert np.abs(forces.sum(axis=0) - expected).max() <= 1e-6 * weight
+    assert forces[:, 2].min() >= -1e-9 * weight
+    tangential = np.hypot(forces[:, 0], forces[:, 1])
+    assert np.all(tangential <= design.material.friction * forces[:, 2] + 1e-9 * weight)
+
+
+def test_the_program_path_runs_for_it():
+    """The verdict above comes from the programs (the path under test), not the active set:
+    the friction phase gives up on this design."""
+    design = _design(L_SHELF)
+    model = build_model(design, analyze(design))
+    f = external_forces(model, design.load_cases[0])
+    solver = contacts_module._ActiveSet(model, f, contacts_module._force_scale(model, f))
+    status, solution = solver.normal_phase(np.zeros(len(model.contacts), dtype=int), False)
+    assert not solver.within_cones(solution)
+    assert solver.friction_phase(status, solution) is None
+    assert feasibility.cone_solution(model, f).exists
+
+
+@pytest.mark.parametrize("scale", np.round(np.linspace(0.25, 6.0, 24), 4).tolist())
+def test_pushing_harder_never_reads_lift_off(scale):
+    """Neighbours of the design: the same push scaled.  The push acts 1.7 mm above the
+    floor, so tipping needs F > W d / h with d >= 100 mm: thousands of newtons; up to 6x
+    the issue's push (103 N) the verdict is 'stable' below the sliding threshold and
+    'sliding' above it, never 'lift-off'.  Friction cannot resist more than mu W: a push
+    beyond that slides; below 0.75 mu W (the base's twist costs at most a quarter of
+    the friction here) it holds."""
+    design = _design(_pushed(scale))
+    case = check_design(design).cases[0]
+    push = float(np.linalg.norm(PUSH)) * scale
+    capacity = design.material.friction * _weight(design)
+    assert case.stability in ("stable", "sliding")
+    if push > capacity:
+        assert case.stability == "sliding"
+    if push < 0.75 * capacity:
+        assert case.stability == "stable"
+
+
+def test_the_verdict_is_monotone_in_the_push():
+    """Once the scaled push slides, every larger one slides too."""
+    verdicts = [check_design(_design(_pushed(s))).cases[0].stability
+                for s in np.linspace(0.5, 2.0, 31)]
+    first = verdicts.index("sliding")
+    assert set(verdicts[first:]) == {"sliding"} and set(verdicts[:first]) == {"stable"}
+
+
+def test_program_forces_do_not_depend_on_the_programs_vertex(monkeypatch):
+    """The forces of a stable case found by the programs are the admissible forces closest
+    to the elastic ones, not the vertex a program returns: solving the feasibility
+    program by the interior-point method first (another vertex, or none) gives the same
+    contact and joint forces to 1e-9 of the weight."""
+    design = _design(L_SHELF)
+    first = check_design(design).cases[0]
+    original = feasibility._linprog
+
+    def interior_first(c, **problem):
+        from scipy.optimize import linprog
+        result = linprog(c, method="highs-ipm", **problem)
+        if result.status == 0:
+            return feasibility.FEASIBLE, result
+        return original(c, **problem)
+
+    monkeypatch.setattr(feasibility, "_linprog", interior_first)
+    second = check_design(design).cases[0]
+    weight = _weight(design)
+    for a, b in zip(first.contacts, second.contacts):
+        assert np.abs(np.subtract(a.force, b.force)).max() <= 1e-9 * weight
+    for a, b in zip(first.joints, second.joints):
+        assert np.abs(np.subtract(a.force, b.force)).max() <= 1e-9 * weight
+
+
+def test_closest_admissible_is_the_projection():
+    """``closest_admissible`` of forces that are already admissible returns them (the
+    projection of a point of the set is the point)."""
+    design = _design(L_SHELF)
+    model = build_model(design, analyze(design))
+    f = external_forces(model, design.load_cases[0])
+    admissible = feasibility.cone_solution(model, f).forces
+    again = feasibility.closest_admissible(model, f, admissible)
+    assert np.abs(again - admissible).max() <= 1e-6 * _weight(design)
+
+
+def test_a_program_that_gives_up_is_not_read_as_infeasible(monkeypatch):
+    """An iteration limit (HiGHS status 1) proves nothing: the answer is UNDECIDED, and a
+    case whose verdict rests on it is not passed, with the solver's message in its detail
+    (never the words of a proven 'no equilibrium')."""
+
+    class GaveUp:
+        status, message, x = 1, "Iteration limit reached.", None
+
+    monkeypatch.setattr("scipy.optimize.linprog", lambda *a, **k: GaveUp())
+    design = _design(L_SHELF)
+    model = build_model(design, analyze(design))
+    f = external_forces(model, design.load_cases[0])
+    assert feasibility.cone_solution(model, f).status == feasibility.UNDECIDED
+    assert feasibility.unilateral_feasible(model, f).status == feasibility.UNDECIDED
+    statics = solve_case(model, f)
+    assert statics.stability == "sliding"
+    assert "could not prove it either way (Iteration limit reached.)" in statics.detail
+
+
+def test_a_proven_infeasible_program_is_infeasible():
+    """A load far outside the support polygon (10 kN sideways at the post's top): the
+    unilateral program is proven infeasible, and the case reads 'lift-off'."""
+    tree = yaml.safe_load(L_SHELF)
+    tree["loads"] = [{"plank": "post0", "force": [0.0, 10000.0, 0.0],
+                      "at": [-103.153, -19.1509, 290.0]}]
+    design = _design(yaml.safe_dump(tree, sort_keys=False))
+    model = build_model(design, analyze(design))
+    f = external_forces(model, design.load_cases[0])
+    assert feasibility.unilateral_feasible(model, f).status == feasibility.INFEASIBLE
+    assert check_design(design).cases[0].stability == "lift-off"
