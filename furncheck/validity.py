@@ -1,10 +1,13 @@
 """Durability and stability verdicts (contract section 3, paper sections 5.1 and 6.2).
 
 Per nail, with t the edge plank's thickness and F, M the joint wrench in the joint frame
-(n = nail axis, F_n > 0 pressing the planks together, y = the joint line):
+(n = nail axis, F_n > 0 pressing the planks together, y = the joint line), the nails at
+y_i along the joint line and S = sum y_i^2 (the elastic fastener-group rule):
 
-    pull  = (2 |M_y| / t - F_n) / nails        (paper eq. 4)
-    shear = sqrt(F_x^2 + F_y^2) / nails          (paper eq. 5)
+    pull_i  = (2 |M_y| / t - F_n) / n + M_x y_i / S       (paper eq. 4, plus rocking)
+    shear_i = |(F_x / n - M_n y_i / S, F_y / n)|           (paper eq. 5, plus twist)
+
+and a joint's pull and shear are its worst nail's (``nail_pull_shear``).
 
 A joint is durable iff pull <= nail_pull / safety_factor and shear <= nail_shear /
 safety_factor.  Stability comes from the statics: 'lift-off' and 'sliding' cases.
@@ -50,24 +53,53 @@ def within_capacity(pull, shear, pull_capacity: float, shear_capacity: float):
     return (pull <= pull_capacity * slack) & (shear <= shear_capacity * slack)
 
 
+def nail_row(joints: list[Joint]) -> tuple[np.ndarray, np.ndarray]:
+    """(y_max, S) per joint (m, m^2): the outermost nail's distance from the joint point and
+    S = sum of y_i^2 over the nails at y_i = (i + 1/2) L / n - L / 2 (contract section 3),
+    i.e. y_max = L (n - 1) / (2 n) and S = L^2 (n^2 - 1) / (12 n).
+
+    One nail (y_0 = 0, S = 0: the contract's formula is 0 / 0) works against the far end
+    of its contact region: lever L / 2 for a moment about x or n, taken as y_max = L / 2,
+    S = L^2 / 4, so that M y_max / S = 2 M / L, the same lever rule as 2 M_y / t across
+    the thickness."""
+    length = np.array([j.length for j in joints], dtype=float)
+    nails = np.array([j.nails for j in joints], dtype=float)
+    single = nails <= 1.0
+    y_max = np.where(single, 0.5 * length, length * (nails - 1.0) / (2.0 * nails))
+    spread = np.where(single, 0.25 * length ** 2,
+                      length ** 2 * (nails ** 2 - 1.0) / (12.0 * nails))
+    return y_max, np.maximum(spread, 1e-300)
+
+
 def nail_pull_shear(joints: list[Joint], wrenches: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Per-nail pull and shear (N) of many joints; wrenches (nJ, 6) first plank on second
-    (or (k, nJ, 6): k sets of them at once, e.g. one per load case).
+    """Per-nail pull and shear (N) of the worst nail of many joints; wrenches (nJ, 6)
+    first plank on second (or (k, nJ, 6): k sets of them at once, e.g. one per load case).
 
     The wrench is turned into the face plank's action on the edge plank and expressed in
-    the joint frame (x edge thickness normal, y joint line, n nail axis):
-    pull = (2 |M_y| / t - F_n) / nails, shear = |(F_x, F_y)| / nails.
+    the joint frame (x edge thickness normal, y joint line, n nail axis), and shared by the
+    nail row as an elastic fastener group (contract section 3), y_max and S from
+    ``nail_row``:
+
+        pull  = (2 |M_y| / t - F_n) / n + |M_x| y_max / S
+        shear = |(|F_x| / n + |M_n| y_max / S, F_y / n)|
+
+    the outermost nail on the side where the rocking moment M_x adds to the pull and the
+    twist M_n to the sideways force.  With M_x = M_n = 0 this is the paper's eq. 4-5.
     """
     if not joints:
         return np.zeros(wrenches.shape[:-1]), np.zeros(wrenches.shape[:-1])
     frames = np.stack([j.frame for j in joints])                       # (nJ, 3, 3)
     sign = np.array([1.0 if j.planks[0] == j.face else -1.0 for j in joints])[:, None]
     force = np.einsum("jab,...ja->...jb", frames, sign * wrenches[..., :3])   # frame^T F
-    moment_y = np.einsum("ja,...ja->...j", frames[:, :, 1], sign * wrenches[..., 3:])
+    moment = np.einsum("jab,...ja->...jb", frames, sign * wrenches[..., 3:])  # frame^T M
     thickness = np.array([j.edge_thickness for j in joints])
     nails = np.array([j.nails for j in joints], dtype=float)
-    pull = (2.0 * np.abs(moment_y) / thickness - force[..., 2]) / nails
-    shear = np.hypot(force[..., 0], force[..., 1]) / nails
+    y_max, spread = nail_row(joints)
+    lever = y_max / spread
+    pull = (2.0 * np.abs(moment[..., 1]) / thickness - force[..., 2]) / nails \
+        + np.abs(moment[..., 0]) * lever
+    shear = np.hypot(np.abs(force[..., 0]) / nails + np.abs(moment[..., 2]) * lever,
+                     force[..., 1] / nails)
     return pull, shear
 
 

@@ -157,7 +157,9 @@ def test_table_pushed_past_tipping_gets_a_wider_stance(tmp_path):
     0.9 kg/m) stands it when the centre of mass is inside: with the top 5.4 kg at 0, the
     legs 3.24 kg at -0.43 and 0.43 + d and the apron 0.763 + 0.9 d kg at d / 2,
     74.25 + 3.6215 d + 0.45 d^2 <= (0.436 + d)(162.643 + 0.9 d), i.e. d >= 20.9 mm.  A
-    'move leg_r away from leg_l' and a splay of leg_r are among the first three."""
+    'move leg_r away from leg_l' is among the first three.  (A splay of leg_r used to be
+    too; under the nail-group rule its leg_r/apron joint rocks: the apron's 5 nails take
+    the moment about the axis across their row, and the splayed design is not durable.)"""
     text = (CATALOG / "table.yaml").read_text()
     path = tmp_path / "table-tips.yaml"
     path.write_text(text.replace("mass: 50, at: [480, 0, 732]", "mass: 150, at: [495, 0, 732]"))
@@ -168,7 +170,6 @@ def test_table_pushed_past_tipping_gets_a_wider_stance(tmp_path):
     assert needed == pytest.approx(20.9, abs=0.1)
     result = suggest_design(design)
     first = result.suggestions[:3]
-    assert any(s.dofs == ("leg_r.ry",) for s in first)
     wider = [s for s in first if s.dofs == ("leg_r.x",)]
     assert wider and wider[0].changes[0] > 0
     lead = wider[0].changes[0] / wider[0].step
