@@ -50,13 +50,21 @@ def write_output(document: str, output: str | None) -> None:
         fail(f"cannot write the report to {output}: {error.strerror or error}")
 
 
-def load_or_fail(path: str):
-    """The design at ``path``, or one line and exit 2 when it cannot be read."""
+MODEL_OPTION = click.option(
+    "--model", type=click.Choice(["elastic", "rigid"]), default=None,
+    help="Statics model, over the files' own 'model': elastic (planks bend: contract 3a) "
+         "or rigid (the paper's rigid planks).  [default: the file's]")
+
+
+def load_or_fail(path: str, model: str | None = None):
+    """The design at ``path`` (in ``model`` when given), or one line and exit 2 when it
+    cannot be read."""
     from furncheck.design import load_design
+    from furncheck.design.model import with_model
     from furncheck.errors import DesignError
 
     try:
-        return load_design(path)
+        return with_model(load_design(path), model)
     except DesignError as error:
         fail(str(error))
 

@@ -6,7 +6,13 @@ import os
 
 import click
 
-from furncheck.cli.output import check_output, dofs_or_fail, load_or_fail, write_output
+from furncheck.cli.output import (
+    MODEL_OPTION,
+    check_output,
+    dofs_or_fail,
+    load_or_fail,
+    write_output,
+)
 
 
 @click.command("range")
@@ -22,8 +28,9 @@ from furncheck.cli.output import check_output, dofs_or_fail, load_or_fail, write
 @click.option("-j", "--jobs", type=click.IntRange(min=1), default=None,
               help="Worker processes for many DOFs (default: all cores); the output is the "
                    "same.")
+@MODEL_OPTION
 def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str, ...],
-                  output: str | None, jobs: int | None) -> None:
+                  output: str | None, jobs: int | None, model: str | None) -> None:
     """Valid interval of each DOF of DESIGN, the others held fixed (their neighbours
     adjusted to keep the joints).  DOFs are <plank>.x|y|z (translation, length unit),
     <plank>.rx|ry|rz (rotation about world axes, degrees) and <plank>.length|width;
@@ -35,7 +42,7 @@ def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str
     from furncheck.report.ranges import render_json, render_text
 
     check_output(output)
-    loaded = load_or_fail(design)
+    loaded = load_or_fail(design, model)
     dofs_or_fail(design, loaded, (*dofs, *locks))
     ranges = RangeFinder(loaded, tuple(locks)).ranges(list(dofs) or None,
                                                       jobs or os.cpu_count() or 1)

@@ -4,7 +4,14 @@ from __future__ import annotations
 
 import click
 
-from furncheck.cli.output import check_output, dofs_or_fail, fail, load_or_fail, write_output
+from furncheck.cli.output import (
+    MODEL_OPTION,
+    check_output,
+    dofs_or_fail,
+    fail,
+    load_or_fail,
+    write_output,
+)
 
 
 @click.command("suggest")
@@ -24,8 +31,9 @@ from furncheck.cli.output import check_output, dofs_or_fail, fail, load_or_fail,
               show_default=True, help="Report format.")
 @click.option("-o", "--output", metavar="FILE", default=None,
               help="Write the report to FILE instead of standard output.")
+@MODEL_OPTION
 def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, ...],
-            out_dir: str | None, fmt: str, output: str | None) -> None:
+            out_dir: str | None, fmt: str, output: str | None, model: str | None) -> None:
     """Ranked suggestions that make DESIGN valid: small changes of one to --max-dofs
     plank positions, angles and sizes (continuous, paper section 6.4), then support
     planks to add (discrete, 6.5), each checked with the full statics.  A continuous
@@ -40,7 +48,7 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
     from furncheck.suggest import suggest_design
 
     check_output(output)
-    loaded = load_or_fail(design)
+    loaded = load_or_fail(design, model)
     locked = dofs_or_fail(design, loaded, locks)
     if out_dir is not None:
         problem = prepare_out_dir(out_dir)

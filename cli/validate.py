@@ -15,7 +15,7 @@ from pathlib import Path, PurePath
 
 import click
 
-from furncheck.cli.output import check_output, fail, write_output
+from furncheck.cli.output import MODEL_OPTION, check_output, fail, write_output
 from furncheck.report import REPORTERS, render
 from furncheck.result import BatchReport, DesignReport
 
@@ -38,7 +38,9 @@ CHUNKS_PER_WORKER = 4
 @click.option("-j", "--jobs", type=click.IntRange(min=1), default=None,
               help=f"Worker processes, used from {PARALLEL_MIN_FILES} files on.  "
                    "[default: all cores]")
-def validate(paths: tuple[str, ...], fmt: str, output: str | None, jobs: int | None) -> None:
+@MODEL_OPTION
+def validate(paths: tuple[str, ...], fmt: str, output: str | None, jobs: int | None,
+             model: str | None) -> None:
     """Check the designs in PATH... (files, or directories searched recursively for
     .yaml, .yml and .json files; hidden files and folders are skipped).
 
@@ -48,7 +50,8 @@ def validate(paths: tuple[str, ...], fmt: str, output: str | None, jobs: int | N
     check_output(output)
     sources = collect_sources(paths)
     to_check = [source for source in sources if isinstance(source, str)]
-    checked = iter(check_all(to_check, jobs if jobs is not None else (os.cpu_count() or 1)))
+    checked = iter(check_all(to_check, jobs if jobs is not None else (os.cpu_count() or 1),
+                             model))
     batch = BatchReport(tuple(source if isinstance(source, DesignReport) else next(checked)
                               for source in sources))
     try:
@@ -113,25 +116,26 @@ def find_design_files(directory: str) -> tuple[list[str], list[tuple[str, str]]]
 
 # --- checking -------------------------------------------------------------------------------
 
-def check_all(paths: list[str], jobs: int) -> list[DesignReport]:
+def check_all(paths: list[str], jobs: int, model: str | None = None) -> list[DesignReport]:
     """``check_one`` of every path, in order; in ``jobs`` worker processes for many files.
 
     The result is the same either way; if worker processes cannot be started at all the
     files are checked in this process.
     """
     if jobs > 1 and len(paths) >= PARALLEL_MIN_FILES:
-        reports = _check_in_workers(paths, jobs)
+        reports = _check_in_workers(paths, jobs, model)
         if reports is not None:
             return reports
-    return [check_one(path) for path in paths]
+    return [check_one(path, model) for path in paths]
 
 
-def check_one(path: str) -> DesignReport:
-    """``check_file(path)``, with any unexpected exception turned into an error report."""
+def check_one(path: str, model: str | None = None) -> DesignReport:
+    """``check_file(path, model)``, with any unexpected exception turned into an error
+    report."""
     try:
         from furncheck.check import check_file  # heavy (numpy, scipy): imported on use
 
-        report = check_file(path)
+        report = check_file(path, model)
     except Exception as error:
         return _error_report(path, f"internal error: {type(error).__name__}: {error}")
     if not isinstance(report, DesignReport):
@@ -140,7 +144,8 @@ def check_one(path: str) -> DesignReport:
     return report
 
 
-def _check_in_workers(paths: list[str], jobs: int) -> list[DesignReport] | None:
+def _check_in_workers(paths: list[str], jobs: int,
+                      model: str | None = None) -> list[DesignReport] | None:
     """Reports from a process pool, or None when the pool cannot be started."""
     from concurrent.futures import ProcessPoolExecutor
 
@@ -157,7 +162,8 @@ def _check_in_workers(paths: list[str], jobs: int) -> list[DesignReport] | None:
     reports: list[DesignReport] = []
     with pool:
         try:
-            for report in pool.map(check_one, paths, chunksize=chunksize):
+            for report in pool.map(check_one, paths, [model] * len(paths),
+                                   chunksize=chunksize):
                 reports.append(report)
         except Exception as error:  # a worker died (BrokenProcessPool) or could not reply
             reason = f"internal error: a checking process failed ({type(error).__name__})"

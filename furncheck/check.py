@@ -6,12 +6,14 @@ from pathlib import Path
 
 import numpy as np
 
+from furncheck import tolerances as tol
 from furncheck.design import Design
+from furncheck.design.model import with_model
 from furncheck.errors import DesignError
 from furncheck.geometry import Geometry, analyze
 from furncheck.result import DesignReport
-from furncheck.statics import build_model, external_forces, solve_case
-from furncheck.validity import case_holds, evaluate_case, joint_utilization
+from furncheck.statics import build_model, solve_load_case
+from furncheck.validity import case_holds, evaluate_case, joint_utilization, plank_bending
 
 
 def check_design(design: Design, geometry: Geometry | None = None) -> DesignReport:
@@ -22,7 +24,7 @@ def check_design(design: Design, geometry: Geometry | None = None) -> DesignRepo
     violations = list(geometry.violations)
     cases = []
     for case in design.load_cases:
-        statics = solve_case(model, external_forces(model, case))
+        statics = solve_load_case(model, case)
         result, case_violations = evaluate_case(design, geometry, model, case, statics)
         cases.append(result)
         violations.extend(case_violations)
@@ -41,8 +43,7 @@ def is_valid(design: Design, geometry: Geometry | None = None,
         return False
     model = build_model(design, geometry)
     for k, case in enumerate(design.load_cases):
-        statics = solve_case(model, external_forces(model, case),
-                             None if starts is None else starts[k])
+        statics = solve_load_case(model, case, None if starts is None else starts[k])
         if not case_holds(design, geometry, model, statics):
             return False
     return True
@@ -52,22 +53,25 @@ def margin_of(design: Design, geometry: Geometry,
               starts: tuple[np.ndarray | None, ...] | None = None
               ) -> tuple[bool, float, np.ndarray]:
     """(whether the design is valid, its durability margin, each joint's utilization):
-    the margin is the smallest 1 - utilization of any joint in any load case, -inf if a
-    case is not stable; the utilization (``validity.joint_utilization``) is per joint of
-    ``geometry.joints``, the largest of the load cases (0 for a joint outside the
-    statics).  Every case is solved, except that an unstable one ends the search.  The
-    geometry must have no violations."""
+    the margin is the smallest 1 - utilization of any joint (and, elastic model, any
+    plank's sag or stress) in any load case, -inf if a case is not stable; the
+    utilization (``validity.joint_utilization``) is per joint of ``geometry.joints``, the
+    largest of the load cases (0 for a joint outside the statics).  Every case is solved,
+    except that an unstable one ends the search.  The geometry must have no violations."""
     model = build_model(design, geometry)
     wrenches = []
+    plank_used = 0.0
     stable = True
     for k, case in enumerate(design.load_cases):
-        statics = solve_case(model, external_forces(model, case),
-                             None if starts is None else starts[k])
+        statics = solve_load_case(model, case, None if starts is None else starts[k])
         if statics.stability != "stable":
             stable = False
             break
         if statics.joint_wrenches is not None and model.joints:
             wrenches.append(statics.joint_wrenches)
+        if statics.planks is not None:
+            bending = plank_bending(design, model, statics.planks)[4]
+            plank_used = max(plank_used, float(bending.max(initial=0.0)))
     utilization = np.zeros(len(geometry.joints))
     valid = stable
     if wrenches:        # the joints' utilization in all those cases at once
@@ -76,23 +80,27 @@ def margin_of(design: Design, geometry: Geometry,
         valid = valid and bool(np.all(holds))
     if not stable:
         return False, -np.inf, utilization
-    return valid, 1.0 - float(utilization.max(initial=0.0)), utilization
+    valid = valid and plank_used <= 1.0 + tol.CAPACITY_REL_TOL
+    worst = max(float(utilization.max(initial=0.0)), plank_used)
+    return valid, 1.0 - worst, utilization
 
 
 def holding_states(design: Design, geometry: Geometry) -> tuple[np.ndarray | None, ...]:
     """Per load case, which ground contacts hold (None for a case without a stable
     equilibrium): the ``starts`` of ``is_valid`` for edits of this design."""
     model = build_model(design, geometry)
-    return tuple(solve_case(model, external_forces(model, case)).holding
-                 for case in design.load_cases)
+    return tuple(solve_load_case(model, case).holding for case in design.load_cases)
 
 
-def check_file(path: str) -> DesignReport:
-    """Load and validate one file; an unreadable or ill-formed file gives an error report."""
+def check_file(path: str, model: str | None = None) -> DesignReport:
+    """Load and validate one file (in ``model``, 'elastic' or 'rigid', when given: the
+    command line's ``--model`` over the file's); an unreadable or ill-formed file gives an
+    error report."""
     from furncheck.design import load_design
 
     try:
         design = load_design(path)
     except DesignError as error:
         return DesignReport(design=path, name=Path(path).stem, valid=None, error=str(error))
-    return check_design(design)
+    return check_design(with_model(design, model))
+

@@ -9,7 +9,8 @@ from dataclasses import dataclass, field
 
 from furncheck import exitcodes
 
-VIOLATION_KINDS = ("disconnected", "penetration", "floating", "non-durable", "lift-off", "sliding")
+VIOLATION_KINDS = ("disconnected", "penetration", "floating", "non-durable", "lift-off", "sliding",
+                   "sagging", "overstressed")
 
 
 @dataclass(frozen=True)
@@ -64,6 +65,23 @@ class ContactResult:
 
 
 @dataclass(frozen=True)
+class PlankResult:
+    """A plank's bending in one load case (elastic model, contract section 3a).
+
+    sag, sag_allowed : file length unit; sag_allowed = span / sag_limit
+    stress, strength : N/mm^2; strength = bending_strength / safety_factor
+    utilization : max(sag (1 + creep) / sag_allowed, stress / strength)
+    """
+
+    id: str
+    sag: float
+    sag_allowed: float
+    stress: float
+    strength: float
+    utilization: float
+
+
+@dataclass(frozen=True)
 class CaseResult:
     """One load case.  ``stability`` is 'stable', 'lift-off', 'sliding' or 'mechanism'
     (no equilibrium and no force state: the planks rest on one line of ground points)."""
@@ -74,6 +92,7 @@ class CaseResult:
     joints: tuple[JointResult, ...]
     contacts: tuple[ContactResult, ...]
     stability: str = "stable"
+    planks: tuple[PlankResult, ...] | None = None    # elastic model only
 
     @property
     def worst_joint(self) -> JointResult | None:

@@ -19,7 +19,6 @@ a DOF costs about as much as its few moved planks, not a new assembly of the des
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cached_property
 
 import numpy as np
 
@@ -30,11 +29,10 @@ from furncheck.statics import (
     anchor_springs,
     build_model,
     external_forces,
-    solve_case,
+    solve_load_case,
     solve_system,
 )
-from furncheck.statics.model import point_maps
-from furncheck.tolerances import GRAVITY
+from furncheck.statics.derivatives import AssemblySide, assembly_differences
 
 ASSEMBLY_STEP = 1e-4
 """Step of the central difference of the assembly, as a fraction of the design's size
@@ -56,6 +54,8 @@ class Sensitivity:
     blocked         : DOF name -> reason it cannot move
     joint_lengths   : (n_dofs, nJ): d(joint length, m) per DOF unit (the nail count
                       follows the length in steps; this is its smooth trend)
+    plank_sags, plank_spans, plank_stresses : (n_dofs, nP): d(sag m, span m, stress Pa)
+                      per DOF unit of each plank (elastic model; (n_dofs, 0) in the rigid)
     """
 
     case: str
@@ -64,6 +64,9 @@ class Sensitivity:
     contact_forces: np.ndarray
     blocked: dict[str, str]
     joint_lengths: np.ndarray
+    plank_sags: np.ndarray | None = None
+    plank_spans: np.ndarray | None = None
+    plank_stresses: np.ndarray | None = None
 
 
 class Linearization:
@@ -85,7 +88,7 @@ class Linearization:
         self.frame = frame or structure(design, self.geometry)
         self.model = build_model(design, self.geometry)
         f = external_forces(self.model, case)
-        self.statics = solve_case(self.model, f)
+        self.statics = solve_load_case(self.model, case)
         self.bolted = self.statics.stability != "stable" or self.statics.state is None
         if not self.bolted:
             self.holding = self.statics.holding
@@ -110,9 +113,10 @@ class Linearization:
         """(nK, 3) the ground's forces of the linearized state (springs at the holding
         contacts, as in ``solve_case``)."""
         model = self.model
-        q = self.state[:model.n_dof].reshape(-1, 6)[model.contact_plank]
+        q = self.state[:model.n_dof].reshape(-1, 6)[model.contact_node]
         displacement = (model.contact_maps @ q[:, :, None])[:, :, 0]
-        return -(anchor_springs(self.holding) @ displacement[:, :, None])[:, :, 0]
+        springs = anchor_springs(self.holding, model.contact_stiffness)
+        return -(springs @ displacement[:, :, None])[:, :, 0]
 
     def step(self, dof: Dof) -> float:
         """The difference step for ``dof`` in its own unit."""
@@ -177,130 +181,33 @@ class Linearization:
                 blocked[dof.name] = str(stepped)
                 continue
             weight = 1.0 / ((1.0 if self.one_sided else 2.0) * stepped.h)
-            sides += [(len(moving), weight, stepped, *stepped.plus),
-                      (len(moving), -weight, stepped, *stepped.minus)]
+            minus_offset = 0.0 if self.one_sided else -stepped.h
+            sides += [AssemblySide(len(moving), weight, stepped.h, stepped.changed,
+                                   stepped.joints, stepped.contacts, *stepped.plus),
+                      AssemblySide(len(moving), -weight, minus_offset, stepped.changed,
+                                   stepped.joints, stepped.contacts, *stepped.minus)]
             moving.append(dof)
         model = self.model
         n_joints, n_contacts = model.G.shape[0] // 6, len(model.contacts)
         if not moving:
             return Sensitivity(self.case.name, (), np.zeros((0, n_joints, 6)),
                                np.zeros((0, n_contacts, 3)), blocked, np.zeros((0, n_joints)))
-        columns, map_rates, length_rates = self._local(sides, len(moving))
-        rates = solve_system(model, self.holding, columns)                   # (n, n_dofs)
+        differences = assembly_differences(model, self.state, self.holding, self.case.name,
+                                           sides, len(moving))
+        map_rates, length_rates = differences.maps, differences.lengths
+        rates = solve_system(model, self.holding, differences.residual)     # (n, n_dofs)
         n = model.n_dof
         joint_rates = rates[n:].T.reshape(len(moving), n_joints, 6)
-        q = self.state[:n].reshape(-1, 6)[model.contact_plank]               # (nK, 6)
-        dq = rates[:n].T.reshape(len(moving), -1, 6)[:, model.contact_plank]  # (D, nK, 6)
+        q = self.state[:n].reshape(-1, 6)[model.contact_node]               # (nK, 6)
+        dq = rates[:n].T.reshape(len(moving), -1, 6)[:, model.contact_node]  # (D, nK, 6)
         dw = (np.einsum("dkab,kb->dka", map_rates, q)
               + np.einsum("kab,dkb->dka", model.contact_maps, dq))
-        contact_rates = -np.einsum("kab,dkb->dka", anchor_springs(self.holding), dw)
+        springs = anchor_springs(self.holding, model.contact_stiffness)
+        contact_rates = -np.einsum("kab,dkb->dka", springs, dw)
+        bending = differences.plank_rates(rates[:n], self.statics.planks is not None)
         return Sensitivity(self.case.name, tuple(moving), joint_rates, contact_rates,
-                           blocked, length_rates)
+                           blocked, length_rates, *bending)
 
-    def _local(self, sides: list, n_dofs: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The central differences of the parts of b - A x that the steps change (x the
-        linearized state; every other entry is the same on both sides of a difference),
-        of the contact maps and of the joint lengths: (N, D), (D, nK, 3, 6), (D, nJ).
-        ``sides``: per stepped design (DOF column, +-1 / 2h, stepped, design, followed
-        joints, followed contacts).
-
-        With r = joint point - plank centre, a joint enters A x through its deviation
-        rows (theta_a x r_a - theta_b x r_b) and its planks' moment rows (+-r x h^t); a
-        contact through M^T S M q (M = [I, -[r]x], r = contact point - centre); a plank
-        through its weight and its loads' moments about its centre.
-        """
-        model = self.model
-        n = model.n_dof
-        q = self.state[:n].reshape(-1, 6)
-        wrench = self.state[n:].reshape(-1, 6)
-        residual = np.zeros((len(self.state), n_dofs))
-        maps = np.zeros((n_dofs, *model.contact_maps.shape))
-        lengths = np.zeros((n_dofs, len(model.joints)))
-        joint_rows, contact_rows, plank_rows = [], [], []
-        for column, weight, stepped, design, joints, contacts in sides:
-            index = design.plank_index
-            for j, joint in zip(stepped.joints, joints):
-                row = self._joint_row.get(j)
-                if row is None:
-                    continue
-                a, b = (self._local_plank[index[plank]] for plank in joint.planks)
-                joint_rows.append((column, weight, row, a, b, *joint.point,
-                                   *design.planks[model.planks[a]].center_array,
-                                   *design.planks[model.planks[b]].center_array, joint.length))
-            for k, contact in zip(stepped.contacts, contacts):
-                row = self._contact_row.get(k)
-                if row is not None:
-                    a = model.contact_plank[row]
-                    contact_rows.append((column, weight, row, a, *(
-                        contact.point - design.planks[model.planks[a]].center_array)))
-            case = next(c for c in design.load_cases if c.name == self.case.name)
-            for i in stepped.changed:
-                a = self._local_plank.get(i)
-                if a is None:
-                    continue
-                plank = design.planks[i]
-                moment = np.zeros(3)
-                for load in case.loads:
-                    if load.plank == plank.id and load.point is not None:
-                        moment += _cross(np.asarray(load.point) - plank.center_array,
-                                         load.force)
-                plank_rows.append((column, weight, a,
-                                   -design.plank_mass(plank) * GRAVITY, *moment))
-        if joint_rows:
-            table = np.array(joint_rows)
-            column, weight = table[:, 0].astype(int), table[:, 1:2]
-            row, a, b = (table[:, k].astype(int) for k in (2, 3, 4))
-            point, centre_a, centre_b = table[:, 5:8], table[:, 8:11], table[:, 11:14]
-            r_a, r_b = point - centre_a, point - centre_b
-            force = wrench[row, :3]
-            deviation = -(np.cross(q[a, 3:], r_a) - np.cross(q[b, 3:], r_b)) * weight
-            _add(residual, n + 6 * row, column, deviation)
-            _add(residual, 6 * a + 3, column, -np.cross(r_a, force) * weight)
-            _add(residual, 6 * b + 3, column, np.cross(r_b, force) * weight)
-            np.add.at(lengths, (column, row), table[:, 14] * weight[:, 0])
-        if contact_rows:
-            table = np.array(contact_rows)
-            column, weight = table[:, 0].astype(int), table[:, 1]
-            row, a = table[:, 2].astype(int), table[:, 3].astype(int)
-            stepped_maps = point_maps(table[:, 4:7])                         # (E, 3, 6)
-            springs = anchor_springs(self.holding)[row]
-            force = -np.einsum("eba,ebc,ecd,ed->ea", stepped_maps, springs, stepped_maps,
-                               q[a])
-            _add(residual, 6 * a, column, force * weight[:, None])
-            np.add.at(maps, (column, row), stepped_maps * weight[:, None, None])
-        if plank_rows:
-            table = np.array(plank_rows)
-            column, weight = table[:, 0].astype(int), table[:, 1]
-            a = table[:, 2].astype(int)
-            np.add.at(residual, (6 * a + 2, column), table[:, 3] * weight)
-            _add(residual, 6 * a + 3, column, table[:, 4:7] * weight[:, None])
-        return residual, maps, lengths
-
-    @cached_property
-    def _local_plank(self) -> dict[int, int]:
-        return {plank: k for k, plank in enumerate(self.model.planks)}
-
-    @cached_property
-    def _joint_row(self) -> dict[int, int]:
-        return {j: row for row, j in enumerate(self.model.joints)}
-
-    @cached_property
-    def _contact_row(self) -> dict[int, int]:
-        return {k: row for row, k in enumerate(self.model.contacts)}
-
-
-def _add(matrix: np.ndarray, first_row: np.ndarray, column: np.ndarray,
-         values: np.ndarray) -> None:
-    """matrix[first_row + i, column] += values[:, i] for each entry (repeats add up)."""
-    width = values.shape[1]
-    rows = first_row[:, None] + np.arange(width)[None, :]
-    np.add.at(matrix, (rows, np.broadcast_to(column[:, None], rows.shape)), values)
-
-
-def _cross(u, v) -> np.ndarray:
-    """u x v of two 3-vectors (np.cross costs ~50 times more on single vectors)."""
-    return np.array([u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-                     u[0] * v[1] - u[1] * v[0]])
 
 
 @dataclass(frozen=True)

@@ -17,6 +17,24 @@ DEFAULT_NAIL_SHEAR = 190.0       # N per nail
 DEFAULT_FRICTION = 0.5           # static Coulomb coefficient with the ground
 DEFAULT_SAFETY_FACTOR = 1.0
 DEFAULT_TOLERANCE = 0.0005       # m (0.5 mm)
+DEFAULT_MODEL = "rigid"
+"""The statics model of a file without ``model``.  The contract's default is 'elastic';
+it becomes the default once sensitivity, ranges and suggestions run on it (issue 13)."""
+MODELS = ("elastic", "rigid")
+
+# elastic model (contract section 3a); sources in the README's "Material defaults"
+DEFAULT_ELASTIC_MODULUS = 3.0e9    # Pa: EN 12369-1 mean E of MDF 12-19 mm (3000 N/mm^2),
+                                   # above EN 622-5's 2500 minimum for 9-12 mm boards
+DEFAULT_SHEAR_MODULUS = 0.8e9      # Pa: EN 12369-1 mean panel shear modulus of MDF.LA
+DEFAULT_BENDING_STRENGTH = 22.0e6  # Pa: EN 622-5 minimum bending strength, MDF 9-12 mm
+DEFAULT_CREEP = 0.5                # the Sagulator's "about 50 % more sag over time"
+DEFAULT_SAG_LIMIT = 400.0          # the Sagulator: 1.5 x sag <= span / 400, i.e. initial
+                                   # sag <= 0.02 in per foot (span / 600)
+DEFAULT_NAIL_SLIP = 1.2e6          # N/m per nail: Eurocode 5 Table 7.1, K_ser = rho^1.5
+                                   # d^0.8 / 30 for rho = 750 kg/m^3, d = 2.0 mm: 1192 N/mm
+DEFAULT_NAIL_WITHDRAWAL = 1.0e6    # N/m per nail: an estimate (no published test of nails
+                                   # in MDF): 25 d l_ef of screw approvals with d = 2 mm,
+                                   # l_ef = 20 mm; 700 N at ~0.7 mm slip is the same
 
 # --- geometry ---------------------------------------------------------------------------
 JOINT_MAX_TILT_DEG = 60.0
@@ -50,6 +68,21 @@ CONTACT_STIFFNESS = 1e5
 """N/m: normal and tangential (friction anchor) spring stiffness of a ground contact.
 Far softer than the joints (a 12 mm joint turns 1e-4 rad under 36 N m while a contact
 sinks 1 mm under 100 N), so the assembly acts as one rigid body on springs."""
+
+ELASTIC_CONTACT_STIFFNESS = 1e10
+"""N/m: normal and anchor springs of a ground contact in the elastic model: ten thousand
+times a 15-nail joint's spring (1.5e7 N/m), a hundred thousand times a table top's bending
+stiffness, so that where the load goes is decided by the planks and joints (contract
+section 3a), while the condensed systems stay well within double precision."""
+
+BEAM_SEGMENTS = 8
+"""Elastic model: a plank's beam has a node at least every 1/8 of its length (besides the
+nodes where joints, contacts and loads act), where its sag and stress are read."""
+
+NODE_MERGE = 1e-3
+"""m: attachments closer than this along a plank's axis share a node (at their mean, each
+held by a rigid arm): a beam element shorter than a millimetre is far stiffer than anything
+else and would only cost the solve digits."""
 
 CONTACT_ITERATIONS = 60
 """Most active-set / friction-anchor iterations per load case."""
@@ -120,6 +153,10 @@ MAX_FRICTION = 10.0              # static Coulomb coefficient
 MIN_SAFETY_FACTOR = 1e-3
 MAX_SAFETY_FACTOR = 1e3
 MAX_NAIL_CAPACITY = 1e7          # N per nail, pull or shear
+MAX_MODULUS = 1e13               # Pa: elastic and shear modulus, bending strength
+MAX_CREEP = 100.0
+MAX_SAG_LIMIT = 1e6
+MAX_NAIL_STIFFNESS = 1e13        # N/m per nail, slip or withdrawal
 MAX_ROTATION_DEG = 1e4           # degrees, largest |rotation| about one axis
 MAX_NAILS = 1e6                  # nails of one listed joint
 ON_PLANK_EPS = 1e-9

@@ -22,7 +22,7 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.design.model import Design, LoadCase
 from furncheck.geometry import Geometry, Joint
-from furncheck.result import CaseResult, ContactResult, JointResult, Violation
+from furncheck.result import CaseResult, ContactResult, JointResult, PlankResult, Violation
 from furncheck.statics import CaseStatics, StaticsModel
 
 
@@ -135,6 +135,25 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
         for row, (point, force) in enumerate(zip(points, statics.contact_forces.tolist())):
             plank = geometry.contacts[model.contacts[row]].plank
             contacts.append(ContactResult(plank, tuple(point), tuple(force)))
+    planks = None
+    if statics.planks is not None:
+        planks = []
+        bending = plank_bending(design, model, statics.planks)
+        for k, (sag, allowed, stress, strength, used) in enumerate(zip(*bending)):
+            plank = design.planks[model.planks[k]]
+            planks.append(PlankResult(plank.id, sag / scale, allowed / scale, stress / 1e6,
+                                      strength / 1e6, used))
+            if statics.stability not in ("stable", "sliding"):
+                continue
+            final = sag * (1.0 + design.material.creep)
+            line = design.line_of(f"planks[{model.planks[k]}]")
+            if final > allowed * (1.0 + tol.CAPACITY_REL_TOL):
+                violations.append(Violation("sagging", plank.id, case.name, _sag_message(
+                    design, sag, allowed, statics.planks.span[k]), line))
+            if stress > strength * (1.0 + tol.CAPACITY_REL_TOL):
+                violations.append(Violation("overstressed", plank.id, case.name,
+                                            _stress_message(design, stress, strength), line))
+        planks = tuple(planks)
     stable = statics.stability == "stable"
     if not stable:
         kind = "sliding" if statics.stability == "sliding" else "lift-off"
@@ -142,8 +161,36 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
         violations.append(Violation(kind, where, case.name, statics.detail,
                                     design.line_of(_case_key(design, case))))
     result = CaseResult(case.name, all(j.durable for j in joints), stable, tuple(joints),
-                        tuple(contacts), statics.stability)
+                        tuple(contacts), statics.stability, planks)
     return result, violations
+
+
+def plank_bending(design: Design, model: StaticsModel, planks) -> tuple[np.ndarray, ...]:
+    """Per local plank of an elastic model's case (``elastic.PlankStatics``): sag (m),
+    allowed sag span / sag_limit (m), stress (Pa), strength bending_strength /
+    safety_factor (Pa) and utilization max(sag (1 + creep) / allowed, stress / strength)."""
+    material = design.material
+    allowed = planks.span / material.sag_limit
+    strength = np.full(len(planks.stress), material.bending_strength / design.safety_factor)
+    final = planks.sag * (1.0 + material.creep)
+    sag_used = np.divide(final, allowed, out=np.zeros_like(final), where=allowed > 0.0)
+    used = np.maximum(sag_used, planks.stress / strength)
+    return planks.sag, allowed, planks.stress, strength, used
+
+
+def _sag_message(design: Design, sag: float, allowed: float, span: float) -> str:
+    unit, scale = design.units, design.unit_scale
+    creep = design.material.creep
+    return (f"sags {sag / scale:.3g} {unit} over a {span / scale:.4g} {unit} span, "
+            f"{sag * (1 + creep) / scale:.3g} {unit} with creep (x {1 + creep:g}); "
+            f"allowed {allowed / scale:.3g} {unit} (span / {design.material.sag_limit:g})")
+
+
+def _stress_message(design: Design, stress: float, strength: float) -> str:
+    factor = ("" if design.safety_factor == 1.0
+              else f" (strength / safety factor {design.safety_factor:g})")
+    return (f"bending stress {stress / 1e6:.3g} N/mm^2 exceeds its strength "
+            f"{strength / 1e6:.3g} N/mm^2{factor}")
 
 
 def case_holds(design: Design, geometry: Geometry, model: StaticsModel,
@@ -156,14 +203,20 @@ def case_holds(design: Design, geometry: Geometry, model: StaticsModel,
 
 def case_margin(design: Design, geometry: Geometry, model: StaticsModel,
                 statics: CaseStatics) -> tuple[float, bool]:
-    """(smallest 1 - utilization of the case's joints (1.0 without joints; -inf when the
-    case is not stable), whether the case holds), without building its result."""
+    """(smallest 1 - utilization of the case's joints and, elastic model, planks (1.0
+    without either; -inf when the case is not stable), whether the case holds), without
+    building its result."""
     if statics.stability != "stable":
         return -np.inf, False
-    if statics.joint_wrenches is None or not model.joints:
-        return 1.0, True
-    utilization, holds = joint_utilization(design, geometry, model, statics.joint_wrenches)
-    return 1.0 - float(utilization.max()), bool(np.all(holds))
+    margin, holds = 1.0, True
+    if statics.joint_wrenches is not None and model.joints:
+        utilization, held = joint_utilization(design, geometry, model, statics.joint_wrenches)
+        margin, holds = 1.0 - float(utilization.max()), bool(np.all(held))
+    if statics.planks is not None and len(statics.planks.sag):
+        used = plank_bending(design, model, statics.planks)[4]
+        margin = min(margin, 1.0 - float(used.max()))
+        holds = holds and bool(np.all(used <= 1.0 + tol.CAPACITY_REL_TOL))
+    return margin, holds
 
 
 def joint_utilization(design: Design, geometry: Geometry, model: StaticsModel,

@@ -28,7 +28,7 @@ from furncheck.result import (
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def fake_check_file(path: str) -> DesignReport:
+def fake_check_file(path: str, model: str | None = None) -> DesignReport:
     """Verdict by file name; a path that does not exist is an input error, like the real one."""
     stem = Path(path).stem
     if not Path(path).is_file():
@@ -51,9 +51,9 @@ def calls(monkeypatch) -> list[str]:
     """Replace ``furncheck.check`` by a module holding the fake; record the paths checked."""
     seen: list[str] = []
 
-    def check_file(path: str) -> DesignReport:
+    def check_file(path: str, model: str | None = None) -> DesignReport:
         seen.append(path)
-        return fake_check_file(path)
+        return fake_check_file(path, model)
 
     fake = types.ModuleType("furncheck.check")
     fake.check_file = check_file

@@ -618,7 +618,7 @@ def assert_same_design(a: Design, b: Design):
 
 def test_document_key_order_and_contents():
     doc = design_to_document(parse_design(FULL, "bench.yaml", "yaml"))
-    assert list(doc) == ["furncheck", "name", "units", "material", "planks", "joints", "loads",
+    assert list(doc) == ["furncheck", "name", "units", "model", "material", "planks", "joints", "loads",
                          "load_cases", "safety_factor", "tolerance"]
     assert doc["loads"] == [{"plank": "seat", "mass": 10.0}]
     assert doc["material"]["thickness"] == 18.0 and doc["tolerance"] == 0.2

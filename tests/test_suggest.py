@@ -37,18 +37,33 @@ def results() -> dict:
     return {name: suggest_design(load_design(str(CATALOG / name))) for name in INVALID}
 
 
+BEYOND_ONE_CHANGE = {
+    "particleboard-shelf-overloaded.yaml":
+        "150 kg on a 12 mm particleboard shelf: its stress needs w L^2 halved and its sag "
+        "w L^4 / EI cut thirtyfold (see its header); no move within half the design's size "
+        "and no single added support or rail does both (a rail of 96 mm sags 8.8 mm under "
+        "the load alone); the maker's fix is a thicker board, which is no design DOF",
+}
+"""Invalid catalog designs that no single change can repair, and why: suggest must say
+so (no suggestion), and starts failing here if it finds one (then it must be valid)."""
+
+
 def test_catalog_has_invalid_designs_of_every_kind():
     kinds = {v.kind for name in INVALID for v in check_file(str(CATALOG / name)).violations}
     assert kinds == {"disconnected", "penetration", "floating", "non-durable", "lift-off",
-                     "sliding"}
+                     "sliding", "sagging", "overstressed"}
 
 
 @pytest.mark.parametrize("name", INVALID)
 def test_every_invalid_catalog_design_gets_a_valid_suggestion(results, name, tmp_path):
-    """At least one suggestion, and each one's design text, written to a file and read
-    back by the loader, validates as valid (the contract's promise)."""
+    """At least one suggestion (none for the designs of BEYOND_ONE_CHANGE), and each one's
+    design text, written to a file and read back by the loader, validates as valid (the
+    contract's promise)."""
     result = results[name]
     assert not result.valid
+    if name in BEYOND_ONE_CHANGE:
+        assert result.suggestions == (), BEYOND_ONE_CHANGE[name]
+        return
     assert result.suggestions, f"{name}: no suggestion"
     for suggestion in result.suggestions:
         path = tmp_path / f"suggestion-{suggestion.rank:02d}.yaml"

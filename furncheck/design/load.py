@@ -10,7 +10,8 @@ Reading goes in three steps:
 
 Steps 1 and 2 are in ``furncheck.design.source`` (which refuses YAML aliases before anything
 is expanded and duplicate keys, and keeps YAML scalars as ``_Scalar`` until the schema knows
-whether a number or a text belongs there); this module is step 3, the schema.
+whether a number or a text belongs there); ``furncheck.design.values`` reads typed values
+from the tree (``_Doc``); this module is step 3, the schema.
 
 Every problem raises ``DesignError(file, key path, line, message)``.  Key paths read
 ``planks[1].size``, ``load_cases.sit[0].mass``; '' is the whole file.  For JSON, the line of
@@ -20,11 +21,9 @@ a key path is looked up only when an error is raised (by reading the text as YAM
 from __future__ import annotations
 
 import difflib
-import math
-import re
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, NoReturn
+from typing import Any
 
 import numpy as np
 
@@ -39,35 +38,28 @@ from furncheck.design.source import (
     _child,
     _decode,
     _format_of,
-    _json_lines,
-    _one_line,
     _quote,
     _read_json,
     _read_yaml,
-    _Scalar,
     _too_large,
 )
+from furncheck.design.values import _describe, _Doc, _resolved
 from furncheck.errors import DesignError
 
 UNIT_SCALES = {"mm": 0.001, "m": 1.0}
 """Length unit -> metres per unit."""
 
-TOP_KEYS = ("furncheck", "name", "units", "material", "planks", "joints", "loads",
+TOP_KEYS = ("furncheck", "name", "units", "model", "material", "planks", "joints", "loads",
             "load_cases", "safety_factor", "tolerance")
-MATERIAL_KEYS = ("thickness", "density", "nail_spacing", "nail_pull", "nail_shear", "friction")
+MATERIAL_KEYS = ("thickness", "density", "nail_spacing", "nail_pull", "nail_shear", "friction",
+                 "elastic_modulus", "shear_modulus", "bending_strength", "creep", "sag_limit",
+                 "nail_slip", "nail_withdrawal")
 PLANK_KEYS = ("id", "size", "center", "rotation", "thickness")
 JOINT_KEYS = ("planks", "nails")
-LOAD_KEYS = ("plank", "mass", "force", "at")
+LOAD_KEYS = ("plank", "mass", "force", "at", "spread")
 
 _IDENTIFIER = _PATH_SAFE_KEY   # plank ids and case names: what a key path shows bare
 _AXES = ("length", "width", "thickness")
-_NULL_WORDS = {"", "~", "null", "Null", "NULL"}
-_BOOL_WORDS = {word: value for value, words in
-               ((True, ("yes", "true", "on")), (False, ("no", "false", "off")))
-               for base in words for word in (base, base.capitalize(), base.upper())}
-_DECIMAL = re.compile(r"[-+]?(?:[0-9][0-9_]*(?:\.[0-9_]*)?|\.[0-9][0-9_]*)(?:[eE][-+]?[0-9]+)?")
-_JSON_CONSTANTS = {"nan": "NaN", "inf": "Infinity", "-inf": "-Infinity"}
-_NON_FINITE = re.compile(r"[-+]?\.(?:inf|Inf|INF|nan|NaN|NAN)")
 
 
 # --- public -------------------------------------------------------------------------------------
@@ -113,126 +105,6 @@ def _read_bytes(path: str) -> bytes:
     return data
 
 
-# --- values: what the schema reads from the tree ------------------------------------------------
-
-class _Doc:
-    """The document being checked: raises ``DesignError`` with key path and line, and reads
-    typed values (numbers, text, mappings, lists) from tree nodes."""
-
-    def __init__(self, source: str, fmt: str, text: str, lines: dict[str, int] | None):
-        self.source = source
-        self.fmt = fmt
-        self.source_text = text
-        self._lines = lines
-
-    @property
-    def lines(self) -> dict[str, int]:
-        """Key path -> line: recorded for YAML, looked up on demand for JSON."""
-        if self._lines is None:
-            self._lines = _json_lines(self.source_text, self.source)
-        return self._lines
-
-    def design_lines(self) -> dict[str, int]:
-        """The lines a ``Design`` keeps: YAML's (JSON's are only looked up for errors)."""
-        return self._lines if self.fmt == "yaml" and self._lines is not None else {}
-
-    def line_of(self, key: str) -> int | None:
-        """Line of ``key``, else of its closest recorded parent."""
-        lines = self.lines
-        while key:
-            if key in lines:
-                return lines[key]
-            cut = max(key.rfind("."), key.rfind("["))
-            key = key[:cut] if cut > 0 else ""
-        return None
-
-    def fail(self, key: str, message: str) -> NoReturn:
-        raise DesignError(self.source, key, self.line_of(key), message)
-
-    def number(self, node: Any, key: str) -> float:
-        """A finite number (booleans and quoted text are not numbers)."""
-        value = _resolved(node)
-        if isinstance(value, bool) or not isinstance(value, float):
-            self.fail(key, f"expected a number, got {_describe(node)}")
-        if not math.isfinite(value):
-            written = node.text if isinstance(node, _Scalar) else _JSON_CONSTANTS[str(value)]
-            self.fail(key, f"not a finite number ({_one_line(written)})")
-        return value
-
-    def text(self, node: Any, key: str) -> str:
-        """Text; an unquoted YAML scalar counts as the text it shows (``id: 1`` is "1")."""
-        if isinstance(node, str):
-            return node
-        if isinstance(node, _Scalar) and _resolved(node) is not None:
-            return node.text
-        self.fail(key, f"expected text, got {_describe(node)}")
-
-    def sequence(self, node: Any, key: str) -> list:
-        if not isinstance(node, list):
-            self.fail(key, f"expected a list, got {_describe(node)}")
-        return node
-
-    def mapping(self, node: Any, key: str, allowed: tuple[str, ...] | None = None,
-                required: tuple[str, ...] = ()) -> dict:
-        """A mapping whose keys are all ``allowed`` (any when None) and hold ``required``."""
-        if not isinstance(node, dict):
-            self.fail(key, f"expected a mapping, got {_describe(node)}")
-        if allowed is not None:
-            for name in node:
-                if name not in allowed:
-                    self.fail(_child(key, name), _unknown_key_message(name, allowed))
-        for name in required:
-            if name not in node:
-                self.fail(_child(key, name), f"missing required key {_quote(name)}")
-        return node
-
-
-def _resolved(node: Any) -> Any:
-    """A YAML scalar's value (None, bool, float or str); other nodes as they are.  Plain
-    scalars resolve as YAML 1.1 does, except that numbers follow the decimal notation
-    (``1e3``, ``-2E-1``, ``010`` = ten)."""
-    if not isinstance(node, _Scalar):
-        return node
-    if not node.plain:
-        return node.text
-    text = node.text
-    if text in _NULL_WORDS:
-        return None
-    if text in _BOOL_WORDS:
-        return _BOOL_WORDS[text]
-    if _NON_FINITE.fullmatch(text):
-        return float(text.replace(".", "", 1))
-    if _DECIMAL.fullmatch(text):
-        try:
-            return float(text.replace("_", ""))
-        except ValueError:
-            return text
-    return text
-
-
-def _describe(node: Any) -> str:
-    """What a node is, in words, for messages: 'a list', 'text "400"', 'a boolean (yes)'."""
-    value = _resolved(node)
-    if isinstance(value, dict):
-        return "a mapping"
-    if isinstance(value, list):
-        return "a list"
-    if value is None:
-        return "nothing (null)"
-    if isinstance(value, bool):
-        shown = node.text if isinstance(node, _Scalar) else str(value).lower()
-        return f"a boolean ({_one_line(shown)})"
-    if isinstance(value, float):
-        return f"a number ({_one_line(node.text) if isinstance(node, _Scalar) else f'{value:g}'})"
-    return f"text {_quote(value)}"
-
-
-def _unknown_key_message(name: str, allowed: tuple[str, ...]) -> str:
-    close = difflib.get_close_matches(name, allowed, n=1)
-    hint = f" (did you mean {_quote(close[0])}?)" if close else ""
-    return f"unknown key {_quote(name)}{hint}; allowed keys: {', '.join(allowed)}"
-
-
 # --- step 3: tree -> Design ---------------------------------------------------------------------
 
 @dataclass(frozen=True)
@@ -266,6 +138,7 @@ def _design(doc: _Doc, tree: Any) -> Design:
         units=units.name,
         unit_scale=units.scale,
         source=doc.source,
+        model=_model(doc, top),
         lines=doc.design_lines(),
     )
 
@@ -301,6 +174,15 @@ def _units(doc: _Doc, top: dict) -> _Units:
     if name not in UNIT_SCALES:
         doc.fail("units", f"unknown unit {_quote(name)}; use mm or m")
     return _Units(name, UNIT_SCALES[name])
+
+
+def _model(doc: _Doc, top: dict) -> str:
+    if "model" not in top:
+        return tol.DEFAULT_MODEL
+    name = doc.text(top["model"], "model")
+    if name not in tol.MODELS:
+        doc.fail("model", f"unknown model {_quote(name)}; use elastic or rigid")
+    return name
 
 
 def _quantity(doc: _Doc, node: Any, key: str, low: float, high: float, scale: float = 1.0,
@@ -349,8 +231,7 @@ def _identifier(doc: _Doc, node: Any, key: str, what: str) -> str:
 def _material(doc: _Doc, top: dict, units: _Units) -> Material:
     """Material; lengths in the file unit, defaults (SI) from ``tolerances``."""
     if "material" not in top:
-        return Material(tol.DEFAULT_THICKNESS, tol.DEFAULT_DENSITY, tol.DEFAULT_NAIL_SPACING,
-                        tol.DEFAULT_NAIL_PULL, tol.DEFAULT_NAIL_SHEAR, tol.DEFAULT_FRICTION)
+        return Material()
     fields = doc.mapping(top["material"], "material", MATERIAL_KEYS)
 
     def read(name: str, default: float, low: float, high: float, scale: float = 1.0,
@@ -371,6 +252,18 @@ def _material(doc: _Doc, top: dict, units: _Units) -> Material:
                         unit="N"),
         friction=read("friction", tol.DEFAULT_FRICTION, 0.0, tol.MAX_FRICTION,
                       positive=False),
+        elastic_modulus=read("elastic_modulus", tol.DEFAULT_ELASTIC_MODULUS, 0.0,
+                             tol.MAX_MODULUS, 1e6, "N/mm^2"),
+        shear_modulus=read("shear_modulus", tol.DEFAULT_SHEAR_MODULUS, 0.0, tol.MAX_MODULUS,
+                           1e6, "N/mm^2"),
+        bending_strength=read("bending_strength", tol.DEFAULT_BENDING_STRENGTH, 0.0,
+                              tol.MAX_MODULUS, 1e6, "N/mm^2"),
+        creep=read("creep", tol.DEFAULT_CREEP, 0.0, tol.MAX_CREEP, positive=False),
+        sag_limit=read("sag_limit", tol.DEFAULT_SAG_LIMIT, 0.0, tol.MAX_SAG_LIMIT),
+        nail_slip=read("nail_slip", tol.DEFAULT_NAIL_SLIP, 0.0, tol.MAX_NAIL_STIFFNESS, 1e3,
+                       "N/mm"),
+        nail_withdrawal=read("nail_withdrawal", tol.DEFAULT_NAIL_WITHDRAWAL, 0.0,
+                             tol.MAX_NAIL_STIFFNESS, 1e3, "N/mm"),
     )
 
 
@@ -498,8 +391,12 @@ def _loads(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank], units: _Unit
 
 def _load(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank], units: _Units,
           tolerance: float) -> Load:
-    """``{plank, mass | force, at?}``: mass kg, force N, ``at`` a world point on the plank."""
+    """``{plank, mass | force, at? | spread?}``: mass kg, force N, ``at`` a world point on
+    the plank, ``spread: true`` the load spread evenly along the plank's length."""
     fields = doc.mapping(node, key, LOAD_KEYS, required=("plank",))
+    spread = "spread" in fields and doc.flag(fields["spread"], f"{key}.spread")
+    if spread and "at" in fields:
+        doc.fail(f"{key}.at", "a spread load acts along the whole plank: give no point")
     plank = _plank_ref(doc, fields["plank"], f"{key}.plank", by_id)
     if "mass" in fields and "force" in fields:
         doc.fail(key, "give either mass (kg) or force ([fx, fy, fz] N), not both")
@@ -509,10 +406,10 @@ def _load(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank], units: _Units
              if "at" in fields else None)
     if "mass" in fields:
         mass = _quantity(doc, fields["mass"], f"{key}.mass", 0.0, tol.MAX_MASS, unit="kg")
-        return Load.of_mass(plank.id, mass, point)
+        return Load.of_mass(plank.id, mass, point, spread)
     force = _vector(doc, fields["force"], f"{key}.force", 3, -tol.MAX_FORCE, tol.MAX_FORCE,
                     unit="N")
-    return Load(plank.id, force, point)
+    return Load(plank.id, force, point, spread=spread)
 
 
 def _point_on_plank(doc: _Doc, node: Any, key: str, plank: Plank, units: _Units,

@@ -13,6 +13,7 @@ from functools import cached_property
 
 import numpy as np
 
+from furncheck import tolerances as tol
 from furncheck.tolerances import GRAVITY
 
 Vec3 = tuple[float, float, float]
@@ -35,7 +36,8 @@ def rotation_matrix(rotation_deg: Vec3) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Material:
-    """Plank material and nail properties (SI)."""
+    """Plank material and nail properties (SI; defaults and their sources: ``tolerances``
+    and the README)."""
 
     thickness: float = 0.012      # m, default plank thickness
     density: float = 750.0        # kg/m^3
@@ -43,6 +45,14 @@ class Material:
     nail_pull: float = 700.0      # N per nail
     nail_shear: float = 190.0     # N per nail
     friction: float = 0.5         # static Coulomb coefficient with the ground
+    # the elastic model (contract section 3a)
+    elastic_modulus: float = tol.DEFAULT_ELASTIC_MODULUS    # Pa
+    shear_modulus: float = tol.DEFAULT_SHEAR_MODULUS        # Pa
+    bending_strength: float = tol.DEFAULT_BENDING_STRENGTH  # Pa
+    creep: float = tol.DEFAULT_CREEP          # long-term sag factor: final = sag (1 + creep)
+    sag_limit: float = tol.DEFAULT_SAG_LIMIT  # allowed sag = span / sag_limit
+    nail_slip: float = tol.DEFAULT_NAIL_SLIP                # N/m per nail, across the nail
+    nail_withdrawal: float = tol.DEFAULT_NAIL_WITHDRAWAL    # N/m per nail, along the nail
 
 
 @dataclass(frozen=True)
@@ -117,16 +127,20 @@ class Load:
     force : N; a mass m becomes (0, 0, -m g)
     point : m, world point where it acts, or None for the plank centre
     mass  : kg when the file gave a mass (kept for writing the file back), else None
+    spread : spread evenly along the plank's length (books on a shelf); no point.  The
+             rigid model takes its resultant at the plank centre.
     """
 
     plank: str
     force: Vec3
     point: Vec3 | None = None
     mass: float | None = None
+    spread: bool = False
 
     @staticmethod
-    def of_mass(plank: str, mass: float, point: Vec3 | None = None) -> Load:
-        return Load(plank, (0.0, 0.0, -mass * GRAVITY), point, mass)
+    def of_mass(plank: str, mass: float, point: Vec3 | None = None,
+                spread: bool = False) -> Load:
+        return Load(plank, (0.0, 0.0, -mass * GRAVITY), point, mass, spread)
 
 
 @dataclass(frozen=True)
@@ -155,6 +169,7 @@ class Design:
     joints      : listed joints, or None when they are detected from geometry
     load_cases  : 'default' (from ``loads``) first, then ``load_cases`` in file order
     tolerance   : m, geometric tolerance
+    model       : 'elastic' (planks bend, contract section 3a) or 'rigid' (the paper's)
     lines       : key path -> 1-based line in the source file (YAML), for annotations
     """
 
@@ -168,6 +183,7 @@ class Design:
     units: str = "mm"
     unit_scale: float = 0.001
     source: str = ""
+    model: str = tol.DEFAULT_MODEL
     lines: dict[str, int] = field(default_factory=dict, compare=False, repr=False)
 
     def plank(self, plank_id: str) -> Plank:
@@ -193,3 +209,11 @@ class Design:
             cut = max(key.rfind("."), key.rfind("["))
             key = key[:cut] if cut > 0 else ""
         return None
+
+
+def with_model(design: Design, model: str | None) -> Design:
+    """The design in ``model`` ('elastic' or 'rigid'; the command line's ``--model``), or
+    as it is when None."""
+    from dataclasses import replace
+
+    return design if model is None or model == design.model else replace(design, model=model)

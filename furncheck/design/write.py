@@ -31,14 +31,8 @@ def design_to_document(design: Design) -> dict[str, Any]:
         "furncheck": 1,
         "name": design.name,
         "units": design.units,
-        "material": {
-            "thickness": _in_unit(design.material.thickness, scale),
-            "density": design.material.density,
-            "nail_spacing": _in_unit(design.material.nail_spacing, scale),
-            "nail_pull": design.material.nail_pull,
-            "nail_shear": design.material.nail_shear,
-            "friction": design.material.friction,
-        },
+        "model": design.model,
+        "material": _material_entry(design),
         "planks": [plank_entry(plank, design) for plank in design.planks],
     }
     if design.joints is not None:
@@ -53,6 +47,27 @@ def design_to_document(design: Design) -> dict[str, Any]:
     doc["safety_factor"] = design.safety_factor
     doc["tolerance"] = _in_unit(design.tolerance, scale)
     return doc
+
+
+def _material_entry(design: Design) -> dict[str, Any]:
+    """Every material key, in file units (lengths in the design's unit, moduli N/mm^2,
+    nail stiffnesses N/mm), so that the file says the model it was checked in."""
+    material, scale = design.material, design.unit_scale
+    return {
+        "thickness": _in_unit(material.thickness, scale),
+        "density": material.density,
+        "nail_spacing": _in_unit(material.nail_spacing, scale),
+        "nail_pull": material.nail_pull,
+        "nail_shear": material.nail_shear,
+        "friction": material.friction,
+        "elastic_modulus": _rounded(material.elastic_modulus / 1e6),
+        "shear_modulus": _rounded(material.shear_modulus / 1e6),
+        "bending_strength": _rounded(material.bending_strength / 1e6),
+        "creep": material.creep,
+        "sag_limit": material.sag_limit,
+        "nail_slip": _rounded(material.nail_slip / 1e3),
+        "nail_withdrawal": _rounded(material.nail_withdrawal / 1e3),
+    }
 
 
 def design_text(design: Design, fmt: str) -> str:
@@ -75,7 +90,12 @@ def write_design(design: Design, path: str) -> None:
 
 def _in_unit(metres: float, scale: float) -> float:
     """A length (m) in the file unit (``scale`` m each), rounded to 12 significant digits."""
-    return float(f"{metres / scale:.{_SIGNIFICANT_DIGITS}g}")
+    return _rounded(metres / scale)
+
+
+def _rounded(value: float) -> float:
+    """``value`` to 12 significant digits (a unit conversion's round-off dropped)."""
+    return float(f"{value:.{_SIGNIFICANT_DIGITS}g}")
 
 
 def _vector_in_unit(metres, scale: float) -> list[float]:
@@ -117,4 +137,6 @@ def _load_entry(load: Load, scale: float) -> dict[str, Any]:
         entry["force"] = [float(v) for v in load.force]
     if load.point is not None:
         entry["at"] = _vector_in_unit(load.point, scale)
+    if load.spread:
+        entry["spread"] = True
     return entry

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import re
 
-from furncheck.result import DesignReport, JointResult, Violation
+from furncheck.result import DesignReport, JointResult, PlankResult, Violation
 
 INPUT_ERROR = "input-error"
 """Kind used by annotation formats (github, sarif, junit) for an unreadable input."""
@@ -54,6 +54,17 @@ def worst_joint(report: DesignReport) -> tuple[str, JointResult] | None:
         joint = case.worst_joint
         if joint is not None and (worst is None or joint.utilization > worst[1].utilization):
             worst = (case.name, joint)
+    return worst
+
+
+def worst_plank(report: DesignReport) -> tuple[str, PlankResult] | None:
+    """(case name, plank) with the highest sag or stress utilization over all cases (elastic
+    model; None in the rigid one); first on ties."""
+    worst: tuple[str, PlankResult] | None = None
+    for case in report.cases:
+        for plank in case.planks or ():
+            if worst is None or plank.utilization > worst[1].utilization:
+                worst = (case.name, plank)
     return worst
 
 

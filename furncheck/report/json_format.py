@@ -12,7 +12,14 @@ import json
 from typing import Any
 
 from furncheck.report.numbers import json_ready
-from furncheck.result import BatchReport, CaseResult, ContactResult, DesignReport, JointResult
+from furncheck.result import (
+    BatchReport,
+    CaseResult,
+    ContactResult,
+    DesignReport,
+    JointResult,
+    PlankResult,
+)
 
 
 def render(batch: BatchReport) -> str:
@@ -41,13 +48,23 @@ def report_dict(report: DesignReport) -> dict[str, Any]:
 
 
 def _case_dict(case: CaseResult) -> dict[str, Any]:
-    return {
+    """A case; ``planks`` (sag and stress) only in the elastic model."""
+    entry = {
         "name": case.name,
         "durable": case.durable,
         "stable": case.stable,
         "joints": [_joint_dict(joint) for joint in case.joints],
         "contacts": [_contact_dict(contact) for contact in case.contacts],
     }
+    if case.planks is not None:
+        entry["planks"] = [_plank_dict(plank) for plank in case.planks]
+    return entry
+
+
+def _plank_dict(plank: PlankResult) -> dict[str, Any]:
+    return {"id": plank.id, "sag": plank.sag, "sag_allowed": plank.sag_allowed,
+            "stress": plank.stress, "strength": plank.strength,
+            "utilization": plank.utilization}
 
 
 def _joint_dict(joint: JointResult) -> dict[str, Any]:

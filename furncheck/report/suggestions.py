@@ -60,12 +60,16 @@ def advice(suggestion: Suggestion, original: Design) -> str:
 
 def _support_advice(suggestion: Suggestion, original: Design) -> str:
     scale, unit = original.unit_scale, original.units
-    upper, lower = suggestion.between
+    upper, lower = suggestion.between[:2]
     parts = []
     for plank in suggestion.adds:
         size = " x ".join(_amount(v / scale) for v in (plank.length, plank.width))
         centre = ", ".join(_amount(v / scale) for v in plank.center)
-        if lower == "the floor":
+        if len(suggestion.between) == 3:        # a stiffening rail under a bent plank
+            ends = suggestion.between[1:]
+            parts.append(f"{plank.id} ({size} {unit}) on edge under {upper}, from {ends[0]} "
+                         f"to {ends[1]}, centred at ({centre}) {unit}, nailed to all three")
+        elif lower == "the floor":
             parts.append(f"{plank.id} ({size} {unit}) under {upper}, standing on the floor, "
                          f"centred at ({centre}) {unit}, nailed to {upper}")
         else:

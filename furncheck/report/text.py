@@ -10,7 +10,13 @@
 
 from __future__ import annotations
 
-from furncheck.report.common import describe_violation, input_error, plural, worst_joint
+from furncheck.report.common import (
+    describe_violation,
+    input_error,
+    plural,
+    worst_joint,
+    worst_plank,
+)
 from furncheck.report.numbers import format_percent
 from furncheck.result import BatchReport, DesignReport
 
@@ -51,7 +57,14 @@ def summary_line(batch: BatchReport) -> str:
 def _worst_joint_phrase(report: DesignReport) -> str:
     worst = worst_joint(report)
     if worst is None:
-        return "no nail joints"
-    case, joint = worst
-    return (f"worst joint {'/'.join(joint.planks)} at {format_percent(joint.utilization)} "
-            f"in case '{case}'")
+        phrase = "no nail joints"
+    else:
+        case, joint = worst
+        phrase = (f"worst joint {'/'.join(joint.planks)} at "
+                  f"{format_percent(joint.utilization)} in case '{case}'")
+    plank = worst_plank(report)
+    if plank is not None:
+        case, result = plank
+        phrase += (f"; worst plank {result.id} at {format_percent(result.utilization)} "
+                   f"in case '{case}'")
+    return phrase

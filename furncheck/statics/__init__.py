@@ -26,11 +26,39 @@ The package, by job:
                  system), the full mixed matrix (system_matrix) and its solve (solve_system)
     contacts     solve_case: the contact active set and the friction energy
     feasibility  linear programs: does any admissible equilibrium exist?
+    elastic      the elastic model (contract section 3a): planks as Timoshenko beams, nail
+                 joints as springs of their nail rows, stiff contacts; the same
+                 StaticsModel, with the beams' stiffness in the mixed system's plank block,
+                 and each plank's sag and stress (plank_results)
+
+``solve_load_case`` is what the layers above call: the loads of a case, its equilibrium
+and, in the elastic model, its planks' sag and stress, whichever model built the
+``StaticsModel`` (``build_model`` chooses, from ``design.model``).
 """
 
+from dataclasses import replace
+
+import numpy as np
+
+from furncheck.design.model import LoadCase
 from furncheck.statics.condense import anchor_springs, solve_system, system_matrix
 from furncheck.statics.contacts import LIFT, STICK, solve_case
 from furncheck.statics.model import CaseStatics, StaticsModel, build_model, external_forces
 
+
+def solve_load_case(model: StaticsModel, case: LoadCase,
+                    start: np.ndarray | None = None) -> CaseStatics:
+    """``solve_case`` of the case's loads, with the planks' sag and stress in the elastic
+    model (from the displacements of the forces it reports)."""
+    statics = solve_case(model, external_forces(model, case), start)
+    if model.beams is None or statics.displacements is None:
+        return statics
+    from furncheck.statics.elastic import plank_results
+
+    holding = statics.holding if statics.holding is not None else None
+    return replace(statics, planks=plank_results(model, case, statics.displacements, holding))
+
+
 __all__ = ["LIFT", "STICK", "CaseStatics", "StaticsModel", "anchor_springs", "build_model",
-           "external_forces", "solve_case", "solve_system", "system_matrix"]
+           "external_forces", "solve_case", "solve_load_case", "solve_system",
+           "system_matrix"]

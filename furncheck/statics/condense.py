@@ -95,8 +95,7 @@ class _PlankCondensation(_Condensed):
     """
 
     factor: np.ndarray | None = None    # Cholesky factor of K_ii (the coupling is K_ig, dense)
-    model: StaticsModel | None = None    # its joint blocks apply G and G^T
-    stiffness: np.ndarray | None = None   # W, the joints' stiffnesses (6 nJ,)
+    model: StaticsModel | None = None    # its joint blocks apply G, G^T and W
 
     def split(self, rhs: np.ndarray):
         """(the part of the solution x_g does not change, f_g - K_gi y) for a right-hand
@@ -105,7 +104,7 @@ class _PlankCondensation(_Condensed):
         r_h = rhs[n:]
         f = rhs[:n]
         if np.any(r_h):
-            f = f + self.model.reactions(self._weights(r_h.ndim) * r_h)
+            f = f + self.model.reactions(self.model.joint_wrench(r_h))
         inner = _cholesky_solve(self.factor, f[self.inner]) if len(self.inner) else \
             np.zeros((0,) + rhs.shape[1:])
         return (inner, r_h), f[self.ground] - self.coupling.T @ inner
@@ -122,35 +121,35 @@ class _PlankCondensation(_Condensed):
         parts[self.ground, 1] = ground
         parts[self.inner, 1] = -(self.reduced @ ground)
         deviations = self.model.deviations(parts.reshape((n, -1))).reshape((-1, 2) + shape)
-        h = self._weights(ground.ndim) * ((deviations[:, 0] - r_h) + deviations[:, 1])
+        h = self.model.joint_wrench((deviations[:, 0] - r_h) + deviations[:, 1])
         q = parts[:, 0] + parts[:, 1]
         return np.concatenate([q, h])
-
-    def _weights(self, ndim: int) -> np.ndarray:
-        return self.stiffness.reshape((-1,) + (1,) * (ndim - 1))
 
 
 def _condense_planks(model: StaticsModel, ground: np.ndarray,
                      contact_block: np.ndarray, plank_offsets: np.ndarray):
     """``_PlankCondensation`` of the model; None if K_ii is singular.  K is summed from
-    the joints' blocks, B_s^T W B_t into the block of planks (s, t)."""
+    the joints' blocks, B_s^T W B_t into the block of nodes (s, t), plus the beams'
+    stiffness (elastic model)."""
     n, m = model.n_dof, 6 * len(model.joints)
-    weights = 1.0 / model.compliance
-    blocks, planks = model.joint_blocks, model.joint_planks
-    pairs = np.swapaxes(blocks, 2, 3)[:, :, None] \
-        @ (weights.reshape(-1, 1, 6, 1) * blocks)[:, None]            # (nJ, 2, 2, 6, 6)
-    n_planks = len(model.planks)
-    # K is assembled with the planks reordered, the others first and the grounded ones
+    blocks, nodes = model.joint_blocks, model.joint_nodes
+    weighted = model.joint_stiffness[:, None] @ blocks                  # (nJ, 2, 6, 6)
+    pairs = np.swapaxes(blocks, 2, 3)[:, :, None] @ weighted[:, None]   # (nJ, 2, 2, 6, 6)
+    n_nodes = model.n_nodes
+    # K is assembled with the nodes reordered, the others first and the grounded ones
     # last, so that its parts are slices rather than gathered rows and columns
     inner = _others(n, ground)
     grounded = ground[::6] // 6
     order = np.concatenate([inner[::6] // 6, grounded])
-    position = np.empty(n_planks, dtype=int)
-    position[order] = np.arange(n_planks)
-    placed = position[planks]
-    per_pair = block_sums((placed[:, :, None] * n_planks + placed[:, None, :]).ravel(),
-                          pairs.reshape(-1, 36), n_planks * n_planks)
-    K = per_pair.reshape(n_planks, n_planks, 6, 6).transpose(0, 2, 1, 3).reshape(n, n)
+    position = np.empty(n_nodes, dtype=int)
+    position[order] = np.arange(n_nodes)
+    placed = position[nodes]
+    per_pair = block_sums((placed[:, :, None] * n_nodes + placed[:, None, :]).ravel(),
+                          pairs.reshape(-1, 36), n_nodes * n_nodes)
+    K = per_pair.reshape(n_nodes, n_nodes, 6, 6).transpose(0, 2, 1, 3).reshape(n, n)
+    if model.beam_stiffness is not None:
+        dof_order = (6 * order[:, None] + _SIX[None, :]).ravel()
+        K += model.beam_stiffness[dof_order][:, dof_order].toarray()
     ni = len(inner)
     coupling = K[:ni, ni:]
     reduced = np.zeros((ni, len(ground)))
@@ -168,8 +167,7 @@ def _condense_planks(model: StaticsModel, ground: np.ndarray,
             reduced = _cholesky_solve(factor, coupling)
     schur = K[ni:, ni:] - coupling.T @ reduced
     return _PlankCondensation(ground, inner, coupling, reduced, schur, contact_block,
-                              plank_offsets, n + m, factor=factor, model=model,
-                              stiffness=weights)
+                              plank_offsets, n + m, factor=factor, model=model)
 
 
 def _condense(model: StaticsModel) -> _Condensed | None:
@@ -178,20 +176,15 @@ def _condense(model: StaticsModel) -> _Condensed | None:
     to DENSE_PLANKS_MAX plank displacements go through the planks with dense matrices
     (``_PlankCondensation``), larger ones through the sparse mixed system by SuperLU."""
     n, m = model.n_dof, 6 * len(model.joints)
-    grounded, contact_block = np.unique(model.contact_plank, return_inverse=True)
+    grounded, contact_block = np.unique(model.contact_node, return_inverse=True)
     ground = (6 * grounded[:, None] + _SIX[None, :]).ravel()
     contact_block, plank_offsets = contact_block.astype(int), 6 * np.arange(len(grounded))
     if n <= tol.DENSE_PLANKS_MAX:
         return _condense_planks(model, ground, contact_block, plank_offsets)
-    G = model.G.tocoo()
-    diagonal = n + np.arange(m)
-    rows = np.concatenate([G.col, n + G.row, diagonal])
-    cols = np.concatenate([n + G.row, G.col, diagonal])
-    values = np.concatenate([G.data, G.data, -model.compliance])
     inner = _others(n + m, ground)
     ni = len(inner)
     order = np.concatenate([inner, ground])
-    A = sp.csc_matrix((values, (rows, cols)), shape=(n + m, n + m))
+    A = _contact_free_matrix(model).tocsc()
     permuted = A[order][:, order].tocsc()
     coupling = permuted[:ni, ni:].tocsc()
     lu, reduced = None, np.zeros((ni, len(ground)))
@@ -204,6 +197,27 @@ def _condense(model: StaticsModel) -> _Condensed | None:
     schur = permuted[ni:, ni:].toarray() - np.asarray(coupling.T @ reduced)
     return _Condensation(ground, inner, coupling, reduced, schur, contact_block,
                          plank_offsets, n + m, lu=lu)
+
+
+def _contact_free_matrix(model: StaticsModel) -> sp.coo_matrix:
+    """[[K_b, G^T], [G, -E]]: the mixed system without contact springs (K_b the beams'
+    stiffness, zero for rigid planks; E the joints' compliance blocks)."""
+    n, m = model.n_dof, 6 * len(model.joints)
+    G = model.G.tocoo()
+    block = np.arange(m).reshape(-1, 6)
+    rows_e = np.broadcast_to(block[:, :, None], (len(block), 6, 6)).ravel()
+    cols_e = np.broadcast_to(block[:, None, :], (len(block), 6, 6)).ravel()
+    parts_rows = [G.col, n + G.row, n + rows_e]
+    parts_cols = [n + G.row, G.col, n + cols_e]
+    parts_values = [G.data, G.data, -model.joint_compliance.ravel()]
+    if model.beam_stiffness is not None:
+        beams = model.beam_stiffness.tocoo()
+        parts_rows.append(beams.row)
+        parts_cols.append(beams.col)
+        parts_values.append(beams.data)
+    return sp.coo_matrix((np.concatenate(parts_values),
+                          (np.concatenate(parts_rows), np.concatenate(parts_cols))),
+                         shape=(n + m, n + m))
 
 
 def _others(n: int, chosen: np.ndarray) -> np.ndarray:
@@ -248,11 +262,12 @@ _SYMMETRIC_LU = {"permc_spec": "MMD_AT_PLUS_A", "diag_pivot_thresh": 0.0,
                  "options": {"SymmetricMode": True}}
 
 
-def anchor_springs(holding: np.ndarray) -> np.ndarray:
-    """(nK, 3, 3): contact force = -S w for contact point displacement w: springs to the
-    anchor in all three directions where the contact holds, none where it lifted."""
+def anchor_springs(holding: np.ndarray, stiffness: float) -> np.ndarray:
+    """(nK, 3, 3): contact force = -S w for contact point displacement w: springs of
+    ``stiffness`` (N/m) to the anchor in all three directions where the contact holds,
+    none where it lifted."""
     springs = np.zeros((len(holding), 3, 3))
-    springs[holding] = np.eye(3) * tol.CONTACT_STIFFNESS
+    springs[holding] = np.eye(3) * stiffness
     return springs
 
 
@@ -267,7 +282,7 @@ def _anchored_stiffness(model: StaticsModel, holding: np.ndarray,
                         scale: float = 1.0) -> np.ndarray:
     """``_condensed_stiffness`` for the anchor springs of ``holding`` (x ``scale``): each
     holding contact adds scale k M^T M, M^T M kept once per model."""
-    blocks = model.contact_gram * (scale * tol.CONTACT_STIFFNESS
+    blocks = model.contact_gram * (scale * model.contact_stiffness
                                    * holding.astype(float))[:, None, None]
     return _with_contact_blocks(model, blocks)
 
@@ -296,16 +311,17 @@ def _diagonal_blocks(count: int) -> tuple[np.ndarray, np.ndarray]:
 
 
 def system_matrix(model: StaticsModel, holding: np.ndarray) -> sp.csr_matrix:
-    """The full mixed matrix [[K_c, G^T], [G, -E]] with anchor springs at the holding
-    contacts (sparse, (6 nP + 6 nJ) square): the A of the paper's eq. 6."""
-    n = model.n_dof
+    """The full mixed matrix [[K_b + K_c, G^T], [G, -E]] with anchor springs at the
+    holding contacts (sparse, (6 nN + 6 nJ) square): the A of the paper's eq. 6."""
+    n, m = model.n_dof, 6 * len(model.joints)
     maps = model.contact_maps
-    blocks = np.transpose(maps, (0, 2, 1)) @ (anchor_springs(holding) @ maps)
-    base = 6 * model.contact_plank[:, None, None]
+    blocks = np.transpose(maps, (0, 2, 1)) @ (anchor_springs(holding, model.contact_stiffness)
+                                              @ maps)
+    base = 6 * model.contact_node[:, None, None]
     rows = np.broadcast_to(base + _SIX[None, :, None], blocks.shape).ravel()
     cols = np.broadcast_to(base + _SIX[None, None, :], blocks.shape).ravel()
-    K_c = sp.csr_matrix((blocks.ravel(), (rows, cols)), shape=(n, n))
-    return sp.bmat([[K_c, model.G.T], [model.G, -sp.diags(model.compliance)]], format="csr")
+    K_c = sp.coo_matrix((blocks.ravel(), (rows, cols)), shape=(n + m, n + m))
+    return (_contact_free_matrix(model) + K_c).tocsr()
 
 
 def solve_system(model: StaticsModel, holding: np.ndarray, rhs: np.ndarray) -> np.ndarray:

@@ -96,7 +96,7 @@ class _ActiveSet:
             self.inner_part, self.ground_rhs = self.condensed.load(f)
         self.scale = scale
         self.force_tol = tol.FORCE_REL_TOL * scale
-        self.disp_tol = self.force_tol / tol.CONTACT_STIFFNESS
+        self.disp_tol = self.force_tol / model.contact_stiffness
         self.mu = model.friction
 
     # -- phases --------------------------------------------------------------------------------
@@ -153,7 +153,7 @@ class _ActiveSet:
     def stable(self, solution: _Solution, status: np.ndarray) -> CaseStatics:
         return CaseStatics("stable", _wrenches(solution.h), solution.contact_forces,
                            state=np.concatenate([solution.q, solution.h]),
-                           holding=status != LIFT)
+                           holding=status != LIFT, displacements=solution.q)
 
     def sliding(self, solution: _Solution) -> CaseStatics:
         """Report a case that slides, with the forces it would need if friction were endless."""
@@ -174,7 +174,7 @@ class _ActiveSet:
                   f"must resist {sideways:.4g} N sideways{twist_text}, friction gives at most "
                   f"{capacity:.4g} N")
         return CaseStatics("sliding", _wrenches(solution.h), forces, self._plank_ids(over),
-                           detail)
+                           detail, displacements=solution.q)
 
     def unstable(self, stability: str, program: Feasibility | None = None) -> CaseStatics:
         """Report a case without admissible equilibrium: forces as if bolted to the ground
@@ -195,7 +195,8 @@ class _ActiveSet:
             detail = (f"no equilibrium within the friction cones (mu = {self.mu:g}); forces "
                       "shown as if the design were bolted to the ground")
         return CaseStatics(stability, _wrenches(bolted.h), bolted.contact_forces,
-                           self._plank_ids(pulling), detail + undecided)
+                           self._plank_ids(pulling), detail + undecided,
+                           displacements=bolted.q)
 
     def from_programs(self, target: np.ndarray, on_failure: _Solution | None) -> CaseStatics:
         """The verdict of the friction program when the iterations could not settle:
@@ -211,14 +212,14 @@ class _ActiveSet:
     def prescribed(self, contact_forces: np.ndarray) -> CaseStatics:
         """Joint wrenches for contact forces fixed by a feasibility program.
 
-        The contact forces enter as loads; feeble springs (CONTACT_STIFFNESS x 1e-9) only
+        The contact forces enter as loads; feeble springs (contact stiffness x 1e-9) only
         remove the rigid motions and carry no force since the loads balance (the solve is
         judged against the loads' scale: its own right-hand side is round-off).
         """
         model = self.model
         f = self.f.copy()
         for row, force in enumerate(contact_forces):
-            k = model.contact_plank[row]
+            k = model.contact_node[row]
             f[6 * k:6 * k + 6] += model.contact_maps[row].T @ force
         feeble = _ActiveSet(model, f, self.scale)
         solution = feeble.solve(np.full(len(model.contacts), STICK), stiffness_scale=1e-9,
@@ -226,7 +227,8 @@ class _ActiveSet:
         if solution is None:
             return CaseStatics("lift-off", None, None, (), _LINE_DETAIL)
         return CaseStatics("stable", _wrenches(solution.h), contact_forces.copy(),
-                           holding=contact_forces[:, 2] > self.force_tol)
+                           holding=contact_forces[:, 2] > self.force_tol,
+                           displacements=solution.q)
 
     def within_cones(self, solution: _Solution) -> bool:
         forces = solution.contact_forces
@@ -255,7 +257,7 @@ class _ActiveSet:
         plank_q = ground.reshape(-1, 6)[condensed.contact_block]           # (nK, 6)
         displacement = (model.contact_maps @ plank_q[:, :, None])[:, :, 0]
         # the anchor springs: k (x the scale) in all three directions where a contact holds
-        forces = -(tol.CONTACT_STIFFNESS * stiffness_scale) * displacement \
+        forces = -(model.contact_stiffness * stiffness_scale) * displacement \
             * holding[:, None]
         return self.assemble(ground, forces, displacement)
 
@@ -328,7 +330,7 @@ class _FrictionEnergy:
         self.active = active
         self.schur = condensed.schur
         self.rhs = solver.ground_rhs
-        self.k = tol.CONTACT_STIFFNESS
+        self.k = solver.model.contact_stiffness
 
     def _displacements(self, x: np.ndarray) -> np.ndarray:
         """(na, 3): w_k = M_k x, each contact from its plank's six displacements."""

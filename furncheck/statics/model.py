@@ -27,17 +27,32 @@ _SIX = np.arange(6)
 
 @dataclass(frozen=True)
 class StaticsModel:
-    """The load-independent part of a design's statics.
+    """The load-independent part of a design's statics, in either model.
 
+    The unknowns are six small displacements q_k = (u_k, theta_k) (m, rad) per *node*, the
+    point ``node_points[k]`` of plank ``node_plank[k]`` it turns about, and a wrench per
+    nail joint.  The rigid model has one node per plank, at its centre; the elastic model
+    a row of nodes along each plank's beam axis, joined by beam elements
+    (``beam_stiffness``, ``statics.elastic``).
+
+    kind     : 'rigid' or 'elastic'
     planks   : design plank indices taking part (those of grounded components)
     joints   : geometry joint indices taking part
     contacts : geometry contact indices taking part
-    joint_planks, joint_blocks : (nJ, 2) local planks and (nJ, 2, 6, 6) signed blocks of
-               the joint deviation map G (``G``: the same as a sparse (6 nJ, 6 nP) matrix)
-    contact_maps : (nK, 3, 6) displacement of each contact point from its plank's q
-    contact_plank : (nK,) local plank number of each contact
+    node_plank, node_points : (nN,) local plank and (nN, 3) m, position of each node
+    joint_nodes, joint_blocks : (nJ, 2) local nodes and (nJ, 2, 6, 6) signed blocks of
+               the joint deviation map G (``G``: the same as a sparse (6 nJ, 6 nN) matrix)
+    joint_stiffness : (nJ, 6, 6) W, joint wrench = W (deviation), world frame: diagonal in
+               the rigid model (its penalty constants), the nail row's springs in the
+               elastic one
+    contact_maps : (nK, 3, 6) displacement of each contact point from its node's q
+    contact_node, contact_plank : (nK,) local node and local plank of each contact
     contact_component : (nK,) component number of each contact
-    components : local plank numbers of each grounded component
+    contact_stiffness : N/m, the contacts' normal and anchor springs
+    components : local plank numbers of each grounded component (``component_nodes``:
+               their nodes)
+    beam_stiffness : (6 nN, 6 nN) sparse, the beam elements' stiffness (None: rigid)
+    beams    : the elements themselves (``elastic.Beams``; None: rigid)
     """
 
     design: Design
@@ -45,43 +60,75 @@ class StaticsModel:
     planks: tuple[int, ...]
     joints: tuple[int, ...]
     contacts: tuple[int, ...]
-    joint_planks: np.ndarray
+    node_plank: np.ndarray
+    node_points: np.ndarray
+    joint_nodes: np.ndarray
     joint_blocks: np.ndarray
-    compliance: np.ndarray
+    joint_stiffness: np.ndarray
     contact_maps: np.ndarray
+    contact_node: np.ndarray
     contact_plank: np.ndarray
     contact_points: np.ndarray
     contact_component: np.ndarray
     components: tuple[tuple[int, ...], ...]
     friction: float
+    contact_stiffness: float = tol.CONTACT_STIFFNESS
+    kind: str = "rigid"
+    beam_stiffness: sp.csr_matrix | None = None
+    beams: object = None
+    nodal_weight: np.ndarray | None = None
+    load_nodes: dict | None = None     # (case name, load index) -> node (elastic model)
 
     @property
     def n_dof(self) -> int:
-        return 6 * len(self.planks)
+        return 6 * len(self.node_plank)
+
+    @property
+    def n_nodes(self) -> int:
+        return len(self.node_plank)
+
+    @cached_property
+    def component_nodes(self) -> tuple[tuple[int, ...], ...]:
+        """Local node numbers of each grounded component."""
+        return tuple(tuple(int(k) for k in np.flatnonzero(np.isin(self.node_plank, comp)))
+                     for comp in self.components)
 
     @cached_property
     def G(self) -> sp.csr_matrix:
-        """(6 nJ, 6 nP) sparse joint deviation map, d = G q."""
+        """(6 nJ, 6 nN) sparse joint deviation map, d = G q."""
         n_joints = len(self.joints)
         shape = (n_joints, 2, 6, 6)
         rows = np.broadcast_to(6 * np.arange(n_joints)[:, None, None, None]
                                + _SIX[None, None, :, None], shape).ravel()
-        cols = np.broadcast_to(6 * self.joint_planks[:, :, None, None]
+        cols = np.broadcast_to(6 * self.joint_nodes[:, :, None, None]
                                + _SIX[None, None, None, :], shape).ravel()
         return sp.csr_matrix((self.joint_blocks.ravel(), (rows, cols)),
                              shape=(6 * n_joints, self.n_dof))
 
+    @cached_property
+    def joint_compliance(self) -> np.ndarray:
+        """(nJ, 6, 6) E = W^-1 per joint, the mixed system's -E blocks."""
+        return np.linalg.inv(self.joint_stiffness) if len(self.joints) \
+            else np.zeros((0, 6, 6))
+
+    def joint_wrench(self, deviations: np.ndarray) -> np.ndarray:
+        """W d per joint for deviations (6 nJ,) or (6 nJ, k)."""
+        if not len(self.joints):
+            return np.zeros_like(deviations)
+        per_joint = deviations.reshape((len(self.joints), 6, -1))
+        return (self.joint_stiffness @ per_joint).reshape(deviations.shape)
+
     def deviations(self, q: np.ndarray) -> np.ndarray:
-        """G q for plank displacements q, (6 nP,) or (6 nP, k), by blocks: per joint its
-        (6, 12) rows of G times the 12 displacements of its two planks (one stacked
+        """G q for node displacements q, (6 nN,) or (6 nN, k), by blocks: per joint its
+        (6, 12) rows of G times the 12 displacements of its two nodes (one stacked
         matmul; two to five times faster than the same contraction by einsum)."""
-        columns = q.reshape((len(self.planks), 6) + q.shape[1:])[self.joint_planks]
+        columns = q.reshape((self.n_nodes, 6) + q.shape[1:])[self.joint_nodes]
         columns = columns.reshape((len(self.joints), 12, math.prod(q.shape[1:])))  # (nJ, 12, k)
         return (self.joint_rows @ columns).reshape((-1,) + q.shape[1:])
 
     @cached_property
     def joint_rows(self) -> np.ndarray:
-        """(nJ, 6, 12): each joint's rows of G, its first plank's columns then its second's."""
+        """(nJ, 6, 12): each joint's rows of G, its first node's columns then its second's."""
         return np.ascontiguousarray(np.transpose(self.joint_blocks, (0, 2, 1, 3))
                                     .reshape(-1, 6, 12))
 
@@ -89,24 +136,20 @@ class StaticsModel:
         """G^T h for joint values h, (6 nJ,) or (6 nJ, k), by blocks."""
         per_joint = np.einsum("jsab,ja...->jsb...", self.joint_blocks,
                               h.reshape((-1, 6) + h.shape[1:]))
-        out = block_sums(self.joint_planks.ravel(), per_joint.reshape(2 * len(self.joints), -1),
-                         len(self.planks))
+        out = block_sums(self.joint_nodes.ravel(), per_joint.reshape(2 * len(self.joints), -1),
+                         self.n_nodes)
         return out.reshape((-1,) + h.shape[1:])
 
     @cached_property
     def self_weight(self) -> np.ndarray:
-        """(6 nP,) the planks' weights (N) as loads at their centres."""
+        """(6 nN,) the planks' weights (N) as loads: at their centres (rigid), spread along
+        their beams (elastic)."""
+        if self.nodal_weight is not None:
+            return self.nodal_weight
         f = np.zeros(self.n_dof)
         f[2::6] = [-self.design.plank_mass(self.design.planks[i]) * tol.GRAVITY
                    for i in self.planks]
         return f
-
-    @cached_property
-    def node_points(self) -> np.ndarray:
-        """(nP, 3) m: the point each six-displacement block q_k turns about (a rigid
-        plank's centre)."""
-        return np.array([self.design.planks[i].center_array for i in self.planks],
-                        dtype=float).reshape(-1, 3)
 
     @cached_property
     def local_planks(self) -> dict[str, int]:
@@ -153,7 +196,7 @@ class StaticsModel:
 
     @cached_property
     def condensation(self) -> _Condensed | None:
-        """The contact-free part of the system, condensed onto the grounded planks."""
+        """The contact-free part of the system, condensed onto the grounded nodes."""
         from furncheck.statics.condense import _condense  # here: condense imports this module
 
         return _condense(self)
@@ -178,10 +221,24 @@ class CaseStatics:
     detail: str = ""
     state: np.ndarray | None = None     # the solution [q; h] of a stable case
     holding: np.ndarray | None = None   # (nK,) bool: contacts on the ground (not lifted)
+    displacements: np.ndarray | None = None   # (6 nN,) q of the forces shown, if any
+    planks: object = None      # elastic.PlankStatics: sag, span, stress (elastic model)
 
 
 def build_model(design: Design, geometry: Geometry) -> StaticsModel:
-    """Assemble G, the compliances and the contact maps for the grounded components."""
+    """The statics model of the grounded components in the design's model (``design.model``:
+    the one place where the model is chosen): rigid planks (paper section 5.1) or elastic
+    beams (``statics.elastic``, contract section 3a)."""
+    if design.model == "elastic":
+        from furncheck.statics.elastic import build_elastic_model
+
+        return build_elastic_model(design, geometry)
+    return _build_rigid_model(design, geometry)
+
+
+def grounded_parts(design: Design, geometry: Geometry):
+    """(design plank indices, joints, contacts, components as local planks) of the
+    grounded components, in order."""
     grounded_planks = sorted(i for comp, g in zip(geometry.components, geometry.grounded)
                              if g for i in comp)
     local = {plank: k for k, plank in enumerate(grounded_planks)}
@@ -189,60 +246,68 @@ def build_model(design: Design, geometry: Geometry) -> StaticsModel:
               if design.plank_index[joint.planks[0]] in local]
     plank_of = {design.planks[i].id: i for i in grounded_planks}
     contacts = [k for k, c in enumerate(geometry.contacts) if c.plank in plank_of]
-
-    joint_planks, joint_blocks = _joint_blocks(design, geometry, joints, local)
-    thickness = np.array([geometry.joints[j].edge_thickness for j in joints], dtype=float)
-    compliance = np.empty((len(joints), 6))
-    compliance[:, :3] = tol.JOINT_COMPLIANCE_T
-    compliance[:, 3:] = tol.joint_compliance_r(thickness)[:, None]
-
-    plank_of_contact = [design.plank_index[geometry.contacts[k].plank] for k in contacts]
-    owner = [local[i] for i in plank_of_contact]
-    points = np.array([geometry.contacts[k].point for k in contacts],
-                      dtype=float).reshape(-1, 3)
-    centres = np.array([design.planks[i].center_array for i in plank_of_contact],
-                       dtype=float).reshape(-1, 3)
     components = tuple(tuple(local[i] for i in comp)
                        for comp, g in zip(geometry.components, geometry.grounded) if g)
+    return grounded_planks, joints, contacts, components
+
+
+def _build_rigid_model(design: Design, geometry: Geometry) -> StaticsModel:
+    """Assemble G, the compliances and the contact maps of rigid planks, one node each at
+    its centre."""
+    grounded_planks, joints, contacts, components = grounded_parts(design, geometry)
+    local = {plank: k for k, plank in enumerate(grounded_planks)}
+    centres = np.array([design.planks[i].center_array for i in grounded_planks],
+                       dtype=float).reshape(-1, 3)
+    joint_nodes = np.array([[local[design.plank_index[p]] for p in geometry.joints[j].planks]
+                            for j in joints], dtype=int).reshape(-1, 2)
+    points = np.array([geometry.joints[j].point for j in joints], dtype=float).reshape(-1, 3)
+    joint_blocks = joint_deviation_blocks(points, centres[joint_nodes])
+    thickness = np.array([geometry.joints[j].edge_thickness for j in joints], dtype=float)
+    stiffness = np.zeros((len(joints), 6, 6))
+    stiffness[:, _SIX[:3], _SIX[:3]] = 1.0 / tol.JOINT_COMPLIANCE_T
+    stiffness[:, _SIX[3:], _SIX[3:]] = 1.0 / tol.joint_compliance_r(thickness)[:, None]
+
+    owner = np.array([local[design.plank_index[geometry.contacts[k].plank]] for k in contacts],
+                     dtype=int)
+    contact_points = np.array([geometry.contacts[k].point for k in contacts],
+                              dtype=float).reshape(-1, 3)
     component_of = {p: c for c, comp in enumerate(components) for p in comp}
     return StaticsModel(
         design=design, geometry=geometry, planks=tuple(grounded_planks), joints=tuple(joints),
-        contacts=tuple(contacts), joint_planks=joint_planks, joint_blocks=joint_blocks,
-        compliance=compliance.ravel(),
-        contact_maps=point_maps(points - centres),
-        contact_plank=np.array(owner, dtype=int),
-        contact_points=points,
+        contacts=tuple(contacts), node_plank=np.arange(len(grounded_planks)),
+        node_points=centres, joint_nodes=joint_nodes, joint_blocks=joint_blocks,
+        joint_stiffness=stiffness,
+        contact_maps=point_maps(contact_points - centres[owner].reshape(-1, 3)),
+        contact_node=owner, contact_plank=owner, contact_points=contact_points,
         contact_component=np.array([component_of[p] for p in owner], dtype=int),
         components=components, friction=design.material.friction)
 
 
-def _joint_blocks(design: Design, geometry: Geometry, joints: list[int],
-                  local: dict[int, int]) -> tuple[np.ndarray, np.ndarray]:
-    """The joint deviation map G (paper eq. 1, small rotations) by blocks: the two planks
-    (local numbers, (nJ, 2)) of each joint and its signed (6, 6) blocks ((nJ, 2, 6, 6)),
+def joint_deviation_blocks(points: np.ndarray, node_points: np.ndarray) -> np.ndarray:
+    """The joint deviation map G (paper eq. 1, small rotations) by blocks: each joint's
+    signed (6, 6) blocks ((nJ, 2, 6, 6)) for its two nodes (``node_points`` (nJ, 2, 3)),
 
         d^t = (u_a + theta_a x r_a) - (u_b + theta_b x r_b),   d^r = theta_a - theta_b
 
-    with a, b the joint's first and second plank and r = joint point - plank centre.
+    with a, b the joint's first and second node and r = joint point - node point.
     """
-    n_joints = len(joints)
-    planks = np.zeros((n_joints, 2), dtype=int)
-    blocks = np.zeros((n_joints, 2, 6, 6))
-    if n_joints == 0:
-        return planks, blocks
-    points = np.array([geometry.joints[j].point for j in joints])
+    blocks = np.zeros((len(points), 2, 6, 6))
     for position, side in ((0, 1.0), (1, -1.0)):
-        indices = [design.plank_index[geometry.joints[j].planks[position]] for j in joints]
-        centres = np.array([design.planks[i].center_array for i in indices])
-        planks[:, position] = [local[i] for i in indices]
         blocks[:, position, :3, :3] = side * np.eye(3)
-        blocks[:, position, :3, 3:] = -side * _skew_many(points - centres)
+        blocks[:, position, :3, 3:] = -side * _skew_many(points - node_points[:, position])
         blocks[:, position, 3:, 3:] = side * np.eye(3)
-    return planks, blocks
+    return blocks
 
 
 def external_forces(model: StaticsModel, case: LoadCase) -> np.ndarray:
-    """(6 nP,) self-weight and the case's loads: force (N) and moment about the centre (N m)."""
+    """(6 nN,) self-weight and the case's loads: force (N) and moment (N m) about each
+    node.  A load acts at the node of its point (its plank's centre when it has none);
+    a spread load at its plank's centre in the rigid model, along its beam in the
+    elastic one."""
+    if model.beams is not None:
+        from furncheck.statics.elastic import elastic_forces
+
+        return elastic_forces(model, case)
     design = model.design
     f = model.self_weight.copy()
     local = model.local_planks
@@ -251,12 +316,17 @@ def external_forces(model: StaticsModel, case: LoadCase) -> np.ndarray:
             continue
         k = local[load.plank]
         plank = design.planks[model.planks[k]]
-        fx, fy, fz = (float(v) for v in load.force)
-        f[6 * k:6 * k + 3] += (fx, fy, fz)
-        if load.point is not None:      # the moment r x F about the centre
-            rx, ry, rz = (float(p) - float(c) for p, c in zip(load.point, plank.center))
-            f[6 * k + 3:6 * k + 6] += (ry * fz - rz * fy, rz * fx - rx * fz, rx * fy - ry * fx)
+        add_point_load(f, k, plank.center, load)
     return f
+
+
+def add_point_load(f: np.ndarray, node: int, node_point, load) -> None:
+    """f[node] += the load's force and its moment r x F about ``node_point``."""
+    fx, fy, fz = (float(v) for v in load.force)
+    f[6 * node:6 * node + 3] += (fx, fy, fz)
+    if load.point is not None:
+        rx, ry, rz = (float(p) - float(c) for p, c in zip(load.point, node_point))
+        f[6 * node + 3:6 * node + 6] += (ry * fz - rz * fy, rz * fx - rx * fz, rx * fy - ry * fx)
 
 
 # --- small helpers ----------------------------------------------------------------------------
@@ -266,7 +336,8 @@ def block_sums(index: np.ndarray, values: np.ndarray, count: int) -> np.ndarray:
     ``np.add.at`` gives; ``np.bincount`` is many times faster)."""
     k = values.shape[1]
     flat = (np.asarray(index)[:, None] * k + np.arange(k)).ravel()
-    return np.bincount(flat, weights=values.ravel(), minlength=count * k).reshape(count, k)
+    return np.bincount(flat, weights=values.ravel(), minlength=count * k).astype(float) \
+        .reshape(count, k)
 
 
 def _skew(v: np.ndarray) -> np.ndarray:

@@ -8,9 +8,12 @@ ledge nailed to the outside of a bookcase.  The support stands across the gap be
 faces of P_i and P_j that face each other, its ends nailed to both (it becomes the edge
 plank of two new joints; on the floor it just stands), its broad face turned toward P_k.
 Candidate places are the far side of the overlap of P_i and P_j from P_k (a triangle with
-the joint that fails: the woodworker's bracket) and its middle.  Each candidate design is
-checked in full -- valid in every case, the new plank joined to P_i and P_j only, no
-plank cutting another -- and only working supports are suggested.
+the joint that fails: the woodworker's bracket) and its middle.  A plank that sags or is
+overstressed (elastic model) is P_i itself: the support goes under the middle of its
+overlap with a parallel plank P_j that shares a neighbour P_k with it (a divider between
+a sagging shelf and the shelf below), or the floor.  Each candidate design is checked in
+full -- valid in every case, the new plank joined to P_i and P_j only, no plank cutting
+another -- and only working supports are suggested.
 """
 
 from __future__ import annotations
@@ -46,20 +49,22 @@ class Support:
     it and that design's validation."""
 
     plank: Plank
-    between: tuple[str, str]
+    between: tuple[str, ...]     # (P_i, P_j or 'the floor'); a rail: (bent plank, its ends)
     place: str
     design: Design
     report: DesignReport
+    restores: tuple[str, ...] = ("durability",)
 
 
 def support_planks(design: Design, geometry: Geometry, report: DesignReport,
                    limit: int = MAX_DISCRETE) -> list[Support]:
-    """Working support planks for the non-durable joints of ``report`` (see the module
-    docstring), at most ``limit``, in the order tried: failing joints as reported,
-    then P_k, P_i, P_j, places."""
+    """Working support planks for the non-durable joints and the sagging or overstressed
+    planks of ``report`` (see the module docstring), at most ``limit``, in the order
+    tried: failing joints and planks as reported, then P_k, P_i, P_j, places."""
     if geometry.violations or not report.violations or \
-            any(v.kind != "non-durable" for v in report.violations):
+            any(v.kind not in _REPAIRED for v in report.violations):
         return []
+    restores = tuple(sorted({_REPAIRED[v.kind] for v in report.violations}))
     neighbours: dict[str, list[str]] = {p.id: [] for p in design.planks}
     for joint in geometry.joints:
         a, b = joint.planks
@@ -69,22 +74,109 @@ def support_planks(design: Design, geometry: Geometry, report: DesignReport,
     tried: set[tuple] = set()
     failing = dict.fromkeys(v.where for v in report.violations)
     for where in failing:
-        pair = where.split("/", 1)
-        for k, i in (pair, pair[::-1]):
+        if "/" in where:                                 # a joint k/i: brackets and posts
+            pair = where.split("/", 1)
+            trials = [(k, i, PLACES) for k, i in (pair, pair[::-1])]
+        else:                                            # a bent plank i
+            for depth in STIFFENER_DEPTHS:
+                key = (where, "stiffener")
+                if key in tried or len(found) >= limit:
+                    break
+                support = _try_stiffener(design, geometry, where, neighbours[where], depth)
+                if support is not None:
+                    tried.add(key)
+                    found.append(replace(support, restores=restores))
+            trials = [(k, where, PLACES[1:]) for k in neighbours[where]]
+        for k, i, places in trials:
             partners = [j for j in neighbours[k]
                         if j != i and _parallel(design.plank(i), design.plank(j))]
             if _level(design.plank(i)):
                 partners.append(None)                    # the floor, under a level plank
             for j in partners:
-                for place, position in PLACES:
+                for place, position in places:
                     key = (*sorted((i, j or "")), place)
                     if key in tried or len(found) >= limit:
                         continue
                     tried.add(key)
                     support = _try(design, geometry, k, i, j, place, position)
                     if support is not None:
-                        found.append(support)
+                        found.append(replace(support, restores=restores))
     return found
+
+
+_REPAIRED = {"non-durable": "durability", "sagging": "stiffness", "overstressed": "strength"}
+
+STIFFENER_DEPTHS = (4.0, 6.0, 8.0)
+"""Depths of a stiffening rail tried under a bent plank, in plank thicknesses (48, 72 and
+96 mm for 12 mm stock): the shallowest that works is suggested."""
+
+
+def _try_stiffener(design: Design, geometry: Geometry, i: str, neighbours: list[str],
+                   depth: float) -> Support | None:
+    """A rail on edge under one long edge of the level plank i (a shelf's front lip), or
+    under its middle, between the two parallel planks that hold i's ends, nailed to i and
+    to both: the woodworker's fix for a sagging shelf.  (A lip at one edge carries that
+    edge; the beam model's shelf, whose section does not bend across its width, then
+    twists about its axis: where that is too much, the rail under the middle does it.)
+    None when i is not level, is not held at both ends by parallel planks, or the rail
+    does not work (checked as ``_try`` does)."""
+    shelf = design.plank(i)
+    if not _level(shelf):
+        return None
+    from furncheck.statics.elastic import beam_frame, beam_length_width
+
+    frame = beam_frame(shelf)
+    axis = frame[:, 0]
+    ends = []
+    for k in neighbours:
+        other = design.plank(k)
+        normal = other.rotation_matrix[:, 2]
+        if abs(float(normal @ axis)) >= PARALLEL_COS:
+            ends.append((float((other.center_array - shelf.center_array) @ axis), other))
+    below = [e for e in ends if e[0] < 0]
+    above = [e for e in ends if e[0] > 0]
+    if not below or not above:
+        return None
+    (s_low, low), (s_high, high) = max(below, key=lambda e: e[0]), min(above, key=lambda e: e[0])
+    start = s_low + low.half_extents[2]
+    stop = s_high - high.half_extents[2]
+    thickness = design.material.thickness
+    rail_depth = depth * thickness
+    length, width = beam_length_width(shelf)
+    down = -frame[:, 2] if frame[2, 2] > 0 else frame[:, 2]
+    taken = {p.id for p in design.planks}
+    name = next(f"rail-{n}" for n in range(1, len(taken) + 2) if f"rail-{n}" not in taken)
+    for side, edge in ((-1.0, 1.0), (1.0, 1.0), (1.0, 0.0)):  # a long edge of i, its middle
+        across = frame[:, 1] * side
+        centre = (shelf.center_array + axis * 0.5 * (start + stop)
+                  + across * edge * (0.5 * width - 0.5 * thickness)
+                  + down * (shelf.half_extents[2] + 0.5 * rail_depth))
+        rotation = euler_degrees(np.column_stack([axis, np.cross(across, axis), across]),
+                                 (0.0, 0.0, 0.0))
+        rail = Plank(name, float(stop - start), float(rail_depth), thickness,
+                     tuple(float(v) for v in centre), tuple(float(v) for v in rotation))
+        support = _checked(design, geometry, rail, (i, low.id, high.id))
+        if support is not None:
+            return Support(rail, (i, low.id, high.id), f"under {i}", support[0], support[1])
+    return None
+
+
+def _checked(design: Design, geometry: Geometry, plank: Plank,
+             ends: tuple[str, ...]) -> tuple[Design, DesignReport] | None:
+    """(the design with ``plank`` added, nailed to ``ends``, and its report) when it is
+    valid, the new plank is joined to exactly ``ends`` and cuts into nothing; else None."""
+    joints = None if design.joints is None else \
+        (*design.joints, *(JointSpec((end, plank.id)) for end in ends))
+    edited = replace(design, planks=(*design.planks, plank), joints=joints)
+    after = analyze(edited)
+    new = {frozenset(joint.planks) for joint in after.joints if plank.id in joint.planks}
+    if after.violations or new != {frozenset((end, plank.id)) for end in ends}:
+        return None
+    if len(after.joints) != len(geometry.joints) + len(ends) or interpenetrations(edited):
+        return None
+    report = check_design(edited, after)
+    return (edited, report) if report.valid else None
+"""The violations a support plank can repair, and what it restores."""
 
 
 def _level(plank: Plank) -> bool:
@@ -106,19 +198,10 @@ def _try(design: Design, geometry: Geometry, k: str, i: str, j: str | None, plac
     if plank is None:
         return None
     ends = (i,) if j is None else (i, j)
-    joints = None if design.joints is None else \
-        (*design.joints, *(JointSpec((end, plank.id)) for end in ends))
-    edited = replace(design, planks=(*design.planks, plank), joints=joints)
-    after = analyze(edited)
-    new = {frozenset(joint.planks) for joint in after.joints if plank.id in joint.planks}
-    if after.violations or new != {frozenset((end, plank.id)) for end in ends}:
+    checked = _checked(design, geometry, plank, ends)
+    if checked is None:
         return None
-    if len(after.joints) != len(geometry.joints) + len(ends) or interpenetrations(edited):
-        return None
-    report = check_design(edited, after)
-    if not report.valid:
-        return None
-    return Support(plank, (i, j or "the floor"), place, edited, report)
+    return Support(plank, (i, j or "the floor"), place, *checked)
 
 
 def _support(design: Design, k: Plank, i: Plank, j: Plank | None,

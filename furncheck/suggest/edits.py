@@ -29,7 +29,7 @@ from furncheck.dofs import (
 )
 from furncheck.geometry import Geometry, analyze, interpenetrations
 from furncheck.result import DesignReport
-from furncheck.statics import build_model, external_forces, solve_case
+from furncheck.statics import build_model, solve_load_case
 from furncheck.validity import case_margin
 
 MARGIN_EPS = 1e-12
@@ -128,7 +128,7 @@ class Editor:
         worst, holds = 1.0, True
         for case in edited.load_cases:
             margin, case_ok = case_margin(edited, geometry, model,
-                                          solve_case(model, external_forces(model, case)))
+                                          solve_load_case(model, case))
             if margin == -math.inf:
                 return -math.inf
             worst, holds = min(worst, margin), holds and case_ok

@@ -54,7 +54,8 @@ within this fraction of the design's size above the component's lowest corner.""
 class Margin:
     """One validity margin (see the module docstring).
 
-    restores : 'durability', 'stability' or 'geometry' (the contract's ``restores``)
+    restores : 'durability', 'stability', 'geometry', 'stiffness' (sag) or 'strength'
+               (bending stress) (the contract's ``restores``)
     where    : joint 'a/b', plank id or component, for messages
     case     : load case name, None for geometry
     value    : dimensionless, >= 0 where the design passes
@@ -162,6 +163,7 @@ class Margins:
                 margins.extend(_toppling(linear, sens.contact_forces, scales))
             else:       # stable (bolted only when its forces came from the feasibility LP)
                 margins.extend(_durability(linear, sens, scales))
+                margins.extend(_bending(linear, sens, scales))
         return margins
 
     def _sliding(self, linear: Linearization) -> list[Margin]:
@@ -252,6 +254,32 @@ def _durability(linear: Linearization, sens: Sensitivity,
                               1.0 - pull[k] / pull_cap, -pull_rates[k] / pull_cap, 0.0))
         margins.append(Margin("durability", joint.name, linear.case.name,
                               1.0 - shear[k] / shear_cap, -shear_rates[k] / shear_cap, 0.0))
+    return margins
+
+
+def _bending(linear: Linearization, sens: Sensitivity, scales: np.ndarray) -> list[Margin]:
+    """Per plank of an elastic model: 1 - sag (1 + creep) sag_limit / span ('stiffness')
+    and 1 - stress / strength ('strength'), with rates from the sag, span and stress
+    rates (none in the rigid model)."""
+    planks = linear.statics.planks
+    if planks is None or sens.plank_sags is None or not sens.plank_sags.shape[1]:
+        return []
+    design, model = linear.design, linear.model
+    material = design.material
+    factor = (1.0 + material.creep) * material.sag_limit
+    strength = material.bending_strength / design.safety_factor
+    margins = []
+    for k in range(len(planks.sag)):
+        plank_id = design.planks[model.planks[k]].id
+        sag, span = float(planks.sag[k]), float(planks.span[k])
+        if span > 0.0:
+            rates = -factor * (sens.plank_sags[:, k] * span - sag * sens.plank_spans[:, k]) \
+                / (span * span)
+            margins.append(Margin("stiffness", plank_id, linear.case.name,
+                                  1.0 - factor * sag / span, rates * scales, 0.0))
+        margins.append(Margin("strength", plank_id, linear.case.name,
+                              1.0 - float(planks.stress[k]) / strength,
+                              -sens.plank_stresses[:, k] * scales / strength, 0.0))
     return margins
 
 

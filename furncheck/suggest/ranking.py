@@ -60,7 +60,7 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
     for support in supports:
         written = _written(support.design, len(suggestions) + 1)
         if written is not None:
-            suggestions.append(Suggestion(len(suggestions) + 1, "discrete", ("durability",),
+            suggestions.append(Suggestion(len(suggestions) + 1, "discrete", support.restores,
                                           *written, adds=(support.plank,),
                                           between=support.between))
     return SuggestionReport(design.source, design.name, report, tuple(suggestions),

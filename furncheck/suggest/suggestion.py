@@ -17,7 +17,8 @@ class Suggestion:
     step      : the representative step (middle of ``range``), or None
     changes   : each DOF's change at ``step``, its own unit (file length unit or degrees)
     adds      : planks added (discrete); ``between`` the planks a support joins
-    restores  : the kinds of violation it removes ('durability', 'stability', 'geometry')
+    restores  : the kinds of violation it removes ('durability', 'stability', 'geometry',
+                'stiffness' for sag, 'strength' for bending stress)
     design    : the representative design, parsed from ``text`` (its YAML file), and
                 ``report`` its validation (valid: suggestions that are not are dropped)
     """

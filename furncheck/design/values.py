@@ -1,0 +1,146 @@
+"""The typed reading of a design document's tree: ``_Doc`` (numbers, text, flags, lists
+and mappings, each checked, every problem a ``DesignError`` with key path and line) and the
+YAML 1.1 scalar rules behind it (``_resolved``) and the words of its messages
+(``_describe``, ``_unknown_key_message``).  The schema that uses them is ``load``."""
+
+from __future__ import annotations
+
+import difflib
+import math
+import re
+from typing import Any, NoReturn
+
+from furncheck.design.source import _child, _json_lines, _one_line, _quote, _Scalar
+from furncheck.errors import DesignError
+
+_NULL_WORDS = {"", "~", "null", "Null", "NULL"}
+_BOOL_WORDS = {word: value for value, words in
+               ((True, ("yes", "true", "on")), (False, ("no", "false", "off")))
+               for base in words for word in (base, base.capitalize(), base.upper())}
+_DECIMAL = re.compile(r"[-+]?(?:[0-9][0-9_]*(?:\.[0-9_]*)?|\.[0-9][0-9_]*)(?:[eE][-+]?[0-9]+)?")
+_JSON_CONSTANTS = {"nan": "NaN", "inf": "Infinity", "-inf": "-Infinity"}
+_NON_FINITE = re.compile(r"[-+]?\.(?:inf|Inf|INF|nan|NaN|NAN)")
+
+class _Doc:
+    """The document being checked: raises ``DesignError`` with key path and line, and reads
+    typed values (numbers, text, mappings, lists) from tree nodes."""
+
+    def __init__(self, source: str, fmt: str, text: str, lines: dict[str, int] | None):
+        self.source = source
+        self.fmt = fmt
+        self.source_text = text
+        self._lines = lines
+
+    @property
+    def lines(self) -> dict[str, int]:
+        """Key path -> line: recorded for YAML, looked up on demand for JSON."""
+        if self._lines is None:
+            self._lines = _json_lines(self.source_text, self.source)
+        return self._lines
+
+    def design_lines(self) -> dict[str, int]:
+        """The lines a ``Design`` keeps: YAML's (JSON's are only looked up for errors)."""
+        return self._lines if self.fmt == "yaml" and self._lines is not None else {}
+
+    def line_of(self, key: str) -> int | None:
+        """Line of ``key``, else of its closest recorded parent."""
+        lines = self.lines
+        while key:
+            if key in lines:
+                return lines[key]
+            cut = max(key.rfind("."), key.rfind("["))
+            key = key[:cut] if cut > 0 else ""
+        return None
+
+    def fail(self, key: str, message: str) -> NoReturn:
+        raise DesignError(self.source, key, self.line_of(key), message)
+
+    def number(self, node: Any, key: str) -> float:
+        """A finite number (booleans and quoted text are not numbers)."""
+        value = _resolved(node)
+        if isinstance(value, bool) or not isinstance(value, float):
+            self.fail(key, f"expected a number, got {_describe(node)}")
+        if not math.isfinite(value):
+            written = node.text if isinstance(node, _Scalar) else _JSON_CONSTANTS[str(value)]
+            self.fail(key, f"not a finite number ({_one_line(written)})")
+        return value
+
+    def flag(self, node: Any, key: str) -> bool:
+        """A boolean (true/false, yes/no, on/off)."""
+        value = _resolved(node)
+        if not isinstance(value, bool):
+            self.fail(key, f"expected true or false, got {_describe(node)}")
+        return value
+
+    def text(self, node: Any, key: str) -> str:
+        """Text; an unquoted YAML scalar counts as the text it shows (``id: 1`` is "1")."""
+        if isinstance(node, str):
+            return node
+        if isinstance(node, _Scalar) and _resolved(node) is not None:
+            return node.text
+        self.fail(key, f"expected text, got {_describe(node)}")
+
+    def sequence(self, node: Any, key: str) -> list:
+        if not isinstance(node, list):
+            self.fail(key, f"expected a list, got {_describe(node)}")
+        return node
+
+    def mapping(self, node: Any, key: str, allowed: tuple[str, ...] | None = None,
+                required: tuple[str, ...] = ()) -> dict:
+        """A mapping whose keys are all ``allowed`` (any when None) and hold ``required``."""
+        if not isinstance(node, dict):
+            self.fail(key, f"expected a mapping, got {_describe(node)}")
+        if allowed is not None:
+            for name in node:
+                if name not in allowed:
+                    self.fail(_child(key, name), _unknown_key_message(name, allowed))
+        for name in required:
+            if name not in node:
+                self.fail(_child(key, name), f"missing required key {_quote(name)}")
+        return node
+
+
+def _resolved(node: Any) -> Any:
+    """A YAML scalar's value (None, bool, float or str); other nodes as they are.  Plain
+    scalars resolve as YAML 1.1 does, except that numbers follow the decimal notation
+    (``1e3``, ``-2E-1``, ``010`` = ten)."""
+    if not isinstance(node, _Scalar):
+        return node
+    if not node.plain:
+        return node.text
+    text = node.text
+    if text in _NULL_WORDS:
+        return None
+    if text in _BOOL_WORDS:
+        return _BOOL_WORDS[text]
+    if _NON_FINITE.fullmatch(text):
+        return float(text.replace(".", "", 1))
+    if _DECIMAL.fullmatch(text):
+        try:
+            return float(text.replace("_", ""))
+        except ValueError:
+            return text
+    return text
+
+
+def _describe(node: Any) -> str:
+    """What a node is, in words, for messages: 'a list', 'text "400"', 'a boolean (yes)'."""
+    value = _resolved(node)
+    if isinstance(value, dict):
+        return "a mapping"
+    if isinstance(value, list):
+        return "a list"
+    if value is None:
+        return "nothing (null)"
+    if isinstance(value, bool):
+        shown = node.text if isinstance(node, _Scalar) else str(value).lower()
+        return f"a boolean ({_one_line(shown)})"
+    if isinstance(value, float):
+        return f"a number ({_one_line(node.text) if isinstance(node, _Scalar) else f'{value:g}'})"
+    return f"text {_quote(value)}"
+
+
+def _unknown_key_message(name: str, allowed: tuple[str, ...]) -> str:
+    close = difflib.get_close_matches(name, allowed, n=1)
+    hint = f" (did you mean {_quote(close[0])}?)" if close else ""
+    return f"unknown key {_quote(name)}{hint}; allowed keys: {', '.join(allowed)}"

@@ -1,0 +1,225 @@
+"""How a solved case's equations change with a design edit: the right-hand sides of the
+force sensitivity (paper eq. 6), for either model.
+
+At a solved state x = [q; h] the statics is A(g) x = b(g).  For the designs of a DOF
+stepped to either side (``AssemblySide``: the design, and its joints and contacts followed
+through the step), ``assembly_differences`` gives the differences of b - A x (x held),
+of the contact maps and of the joint lengths; ``rates = A^-1 (their residual)`` is eq. 6.
+
+* Rigid planks: only the terms a step changes are evaluated (the joints and contacts of
+  the planks it moves, their weights and loads), so a DOF costs about as much as its few
+  moved planks.
+* Elastic planks: the stepped design's model is built again on the same nodes
+  (``elastic.build_elastic_model(..., template=model)``: every node at the new place of
+  what it serves) and b - A x evaluated whole; the planks' sag, span and stress at the
+  stepped state x + dx give their rates (``AssemblyDifferences.plank_rates``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from furncheck.design.model import Design
+from furncheck.geometry import Contact, Joint
+from furncheck.statics.condense import anchor_springs
+from furncheck.statics.model import StaticsModel, block_sums, external_forces, point_maps
+from furncheck.tolerances import GRAVITY
+
+
+@dataclass(frozen=True)
+class AssemblySide:
+    """One side of a difference: DOF ``column``, its ``weight`` (+-1 / 2h, or +-1 / h),
+    how far the DOF is from the design (``offset``, DOF unit), the design planks it
+    changes and the geometry joints and contacts on them, and the stepped design with
+    those joints and contacts followed."""
+
+    column: int
+    weight: float
+    offset: float
+    changed: tuple[int, ...]
+    joints: tuple[int, ...]
+    contacts: tuple[int, ...]
+    design: Design
+    followed_joints: tuple[Joint, ...]
+    followed_contacts: tuple[Contact, ...]
+
+
+@dataclass
+class AssemblyDifferences:
+    """The differences over the sides: ``residual`` (N, D) of b - A x, ``maps``
+    (D, nK, 3, 6) of the contact maps, ``lengths`` (D, nJ) of the joint lengths (m), per
+    DOF unit; ``sides``: per side (column, weight, offset, stepped model, its case) for
+    the planks' rates (elastic model)."""
+
+    residual: np.ndarray
+    maps: np.ndarray
+    lengths: np.ndarray
+    case_name: str
+    sides: list = field(default_factory=list)
+    holding: np.ndarray | None = None
+
+    def plank_rates(self, dq: np.ndarray, elastic: bool) -> tuple[np.ndarray, ...]:
+        """(D, nP) each: d sag (m), d span (m), d stress (Pa) per DOF unit, from the
+        stepped models at x + offset dx (dq: (6 nN, D), the displacement rates)."""
+        n_dofs = self.residual.shape[1]
+        if not elastic or not self.sides:
+            empty = np.zeros((n_dofs, 0))
+            return empty, empty.copy(), empty.copy()
+        from furncheck.statics.elastic import plank_results
+
+        n_planks = len(self.sides[0][3].planks)
+        sag, span, stress = (np.zeros((n_dofs, n_planks)) for _ in range(3))
+        for column, weight, offset, model, case, q in self.sides:
+            result = plank_results(model, case, q + offset * dq[:, column], self.holding)
+            sag[column] += weight * result.sag
+            span[column] += weight * result.span
+            stress[column] += weight * result.stress
+        return sag, span, stress
+
+
+def assembly_differences(model: StaticsModel, state: np.ndarray, holding: np.ndarray,
+                         case_name: str, sides: list[AssemblySide],
+                         n_dofs: int) -> AssemblyDifferences:
+    """The differences of b - A x over ``sides`` (see the module docstring)."""
+    if model.beams is not None:
+        return _rebuilt(model, state, holding, case_name, sides, n_dofs)
+    return _local(model, state, holding, case_name, sides, n_dofs)
+
+
+def _rebuilt(model: StaticsModel, state: np.ndarray, holding: np.ndarray, case_name: str,
+             sides: list[AssemblySide], n_dofs: int) -> AssemblyDifferences:
+    """Elastic model: each side's model built on the same nodes, b - A x evaluated whole."""
+    from furncheck.statics.elastic import build_elastic_model
+
+    n = model.n_dof
+    q, h = state[:n], state[n:]
+    out = AssemblyDifferences(np.zeros((len(state), n_dofs)),
+                              np.zeros((n_dofs, *model.contact_maps.shape)),
+                              np.zeros((n_dofs, len(model.joints))), case_name,
+                              holding=holding)
+    geometry = model.geometry
+    for side in sides:
+        joints = list(geometry.joints)
+        for j, joint in zip(side.joints, side.followed_joints):
+            joints[j] = replace(joint, nails=geometry.joints[j].nails)   # nails held
+        contacts = list(geometry.contacts)
+        for k, contact in zip(side.contacts, side.followed_contacts):
+            contacts[k] = contact
+        stepped_geometry = replace(geometry, joints=tuple(joints), contacts=tuple(contacts))
+        stepped = build_elastic_model(side.design, stepped_geometry, template=model)
+        case = next(c for c in side.design.load_cases if c.name == case_name)
+        out.residual[:, side.column] += side.weight * _residual(stepped, case, q, h, holding)
+        out.maps[side.column] += side.weight * stepped.contact_maps
+        out.lengths[side.column] += side.weight * np.array(
+            [stepped_geometry.joints[j].length for j in model.joints])
+        out.sides.append((side.column, side.weight, side.offset, stepped, case, q))
+    return out
+
+
+def _residual(model: StaticsModel, case, q: np.ndarray, h: np.ndarray,
+              holding: np.ndarray) -> np.ndarray:
+    """b - A x of the mixed system [[K_b + K_c, G^T], [G, -E]] [q; h] = [f; 0], the
+    contact springs at the ``holding`` contacts."""
+    springs = anchor_springs(holding, model.contact_stiffness)
+    node_q = q.reshape(-1, 6)[model.contact_node]
+    w = (model.contact_maps @ node_q[:, :, None])[:, :, 0]
+    contact = np.transpose(model.contact_maps, (0, 2, 1)) @ (springs @ w[:, :, None])
+    top = model.beam_stiffness @ q + model.reactions(h) \
+        + block_sums(model.contact_node, contact[:, :, 0], model.n_nodes).ravel()
+    compliance = (model.joint_compliance @ h.reshape(-1, 6, 1)).ravel()
+    bottom = model.deviations(q) - compliance
+    return np.concatenate([external_forces(model, case) - top, -bottom])
+
+
+def _local(model: StaticsModel, state: np.ndarray, holding: np.ndarray, case_name: str,
+           sides: list[AssemblySide], n_dofs: int) -> AssemblyDifferences:
+    """Rigid model: the differences of the parts of b - A x that the steps change (every
+    other entry is the same on both sides of a difference).
+
+    With r = joint point - plank centre, a joint enters A x through its deviation rows
+    (theta_a x r_a - theta_b x r_b) and its planks' moment rows (+-r x h^t); a contact
+    through M^T S M q (M = [I, -[r]x], r = contact point - centre); a plank through its
+    weight and its loads' moments about its centre.
+    """
+    n = model.n_dof
+    q = state[:n].reshape(-1, 6)
+    wrench = state[n:].reshape(-1, 6)
+    residual = np.zeros((len(state), n_dofs))
+    maps = np.zeros((n_dofs, *model.contact_maps.shape))
+    lengths = np.zeros((n_dofs, len(model.joints)))
+    local_plank = {plank: k for k, plank in enumerate(model.planks)}
+    joint_row = {j: row for row, j in enumerate(model.joints)}
+    contact_row = {k: row for row, k in enumerate(model.contacts)}
+    joint_rows, contact_rows, plank_rows = [], [], []
+    for side in sides:
+        column, weight, design = side.column, side.weight, side.design
+        index = design.plank_index
+        for j, joint in zip(side.joints, side.followed_joints):
+            row = joint_row.get(j)
+            if row is None:
+                continue
+            a, b = (local_plank[index[plank]] for plank in joint.planks)
+            joint_rows.append((column, weight, row, a, b, *joint.point,
+                               *design.planks[model.planks[a]].center_array,
+                               *design.planks[model.planks[b]].center_array, joint.length))
+        for k, contact in zip(side.contacts, side.followed_contacts):
+            row = contact_row.get(k)
+            if row is not None:
+                a = model.contact_node[row]
+                contact_rows.append((column, weight, row, a, *(
+                    contact.point - design.planks[model.planks[a]].center_array)))
+        case = next(c for c in design.load_cases if c.name == case_name)
+        for i in side.changed:
+            a = local_plank.get(i)
+            if a is None:
+                continue
+            plank = design.planks[i]
+            moment = np.zeros(3)
+            for load in case.loads:
+                if load.plank == plank.id and load.point is not None and not load.spread:
+                    moment += _cross(np.asarray(load.point) - plank.center_array, load.force)
+            plank_rows.append((column, weight, a, -design.plank_mass(plank) * GRAVITY, *moment))
+    if joint_rows:
+        table = np.array(joint_rows)
+        column, weight = table[:, 0].astype(int), table[:, 1:2]
+        row, a, b = (table[:, k].astype(int) for k in (2, 3, 4))
+        point, centre_a, centre_b = table[:, 5:8], table[:, 8:11], table[:, 11:14]
+        r_a, r_b = point - centre_a, point - centre_b
+        force = wrench[row, :3]
+        deviation = -(np.cross(q[a, 3:], r_a) - np.cross(q[b, 3:], r_b)) * weight
+        _add(residual, n + 6 * row, column, deviation)
+        _add(residual, 6 * a + 3, column, -np.cross(r_a, force) * weight)
+        _add(residual, 6 * b + 3, column, np.cross(r_b, force) * weight)
+        np.add.at(lengths, (column, row), table[:, 14] * weight[:, 0])
+    if contact_rows:
+        table = np.array(contact_rows)
+        column, weight = table[:, 0].astype(int), table[:, 1]
+        row, a = table[:, 2].astype(int), table[:, 3].astype(int)
+        stepped_maps = point_maps(table[:, 4:7])                         # (E, 3, 6)
+        springs = anchor_springs(holding, model.contact_stiffness)[row]
+        force = -np.einsum("eba,ebc,ecd,ed->ea", stepped_maps, springs, stepped_maps, q[a])
+        _add(residual, 6 * a, column, force * weight[:, None])
+        np.add.at(maps, (column, row), stepped_maps * weight[:, None, None])
+    if plank_rows:
+        table = np.array(plank_rows)
+        column, weight = table[:, 0].astype(int), table[:, 1]
+        a = table[:, 2].astype(int)
+        np.add.at(residual, (6 * a + 2, column), table[:, 3] * weight)
+        _add(residual, 6 * a + 3, column, table[:, 4:7] * weight[:, None])
+    return AssemblyDifferences(residual, maps, lengths, case_name, holding=holding)
+
+
+def _add(matrix: np.ndarray, first_row: np.ndarray, column: np.ndarray,
+         values: np.ndarray) -> None:
+    """matrix[first_row + i, column] += values[:, i] for each entry (repeats add up)."""
+    width = values.shape[1]
+    rows = first_row[:, None] + np.arange(width)[None, :]
+    np.add.at(matrix, (rows, np.broadcast_to(column[:, None], rows.shape)), values)
+
+
+def _cross(u, v) -> np.ndarray:
+    """u x v of two 3-vectors (np.cross costs ~50 times more on single vectors)."""
+    return np.array([u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                     u[0] * v[1] - u[1] * v[0]])
