@@ -1,25 +1,32 @@
 """Benchmark: in-process `validate` time by design size, and the cold command.
 
 Prints a table: planks, joints, contacts, load cases, median time of ``check_file`` on a
-YAML file (load + geometry + statics + verdicts, all cases), joints per second; then the
-median wall time of ``furncheck validate`` on one small catalog file as a fresh process.
+YAML file (load + geometry + statics + verdicts, all cases) in the rigid and in the
+elastic model, side by side in one run, and their ratio; then the median wall time of
+``furncheck validate`` on one small catalog file as a fresh process.
 
     python benchmarks/bench_validate.py [--repeat N]
 
-Targets on the project's 2-core machine: a 28-plank design <= 20 ms, a 400-plank design
-<= 1 s, the cold command on a small file <= 0.6 s.
+Targets on the project's 2-core machine: a 28-plank design <= 20 ms (rigid), the elastic
+model at most 2x the rigid one on the 28-plank cabinet, a 400-plank design <= 1 s in both,
+the cold command on a small file <= 0.6 s.  numpy runs with one BLAS thread, as the CLI.
 """
 
 from __future__ import annotations
 
-import argparse
-import shutil
-import statistics
-import subprocess
-import sys
-import tempfile
-import time
-from pathlib import Path
+import os
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")   # as the command line does
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+
+import argparse  # noqa: E402
+import shutil  # noqa: E402
+import statistics  # noqa: E402
+import subprocess  # noqa: E402
+import sys  # noqa: E402
+import tempfile  # noqa: E402
+import time  # noqa: E402
+from pathlib import Path  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
@@ -43,26 +50,28 @@ def _median_seconds(action, repeat: int) -> float:
 
 
 def _row(label: str, path: Path, repeat: int) -> str:
-    report = check_file(str(path))
+    report = check_file(str(path), "rigid")
     if report.error:
         raise SystemExit(f"{path}: {report.error}")
-    seconds = _median_seconds(lambda: check_file(str(path)), repeat)
+    times = {}
+    for model in ("rigid", "elastic"):
+        times[model] = _median_seconds(lambda m=model: check_file(str(path), m), repeat)
     case = report.cases[0]
     joints = len(case.joints)
     planks = len({p for j in case.joints for p in j.planks}) or 1
     return (f"| {label:<28} | {planks:>6} | {joints:>6} | {len(case.contacts):>8} | "
-            f"{len(report.cases):>5} | {seconds * 1000:>9.1f} | "
-            f"{joints * len(report.cases) / seconds:>10,.0f} |")
+            f"{len(report.cases):>5} | {times['rigid'] * 1000:>10.1f} | "
+            f"{times['elastic'] * 1000:>12.1f} | {times['elastic'] / times['rigid']:>5.2f} |")
 
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=15)
     args = parser.parse_args()
-    print("| design                       | planks | joints | contacts | cases | time (ms) |"
-          "   joints/s |")
-    print("|------------------------------|-------:|-------:|---------:|------:|----------:|"
-          "-----------:|")
+    print("| design                       | planks | joints | contacts | cases | rigid (ms) |"
+          " elastic (ms) | ratio |")
+    print("|------------------------------|-------:|-------:|---------:|------:|-----------:|"
+          "-------------:|------:|")
     with tempfile.TemporaryDirectory() as tmp:
         for target, (columns, rows) in SIZES.items():
             path = Path(tmp) / f"shelving-{target}.yaml"

@@ -93,8 +93,12 @@ FRICTION_CAP_ITERATIONS = 20
 FRICTION_NEWTON_ITERATIONS = 100
 """Most Newton steps when minimizing the energy with slipping friction springs."""
 
-LINE_SEARCH_BISECTIONS = 40
-"""Bisections of a Newton step's line search (the step is then known to 1e-12)."""
+LINE_SEARCH_ITERATIONS = 30
+"""Most slope evaluations of a Newton step's line search (regula falsi on the slope)."""
+
+LINE_SEARCH_SLOPE = 1e-3
+"""A Newton step's line search stops where the slope along the step is within this
+fraction of its slope at the start (an all but exact minimum along the step)."""
 
 SLIDING_DISPLACEMENT = 10.0
 """m: a contact-spring displacement this large means the energy falls without bound: the

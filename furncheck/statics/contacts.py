@@ -385,28 +385,47 @@ class _FrictionEnergy:
             step = _Factored(hessian, _cholesky(hessian)).solve(-gradient)
             if step is None:
                 return None
-            t, gradient = self._line_search(x, step)
+            t, gradient = self._line_search(x, step, float(gradient @ step))
             x = x + t * step
             if np.abs(x).max() > tol.SLIDING_DISPLACEMENT:
                 return None
         return None
 
-    def _line_search(self, x: np.ndarray, step: np.ndarray) -> tuple[float, np.ndarray | None]:
-        """t in (0, 1] minimizing Phi(x + t step): Phi is convex, so its slope along the
-        step rises with t; take the full step if the slope is still <= 0 there, else
-        bisect for the zero of the slope.  With t, the gradient at x + t step when it was
-        computed (the full step), else None."""
+    def _line_search(self, x: np.ndarray, step: np.ndarray,
+                     slope0: float) -> tuple[float, np.ndarray | None]:
+        """t in (0, 1] near the minimum of Phi(x + t step): Phi is convex, so its slope
+        along the step rises with t from ``slope0`` < 0; take the full step if the slope is
+        still <= 0 there, else find the slope's zero by regula falsi (Illinois), stopping
+        once it is within LINE_SEARCH_SLOPE of |slope0| (Newton needs no more), after at
+        most LINE_SEARCH_ITERATIONS tries.  With t, the gradient there (None when t is not
+        where the last gradient was taken)."""
         gradient = self._gradient(x + step)
-        if float(gradient @ step) <= 0.0:
+        high_slope = float(gradient @ step)
+        if high_slope <= 0.0:
             return 1.0, gradient
-        low, high = 0.0, 1.0
-        for _ in range(tol.LINE_SEARCH_BISECTIONS):
-            middle = 0.5 * (low + high)
-            if float(self._gradient(x + middle * step) @ step) <= 0.0:
-                low = middle
+        low, high, low_slope = 0.0, 1.0, min(slope0, -1e-300)
+        best, best_gradient = 0.0, None
+        side = 0
+        for _ in range(tol.LINE_SEARCH_ITERATIONS):
+            t = low - low_slope * (high - low) / (high_slope - low_slope)
+            t = min(max(t, low + 0.01 * (high - low)), high - 0.01 * (high - low))
+            gradient = self._gradient(x + t * step)
+            slope = float(gradient @ step)
+            if abs(slope) <= tol.LINE_SEARCH_SLOPE * abs(slope0):
+                return t, gradient
+            if slope < 0.0:
+                low, low_slope, best, best_gradient = t, slope, t, gradient
+                if side == -1:
+                    high_slope *= 0.5
+                side = -1
             else:
-                high = middle
-        return max(low, 0.5 * high), None
+                high, high_slope = t, slope
+                if side == 1:
+                    low_slope *= 0.5
+                side = 1
+        if best > 0.0:
+            return best, best_gradient
+        return 0.5 * high, None
 
     def _gradient_floor(self, x: np.ndarray) -> float:
         """N: the force tolerance, or the round-off floor of S0 x if that is larger."""

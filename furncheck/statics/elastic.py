@@ -46,29 +46,32 @@ SHEAR_FACTOR = 5.0 / 6.0
 
 # --- elements, pure functions of geometry and material ---------------------------------------
 
-def section_properties(width: float, thickness: float) -> dict[str, float]:
-    """Section of a plank as a beam: area A, I_2 = b t^3 / 12 (bending out of its plane,
-    about e2: the sag of a shelf), I_3 = t b^3 / 12 (in its plane, about e3) and the
-    torsion constant of a rectangle, J = a c^3 (1/3 - 0.21 (c/a) (1 - c^4 / (12 a^4))),
-    a >= c its sides (Roark, Formulas for Stress and Strain, table 10.7)."""
-    a, c = max(width, thickness), min(width, thickness)
+def section_properties(width, thickness) -> dict:
+    """Section of a plank as a beam (floats or arrays): area A, I_2 = b t^3 / 12 (bending
+    out of its plane, about e2: the sag of a shelf), I_3 = t b^3 / 12 (in its plane, about
+    e3) and the torsion constant of a rectangle, J = a c^3 (1/3 - 0.21 (c/a) (1 - c^4 /
+    (12 a^4))), a >= c its sides (Roark, Formulas for Stress and Strain, table 10.7)."""
+    a, c = np.maximum(width, thickness), np.minimum(width, thickness)
     return {"A": width * thickness,
             "I2": width * thickness ** 3 / 12.0,
             "I3": thickness * width ** 3 / 12.0,
             "J": a * c ** 3 * (1.0 / 3.0 - 0.21 * (c / a) * (1.0 - c ** 4 / (12.0 * a ** 4)))}
 
 
-def beam_stiffness_local(length: float, width: float, thickness: float, elastic_modulus: float,
+def beam_stiffness_local(length, width, thickness, elastic_modulus: float,
                          shear_modulus: float) -> np.ndarray:
     """(12, 12) stiffness of a Timoshenko beam element in its local axes, DOFs per node
-    (u1, u2, u3, theta1, theta2, theta3), node 1 then node 2 (N/m, N, N m)."""
-    section = section_properties(width, thickness)
-    E, G, L = elastic_modulus, shear_modulus, length
+    (u1, u2, u3, theta1, theta2, theta3), node 1 then node 2 (N/m, N, N m); (n, 12, 12)
+    for arrays of n lengths, widths and thicknesses."""
+    L, b, t = (np.atleast_1d(np.asarray(v, dtype=float)) for v in (length, width, thickness))
+    section = section_properties(b, t)
+    E, G = elastic_modulus, shear_modulus
     shear_area = SHEAR_FACTOR * section["A"]
-    K = np.zeros((12, 12))
+    K = np.zeros((len(L), 12, 12))
 
-    def put(i: int, j: int, value: float) -> None:
-        K[i, j] = K[j, i] = value
+    def put(i: int, j: int, value: np.ndarray) -> None:
+        K[:, i, j] = value
+        K[:, j, i] = value
 
     axial, torsion = E * section["A"] / L, G * section["J"] / L
     for i, j, value in ((0, 0, axial), (6, 6, axial), (0, 6, -axial),
@@ -85,22 +88,22 @@ def beam_stiffness_local(length: float, width: float, thickness: float, elastic_
                             (r, r, (4.0 + phi) * L * L), (r + 6, r + 6, (4.0 + phi) * L * L),
                             (r, r + 6, (2.0 - phi) * L * L)):
             put(i, j, value * c)
-    return K
+    return K[0] if np.ndim(length) == 0 else K
 
 
-def uniform_load_local(length: float, load: np.ndarray) -> np.ndarray:
+def uniform_load_local(length, load: np.ndarray) -> np.ndarray:
     """(12,) consistent nodal loads of a uniform load ``load`` (3,) N/m along a beam element,
     in its local axes: q L / 2 at each node and end moments q L^2 / 12 (signs of theta_3 =
-    du2/ds, theta_2 = -du3/ds)."""
-    L = length
-    q1, q2, q3 = (float(v) for v in load)
-    f = np.zeros(12)
-    f[[0, 6]] = q1 * L / 2.0
-    f[[1, 7]] = q2 * L / 2.0
-    f[5], f[11] = q2 * L * L / 12.0, -q2 * L * L / 12.0
-    f[[2, 8]] = q3 * L / 2.0
-    f[4], f[10] = -q3 * L * L / 12.0, q3 * L * L / 12.0
-    return f
+    du2/ds, theta_2 = -du3/ds); (n, 12) for n lengths and loads (n, 3)."""
+    L = np.atleast_1d(np.asarray(length, dtype=float))
+    q = np.asarray(load, dtype=float).reshape(-1, 3)
+    f = np.zeros((len(L), 12))
+    f[:, 0] = f[:, 6] = q[:, 0] * L / 2.0
+    f[:, 1] = f[:, 7] = q[:, 1] * L / 2.0
+    f[:, 5], f[:, 11] = q[:, 1] * L * L / 12.0, -q[:, 1] * L * L / 12.0
+    f[:, 2] = f[:, 8] = q[:, 2] * L / 2.0
+    f[:, 4], f[:, 10] = -q[:, 2] * L * L / 12.0, q[:, 2] * L * L / 12.0
+    return f[0] if np.ndim(length) == 0 else f
 
 
 def nail_row_spread(length: float, nails: int) -> float:
@@ -325,9 +328,8 @@ def _beams(planks: list[Plank], frames: list[np.ndarray], node_plank: np.ndarray
     widths = np.array([beam_length_width(planks[k], crosswise[k])[1] for k in plank],
                       dtype=float)
     thickness = np.array([planks[k].thickness for k in plank], dtype=float)
-    local = np.array([beam_stiffness_local(L, b, t, material.elastic_modulus,
-                                           material.shear_modulus)
-                      for L, b, t in zip(length, widths, thickness)]).reshape(-1, 12, 12)
+    local = beam_stiffness_local(length, widths, thickness, material.elastic_modulus,
+                                 material.shear_modulus).reshape(-1, 12, 12)
     return Beams(plank=plank, nodes=nodes, length=length,
                  frames=np.array([frames[k] for k in plank]).reshape(-1, 3, 3),
                  local_stiffness=local, width=widths, thickness=thickness, node_s=node_s,
@@ -363,8 +365,7 @@ def _weights_per_length(design: Design, planks: list[Plank], beams: Beams) -> np
 def _element_loads_local(beams: Beams, loads: np.ndarray) -> np.ndarray:
     """(nE, 12) consistent nodal loads of uniform world loads (nE, 3) N/m, local axes."""
     local_loads = np.einsum("eab,ea->eb", beams.frames, loads)          # R^T q
-    return np.array([uniform_load_local(L, q) for L, q in zip(beams.length, local_loads)],
-                    dtype=float).reshape(-1, 12)
+    return uniform_load_local(beams.length, local_loads).reshape(-1, 12)
 
 
 def _nodal_loads(beams: Beams, loads: np.ndarray, n_nodes: int) -> np.ndarray:
