@@ -7,7 +7,8 @@ three DOFs), line searches with the full statics, and discrete suggestions (supp
 planks); it is compared with the paper's totals (a 2.8 GHz Core i7 laptop, 2012).  The
 *total* adds what furncheck does on top: validating the input design first, and writing
 every suggestion's design file and validating it again from its text.  Medians of
-``--repeat`` runs (default 11); the machine's speed varies by 20-30 % between runs.
+``--repeat`` runs (default 11); the machine's speed varies by 20-30 % between runs.  Both
+statics models run in the same process, one row each, so they meet the same speed phase.
 
     python benchmarks/bench_suggest.py [--repeat N]
 """
@@ -21,6 +22,7 @@ import time
 from pathlib import Path
 
 import furncheck.cli  # noqa: F401  (first: one BLAS thread, as the command line runs)
+from furncheck.design.model import with_model
 from furncheck.dofs import all_dofs
 from furncheck.geometry import analyze
 from furncheck.suggest import suggest_design
@@ -30,14 +32,15 @@ from table1_designs import TABLE1, table1_design  # noqa: E402
 
 
 def main(repeat: int) -> None:
-    print("| planks | joints | DOFs | continuous | discrete | line searches | full checks | "
-          "candidates (ms) | line search (ms) | discrete (ms) | step (ms) | paper (ms) | "
-          "faster | total (ms) |")
-    print("|-------:|-------:|-----:|-----------:|---------:|--------------:|------------:|"
-          "----------------:|-----------------:|--------------:|----------:|-----------:|"
-          "-------:|-----------:|")
-    for planks, (_, paper_ms) in TABLE1.items():
-        design = table1_design(planks)
+    print("| model | planks | joints | DOFs | continuous | discrete | line searches | "
+          "full checks | candidates (ms) | line search (ms) | discrete (ms) | step (ms) | "
+          "paper (ms) | faster | total (ms) |")
+    print("|-------|-------:|-------:|-----:|-----------:|---------:|--------------:|"
+          "------------:|----------------:|-----------------:|--------------:|----------:|"
+          "-----------:|-------:|-----------:|")
+    for (planks, (_, paper_ms)), model in ((item, model) for item in TABLE1.items()
+                                           for model in ("rigid", "elastic")):
+        design = with_model(table1_design(planks), model)
         runs = []
         for _ in range(repeat):
             start = time.perf_counter()
@@ -49,7 +52,8 @@ def main(repeat: int) -> None:
         step = 1000 * statistics.median(sum(r.seconds.values()) for _, r in runs)
         result = runs[0][1]
         kinds = [s.kind for s in result.suggestions]
-        print(f"| {planks:>6} | {len(analyze(design).joints):>6} | {len(all_dofs(design)):>4} | "
+        print(f"| {model:<7} | {planks:>6} | {len(analyze(design).joints):>6} | "
+              f"{len(all_dofs(design)):>4} | "
               f"{kinds.count('continuous'):>10} | {kinds.count('discrete'):>8} | "
               f"{result.searched:>13} | {result.checks:>11} | "
               f"{phases['candidates']:>15.0f} | {phases['line search']:>16.0f} | "
