@@ -79,6 +79,10 @@ BEAM_SEGMENTS = 8
 """Elastic model: a plank's beam has a node at least every 1/8 of its length (besides the
 nodes where joints, contacts and loads act), where its sag and stress are read."""
 
+SAG_SAMPLES = 7
+"""Elastic model: points inside each beam element where the deflection is read for the sag
+(the element's cubic and its load's own deflection), besides the nodes."""
+
 NODE_MERGE = 1e-3
 """m: attachments closer than this along a plank's axis share a node (at their mean, each
 held by a rigid arm): a beam element shorter than a millimetre is far stiffer than anything

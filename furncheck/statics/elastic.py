@@ -463,8 +463,9 @@ def plank_results(model: StaticsModel, case: LoadCase, q: np.ndarray,
     T = beams.transform()
     u = q.reshape(-1, 6)[beams.nodes].reshape(-1, 12)
     local = np.einsum("eab,eb->ea", T, u)
+    line_loads = case_line_loads(model, case)
     forces = np.einsum("eab,eb->ea", beams.local_stiffness, local) \
-        - _element_loads_local(beams, case_line_loads(model, case))
+        - _element_loads_local(beams, line_loads)
     bending = beams.width * beams.thickness ** 2 / 6.0
     in_plane = beams.thickness * beams.width ** 2 / 6.0
     area = beams.width * beams.thickness
@@ -486,30 +487,67 @@ def plank_results(model: StaticsModel, case: LoadCase, q: np.ndarray,
     displacement = q.reshape(-1, 6)
     for k in range(n_planks):
         if supports[k]:
-            sag[k], span[k] = _sag(model, k, sorted(set(supports[k])), displacement)
+            sag[k], span[k] = _sag(model, k, sorted(set(supports[k])), displacement,
+                                   line_loads)
     return PlankStatics(sag, span, stress)
 
 
-def _sag(model: StaticsModel, k: int, supports: list[int],
-         displacement: np.ndarray) -> tuple[float, float]:
-    """(sag, span) of local plank k (contract 3a): the largest transverse deviation of its
-    nodes from the line through its outermost supports, or, held at one point, of its free
-    ends from the tangent there."""
+def _profile(model: StaticsModel, k: int, displacement: np.ndarray,
+             line_loads: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(s, w): positions along local plank k's axis (m; its nodes and SAG_SAMPLES points
+    inside each element) and the transverse deflection there ((m, 2) m, along e2 and e3):
+    between nodes the cubic of the nodal deflections and slopes plus the deflection of
+    the element's own uniform load, q L^4 xi^2 (1 - xi)^2 / 24 EI + q L^2 xi (1 - xi) /
+    2 k G A (exact for a slender element), so that a largest sag between nodes is read."""
     beams = model.beams
-    members = np.flatnonzero(model.node_plank == k)
-    s = beams.node_s[members]
     frame = beam_frame(model.design.planks[model.planks[k]], beams.crosswise[k])
-    transverse = displacement[members, :3] @ frame[:, 1:]                  # (m, 2): e2, e3
-    slope_of = {int(node): np.array([displacement[node, 3:] @ frame[:, 2],     # du2/ds
-                                     -(displacement[node, 3:] @ frame[:, 1])])  # du3/ds
-                for node in supports}
+    elements = np.flatnonzero(beams.plank == k)
+    material = model.design.material
+    xi = np.linspace(0.0, 1.0, tol.SAG_SAMPLES + 2)[:-1]                # node 1 and inside
+    h1, h2 = 1 - 3 * xi ** 2 + 2 * xi ** 3, xi - 2 * xi ** 2 + xi ** 3
+    h3, h4 = 3 * xi ** 2 - 2 * xi ** 3, -xi ** 2 + xi ** 3
+    positions, deflections = [], []
+    for e in elements:
+        a, b = beams.nodes[e]
+        L = beams.length[e]
+        w_a, w_b = displacement[a, :3] @ frame[:, 1:], displacement[b, :3] @ frame[:, 1:]
+        slope_a, slope_b = (np.array([displacement[n, 3:] @ frame[:, 2],      # du2/ds
+                                      -(displacement[n, 3:] @ frame[:, 1])])  # du3/ds
+                            for n in (a, b))
+        section = section_properties(beams.width[e], beams.thickness[e])
+        q = line_loads[e] @ frame[:, 1:]                                  # along e2, e3
+        inertia = np.array([section["I3"], section["I2"]])
+        bubble = (q[None, :] * L ** 4 * (xi ** 2 * (1 - xi) ** 2)[:, None]
+                  / (24.0 * material.elastic_modulus * inertia[None, :])
+                  + q[None, :] * L * L * (xi * (1 - xi))[:, None]
+                  / (2.0 * SHEAR_FACTOR * material.shear_modulus * section["A"]))
+        w = (h1[:, None] * w_a + L * h2[:, None] * slope_a + h3[:, None] * w_b
+             + L * h4[:, None] * slope_b + bubble)
+        positions.append(beams.node_s[a] + xi * L)
+        deflections.append(w)
+    last = beams.nodes[elements[-1], 1]
+    positions.append(np.array([beams.node_s[last]]))
+    deflections.append((displacement[last, :3] @ frame[:, 1:])[None, :])
+    return np.concatenate(positions), np.vstack(deflections)
+
+
+def _sag(model: StaticsModel, k: int, supports: list[int], displacement: np.ndarray,
+         line_loads: np.ndarray) -> tuple[float, float]:
+    """(sag, span) of local plank k (contract 3a): the largest transverse deviation of its
+    deflected axis (``_profile``) from the line through its outermost supports, or, held at
+    one point, from the tangent there (its free ends' deflection)."""
+    beams = model.beams
+    s, transverse = _profile(model, k, displacement, line_loads)
+    frame = beam_frame(model.design.planks[model.planks[k]], beams.crosswise[k])
     positions = beams.node_s[supports]
     low, high = int(np.argmin(positions)), int(np.argmax(positions))
     if positions[high] - positions[low] <= tol.NODE_MERGE:      # held at one point
         root = supports[low]
         s0 = beams.node_s[root]
         w0 = displacement[root, :3] @ frame[:, 1:]
-        tangent = w0[None, :] + (s - s0)[:, None] * slope_of[root][None, :]
+        slope = np.array([displacement[root, 3:] @ frame[:, 2],           # du2/ds
+                          -(displacement[root, 3:] @ frame[:, 1])])       # du3/ds
+        tangent = w0[None, :] + (s - s0)[:, None] * slope[None, :]
         deviation = np.linalg.norm(transverse - tangent, axis=1)
         half = beams.plank_half[k]
         overhang = max(s0 + half, half - s0)
