@@ -94,6 +94,9 @@ CONTACT_ITERATIONS = 60
 FRICTION_CAP_ITERATIONS = 20
 """Most updates of the friction caps mu N from the normal forces in one load case."""
 
+FRICTION_CAP_MEMORY = 3
+"""Earlier friction-cap iterates that Anderson's mixing uses besides the last one."""
+
 FRICTION_NEWTON_ITERATIONS = 100
 """Most Newton steps when minimizing the energy with slipping friction springs."""
 

@@ -10,6 +10,14 @@ of units, changes no verdict and no force magnitude; forces always balance the l
     the ground's contact forces balance self-weight and loads (0.1 %), in force and moment.
 (d) A vertical load anywhere inside the support polygon never reads as lift-off (contract
     section 3), nor as sliding (vertical loads need no friction).
+(e) The elastic model (contract section 3a) keeps (a) and (b), and more: a rigid motion or a
+    change of units leaves every plank's sag, sag_allowed, stress, strength and utilization
+    unchanged (relative 1e-6, absolute 1e-6 of the plank's allowed sag, of its strength, or
+    of 1 for the utilization; the round-off measured is below 1e-7 of those), sag and
+    sag_allowed being in the file's unit, so that a unit change scales them.  On the
+    catalog's ``model: elastic`` designs and a few catalog designs run elastic
+    (``with_model``), and (c) holds for them too: in the elastic model the ground's forces
+    balance self-weight and loads.
 
 The designs are the hand-written ones of ``physics_designs`` plus every readable catalog file.
 Defaults that are lengths (thickness 12 mm, nail spacing 20 mm, tolerance 0.5 mm) are left
@@ -32,6 +40,7 @@ from hypothesis import strategies as st
 
 from furncheck.check import check_design
 from furncheck.design import parse_design
+from furncheck.design.model import with_model
 from furncheck.errors import DesignError
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -79,9 +88,10 @@ DESIGNS: dict[str, dict] = {**{f"hand:{k}": v for k, v in pd.hand_designs().item
 NAMES = sorted(DESIGNS)
 
 
-def check(design: dict, fmt: str = "yaml", name: str = "design"):
+def check(design: dict, fmt: str = "yaml", name: str = "design", model: str | None = None):
+    """The report of the design dict, read as ``fmt``, in ``model`` (None: the file's)."""
     text = pd.to_text(design, fmt)
-    return check_design(parse_design(text, f"{name}.{fmt}", fmt))
+    return check_design(with_model(parse_design(text, f"{name}.{fmt}", fmt), model))
 
 
 def force_scale(design: dict) -> float:
@@ -249,20 +259,12 @@ def grounded_planks(case) -> set[str]:
 CATALOG = catalog_files()
 
 
-@pytest.mark.skipif(not CATALOG, reason="designs/ holds no design files yet")
-@pytest.mark.parametrize("path", CATALOG, ids=[str(p.relative_to(CATALOG_DIR)) for p in CATALOG])
-def test_catalog_contact_forces_balance_loads(path):
-    """(c): for every case with contact forces (stable ones; a toppling case's as if bolted
-    down and a sliding case's with unlimited friction are equilibria too), sum of contact
-    forces + self-weight + loads = 0 over the grounded planks, to 0.1 % of the sum of
-    applied force magnitudes; moments about the mean contact point to 0.1 % of that scale x
-    1 m."""
-    text = path.read_text(encoding="utf-8")
-    try:
-        model = parse_design(text, str(path), fmt_of(path))
-    except DesignError:
-        pytest.skip("an ill-formed design (rejected on purpose)")
-    report = check_design(model)
+def assert_contacts_balance_loads(model, report) -> int:
+    """(c) on one report: for every case with contact forces, sum of contact forces +
+    self-weight + loads = 0 over the grounded planks, to BALANCE of the sum of applied force
+    magnitudes; moments about the mean contact point to BALANCE of that scale x 1 m.  A
+    spread load's resultant acts at its plank's centre.  Returns the number of cases
+    checked."""
     checked = 0
     for case_model, case in zip(model.load_cases, report.cases):
         assert case.name == case_model.name
@@ -293,7 +295,21 @@ def test_catalog_contact_forces_balance_loads(path):
         assert np.linalg.norm(force) <= BALANCE * scale, (case.name, force, scale)
         assert np.linalg.norm(moment) <= BALANCE * scale, (case.name, moment, scale)
         checked += 1
-    if not checked:
+    return checked
+
+
+@pytest.mark.skipif(not CATALOG, reason="designs/ holds no design files yet")
+@pytest.mark.parametrize("path", CATALOG, ids=[str(p.relative_to(CATALOG_DIR)) for p in CATALOG])
+def test_catalog_contact_forces_balance_loads(path):
+    """(c): for every case with contact forces (stable ones; a toppling case's as if bolted
+    down and a sliding case's with unlimited friction are equilibria too), the ground's
+    forces balance self-weight and loads (``assert_contacts_balance_loads``)."""
+    text = path.read_text(encoding="utf-8")
+    try:
+        model = parse_design(text, str(path), fmt_of(path))
+    except DesignError:
+        pytest.skip("an ill-formed design (rejected on purpose)")
+    if not assert_contacts_balance_loads(model, check_design(model)):
         pytest.skip("no load case with ground forces (the design floats)")
 
 
@@ -325,3 +341,100 @@ def test_rotation_matrix_convention_matches_contract():
     for rot in ([0, -90, 0], [10, 20, 30], [-35, 80, 170]):
         assert np.allclose(pd.euler_matrix(rot), rotation_matrix(tuple(rot)), atol=1e-12)
     assert math.isclose(pd.matrix_to_euler(pd.euler_matrix([10, 20, 30]))[2], 30.0)
+
+
+# --- (e) the elastic model: planks' bending under rigid motions and unit changes ----------
+
+ELASTIC_CATALOG = sorted(n for n in NAMES if DESIGNS[n].get("model") == "elastic")
+"""The catalog's designs written for the elastic model."""
+RUN_ELASTIC = ["catalog:cabinet-28.yaml", "catalog:chair-tilted.yaml",
+               "catalog:magazine-rack.yaml", "catalog:shelf-cantilever.yaml",
+               "catalog:table.yaml"]
+"""Rigid catalog designs also run elastic: joints off the axes (chair-tilted), planks turned
+in plan and tilted (magazine-rack), a cantilever, a frame with an apron, 28 planks."""
+ELASTIC_NAMES = ELASTIC_CATALOG + [n for n in RUN_ELASTIC if n in DESIGNS]
+PLANK_REL = 1e-6        # relative (and, of each quantity's own scale, absolute) tolerance
+
+
+def test_the_elastic_invariants_have_designs():
+    """(e) is not vacuous: the catalog has elastic designs, the chosen rigid ones exist."""
+    assert len(ELASTIC_CATALOG) >= 2
+    assert set(RUN_ELASTIC) <= set(DESIGNS)
+
+
+def assert_same_planks(a, b, length_factor: float = 1.0):
+    """Report ``b`` (elastic) is report ``a`` (elastic) after a rigid motion and/or a change
+    of units by ``length_factor`` (file units of b per file unit of a): the same planks in
+    every case, sag and sag_allowed times length_factor, the same stress, strength and
+    utilization (PLANK_REL relative, and PLANK_REL absolute of the plank's allowed sag, its
+    strength, or 1)."""
+    for ca, cb in zip(a.cases, b.cases):
+        where = f"case {ca.name}"
+        assert ca.planks and cb.planks is not None, where        # the elastic model's result
+        planks_b = {p.id: p for p in cb.planks}
+        assert sorted(planks_b) == sorted(p.id for p in ca.planks), where
+        for pa in ca.planks:
+            pb = planks_b[pa.id]
+            allowed = pa.sag_allowed * length_factor
+            for field, factor, own_scale in (("sag", length_factor, allowed),
+                                             ("sag_allowed", length_factor, allowed),
+                                             ("stress", 1.0, pa.strength),
+                                             ("strength", 1.0, pa.strength),
+                                             ("utilization", 1.0, 1.0)):
+                expected = getattr(pa, field) * factor
+                assert getattr(pb, field) == pytest.approx(
+                    expected, rel=PLANK_REL, abs=PLANK_REL * own_scale), \
+                    f"{where} plank {pa.id} {field}"
+
+
+def assert_same_elastic(design: dict, new: dict, rotation, map_point, length_factor: float):
+    """(a)/(b) and the planks' bending, both designs checked in the elastic model."""
+    a, b = check(design, model="elastic"), check(new, model="elastic")
+    assert_same_physics(a, b, force_scale(design), rotation, map_point,
+                        point_tol=1e-9 * pd.unit_factor(new))
+    assert_same_planks(a, b, length_factor)
+
+
+@pytest.mark.parametrize("name", ELASTIC_NAMES)
+def test_elastic_planks_under_rigid_motion(name):
+    """(e): phi = -123.4 deg about z, moved by (0.8 m, -1.7 m): nothing changes."""
+    design = DESIGNS[name]
+    new, rotation, map_point = moved(design, -123.4, 0.8, -1.7)
+    assert_same_elastic(design, new, rotation, map_point, 1.0)
+
+
+@pytest.mark.parametrize("name", ELASTIC_NAMES)
+def test_elastic_planks_in_other_units(name):
+    """(e): mm -> m (or m -> mm): sag and sag_allowed scale by 1/1000 (1000), nothing else
+    changes."""
+    design = DESIGNS[name]
+    other = "m" if design.get("units", "mm") == "mm" else "mm"
+    converted = pd.convert_units(design, other)
+    k = pd.unit_factor(converted) / pd.unit_factor(design)
+    assert_same_elastic(design, converted, np.eye(3), lambda p: p * k, k)
+
+
+@settings(SETTINGS, max_examples=10)
+@given(name=st.sampled_from(ELASTIC_NAMES), phi=st.floats(-180.0, 180.0),
+       tx=st.floats(-3.0, 3.0), other_units=st.booleans())
+def test_elastic_planks_under_any_motion(name, phi, tx, other_units):
+    """(e) for motions drawn at random (derandomized): turned by phi, moved by
+    (tx, -tx / 2) m, and written in the other unit or not."""
+    design = DESIGNS[name]
+    new, rotation, map_point = moved(design, phi, tx, -tx / 2)
+    k = 1.0
+    if other_units:
+        new = pd.convert_units(new, "m" if design.get("units", "mm") == "mm" else "mm")
+        k = pd.unit_factor(new) / pd.unit_factor(design)
+    assert_same_elastic(design, new, rotation, lambda p: map_point(p) * k, k)
+
+
+@pytest.mark.parametrize("name", ELASTIC_NAMES)
+def test_elastic_contact_forces_balance_loads(name):
+    """(c) in the elastic model: the ground's forces balance self-weight and loads
+    (spread loads included) in every case with ground forces."""
+    path = CATALOG_DIR / name.split(":", 1)[1]
+    model = with_model(parse_design(path.read_text(encoding="utf-8"), str(path),
+                                    fmt_of(path)), "elastic")
+    assert model.model == "elastic"
+    assert assert_contacts_balance_loads(model, check_design(model)) == len(model.load_cases)

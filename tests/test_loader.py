@@ -10,7 +10,6 @@ from __future__ import annotations
 import json
 import math
 import os
-import time
 from dataclasses import replace as replace_fields
 
 import numpy as np
@@ -30,6 +29,7 @@ from furncheck.design import (
     write_design,
 )
 from furncheck.design import load as load_module
+from furncheck.design import source as source_module
 from furncheck.errors import DesignError
 from furncheck.tolerances import GRAVITY
 
@@ -211,15 +211,54 @@ def test_alias_is_refused_with_its_line():
     expect(text, "planks[1].size", 8, "YAML aliases (*seat_size) are not allowed")
 
 
-def test_billion_laughs_answers_at_once():
-    """Nine levels of ten aliases each would expand to 10^9 strings."""
+def test_billion_laughs_is_refused_at_its_first_alias(monkeypatch):
+    """Nine levels of ten aliases each would expand to 10^9 strings.  The loader reads the
+    YAML event by event and refuses the first alias (line 2, key path a1[0]) as soon as it
+    reads it: by then it has read 8 events (stream, document and mapping start, the key a0
+    and its scalar, the key a1, its list's start, the alias) of the file's 125 (3 starts,
+    2 for a0, 9 levels of 13: key, list start, 10 aliases, list end; 3 ends), and it never
+    asks PyYAML to compose or construct a node, the steps where an alias is resolved.  The
+    behaviour is asserted, not a time: a slow machine cannot fail this test, and a loader
+    that read on or resolved aliases fails it by these counts."""
     lines = ['a0: &a0 "lol"']
     lines += [f"a{i}: &a{i} [{', '.join([f'*a{i - 1}'] * 10)}]" for i in range(1, 10)]
-    start = time.perf_counter()
-    error = error_of("\n".join(lines) + "\n")
-    assert time.perf_counter() - start < 0.5
+    text = "\n".join(lines) + "\n"
+    counts = {"events": 0, "nodes": 0}
+
+    class CountingLoader(source_module._Loader):
+        def get_event(self):
+            counts["events"] += 1
+            return super().get_event()
+
+        def get_single_node(self):
+            counts["nodes"] += 1
+            return super().get_single_node()
+
+        def get_node(self):
+            counts["nodes"] += 1
+            return super().get_node()
+
+        def get_single_data(self):
+            counts["nodes"] += 1
+            return super().get_single_data()
+
+        def construct_document(self, node):
+            counts["nodes"] += 1
+            return super().construct_document(node)
+
+    all_events = CountingLoader(text)
+    try:
+        while all_events.check_event():
+            all_events.get_event()
+    finally:
+        all_events.dispose()
+    assert counts == {"events": 3 + 2 + 9 * 13 + 3, "nodes": 0}   # the counter counts
+    counts["events"] = 0
+    monkeypatch.setattr(source_module, "_Loader", CountingLoader)
+    error = error_of(text)
     assert (error.key, error.line) == ("a1[0]", 2)
     assert "aliases" in error.message
+    assert counts == {"events": 8, "nodes": 0}
 
 
 def test_duplicate_key_has_line_of_the_second():
@@ -618,8 +657,8 @@ def assert_same_design(a: Design, b: Design):
 
 def test_document_key_order_and_contents():
     doc = design_to_document(parse_design(FULL, "bench.yaml", "yaml"))
-    assert list(doc) == ["furncheck", "name", "units", "model", "material", "planks", "joints", "loads",
-                         "load_cases", "safety_factor", "tolerance"]
+    assert list(doc) == ["furncheck", "name", "units", "model", "material", "planks", "joints",
+                         "loads", "load_cases", "safety_factor", "tolerance"]
     assert doc["loads"] == [{"plank": "seat", "mass": 10.0}]
     assert doc["material"]["thickness"] == 18.0 and doc["tolerance"] == 0.2
     assert doc["joints"] == [["seat", "leg1"], {"planks": ["seat", "leg2"], "nails": 7}]

@@ -3,6 +3,7 @@ functions and catalog edits whose answers are known exactly."""
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import numpy as np
@@ -93,7 +94,7 @@ def _scanned_flip(samples: list, low: float, high: float) -> float:
 _COEFFICIENT = st.floats(-10.0, 10.0, allow_nan=False)
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=200, deadline=None, derandomize=True)
 @given(st.lists(st.tuples(_COEFFICIENT, _COEFFICIENT, _COEFFICIENT), min_size=1, max_size=40),
        st.floats(0.0, 5.0), st.floats(0.1, 20.0))
 def test_margins_left_out_of_a_turn_scan_never_flip(margins, low, width):
@@ -120,33 +121,57 @@ def test_modelled_flip_returns_high_when_nothing_flips():
     assert _modelled_flip(samples, 0.0, 15.0) == 15.0
 
 
+def _turn_for_kick_joint_length(length_mm: float) -> float:
+    """Degrees of side_r.rx at which the cabinet's side_r/kick joint is ``length_mm`` long
+    (see the test below), by bisection of L(theta) = (200 - 188 cos theta) / sin theta
+    - 420, which falls from 80 mm at 1.375 degrees to 0 at about 1.64."""
+    low, high = math.radians(1.0), math.radians(2.0)
+    for _ in range(80):
+        middle = 0.5 * (low + high)
+        length = (200.0 - 188.0 * math.cos(middle)) / math.sin(middle) - 420.0
+        low, high = (middle, high) if length > length_mm else (low, middle)
+    return math.degrees(0.5 * (low + high))
+
+
 def test_drop_step_is_where_the_joint_loses_its_nail():
-    """Turning the cabinet's right side about x shortens its joint with the kick board
-    from 3 nails to 1 within 0.15 degrees.  The step found from the joint's followed length
-    lies, to a tenth of the resolution, where the nail count changes: the joint has more
-    nails just before it than just after."""
+    """Turning the cabinet's right side about x shortens its joint with the kick board.
+    side_r stands at x = 588..600 mm (y -200..200, z 0..1000, centre (y, z) = (0, 500));
+    the kick's end face lies on its inner face x = 588, at y -200..-188 (the kick's 12 mm)
+    and z 0..80, so the joint is 80 mm long along z (4 nails at 20 mm).  Turning side_r by
+    theta about x keeps that face's plane; its front edge becomes the line
+    y cos theta + (z - 500) sin theta = -200, and the kick's face is covered where
+    -188 cos theta + (z - 500) sin theta >= -200, i.e. above
+    z = 500 - (200 - 188 cos theta) / sin theta: the joint's length is
+    L(theta) = (200 - 188 cos theta) / sin theta - 420 mm once that is below 80.
+    Probes at L = 70 mm (3 nails) and L = 30 mm (1 nail), turns from L(theta) by
+    bisection, bracket the loss of the nail that takes the joint below 2 nails, at
+    L = 40 mm: the step found from the joint's followed length lies within a tenth of
+    the resolution (0.1 degree) of that turn, and the nail count changes there."""
     design = load_design(str(DESIGNS / "cabinet-28.yaml"))
     finder = RangeFinder(design)
     dof = parse_dof(design, "side_r.rx")
     resolution = finder._scales(dof)[1]
-    good, bad = (finder._now(finder._probe(dof, 1.0, step), dof) for step in (1.40, 1.55))
+    good, bad = (finder._now(finder._probe(dof, 1.0, _turn_for_kick_joint_length(length)),
+                             dof) for length in (70.0, 30.0))
     key = ("side_r", "kick", next(j.edge_face for j in finder.geometry.joints
                                   if (j.face, j.edge) == ("side_r", "kick")))
     spacing = design.material.nail_spacing
 
+    def joint_of(geometry):
+        return next(j for j in geometry.joints if (j.face, j.edge, j.edge_face) == key)
+
     def nails(step):
-        geometry = finder._now(finder._probe(dof, 1.0, step), dof).geometry
-        return next(j.nails for j in geometry.joints if (j.face, j.edge, j.edge_face) == key)
+        return joint_of(finder._now(finder._probe(dof, 1.0, step), dof).geometry).nails
 
-    assert nails(good.step) > nails(bad.step)
+    assert joint_of(finder.geometry).nails == 4                     # 80 mm at 20 mm
+    assert joint_of(good.geometry).length == pytest.approx(0.070, abs=1e-9)
+    assert joint_of(bad.geometry).length == pytest.approx(0.030, abs=1e-9)
+    assert (nails(good.step), nails(bad.step)) == (3, 1)
     length = (nails(bad.step) + 1) * spacing / (1.0 + NAIL_COUNT_EPS)
-
-    def joint_length(probe):
-        return next(j.length for j in probe.geometry.joints
-                    if (j.face, j.edge, j.edge_face) == key)
-
     drop = finder._drop_step(dof, 1.0, good, bad, _Drop(good.step, key, length,
-                                                         joint_length(good),
-                                                         joint_length(bad)), resolution)
+                                                         joint_of(good.geometry).length,
+                                                         joint_of(bad.geometry).length),
+                             resolution)
     assert good.step < drop < bad.step
+    assert drop == pytest.approx(_turn_for_kick_joint_length(40.0), abs=0.1 * resolution)
     assert nails(drop - 0.1 * resolution) > nails(drop + 0.1 * resolution)

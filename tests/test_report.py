@@ -7,7 +7,7 @@ import math
 import xml.etree.ElementTree as ET
 
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from furncheck import __version__
@@ -128,6 +128,7 @@ def test_round_significant():
     assert math.isnan(round_significant(math.nan))
 
 
+@settings(deadline=None, derandomize=True)
 @given(st.floats(allow_nan=False, allow_infinity=False))
 def test_rounding_is_idempotent_and_survives_json(value):
     rounded = round_significant(value)

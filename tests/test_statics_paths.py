@@ -10,7 +10,8 @@
     result equals the cold start's whatever the start (even every contact lifted).
 (c) ``check.margin_of`` gives the same verdict as ``check_design`` and, as its margin,
     1 - the worst joint or plank utilization of the report (or -inf for a case that is not
-    stable).
+    stable).  It is defined only for geometries without violations: catalog designs with a
+    geometric violation are skipped, with their kinds as the reason.
 (d) A contact state's condensed matrix is factored once (Cholesky, LU when it is not
     positive definite) and solved as a plain LU solve would.
 """
@@ -85,9 +86,11 @@ def test_a_warm_start_finds_the_same_equilibrium(path):
 def test_margin_of_agrees_with_the_report(path):
     design = load_design(str(path))
     geometry = analyze(design)
-    report = check_design(design, geometry)
     if geometry.violations:
-        return                  # margin_of is for geometries without violations
+        kinds = ", ".join(sorted({v.kind for v in geometry.violations}))
+        pytest.skip(f"geometric violations ({kinds}): margin_of is only defined for "
+                    "geometries without them")
+    report = check_design(design, geometry)
     valid, margin, utilization = margin_of(design, geometry)
     assert valid == report.valid
     if any(case.stability != "stable" for case in report.cases):

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -18,6 +19,7 @@ from click.testing import CliRunner
 from furncheck.check import check_design, check_file
 from furncheck.cli.main import main
 from furncheck.design import load_design
+from furncheck.design.model import rotation_matrix
 from furncheck.dofs import dof_value, parse_dof
 from furncheck.suggest import suggest_design
 from furncheck.suggest.edits import dof_scale
@@ -140,11 +142,11 @@ def test_overloaded_cantilever_is_offered_a_support_plank(results):
     assert {frozenset(("shelf", support.id)), frozenset(("base", support.id))} <= joints
 
 
-def test_tipping_bench_is_given_a_wider_stance(results):
-    """bench-tips: it topples over the right panel (outer face x = 306 mm) with 80 kg at
-    x = 560 mm.  Moving leg_r out by d (the stretcher lengthening with it) stands the
-    bench when the centre of mass x_G(d) <= 306 + d; solved here from the planks' masses.
-    A 'move leg_r away from leg_l' suggestion is among the first three, starting there."""
+def bench_stance_needed() -> float:
+    """bench-tips: how far (mm) leg_r must move out to stand the bench.  It topples over
+    the right panel (outer face x = 306 mm) with 80 kg at x = 560 mm.  Moving leg_r out by
+    d (the stretcher lengthening with it) stands the bench when the centre of mass
+    x_G(d) <= 306 + d; solved by bisection from the planks' masses (about 220 mm)."""
     seat = MDF * 1.2 * 0.3 * T
     leg = MDF * 0.438 * 0.3 * T
 
@@ -157,13 +159,29 @@ def test_tipping_bench_is_given_a_wider_stance(results):
     for _ in range(60):
         middle = 0.5 * (low + high)
         low, high = (middle, high) if excess(middle) > 0 else (low, middle)
-    needed = 1000.0 * high
+    return 1000.0 * high
+
+
+BENCH_STANCE_REACH = 600.0 - 294.0
+"""bench-tips: the farthest leg_r may move out (mm) and keep its joint with the seat: its
+top end face spans x = 294 + d .. 306 + d and the seat ends at x = 600, so the face leaves
+the seat at d = 306 mm (beyond, the joint is lost and the suggestion may not be offered)."""
+
+
+def test_tipping_bench_is_given_a_wider_stance(results):
+    """bench-tips: a 'move leg_r away from leg_l' suggestion is among the first three, its
+    valid range starting at the stance that stands the bench (``bench_stance_needed``,
+    the line search's 2 % resolution, so 3 %) and ending where leg_r's joint with the seat
+    would be lost (``BENCH_STANCE_REACH``: the search's upper end is bracketed to 2 % of
+    the step too)."""
+    needed = bench_stance_needed()
     result = results["bench-tips.yaml"]
     wider = [s for s in result.suggestions[:3] if s.dofs == ("leg_r.x",)]
     assert wider, [s.dofs for s in result.suggestions]
     scale = wider[0].changes[0] / wider[0].step
     assert scale > 0
     assert math.isclose(wider[0].range[0] * scale, needed, rel_tol=0.03)
+    assert math.isclose(wider[0].range[1] * scale, BENCH_STANCE_REACH, rel_tol=0.03)
 
 
 def test_table_pushed_past_tipping_gets_a_wider_stance(tmp_path):
@@ -239,13 +257,25 @@ def run(*args: str):
 
 
 def test_cli_text_reads_like_advice():
+    """The advice in words.  bench-tips: leg_r moves by the middle of its valid interval
+    (README: the smallest change plus up to half of it again), from the stance that stands
+    it (``bench_stance_needed``, about 220 mm) to where its joint would be lost
+    (``BENCH_STANCE_REACH``, 306 mm): about (220 + 306) / 2 = 263 mm, each to the line
+    search's 2 % (so 3 %)."""
     result = run("suggest", str(CATALOG / "shelf-cantilever-overloaded.yaml"))
     assert result.exit_code == 0
     assert "1. Shorten shelf by" in result.output
     assert "Restores durability." in result.output
     assert "Add support-1 (582 x 300 mm) between shelf and base" in result.output
     bench = run("suggest", str(CATALOG / "bench-tips.yaml"))
-    assert "Move leg_r 262 mm away from leg_l (valid for" in bench.output
+    move = re.search(r"Move leg_r (\d+) mm away from leg_l \(valid for (\d+)-(\d+) mm\)\.",
+                     bench.output)
+    assert move, bench.output
+    amount, low, high = (float(group) for group in move.groups())
+    needed = bench_stance_needed()
+    assert low == pytest.approx(needed, rel=0.03)
+    assert high == pytest.approx(BENCH_STANCE_REACH, rel=0.03)
+    assert amount == pytest.approx(0.5 * (needed + BENCH_STANCE_REACH), rel=0.03)
     valid = run("suggest", str(CATALOG / "stool.yaml"))
     assert valid.exit_code == 0 and "Nothing needs to change" in valid.output
 
@@ -266,6 +296,14 @@ def test_cli_json_follows_the_contract_and_is_deterministic(tmp_path):
 
 
 def test_cli_json_of_a_discrete_suggestion():
+    """shelf-cantilever-overloaded's support plank as JSON (file units, mm): it stands
+    between the base's top (z = 12) and the shelf's underside (z = 594), so it is 582 long,
+    centred at z = (12 + 594) / 2 = 303; as wide as the shelf (300, along y, centred at
+    y = 0); at the shelf's far end, x = 56 + 400 / 2 = 256, less half its thickness: 250.
+    Standing with its length along world z, its width along y and its faces towards the
+    post (normal along x), its rotation R = Rz Ry Rx must map local x to +-z, local y to
+    +-y and local z to +-x: a quarter turn about y, [0, 90, 0] or [0, -90, 0] (checked
+    through the matrix, so either sign passes)."""
     result = run("suggest", str(CATALOG / "shelf-cantilever-overloaded.yaml"), "--format",
                  "json")
     entries = json.loads(result.output)["suggestions"]
@@ -274,8 +312,15 @@ def test_cli_json_of_a_discrete_suggestion():
     entry = discrete[0]
     assert list(entry) == ["rank", "kind", "restores", "adds", "between", "advice",
                            "design_file", "meshes", "plots"]
-    assert entry["adds"][0] == {"id": "support-1", "size": [582.0, 300.0],
-                                "center": [250.0, 0.0, 303.0], "rotation": [0.0, 90.0, 0.0]}
+    (support,) = entry["adds"]
+    assert list(support) == ["id", "size", "center", "rotation"]
+    assert support["id"] == "support-1"
+    assert support["size"] == pytest.approx([594.0 - 12.0, 300.0])
+    assert support["center"] == pytest.approx([56.0 + 400.0 / 2 - 12.0 / 2, 0.0,
+                                               (12.0 + 594.0) / 2])
+    axes = np.abs(rotation_matrix(tuple(support["rotation"])))    # columns: local x, y, z
+    assert axes == pytest.approx(np.array([[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]]),
+                                 abs=1e-12)
     assert entry["advice"].startswith("Add support-1 (582 x 300 mm) between shelf and base")
 
 

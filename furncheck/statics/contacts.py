@@ -134,6 +134,7 @@ class _ActiveSet:
         status = status.copy()
         ground = start.ground
         caps = self.mu * np.maximum(start.contact_forces[:, 2], 0.0)
+        history: list[tuple[np.ndarray, np.ndarray]] = []     # (caps, the caps they gave)
         for _ in range(tol.FRICTION_CAP_ITERATIONS):
             energy = _FrictionEnergy(self, status != LIFT, caps)
             ground = energy.minimize(ground)
@@ -142,11 +143,15 @@ class _ActiveSet:
             solution = energy.solution(ground)
             if self._update_normals(solution, status):
                 caps = self.mu * np.maximum(solution.contact_forces[:, 2], 0.0)
+                history = []
                 continue
             new_caps = self.mu * np.maximum(solution.contact_forces[:, 2], 0.0)
             if np.abs(new_caps - caps).max(initial=0.0) <= self.force_tol:
                 return status, solution
-            caps = new_caps
+            history = [*history[-tol.FRICTION_CAP_MEMORY:], (caps, new_caps)]
+            caps = _anderson(history)
+        return None
+
         return None
 
     # -- results -------------------------------------------------------------------------------
@@ -440,6 +445,22 @@ class _FrictionEnergy:
         displacement = np.zeros((len(self.active), 3))
         displacement[self.active] = self._displacements(x)
         return self.solver.assemble(x, forces, displacement)
+
+
+def _anderson(history: list[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
+    """The next friction caps of the fixed point c = G(c) (G: the caps mu N that the
+    equilibrium under caps c gives) by Anderson's mixing of the last iterates (c_i, G(c_i)):
+    the weights a (sum 1) that minimize |sum a_i (G(c_i) - c_i)|, then sum a_i G(c_i), kept
+    >= 0.  The plain update G(c) converges linearly (by factors of 0.1 to 0.4 on the
+    catalog's cabinet); this takes a few iterations instead of fifteen."""
+    if len(history) == 1:
+        return history[0][1]
+    residuals = np.array([g - c for c, g in history])                # (m, nK)
+    images = np.array([g for _, g in history])
+    differences = residuals[1:] - residuals[:1]                       # a_0 = 1 - sum a_i
+    weights, *_ = np.linalg.lstsq(differences.T, -residuals[0], rcond=None)
+    mixed = images[0] + weights @ (images[1:] - images[:1])
+    return np.maximum(mixed, 0.0)
 
 
 def _rigidly_held(model: StaticsModel, holding: np.ndarray) -> bool:
