@@ -16,8 +16,10 @@ cantilever_shelf  base 600 x 400 lying on the ground (spans x -300..300, centre 
              Joint post/shelf at (-144, 0, 600) (L = 200: 10 nails); joint base/post at
              (-150, 0, 12) (L = 400: 20 nails).  A hold-down mass sits on the base at
              (150, 0, 12).  Tip load at the shelf's top face, free end: (256, 0, 606).
-flat_shelf   one plank `length` x `width` lying flat on the ground, centre (0, 0, t/2): its
-             4 bottom corners (x = +-length/2) are the supports.
+flat_shelf   a plank (`length` + 12) x `width` lying level on two 12 mm fins 50 mm tall at
+             x = +-length/2 (flush with its ends), nailed with nail_withdrawal 1 N/mm so
+             that they act as pins: a simply supported span `length`.  (A plank lying
+             flat on the ground is held along its face by the floor: it has no sag.)
 three_support_shelf  shelf (thickness 18) 2 l + 2 x 1 mm long on three uprights 150 high,
              100 wide (along y): two fins 2 mm thick at x = +-l (flush with the shelf's
              ends, spans x = +-l -+ 1) and a block 12 mm thick at x = 0.  Shelf mid-plane
@@ -94,14 +96,29 @@ def cantilever_shelf(tip_mass: float = 0.0, spread_mass: float = 0.0,
 
 # --- 2. simply supported shelf ----------
 
+FLAT_FIN_T = 12.0           # mm, the flat shelf's end fins
+FLAT_FIN_H = 50.0           # mm
+PIN_NAIL_WITHDRAWAL = 1.0   # N/mm per nail: the fins' joints turn freely (pins)
+
+
 def flat_shelf(mass: float = 10.0, length: float = 800.0, width: float = 200.0,
                thickness: float = 12.0, friction: float = 0.05, model: str = "elastic",
-               **material_keys) -> dict:
-    """One plank lying flat on the ground with `mass` kg spread along it."""
-    mat = material(WEIGHTLESS, friction=friction, **material_keys)
-    mat["thickness"] = thickness
-    planks = [{"id": "shelf", "size": [length, width], "center": [0, 0, thickness / 2],
-               "rotation": [0, 0, 0]}]
+               nail_withdrawal: float = PIN_NAIL_WITHDRAWAL, **material_keys) -> dict:
+    """A simply supported shelf: a plank `length` + 12 mm long, lying level on two fins 12
+    mm thick and 50 mm tall whose top end faces are nailed to its underside at x =
+    +-length/2 (flush with its ends), with `mass` kg spread along it.  The fins' joints
+    have nail_withdrawal 1 N/mm: about the joint line they turn with n k_w (t/2)^2 = 10 x
+    1000 N/m x (6 mm)^2 = 0.36 N m/rad (pins), and the shelf sinks on them as a whole.
+    Friction 0.05 keeps the fins' feet from holding the shelf's ends back."""
+    mat = material(WEIGHTLESS, friction=friction, nail_withdrawal=nail_withdrawal,
+                   **material_keys)
+    half = length / 2
+    planks = [{"id": "shelf", "size": [length + FLAT_FIN_T, width],
+               "center": [0, 0, FLAT_FIN_H + thickness / 2], "rotation": [0, 0, 0],
+               "thickness": thickness}]
+    for pid, x in (("fin_l", -half), ("fin_r", half)):
+        planks.append({"id": pid, "size": [FLAT_FIN_H, width], "center": [x, 0, FLAT_FIN_H / 2],
+                       "rotation": list(UPRIGHT), "thickness": FLAT_FIN_T})
     return _design("flat-shelf", model, mat, planks,
                    [{"plank": "shelf", "mass": mass, "spread": True}])
 

@@ -33,6 +33,8 @@ from furncheck.statics.model import CaseStatics, StaticsModel, block_sums
 STICK, LIFT = 0, 2
 _LINE_DETAIL = ("all its ground contacts lie on one line: it can at best balance on that "
                 "edge, and the least push about it tips the design over")
+_LINE_SLIDING = ("no equilibrium within the friction cones, and its ground contacts lie on "
+                 "one line: no forces to show")
 
 
 def solve_case(model: StaticsModel, f: np.ndarray,
@@ -189,7 +191,8 @@ class _ActiveSet:
             f"; the solver could not prove it either way ({program.message}), so the "
             "case is not passed")
         if bolted is None:
-            return CaseStatics(stability, None, None, (), _LINE_DETAIL + undecided)
+            detail = _LINE_DETAIL if stability == "lift-off" else _LINE_SLIDING
+            return CaseStatics(stability, None, None, (), detail + undecided)
         pulling = bolted.contact_forces[:, 2] < -self.force_tol
         if stability == "lift-off":
             detail = ("no equilibrium with the ground only pushing: the load's line of action "

@@ -194,27 +194,54 @@ class Beams:
 def _plank_nodes(k: int, half: float, attachments: list[tuple[float, tuple]]) -> list[tuple]:
     """The nodes of local plank k, a beam of half length ``half``, in order along it, each
     as its origin: k and the attachment keys it serves (``attachments``: (s, key),
-    s the attachment's position along the axis; those within NODE_MERGE of each other
-    share a node), with the ends ('end', k, -1 / 1) and the centre ('centre', k), or
-    ('grid', k, fraction) for the grid of BEAM_SEGMENTS where no node is within a quarter
-    of its step (fraction 0 .. 1 from the -e1 end)."""
+    s the attachment's position along the axis; those within NODE_MERGE of each other, or
+    a tenth of a grid step on a short plank, share a node at their mean), with the ends
+    ('end', k, -1 / 1) and the centre ('centre', k), or ('grid', k, fraction) for the grid
+    of BEAM_SEGMENTS where no node is within a quarter of its step (fraction 0 .. 1 from
+    the -e1 end).  Consecutive nodes are at least the merge distance apart."""
+    step = 2.0 * half / tol.BEAM_SEGMENTS
+    merge = min(tol.NODE_MERGE, 0.1 * step)
     marks = [(-half, ("end", k, -1)), (0.0, ("centre", k)), (half, ("end", k, 1))]
     required = sorted(((min(max(s, -half), half), key) for s, key in [*attachments, *marks]),
                       key=lambda item: item[0])
     groups: list[list] = []
     for s, key in required:
-        if groups and s - groups[-1][0] <= tol.NODE_MERGE:
+        if groups and s - groups[-1][0] <= merge:
             groups[-1][1].append(key)
+            groups[-1][2].append(s)
         else:
-            groups.append([s, [key]])
-    step = 2.0 * half / tol.BEAM_SEGMENTS
-    placed = np.array([s for s, _ in groups])
-    nodes = [(s, tuple(keys)) for s, keys in groups]
+            groups.append([s, [key], [s]])
+    nodes = [(float(np.mean(positions)), tuple(keys)) for _, keys, positions in groups]
+    placed = np.array([s for s, _ in nodes])
     for i in range(1, tol.BEAM_SEGMENTS):
         s = -half + i * step
         if np.abs(placed - s).min() > 0.25 * step:
             nodes.append((s, (("grid", k, i / tol.BEAM_SEGMENTS),)))
     return [(k, *origin) for _, origin in sorted(nodes, key=lambda item: item[0])]
+
+
+def _crosswise(design: Design, geometry: Geometry, planks: list[Plank], joints: list[int],
+               contacts: list[int]) -> tuple[bool, ...]:
+    """Per plank, whether its beam runs along its local y: its longer side (contract 3a);
+    a square plank (sides within the design's tolerance) along the side over which what
+    holds it (its joints' and contacts' points) is spread the most, so that describing it
+    turned by 90 degrees changes nothing."""
+    points: dict[str, list] = {p.id: [] for p in planks}
+    for j in joints:
+        joint = geometry.joints[j]
+        for plank_id in joint.planks:
+            points[plank_id].append(joint.point)
+    for c in contacts:
+        points[geometry.contacts[c].plank].append(geometry.contacts[c].point)
+    out = []
+    for plank in planks:
+        if abs(plank.length - plank.width) > design.tolerance or not points[plank.id]:
+            out.append(along_width(plank))
+            continue
+        local = plank.to_local(np.array(points[plank.id]))
+        spread = local.max(axis=0) - local.min(axis=0)
+        out.append(bool(spread[1] > spread[0] + tol.NODE_MERGE))
+    return tuple(out)
 
 
 def build_elastic_model(design: Design, geometry: Geometry,
@@ -228,8 +255,8 @@ def build_elastic_model(design: Design, geometry: Geometry,
     planks_used, joints, contacts, components = grounded_parts(design, geometry)
     local = {plank: k for k, plank in enumerate(planks_used)}
     plank_list = [design.planks[i] for i in planks_used]
-    crosswise = tuple(along_width(p) for p in plank_list) if template is None \
-        else template.beams.crosswise
+    crosswise = _crosswise(design, geometry, plank_list, joints, contacts) \
+        if template is None else template.beams.crosswise
     frames = [beam_frame(p, c) for p, c in zip(plank_list, crosswise)]
     halves = np.array([0.5 * beam_length_width(p, c)[0]
                        for p, c in zip(plank_list, crosswise)])
@@ -476,9 +503,12 @@ def plank_results(model: StaticsModel, case: LoadCase, q: np.ndarray,
     np.maximum.at(stress, beams.plank, element_stress)
 
     supports: list[list[int]] = [[] for _ in range(n_planks)]
+    carried_by = _carrying_neighbours(model)
     for nodes in model.joint_nodes:
-        for node in nodes:
-            supports[model.node_plank[node]].append(int(node))
+        a, b = (int(model.node_plank[node]) for node in nodes)
+        for node, plank, other in ((nodes[0], a, b), (nodes[1], b, a)):
+            if other in carried_by[plank]:
+                supports[plank].append(int(node))
     carrying = np.ones(len(model.contacts), dtype=bool) if holding is None else holding
     for node, carries in zip(model.contact_node, carrying):
         if carries:
@@ -486,10 +516,56 @@ def plank_results(model: StaticsModel, case: LoadCase, q: np.ndarray,
     sag, span = np.zeros(n_planks), np.zeros(n_planks)
     displacement = q.reshape(-1, 6)
     for k in range(n_planks):
-        if supports[k]:
+        if supports[k] and k not in _lying_on_floor(model):
             sag[k], span[k] = _sag(model, k, sorted(set(supports[k])), displacement,
                                    line_loads)
     return PlankStatics(sag, span, stress)
+
+
+def _carrying_neighbours(model: StaticsModel) -> list[set[int]]:
+    """Per local plank P, the planks jointed to it that carry it: those that still reach a
+    plank on the ground when P is taken away (a shelf's sides carry it, and it braces
+    them; a lip nailed under a shelf's tip, or a shelf hanging on a post, reaches the
+    ground only through the plank it hangs on and carries nothing).  Kept per model."""
+    cached = model.plank_cache.get("carrying")
+    if cached is not None:
+        return cached
+    n = len(model.planks)
+    neighbours: list[set[int]] = [set() for _ in range(n)]
+    for nodes in model.joint_nodes:
+        a, b = (int(model.node_plank[node]) for node in nodes)
+        neighbours[a].add(b)
+        neighbours[b].add(a)
+    grounded = {int(k) for k in model.contact_plank}
+    carrying: list[set[int]] = []
+    for removed in range(n):
+        reached = {k for k in grounded if k != removed}
+        frontier = list(reached)
+        while frontier:
+            k = frontier.pop()
+            for other in neighbours[k] - reached - {removed}:
+                reached.add(other)
+                frontier.append(other)
+        carrying.append(neighbours[removed] & reached)
+    model.plank_cache["carrying"] = carrying
+    return carrying
+
+
+def _lying_on_floor(model: StaticsModel) -> set[int]:
+    """Local planks lying on the floor on a broad face (all four corners of that face are
+    ground contacts): the floor holds them along their whole face, not at the corners the
+    contacts stand for, so they are given no sag."""
+    cached = model.plank_cache.get("lying")
+    if cached is not None:
+        return cached
+    corners: dict[int, set[int]] = {}
+    for row, c in enumerate(model.contacts):
+        corners.setdefault(int(model.contact_plank[row]), set()).add(
+            model.geometry.contacts[c].corner)
+    lying = {k for k, found in corners.items()
+             if {0, 1, 2, 3} <= found or {4, 5, 6, 7} <= found}
+    model.plank_cache["lying"] = lying
+    return lying
 
 
 def _profile(model: StaticsModel, k: int, displacement: np.ndarray,
@@ -533,28 +609,35 @@ def _profile(model: StaticsModel, k: int, displacement: np.ndarray,
 
 def _sag(model: StaticsModel, k: int, supports: list[int], displacement: np.ndarray,
          line_loads: np.ndarray) -> tuple[float, float]:
-    """(sag, span) of local plank k (contract 3a): the largest transverse deviation of its
-    deflected axis (``_profile``) from the line through its outermost supports, or, held at
-    one point, from the tangent there (its free ends' deflection)."""
+    """(sag, span) of local plank k (contract 3a) from its deflected axis (``_profile``):
+    between its outermost supports, the largest deviation from the straight line through
+    them (span: their distance); beyond them, each overhang's largest deviation from the
+    tangent at its support (span: twice the overhang); the one nearest its limit (the
+    largest sag / span) is the plank's.  Held at one point, only the overhangs count."""
     beams = model.beams
     s, transverse = _profile(model, k, displacement, line_loads)
     frame = beam_frame(model.design.planks[model.planks[k]], beams.crosswise[k])
     positions = beams.node_s[supports]
-    low, high = int(np.argmin(positions)), int(np.argmax(positions))
-    if positions[high] - positions[low] <= tol.NODE_MERGE:      # held at one point
-        root = supports[low]
-        s0 = beams.node_s[root]
+    low, high = supports[int(np.argmin(positions))], supports[int(np.argmax(positions))]
+    sa, sb = beams.node_s[low], beams.node_s[high]
+    reach = 1e-9 + 1e-9 * beams.plank_half[k]
+    measures = []                                   # (sag, span)
+    if sb - sa > tol.NODE_MERGE:
+        wa, wb = displacement[low, :3] @ frame[:, 1:], displacement[high, :3] @ frame[:, 1:]
+        inside = (s >= sa - reach) & (s <= sb + reach)
+        line = wa[None, :] + ((s[inside] - sa) / (sb - sa))[:, None] * (wb - wa)[None, :]
+        measures.append((float(np.linalg.norm(transverse[inside] - line, axis=1).max()),
+                         float(sb - sa)))
+    for root, outside, overhang in ((low, s < sa - reach, sa + beams.plank_half[k]),
+                                    (high, s > sb + reach, beams.plank_half[k] - sb)):
+        if not outside.any():
+            continue
         w0 = displacement[root, :3] @ frame[:, 1:]
         slope = np.array([displacement[root, 3:] @ frame[:, 2],           # du2/ds
                           -(displacement[root, 3:] @ frame[:, 1])])       # du3/ds
-        tangent = w0[None, :] + (s - s0)[:, None] * slope[None, :]
-        deviation = np.linalg.norm(transverse - tangent, axis=1)
-        half = beams.plank_half[k]
-        overhang = max(s0 + half, half - s0)
-        return float(deviation.max(initial=0.0)), 2.0 * overhang
-    a, b = supports[low], supports[high]
-    sa, sb = beams.node_s[a], beams.node_s[b]
-    wa, wb = displacement[a, :3] @ frame[:, 1:], displacement[b, :3] @ frame[:, 1:]
-    line = wa[None, :] + ((s - sa) / (sb - sa))[:, None] * (wb - wa)[None, :]
-    deviation = np.linalg.norm(transverse - line, axis=1)
-    return float(deviation.max(initial=0.0)), float(sb - sa)
+        tangent = w0[None, :] + (s[outside] - beams.node_s[root])[:, None] * slope[None, :]
+        measures.append((float(np.linalg.norm(transverse[outside] - tangent, axis=1).max()),
+                         2.0 * float(overhang)))
+    if not measures:
+        return 0.0, 0.0
+    return max(measures, key=lambda m: m[0] / m[1] if m[1] > 0 else 0.0)

@@ -56,7 +56,7 @@ def _component_problem(model: StaticsModel, f: np.ndarray, component: int):
         rows[:3, 3 * col:3 * col + 3] = np.eye(3)
         rows[3:, 3 * col:3 * col + 3] = _skew(point - reference) / spread
     wrench = np.zeros(6)
-    for k in model.components[component]:
+    for k in model.component_nodes[component]:
         centre = model.node_points[k]
         force, moment = f[6 * k:6 * k + 3], f[6 * k + 3:6 * k + 6]
         wrench[:3] += force

@@ -134,6 +134,8 @@ class StaticsModel:
 
     def reactions(self, h: np.ndarray) -> np.ndarray:
         """G^T h for joint values h, (6 nJ,) or (6 nJ, k), by blocks."""
+        if not len(self.joints):
+            return np.zeros((self.n_dof,) + h.shape[1:])
         per_joint = np.einsum("jsab,ja...->jsb...", self.joint_blocks,
                               h.reshape((-1, 6) + h.shape[1:]))
         out = block_sums(self.joint_nodes.ravel(), per_joint.reshape(2 * len(self.joints), -1),
@@ -181,6 +183,12 @@ class StaticsModel:
             rigid[:, :, 3:] = -_skew_many(arm) / length
             grams[members] = np.transpose(rigid, (0, 2, 1)) @ rigid
         return grams
+
+    @cached_property
+    def plank_cache(self) -> dict:
+        """Per-model facts about the planks that the elastic results reuse (filled by
+        ``elastic``: which joints carry which plank, which planks lie on the floor)."""
+        return {}
 
     @cached_property
     def restrained_states(self) -> dict:
