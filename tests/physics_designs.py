@@ -324,3 +324,21 @@ def convert_units(design: dict, to: str) -> dict:
         if "at" in load:
             load["at"] = conv(load["at"])
     return out
+
+
+# --- finding results in a report (shared by the physics tests) ----------
+
+def case_of(report, name: str = "default"):
+    """The report's load case called ``name``."""
+    for case in report.cases:
+        if case.name == name:
+            return case
+    raise AssertionError(f"no case {name!r} in {[c.name for c in report.cases]}")
+
+
+def joint_of(case, first: str, second: str):
+    """The case's one joint listed as (first, second)."""
+    found = [j for j in case.joints if tuple(j.planks) == (first, second)]
+    assert len(found) == 1, f"joint {first}/{second} not found once in " \
+                            f"{[j.planks for j in case.joints]}"
+    return found[0]

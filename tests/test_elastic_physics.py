@@ -36,18 +36,8 @@ def check(design: dict):
     return check_design(parse_design(text, f"{design['name']}.yaml", "yaml"))
 
 
-def case_of(report, name: str = "default"):
-    for case in report.cases:
-        if case.name == name:
-            return case
-    raise AssertionError(f"no case {name!r} in {[c.name for c in report.cases]}")
-
-
-def joint_of(case, first: str, second: str):
-    found = [j for j in case.joints if tuple(j.planks) == (first, second)]
-    assert len(found) == 1, f"joint {first}/{second} not found once in " \
-                            f"{[j.planks for j in case.joints]}"
-    return found[0]
+case_of = pd.case_of
+joint_of = pd.joint_of
 
 
 def plank_of(case, plank: str):
