@@ -12,7 +12,7 @@ import pytest
 
 from furncheck.design.load import parse_design
 from furncheck.geometry import Joint
-from furncheck.statics.elastic import (
+from furncheck.statics.beams import (
     SHEAR_FACTOR,
     beam_stiffness_local,
     joint_springs,

@@ -1,18 +1,22 @@
-"""Static equilibrium of rigid planks: the paper's mixed formulation (section 5.1).
+"""Static equilibrium of the planks: the paper's mixed formulation (section 5.1), for rigid
+planks (the paper's) and elastic ones (contract section 3a).
 
-Unknowns are a small rigid displacement per plank, q_i = (u_i, theta_i) (m, rad, about the
-plank centre), and the wrench of every nail joint, h_j = (h^t, h^r) (N, N m, world frame,
-what the joint's first plank exerts on its second, moment about the joint point).  With
-G the linearized joint deviation map (d = G q) and E = diag(eps^t, eps^r) the joint
-compliances, stationarity of the potential energy (paper eq. 3) is the sparse system
+Unknowns are a small displacement per node, q_i = (u_i, theta_i) (m, rad, about the node's
+point: a rigid plank's centre, or a point on an elastic plank's beam axis), and the wrench
+of every nail joint, h_j = (h^t, h^r) (N, N m, world frame, what the joint's first plank
+exerts on its second, moment about the joint point).  With G the linearized joint
+deviation map (d = G q) and E the joint compliances (W = E^-1: penalty constants for rigid
+planks, the nail row's springs for elastic ones), stationarity of the potential energy
+(paper eq. 3) is the sparse system
 
-    [ K_c  G^T ] [q]   [f]
-    [ G    -E  ] [h] = [0]
+    [ K_b + K_c  G^T ] [q]   [f]
+    [ G          -E  ] [h] = [0]
 
-where f holds self-weight and loads (force, moment about each centre) and K_c the ground
-contact springs.  Contacts are unilateral penalty springs with friction anchors (section 5.2):
-a contact is *stick* (three springs to its anchor), *slip* (normal spring; friction mu N along
-a fixed direction, i.e. the anchor relocated to the cone's edge) or *lifted* (no force).  An
+where f holds self-weight and loads (force, moment about each node), K_b the elastic
+planks' beam stiffness (none for rigid planks) and K_c the ground contact springs.
+Contacts are unilateral penalty springs with friction anchors (section 5.2): a contact is
+*stick* (three springs to its anchor), *slip* (normal spring; friction mu N along a fixed
+direction, i.e. the anchor relocated to the cone's edge) or *lifted* (no force).  An
 active-set loop switches contacts until every force is admissible.  When that loop cannot
 finish, small linear programs decide whether any admissible equilibrium exists at all, so
 the verdicts 'lift-off' and 'sliding' mean exactly what contract section 3 says.
@@ -26,10 +30,13 @@ The package, by job:
                  system), the full mixed matrix (system_matrix) and its solve (solve_system)
     contacts     solve_case: the contact active set and the friction energy
     feasibility  linear programs: does any admissible equilibrium exist?
-    elastic      the elastic model (contract section 3a): planks as Timoshenko beams, nail
-                 joints as springs of their nail rows, stiff contacts; the same
-                 StaticsModel, with the beams' stiffness in the mixed system's plank block,
-                 and each plank's sag and stress (plank_results)
+    beams        the elastic model's elements: Timoshenko beam, consistent loads, a nail
+                 row's spring (pure functions)
+    elastic      the elastic model (contract section 3a): the StaticsModel of beams with
+                 nodes where joints, contacts and loads act, stiff contacts, loads along
+                 the beams
+    bending      a solved elastic case's planks: sag and stress (plank_results)
+    derivatives  eq. 6's right-hand sides for both models
 
 ``solve_load_case`` is what the layers above call: the loads of a case, its equilibrium
 and, in the elastic model, its planks' sag and stress, whichever model built the
@@ -53,10 +60,10 @@ def solve_load_case(model: StaticsModel, case: LoadCase,
     statics = solve_case(model, external_forces(model, case), start)
     if model.beams is None or statics.displacements is None:
         return statics
-    from furncheck.statics.elastic import plank_results
+    from furncheck.statics.bending import plank_results
 
-    holding = statics.holding if statics.holding is not None else None
-    return replace(statics, planks=plank_results(model, case, statics.displacements, holding))
+    return replace(statics, planks=plank_results(model, case, statics.displacements,
+                                                 statics.holding))
 
 
 __all__ = ["LIFT", "STICK", "CaseStatics", "StaticsModel", "anchor_springs", "build_model",

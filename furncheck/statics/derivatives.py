@@ -67,7 +67,7 @@ class AssemblyDifferences:
         if not elastic or not self.sides:
             empty = np.zeros((n_dofs, 0))
             return empty, empty.copy(), empty.copy()
-        from furncheck.statics.elastic import plank_results
+        from furncheck.statics.bending import plank_results
 
         n_planks = len(self.sides[0][3].planks)
         sag, span, stress = (np.zeros((n_dofs, n_planks)) for _ in range(3))

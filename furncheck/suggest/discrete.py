@@ -123,7 +123,7 @@ def _try_stiffener(design: Design, geometry: Geometry, i: str, neighbours: list[
     shelf = design.plank(i)
     if not _level(shelf):
         return None
-    from furncheck.statics.elastic import beam_frame, beam_length_width
+    from furncheck.statics.beams import beam_frame, beam_length_width
 
     frame = beam_frame(shelf)
     axis = frame[:, 0]

@@ -1,0 +1,129 @@
+"""The elastic model's elements, pure functions of geometry and material (contract 3a).
+
+A plank as a Timoshenko beam along its longer in-plane axis e1, with e2 the other in-plane
+axis (the section's width b) and e3 its face normal (the thickness t): its section
+(``section_properties``), the element stiffness (``beam_stiffness_local``: local axes,
+displacements u and rotations theta per node, theta_3 = du_2/ds, theta_2 = -du_3/ds;
+axial E A / L, torsion G J / L with J of a rectangle (Roark), and in each bending plane
+the Timoshenko element with Phi = 12 E I / (k G A L^2), k = 5/6 (Przemieniecki), exact at
+its nodes for end loads and, with the consistent nodal loads of ``uniform_load_local``,
+for a uniform load along it), the beam's axes (``beam_frame``), and a nail joint's spring
+from its nail row (``joint_springs``).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from furncheck.design.model import Plank
+from furncheck.geometry import Joint
+
+SHEAR_FACTOR = 5.0 / 6.0
+"""Timoshenko's shear correction of a rectangular section."""
+
+
+def section_properties(width, thickness) -> dict:
+    """Section of a plank as a beam (floats or arrays): area A, I_2 = b t^3 / 12 (bending
+    out of its plane, about e2: the sag of a shelf), I_3 = t b^3 / 12 (in its plane, about
+    e3) and the torsion constant of a rectangle, J = a c^3 (1/3 - 0.21 (c/a) (1 - c^4 /
+    (12 a^4))), a >= c its sides (Roark, Formulas for Stress and Strain, table 10.7)."""
+    a, c = np.maximum(width, thickness), np.minimum(width, thickness)
+    return {"A": width * thickness,
+            "I2": width * thickness ** 3 / 12.0,
+            "I3": thickness * width ** 3 / 12.0,
+            "J": a * c ** 3 * (1.0 / 3.0 - 0.21 * (c / a) * (1.0 - c ** 4 / (12.0 * a ** 4)))}
+
+
+def beam_stiffness_local(length, width, thickness, elastic_modulus: float,
+                         shear_modulus: float) -> np.ndarray:
+    """(12, 12) stiffness of a Timoshenko beam element in its local axes, DOFs per node
+    (u1, u2, u3, theta1, theta2, theta3), node 1 then node 2 (N/m, N, N m); (n, 12, 12)
+    for arrays of n lengths, widths and thicknesses."""
+    L, b, t = (np.atleast_1d(np.asarray(v, dtype=float)) for v in (length, width, thickness))
+    section = section_properties(b, t)
+    E, G = elastic_modulus, shear_modulus
+    shear_area = SHEAR_FACTOR * section["A"]
+    K = np.zeros((len(L), 12, 12))
+
+    def put(i: int, j: int, value: np.ndarray) -> None:
+        K[:, i, j] = value
+        K[:, j, i] = value
+
+    axial, torsion = E * section["A"] / L, G * section["J"] / L
+    for i, j, value in ((0, 0, axial), (6, 6, axial), (0, 6, -axial),
+                        (3, 3, torsion), (9, 9, torsion), (3, 9, -torsion)):
+        put(i, j, value)
+    # (deflection, rotation, sign of the coupling): plane 1-2 (u2, theta3), plane 1-3 (u3,
+    # theta2), where theta3 = du2/ds but theta2 = -du3/ds
+    for w, r, inertia, sign in ((1, 5, section["I3"], 1.0), (2, 4, section["I2"], -1.0)):
+        phi = 12.0 * E * inertia / (shear_modulus * shear_area * L * L)
+        c = E * inertia / (L ** 3 * (1.0 + phi))
+        for i, j, value in ((w, w, 12.0), (w + 6, w + 6, 12.0), (w, w + 6, -12.0),
+                            (w, r, sign * 6.0 * L), (w, r + 6, sign * 6.0 * L),
+                            (w + 6, r, -sign * 6.0 * L), (w + 6, r + 6, -sign * 6.0 * L),
+                            (r, r, (4.0 + phi) * L * L), (r + 6, r + 6, (4.0 + phi) * L * L),
+                            (r, r + 6, (2.0 - phi) * L * L)):
+            put(i, j, value * c)
+    return K[0] if np.ndim(length) == 0 else K
+
+
+def uniform_load_local(length, load: np.ndarray) -> np.ndarray:
+    """(12,) consistent nodal loads of a uniform load ``load`` (3,) N/m along a beam element,
+    in its local axes: q L / 2 at each node and end moments q L^2 / 12 (signs of theta_3 =
+    du2/ds, theta_2 = -du3/ds); (n, 12) for n lengths and loads (n, 3)."""
+    L = np.atleast_1d(np.asarray(length, dtype=float))
+    q = np.asarray(load, dtype=float).reshape(-1, 3)
+    f = np.zeros((len(L), 12))
+    f[:, 0] = f[:, 6] = q[:, 0] * L / 2.0
+    f[:, 1] = f[:, 7] = q[:, 1] * L / 2.0
+    f[:, 5], f[:, 11] = q[:, 1] * L * L / 12.0, -q[:, 1] * L * L / 12.0
+    f[:, 2] = f[:, 8] = q[:, 2] * L / 2.0
+    f[:, 4], f[:, 10] = -q[:, 2] * L * L / 12.0, q[:, 2] * L * L / 12.0
+    return f[0] if np.ndim(length) == 0 else f
+
+
+def nail_row_spread(length: float, nails: int) -> float:
+    """m^2: S = sum y_i^2 of a joint's nails (contract section 3); a one-nail joint uses
+    S = L^2 / 12 of its contact region (contract section 3a: never zero)."""
+    if nails <= 1:
+        return length * length / 12.0
+    return length * length * (nails * nails - 1.0) / (12.0 * nails)
+
+
+def joint_springs(joint: Joint, nail_slip: float, nail_withdrawal: float) -> np.ndarray:
+    """(6, 6) world-frame stiffness W of a nail joint (wrench = W deviation), from its n
+    nails in the joint frame (x, y the joint line, n the nail axis; contract 3a): along n
+    n k_w, across it n k_s; rotation about y n k_w (t/2)^2, about x k_w S, about n k_s S."""
+    n = float(joint.nails)
+    spread = nail_row_spread(joint.length, joint.nails)
+    half = 0.5 * joint.edge_thickness
+    frame = np.asarray(joint.frame, dtype=float)
+    translation = np.diag([n * nail_slip, n * nail_slip, n * nail_withdrawal])
+    rotation = np.diag([nail_withdrawal * spread, n * nail_withdrawal * half * half,
+                        nail_slip * spread])
+    W = np.zeros((6, 6))
+    W[:3, :3] = frame @ translation @ frame.T
+    W[3:, 3:] = frame @ rotation @ frame.T
+    return W
+
+
+def along_width(plank: Plank) -> bool:
+    """Whether the plank's beam runs along its local y (its width is the longer side; on a
+    tie it runs along local x)."""
+    return plank.width > plank.length
+
+
+def beam_frame(plank: Plank, crosswise: bool | None = None) -> np.ndarray:
+    """(3, 3) columns e1 (the beam axis: the plank's longer in-plane axis, or local y when
+    ``crosswise``), e2 (the other in-plane axis), e3 (the face normal), world frame."""
+    axes = plank.rotation_matrix
+    if not (along_width(plank) if crosswise is None else crosswise):
+        return axes.copy()
+    return np.column_stack([axes[:, 1], -axes[:, 0], axes[:, 2]])
+
+
+def beam_length_width(plank: Plank, crosswise: bool | None = None) -> tuple[float, float]:
+    """(beam length, section width) of the plank (m), as ``beam_frame``."""
+    if not (along_width(plank) if crosswise is None else crosswise):
+        return plank.length, plank.width
+    return plank.width, plank.length
