@@ -215,7 +215,16 @@ class _ActiveSet:
             if on_failure is not None and cone.status == INFEASIBLE:
                 return self.sliding(on_failure)
             return self.unstable("sliding", cone)
-        return self.prescribed(closest_admissible(self.model, self.f, target))
+        closest = closest_admissible(self.model, self.f, target)
+        return self.prescribed(closest if self._admissible(closest) else cone.forces)
+
+    def _admissible(self, forces: np.ndarray) -> bool:
+        """Whether contact forces (nK, 3) press (N >= 0) and stay inside the friction
+        cones, to the force tolerance (the exact balance of ``closest_admissible`` moves
+        them by round-off; should it ever move them out, the program's own are used)."""
+        tangential = np.hypot(forces[:, 0], forces[:, 1])
+        return bool(np.all(forces[:, 2] >= -self.force_tol)
+                    and np.all(tangential <= self.mu * forces[:, 2] + self.force_tol))
 
     def prescribed(self, contact_forces: np.ndarray) -> CaseStatics:
         """Joint wrenches for contact forces fixed by a feasibility program.
