@@ -13,7 +13,12 @@ from furncheck.errors import DesignError
 from furncheck.geometry import Geometry, analyze
 from furncheck.result import DesignReport
 from furncheck.statics import build_model, solve_load_case
-from furncheck.validity import case_holds, evaluate_case, joint_utilization, plank_bending
+from furncheck.validity import (
+    case_holds,
+    evaluate_case,
+    joint_utilization,
+    worst_plank_utilization,
+)
 
 
 def check_design(design: Design, geometry: Geometry | None = None) -> DesignReport:
@@ -69,9 +74,7 @@ def margin_of(design: Design, geometry: Geometry,
             break
         if statics.joint_wrenches is not None and model.joints:
             wrenches.append(statics.joint_wrenches)
-        if statics.planks is not None:
-            bending = plank_bending(design, model, statics.planks)[4]
-            plank_used = max(plank_used, float(bending.max(initial=0.0)))
+        plank_used = max(plank_used, worst_plank_utilization(design, model, statics))
     utilization = np.zeros(len(geometry.joints))
     valid = stable
     if wrenches:        # the joints' utilization in all those cases at once

@@ -24,6 +24,7 @@ from furncheck.design.model import Design, LoadCase
 from furncheck.geometry import Geometry, Joint
 from furncheck.result import CaseResult, ContactResult, JointResult, PlankResult, Violation
 from furncheck.statics import CaseStatics, StaticsModel
+from furncheck.statics.beams import nail_row_spread
 
 
 @dataclass(frozen=True)
@@ -66,8 +67,7 @@ def nail_row(joints: list[Joint]) -> tuple[np.ndarray, np.ndarray]:
     nails = np.array([j.nails for j in joints], dtype=float)
     single = nails <= 1.0
     y_max = np.where(single, 0.5 * length, length * (nails - 1.0) / (2.0 * nails))
-    spread = np.where(single, 0.25 * length ** 2,
-                      length ** 2 * (nails ** 2 - 1.0) / (12.0 * nails))
+    spread = np.where(single, 0.25 * length ** 2, nail_row_spread(length, nails))
     return y_max, np.maximum(spread, 1e-300)
 
 
@@ -212,11 +212,17 @@ def case_margin(design: Design, geometry: Geometry, model: StaticsModel,
     if statics.joint_wrenches is not None and model.joints:
         utilization, held = joint_utilization(design, geometry, model, statics.joint_wrenches)
         margin, holds = 1.0 - float(utilization.max()), bool(np.all(held))
-    if statics.planks is not None and len(statics.planks.sag):
-        used = plank_bending(design, model, statics.planks)[4]
-        margin = min(margin, 1.0 - float(used.max()))
-        holds = holds and bool(np.all(used <= 1.0 + tol.CAPACITY_REL_TOL))
-    return margin, holds
+    used = worst_plank_utilization(design, model, statics)
+    return min(margin, 1.0 - used), holds and used <= 1.0 + tol.CAPACITY_REL_TOL
+
+
+def worst_plank_utilization(design: Design, model: StaticsModel,
+                            statics: CaseStatics) -> float:
+    """The case's largest plank utilization (``plank_bending``; 0 without plank results:
+    the rigid model)."""
+    if statics.planks is None:
+        return 0.0
+    return float(plank_bending(design, model, statics.planks)[4].max(initial=0.0))
 
 
 def joint_utilization(design: Design, geometry: Geometry, model: StaticsModel,

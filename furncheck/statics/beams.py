@@ -82,12 +82,13 @@ def uniform_load_local(length, load: np.ndarray) -> np.ndarray:
     return f[0] if np.ndim(length) == 0 else f
 
 
-def nail_row_spread(length: float, nails: int) -> float:
-    """m^2: S = sum y_i^2 of a joint's nails (contract section 3); a one-nail joint uses
-    S = L^2 / 12 of its contact region (contract section 3a: never zero)."""
-    if nails <= 1:
-        return length * length / 12.0
-    return length * length * (nails * nails - 1.0) / (12.0 * nails)
+def nail_row_spread(length, nails):
+    """m^2: S = sum y_i^2 = L^2 (n^2 - 1) / 12 n of a joint's n nails at y_i = (i + 1/2)
+    L / n - L / 2 (contract section 3), for floats or arrays; a one-nail joint's spring
+    uses S = L^2 / 12 of its contact region (contract section 3a: never zero)."""
+    length, nails = np.asarray(length, dtype=float), np.asarray(nails, dtype=float)
+    return np.where(nails <= 1.0, length * length / 12.0,
+                    length * length * (nails * nails - 1.0) / (12.0 * np.maximum(nails, 1.0)))
 
 
 def joint_springs(joint: Joint, nail_slip: float, nail_withdrawal: float) -> np.ndarray:

@@ -121,15 +121,24 @@ def _lying_on_floor(model: StaticsModel) -> set[int]:
     return lying
 
 
-def _profile(model: StaticsModel, k: int, displacement: np.ndarray,
-             line_loads: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(s, w): positions along local plank k's axis (m; its nodes and SAG_SAMPLES points
-    inside each element) and the transverse deflection there ((m, 2) m, along e2 and e3):
-    between nodes the cubic of the nodal deflections and slopes plus the deflection of
-    the element's own uniform load, q L^4 xi^2 (1 - xi)^2 / 24 EI + q L^2 xi (1 - xi) /
-    2 k G A (exact for a slender element), so that a largest sag between nodes is read."""
+def _transverse(displacement: np.ndarray, node: int,
+                frame: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(w, w') at a node: its deflection across the beam axis (2,) m, along e2 and e3, and
+    the axis's slope there (2,), du2/ds = theta . e3 and du3/ds = -theta . e2."""
+    rotation = displacement[node, 3:]
+    return (displacement[node, :3] @ frame[:, 1:],
+            np.array([rotation @ frame[:, 2], -(rotation @ frame[:, 1])]))
+
+
+def _profile(model: StaticsModel, k: int, displacement: np.ndarray, line_loads: np.ndarray,
+             frame: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(s, w): positions along local plank k's axis (m; ``frame``: its beam axes), at its
+    nodes and SAG_SAMPLES points inside each element, and the transverse deflection there
+    ((m, 2) m, along e2 and e3): between nodes the cubic of the nodal deflections and
+    slopes plus the deflection of the element's own uniform load, q L^4 xi^2 (1 - xi)^2 /
+    24 EI + q L^2 xi (1 - xi) / 2 k G A (exact for a slender element), so that a largest
+    sag between nodes is read."""
     beams = model.beams
-    frame = beam_frame(model.design.planks[model.planks[k]], beams.crosswise[k])
     elements = np.flatnonzero(beams.plank == k)
     material = model.design.material
     xi = np.linspace(0.0, 1.0, tol.SAG_SAMPLES + 2)[:-1]                # node 1 and inside
@@ -139,10 +148,7 @@ def _profile(model: StaticsModel, k: int, displacement: np.ndarray,
     for e in elements:
         a, b = beams.nodes[e]
         L = beams.length[e]
-        w_a, w_b = displacement[a, :3] @ frame[:, 1:], displacement[b, :3] @ frame[:, 1:]
-        slope_a, slope_b = (np.array([displacement[n, 3:] @ frame[:, 2],      # du2/ds
-                                      -(displacement[n, 3:] @ frame[:, 1])])  # du3/ds
-                            for n in (a, b))
+        (w_a, slope_a), (w_b, slope_b) = (_transverse(displacement, n, frame) for n in (a, b))
         section = section_properties(beams.width[e], beams.thickness[e])
         q = line_loads[e] @ frame[:, 1:]                                  # along e2, e3
         inertia = np.array([section["I3"], section["I2"]])
@@ -156,7 +162,7 @@ def _profile(model: StaticsModel, k: int, displacement: np.ndarray,
         deflections.append(w)
     last = beams.nodes[elements[-1], 1]
     positions.append(np.array([beams.node_s[last]]))
-    deflections.append((displacement[last, :3] @ frame[:, 1:])[None, :])
+    deflections.append(_transverse(displacement, last, frame)[0][None, :])
     return np.concatenate(positions), np.vstack(deflections)
 
 
@@ -168,15 +174,15 @@ def _sag(model: StaticsModel, k: int, supports: list[int], displacement: np.ndar
     tangent at its support (span: twice the overhang); the one nearest its limit (the
     largest sag / span) is the plank's.  Held at one point, only the overhangs count."""
     beams = model.beams
-    s, transverse = _profile(model, k, displacement, line_loads)
     frame = beam_frame(model.design.planks[model.planks[k]], beams.crosswise[k])
+    s, transverse = _profile(model, k, displacement, line_loads, frame)
     positions = beams.node_s[supports]
     low, high = supports[int(np.argmin(positions))], supports[int(np.argmax(positions))]
     sa, sb = beams.node_s[low], beams.node_s[high]
     reach = 1e-9 + 1e-9 * beams.plank_half[k]
     measures = []                                   # (sag, span)
     if sb - sa > tol.NODE_MERGE:
-        wa, wb = displacement[low, :3] @ frame[:, 1:], displacement[high, :3] @ frame[:, 1:]
+        wa, wb = (_transverse(displacement, n, frame)[0] for n in (low, high))
         inside = (s >= sa - reach) & (s <= sb + reach)
         line = wa[None, :] + ((s[inside] - sa) / (sb - sa))[:, None] * (wb - wa)[None, :]
         measures.append((float(np.linalg.norm(transverse[inside] - line, axis=1).max()),
@@ -185,9 +191,7 @@ def _sag(model: StaticsModel, k: int, supports: list[int], displacement: np.ndar
                                     (high, s > sb + reach, beams.plank_half[k] - sb)):
         if not outside.any():
             continue
-        w0 = displacement[root, :3] @ frame[:, 1:]
-        slope = np.array([displacement[root, 3:] @ frame[:, 2],           # du2/ds
-                          -(displacement[root, 3:] @ frame[:, 1])])       # du3/ds
+        w0, slope = _transverse(displacement, root, frame)
         tangent = w0[None, :] + (s[outside] - beams.node_s[root])[:, None] * slope[None, :]
         measures.append((float(np.linalg.norm(transverse[outside] - tangent, axis=1).max()),
                          2.0 * float(overhang)))

@@ -16,7 +16,7 @@ plank's sag and stress.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
@@ -223,7 +223,7 @@ def build_elastic_model(design: Design, geometry: Geometry,
         contact_node=contact_node, contact_plank=owner, contact_points=contact_points,
         contact_component=np.array([component_of[p] for p in owner], dtype=int),
         components=components, friction=material.friction,
-        contact_stiffness=tol.ELASTIC_CONTACT_STIFFNESS, kind="elastic",
+        contact_stiffness=tol.ELASTIC_CONTACT_STIFFNESS,
         beam_stiffness=_assemble(beams, len(node_plank)), beams=beams,
         nodal_weight=_nodal_loads(beams, _weights_per_length(design, plank_list, beams),
                                   len(node_plank)),
@@ -293,14 +293,20 @@ def _nodal_loads(beams: Beams, loads: np.ndarray, n_nodes: int) -> np.ndarray:
 
 def case_line_loads(model: StaticsModel, case: LoadCase) -> np.ndarray:
     """(nE, 3) N/m: self-weight and the case's spread loads along each element."""
-    beams, design = model.beams, model.design
-    plank_list = [design.planks[i] for i in model.planks]
-    loads = _weights_per_length(design, plank_list, beams)
-    local = model.local_planks
+    plank_list = [model.design.planks[i] for i in model.planks]
+    return _weights_per_length(model.design, plank_list, model.beams) \
+        + _spread_line_loads(model, case)
+
+
+def _spread_line_loads(model: StaticsModel, case: LoadCase) -> np.ndarray:
+    """(nE, 3) N/m: the case's spread loads, each along its plank's whole beam."""
+    beams, local = model.beams, model.local_planks
+    loads = np.zeros((len(beams.plank), 3))
     for load in case.loads:
         if load.spread and load.plank in local:
             k = local[load.plank]
-            span = beam_length_width(plank_list[k], beams.crosswise[k])[0]
+            plank = model.design.planks[model.planks[k]]
+            span = beam_length_width(plank, beams.crosswise[k])[0]
             loads[beams.plank == k] += np.asarray(load.force, dtype=float) / span
     return loads
 
@@ -309,19 +315,10 @@ def elastic_forces(model: StaticsModel, case: LoadCase) -> np.ndarray:
     """(6 nN,) self-weight and spread loads as consistent nodal loads along the beams, and
     every other load at the node of its point (its plank's centre when it has none), with
     its moment about that node."""
-    beams = model.beams
     f = model.self_weight.copy()
     local = model.local_planks
-    spread = [load for load in case.loads if load.spread and load.plank in local]
-    if spread:
-        plank_list = [model.design.planks[i] for i in model.planks]
-        loads = np.zeros((len(beams.plank), 3))
-        for load in spread:
-            k = local[load.plank]
-            loads[beams.plank == k] += (np.asarray(load.force, dtype=float)
-                                        / beam_length_width(plank_list[k],
-                                                            beams.crosswise[k])[0])
-        f += _nodal_loads(beams, loads, model.n_nodes)
+    if any(load.spread and load.plank in local for load in case.loads):
+        f += _nodal_loads(model.beams, _spread_line_loads(model, case), model.n_nodes)
     for index, load in enumerate(case.loads):
         if load.spread or load.plank not in local:
             continue
@@ -330,14 +327,9 @@ def elastic_forces(model: StaticsModel, case: LoadCase) -> np.ndarray:
         if node is None:        # a case built after the model: the nearest node
             node = _node_of(model, local[load.plank],
                             plank.center if load.point is None else load.point)
-        add_point_load(f, node, model.node_points[node],
-                       load if load.point is not None else _at(load, plank.center))
+        add_point_load(f, node, model.node_points[node], load.force,
+                       plank.center if load.point is None else load.point)
     return f
-
-
-def _at(load, point):
-    """The load acting at ``point`` (a load without point acts at its plank's centre)."""
-    return replace(load, point=tuple(float(v) for v in point))
 
 
 def _node_of(model: StaticsModel, k: int, point) -> int:

@@ -35,7 +35,6 @@ class StaticsModel:
     a row of nodes along each plank's beam axis, joined by beam elements
     (``beam_stiffness``, ``statics.elastic``).
 
-    kind     : 'rigid' or 'elastic'
     planks   : design plank indices taking part (those of grounded components)
     joints   : geometry joint indices taking part
     contacts : geometry contact indices taking part
@@ -73,7 +72,6 @@ class StaticsModel:
     components: tuple[tuple[int, ...], ...]
     friction: float
     contact_stiffness: float = tol.CONTACT_STIFFNESS
-    kind: str = "rigid"
     beam_stiffness: sp.csr_matrix | None = None
     beams: object = None
     nodal_weight: np.ndarray | None = None
@@ -324,16 +322,17 @@ def external_forces(model: StaticsModel, case: LoadCase) -> np.ndarray:
             continue
         k = local[load.plank]
         plank = design.planks[model.planks[k]]
-        add_point_load(f, k, plank.center, load)
+        add_point_load(f, k, plank.center, load.force, load.point)
     return f
 
 
-def add_point_load(f: np.ndarray, node: int, node_point, load) -> None:
-    """f[node] += the load's force and its moment r x F about ``node_point``."""
-    fx, fy, fz = (float(v) for v in load.force)
+def add_point_load(f: np.ndarray, node: int, node_point, force, point) -> None:
+    """f[node] += ``force`` (N) and its moment r x F about ``node_point`` when it acts at
+    ``point`` (None: at the node point itself)."""
+    fx, fy, fz = (float(v) for v in force)
     f[6 * node:6 * node + 3] += (fx, fy, fz)
-    if load.point is not None:
-        rx, ry, rz = (float(p) - float(c) for p, c in zip(load.point, node_point))
+    if point is not None:
+        rx, ry, rz = (float(p) - float(c) for p, c in zip(point, node_point))
         f[6 * node + 3:6 * node + 6] += (ry * fz - rz * fy, rz * fx - rx * fz, rx * fy - ry * fx)
 
 
