@@ -166,8 +166,7 @@ class _ActiveSet:
         """Report a case that slides, with the forces it would need if friction were endless."""
         model = self.model
         forces = solution.contact_forces
-        tangential = np.hypot(forces[:, 0], forces[:, 1])
-        over = tangential > self.mu * forces[:, 2] + self.force_tol
+        over = self._outside_cones(forces)
         sideways = float(np.hypot(*forces[:, :2].sum(axis=0)))
         capacity = self.mu * float(forces[:, 2].sum())
         centre = (forces[:, 2] @ model.contact_points) / max(float(forces[:, 2].sum()), 1e-300)
@@ -222,9 +221,8 @@ class _ActiveSet:
         """Whether contact forces (nK, 3) press (N >= 0) and stay inside the friction
         cones, to the force tolerance (the exact balance of ``closest_admissible`` moves
         them by round-off; should it ever move them out, the program's own are used)."""
-        tangential = np.hypot(forces[:, 0], forces[:, 1])
         return bool(np.all(forces[:, 2] >= -self.force_tol)
-                    and np.all(tangential <= self.mu * forces[:, 2] + self.force_tol))
+                    and not self._outside_cones(forces).any())
 
     def prescribed(self, contact_forces: np.ndarray) -> CaseStatics:
         """Joint wrenches for contact forces fixed by a feasibility program.
@@ -248,9 +246,12 @@ class _ActiveSet:
                            displacements=solution.q)
 
     def within_cones(self, solution: _Solution) -> bool:
-        forces = solution.contact_forces
-        tangential = np.hypot(forces[:, 0], forces[:, 1])
-        return bool(np.all(tangential <= self.mu * forces[:, 2] + self.force_tol))
+        return not self._outside_cones(solution.contact_forces).any()
+
+    def _outside_cones(self, forces: np.ndarray) -> np.ndarray:
+        """(nK,) bool: contact forces (nK, 3) whose sideways part exceeds mu N (beyond the
+        force tolerance)."""
+        return np.hypot(forces[:, 0], forces[:, 1]) > self.mu * forces[:, 2] + self.force_tol
 
     # -- the linear solve ----------------------------------------------------------------------
     def solve(self, status: np.ndarray, stiffness_scale: float = 1.0,
