@@ -204,7 +204,7 @@ class Linearization:
               + np.einsum("kab,dkb->dka", model.contact_maps, dq))
         springs = anchor_springs(self.holding, model.contact_stiffness)
         contact_rates = -np.einsum("kab,dkb->dka", springs, dw)
-        bending = differences.plank_rates(rates[:n], self.statics.planks is not None)
+        bending = differences.plank_rates(rates[:n])
         return Sensitivity(self.case.name, tuple(moving), joint_rates, contact_rates,
                            blocked, length_rates, *bending)
 

@@ -50,29 +50,32 @@ class AssemblySide:
 class AssemblyDifferences:
     """The differences over the sides: ``residual`` (N, D) of b - A x, ``maps``
     (D, nK, 3, 6) of the contact maps, ``lengths`` (D, nJ) of the joint lengths (m), per
-    DOF unit; ``sides``: per side (column, weight, offset, stepped model, its case) for
-    the planks' rates (elastic model)."""
+    DOF unit; for the planks' rates (elastic model only), ``sides``: per side (column,
+    weight, offset, stepped model, its case), and the state's displacements ``q`` and
+    holding contacts."""
 
     residual: np.ndarray
     maps: np.ndarray
     lengths: np.ndarray
-    case_name: str
     sides: list = field(default_factory=list)
+    q: np.ndarray | None = None
     holding: np.ndarray | None = None
 
-    def plank_rates(self, dq: np.ndarray, elastic: bool) -> tuple[np.ndarray, ...]:
+    def plank_rates(self, dq: np.ndarray) -> tuple[np.ndarray, ...]:
         """(D, nP) each: d sag (m), d span (m), d stress (Pa) per DOF unit, from the
-        stepped models at x + offset dx (dq: (6 nN, D), the displacement rates)."""
+        stepped models at x + offset dx (dq: (6 nN, D), the displacement rates); (D, 0)
+        each for rigid planks."""
         n_dofs = self.residual.shape[1]
-        if not elastic or not self.sides:
+        if not self.sides:
             empty = np.zeros((n_dofs, 0))
             return empty, empty.copy(), empty.copy()
         from furncheck.statics.bending import plank_results
 
         n_planks = len(self.sides[0][3].planks)
         sag, span, stress = (np.zeros((n_dofs, n_planks)) for _ in range(3))
-        for column, weight, offset, model, case, q in self.sides:
-            result = plank_results(model, case, q + offset * dq[:, column], self.holding)
+        for column, weight, offset, model, case in self.sides:
+            result = plank_results(model, case, self.q + offset * dq[:, column],
+                                   self.holding)
             sag[column] += weight * result.sag
             span[column] += weight * result.span
             stress[column] += weight * result.stress
@@ -97,8 +100,7 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, holding: np.ndarray, case_n
     q, h = state[:n], state[n:]
     out = AssemblyDifferences(np.zeros((len(state), n_dofs)),
                               np.zeros((n_dofs, *model.contact_maps.shape)),
-                              np.zeros((n_dofs, len(model.joints))), case_name,
-                              holding=holding)
+                              np.zeros((n_dofs, len(model.joints))), q=q, holding=holding)
     geometry = model.geometry
     for side in sides:
         joints = list(geometry.joints)
@@ -114,7 +116,7 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, holding: np.ndarray, case_n
         out.maps[side.column] += side.weight * stepped.contact_maps
         out.lengths[side.column] += side.weight * np.array(
             [stepped_geometry.joints[j].length for j in model.joints])
-        out.sides.append((side.column, side.weight, side.offset, stepped, case, q))
+        out.sides.append((side.column, side.weight, side.offset, stepped, case))
     return out
 
 
@@ -208,7 +210,7 @@ def _local(model: StaticsModel, state: np.ndarray, holding: np.ndarray, case_nam
         a = table[:, 2].astype(int)
         np.add.at(residual, (6 * a + 2, column), table[:, 3] * weight)
         _add(residual, 6 * a + 3, column, table[:, 4:7] * weight[:, None])
-    return AssemblyDifferences(residual, maps, lengths, case_name, holding=holding)
+    return AssemblyDifferences(residual, maps, lengths)
 
 
 def _add(matrix: np.ndarray, first_row: np.ndarray, column: np.ndarray,
