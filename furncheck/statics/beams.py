@@ -95,16 +95,22 @@ def joint_springs(joint: Joint, nail_slip: float, nail_withdrawal: float) -> np.
     """(6, 6) world-frame stiffness W of a nail joint (wrench = W deviation), from its n
     nails in the joint frame (x, y the joint line, n the nail axis; contract 3a): along n
     n k_w, across it n k_s; rotation about y n k_w (t/2)^2, about x k_w S, about n k_s S."""
-    n = float(joint.nails)
-    spread = nail_row_spread(joint.length, joint.nails)
-    half = 0.5 * joint.edge_thickness
-    frame = np.asarray(joint.frame, dtype=float)
-    translation = np.diag([n * nail_slip, n * nail_slip, n * nail_withdrawal])
-    rotation = np.diag([nail_withdrawal * spread, n * nail_withdrawal * half * half,
-                        nail_slip * spread])
-    W = np.zeros((6, 6))
-    W[:3, :3] = frame @ translation @ frame.T
-    W[3:, 3:] = frame @ rotation @ frame.T
+    return nail_row_springs([joint], nail_slip, nail_withdrawal)[0]
+
+
+def nail_row_springs(joints, nail_slip: float, nail_withdrawal: float) -> np.ndarray:
+    """(nJ, 6, 6): ``joint_springs`` of each of ``joints``, all at once."""
+    frames = np.array([joint.frame for joint in joints], dtype=float).reshape(-1, 3, 3)
+    n = np.array([joint.nails for joint in joints], dtype=float)
+    spread = nail_row_spread(np.array([joint.length for joint in joints], dtype=float), n)
+    half = 0.5 * np.array([joint.edge_thickness for joint in joints], dtype=float)
+    translation = np.column_stack([n * nail_slip, n * nail_slip, n * nail_withdrawal])
+    rotation = np.column_stack([nail_withdrawal * spread, n * nail_withdrawal * half * half,
+                                nail_slip * spread])
+    W = np.zeros((len(n), 6, 6))
+    transposed = np.transpose(frames, (0, 2, 1))
+    W[:, :3, :3] = (frames * translation[:, None, :]) @ transposed
+    W[:, 3:, 3:] = (frames * rotation[:, None, :]) @ transposed
     return W
 
 

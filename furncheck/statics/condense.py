@@ -96,6 +96,7 @@ class _PlankCondensation(_Condensed):
 
     factor: np.ndarray | None = None    # Cholesky factor of K_ii (the coupling is K_ig, dense)
     model: StaticsModel | None = None    # its joint blocks apply G, G^T and W
+    lu: object = None                    # instead of ``factor``: SuperLU of a sparse K_ii
 
     def split(self, rhs: np.ndarray):
         """(the part of the solution x_g does not change, f_g - K_gi y) for a right-hand
@@ -105,9 +106,15 @@ class _PlankCondensation(_Condensed):
         f = rhs[:n]
         if np.any(r_h):
             f = f + self.model.reactions(self.model.joint_wrench(r_h))
-        inner = _cholesky_solve(self.factor, f[self.inner]) if len(self.inner) else \
+        inner = self._inner_solve(f[self.inner]) if len(self.inner) else \
             np.zeros((0,) + rhs.shape[1:])
         return (inner, r_h), f[self.ground] - self.coupling.T @ inner
+
+    def _inner_solve(self, rhs: np.ndarray) -> np.ndarray:
+        """K_ii^-1 rhs, by the dense Cholesky factor or the sparse LU."""
+        if self.lu is not None:
+            return self.lu.solve(np.ascontiguousarray(rhs))
+        return _cholesky_solve(self.factor, rhs)
 
     def expand(self, inner_part, ground: np.ndarray) -> np.ndarray:
         """[q; h] from x_g.  The wrenches are taken as W (G [0; y] - r_h) + W G [x_g; -X x_g]
@@ -170,6 +177,34 @@ def _condense_planks(model: StaticsModel, ground: np.ndarray,
                               plank_offsets, n + m, factor=factor, model=model)
 
 
+def _condense_beams(model: StaticsModel, ground: np.ndarray,
+                    contact_block: np.ndarray, plank_offsets: np.ndarray):
+    """``_PlankCondensation`` of an elastic model too large for dense matrices: the joints
+    eliminated as in ``_condense_planks``, K = K_b + G^T W G sparse (symmetric positive
+    definite on the nodes that are not grounded), K_ii factored by one sparse LU (half the
+    unknowns of the mixed system, and no indefinite joint rows to pivot on); None if K_ii
+    is singular."""
+    n, m = model.n_dof, 6 * len(model.joints)
+    G = model.G
+    W = sp.block_diag(list(model.joint_stiffness), format="csr") if len(model.joints) \
+        else sp.csr_matrix((0, 0))
+    K = (model.beam_stiffness + (G.T @ W @ G)).tocsc()
+    inner = _others(n, ground)
+    coupling_sparse = K[inner][:, ground]
+    coupling = coupling_sparse.toarray()
+    reduced = np.zeros((len(inner), len(ground)))
+    lu = None
+    if len(inner):
+        lu = _factor(K[inner][:, inner].tocsc(), coupling.sum(axis=1))
+        if lu is None:
+            return None
+        if len(ground):
+            reduced = lu.solve(coupling)
+    schur = K[ground][:, ground].toarray() - coupling.T @ reduced
+    return _PlankCondensation(ground, inner, coupling, reduced, schur, contact_block,
+                              plank_offsets, n + m, model=model, lu=lu)
+
+
 def _condense(model: StaticsModel) -> _Condensed | None:
     """Build the condensation; None if the contact-free part is singular (a plank that
     is neither grounded nor jointed to a grounded plank cannot be held).  Designs of up
@@ -181,6 +216,8 @@ def _condense(model: StaticsModel) -> _Condensed | None:
     contact_block, plank_offsets = contact_block.astype(int), 6 * np.arange(len(grounded))
     if n <= tol.DENSE_PLANKS_MAX:
         return _condense_planks(model, ground, contact_block, plank_offsets)
+    if model.beam_stiffness is not None:
+        return _condense_beams(model, ground, contact_block, plank_offsets)
     inner = _others(n + m, ground)
     ni = len(inner)
     order = np.concatenate([inner, ground])

@@ -29,7 +29,7 @@ from furncheck.statics.beams import (
     beam_frame,
     beam_length_width,
     beam_stiffness_local,
-    joint_springs,
+    nail_row_springs,
     uniform_load_local,
 )
 from furncheck.statics.model import (
@@ -98,11 +98,11 @@ def _plank_nodes(k: int, half: float, attachments: list[tuple[float, tuple]]) ->
             groups[-1][2].append(s)
         else:
             groups.append([s, [key], [s]])
-    nodes = [(float(np.mean(positions)), tuple(keys)) for _, keys, positions in groups]
-    placed = np.array([s for s, _ in nodes])
+    nodes = [(sum(positions) / len(positions), tuple(keys)) for _, keys, positions in groups]
+    placed = [s for s, _ in nodes]
     for i in range(1, tol.BEAM_SEGMENTS):
         s = -half + i * step
-        if np.abs(placed - s).min() > 0.25 * step:
+        if min(abs(p - s) for p in placed) > 0.25 * step:
             nodes.append((s, (("grid", k, i / tol.BEAM_SEGMENTS),)))
     return [(k, *origin) for _, origin in sorted(nodes, key=lambda item: item[0])]
 
@@ -148,27 +148,33 @@ def build_elastic_model(design: Design, geometry: Geometry,
     halves = np.array([0.5 * beam_length_width(p, c)[0]
                        for p, c in zip(plank_list, crosswise)])
 
-    def along(k: int, point) -> float:
-        return float((np.asarray(point, dtype=float) - plank_list[k].center_array)
-                     @ frames[k][:, 0])
-
-    position: dict[tuple, float] = {}      # attachment key -> s along its plank
-    owner_of: dict[tuple, int] = {}
+    keys: list[tuple] = []              # what is attached where: its key,
+    owners: list[int] = []              # its local plank
+    points: list = []                   # and its point
     for row, j in enumerate(joints):
         joint = geometry.joints[j]
         for side, plank_id in enumerate(joint.planks):
-            k = local[design.plank_index[plank_id]]
-            position[("joint", row, side)], owner_of[("joint", row, side)] = \
-                along(k, joint.point), k
+            keys.append(("joint", row, side))
+            owners.append(local[design.plank_index[plank_id]])
+            points.append(joint.point)
     for row, c in enumerate(contacts):
-        k = local[design.plank_index[geometry.contacts[c].plank]]
-        position[("contact", row)], owner_of[("contact", row)] = \
-            along(k, geometry.contacts[c].point), k
+        keys.append(("contact", row))
+        owners.append(local[design.plank_index[geometry.contacts[c].plank]])
+        points.append(geometry.contacts[c].point)
     for ci, case in enumerate(design.load_cases):
         for li, load in enumerate(case.loads):
             k = local.get(design.plank_index[load.plank])
             if k is not None and load.point is not None and not load.spread:
-                position[("load", ci, li)], owner_of[("load", ci, li)] = along(k, load.point), k
+                keys.append(("load", ci, li))
+                owners.append(k)
+                points.append(load.point)
+    centres = np.array([p.center_array for p in plank_list], dtype=float).reshape(-1, 3)
+    axes = np.array([frame[:, 0] for frame in frames], dtype=float).reshape(-1, 3)
+    owner_array = np.array(owners, dtype=int)
+    along = ((np.array(points, dtype=float).reshape(-1, 3) - centres[owner_array])
+             * axes[owner_array]).sum(axis=1)
+    position = dict(zip(keys, along.tolist()))     # attachment key -> s along its plank
+    owner_of = dict(zip(keys, owners))
 
     if template is None:
         attachments: list[list] = [[] for _ in plank_list]
@@ -179,21 +185,23 @@ def build_elastic_model(design: Design, geometry: Geometry,
     else:
         origins = list(template.beams.origins)
 
+    half_of = halves.tolist()
+
     def place(key: tuple) -> float:
         if key[0] == "end":
-            return key[2] * float(halves[key[1]])
+            return key[2] * half_of[key[1]]
         if key[0] == "centre":
             return 0.0
         if key[0] == "grid":
-            return (2.0 * key[2] - 1.0) * float(halves[key[1]])
-        return min(max(position[key], -halves[owner_of[key]]), halves[owner_of[key]])
+            return (2.0 * key[2] - 1.0) * half_of[key[1]]
+        half = half_of[owner_of[key]]
+        return min(max(position[key], -half), half)
 
     node_plank = np.array([origin[0] for origin in origins], dtype=int)
-    node_s = np.array([float(np.mean([place(key) for key in origin[1:]]))
-                       for origin in origins])
+    node_s = np.array([sum(place(key) for key in origin[1:]) / (len(origin) - 1)
+                       for origin in origins], dtype=float)
     node_of = {key: node for node, origin in enumerate(origins) for key in origin[1:]}
-    node_points = np.array([plank_list[k].center_array + s * frames[k][:, 0]
-                            for k, s in zip(node_plank, node_s)]).reshape(-1, 3)
+    node_points = (centres[node_plank] + node_s[:, None] * axes[node_plank]).reshape(-1, 3)
     beams = _beams(plank_list, frames, node_plank, node_s, halves, material, tuple(origins),
                    crosswise)
 
@@ -201,9 +209,8 @@ def build_elastic_model(design: Design, geometry: Geometry,
                             for row in range(len(joints))], dtype=int).reshape(-1, 2)
     points = np.array([geometry.joints[j].point for j in joints], dtype=float).reshape(-1, 3)
     joint_blocks = joint_deviation_blocks(points, node_points[joint_nodes])
-    stiffness = np.array([joint_springs(geometry.joints[j], material.nail_slip,
-                                        material.nail_withdrawal) for j in joints],
-                         dtype=float).reshape(-1, 6, 6)
+    stiffness = nail_row_springs([geometry.joints[j] for j in joints], material.nail_slip,
+                                 material.nail_withdrawal)
 
     owner = np.array([owner_of[("contact", row)] for row in range(len(contacts))], dtype=int)
     contact_points = np.array([geometry.contacts[c].point for c in contacts],
