@@ -4,6 +4,11 @@
 nodes too, ``_profile``) from the line through its outermost carrying supports or, beyond
 them, from the tangent at the support (``_sag``), and the largest bending plus axial
 stress at its nodes.
+
+Every step works on all nodes, elements and sample points of the model at once; the
+per-plank results are reductions over them (``np.maximum.at`` by plank).  What depends on
+the model alone (the beam axes at each node, the sections, the joints that carry a plank)
+is read once per model (``_layout``, kept in ``model.plank_cache``).
 """
 
 from __future__ import annotations
@@ -34,45 +39,88 @@ class PlankStatics:
     stress: np.ndarray
 
 
+@dataclass(frozen=True)
+class _Layout:
+    """The load-independent facts ``plank_results`` reads, once per model.
+
+    node_frame : (nN, 3, 3) the beam axes e1, e2, e3 (columns, world) of each node's plank
+    inertia    : (nE, 2) m^4, I_3 and I_2 of each element: bending along e2 and along e3
+    area       : (nE,) m^2, b t
+    bending, in_plane : (nE,) m^3, the section moduli b t^2 / 6 and t b^2 / 6
+    joint_supports : (nS,) nodes where a joint carries its plank (``_carrying_neighbours``)
+    measured   : (nP,) bool, the planks whose sag is read (not lying on the floor)
+    """
+
+    node_frame: np.ndarray
+    inertia: np.ndarray
+    area: np.ndarray
+    bending: np.ndarray
+    in_plane: np.ndarray
+    joint_supports: np.ndarray
+    measured: np.ndarray
+
+
 def plank_results(model: StaticsModel, case: LoadCase, q: np.ndarray,
                   holding: np.ndarray | None = None) -> PlankStatics:
     """Sag, span and stress of every plank for node displacements ``q`` (6 nN,) of the
     case; ``holding`` (nK,) bool: the contacts that carry (all when None)."""
-    beams = model.beams
-    n_planks = len(model.planks)
-    T = beams.transform()
-    u = q.reshape(-1, 6)[beams.nodes].reshape(-1, 12)
-    local = np.einsum("eab,eb->ea", T, u)
+    layout = _layout(model)
+    displacement = q.reshape(-1, 6)
     line_loads = case_line_loads(model, case)
-    forces = np.einsum("eab,eb->ea", beams.local_stiffness, local) \
-        - _element_loads_local(beams, line_loads)
-    bending = beams.width * beams.thickness ** 2 / 6.0
-    in_plane = beams.thickness * beams.width ** 2 / 6.0
-    area = beams.width * beams.thickness
-    ends = [np.abs(forces[:, 4 + 6 * end]) / bending + np.abs(forces[:, 5 + 6 * end]) / in_plane
-            + np.abs(forces[:, 6 * end]) / area for end in (0, 1)]
-    element_stress = np.maximum(*ends)
-    stress = np.zeros(n_planks)
-    np.maximum.at(stress, beams.plank, element_stress)
+    stress = _stress(model, layout, displacement, line_loads)
+    w, slope = _transverse(displacement, layout.node_frame)
+    s, deflection, sample_plank = _profile(model, layout, w, slope, line_loads)
+    low, high = _outermost_supports(model, layout, holding)
+    sag, span = _sag(model, s, deflection, sample_plank, w, slope, low, high)
+    return PlankStatics(sag, span, stress)
 
-    supports: list[list[int]] = [[] for _ in range(n_planks)]
+
+def _layout(model: StaticsModel) -> _Layout:
+    """The model's ``_Layout``, built on first use and kept in ``model.plank_cache``."""
+    cached = model.plank_cache.get("layout")
+    if cached is not None:
+        return cached
+    beams = model.beams
+    frames = np.array([beam_frame(model.design.planks[i], beams.crosswise[k])
+                       for k, i in enumerate(model.planks)]).reshape(-1, 3, 3)
+    section = section_properties(beams.width, beams.thickness)
     carried_by = _carrying_neighbours(model)
+    joint_supports = []
     for nodes in model.joint_nodes:
         a, b = (int(model.node_plank[node]) for node in nodes)
         for node, plank, other in ((nodes[0], a, b), (nodes[1], b, a)):
             if other in carried_by[plank]:
-                supports[plank].append(int(node))
-    carrying = np.ones(len(model.contacts), dtype=bool) if holding is None else holding
-    for node, carries in zip(model.contact_node, carrying):
-        if carries:
-            supports[model.node_plank[node]].append(int(node))
-    sag, span = np.zeros(n_planks), np.zeros(n_planks)
-    displacement = q.reshape(-1, 6)
-    for k in range(n_planks):
-        if supports[k] and k not in _lying_on_floor(model):
-            sag[k], span[k] = _sag(model, k, sorted(set(supports[k])), displacement,
-                                   line_loads)
-    return PlankStatics(sag, span, stress)
+                joint_supports.append(int(node))
+    measured = np.ones(len(model.planks), dtype=bool)
+    measured[sorted(_lying_on_floor(model))] = False
+    layout = _Layout(node_frame=frames[model.node_plank],
+                     inertia=np.column_stack([section["I3"], section["I2"]]),
+                     area=section["A"],
+                     bending=beams.width * beams.thickness ** 2 / 6.0,
+                     in_plane=beams.thickness * beams.width ** 2 / 6.0,
+                     joint_supports=np.array(joint_supports, dtype=int),
+                     measured=measured)
+    model.plank_cache["layout"] = layout
+    return layout
+
+
+def _stress(model: StaticsModel, layout: _Layout, displacement: np.ndarray,
+            line_loads: np.ndarray) -> np.ndarray:
+    """(nP,) Pa: each plank's largest |M_2| / (b t^2 / 6) + |M_3| / (t b^2 / 6) + |N| / (b t)
+    over its elements' ends, from the element end forces K_local T u - f_local (T u: each
+    end's displacement and rotation in the element's axes, R^T u; f_local: the consistent
+    loads of the element's own uniform load ``line_loads`` (nE, 3) N/m)."""
+    beams = model.beams
+    u = displacement[beams.nodes].reshape(-1, 4, 3)                   # u_a, theta_a, u_b, ...
+    local = (u @ beams.frames).reshape(-1, 12)                        # (R^T u)^T = u^T R
+    forces = np.einsum("eab,eb->ea", beams.local_stiffness, local) \
+        - _element_loads_local(beams, line_loads)
+    ends = [np.abs(forces[:, 4 + 6 * end]) / layout.bending
+            + np.abs(forces[:, 5 + 6 * end]) / layout.in_plane
+            + np.abs(forces[:, 6 * end]) / layout.area for end in (0, 1)]
+    stress = np.zeros(len(model.planks))
+    np.maximum.at(stress, beams.plank, np.maximum(*ends))
+    return stress
 
 
 def _carrying_neighbours(model: StaticsModel) -> list[set[int]]:
@@ -121,80 +169,126 @@ def _lying_on_floor(model: StaticsModel) -> set[int]:
     return lying
 
 
-def _transverse(displacement: np.ndarray, node: int,
-                frame: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(w, w') at a node: its deflection across the beam axis (2,) m, along e2 and e3, and
-    the axis's slope there (2,), du2/ds = theta . e3 and du3/ds = -theta . e2."""
-    rotation = displacement[node, 3:]
-    return (displacement[node, :3] @ frame[:, 1:],
-            np.array([rotation @ frame[:, 2], -(rotation @ frame[:, 1])]))
+def _transverse(displacement: np.ndarray,
+                node_frame: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(w, w') at every node: its deflection across its beam's axis (2, nN) m, along e2 (row
+    0) and e3 (row 1), and the axis's slope there (2, nN), du2/ds = theta . e3 and du3/ds =
+    -theta . e2 (``displacement`` (nN, 6): u, theta per node; ``node_frame`` (nN, 3, 3):
+    e1, e2, e3)."""
+    across = node_frame[:, :, 1:]
+    w = np.einsum("ni,nij->jn", displacement[:, :3], across)
+    turn = np.einsum("ni,nij->jn", displacement[:, 3:], across)       # theta . e2, theta . e3
+    return w, np.stack([turn[1], -turn[0]])
 
 
-def _profile(model: StaticsModel, k: int, displacement: np.ndarray, line_loads: np.ndarray,
-             frame: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(s, w): positions along local plank k's axis (m; ``frame``: its beam axes), at its
-    nodes and SAG_SAMPLES points inside each element, and the transverse deflection there
-    ((m, 2) m, along e2 and e3): between nodes the cubic of the nodal deflections and
-    slopes plus the deflection of the element's own uniform load, q L^4 xi^2 (1 - xi)^2 /
-    24 EI + q L^2 xi (1 - xi) / 2 k G A (exact for a slender element), so that a largest
-    sag between nodes is read."""
+def _profile(model: StaticsModel, layout: _Layout, w: np.ndarray, slope: np.ndarray,
+             line_loads: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(s, deflection, plank) of the points where the sag is read: every node and
+    SAG_SAMPLES points inside each element, nX = nN + SAG_SAMPLES nE in all: s (nX,) m
+    along its plank's axis, the transverse deflection (2, nX) m along e2 and e3, and the
+    local plank of each point (nX,).
+
+    Between the nodes a, b (``w``, ``slope`` (2, nN): ``_transverse``) of an element of
+    length L, at xi = (s - s_a) / L: the cubic of the nodal deflections and slopes,
+    h1 w_a + L h2 w'_a + h3 w_b + L h4 w'_b (Hermite), plus the deflection of the
+    element's own uniform load q (along e2, e3), q L^4 xi^2 (1 - xi)^2 / 24 EI + q L^2 xi
+    (1 - xi) / 2 k G A (exact for a slender element), so that a largest sag between nodes
+    is read.  Inside the elements the arrays are (2, SAG_SAMPLES, nE): component, sample,
+    element."""
     beams = model.beams
-    elements = np.flatnonzero(beams.plank == k)
     material = model.design.material
-    xi = np.linspace(0.0, 1.0, tol.SAG_SAMPLES + 2)[:-1]                # node 1 and inside
+    a, b = beams.nodes[:, 0], beams.nodes[:, 1]
+    xi = np.linspace(0.0, 1.0, tol.SAG_SAMPLES + 2)[1:-1, None]   # (samples, 1), inside
     h1, h2 = 1 - 3 * xi ** 2 + 2 * xi ** 3, xi - 2 * xi ** 2 + xi ** 3
     h3, h4 = 3 * xi ** 2 - 2 * xi ** 3, -xi ** 2 + xi ** 3
-    positions, deflections = [], []
-    for e in elements:
-        a, b = beams.nodes[e]
-        L = beams.length[e]
-        (w_a, slope_a), (w_b, slope_b) = (_transverse(displacement, n, frame) for n in (a, b))
-        section = section_properties(beams.width[e], beams.thickness[e])
-        q = line_loads[e] @ frame[:, 1:]                                  # along e2, e3
-        inertia = np.array([section["I3"], section["I2"]])
-        bubble = (q[None, :] * L ** 4 * (xi ** 2 * (1 - xi) ** 2)[:, None]
-                  / (24.0 * material.elastic_modulus * inertia[None, :])
-                  + q[None, :] * L * L * (xi * (1 - xi))[:, None]
-                  / (2.0 * SHEAR_FACTOR * material.shear_modulus * section["A"]))
-        w = (h1[:, None] * w_a + L * h2[:, None] * slope_a + h3[:, None] * w_b
-             + L * h4[:, None] * slope_b + bubble)
-        positions.append(beams.node_s[a] + xi * L)
-        deflections.append(w)
-    last = beams.nodes[elements[-1], 1]
-    positions.append(np.array([beams.node_s[last]]))
-    deflections.append(_transverse(displacement, last, frame)[0][None, :])
-    return np.concatenate(positions), np.vstack(deflections)
+    L = beams.length                                                    # (nE,)
+    q = np.einsum("ei,eij->je", line_loads, beams.frames[:, :, 1:])[:, None, :]  # e2, e3
+    inertia, area = layout.inertia.T[:, None, :], layout.area           # (2, 1, nE), (nE,)
+    bubble = (q * L ** 4 * (xi ** 2 * (1 - xi) ** 2) / (24.0 * material.elastic_modulus * inertia)
+              + q * L * L * (xi * (1 - xi))
+              / (2.0 * SHEAR_FACTOR * material.shear_modulus * area))
+    w_a, w_b = (np.take(w, nodes, axis=1)[:, None, :] for nodes in (a, b))
+    slope_a, slope_b = (np.take(slope, nodes, axis=1)[:, None, :] for nodes in (a, b))
+    inside = h1 * w_a + L * h2 * slope_a + h3 * w_b + L * h4 * slope_b + bubble
+    s_inside = beams.node_s[a] + xi * L                                 # (samples, nE)
+    return (np.concatenate([beams.node_s, s_inside.ravel()]),
+            np.concatenate([w, inside.reshape(2, -1)], axis=1),
+            np.concatenate([model.node_plank, np.tile(beams.plank, len(xi))]))
 
 
-def _sag(model: StaticsModel, k: int, supports: list[int], displacement: np.ndarray,
-         line_loads: np.ndarray) -> tuple[float, float]:
-    """(sag, span) of local plank k (contract 3a) from its deflected axis (``_profile``):
-    between its outermost supports, the largest deviation from the straight line through
-    them (span: their distance); beyond them, each overhang's largest deviation from the
-    tangent at its support (span: twice the overhang); the one nearest its limit (the
-    largest sag / span) is the plank's.  Held at one point, only the overhangs count."""
+def _outermost_supports(model: StaticsModel, layout: _Layout,
+                        holding: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
+    """(low, high) per local plank (nP,) int: its carrying support nearest its -e1 end and
+    nearest its +e1 end (nodes where a joint carries it, ``_carrying_neighbours``, or a
+    holding contact stands), -1 for a plank with none or lying on the floor."""
     beams = model.beams
-    frame = beam_frame(model.design.planks[model.planks[k]], beams.crosswise[k])
-    s, transverse = _profile(model, k, displacement, line_loads, frame)
-    positions = beams.node_s[supports]
-    low, high = supports[int(np.argmin(positions))], supports[int(np.argmax(positions))]
-    sa, sb = beams.node_s[low], beams.node_s[high]
-    reach = 1e-9 + 1e-9 * beams.plank_half[k]
-    measures = []                                   # (sag, span)
-    if sb - sa > tol.NODE_MERGE:
-        wa, wb = (_transverse(displacement, n, frame)[0] for n in (low, high))
-        inside = (s >= sa - reach) & (s <= sb + reach)
-        line = wa[None, :] + ((s[inside] - sa) / (sb - sa))[:, None] * (wb - wa)[None, :]
-        measures.append((float(np.linalg.norm(transverse[inside] - line, axis=1).max()),
-                         float(sb - sa)))
-    for root, outside, overhang in ((low, s < sa - reach, sa + beams.plank_half[k]),
-                                    (high, s > sb + reach, beams.plank_half[k] - sb)):
-        if not outside.any():
-            continue
-        w0, slope = _transverse(displacement, root, frame)
-        tangent = w0[None, :] + (s[outside] - beams.node_s[root])[:, None] * slope[None, :]
-        measures.append((float(np.linalg.norm(transverse[outside] - tangent, axis=1).max()),
-                         2.0 * float(overhang)))
-    if not measures:
-        return 0.0, 0.0
-    return max(measures, key=lambda m: m[0] / m[1] if m[1] > 0 else 0.0)
+    carrying = np.ones(len(model.contacts), dtype=bool) if holding is None \
+        else np.asarray(holding, dtype=bool)
+    supports = np.concatenate([layout.joint_supports, model.contact_node[carrying]])
+    plank = model.node_plank[supports]
+    order = np.lexsort((beams.node_s[supports], plank))      # by plank, then along it
+    supports, plank = supports[order], plank[order]
+    first = np.flatnonzero(np.diff(plank, prepend=-1) != 0)            # of each plank's run
+    last = np.flatnonzero(np.diff(plank, append=len(model.planks)) != 0)
+    low, high = np.full(len(model.planks), -1), np.full(len(model.planks), -1)
+    low[plank[first]], high[plank[last]] = supports[first], supports[last]
+    low[~layout.measured] = high[~layout.measured] = -1
+    return low, high
+
+
+def _sag(model: StaticsModel, s: np.ndarray, deflection: np.ndarray,
+         sample_plank: np.ndarray, w: np.ndarray, slope: np.ndarray, low: np.ndarray,
+         high: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(sag, span) (nP,) m of every plank (contract 3a) from its deflected axis (``s``,
+    ``deflection``, ``sample_plank``: ``_profile``) and its outermost supports ``low``,
+    ``high`` (``_outermost_supports``; ``w``, ``slope``: ``_transverse``): between them, the
+    largest deviation from the straight line through them (span: their distance); beyond
+    them, each overhang's largest deviation from the tangent at its support (span: twice
+    the overhang); the one nearest its limit (the largest sag / span) is the plank's.  Held
+    at one point, only the overhangs count; with no support, (0, 0)."""
+    beams = model.beams
+    half = beams.plank_half
+    supported = low >= 0
+    sa, sb = beams.node_s[low], beams.node_s[high]          # read only where supported
+    chord = supported & (sb - sa > tol.NODE_MERGE)
+    reach = 1e-9 + 1e-9 * half                  # a point at a support counts as between
+
+    # per sample point, its plank's supports: which part of the plank it lies in and the
+    # line (chord or tangent) its deviation is measured from
+    def at_points(values: np.ndarray) -> np.ndarray:
+        """(..., nX) each sample point's value of a per-plank array (..., nP)."""
+        return np.take(values, sample_plank, axis=-1)
+
+    s_low, s_high = at_points(sa), at_points(sb)
+    below, above = s_low - at_points(reach), s_high + at_points(reach)
+    between = at_points(chord) & (s >= below) & (s <= above)
+    beyond_low = at_points(supported) & (s < below)
+    beyond_high = at_points(supported) & (s > above)
+    w_low, w_high = at_points(np.take(w, low, axis=1)), at_points(np.take(w, high, axis=1))
+    line = w_low + ((s - s_low) / at_points(np.where(chord, sb - sa, 1.0))) * (w_high - w_low)
+    tangent_low = w_low + (s - s_low) * at_points(np.take(slope, low, axis=1))
+    tangent_high = w_high + (s - s_high) * at_points(np.take(slope, high, axis=1))
+
+    def largest(points: np.ndarray, reference: np.ndarray) -> np.ndarray:
+        """(nP,) each plank's largest |deflection - reference| over its sample points in
+        ``points`` (nX,) bool; -1 for a plank with none there."""
+        distance = np.linalg.norm(deflection - reference, axis=0)
+        result = np.full(len(half), -1.0)
+        np.maximum.at(result, sample_plank, np.where(points, distance, -1.0))
+        return result
+
+    # (nP, 3): between the supports, beyond the low one, beyond the high one
+    deviation = np.column_stack([largest(between, line), largest(beyond_low, tangent_low),
+                                 largest(beyond_high, tangent_high)])
+    spans = np.column_stack([sb - sa, 2.0 * (sa + half), 2.0 * (half - sb)])
+
+    # the measure nearest its limit: the largest sag / span (0 for no span; the first
+    # one on a tie), among those the plank has
+    present = deviation >= 0.0
+    ratio = np.where(present, 0.0, -np.inf)
+    positive = present & (spans > 0.0)
+    ratio[positive] = deviation[positive] / spans[positive]
+    rows, pick = np.arange(len(half)), np.argmax(ratio, axis=1)
+    chosen = present[rows, pick]
+    return (np.where(chosen, deviation[rows, pick], 0.0),
+            np.where(chosen, spans[rows, pick], 0.0))
