@@ -82,6 +82,44 @@ def uniform_load_local(length, load: np.ndarray) -> np.ndarray:
     return f[0] if np.ndim(length) == 0 else f
 
 
+def element_interior(length, bending_stiffness, shear_stiffness, ends: np.ndarray,
+                     load, xi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Deflection w and bending moment M inside Timoshenko elements, exactly, in one bending
+    plane: (n, m) each at the fractions ``xi`` (m,) of n elements of lengths L (n,),
+    E I (n,) N m^2, k G A (n,) N, with ``ends`` (n, 4) = (w_0, theta_0, w_L, theta_L) (m and
+    rad: theta the section's rotation, dw/ds where shear is negligible) and a uniform
+    load q (n,) N/m along +w.
+
+    With V = dM/ds, dV/ds = q, M = E I dtheta/ds and dw/ds = theta - V / k G A:
+
+        M(s) = M_0 + V_0 s + q s^2 / 2
+        w(s) = w_0 + theta_0 s + (M_0 s^2 / 2 + V_0 s^3 / 6 + q s^4 / 24) / E I
+               - (V_0 s + q s^2 / 2) / k G A
+
+    and M_0, V_0 follow from theta and w at s = L (two linear equations): the element's
+    deflection between its nodes and its moment, which can peak between them, for what its
+    nodes did and its own load."""
+    L = np.asarray(length, dtype=float)
+    EI = np.asarray(bending_stiffness, dtype=float)
+    kGA = np.asarray(shear_stiffness, dtype=float)
+    q = np.asarray(load, dtype=float)
+    w0, th0, wL, thL = (ends[:, i] for i in range(4))
+    # [L / EI, L^2 / 2 EI; L^2 / 2 EI, L^3 / 6 EI - L / kGA] [M_0, V_0] = [rotation, deflection]
+    rotation = thL - th0 - q * L ** 3 / (6.0 * EI)
+    deflection = wL - w0 - th0 * L - q * L ** 4 / (24.0 * EI) + q * L * L / (2.0 * kGA)
+    a, b, d = L / EI, L * L / (2.0 * EI), L ** 3 / (6.0 * EI) - L / kGA
+    determinant = a * d - b * b            # = -L^4 / 12 EI^2 - L^2 / EI kGA < 0
+    M0 = (d * rotation - b * deflection) / determinant
+    V0 = (a * deflection - b * rotation) / determinant
+    s = L[:, None] * np.asarray(xi, dtype=float)
+    M0, V0, q, EI, kGA = (v[:, None] for v in (M0, V0, q, EI, kGA))
+    moment = M0 + V0 * s + 0.5 * q * s * s
+    w = (w0[:, None] + th0[:, None] * s
+         + (0.5 * M0 * s * s + V0 * s ** 3 / 6.0 + q * s ** 4 / 24.0) / EI
+         - (V0 * s + 0.5 * q * s * s) / kGA)
+    return w, moment
+
+
 def nail_row_spread(length, nails):
     """m^2: S = sum y_i^2 = L^2 (n^2 - 1) / 12 n of a joint's n nails at y_i = (i + 1/2)
     L / n - L / 2 (contract section 3), for floats or arrays; a one-nail joint's spring

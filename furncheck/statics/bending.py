@@ -19,7 +19,12 @@ import numpy as np
 
 from furncheck import tolerances as tol
 from furncheck.design.model import LoadCase
-from furncheck.statics.beams import SHEAR_FACTOR, beam_frame, section_properties
+from furncheck.statics.beams import (
+    SHEAR_FACTOR,
+    beam_frame,
+    element_interior,
+    section_properties,
+)
 from furncheck.statics.elastic import _element_loads_local, case_line_loads
 from furncheck.statics.model import StaticsModel
 
@@ -67,8 +72,8 @@ def plank_results(model: StaticsModel, case: LoadCase, q: np.ndarray,
     layout = _layout(model)
     displacement = q.reshape(-1, 6)
     line_loads = case_line_loads(model, case)
-    stress = _stress(model, layout, displacement, line_loads)
     w, slope = _transverse(displacement, layout.node_frame)
+    stress = _stress(model, layout, displacement, w, slope, line_loads)
     s, deflection, sample_plank = _profile(model, layout, w, slope, line_loads)
     low, high = _outermost_supports(model, layout, holding)
     sag, span = _sag(model, s, deflection, sample_plank, w, slope, low, high)
@@ -104,22 +109,37 @@ def _layout(model: StaticsModel) -> _Layout:
     return layout
 
 
-def _stress(model: StaticsModel, layout: _Layout, displacement: np.ndarray,
-            line_loads: np.ndarray) -> np.ndarray:
+def _stress(model: StaticsModel, layout: _Layout, displacement: np.ndarray, w: np.ndarray,
+            slope: np.ndarray, line_loads: np.ndarray) -> np.ndarray:
     """(nP,) Pa: each plank's largest |M_2| / (b t^2 / 6) + |M_3| / (t b^2 / 6) + |N| / (b t)
-    over its elements' ends, from the element end forces K_local T u - f_local (T u: each
-    end's displacement and rotation in the element's axes, R^T u; f_local: the consistent
-    loads of the element's own uniform load ``line_loads`` (nE, 3) N/m)."""
+    along its elements: at their ends, SAG_SAMPLES points inside and wherever either
+    bending moment peaks inside (each moment is a parabola along an element under its own
+    uniform load, ``_interior``; the peak is its vertex).  The normal force N comes from
+    the element end forces K_local T u - f_local (T u: each end's displacement and
+    rotation in the element's axes, R^T u; f_local: the consistent loads of its own
+    uniform load ``line_loads`` (nE, 3) N/m), linear in between."""
     beams = model.beams
     u = displacement[beams.nodes].reshape(-1, 4, 3)                   # u_a, theta_a, u_b, ...
     local = (u @ beams.frames).reshape(-1, 12)                        # (R^T u)^T = u^T R
     forces = np.einsum("eab,eb->ea", beams.local_stiffness, local) \
         - _element_loads_local(beams, line_loads)
-    ends = [np.abs(forces[:, 4 + 6 * end]) / layout.bending
-            + np.abs(forces[:, 5 + 6 * end]) / layout.in_plane
-            + np.abs(forces[:, 6 * end]) / layout.area for end in (0, 1)]
+    # each plane's moment as M(xi) = c0 + c1 xi + c2 xi^2 from xi = 0, 1/2, 1
+    moment = _interior(model, layout, w, slope, line_loads, np.array([0.0, 0.5, 1.0]))[1]
+    c0 = moment[..., 0]
+    c1 = -3.0 * moment[..., 0] + 4.0 * moment[..., 1] - moment[..., 2]
+    c2 = 2.0 * moment[..., 0] - 4.0 * moment[..., 1] + 2.0 * moment[..., 2]   # (2, nE)
+    curved = np.abs(c2) > 1e-12 * (np.abs(c0) + np.abs(c1) + np.abs(c2)) + 1e-300
+    vertex = np.where(curved, -c1 / np.where(curved, 2.0 * c2, 1.0), 0.0)
+    xi = np.concatenate([np.broadcast_to(np.linspace(0.0, 1.0, tol.SAG_SAMPLES + 2),
+                                         (len(beams.plank), tol.SAG_SAMPLES + 2)),
+                         np.clip(vertex, 0.0, 1.0).T], axis=1)          # (nE, m)
+    moments = c0[:, :, None] + c1[:, :, None] * xi + c2[:, :, None] * xi * xi   # (2, nE, m)
+    normal = (1.0 - xi) * -forces[:, :1] + xi * forces[:, 6:7]          # tension > 0
+    along = (np.abs(moments[0]) / layout.in_plane[:, None]
+             + np.abs(moments[1]) / layout.bending[:, None]
+             + np.abs(normal) / layout.area[:, None])
     stress = np.zeros(len(model.planks))
-    np.maximum.at(stress, beams.plank, np.maximum(*ends))
+    np.maximum.at(stress, beams.plank, along.max(axis=1))
     return stress
 
 
@@ -188,32 +208,39 @@ def _profile(model: StaticsModel, layout: _Layout, w: np.ndarray, slope: np.ndar
     along its plank's axis, the transverse deflection (2, nX) m along e2 and e3, and the
     local plank of each point (nX,).
 
-    Between the nodes a, b (``w``, ``slope`` (2, nN): ``_transverse``) of an element of
-    length L, at xi = (s - s_a) / L: the cubic of the nodal deflections and slopes,
-    h1 w_a + L h2 w'_a + h3 w_b + L h4 w'_b (Hermite), plus the deflection of the
-    element's own uniform load q (along e2, e3), q L^4 xi^2 (1 - xi)^2 / 24 EI + q L^2 xi
-    (1 - xi) / 2 k G A (exact for a slender element), so that a largest sag between nodes
-    is read.  Inside the elements the arrays are (2, SAG_SAMPLES, nE): component, sample,
-    element."""
+    Inside an element the deflection in each bending plane is the Timoshenko beam's own
+    (``beams.element_interior``: exact for what its nodes did, ``w`` and ``slope`` (2, nN)
+    of ``_transverse``, and its own uniform load), so a largest sag between nodes is read
+    however long the element.  Inside the elements the arrays are (2, SAG_SAMPLES, nE):
+    component, sample, element."""
     beams = model.beams
-    material = model.design.material
-    a, b = beams.nodes[:, 0], beams.nodes[:, 1]
-    xi = np.linspace(0.0, 1.0, tol.SAG_SAMPLES + 2)[1:-1, None]   # (samples, 1), inside
-    h1, h2 = 1 - 3 * xi ** 2 + 2 * xi ** 3, xi - 2 * xi ** 2 + xi ** 3
-    h3, h4 = 3 * xi ** 2 - 2 * xi ** 3, -xi ** 2 + xi ** 3
-    L = beams.length                                                    # (nE,)
-    q = np.einsum("ei,eij->je", line_loads, beams.frames[:, :, 1:])[:, None, :]  # e2, e3
-    inertia, area = layout.inertia.T[:, None, :], layout.area           # (2, 1, nE), (nE,)
-    bubble = (q * L ** 4 * (xi ** 2 * (1 - xi) ** 2) / (24.0 * material.elastic_modulus * inertia)
-              + q * L * L * (xi * (1 - xi))
-              / (2.0 * SHEAR_FACTOR * material.shear_modulus * area))
-    w_a, w_b = (np.take(w, nodes, axis=1)[:, None, :] for nodes in (a, b))
-    slope_a, slope_b = (np.take(slope, nodes, axis=1)[:, None, :] for nodes in (a, b))
-    inside = h1 * w_a + L * h2 * slope_a + h3 * w_b + L * h4 * slope_b + bubble
-    s_inside = beams.node_s[a] + xi * L                                 # (samples, nE)
+    a = beams.nodes[:, 0]
+    xi = np.linspace(0.0, 1.0, tol.SAG_SAMPLES + 2)[1:-1]
+    inside = _interior(model, layout, w, slope, line_loads, xi)[0]      # (2, nE, samples)
+    inside = np.transpose(inside, (0, 2, 1))                            # (2, samples, nE)
+    s_inside = beams.node_s[a] + xi[:, None] * beams.length             # (samples, nE)
     return (np.concatenate([beams.node_s, s_inside.ravel()]),
             np.concatenate([w, inside.reshape(2, -1)], axis=1),
             np.concatenate([model.node_plank, np.tile(beams.plank, len(xi))]))
+
+
+def _interior(model: StaticsModel, layout: _Layout, w: np.ndarray, slope: np.ndarray,
+              line_loads: np.ndarray, xi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(deflection, moment), each (2, nE, m): in both bending planes (along e2: about e3,
+    in the plank's plane; along e3: about e2, the sag of a shelf), at the fractions ``xi``
+    (nE, m) or (m,) of each element, by ``element_interior`` from its nodes' deflections
+    and slopes (``_transverse``) and its own uniform load ``line_loads`` (nE, 3) N/m."""
+    beams = model.beams
+    material = model.design.material
+    a, b = beams.nodes[:, 0], beams.nodes[:, 1]
+    q = np.einsum("ei,eij->je", line_loads, beams.frames[:, :, 1:])    # (2, nE): e2, e3
+    shear = SHEAR_FACTOR * material.shear_modulus * layout.area
+    parts = [element_interior(beams.length, material.elastic_modulus * layout.inertia[:, j],
+                              shear, np.column_stack([w[j, a], slope[j, a], w[j, b],
+                                                      slope[j, b]]),
+                              q[j], xi[j] if np.ndim(xi) == 3 else xi)
+             for j in (0, 1)]
+    return (np.stack([part[0] for part in parts]), np.stack([part[1] for part in parts]))
 
 
 def _outermost_supports(model: StaticsModel, layout: _Layout,
