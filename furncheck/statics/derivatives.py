@@ -128,7 +128,7 @@ def _residual(model: StaticsModel, case, q: np.ndarray, h: np.ndarray,
     node_q = q.reshape(-1, 6)[model.contact_node]
     w = (model.contact_maps @ node_q[:, :, None])[:, :, 0]
     contact = np.transpose(model.contact_maps, (0, 2, 1)) @ (springs @ w[:, :, None])
-    top = model.beam_stiffness @ q + model.reactions(h) \
+    top = model.beam_forces(q) + model.reactions(h) \
         + block_sums(model.contact_node, contact[:, :, 0], model.n_nodes).ravel()
     compliance = (model.joint_compliance @ h.reshape(-1, 6, 1)).ravel()
     bottom = model.deviations(q) - compliance

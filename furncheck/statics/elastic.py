@@ -36,6 +36,7 @@ from furncheck.statics.model import (
     _SIX,
     StaticsModel,
     add_point_load,
+    block_sums,
     grounded_parts,
     joint_deviation_blocks,
     point_maps,
@@ -222,7 +223,7 @@ def build_elastic_model(design: Design, geometry: Geometry,
                   for li, load in enumerate(case.loads)
                   if (k := local.get(design.plank_index[load.plank])) is not None}
     component_of = {p: c for c, comp in enumerate(components) for p in comp}
-    return StaticsModel(
+    model = StaticsModel(
         design=design, geometry=geometry, planks=tuple(planks_used), joints=tuple(joints),
         contacts=tuple(contacts), node_plank=node_plank, node_points=node_points,
         joint_nodes=joint_nodes, joint_blocks=joint_blocks, joint_stiffness=stiffness,
@@ -231,10 +232,20 @@ def build_elastic_model(design: Design, geometry: Geometry,
         contact_component=np.array([component_of[p] for p in owner], dtype=int),
         components=components, friction=material.friction,
         contact_stiffness=tol.ELASTIC_CONTACT_STIFFNESS,
-        beam_stiffness=_assemble(beams, len(node_plank)), beams=beams,
+        beams=beams,
         nodal_weight=_nodal_loads(beams, _weights_per_length(design, plank_list, beams),
                                   len(node_plank)),
         load_nodes=load_nodes)
+    if template is not None:        # the same joints and contacts: the same topology
+        for key in TOPOLOGY_CACHE:
+            if key in template.plank_cache:
+                model.plank_cache[key] = template.plank_cache[key]
+    return model
+
+
+TOPOLOGY_CACHE = ("carrying", "lying")
+"""The entries of ``StaticsModel.plank_cache`` that depend on which planks are jointed and
+which contacts stand, not on where (``bending``): a model built on a template shares them."""
 
 
 def _beams(planks: list[Plank], frames: list[np.ndarray], node_plank: np.ndarray,
@@ -262,7 +273,7 @@ def _element_dofs(beams: Beams) -> np.ndarray:
     return (6 * beams.nodes[:, :, None] + _SIX[None, None, :]).reshape(-1, 12)
 
 
-def _assemble(beams: Beams, n_nodes: int) -> sp.csr_matrix:
+def assemble_beams(beams: Beams, n_nodes: int) -> sp.csr_matrix:
     """K_b = sum T^T K_local T over the elements, (6 nN, 6 nN) sparse."""
     T = beams.transform()
     world = np.transpose(T, (0, 2, 1)) @ beams.local_stiffness @ T
@@ -271,6 +282,15 @@ def _assemble(beams: Beams, n_nodes: int) -> sp.csr_matrix:
     cols = np.broadcast_to(dofs[:, None, :], world.shape).ravel()
     n = 6 * n_nodes
     return sp.csr_matrix((world.ravel(), (rows, cols)), shape=(n, n))
+
+
+def element_forces(beams: Beams, q: np.ndarray, n_nodes: int) -> np.ndarray:
+    """(6 nN,) K_b q without assembling K_b: each element's end forces K_local T u in its
+    axes, turned back to the world (T^T) and summed at its nodes."""
+    u = q.reshape(-1, 6)[beams.nodes].reshape(-1, 4, 3)               # u_a, theta_a, u_b, ...
+    local = np.einsum("eab,eb->ea", beams.local_stiffness, (u @ beams.frames).reshape(-1, 12))
+    world = local.reshape(-1, 4, 3) @ np.transpose(beams.frames, (0, 2, 1))
+    return block_sums(beams.nodes.ravel(), world.reshape(-1, 6), n_nodes).ravel()
 
 
 def _weights_per_length(design: Design, planks: list[Plank], beams: Beams) -> np.ndarray:

@@ -72,7 +72,6 @@ class StaticsModel:
     components: tuple[tuple[int, ...], ...]
     friction: float
     contact_stiffness: float = tol.CONTACT_STIFFNESS
-    beam_stiffness: sp.csr_matrix | None = None
     beams: object = None
     nodal_weight: np.ndarray | None = None
     load_nodes: dict | None = None     # (case name, load index) -> node (elastic model)
@@ -84,6 +83,24 @@ class StaticsModel:
     @property
     def n_nodes(self) -> int:
         return len(self.node_plank)
+
+    @cached_property
+    def beam_stiffness(self) -> sp.csr_matrix | None:
+        """(6 nN, 6 nN) sparse K_b, the beam elements' stiffness (None: rigid planks),
+        assembled on first use (``beam_forces`` needs no assembly)."""
+        if self.beams is None:
+            return None
+        from furncheck.statics.elastic import assemble_beams
+
+        return assemble_beams(self.beams, self.n_nodes)
+
+    def beam_forces(self, q: np.ndarray) -> np.ndarray:
+        """(6 nN,) K_b q element by element (zero for rigid planks)."""
+        if self.beams is None:
+            return np.zeros(self.n_dof)
+        from furncheck.statics.elastic import element_forces
+
+        return element_forces(self.beams, q, self.n_nodes)
 
     @cached_property
     def component_nodes(self) -> tuple[tuple[int, ...], ...]:

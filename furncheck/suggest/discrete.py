@@ -22,7 +22,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from furncheck.check import check_design
+from furncheck.check import check_design, is_valid
 from furncheck.design.model import Design, JointSpec, Plank
 from furncheck.dofs import euler_degrees
 from furncheck.geometry import Geometry, analyze, interpenetrations
@@ -174,8 +174,9 @@ def _checked(design: Design, geometry: Geometry, plank: Plank,
         return None
     if len(after.joints) != len(geometry.joints) + len(ends) or interpenetrations(edited):
         return None
-    report = check_design(edited, after)
-    return (edited, report) if report.valid else None
+    if not is_valid(edited, after):      # stops at the first case that fails
+        return None
+    return edited, check_design(edited, after)
 """The violations a support plank can repair, and what it restores."""
 
 
