@@ -74,8 +74,9 @@ def test_the_program_path_runs_for_it():
     model = build_model(design, analyze(design))
     f = external_forces(model, design.load_cases[0])
     solver = contacts_module._ActiveSet(model, f, contacts_module._force_scale(model, f))
-    status, solution = solver.normal_phase(np.zeros(len(model.contacts), dtype=int), False)
-    assert not solver.within_cones(solution)
+    status, solution, settled = solver.normal_phase(np.zeros(len(model.contacts), dtype=int),
+                                                    False)
+    assert settled and not solver.within_cones(solution)
     assert solver.friction_phase(status, solution) is None
     assert feasibility.cone_solution(model, f).exists
 

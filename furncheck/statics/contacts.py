@@ -51,11 +51,23 @@ def solve_case(model: StaticsModel, f: np.ndarray,
         return CaseStatics("stable", np.zeros((0, 6)), np.zeros((0, 3)))
     solver = _ActiveSet(model, f, _force_scale(model, f))
     all_stick = np.full(len(model.contacts), STICK)
-    normal = None
+    attempts = [(all_stick, False), (all_stick, True)]
     if start is not None and len(start) == len(all_stick) and not start.all():
-        normal = solver.normal_phase(np.where(start, STICK, LIFT), one_at_a_time=False)
-    normal = normal or solver.normal_phase(all_stick, one_at_a_time=False) \
-        or solver.normal_phase(all_stick, one_at_a_time=True)
+        attempts.insert(0, (np.where(start, STICK, LIFT), False))
+    normal = None
+    for initial, one_at_a_time in attempts:
+        found = solver.normal_phase(initial, one_at_a_time)
+        if found is None:
+            continue
+        status, solution, settled = found
+        if settled:
+            normal = status, solution
+            break
+        # the statuses cycle: contacts that pull while their anchors hold them sideways
+        # and sink once lifted; with friction capped the friction phase may settle them
+        frictional = solver.friction_phase(status, solution)
+        if frictional is not None:
+            return solver.stable(frictional[1], frictional[0])
     if normal is None:
         feasible = unilateral_feasible(model, f)
         if not feasible.exists:
@@ -99,24 +111,29 @@ class _ActiveSet:
 
     # -- phases --------------------------------------------------------------------------------
     def normal_phase(self, status: np.ndarray, one_at_a_time: bool):
-        """Lift contacts that pull, re-seat those that sink, friction unlimited.
+        """Lift contacts that pull, re-seat those that sink, friction unlimited:
+        (statuses, solution, settled), settled False when the statuses came back to ones
+        already tried (the last iterate is returned: with friction capped, the friction
+        phase may still settle it); None when a solve fails or the iterations run out.
 
         Lifting every pulling contact at once is fast; lifting only the one that pulls
         hardest is the slower, surer fallback.
         """
         status = status.copy()
         seen = set()
+        solved, solution = status, None
         for _ in range(tol.CONTACT_ITERATIONS):
             key = status.tobytes()
             if key in seen:
-                return None
+                return solved, solution, False
             seen.add(key)
             solution = self.solve(status)
             if solution is None:
                 return None
+            solved = status.copy()
             if not self._update_normals(solution.contact_forces,
                                         solution.contact_displacements, status, one_at_a_time):
-                return status, solution
+                return status, solution, True
         return None
 
     def friction_phase(self, status: np.ndarray, start: _Solution):
