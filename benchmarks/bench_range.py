@@ -1,8 +1,9 @@
 """Benchmark: `range` for every DOF of catalog designs, in-process.
 
-Prints, per design: planks, DOFs, DOFs that can move, full-check evaluations, total time
-and time per movable DOF.  The issue's target for the ~28-plank catalog design (all DOFs)
-is 1 s on the project's 2-core machine.
+Prints, per design and statics model (rigid and elastic, one row each, in the same run):
+planks, DOFs, DOFs that can move, full-check evaluations, total time and time per movable
+DOF.  The targets for the ~28-plank catalog design (all DOFs) on the project's 2-core
+machine: 1 s in the rigid model, 2 s in the elastic one.
 
     python benchmarks/bench_range.py [--jobs N] [DESIGN ...]   (default: a few catalog
                                                                 designs, one process)
@@ -20,6 +21,7 @@ from pathlib import Path
 
 import furncheck.cli  # noqa: F401  (first: one BLAS thread, as the command line runs)
 from furncheck.design import load_design
+from furncheck.design.model import with_model
 from furncheck.ranges import RangeFinder
 
 CATALOG = Path(__file__).resolve().parent.parent / "designs"
@@ -28,19 +30,20 @@ DEFAULT = ("shelf-cantilever.yaml", "stool.yaml", "table.yaml", "bookshelf-20.ya
 
 
 def main(paths: list[str], jobs: int = 1) -> None:
-    print("| design                  | planks | DOFs | movable | evaluations | time (s) |"
-          " ms per movable DOF |")
-    print("|-------------------------|-------:|-----:|--------:|------------:|---------:|"
-          "-------------------:|")
-    for path in paths:
-        design = load_design(path)
+    print("| design                  | model   | planks | DOFs | movable | evaluations |"
+          " time (s) | ms per movable DOF |")
+    print("|-------------------------|---------|-------:|-----:|--------:|------------:|"
+          "---------:|-------------------:|")
+    for path, model in ((path, model) for path in paths for model in ("rigid", "elastic")):
+        design = with_model(load_design(path), model)
         start = time.perf_counter()
         finder = RangeFinder(design)
         ranges = finder.ranges(jobs=jobs)
         seconds = time.perf_counter() - start
         movable = sum(r.valid is not None or (r.reason or "").startswith("the current")
                       for r in ranges)
-        print(f"| {Path(path).name:<23} | {len(design.planks):>6} | {len(ranges):>4} | "
+        print(f"| {Path(path).name:<23} | {model:<7} | {len(design.planks):>6} | "
+              f"{len(ranges):>4} | "
               f"{movable:>7} | {finder.evaluations:>11} | {seconds:>8.2f} | "
               f"{1000 * seconds / max(movable, 1):>18.0f} |")
 
