@@ -22,13 +22,19 @@ the old text instead of a quote; the headers found wrong this way (bench-long-le
 bookcase-sagging, bookshelf-20, chair-tilted, coffee-table-splayed, l-shelf-pushed,
 shelf-cantilever-overloaded) have been corrected and are quoted.
 
-Files without a ``model:`` key are run in the rigid model (the paper's, which their
-estimates assume), whatever the default is; ``model: elastic`` files in the elastic model.
+Each entry names its model: by default (``model=None``) files without a ``model:`` key
+are run in the rigid model (the paper's, which their rigid estimates assume), whatever the
+default is, and ``model: elastic`` files in the elastic model; the headers' "Elastic model"
+estimates (sag and stress of the planks that moved the catalog's verdicts, contract
+section 3a) are entries with ``model="elastic"``.  The rigid model's joint forces of the
+determinate designs hold in both (shelf-cantilever-overloaded is checked in both).
 Per-nail values follow the nail-group rule of contract section 3.  bench-long-leg and
 bookshelf-gap have geometric violations; their statics, reported for information, are
 checked all the same.  Estimates not asserted: side-table-hovering's (it floats: no
-statics), cabinet-28's "74 N each" at the shelf ends (the slats and dividers share the
-shelves statically indeterminately; the report gives 101 N at side_l/shelf_a1), the
+statics), cabinet-28's elastic plate estimate (it disagrees with the beam model: the known
+disagreement of test_catalog.py), cabinet-28's "74 N each" at the shelf ends (the slats
+and dividers share the shelves statically indeterminately; the report gives 101 N at
+side_l/shelf_a1), the
 bounds that are not the report's (bench's "fully fixed seat end", l-shelf-pushed's
 "F > 1 kN") and the verbal ones ("tiny", "a few newtons").
 """
@@ -68,11 +74,12 @@ def header(name: str) -> str:
 
 
 @cache
-def design_and_report(name: str):
-    """(design, report): rigid unless the file says ``model: elastic``."""
+def design_and_report(name: str, model: str | None = None):
+    """(design, report) in ``model``; None: rigid unless the file says ``model: elastic``."""
     design = load_design(str(CATALOG / f"{name}.yaml"))
-    text = (CATALOG / f"{name}.yaml").read_text(encoding="utf-8")
-    model = "elastic" if "\nmodel: elastic" in text else "rigid"
+    if model is None:
+        text = (CATALOG / f"{name}.yaml").read_text(encoding="utf-8")
+        model = "elastic" if "\nmodel: elastic" in text else "rigid"
     design = with_model(design, model)
     return design, check_design(design)
 
@@ -192,6 +199,7 @@ class Estimate:
     rel: float = REL
     abs: float = 0.0
     header_says: str | None = None      # a wrong header number: what it says (reported)
+    model: str | None = None            # None: the file's own model, rigid without one
 
 
 def tipping(design: str, case: str, edge_mm, inward, restoring: float, overturning: float,
@@ -481,6 +489,112 @@ ESTIMATES = [
     Estimate("table", "push", "top/panel joints' pull (N per nail)",
              joints_max({"top"}, {"leg_l", "leg_r"}, "pull"), 240.0, "240 N per nail (34 %)",
              kind="at most"),
+
+    # --- the elastic model (the default): the headers' "Elastic model" estimates ----------
+    # Sag brackets from the beam formulas quoted in each header: the lower end with fixed
+    # ends, the upper with pinned ends (own weight included); allowed = span / 400 (the
+    # report's sag_allowed; the verdict compares 1.5 x sag with it).
+    *(Estimate(name, case, f"{p} sag bracket (mm)", plank(p, "sag"), bracket, quote,
+               kind="between", model="elastic")
+      for name, case, p, bracket, quote in (
+          ("stool", "default", "seat", (1.24, 5.0), "P L^3 / 48 EI = 4.96 mm"),
+          ("stool-thick-seat", "default", "seat", (0.139, 0.556),
+           "0.556 mm with its own weight"),
+          ("table", "default", "top", (4.05, 16.5), "3.8 + 0.3 = 4.05 mm with fixed ends"),
+          ("table-slides", "default", "top", (4.05, 16.5),
+           "4.05 (fixed ends) to 16.5 mm (pinned)"),
+          ("bench", "default", "seat", (27.9, 172.4), "28 mm with fixed ends"),
+          ("bench-long-leg", "default", "seat", (4.2, 8.43),
+           "4.2 to 8.4 mm with its own weight"),
+          ("chair-upright", "default", "seat", (1.62, 6.5), "1.6 mm with fixed ends"),
+          ("chair-tilted", "default", "seat", (1.62, 6.5),
+           "1.6 (fixed ends) to 6.5 mm (pinned)"),
+          ("coffee-table-splayed", "default", "top", (2.52, 10.3),
+           "2.3 + 0.2 = 2.5 mm with fixed ones"),
+          ("magazine-rack", "hand", "handle", (2.60, 10.42), "2.6 mm with fixed ends"),
+          ("bookshelf-gap", "default", "bottom", (1.6, 6.48),
+           "1.6 (fixed ends) to 6.5 mm (pinned)"),
+          *(("bookshelf-20", "default", shelf, (1.227, 4.97), "1.23 mm, with fixed ends")
+            for shelf in sorted(SHELVES_HUNG)),
+          *(("bookshelf-18", "default", shelf, (0.146, 0.731), "0.15 mm with fixed ends")
+            for shelf in ("bottom", "middle", "top")))),
+    *(Estimate(name, case, f"{p} allowed sag (mm)", plank(p, "sag_allowed"), hand, quote,
+               rel=1e-3, model="elastic")
+      for name, case, p, hand, quote in (
+          ("stool", "default", "seat", 0.85, "L / 400 = 0.85 mm"),
+          ("stool-thick-seat", "default", "seat", 0.85, "340 / 400 = 0.85 mm"),
+          ("table", "default", "top", 2.15, "860 / 400 = 2.15 mm"),
+          ("bench", "default", "seat", 2.6, "1040 / 400 = 2.6 mm"),
+          ("bench-long-leg", "default", "seat", 2.6, "1040 / 400 = 2.6 mm"),
+          ("chair-upright", "default", "seat", 1.02, "408 / 400 = 1.02 mm"),
+          ("coffee-table-splayed", "default", "top", 1.97, "788.2 / 400 = 1.97 mm"),
+          ("magazine-rack", "hand", "handle", 0.97, "388 / 400 = 0.97 mm"),
+          ("bookshelf-20", "default", "shelf_a1", 1.455, "582 / 400 = 1.455 mm"),
+          ("shelf-cantilever", "default", "shelf", 1.5, "2 x 300 / 400 = 1.5 mm"),
+          ("shelf-cantilever", "default", "post", 4.0, "2 x 800 / 400 = 4 mm"),
+          ("shelf-cantilever-overloaded", "default", "shelf", 2.0, "2 x 400 / 400 = 2 mm"),
+          ("bookshelf-gap", "default", "shelf", 2.985, "2 x 597 / 400 = 2.99 mm"),
+          ("l-shelf-pushed", "default", "shelf0", 1.4377, "2 x 287.5 / 400 = 1.44 mm"),
+          ("bookshelf-18", "default", "middle", 1.25, "500 / 400 = 1.25 mm"),
+          ("chair-upright", "lean", "back", 2.25, "2 x 450 / 400 = 2.25 mm"))),
+    # cantilevers, from the tangent at the held end (contract 3a): P a^2 (3 L - a) / 6 EI
+    # + w L^4 / 8 EI, and the posts turned by the shelf's moment M at a above the base:
+    # M a^2 / 2 EI + M a (L - a) / EI.
+    *(Estimate(name, case, f"{p} sag (mm)", plank(p, "sag"), hand, quote, model="elastic")
+      for name, case, p, hand, quote in (
+          ("shelf-cantilever", "default", "shelf", 2.97 + 0.21, "2.97 + 0.21 = 3.2 mm"),
+          ("shelf-cantilever", "default", "post", 23.3 + 16.8, "23.3 + 16.8 = 40 mm"),
+          ("shelf-cantilever-overloaded", "default", "shelf", 30.66 + 0.65,
+           "30.7 + 0.7 = 31 mm"),
+          ("shelf-cantilever-overloaded", "default", "post", 61.5 + 44.3,
+           "61.5 + 44.3 = 106 mm"),
+          ("bookshelf-gap", "default", "shelf", 16.1 + 3.24, "16.1 + 3.2 = 19.4 mm"),
+          ("chair-upright", "lean", "back", 11.25, "= 11.3 mm from the tangent"),
+          ("chair-tilted", "lean", "back", 12.59 + 0.22, "= 12.6 mm, plus its own weight"),
+          ("chair-tilted", "paper", "back", 1.60 + 0.22, "1.6 + 0.2 = 1.8 mm"),
+          ("l-shelf-pushed", "default", "shelf0", 0.112, "w L^4 / 8 EI = 0.11 mm"))),
+    # bench: the seat's ends hold 57 % (panels bending, pinned at the foot) to 68 % (rigid
+    # panels) of a fixed end's moment through the nail rows' springs.
+    Estimate("bench", "default", "seat joints' pull (N per nail)",
+             joints_max({"seat"}, {"leg_l", "leg_r"}, "pull"), (830.0, 1000.0),
+             "= 830 to 1000 N per nail", kind="between", model="elastic"),
+    Estimate("bench", "three", "seat stress (N/mm^2)", plank("seat", "stress"),
+             (24.1, 26.9), "24.1 to 26.9 N/mm^2", kind="between", model="elastic"),
+    Estimate("magazine-rack", "hand", "handle stress bound (N/mm^2)",
+             plank("handle", "stress"), 14.9, "= 14.9 N/mm^2 < 22", kind="at most",
+             model="elastic"),
+    Estimate("magazine-rack", "hand", "end_l/handle pull bound (N per nail)",
+             joint("end_l", "handle", "pull"), 595.0, "595 N per nail < 700", kind="at most",
+             model="elastic"),
+    Estimate("stool-thick-seat", "default", "seat stress bound (N/mm^2)",
+             plank("seat", "stress"), 2.1, "= 2.1 N/mm^2", kind="at most", rel=0.0,
+             abs=0.01, model="elastic"),
+    Estimate("bookshelf-18", "default", "side_l sag bound (mm)", plank("side_l", "sag"),
+             0.74, "M L^2 / 8 EI = 0.74 mm", kind="at most", model="elastic"),
+    Estimate("bookshelf-18", "default", "shelf end joints' pull bound (N per nail)",
+             joints_max({"side_l", "side_r"}, {"bottom", "middle", "top"}, "pull"), 63.0,
+             "= 63 N per nail", kind="at most", model="elastic"),
+    # the determinate joints carry the same forces in both models (contract 3a)
+    Estimate("shelf-cantilever-overloaded", "default", "post/shelf pull (N per nail)",
+             joint("post", "shelf", "pull"), 1004.0, "= 1004 N per nail", model="elastic"),
+    Estimate("l-shelf-pushed", "default", "friction ratio", friction_ratio, 0.99,
+             "17.25 N > 17.1 N (99 %)", rel=0.01, model="elastic"),
+    Estimate("bench-tips", "default", "verdict", stability, "lift-off",
+             "Expected INVALID: lift-off", kind="is", model="elastic"),
+
+    # the new designs' rigid statics
+    Estimate("stool-thick-seat", "default", "self-weight (kg)", self_weight, 4.85,
+             "self-weight 4.85 kg"),
+    *(Estimate("stool-thick-seat", "default", f"seat/{leg} compression (N)",
+               joint("seat", leg, "fz"), (80 + 2.25) * G / 2, "(785 + 22) / 2 = 403 N")
+      for leg in ("leg_l", "leg_r")),
+    Estimate("stool-thick-seat", "perch", "seat/leg_l compression (N)",
+             joint("seat", "leg_l", "fz"), 57.0, "the left panel carries ~ 57 N"),
+    *(Estimate("bookshelf-18", "default", f"side_l/{shelf} shear (N per nail)",
+               joint("side_l", shelf, "shear"), 6.8, "6.8 N shear per nail")
+      for shelf in ("bottom", "middle", "top")),
+    *(Estimate("bookshelf-18", "default", f"{side} ground force (N)", ground_normal(side),
+               276.0, "3 x 81.9 + 29.8 = 276 N") for side in ("side_l", "side_r")),
 ]
 
 
@@ -494,7 +608,8 @@ def _leg_free_body_moment(design, case) -> float:
 
 
 def _id(estimate: Estimate) -> str:
-    return f"{estimate.design}:{estimate.case}:{estimate.what}"
+    model = f":{estimate.model}" if estimate.model else ""
+    return f"{estimate.design}:{estimate.case}:{estimate.what}{model}"
 
 
 @pytest.mark.parametrize("estimate", ESTIMATES, ids=_id)
@@ -502,7 +617,7 @@ def test_header_estimate(estimate: Estimate):
     """The report agrees with the header's hand estimate (see the module docstring)."""
     if estimate.quote is not None:
         assert estimate.quote in header(estimate.design), estimate.quote
-    design, report = design_and_report(estimate.design)
+    design, report = design_and_report(estimate.design, estimate.model)
     found = estimate.quantity(design, case_of(report, estimate.case))
     hand, kind = estimate.hand, estimate.kind
     where = f"{_id(estimate)}: report {found!r}, hand {hand!r} ({kind})"
