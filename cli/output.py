@@ -53,7 +53,8 @@ def write_output(document: str, output: str | None) -> None:
 MODEL_OPTION = click.option(
     "--model", type=click.Choice(["elastic", "rigid"]), default=None,
     help="Statics model, over the files' own 'model': elastic (planks bend: contract 3a) "
-         "or rigid (the paper's rigid planks).  [default: the file's]")
+         "or rigid (the paper's rigid planks).  [default: the file's 'model', elastic "
+         "for a file without one]")
 
 
 def load_or_fail(path: str, model: str | None = None):

@@ -17,9 +17,9 @@ DEFAULT_NAIL_SHEAR = 190.0       # N per nail
 DEFAULT_FRICTION = 0.5           # static Coulomb coefficient with the ground
 DEFAULT_SAFETY_FACTOR = 1.0
 DEFAULT_TOLERANCE = 0.0005       # m (0.5 mm)
-DEFAULT_MODEL = "rigid"
-"""The statics model of a file without ``model``.  The contract's default is 'elastic';
-it becomes the default once sensitivity, ranges and suggestions run on it (issue 13)."""
+DEFAULT_MODEL = "elastic"
+"""The statics model of a file without ``model`` and without ``--model`` (contract sections
+1 and 3): 'elastic', planks as beams; 'rigid' is the paper's model."""
 MODELS = ("elastic", "rigid")
 
 # elastic model (contract section 3a); sources in the README's "Material defaults"

@@ -117,6 +117,14 @@ def test_catalog_verdict(name: str, model: str) -> None:
     assert (report.valid, found) == (valid, set(kinds)), messages
 
 
+def test_the_default_model_is_elastic() -> None:
+    """Contract section 1: a file without ``model:`` is checked in the elastic model."""
+    from furncheck.design import load_design
+
+    assert "\nmodel:" not in (DESIGNS / "stool.yaml").read_text(encoding="utf-8")
+    assert load_design(str(DESIGNS / "stool.yaml")).model == "elastic"
+
+
 def test_every_design_has_an_expectation() -> None:
     """A design file added to designs/ without an expected verdict here fails."""
     files = design_files()

@@ -24,6 +24,12 @@ sensitivity (itself a central difference of the assembly over ``ASSEMBLY_STEP``)
 within the spread of the one-sided slopes around the central difference.  On these designs
 it does with a wide margin (closest: stool leg_l.ry, error 1e-5 against a spread of
 1.8e-3, both relative to the largest derivative).
+
+Models: every test names the model it runs in.  The step choice above was measured in the
+rigid model.  The elastic model's sensitivity disagrees with the central differences of its
+own full solve (and with the hand rates of the determinate cantilever, which the full
+solve meets): those cases are strict xfails (``ELASTIC_SENSITIVITY``), so they fail as soon
+as the elastic sensitivity agrees and the mark can go.
 """
 
 from __future__ import annotations
@@ -36,6 +42,7 @@ import range_designs as rd
 
 from furncheck.check import check_design
 from furncheck.design import load_design
+from furncheck.design.model import with_model
 from furncheck.dofs import Blocked, all_dofs, apply_dof, check_edit, parse_dof, structure
 from furncheck.geometry import analyze
 from furncheck.sensitivity import sensitivity
@@ -49,6 +56,15 @@ AGREEMENT = 1e-4    # relative to the DOF's largest derivative magnitude
 TINY = 1e-6         # derivatives below TINY x W per DOF unit are round-off
 KINK = 1e-3         # one-sided slopes differing by more than this (relative): no derivative
 ACTIVE = 1e-9       # a contact holds if its normal force exceeds ACTIVE x W
+
+ELASTIC_SENSITIVITY = pytest.mark.xfail(strict=True, reason=(
+    "the elastic model's sensitivity (statics/derivatives.py) disagrees with central "
+    "differences of its own full solve: table and stool by 3e-4 to 4e-3 of the DOF's "
+    "largest derivative (stool seat.length, leg_l.x and leg_r.x unequal in a symmetric "
+    "design), chair-upright seat.y by 0.55 (4.09 against 1.83, both one-sided slopes "
+    "1.83); the cantilever's dM/dL by 7e-5 to 3e-4 where the full solve meets the hand "
+    "rate to 1e-7.  This test never ran the elastic model before the default changed: it "
+    "ignored its 'model' parameter"))
 
 
 def forces(case) -> np.ndarray:
@@ -102,8 +118,9 @@ class Differences:
 @pytest.mark.parametrize("name, model", [
     ("shelf-cantilever", "rigid"), ("table", "rigid"), ("stool", "rigid"),
     ("chair-upright", "rigid"), ("bookshelf-20", "rigid"),
-    ("table", "elastic"), ("stool", "elastic"),
-    ("chair-upright", "elastic")])
+    pytest.param("table", "elastic", marks=ELASTIC_SENSITIVITY),
+    pytest.param("stool", "elastic", marks=ELASTIC_SENSITIVITY),
+    pytest.param("chair-upright", "elastic", marks=ELASTIC_SENSITIVITY)])
 def test_sensitivity_matches_finite_differences_of_the_full_solve(name, model):
     """For every DOF of the design's first stable case: blocked DOFs are exactly those
     apply_dof refuses; for the others, with the same joints, contacts and active contact set
@@ -112,8 +129,10 @@ def test_sensitivity_matches_finite_differences_of_the_full_solve(name, model):
     slopes (F(h) - F(0)) / h and (F(0) - F(-h)) / h differing by more than 1e-3 of the scale,
     module docstring) the allowance grows by half that difference: the sensitivity must lie
     within the one-sided slopes' spread around the central difference.  DOFs whose
-    derivatives are all below 1e-6 W per unit are round-off and skipped."""
-    design = load_design(str(DESIGNS / f"{name}.yaml"))
+    derivatives are all below 1e-6 W per unit are round-off and skipped.  The catalog
+    design in ``model`` (the rigid cases are the paper's model, the elastic ones the
+    default)."""
+    design = with_model(load_design(str(DESIGNS / f"{name}.yaml")), model)
     report = check_design(design)
     index = first_stable_case(report)
     case = report.cases[index]
@@ -166,8 +185,9 @@ def test_the_difference_step_is_in_the_flat_region():
     2.4e-4 for cap.length).  What differs at h is the solve's round-off, about 3e-9 N,
     eps x joint stiffness x the planks' 1e-3 m motion on their contact springs: measured
     1.4e-5 for cap.length through the sparse mixed system, 1.3e-5 through the plank
-    condensation that designs of up to 60 planks use."""
-    design = load_design(str(DESIGNS / "bookshelf-20.yaml"))
+    condensation that designs of up to 60 planks use.  Measured in the rigid model, whose
+    rigid cases of the test above use this step."""
+    design = with_model(load_design(str(DESIGNS / "bookshelf-20.yaml")), "rigid")
     frame = structure(design, analyze(design))
 
     def central(name, h):
@@ -187,7 +207,9 @@ def _joint_index(case, first: str, second: str) -> int:
     return next(k for k, j in enumerate(case.joints) if tuple(j.planks) == (first, second))
 
 
-def test_cantilever_moment_rate_by_hand():
+@pytest.mark.parametrize("model", [
+    "rigid", pytest.param("elastic", marks=ELASTIC_SENSITIVITY)])
+def test_cantilever_moment_rate_by_hand(model):
     """designs/shelf-cantilever.yaml, default case: m = 15 kg at x = 0 on the shelf that spans
     x -144..156 (L = 0.3 m) from the post face, so the load rides at f = 144 / 300 = 0.48.
     The shelf hangs on the post joint only, so the post's moment on the shelf about the
@@ -199,8 +221,9 @@ def test_cantilever_moment_rate_by_hand():
     The post/base joint (point x = -150, 6 mm behind the post face) carries the same loads
     with 6 mm more arm: dM_base/dL = m g f + rho t w g (L + 0.006) = 78.737 N m/m, and the
     ground's total vertical force grows by the shelf's weight per length, rho t w g =
-    26.487 N/m = 0.026487 N per mm."""
-    design = load_design(str(DESIGNS / "shelf-cantilever.yaml"))
+    26.487 N/m = 0.026487 N per mm.  Statics alone fixes these (the shelf and the post are a
+    tree on the base): the same in both models."""
+    design = with_model(load_design(str(DESIGNS / "shelf-cantilever.yaml")), model)
     case = check_design(design).cases[0]
     sens = sensitivity(design, [parse_dof(design, "shelf.length")], "default")
     rates = sens.joint_wrenches[0]
@@ -219,11 +242,14 @@ def test_cantilever_moment_rate_by_hand():
     assert sens.contact_forces[0][:, 2].sum() == pytest.approx(strip / 1000.0, rel=1e-5)
 
 
-def test_range_cantilever_moment_rate_by_hand():
+@pytest.mark.parametrize("model", [
+    "rigid", pytest.param("elastic", marks=ELASTIC_SENSITIVITY)])
+def test_range_cantilever_moment_rate_by_hand(model):
     """range_designs.cantilever (m = 10 kg riding at f = 0.75, shelf L = 0.3 m, 300 wide):
     dM/dL = m g f + rho t w g L = 73.575 + 26.487 x 0.3 = 81.521 N m/m; the nail pull
-    2 M / t / 15 then grows at 2 x 81.521 / 0.012 / 15 = 905.8 N per m (0.9058 N per mm)."""
-    design = rd.parse(rd.cantilever(mass=10.0, fraction=0.75))
+    2 M / t / 15 then grows at 2 x 81.521 / 0.012 / 15 = 905.8 N per m (0.9058 N per mm).
+    Determinate: the same in both models."""
+    design = with_model(rd.parse(rd.cantilever(mass=10.0, fraction=0.75)), model)
     case = check_design(design).cases[0]
     sens = sensitivity(design, [parse_dof(design, "shelf.length")])
     joint = _joint_index(case, "post", "shelf")

@@ -12,6 +12,7 @@ import pytest
 
 from furncheck.check import check_design
 from furncheck.design.load import load_design
+from furncheck.design.model import with_model
 from furncheck.design.write import write_design
 from furncheck.geometry import analyze
 
@@ -37,7 +38,10 @@ def test_plank_and_joint_counts(planks: int) -> None:
 
 @pytest.mark.parametrize("planks", SIZES)
 def test_exactly_one_non_durable_joint(planks: int) -> None:
-    report = check_design(table1_designs.table1_design(planks))
+    """In the paper's rigid model, whose Table 1 these designs re-create: one failing joint,
+    everything else well within capacity.  (In the elastic model, the default, their 12 mm
+    ledges, shelves and leaves also sag; the benchmark prints both.)"""
+    report = check_design(with_model(table1_designs.table1_design(planks), "rigid"))
     assert report.valid is False
     assert [v.kind for v in report.violations] == ["non-durable"]
     assert all(case.stable for case in report.cases)
