@@ -7,6 +7,8 @@ infinitesimal change).  Differentiating,
 
     dx/dg = A^-1 (db/dg - dA/dg x),
 
+with the contacts' law of the solved case (``statics.friction.ContactLaw``: a sticking
+contact a spring, a slipping one mu N against its slip, which stays slipping),
 so every DOF costs one more right-hand side for the factorization the solve already has
 (``statics.solve_system``).  dA/dg and db/dg come from central differences of the
 *assembly* (joint points and frames, contact points, load points, self-weight) of the
@@ -26,21 +28,37 @@ from furncheck.design.model import Design, LoadCase
 from furncheck.dofs import Blocked, Dof, OutOfReach, Structure, apply_dof, design_size, structure
 from furncheck.geometry import Contact, Geometry, Joint, analyze, follow_many
 from furncheck.statics import (
-    anchor_springs,
     build_model,
     external_forces,
     solve_load_case,
     solve_system,
 )
+from furncheck.statics.condense import solve_with_springs
 from furncheck.statics.derivatives import AssemblySide, assembly_differences
+from furncheck.statics.friction import ContactLaw
 
 ASSEMBLY_STEP = 1e-4
 """Step of the central difference of the assembly, as a fraction of the design's size
-(lengths) or in degrees (rotations).  Where the assembly is smooth this is exact to ~1e-8.
+(lengths) or in degrees (rotations), in the rigid model (ELASTIC_ASSEMBLY_STEP in the
+elastic one).  Where the assembly is smooth this is exact to ~1e-8.
 Where it has a kink -- a flush end face that a rotation tilts rests on one edge or the other
 depending on the sign of the turn -- the derivative is the mean of the two one-sided
 slopes; ranges do not rely on it beyond a first guess (every end is confirmed by the full
 check)."""
+
+
+ELASTIC_ASSEMBLY_STEP = 1e-7
+"""The same step in the elastic model.  Its assembly bends on the scale of its shortest
+beam elements (a joint half a thickness from a plank's end: element stiffness goes as
+1 / L^3), so the truncation of a central difference is about (h / L)^2: 1e-3 of the
+derivative at 1e-4 (table top.length), 1e-7 at 1e-7; round-off shows below 1e-9 (the
+contact springs' stiff terms cancel in b - A x)."""
+
+
+ELASTIC_ANGLE_STEP = 1e-5
+"""Degrees: the elastic model's step for rotations, moving a plank's far end by about as
+much as ELASTIC_ASSEMBLY_STEP moves a length (smaller turns are lost in the round-off of
+the rotated geometry)."""
 
 
 @dataclass(frozen=True)
@@ -93,10 +111,15 @@ class Linearization:
         if not self.bolted:
             self.holding = self.statics.holding
             self.state = self.statics.state
+            self.law = ContactLaw.of_solution(self.model, self.holding,
+                                              self._contact_displacements(),
+                                              self.statics.contact_forces)
         elif bolted and self.statics.joint_wrenches is not None and self.model.planks:
             self.holding = np.ones(len(self.model.contacts), dtype=bool)
             self.state = solve_system(self.model, self.holding,
                                       np.concatenate([f, np.zeros(self.model.G.shape[0])]))
+            self.law = ContactLaw(self.holding, np.zeros_like(self.holding),
+                                  self.model.contact_stiffness, self.model.friction)
         else:
             raise ValueError(f"case {case.name!r} has no solved equilibrium to differentiate "
                              f"({self.statics.stability}; nothing grounded, or the contact "
@@ -110,17 +133,21 @@ class Linearization:
 
     @property
     def contact_forces(self) -> np.ndarray:
-        """(nK, 3) the ground's forces of the linearized state (springs at the holding
-        contacts, as in ``solve_case``)."""
+        """(nK, 3) the ground's forces of the linearized state (its contact law, as in
+        ``solve_case``: springs where contacts stick, mu N where they slipped)."""
+        return self.law.forces(self._contact_displacements())
+
+    def _contact_displacements(self) -> np.ndarray:
+        """(nK, 3) m: each contact point's displacement in the linearized state."""
         model = self.model
         q = self.state[:model.n_dof].reshape(-1, 6)[model.contact_node]
-        displacement = (model.contact_maps @ q[:, :, None])[:, :, 0]
-        springs = anchor_springs(self.holding, model.contact_stiffness)
-        return -(springs @ displacement[:, :, None])[:, :, 0]
+        return (model.contact_maps @ q[:, :, None])[:, :, 0]
 
     def step(self, dof: Dof) -> float:
         """The difference step for ``dof`` in its own unit."""
-        return ASSEMBLY_STEP if dof.is_rotation else ASSEMBLY_STEP * self.size
+        if self.model.beams is None:
+            return ASSEMBLY_STEP if dof.is_rotation else ASSEMBLY_STEP * self.size
+        return ELASTIC_ANGLE_STEP if dof.is_rotation else ELASTIC_ASSEMBLY_STEP * self.size
 
     def stepped(self, dof: Dof) -> _Stepped:
         """The design with ``dof`` stepped by +-h and the joints and contacts the step
@@ -192,17 +219,20 @@ class Linearization:
         if not moving:
             return Sensitivity(self.case.name, (), np.zeros((0, n_joints, 6)),
                                np.zeros((0, n_contacts, 3)), blocked, np.zeros((0, n_joints)))
-        differences = assembly_differences(model, self.state, self.holding, self.case.name,
-                                           sides, len(moving))
+        differences = assembly_differences(model, self.state, self.holding, self.law,
+                                           self.case.name, sides, len(moving))
         map_rates, length_rates = differences.maps, differences.lengths
-        rates = solve_system(model, self.holding, differences.residual)     # (n, n_dofs)
+        springs = self.law.tangent(self._contact_displacements())
+        if self.law.slipping.any():         # a slipping contact's tangent is not symmetric
+            rates = solve_with_springs(model, springs, differences.residual)
+        else:
+            rates = solve_system(model, self.holding, differences.residual)  # (n, n_dofs)
         n = model.n_dof
         joint_rates = rates[n:].T.reshape(len(moving), n_joints, 6)
         q = self.state[:n].reshape(-1, 6)[model.contact_node]               # (nK, 6)
         dq = rates[:n].T.reshape(len(moving), -1, 6)[:, model.contact_node]  # (D, nK, 6)
         dw = (np.einsum("dkab,kb->dka", map_rates, q)
               + np.einsum("kab,dkb->dka", model.contact_maps, dq))
-        springs = anchor_springs(self.holding, model.contact_stiffness)
         contact_rates = -np.einsum("kab,dkb->dka", springs, dw)
         bending = differences.plank_rates(rates[:n])
         return Sensitivity(self.case.name, tuple(moving), joint_rates, contact_rates,

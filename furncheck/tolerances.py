@@ -142,6 +142,11 @@ SLIP_STIFFNESS = 1e-10
 stiffness (its true stiffness there is zero): keeps the step finite where the whole design
 could slide freely, as a shift of SOLVE_RESIDUAL would (1 N/m in the elastic model)."""
 
+SLIP_DETECTION = 1e-9
+"""A solved contact counts as slipping (for the sensitivity's contact law) where its
+tangential force falls short of k |w_t| by more than this fraction: a sticking contact's
+force is -k w to round-off."""
+
 SLIDING_DISPLACEMENT = 10.0
 """m: a contact-spring displacement this large means the energy falls without bound: the
 loads exceed what friction can hold (springs deflect ~1e-3 m under real loads)."""

@@ -26,10 +26,11 @@ it does with a wide margin (closest: stool leg_l.ry, error 1e-5 against a spread
 1.8e-3, both relative to the largest derivative).
 
 Models: every test names the model it runs in.  The step choice above was measured in the
-rigid model.  The elastic model's sensitivity disagrees with the central differences of its
-own full solve (and with the hand rates of the determinate cantilever, which the full
-solve meets): those cases are strict xfails (``ELASTIC_SENSITIVITY``), so they fail as soon
-as the elastic sensitivity agrees and the mark can go.
+rigid model; the elastic model's assembly step is smaller (``ELASTIC_ASSEMBLY_STEP``: its
+short beam elements bend the assembly on a millimetre scale), and its contacts that slipped
+keep slipping (``ContactLaw``): before both, its sensitivity missed these checks by up to
+a factor of 18 (the cantilever's base, whose two far corners slip against the near ones
+as it bends).
 """
 
 from __future__ import annotations
@@ -56,15 +57,6 @@ AGREEMENT = 1e-4    # relative to the DOF's largest derivative magnitude
 TINY = 1e-6         # derivatives below TINY x W per DOF unit are round-off
 KINK = 1e-3         # one-sided slopes differing by more than this (relative): no derivative
 ACTIVE = 1e-9       # a contact holds if its normal force exceeds ACTIVE x W
-
-ELASTIC_SENSITIVITY = pytest.mark.xfail(strict=True, reason=(
-    "the elastic model's sensitivity (statics/derivatives.py) disagrees with central "
-    "differences of its own full solve: table and stool by 3e-4 to 4e-3 of the DOF's "
-    "largest derivative (stool seat.length, leg_l.x and leg_r.x unequal in a symmetric "
-    "design), chair-upright seat.y by 0.55 (4.09 against 1.83, both one-sided slopes "
-    "1.83); the cantilever's dM/dL by 7e-5 to 3e-4 where the full solve meets the hand "
-    "rate to 1e-7.  This test never ran the elastic model before the default changed: it "
-    "ignored its 'model' parameter"))
 
 
 def forces(case) -> np.ndarray:
@@ -118,9 +110,9 @@ class Differences:
 @pytest.mark.parametrize("name, model", [
     ("shelf-cantilever", "rigid"), ("table", "rigid"), ("stool", "rigid"),
     ("chair-upright", "rigid"), ("bookshelf-20", "rigid"),
-    pytest.param("table", "elastic", marks=ELASTIC_SENSITIVITY),
-    pytest.param("stool", "elastic", marks=ELASTIC_SENSITIVITY),
-    pytest.param("chair-upright", "elastic", marks=ELASTIC_SENSITIVITY)])
+    ("shelf-cantilever", "elastic"), ("table", "elastic"),
+    ("stool", "elastic"),
+    ("chair-upright", "elastic")])
 def test_sensitivity_matches_finite_differences_of_the_full_solve(name, model):
     """For every DOF of the design's first stable case: blocked DOFs are exactly those
     apply_dof refuses; for the others, with the same joints, contacts and active contact set
@@ -208,7 +200,7 @@ def _joint_index(case, first: str, second: str) -> int:
 
 
 @pytest.mark.parametrize("model", [
-    "rigid", pytest.param("elastic", marks=ELASTIC_SENSITIVITY)])
+    "rigid", "elastic"])
 def test_cantilever_moment_rate_by_hand(model):
     """designs/shelf-cantilever.yaml, default case: m = 15 kg at x = 0 on the shelf that spans
     x -144..156 (L = 0.3 m) from the post face, so the load rides at f = 144 / 300 = 0.48.
@@ -243,7 +235,7 @@ def test_cantilever_moment_rate_by_hand(model):
 
 
 @pytest.mark.parametrize("model", [
-    "rigid", pytest.param("elastic", marks=ELASTIC_SENSITIVITY)])
+    "rigid", "elastic"])
 def test_range_cantilever_moment_rate_by_hand(model):
     """range_designs.cantilever (m = 10 kg riding at f = 0.75, shelf L = 0.3 m, 300 wide):
     dM/dL = m g f + rho t w g L = 73.575 + 26.487 x 0.3 = 81.521 N m/m; the nail pull

@@ -1,11 +1,7 @@
 """The margins behind suggestions and their rates, against hand calculations, and the
 line search's regula falsi.
 
-Each test runs in the default (elastic) model unless it names one.  Two elastic cases are
-strict xfails, bugs found when the default changed (each fails once fixed):
-``ELASTIC_RATES`` (the elastic sensitivity behind the margins' rates) and
-``ELASTIC_JOINT_MARGIN`` (``joint_margin`` against ``Editor.margin_at`` on a design that
-sags)."""
+Each test runs in the default (elastic) model unless it names one."""
 
 from __future__ import annotations
 
@@ -26,16 +22,6 @@ from furncheck.suggest.margins import Margins
 CATALOG = Path(__file__).resolve().parents[1] / "designs"
 G = 9.81
 
-ELASTIC_RATES = pytest.mark.xfail(strict=True, reason=(
-    "the elastic model's sensitivity (statics/derivatives.py) gives the pull margin's rate "
-    "along shelf.length as -2.83 per scaled unit where the hand value and the central "
-    "difference of the elastic full solve are both -2.98 (5 %); see test_sensitivity"))
-ELASTIC_JOINT_MARGIN = pytest.mark.xfail(strict=True, reason=(
-    "suggest/edits.py: joint_margin reads every violation but non-durable as -inf, while "
-    "Editor.margin_at (validity.case_margin) counts the planks' utilization as a margin: "
-    "in the elastic model a design that sags (shelf-cantilever-overloaded at every step) "
-    "gets -inf from one and a finite margin (-14.8) from the other"))
-
 
 def margins_of(name: str, model: str | None = None) -> Margins:
     design = with_model(load_design(str(CATALOG / name)), model)
@@ -49,7 +35,7 @@ def rate(margins: Margins, margin, dof_name: str) -> float:
     return float(margin.rates[[d.name for d in margins.dofs].index(dof_name)])
 
 
-@pytest.mark.parametrize("model", ["rigid", pytest.param("elastic", marks=ELASTIC_RATES)])
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
 def test_cantilever_pull_margin_and_its_rate_by_hand(model):
     """shelf-cantilever-overloaded: M(L) = 294.3 N x 0.75 L + (750 x 0.3 x 0.012 L kg) g
     x L / 2 at L = 0.4 m is 90.4 N m; pull = 2 M / t / 15 = 1004.5 N, margin 1 - pull/700.
@@ -120,8 +106,7 @@ def test_regula_falsi_needs_fewer_checks_than_bisection():
     ("bench-tips.yaml", "leg_r.x", "rigid"),
     ("shelf-cantilever-overloaded.yaml", "shelf.width", "rigid"),
     ("bench-tips.yaml", "leg_r.x", "elastic"),
-    pytest.param("shelf-cantilever-overloaded.yaml", "shelf.length", "elastic",
-                 marks=ELASTIC_JOINT_MARGIN)])
+    ("shelf-cantilever-overloaded.yaml", "shelf.length", "elastic")])
 def test_margin_at_agrees_with_the_full_report(name, dof, model):
     """The line search's lean margin equals joint_margin(check_design(...)) of the moved
     design, valid and invalid steps alike, in each model."""

@@ -373,6 +373,18 @@ def solve_system(model: StaticsModel, holding: np.ndarray, rhs: np.ndarray) -> n
     return condensed.expand(inner, ground)
 
 
+def solve_with_springs(model: StaticsModel, springs: np.ndarray,
+                       rhs: np.ndarray) -> np.ndarray:
+    """A^-1 rhs for the mixed matrix with contact blocks M^T S M of ``springs`` S (nK, 3,
+    3), which need not be symmetric (a slipping contact's tangent, ``friction.ContactLaw``),
+    and rhs (n,) or (n, k): through the design's condensation, the condensed matrix solved
+    by LU."""
+    condensed = model.condensation
+    inner, ground_rhs = condensed.split(np.asarray(rhs, dtype=float))
+    ground = np.linalg.solve(_condensed_stiffness(model, springs), ground_rhs)
+    return condensed.expand(inner, ground)
+
+
 @dataclass(frozen=True)
 class _Factored:
     """A symmetric matrix factored once for all the right-hand sides that meet it: by

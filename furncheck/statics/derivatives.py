@@ -23,7 +23,7 @@ import numpy as np
 
 from furncheck.design.model import Design
 from furncheck.geometry import Contact, Joint
-from furncheck.statics.condense import anchor_springs
+from furncheck.statics.friction import ContactLaw
 from furncheck.statics.model import StaticsModel, block_sums, external_forces, point_maps
 from furncheck.tolerances import GRAVITY
 
@@ -83,16 +83,18 @@ class AssemblyDifferences:
 
 
 def assembly_differences(model: StaticsModel, state: np.ndarray, holding: np.ndarray,
-                         case_name: str, sides: list[AssemblySide],
+                         law: ContactLaw, case_name: str, sides: list[AssemblySide],
                          n_dofs: int) -> AssemblyDifferences:
-    """The differences of b - A x over ``sides`` (see the module docstring)."""
+    """The differences of b - A x over ``sides`` (see the module docstring); the contacts
+    push as ``law`` says (springs where they stick, mu N where they slipped)."""
     if model.beams is not None:
-        return _rebuilt(model, state, holding, case_name, sides, n_dofs)
-    return _local(model, state, holding, case_name, sides, n_dofs)
+        return _rebuilt(model, state, holding, law, case_name, sides, n_dofs)
+    return _local(model, state, holding, law, case_name, sides, n_dofs)
 
 
-def _rebuilt(model: StaticsModel, state: np.ndarray, holding: np.ndarray, case_name: str,
-             sides: list[AssemblySide], n_dofs: int) -> AssemblyDifferences:
+def _rebuilt(model: StaticsModel, state: np.ndarray, holding: np.ndarray,
+             law: ContactLaw, case_name: str, sides: list[AssemblySide],
+             n_dofs: int) -> AssemblyDifferences:
     """Elastic model: each side's model built on the same nodes, b - A x evaluated whole."""
     from furncheck.statics.elastic import build_elastic_model
 
@@ -112,7 +114,7 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, holding: np.ndarray, case_n
         stepped_geometry = replace(geometry, joints=tuple(joints), contacts=tuple(contacts))
         stepped = build_elastic_model(side.design, stepped_geometry, template=model)
         case = next(c for c in side.design.load_cases if c.name == case_name)
-        out.residual[:, side.column] += side.weight * _residual(stepped, case, q, h, holding)
+        out.residual[:, side.column] += side.weight * _residual(stepped, case, q, h, law)
         out.maps[side.column] += side.weight * stepped.contact_maps
         out.lengths[side.column] += side.weight * np.array(
             [stepped_geometry.joints[j].length for j in model.joints])
@@ -121,13 +123,12 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, holding: np.ndarray, case_n
 
 
 def _residual(model: StaticsModel, case, q: np.ndarray, h: np.ndarray,
-              holding: np.ndarray) -> np.ndarray:
-    """b - A x of the mixed system [[K_b + K_c, G^T], [G, -E]] [q; h] = [f; 0], the
-    contact springs at the ``holding`` contacts."""
-    springs = anchor_springs(holding, model.contact_stiffness)
+              law: ContactLaw) -> np.ndarray:
+    """b - A x of the mixed system [[K_b, G^T], [G, -E]] [q; h] = [f + M^T f_c; 0], the
+    contact forces f_c as ``law`` gives them for the contact displacements M q."""
     node_q = q.reshape(-1, 6)[model.contact_node]
     w = (model.contact_maps @ node_q[:, :, None])[:, :, 0]
-    contact = np.transpose(model.contact_maps, (0, 2, 1)) @ (springs @ w[:, :, None])
+    contact = -np.transpose(model.contact_maps, (0, 2, 1)) @ law.forces(w)[:, :, None]
     top = model.beam_forces(q) + model.reactions(h) \
         + block_sums(model.contact_node, contact[:, :, 0], model.n_nodes).ravel()
     compliance = (model.joint_compliance @ h.reshape(-1, 6, 1)).ravel()
@@ -135,15 +136,16 @@ def _residual(model: StaticsModel, case, q: np.ndarray, h: np.ndarray,
     return np.concatenate([external_forces(model, case) - top, -bottom])
 
 
-def _local(model: StaticsModel, state: np.ndarray, holding: np.ndarray, case_name: str,
-           sides: list[AssemblySide], n_dofs: int) -> AssemblyDifferences:
+def _local(model: StaticsModel, state: np.ndarray, holding: np.ndarray,
+           law: ContactLaw, case_name: str, sides: list[AssemblySide],
+           n_dofs: int) -> AssemblyDifferences:
     """Rigid model: the differences of the parts of b - A x that the steps change (every
     other entry is the same on both sides of a difference).
 
     With r = joint point - plank centre, a joint enters A x through its deviation rows
     (theta_a x r_a - theta_b x r_b) and its planks' moment rows (+-r x h^t); a contact
-    through M^T S M q (M = [I, -[r]x], r = contact point - centre); a plank through its
-    weight and its loads' moments about its centre.
+    through M^T f_c(M q) (M = [I, -[r]x], r = contact point - centre, f_c its force by the
+    contact law); a plank through its weight and its loads' moments about its centre.
     """
     n = model.n_dof
     q = state[:n].reshape(-1, 6)
@@ -200,8 +202,8 @@ def _local(model: StaticsModel, state: np.ndarray, holding: np.ndarray, case_nam
         column, weight = table[:, 0].astype(int), table[:, 1]
         row, a = table[:, 2].astype(int), table[:, 3].astype(int)
         stepped_maps = point_maps(table[:, 4:7])                         # (E, 3, 6)
-        springs = anchor_springs(holding, model.contact_stiffness)[row]
-        force = -np.einsum("eba,ebc,ecd,ed->ea", stepped_maps, springs, stepped_maps, q[a])
+        w = np.einsum("ebd,ed->eb", stepped_maps, q[a])
+        force = np.einsum("eba,eb->ea", stepped_maps, law.forces(w, row))
         _add(residual, 6 * a, column, force * weight[:, None])
         np.add.at(maps, (column, row), stepped_maps * weight[:, None, None])
     if plank_rows:

@@ -135,13 +135,20 @@ class Editor:
         return max(worst, 0.0) if holds else min(worst, -MARGIN_EPS)
 
 
+_CONTINUOUS = frozenset({"non-durable", "sagging", "overstressed"})
+"""The violations measured by a utilization (joints, and planks in the elastic model): a
+margin through them is continuous in an edit."""
+
+
 def joint_margin(report: DesignReport) -> float:
     """>= 0 exactly when the report is valid: the smallest 1 - utilization of its joints
-    where at most joints fail, else -inf (see ``Editor.margin_at``)."""
-    if any(v.kind != "non-durable" for v in report.violations):
+    and (elastic model) planks where at most those fail, else -inf (the same as
+    ``Editor.margin_at``, through ``validity.case_margin``)."""
+    if any(v.kind not in _CONTINUOUS for v in report.violations):
         return -math.inf
-    worst = min((1.0 - joint.utilization for case in report.cases for joint in case.joints),
-                default=1.0)
+    used = [joint.utilization for case in report.cases for joint in case.joints]
+    used += [plank.utilization for case in report.cases for plank in case.planks or ()]
+    worst = min((1.0 - u for u in used), default=1.0)
     return max(worst, 0.0) if report.valid else min(worst, -MARGIN_EPS)
 
 
