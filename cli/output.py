@@ -8,6 +8,7 @@ from typing import NoReturn
 import click
 
 from furncheck import exitcodes
+from furncheck import tolerances as tol
 
 
 def fail(message: str) -> NoReturn:
@@ -51,7 +52,7 @@ def write_output(document: str, output: str | None) -> None:
 
 
 MODEL_OPTION = click.option(
-    "--model", type=click.Choice(["elastic", "rigid"]), default=None,
+    "--model", type=click.Choice(list(tol.MODELS)), default=None,
     help="Statics model, over the files' own 'model': elastic (planks bend: contract 3a) "
          "or rigid (the paper's rigid planks).  [default: the file's 'model', elastic "
          "for a file without one]")

@@ -7,7 +7,7 @@ infinitesimal change).  Differentiating,
 
     dx/dg = A^-1 (db/dg - dA/dg x),
 
-with the contacts' law of the solved case (``statics.friction.ContactLaw``: a sticking
+with the contacts' law of the solved case (``statics.contact_law.ContactLaw``: a sticking
 contact a spring, a slipping one mu N against its slip, which stays slipping),
 so every DOF costs one more right-hand side for the factorization the solve already has
 (``statics.solve_system``).  dA/dg and db/dg come from central differences of the
@@ -34,31 +34,8 @@ from furncheck.statics import (
     solve_system,
 )
 from furncheck.statics.condense import solve_with_springs
-from furncheck.statics.derivatives import AssemblySide, assembly_differences
-from furncheck.statics.friction import ContactLaw
-
-ASSEMBLY_STEP = 1e-4
-"""Step of the central difference of the assembly, as a fraction of the design's size
-(lengths) or in degrees (rotations), in the rigid model (ELASTIC_ASSEMBLY_STEP in the
-elastic one).  Where the assembly is smooth this is exact to ~1e-8.
-Where it has a kink -- a flush end face that a rotation tilts rests on one edge or the other
-depending on the sign of the turn -- the derivative is the mean of the two one-sided
-slopes; ranges do not rely on it beyond a first guess (every end is confirmed by the full
-check)."""
-
-
-ELASTIC_ASSEMBLY_STEP = 1e-7
-"""The same step in the elastic model.  Its assembly bends on the scale of its shortest
-beam elements (a joint half a thickness from a plank's end: element stiffness goes as
-1 / L^3), so the truncation of a central difference is about (h / L)^2: 1e-3 of the
-derivative at 1e-4 (table top.length), 1e-7 at 1e-7; round-off shows below 1e-9 (the
-contact springs' stiff terms cancel in b - A x)."""
-
-
-ELASTIC_ANGLE_STEP = 1e-5
-"""Degrees: the elastic model's step for rotations, moving a plank's far end by about as
-much as ELASTIC_ASSEMBLY_STEP moves a length (smaller turns are lost in the round-off of
-the rotated geometry)."""
+from furncheck.statics.contact_law import ContactLaw
+from furncheck.statics.derivatives import AssemblySide, assembly_differences, assembly_steps
 
 
 @dataclass(frozen=True)
@@ -145,9 +122,8 @@ class Linearization:
 
     def step(self, dof: Dof) -> float:
         """The difference step for ``dof`` in its own unit."""
-        if self.model.beams is None:
-            return ASSEMBLY_STEP if dof.is_rotation else ASSEMBLY_STEP * self.size
-        return ELASTIC_ANGLE_STEP if dof.is_rotation else ELASTIC_ASSEMBLY_STEP * self.size
+        fraction, degrees = assembly_steps(self.model)
+        return degrees if dof.is_rotation else fraction * self.size
 
     def stepped(self, dof: Dof) -> _Stepped:
         """The design with ``dof`` stepped by +-h and the joints and contacts the step
@@ -219,8 +195,8 @@ class Linearization:
         if not moving:
             return Sensitivity(self.case.name, (), np.zeros((0, n_joints, 6)),
                                np.zeros((0, n_contacts, 3)), blocked, np.zeros((0, n_joints)))
-        differences = assembly_differences(model, self.state, self.holding, self.law,
-                                           self.case.name, sides, len(moving))
+        differences = assembly_differences(model, self.state, self.law, self.case.name,
+                                           sides, len(moving))
         map_rates, length_rates = differences.maps, differences.lengths
         springs = self.law.tangent(self._contact_displacements())
         if self.law.slipping.any():         # a slipping contact's tangent is not symmetric

@@ -88,6 +88,10 @@ and the moment for the stress (besides its ends and, for the stress, the peaks o
 moments): the sampled largest deviation of a span's deflection is within 1 - cos(pi / 64),
 0.12 %, of the true one."""
 
+MOMENT_CURVATURE = 1e-12
+"""Elastic model: an element's bending moment, a parabola along it, is read at its vertex
+too unless its curvature is below this fraction of its size (a straight moment line)."""
+
 NODE_MERGE = 1e-3
 """m: attachments closer than this along a plank's axis share a node (at their mean, each
 held by a rigid arm): a beam element shorter than a millimetre is far stiffer than anything
@@ -141,6 +145,26 @@ SLIP_STIFFNESS = 1e-10
 """A slipping contact's stiffness along its slip in a Newton step, relative to the contact
 stiffness (its true stiffness there is zero): keeps the step finite where the whole design
 could slide freely, as a shift of SOLVE_RESIDUAL would (1 N/m in the elastic model)."""
+
+ASSEMBLY_STEP = 1e-4
+"""Step of the central difference of the assembly behind the force sensitivity (paper eq.
+6), as a fraction of the design's size (lengths) or in degrees (rotations), in the rigid
+model.  Where the assembly is smooth this is exact to ~1e-8.  Where it has a kink -- a
+flush end face that a rotation tilts rests on one edge or the other depending on the sign
+of the turn -- the derivative is the mean of the two one-sided slopes; ranges do not rely
+on it beyond a first guess (every end is confirmed by the full check)."""
+
+ELASTIC_ASSEMBLY_STEP = 1e-7
+"""The same step for lengths in the elastic model.  Its assembly bends on the scale of its
+shortest beam elements (a joint half a thickness from a plank's end: element stiffness
+goes as 1 / L^3), so the truncation of a central difference is about (h / L)^2: 1e-3 of
+the derivative at 1e-4 (table top.length), 1e-7 at 1e-7; round-off shows below 1e-9 (the
+contact springs' stiff terms cancel in b - A x)."""
+
+ELASTIC_ANGLE_STEP = 1e-5
+"""Degrees: the elastic model's step for rotations, moving a plank's far end by about as
+much as ELASTIC_ASSEMBLY_STEP moves a length (smaller turns are lost in the round-off of
+the rotated geometry)."""
 
 SLIP_DETECTION = 1e-9
 """A solved contact counts as slipping (for the sensitivity's contact law) where its

@@ -108,12 +108,12 @@ def test_regula_falsi_needs_fewer_checks_than_bisection():
     ("bench-tips.yaml", "leg_r.x", "elastic"),
     ("shelf-cantilever-overloaded.yaml", "shelf.length", "elastic")])
 def test_margin_at_agrees_with_the_full_report(name, dof, model):
-    """The line search's lean margin equals joint_margin(check_design(...)) of the moved
+    """The line search's lean margin equals utilization_margin(check_design(...)) of the moved
     design, valid and invalid steps alike, in each model."""
     import numpy as np
 
     from furncheck.dofs import parse_dof
-    from furncheck.suggest.edits import joint_margin
+    from furncheck.suggest.edits import utilization_margin
 
     margins = margins_of(name, model)
     editor, design = margins.editor, margins.design
@@ -122,5 +122,5 @@ def test_margin_at_agrees_with_the_full_report(name, dof, model):
         lean = editor.margin_at(dofs, np.array([1.0]), step)
         moved = editor.moved(dofs, editor.changes(dofs, np.array([1.0]), step))
         geometry = editor.keeps(moved)
-        full = -math.inf if geometry is None else joint_margin(check_design(moved, geometry))
+        full = -math.inf if geometry is None else utilization_margin(check_design(moved, geometry))
         assert lean == pytest.approx(full, abs=1e-12) or lean == full == -math.inf

@@ -25,7 +25,11 @@ from furncheck.statics.beams import (
     element_interior,
     section_properties,
 )
-from furncheck.statics.elastic import _element_loads_local, case_line_loads
+from furncheck.statics.elastic import (
+    _element_loads_local,
+    case_line_loads,
+    element_end_forces,
+)
 from furncheck.statics.model import StaticsModel
 
 
@@ -119,17 +123,15 @@ def _stress(model: StaticsModel, layout: _Layout, displacement: np.ndarray, w: n
     rotation in the element's axes, R^T u; f_local: the consistent loads of its own
     uniform load ``line_loads`` (nE, 3) N/m), linear in between."""
     beams = model.beams
-    u = displacement[beams.nodes].reshape(-1, 4, 3)                   # u_a, theta_a, u_b, ...
-    local = (u @ beams.frames).reshape(-1, 12)                        # (R^T u)^T = u^T R
-    forces = np.einsum("eab,eb->ea", beams.local_stiffness, local) \
+    forces = element_end_forces(beams, displacement.ravel()) \
         - _element_loads_local(beams, line_loads)
     # each plane's moment as M(xi) = c0 + c1 xi + c2 xi^2 from xi = 0, 1/2, 1
     moment = _interior(model, layout, w, slope, line_loads, np.array([0.0, 0.5, 1.0]))[1]
     c0 = moment[..., 0]
     c1 = -3.0 * moment[..., 0] + 4.0 * moment[..., 1] - moment[..., 2]
     c2 = 2.0 * moment[..., 0] - 4.0 * moment[..., 1] + 2.0 * moment[..., 2]   # (2, nE)
-    curved = np.abs(c2) > 1e-12 * (np.abs(c0) + np.abs(c1) + np.abs(c2)) + 1e-300
-    vertex = np.where(curved, -c1 / np.where(curved, 2.0 * c2, 1.0), 0.0)
+    curved = np.abs(c2) > tol.MOMENT_CURVATURE * (np.abs(c0) + np.abs(c1) + np.abs(c2))
+    vertex = np.divide(-c1, 2.0 * c2, out=np.zeros_like(c1), where=curved)
     xi = np.concatenate([np.broadcast_to(np.linspace(0.0, 1.0, tol.SAG_SAMPLES + 2),
                                          (len(beams.plank), tol.SAG_SAMPLES + 2)),
                          np.clip(vertex, 0.0, 1.0).T], axis=1)          # (nE, m)
@@ -191,10 +193,11 @@ def _lying_on_floor(model: StaticsModel) -> set[int]:
 
 def _transverse(displacement: np.ndarray,
                 node_frame: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(w, w') at every node: its deflection across its beam's axis (2, nN) m, along e2 (row
-    0) and e3 (row 1), and the axis's slope there (2, nN), du2/ds = theta . e3 and du3/ds =
-    -theta . e2 (``displacement`` (nN, 6): u, theta per node; ``node_frame`` (nN, 3, 3):
-    e1, e2, e3)."""
+    """(w, slope) at every node: its deflection across its beam's axis (2, nN) m, along e2
+    (row 0) and e3 (row 1), and its section's rotation in those planes (2, nN), theta . e3
+    and -theta . e2 (the axis's slope dw/ds where shear strain is negligible; a Timoshenko
+    beam's axis slopes by theta - V / k G A, see ``beams.element_interior``)
+    (``displacement`` (nN, 6): u, theta per node; ``node_frame`` (nN, 3, 3): e1, e2, e3)."""
     across = node_frame[:, :, 1:]
     w = np.einsum("ni,nij->jn", displacement[:, :3], across)
     turn = np.einsum("ni,nij->jn", displacement[:, 3:], across)       # theta . e2, theta . e3
@@ -228,8 +231,8 @@ def _interior(model: StaticsModel, layout: _Layout, w: np.ndarray, slope: np.nda
               line_loads: np.ndarray, xi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(deflection, moment), each (2, nE, m): in both bending planes (along e2: about e3,
     in the plank's plane; along e3: about e2, the sag of a shelf), at the fractions ``xi``
-    (nE, m) or (m,) of each element, by ``element_interior`` from its nodes' deflections
-    and slopes (``_transverse``) and its own uniform load ``line_loads`` (nE, 3) N/m."""
+    (m,) of each element, by ``element_interior`` from its nodes' deflections and section
+    rotations (``_transverse``) and its own uniform load ``line_loads`` (nE, 3) N/m."""
     beams = model.beams
     material = model.design.material
     a, b = beams.nodes[:, 0], beams.nodes[:, 1]
@@ -238,7 +241,7 @@ def _interior(model: StaticsModel, layout: _Layout, w: np.ndarray, slope: np.nda
     parts = [element_interior(beams.length, material.elastic_modulus * layout.inertia[:, j],
                               shear, np.column_stack([w[j, a], slope[j, a], w[j, b],
                                                       slope[j, b]]),
-                              q[j], xi[j] if np.ndim(xi) == 3 else xi)
+                              q[j], xi)
              for j in (0, 1)]
     return (np.stack([part[0] for part in parts]), np.stack([part[1] for part in parts]))
 

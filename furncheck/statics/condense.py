@@ -1,10 +1,11 @@
 """Static condensation of the mixed system onto the grounded planks, and its solves.
 
-``_condense`` gives, once per design, ``_PlankCondensation`` (up to 60 planks: the joints
-eliminated, a dense Cholesky factor of the planks' joint stiffness) or ``_Condensation``
-(larger designs: one sparse LU of the contact-free mixed system, checked by ``_factor`` /
-``_accurate``); then the contact springs ``anchor_springs`` and the condensed
-matrix ``_condensed_stiffness``, and for a contact state its matrix factored once
+``_condense`` gives, once per design, ``_PlankCondensation`` (up to DENSE_PLANKS_MAX
+plank displacements: the joints eliminated, a dense Cholesky factor of the planks' joint
+stiffness; a larger elastic model the same with one sparse LU, ``_condense_beams``) or
+``_Condensation`` (a larger rigid model: one sparse LU of the contact-free mixed system,
+checked by ``_factor`` / ``_accurate``); then the contact springs ``anchor_springs`` and
+the condensed matrix ``_condensed_stiffness``, and for a contact state its matrix factored once
 (``anchored_system``, a ``_Factored``: Cholesky by LAPACK directly, LU when that fails);
 ``system_matrix`` and ``solve_system`` give the full mixed matrix and its solve to the
 sensitivity analysis.
@@ -209,7 +210,8 @@ def _condense(model: StaticsModel) -> _Condensed | None:
     """Build the condensation; None if the contact-free part is singular (a plank that
     is neither grounded nor jointed to a grounded plank cannot be held).  Designs of up
     to DENSE_PLANKS_MAX plank displacements go through the planks with dense matrices
-    (``_PlankCondensation``), larger ones through the sparse mixed system by SuperLU."""
+    (``_PlankCondensation``), larger elastic ones through the planks with a sparse LU
+    (``_condense_beams``), larger rigid ones through the sparse mixed system by SuperLU."""
     n, m = model.n_dof, 6 * len(model.joints)
     grounded, contact_block = np.unique(model.contact_node, return_inverse=True)
     ground = (6 * grounded[:, None] + _SIX[None, :]).ravel()
@@ -376,12 +378,15 @@ def solve_system(model: StaticsModel, holding: np.ndarray, rhs: np.ndarray) -> n
 def solve_with_springs(model: StaticsModel, springs: np.ndarray,
                        rhs: np.ndarray) -> np.ndarray:
     """A^-1 rhs for the mixed matrix with contact blocks M^T S M of ``springs`` S (nK, 3,
-    3), which need not be symmetric (a slipping contact's tangent, ``friction.ContactLaw``),
-    and rhs (n,) or (n, k): through the design's condensation, the condensed matrix solved
-    by LU."""
+    3), which need not be symmetric (a slipping contact's tangent, ``contact_law``), and
+    rhs (n,) or (n, k): through the design's condensation, the condensed matrix solved by
+    LU and checked as ``solve`` is (LinAlgError when it is singular)."""
     condensed = model.condensation
     inner, ground_rhs = condensed.split(np.asarray(rhs, dtype=float))
-    ground = np.linalg.solve(_condensed_stiffness(model, springs), ground_rhs)
+    matrix = _condensed_stiffness(model, springs)
+    ground = _Factored(matrix, None).solve(ground_rhs)
+    if ground is None or not _accurate(matrix, ground, ground_rhs):
+        raise np.linalg.LinAlgError("singular condensed system")
     return condensed.expand(inner, ground)
 
 

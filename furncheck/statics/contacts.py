@@ -38,14 +38,17 @@ def solve_case(model: StaticsModel, f: np.ndarray,
 
     ``start`` (bool per contact, optional): the contacts expected to hold, e.g. those
     that held in a design of which this one is a small edit.  The active set starts
-    there instead of from every contact holding; the equilibrium it finds is the same
-    (the contact problem's solution is unique), only sooner.
+    there instead of from every contact holding, to the same equilibrium (where the
+    frictional contact problem has one solution), only sooner.
 
-    When the active set or the friction phase cannot settle, the linear programs of
-    ``feasibility`` decide: 'lift-off' only when no equilibrium exists with normal forces
-    >= 0 even with unlimited friction, 'sliding' only when none exists inside the friction
-    cones; otherwise the case is stable with the admissible contact forces closest to the
-    elastic solution (``closest_admissible``) and the joint forces they imply.
+    Where the normal phase's statuses cycle (a contact that pulls while its anchor holds
+    it sideways sinks once lifted), the friction phase, with friction capped, takes over
+    from the last iterate.  When the active set or the friction phase cannot settle, the
+    linear programs of ``feasibility`` decide: 'lift-off' only when no equilibrium exists
+    with normal forces >= 0 even with unlimited friction, 'sliding' only when none exists
+    inside the friction cones; otherwise the case is stable with the admissible contact
+    forces closest to the elastic solution (``closest_admissible``) and the joint forces
+    they imply.
     """
     if not model.planks:
         return CaseStatics("stable", np.zeros((0, 6)), np.zeros((0, 3)))
@@ -67,7 +70,8 @@ def solve_case(model: StaticsModel, f: np.ndarray,
         # and sink once lifted; with friction capped the friction phase may settle them
         frictional = solver.friction_phase(status, solution)
         if frictional is not None:
-            return solver.stable(frictional[1], frictional[0])
+            settled_status, settled = frictional
+            return solver.stable(settled, settled_status)
     if normal is None:
         feasible = unilateral_feasible(model, f)
         if not feasible.exists:
@@ -81,7 +85,8 @@ def solve_case(model: StaticsModel, f: np.ndarray,
         return solver.stable(solution, status)
     frictional = solver.friction_phase(status, solution)
     if frictional is not None:
-        return solver.stable(frictional[1], frictional[0])
+        settled_status, settled = frictional
+        return solver.stable(settled, settled_status)
     return solver.from_programs(solution.contact_forces, on_failure=solution)
 
 

@@ -21,9 +21,10 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from furncheck import tolerances as tol
 from furncheck.design.model import Design
 from furncheck.geometry import Contact, Joint
-from furncheck.statics.friction import ContactLaw
+from furncheck.statics.contact_law import ContactLaw
 from furncheck.statics.model import StaticsModel, block_sums, external_forces, point_maps
 from furncheck.tolerances import GRAVITY
 
@@ -82,19 +83,27 @@ class AssemblyDifferences:
         return sag, span, stress
 
 
-def assembly_differences(model: StaticsModel, state: np.ndarray, holding: np.ndarray,
-                         law: ContactLaw, case_name: str, sides: list[AssemblySide],
+def assembly_steps(model: StaticsModel) -> tuple[float, float]:
+    """(length step as a fraction of the design's size, rotation step in degrees) of the
+    assembly's central differences for this model (tolerances: ASSEMBLY_STEP in the rigid
+    model, ELASTIC_ASSEMBLY_STEP and ELASTIC_ANGLE_STEP in the elastic one)."""
+    if model.beams is None:
+        return tol.ASSEMBLY_STEP, tol.ASSEMBLY_STEP
+    return tol.ELASTIC_ASSEMBLY_STEP, tol.ELASTIC_ANGLE_STEP
+
+
+def assembly_differences(model: StaticsModel, state: np.ndarray, law: ContactLaw,
+                         case_name: str, sides: list[AssemblySide],
                          n_dofs: int) -> AssemblyDifferences:
     """The differences of b - A x over ``sides`` (see the module docstring); the contacts
     push as ``law`` says (springs where they stick, mu N where they slipped)."""
     if model.beams is not None:
-        return _rebuilt(model, state, holding, law, case_name, sides, n_dofs)
-    return _local(model, state, holding, law, case_name, sides, n_dofs)
+        return _rebuilt(model, state, law, case_name, sides, n_dofs)
+    return _local(model, state, law, case_name, sides, n_dofs)
 
 
-def _rebuilt(model: StaticsModel, state: np.ndarray, holding: np.ndarray,
-             law: ContactLaw, case_name: str, sides: list[AssemblySide],
-             n_dofs: int) -> AssemblyDifferences:
+def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name: str,
+             sides: list[AssemblySide], n_dofs: int) -> AssemblyDifferences:
     """Elastic model: each side's model built on the same nodes, b - A x evaluated whole."""
     from furncheck.statics.elastic import build_elastic_model
 
@@ -102,7 +111,8 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, holding: np.ndarray,
     q, h = state[:n], state[n:]
     out = AssemblyDifferences(np.zeros((len(state), n_dofs)),
                               np.zeros((n_dofs, *model.contact_maps.shape)),
-                              np.zeros((n_dofs, len(model.joints))), q=q, holding=holding)
+                              np.zeros((n_dofs, len(model.joints))), q=q,
+                              holding=law.holding)
     geometry = model.geometry
     for side in sides:
         joints = list(geometry.joints)
@@ -136,9 +146,8 @@ def _residual(model: StaticsModel, case, q: np.ndarray, h: np.ndarray,
     return np.concatenate([external_forces(model, case) - top, -bottom])
 
 
-def _local(model: StaticsModel, state: np.ndarray, holding: np.ndarray,
-           law: ContactLaw, case_name: str, sides: list[AssemblySide],
-           n_dofs: int) -> AssemblyDifferences:
+def _local(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name: str,
+           sides: list[AssemblySide], n_dofs: int) -> AssemblyDifferences:
     """Rigid model: the differences of the parts of b - A x that the steps change (every
     other entry is the same on both sides of a difference).
 

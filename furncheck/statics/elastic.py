@@ -132,6 +132,12 @@ def _crosswise(design: Design, geometry: Geometry, planks: list[Plank], joints: 
     return tuple(out)
 
 
+TOPOLOGY_CACHE = ("carrying", "lying")
+"""The entries of ``StaticsModel.plank_cache`` (filled by ``bending``) that depend on which
+planks are jointed and which contacts stand, not on where: a model built on a template
+(the same joints and contacts) shares them."""
+
+
 def build_elastic_model(design: Design, geometry: Geometry,
                         template: StaticsModel | None = None) -> StaticsModel:
     """The elastic ``StaticsModel`` of the grounded components (see the module docstring).
@@ -237,15 +243,11 @@ def build_elastic_model(design: Design, geometry: Geometry,
                                   len(node_plank)),
         load_nodes=load_nodes)
     if template is not None:        # the same joints and contacts: the same topology
+        assert template.joints == model.joints and template.contacts == model.contacts
         for key in TOPOLOGY_CACHE:
             if key in template.plank_cache:
                 model.plank_cache[key] = template.plank_cache[key]
     return model
-
-
-TOPOLOGY_CACHE = ("carrying", "lying")
-"""The entries of ``StaticsModel.plank_cache`` that depend on which planks are jointed and
-which contacts stand, not on where (``bending``): a model built on a template shares them."""
 
 
 def _beams(planks: list[Plank], frames: list[np.ndarray], node_plank: np.ndarray,
@@ -284,11 +286,18 @@ def assemble_beams(beams: Beams, n_nodes: int) -> sp.csr_matrix:
     return sp.csr_matrix((world.ravel(), (rows, cols)), shape=(n, n))
 
 
-def element_forces(beams: Beams, q: np.ndarray, n_nodes: int) -> np.ndarray:
-    """(6 nN,) K_b q without assembling K_b: each element's end forces K_local T u in its
-    axes, turned back to the world (T^T) and summed at its nodes."""
+def element_end_forces(beams: Beams, q: np.ndarray) -> np.ndarray:
+    """(nE, 12) each element's end forces K_local T u in its own axes for node
+    displacements q (6 nN,): T u is each end's displacement and rotation in the element's
+    axes, R^T u."""
     u = q.reshape(-1, 6)[beams.nodes].reshape(-1, 4, 3)               # u_a, theta_a, u_b, ...
-    local = np.einsum("eab,eb->ea", beams.local_stiffness, (u @ beams.frames).reshape(-1, 12))
+    return np.einsum("eab,eb->ea", beams.local_stiffness, (u @ beams.frames).reshape(-1, 12))
+
+
+def element_forces(beams: Beams, q: np.ndarray, n_nodes: int) -> np.ndarray:
+    """(6 nN,) K_b q without assembling K_b: each element's end forces
+    (``element_end_forces``) turned back to the world (T^T) and summed at its nodes."""
+    local = element_end_forces(beams, q)
     world = local.reshape(-1, 4, 3) @ np.transpose(beams.frames, (0, 2, 1))
     return block_sums(beams.nodes.ravel(), world.reshape(-1, 6), n_nodes).ravel()
 

@@ -32,8 +32,8 @@ class StaticsModel:
     The unknowns are six small displacements q_k = (u_k, theta_k) (m, rad) per *node*, the
     point ``node_points[k]`` of plank ``node_plank[k]`` it turns about, and a wrench per
     nail joint.  The rigid model has one node per plank, at its centre; the elastic model
-    a row of nodes along each plank's beam axis, joined by beam elements
-    (``beam_stiffness``, ``statics.elastic``).
+    a row of nodes along each plank's beam axis, joined by beam elements (``beams``; their
+    stiffness ``beam_stiffness``, ``statics.elastic``).
 
     planks   : design plank indices taking part (those of grounded components)
     joints   : geometry joint indices taking part
@@ -50,7 +50,6 @@ class StaticsModel:
     contact_stiffness : N/m, the contacts' normal and anchor springs
     components : local plank numbers of each grounded component (``component_nodes``:
                their nodes)
-    beam_stiffness : (6 nN, 6 nN) sparse, the beam elements' stiffness (None: rigid)
     beams    : the elements themselves (``elastic.Beams``; None: rigid)
     """
 
@@ -202,7 +201,8 @@ class StaticsModel:
     @cached_property
     def plank_cache(self) -> dict:
         """Per-model facts about the planks that the elastic results reuse (filled by
-        ``elastic``: which joints carry which plank, which planks lie on the floor)."""
+        ``bending``: which joints carry which plank, which planks lie on the floor, the
+        sections and beam axes)."""
         return {}
 
     @cached_property

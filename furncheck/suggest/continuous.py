@@ -23,7 +23,7 @@ from furncheck.dofs import Blocked, Dof, OutOfReach, all_dofs, structure
 from furncheck.geometry import Geometry
 from furncheck.result import DesignReport
 from furncheck.suggest.candidates import MAX_STEP, Candidate, candidates
-from furncheck.suggest.edits import Editor, joint_margin
+from furncheck.suggest.edits import Editor, utilization_margin
 from furncheck.suggest.margins import Margins
 
 FIRST_PROBE = 1.05
@@ -103,7 +103,7 @@ class ContinuousSearch:
         """Line-search the directions in order until ``wanted`` have a valid interval (at
         most LINE_SEARCHES_PER_SUGGESTION x wanted searches); ranked by score."""
         margins = self.margins
-        own_margin = joint_margin(self.report)
+        own_margin = utilization_margin(self.report)
         found: list[Found] = []
         for candidate in directions:
             if len(found) >= wanted or self.searched >= LINE_SEARCHES_PER_SUGGESTION * wanted:

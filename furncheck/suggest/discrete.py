@@ -105,6 +105,7 @@ def support_planks(design: Design, geometry: Geometry, report: DesignReport,
 
 
 _REPAIRED = {"non-durable": "durability", "sagging": "stiffness", "overstressed": "strength"}
+"""The violations a support plank can repair, and what it restores."""
 
 STIFFENER_DEPTHS = (4.0, 6.0, 8.0)
 """Depths of a stiffening rail tried under a bent plank, in plank thicknesses (48, 72 and
@@ -176,8 +177,7 @@ def _checked(design: Design, geometry: Geometry, plank: Plank,
         return None
     if not is_valid(edited, after):      # stops at the first case that fails
         return None
-    return edited, check_design(edited, after)
-"""The violations a support plank can repair, and what it restores."""
+    return edited, check_design(edited, after)      # the winner's report, solved once more
 
 
 def _level(plank: Plank) -> bool:

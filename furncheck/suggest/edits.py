@@ -111,12 +111,13 @@ class Editor:
 
     def margin_at(self, dofs: tuple[Dof, ...], direction: np.ndarray, step: float) -> float:
         """How valid the design ``step`` along ``direction`` is: >= 0 exactly when it is
-        valid and keeps the design's joints (``keeps``).  Where only joints fail (or none)
-        it is the smallest 1 - utilization over all joints and cases, continuous in the
-        step, so that a line search can interpolate; every other failure (a step that
+        valid and keeps the design's joints (``keeps``).  Where only joints (and, elastic
+        model, planks' sag and stress) fail, or none, it is the smallest 1 - utilization over
+        all of them and all cases, continuous in the step, so that a line search can
+        interpolate; every other failure (a step that
         cannot be made, a geometric problem, a case that topples or slides) is -inf.
-        The same verdict as ``joint_margin(check_design(...))``, without building the
-        report."""
+        The same verdict as ``utilization_margin(check_design(...))``, without building
+        the report."""
         try:
             edited = self.moved(dofs, self.changes(dofs, direction, step))
         except (Blocked, OutOfReach):
@@ -132,24 +133,29 @@ class Editor:
             if margin == -math.inf:
                 return -math.inf
             worst, holds = min(worst, margin), holds and case_ok
-        return max(worst, 0.0) if holds else min(worst, -MARGIN_EPS)
+        return signed_margin(worst, holds)
 
 
-_CONTINUOUS = frozenset({"non-durable", "sagging", "overstressed"})
+_UTILIZATION_KINDS = frozenset({"non-durable", "sagging", "overstressed"})
 """The violations measured by a utilization (joints, and planks in the elastic model): a
 margin through them is continuous in an edit."""
 
 
-def joint_margin(report: DesignReport) -> float:
+def utilization_margin(report: DesignReport) -> float:
     """>= 0 exactly when the report is valid: the smallest 1 - utilization of its joints
     and (elastic model) planks where at most those fail, else -inf (the same as
     ``Editor.margin_at``, through ``validity.case_margin``)."""
-    if any(v.kind not in _CONTINUOUS for v in report.violations):
+    if any(v.kind not in _UTILIZATION_KINDS for v in report.violations):
         return -math.inf
     used = [joint.utilization for case in report.cases for joint in case.joints]
     used += [plank.utilization for case in report.cases for plank in case.planks or ()]
-    worst = min((1.0 - u for u in used), default=1.0)
-    return max(worst, 0.0) if report.valid else min(worst, -MARGIN_EPS)
+    return signed_margin(min((1.0 - u for u in used), default=1.0), report.valid)
+
+
+def signed_margin(worst: float, holds: bool) -> float:
+    """The margin of a design whose smallest 1 - utilization is ``worst``: >= 0 exactly
+    when it ``holds`` (a utilization at its capacity to round-off still holds)."""
+    return max(worst, 0.0) if holds else min(worst, -MARGIN_EPS)
 
 
 def _joint_set(geometry: Geometry) -> set[tuple]:
