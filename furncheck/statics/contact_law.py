@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from furncheck import tolerances as tol
+from furncheck.statics.friction import slip_tangent
 from furncheck.statics.model import StaticsModel
 
 
@@ -70,9 +71,8 @@ class ContactLaw:
             t = wt / r[:, None]
             cap = self.mu * -self.k * w[self.slipping, 2]
             block = np.zeros((len(r), 3, 3))
-            along = t[:, :, None] * t[:, None, :]
-            block[:, :2, :2] = (cap / r)[:, None, None] * (np.eye(2) - along) \
-                + tol.SLIP_STIFFNESS * self.k * along
+            block[:, :2, :2] = slip_tangent(cap, r, t) \
+                + tol.SLIP_STIFFNESS * self.k * t[:, :, None] * t[:, None, :]
             block[:, :2, 2] = -self.mu * self.k * t
             block[:, 2, 2] = self.k
             springs[self.slipping] = block

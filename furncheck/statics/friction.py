@@ -151,7 +151,7 @@ class _FrictionEnergy:
         slipping = np.flatnonzero(~sticking)
         unit = w[slipping, :2] / safe_r[slipping, None]
         along = unit[:, :, None] * unit[:, None, :]
-        across = (self.caps[slipping] / safe_r[slipping])[:, None, None] * (_EYE2 - along)
+        across = slip_tangent(self.caps[slipping], safe_r[slipping], unit)
         lost = self.k * (_EYE2 - tol.SLIP_STIFFNESS * along) - across
         rows = (2 * slipping[:, None] + _TWO).ravel()
         self._slips_at, self._slips_kept = x, (slipping, rows, unit, lost)
@@ -195,8 +195,7 @@ class _FrictionEnergy:
         w, safe_r, sticking, _ = self._forces(x)
         unit = w[:, :2] / safe_r[:, None]
         tangent = np.where(sticking[:, None, None], k * _EYE2,
-                           (caps / safe_r)[:, None, None]
-                           * (_EYE2 - unit[:, :, None] * unit[:, None, :]))
+                           slip_tangent(caps, safe_r, unit))
         springs = np.zeros((len(self.active), 3, 3))
         springs[self.active, :2, :2] = tangent
         springs[self.active, 2, 2] = k
@@ -362,7 +361,7 @@ class _StepSlope:
             j = int(rising[0])
             low, low_slope = (farther[j - 1], values[j - 1]) if j else (1.0, full_slope)
             high, high_slope = farther[j], values[j]
-            return low - low_slope * (high - low) / (high_slope - low_slope)
+            return _secant(low, high, low_slope, high_slope)
         breaks = self._breakpoints()
         breaks = breaks[breaks < 1.0]
         low, low_slope, high, high_slope = 0.0, self.start, 1.0, full_slope
@@ -419,8 +418,7 @@ class _StepSlope:
         wx, wy, dx, dy = (v[slipping] for v in (self.wx, self.wy, self.dx, self.dy))
         caps, cross = self.caps[slipping], (wx * dy - wy * dx) ** 2    # |w_t x dw_t|^2
         target = tol.LINE_SEARCH_SLOPE * abs(self.start)
-        t = 1.0 if low < 1.0 <= high else \
-            low - low_slope * (high - low) / (high_slope - low_slope)
+        t = 1.0 if low < 1.0 <= high else _secant(low, high, low_slope, high_slope)
         for _ in range(tol.LINE_SEARCH_ITERATIONS):
             px, py = wx + t * dx, wy + t * dy
             radius = np.hypot(px, py)
@@ -435,9 +433,20 @@ class _StepSlope:
                 return t
             derivative = linear + float(caps @ (cross / radius ** 3))
             guess = t - value / derivative if derivative > 0.0 else high
-            t = guess if low < guess < high else \
-                low - low_slope * (high - low) / (high_slope - low_slope)
+            t = guess if low < guess < high else _secant(low, high, low_slope, high_slope)
         return t
+
+
+def slip_tangent(caps: np.ndarray, stretch: np.ndarray, unit: np.ndarray) -> np.ndarray:
+    """(p, 2, 2): a slipping contact's tangential stiffness, (c / r) (I - u u^T): the force
+    c = mu N keeps its size and turns with the slip direction u (p, 2) as the tangential
+    displacement (of size r, ``stretch``) turns; nothing along u."""
+    return (caps / stretch)[:, None, None] * (_EYE2 - unit[:, :, None] * unit[:, None, :])
+
+
+def _secant(low: float, high: float, low_slope: float, high_slope: float) -> float:
+    """Where the line through (low, low_slope) and (high, high_slope) crosses zero."""
+    return low - low_slope * (high - low) / (high_slope - low_slope)
 
 
 def _anderson(history: list[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
