@@ -21,7 +21,6 @@ from furncheck import tolerances as tol
 from furncheck.design.model import LoadCase
 from furncheck.statics.beams import (
     SHEAR_FACTOR,
-    beam_frame,
     element_interior,
     section_properties,
 )
@@ -90,9 +89,27 @@ def _layout(model: StaticsModel) -> _Layout:
     if cached is not None:
         return cached
     beams = model.beams
-    frames = np.array([beam_frame(model.design.planks[i], beams.crosswise[k])
-                       for k, i in enumerate(model.planks)]).reshape(-1, 3, 3)
+    frames = beams.plank_frames
     section = section_properties(beams.width, beams.thickness)
+    joint_supports, measured = _supports(model)
+    layout = _Layout(node_frame=frames[model.node_plank],
+                     inertia=np.column_stack([section["I3"], section["I2"]]),
+                     area=section["A"],
+                     bending=beams.width * beams.thickness ** 2 / 6.0,
+                     in_plane=beams.thickness * beams.width ** 2 / 6.0,
+                     joint_supports=joint_supports, measured=measured)
+    model.plank_cache["layout"] = layout
+    return layout
+
+
+def _supports(model: StaticsModel) -> tuple[np.ndarray, np.ndarray]:
+    """(the nodes where a joint carries its plank (``_carrying_neighbours``), whether each
+    plank's sag is read (not lying on the floor, ``_lying_on_floor``)): which planks are
+    jointed and which contacts stand decide them, so they are kept per model and shared
+    by the models built on it (``elastic.TOPOLOGY_CACHE``)."""
+    cached = model.plank_cache.get("supports")
+    if cached is not None:
+        return cached
     carried_by = _carrying_neighbours(model)
     joint_supports = []
     for nodes in model.joint_nodes:
@@ -102,15 +119,9 @@ def _layout(model: StaticsModel) -> _Layout:
                 joint_supports.append(int(node))
     measured = np.ones(len(model.planks), dtype=bool)
     measured[sorted(_lying_on_floor(model))] = False
-    layout = _Layout(node_frame=frames[model.node_plank],
-                     inertia=np.column_stack([section["I3"], section["I2"]]),
-                     area=section["A"],
-                     bending=beams.width * beams.thickness ** 2 / 6.0,
-                     in_plane=beams.thickness * beams.width ** 2 / 6.0,
-                     joint_supports=np.array(joint_supports, dtype=int),
-                     measured=measured)
-    model.plank_cache["layout"] = layout
-    return layout
+    supports = np.array(joint_supports, dtype=int), measured
+    model.plank_cache["supports"] = supports
+    return supports
 
 
 def _stress(model: StaticsModel, layout: _Layout, displacement: np.ndarray, w: np.ndarray,

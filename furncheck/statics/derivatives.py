@@ -117,7 +117,8 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
     for side in sides:
         joints = list(geometry.joints)
         for j, joint in zip(side.joints, side.followed_joints):
-            joints[j] = replace(joint, nails=geometry.joints[j].nails)   # nails held
+            nails = geometry.joints[j].nails                             # nails held
+            joints[j] = joint if joint.nails == nails else replace(joint, nails=nails)
         contacts = list(geometry.contacts)
         for k, contact in zip(side.contacts, side.followed_contacts):
             contacts[k] = contact

@@ -56,6 +56,7 @@ class Beams:
     plank_half : (nP,) m, half the beam length of each plank
     origins  : per node, its local plank and the keys of what it serves (``_plank_nodes``)
     crosswise : per plank, whether its beam runs along its local y (``along_width``)
+    plank_frames : (nP, 3, 3) each plank's beam axes (``beam_frame``)
     """
 
     plank: np.ndarray
@@ -69,6 +70,7 @@ class Beams:
     plank_half: np.ndarray
     origins: tuple = ()
     crosswise: tuple = ()
+    plank_frames: np.ndarray | None = None
 
     def transform(self) -> np.ndarray:
         """(nE, 12, 12) T: local = T world, blockdiag(R^T x 4)."""
@@ -132,10 +134,77 @@ def _crosswise(design: Design, geometry: Geometry, planks: list[Plank], joints: 
     return tuple(out)
 
 
-TOPOLOGY_CACHE = ("carrying", "lying")
+TOPOLOGY_CACHE = ("carrying", "lying", "supports")
 """The entries of ``StaticsModel.plank_cache`` (filled by ``bending``) that depend on which
 planks are jointed and which contacts stand, not on where: a model built on a template
-(the same joints and contacts) shares them."""
+(the same joints and contacts) shares them, as it shares its ``_NodeLayout``
+("node_layout")."""
+
+
+@dataclass(frozen=True)
+class _NodeLayout:
+    """Which attachments each node serves, as arrays (from the nodes' origins: a local
+    plank and the keys it serves, ``_plank_nodes``), so that the nodes of a model built on
+    a template are placed without going through the keys again.
+
+    node_plank : (nN,) local plank of each node
+    key_node, key_plank : (m,) node and local plank of each key of every origin, in order
+    key_row    : (m,) the attachment row of a key (its place in the build's attachment
+                 list: joints' two sides, contacts, loads), -1 for an end, centre or grid
+    key_scale  : (m,) where an end, centre or grid key sits, in half lengths from the centre
+    counts     : (nN,) keys per node
+    row_node   : (nA,) the node of each attachment row
+    centre_node : (nP,) the node at each plank's centre
+    """
+
+    node_plank: np.ndarray
+    key_node: np.ndarray
+    key_plank: np.ndarray
+    key_row: np.ndarray
+    key_scale: np.ndarray
+    counts: np.ndarray
+    row_node: np.ndarray
+    centre_node: np.ndarray
+
+    @classmethod
+    def of(cls, origins: tuple, keys: list[tuple], owners: list[int]) -> _NodeLayout:
+        row_of = {key: row for row, key in enumerate(keys)}
+        key_node, key_plank, key_row, key_scale = [], [], [], []
+        centre_node = {}
+        for node, (plank, *served) in enumerate(origins):
+            for key in served:
+                row = row_of.get(key, -1)
+                key_node.append(node)
+                key_plank.append(owners[row] if row >= 0 else plank)
+                key_row.append(row)
+                key_scale.append(float(key[2]) if key[0] == "end" else
+                                 2.0 * key[2] - 1.0 if key[0] == "grid" else 0.0)
+                if key[0] == "centre":
+                    centre_node[plank] = node
+        key_node = np.array(key_node, dtype=int)
+        key_row = np.array(key_row, dtype=int)
+        row_node = np.zeros(len(keys), dtype=int)
+        attached = key_row >= 0
+        row_node[key_row[attached]] = key_node[attached]
+        return cls(node_plank=np.array([origin[0] for origin in origins], dtype=int),
+                   key_node=key_node, key_plank=np.array(key_plank, dtype=int),
+                   key_row=key_row, key_scale=np.array(key_scale, dtype=float),
+                   counts=np.bincount(key_node, minlength=len(origins)),
+                   row_node=row_node,
+                   centre_node=np.array([centre_node[k] for k in range(len(centre_node))],
+                                        dtype=int))
+
+    def positions(self, along: np.ndarray, halves: np.ndarray) -> np.ndarray:
+        """(nN,) m: each node's place along its plank's axis, the mean of what it serves:
+        an attachment at its place ``along`` (nA,) kept on the plank (within +-half its
+        length, ``halves`` (nP,)), an end, the centre or a grid point where it is."""
+        half = halves[self.key_plank]
+        attached = self.key_row >= 0
+        values = self.key_scale * half
+        values[attached] = np.minimum(np.maximum(along[self.key_row[attached]],
+                                                 -half[attached]), half[attached])
+        return np.bincount(self.key_node, weights=values, minlength=len(self.counts)) \
+            / self.counts
 
 
 def build_elastic_model(design: Design, geometry: Geometry,
@@ -180,51 +249,38 @@ def build_elastic_model(design: Design, geometry: Geometry,
     owner_array = np.array(owners, dtype=int)
     along = ((np.array(points, dtype=float).reshape(-1, 3) - centres[owner_array])
              * axes[owner_array]).sum(axis=1)
-    position = dict(zip(keys, along.tolist()))     # attachment key -> s along its plank
-    owner_of = dict(zip(keys, owners))
 
     if template is None:
         attachments: list[list] = [[] for _ in plank_list]
-        for key, s in position.items():
-            attachments[owner_of[key]].append((s, key))
-        origins = [origin for k in range(len(plank_list))
-                   for origin in _plank_nodes(k, float(halves[k]), attachments[k])]
+        for key, s, owner in zip(keys, along.tolist(), owners):
+            attachments[owner].append((s, key))
+        origins = tuple(origin for k in range(len(plank_list))
+                        for origin in _plank_nodes(k, float(halves[k]), attachments[k]))
+        layout = _NodeLayout.of(origins, keys, owners)
     else:
-        origins = list(template.beams.origins)
+        origins = template.beams.origins
+        layout = template.plank_cache["node_layout"]
 
-    half_of = halves.tolist()
-
-    def place(key: tuple) -> float:
-        if key[0] == "end":
-            return key[2] * half_of[key[1]]
-        if key[0] == "centre":
-            return 0.0
-        if key[0] == "grid":
-            return (2.0 * key[2] - 1.0) * half_of[key[1]]
-        half = half_of[owner_of[key]]
-        return min(max(position[key], -half), half)
-
-    node_plank = np.array([origin[0] for origin in origins], dtype=int)
-    node_s = np.array([sum(place(key) for key in origin[1:]) / (len(origin) - 1)
-                       for origin in origins], dtype=float)
-    node_of = {key: node for node, origin in enumerate(origins) for key in origin[1:]}
+    node_plank = layout.node_plank
+    node_s = layout.positions(along, halves)
     node_points = (centres[node_plank] + node_s[:, None] * axes[node_plank]).reshape(-1, 3)
-    beams = _beams(plank_list, frames, node_plank, node_s, halves, material, tuple(origins),
+    beams = _beams(plank_list, frames, node_plank, node_s, halves, material, origins,
                    crosswise)
 
-    joint_nodes = np.array([[node_of[("joint", row, side)] for side in (0, 1)]
-                            for row in range(len(joints))], dtype=int).reshape(-1, 2)
+    n_sides = 2 * len(joints)
+    joint_nodes = layout.row_node[:n_sides].reshape(-1, 2)
     points = np.array([geometry.joints[j].point for j in joints], dtype=float).reshape(-1, 3)
     joint_blocks = joint_deviation_blocks(points, node_points[joint_nodes])
     stiffness = nail_row_springs([geometry.joints[j] for j in joints], material.nail_slip,
                                  material.nail_withdrawal)
 
-    owner = np.array([owner_of[("contact", row)] for row in range(len(contacts))], dtype=int)
+    owner = owner_array[n_sides:n_sides + len(contacts)]
     contact_points = np.array([geometry.contacts[c].point for c in contacts],
                               dtype=float).reshape(-1, 3)
-    contact_node = np.array([node_of[("contact", row)] for row in range(len(contacts))],
-                            dtype=int)
-    load_nodes = {(case.name, li): node_of.get(("load", ci, li), node_of[("centre", k)])
+    contact_node = layout.row_node[n_sides:n_sides + len(contacts)]
+    load_rows = {key[1:]: row for row, key in enumerate(keys) if key[0] == "load"}
+    load_nodes = {(case.name, li): int(layout.row_node[load_rows[ci, li]])
+                  if (ci, li) in load_rows else int(layout.centre_node[k])
                   for ci, case in enumerate(design.load_cases)
                   for li, load in enumerate(case.loads)
                   if (k := local.get(design.plank_index[load.plank])) is not None}
@@ -242,6 +298,7 @@ def build_elastic_model(design: Design, geometry: Geometry,
         nodal_weight=_nodal_loads(beams, _weights_per_length(design, plank_list, beams),
                                   len(node_plank)),
         load_nodes=load_nodes)
+    model.plank_cache["node_layout"] = layout
     if template is not None:        # the same joints and contacts: the same topology
         assert template.joints == model.joints and template.contacts == model.contacts
         for key in TOPOLOGY_CACHE:
@@ -259,15 +316,17 @@ def _beams(planks: list[Plank], frames: list[np.ndarray], node_plank: np.ndarray
     nodes = np.column_stack([first, first + 1])
     plank = node_plank[first]
     length = node_s[first + 1] - node_s[first]
-    widths = np.array([beam_length_width(planks[k], crosswise[k])[1] for k in plank],
-                      dtype=float)
-    thickness = np.array([planks[k].thickness for k in plank], dtype=float)
+    plank_widths = np.array([beam_length_width(p, c)[1] for p, c in zip(planks, crosswise)],
+                            dtype=float)
+    plank_thickness = np.array([p.thickness for p in planks], dtype=float)
+    plank_frames = np.array(frames, dtype=float).reshape(-1, 3, 3)
+    widths, thickness = plank_widths[plank], plank_thickness[plank]
     local = beam_stiffness_local(length, widths, thickness, material.elastic_modulus,
                                  material.shear_modulus).reshape(-1, 12, 12)
-    return Beams(plank=plank, nodes=nodes, length=length,
-                 frames=np.array([frames[k] for k in plank]).reshape(-1, 3, 3),
+    return Beams(plank=plank, nodes=nodes, length=length, frames=plank_frames[plank],
                  local_stiffness=local, width=widths, thickness=thickness, node_s=node_s,
-                 plank_half=halves, origins=origins, crosswise=crosswise)
+                 plank_half=halves, origins=origins, crosswise=crosswise,
+                 plank_frames=plank_frames)
 
 
 def _element_dofs(beams: Beams) -> np.ndarray:
@@ -304,11 +363,11 @@ def element_forces(beams: Beams, q: np.ndarray, n_nodes: int) -> np.ndarray:
 
 def _weights_per_length(design: Design, planks: list[Plank], beams: Beams) -> np.ndarray:
     """(nE, 3) N/m: each element's share of its plank's weight, spread along the plank."""
+    per_plank = np.array([-design.plank_mass(plank) * tol.GRAVITY
+                          / beam_length_width(plank, crosswise)[0]
+                          for plank, crosswise in zip(planks, beams.crosswise)], dtype=float)
     loads = np.zeros((len(beams.plank), 3))
-    for e, k in enumerate(beams.plank):
-        plank = planks[k]
-        loads[e, 2] = -design.plank_mass(plank) * tol.GRAVITY \
-            / beam_length_width(plank, beams.crosswise[k])[0]
+    loads[:, 2] = per_plank[beams.plank]
     return loads
 
 
