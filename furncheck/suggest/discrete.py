@@ -18,6 +18,7 @@ another -- and only working supports are suggested.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -73,6 +74,7 @@ def support_planks(design: Design, geometry: Geometry, report: DesignReport,
     found: list[Support] = []
     tried: set[tuple] = set()
     failing = dict.fromkeys(v.where for v in report.violations)
+    reaches = _reach(failing, neighbours)
     for where in failing:
         if "/" in where:                                 # a joint k/i: brackets and posts
             pair = where.split("/", 1)
@@ -82,7 +84,8 @@ def support_planks(design: Design, geometry: Geometry, report: DesignReport,
                 key = (where, "stiffener")
                 if key in tried or len(found) >= limit:
                     break
-                support = _try_stiffener(design, geometry, where, neighbours[where], depth)
+                support = _try_stiffener(design, geometry, where, neighbours[where], depth,
+                                         reaches)
                 if support is not None:
                     tried.add(key)
                     found.append(replace(support, restores=restores))
@@ -95,13 +98,33 @@ def support_planks(design: Design, geometry: Geometry, report: DesignReport,
             for j in partners:
                 for place, position in places:
                     key = (*sorted((i, j or "")), place)
-                    if key in tried or len(found) >= limit:
+                    if key in tried or len(found) >= limit or not reaches({i, j}):
                         continue
                     tried.add(key)
                     support = _try(design, geometry, k, i, j, place, position)
                     if support is not None:
                         found.append(replace(support, restores=restores))
     return found
+
+
+def _reach(failing, neighbours: dict[str, list[str]]) -> Callable[[set], bool]:
+    """Whether an added plank nailed to ``ends`` (a set of plank ids) comes near every
+    failing place (``failing``: violations' ``where``, a joint 'a/b' or a plank): each
+    failing joint and plank is one of ``ends`` or jointed to one (``neighbours``).  A
+    support relieves what it is nailed to and the planks those carry (a support under a
+    cantilevered shelf unloads its post too, a leg under a table top its legs), not a
+    shelf two joints away; so a candidate that does not come near every failing place is
+    not built and checked (a bookcase whose shelves all sag gets no support tried, at
+    once instead of after a full check of each)."""
+    joints = [set(where.split("/", 1)) for where in failing if "/" in where]
+    planks = [{where} for where in failing if "/" not in where]
+
+    def reaches(ends: set) -> bool:
+        near = set(ends)
+        for end in ends:
+            near.update(neighbours.get(end, ()))
+        return all(place & near for place in (*joints, *planks))
+    return reaches
 
 
 _REPAIRED = {"non-durable": "durability", "sagging": "stiffness", "overstressed": "strength"}
@@ -113,14 +136,15 @@ STIFFENER_DEPTHS = (4.0, 6.0, 8.0)
 
 
 def _try_stiffener(design: Design, geometry: Geometry, i: str, neighbours: list[str],
-                   depth: float) -> Support | None:
+                   depth: float, reaches: Callable[[set], bool]) -> Support | None:
     """A rail on edge under one long edge of the level plank i (a shelf's front lip), or
     under its middle, between the two parallel planks that hold i's ends, nailed to i and
     to both: the woodworker's fix for a sagging shelf.  (A lip at one edge carries that
     edge; the beam model's shelf, whose section does not bend across its width, then
     twists about its axis: where that is too much, the rail under the middle does it.)
     None when i is not level, is not held at both ends by parallel planks, or the rail
-    does not work (checked as ``_try`` does)."""
+    does not work (checked as ``_try`` does), or it would not reach every failing place
+    (``reaches``, see ``_reach``)."""
     shelf = design.plank(i)
     if not _level(shelf):
         return None
@@ -139,6 +163,8 @@ def _try_stiffener(design: Design, geometry: Geometry, i: str, neighbours: list[
     if not below or not above:
         return None
     (s_low, low), (s_high, high) = max(below, key=lambda e: e[0]), min(above, key=lambda e: e[0])
+    if not reaches({i, low.id, high.id}):
+        return None
     start = s_low + low.half_extents[2]
     stop = s_high - high.half_extents[2]
     thickness = design.material.thickness
