@@ -74,9 +74,16 @@ class AssemblyDifferences:
 
         n_planks = len(self.sides[0][3].planks)
         sag, span, stress = (np.zeros((n_dofs, n_planks)) for _ in range(3))
+        at_rest = {}                # (model, case) -> its results at q (offset 0)
         for column, weight, offset, model, case in self.sides:
-            result = plank_results(model, case, self.q + offset * dq[:, column],
-                                   self.holding)
+            if offset == 0.0:
+                key = (id(model), case.name)
+                if key not in at_rest:
+                    at_rest[key] = plank_results(model, case, self.q, self.holding)
+                result = at_rest[key]
+            else:
+                result = plank_results(model, case, self.q + offset * dq[:, column],
+                                       self.holding)
             sag[column] += weight * result.sag
             span[column] += weight * result.span
             stress[column] += weight * result.stress
@@ -114,7 +121,20 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
                               np.zeros((n_dofs, len(model.joints))), q=q,
                               holding=law.holding)
     geometry = model.geometry
+    unchanged = {}                  # case name -> b - A x of the model itself
     for side in sides:
+        case = next(c for c in side.design.load_cases if c.name == case_name)
+        if side.design is model.design and _followed_as_is(geometry, side):
+            # the design itself (the base of a one-sided difference): its model is
+            # ``model`` (built on itself, a template gives the same model bit for bit)
+            if case.name not in unchanged:
+                unchanged[case.name] = _residual(model, case, q, h, law)
+            out.residual[:, side.column] += side.weight * unchanged[case.name]
+            out.maps[side.column] += side.weight * model.contact_maps
+            out.lengths[side.column] += side.weight * np.array(
+                [geometry.joints[j].length for j in model.joints])
+            out.sides.append((side.column, side.weight, side.offset, model, case))
+            continue
         joints = list(geometry.joints)
         for j, joint in zip(side.joints, side.followed_joints):
             nails = geometry.joints[j].nails                             # nails held
@@ -124,13 +144,20 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
             contacts[k] = contact
         stepped_geometry = replace(geometry, joints=tuple(joints), contacts=tuple(contacts))
         stepped = build_elastic_model(side.design, stepped_geometry, template=model)
-        case = next(c for c in side.design.load_cases if c.name == case_name)
         out.residual[:, side.column] += side.weight * _residual(stepped, case, q, h, law)
         out.maps[side.column] += side.weight * stepped.contact_maps
         out.lengths[side.column] += side.weight * np.array(
             [stepped_geometry.joints[j].length for j in model.joints])
         out.sides.append((side.column, side.weight, side.offset, stepped, case))
     return out
+
+
+def _followed_as_is(geometry, side: AssemblySide) -> bool:
+    """Whether the side's followed joints and contacts are the geometry's own."""
+    return all(followed is geometry.joints[j]
+               for j, followed in zip(side.joints, side.followed_joints)) \
+        and all(followed is geometry.contacts[k]
+                for k, followed in zip(side.contacts, side.followed_contacts))
 
 
 def _residual(model: StaticsModel, case, q: np.ndarray, h: np.ndarray,
