@@ -13,7 +13,9 @@ overstressed (elastic model) is P_i itself: the support goes under the middle of
 overlap with a parallel plank P_j that shares a neighbour P_k with it (a divider between
 a sagging shelf and the shelf below), or the floor.  Each candidate design is checked in
 full -- valid in every case, the new plank joined to P_i and P_j only, no plank cutting
-another -- and only working supports are suggested.
+another -- and only working supports are suggested; a candidate that does not come near
+every failing joint and plank (one joint from the planks it is nailed to, ``_reach``) is
+not built at all.
 """
 
 from __future__ import annotations
