@@ -88,10 +88,6 @@ and the moment for the stress (besides its ends and, for the stress, the peaks o
 moments): the sampled largest deviation of a span's deflection is within 1 - cos(pi / 64),
 0.12 %, of the true one."""
 
-MOMENT_CURVATURE = 1e-12
-"""Elastic model: an element's bending moment, a parabola along it, is read at its vertex
-too unless its curvature is below this fraction of its size (a straight moment line)."""
-
 NODE_MERGE = 1e-3
 """m: attachments closer than this along a plank's axis share a node (at their mean, each
 held by a rigid arm): a beam element shorter than a millimetre is far stiffer than anything

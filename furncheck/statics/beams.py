@@ -103,14 +103,8 @@ def element_interior(length, bending_stiffness, shear_stiffness, ends: np.ndarra
     EI = np.asarray(bending_stiffness, dtype=float)
     kGA = np.asarray(shear_stiffness, dtype=float)
     q = np.asarray(load, dtype=float)
-    w0, th0, wL, thL = (ends[:, i] for i in range(4))
-    # [L / EI, L^2 / 2 EI; L^2 / 2 EI, L^3 / 6 EI - L / kGA] [M_0, V_0] = [rotation, deflection]
-    rotation = thL - th0 - q * L ** 3 / (6.0 * EI)
-    deflection = wL - w0 - th0 * L - q * L ** 4 / (24.0 * EI) + q * L * L / (2.0 * kGA)
-    a, b, d = L / EI, L * L / (2.0 * EI), L ** 3 / (6.0 * EI) - L / kGA
-    determinant = a * d - b * b            # = -L^4 / 12 EI^2 - L^2 / EI kGA < 0
-    M0 = (d * rotation - b * deflection) / determinant
-    V0 = (a * deflection - b * rotation) / determinant
+    w0, th0 = ends[:, 0], ends[:, 1]
+    M0, V0 = element_end_moment(L, EI, kGA, ends, q)
     s = L[:, None] * np.asarray(xi, dtype=float)
     M0, V0, q, EI, kGA = (v[:, None] for v in (M0, V0, q, EI, kGA))
     moment = M0 + V0 * s + 0.5 * q * s * s
@@ -118,6 +112,22 @@ def element_interior(length, bending_stiffness, shear_stiffness, ends: np.ndarra
          + (0.5 * M0 * s * s + V0 * s ** 3 / 6.0 + q * s ** 4 / 24.0) / EI
          - (V0 * s + 0.5 * q * s * s) / kGA)
     return w, moment
+
+
+def element_end_moment(length, bending_stiffness, shear_stiffness, ends: np.ndarray,
+                       load) -> tuple[np.ndarray, np.ndarray]:
+    """(M_0, V_0), each (n,): the moment and its slope V = dM/ds at the start of n
+    Timoshenko elements (``element_interior``'s arguments but ``xi``), from theta and w at
+    s = L, two linear equations: M(s) = M_0 + V_0 s + q s^2 / 2 along each."""
+    L, EI, kGA, q = length, bending_stiffness, shear_stiffness, load
+    w0, th0, wL, thL = (ends[:, i] for i in range(4))
+    # [L / EI, L^2 / 2 EI; L^2 / 2 EI, L^3 / 6 EI - L / kGA] [M_0, V_0] = [rotation, deflection]
+    rotation = thL - th0 - q * L ** 3 / (6.0 * EI)
+    deflection = wL - w0 - th0 * L - q * L ** 4 / (24.0 * EI) + q * L * L / (2.0 * kGA)
+    a, b, d = L / EI, L * L / (2.0 * EI), L ** 3 / (6.0 * EI) - L / kGA
+    determinant = a * d - b * b            # = -L^4 / 12 EI^2 - L^2 / EI kGA < 0
+    return ((d * rotation - b * deflection) / determinant,
+            (a * deflection - b * rotation) / determinant)
 
 
 def nail_row_spread(length, nails):

@@ -21,6 +21,7 @@ from furncheck import tolerances as tol
 from furncheck.design.model import LoadCase
 from furncheck.statics.beams import (
     SHEAR_FACTOR,
+    element_end_moment,
     element_interior,
     section_properties,
 )
@@ -129,20 +130,18 @@ def _stress(model: StaticsModel, layout: _Layout, displacement: np.ndarray, w: n
     """(nP,) Pa: each plank's largest |M_2| / (b t^2 / 6) + |M_3| / (t b^2 / 6) + |N| / (b t)
     along its elements: at their ends, SAG_SAMPLES points inside and wherever either
     bending moment peaks inside (each moment is a parabola along an element under its own
-    uniform load, ``_interior``; the peak is its vertex).  The normal force N comes from
+    uniform load, M(s) = M_0 + V_0 s + q s^2 / 2, ``beams.element_end_moment``; the peak
+    is its vertex, s = -V_0 / q).  The normal force N comes from
     the element end forces K_local T u - f_local (T u: each end's displacement and
     rotation in the element's axes, R^T u; f_local: the consistent loads of its own
     uniform load ``line_loads`` (nE, 3) N/m), linear in between."""
     beams = model.beams
     forces = element_end_forces(beams, displacement.ravel()) \
         - _element_loads_local(beams, line_loads)
-    # each plane's moment as M(xi) = c0 + c1 xi + c2 xi^2 from xi = 0, 1/2, 1
-    moment = _interior(model, layout, w, slope, line_loads, np.array([0.0, 0.5, 1.0]))[1]
-    c0 = moment[..., 0]
-    c1 = -3.0 * moment[..., 0] + 4.0 * moment[..., 1] - moment[..., 2]
-    c2 = 2.0 * moment[..., 0] - 4.0 * moment[..., 1] + 2.0 * moment[..., 2]   # (2, nE)
-    curved = np.abs(c2) > tol.MOMENT_CURVATURE * (np.abs(c0) + np.abs(c1) + np.abs(c2))
-    vertex = np.divide(-c1, 2.0 * c2, out=np.zeros_like(c1), where=curved)
+    # each plane's moment as M(xi) = c0 + c1 xi + c2 xi^2 along the element, (2, nE) each
+    c0, V0, q = _moment_lines(model, layout, w, slope, line_loads)
+    c1, c2 = V0 * beams.length, 0.5 * q * beams.length ** 2
+    vertex = np.divide(-c1, 2.0 * c2, out=np.zeros_like(c1), where=c2 != 0.0)
     xi = np.concatenate([np.broadcast_to(np.linspace(0.0, 1.0, tol.SAG_SAMPLES + 2),
                                          (len(beams.plank), tol.SAG_SAMPLES + 2)),
                          np.clip(vertex, 0.0, 1.0).T], axis=1)          # (nE, m)
@@ -230,7 +229,7 @@ def _profile(model: StaticsModel, layout: _Layout, w: np.ndarray, slope: np.ndar
     beams = model.beams
     a = beams.nodes[:, 0]
     xi = np.linspace(0.0, 1.0, tol.SAG_SAMPLES + 2)[1:-1]
-    inside = _interior(model, layout, w, slope, line_loads, xi)[0]      # (2, nE, samples)
+    inside = _interior(model, layout, w, slope, line_loads, xi)         # (2, nE, samples)
     inside = np.transpose(inside, (0, 2, 1))                            # (2, samples, nE)
     s_inside = beams.node_s[a] + xi[:, None] * beams.length             # (samples, nE)
     return (np.concatenate([beams.node_s, s_inside.ravel()]),
@@ -238,23 +237,38 @@ def _profile(model: StaticsModel, layout: _Layout, w: np.ndarray, slope: np.ndar
             np.concatenate([model.node_plank, np.tile(beams.plank, len(xi))]))
 
 
-def _interior(model: StaticsModel, layout: _Layout, w: np.ndarray, slope: np.ndarray,
-              line_loads: np.ndarray, xi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(deflection, moment), each (2, nE, m): in both bending planes (along e2: about e3,
-    in the plank's plane; along e3: about e2, the sag of a shelf), at the fractions ``xi``
-    (m,) of each element, by ``element_interior`` from its nodes' deflections and section
-    rotations (``_transverse``) and its own uniform load ``line_loads`` (nE, 3) N/m."""
+def _plane_arguments(model: StaticsModel, layout: _Layout, w: np.ndarray, slope: np.ndarray,
+                     line_loads: np.ndarray, j: int) -> tuple:
+    """(L, E I, k G A, ends, q) of every element in bending plane j (0: along e2, about e3,
+    in the plank's plane; 1: along e3, about e2, the sag of a shelf), as
+    ``beams.element_interior`` takes them: its nodes' deflections and section rotations
+    (``_transverse``) and its own uniform load from ``line_loads`` (nE, 3) N/m."""
     beams = model.beams
     material = model.design.material
     a, b = beams.nodes[:, 0], beams.nodes[:, 1]
-    q = np.einsum("ei,eij->je", line_loads, beams.frames[:, :, 1:])    # (2, nE): e2, e3
-    shear = SHEAR_FACTOR * material.shear_modulus * layout.area
-    parts = [element_interior(beams.length, material.elastic_modulus * layout.inertia[:, j],
-                              shear, np.column_stack([w[j, a], slope[j, a], w[j, b],
-                                                      slope[j, b]]),
-                              q[j], xi)
-             for j in (0, 1)]
-    return (np.stack([part[0] for part in parts]), np.stack([part[1] for part in parts]))
+    q = np.einsum("ei,ei->e", line_loads, beams.frames[:, :, 1 + j])
+    return (beams.length, material.elastic_modulus * layout.inertia[:, j],
+            SHEAR_FACTOR * material.shear_modulus * layout.area,
+            np.column_stack([w[j, a], slope[j, a], w[j, b], slope[j, b]]), q)
+
+
+def _interior(model: StaticsModel, layout: _Layout, w: np.ndarray, slope: np.ndarray,
+              line_loads: np.ndarray, xi: np.ndarray) -> np.ndarray:
+    """(2, nE, m): the deflection in both bending planes at the fractions ``xi`` (m,) of
+    each element (``element_interior``, ``_plane_arguments``)."""
+    return np.stack([element_interior(*_plane_arguments(model, layout, w, slope,
+                                                        line_loads, j), xi)[0]
+                     for j in (0, 1)])
+
+
+def _moment_lines(model: StaticsModel, layout: _Layout, w: np.ndarray, slope: np.ndarray,
+                  line_loads: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(M_0, V_0, q), each (2, nE): the moment line M(s) = M_0 + V_0 s + q s^2 / 2 of each
+    element in both bending planes (``element_end_moment``)."""
+    parts = [_plane_arguments(model, layout, w, slope, line_loads, j) for j in (0, 1)]
+    ends = [element_end_moment(*part) for part in parts]
+    return (np.stack([end[0] for end in ends]), np.stack([end[1] for end in ends]),
+            np.stack([part[4] for part in parts]))
 
 
 def _outermost_supports(model: StaticsModel, layout: _Layout,
