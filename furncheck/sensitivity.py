@@ -116,9 +116,7 @@ class Linearization:
 
     def _contact_displacements(self) -> np.ndarray:
         """(nK, 3) m: each contact point's displacement in the linearized state."""
-        model = self.model
-        q = self.state[:model.n_dof].reshape(-1, 6)[model.contact_node]
-        return (model.contact_maps @ q[:, :, None])[:, :, 0]
+        return self.model.contact_displacements(self.state)
 
     def step(self, dof: Dof) -> float:
         """The difference step for ``dof`` in its own unit."""

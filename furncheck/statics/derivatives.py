@@ -164,8 +164,7 @@ def _residual(model: StaticsModel, case, q: np.ndarray, h: np.ndarray,
               law: ContactLaw) -> np.ndarray:
     """b - A x of the mixed system [[K_b, G^T], [G, -E]] [q; h] = [f + M^T f_c; 0], the
     contact forces f_c as ``law`` gives them for the contact displacements M q."""
-    node_q = q.reshape(-1, 6)[model.contact_node]
-    w = (model.contact_maps @ node_q[:, :, None])[:, :, 0]
+    w = model.contact_displacements(q)
     contact = -np.transpose(model.contact_maps, (0, 2, 1)) @ law.forces(w)[:, :, None]
     top = model.beam_forces(q) + model.reactions(h) \
         + block_sums(model.contact_node, contact[:, :, 0], model.n_nodes).ravel()

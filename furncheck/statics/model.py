@@ -93,6 +93,11 @@ class StaticsModel:
 
         return assemble_beams(self.beams, self.n_nodes)
 
+    def contact_displacements(self, q: np.ndarray) -> np.ndarray:
+        """(nK, 3) m: each contact point's displacement for node displacements q (6 nN,)."""
+        node_q = q[:self.n_dof].reshape(-1, 6)[self.contact_node]
+        return (self.contact_maps @ node_q[:, :, None])[:, :, 0]
+
     def beam_forces(self, q: np.ndarray) -> np.ndarray:
         """(6 nN,) K_b q element by element (zero for rigid planks)."""
         if self.beams is None:
