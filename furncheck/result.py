@@ -57,11 +57,13 @@ class JointResult:
 
 @dataclass(frozen=True)
 class ContactResult:
-    """The ground's force on a plank at one contact corner (N, world; z is normal)."""
+    """The ground's (or wall ``wall``'s) force on a plank at one contact corner (N, world;
+    for the ground z is normal)."""
 
     plank: str
     point: tuple[float, float, float]
     force: tuple[float, float, float]
+    wall: int | None = None
 
 
 @dataclass(frozen=True)

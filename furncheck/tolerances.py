@@ -230,6 +230,9 @@ MAX_SAG_LIMIT = 1e6
 MAX_NAIL_STIFFNESS = 1e13        # N/m per nail, slip or withdrawal
 MAX_ROTATION_DEG = 1e4           # degrees, largest |rotation| about one axis
 MAX_NAILS = 1e6                  # nails of one listed joint
+WALL_NORMAL_TILT = 1e-6
+"""Largest |z| of a wall's normal, relative to its length: walls are vertical (contract
+section 2); a normal within this of horizontal is made exactly horizontal."""
 ON_PLANK_EPS = 1e-9
 """m: round-off slack (on top of the design's tolerance) when a load point is checked to
 lie on its plank, so a point exactly on a face is on the plank even with tolerance 0."""

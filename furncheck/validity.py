@@ -132,9 +132,11 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
     contacts = []
     if statics.contact_forces is not None:
         points = (model.contact_points / scale).tolist()
-        for row, (point, force) in enumerate(zip(points, statics.contact_forces.tolist())):
-            plank = geometry.contacts[model.contacts[row]].plank
-            contacts.append(ContactResult(plank, tuple(point), tuple(force)))
+        forces = model.world_forces(statics.contact_forces).tolist()
+        for row, (point, force) in enumerate(zip(points, forces)):
+            contact = geometry.contacts[model.contacts[row]]
+            contacts.append(ContactResult(contact.plank, tuple(point), tuple(force),
+                                          contact.wall))
     planks = None
     if statics.planks is not None:
         planks = []

@@ -28,7 +28,7 @@ from typing import Any
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.design.model import Design, JointSpec, Load, LoadCase, Material, Plank
+from furncheck.design.model import Design, JointSpec, Load, LoadCase, Material, Plank, Wall
 from furncheck.design.source import (
     _NO_DOCUMENT,
     _PATH_SAFE_KEY,
@@ -50,13 +50,14 @@ UNIT_SCALES = {"mm": 0.001, "m": 1.0}
 """Length unit -> metres per unit."""
 
 TOP_KEYS = ("furncheck", "name", "units", "model", "material", "planks", "joints", "loads",
-            "load_cases", "safety_factor", "tolerance")
+            "load_cases", "safety_factor", "tolerance", "walls")
 MATERIAL_KEYS = ("thickness", "density", "nail_spacing", "nail_pull", "nail_shear", "friction",
                  "elastic_modulus", "shear_modulus", "bending_strength", "creep", "sag_limit",
                  "nail_slip", "nail_withdrawal")
 PLANK_KEYS = ("id", "size", "center", "rotation", "thickness")
 JOINT_KEYS = ("planks", "nails")
 LOAD_KEYS = ("plank", "mass", "force", "at", "spread")
+WALL_KEYS = ("point", "normal")
 
 _IDENTIFIER = _PATH_SAFE_KEY   # plank ids and case names: what a key path shows bare
 _AXES = ("length", "width", "thickness")
@@ -139,6 +140,7 @@ def _design(doc: _Doc, tree: Any) -> Design:
         unit_scale=units.scale,
         source=doc.source,
         model=_model(doc, top),
+        walls=_walls(doc, top["walls"], units) if "walls" in top else (),
         lines=doc.design_lines(),
     )
 
@@ -359,6 +361,31 @@ def _nail_count(doc: _Doc, node: Any, key: str) -> int:
         doc.fail(key, f"must be a whole number of nails from 1 to {tol.MAX_NAILS:g}, "
                       f"got {value:g}")
     return int(value)
+
+
+# --- walls -------------------------------------------------------------------------------------
+
+def _walls(doc: _Doc, node: Any, units: _Units) -> tuple[Wall, ...]:
+    """``[{point, normal}, ...]``: vertical planes, the normal horizontal (its z within
+    WALL_NORMAL_TILT of zero, then made exactly horizontal) and made a unit vector."""
+    walls = []
+    for index, item in enumerate(doc.sequence(node, "walls")):
+        key = f"walls[{index}]"
+        fields = doc.mapping(item, key, WALL_KEYS, required=WALL_KEYS)
+        point = _point(doc, fields["point"], f"{key}.point", units)
+        normal = np.array(_vector(doc, fields["normal"], f"{key}.normal", 3, -tol.MAX_COORDINATE,
+                                  tol.MAX_COORDINATE))
+        size = float(np.linalg.norm(normal))
+        if size == 0.0:
+            doc.fail(f"{key}.normal", "zero-length normal: give the direction from the wall "
+                                      "into the room, e.g. [0, 1, 0]")
+        if abs(normal[2]) > tol.WALL_NORMAL_TILT * size:
+            doc.fail(f"{key}.normal", "a wall is vertical: its normal must be horizontal "
+                                      f"(z = 0), got ({', '.join(f'{c:g}' for c in normal)})")
+        normal[2] = 0.0
+        normal /= float(np.linalg.norm(normal))
+        walls.append(Wall(point, (float(normal[0]), float(normal[1]), 0.0)))
+    return tuple(walls)
 
 
 # --- loads and load cases -----------------------------------------------------------------------

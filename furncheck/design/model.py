@@ -160,6 +160,22 @@ class JointSpec:
 
 
 @dataclass(frozen=True)
+class Wall:
+    """A vertical plane the design may lean on (contract section 2), SI.
+
+    point  : m, a world point of the plane
+    normal : unit, horizontal, pointing away from the wall into the room
+    """
+
+    point: Vec3
+    normal: Vec3
+
+    def distance(self, points: np.ndarray) -> np.ndarray:
+        """m: signed distance of world points (..., 3) in front of the plane (< 0 behind)."""
+        return (np.asarray(points) - np.asarray(self.point)) @ np.asarray(self.normal)
+
+
+@dataclass(frozen=True)
 class Design:
     """A checked design, SI inside.
 
@@ -170,6 +186,7 @@ class Design:
     load_cases  : 'default' (from ``loads``) first, then ``load_cases`` in file order
     tolerance   : m, geometric tolerance
     model       : 'elastic' (planks bend, contract section 3a) or 'rigid' (the paper's)
+    walls       : vertical planes the design may lean on (contract section 2)
     lines       : key path -> 1-based line in the source file (YAML), for annotations
     """
 
@@ -184,6 +201,7 @@ class Design:
     unit_scale: float = 0.001
     source: str = ""
     model: str = tol.DEFAULT_MODEL
+    walls: tuple[Wall, ...] = ()
     lines: dict[str, int] = field(default_factory=dict, compare=False, repr=False)
 
     def plank(self, plank_id: str) -> Plank:

@@ -44,6 +44,9 @@ def design_to_document(design: Design) -> dict[str, Any]:
             doc["loads"] = _load_entries(default, scale)
     if cases:
         doc["load_cases"] = {case.name: _load_entries(case, scale) for case in cases}
+    if design.walls:
+        doc["walls"] = [{"point": _vector_in_unit(wall.point, scale),
+                         "normal": [float(v) for v in wall.normal]} for wall in design.walls]
     doc["safety_factor"] = design.safety_factor
     doc["tolerance"] = _in_unit(design.tolerance, scale)
     return doc

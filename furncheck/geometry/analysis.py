@@ -21,7 +21,14 @@ from furncheck.geometry.faces import (
     _Touch,
     _touch_regions,
 )
-from furncheck.geometry.model import _GEOMETRY_EPS, Contact, Geometry, Joint
+from furncheck.geometry.model import (
+    _GEOMETRY_EPS,
+    Contact,
+    Geometry,
+    Joint,
+    corner_contacts,
+    support_point,
+)
 from furncheck.result import Violation
 
 
@@ -96,8 +103,8 @@ def follow_many(geometry: Geometry, edits: list) -> list[tuple[tuple[Joint, ...]
         followed = []
         for c in contact_ids:
             contact = geometry.contacts[c]
-            x, y, _ = design.planks[index[contact.plank]].corners[contact.corner]
-            followed.append(replace(contact, point=np.array([x, y, 0.0])))
+            corner = design.planks[index[contact.plank]].corners[contact.corner]
+            followed.append(replace(contact, point=support_point(design, contact.wall, corner)))
         contacts_out.append(tuple(followed))
     joints_out: list[list[Joint]] = [[] for _ in edits]
     if rows:
@@ -266,7 +273,8 @@ def _apart_message(design: Design, i: int, j: int) -> str:
 def _ground_contacts(design: Design, violations: list[Violation],
                      earlier: Geometry | None = None,
                      same: frozenset[str] | None = None) -> list[Contact]:
-    """Corners with z <= tolerance touch the ground; those below -tolerance penetrate it.
+    """Corners within tolerance of the ground (z) or of a wall touch it; those below the
+    ground or behind a wall by more than tolerance penetrate it (``corner_contacts``).
     The contacts and penetrations of the planks ``same`` are taken from ``earlier``."""
     slack = design.tolerance + _GEOMETRY_EPS
     contacts: list[Contact] = []
@@ -282,16 +290,15 @@ def _ground_contacts(design: Design, violations: list[Violation],
             for item in reused.get(plank.id, ()):
                 (contacts if isinstance(item, Contact) else violations).append(item)
             continue
-        z = plank.corners[:, 2]
-        for corner in np.nonzero(z <= slack)[0]:
-            x, y, _ = plank.corners[corner]
-            contacts.append(Contact(plank.id, np.array([x, y, 0.0]), int(corner)))
-        if z.min() < -slack:
-            deepest = plank.corners[int(np.argmin(z))]
+        touching, sunk = corner_contacts(design, plank, slack)
+        contacts.extend(touching)
+        for wall, corner, depth in sunk:
+            where = "below the ground" if wall is None else f"behind wall {wall}"
             violations.append(Violation(
                 "penetration", plank.id, None,
-                f"corner at {_fmt_point(deepest, design)} is {_fmt_len(-deepest[2], design)} "
-                f"below the ground (tolerance {_fmt_len(design.tolerance, design)})",
+                f"corner at {_fmt_point(plank.corners[corner], design)} is "
+                f"{_fmt_len(depth, design)} {where} (tolerance "
+                f"{_fmt_len(design.tolerance, design)})",
                 design.line_of(f"planks[{index}].center")))
     return contacts
 

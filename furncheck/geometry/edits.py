@@ -36,7 +36,13 @@ from furncheck.geometry.faces import (
     _separating_axes,
     _stacked_tables,
 )
-from furncheck.geometry.model import _COS_MAX_TILT, _GEOMETRY_EPS, Contact, Geometry
+from furncheck.geometry.model import (
+    _COS_MAX_TILT,
+    _GEOMETRY_EPS,
+    Contact,
+    Geometry,
+    corner_contacts,
+)
 
 
 def interpenetrations(design: Design) -> list[tuple[str, str, float]]:
@@ -199,12 +205,11 @@ class _KeptStructure:
             if plank.id in same:
                 contacts.extend(before)
                 continue
-            z = plank.corners[:, 2]
-            touching = np.nonzero(z <= self.slack)[0]
-            if z.min() < -self.slack or touching.tolist() != [c.corner for c in before]:
-                return None                     # sunk, or other corners on the ground
-            contacts.extend(Contact(plank.id, np.array([x, y, 0.0]), int(corner))
-                            for corner, (x, y, _) in zip(touching, plank.corners[touching]))
+            touching, sunk = corner_contacts(edited, plank, self.slack)
+            if sunk or [(c.wall, c.corner) for c in touching] != \
+                    [(c.wall, c.corner) for c in before]:
+                return None                     # sunk, or other corners on a support
+            contacts.extend(touching)
         return Geometry(tuple(joints), tuple(contacts), self.original.components,
                         self.original.grounded, ())
 

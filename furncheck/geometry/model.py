@@ -51,14 +51,45 @@ class Joint:
 
 @dataclass(frozen=True)
 class Contact:
-    """A plank corner touching the ground; ``point`` (3,) m lies on z = 0.
+    """A plank corner touching the ground or a wall; ``point`` (3,) m lies on its plane
+    (z = 0 for the ground).
 
     corner : index of the corner in ``Plank.corners`` (identifies the contact across edits)
+    wall   : index into ``Design.walls``, None for the ground
     """
 
     plank: str
     point: np.ndarray
     corner: int = 0
+    wall: int | None = None
+
+
+def support_point(design, wall: int | None, corner: np.ndarray) -> np.ndarray:
+    """A corner (3,) m brought onto its support's plane: z = 0 for the ground, along the
+    normal onto wall ``wall``."""
+    if wall is None:
+        return np.array([corner[0], corner[1], 0.0])
+    plane = design.walls[wall]
+    return corner - plane.distance(corner) * np.asarray(plane.normal)
+
+
+def corner_contacts(design, plank, slack: float) -> tuple[list[Contact], list[tuple]]:
+    """The corners of ``plank`` within ``slack`` (m) of the ground (z) and of each wall
+    (distance in front of it), ground first, then the walls in order, as contacts; and
+    per support the plank sinks into by more than ``slack``: (wall or None, corner index,
+    depth m)."""
+    corners = plank.corners
+    contacts, sunk = [], []
+    heights = [(None, corners[:, 2])] + [(w, wall.distance(corners))
+                                         for w, wall in enumerate(design.walls)]
+    for wall, height in heights:
+        for corner in np.nonzero(height <= slack)[0]:
+            contacts.append(Contact(plank.id, support_point(design, wall, corners[corner]),
+                                    int(corner), wall))
+        if height.min() < -slack:
+            deepest = int(np.argmin(height))
+            sunk.append((wall, deepest, float(-height[deepest])))
+    return contacts, sunk
 
 
 @dataclass(frozen=True)

@@ -84,4 +84,7 @@ def _joint_dict(joint: JointResult) -> dict[str, Any]:
 
 
 def _contact_dict(contact: ContactResult) -> dict[str, Any]:
-    return {"plank": contact.plank, "point": list(contact.point), "force": list(contact.force)}
+    entry = {"plank": contact.plank, "point": list(contact.point), "force": list(contact.force)}
+    if contact.wall is not None:
+        entry["wall"] = contact.wall
+    return entry

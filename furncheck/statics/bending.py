@@ -185,17 +185,18 @@ def _carrying_neighbours(model: StaticsModel) -> list[set[int]]:
 
 
 def _lying_on_floor(model: StaticsModel) -> set[int]:
-    """Local planks lying on the floor on a broad face (all four corners of that face are
-    ground contacts): the floor holds them along their whole face, not at the corners the
-    contacts stand for, so they are given no sag."""
+    """Local planks lying on the floor (or flat against a wall) on a broad face (all four
+    corners of that face are contacts with that support): it holds them along their whole
+    face, not at the corners the contacts stand for, so they are given no sag."""
     cached = model.plank_cache.get("lying")
     if cached is not None:
         return cached
-    corners: dict[int, set[int]] = {}
+    corners: dict[tuple, set[int]] = {}
     for row, c in enumerate(model.contacts):
-        corners.setdefault(int(model.contact_plank[row]), set()).add(
-            model.geometry.contacts[c].corner)
-    lying = {k for k, found in corners.items()
+        contact = model.geometry.contacts[c]
+        corners.setdefault((int(model.contact_plank[row]), contact.wall), set()).add(
+            contact.corner)
+    lying = {k for (k, _), found in corners.items()
              if {0, 1, 2, 3} <= found or {4, 5, 6, 7} <= found}
     model.plank_cache["lying"] = lying
     return lying

@@ -196,6 +196,14 @@ class _ActiveSet:
         model = self.model
         forces = solution.contact_forces
         over = self._outside_cones(forces)
+        if model.contact_frames is not None:        # walls too: the friction each needs
+            needed = float(np.hypot(forces[:, 0], forces[:, 1]).sum())
+            capacity = self.mu * float(np.maximum(forces[:, 2], 0.0).sum())
+            detail = (f"no equilibrium within the friction cones (mu = {self.mu:g}): the "
+                      f"ground and walls must hold {needed:.4g} N along their faces, friction "
+                      f"gives at most {capacity:.4g} N")
+            return CaseStatics("sliding", _wrenches(solution.h), forces,
+                               self._plank_ids(over), detail, displacements=solution.q)
         sideways = float(np.hypot(*forces[:, :2].sum(axis=0)))
         capacity = self.mu * float(forces[:, 2].sum())
         centre = (forces[:, 2] @ model.contact_points) / max(float(forces[:, 2].sum()), 1e-300)

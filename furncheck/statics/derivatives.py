@@ -238,6 +238,8 @@ def _local(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name: s
         column, weight = table[:, 0].astype(int), table[:, 1]
         row, a = table[:, 2].astype(int), table[:, 3].astype(int)
         stepped_maps = point_maps(table[:, 4:7])                         # (E, 3, 6)
+        if model.contact_frames is not None:                             # wall contacts
+            stepped_maps = model.contact_frames[row] @ stepped_maps
         w = np.einsum("ebd,ed->eb", stepped_maps, q[a])
         force = np.einsum("eba,eb->ea", stepped_maps, law.forces(w, row))
         _add(residual, 6 * a, column, force * weight[:, None])

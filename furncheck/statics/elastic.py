@@ -37,7 +37,9 @@ from furncheck.statics.model import (
     StaticsModel,
     add_point_load,
     block_sums,
+    contact_frames,
     grounded_parts,
+    in_contact_frames,
     joint_deviation_blocks,
     point_maps,
 )
@@ -285,11 +287,14 @@ def build_elastic_model(design: Design, geometry: Geometry,
                   for li, load in enumerate(case.loads)
                   if (k := local.get(design.plank_index[load.plank])) is not None}
     component_of = {p: c for c, comp in enumerate(components) for p in comp}
+    frames = contact_frames(design, geometry, contacts)
     model = StaticsModel(
         design=design, geometry=geometry, planks=tuple(planks_used), joints=tuple(joints),
         contacts=tuple(contacts), node_plank=node_plank, node_points=node_points,
         joint_nodes=joint_nodes, joint_blocks=joint_blocks, joint_stiffness=stiffness,
-        contact_maps=point_maps(contact_points - node_points[contact_node].reshape(-1, 3)),
+        contact_maps=in_contact_frames(
+            point_maps(contact_points - node_points[contact_node].reshape(-1, 3)), frames),
+        contact_frames=frames,
         contact_node=contact_node, contact_plank=owner, contact_points=contact_points,
         contact_component=np.array([component_of[p] for p in owner], dtype=int),
         components=components, friction=material.friction,

@@ -44,9 +44,9 @@ class Feasibility:
 
 
 def _component_problem(model: StaticsModel, f: np.ndarray, component: int):
-    """Equilibrium rows (6, 3 nk) for the component's contact forces and the applied wrench
-    (6,), both about the mean contact point; the moment rows divided by the contacts'
-    spread (m), so that all six rows are forces."""
+    """Equilibrium rows (6, 3 nk) for the component's contact forces (each in its contact's
+    frame) and the applied wrench (6,), both about the mean contact point; the moment rows
+    divided by the contacts' spread (m), so that all six rows are forces."""
     members = np.nonzero(model.contact_component == component)[0]
     points = model.contact_points[members]
     reference = points.mean(axis=0) if len(points) else np.zeros(3)
@@ -55,6 +55,10 @@ def _component_problem(model: StaticsModel, f: np.ndarray, component: int):
     for col, point in enumerate(points):
         rows[:3, 3 * col:3 * col + 3] = np.eye(3)
         rows[3:, 3 * col:3 * col + 3] = _skew(point - reference) / spread
+    if model.contact_frames is not None:        # forces in the contacts' frames
+        blocks = rows.reshape(6, len(members), 3).transpose(1, 0, 2)     # (nk, 6, 3)
+        turned = blocks @ model.contact_frames[members].transpose(0, 2, 1)
+        rows = turned.transpose(1, 0, 2).reshape(6, 3 * len(members))
     wrench = np.zeros(6)
     for k in model.component_nodes[component]:
         centre = model.node_points[k]

@@ -44,7 +44,11 @@ class StaticsModel:
     joint_stiffness : (nJ, 6, 6) W, joint wrench = W (deviation), world frame: diagonal in
                the rigid model (its penalty constants), the nail row's springs in the
                elastic one
-    contact_maps : (nK, 3, 6) displacement of each contact point from its node's q
+    contact_maps : (nK, 3, 6) displacement of each contact point from its node's q, in
+               the contact's frame (``contact_frames``): two tangential components, then
+               the normal one (into the room for a wall, up for the ground)
+    contact_frames : (nK, 3, 3) rows t1, t2, n of each contact's frame (world), or None
+               when every contact is on the ground (the world frame: x, y, z)
     contact_node, contact_plank : (nK,) local node and local plank of each contact
     contact_component : (nK,) component number of each contact
     contact_stiffness : N/m, the contacts' normal and anchor springs
@@ -74,6 +78,7 @@ class StaticsModel:
     beams: object = None
     nodal_weight: np.ndarray | None = None
     load_nodes: dict | None = None     # (case name, load index) -> node (elastic model)
+    contact_frames: np.ndarray | None = None
 
     @property
     def n_dof(self) -> int:
@@ -92,6 +97,12 @@ class StaticsModel:
         from furncheck.statics.elastic import assemble_beams
 
         return assemble_beams(self.beams, self.n_nodes)
+
+    def world_forces(self, forces: np.ndarray) -> np.ndarray:
+        """(nK, 3) N: contact forces given in the contacts' frames, in the world frame."""
+        if self.contact_frames is None:
+            return forces
+        return np.einsum("kji,kj->ki", self.contact_frames, forces)
 
     def contact_displacements(self, q: np.ndarray) -> np.ndarray:
         """(nK, 3) m: each contact point's displacement for node displacements q (6 nN,)."""
@@ -300,15 +311,37 @@ def _build_rigid_model(design: Design, geometry: Geometry) -> StaticsModel:
     contact_points = np.array([geometry.contacts[k].point for k in contacts],
                               dtype=float).reshape(-1, 3)
     component_of = {p: c for c, comp in enumerate(components) for p in comp}
+    frames = contact_frames(design, geometry, contacts)
     return StaticsModel(
         design=design, geometry=geometry, planks=tuple(grounded_planks), joints=tuple(joints),
         contacts=tuple(contacts), node_plank=np.arange(len(grounded_planks)),
         node_points=centres, joint_nodes=joint_nodes, joint_blocks=joint_blocks,
         joint_stiffness=stiffness,
-        contact_maps=point_maps(contact_points - centres[owner].reshape(-1, 3)),
+        contact_maps=in_contact_frames(point_maps(contact_points - centres[owner].reshape(-1, 3)),
+                                       frames),
         contact_node=owner, contact_plank=owner, contact_points=contact_points,
         contact_component=np.array([component_of[p] for p in owner], dtype=int),
-        components=components, friction=design.material.friction)
+        components=components, friction=design.material.friction, contact_frames=frames)
+
+
+def contact_frames(design: Design, geometry: Geometry, contacts: list[int]) -> np.ndarray | None:
+    """(nK, 3, 3) rows t1, t2, n of each contact's frame: the world frame for the ground;
+    for a wall with horizontal normal n, t1 = z x n along the wall, t2 = z up (t1 x t2 = n).
+    None when every contact is on the ground."""
+    walls = [geometry.contacts[c].wall for c in contacts]
+    if all(wall is None for wall in walls):
+        return None
+    frames = np.broadcast_to(np.eye(3), (len(contacts), 3, 3)).copy()
+    for row, wall in enumerate(walls):
+        if wall is not None:
+            nx, ny, _ = design.walls[wall].normal
+            frames[row] = ((-ny, nx, 0.0), (0.0, 0.0, 1.0), (nx, ny, 0.0))
+    return frames
+
+
+def in_contact_frames(maps: np.ndarray, frames: np.ndarray | None) -> np.ndarray:
+    """Contact maps (nK, 3, 6) in world components turned into the contacts' frames."""
+    return maps if frames is None else frames @ maps
 
 
 def joint_deviation_blocks(points: np.ndarray, node_points: np.ndarray) -> np.ndarray:
