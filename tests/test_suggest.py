@@ -437,19 +437,19 @@ def test_cli_out_without_the_export_extra_still_writes_design_files(tmp_path, mo
     assert all(check_file(str(out / name)).valid for name in written)
 
 
-def test_a_ledge_gets_a_leg_down_to_the_floor():
-    """The 9-plank Table-1 bookcase: its 350 x 160 mm ledge, nailed by one end to the
-    outside of the right side at z = 1100..1112 mm, fails.  No parallel plank lies under
-    it, so the floor serves: a support 1100 mm long (the ledge's underside height) and as
-    wide as the ledge (160 mm), standing on the floor under its far end; the design file
-    validates.  The rigid model: the paper's Table 1 design (its 12 mm ledge also sags in
-    the elastic model)."""
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_ledge_gets_a_leg_down_to_the_floor(model):
+    """The 9-plank Table-1 bookcase: its 200 x 200 x 25 mm ledge, nailed by one end (two
+    nails) to the outside of the right side at z = 1100..1125 mm, fails, in either model.
+    No parallel plank lies under it, so the floor serves: a support 1100 mm long (the
+    ledge's underside height) and as wide as the ledge (200 mm), standing on the floor
+    under its far end; the design file validates."""
     import sys
 
     sys.path.insert(0, str(ROOT / "benchmarks"))
     from table1_designs import table1_design
 
-    design = with_model(table1_design(9), "rigid")
+    design = with_model(table1_design(9), model)
     result = suggest_design(design)
     legs = [s for s in result.suggestions if s.kind == "discrete"]
     assert legs and legs[0].between == ("ledge", "the floor")
@@ -460,3 +460,30 @@ def test_a_ledge_gets_a_leg_down_to_the_floor():
     assert leg.center[0] > ledge.center[0]                 # under the far end
     assert any(c.plank == leg.id for case in legs[0].report.cases for c in case.contacts)
     assert legs[0].report.valid
+
+
+def test_a_plank_shrunk_through_zero_is_not_kept():
+    """The 28-plank Table-1 cabinet's desk leaf has its 3 nails listed, so narrowing it
+    only lightens it; 800 mm narrower it would be 400 mm of negative width, a mirrored box
+    of negative mass that holds.  The editor refuses it (``keeps`` None, margin -inf), so
+    no suggestion writes a plank of negative size."""
+    import sys
+
+    from furncheck.dofs import structure
+    from furncheck.geometry import analyze
+    from furncheck.suggest.continuous import _standing
+    from furncheck.suggest.edits import Editor
+
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    from table1_designs import table1_design
+
+    design = with_model(table1_design(28), "rigid")
+    geometry = analyze(design)
+    editor = Editor(design, geometry, structure(design, _standing(geometry)))
+    width = parse_dof(design, "desk_leaf.width")
+    shrunk = editor.moved((width,), (-800.0,))
+    assert shrunk.plank("desk_leaf").width < 0
+    assert editor.keeps(shrunk) is None
+    assert editor.margin_at((width,), np.array([1.0]), -800.0 / editor.scale(width)) == -np.inf
+    result = suggest_design(design)
+    assert all(p.length > 0 and p.width > 0 for s in result.suggestions for p in s.design.planks)

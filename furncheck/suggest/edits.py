@@ -23,6 +23,7 @@ from furncheck.dofs import (
     End,
     OutOfReach,
     Structure,
+    _size_problem,
     apply_dof,
     design_size,
     dof_value,
@@ -97,8 +98,12 @@ class Editor:
         """The geometry of ``edited`` if it has no geometric violation, keeps the joints of
         the design (none lost; none added unless the joints are listed in the file) and no
         two planks cut into each other; else None.  Ground contacts may change: standing a
-        hovering leg on the floor is the point of some suggestions."""
+        hovering leg on the floor is the point of some suggestions.  A plank shrunk to no
+        length or width is refused too: its box would read as a mirrored one (of negative
+        mass) rather than none."""
         self.checks += 1
+        if _size_problem(edited) is not None:
+            return None
         geometry = analyze(edited, (self.design, self.geometry))
         if geometry.violations:
             return None
