@@ -84,6 +84,27 @@ class PlankResult:
 
 
 @dataclass(frozen=True)
+class LoadResult:
+    """A load acting in a case, as the design file gives it (self-weight is none: it acts
+    in every case).
+
+    mass   : kg when the file gave a mass, else None
+    force  : (3,) N, world frame, when the file gave a force, else None
+    at     : file length unit, the world point it acts at; None at the plank centre (and
+             for a spread load)
+    spread : spread evenly along the plank's length
+    origin : the case it comes from through ``include``; None for the case's own
+    """
+
+    plank: str
+    mass: float | None
+    force: tuple[float, float, float] | None
+    at: tuple[float, float, float] | None
+    spread: bool = False
+    origin: str | None = None
+
+
+@dataclass(frozen=True)
 class CaseResult:
     """One load case.  ``stability`` is 'stable', 'lift-off', 'sliding' or 'mechanism'
     (no equilibrium and no force state: the planks rest on one line of ground points)."""
@@ -95,6 +116,7 @@ class CaseResult:
     contacts: tuple[ContactResult, ...]
     stability: str = "stable"
     planks: tuple[PlankResult, ...] | None = None    # elastic model only
+    loads: tuple[LoadResult, ...] = ()                # the loads acting, after include
 
     @property
     def worst_joint(self) -> JointResult | None:

@@ -22,7 +22,14 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.design.model import Design, LoadCase
 from furncheck.geometry import Geometry, Joint
-from furncheck.result import CaseResult, ContactResult, JointResult, PlankResult, Violation
+from furncheck.result import (
+    CaseResult,
+    ContactResult,
+    JointResult,
+    LoadResult,
+    PlankResult,
+    Violation,
+)
 from furncheck.statics import CaseStatics, StaticsModel
 from furncheck.statics.beams import nail_row_spread
 
@@ -163,8 +170,21 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
         violations.append(Violation(kind, where, case.name, statics.detail,
                                     design.line_of(_case_key(design, case))))
     result = CaseResult(case.name, all(j.durable for j in joints), stable, tuple(joints),
-                        tuple(contacts), statics.stability, planks)
+                        tuple(contacts), statics.stability, planks, case_loads(design, case))
     return result, violations
+
+
+def case_loads(design: Design, case: LoadCase) -> tuple[LoadResult, ...]:
+    """The loads acting in ``case`` as the file gives them (mass or force, ``at`` in the
+    file unit), each with the case it was included from."""
+    scale = design.unit_scale
+    return tuple(
+        LoadResult(plank=load.plank, mass=load.mass,
+                   force=None if load.mass is not None else tuple(load.force),
+                   at=None if load.point is None else tuple(c / scale for c in load.point),
+                   spread=load.spread,
+                   origin=None if case.origin(i) == case.name else case.origin(i))
+        for i, load in enumerate(case.loads))
 
 
 def plank_bending(design: Design, model: StaticsModel, planks) -> tuple[np.ndarray, ...]:

@@ -261,11 +261,34 @@ def _apply(m, v):
 
 
 def _all_loads(design: dict):
+    """Every load the file writes: ``loads`` and each case's own (a case is a list of loads
+    or ``{include: [...], loads: [...]}``)."""
     for load in design.get("loads") or []:
         yield load
-    for loads in (design.get("load_cases") or {}).values():
-        for load in loads or []:
+    for case in (design.get("load_cases") or {}).values():
+        for load in (case.get("loads") if isinstance(case, dict) else case) or []:
             yield load
+
+
+def case_loads(design: dict, name: str = "default") -> list[dict]:
+    """The loads acting in case ``name`` of the design dict, ``include`` followed (contract
+    section 1): every case reached through includes contributes its own loads once, the
+    included ones first in include order, then the case's own."""
+    cases = {"default": design.get("loads") or []} | dict(design.get("load_cases") or {})
+    seen: set[str] = set()
+
+    def gather(case_name: str) -> list[dict]:
+        seen.add(case_name)
+        case = cases[case_name]
+        if not isinstance(case, dict):
+            return list(case or [])
+        loads = []
+        for included in case.get("include", []):
+            if included not in seen:
+                loads += gather(included)
+        return loads + list(case.get("loads") or [])
+
+    return gather(name)
 
 
 def rigid_motion(design: dict, phi_deg: float, tx: float, ty: float) -> dict:

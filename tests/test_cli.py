@@ -140,8 +140,10 @@ def test_text_output(calls, tmp_path):
     result = run("validate", valid, bad)
     assert result.stdout.splitlines() == [
         f"{valid}: valid (worst joint a/b at 5 % in case 'default')",
+        "  case 'default': self-weight only",
         f"{bad}: INVALID, 1 violation",
         "  lift-off: a in case 'default': topples (line 2)",
+        "  case 'default': self-weight only",
         "2 designs: 1 valid, 1 invalid, 0 errors",
     ]
 

@@ -64,9 +64,7 @@ def applied(design: dict, case_name: str = "default"):
         centre = np.array(plank["center"], dtype=float) * scale
         centres[plank["id"]] = centre
         out.append((plank["id"], np.array([0.0, 0.0, -mass * G]), centre))
-    loads = design.get("loads") or [] if case_name == "default" \
-        else design["load_cases"][case_name]
-    for load in loads:
+    for load in pd.case_loads(design, case_name):
         point = (np.array(load["at"], dtype=float) * scale if "at" in load
                  else centres[load["plank"]])
         force = (np.array([0.0, 0.0, -load["mass"] * G]) if "mass" in load
@@ -544,6 +542,9 @@ def balance_designs() -> dict[str, dict]:
         "table-corner": pd.table(loads=[{"plank": "top", "mass": CORNER_MASS,
                                          "at": [400, 250, 412]}]),
         "bench-with-back": pd.bench_with_back(),
+        "bench-push-included": {**pd.bench(mass=80.0, x=100.0), "load_cases": {
+            "push": {"include": ["default"],
+                     "loads": [{"plank": "seat", "force": [60, 20, 0], "at": [-400, 0, 456]}]}}},
         **{f"hand-{k}": v for k, v in pd.hand_designs().items()},
     }
 

@@ -23,6 +23,7 @@ from furncheck.result import (
     ContactResult,
     DesignReport,
     JointResult,
+    LoadResult,
     Violation,
 )
 
@@ -34,16 +35,21 @@ def joint(planks=("seat", "leg1"), utilization=0.42, pull=294.0, durable=True) -
                        utilization=utilization, durable=durable)
 
 
-def case(name="default", joints=None, durable=True, stable=True) -> CaseResult:
+def case(name="default", joints=None, durable=True, stable=True, loads=()) -> CaseResult:
     joints = (joint(),) if joints is None else joints
     contacts = (ContactResult("base", (200.0, 150.0, 0.0), (0.0, -0.0, 31.2)),)
-    return CaseResult(name, durable, stable, tuple(joints), contacts)
+    return CaseResult(name, durable, stable, tuple(joints), contacts, loads=tuple(loads))
 
+
+SEAT_LOAD = LoadResult("seat", 80.0, None, (0.0, 0.0, 450.00000000000006))
+PUSH = LoadResult("seat", None, (100.0, 0.0, -0.0), (-200.0, 0.0, 444.0))
+BOOKS = [LoadResult(shelf, 15.0, None, None, origin="books") for shelf in ("a", "b", "c")]
 
 STOOL = DesignReport(
     design="designs/stool.yaml", name="stool", valid=True,
-    cases=(case("default", (joint(utilization=0.1),)),
-           case("sit", (joint(("seat", "leg2"), 0.3), joint(("seat", "leg1"), 0.42)))))
+    cases=(case("default", (joint(utilization=0.1),), loads=[SEAT_LOAD]),
+           case("sit", (joint(("seat", "leg2"), 0.3), joint(("seat", "leg1"), 0.42)),
+                loads=[LoadResult("seat", 80.0, None, None, origin="default"), PUSH])))
 
 SHELF = DesignReport(
     design="designs/shelf.yaml", name="shelf", valid=False,
@@ -52,7 +58,9 @@ SHELF = DesignReport(
                   line=14),
         Violation("floating", "lamp", None, "1 plank touches the ground nowhere"),
     ),
-    cases=(case("default", (joint(("post", "shelf"), 1.16, 812.0, False),), durable=False),
+    cases=(case("default", (joint(("post", "shelf"), 1.16, 812.0, False),), durable=False,
+                loads=[*BOOKS, LoadResult("d", 15.0, None, None, origin="books"),
+                       LoadResult("post", None, (30.0, 0.0, -40.0), None, spread=True)]),
            case("lean")))
 
 BROKEN = DesignReport(design="designs/broken.yaml", name="broken", valid=None,
@@ -92,7 +100,8 @@ def test_json_keys_are_exactly_the_contract_schema():
     assert list(shelf) == ["design", "name", "valid", "violations", "cases"]
     assert list(shelf["violations"][0]) == ["kind", "where", "case", "message"]
     assert shelf["violations"][1]["case"] is None
-    assert list(shelf["cases"][0]) == ["name", "durable", "stable", "joints", "contacts"]
+    assert list(shelf["cases"][0]) == ["name", "durable", "stable", "joints", "contacts",
+                                       "loads"]
     assert list(shelf["cases"][0]["joints"][0]) == [
         "planks", "point", "nails", "force", "moment", "pull", "shear", "pull_capacity",
         "shear_capacity", "utilization", "durable"]
@@ -100,6 +109,20 @@ def test_json_keys_are_exactly_the_contract_schema():
     assert broken == {"design": "designs/broken.yaml", "name": "broken",
                       "error": "designs/broken.yaml:3: planks[0].size: expected [length, width]"}
     assert stool["valid"] is True and shelf["valid"] is False
+
+
+def test_json_loads_say_what_the_file_said_and_where_they_came_from():
+    """A mass is a mass (kg), a force a world vector (N); ``at`` null at the plank centre;
+    ``spread`` only when true; ``from`` only for a load that came through ``include``."""
+    stool, shelf, _ = json.loads(render(BATCH, "json"))["reports"]
+    assert stool["cases"][0]["loads"] == [{"plank": "seat", "mass": 80.0,
+                                           "at": [0.0, 0.0, 450.0]}]
+    assert stool["cases"][1]["loads"] == [
+        {"plank": "seat", "mass": 80.0, "at": None, "from": "default"},
+        {"plank": "seat", "force": [100.0, 0.0, 0.0], "at": [-200.0, 0.0, 444.0]}]
+    assert shelf["cases"][0]["loads"][-1] == {"plank": "post", "force": [30.0, 0.0, -40.0],
+                                              "at": None, "spread": True}
+    assert shelf["cases"][1]["loads"] == []
 
 
 def test_json_rounds_floats_and_keeps_ints():
@@ -156,10 +179,16 @@ def test_text_numbers():
 def test_text_report_lines():
     assert render(BATCH, "text").splitlines() == [
         "designs/stool.yaml: valid (worst joint seat/leg1 at 42 % in case 'sit')",
+        "  case 'default': 1 load: 80 kg on seat at (0, 0, 450) mm",
+        "  case 'sit': 2 loads (1 from default): 80 kg on seat; 100 N +x on seat at "
+        "(-200, 0, 444) mm",
         "designs/shelf.yaml: INVALID, 2 violations",
         "  non-durable: post/shelf in case 'default': pull 812 N per nail exceeds 700 N "
         "(line 14)",
         "  floating: lamp: 1 plank touches the ground nowhere",
+        "  case 'default': 5 loads (4 from books): 15 kg each on a, b, c, d; "
+        "(30, 0, -40) N spread on post",
+        "  case 'lean': self-weight only",
         "designs/broken.yaml: error: line 3: planks[0].size: expected [length, width]",
         "3 designs: 1 valid, 1 invalid, 1 error",
     ]
@@ -170,10 +199,22 @@ def test_text_singulars_and_designs_without_joints():
     bad = DesignReport("bad.yaml", "bad", False, violations=(SHELF.violations[1],))
     assert render(BatchReport((single, bad)), "text").splitlines() == [
         "one.yaml: valid (no nail joints)",
+        "  case 'default': self-weight only",
         "bad.yaml: INVALID, 1 violation",
         "  floating: lamp: 1 plank touches the ground nowhere",
         "2 designs: 1 valid, 1 invalid, 0 errors",
     ]
+
+
+def test_text_case_line_stays_one_line_for_many_loads():
+    """Seven different point loads: five phrases, then 'and 2 more', on one line."""
+    loads = [LoadResult("shelf", float(kg), None, (kg * 10.0, 0.0, 600.0)) for kg in range(1, 8)]
+    report = DesignReport("many.yaml", "many", True, cases=(case(loads=loads),))
+    (line,) = [row for row in render(BatchReport((report,)), "text").splitlines()
+               if row.startswith("  case ")]
+    assert line == ("  case 'default': 7 loads: 1 kg on shelf at (10, 0, 600) mm; 2 kg on shelf "
+                    "at (20, 0, 600) mm; 3 kg on shelf at (30, 0, 600) mm; 4 kg on shelf at "
+                    "(40, 0, 600) mm; 5 kg on shelf at (50, 0, 600) mm; and 2 more")
 
 
 def test_input_error_splits_file_and_line():

@@ -11,7 +11,8 @@ Reading goes in three steps:
 Steps 1 and 2 are in ``furncheck.design.source`` (which refuses YAML aliases before anything
 is expanded and duplicate keys, and keeps YAML scalars as ``_Scalar`` until the schema knows
 whether a number or a text belongs there); ``furncheck.design.values`` reads typed values
-from the tree (``_Doc``); this module is step 3, the schema.
+from the tree (``_Doc``) and the quantities in SI; this module is step 3, the schema, with
+the loads and load cases (``include``) in ``furncheck.design.cases``.
 
 Every problem raises ``DesignError(file, key path, line, message)``.  Key paths read
 ``planks[1].size``, ``load_cases.sit[0].mass``; '' is the whole file.  For JSON, the line of
@@ -20,22 +21,17 @@ a key path is looked up only when an error is raised (by reading the text as YAM
 
 from __future__ import annotations
 
-import difflib
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from furncheck import tolerances as tol
-from furncheck.design.model import Design, JointSpec, Load, LoadCase, Material, Plank, Wall
+from furncheck.design.cases import load_cases
+from furncheck.design.model import Design, JointSpec, Material, Plank
 from furncheck.design.source import (
     _NO_DOCUMENT,
-    _PATH_SAFE_KEY,
     FORMATS,  # noqa: F401  (re-exported: still importable from here)
     _check_regular_file,
     _checked_text,
-    _child,
     _decode,
     _format_of,
     _quote,
@@ -43,7 +39,19 @@ from furncheck.design.source import (
     _read_yaml,
     _too_large,
 )
-from furncheck.design.values import _describe, _Doc, _resolved
+from furncheck.design.values import (
+    _describe,
+    _Doc,
+    _identifier,
+    _length,
+    _plank_ref,
+    _point,
+    _quantity,
+    _resolved,
+    _Units,
+    _vector,
+)
+from furncheck.design.walls import walls as read_walls
 from furncheck.errors import DesignError
 
 UNIT_SCALES = {"mm": 0.001, "m": 1.0}
@@ -56,11 +64,6 @@ MATERIAL_KEYS = ("thickness", "density", "nail_spacing", "nail_pull", "nail_shea
                  "nail_slip", "nail_withdrawal")
 PLANK_KEYS = ("id", "size", "center", "rotation", "thickness")
 JOINT_KEYS = ("planks", "nails")
-LOAD_KEYS = ("plank", "mass", "force", "at", "spread")
-WALL_KEYS = ("point", "normal")
-
-_IDENTIFIER = _PATH_SAFE_KEY   # plank ids and case names: what a key path shows bare
-_AXES = ("length", "width", "thickness")
 
 
 # --- public -------------------------------------------------------------------------------------
@@ -108,14 +111,6 @@ def _read_bytes(path: str) -> bytes:
 
 # --- step 3: tree -> Design ---------------------------------------------------------------------
 
-@dataclass(frozen=True)
-class _Units:
-    """The file's length unit: ``name`` ('mm' or 'm'), ``scale`` metres per unit."""
-
-    name: str
-    scale: float
-
-
 def _design(doc: _Doc, tree: Any) -> Design:
     top = _top_level(doc, tree)
     units = _units(doc, top)
@@ -131,7 +126,7 @@ def _design(doc: _Doc, tree: Any) -> Design:
     return Design(
         name=_name(doc, top),
         planks=planks,
-        load_cases=_load_cases(doc, top, by_id, units, tolerance),
+        load_cases=load_cases(doc, top, by_id, units, tolerance),
         material=material,
         joints=_joints(doc, top["joints"], by_id) if "joints" in top else None,
         safety_factor=safety_factor,
@@ -140,7 +135,7 @@ def _design(doc: _Doc, tree: Any) -> Design:
         unit_scale=units.scale,
         source=doc.source,
         model=_model(doc, top),
-        walls=_walls(doc, top["walls"], units) if "walls" in top else (),
+        walls=read_walls(doc, top["walls"], units) if "walls" in top else (),
         lines=doc.design_lines(),
     )
 
@@ -184,49 +179,6 @@ def _model(doc: _Doc, top: dict) -> str:
     name = doc.text(top["model"], "model")
     if name not in tol.MODELS:
         doc.fail("model", f"unknown model {_quote(name)}; use elastic or rigid")
-    return name
-
-
-def _quantity(doc: _Doc, node: Any, key: str, low: float, high: float, scale: float = 1.0,
-              unit: str = "", positive: bool = False) -> float:
-    """A number written in ``unit`` (``scale`` SI units each), checked to lie in
-    [low, high] (SI) and, if ``positive``, to be > 0.  Returns it in SI."""
-    value = doc.number(node, key)
-    shown = f" {unit}" if unit else ""
-    if positive and value <= 0:
-        doc.fail(key, f"must be positive, got {value:g}{shown}")
-    if not low <= value * scale <= high:
-        doc.fail(key, f"out of range: {value:g}{shown}; allowed {low / scale:g} to "
-                      f"{high / scale:g}{shown}")
-    return value * scale
-
-
-def _length(doc: _Doc, node: Any, key: str, units: _Units) -> float:
-    """m: a size, thickness or spacing in [MIN_LENGTH, MAX_LENGTH]."""
-    return _quantity(doc, node, key, tol.MIN_LENGTH, tol.MAX_LENGTH, units.scale, units.name,
-                     positive=True)
-
-
-def _vector(doc: _Doc, node: Any, key: str, count: int, low: float, high: float,
-            scale: float = 1.0, unit: str = "", positive: bool = False) -> tuple[float, ...]:
-    """``count`` numbers, each as ``_quantity``; SI."""
-    items = doc.sequence(node, key)
-    if len(items) != count:
-        doc.fail(key, f"expected {count} numbers, got {len(items)}")
-    return tuple(_quantity(doc, item, f"{key}[{i}]", low, high, scale, unit, positive)
-                 for i, item in enumerate(items))
-
-
-def _point(doc: _Doc, node: Any, key: str, units: _Units) -> tuple[float, float, float]:
-    """m: a world point, every |coordinate| <= MAX_COORDINATE."""
-    return _vector(doc, node, key, 3, -tol.MAX_COORDINATE, tol.MAX_COORDINATE,
-                   units.scale, units.name)
-
-
-def _identifier(doc: _Doc, node: Any, key: str, what: str) -> str:
-    name = doc.text(node, key)
-    if not _IDENTIFIER.fullmatch(name):
-        doc.fail(key, f"invalid {what} {_quote(name)}: use letters, digits, '_', '.' and '-'")
     return name
 
 
@@ -300,16 +252,6 @@ def _plank(doc: _Doc, node: Any, key: str, material: Material, units: _Units) ->
     return Plank(plank_id, length, width, thickness, center, rotation)
 
 
-def _plank_ref(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank]) -> Plank:
-    """The plank that ``node`` names."""
-    name = doc.text(node, key)
-    if name not in by_id:
-        close = difflib.get_close_matches(name, list(by_id), n=1)
-        hint = f" (did you mean {_quote(close[0])}?)" if close else ""
-        doc.fail(key, f"unknown plank {_quote(name)}{hint}")
-    return by_id[name]
-
-
 # --- joints -------------------------------------------------------------------------------------
 
 def _joints(doc: _Doc, node: Any, by_id: dict[str, Plank]) -> tuple[JointSpec, ...] | None:
@@ -363,92 +305,3 @@ def _nail_count(doc: _Doc, node: Any, key: str) -> int:
     return int(value)
 
 
-# --- walls -------------------------------------------------------------------------------------
-
-def _walls(doc: _Doc, node: Any, units: _Units) -> tuple[Wall, ...]:
-    """``[{point, normal}, ...]``: vertical planes, the normal horizontal (its z within
-    WALL_NORMAL_TILT of zero, then made exactly horizontal) and made a unit vector."""
-    walls = []
-    for index, item in enumerate(doc.sequence(node, "walls")):
-        key = f"walls[{index}]"
-        fields = doc.mapping(item, key, WALL_KEYS, required=WALL_KEYS)
-        point = _point(doc, fields["point"], f"{key}.point", units)
-        normal = np.array(_vector(doc, fields["normal"], f"{key}.normal", 3, -tol.MAX_COORDINATE,
-                                  tol.MAX_COORDINATE))
-        size = float(np.linalg.norm(normal))
-        if size == 0.0:
-            doc.fail(f"{key}.normal", "zero-length normal: give the direction from the wall "
-                                      "into the room, e.g. [0, 1, 0]")
-        if abs(normal[2]) > tol.WALL_NORMAL_TILT * size:
-            doc.fail(f"{key}.normal", "a wall is vertical: its normal must be horizontal "
-                                      f"(z = 0), got ({', '.join(f'{c:g}' for c in normal)})")
-        normal[2] = 0.0
-        normal /= float(np.linalg.norm(normal))
-        walls.append(Wall(point, (float(normal[0]), float(normal[1]), 0.0)))
-    return tuple(walls)
-
-
-# --- loads and load cases -----------------------------------------------------------------------
-
-def _load_cases(doc: _Doc, top: dict, by_id: dict[str, Plank], units: _Units,
-                tolerance: float) -> tuple[LoadCase, ...]:
-    """'default' (from ``loads``) first, then ``load_cases`` in file order; a lone
-    self-weight case 'default' when the file gives neither."""
-    cases = []
-    if "loads" in top:
-        cases.append(LoadCase("default", _loads(doc, top["loads"], "loads", by_id, units,
-                                                tolerance)))
-    if "load_cases" in top:
-        for name, node in doc.mapping(top["load_cases"], "load_cases").items():
-            key = _child("load_cases", name)
-            _identifier(doc, name, key, "load case name")
-            if name == "default" and "loads" in top:
-                doc.fail(key, 'case "default" is already given by "loads"; rename this case '
-                              'or move its loads there')
-            cases.append(LoadCase(name, _loads(doc, node, key, by_id, units, tolerance)))
-    return tuple(cases) or (LoadCase("default"),)
-
-
-def _loads(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank], units: _Units,
-           tolerance: float) -> tuple[Load, ...]:
-    items = doc.sequence(node, key)
-    return tuple(_load(doc, item, f"{key}[{i}]", by_id, units, tolerance)
-                 for i, item in enumerate(items))
-
-
-def _load(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank], units: _Units,
-          tolerance: float) -> Load:
-    """``{plank, mass | force, at? | spread?}``: mass kg, force N, ``at`` a world point on
-    the plank, ``spread: true`` the load spread evenly along the plank's length."""
-    fields = doc.mapping(node, key, LOAD_KEYS, required=("plank",))
-    spread = "spread" in fields and doc.flag(fields["spread"], f"{key}.spread")
-    if spread and "at" in fields:
-        doc.fail(f"{key}.at", "a spread load acts along the whole plank: give no point")
-    plank = _plank_ref(doc, fields["plank"], f"{key}.plank", by_id)
-    if "mass" in fields and "force" in fields:
-        doc.fail(key, "give either mass (kg) or force ([fx, fy, fz] N), not both")
-    if "mass" not in fields and "force" not in fields:
-        doc.fail(key, "a load needs a mass (kg) or a force ([fx, fy, fz] N)")
-    point = (_point_on_plank(doc, fields["at"], f"{key}.at", plank, units, tolerance)
-             if "at" in fields else None)
-    if "mass" in fields:
-        mass = _quantity(doc, fields["mass"], f"{key}.mass", 0.0, tol.MAX_MASS, unit="kg")
-        return Load.of_mass(plank.id, mass, point, spread)
-    force = _vector(doc, fields["force"], f"{key}.force", 3, -tol.MAX_FORCE, tol.MAX_FORCE,
-                    unit="N")
-    return Load(plank.id, force, point, spread=spread)
-
-
-def _point_on_plank(doc: _Doc, node: Any, key: str, plank: Plank, units: _Units,
-                    tolerance: float) -> tuple[float, float, float]:
-    """m: a world point that lies on ``plank`` within ``tolerance`` (m) on every local axis."""
-    point = _point(doc, node, key, units)
-    local = plank.to_local(np.asarray(point, dtype=float))
-    outside = np.abs(local) - plank.half_extents
-    axis = int(np.argmax(outside))
-    if outside[axis] > tolerance + tol.ON_PLANK_EPS:
-        shown = ", ".join(f"{c / units.scale:g}" for c in point)
-        doc.fail(key, f"point ({shown}) is not on plank {_quote(plank.id)}: "
-                      f"{outside[axis] / units.scale:.4g} {units.name} beyond its "
-                      f"{_AXES[axis]} (tolerance {tolerance / units.scale:g} {units.name})")
-    return point

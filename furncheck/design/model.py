@@ -145,10 +145,31 @@ class Load:
 
 @dataclass(frozen=True)
 class LoadCase:
-    """A named load case; self-weight is always added on top of ``loads``."""
+    """A named load case; self-weight is always added on top of ``loads``.
+
+    loads    : every load that acts in the case: those of the cases it includes first (in
+               include order, each case once; ``furncheck.design.cases``), then its own
+    includes : the case names its ``include`` gives, as written; () for none
+    origins  : per load of ``loads``, the case whose file entry gives it; () when every
+               load is the case's own
+    """
 
     name: str
     loads: tuple[Load, ...] = ()
+    includes: tuple[str, ...] = ()
+    origins: tuple[str, ...] = ()
+
+    def origin(self, index: int) -> str:
+        """The case whose file entry gives ``loads[index]`` (this case's name for its own)."""
+        return self.origins[index] if self.origins else self.name
+
+    @property
+    def own_loads(self) -> tuple[Load, ...]:
+        """The loads the case's own entry lists (what a design file writes back)."""
+        if not self.origins:
+            return self.loads
+        return tuple(load for load, origin in zip(self.loads, self.origins)
+                     if origin == self.name)
 
 
 @dataclass(frozen=True)

@@ -1,16 +1,21 @@
 """The typed reading of a design document's tree: ``_Doc`` (numbers, text, flags, lists
-and mappings, each checked, every problem a ``DesignError`` with key path and line) and the
-YAML 1.1 scalar rules behind it (``_resolved``) and the words of its messages
-(``_describe``, ``_unknown_key_message``).  The schema that uses them is ``load``."""
+and mappings, each checked, every problem a ``DesignError`` with key path and line), the
+YAML 1.1 scalar rules behind it (``_resolved``), the words of its messages (``_describe``,
+``_unknown_key_message``) and the quantities the schema reads with it (``_quantity``,
+``_length``, ``_vector``, ``_point``, ``_identifier``, ``_plank_ref``: SI values from file
+units).  The schema that uses them is ``load`` (and ``cases`` for the loads)."""
 
 from __future__ import annotations
 
 import difflib
 import math
 import re
+from dataclasses import dataclass
 from typing import Any, NoReturn
 
-from furncheck.design.source import _child, _json_lines, _one_line, _quote, _Scalar
+from furncheck import tolerances as tol
+from furncheck.design.model import Plank
+from furncheck.design.source import _PATH_SAFE_KEY, _child, _json_lines, _one_line, _quote, _Scalar
 from furncheck.errors import DesignError
 
 _NULL_WORDS = {"", "~", "null", "Null", "NULL"}
@@ -20,6 +25,7 @@ _BOOL_WORDS = {word: value for value, words in
 _DECIMAL = re.compile(r"[-+]?(?:[0-9][0-9_]*(?:\.[0-9_]*)?|\.[0-9][0-9_]*)(?:[eE][-+]?[0-9]+)?")
 _JSON_CONSTANTS = {"nan": "NaN", "inf": "Infinity", "-inf": "-Infinity"}
 _NON_FINITE = re.compile(r"[-+]?\.(?:inf|Inf|INF|nan|NaN|NAN)")
+_IDENTIFIER = _PATH_SAFE_KEY   # plank ids and case names: what a key path shows bare
 
 class _Doc:
     """The document being checked: raises ``DesignError`` with key path and line, and reads
@@ -144,3 +150,67 @@ def _unknown_key_message(name: str, allowed: tuple[str, ...]) -> str:
     close = difflib.get_close_matches(name, allowed, n=1)
     hint = f" (did you mean {_quote(close[0])}?)" if close else ""
     return f"unknown key {_quote(name)}{hint}; allowed keys: {', '.join(allowed)}"
+
+
+# --- quantities: SI values from the file's units -----------------------------------------------
+
+@dataclass(frozen=True)
+class _Units:
+    """The file's length unit: ``name`` ('mm' or 'm'), ``scale`` metres per unit."""
+
+    name: str
+    scale: float
+
+
+
+def _quantity(doc: _Doc, node: Any, key: str, low: float, high: float, scale: float = 1.0,
+              unit: str = "", positive: bool = False) -> float:
+    """A number written in ``unit`` (``scale`` SI units each), checked to lie in
+    [low, high] (SI) and, if ``positive``, to be > 0.  Returns it in SI."""
+    value = doc.number(node, key)
+    shown = f" {unit}" if unit else ""
+    if positive and value <= 0:
+        doc.fail(key, f"must be positive, got {value:g}{shown}")
+    if not low <= value * scale <= high:
+        doc.fail(key, f"out of range: {value:g}{shown}; allowed {low / scale:g} to "
+                      f"{high / scale:g}{shown}")
+    return value * scale
+
+
+def _length(doc: _Doc, node: Any, key: str, units: _Units) -> float:
+    """m: a size, thickness or spacing in [MIN_LENGTH, MAX_LENGTH]."""
+    return _quantity(doc, node, key, tol.MIN_LENGTH, tol.MAX_LENGTH, units.scale, units.name,
+                     positive=True)
+
+
+def _vector(doc: _Doc, node: Any, key: str, count: int, low: float, high: float,
+            scale: float = 1.0, unit: str = "", positive: bool = False) -> tuple[float, ...]:
+    """``count`` numbers, each as ``_quantity``; SI."""
+    items = doc.sequence(node, key)
+    if len(items) != count:
+        doc.fail(key, f"expected {count} numbers, got {len(items)}")
+    return tuple(_quantity(doc, item, f"{key}[{i}]", low, high, scale, unit, positive)
+                 for i, item in enumerate(items))
+
+
+def _point(doc: _Doc, node: Any, key: str, units: _Units) -> tuple[float, float, float]:
+    """m: a world point, every |coordinate| <= MAX_COORDINATE."""
+    return _vector(doc, node, key, 3, -tol.MAX_COORDINATE, tol.MAX_COORDINATE,
+                   units.scale, units.name)
+
+
+def _identifier(doc: _Doc, node: Any, key: str, what: str) -> str:
+    name = doc.text(node, key)
+    if not _IDENTIFIER.fullmatch(name):
+        doc.fail(key, f"invalid {what} {_quote(name)}: use letters, digits, '_', '.' and '-'")
+    return name
+
+
+def _plank_ref(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank]) -> Plank:
+    """The plank that ``node`` names."""
+    name = doc.text(node, key)
+    if name not in by_id:
+        close = difflib.get_close_matches(name, list(by_id), n=1)
+        hint = f" (did you mean {_quote(close[0])}?)" if close else ""
+        doc.fail(key, f"unknown plank {_quote(name)}{hint}")
+    return by_id[name]

@@ -1,8 +1,9 @@
 """A ``Design`` -> a design document (plain dicts and lists) -> a YAML or JSON file.
 
 The inverse of ``load``: lengths go back to the design's unit, masses are written as masses,
-listed joints are kept and ``joints`` is left out when they are detected from geometry, so
-that ``parse_design`` of the written text equals the design up to float round-off.
+listed joints are kept and ``joints`` is left out when they are detected from geometry, a
+load case keeps its ``include`` and writes only its own loads, so that ``parse_design`` of
+the written text equals the design up to float round-off.
 """
 
 from __future__ import annotations
@@ -38,12 +39,12 @@ def design_to_document(design: Design) -> dict[str, Any]:
     if design.joints is not None:
         doc["joints"] = [_joint_entry(joint) for joint in design.joints]
     cases = list(design.load_cases)
-    if cases and cases[0].name == "default":
+    if cases and cases[0].name == "default" and not cases[0].includes:
         default = cases.pop(0)
         if default.loads or cases:
             doc["loads"] = _load_entries(default, scale)
     if cases:
-        doc["load_cases"] = {case.name: _load_entries(case, scale) for case in cases}
+        doc["load_cases"] = {case.name: _case_entry(case, scale) for case in cases}
     if design.walls:
         doc["walls"] = [{"point": _vector_in_unit(wall.point, scale),
                          "normal": [float(v) for v in wall.normal]} for wall in design.walls]
@@ -127,7 +128,19 @@ def _joint_entry(joint: JointSpec) -> list[str] | dict[str, Any]:
 
 
 def _load_entries(case: LoadCase, scale: float) -> list[dict[str, Any]]:
-    return [_load_entry(load, scale) for load in case.loads]
+    """The case's own loads (those it includes are written in their own cases)."""
+    return [_load_entry(load, scale) for load in case.own_loads]
+
+
+def _case_entry(case: LoadCase, scale: float) -> list[dict[str, Any]] | dict[str, Any]:
+    """A list of loads, or ``{include: [...], loads: [...]}`` when the case includes
+    others (``loads`` left out when it has none of its own)."""
+    if not case.includes:
+        return _load_entries(case, scale)
+    entry: dict[str, Any] = {"include": list(case.includes)}
+    if case.own_loads:
+        entry["loads"] = _load_entries(case, scale)
+    return entry
 
 
 def _load_entry(load: Load, scale: float) -> dict[str, Any]:

@@ -18,6 +18,7 @@ from furncheck.result import (
     ContactResult,
     DesignReport,
     JointResult,
+    LoadResult,
     PlankResult,
 )
 
@@ -55,9 +56,27 @@ def _case_dict(case: CaseResult) -> dict[str, Any]:
         "stable": case.stable,
         "joints": [_joint_dict(joint) for joint in case.joints],
         "contacts": [_contact_dict(contact) for contact in case.contacts],
+        "loads": [_load_dict(load) for load in case.loads],
     }
     if case.planks is not None:
         entry["planks"] = [_plank_dict(plank) for plank in case.planks]
+    return entry
+
+
+def _load_dict(load: LoadResult) -> dict[str, Any]:
+    """``{"plank", "mass" | "force", "at", "spread"?, "from"?}``: what the file says of the
+    load (mass kg or force N, world frame; ``at`` in the design's unit, null at the plank
+    centre); ``spread`` only when true, ``from`` only for a load of an included case."""
+    entry: dict[str, Any] = {"plank": load.plank}
+    if load.mass is not None:
+        entry["mass"] = load.mass
+    else:
+        entry["force"] = list(load.force)
+    entry["at"] = None if load.at is None else list(load.at)
+    if load.spread:
+        entry["spread"] = True
+    if load.origin is not None:
+        entry["from"] = load.origin
     return entry
 
 

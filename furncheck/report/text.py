@@ -1,11 +1,17 @@
 """``--format text``: a few lines for a human at a terminal.
 
     designs/stool.yaml: valid (worst joint seat/leg1 at 42 % in case 'sit')
+      case 'default': 1 load: 80 kg on seat at (0, 0, 450) mm
+      case 'sit': 2 loads (1 from default): 80 kg on seat at (0, 0, 450) mm; 100 N +x on seat
     designs/shelf.yaml: INVALID, 2 violations
       non-durable: post/shelf in case 'default': pull 812 N per nail exceeds 700 N (line 14)
       floating: base,post: 2 planks touch the ground nowhere (lowest corner 3 mm above it)
+      case 'default': 2 loads: 10 kg each on shelf, post
     designs/broken.yaml: error: line 3: planks[0].size: expected [length, width]
     3 designs: 1 valid, 1 invalid, 1 error
+
+Each checked design ends with one line per load case naming the loads that act in it
+(``case_line``; self-weight acts in every case and is not listed).
 """
 
 from __future__ import annotations
@@ -17,10 +23,13 @@ from furncheck.report.common import (
     worst_joint,
     worst_plank,
 )
-from furncheck.report.numbers import format_percent
-from furncheck.result import BatchReport, DesignReport
+from furncheck.report.numbers import format_number, format_percent
+from furncheck.result import BatchReport, CaseResult, DesignReport, LoadResult
 
 INDENT = "  "
+MAX_LOAD_PHRASES = 6
+"""Phrases of a case line before the rest are counted ('and 3 more'): one line each."""
+_AXIS_NAMES = ("x", "y", "z")
 
 
 def render(batch: BatchReport) -> str:
@@ -39,12 +48,65 @@ def design_lines(report: DesignReport) -> list[str]:
         where = f"line {line}: " if line is not None else ""
         return [f"{report.design}: error: {where}{message}"]
     if report.valid:
-        return [f"{report.design}: valid ({_worst_joint_phrase(report)})"]
-    lines = [f"{report.design}: INVALID, {plural(len(report.violations), 'violation')}"]
+        lines = [f"{report.design}: valid ({_worst_joint_phrase(report)})"]
+    else:
+        lines = [f"{report.design}: INVALID, {plural(len(report.violations), 'violation')}"]
     for violation in report.violations:
         at_line = f" (line {violation.line})" if violation.line is not None else ""
         lines.append(f"{INDENT}{violation.kind}: {describe_violation(violation)}{at_line}")
+    lines.extend(INDENT + case_line(case, report.units) for case in report.cases)
     return lines
+
+
+def case_line(case: CaseResult, units: str) -> str:
+    """``case 'push': 3 loads (2 from default): 15 kg each on shelf_a, shelf_b; 80 N +y on
+    side_l at (0, -200, 900) mm``: the loads acting in the case, how many came through
+    ``include`` and from where; equal loads at plank centres in a row share a phrase."""
+    head = f"case '{case.name}'"
+    if not case.loads:
+        return f"{head}: self-weight only"
+    origins: dict[str, int] = {}
+    for load in case.loads:
+        if load.origin is not None:
+            origins[load.origin] = origins.get(load.origin, 0) + 1
+    included = (" (" + ", ".join(f"{count} from {name}" for name, count in origins.items())
+                + ")") if origins else ""
+    phrases = _load_phrases(case.loads, units)
+    if len(phrases) > MAX_LOAD_PHRASES:
+        rest = len(phrases) - (MAX_LOAD_PHRASES - 1)
+        phrases = phrases[:MAX_LOAD_PHRASES - 1] + [f"and {rest} more"]
+    return f"{head}: {plural(len(case.loads), 'load')}{included}: {'; '.join(phrases)}"
+
+
+def _load_phrases(loads: tuple[LoadResult, ...], units: str) -> list[str]:
+    """One phrase per load, ``15 kg on shelf at (0, 0, 606) mm``, ``80 N +y on post``,
+    ``20 kg spread on shelf``; a run of equal loads without a point reads ``15 kg each on
+    a, b, c``."""
+    runs: list[tuple[str, list[str]]] = []      # (what, planks) of equal point-less loads
+    for load in loads:
+        what = _load_amount(load) + (" spread" if load.spread else "")
+        if load.at is not None:
+            at = ", ".join(format_number(c, 4) for c in load.at)
+            runs.append((f"{what} on {load.plank} at ({at}) {units}", []))
+        elif runs and runs[-1][1] and runs[-1][0] == what:
+            runs[-1][1].append(load.plank)
+        else:
+            runs.append((what, [load.plank]))
+    return [what if not planks else
+            f"{what} on {planks[0]}" if len(planks) == 1 else
+            f"{what} each on {', '.join(planks)}" for what, planks in runs]
+
+
+def _load_amount(load: LoadResult) -> str:
+    """``15 kg``; a force along one world axis ``80 N +y``, else ``(30, 0, -40) N``."""
+    if load.mass is not None:
+        return f"{format_number(load.mass, 4)} kg"
+    along = [axis for axis, value in enumerate(load.force) if value != 0.0]
+    if len(along) == 1:
+        value = load.force[along[0]]
+        return f"{format_number(abs(value), 4)} N {'+' if value > 0 else '-'}" \
+               f"{_AXIS_NAMES[along[0]]}"
+    return f"({', '.join(format_number(c, 4) for c in load.force)}) N"
 
 
 def summary_line(batch: BatchReport) -> str:
