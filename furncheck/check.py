@@ -14,6 +14,7 @@ from furncheck.geometry import Geometry, analyze
 from furncheck.result import DesignReport
 from furncheck.statics import build_model, solve_load_case
 from furncheck.validity import (
+    anchor_utilization,
     case_holds,
     evaluate_case,
     joint_utilization,
@@ -58,8 +59,8 @@ def margin_of(design: Design, geometry: Geometry,
               starts: tuple[np.ndarray | None, ...] | None = None
               ) -> tuple[bool, float, np.ndarray]:
     """(whether the design is valid, its durability margin, each joint's utilization):
-    the margin is the smallest 1 - utilization of any joint (and, elastic model, any
-    plank's sag or stress) in any load case, -inf if a case is not stable; the
+    the margin is the smallest 1 - utilization of any joint, anchor (and, elastic model,
+    any plank's sag or stress) in any load case, -inf if a case is not stable; the
     utilization (``validity.joint_utilization``) is per joint of ``geometry.joints``, the
     largest of the load cases (0 for a joint outside the statics).  Every case is solved,
     except that an unstable one ends the search.  The geometry must have no violations."""
@@ -74,7 +75,8 @@ def margin_of(design: Design, geometry: Geometry,
             break
         if statics.joint_wrenches is not None and model.joints:
             wrenches.append(statics.joint_wrenches)
-        plank_used = max(plank_used, worst_plank_utilization(design, model, statics))
+        plank_used = max(plank_used, worst_plank_utilization(design, model, statics),
+                         anchor_utilization(design, geometry, model, statics))
     utilization = np.zeros(len(geometry.joints))
     valid = stable
     if wrenches:        # the joints' utilization in all those cases at once

@@ -207,7 +207,11 @@ def apply_dof(design: Design, frame: Structure, dof: Dof, step: float) -> Design
     changed = {plank_id for plank_id, p in planks.items() if p is not before[plank_id]}
     return replace(design, planks=edited,
                    load_cases=tuple(_carried_case(case, before, planks, changed)
-                                    for case in design.load_cases))
+                                    for case in design.load_cases),
+                   anchors=tuple(anchor if anchor.plank not in changed else replace(
+                       anchor, point=carried_point(anchor.point, before[anchor.plank],
+                                                   planks[anchor.plank]))
+                       for anchor in design.anchors))
 
 
 def _carried_case(case: LoadCase, before: dict[str, Plank], after: dict[str, Plank],
@@ -227,14 +231,23 @@ def _carried(load: Load, before: Plank, after: Plank) -> Load:
     world direction (gravity does not turn with the plank)."""
     if load.point is None or before is after or before == after:
         return load
-    (px, py, pz), (cx, cy, cz) = load.point, before.center
+    return Load(load.plank, load.force, carried_point(load.point, before, after), load.mass)
+
+
+def carried_point(point: Vec3, before: Plank, after: Plank) -> Vec3:
+    """Where a point on plank ``before`` (a load's, an anchor's) is on its edit ``after``:
+    at the same fraction of the plank's length and width, the same height above its
+    face."""
+    if before is after or before == after:
+        return point
+    (px, py, pz), (cx, cy, cz) = point, before.center
     offset = (px - cx, py - cy, pz - cz)
     x_axis, y_axis, z_axis = before.axes                      # local = R^T (p - c), scaled
     scaled = np.array([_dot(offset, x_axis) * (after.length / before.length),
                        _dot(offset, y_axis) * (after.width / before.width),
                        _dot(offset, z_axis)])
     (ox, oy, oz), (cx, cy, cz) = (after.rotation_matrix @ scaled).tolist(), after.center
-    return Load(load.plank, load.force, (cx + ox, cy + oy, cz + oz), load.mass)
+    return (cx + ox, cy + oy, cz + oz)
 
 
 def _translate(frame: Structure, planks: dict[str, Plank], plank: Plank, axis: int,

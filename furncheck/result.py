@@ -67,6 +67,20 @@ class ContactResult:
 
 
 @dataclass(frozen=True)
+class AnchorResult:
+    """An anchor in one load case: the wall's force on its plank (N, world) at ``point``
+    (file unit), its size, the capacity (N, / safety factor) and their ratio."""
+
+    plank: str
+    wall: int
+    point: tuple[float, float, float]
+    force: tuple[float, float, float]
+    size: float
+    capacity: float
+    utilization: float
+
+
+@dataclass(frozen=True)
 class PlankResult:
     """A plank's bending in one load case (elastic model, contract section 3a).
 
@@ -117,6 +131,7 @@ class CaseResult:
     stability: str = "stable"
     planks: tuple[PlankResult, ...] | None = None    # elastic model only
     loads: tuple[LoadResult, ...] = ()                # the loads acting, after include
+    anchors: tuple[AnchorResult, ...] = ()            # designs with anchors only
 
     @property
     def worst_joint(self) -> JointResult | None:

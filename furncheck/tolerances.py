@@ -230,6 +230,9 @@ MAX_SAG_LIMIT = 1e6
 MAX_NAIL_STIFFNESS = 1e13        # N/m per nail, slip or withdrawal
 MAX_ROTATION_DEG = 1e4           # degrees, largest |rotation| about one axis
 MAX_NAILS = 1e6                  # nails of one listed joint
+ANCHOR_CAP = 1e30
+"""N: the friction cap that the contact iterations give an anchor's tie, which never slips
+(a force no load reaches; finite, so that the friction phase's arithmetic stays finite)."""
 WALL_NORMAL_TILT = 1e-6
 """Largest |z| of a wall's normal, relative to its length: walls are vertical (contract
 section 2); a normal within this of horizontal is made exactly horizontal."""

@@ -23,6 +23,7 @@ from furncheck import tolerances as tol
 from furncheck.design.model import Design, LoadCase
 from furncheck.geometry import Geometry, Joint
 from furncheck.result import (
+    AnchorResult,
     CaseResult,
     ContactResult,
     JointResult,
@@ -136,14 +137,25 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
                 violations.append(Violation("non-durable", joint.name, case.name,
                                             _durability_message(nails, design),
                                             _joint_line(design, joint)))
-    contacts = []
+    contacts, anchors = [], []
     if statics.contact_forces is not None:
         points = (model.contact_points / scale).tolist()
         forces = model.world_forces(statics.contact_forces).tolist()
         for row, (point, force) in enumerate(zip(points, forces)):
             contact = geometry.contacts[model.contacts[row]]
-            contacts.append(ContactResult(contact.plank, tuple(point), tuple(force),
-                                          contact.wall))
+            if contact.anchor is None:
+                contacts.append(ContactResult(contact.plank, tuple(point), tuple(force),
+                                              contact.wall))
+                continue
+            held = _anchor_held(design, contact.anchor, force)
+            anchors.append(held)
+            if held.utilization > 1.0 + tol.CAPACITY_REL_TOL \
+                    and statics.stability in ("stable", "sliding"):
+                violations.append(Violation(
+                    "non-durable", f"anchors[{contact.anchor}]", case.name,
+                    f"anchor of {contact.plank} to wall {contact.wall} holds "
+                    f"{_plain(held.size)} N, more than its {_plain(held.capacity)} N"
+                    + _factor_note(design), design.line_of(f"anchors[{contact.anchor}]")))
     planks = None
     if statics.planks is not None:
         planks = []
@@ -169,9 +181,44 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
         where = ",".join(statics.culprits) or ",".join(design.planks[i].id for i in model.planks)
         violations.append(Violation(kind, where, case.name, statics.detail,
                                     design.line_of(_case_key(design, case))))
-    result = CaseResult(case.name, all(j.durable for j in joints), stable, tuple(joints),
-                        tuple(contacts), statics.stability, planks, case_loads(design, case))
+    durable = all(j.durable for j in joints) \
+        and all(a.utilization <= 1.0 + tol.CAPACITY_REL_TOL for a in anchors)
+    result = CaseResult(case.name, durable, stable, tuple(joints), tuple(contacts),
+                        statics.stability, planks, case_loads(design, case), tuple(anchors))
     return result, violations
+
+
+def _anchor_held(design: Design, index: int, force: list[float]) -> AnchorResult:
+    """An anchor's result for the wall's force on its plank (N, world)."""
+    anchor = design.anchors[index]
+    size = float(np.linalg.norm(force))
+    capacity = anchor.capacity / design.safety_factor
+    return AnchorResult(anchor.plank, anchor.wall,
+                        tuple(float(c) / design.unit_scale for c in anchor.point),
+                        tuple(force), size, capacity, size / capacity)
+
+
+def anchor_utilization(design: Design, geometry: Geometry, model: StaticsModel,
+                       statics: CaseStatics) -> float:
+    """The case's largest anchor utilization, |force| / (capacity / safety factor) (0
+    without anchors)."""
+    if model.contact_anchored is None or statics.contact_forces is None:
+        return 0.0
+    worst = 0.0
+    for row in np.flatnonzero(model.contact_anchored):
+        anchor = design.anchors[geometry.contacts[model.contacts[row]].anchor]
+        size = float(np.linalg.norm(statics.contact_forces[row]))
+        worst = max(worst, size * design.safety_factor / anchor.capacity)
+    return worst
+
+
+def _plain(value: float) -> str:
+    return f"{value:.4g}"
+
+
+def _factor_note(design: Design) -> str:
+    return "" if design.safety_factor == 1.0 else \
+        f" (capacity / safety factor {design.safety_factor:g})"
 
 
 def case_loads(design: Design, case: LoadCase) -> tuple[LoadResult, ...]:
@@ -234,7 +281,8 @@ def case_margin(design: Design, geometry: Geometry, model: StaticsModel,
     if statics.joint_wrenches is not None and model.joints:
         utilization, held = joint_utilization(design, geometry, model, statics.joint_wrenches)
         margin, holds = 1.0 - float(utilization.max()), bool(np.all(held))
-    used = worst_plank_utilization(design, model, statics)
+    used = max(worst_plank_utilization(design, model, statics),
+               anchor_utilization(design, geometry, model, statics))
     return min(margin, 1.0 - used), holds and used <= 1.0 + tol.CAPACITY_REL_TOL
 
 

@@ -51,6 +51,7 @@ from furncheck.design.values import (
     _Units,
     _vector,
 )
+from furncheck.design.walls import anchors as read_anchors
 from furncheck.design.walls import walls as read_walls
 from furncheck.errors import DesignError
 
@@ -58,7 +59,7 @@ UNIT_SCALES = {"mm": 0.001, "m": 1.0}
 """Length unit -> metres per unit."""
 
 TOP_KEYS = ("furncheck", "name", "units", "model", "material", "planks", "joints", "loads",
-            "load_cases", "safety_factor", "tolerance", "walls")
+            "load_cases", "safety_factor", "tolerance", "walls", "anchors")
 MATERIAL_KEYS = ("thickness", "density", "nail_spacing", "nail_pull", "nail_shear", "friction",
                  "elastic_modulus", "shear_modulus", "bending_strength", "creep", "sag_limit",
                  "nail_slip", "nail_withdrawal")
@@ -123,6 +124,7 @@ def _design(doc: _Doc, tree: Any) -> Design:
     safety_factor = (_quantity(doc, top["safety_factor"], "safety_factor",
                                tol.MIN_SAFETY_FACTOR, tol.MAX_SAFETY_FACTOR, positive=True)
                      if "safety_factor" in top else tol.DEFAULT_SAFETY_FACTOR)
+    walls = read_walls(doc, top["walls"], units) if "walls" in top else ()
     return Design(
         name=_name(doc, top),
         planks=planks,
@@ -135,7 +137,9 @@ def _design(doc: _Doc, tree: Any) -> Design:
         unit_scale=units.scale,
         source=doc.source,
         model=_model(doc, top),
-        walls=read_walls(doc, top["walls"], units) if "walls" in top else (),
+        walls=walls,
+        anchors=(read_anchors(doc, top["anchors"], by_id, walls, units, tolerance)
+                 if "anchors" in top else ()),
         lines=doc.design_lines(),
     )
 

@@ -197,6 +197,17 @@ class Wall:
 
 
 @dataclass(frozen=True)
+class Anchor:
+    """A screw or bracket tying ``plank`` to wall ``wall`` (index into ``Design.walls``) at
+    the world point ``point`` (m, on the plank), both ways, up to ``capacity`` N."""
+
+    plank: str
+    point: Vec3
+    wall: int
+    capacity: float
+
+
+@dataclass(frozen=True)
 class Design:
     """A checked design, SI inside.
 
@@ -208,6 +219,7 @@ class Design:
     tolerance   : m, geometric tolerance
     model       : 'elastic' (planks bend, contract section 3a) or 'rigid' (the paper's)
     walls       : vertical planes the design may lean on (contract section 2)
+    anchors     : ties of planks to walls (contract section 2)
     lines       : key path -> 1-based line in the source file (YAML), for annotations
     """
 
@@ -223,6 +235,7 @@ class Design:
     source: str = ""
     model: str = tol.DEFAULT_MODEL
     walls: tuple[Wall, ...] = ()
+    anchors: tuple[Anchor, ...] = ()
     lines: dict[str, int] = field(default_factory=dict, compare=False, repr=False)
 
     def plank(self, plank_id: str) -> Plank:

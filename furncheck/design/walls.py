@@ -1,7 +1,9 @@
-"""The walls of a design file (contract sections 1 and 2): vertical planes it may lean on.
+"""The walls of a design file and the anchors into them (contract sections 1 and 2).
 
-``walls(doc, node, units)`` reads ``walls: [{point, normal}, ...]``; every problem is one
-``DesignError`` with its key path and line, as in ``furncheck.design.load``.
+``walls(doc, node, units)`` reads ``walls: [{point, normal}, ...]`` (vertical planes the
+design may lean on), ``anchors(...)`` reads ``anchors: [{plank, at, wall, capacity}]``
+(screws or brackets tying a plank to a wall); every problem is one ``DesignError`` with
+its key path and line, as in ``furncheck.design.load``.
 """
 
 from __future__ import annotations
@@ -11,10 +13,12 @@ from typing import Any
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.design.model import Wall
-from furncheck.design.values import _Doc, _point, _Units, _vector
+from furncheck.design.cases import _point_on_plank
+from furncheck.design.model import Anchor, Plank, Wall
+from furncheck.design.values import _Doc, _plank_ref, _point, _quantity, _Units, _vector
 
 WALL_KEYS = ("point", "normal")
+ANCHOR_KEYS = ("plank", "at", "wall", "capacity")
 
 
 def walls(doc: _Doc, node: Any, units: _Units) -> tuple[Wall, ...]:
@@ -37,4 +41,31 @@ def walls(doc: _Doc, node: Any, units: _Units) -> tuple[Wall, ...]:
         normal[2] = 0.0
         normal /= float(np.linalg.norm(normal))
         found.append(Wall(point, (float(normal[0]), float(normal[1]), 0.0)))
+    return tuple(found)
+
+
+def anchors(doc: _Doc, node: Any, by_id: dict[str, Plank], walls_found: tuple[Wall, ...],
+            units: _Units, tolerance: float) -> tuple[Anchor, ...]:
+    """``[{plank, at, wall, capacity}, ...]``: ``at`` a world point on the plank (within
+    ``tolerance``) and not behind its wall, ``wall`` an index into ``walls``, ``capacity``
+    N > 0."""
+    found = []
+    for index, item in enumerate(doc.sequence(node, "anchors")):
+        key = f"anchors[{index}]"
+        fields = doc.mapping(item, key, ANCHOR_KEYS, required=ANCHOR_KEYS)
+        plank = _plank_ref(doc, fields["plank"], f"{key}.plank", by_id)
+        point = _point_on_plank(doc, fields["at"], f"{key}.at", plank, units, tolerance)
+        wall = doc.number(fields["wall"], f"{key}.wall")
+        if not wall.is_integer() or not 0 <= wall < len(walls_found):
+            have = (f"the design has walls 0 to {len(walls_found) - 1}" if walls_found
+                    else "the design has no walls: add one under walls")
+            doc.fail(f"{key}.wall", f"no wall {wall:g} ({have})")
+        wall = int(wall)
+        behind = -float(walls_found[wall].distance(np.asarray(point)))
+        if behind > tolerance + tol.ON_PLANK_EPS:
+            doc.fail(f"{key}.at", f"the point is {behind / units.scale:g} {units.name} behind "
+                                  f"wall {wall}")
+        capacity = _quantity(doc, fields["capacity"], f"{key}.capacity", 0.0, tol.MAX_FORCE,
+                             unit="N", positive=True)
+        found.append(Anchor(plank.id, point, wall, capacity))
     return tuple(found)

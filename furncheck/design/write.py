@@ -48,6 +48,10 @@ def design_to_document(design: Design) -> dict[str, Any]:
     if design.walls:
         doc["walls"] = [{"point": _vector_in_unit(wall.point, scale),
                          "normal": [float(v) for v in wall.normal]} for wall in design.walls]
+    if design.anchors:
+        doc["anchors"] = [{"plank": anchor.plank, "at": _vector_in_unit(anchor.point, scale),
+                           "wall": anchor.wall, "capacity": float(anchor.capacity)}
+                          for anchor in design.anchors]
     doc["safety_factor"] = design.safety_factor
     doc["tolerance"] = _in_unit(design.tolerance, scale)
     return doc

@@ -26,6 +26,7 @@ from furncheck.geometry.model import (
     Contact,
     Geometry,
     Joint,
+    anchor_contacts,
     corner_contacts,
     support_point,
 )
@@ -53,7 +54,7 @@ def _completed(design: Design, joints: list[Joint], violations: list[Violation],
     """The geometry of a design with these joints: its ground contacts, components and
     connectivity violations added (``earlier``: the analysis of a version in which the
     planks ``same`` are the same, see ``analyze``)."""
-    contacts = _ground_contacts(design, violations, earlier, same)
+    contacts = _ground_contacts(design, violations, earlier, same) + anchor_contacts(design)
     if earlier is not None and [j.planks for j in joints] == [j.planks for j in earlier.joints]:
         components = earlier.components          # they follow from the joined pairs alone
     else:
@@ -103,8 +104,12 @@ def follow_many(geometry: Geometry, edits: list) -> list[tuple[tuple[Joint, ...]
         followed = []
         for c in contact_ids:
             contact = geometry.contacts[c]
-            corner = design.planks[index[contact.plank]].corners[contact.corner]
-            followed.append(replace(contact, point=support_point(design, contact.wall, corner)))
+            if contact.anchor is not None:      # it rides on its plank (``dofs.apply_dof``)
+                point = np.asarray(design.anchors[contact.anchor].point, dtype=float)
+            else:
+                point = support_point(design, contact.wall,
+                                      design.planks[index[contact.plank]].corners[contact.corner])
+            followed.append(replace(contact, point=point))
         contacts_out.append(tuple(followed))
     joints_out: list[list[Joint]] = [[] for _ in edits]
     if rows:
@@ -281,7 +286,8 @@ def _ground_contacts(design: Design, violations: list[Violation],
     reused: dict[str, list] = {}
     if earlier is not None:
         for contact in earlier.contacts:
-            reused.setdefault(contact.plank, []).append(contact)
+            if contact.anchor is None:
+                reused.setdefault(contact.plank, []).append(contact)
         for violation in earlier.violations:
             if violation.kind == "penetration":
                 reused.setdefault(violation.where, []).append(violation)

@@ -41,6 +41,7 @@ from furncheck.geometry.model import (
     _GEOMETRY_EPS,
     Contact,
     Geometry,
+    anchor_contacts,
     corner_contacts,
 )
 
@@ -171,7 +172,8 @@ class _KeptStructure:
                          for n, j in enumerate(geometry.joints)}
         self.contacts: dict[str, list[Contact]] = {}
         for contact in geometry.contacts:
-            self.contacts.setdefault(contact.plank, []).append(contact)
+            if contact.anchor is None:
+                self.contacts.setdefault(contact.plank, []).append(contact)
 
     def of(self, edited: Design, fresh: list, touches: dict,
            same: frozenset[str]) -> Geometry | None:
@@ -210,6 +212,7 @@ class _KeptStructure:
                     [(c.wall, c.corner) for c in before]:
                 return None                     # sunk, or other corners on a support
             contacts.extend(touching)
+        contacts.extend(anchor_contacts(edited))
         return Geometry(tuple(joints), tuple(contacts), self.original.components,
                         self.original.grounded, ())
 

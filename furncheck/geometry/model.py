@@ -56,12 +56,22 @@ class Contact:
 
     corner : index of the corner in ``Plank.corners`` (identifies the contact across edits)
     wall   : index into ``Design.walls``, None for the ground
+    anchor : index into ``Design.anchors`` for an anchor's tie (``point`` its point on the
+             plank, ``corner`` -1, ``wall`` its wall; it holds both ways, without friction
+             limit), else None
     """
 
     plank: str
     point: np.ndarray
     corner: int = 0
     wall: int | None = None
+    anchor: int | None = None
+
+
+def anchor_contacts(design) -> list[Contact]:
+    """The design's anchors as contacts (see ``Contact.anchor``), in order."""
+    return [Contact(anchor.plank, np.asarray(anchor.point, dtype=float), -1, anchor.wall, i)
+            for i, anchor in enumerate(design.anchors)]
 
 
 def support_point(design, wall: int | None, corner: np.ndarray) -> np.ndarray:

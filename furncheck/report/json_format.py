@@ -60,6 +60,10 @@ def _case_dict(case: CaseResult) -> dict[str, Any]:
     }
     if case.planks is not None:
         entry["planks"] = [_plank_dict(plank) for plank in case.planks]
+    if case.anchors:
+        entry["anchors"] = [{"plank": a.plank, "wall": a.wall, "point": list(a.point),
+                             "force": list(a.force), "capacity": a.capacity,
+                             "utilization": a.utilization} for a in case.anchors]
     return entry
 
 

@@ -112,6 +112,7 @@ class _ActiveSet:
         self.force_tol = tol.FORCE_REL_TOL * scale
         self.disp_tol = self.force_tol / model.contact_stiffness
         self.mu = model.friction
+        self.anchored = model.contact_anchored
         self._spaces: dict[bytes, _ContactSpace] = {}
 
     # -- phases --------------------------------------------------------------------------------
@@ -159,7 +160,7 @@ class _ActiveSet:
         """
         status = status.copy()
         ground = start.ground
-        caps = self.mu * np.maximum(start.contact_forces[:, 2], 0.0)
+        caps = self._caps(start.contact_forces)
         history: list[tuple[np.ndarray, np.ndarray]] = []     # (caps, the caps they gave)
         disagreement = np.inf
         for _ in range(tol.FRICTION_CAP_ITERATIONS):
@@ -168,7 +169,7 @@ class _ActiveSet:
             if ground is None:
                 return None
             forces, displacements = energy.contact_state(ground)
-            new_caps = self.mu * np.maximum(forces[:, 2], 0.0)
+            new_caps = self._caps(forces)
             if self._update_normals(forces, displacements, status):
                 caps, history, disagreement = new_caps, [], np.inf
                 continue
@@ -183,7 +184,17 @@ class _ActiveSet:
                 caps = _anderson(history)
             else:
                 caps, ground = newton
+            if self.anchored is not None:
+                caps[self.anchored] = tol.ANCHOR_CAP
         return None
+
+    def _caps(self, forces: np.ndarray) -> np.ndarray:
+        """(nK,) N: the friction caps mu N for contact forces (nK, 3); ANCHOR_CAP for the
+        anchors' ties (they never slip)."""
+        caps = self.mu * np.maximum(forces[:, 2], 0.0)
+        if self.anchored is not None:
+            caps[self.anchored] = tol.ANCHOR_CAP
+        return caps
 
     # -- results -------------------------------------------------------------------------------
     def stable(self, solution: _Solution, status: np.ndarray) -> CaseStatics:
@@ -230,6 +241,8 @@ class _ActiveSet:
             detail = _LINE_DETAIL if stability == "lift-off" else _LINE_SLIDING
             return CaseStatics(stability, None, None, (), detail + undecided)
         pulling = bolted.contact_forces[:, 2] < -self.force_tol
+        if self.anchored is not None:
+            pulling &= ~self.anchored
         if stability == "lift-off":
             detail = ("no equilibrium with the ground only pushing: the load's line of action "
                       "falls outside the support polygon, the design topples "
@@ -287,8 +300,9 @@ class _ActiveSet:
 
     def _outside_cones(self, forces: np.ndarray) -> np.ndarray:
         """(nK,) bool: contact forces (nK, 3) whose sideways part exceeds mu N (beyond the
-        force tolerance)."""
-        return np.hypot(forces[:, 0], forces[:, 1]) > self.mu * forces[:, 2] + self.force_tol
+        force tolerance); never an anchor's tie."""
+        outside = np.hypot(forces[:, 0], forces[:, 1]) > self.mu * forces[:, 2] + self.force_tol
+        return outside if self.anchored is None else outside & ~self.anchored
 
     # -- the linear solve ----------------------------------------------------------------------
     def solve(self, status: np.ndarray, stiffness_scale: float = 1.0,
@@ -349,6 +363,8 @@ class _ActiveSet:
         any status changed."""
         normal = forces[:, 2]
         pulling = (status != LIFT) & (normal < -self.force_tol)
+        if self.anchored is not None:
+            pulling &= ~self.anchored          # an anchor's tie pulls as well as it pushes
         if one_at_a_time and pulling.any():
             hardest = int(np.argmin(np.where(pulling, normal, np.inf)))
             pulling = np.zeros_like(pulling)

@@ -88,12 +88,29 @@ def unilateral_feasible(model: StaticsModel, f: np.ndarray) -> Feasibility:
         members, rows, wrench = _component_problem(model, f, component)
         if len(members) == 0:
             return Feasibility(INFEASIBLE)
-        bounds = [b for _ in members for b in ((None, None), (None, None), (0, None))]
+        bounds = [b for member in members
+                  for b in ((None, None), (None, None), (None, None) if _tie(model, member)
+                            else (0, None))]
         status, result = _linprog(np.zeros(3 * len(members)), A_eq=rows, b_eq=-wrench,
                                   bounds=bounds)
         if status != FEASIBLE:
             return Feasibility(status, message=result.message)
     return Feasibility(FEASIBLE)
+
+
+def _tie(model: StaticsModel, member: int) -> bool:
+    """Whether contact ``member`` is an anchor's tie (any force, no cone)."""
+    return model.contact_anchored is not None and bool(model.contact_anchored[member])
+
+
+_BOTH_WAYS = np.hstack([np.eye(3), -np.eye(3)])
+"""(3, 6): an anchor's tie as non-negative weights of six edges: any force."""
+
+
+def _member_generators(model: StaticsModel, member: int, heading: float) -> np.ndarray:
+    """(3, m): edges whose non-negative combinations are the forces contact ``member`` may
+    take: its friction pyramid, or any force for an anchor's tie."""
+    return _BOTH_WAYS if _tie(model, member) else _generators(model.friction, heading)
 
 
 def _generators(mu: float, heading: float = 0.0) -> np.ndarray:
@@ -120,12 +137,18 @@ def cone_solution(model: StaticsModel, f: np.ndarray) -> Feasibility:
         members, rows, wrench = _component_problem(model, f, component)
         if len(members) == 0:
             return Feasibility(INFEASIBLE)
-        generators = _generators(model.friction, _heading(-wrench[:2]))
-        A = np.hstack([rows[:, 3 * c:3 * c + 3] @ generators for c in range(len(members))])
+        heading = _heading(-wrench[:2])
+        generators = [_member_generators(model, member, heading) for member in members]
+        A = np.hstack([rows[:, 3 * c:3 * c + 3] @ edges for c, edges in enumerate(generators)])
         status, result = _linprog(np.zeros(A.shape[1]), A_eq=A, b_eq=-wrench, bounds=(0, None))
         if status != FEASIBLE:
             return Feasibility(status, message=result.message)
-        forces[members] = result.x.reshape(len(members), -1) @ generators.T
+        if model.contact_anchored is None:          # one pyramid for all
+            forces[members] = result.x.reshape(len(members), -1) @ generators[0].T
+            continue
+        offsets = np.cumsum([0] + [edges.shape[1] for edges in generators])
+        for c, (member, edges) in enumerate(zip(members, generators)):
+            forces[member] = edges @ result.x[offsets[c]:offsets[c + 1]]
     return Feasibility(FEASIBLE, forces)
 
 
@@ -144,18 +167,19 @@ def closest_admissible(model: StaticsModel, f: np.ndarray, target: np.ndarray) -
     """
     from scipy.optimize import nnls
 
-    sides = tol.FRICTION_CONE_SIDES
     forces = np.zeros((len(model.contacts), 3))
     weight = tol.EQUILIBRIUM_WEIGHT
     for component in range(len(model.components)):
         members, rows, wrench = _component_problem(model, f, component)
         n = len(members)
-        edges = np.zeros((3 * n, n * sides))
-        for c, member in enumerate(members):     # each pyramid along its target's push
-            heading = _heading(target[member, :2]) if np.any(target[member, :2]) \
-                else _heading(-wrench[:2])
-            edges[3 * c:3 * c + 3, c * sides:(c + 1) * sides] = \
-                _generators(model.friction, heading)
+        blocks = [_member_generators(model, member,       # each pyramid along its target's
+                                     _heading(target[member, :2])   # push
+                                     if np.any(target[member, :2]) else _heading(-wrench[:2]))
+                  for member in members]
+        offsets = np.cumsum([0] + [block.shape[1] for block in blocks])
+        edges = np.zeros((3 * n, offsets[-1]))
+        for c, block in enumerate(blocks):
+            edges[3 * c:3 * c + 3, offsets[c]:offsets[c + 1]] = block
         system = np.vstack([weight * (rows @ edges), edges])
         rhs = np.concatenate([-weight * wrench, target[members].ravel()])
         scale = max(float(np.abs(rhs).max(initial=0.0)), 1e-300)

@@ -49,6 +49,8 @@ class StaticsModel:
                the normal one (into the room for a wall, up for the ground)
     contact_frames : (nK, 3, 3) rows t1, t2, n of each contact's frame (world), or None
                when every contact is on the ground (the world frame: x, y, z)
+    contact_anchored : (nK,) bool, the anchors' ties among the contacts (they hold both
+               ways, never lift or slip), or None when the design has none
     contact_node, contact_plank : (nK,) local node and local plank of each contact
     contact_component : (nK,) component number of each contact
     contact_stiffness : N/m, the contacts' normal and anchor springs
@@ -79,6 +81,7 @@ class StaticsModel:
     nodal_weight: np.ndarray | None = None
     load_nodes: dict | None = None     # (case name, load index) -> node (elastic model)
     contact_frames: np.ndarray | None = None
+    contact_anchored: np.ndarray | None = None
 
     @property
     def n_dof(self) -> int:
@@ -321,7 +324,15 @@ def _build_rigid_model(design: Design, geometry: Geometry) -> StaticsModel:
                                        frames),
         contact_node=owner, contact_plank=owner, contact_points=contact_points,
         contact_component=np.array([component_of[p] for p in owner], dtype=int),
-        components=components, friction=design.material.friction, contact_frames=frames)
+        components=components, friction=design.material.friction, contact_frames=frames,
+        contact_anchored=anchored_contacts(geometry, contacts))
+
+
+def anchored_contacts(geometry: Geometry, contacts: list[int]) -> np.ndarray | None:
+    """(nK,) bool: which of the model's contacts are anchors' ties; None if none is."""
+    anchored = np.array([geometry.contacts[c].anchor is not None for c in contacts],
+                        dtype=bool)
+    return anchored if anchored.any() else None
 
 
 def contact_frames(design: Design, geometry: Geometry, contacts: list[int]) -> np.ndarray | None:

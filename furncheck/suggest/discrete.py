@@ -75,7 +75,7 @@ def support_planks(design: Design, geometry: Geometry, report: DesignReport,
         neighbours[b].append(a)
     found: list[Support] = []
     tried: set[tuple] = set()
-    failing = dict.fromkeys(v.where for v in report.violations)
+    failing = dict.fromkeys(_place(design, v.where) for v in report.violations)
     reaches = _reach(failing, neighbours)
     for where in failing:
         if "/" in where:                                 # a joint k/i: brackets and posts
@@ -127,6 +127,15 @@ def _reach(failing, neighbours: dict[str, list[str]]) -> Callable[[set], bool]:
             near.update(neighbours.get(end, ()))
         return all(place & near for place in (*joints, *planks))
     return reaches
+
+
+def _place(design: Design, where: str) -> str:
+    """A violation's place as the discrete fixes take it: a joint k/i, a plank i, and for
+    an anchor over its capacity (``anchors[n]``) the plank it holds (a support under that
+    plank takes load off the anchor)."""
+    if where.startswith("anchors["):
+        return design.anchors[int(where[len("anchors["):-1])].plank
+    return where
 
 
 _REPAIRED = {"non-durable": "durability", "sagging": "stiffness", "overstressed": "strength"}

@@ -147,13 +147,14 @@ margin through them is continuous in an edit."""
 
 
 def utilization_margin(report: DesignReport) -> float:
-    """>= 0 exactly when the report is valid: the smallest 1 - utilization of its joints
-    and (elastic model) planks where at most those fail, else -inf (the same as
+    """>= 0 exactly when the report is valid: the smallest 1 - utilization of its joints,
+    anchors and (elastic model) planks where at most those fail, else -inf (the same as
     ``Editor.margin_at``, through ``validity.case_margin``)."""
     if any(v.kind not in _UTILIZATION_KINDS for v in report.violations):
         return -math.inf
     used = [joint.utilization for case in report.cases for joint in case.joints]
     used += [plank.utilization for case in report.cases for plank in case.planks or ()]
+    used += [anchor.utilization for case in report.cases for anchor in case.anchors]
     return signed_margin(min((1.0 - u for u in used), default=1.0), report.valid)
 
 

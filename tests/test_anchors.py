@@ -1,0 +1,207 @@
+"""Anchors (contract section 2): a plank tied to a wall at a point, both ways, up to a
+capacity; reported like a joint (force, utilization, ``non-durable`` beyond capacity).
+
+Two hand checks, in both models:
+
+* A wall shelf on a cleat.  A cleat (600 x 100 x 18 mm) stands with its back face on the
+  wall y = 0, screwed to it by two anchors at height a above its bottom edge; a 250 mm
+  deep shelf is nailed onto its top edge, its back edge on the wall, and carries a load.
+  The load turns shelf and cleat outwards about the cleat's bottom edge, where the wall
+  pushes; the shelf's and the cleat's upper back corners come off the wall.  Moments about
+  that edge (a line in the wall's plane, so neither the wall's friction there nor the
+  anchors' vertical forces have an arm):
+
+      sum over anchors of their pull F_y  x  a  =  sum of the weights W_i x their distance y_i
+      in front of the wall
+
+  (W_i: the shelf's and the cleat's self-weight at their centres and the load).
+* A bookcase side (1800 x 300 x 18 mm board on its end, its back edge 20 mm in front of
+  the wall: touching it, its back foot could wedge against the wall and hold by the
+  wall's friction) pushed forwards at the top with P.  Free, it tips about its front edge
+  once P h > W d (d = 150 mm from the front edge to the centre, h = 1800 mm): 5.96 N for
+  its 71.5 N.  Anchored at
+  the top of its back edge, it holds 10 N: the anchor pulls it back, and the moments of
+  anchor and floor about the front edge make up P h - W d (how much of it the anchor takes
+  and how much the back feet is the stiffnesses' to decide: the tie is stiff both ways).
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+import yaml
+from click.testing import CliRunner
+
+from furncheck.check import check_design
+from furncheck.cli.main import main
+from furncheck.design import parse_design
+from furncheck.geometry import analyze
+
+G = 9.81
+DENSITY = 750.0
+
+
+def _parse(doc: dict):
+    return parse_design(yaml.safe_dump(doc, sort_keys=False), "anchored.yaml", "yaml")
+
+
+def _cleat_shelf(model: str, load_kg: float = 10.0, capacity: float = 400.0,
+                 anchor_height: float = 70.0) -> dict:
+    """The wall shelf of the module docstring; anchors at x = +-200 mm, ``anchor_height``
+    above the cleat's bottom (z = 1000 mm); the load 225 mm in front of the wall."""
+    return {
+        "furncheck": 1, "name": "wall-shelf", "model": model,
+        "material": {"thickness": 18, "friction": 0.5},
+        "planks": [
+            {"id": "cleat", "size": [600, 100], "center": [0, 9, 1050],
+             "rotation": [90, 0, 0]},
+            {"id": "shelf", "size": [600, 250], "center": [0, 125, 1109]},
+        ],
+        "walls": [{"point": [0, 0, 0], "normal": [0, 1, 0]}],
+        "anchors": [{"plank": "cleat", "at": [x, 0, 1000 + anchor_height], "wall": 0,
+                     "capacity": capacity} for x in (-200.0, 200.0)],
+        "loads": [{"plank": "shelf", "mass": load_kg, "at": [0, 225, 1118]}],
+    }
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+@pytest.mark.parametrize("anchor_height", [50.0, 90.0])
+def test_a_cleat_shelfs_anchors_pull_by_the_moments_about_the_cleats_foot(model,
+                                                                         anchor_height):
+    design = _parse(_cleat_shelf(model, anchor_height=anchor_height))
+    geometry = analyze(design)
+    assert not geometry.violations
+    assert [j.planks for j in geometry.joints] == [("shelf", "cleat")] or \
+        [j.planks for j in geometry.joints] == [("cleat", "shelf")]
+    case = check_design(design, geometry).cases[0]
+    assert case.stable
+    weights = {"cleat": DENSITY * 0.6 * 0.1 * 0.018 * G,
+               "shelf": DENSITY * 0.6 * 0.25 * 0.018 * G}
+    moment = weights["cleat"] * 9.0 + weights["shelf"] * 125.0 + 10.0 * G * 225.0   # N mm
+    pull = -sum(a.force[1] for a in case.anchors)          # the wall pulls the cleat: -y
+    assert pull * anchor_height == pytest.approx(moment, rel=2e-3)
+    # the wall pushes only at the cleat's foot; the upper back corners came off
+    for contact in case.contacts:
+        if contact.point[2] > 1000.0 + 1e-6:
+            assert abs(contact.force[1]) <= 1e-6 * sum(weights.values())
+    total = np.sum([c.force for c in case.contacts], axis=0) \
+        + np.sum([a.force for a in case.anchors], axis=0)
+    weight = sum(weights.values()) + 10.0 * G
+    assert total == pytest.approx([0.0, 0.0, weight], abs=1e-6 * weight)
+    for anchor in case.anchors:
+        assert anchor.utilization == pytest.approx(anchor.size / 400.0)
+
+
+def test_an_anchor_beyond_its_capacity_is_non_durable(tmp_path):
+    """At 40 kg the two anchors at 70 mm pull about 2 x 640 N: over a 500 N capacity."""
+    doc = _cleat_shelf("rigid", load_kg=40.0, capacity=500.0)
+    path = tmp_path / "shelf.yaml"
+    path.write_text(yaml.safe_dump(doc, sort_keys=False))
+    result = CliRunner().invoke(main, ["validate", str(path), "--format", "json"])
+    assert result.exit_code == 1, result.output
+    report = json.loads(result.output)["reports"][0]
+    kinds = {(v["kind"], v["where"]) for v in report["violations"]}
+    assert kinds == {("non-durable", "anchors[0]"), ("non-durable", "anchors[1]")}
+    anchors = report["cases"][0]["anchors"]
+    assert [a["plank"] for a in anchors] == ["cleat", "cleat"]
+    assert all(a["utilization"] > 1.0 and a["wall"] == 0 for a in anchors)
+    assert report["cases"][0]["durable"] is False
+
+
+def _side(model: str, anchored: bool, push: float) -> dict:
+    doc = {
+        "furncheck": 1, "name": "side", "model": model,
+        "material": {"thickness": 18, "friction": 0.5},
+        "planks": [{"id": "side", "size": [1800, 300], "center": [0, 170, 900],
+                    "rotation": [0, -90, 0]}],
+        "walls": [{"point": [0, 0, 0], "normal": [0, 1, 0]}],
+        "loads": [{"plank": "side", "force": [0, push, 0], "at": [0, 170, 1800]}],
+    }
+    if anchored:
+        doc["anchors"] = [{"plank": "side", "at": [0, 20, 1750], "wall": 0, "capacity": 400}]
+    return doc
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_pushed_side_topples_free_at_w_d_over_h_and_holds_anchored(model):
+    weight = DENSITY * 1.8 * 0.3 * 0.018 * G
+    tipping = weight * 150.0 / 1800.0                       # W d / h = 5.96 N
+    assert check_design(_parse(_side(model, False, 0.9 * tipping))).cases[0].stable
+    free = check_design(_parse(_side(model, False, 1.1 * tipping))).cases[0]
+    assert free.stability == "lift-off"
+    held = check_design(_parse(_side(model, True, 10.0))).cases[0]
+    assert held.stable
+    (anchor,) = held.anchors
+    assert anchor.force[1] < 0.0                        # the wall pulls the side back
+    # the whole force system's moment about the front edge (y = 320, z = 0): zero
+    arm = [(anchor.point, anchor.force)] + [(c.point, c.force) for c in held.contacts]
+    restoring = sum((p[1] - 320.0) * f[2] - p[2] * f[1] for p, f in arm)   # N mm
+    assert restoring == pytest.approx(10.0 * 1800.0 - weight * 150.0, rel=1e-6)
+
+
+@pytest.mark.parametrize("anchors, message", [
+    ([{"plank": "cleat", "at": [0, 0, 1070], "wall": 3, "capacity": 400}],
+     "anchors[0].wall: no wall 3 (the design has walls 0 to 0)"),
+    ([{"plank": "cleat", "at": [0, 0, 1300], "wall": 0, "capacity": 400}],
+     "anchors[0].at: point (0, 0, 1300) is not on plank"),
+    ([{"plank": "cleat", "at": [0, 0, 1070], "wall": 0, "capacity": 0}],
+     "anchors[0].capacity: must be positive"),
+    ([{"plank": "clet", "at": [0, 0, 1070], "wall": 0, "capacity": 400}],
+     "anchors[0].plank: unknown plank"),
+    ([{"plank": "cleat", "at": [0, 0, 1070], "wall": 0}],
+     'anchors[0].capacity: missing required key "capacity"'),
+    ([{"plank": "cleat", "at": [0, 0, 1070], "wall": 0.5, "capacity": 400}],
+     "anchors[0].wall: no wall 0.5"),
+])
+def test_bad_anchors_give_one_line_and_exit_2(tmp_path, anchors, message):
+    doc = _cleat_shelf("rigid")
+    doc["anchors"] = anchors
+    path = tmp_path / "bad.yaml"
+    path.write_text(yaml.safe_dump(doc, sort_keys=False))
+    result = CliRunner().invoke(main, ["validate", str(path)])
+    assert result.exit_code == 2, result.output
+    assert message in result.output
+    assert "Traceback" not in result.output and f"{path}:" in result.output
+
+
+def test_an_anchor_without_walls_is_refused(tmp_path):
+    doc = _cleat_shelf("rigid")
+    del doc["walls"]
+    path = tmp_path / "bad.yaml"
+    path.write_text(yaml.safe_dump(doc, sort_keys=False))
+    result = CliRunner().invoke(main, ["validate", str(path)])
+    assert result.exit_code == 2
+    assert "the design has no walls" in result.output
+
+
+def test_anchors_round_trip_and_ride_with_their_plank(tmp_path):
+    """Written and read back: the same anchors and verdict; a DOF edit of the anchored
+    plank carries its anchors along (as loads ride on their planks)."""
+    from furncheck.design import load_design, write_design
+    from furncheck.dofs import apply_dof, parse_dof, structure
+
+    design = _parse(_cleat_shelf("rigid"))
+    path = tmp_path / "written.yaml"
+    write_design(design, str(path))
+    again = load_design(str(path))
+    assert again.anchors == pytest.approx(design.anchors) or again.anchors == design.anchors
+    assert check_design(again).valid == check_design(design).valid
+    geometry = analyze(design)
+    moved = apply_dof(design, structure(design, geometry), parse_dof(design, "cleat.x"), 30.0)
+    assert [a.point[0] for a in moved.anchors] == pytest.approx([-0.17, 0.23])
+
+
+def test_suggest_on_an_overloaded_anchored_shelf_writes_only_valid_designs(tmp_path):
+    path = tmp_path / "shelf.yaml"
+    path.write_text(yaml.safe_dump(_cleat_shelf("rigid", load_kg=40.0, capacity=500.0)))
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["suggest", str(path), "--out", str(out),
+                                       "--format", "json"])
+    assert result.exit_code == 0, result.output
+    for suggestion in json.loads(result.output)["suggestions"]:
+        check = CliRunner().invoke(main, ["validate", suggestion["design_file"]])
+        assert check.exit_code == 0, check.output
+    result = CliRunner().invoke(main, ["range", str(path), "--format", "json"])
+    assert result.exit_code == 0, result.output
