@@ -376,7 +376,8 @@ def _same_turn(plank: Plank, length: float, width: float, center: Vec3) -> Plank
     """A copy of ``plank`` with a new size and centre and the same rotation, given its
     rotation matrix and axes (cached properties) rather than computing them again."""
     edited = Plank(plank.id, length, width, plank.thickness,
-                   (float(center[0]), float(center[1]), float(center[2])), plank.rotation)
+                   (float(center[0]), float(center[1]), float(center[2])), plank.rotation,
+                   plank.material)
     edited.__dict__["rotation_matrix"] = plank.rotation_matrix
     edited.__dict__["axes"] = plank.axes
     return edited
@@ -386,7 +387,8 @@ def _turned(plank: Plank, turn: np.ndarray, pivot: np.ndarray) -> Plank:
     """``plank`` turned by the rotation matrix ``turn`` about the point ``pivot``."""
     center = (pivot + turn @ (plank.center_array - pivot)).tolist()
     rotation = euler_degrees(turn @ plank.rotation_matrix, plank.rotation)
-    return Plank(plank.id, plank.length, plank.width, plank.thickness, tuple(center), rotation)
+    return Plank(plank.id, plank.length, plank.width, plank.thickness, tuple(center), rotation,
+                 plank.material)
 
 
 def _with_size(plank: Plank, axis: int, size: float, center: Vec3) -> Plank:

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.design.model import Design, LoadCase
+from furncheck.design.model import Design, LoadCase, Material
 from furncheck.geometry import Geometry, Joint
 from furncheck.result import (
     AnchorResult,
@@ -166,11 +166,12 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
                                       strength / 1e6, used))
             if statics.stability not in ("stable", "sliding"):
                 continue
-            final = sag * (1.0 + design.material.creep)
+            material = design.material_of(plank)
+            final = sag * (1.0 + material.creep)
             line = design.line_of(f"planks[{model.planks[k]}]")
             if final > allowed * (1.0 + tol.CAPACITY_REL_TOL):
                 violations.append(Violation("sagging", plank.id, case.name, _sag_message(
-                    design, sag, allowed, statics.planks.span[k]), line))
+                    design, material, sag, allowed, statics.planks.span[k]), line))
             if stress > strength * (1.0 + tol.CAPACITY_REL_TOL):
                 violations.append(Violation("overstressed", plank.id, case.name,
                                             _stress_message(design, stress, strength), line))
@@ -237,22 +238,36 @@ def case_loads(design: Design, case: LoadCase) -> tuple[LoadResult, ...]:
 def plank_bending(design: Design, model: StaticsModel, planks) -> tuple[np.ndarray, ...]:
     """Per local plank of an elastic model's case (``elastic.PlankStatics``): sag (m),
     allowed sag span / sag_limit (m), stress (Pa), strength bending_strength /
-    safety_factor (Pa) and utilization max(sag (1 + creep) / allowed, stress / strength)."""
-    material = design.material
-    allowed = planks.span / material.sag_limit
-    strength = np.full(len(planks.stress), material.bending_strength / design.safety_factor)
-    final = planks.sag * (1.0 + material.creep)
+    safety_factor (Pa) and utilization max(sag (1 + creep) / allowed, stress / strength),
+    each plank with its own material (``Design.material_of``)."""
+    sag_limit, creep, strength = plank_limits(design, model)
+    allowed = planks.span / sag_limit
+    final = planks.sag * (1.0 + creep)
     sag_used = np.divide(final, allowed, out=np.zeros_like(final), where=allowed > 0.0)
     used = np.maximum(sag_used, planks.stress / strength)
     return planks.sag, allowed, planks.stress, strength, used
 
 
-def _sag_message(design: Design, sag: float, allowed: float, span: float) -> str:
+def plank_limits(design: Design, model: StaticsModel) -> tuple[np.ndarray, ...]:
+    """Per local plank of the model, from its material: sag_limit, creep and strength
+    bending_strength / safety_factor (Pa), each (nP,) (kept in ``model.plank_cache``)."""
+    cached = model.plank_cache.get("limits")
+    if cached is None:
+        materials = [design.material_of(design.planks[i]) for i in model.planks]
+        limits = np.array([(m.sag_limit, m.creep, m.bending_strength) for m in materials],
+                          dtype=float).reshape(-1, 3)
+        cached = (limits[:, 0], limits[:, 1], limits[:, 2] / design.safety_factor)
+        model.plank_cache["limits"] = cached
+    return cached
+
+
+def _sag_message(design: Design, material: Material, sag: float, allowed: float,
+                 span: float) -> str:
     unit, scale = design.units, design.unit_scale
-    creep = design.material.creep
+    creep = material.creep
     return (f"sags {sag / scale:.3g} {unit} over a {span / scale:.4g} {unit} span, "
             f"{sag * (1 + creep) / scale:.3g} {unit} with creep (x {1 + creep:g}); "
-            f"allowed {allowed / scale:.3g} {unit} (span / {design.material.sag_limit:g})")
+            f"allowed {allowed / scale:.3g} {unit} (span / {material.sag_limit:g})")
 
 
 def _stress_message(design: Design, stress: float, strength: float) -> str:

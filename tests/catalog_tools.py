@@ -99,7 +99,8 @@ def boxes(design: dict) -> list[Box]:
     thickness = float((design.get("material") or {}).get("thickness", DEFAULT_THICKNESS_MM))
     out = []
     for plank in design["planks"]:
-        t = float(plank.get("thickness", thickness))
+        own = plank.get("material") or {}
+        t = float(plank.get("thickness", own.get("thickness", thickness)))
         half = 0.5 * np.array([plank["size"][0], plank["size"][1], t], dtype=float)
         out.append(Box(plank["id"], np.asarray(plank["center"], float),
                        rotation_matrix(plank.get("rotation", [0, 0, 0])), half))
@@ -244,16 +245,20 @@ def components(design: dict) -> list[set[str]]:
 
 
 def mass_kg(design: dict) -> float:
-    """Total self-weight mass, kg (mm designs)."""
+    """Total self-weight mass, kg (mm designs; a plank's own density where it has one)."""
     density = float((design.get("material") or {}).get("density", 750.0))
-    return sum(density * float(np.prod(2 * b.half)) * 1e-9 for b in boxes(design))
+    return sum(float((plank.get("material") or {}).get("density", density))
+               * float(np.prod(2 * b.half)) * 1e-9
+               for plank, b in zip(design["planks"], boxes(design)))
 
 
 def centre_of_mass(design: dict) -> np.ndarray:
-    """Self-weight centre of mass (file unit)."""
-    vols = np.array([np.prod(2 * b.half) for b in boxes(design)])
+    """Self-weight centre of mass (file unit; a plank's own density where it has one)."""
+    density = float((design.get("material") or {}).get("density", 750.0))
+    masses = np.array([float((plank.get("material") or {}).get("density", density))
+                       * np.prod(2 * b.half) for plank, b in zip(design["planks"], boxes(design))])
     centres = np.array([b.center for b in boxes(design)])
-    return vols @ centres / vols.sum()
+    return masses @ centres / masses.sum()
 
 
 def describe(path: str | Path) -> str:

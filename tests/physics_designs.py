@@ -323,8 +323,9 @@ def convert_units(design: dict, to: str) -> dict:
     """The same physical design written in another length unit ('mm' or 'm').  Defaults of
     the material's length-valued keys and of the tolerance are written out explicitly (in
     their physical values: 12 mm, 20 mm, 0.5 mm) only if the original sets them; lengths
-    converted are plank size/center/thickness, material thickness/nail_spacing, tolerance
-    and load points.  Masses, forces, densities and angles do not change."""
+    converted are plank size/center/thickness (also in a plank's own material), material
+    thickness/nail_spacing, tolerance and load points.  Masses, forces, densities and
+    angles do not change."""
     out = copy.deepcopy(design)
     scale = (1000.0 if to == "mm" else 1.0) / unit_factor(design)
     out["units"] = to
@@ -337,6 +338,8 @@ def convert_units(design: dict, to: str) -> dict:
         plank["center"] = conv(plank["center"])
         if "thickness" in plank:
             plank["thickness"] = float(plank["thickness"]) * scale
+        if "thickness" in (plank.get("material") or {}):
+            plank["material"]["thickness"] = float(plank["material"]["thickness"]) * scale
     material = out.get("material") or {}
     for key in ("thickness", "nail_spacing"):
         if key in material:

@@ -489,6 +489,22 @@ ESTIMATES = [
     Estimate("table", "push", "top/panel joints' pull (N per nail)",
              joints_max({"top"}, {"leg_l", "leg_r"}, "pull"), 240.0, "240 N per nail (34 %)",
              kind="at most"),
+    # the mixed-material table: its top's own material (an 18 mm C24 softwood top)
+    Estimate("table-pine-top", "default", "self-weight (kg)", self_weight, 11.78,
+             "11.78 kg = 115.5 N"),
+    *(Estimate("table-pine-top", "default", f"{leg} ground force (N)", ground_normal(leg),
+               205.0, "205 N each") for leg in ("leg_l", "leg_r")),
+    tipping("table-pine-top", "lean", (436.0, 0.0), (-1.0, 0.0), 50.4, 21.6,
+            "490.5 N x 0.044 m = 21.6 Nm vs self-weight 115.5 N x 0.436 m = 50.4 Nm"),
+    Estimate("table-pine-top", "default", "top sag, at most pinned (mm)", plank("top", "sag"),
+             1.325, "1.216 + 0.099 + 0.010 = 1.325 mm", kind="at most", model="elastic"),
+    Estimate("table-pine-top", "default", "top allowed sag (mm)", plank("top", "sag_allowed"),
+             2.15, "860 / 400 = 2.15 mm", rel=1e-3, model="elastic"),
+    Estimate("table-pine-top", "default", "top stress, at most pinned (N/mm^2)",
+             plank("top", "stress"), 2.08, "67,390 / 32,400 = 2.08 N/mm^2", kind="at most",
+             model="elastic"),
+    Estimate("table-pine-top", "default", "top strength (N/mm^2)", plank("top", "strength"),
+             24.0, "bending strength 24 N/mm^2", rel=1e-9, model="elastic"),
 
     # --- the elastic model (the default): the headers' "Elastic model" estimates ----------
     # Sag brackets from the beam formulas quoted in each header: the lower end with fixed

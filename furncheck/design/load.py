@@ -12,7 +12,8 @@ Steps 1 and 2 are in ``furncheck.design.source`` (which refuses YAML aliases bef
 is expanded and duplicate keys, and keeps YAML scalars as ``_Scalar`` until the schema knows
 whether a number or a text belongs there); ``furncheck.design.values`` reads typed values
 from the tree (``_Doc``) and the quantities in SI; this module is step 3, the schema, with
-the loads and load cases (``include``) in ``furncheck.design.cases``.
+the loads and load cases (``include``) in ``furncheck.design.cases`` and the top-level and
+per-plank ``material`` in ``furncheck.design.materials``.
 
 Every problem raises ``DesignError(file, key path, line, message)``.  Key paths read
 ``planks[1].size``, ``load_cases.sit[0].mass``; '' is the whole file.  For JSON, the line of
@@ -26,6 +27,7 @@ from typing import Any
 
 from furncheck import tolerances as tol
 from furncheck.design.cases import load_cases
+from furncheck.design.materials import design_material, plank_material
 from furncheck.design.model import Design, JointSpec, Material, Plank
 from furncheck.design.source import (
     _NO_DOCUMENT,
@@ -60,10 +62,7 @@ UNIT_SCALES = {"mm": 0.001, "m": 1.0}
 
 TOP_KEYS = ("furncheck", "name", "units", "model", "material", "planks", "joints", "loads",
             "load_cases", "safety_factor", "tolerance", "walls", "anchors")
-MATERIAL_KEYS = ("thickness", "density", "nail_spacing", "nail_pull", "nail_shear", "friction",
-                 "elastic_modulus", "shear_modulus", "bending_strength", "creep", "sag_limit",
-                 "nail_slip", "nail_withdrawal")
-PLANK_KEYS = ("id", "size", "center", "rotation", "thickness")
+PLANK_KEYS = ("id", "size", "center", "rotation", "thickness", "material")
 JOINT_KEYS = ("planks", "nails")
 
 
@@ -118,7 +117,7 @@ def _design(doc: _Doc, tree: Any) -> Design:
     tolerance = (_quantity(doc, top["tolerance"], "tolerance", 0.0, tol.MAX_LENGTH,
                            units.scale, units.name)
                  if "tolerance" in top else tol.DEFAULT_TOLERANCE)
-    material = _material(doc, top, units)
+    material = design_material(doc, top, units)
     planks = _planks(doc, top["planks"], material, units)
     by_id = {plank.id: plank for plank in planks}
     safety_factor = (_quantity(doc, top["safety_factor"], "safety_factor",
@@ -186,45 +185,6 @@ def _model(doc: _Doc, top: dict) -> str:
     return name
 
 
-def _material(doc: _Doc, top: dict, units: _Units) -> Material:
-    """Material; lengths in the file unit, defaults (SI) from ``tolerances``."""
-    if "material" not in top:
-        return Material()
-    fields = doc.mapping(top["material"], "material", MATERIAL_KEYS)
-
-    def read(name: str, default: float, low: float, high: float, scale: float = 1.0,
-             unit: str = "", positive: bool = True) -> float:
-        if name not in fields:
-            return default
-        return _quantity(doc, fields[name], f"material.{name}", low, high, scale, unit, positive)
-
-    return Material(
-        thickness=read("thickness", tol.DEFAULT_THICKNESS, tol.MIN_LENGTH, tol.MAX_LENGTH,
-                       units.scale, units.name),
-        density=read("density", tol.DEFAULT_DENSITY, 0.0, tol.MAX_DENSITY, unit="kg/m^3"),
-        nail_spacing=read("nail_spacing", tol.DEFAULT_NAIL_SPACING, tol.MIN_LENGTH,
-                          tol.MAX_LENGTH, units.scale, units.name),
-        nail_pull=read("nail_pull", tol.DEFAULT_NAIL_PULL, 0.0, tol.MAX_NAIL_CAPACITY,
-                       unit="N"),
-        nail_shear=read("nail_shear", tol.DEFAULT_NAIL_SHEAR, 0.0, tol.MAX_NAIL_CAPACITY,
-                        unit="N"),
-        friction=read("friction", tol.DEFAULT_FRICTION, 0.0, tol.MAX_FRICTION,
-                      positive=False),
-        elastic_modulus=read("elastic_modulus", tol.DEFAULT_ELASTIC_MODULUS, 0.0,
-                             tol.MAX_MODULUS, 1e6, "N/mm^2"),
-        shear_modulus=read("shear_modulus", tol.DEFAULT_SHEAR_MODULUS, 0.0, tol.MAX_MODULUS,
-                           1e6, "N/mm^2"),
-        bending_strength=read("bending_strength", tol.DEFAULT_BENDING_STRENGTH, 0.0,
-                              tol.MAX_MODULUS, 1e6, "N/mm^2"),
-        creep=read("creep", tol.DEFAULT_CREEP, 0.0, tol.MAX_CREEP, positive=False),
-        sag_limit=read("sag_limit", tol.DEFAULT_SAG_LIMIT, 0.0, tol.MAX_SAG_LIMIT),
-        nail_slip=read("nail_slip", tol.DEFAULT_NAIL_SLIP, 0.0, tol.MAX_NAIL_STIFFNESS, 1e3,
-                       "N/mm"),
-        nail_withdrawal=read("nail_withdrawal", tol.DEFAULT_NAIL_WITHDRAWAL, 0.0,
-                             tol.MAX_NAIL_STIFFNESS, 1e3, "N/mm"),
-    )
-
-
 def _planks(doc: _Doc, node: Any, material: Material, units: _Units) -> tuple[Plank, ...]:
     items = doc.sequence(node, "planks")
     if not items:
@@ -247,13 +207,22 @@ def _plank(doc: _Doc, node: Any, key: str, material: Material, units: _Units) ->
     plank_id = _identifier(doc, fields["id"], f"{key}.id", "plank id")
     length, width = _vector(doc, fields["size"], f"{key}.size", 2, tol.MIN_LENGTH,
                             tol.MAX_LENGTH, units.scale, units.name, positive=True)
-    thickness = (_length(doc, fields["thickness"], f"{key}.thickness", units)
-                 if "thickness" in fields else material.thickness)
+    own = (plank_material(doc, fields["material"], f"{key}.material", units)
+           if "material" in fields else {})
+    thickness = own.pop("thickness", None)
+    if "thickness" in fields:
+        given = _length(doc, fields["thickness"], f"{key}.thickness", units)
+        if thickness is not None and thickness != given:
+            doc.fail(f"{key}.material.thickness",
+                     f"thickness {thickness / units.scale:g} {units.name} differs from the "
+                     f"plank's thickness: {given / units.scale:g} {units.name}; give it once")
+        thickness = given
     rotation = (_vector(doc, fields["rotation"], f"{key}.rotation", 3, -tol.MAX_ROTATION_DEG,
                         tol.MAX_ROTATION_DEG, unit="degrees")
                 if "rotation" in fields else (0.0, 0.0, 0.0))
     center = _point(doc, fields["center"], f"{key}.center", units)
-    return Plank(plank_id, length, width, thickness, center, rotation)
+    return Plank(plank_id, length, width, material.thickness if thickness is None else thickness,
+                 center, rotation, tuple(own.items()))
 
 
 # --- joints -------------------------------------------------------------------------------------

@@ -8,7 +8,7 @@ print positions the way the maker wrote them.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 
 import numpy as np
@@ -61,6 +61,10 @@ class Plank:
 
     center   : world position of the box centre, m
     rotation : degrees about world x, then y, then z (R = Rz @ Ry @ Rx)
+    material : the plank's own material values, ((key, SI value), ...) in
+               ``PLANK_MATERIAL_KEYS`` order (density, elastic and strength values; its
+               thickness is ``thickness``); the design's material gives the rest
+               (``Design.material_of``)
     """
 
     id: str
@@ -69,6 +73,7 @@ class Plank:
     thickness: float
     center: Vec3
     rotation: Vec3 = (0.0, 0.0, 0.0)
+    material: tuple[tuple[str, float], ...] = ()
 
     @cached_property
     def rotation_matrix(self) -> np.ndarray:
@@ -250,8 +255,24 @@ class Design:
         return {p.id: i for i, p in enumerate(self.planks)}
 
     def plank_mass(self, plank: Plank) -> float:
-        """kg: density x volume."""
-        return self.material.density * plank.volume
+        """kg: the plank's density x its volume."""
+        return self.material_of(plank).density * plank.volume
+
+    def material_of(self, plank: Plank) -> Material:
+        """The plank's material: the design's, with the plank's own values
+        (``Plank.material``) in their place.  (Its thickness is ``plank.thickness``; the
+        nails' values and the friction are always the design's.)"""
+        if not plank.material:
+            return self.material
+        materials = self._plank_materials
+        if plank.material not in materials:
+            materials[plank.material] = replace(self.material, **dict(plank.material))
+        return materials[plank.material]
+
+    @cached_property
+    def _plank_materials(self) -> dict[tuple, Material]:
+        """A plank's own values -> its material, filled by ``material_of``."""
+        return {}
 
     def line_of(self, key: str) -> int | None:
         """Source line of a key path, falling back to its closest recorded parent."""
@@ -266,6 +287,4 @@ class Design:
 def with_model(design: Design, model: str | None) -> Design:
     """The design in ``model`` ('elastic' or 'rigid'; the command line's ``--model``), or
     as it is when None."""
-    from dataclasses import replace
-
     return design if model is None or model == design.model else replace(design, model=model)

@@ -14,6 +14,7 @@ from typing import Any
 
 import yaml
 
+from furncheck.design.materials import MATERIAL_KEYS, material_entry
 from furncheck.design.model import Design, JointSpec, Load, LoadCase, Plank
 from furncheck.errors import DesignError
 
@@ -60,22 +61,9 @@ def design_to_document(design: Design) -> dict[str, Any]:
 def _material_entry(design: Design) -> dict[str, Any]:
     """Every material key, in file units (lengths in the design's unit, moduli N/mm^2,
     nail stiffnesses N/mm), so that the file says the model it was checked in."""
-    material, scale = design.material, design.unit_scale
-    return {
-        "thickness": _in_unit(material.thickness, scale),
-        "density": material.density,
-        "nail_spacing": _in_unit(material.nail_spacing, scale),
-        "nail_pull": material.nail_pull,
-        "nail_shear": material.nail_shear,
-        "friction": material.friction,
-        "elastic_modulus": _rounded(material.elastic_modulus / 1e6),
-        "shear_modulus": _rounded(material.shear_modulus / 1e6),
-        "bending_strength": _rounded(material.bending_strength / 1e6),
-        "creep": material.creep,
-        "sag_limit": material.sag_limit,
-        "nail_slip": _rounded(material.nail_slip / 1e3),
-        "nail_withdrawal": _rounded(material.nail_withdrawal / 1e3),
-    }
+    material = design.material
+    return material_entry({name: getattr(material, name) for name in MATERIAL_KEYS},
+                          design.unit_scale)
 
 
 def design_text(design: Design, fmt: str) -> str:
@@ -112,7 +100,7 @@ def _vector_in_unit(metres, scale: float) -> list[float]:
 
 def plank_entry(plank: Plank, design: Design) -> dict[str, Any]:
     """A plank as the design file writes it (file units; thickness only when it is not
-    the material's)."""
+    the material's; its own material values when it has any)."""
     scale = design.unit_scale
     entry: dict[str, Any] = {
         "id": plank.id,
@@ -122,6 +110,8 @@ def plank_entry(plank: Plank, design: Design) -> dict[str, Any]:
     }
     if plank.thickness != design.material.thickness:
         entry["thickness"] = _in_unit(plank.thickness, scale)
+    if plank.material:
+        entry["material"] = material_entry(dict(plank.material), scale)
     return entry
 
 

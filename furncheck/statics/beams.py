@@ -34,11 +34,11 @@ def section_properties(width, thickness) -> dict:
             "J": a * c ** 3 * (1.0 / 3.0 - 0.21 * (c / a) * (1.0 - c ** 4 / (12.0 * a ** 4)))}
 
 
-def beam_stiffness_local(length, width, thickness, elastic_modulus: float,
-                         shear_modulus: float) -> np.ndarray:
+def beam_stiffness_local(length, width, thickness, elastic_modulus,
+                         shear_modulus) -> np.ndarray:
     """(12, 12) stiffness of a Timoshenko beam element in its local axes, DOFs per node
     (u1, u2, u3, theta1, theta2, theta3), node 1 then node 2 (N/m, N, N m); (n, 12, 12)
-    for arrays of n lengths, widths and thicknesses."""
+    for arrays of n lengths, widths and thicknesses (and moduli, Pa: one for all or n)."""
     L, b, t = (np.atleast_1d(np.asarray(v, dtype=float)) for v in (length, width, thickness))
     section = section_properties(b, t)
     E, G = elastic_modulus, shear_modulus

@@ -245,11 +245,10 @@ def _plane_arguments(model: StaticsModel, layout: _Layout, w: np.ndarray, slope:
     ``beams.element_interior`` takes them: its nodes' deflections and section rotations
     (``_transverse``) and its own uniform load from ``line_loads`` (nE, 3) N/m."""
     beams = model.beams
-    material = model.design.material
     a, b = beams.nodes[:, 0], beams.nodes[:, 1]
     q = np.einsum("ei,ei->e", line_loads, beams.frames[:, :, 1 + j])
-    return (beams.length, material.elastic_modulus * layout.inertia[:, j],
-            SHEAR_FACTOR * material.shear_modulus * layout.area,
+    return (beams.length, beams.elastic_modulus * layout.inertia[:, j],
+            SHEAR_FACTOR * beams.shear_modulus * layout.area,
             np.column_stack([w[j, a], slope[j, a], w[j, b], slope[j, b]]), q)
 
 

@@ -22,7 +22,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from furncheck import tolerances as tol
-from furncheck.design.model import Design, LoadCase, Plank
+from furncheck.design.model import Design, LoadCase, Material, Plank
 from furncheck.geometry import Geometry
 from furncheck.statics.beams import (
     along_width,
@@ -55,6 +55,7 @@ class Beams:
     frames   : (nE, 3, 3) columns e1, e2, e3 (world)
     local_stiffness : (nE, 12, 12) in the element's axes
     width, thickness : (nE,) m, the section
+    elastic_modulus, shear_modulus : (nE,) Pa, E and G of each element's plank
     node_s   : (nN,) m, each node's position along its plank's axis from the centre
     plank_half : (nP,) m, half the beam length of each plank
     origins  : per node, its local plank and the keys of what it serves (``_plank_nodes``)
@@ -69,6 +70,8 @@ class Beams:
     local_stiffness: np.ndarray
     width: np.ndarray
     thickness: np.ndarray
+    elastic_modulus: np.ndarray
+    shear_modulus: np.ndarray
     node_s: np.ndarray
     plank_half: np.ndarray
     origins: tuple = ()
@@ -267,8 +270,8 @@ def build_elastic_model(design: Design, geometry: Geometry,
     node_plank = layout.node_plank
     node_s = layout.positions(along, halves)
     node_points = (centres[node_plank] + node_s[:, None] * axes[node_plank]).reshape(-1, 3)
-    beams = _beams(plank_list, frames, node_plank, node_s, halves, material, origins,
-                   crosswise)
+    beams = _beams(plank_list, frames, node_plank, node_s, halves,
+                   [design.material_of(p) for p in plank_list], origins, crosswise)
 
     n_sides = 2 * len(joints)
     joint_nodes = layout.row_node[:n_sides].reshape(-1, 2)
@@ -314,9 +317,10 @@ def build_elastic_model(design: Design, geometry: Geometry,
 
 
 def _beams(planks: list[Plank], frames: list[np.ndarray], node_plank: np.ndarray,
-           node_s: np.ndarray, halves: np.ndarray, material, origins: tuple,
+           node_s: np.ndarray, halves: np.ndarray, materials: list[Material], origins: tuple,
            crosswise: tuple[bool, ...]) -> Beams:
-    """The elements between consecutive nodes of each plank."""
+    """The elements between consecutive nodes of each plank (``materials``: each plank's,
+    ``Design.material_of``)."""
     same = node_plank[1:] == node_plank[:-1]
     first = np.flatnonzero(same)
     nodes = np.column_stack([first, first + 1])
@@ -327,10 +331,13 @@ def _beams(planks: list[Plank], frames: list[np.ndarray], node_plank: np.ndarray
     plank_thickness = np.array([p.thickness for p in planks], dtype=float)
     plank_frames = np.array(frames, dtype=float).reshape(-1, 3, 3)
     widths, thickness = plank_widths[plank], plank_thickness[plank]
-    local = beam_stiffness_local(length, widths, thickness, material.elastic_modulus,
-                                 material.shear_modulus).reshape(-1, 12, 12)
+    moduli = np.array([(m.elastic_modulus, m.shear_modulus) for m in materials],
+                      dtype=float).reshape(-1, 2)[plank]
+    local = beam_stiffness_local(length, widths, thickness, moduli[:, 0],
+                                 moduli[:, 1]).reshape(-1, 12, 12)
     return Beams(plank=plank, nodes=nodes, length=length, frames=plank_frames[plank],
-                 local_stiffness=local, width=widths, thickness=thickness, node_s=node_s,
+                 local_stiffness=local, width=widths, thickness=thickness,
+                 elastic_modulus=moduli[:, 0], shear_modulus=moduli[:, 1], node_s=node_s,
                  plank_half=halves, origins=origins, crosswise=crosswise,
                  plank_frames=plank_frames)
 

@@ -36,7 +36,7 @@ from furncheck.result import DesignReport
 from furncheck.sensitivity import Linearization, Sensitivity
 from furncheck.suggest.edits import Editor
 from furncheck.tolerances import GRAVITY
-from furncheck.validity import nail_pull_shear
+from furncheck.validity import nail_pull_shear, plank_limits
 
 GEOMETRY_STEP = 1e-4
 """Central-difference step of the geometric margins, in scaled DOF units."""
@@ -265,12 +265,12 @@ def _bending(linear: Linearization, sens: Sensitivity, scales: np.ndarray) -> li
     if planks is None or sens.plank_sags is None or not sens.plank_sags.shape[1]:
         return []
     design, model = linear.design, linear.model
-    material = design.material
-    factor = (1.0 + material.creep) * material.sag_limit
-    strength = material.bending_strength / design.safety_factor
+    sag_limits, creeps, strengths = plank_limits(design, model)
     margins = []
     for k in range(len(planks.sag)):
         plank_id = design.planks[model.planks[k]].id
+        factor = (1.0 + float(creeps[k])) * float(sag_limits[k])
+        strength = float(strengths[k])
         sag, span = float(planks.sag[k]), float(planks.span[k])
         if span > 0.0:
             rates = -factor * (sens.plank_sags[:, k] * span - sag * sens.plank_spans[:, k]) \
