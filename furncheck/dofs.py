@@ -31,6 +31,7 @@ import numpy as np
 from furncheck.design.model import Design, Load, LoadCase, Plank, Vec3
 from furncheck.errors import DofError
 from furncheck.geometry import EditedTables, Geometry, analyze, interpenetrations
+from furncheck.plain import plain_number
 
 DOF_KINDS = ("x", "y", "z", "rx", "ry", "rz", "length", "width")
 _AXIS = {"x": 0, "y": 1, "z": 2, "rx": 0, "ry": 1, "rz": 2}
@@ -536,7 +537,7 @@ def _cut_problem(edited: Design, cutting: list[tuple[str, str, float]]) -> str |
     if not cutting:
         return None
     a, b, depth = cutting[0]
-    return f"{a} would cut {depth / edited.unit_scale:.3g} {edited.units} into {b}"
+    return f"{a} would cut {plain_number(depth / edited.unit_scale, 3)} {edited.units} into {b}"
 
 
 def _edit_problem(original: Geometry, geometry: Geometry) -> str | None:

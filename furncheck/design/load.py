@@ -45,6 +45,7 @@ from furncheck.design.source import (
 )
 from furncheck.design.values import _describe, _Doc, _resolved
 from furncheck.errors import DesignError
+from furncheck.plain import plain_number
 
 UNIT_SCALES = {"mm": 0.001, "m": 1.0}
 """Length unit -> metres per unit."""
@@ -155,7 +156,8 @@ def _top_level(doc: _Doc, tree: Any) -> dict:
                               "write furncheck: 1)")
     version = doc.number(tree["furncheck"], "furncheck")
     if version != 1:
-        doc.fail("furncheck", f"unsupported format version {version:g}; this furncheck reads "
+        doc.fail("furncheck", f"unsupported format version {plain_number(version, 6)}; this "
+                              "furncheck reads "
                               "version 1")
     return doc.mapping(tree, "", TOP_KEYS, required=("planks",))
 
@@ -192,10 +194,10 @@ def _quantity(doc: _Doc, node: Any, key: str, low: float, high: float, scale: fl
     value = doc.number(node, key)
     shown = f" {unit}" if unit else ""
     if positive and value <= 0:
-        doc.fail(key, f"must be positive, got {value:g}{shown}")
+        doc.fail(key, f"must be positive, got {plain_number(value, 6)}{shown}")
     if not low <= value * scale <= high:
-        doc.fail(key, f"out of range: {value:g}{shown}; allowed {low / scale:g} to "
-                      f"{high / scale:g}{shown}")
+        doc.fail(key, f"out of range: {plain_number(value, 6)}{shown}; allowed "
+                      f"{plain_number(low / scale, 6)} to {plain_number(high / scale, 6)}{shown}")
     return value * scale
 
 
@@ -356,8 +358,8 @@ def _joint(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank]) -> JointSpec
 def _nail_count(doc: _Doc, node: Any, key: str) -> int:
     value = doc.number(node, key)
     if not value.is_integer() or not 1 <= value <= tol.MAX_NAILS:
-        doc.fail(key, f"must be a whole number of nails from 1 to {tol.MAX_NAILS:g}, "
-                      f"got {value:g}")
+        doc.fail(key, f"must be a whole number of nails from 1 to "
+                      f"{plain_number(tol.MAX_NAILS, 6)}, got {plain_number(value, 6)}")
     return int(value)
 
 
@@ -420,8 +422,9 @@ def _point_on_plank(doc: _Doc, node: Any, key: str, plank: Plank, units: _Units,
     outside = np.abs(local) - plank.half_extents
     axis = int(np.argmax(outside))
     if outside[axis] > tolerance + tol.ON_PLANK_EPS:
-        shown = ", ".join(f"{c / units.scale:g}" for c in point)
+        shown = ", ".join(plain_number(c / units.scale, 6) for c in point)
         doc.fail(key, f"point ({shown}) is not on plank {_quote(plank.id)}: "
-                      f"{outside[axis] / units.scale:.4g} {units.name} beyond its "
-                      f"{_AXES[axis]} (tolerance {tolerance / units.scale:g} {units.name})")
+                      f"{plain_number(outside[axis] / units.scale)} {units.name} beyond its "
+                      f"{_AXES[axis]} (tolerance {plain_number(tolerance / units.scale, 6)} "
+                      f"{units.name})")
     return point

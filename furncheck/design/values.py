@@ -12,6 +12,7 @@ from typing import Any, NoReturn
 
 from furncheck.design.source import _child, _json_lines, _one_line, _quote, _Scalar
 from furncheck.errors import DesignError
+from furncheck.plain import plain_number
 
 _NULL_WORDS = {"", "~", "null", "Null", "NULL"}
 _BOOL_WORDS = {word: value for value, words in
@@ -136,7 +137,8 @@ def _describe(node: Any) -> str:
         shown = node.text if isinstance(node, _Scalar) else str(value).lower()
         return f"a boolean ({_one_line(shown)})"
     if isinstance(value, float):
-        return f"a number ({_one_line(node.text) if isinstance(node, _Scalar) else f'{value:g}'})"
+        shown = _one_line(node.text) if isinstance(node, _Scalar) else plain_number(value, 6)
+        return f"a number ({shown})"
     return f"text {_quote(value)}"
 
 

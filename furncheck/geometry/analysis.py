@@ -22,6 +22,7 @@ from furncheck.geometry.faces import (
     _touch_regions,
 )
 from furncheck.geometry.model import _GEOMETRY_EPS, Contact, Geometry, Joint
+from furncheck.plain import plain_length, plain_number
 from furncheck.result import Violation
 
 
@@ -345,11 +346,11 @@ def _connectivity_violations(design: Design, joints: list[Joint],
 # --- formatting helpers for messages ----------------------------------------------------------
 
 def _fmt_len(value_m: float, design: Design) -> str:
-    return f"{value_m / design.unit_scale:.4g} {design.units}"
+    return plain_length(value_m, design.unit_scale, design.units)
 
 
 def _fmt_point(point_m: np.ndarray, design: Design) -> str:
-    coords = ", ".join(f"{v / design.unit_scale:.4g}" for v in point_m)
+    coords = ", ".join(plain_number(v / design.unit_scale) for v in point_m)
     return f"({coords}) {design.units}"
 
 
