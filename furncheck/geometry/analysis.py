@@ -22,6 +22,7 @@ from furncheck.geometry.faces import (
     _touch_regions,
 )
 from furncheck.geometry.model import _GEOMETRY_EPS, Contact, Geometry, Joint
+from furncheck.geometry.near import near_miss_violation, near_misses
 from furncheck.plain import plain_length, plain_number
 from furncheck.result import Violation
 
@@ -44,9 +45,9 @@ def analyze(design: Design, previous: tuple[Design, Geometry] | None = None) -> 
 
 def _completed(design: Design, joints: list[Joint], violations: list[Violation],
                earlier: Geometry | None, same: frozenset[str] | None) -> Geometry:
-    """The geometry of a design with these joints: its ground contacts, components and
-    connectivity violations added (``earlier``: the analysis of a version in which the
-    planks ``same`` are the same, see ``analyze``)."""
+    """The geometry of a design with these joints: its ground contacts, components,
+    near misses (``near``) and connectivity violations added (``earlier``: the analysis
+    of a version in which the planks ``same`` are the same, see ``analyze``)."""
     contacts = _ground_contacts(design, violations, earlier, same)
     if earlier is not None and [j.planks for j in joints] == [j.planks for j in earlier.joints]:
         components = earlier.components          # they follow from the joined pairs alone
@@ -55,8 +56,13 @@ def _completed(design: Design, joints: list[Joint], violations: list[Violation],
     plank_has_contact = {c.plank for c in contacts}
     grounded = tuple(any(design.planks[i].id in plank_has_contact for i in comp)
                      for comp in components)
-    _connectivity_violations(design, joints, components, grounded, violations)
-    return Geometry(tuple(joints), tuple(contacts), components, grounded, tuple(violations))
+    missed = near_misses(design, joints, contacts, components, grounded)
+    _connectivity_violations(design, joints, components, grounded, violations,
+                             {pid for miss in missed if len(miss.planks) == 2
+                              for pid in miss.planks})
+    violations.extend(near_miss_violation(design, miss) for miss in missed)
+    return Geometry(tuple(joints), tuple(contacts), components, grounded, tuple(violations),
+                    tuple(missed))
 
 
 def follow(geometry: Geometry, design: Design) -> Geometry:
@@ -320,12 +326,16 @@ def _components(design: Design, joints: list[Joint]) -> tuple[tuple[int, ...], .
 
 def _connectivity_violations(design: Design, joints: list[Joint],
                              components: tuple[tuple[int, ...], ...],
-                             grounded: tuple[bool, ...], violations: list[Violation]) -> None:
+                             grounded: tuple[bool, ...], violations: list[Violation],
+                             nearly_joined: set[str]) -> None:
+    """A plank joined to nothing (unless a missed joint, ``nearly_joined``, says why) is
+    ``disconnected``; a group touching the ground nowhere is ``floating``."""
     if len(design.planks) > 1:
         joined = {pid for joint in joints for pid in joint.planks}
         listed = {pid for spec in design.joints or () for pid in spec.planks}
         for index, plank in enumerate(design.planks):
-            if plank.id not in joined and plank.id not in listed:
+            if plank.id not in joined and plank.id not in listed and \
+                    plank.id not in nearly_joined:
                 violations.append(Violation(
                     "disconnected", plank.id, None,
                     "plank is joined to no other plank (no end face rests on a neighbour's "
