@@ -551,13 +551,16 @@ def _edit_problem(original: Geometry, geometry: Geometry) -> str | None:
     if before - after:
         face, edge, _ = sorted(before - after)[0]
         return f"joint {face}/{edge} would come apart"
-    if after - before:
-        face, edge, _ = sorted(after - before)[0]
-        return f"planks {face}/{edge} would touch and form a new joint"
+    closing = {miss.planks for miss in original.near_misses}   # a near miss may close
+    new = sorted((face, edge) for face, edge, _ in after - before
+                 if (face, edge) not in closing)
+    if new:
+        return f"planks {new[0][0]}/{new[0][1]} would touch and form a new joint"
     grounded_before = {c.plank for c in original.contacts}
     grounded_after = {c.plank for c in geometry.contacts}
-    if grounded_before != grounded_after:
-        changed = sorted(grounded_before ^ grounded_after)
+    changed = sorted((grounded_before ^ grounded_after)
+                     - {plank for plank in grounded_after if (plank,) in closing})
+    if changed:
         return f"{changed[0]} would {'leave' if changed[0] in grounded_before else 'touch'} " \
                "the ground"
     return None

@@ -240,3 +240,48 @@ def test_no_catalog_design_has_a_near_miss():
     ground contact narrowly."""
     for path in sorted((ROOT / "designs").glob("*.yaml")):
         assert analyze(load_design(str(path))).near_misses == (), path.name
+
+
+def test_suggest_closes_the_near_misses_of_the_short_stool(tmp_path):
+    """Rigid model (the stool is valid there once whole): leg_l 4 mm short at both ends
+    wants 8 mm more length (each end within the 0.5 mm tolerance: 7 to 9 mm); the
+    suggestion may add the missed joint seat/leg_l and stand the leg on the floor, and
+    every suggestion's written design validates (``--out``, through the CLI)."""
+    from furncheck.check import check_file
+    from furncheck.design.model import with_model
+    from furncheck.suggest import suggest_design
+
+    result = suggest_design(with_model(parsed(stool_with_leg_l(430, 219)), "rigid"))
+    lengthen = next(s for s in result.suggestions if s.dofs == ("leg_l.length",))
+    assert 7.0 <= lengthen.changes[0] <= 9.0
+    path = tmp_path / "stool-short.yaml"
+    path.write_text(stool_with_leg_l(430, 219))
+    run = cli("suggest", str(path), "--model", "rigid", "--format", "json",
+              "--out", str(tmp_path / "out"))
+    assert run.returncode == 0, run.stderr
+    entries = json.loads(run.stdout)["suggestions"]
+    assert entries and all(check_file(entry["design_file"], "rigid").valid
+                           for entry in entries)
+
+
+def test_suggest_stands_a_hovering_leg_on_the_floor():
+    """leg_l 4 mm above the floor, its top nailed to the seat: lengthen it by 3.5 to
+    4.5 mm (its jointed end stays put, its foot goes down)."""
+    from furncheck.design.model import with_model
+    from furncheck.suggest import suggest_design
+
+    result = suggest_design(with_model(parsed(stool_with_leg_l(434, 221)), "rigid"))
+    lengthen = next(s for s in result.suggestions if s.dofs == ("leg_l.length",))
+    assert 3.5 <= lengthen.changes[0] <= 4.5
+
+
+def test_range_of_the_short_leg_finds_the_length_that_closes_both_gaps(tmp_path):
+    """``range`` of the 4 mm short stool's leg_l.length (rigid): the current 430 mm is
+    invalid; the nearest valid interval lies within the tolerance of 438 mm."""
+    path = tmp_path / "stool-short.yaml"
+    path.write_text(stool_with_leg_l(430, 219))
+    run = cli("range", str(path), "leg_l.length", "--model", "rigid", "--format", "json")
+    assert run.returncode == 0, run.stderr
+    (entry,) = json.loads(run.stdout)["ranges"]
+    low, high = entry["valid"]
+    assert 437.0 - 0.1 <= low <= 438.0 <= high <= 439.0 + 0.1
