@@ -11,7 +11,7 @@ from furncheck.design import Design
 from furncheck.design.model import with_model
 from furncheck.errors import DesignError
 from furncheck.geometry import Geometry, analyze
-from furncheck.result import CaseResult, DesignReport
+from furncheck.result import NOT_SOLVED, CaseResult, DesignReport
 from furncheck.statics import build_model, solve_load_case
 from furncheck.validity import (
     case_holds,
@@ -32,8 +32,8 @@ def check_design(design: Design, geometry: Geometry | None = None) -> DesignRepo
     geometry = geometry or analyze(design)
     violations = list(geometry.violations)
     if not geometry.stands:
-        cases = tuple(CaseResult(case.name, durable=True, stable=True, joints=(), contacts=())
-                      for case in design.load_cases)
+        cases = tuple(CaseResult(case.name, durable=True, stable=True, joints=(), contacts=(),
+                                 stability=NOT_SOLVED) for case in design.load_cases)
         return DesignReport(design=design.source, name=design.name, valid=False,
                             violations=tuple(violations), cases=cases, units=design.units)
     model = build_model(design, geometry)

@@ -91,6 +91,7 @@ def test_a_plank_4_mm_above_the_floor():
     assert [(v.kind, v.where) for v in report.violations] == [("floating", "leg_l")]
     assert report.violations[0].message.startswith("4 mm above the floor")
     assert report.valid is False and all(not c.joints for c in report.cases)
+    assert {c.stability for c in report.cases} == {"not solved"}
 
 
 def test_an_overlap_of_three_tolerances():
