@@ -45,9 +45,9 @@ def analyze(design: Design, previous: tuple[Design, Geometry] | None = None) -> 
 
 def _completed(design: Design, joints: list[Joint], violations: list[Violation],
                earlier: Geometry | None, same: frozenset[str] | None) -> Geometry:
-    """The geometry of a design with these joints: its ground contacts, components,
-    near misses (``near``) and connectivity violations added (``earlier``: the analysis
-    of a version in which the planks ``same`` are the same, see ``analyze``)."""
+    """The geometry of a design with these joints: its ground contacts, components, near
+    misses (``geometry.near``) and connectivity violations added (``earlier``: the
+    analysis of a version in which the planks ``same`` are the same, see ``analyze``)."""
     contacts = _ground_contacts(design, violations, earlier, same)
     if earlier is not None and [j.planks for j in joints] == [j.planks for j in earlier.joints]:
         components = earlier.components          # they follow from the joined pairs alone
