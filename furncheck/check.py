@@ -11,7 +11,7 @@ from furncheck.design import Design
 from furncheck.design.model import with_model
 from furncheck.errors import DesignError
 from furncheck.geometry import Geometry, analyze
-from furncheck.result import DesignReport
+from furncheck.result import NOT_SOLVED, CaseResult, DesignReport
 from furncheck.statics import build_model, solve_load_case
 from furncheck.validity import (
     anchor_utilization,
@@ -24,10 +24,20 @@ from furncheck.validity import (
 
 def check_design(design: Design, geometry: Geometry | None = None) -> DesignReport:
     """Validate a loaded design in every load case (``geometry``: its analysis, if the
-    caller already has it)."""
+    caller already has it).
+
+    A design that does not stand as drawn (a group of planks reaching the ground nowhere,
+    or a joint or ground contact missed narrowly: ``Geometry.stands``) gets its geometric
+    violations only: its statics are not solved, and each case lists no joints, contacts
+    or planks (no toppling of a stool whose leg is 4 mm short)."""
     geometry = geometry or analyze(design)
-    model = build_model(design, geometry)
     violations = list(geometry.violations)
+    if not geometry.stands:
+        cases = tuple(CaseResult(case.name, durable=True, stable=True, joints=(), contacts=(),
+                                 stability=NOT_SOLVED) for case in design.load_cases)
+        return DesignReport(design=design.source, name=design.name, valid=False,
+                            violations=tuple(violations), cases=cases, units=design.units)
+    model = build_model(design, geometry)
     cases = []
     for case in design.load_cases:
         statics = solve_load_case(model, case)

@@ -31,6 +31,7 @@ import numpy as np
 from furncheck.design.model import Design, Load, LoadCase, Plank, Vec3
 from furncheck.errors import DofError
 from furncheck.geometry import EditedTables, Geometry, analyze, interpenetrations
+from furncheck.plain import plain_number
 
 DOF_KINDS = ("x", "y", "z", "rx", "ry", "rz", "length", "width")
 _AXIS = {"x": 0, "y": 1, "z": 2, "rx": 0, "ry": 1, "rz": 2}
@@ -551,7 +552,7 @@ def _cut_problem(edited: Design, cutting: list[tuple[str, str, float]]) -> str |
     if not cutting:
         return None
     a, b, depth = cutting[0]
-    return f"{a} would cut {depth / edited.unit_scale:.3g} {edited.units} into {b}"
+    return f"{a} would cut {plain_number(depth / edited.unit_scale, 3)} {edited.units} into {b}"
 
 
 def _edit_problem(original: Geometry, geometry: Geometry) -> str | None:
@@ -565,13 +566,16 @@ def _edit_problem(original: Geometry, geometry: Geometry) -> str | None:
     if before - after:
         face, edge, _ = sorted(before - after)[0]
         return f"joint {face}/{edge} would come apart"
-    if after - before:
-        face, edge, _ = sorted(after - before)[0]
-        return f"planks {face}/{edge} would touch and form a new joint"
+    closing = {miss.planks for miss in original.near_misses}   # a near miss may close
+    new = sorted((face, edge) for face, edge, _ in after - before
+                 if (face, edge) not in closing)
+    if new:
+        return f"planks {new[0][0]}/{new[0][1]} would touch and form a new joint"
     grounded_before = {c.plank for c in original.contacts}
     grounded_after = {c.plank for c in geometry.contacts}
-    if grounded_before != grounded_after:
-        changed = sorted(grounded_before ^ grounded_after)
+    changed = sorted((grounded_before ^ grounded_after)
+                     - {plank for plank in grounded_after if (plank,) in closing})
+    if changed:
         return f"{changed[0]} would {'leave' if changed[0] in grounded_before else 'touch'} " \
                "the ground"
     return None

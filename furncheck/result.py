@@ -97,6 +97,10 @@ class PlankResult:
     utilization: float
 
 
+NOT_SOLVED = "not solved"
+"""``CaseResult.stability`` of a case whose statics were not solved (``check.check_design``)."""
+
+
 @dataclass(frozen=True)
 class LoadResult:
     """A load acting in a case, as the design file gives it (self-weight is none: it acts
@@ -121,7 +125,10 @@ class LoadResult:
 @dataclass(frozen=True)
 class CaseResult:
     """One load case.  ``stability`` is 'stable', 'lift-off', 'sliding' or 'mechanism'
-    (no equilibrium and no force state: the planks rest on one line of ground points)."""
+    (no equilibrium and no force state: the planks rest on one line of ground points), or
+    NOT_SOLVED for a design that does not stand as drawn (no statics: no joints, contacts
+    or planks; ``durable`` and ``stable`` then read True, the geometric violations say why
+    the design is invalid)."""
 
     name: str
     durable: bool

@@ -47,6 +47,13 @@ NAIL_COUNT_EPS = 1e-6
 MIN_JOINT_AREA_FRACTION = 1e-6
 """A touching region smaller than this fraction of the edge face's area is no joint."""
 
+NEAR_MISS_FACTOR = 20.0
+"""Near misses (contract section 2): where an auto joint or a ground contact would be, a
+gap or an overlap of more than the design's tolerance but at most this many times it (10
+mm at the default 0.5 mm) is reported (``disconnected`` / ``floating``, with its size),
+never silently left out: a leg 4 mm short is a slip of the drawing, not a design.  Farther
+apart, the planks are taken to be apart on purpose (``furncheck.geometry.near``)."""
+
 # --- statics: penalty constants (paper section 5.1, eq. 2) -------------------------------
 JOINT_COMPLIANCE_T = 1e-10
 """m/N: epsilon^t, compliance of a joint's translational constraint (nails in shear and

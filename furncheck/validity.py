@@ -22,6 +22,7 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.design.model import Design, LoadCase, Material
 from furncheck.geometry import Geometry, Joint
+from furncheck.plain import plain_number
 from furncheck.result import (
     AnchorResult,
     CaseResult,
@@ -154,7 +155,7 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
                 violations.append(Violation(
                     "non-durable", f"anchors[{contact.anchor}]", case.name,
                     f"anchor of {contact.plank} to wall {contact.wall} holds "
-                    f"{_plain(held.size)} N, more than its {_plain(held.capacity)} N"
+                    f"{plain_number(held.size)} N, more than its {plain_number(held.capacity)} N"
                     + _factor_note(design), design.line_of(f"anchors[{contact.anchor}]")))
     planks = None
     if statics.planks is not None:
@@ -213,13 +214,9 @@ def anchor_utilization(design: Design, geometry: Geometry, model: StaticsModel,
     return worst
 
 
-def _plain(value: float) -> str:
-    return f"{value:.4g}"
-
-
 def _factor_note(design: Design) -> str:
     return "" if design.safety_factor == 1.0 else \
-        f" (capacity / safety factor {design.safety_factor:g})"
+        f" (capacity / safety factor {plain_number(design.safety_factor, 6)})"
 
 
 def case_loads(design: Design, case: LoadCase) -> tuple[LoadResult, ...]:
@@ -265,16 +262,18 @@ def _sag_message(design: Design, material: Material, sag: float, allowed: float,
                  span: float) -> str:
     unit, scale = design.units, design.unit_scale
     creep = material.creep
-    return (f"sags {sag / scale:.3g} {unit} over a {span / scale:.4g} {unit} span, "
-            f"{sag * (1 + creep) / scale:.3g} {unit} with creep (x {1 + creep:g}); "
-            f"allowed {allowed / scale:.3g} {unit} (span / {material.sag_limit:g})")
+    return (f"sags {plain_number(sag / scale, 3)} {unit} over a "
+            f"{plain_number(span / scale)} {unit} span, "
+            f"{plain_number(sag * (1 + creep) / scale, 3)} {unit} with creep "
+            f"(x {plain_number(1 + creep, 6)}); allowed {plain_number(allowed / scale, 3)} "
+            f"{unit} (span / {plain_number(material.sag_limit, 6)})")
 
 
 def _stress_message(design: Design, stress: float, strength: float) -> str:
     factor = ("" if design.safety_factor == 1.0
-              else f" (strength / safety factor {design.safety_factor:g})")
-    return (f"bending stress {stress / 1e6:.3g} N/mm^2 exceeds its strength "
-            f"{strength / 1e6:.3g} N/mm^2{factor}")
+              else f" (strength / safety factor {plain_number(design.safety_factor, 6)})")
+    return (f"bending stress {plain_number(stress / 1e6, 3)} N/mm^2 exceeds its strength "
+            f"{plain_number(strength / 1e6, 3)} N/mm^2{factor}")
 
 
 def case_holds(design: Design, geometry: Geometry, model: StaticsModel,
@@ -325,11 +324,13 @@ def joint_utilization(design: Design, geometry: Geometry, model: StaticsModel,
 def _durability_message(nails: NailForces, design: Design) -> str:
     parts = []
     factor = ("" if design.safety_factor == 1.0
-              else f" (capacity / safety factor {design.safety_factor:g})")
+              else f" (capacity / safety factor {plain_number(design.safety_factor, 6)})")
     if nails.pull > nails.pull_capacity:
-        parts.append(f"pull {nails.pull:.4g} N per nail exceeds {nails.pull_capacity:.4g} N")
+        parts.append(f"pull {plain_number(nails.pull)} N per nail exceeds "
+                     f"{plain_number(nails.pull_capacity)} N")
     if nails.shear > nails.shear_capacity:
-        parts.append(f"shear {nails.shear:.4g} N per nail exceeds {nails.shear_capacity:.4g} N")
+        parts.append(f"shear {plain_number(nails.shear)} N per nail exceeds "
+                     f"{plain_number(nails.shear_capacity)} N")
     return "; ".join(parts) + factor
 
 

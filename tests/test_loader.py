@@ -371,14 +371,15 @@ def test_unknown_unit():
     ("size: [400, 300]", "size: [0, 300]", "planks[0].size[0]", 5, "must be positive, got 0 mm"),
     ("size: [400, 300]", "size: [400, -3]", "planks[0].size[1]", 5, "must be positive, got -3 mm"),
     ("size: [400, 300]", "size: [1e-9, 300]", "planks[0].size[0]", 5,
-     "out of range: 1e-09 mm; allowed 0.01 to 1e+06 mm"),
+     "out of range: 0.000000001 mm; allowed 0.01 to 1,000,000 mm"),
     ("center: [0, 0, 406]", "center: [2e6, 0, 406]", "planks[0].center[0]", 6,
-     "out of range: 2e+06 mm; allowed -1e+06 to 1e+06 mm"),
+     "out of range: 2,000,000 mm; allowed -1,000,000 to 1,000,000 mm"),
     ("rotation: [0, 90, 0]", "rotation: [0, 1e5, 0]", "planks[1].rotation[1]", 10,
-     "allowed -10000 to 10000 degrees"),
+     "allowed -10,000 to 10,000 degrees"),
     ("center: [0, 0, 406]", "center: [0, 0, 406]\n    thickness: 0", "planks[0].thickness", 7,
      "must be positive"),
-    ("mass: 10", "mass: -1", "loads[0].mass", 16, "out of range: -1 kg; allowed 0 to 1e+07 kg"),
+    ("mass: 10", "mass: -1", "loads[0].mass", 16,
+     "out of range: -1 kg; allowed 0 to 10,000,000 kg"),
     ("mass: 10", "mass: 2e7", "loads[0].mass", 16, "out of range"),
 ])
 def test_out_of_range_in_planks_and_loads(old, new, key, line, fragment):
@@ -387,14 +388,14 @@ def test_out_of_range_in_planks_and_loads(old, new, key, line, fragment):
 
 @pytest.mark.parametrize("entry, key, fragment", [
     ("safety_factor: 0", "safety_factor", "must be positive, got 0"),
-    ("safety_factor: 1e4", "safety_factor", "out of range: 10000; allowed 0.001 to 1000"),
-    ("tolerance: -0.5", "tolerance", "out of range: -0.5 mm; allowed 0 to 1e+06 mm"),
+    ("safety_factor: 1e4", "safety_factor", "out of range: 10,000; allowed 0.001 to 1000"),
+    ("tolerance: -0.5", "tolerance", "out of range: -0.5 mm; allowed 0 to 1,000,000 mm"),
     ("material: {density: 0}", "material.density", "must be positive, got 0 kg/m^3"),
-    ("material: {density: 1e6}", "material.density", "allowed 0 to 100000 kg/m^3"),
+    ("material: {density: 1e6}", "material.density", "allowed 0 to 100,000 kg/m^3"),
     ("material: {friction: -0.1}", "material.friction", "out of range: -0.1; allowed 0 to 10"),
-    ("material: {nail_pull: 1e8}", "material.nail_pull", "allowed 0 to 1e+07 N"),
+    ("material: {nail_pull: 1e8}", "material.nail_pull", "allowed 0 to 10,000,000 N"),
     ("material: {nail_shear: -5}", "material.nail_shear", "must be positive"),
-    ("material: {nail_spacing: 0.001}", "material.nail_spacing", "allowed 0.01 to 1e+06 mm"),
+    ("material: {nail_spacing: 0.001}", "material.nail_spacing", "allowed 0.01 to 1,000,000 mm"),
     ("material: {thickness: .nan}", "material.thickness", "not a finite number (.nan)"),
     ("material: {glue: 1}", "material.glue", 'unknown key "glue"'),
     ("material: 12", "material", "expected a mapping, got a number (12)"),
@@ -405,7 +406,7 @@ def test_top_level_values(entry, key, fragment):
 
 def test_ranges_are_stated_in_metres_for_a_metre_file():
     text = "units: m\n" + BASE.replace("size: [400, 300]", "size: [0.4, 3000]", 1)
-    expect(text, "planks[0].size[1]", 6, "out of range: 3000 m; allowed 1e-05 to 1000 m")
+    expect(text, "planks[0].size[1]", 6, "out of range: 3000 m; allowed 0.00001 to 1000 m")
 
 
 # --- joints -----------------------------------------------------------------------------------
@@ -481,7 +482,8 @@ def test_point_on_a_rotated_plank_within_tolerance():
     ("{plank: seat}", "loads[0]", "needs a mass (kg) or a force"),
     ("{mass: 10}", "loads[0].plank", 'missing required key "plank"'),
     ("{plank: seat, force: [0, 1]}", "loads[0].force", "expected 3 numbers, got 2"),
-    ("{plank: seat, force: [0, 0, -2e9]}", "loads[0].force[2]", "allowed -1e+09 to 1e+09 N"),
+    ("{plank: seat, force: [0, 0, -2e9]}", "loads[0].force[2]",
+     "allowed -1,000,000,000 to 1,000,000,000 N"),
     ("{plank: seat, mass: 10, at: [0, 0, 900]}", "loads[0].at", 'is not on plank "seat"'),
     ("{plank: seat, mass: '10'}", "loads[0].mass", 'expected a number, got text "10"'),
 ])

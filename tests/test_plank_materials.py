@@ -199,7 +199,7 @@ BAD_MATERIALS = {
                         "planks[2].material.thickness",
                         "thickness 18 mm differs from the plank's thickness: 12 mm; give it once"),
     "too large": ("    material: {density: 1e9}", "planks[2].material.density",
-                  "out of range: 1e+09 kg/m^3"),
+                  "out of range: 1,000,000,000 kg/m^3"),
 }
 
 

@@ -39,6 +39,7 @@ from furncheck.design.values import (
     _Units,
     _vector,
 )
+from furncheck.plain import plain_number
 
 CASE_KEYS = ("include", "loads")
 LOAD_KEYS = ("plank", "mass", "force", "at", "spread")
@@ -240,8 +241,9 @@ def _point_on_plank(doc: _Doc, node: Any, key: str, plank: Plank, units: _Units,
     outside = np.abs(local) - plank.half_extents
     axis = int(np.argmax(outside))
     if outside[axis] > tolerance + tol.ON_PLANK_EPS:
-        shown = ", ".join(f"{c / units.scale:g}" for c in point)
+        shown = ", ".join(plain_number(c / units.scale, 6) for c in point)
         doc.fail(key, f"point ({shown}) is not on plank {_quote(plank.id)}: "
-                      f"{outside[axis] / units.scale:.4g} {units.name} beyond its "
-                      f"{_AXES[axis]} (tolerance {tolerance / units.scale:g} {units.name})")
+                      f"{plain_number(outside[axis] / units.scale)} {units.name} beyond its "
+                      f"{_AXES[axis]} (tolerance {plain_number(tolerance / units.scale, 6)} "
+                      f"{units.name})")
     return point

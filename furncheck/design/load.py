@@ -56,6 +56,7 @@ from furncheck.design.values import (
 from furncheck.design.walls import anchors as read_anchors
 from furncheck.design.walls import walls as read_walls
 from furncheck.errors import DesignError
+from furncheck.plain import plain_number
 
 UNIT_SCALES = {"mm": 0.001, "m": 1.0}
 """Length unit -> metres per unit."""
@@ -155,7 +156,8 @@ def _top_level(doc: _Doc, tree: Any) -> dict:
                               "write furncheck: 1)")
     version = doc.number(tree["furncheck"], "furncheck")
     if version != 1:
-        doc.fail("furncheck", f"unsupported format version {version:g}; this furncheck reads "
+        doc.fail("furncheck", f"unsupported format version {plain_number(version, 6)}; this "
+                              "furncheck reads "
                               "version 1")
     return doc.mapping(tree, "", TOP_KEYS, required=("planks",))
 
@@ -214,8 +216,10 @@ def _plank(doc: _Doc, node: Any, key: str, material: Material, units: _Units) ->
         given = _length(doc, fields["thickness"], f"{key}.thickness", units)
         if thickness is not None and thickness != given:
             doc.fail(f"{key}.material.thickness",
-                     f"thickness {thickness / units.scale:g} {units.name} differs from the "
-                     f"plank's thickness: {given / units.scale:g} {units.name}; give it once")
+                     f"thickness {plain_number(thickness / units.scale, 6)} {units.name} differs "
+                     "from the "
+                     f"plank's thickness: {plain_number(given / units.scale, 6)} {units.name}; "
+                     "give it once")
         thickness = given
     rotation = (_vector(doc, fields["rotation"], f"{key}.rotation", 3, -tol.MAX_ROTATION_DEG,
                         tol.MAX_ROTATION_DEG, unit="degrees")
@@ -273,8 +277,8 @@ def _joint(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank]) -> JointSpec
 def _nail_count(doc: _Doc, node: Any, key: str) -> int:
     value = doc.number(node, key)
     if not value.is_integer() or not 1 <= value <= tol.MAX_NAILS:
-        doc.fail(key, f"must be a whole number of nails from 1 to {tol.MAX_NAILS:g}, "
-                      f"got {value:g}")
+        doc.fail(key, f"must be a whole number of nails from 1 to "
+                      f"{plain_number(tol.MAX_NAILS, 6)}, got {plain_number(value, 6)}")
     return int(value)
 
 

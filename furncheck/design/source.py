@@ -29,6 +29,7 @@ import yaml
 
 from furncheck import tolerances as tol
 from furncheck.errors import DesignError
+from furncheck.plain import plain_number
 
 FORMATS = {".yaml": "yaml", ".yml": "yaml", ".json": "json"}
 """File extension -> format."""
@@ -72,7 +73,8 @@ def _check_regular_file(path: str) -> None:
 def _too_large(source: str, size: int) -> DesignError:
     limit_mb = tol.MAX_FILE_BYTES / 2**20
     return DesignError(source, "", None,
-                       f"file too large ({size / 2**20:.1f} MB; the limit is {limit_mb:g} MB)")
+                       f"file too large ({size / 2**20:.1f} MB; the limit is "
+                       f"{plain_number(limit_mb, 6)} MB)")
 
 
 def _decode(data: bytes, path: str) -> str:

@@ -17,6 +17,7 @@ from furncheck import tolerances as tol
 from furncheck.design.model import Plank
 from furncheck.design.source import _PATH_SAFE_KEY, _child, _json_lines, _one_line, _quote, _Scalar
 from furncheck.errors import DesignError
+from furncheck.plain import plain_number
 
 _NULL_WORDS = {"", "~", "null", "Null", "NULL"}
 _BOOL_WORDS = {word: value for value, words in
@@ -142,7 +143,8 @@ def _describe(node: Any) -> str:
         shown = node.text if isinstance(node, _Scalar) else str(value).lower()
         return f"a boolean ({_one_line(shown)})"
     if isinstance(value, float):
-        return f"a number ({_one_line(node.text) if isinstance(node, _Scalar) else f'{value:g}'})"
+        shown = _one_line(node.text) if isinstance(node, _Scalar) else plain_number(value, 6)
+        return f"a number ({shown})"
     return f"text {_quote(value)}"
 
 
@@ -170,10 +172,10 @@ def _quantity(doc: _Doc, node: Any, key: str, low: float, high: float, scale: fl
     value = doc.number(node, key)
     shown = f" {unit}" if unit else ""
     if positive and value <= 0:
-        doc.fail(key, f"must be positive, got {value:g}{shown}")
+        doc.fail(key, f"must be positive, got {plain_number(value, 6)}{shown}")
     if not low <= value * scale <= high:
-        doc.fail(key, f"out of range: {value:g}{shown}; allowed {low / scale:g} to "
-                      f"{high / scale:g}{shown}")
+        doc.fail(key, f"out of range: {plain_number(value, 6)}{shown}; allowed "
+                      f"{plain_number(low / scale, 6)} to {plain_number(high / scale, 6)}{shown}")
     return value * scale
 
 

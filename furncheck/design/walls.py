@@ -16,6 +16,7 @@ from furncheck import tolerances as tol
 from furncheck.design.cases import _point_on_plank
 from furncheck.design.model import Anchor, Plank, Wall
 from furncheck.design.values import _Doc, _plank_ref, _point, _quantity, _Units, _vector
+from furncheck.plain import plain_number
 
 WALL_KEYS = ("point", "normal")
 ANCHOR_KEYS = ("plank", "at", "wall", "capacity")
@@ -36,8 +37,9 @@ def walls(doc: _Doc, node: Any, units: _Units) -> tuple[Wall, ...]:
             doc.fail(f"{key}.normal", "zero-length normal: give the direction from the wall "
                                       "into the room, e.g. [0, 1, 0]")
         if abs(normal[2]) > tol.WALL_NORMAL_TILT * size:
+            shown = ", ".join(plain_number(c, 6) for c in normal)
             doc.fail(f"{key}.normal", "a wall is vertical: its normal must be horizontal "
-                                      f"(z = 0), got ({', '.join(f'{c:g}' for c in normal)})")
+                                      f"(z = 0), got ({shown})")
         normal[2] = 0.0
         normal /= float(np.linalg.norm(normal))
         found.append(Wall(point, (float(normal[0]), float(normal[1]), 0.0)))
@@ -59,12 +61,12 @@ def anchors(doc: _Doc, node: Any, by_id: dict[str, Plank], walls_found: tuple[Wa
         if not wall.is_integer() or not 0 <= wall < len(walls_found):
             have = (f"the design has walls 0 to {len(walls_found) - 1}" if walls_found
                     else "the design has no walls: add one under walls")
-            doc.fail(f"{key}.wall", f"no wall {wall:g} ({have})")
+            doc.fail(f"{key}.wall", f"no wall {plain_number(wall, 6)} ({have})")
         wall = int(wall)
         behind = -float(walls_found[wall].distance(np.asarray(point)))
         if behind > tolerance + tol.ON_PLANK_EPS:
-            doc.fail(f"{key}.at", f"the point is {behind / units.scale:g} {units.name} behind "
-                                  f"wall {wall}")
+            doc.fail(f"{key}.at", f"the point is {plain_number(behind / units.scale)} "
+                                  f"{units.name} behind wall {wall}")
         capacity = _quantity(doc, fields["capacity"], f"{key}.capacity", 0.0, tol.MAX_FORCE,
                              unit="N", positive=True)
         found.append(Anchor(plank.id, point, wall, capacity))

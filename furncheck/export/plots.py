@@ -28,7 +28,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, TypeVar
 
 from furncheck.export.errors import ExportUnavailable
-from furncheck.result import CaseResult, ContactResult, DesignReport, JointResult
+from furncheck.result import NOT_SOLVED, CaseResult, ContactResult, DesignReport, JointResult
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -182,7 +182,8 @@ def _draw_stability(axes: Axes, before: CaseResult | None, after: CaseResult | N
 
 
 def _durability_change(before: CaseResult | None, after: CaseResult | None) -> str:
-    return " -> ".join("-" if case is None else "durable" if case.durable else "not durable"
+    return " -> ".join("-" if case is None else NOT_SOLVED if case.stability == NOT_SOLVED
+                       else "durable" if case.durable else "not durable"
                        for case in (before, after))
 
 

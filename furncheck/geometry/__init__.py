@@ -7,7 +7,10 @@ region is the edge face's projection clipped to the face plank's face.
 
 The package, by job:
 
-    model     Joint, Contact, Geometry (what the statics needs) and the numeric slack
+    model     Joint, Contact, NearMiss, Geometry (what the statics needs) and the
+              numeric slack
+    near      near misses: joints and ground contacts missed by a little (contract
+              section 2), reported instead of left out
     faces     face tables of planks, touching regions of a narrow face on a broad face,
               bounding boxes and box overlaps
     analysis  analyze (joints detected or checked, ground contacts, components,
@@ -24,8 +27,8 @@ from furncheck.geometry.edits import (
     edit_margins_many,
     interpenetrations,
 )
-from furncheck.geometry.model import Contact, Geometry, Joint
+from furncheck.geometry.model import Contact, Geometry, Joint, NearMiss
 
-__all__ = ["Contact", "EditMargins", "EditedTables", "Geometry", "Joint", "analyze",
+__all__ = ["Contact", "EditMargins", "EditedTables", "Geometry", "Joint", "NearMiss", "analyze",
            "edit_margins_many", "end_gap", "follow", "follow_many", "interpenetrations",
            "nail_count"]

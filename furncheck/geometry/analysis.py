@@ -30,6 +30,8 @@ from furncheck.geometry.model import (
     corner_contacts,
     support_point,
 )
+from furncheck.geometry.near import near_miss_violation, near_misses
+from furncheck.plain import plain_length, plain_number
 from furncheck.result import Violation
 
 
@@ -51,9 +53,10 @@ def analyze(design: Design, previous: tuple[Design, Geometry] | None = None) -> 
 
 def _completed(design: Design, joints: list[Joint], violations: list[Violation],
                earlier: Geometry | None, same: frozenset[str] | None) -> Geometry:
-    """The geometry of a design with these joints: its ground contacts, components and
-    connectivity violations added (``earlier``: the analysis of a version in which the
-    planks ``same`` are the same, see ``analyze``)."""
+    """The geometry of a design with these joints: its ground and wall contacts, anchors,
+    components, near misses (``geometry.near``) and connectivity violations added
+    (``earlier``: the analysis of a version in which the planks ``same`` are the same, see
+    ``analyze``)."""
     contacts = _ground_contacts(design, violations, earlier, same) + anchor_contacts(design)
     if earlier is not None and [j.planks for j in joints] == [j.planks for j in earlier.joints]:
         components = earlier.components          # they follow from the joined pairs alone
@@ -62,8 +65,13 @@ def _completed(design: Design, joints: list[Joint], violations: list[Violation],
     plank_has_contact = {c.plank for c in contacts}
     grounded = tuple(any(design.planks[i].id in plank_has_contact for i in comp)
                      for comp in components)
-    _connectivity_violations(design, joints, components, grounded, violations)
-    return Geometry(tuple(joints), tuple(contacts), components, grounded, tuple(violations))
+    missed = near_misses(design, joints, contacts, components, grounded)
+    _connectivity_violations(design, joints, components, grounded, violations,
+                             {pid for miss in missed if len(miss.planks) == 2
+                              for pid in miss.planks})
+    violations.extend(near_miss_violation(design, miss) for miss in missed)
+    return Geometry(tuple(joints), tuple(contacts), components, grounded, tuple(violations),
+                    tuple(missed))
 
 
 def follow(geometry: Geometry, design: Design) -> Geometry:
@@ -332,12 +340,16 @@ def _components(design: Design, joints: list[Joint]) -> tuple[tuple[int, ...], .
 
 def _connectivity_violations(design: Design, joints: list[Joint],
                              components: tuple[tuple[int, ...], ...],
-                             grounded: tuple[bool, ...], violations: list[Violation]) -> None:
+                             grounded: tuple[bool, ...], violations: list[Violation],
+                             nearly_joined: set[str]) -> None:
+    """A plank joined to nothing (unless a missed joint, ``nearly_joined``, says why) is
+    ``disconnected``; a group touching the ground nowhere is ``floating``."""
     if len(design.planks) > 1:
         joined = {pid for joint in joints for pid in joint.planks}
         listed = {pid for spec in design.joints or () for pid in spec.planks}
         for index, plank in enumerate(design.planks):
-            if plank.id not in joined and plank.id not in listed:
+            if plank.id not in joined and plank.id not in listed and \
+                    plank.id not in nearly_joined:
                 violations.append(Violation(
                     "disconnected", plank.id, None,
                     "plank is joined to no other plank (no end face rests on a neighbour's "
@@ -358,11 +370,11 @@ def _connectivity_violations(design: Design, joints: list[Joint],
 # --- formatting helpers for messages ----------------------------------------------------------
 
 def _fmt_len(value_m: float, design: Design) -> str:
-    return f"{value_m / design.unit_scale:.4g} {design.units}"
+    return plain_length(value_m, design.unit_scale, design.units)
 
 
 def _fmt_point(point_m: np.ndarray, design: Design) -> str:
-    coords = ", ".join(f"{v / design.unit_scale:.4g}" for v in point_m)
+    coords = ", ".join(plain_number(v / design.unit_scale) for v in point_m)
     return f"({coords}) {design.units}"
 
 

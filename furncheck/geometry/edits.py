@@ -44,6 +44,7 @@ from furncheck.geometry.model import (
     anchor_contacts,
     corner_contacts,
 )
+from furncheck.geometry.near import missed_ground, near_band
 
 
 def interpenetrations(design: Design) -> list[tuple[str, str, float]]:
@@ -102,12 +103,15 @@ class EditedTables:
         rows = [self.index[k][fresh] for k, fresh in detect]
         best = _best_touches(self.planks, np.concatenate(rows) if rows else
                              np.zeros((0, 2), dtype=int), slack, False, self.faces)
+        missing = self._near_misses([k for k, _ in detect], structure)
         for k, fresh in detect:
             edited, index, same = self.edits[k], self.index[k], self.same[k]
             fresh = fresh.tolist()
             mine = {(i, j): best[key] for i, j in fresh
                     if (key := (int(index[i]), int(index[j]))) in best}
             kept = structure.of(edited, fresh, mine, same)
+            if kept is not None and k in missing:
+                kept = None                     # it keeps the joints but misses one narrowly
             if kept is not None:
                 found[k], self.kept[k] = kept, True
                 continue
@@ -116,6 +120,34 @@ class EditedTables:
             joints = _detected_joints(edited, pairs, detected, known, mine)
             found[k] = _completed(edited, joints, [], geometry, same)
         return found
+
+    def _near_misses(self, which: list[int], structure: _KeptStructure) -> set[int]:
+        """Of the edits numbered ``which``, those whose changed planks miss a joint or a
+        ground contact narrowly (``geometry.near``) if they keep the design's structure
+        otherwise: their end faces measured against every face within the near-miss band,
+        all edits at once.  (Such an edit is analyzed in full, which reports them.)"""
+        slack, band = near_band(self.design)
+        if not structure.usable or band <= slack or not which:
+            return set()
+        fresh = {k: _fresh_pairs(self.changed[k], self.lo[self.index[k]],
+                                 self.hi[self.index[k]], band) for k in which}
+        rows = [self.index[k][fresh[k]] for k in which]
+        best = _best_touches(self.planks, np.concatenate(rows), band, False, self.faces)
+        missing = set()
+        for k in which:
+            index = self.index[k]
+            for i, j in fresh[k].tolist():
+                touch = best.get((int(index[i]), int(index[j])))
+                if touch is not None and abs(touch.gap) > slack and \
+                        (i, j) not in structure.joint_of:
+                    missing.add(k)
+                    break
+            else:
+                if missed_ground(self.edits[k], self.geometry.contacts,
+                                 self.geometry.components, self.geometry.grounded,
+                                 only=self.changed[k]):
+                    missing.add(k)
+        return missing
 
     def cuts(self, which: list[int]) -> list[list[tuple[str, str, float]]]:
         """``interpenetrations`` of the edits numbered ``which``, their depths at once

@@ -103,11 +103,31 @@ def corner_contacts(design, plank, slack: float) -> tuple[list[Contact], list[tu
 
 
 @dataclass(frozen=True)
+class NearMiss:
+    """A joint or ground contact that the planks miss by more than the tolerance but at
+    most ``NEAR_MISS_FACTOR`` times it (``furncheck.geometry.near``).
+
+    planks   : (face, edge) plank ids of a missed joint, named as the joint would be;
+               (plank,) of a missed ground contact
+    distance : m, the gap between the end face and the face (or the floor), > 0; for a
+               joint < 0 when the end face cuts into the face (an overlap)
+    """
+
+    planks: tuple[str, ...]
+    distance: float
+
+    @property
+    def name(self) -> str:
+        return "/".join(self.planks)
+
+
+@dataclass(frozen=True)
 class Geometry:
     """What the statics needs, plus the geometric violations.
 
     components : plank indices of each jointed group, in order of their first plank
     grounded   : per component, whether any of its planks touches the ground
+    near_misses : the joints and ground contacts missed narrowly (each also a violation)
     """
 
     joints: tuple[Joint, ...]
@@ -115,3 +135,12 @@ class Geometry:
     components: tuple[tuple[int, ...], ...]
     grounded: tuple[bool, ...]
     violations: tuple[Violation, ...]
+    near_misses: tuple[NearMiss, ...] = ()
+
+    @property
+    def stands(self) -> bool:
+        """Whether the design stands as it is drawn: every group of planks reaches the
+        ground and no joint or ground contact is missed narrowly.  Only then are its
+        statics solved (``check.check_design``): the forces of a design whose leg is 4 mm
+        short describe a piece nobody meant to build."""
+        return all(self.grounded) and not self.near_misses

@@ -27,6 +27,7 @@ from furncheck.dofs import (
     parse_dof,
 )
 from furncheck.geometry import EditMargins, follow_many
+from furncheck.plain import plain_number
 from furncheck.ranges.batches import Evaluator, _Margins
 from furncheck.ranges.estimates import (
     _Drop,
@@ -513,7 +514,7 @@ class RangeFinder(Evaluator):
                                     "the current value is invalid; this is the nearest "
                                     "valid interval")
         return DofRange(dof.name, value, None, unit,
-                        f"no valid value within {limit:g} {unit} either way")
+                        f"no valid value within {plain_number(limit, 6)} {unit} either way")
 
     # -- predictions from the sensitivity ------------------------------------------------------
     def _linearizations(self) -> list[Linearization]:

@@ -12,6 +12,7 @@ import numbers
 from collections.abc import Mapping
 from typing import Any
 
+from furncheck.plain import plain_number
 from furncheck.tolerances import REPORT_DECIMALS, REPORT_SIGNIFICANT_DIGITS
 
 
@@ -53,11 +54,12 @@ def json_ready(value: Any) -> Any:
 
 
 def format_number(value: float, digits: int = REPORT_SIGNIFICANT_DIGITS) -> str:
-    """``value`` for human eyes: rounded like JSON, no trailing zeros (``812``, ``0.125``)."""
+    """``value`` for human eyes: rounded like JSON, in plain digits without trailing
+    zeros (``812``, ``0.125``, ``12,500``; ``furncheck.plain.plain_number``)."""
     value = float(value)
     if not math.isfinite(value):
         return str(value)
-    return f"{round_significant(value, digits):.{digits}g}"
+    return plain_number(round_significant(value, digits), digits)
 
 
 def format_percent(fraction: float) -> str:
@@ -70,5 +72,6 @@ def format_percent(fraction: float) -> str:
     if not math.isfinite(percent):
         return f"{percent} %"
     if abs(percent) >= 1.0 or percent == 0.0:
-        return f"{percent:.0f} %"
-    return f"{round_significant(percent, 2):.2g} %"
+        whole = round(percent)
+        return f"{plain_number(whole, max(1, len(str(abs(whole)))))} %"
+    return f"{plain_number(round_significant(percent, 2), 2)} %"

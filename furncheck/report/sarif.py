@@ -23,10 +23,12 @@ SARIF_VERSION = "2.1.0"
 SARIF_SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
 
 RULE_DESCRIPTIONS = {
-    "disconnected": "A listed joint's planks do not touch or interpenetrate, or a plank is "
-                    "joined to no other plank.",
+    "disconnected": "A listed joint's planks do not touch or interpenetrate, a plank is "
+                    "joined to no other plank, or two planks miss a joint by a little (a "
+                    "gap or overlap up to 20 x tolerance).",
     "penetration": "A plank corner lies below the ground plane.",
-    "floating": "Part of the assembly touches the ground nowhere.",
+    "floating": "Part of the assembly touches the ground nowhere, or a plank standing on "
+                "its end stops just short of the floor (up to 20 x tolerance).",
     "non-durable": "A nail joint's pull or shear force per nail exceeds the nail capacity.",
     "lift-off": "No equilibrium exists with non-negative ground forces: the design topples.",
     "sliding": "No equilibrium exists within the friction cones: the design slides.",

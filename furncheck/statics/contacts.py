@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from furncheck import tolerances as tol
+from furncheck.plain import plain_number
 from furncheck.statics.condense import _accurate, anchored_system
 from furncheck.statics.feasibility import (
     INFEASIBLE,
@@ -210,9 +211,10 @@ class _ActiveSet:
         if model.contact_frames is not None:        # walls too: the friction each needs
             needed = float(np.hypot(forces[:, 0], forces[:, 1]).sum())
             capacity = self.mu * float(np.maximum(forces[:, 2], 0.0).sum())
-            detail = (f"no equilibrium within the friction cones (mu = {self.mu:g}): the "
-                      f"ground and walls must hold {needed:.4g} N along their faces, friction "
-                      f"gives at most {capacity:.4g} N")
+            detail = (f"no equilibrium within the friction cones (mu = "
+                      f"{plain_number(self.mu, 6)}): the ground and walls must hold "
+                      f"{plain_number(needed)} N along their faces, friction gives at most "
+                      f"{plain_number(capacity)} N")
             return CaseStatics("sliding", _wrenches(solution.h), forces,
                                self._plank_ids(over), detail, displacements=solution.q)
         sideways = float(np.hypot(*forces[:, :2].sum(axis=0)))
@@ -223,10 +225,10 @@ class _ActiveSet:
         radius = float(np.sqrt(forces[:, 2] @ (arms ** 2).sum(axis=1)
                                / max(float(forces[:, 2].sum()), 1e-300)))
         significant = twist > 0.05 * sideways * radius + self.force_tol
-        twist_text = f" and a {twist:.3g} N m twist" if significant else ""
-        detail = (f"no equilibrium within the friction cones (mu = {self.mu:g}): the ground "
-                  f"must resist {sideways:.4g} N sideways{twist_text}, friction gives at most "
-                  f"{capacity:.4g} N")
+        twist_text = f" and a {plain_number(twist, 3)} N m twist" if significant else ""
+        detail = (f"no equilibrium within the friction cones (mu = {plain_number(self.mu, 6)}): "
+                  f"the ground must resist {plain_number(sideways)} N sideways{twist_text}, "
+                  f"friction gives at most {plain_number(capacity)} N")
         return CaseStatics("sliding", _wrenches(solution.h), forces, self._plank_ids(over),
                            detail, displacements=solution.q)
 
@@ -247,10 +249,11 @@ class _ActiveSet:
             detail = ("no equilibrium with the ground only pushing: the load's line of action "
                       "falls outside the support polygon, the design topples "
                       f"(held down, the ground would have to pull "
-                      f"{-bolted.contact_forces[pulling, 2].sum():.4g} N)")
+                      f"{plain_number(-bolted.contact_forces[pulling, 2].sum())} N)")
         else:
-            detail = (f"no equilibrium within the friction cones (mu = {self.mu:g}); forces "
-                      "shown as if the design were bolted to the ground")
+            detail = (f"no equilibrium within the friction cones "
+                      f"(mu = {plain_number(self.mu, 6)}); forces shown as if the design were "
+                      "bolted to the ground")
         return CaseStatics(stability, _wrenches(bolted.h), bolted.contact_forces,
                            self._plank_ids(pulling), detail + undecided,
                            displacements=bolted.q)

@@ -59,6 +59,7 @@ class Editor:
         self.locked = locked
         self.scales: dict[Dof, float] = {}
         self._joints = _joint_set(geometry)
+        self._closing = {miss.planks for miss in geometry.near_misses if len(miss.planks) == 2}
         self.checks = 0
 
     def scale(self, dof: Dof) -> float:
@@ -96,7 +97,8 @@ class Editor:
 
     def keeps(self, edited: Design) -> Geometry | None:
         """The geometry of ``edited`` if it has no geometric violation, keeps the joints of
-        the design (none lost; none added unless the joints are listed in the file) and no
+        the design (none lost; none added unless the joints are listed in the file, or
+        the design missed that joint narrowly: closing a near miss is the point) and no
         two planks cut into each other; else None.  Ground contacts may change: standing a
         hovering leg on the floor is the point of some suggestions.  A plank shrunk to no
         length or width is refused too: its box would read as a mirrored one (of negative
@@ -108,7 +110,9 @@ class Editor:
         if geometry.violations:
             return None
         joints = _joint_set(geometry)
-        if not self._joints <= joints or (self.design.joints is None and joints != self._joints):
+        added = {(face, edge) for face, edge, _ in joints - self._joints}
+        if not self._joints <= joints or \
+                (self.design.joints is None and not added <= self._closing):
             return None
         if interpenetrations(edited):
             return None

@@ -1,0 +1,127 @@
+"""Near misses (contract section 2): planks that come close to touching but do not.
+
+Where an auto joint or a ground contact would be, a gap or an overlap of more than the
+design's tolerance but at most ``NEAR_MISS_FACTOR`` x tolerance (10 mm at the default
+0.5 mm) is a slip of the drawing, not a design (a leg 4 mm short): it is reported with its
+size, never silently left out.  Farther apart, planks are taken to be apart on purpose.
+
+*A missed joint* (designs with auto-detected joints only: a file that lists its joints
+says which planks are joined, and a listed joint that does not close is ``disconnected``
+already): two planks not joined, where a narrow (end) face of one faces a broad face of
+the other as a joint's would (tilted at most ``JOINT_MAX_TILT_DEG``, the end face's
+projection overlapping the broad face, the end's plank on the face's outer side) and the
+end face's nearest corner stands off the face (a gap) or cuts into it (an overlap) by
+more than the tolerance and at most the band.  Reported as ``disconnected``, named as the
+joint would be (face/edge): ``seat/leg_l: 4 mm gap between the end of leg_l and the face
+of seat ...``.  Two parallel shelves (face to face), or an end face beside a plank rather
+than over its face, are no joint and so no near miss.
+
+*A missed ground contact*: a plank of a group that stands on the ground elsewhere,
+touching the ground nowhere itself, standing on an end (the floor taken as a face plank:
+one of its narrow faces within ``JOINT_MAX_TILT_DEG`` of facing straight down), whose
+lowest corner is more than the tolerance and at most the band above the floor.  Reported
+as ``floating``: ``leg_l: 4 mm above the floor ...``.  A plank lying flat (a bottom shelf
+5 mm above the floor in a carcass) is not a near miss; a group touching the ground nowhere
+is ``floating`` as a whole (with its height) and its planks are not reported one by one.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from furncheck import tolerances as tol
+from furncheck.design.model import Design
+from furncheck.geometry.faces import _best_touches, _bounding_boxes
+from furncheck.geometry.model import _COS_MAX_TILT, _GEOMETRY_EPS, Contact, Joint, NearMiss
+from furncheck.plain import plain_length
+from furncheck.result import Violation
+
+
+def near_band(design: Design) -> tuple[float, float]:
+    """(tolerance, band) in m, each with the numeric slack: a near miss is farther than
+    the first and at most the second."""
+    return (design.tolerance + _GEOMETRY_EPS,
+            tol.NEAR_MISS_FACTOR * design.tolerance + _GEOMETRY_EPS)
+
+
+def near_misses(design: Design, joints: list[Joint], contacts: list[Contact],
+                components: tuple[tuple[int, ...], ...],
+                grounded: tuple[bool, ...]) -> list[NearMiss]:
+    """The missed joints (plank pairs in order) and then the missed ground contacts (planks
+    in order) of a design with these joints, contacts and components."""
+    return missed_joints(design, joints) + missed_ground(design, contacts, components,
+                                                         grounded)
+
+
+def missed_joints(design: Design, joints: list[Joint]) -> list[NearMiss]:
+    """Plank pairs without a joint whose end face and face are a near miss (module doc);
+    none when the design lists its joints."""
+    slack, band = near_band(design)
+    if design.joints is not None or band <= slack or len(design.planks) < 2:
+        return []
+    lo, hi = _bounding_boxes(design.planks)
+    meet = np.all((lo[:, None, :] <= hi[None, :, :] + band)
+                  & (lo[None, :, :] <= hi[:, None, :] + band), axis=2)
+    index = design.plank_index
+    for joint in joints:
+        i, j = index[joint.face], index[joint.edge]
+        meet[i, j] = meet[j, i] = False
+    pairs = np.argwhere(np.triu(meet, k=1))
+    best = _best_touches(design.planks, pairs, band, keep_deep=False)
+    missed = []
+    for i, j in pairs.tolist():
+        touch = best.get((i, j))
+        if touch is not None and abs(touch.gap) > slack:
+            missed.append(NearMiss((touch.face.id, touch.edge.id), float(touch.gap)))
+    return missed
+
+
+def missed_ground(design: Design, contacts: list[Contact],
+                  components: tuple[tuple[int, ...], ...], grounded: tuple[bool, ...],
+                  only: list[int] | None = None) -> list[NearMiss]:
+    """Planks of grounded groups that stand on an end just above the floor (module doc);
+    ``only``: look at these plank indices alone."""
+    slack, band = near_band(design)
+    if band <= slack:
+        return []
+    touching = {contact.plank for contact in contacts}
+    candidates = sorted(i for component, on_ground in zip(components, grounded)
+                        if on_ground for i in component)
+    if only is not None:
+        candidates = sorted(set(candidates) & set(only))
+    missed = []
+    for i in candidates:
+        plank = design.planks[i]
+        if plank.id in touching:
+            continue
+        axes = plank.rotation_matrix
+        standing = max(abs(axes[2, 0]), abs(axes[2, 1])) >= _COS_MAX_TILT
+        height = float(plank.corners[:, 2].min())
+        if standing and slack < height <= band:
+            missed.append(NearMiss((plank.id,), height))
+    return missed
+
+
+def near_miss_violation(design: Design, miss: NearMiss) -> Violation:
+    """The violation of a near miss: ``disconnected`` for a joint, ``floating`` for the
+    ground, its size in the design's unit first."""
+    def length(value_m: float) -> str:
+        return plain_length(value_m, design.unit_scale, design.units)
+
+    allowed = length(design.tolerance)
+    if len(miss.planks) == 1:
+        plank = miss.planks[0]
+        return Violation(
+            "floating", plank, None,
+            f"{length(miss.distance)} above the floor: its end does not reach the ground "
+            f"that the rest of the design stands on (a ground contact needs {allowed} or "
+            f"less, the tolerance)", design.line_of(f"planks[{design.plank_index[plank]}]"))
+    face, edge = miss.planks
+    if miss.distance > 0:
+        what = (f"{length(miss.distance)} gap between the end of {edge} and the face of "
+                f"{face}: no joint forms (a joint needs {allowed} or less, the tolerance)")
+    else:
+        what = (f"{length(-miss.distance)} overlap: the end of {edge} cuts into the face of "
+                f"{face}: no joint forms (a joint allows {allowed} at most, the tolerance)")
+    return Violation("disconnected", miss.name, None, what,
+                     design.line_of(f"planks[{design.plank_index[edge]}]"))

@@ -1,0 +1,288 @@
+"""Near misses (contract section 2, issue 14): planks that come close to touching but do
+not are reported with their gap, never silently left out, and a design that does not
+stand as drawn gets no statics (no toppling with absurd forces).
+
+The stool of ``designs/stool.yaml``: seat underside at z = 438 mm, legs 438 mm tall from
+the floor, tolerance 0.5 mm, so the near-miss band is 20 x 0.5 = 10 mm.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from furncheck import tolerances as tol
+from furncheck.check import check_design
+from furncheck.design import load_design, parse_design
+from furncheck.geometry import analyze
+
+ROOT = Path(__file__).resolve().parents[1]
+STOOL = (ROOT / "designs" / "stool.yaml").read_text()
+LEG_L = "{id: leg_l, size: [438, 300], center: [-170, 0, 219]"
+
+
+def stool_with_leg_l(length: float, centre_z: float, text: str = STOOL) -> str:
+    """The stool with leg_l (vertical, its length along world z) of ``length`` centred
+    at ``centre_z``: it spans centre_z -+ length / 2."""
+    assert LEG_L in text
+    return text.replace(LEG_L, f"{{id: leg_l, size: [{length}, 300], "
+                               f"center: [-170, 0, {centre_z}]")
+
+
+def parsed(text: str, name: str = "test.yaml"):
+    return parse_design(text, name, "yaml")
+
+
+def cli(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "furncheck.cli.main", *args],
+                          capture_output=True, text=True, cwd=ROOT, check=False)
+
+
+def test_the_band_is_twenty_tolerances():
+    assert tol.NEAR_MISS_FACTOR == 20.0
+
+
+@pytest.mark.parametrize("model", ["elastic", "rigid"])
+def test_a_stool_leg_4_mm_short_reads_as_a_gap_and_a_hover_through_the_cli(tmp_path, model):
+    """Issue 14: leg_l 430 mm long at z = 219 spans 4 .. 434 mm: 4 mm short of the seat
+    (438) and 4 mm above the floor.  It still hangs on the rung, so the planks form one
+    grounded group; the old report had it topple ('the ground would have to pull
+    1.121e+04 N' three times).  Now: the gap and the hover, exit 1, no statics."""
+    path = tmp_path / "stool-short.yaml"
+    path.write_text(stool_with_leg_l(430, 219))
+    run = cli("validate", str(path), "--model", model)
+    assert run.returncode == 1, run.stderr
+    lines = run.stdout.splitlines()
+    assert lines[0].endswith("INVALID, 2 violations")
+    assert lines[1].startswith("  disconnected: seat/leg_l: 4 mm gap between the end of "
+                               "leg_l and the face of seat")
+    assert lines[2].startswith("  floating: leg_l: 4 mm above the floor")
+    assert "lift-off" not in run.stdout and " N" not in run.stdout
+    document = json.loads(cli("validate", str(path), "--model", model,
+                              "--format", "json").stdout)
+    report = document["reports"][0]
+    assert [(v["kind"], v["where"], v["case"]) for v in report["violations"]] == \
+        [("disconnected", "seat/leg_l", None), ("floating", "leg_l", None)]
+    assert [c["name"] for c in report["cases"]] == ["default", "perch", "rock"]
+    assert all(c["joints"] == [] and c["contacts"] == [] and "planks" not in c
+               for c in report["cases"])              # the statics were not run
+
+
+def test_the_gap_is_measured_not_assumed():
+    """Same leg 6 mm short at the top only (length 432 from the floor): one gap of 6 mm,
+    no hover; the NearMiss value is the gap in metres."""
+    geometry = analyze(parsed(stool_with_leg_l(432, 216)))
+    assert [(m.planks, round(m.distance, 9)) for m in geometry.near_misses] == \
+        [(("seat", "leg_l"), 0.006)]
+    assert not geometry.stands
+    assert [v.message.split(":")[0] for v in geometry.violations] == \
+        ["6 mm gap between the end of leg_l and the face of seat"]
+
+
+def test_a_plank_4_mm_above_the_floor():
+    """leg_l 434 mm long at z = 221 spans 4 .. 438: its joint with the seat is whole, its
+    foot 4 mm up while leg_r stands: ``floating`` leg_l with its height, nothing else."""
+    design = parsed(stool_with_leg_l(434, 221))
+    report = check_design(design)
+    assert [(v.kind, v.where) for v in report.violations] == [("floating", "leg_l")]
+    assert report.violations[0].message.startswith("4 mm above the floor")
+    assert report.valid is False and all(not c.joints for c in report.cases)
+    assert {c.stability for c in report.cases} == {"not solved"}
+
+
+def test_an_overlap_of_three_tolerances():
+    """leg_l 439.5 mm long at z = 219.75 spans 0 .. 439.5: it cuts 1.5 mm (3 x 0.5 mm)
+    into the seat's underside, too deep for a joint: ``disconnected`` with the overlap."""
+    report = check_design(parsed(stool_with_leg_l(439.5, 219.75)))
+    assert [(v.kind, v.where) for v in report.violations] == [("disconnected", "seat/leg_l")]
+    assert report.violations[0].message.startswith(
+        "1.5 mm overlap: the end of leg_l cuts into the face of seat")
+
+
+def test_the_band_ends_at_twenty_tolerances():
+    """A gap of exactly 20 x 0.5 = 10 mm (leg 428 mm from the floor) is a near miss."""
+    report = check_design(parsed(stool_with_leg_l(428, 214)))
+    assert [(v.kind, v.where) for v in report.violations] == [("disconnected", "seat/leg_l")]
+    assert report.violations[0].message.startswith("10 mm gap")
+
+
+@pytest.mark.parametrize(("length", "gap"), [(427.9, 10.1), (425.5, 12.5)])
+def test_beyond_the_band_the_planks_are_apart_and_the_design_is_checked_as_built(length,
+                                                                                  gap):
+    """A gap of 10.1 mm or 25 x 0.5 = 12.5 mm is taken as meant: no near miss.  leg_l then
+    stands on the floor and holds the rung only; the seat hangs on leg_r alone, a
+    cantilever of ~170 mm carrying 80 kg, whose 15 nails cannot hold it (rigid model:
+    M ~ 785 N x 0.17 m = 133 N m, pull ~ 2 M / t / 15 = 1480 N > 700 N).  The statics run
+    and say so."""
+    design = parsed(stool_with_leg_l(length, length / 2))
+    geometry = analyze(design)
+    assert geometry.near_misses == () and geometry.stands
+    report = check_design(design)
+    kinds = {(v.kind, v.where) for v in report.violations}
+    assert ("non-durable", "seat/leg_r") in kinds
+    assert not any(v.kind in ("disconnected", "floating") for v in report.violations)
+    assert all(c.joints for c in report.cases)
+
+
+def test_listed_joints_have_no_near_misses_of_unlisted_pairs():
+    """A file that lists its joints says which planks are joined: with seat/leg_l left
+    out of the list the 4 mm gap is no near miss (the leg is still 4 mm above the floor,
+    a ground near miss in any design)."""
+    text = stool_with_leg_l(430, 219) + (
+        "joints:\n  - [seat, leg_r]\n  - [leg_l, rung]\n  - [leg_r, rung]\n")
+    geometry = analyze(parsed(text))
+    assert [m.planks for m in geometry.near_misses] == [("leg_l",)]
+
+
+CARCASS = """\
+furncheck: 1
+name: carcass
+planks:
+  - {id: side_l, size: [600, 300], center: [-206, 0, 300], rotation: [0, -90, 0]}
+  - {id: side_r, size: [600, 300], center: [206, 0, 300], rotation: [0, -90, 0]}
+  - {id: top, size: [424, 300], center: [0, 0, 606]}
+  - {id: bottom, size: [400, 300], center: [0, 0, 11]}
+  - {id: shelf_a, size: [400, 200], center: [0, -50, 300]}
+  - {id: shelf_b, size: [400, 300], center: [0, 0, 317]}
+  - {id: divider, size: [272, 80], center: [0, 100, 153], rotation: [0, -90, 0]}
+"""
+
+
+def test_no_false_near_misses_in_a_carcass():
+    """A carcass whose bottom lies flat 5 mm above the floor (z 5 .. 17) between two sides
+    standing on it, two shelves 5 mm apart face to face (294 .. 306 and 311 .. 323), and
+    a divider standing on the bottom whose top end (z 289) is 5 mm under shelf_a's level
+    but beside it (divider at y 60 .. 140, shelf_a at y -150 .. 50): nothing is a near
+    miss, and the carcass is valid in the rigid model."""
+    design = parsed(CARCASS)
+    geometry = analyze(design)
+    assert geometry.near_misses == () and geometry.violations == ()
+    assert check_design(parsed(CARCASS + "model: rigid\n")).valid
+
+
+def test_the_same_divider_under_a_full_width_shelf_is_a_near_miss():
+    """The control of the test above: shelf_a full width (y -150 .. 150) is over the
+    divider's top end, 5 mm above it: a missed joint shelf_a/divider."""
+    text = CARCASS.replace("{id: shelf_a, size: [400, 200], center: [0, -50, 300]}",
+                           "{id: shelf_a, size: [400, 300], center: [0, 0, 300]}")
+    geometry = analyze(parsed(text))
+    assert [(m.planks, round(m.distance, 9)) for m in geometry.near_misses] == \
+        [(("shelf_a", "divider"), 0.005)]
+
+
+def test_a_near_miss_on_a_plank_jointed_elsewhere_is_still_reported():
+    """shelf_b 3 mm short of side_r (size 397 from side_l's face at x = -200) stays nailed
+    to side_l: the joint the maker meant is missing, so the gap is reported and the
+    statics (a cantilevered shelf) are not run."""
+    text = CARCASS.replace("{id: shelf_b, size: [400, 300], center: [0, 0, 317]}",
+                           "{id: shelf_b, size: [397, 300], center: [-1.5, 0, 317]}")
+    report = check_design(parsed(text))
+    assert [(v.kind, v.where) for v in report.violations] == [("disconnected", "side_r/shelf_b")]
+    assert report.violations[0].message.startswith("3 mm gap")
+    assert all(not c.joints for c in report.cases)
+
+
+def test_a_floating_plank_stops_the_statics_of_the_whole_design():
+    """A shelf hovering 20 mm under the top, joined to nothing (beyond the band: no near
+    miss): ``disconnected`` and ``floating``, and no case is solved."""
+    text = CARCASS + "  - {id: loose, size: [300, 200], center: [0, 0, 574]}\n"
+    report = check_design(parsed(text))
+    assert [(v.kind, v.where) for v in report.violations] == \
+        [("disconnected", "loose"), ("floating", "loose")]
+    assert all(not c.joints and not c.contacts for c in report.cases)
+
+
+def test_near_misses_in_metres_and_without_tolerance():
+    """A file in metres reports its gap in metres (tolerance 0.0005 m: the same band);
+    with tolerance 0 there is no band."""
+    metres = """\
+furncheck: 1
+units: m
+tolerance: 0.0005
+planks:
+  - {id: seat, size: [0.4, 0.3], center: [0, 0, 0.444]}
+  - {id: leg_l, size: [0.43, 0.3], center: [-0.17, 0, 0.219], rotation: [0, -90, 0]}
+  - {id: leg_r, size: [0.438, 0.3], center: [0.17, 0, 0.219], rotation: [0, -90, 0]}
+  - {id: rung, size: [0.328, 0.08], center: [0, 0, 0.15], rotation: [90, 0, 0]}
+"""
+    report = check_design(parsed(metres))
+    assert [(v.where, v.message.split(" between")[0].split(":")[0])
+            for v in report.violations] == [("seat/leg_l", "0.004 m gap"),
+                                            ("leg_l", "0.004 m above the floor")]
+    exact = parsed(stool_with_leg_l(430, 219) + "tolerance: 0\n")
+    assert analyze(exact).near_misses == ()
+
+
+def test_an_edit_that_keeps_the_joints_but_misses_the_floor_is_analyzed_in_full():
+    """The stool's rung (on edge, 80 mm tall, z 110 .. 190) lowered to z = 45 keeps both
+    of its joints and every ground contact, but its lower edge hovers 5 mm above the
+    floor: the batched edit check (``EditedTables``) must not take the design's geometry
+    for it, and gives what ``analyze`` gives."""
+    from furncheck.geometry.edits import EditedTables
+
+    design = load_design(str(ROOT / "designs" / "stool.yaml"))
+    geometry = analyze(design)
+    edited = parsed(STOOL.replace("{id: rung, size: [328, 80], center: [0, 0, 150]",
+                                  "{id: rung, size: [328, 80], center: [0, 0, 45]"),
+                    str(ROOT / "designs" / "stool.yaml"))
+    tables = EditedTables(design, geometry, [edited])
+    found = tables.geometries()[0]
+    assert tables.kept == [False]
+    assert [(v.kind, v.where) for v in found.violations] == [("floating", "rung")]
+    assert found.violations == analyze(edited).violations
+
+
+def test_no_catalog_design_has_a_near_miss():
+    """The catalog's verdicts do not change: none of its designs misses a joint or a
+    ground contact narrowly."""
+    for path in sorted((ROOT / "designs").glob("*.yaml")):
+        assert analyze(load_design(str(path))).near_misses == (), path.name
+
+
+def test_suggest_closes_the_near_misses_of_the_short_stool(tmp_path):
+    """Rigid model (the stool is valid there once whole): leg_l 4 mm short at both ends
+    wants 8 mm more length (each end within the 0.5 mm tolerance: 7 to 9 mm); the
+    suggestion may add the missed joint seat/leg_l and stand the leg on the floor, and
+    every suggestion's written design validates (``--out``, through the CLI)."""
+    from furncheck.check import check_file
+    from furncheck.design.model import with_model
+    from furncheck.suggest import suggest_design
+
+    result = suggest_design(with_model(parsed(stool_with_leg_l(430, 219)), "rigid"))
+    lengthen = next(s for s in result.suggestions if s.dofs == ("leg_l.length",))
+    assert 7.0 <= lengthen.changes[0] <= 9.0
+    path = tmp_path / "stool-short.yaml"
+    path.write_text(stool_with_leg_l(430, 219))
+    run = cli("suggest", str(path), "--model", "rigid", "--format", "json",
+              "--out", str(tmp_path / "out"))
+    assert run.returncode == 0, run.stderr
+    entries = json.loads(run.stdout)["suggestions"]
+    assert entries and all(check_file(entry["design_file"], "rigid").valid
+                           for entry in entries)
+
+
+def test_suggest_stands_a_hovering_leg_on_the_floor():
+    """leg_l 4 mm above the floor, its top nailed to the seat: lengthen it by 3.5 to
+    4.5 mm (its jointed end stays put, its foot goes down)."""
+    from furncheck.design.model import with_model
+    from furncheck.suggest import suggest_design
+
+    result = suggest_design(with_model(parsed(stool_with_leg_l(434, 221)), "rigid"))
+    lengthen = next(s for s in result.suggestions if s.dofs == ("leg_l.length",))
+    assert 3.5 <= lengthen.changes[0] <= 4.5
+
+
+def test_range_of_the_short_leg_finds_the_length_that_closes_both_gaps(tmp_path):
+    """``range`` of the 4 mm short stool's leg_l.length (rigid): the current 430 mm is
+    invalid; the nearest valid interval lies within the tolerance of 438 mm."""
+    path = tmp_path / "stool-short.yaml"
+    path.write_text(stool_with_leg_l(430, 219))
+    run = cli("range", str(path), "leg_l.length", "--model", "rigid", "--format", "json")
+    assert run.returncode == 0, run.stderr
+    (entry,) = json.loads(run.stdout)["ranges"]
+    low, high = entry["valid"]
+    assert 437.0 - 0.1 <= low <= 438.0 <= high <= 439.0 + 0.1
