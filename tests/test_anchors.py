@@ -32,6 +32,7 @@ import json
 import numpy as np
 import pytest
 import yaml
+from cli_checks import assert_suggestions_validate
 from click.testing import CliRunner
 
 from furncheck.check import check_design
@@ -196,12 +197,4 @@ def test_anchors_round_trip_and_ride_with_their_plank(tmp_path):
 def test_suggest_on_an_overloaded_anchored_shelf_writes_only_valid_designs(tmp_path):
     path = tmp_path / "shelf.yaml"
     path.write_text(yaml.safe_dump(_cleat_shelf("rigid", load_kg=40.0, capacity=500.0)))
-    out = tmp_path / "out"
-    result = CliRunner().invoke(main, ["suggest", str(path), "--out", str(out),
-                                       "--format", "json"])
-    assert result.exit_code == 0, result.output
-    for suggestion in json.loads(result.output)["suggestions"]:
-        check = CliRunner().invoke(main, ["validate", suggestion["design_file"]])
-        assert check.exit_code == 0, check.output
-    result = CliRunner().invoke(main, ["range", str(path), "--format", "json"])
-    assert result.exit_code == 0, result.output
+    assert_suggestions_validate(path)

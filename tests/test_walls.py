@@ -28,6 +28,7 @@ import math
 import numpy as np
 import pytest
 import yaml
+from cli_checks import assert_suggestions_validate
 from click.testing import CliRunner
 
 from furncheck.check import check_design
@@ -186,12 +187,4 @@ def test_range_and_suggest_run_on_a_leaning_design(tmp_path):
     may find none), and ``range`` of its tilt gives an interval or a reason."""
     path = tmp_path / "ladder.yaml"
     path.write_text(yaml.safe_dump(_ladder(34.0)))
-    out = tmp_path / "out"
-    result = CliRunner().invoke(main, ["suggest", str(path), "--out", str(out),
-                                       "--format", "json"])
-    assert result.exit_code == 0, result.output
-    for suggestion in json.loads(result.output)["suggestions"]:
-        check = CliRunner().invoke(main, ["validate", suggestion["design_file"]])
-        assert check.exit_code == 0, check.output
-    result = CliRunner().invoke(main, ["range", str(path), "ladder.ry", "--format", "json"])
-    assert result.exit_code == 0, result.output
+    assert_suggestions_validate(path, "ladder.ry")
