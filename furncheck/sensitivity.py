@@ -96,7 +96,7 @@ class Linearization:
             self.state = solve_system(self.model, self.holding,
                                       np.concatenate([f, np.zeros(self.model.G.shape[0])]))
             self.law = ContactLaw(self.holding, np.zeros_like(self.holding),
-                                  self.model.contact_stiffness, self.model.friction)
+                                  self.model.contact_springs, self.model.friction)
         else:
             raise ValueError(f"case {case.name!r} has no solved equilibrium to differentiate "
                              f"({self.statics.stability}; nothing grounded, or the contact "

@@ -237,6 +237,15 @@ MAX_SAG_LIMIT = 1e6
 MAX_NAIL_STIFFNESS = 1e13        # N/m per nail, slip or withdrawal
 MAX_ROTATION_DEG = 1e4           # degrees, largest |rotation| about one axis
 MAX_NAILS = 1e6                  # nails of one listed joint
+ANCHOR_STIFFNESS = 4.5e6
+"""N/m: an anchor's spring in the elastic model, in each of its three directions: the
+slip modulus of a screw joint, EN 1995-1-1 Table 7.1, K_ser = rho_m^1.5 d / 23 per shear
+plane, for a 5 mm screw in MDF (rho_m = 750 kg/m^3): 4.47 kN/mm; its withdrawal taken as
+stiff.  Far softer than a ground contact (ELASTIC_CONTACT_STIFFNESS): a wall's anchors
+hold what the planks' bending leaves them, and do not clamp a cleat's face against its
+own bending (as rigid ties would: a 600 mm cleat under a 30 kg shelf then pulled its two
+screws apart with 2 kN each).  In the rigid model the anchors' springs are the contacts'
+penalty springs (CONTACT_STIFFNESS)."""
 ANCHOR_CAP = 1e30
 """N: the friction cap that the contact iterations give an anchor's tie, which never slips
 (a force no load reaches; finite, so that the friction phase's arithmetic stays finite)."""

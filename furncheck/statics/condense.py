@@ -22,7 +22,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from furncheck import tolerances as tol
-from furncheck.statics.model import _SIX, StaticsModel, block_sums
+from furncheck.statics.model import _SIX, StaticsModel, block_sums, spring_rows
 
 
 @dataclass(frozen=True)
@@ -301,12 +301,12 @@ _SYMMETRIC_LU = {"permc_spec": "MMD_AT_PLUS_A", "diag_pivot_thresh": 0.0,
                  "options": {"SymmetricMode": True}}
 
 
-def anchor_springs(holding: np.ndarray, stiffness: float) -> np.ndarray:
+def anchor_springs(holding: np.ndarray, stiffness: float | np.ndarray) -> np.ndarray:
     """(nK, 3, 3): contact force = -S w for contact point displacement w: springs of
-    ``stiffness`` (N/m) to the anchor in all three directions where the contact holds,
-    none where it lifted."""
+    ``stiffness`` (N/m; per contact, ``StaticsModel.contact_springs``) to the anchor in
+    all three directions where the contact holds, none where it lifted."""
     springs = np.zeros((len(holding), 3, 3))
-    springs[holding] = np.eye(3) * stiffness
+    springs[holding] = np.eye(3) * spring_rows(stiffness, holding, 2)
     return springs
 
 
@@ -321,7 +321,7 @@ def _anchored_stiffness(model: StaticsModel, holding: np.ndarray,
                         scale: float = 1.0) -> np.ndarray:
     """``_condensed_stiffness`` for the anchor springs of ``holding`` (x ``scale``): each
     holding contact adds scale k M^T M, M^T M kept once per model."""
-    blocks = model.contact_gram * (scale * model.contact_stiffness
+    blocks = model.contact_gram * (scale * model.contact_springs
                                    * holding.astype(float))[:, None, None]
     return _with_contact_blocks(model, blocks)
 
@@ -354,7 +354,7 @@ def system_matrix(model: StaticsModel, holding: np.ndarray) -> sp.csr_matrix:
     holding contacts (sparse, (6 nN + 6 nJ) square): the A of the paper's eq. 6."""
     n, m = model.n_dof, 6 * len(model.joints)
     maps = model.contact_maps
-    blocks = np.transpose(maps, (0, 2, 1)) @ (anchor_springs(holding, model.contact_stiffness)
+    blocks = np.transpose(maps, (0, 2, 1)) @ (anchor_springs(holding, model.contact_springs)
                                               @ maps)
     base = 6 * model.contact_node[:, None, None]
     rows = np.broadcast_to(base + _SIX[None, :, None], blocks.shape).ravel()

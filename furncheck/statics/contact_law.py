@@ -12,7 +12,7 @@ import numpy as np
 
 from furncheck import tolerances as tol
 from furncheck.statics.friction import slip_tangent
-from furncheck.statics.model import StaticsModel
+from furncheck.statics.model import StaticsModel, spring_rows
 
 
 class ContactLaw:
@@ -22,7 +22,8 @@ class ContactLaw:
     part -k w_z and the friction force mu N against the tangential displacement,
     f_t = -mu N w_t / |w_t|, N = -k w_z.
 
-    holding, slipping : (nK,) bool; k N/m, mu the friction coefficient.
+    holding, slipping : (nK,) bool; k N/m (``StaticsModel.contact_springs``: a scalar,
+    or per contact), mu the friction coefficient.
     """
 
     def __init__(self, holding: np.ndarray, slipping: np.ndarray, k: float, mu: float):
@@ -36,7 +37,7 @@ class ContactLaw:
                     forces: np.ndarray) -> ContactLaw:
         """The law of a solved case: a holding contact slipped where its force is not
         -k w (its tangential force is below k |w_t|: capped at mu N)."""
-        k = model.contact_stiffness
+        k = model.contact_springs
         stretch = np.hypot(displacements[:, 0], displacements[:, 1])
         pull = np.hypot(forces[:, 0], forces[:, 1])
         slipping = np.asarray(holding, dtype=bool) \
@@ -47,10 +48,11 @@ class ContactLaw:
         """(n, 3) N: the force on contacts ``rows`` (all when None) displaced by w (n, 3)."""
         holding, slipping = (self.holding, self.slipping) if rows is None else \
             (self.holding[rows], self.slipping[rows])
-        force = -self.k * w * holding[:, None]
+        k = spring_rows(self.k, rows)
+        force = -spring_rows(k, None, 1) * w * holding[:, None]
         if slipping.any():
             wt = w[slipping, :2]
-            normal = -self.k * w[slipping, 2]
+            normal = -spring_rows(k, slipping) * w[slipping, 2]
             r = np.hypot(wt[:, 0], wt[:, 1])
             force[slipping, :2] = -(self.mu * normal / np.where(r > 0.0, r, 1.0))[:, None] * wt
         return force
@@ -64,16 +66,17 @@ class ContactLaw:
         S_tz = -mu k t (pressing harder raises the friction), S_zz = k; lifted: 0.  Not
         symmetric where it slips."""
         springs = np.zeros((len(self.holding), 3, 3))
-        springs[self.holding] = np.eye(3) * self.k
+        springs[self.holding] = np.eye(3) * spring_rows(self.k, self.holding, 2)
         if self.slipping.any():
             wt = w[self.slipping, :2]
             r = np.hypot(wt[:, 0], wt[:, 1])
             t = wt / r[:, None]
-            cap = self.mu * -self.k * w[self.slipping, 2]
+            k = spring_rows(self.k, self.slipping)
+            cap = self.mu * -k * w[self.slipping, 2]
             block = np.zeros((len(r), 3, 3))
             block[:, :2, :2] = slip_tangent(cap, r, t) \
-                + tol.SLIP_STIFFNESS * self.k * t[:, :, None] * t[:, None, :]
-            block[:, :2, 2] = -self.mu * self.k * t
-            block[:, 2, 2] = self.k
+                + tol.SLIP_STIFFNESS * spring_rows(k, None, 2) * t[:, :, None] * t[:, None, :]
+            block[:, :2, 2] = -self.mu * spring_rows(k, None, 1) * t
+            block[:, 2, 2] = k
             springs[self.slipping] = block
         return springs

@@ -24,7 +24,7 @@ from furncheck.statics.feasibility import (
     unilateral_feasible,
 )
 from furncheck.statics.friction import _anderson, _ContactSpace, _FrictionEnergy
-from furncheck.statics.model import CaseStatics, StaticsModel
+from furncheck.statics.model import CaseStatics, StaticsModel, spring_rows
 
 STICK, LIFT = 0, 2
 _LINE_DETAIL = ("all its ground contacts lie on one line: it can at best balance on that "
@@ -329,8 +329,8 @@ class _ActiveSet:
         plank_q = ground.reshape(-1, 6)[condensed.contact_block]           # (nK, 6)
         displacement = (model.contact_maps @ plank_q[:, :, None])[:, :, 0]
         # the anchor springs: k (x the scale) in all three directions where a contact holds
-        forces = -(model.contact_stiffness * stiffness_scale) * displacement \
-            * holding[:, None]
+        forces = -(spring_rows(model.contact_springs, trailing=1) * stiffness_scale) \
+            * displacement * holding[:, None]
         return self.assemble(ground, forces, displacement)
 
     def assemble(self, ground: np.ndarray, forces: np.ndarray,

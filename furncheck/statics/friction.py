@@ -25,7 +25,7 @@ from furncheck.statics.condense import (
     _Factored,
     anchored_system,
 )
-from furncheck.statics.model import StaticsModel
+from furncheck.statics.model import StaticsModel, spring_rows
 
 if TYPE_CHECKING:
     from furncheck.statics.contacts import _ActiveSet
@@ -113,7 +113,7 @@ class _FrictionEnergy:
         self.active = active
         self.schur = solver.condensed.schur
         self.rhs = solver.ground_rhs
-        self.k = solver.model.contact_stiffness
+        self.k = spring_rows(solver.model.contact_springs, active)   # N/m, scalar or (na,)
         self._schur_size = float(np.abs(self.schur).max(initial=0.0))
         self._rhs_size = float(np.abs(self.rhs).max(initial=0.0))
         self._forces_at: np.ndarray | None = None     # the x of the kept _forces
@@ -152,7 +152,7 @@ class _FrictionEnergy:
         unit = w[slipping, :2] / safe_r[slipping, None]
         along = unit[:, :, None] * unit[:, None, :]
         across = slip_tangent(self.caps[slipping], safe_r[slipping], unit)
-        lost = self.k * (_EYE2 - tol.SLIP_STIFFNESS * along) - across
+        lost = spring_rows(self.k, slipping, 2) * (_EYE2 - tol.SLIP_STIFFNESS * along) - across
         rows = (2 * slipping[:, None] + _TWO).ravel()
         self._slips_at, self._slips_kept = x, (slipping, rows, unit, lost)
         return self._slips_kept
@@ -194,7 +194,7 @@ class _FrictionEnergy:
         k, caps = self.k, self.caps
         w, safe_r, sticking, _ = self._forces(x)
         unit = w[:, :2] / safe_r[:, None]
-        tangent = np.where(sticking[:, None, None], k * _EYE2,
+        tangent = np.where(sticking[:, None, None], spring_rows(k, None, 2) * _EYE2,
                            slip_tangent(caps, safe_r, unit))
         springs = np.zeros((len(self.active), 3, 3))
         springs[self.active, :2, :2] = tangent
@@ -301,7 +301,8 @@ class _FrictionEnergy:
             combined = spread + weights
             normal_moves = space.normal_compliance[:, rows] @ combined
         pressing = force[:, 2] > 0.0
-        jacobian = (self.solver.mu * self.k) * normal_moves * pressing[:, None]  # (na, p)
+        jacobian = (self.solver.mu * spring_rows(self.k, None, 1)) * normal_moves \
+            * pressing[:, None]                                                   # (na, p)
         change, info = _GESV(np.eye(count) - jacobian[slipping],
                              residual[self.active][slipping])[2:]
         if info != 0:
@@ -337,7 +338,8 @@ class _StepSlope:
         self.k, self.caps, self.start = k, caps, slope0
         self.radius2 = (caps / k) ** 2                              # of the sticking disc
         self.base = slope0 + float((force[:, :2] * dw[:, :2]).sum())
-        self.curvature = stretch + k * float(dw[:, 2] @ dw[:, 2])
+        self.curvature = stretch + (k * float(dw[:, 2] @ dw[:, 2]) if np.ndim(k) == 0
+                                    else float((k * dw[:, 2]) @ dw[:, 2]))
         self.alpha = self.dx * self.dx + self.dy * self.dy          # |dw_t|^2
         self.beta = self.wx * self.dx + self.wy * self.dy           # w_t.dw_t
 
@@ -396,7 +398,7 @@ class _StepSlope:
         radius2 = px * px + py * py
         sticking = radius2 <= self.radius2[:, None]
         slipping = self.caps[:, None] * along / np.sqrt(np.where(sticking, 1.0, radius2))
-        terms = np.where(sticking, self.k * along, slipping)
+        terms = np.where(sticking, spring_rows(self.k, None, 1) * along, slipping)
         return self.base + self.curvature * t + terms.sum(axis=0)
 
     def _root(self, low: float, high: float, low_slope: float, high_slope: float) -> float:
@@ -410,8 +412,12 @@ class _StepSlope:
         px, py = self.wx + middle * self.dx, self.wy + middle * self.dy
         sticking = px * px + py * py <= self.radius2
         k = self.k
-        constant = self.base + k * float(self.beta[sticking].sum())
-        linear = self.curvature + k * float(self.alpha[sticking].sum())
+        if np.ndim(k) == 0:
+            constant = self.base + k * float(self.beta[sticking].sum())
+            linear = self.curvature + k * float(self.alpha[sticking].sum())
+        else:                               # the anchors' ties have their own springs
+            constant = self.base + float(k[sticking] @ self.beta[sticking])
+            linear = self.curvature + float(k[sticking] @ self.alpha[sticking])
         slipping = ~sticking & (self.caps > 0.0)
         if not slipping.any() and linear > 0.0:
             return min(max(-constant / linear, low), high)

@@ -54,6 +54,7 @@ class StaticsModel:
     contact_node, contact_plank : (nK,) local node and local plank of each contact
     contact_component : (nK,) component number of each contact
     contact_stiffness : N/m, the contacts' normal and anchor springs
+    anchor_stiffness : N/m, the springs of the anchors' ties (``contact_springs``)
     components : local plank numbers of each grounded component (``component_nodes``:
                their nodes)
     beams    : the elements themselves (``elastic.Beams``; None: rigid)
@@ -77,6 +78,7 @@ class StaticsModel:
     components: tuple[tuple[int, ...], ...]
     friction: float
     contact_stiffness: float = tol.CONTACT_STIFFNESS
+    anchor_stiffness: float = tol.CONTACT_STIFFNESS
     beams: object = None
     nodal_weight: np.ndarray | None = None
     load_nodes: dict | None = None     # (case name, load index) -> node (elastic model)
@@ -100,6 +102,17 @@ class StaticsModel:
         from furncheck.statics.elastic import assemble_beams
 
         return assemble_beams(self.beams, self.n_nodes)
+
+    @cached_property
+    def contact_springs(self) -> float | np.ndarray:
+        """N/m: each contact's spring stiffness, in all three directions: the scalar
+        ``contact_stiffness`` when no contact is an anchor's tie, else (nK,) with
+        ``anchor_stiffness`` at the ties (``spring_rows`` picks rows of either)."""
+        if self.contact_anchored is None:
+            return self.contact_stiffness
+        springs = np.full(len(self.contacts), self.contact_stiffness)
+        springs[self.contact_anchored] = self.anchor_stiffness
+        return springs
 
     def world_forces(self, forces: np.ndarray) -> np.ndarray:
         """(nK, 3) N: contact forces given in the contacts' frames, in the world frame."""
@@ -433,3 +446,13 @@ def point_maps(r: np.ndarray) -> np.ndarray:
     maps[:, :, :3] = np.eye(3)
     maps[:, :, 3:] = -_skew_many(r)
     return maps
+
+
+def spring_rows(springs: float | np.ndarray, rows=None, trailing: int = 0):
+    """``StaticsModel.contact_springs`` (or rows ``rows`` of it: a mask or indices) shaped
+    to broadcast over ``trailing`` more axes; a scalar stays a scalar (the same arithmetic
+    as before anchors had their own springs)."""
+    if np.ndim(springs) == 0:
+        return springs
+    picked = springs if rows is None else springs[rows]
+    return picked.reshape(picked.shape + (1,) * trailing)
