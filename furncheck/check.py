@@ -16,6 +16,7 @@ from furncheck.statics import build_model, solve_load_case
 from furncheck.validity import (
     anchor_utilization,
     case_holds,
+    case_loads,
     evaluate_case,
     joint_utilization,
     worst_plank_utilization,
@@ -28,13 +29,15 @@ def check_design(design: Design, geometry: Geometry | None = None) -> DesignRepo
 
     A design that does not stand as drawn (a group of planks reaching the ground nowhere,
     or a joint or ground contact missed narrowly: ``Geometry.stands``) gets its geometric
-    violations only: its statics are not solved, and each case lists no joints, contacts
-    or planks (no toppling of a stool whose leg is 4 mm short)."""
+    violations only: its statics are not solved, and each case lists its loads but no
+    joints, contacts or planks, and reads neither durable nor stable (nothing was shown to
+    hold; no toppling of a stool whose leg is 4 mm short either)."""
     geometry = geometry or analyze(design)
     violations = list(geometry.violations)
     if not geometry.stands:
-        cases = tuple(CaseResult(case.name, durable=True, stable=True, joints=(), contacts=(),
-                                 stability=NOT_SOLVED) for case in design.load_cases)
+        cases = tuple(CaseResult(case.name, durable=False, stable=False, joints=(), contacts=(),
+                                 stability=NOT_SOLVED, loads=case_loads(design, case))
+                      for case in design.load_cases)
         return DesignReport(design=design.source, name=design.name, valid=False,
                             violations=tuple(violations), cases=cases, units=design.units)
     model = build_model(design, geometry)

@@ -114,12 +114,22 @@ def dof_value(design: Design, dof: Dof) -> float:
 @dataclass(frozen=True)
 class End:
     """A plank end that must stay where it is: a narrow face (axis 0/1, sign +-1) resting
-    on the face plank ``on`` (a plank id), or on the ground (``on`` = None)."""
+    on the face plank ``on`` (a plank id), or on the ground or a wall (``on`` = None;
+    ``wall`` its index and ``plane`` a point of it, None for the ground)."""
 
     axis: int
     sign: int
     on: str | None
     normal: np.ndarray      # unit normal of the supporting face, pointing at this plank
+    wall: int | None = None
+    plane: Vec3 | None = None
+
+    @property
+    def support(self) -> str:
+        """What holds the end, for messages: a plank id, 'the ground' or 'wall n'."""
+        if self.on is not None:
+            return self.on
+        return "the ground" if self.wall is None else f"wall {self.wall}"
 
     @cached_property
     def normal_xyz(self) -> Vec3:
@@ -134,7 +144,7 @@ class Structure:
 
     ends: dict[str, tuple[End, ...]]
     attached: dict[str, tuple[tuple[str, End], ...]]   # plank -> (edge plank, its end)
-    lies_flat: frozenset[str]                          # planks lying on a broad face
+    lies_flat: dict[str, tuple[Vec3, ...]]   # plank -> normals of what it lies flat on
     joint_count: dict[str, int]
 
     @cached_property
@@ -163,21 +173,27 @@ def structure(design: Design, geometry: Geometry) -> Structure:
         attached[joint.face].append((joint.edge, end))
         joint_count[joint.edge] += 1
         joint_count[joint.face] += 1
-    flat = set()
+    corners: dict[str, dict[int | None, set[int]]] = {}     # plank -> support -> corners
+    for contact in geometry.contacts:
+        if contact.anchor is None:                 # an anchor holds no end of its plank
+            corners.setdefault(contact.plank, {}).setdefault(contact.wall, set()).add(
+                contact.corner)
+    flat: dict[str, list[Vec3]] = {}
     for plank in design.planks:
-        corners = sorted({c.corner for c in geometry.contacts if c.plank == plank.id})
-        if not corners:
-            continue
-        signs = _CORNER_SIGNS[corners]
-        for axis in (0, 1):
-            if np.all(signs[:, axis] == signs[0, axis]):
-                ends[plank.id].append(End(axis, int(signs[0, axis]), None,
-                                          np.array([0.0, 0.0, 1.0])))
-                break
-        else:
-            flat.add(plank.id)
+        for wall, touching in corners.get(plank.id, {}).items():
+            normal = (0.0, 0.0, 1.0) if wall is None else design.walls[wall].normal
+            plane = None if wall is None else design.walls[wall].point
+            signs = _CORNER_SIGNS[sorted(touching)]
+            for axis in (0, 1):
+                if np.all(signs[:, axis] == signs[0, axis]):
+                    ends[plank.id].append(End(axis, int(signs[0, axis]), None,
+                                              np.array(normal, dtype=float), wall, plane))
+                    break
+            else:
+                flat.setdefault(plank.id, []).append(normal)
     return Structure({k: tuple(v) for k, v in ends.items()},
-                     {k: tuple(v) for k, v in attached.items()}, frozenset(flat), joint_count)
+                     {k: tuple(v) for k, v in attached.items()},
+                     {k: tuple(v) for k, v in flat.items()}, joint_count)
 
 
 # --- applying a DOF change --------------------------------------------------------------------
@@ -256,13 +272,14 @@ def _translate(frame: Structure, planks: dict[str, Plank], plank: Plank, axis: i
     # moving along world axis ``axis``: the component of a normal n along it is n[axis]
     held = [end for end in frame.ends[plank.id] if abs(end.normal_xyz[axis]) > _PARALLEL_EPS]
     if len(held) > 1:
-        names = " and ".join(sorted({end.on or "the ground" for end in held}))
+        names = " and ".join(sorted({end.support for end in held}))
         raise Blocked(f"both ends jointed ({names}): moving {plank.id} along "
                       f"{'xyz'[axis]} would open or press into a joint")
     if held:
         raise Blocked(_end_reason(plank.id, held[0], "moving it along " + "xyz"[axis]))
-    if plank.id in frame.lies_flat and axis == 2:
-        raise Blocked(f"{plank.id} lies on the ground")
+    for normal in frame.lies_flat.get(plank.id, ()):
+        if abs(normal[axis]) > _PARALLEL_EPS:      # off the face it lies on, or into it
+            raise Blocked(f"{plank.id} lies {_flat_on(normal)}")
     offset = _axis_offset(axis, amount)
     planks[plank.id] = _moved(plank, offset)
     for edge_id, end in frame.attached[plank.id]:
@@ -279,8 +296,9 @@ def _translate(frame: Structure, planks: dict[str, Plank], plank: Plank, axis: i
 def _rotate(frame: Structure, planks: dict[str, Plank], plank: Plank, axis: int,
             angle: float, design_planks: tuple[Plank, ...]) -> None:
     turn = _axis_rotation(axis, angle)
-    if plank.id in frame.lies_flat and axis != 2:
-        raise Blocked(f"{plank.id} lies on the ground")
+    for normal in frame.lies_flat.get(plank.id, ()):
+        if abs(normal[axis]) < 1.0 - _PARALLEL_EPS:    # a turn that tips it off that face
+            raise Blocked(f"{plank.id} lies {_flat_on(normal)}")
     start = _turn_start(frame, planks, plank, design_planks)
     rotated = _turned(plank, turn, plank.center_array)
     # the plank's own held ends stay on their faces: change its size at those ends
@@ -329,7 +347,8 @@ def _turn_start(frame: Structure, planks: dict[str, Plank], plank: Plank,
     ends = []
     for end in frame.ends[plank.id]:
         if end.on is None:
-            point, normal = (0.0, 0.0, 0.0), (0.0, 0.0, 1.0)
+            point, normal = ((0.0, 0.0, 0.0), (0.0, 0.0, 1.0)) if end.plane is None \
+                else (end.plane, end.normal_xyz)
         else:
             point, normal = _support_plane(planks[end.on], end)
         ends.append((point, normal, _end_height(plank, end, point, normal)))
@@ -345,7 +364,7 @@ def _resize(frame: Structure, planks: dict[str, Plank], plank: Plank, axis: int,
             amount: float) -> None:
     held = [end for end in frame.ends[plank.id] if end.axis == axis]
     if len({end.sign for end in held}) == 2:
-        names = " and ".join(sorted({end.on or "the ground" for end in held}))
+        names = " and ".join(sorted({end.support for end in held}))
         raise Blocked(f"both ends jointed ({names})")
     if held:
         # the held end stays: the other end moves by the whole amount
@@ -465,7 +484,8 @@ def _end_height(plank: Plank, end: End, point: Vec3, normal: Vec3) -> float:
 
 
 def _end_reason(plank_id: str, end: End, action: str) -> str:
-    where = f"its end on {end.on}" if end.on is not None else "it stands on the ground"
+    where = f"its end on {end.on}" if end.on is not None else (
+        "it stands on the ground" if end.wall is None else f"it leans on wall {end.wall}")
     verb = "would open or press into that joint" if end.on else "would lift or sink it"
     return f"{plank_id}: {where}; {action} {verb}"
 
@@ -515,7 +535,7 @@ def check_edit(original: Geometry, edited: Design,
     original ``design``, joints between unchanged planks are not detected again."""
     if design is not None:
         return check_edit_many(original, [edited], design)[0]
-    problem = _size_problem(edited)
+    problem = design_problem(edited)
     if problem is not None:
         return problem, None
     geometry = analyze(edited)
@@ -527,7 +547,7 @@ def check_edit_many(original: Geometry, edits: list[Design],
                     design: Design) -> list[tuple[str | None, Geometry | None]]:
     """``check_edit`` of many edits of ``design`` (whose geometry is ``original``), their
     geometries and plank cuts measured together (``geometry.EditedTables``)."""
-    out: list = [(_size_problem(edited), None) for edited in edits]
+    out: list = [(design_problem(edited), None) for edited in edits]
     sized = [k for k, (problem, _) in enumerate(out) if problem is None]
     tables = EditedTables(design, original, [edits[k] for k in sized])
     geometries = tables.geometries()
@@ -541,10 +561,18 @@ def check_edit_many(original: Geometry, edits: list[Design],
     return out
 
 
-def _size_problem(edited: Design) -> str | None:
+def design_problem(edited: Design) -> str | None:
+    """What makes an edit no design at all: a plank with no length or width left (its
+    box would read as a mirrored one of negative mass), or an anchor moved off its wall
+    (or into it) by more than the tolerance from where it was drawn (``Anchor.gap``)."""
     for plank in edited.planks:
         if plank.length <= 0 or plank.width <= 0:
             return f"{plank.id} would have no length left"
+    for i, anchor in enumerate(edited.anchors):
+        moved = float(edited.walls[anchor.wall].distance(np.asarray(anchor.point))) - anchor.gap
+        if abs(moved) > edited.tolerance + _PARALLEL_EPS:
+            return (f"anchors[{i}] would move {plain_number(abs(moved) / edited.unit_scale, 3)} "
+                    f"{edited.units} {'off' if moved > 0 else 'into'} wall {anchor.wall}")
     return None
 
 
@@ -571,11 +599,19 @@ def _edit_problem(original: Geometry, geometry: Geometry) -> str | None:
                  if (face, edge) not in closing)
     if new:
         return f"planks {new[0][0]}/{new[0][1]} would touch and form a new joint"
-    grounded_before = {c.plank for c in original.contacts}
-    grounded_after = {c.plank for c in geometry.contacts}
-    changed = sorted((grounded_before ^ grounded_after)
-                     - {plank for plank in grounded_after if (plank,) in closing})
+    # which planks stand on the ground and lean on which wall (anchors: design_problem)
+    held_before = {(c.plank, c.wall) for c in original.contacts if c.anchor is None}
+    held_after = {(c.plank, c.wall) for c in geometry.contacts if c.anchor is None}
+    changed = sorted((held_before ^ held_after)
+                     - {(plank, None) for plank, _ in held_after if (plank,) in closing},
+                     key=lambda pair: (pair[0], -1 if pair[1] is None else pair[1]))
     if changed:
-        return f"{changed[0]} would {'leave' if changed[0] in grounded_before else 'touch'} " \
-               "the ground"
+        plank, wall = changed[0]
+        support = "the ground" if wall is None else f"wall {wall}"
+        return f"{plank} would {'leave' if changed[0] in held_before else 'touch'} {support}"
     return None
+
+
+def _flat_on(normal: Vec3) -> str:
+    """Where a plank lies flat, for messages: 'on the ground' or 'against a wall'."""
+    return "on the ground" if normal[2] > 0.5 else "against a wall"

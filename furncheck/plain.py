@@ -23,6 +23,10 @@ MESSAGE_SIGNIFICANT_DIGITS = 4
 GROUP_FROM_DIGITS = 5
 """Integer parts with at least this many digits are grouped in threes by commas."""
 
+PLAIN_RANGE = (1e-9, 1e15)
+"""Sizes written out positionally; beyond them (a 1e308 capacity in a bad file) a number
+is written as ``1.2e+308``: positional it would run to hundreds of digits."""
+
 
 def plain_number(value: float, digits: int = MESSAGE_SIGNIFICANT_DIGITS) -> str:
     """``value`` rounded to ``digits`` significant digits, in plain positional notation.
@@ -32,13 +36,19 @@ def plain_number(value: float, digits: int = MESSAGE_SIGNIFICANT_DIGITS) -> str:
     >>> plain_number(-11213.7), plain_number(1e6), plain_number(-0.0)
     ('-11,210', '1,000,000', '0')
 
-    Non-finite values are written as Python writes them (``inf``, ``nan``).
+    Non-finite values are written as Python writes them (``inf``, ``nan``); sizes outside
+    ``PLAIN_RANGE`` in exponent notation (``plain_number(1e308)`` is ``'1e+308'``).
     """
     value = float(value)
     if not math.isfinite(value):
         return str(value)
     if value == 0.0:
         return "0"
+    if not PLAIN_RANGE[0] <= abs(value) < PLAIN_RANGE[1]:
+        mantissa, exponent = f"{value:.{max(digits, 1) - 1}e}".split("e")
+        if "." in mantissa:
+            mantissa = mantissa.rstrip("0").rstrip(".")
+        return f"{mantissa}e{int(exponent):+d}"
     rounded = Decimal(f"{value:.{max(digits, 1) - 1}e}").normalize()
     text = format(rounded, "f")
     whole = text.lstrip("-").split(".", 1)[0]

@@ -64,6 +64,12 @@ class ContactResult:
     point: tuple[float, float, float]
     force: tuple[float, float, float]
     wall: int | None = None
+    normal: float | None = None      # N pressing on the ground or wall (force . its normal)
+
+    @property
+    def pressing(self) -> float:
+        """N: the normal force, pressing > 0 (``force[2]`` on the ground)."""
+        return self.force[2] if self.normal is None else self.normal
 
 
 @dataclass(frozen=True)
@@ -127,8 +133,8 @@ class CaseResult:
     """One load case.  ``stability`` is 'stable', 'lift-off', 'sliding' or 'mechanism'
     (no equilibrium and no force state: the planks rest on one line of ground points), or
     NOT_SOLVED for a design that does not stand as drawn (no statics: no joints, contacts
-    or planks; ``durable`` and ``stable`` then read True, the geometric violations say why
-    the design is invalid)."""
+    or planks; ``durable`` and ``stable`` then read False, nothing having been shown to
+    hold, and the geometric violations say why the design is invalid)."""
 
     name: str
     durable: bool

@@ -142,11 +142,12 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
     if statics.contact_forces is not None:
         points = (model.contact_points / scale).tolist()
         forces = model.world_forces(statics.contact_forces).tolist()
+        normals = statics.contact_forces[:, 2].tolist()
         for row, (point, force) in enumerate(zip(points, forces)):
             contact = geometry.contacts[model.contacts[row]]
             if contact.anchor is None:
                 contacts.append(ContactResult(contact.plank, tuple(point), tuple(force),
-                                              contact.wall))
+                                              contact.wall, normals[row]))
                 continue
             held = _anchor_held(design, contact.anchor, force)
             anchors.append(held)

@@ -198,3 +198,40 @@ def test_suggest_on_an_overloaded_anchored_shelf_writes_only_valid_designs(tmp_p
     path = tmp_path / "shelf.yaml"
     path.write_text(yaml.safe_dump(_cleat_shelf("rigid", load_kg=40.0, capacity=500.0)))
     assert_suggestions_validate(path)
+
+
+def test_an_edit_that_moves_an_anchor_off_its_wall_is_no_design():
+    """An anchor rides with its plank, but its wall stays: an edit that takes the point
+    farther from the wall than drawn (or into it) by more than the tolerance would need
+    another bracket (``dofs.design_problem``); one along the wall keeps it."""
+    from dataclasses import replace
+
+    from furncheck.dofs import design_problem
+
+    design = _parse(_cleat_shelf("rigid"))
+    assert design.anchors[0].gap == pytest.approx(0.0)
+    assert design_problem(design) is None
+    along = replace(design, anchors=(replace(design.anchors[0], point=(0.1, 0.0, 1.07)),
+                                     design.anchors[1]))
+    assert design_problem(along) is None
+    off = replace(design, anchors=(replace(design.anchors[0], point=(-0.2, 0.005, 1.07)),
+                                   design.anchors[1]))
+    assert design_problem(off) == "anchors[0] would move 5 mm off wall 0"
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_warm_start_keeps_a_pulling_anchor_holding(model):
+    """The side anchored at the top, pushed back towards the wall with 3 N: its anchor
+    pulls or pushes, it never lifts; started from the solved case's holding contacts (as
+    range and suggest start edits) the result is the cold one."""
+    from furncheck.check import holding_states
+    from furncheck.statics import build_model, external_forces, solve_case
+
+    design = _parse(_side(model, True, -3.0))
+    geometry = analyze(design)
+    model_ = build_model(design, geometry)
+    (start,) = holding_states(design, geometry)
+    assert start[model_.contact_anchored].all()
+    f = external_forces(model_, design.load_cases[0])
+    cold, warm = solve_case(model_, f), solve_case(model_, f, start)
+    assert np.abs(cold.contact_forces - warm.contact_forces).max() <= 1e-9 * np.abs(f).sum()

@@ -63,3 +63,11 @@ def test_report_helpers_use_plain_numbers():
     assert format_number(0.00001234) == "0.000012"          # rounded to 6 decimals first
     assert format_percent(112.1) == "11,210 %"
     assert format_percent(0.42) == "42 %"
+
+
+def test_sizes_beyond_the_plain_range_use_an_exponent():
+    """A 1e308 capacity in a bad file must not print three hundred digits."""
+    assert plain_number(1e308) == "1e+308"
+    assert plain_number(1.23456e20, 6) == "1.23456e+20"
+    assert plain_number(-3e-12) == "-3e-12"
+    assert plain_number(1.5e-9) == "0.0000000015"

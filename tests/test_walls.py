@@ -188,3 +188,20 @@ def test_range_and_suggest_run_on_a_leaning_design(tmp_path):
     path = tmp_path / "ladder.yaml"
     path.write_text(yaml.safe_dump(_ladder(34.0)))
     assert_suggestions_validate(path, "ladder.ry")
+
+
+def test_range_of_a_leaning_plank_starts_at_the_hand_threshold(tmp_path):
+    """``range ladder.ry`` of the sliding ladder at 30 degrees: its ends stay on the floor
+    and on the wall as it turns (the wall is a support plane of the DOF structure), and
+    the valid interval starts where the module docstring's condition holds: 36.46
+    degrees (within the range search's resolution)."""
+    path = tmp_path / "ladder.yaml"
+    path.write_text(yaml.safe_dump(_ladder(30.0)))
+    result = CliRunner().invoke(main, ["range", str(path), "ladder.ry", "--format", "json"])
+    assert result.exit_code == 0, result.output
+    (entry,) = json.loads(result.output)["ranges"]
+    low, high = entry["valid"]
+    assert 36.46 <= low <= 36.6
+    assert high > 80.0
+    blocked = CliRunner().invoke(main, ["range", str(path), "ladder.x", "--format", "json"])
+    assert "leans on wall 0" in json.loads(blocked.output)["ranges"][0]["reason"]

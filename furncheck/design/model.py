@@ -204,12 +204,15 @@ class Wall:
 @dataclass(frozen=True)
 class Anchor:
     """A screw or bracket tying ``plank`` to wall ``wall`` (index into ``Design.walls``) at
-    the world point ``point`` (m, on the plank), both ways, up to ``capacity`` N."""
+    the world point ``point`` (m, on the plank), both ways, up to ``capacity`` N; ``gap``
+    (m): how far in front of its wall the point was drawn (an edit that moves the point
+    off by more than the tolerance would need another bracket)."""
 
     plank: str
     point: Vec3
     wall: int
     capacity: float
+    gap: float = 0.0
 
 
 @dataclass(frozen=True)

@@ -69,5 +69,5 @@ def anchors(doc: _Doc, node: Any, by_id: dict[str, Plank], walls_found: tuple[Wa
                                   f"{units.name} behind wall {wall}")
         capacity = _quantity(doc, fields["capacity"], f"{key}.capacity", 0.0, tol.MAX_FORCE,
                              unit="N", positive=True)
-        found.append(Anchor(plank.id, point, wall, capacity))
+        found.append(Anchor(plank.id, point, wall, capacity, -behind))
     return tuple(found)

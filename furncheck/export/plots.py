@@ -158,18 +158,18 @@ def _scatter(axes: Axes, joints: list[JointResult], before: bool) -> None:
 
 
 def _draw_stability(axes: Axes, before: CaseResult | None, after: CaseResult | None) -> None:
-    """Normal force of each ground contact before and after, as paired bars."""
+    """Normal force of each ground or wall contact before and after, as paired bars."""
     old = _keyed(before.contacts if before else (), _contact_key)
     new = _keyed(after.contacts if after else (), _contact_key)
     keys = [*new, *(key for key in old if key not in new)]
     width = 0.4
     for position, key in enumerate(keys):
         if key in old:
-            normal = old[key].force[2]
+            normal = old[key].pressing
             axes.bar(position - width / 2, normal, width, color=BEFORE_COLOR,
                      **({} if normal >= 0.0 else LIFTING_BEFORE))
         if key in new:
-            normal = new[key].force[2]
+            normal = new[key].pressing
             axes.bar(position + width / 2, normal, width,
                      color=AFTER_COLOR if normal >= 0.0 else FAILING_COLOR)
     axes.axhline(0.0, color="black", lw=0.8)

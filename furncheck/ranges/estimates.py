@@ -16,6 +16,7 @@ import numpy as np
 
 from furncheck.geometry import Geometry
 from furncheck.sensitivity import Linearization, Sensitivity
+from furncheck.statics import external_forces
 from furncheck.tolerances import NAIL_COUNT_EPS
 from furncheck.validity import nail_pull_shear
 
@@ -206,5 +207,11 @@ def _margins(linear: Linearization, sens: Sensitivity):
         yield -(s1 - s) / eps / shear_cap, 1.0 - s / shear_cap
     forces = linear.statics.contact_forces
     weight = max(float(forces[:, 2].sum()), 1e-12)
+    ties = linear.model.contact_anchored
+    if linear.model.contact_frames is not None or ties is not None:
+        applied = external_forces(linear.model, linear.case).reshape(-1, 6)[:, :3]
+        weight = max(float(np.sqrt((applied * applied).sum(axis=1)).sum()), 1e-12)
     for k in np.nonzero(linear.holding)[0]:
+        if ties is not None and ties[k]:
+            continue                    # an anchor's tie may pull
         yield sens.contact_forces[0][k, 2] / weight, forces[k, 2] / weight

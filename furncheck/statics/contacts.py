@@ -57,7 +57,8 @@ def solve_case(model: StaticsModel, f: np.ndarray,
     all_stick = np.full(len(model.contacts), STICK)
     attempts = [(all_stick, False), (all_stick, True)]
     if start is not None and len(start) == len(all_stick) and not start.all():
-        attempts.insert(0, (np.where(start, STICK, LIFT), False))
+        held = start if model.contact_anchored is None else start | model.contact_anchored
+        attempts.insert(0, (np.where(held, STICK, LIFT), False))
     normal = None
     for initial, one_at_a_time in attempts:
         found = solver.normal_phase(initial, one_at_a_time)
@@ -246,14 +247,15 @@ class _ActiveSet:
         if self.anchored is not None:
             pulling &= ~self.anchored
         if stability == "lift-off":
-            detail = ("no equilibrium with the ground only pushing: the load's line of action "
+            detail = (f"no equilibrium with the {self._supports()} only pushing: the load's "
+                      "line of action "
                       "falls outside the support polygon, the design topples "
-                      f"(held down, the ground would have to pull "
+                      f"(held down, the {self._supports()} would have to pull "
                       f"{plain_number(-bolted.contact_forces[pulling, 2].sum())} N)")
         else:
             detail = (f"no equilibrium within the friction cones "
                       f"(mu = {plain_number(self.mu, 6)}); forces shown as if the design were "
-                      "bolted to the ground")
+                      f"bolted to the {self._supports()}")
         return CaseStatics(stability, _wrenches(bolted.h), bolted.contact_forces,
                            self._plank_ids(pulling), detail + undecided,
                            displacements=bolted.q)
@@ -273,9 +275,12 @@ class _ActiveSet:
     def _admissible(self, forces: np.ndarray) -> bool:
         """Whether contact forces (nK, 3) press (N >= 0) and stay inside the friction
         cones, to the force tolerance (the exact balance of ``closest_admissible`` moves
-        them by round-off; should it ever move them out, the program's own are used)."""
-        return bool(np.all(forces[:, 2] >= -self.force_tol)
-                    and not self._outside_cones(forces).any())
+        them by round-off; should it ever move them out, the program's own are used); an
+        anchor's tie may pull."""
+        pressing = forces[:, 2] >= -self.force_tol
+        if self.anchored is not None:
+            pressing |= self.anchored
+        return bool(np.all(pressing) and not self._outside_cones(forces).any())
 
     def prescribed(self, contact_forces: np.ndarray) -> CaseStatics:
         """Joint wrenches for contact forces fixed by a feasibility program.
@@ -295,8 +300,18 @@ class _ActiveSet:
         if solution is None:
             return CaseStatics("lift-off", None, None, (), _LINE_DETAIL)
         return CaseStatics("stable", _wrenches(solution.h), contact_forces.copy(),
-                           holding=contact_forces[:, 2] > self.force_tol,
+                           holding=self._pressing(contact_forces),
                            displacements=solution.q)
+
+    def _supports(self) -> str:
+        """What the contacts stand on, for messages: 'ground', or 'ground and walls'."""
+        return "ground" if self.model.contact_frames is None else "ground and walls"
+
+    def _pressing(self, forces: np.ndarray) -> np.ndarray:
+        """(nK,) bool: the contacts that hold with forces (nK, 3): those that press, and
+        the anchors' ties whatever they do."""
+        pressing = forces[:, 2] > self.force_tol
+        return pressing if self.anchored is None else pressing | self.anchored
 
     def within_cones(self, solution: _Solution) -> bool:
         return not self._outside_cones(solution.contact_forces).any()

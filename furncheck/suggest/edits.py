@@ -23,8 +23,8 @@ from furncheck.dofs import (
     End,
     OutOfReach,
     Structure,
-    _size_problem,
     apply_dof,
+    design_problem,
     design_size,
     dof_value,
 )
@@ -101,10 +101,10 @@ class Editor:
         the design missed that joint narrowly: closing a near miss is the point) and no
         two planks cut into each other; else None.  Ground contacts may change: standing a
         hovering leg on the floor is the point of some suggestions.  A plank shrunk to no
-        length or width is refused too: its box would read as a mirrored one (of negative
-        mass) rather than none."""
+        length or width, or an anchor moved off its wall, is refused too
+        (``dofs.design_problem``)."""
         self.checks += 1
-        if _size_problem(edited) is not None:
+        if design_problem(edited) is not None:
             return None
         geometry = analyze(edited, (self.design, self.geometry))
         if geometry.violations:

@@ -34,6 +34,7 @@ from furncheck.dofs import Blocked, Dof, OutOfReach, design_size
 from furncheck.geometry import Geometry, end_gap
 from furncheck.result import DesignReport
 from furncheck.sensitivity import Linearization, Sensitivity
+from furncheck.statics import external_forces
 from furncheck.suggest.edits import Editor
 from furncheck.tolerances import GRAVITY
 from furncheck.validity import nail_pull_shear, plank_limits
@@ -154,15 +155,18 @@ class Margins:
         scales = np.array([self.editor.scale(dof) for dof in free])
         margins = []
         for linear in linears:
-            if linear.statics.stability == "sliding":
+            if linear.statics.stability == "sliding" and not self.design.walls:
                 margins.extend(self._sliding(linear))
                 continue
             sens = first if linear is linears[0] and len(free) == len(first.dofs) \
                 else linear.derivatives(free)
             if linear.statics.stability == "lift-off":
                 margins.extend(_toppling(linear, sens.contact_forces, scales))
+            elif linear.statics.stability == "sliding":     # leaning on walls too
+                margins.extend(_cones(linear, sens.contact_forces, scales))
             else:       # stable (bolted only when its forces came from the feasibility LP)
                 margins.extend(_durability(linear, sens, scales))
+                margins.extend(_anchors(linear, sens.contact_forces, scales))
                 margins.extend(_bending(linear, sens, scales))
         return margins
 
@@ -293,15 +297,67 @@ def _nails_listed(design: Design, joint) -> bool:
 
 def _toppling(linear: Linearization, force_rates: np.ndarray,
               scales: np.ndarray) -> list[Margin]:
-    """Per contact of the bolted state: normal force / the case's weight."""
+    """Per contact of the bolted state (not an anchor's tie, which may pull): normal
+    force / the case's weight (the sum of the normal forces; with walls or anchors, which
+    share the loads with the ground, the loads' size)."""
     forces = linear.contact_forces
-    weight = max(float(forces[:, 2].sum()), 1e-12)
+    weight = _load_scale(linear) if linear.model.contact_frames is not None \
+        or linear.model.contact_anchored is not None else max(float(forces[:, 2].sum()), 1e-12)
     rates = force_rates[:, :, 2].T * scales / weight                     # (nK, n)
     planks = linear.design.planks
     model = linear.model
+    ties = model.contact_anchored
     return [Margin("stability", planks[model.planks[model.contact_plank[k]]].id,
                    linear.case.name, float(forces[k, 2] / weight), rates[k], 0.0)
-            for k in range(len(forces))]
+            for k in range(len(forces)) if ties is None or not ties[k]]
+
+
+def _load_scale(linear: Linearization) -> float:
+    """N: the size of the case's applied loads (the sum of the ground's and the walls'
+    normal forces would be no scale for a design leaning on walls: they cancel)."""
+    forces = external_forces(linear.model, linear.case).reshape(-1, 6)[:, :3]
+    return max(float(np.sqrt((forces * forces).sum(axis=1)).sum()), 1e-12)
+
+
+def _cones(linear: Linearization, force_rates: np.ndarray,
+           scales: np.ndarray) -> list[Margin]:
+    """Per contact of the bolted state of a case that slides while leaning on walls (not
+    an anchor's tie): (mu N - |F_t|) / the loads' size, with rates."""
+    model, forces, mu = linear.model, linear.contact_forces, linear.design.material.friction
+    weight = _load_scale(linear)
+    ties = model.contact_anchored
+    planks = linear.design.planks
+    margins = []
+    for k in range(len(forces)):
+        if ties is not None and ties[k]:
+            continue
+        tangential = forces[k, :2]
+        size = max(float(np.hypot(*tangential)), 1e-12)
+        rates = (mu * force_rates[:, k, 2] - force_rates[:, k, :2] @ tangential / size) \
+            * scales / weight
+        margins.append(Margin("stability", planks[model.planks[model.contact_plank[k]]].id,
+                              linear.case.name, float(mu * forces[k, 2] - size) / weight,
+                              rates, 0.0))
+    return margins
+
+
+def _anchors(linear: Linearization, force_rates: np.ndarray,
+             scales: np.ndarray) -> list[Margin]:
+    """Per anchor: 1 - |F| / capacity (capacity / safety factor), with rates
+    -(F . dF) / (|F| capacity) from the contact force rates (n, nK, 3)."""
+    model, design = linear.model, linear.design
+    if model.contact_anchored is None:
+        return []
+    margins = []
+    for k in np.flatnonzero(model.contact_anchored):
+        index = linear.geometry.contacts[model.contacts[k]].anchor
+        capacity = design.anchors[index].capacity / design.safety_factor
+        force = linear.contact_forces[k]
+        size = max(float(np.linalg.norm(force)), 1e-12)
+        rates = -(force_rates[:, k, :] @ force) * scales / (size * capacity)
+        margins.append(Margin("durability", f"anchors[{index}]", linear.case.name,
+                              1.0 - size / capacity, rates, 0.0))
+    return margins
 
 
 def _component_loads(design: Design, components: list[list[int]], case_name: str) -> np.ndarray:
