@@ -203,10 +203,10 @@ def test_suggest_on_an_overloaded_anchored_shelf_writes_only_valid_designs(tmp_p
 def test_an_edit_that_moves_an_anchor_off_its_wall_is_no_design():
     """An anchor rides with its plank, but its wall stays: an edit that takes the point
     farther from the wall than drawn (or into it) by more than the tolerance would need
-    another bracket (``dofs.design_problem``); one along the wall keeps it."""
+    another bracket (``edit_check.design_problem``); one along the wall keeps it."""
     from dataclasses import replace
 
-    from furncheck.dofs import design_problem
+    from furncheck.edit_check import design_problem
 
     design = _parse(_cleat_shelf("rigid"))
     assert design.anchors[0].gap == pytest.approx(0.0)

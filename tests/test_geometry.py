@@ -198,7 +198,7 @@ def test_edits_checked_together_are_checked_as_alone():
     the same problem (or none) and the same joints, contacts and violations.  The random
     edits of three catalog designs include kept ones, parted and new joints, cuts and
     planks left without length."""
-    from furncheck.dofs import check_edit, check_edit_many
+    from furncheck.edit_check import check_edit, check_edit_many
 
     batches: dict[int, tuple] = {}
     for original, geometry, edited in _catalog_edits(
@@ -262,7 +262,8 @@ def test_edit_margins_are_linear_in_a_translation_and_vanish_where_the_checks_fl
     flips."""
     import range_designs as rd
 
-    from furncheck.dofs import apply_dof, check_edit, parse_dof, structure
+    from furncheck.dofs import apply_dof, parse_dof, structure
+    from furncheck.edit_check import check_edit
     from furncheck.geometry import EditMargins
 
     bay = rd.parse(rd.bay())

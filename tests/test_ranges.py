@@ -36,11 +36,11 @@ from furncheck.dofs import (
     OutOfReach,
     all_dofs,
     apply_dof,
-    check_edit,
     dof_value,
     parse_dof,
     structure,
 )
+from furncheck.edit_check import check_edit
 from furncheck.geometry import analyze
 from furncheck.ranges import RANGE_RESOLUTION, SEARCH_LIMIT, RangeFinder, dof_ranges
 

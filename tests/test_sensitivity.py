@@ -44,7 +44,8 @@ import range_designs as rd
 from furncheck.check import check_design
 from furncheck.design import load_design
 from furncheck.design.model import with_model
-from furncheck.dofs import Blocked, all_dofs, apply_dof, check_edit, parse_dof, structure
+from furncheck.dofs import Blocked, all_dofs, apply_dof, parse_dof, structure
+from furncheck.edit_check import check_edit
 from furncheck.geometry import analyze
 from furncheck.sensitivity import sensitivity
 

@@ -253,7 +253,7 @@ class _KeptStructure:
 
 class EditMargins:
     """Continuous margins (m, or cosines) of the criteria that decide whether an edit of a
-    design keeps its joints and ground contacts (``dofs.check_edit``), for edits that
+    design keeps its joints and ground contacts (``edit_check.check_edit``), for edits that
     change the planks ``changed`` (indices) only.  Calling it on an edited design gives
 
     required  : (R,) must stay > 0: for every joint of a changed plank its gap within

@@ -27,7 +27,7 @@ and its geometry check; ``_Margins``: geometric margins of an edit; ``_Statics``
 check) and receives their results.  ``Evaluator._run`` advances the searches of all
 DOFs together, and every round answers the evaluations they wait for as one batch: the
 geometry checks and the margins of all of them in one vectorized pass each
-(``dofs.check_edit_many``, ``geometry.edit_margins_many``).  No search depends on
+(``edit_check.check_edit_many``, ``geometry.edit_margins_many``).  No search depends on
 another's results, so the ranges are the same however the DOFs are batched.
 
 The package, by job:

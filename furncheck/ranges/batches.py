@@ -3,7 +3,7 @@
 A search (one side of a DOF's range, ``finder``) is a generator: it yields the evaluations
 it needs and receives their results.  ``Evaluator._run`` advances many searches together;
 each round, the evaluations they all wait for are answered as one batch (``_answer``): the
-geometry checks of all edits in one vectorized pass (``dofs.check_edit_many``), their
+geometry checks of all edits in one vectorized pass (``edit_check.check_edit_many``), their
 geometric margins in another (``geometry.edit_margins_many``), the full checks one by one.
 """
 
@@ -22,11 +22,11 @@ from furncheck.dofs import (
     OutOfReach,
     Structure,
     apply_dof,
-    check_edit_many,
     dof_value,
     parse_dof,
     structure,
 )
+from furncheck.edit_check import check_edit_many
 from furncheck.geometry import EditMargins, Geometry, analyze, edit_margins_many
 from furncheck.ranges.estimates import _Probe
 
@@ -134,7 +134,7 @@ class Evaluator:
 
     def _answer(self, requests: list) -> list[tuple[object, Exception | None]]:
         """(value, error) per request: ``_Kept`` checks all at once
-        (``dofs.check_edit_many``), ``_Margins`` all at once (``geometry.edit_margins_many``),
+        (``edit_check.check_edit_many``), ``_Margins`` all at once (``geometry.edit_margins_many``),
         then ``_Statics`` one by one."""
         answers: list = [None] * len(requests)
         kept = [k for k, request in enumerate(requests) if isinstance(request, _Kept)]

@@ -24,10 +24,10 @@ from furncheck.dofs import (
     OutOfReach,
     Structure,
     apply_dof,
-    design_problem,
     design_size,
     dof_value,
 )
+from furncheck.edit_check import design_problem
 from furncheck.geometry import Geometry, analyze, interpenetrations
 from furncheck.result import DesignReport
 from furncheck.statics import build_model, solve_load_case
@@ -102,7 +102,7 @@ class Editor:
         two planks cut into each other; else None.  Ground contacts may change: standing a
         hovering leg on the floor is the point of some suggestions.  A plank shrunk to no
         length or width, or an anchor moved off its wall, is refused too
-        (``dofs.design_problem``)."""
+        (``edit_check.design_problem``)."""
         self.checks += 1
         if design_problem(edited) is not None:
             return None
