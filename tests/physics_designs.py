@@ -294,7 +294,8 @@ def case_loads(design: dict, name: str = "default") -> list[dict]:
 def rigid_motion(design: dict, phi_deg: float, tx: float, ty: float) -> dict:
     """The design rotated by phi about the world z axis through the origin, then moved by
     (tx, ty) in the file's length unit.  Plank rotations become Rz(phi) @ R, converted back
-    to x-y-z Euler angles; load points move with the design, force vectors turn with it."""
+    to x-y-z Euler angles; load points, walls and anchors move with the design, force
+    vectors and wall normals turn with it."""
     out = copy.deepcopy(design)
     r = rz(phi_deg)
 
@@ -311,6 +312,11 @@ def rigid_motion(design: dict, phi_deg: float, tx: float, ty: float) -> dict:
             load["at"] = move(load["at"])
         if "force" in load:
             load["force"] = _apply(r, [float(v) for v in load["force"]])
+    for wall in out.get("walls") or []:
+        wall["point"] = move(wall["point"])
+        wall["normal"] = _apply(r, [float(v) for v in wall["normal"]])
+    for anchor in out.get("anchors") or []:
+        anchor["at"] = move(anchor["at"])
     return out
 
 
@@ -324,8 +330,8 @@ def convert_units(design: dict, to: str) -> dict:
     the material's length-valued keys and of the tolerance are written out explicitly (in
     their physical values: 12 mm, 20 mm, 0.5 mm) only if the original sets them; lengths
     converted are plank size/center/thickness (also in a plank's own material), material
-    thickness/nail_spacing, tolerance and load points.  Masses, forces, densities and
-    angles do not change."""
+    thickness/nail_spacing, tolerance, load points, wall points and anchor points.
+    Masses, forces, densities and angles do not change."""
     out = copy.deepcopy(design)
     scale = (1000.0 if to == "mm" else 1.0) / unit_factor(design)
     out["units"] = to
@@ -349,6 +355,10 @@ def convert_units(design: dict, to: str) -> dict:
     for load in _all_loads(out):
         if "at" in load:
             load["at"] = conv(load["at"])
+    for wall in out.get("walls") or []:
+        wall["point"] = conv(wall["point"])
+    for anchor in out.get("anchors") or []:
+        anchor["at"] = conv(anchor["at"])
     return out
 
 

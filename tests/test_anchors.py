@@ -235,3 +235,41 @@ def test_a_warm_start_keeps_a_pulling_anchor_holding(model):
     f = external_forces(model_, design.load_cases[0])
     cold, warm = solve_case(model_, f), solve_case(model_, f, start)
     assert np.abs(cold.contact_forces - warm.contact_forces).max() <= 1e-9 * np.abs(f).sum()
+
+
+def _catalog_bookcase(push: float | None = None, anchored: bool = True) -> dict:
+    """designs/bookcase-anchored.yaml as a plain document, optionally without its anchors
+    and with another push in its ``push`` case."""
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "designs" / "bookcase-anchored.yaml"
+    doc = yaml.safe_load(path.read_text(encoding="utf-8"))
+    if not anchored:
+        del doc["anchors"]
+    if push is not None:
+        (load,) = doc["load_cases"]["push"]["loads"]
+        load["force"] = [0.0, push, 0.0]
+    return doc
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_the_catalog_bookcase_topples_without_its_anchors(model):
+    """The catalog's anchored bookcase (designs/bookcase-anchored.yaml), its anchors
+    removed: its 843.7 N (26.0 kg of MDF and 60 kg of books, W) act d = 150 mm behind the
+    front edge of its feet, and the push acts h = 1800 mm up, so it tips once
+    P h > W d, at P = W d / h = 70.3 N: the file's 222 N push topples it (lift-off)
+    while its books alone stand, 90 % of 70.3 N stands and 110 % topples.  With the
+    anchors the same push holds (the catalog test)."""
+    weight = (26.0007 + 60.0) * G
+    tipping = weight * 150.0 / 1800.0
+    assert tipping == pytest.approx(70.3, abs=0.05)
+    report = check_design(_parse(_catalog_bookcase(anchored=False) | {"model": model}))
+    stability = {case.name: case.stability for case in report.cases}
+    assert stability == {"default": "stable", "push": "lift-off"}
+    assert {(v.kind, v.case) for v in report.violations} == {("lift-off", "push")}
+    for factor, expected in ((0.9, "stable"), (1.1, "lift-off")):
+        doc = _catalog_bookcase(push=factor * tipping, anchored=False) | {"model": model}
+        (push,) = [c for c in check_design(_parse(doc)).cases if c.name == "push"]
+        assert push.stability == expected, factor
+    anchored = check_design(_parse(_catalog_bookcase() | {"model": model}))
+    assert anchored.valid, [v.message for v in anchored.violations]

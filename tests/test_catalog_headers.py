@@ -182,6 +182,45 @@ def stability(design, case) -> str:
     return case.stability
 
 
+def anchors_total(axis: int) -> Quantity:
+    """N: |sum of the anchors' forces along world ``axis``| (the wall's pull on the
+    planks)."""
+    def value(design, case):
+        return abs(sum(a.force[axis] for a in case.anchors))
+    return value
+
+
+def anchors_largest(what: str, axis: int | None = None) -> Quantity:
+    """The largest anchor ``size`` (N) or ``utilization``, or with ``axis`` the largest
+    |force component| along it (N)."""
+    def value(design, case):
+        if axis is not None:
+            return max(abs(a.force[axis]) for a in case.anchors)
+        return max(float(getattr(a, what)) for a in case.anchors)
+    return value
+
+
+def wall_push(design, case) -> float:
+    """N: the walls' normal forces on the planks, summed (the pressing part of each wall
+    contact's force)."""
+    return sum(float(np.dot(c.force, design.walls[c.wall].normal)) for c in case.contacts
+               if c.wall is not None)
+
+
+def supports_moment_about(edge_yz: tuple[float, float]) -> Quantity:
+    """N m: the moment of every contact's and anchor's force about the x-parallel line
+    through (y, z) = ``edge_yz`` (mm), positive turning +y over -z (what holds a design
+    pushed towards +y from toppling over that edge); equilibrium makes it the loads'
+    overturning minus restoring moment about the edge."""
+    y0, z0 = edge_yz
+
+    def value(design, case):
+        pairs = [(c.point, c.force) for c in case.contacts] + \
+            [(a.point, a.force) for a in case.anchors]
+        return sum((p[1] - y0) * f[2] - (p[2] - z0) * f[1] for p, f in pairs) / 1000.0
+    return value
+
+
 # --- the estimates ----------
 
 @dataclass(frozen=True)
@@ -611,6 +650,60 @@ ESTIMATES = [
       for shelf in ("bottom", "middle", "top")),
     *(Estimate("bookshelf-18", "default", f"{side} ground force (N)", ground_normal(side),
                276.0, "3 x 81.9 + 29.8 = 276 N") for side in ("side_l", "side_r")),
+
+    # the wall shelf and the anchored bookcase (walls and anchors, contract section 2):
+    # their anchors' forces, in both models
+    Estimate("wall-shelf", "default", "self-weight (kg)", self_weight, 2.7 + 2 * 0.243,
+             "shelf 2.7 kg = 26.49 N, blocks 0.243 kg = 2.38 N each"),
+    *(Estimate("wall-shelf", "default", what, quantity, hand, quote, model=model)
+      for model in ("rigid", "elastic")
+      for what, quantity, hand, quote in (
+          ("anchors' pull (N)", anchors_total(1), 241.6, "the anchors pull 241.6 N"),
+          ("each anchor's pull (N)", anchors_largest("pull", axis=1), 120.8,
+           "241.6 N, 120.8 N each"),
+          ("the wall's push on the feet (N)", wall_push, 241.6,
+           "the wall pushes the four feet corners with as much"),
+          ("shelf/cleat_l moment (N m)", joint("shelf", "cleat_l", "moment"), 10.07,
+           "M = 86.8 N x 0.116 m = 10.07 N m"),
+          ("shelf/cleat_r pull (N per nail)", joint("shelf", "cleat_r", "pull"), 147.4,
+           "= 147.4 N per nail"))),
+    *(Estimate("wall-shelf", "default", what, quantity, hand, quote, kind=kind, model=model)
+      for model in ("rigid", "elastic")
+      for what, quantity, hand, quote, kind in (
+          ("anchor force bound (N)", anchors_largest("size"), 150.2,
+           "(120.8^2 + 89.2^2)^0.5 = 150.2 N", "at most"),
+          ("shelf/cleat_l nails", joint("shelf", "cleat_l", "nails"), 7,
+           "7 nails down through the shelf", "is"))),
+    Estimate("wall-shelf", "default", "shelf overhang sag (mm)", plank("shelf", "sag"),
+             0.078 + 0.001, "w a^4 / 8 EI = 0.078 mm (+ 0.001 mm shear)", model="elastic"),
+    Estimate("wall-shelf", "default", "shelf allowed sag (mm)", plank("shelf", "sag_allowed"),
+             0.9, "2 x 180 / 400 = 0.9 mm", rel=1e-3, model="elastic"),
+    Estimate("wall-shelf", "default", "shelf stress (N/mm^2)", plank("shelf", "stress"),
+             0.26, "13,500 mm^3: 0.26 N/mm^2", model="elastic"),
+
+    Estimate("bookcase-anchored", "default", "self-weight (kg)", self_weight, 26.0,
+             "26.0 kg = 255.1 N"),
+    *(Estimate("bookcase-anchored", "default", f"{side}/{shelf} shear (N per nail)",
+               joint(side, shelf, "shear"), 5.65, "5.65 N per nail in shear")
+      for side in ("side_l", "side_r") for shelf in ("bottom", "shelf_1", "shelf_2")),
+    Estimate("bookcase-anchored", "default", "anchors' vertical share, rigid (N)",
+             anchors_largest("lift", axis=2), 84.4, "2/10 of W, 84.4 N each"),
+    *(Estimate("bookcase-anchored", "push", what, quantity, hand, quote, rel=rel, abs=0.0,
+               model=model)
+      for model in ("rigid", "elastic")
+      for what, quantity, hand, quote, rel in (
+          ("anchors' pull (N)", anchors_total(1), 222.0, "about 111 N each", REL),
+          ("supports' moment about the front edge (N m)", supports_moment_about((315.0, 0.0)),
+           222.0 * 1.8 - 86.0007 * G * 0.15, "P h - W d = 273.0 N m", 1e-3))),
+    *(Estimate("bookcase-anchored", case, "anchor force bound (N)", anchors_largest("size"),
+               139.4, "(111^2 + 84.4^2)^0.5 = 139.4 N", kind="at most", model=model)
+      for model in ("rigid", "elastic") for case in ("default", "push")),
+    *(Estimate("bookcase-anchored", case, f"{shelf} sag bracket (mm)", plank(shelf, "sag"),
+               (0.181, 0.905), "w L^4 / 384 EI = 0.181 mm", kind="between", model="elastic")
+      for case in ("default", "push") for shelf in ("bottom", "shelf_1", "shelf_2", "shelf_3")),
+    Estimate("bookcase-anchored", "default", "shelf_2 allowed sag (mm)",
+             plank("shelf_2", "sag_allowed"), 1.41, "564 / 400 = 1.41 mm", rel=1e-3,
+             model="elastic"),
 ]
 
 

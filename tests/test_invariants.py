@@ -155,6 +155,15 @@ def assert_same_physics(a, b, scale: float, rotation=np.eye(3), map_point=lambda
             cb_contact = unmatched.pop(best)
             close(rotation @ np.array(contact.force), cb_contact.force, f_abs,
                   f"{where} contact {contact.plank} at {contact.point}")
+        # anchors in the file's order: the same ties, moved and turned with the design
+        assert [x.plank for x in cb.anchors] == [x.plank for x in ca.anchors], where
+        for anchor_a, anchor_b in zip(ca.anchors, cb.anchors):
+            what = f"{where} anchor of {anchor_a.plank} at {anchor_a.point}"
+            close(map_point(np.array(anchor_a.point)), anchor_b.point, point_tol,
+                  what + " point")
+            close(rotation @ np.array(anchor_a.force), anchor_b.force, f_abs, what)
+            close(anchor_a.utilization, anchor_b.utilization, f_abs / anchor_a.capacity,
+                  what + " utilization")
 
 
 # --- (a) rigid motion ----------
@@ -242,9 +251,10 @@ def test_moved_design_in_other_units(name, phi, tx):
 # --- (c) balance on the catalog ----------
 
 def grounded_planks(case) -> set[str]:
-    """Planks of the components that touch the ground: those with contacts and everything
-    joined to them through the case's joints."""
-    reached = {c.plank for c in case.contacts}
+    """Planks of the components that touch the ground (or a wall, or hang on an anchor):
+    those with contacts or anchors and everything joined to them through the case's
+    joints."""
+    reached = {c.plank for c in case.contacts} | {a.plank for a in case.anchors}
     changed = True
     while changed:
         changed = False
@@ -260,10 +270,10 @@ CATALOG = catalog_files()
 
 
 def assert_contacts_balance_loads(model, report) -> int:
-    """(c) on one report: for every case with contact forces, sum of contact forces +
-    self-weight + loads = 0 over the grounded planks, to BALANCE of the sum of applied force
-    magnitudes; moments about the mean contact point to BALANCE of that scale x 1 m.  A
-    spread load's resultant acts at its plank's centre.  Returns the number of cases
+    """(c) on one report: for every case with contact forces, sum of contact (and anchor)
+    forces + self-weight + loads = 0 over the grounded planks, to BALANCE of the sum of
+    applied force magnitudes; moments about the mean contact point to BALANCE of that
+    scale x 1 m.  A spread load's resultant acts at its plank's centre.  Returns the number of cases
     checked."""
     checked = 0
     for case_model, case in zip(model.load_cases, report.cases):
@@ -289,6 +299,10 @@ def assert_contacts_balance_loads(model, report) -> int:
             f = np.array(contact.force, dtype=float)
             force += f
             moment += np.cross(point - reference, f)
+        for anchor in case.anchors:                 # the walls' forces through anchors
+            f = np.array(anchor.force, dtype=float)
+            force += f
+            moment += np.cross(np.array(anchor.point) * model.unit_scale - reference, f)
         for f, point in applied:
             force += f
             moment += np.cross(point - reference, f)

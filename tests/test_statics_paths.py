@@ -99,7 +99,8 @@ def test_margin_of_agrees_with_the_report(path):
     worst = max((j.utilization for case in report.cases for j in case.joints), default=0.0)
     bent = max((p.utilization for case in report.cases for p in case.planks or ()),
                default=0.0)
-    assert margin == pytest.approx(1.0 - max(worst, bent), abs=1e-12)
+    held = max((a.utilization for case in report.cases for a in case.anchors), default=0.0)
+    assert margin == pytest.approx(1.0 - max(worst, bent, held), abs=1e-12)
     assert float(utilization.max(initial=0.0)) == pytest.approx(worst, abs=1e-12)
 
 
