@@ -273,3 +273,15 @@ def test_the_catalog_bookcase_topples_without_its_anchors(model):
         assert push.stability == expected, factor
     anchored = check_design(_parse(_catalog_bookcase() | {"model": model}))
     assert anchored.valid, [v.message for v in anchored.violations]
+
+
+def test_the_text_summary_names_the_worst_anchor(tmp_path):
+    """A valid anchored design's summary line says its most used anchor, as it says its
+    worst joint (the anchors may be nearer their capacity than any nail)."""
+    path = tmp_path / "shelf.yaml"
+    path.write_text(yaml.safe_dump(_cleat_shelf("rigid", load_kg=5.0)))
+    result = CliRunner().invoke(main, ["validate", str(path)])
+    assert result.exit_code == 0, result.output
+    report = check_design(_parse(_cleat_shelf("rigid", load_kg=5.0)))
+    worst = max(a.utilization for a in report.cases[0].anchors)
+    assert f"worst anchor anchors[0] (cleat) at {round(100 * worst)} %" in result.output
