@@ -338,7 +338,7 @@ class _StepSlope:
         self.k, self.caps, self.start = k, caps, slope0
         self.radius2 = (caps / k) ** 2                              # of the sticking disc
         self.base = slope0 + float((force[:, :2] * dw[:, :2]).sum())
-        self.curvature = stretch + (k * float(dw[:, 2] @ dw[:, 2]) if np.ndim(k) == 0
+        self.curvature = stretch + (k * float(dw[:, 2] @ dw[:, 2]) if not isinstance(k, np.ndarray)
                                     else float((k * dw[:, 2]) @ dw[:, 2]))
         self.alpha = self.dx * self.dx + self.dy * self.dy          # |dw_t|^2
         self.beta = self.wx * self.dx + self.wy * self.dy           # w_t.dw_t
@@ -412,7 +412,7 @@ class _StepSlope:
         px, py = self.wx + middle * self.dx, self.wy + middle * self.dy
         sticking = px * px + py * py <= self.radius2
         k = self.k
-        if np.ndim(k) == 0:
+        if not isinstance(k, np.ndarray):
             constant = self.base + k * float(self.beta[sticking].sum())
             linear = self.curvature + k * float(self.alpha[sticking].sum())
         else:                               # the anchors' ties have their own springs

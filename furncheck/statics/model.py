@@ -452,7 +452,7 @@ def spring_rows(springs: float | np.ndarray, rows=None, trailing: int = 0):
     """``StaticsModel.contact_springs`` (or rows ``rows`` of it: a mask or indices) shaped
     to broadcast over ``trailing`` more axes; a scalar stays a scalar (the same arithmetic
     as before anchors had their own springs)."""
-    if np.ndim(springs) == 0:
+    if not isinstance(springs, np.ndarray):
         return springs
     picked = springs if rows is None else springs[rows]
     return picked.reshape(picked.shape + (1,) * trailing)
