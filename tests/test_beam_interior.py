@@ -86,3 +86,45 @@ def test_more_nodes_change_nothing(name, monkeypatch):
         assert np.abs(coarse.joint_wrenches - fine.joint_wrenches).max() < 1e-6 * scale
         assert coarse.planks.sag == pytest.approx(fine.planks.sag, rel=3e-3, abs=1e-7)
         assert coarse.planks.stress == pytest.approx(fine.planks.stress, rel=1e-6)
+
+
+@pytest.mark.parametrize("name", ["cabinet-28", "bookshelf-18", "wall-shelf"])
+def test_stacked_plank_results_are_each_models_own(name):
+    """``plank_results_many`` reads several models' planks in one stacked pass (the
+    sensitivity's stepped designs): the same sag, span and stress, bit for bit, as one
+    ``plank_results`` call per model, whatever the models (here the design's own model at
+    its solved state and at scaled states, and an edited design's model)."""
+    from pathlib import Path
+
+    from furncheck.design import load_design
+    from furncheck.dofs import Blocked, OutOfReach, all_dofs, apply_dof, structure
+    from furncheck.geometry import analyze
+    from furncheck.statics import build_model, solve_load_case
+    from furncheck.statics.bending import plank_results, plank_results_many
+
+    design = load_design(str(Path(__file__).resolve().parents[1] / "designs" / f"{name}.yaml"))
+    geometry = analyze(design)
+    model = build_model(design, geometry)
+    runs = []
+    for case in design.load_cases:
+        statics = solve_load_case(model, case)
+        runs += [(model, case, statics.displacements), (model, case, 3.0 * statics.displacements)]
+    frame = structure(design, geometry)
+    for dof in all_dofs(design):
+        try:
+            edited = apply_dof(design, frame, dof, 2.0)
+        except (Blocked, OutOfReach):       # a DOF that cannot move: try the next
+            continue
+        edited_geometry = analyze(edited)
+        if edited_geometry.violations or len(edited_geometry.joints) != len(geometry.joints):
+            continue
+        edited_model = build_model(edited, edited_geometry)
+        case = edited.load_cases[0]
+        runs.append((edited_model, case, solve_load_case(edited_model, case).displacements))
+        break
+    holding = None
+    together = plank_results_many(runs, holding)
+    for (m, case, q), result in zip(runs, together):
+        alone = plank_results(m, case, q, holding)
+        for field in ("sag", "span", "stress"):
+            assert np.array_equal(getattr(result, field), getattr(alone, field)), field

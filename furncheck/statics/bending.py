@@ -26,6 +26,7 @@ from furncheck.statics.beams import (
     section_properties,
 )
 from furncheck.statics.elastic import (
+    Beams,
     _element_loads_local,
     case_line_loads,
     element_end_forces,
@@ -82,6 +83,73 @@ def plank_results(model: StaticsModel, case: LoadCase, q: np.ndarray,
     low, high = _outermost_supports(model, layout, holding)
     sag, span = _sag(model, s, deflection, sample_plank, w, slope, low, high)
     return PlankStatics(sag, span, stress)
+
+
+@dataclass(frozen=True)
+class _Stacked:
+    """Several models' elements, nodes and planks numbered one after another, with what
+    the reading functions below take of a model (``plank_results_many``)."""
+
+    beams: Beams
+    planks: range
+    node_plank: np.ndarray
+
+
+def plank_results_many(runs: list[tuple[StaticsModel, LoadCase, np.ndarray]],
+                       holding: np.ndarray | None = None) -> list[PlankStatics]:
+    """``plank_results`` of several (model, case, q) at once: their elements, nodes and
+    planks stacked into one set (each model's numbered after the previous ones'), so that
+    the array operations run once for all, not once per model (a sensitivity reads the
+    planks of every stepped design).  The same numbers as one call each: every step is
+    element by element, sample by sample, or a maximum per plank."""
+    parts = []
+    for model, case, q in runs:
+        layout = _layout(model)
+        low, high = _outermost_supports(model, layout, holding)
+        parts.append((model, layout, case_line_loads(model, case), q.reshape(-1, 6),
+                      low, high))
+    node_offsets = np.cumsum([0] + [part[0].n_nodes for part in parts])
+    plank_offsets = np.cumsum([0] + [len(part[0].planks) for part in parts])
+
+    def stacked(read, offsets=None) -> np.ndarray:
+        arrays = [read(*part) for part in parts]
+        if offsets is None:
+            return np.concatenate(arrays)
+        return np.concatenate([a + offset for a, offset in zip(arrays, offsets)])
+
+    def supports(values: np.ndarray, offset: int) -> np.ndarray:
+        return np.where(values >= 0, values + offset, -1)
+
+    beams = Beams(plank=stacked(lambda m, *_: m.beams.plank, plank_offsets),
+                  nodes=stacked(lambda m, *_: m.beams.nodes, node_offsets),
+                  length=stacked(lambda m, *_: m.beams.length),
+                  frames=stacked(lambda m, *_: m.beams.frames),
+                  local_stiffness=stacked(lambda m, *_: m.beams.local_stiffness),
+                  width=stacked(lambda m, *_: m.beams.width),
+                  thickness=stacked(lambda m, *_: m.beams.thickness),
+                  elastic_modulus=stacked(lambda m, *_: m.beams.elastic_modulus),
+                  shear_modulus=stacked(lambda m, *_: m.beams.shear_modulus),
+                  node_s=stacked(lambda m, *_: m.beams.node_s),
+                  plank_half=stacked(lambda m, *_: m.beams.plank_half))
+    layout = _Layout(node_frame=stacked(lambda m, lay, *_: lay.node_frame),
+                     inertia=stacked(lambda m, lay, *_: lay.inertia),
+                     area=stacked(lambda m, lay, *_: lay.area),
+                     bending=stacked(lambda m, lay, *_: lay.bending),
+                     in_plane=stacked(lambda m, lay, *_: lay.in_plane),
+                     joint_supports=np.zeros(0, dtype=int),
+                     measured=stacked(lambda m, lay, *_: lay.measured))
+    model = _Stacked(beams, range(int(plank_offsets[-1])),
+                     stacked(lambda m, *_: m.node_plank, plank_offsets))
+    displacement = stacked(lambda m, lay, loads, d, *_: d)
+    line_loads = stacked(lambda m, lay, loads, *_: loads)
+    low = np.concatenate([supports(part[4], n) for part, n in zip(parts, node_offsets)])
+    high = np.concatenate([supports(part[5], n) for part, n in zip(parts, node_offsets)])
+    w, slope = _transverse(displacement, layout.node_frame)
+    stress = _stress(model, layout, displacement, w, slope, line_loads)
+    s, deflection, sample_plank = _profile(model, layout, w, slope, line_loads)
+    sag, span = _sag(model, s, deflection, sample_plank, w, slope, low, high)
+    return [PlankStatics(sag[a:b], span[a:b], stress[a:b])
+            for a, b in zip(plank_offsets[:-1], plank_offsets[1:])]
 
 
 def _layout(model: StaticsModel) -> _Layout:

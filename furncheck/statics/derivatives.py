@@ -12,7 +12,8 @@ of the contact maps and of the joint lengths; ``rates = A^-1 (their residual)`` 
 * Elastic planks: the stepped design's model is built again on the same nodes
   (``elastic.build_elastic_model(..., template=model)``: every node at the new place of
   what it serves) and b - A x evaluated whole; the planks' sag, span and stress at the
-  stepped state x + dx give their rates (``AssemblyDifferences.plank_rates``).
+  stepped state x + dx give their rates (``AssemblyDifferences.plank_rates``: all stepped
+  models read in one stacked pass, ``bending.plank_results_many``).
 """
 
 from __future__ import annotations
@@ -70,11 +71,14 @@ class AssemblyDifferences:
         if not self.sides:
             empty = np.zeros((n_dofs, 0))
             return empty, empty.copy(), empty.copy()
-        from furncheck.statics.bending import plank_results
+        from furncheck.statics.bending import plank_results, plank_results_many
 
         n_planks = len(self.sides[0][3].planks)
         sag, span, stress = (np.zeros((n_dofs, n_planks)) for _ in range(3))
         at_rest = {}                # (model, case) -> its results at q (offset 0)
+        stepped = [(model, case, self.q + offset * dq[:, column])
+                   for column, _, offset, model, case in self.sides if offset != 0.0]
+        moved = iter(plank_results_many(stepped, self.holding) if stepped else ())
         for column, weight, offset, model, case in self.sides:
             if offset == 0.0:
                 key = (id(model), case.name)
@@ -82,8 +86,7 @@ class AssemblyDifferences:
                     at_rest[key] = plank_results(model, case, self.q, self.holding)
                 result = at_rest[key]
             else:
-                result = plank_results(model, case, self.q + offset * dq[:, column],
-                                       self.holding)
+                result = next(moved)
             sag[column] += weight * result.sag
             span[column] += weight * result.span
             stress[column] += weight * result.stress
