@@ -716,3 +716,21 @@ def test_in_memory_design_writes_and_reads_back(tmp_path):
     again = load_design(path)
     assert_same_design(design, again)
     assert math.isclose(again.load_cases[0].loads[0].force[2], -2.0 * GRAVITY)
+
+
+def test_the_readme_design_example_is_a_design():
+    """The README's design-file example (every key of the format, walls and anchors
+    included) reads without an error: it is checked, not refused."""
+    from pathlib import Path
+
+    from furncheck.check import check_design
+    from furncheck.design import parse_design
+
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    section = readme[readme.index("## Design files"):]
+    example = section.split("```yaml", 1)[1].split("```", 1)[0]
+    design = parse_design(example, "README.md", "yaml")
+    assert [c.name for c in design.load_cases] == ["default", "lean", "books-and-push"]
+    assert len(design.walls) == 1 and len(design.anchors) == 1
+    report = check_design(design)
+    assert report.error is None and not any(v.kind == "penetration" for v in report.violations)
