@@ -61,12 +61,12 @@ MODEL_OPTION = click.option(
 def load_or_fail(path: str, model: str | None = None):
     """The design at ``path`` (in ``model`` when given), or one line and exit 2 when it
     cannot be read."""
-    from furncheck.design import load_design
+    from furncheck.check import load_checked
     from furncheck.design.model import with_model
     from furncheck.errors import DesignError
 
     try:
-        return with_model(load_design(path), model)
+        return with_model(load_checked(path), model)
     except DesignError as error:
         fail(str(error))
 

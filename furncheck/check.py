@@ -110,14 +110,25 @@ def holding_states(design: Design, geometry: Geometry) -> tuple[np.ndarray | Non
     return tuple(solve_load_case(model, case).holding for case in design.load_cases)
 
 
+def load_checked(path: str) -> Design:
+    """``load_design`` and what the file's own drawing must satisfy besides its schema:
+    every resting joint's planks touch (``geometry.resting_apart``); DesignError else."""
+    from furncheck.design import load_design
+    from furncheck.geometry.analysis import resting_apart
+
+    design = load_design(path)
+    problem = resting_apart(design)
+    if problem is not None:
+        raise problem
+    return design
+
+
 def check_file(path: str, model: str | None = None) -> DesignReport:
     """Load and validate one file (in ``model``, 'elastic' or 'rigid', when given: the
     command line's ``--model`` over the file's); an unreadable or ill-formed file gives an
     error report."""
-    from furncheck.design import load_design
-
     try:
-        design = load_design(path)
+        design = load_checked(path)
     except DesignError as error:
         return DesignReport(design=path, name=Path(path).stem, valid=None, error=str(error))
     return check_design(with_model(design, model))

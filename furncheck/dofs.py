@@ -174,7 +174,7 @@ def structure(design: Design, geometry: Geometry) -> Structure:
         joint_count[joint.face] += 1
     corners: dict[str, dict[int | None, set[int]]] = {}     # plank -> support -> corners
     for contact in geometry.contacts:
-        if contact.anchor is None:                 # an anchor holds no end of its plank
+        if contact.anchor is None and contact.on is None:   # nor an anchor, nor a rest
             corners.setdefault(contact.plank, {}).setdefault(contact.wall, set()).add(
                 contact.corner)
     flat: dict[str, list[Vec3]] = {}

@@ -91,13 +91,21 @@ def _edit_problem(original: Geometry, geometry: Geometry) -> str | None:
     if new:
         return f"planks {new[0][0]}/{new[0][1]} would touch and form a new joint"
     # which planks stand on the ground and lean on which wall (anchors: design_problem)
-    held_before = {(c.plank, c.wall) for c in original.contacts if c.anchor is None}
-    held_after = {(c.plank, c.wall) for c in geometry.contacts if c.anchor is None}
+    held_before = {_support(c) for c in original.contacts if c.anchor is None}
+    held_after = {_support(c) for c in geometry.contacts if c.anchor is None}
     changed = sorted((held_before ^ held_after)
-                     - {(plank, None) for plank, _ in held_after if (plank,) in closing},
-                     key=lambda pair: (pair[0], -1 if pair[1] is None else pair[1]))
+                     - {(plank, None, None) for plank, *_ in held_after if (plank,) in closing},
+                     key=lambda key: (key[0], -1 if key[1] is None else key[1], key[2] or ""))
     if changed:
-        plank, wall = changed[0]
-        support = "the ground" if wall is None else f"wall {wall}"
-        return f"{plank} would {'leave' if changed[0] in held_before else 'touch'} {support}"
+        plank, wall, on = changed[0]
+        support = on if on is not None else "the ground" if wall is None else f"wall {wall}"
+        leaves = changed[0] in held_before
+        verb = ("leave" if leaves else "touch") if on is None else \
+            ("lift off" if leaves else "come to rest on")
+        return f"{plank} would {verb} {support}"
     return None
+
+
+def _support(contact) -> tuple:
+    """(plank, wall, the plank it rests on): what holds a plank at a contact."""
+    return contact.plank, contact.wall, contact.on

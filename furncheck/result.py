@@ -57,14 +57,15 @@ class JointResult:
 
 @dataclass(frozen=True)
 class ContactResult:
-    """The ground's (or wall ``wall``'s) force on a plank at one contact corner (N, world;
-    for the ground z is normal)."""
+    """The ground's (or wall ``wall``'s, or for a resting joint's corner the plank ``on``'s)
+    force on a plank at one contact corner (N, world; for the ground z is normal)."""
 
     plank: str
     point: tuple[float, float, float]
     force: tuple[float, float, float]
     wall: int | None = None
     normal: float | None = None      # N pressing on the ground or wall (force . its normal)
+    on: str | None = None            # a resting joint's corner: the plank pressing on it
 
     @property
     def pressing(self) -> float:

@@ -156,7 +156,7 @@ class Linearization:
             joints = tuple(j for j, joint in enumerate(geometry.joints)
                            if joint.edge in ids or joint.face in ids)
             contacts = tuple(k for k, contact in enumerate(geometry.contacts)
-                             if contact.plank in ids)
+                             if contact.plank in ids or contact.on in ids)
             pending.append((dof, h, changed, joints, contacts, plus, minus))
             edits.append((plus, joints, contacts))
             if not self.one_sided:
@@ -207,6 +207,12 @@ class Linearization:
         dq = rates[:n].T.reshape(len(moving), -1, 6)[:, model.contact_node]  # (D, nK, 6)
         dw = (np.einsum("dkab,kb->dka", map_rates, q)
               + np.einsum("kab,dkb->dka", model.contact_maps, dq))
+        if model.rest_node is not None:     # a resting corner moves against its support
+            rows, nodes = model.rest_rows, model.rest_node[model.rest_rows]
+            q_b = self.state[:n].reshape(-1, 6)[nodes]
+            dq_b = rates[:n].T.reshape(len(moving), -1, 6)[:, nodes]
+            dw[:, rows] -= (np.einsum("dkab,kb->dka", differences.rest_maps[:, rows], q_b)
+                            + np.einsum("kab,dkb->dka", model.rest_maps[rows], dq_b))
         contact_rates = -np.einsum("kab,dkb->dka", springs, dw)
         bending = differences.plank_rates(rates[:n])
         return Sensitivity(self.case.name, tuple(moving), joint_rates, contact_rates,

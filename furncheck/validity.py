@@ -147,7 +147,7 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
             contact = geometry.contacts[model.contacts[row]]
             if contact.anchor is None:
                 contacts.append(ContactResult(contact.plank, tuple(point), tuple(force),
-                                              contact.wall, normals[row]))
+                                              contact.wall, normals[row], contact.on))
                 continue
             held = _anchor_held(design, contact.anchor, force)
             anchors.append(held)

@@ -64,7 +64,8 @@ UNIT_SCALES = {"mm": 0.001, "m": 1.0}
 TOP_KEYS = ("furncheck", "name", "units", "model", "material", "planks", "joints", "loads",
             "load_cases", "safety_factor", "tolerance", "walls", "anchors")
 PLANK_KEYS = ("id", "size", "center", "rotation", "thickness", "material")
-JOINT_KEYS = ("planks", "nails")
+JOINT_KEYS = ("planks", "nails", "type")
+JOINT_TYPES = ("nailed", "rests")
 
 
 # --- public -------------------------------------------------------------------------------------
@@ -252,12 +253,20 @@ def _joints(doc: _Doc, node: Any, by_id: dict[str, Plank]) -> tuple[JointSpec, .
 
 
 def _joint(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank]) -> JointSpec:
-    """``[a, b]`` or ``{planks: [a, b], nails: n}``."""
-    nails = None
+    """``[a, b]`` or ``{planks: [a, b], nails: n, type: nailed | rests}``."""
+    nails, rests = None, False
     if isinstance(node, dict):
         fields = doc.mapping(node, key, JOINT_KEYS, required=("planks",))
         pair_key, pair_node = f"{key}.planks", fields["planks"]
+        if "type" in fields:
+            kind = doc.text(fields["type"], f"{key}.type")
+            if kind not in JOINT_TYPES:
+                doc.fail(f"{key}.type", f"unknown joint type {_quote(kind)}; use nailed or "
+                                        "rests")
+            rests = kind == "rests"
         if "nails" in fields:
+            if rests:
+                doc.fail(f"{key}.nails", "a joint of type rests has no nails")
             nails = _nail_count(doc, fields["nails"], f"{key}.nails")
     elif isinstance(node, list):
         pair_key, pair_node = key, node
@@ -271,7 +280,7 @@ def _joint(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank]) -> JointSpec
                      for i, item in enumerate(items))
     if first == second:
         doc.fail(key, f"a joint needs two different planks, got {_quote(first)} twice")
-    return JointSpec((first, second), nails)
+    return JointSpec((first, second), nails, rests)
 
 
 def _nail_count(doc: _Doc, node: Any, key: str) -> int:

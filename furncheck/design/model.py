@@ -179,10 +179,13 @@ class LoadCase:
 
 @dataclass(frozen=True)
 class JointSpec:
-    """A joint listed in the file: two plank ids, optional explicit nail count."""
+    """A joint listed in the file: two plank ids, optional explicit nail count; ``rests``:
+    a ``type: rests`` joint, no nails, one plank resting on the other (contract
+    section 2)."""
 
     planks: tuple[str, str]
     nails: int | None = None
+    rests: bool = False
 
 
 @dataclass(frozen=True)

@@ -116,6 +116,8 @@ def plank_entry(plank: Plank, design: Design) -> dict[str, Any]:
 
 
 def _joint_entry(joint: JointSpec) -> list[str] | dict[str, Any]:
+    if joint.rests:
+        return {"planks": list(joint.planks), "type": "rests"}
     if joint.nails is None:
         return list(joint.planks)
     return {"planks": list(joint.planks), "nails": int(joint.nails)}

@@ -14,6 +14,7 @@ import numpy as np
 
 from furncheck import tolerances as tol
 from furncheck.design.model import Design, Plank
+from furncheck.errors import DesignError
 from furncheck.geometry.faces import (
     _best_touches,
     _bounding_boxes,
@@ -44,28 +45,46 @@ def analyze(design: Design, previous: tuple[Design, Geometry] | None = None) -> 
     """
     violations: list[Violation] = []
     same = _unchanged_planks(design, previous)
+    rests: list[Contact] = []
     if design.joints is None:
         joints = _detect_joints(design, _unchanged_joints(design, previous, same))
     else:
-        joints = _listed_joints(design, violations)
-    return _completed(design, joints, violations, None if same is None else previous[1], same)
+        joints, rests = _listed_joints(design, violations)
+    return _completed(design, joints, violations, None if same is None else previous[1], same,
+                      rests)
 
 
 def _completed(design: Design, joints: list[Joint], violations: list[Violation],
-               earlier: Geometry | None, same: frozenset[str] | None) -> Geometry:
-    """The geometry of a design with these joints: its ground and wall contacts, anchors,
-    components, near misses (``geometry.near``) and connectivity violations added
-    (``earlier``: the analysis of a version in which the planks ``same`` are the same, see
-    ``analyze``)."""
-    contacts = _ground_contacts(design, violations, earlier, same) + anchor_contacts(design)
+               earlier: Geometry | None, same: frozenset[str] | None,
+               rests: list[Contact] | None = None) -> Geometry:
+    """The geometry of a design with these joints (and resting joints' contacts
+    ``rests``): its ground and wall contacts, anchors, resting contacts, components, near
+    misses (``geometry.near``) and connectivity violations added (``earlier``: the
+    analysis of a version in which the planks ``same`` are the same, see ``analyze``).
+    A group of planks resting on a grounded one (or carrying one) is grounded too."""
+    contacts = _ground_contacts(design, violations, earlier, same) + anchor_contacts(design) \
+        + list(rests or ())
     if earlier is not None and [j.planks for j in joints] == [j.planks for j in earlier.joints]:
         components = earlier.components          # they follow from the joined pairs alone
     else:
         components = _components(design, joints)
-    plank_has_contact = {c.plank for c in contacts}
-    grounded = tuple(any(design.planks[i].id in plank_has_contact for i in comp)
-                     for comp in components)
-    missed = near_misses(design, joints, contacts, components, grounded)
+    plank_has_contact = {c.plank for c in contacts if c.on is None}
+    grounded = [any(design.planks[i].id in plank_has_contact for i in comp)
+                for comp in components]
+    if rests:                                    # grounded through what they rest on
+        component_of = {design.planks[i].id: c for c, comp in enumerate(components)
+                        for i in comp}
+        links = {(component_of[c.plank], component_of[c.on]) for c in rests}
+        changed = True
+        while changed:
+            changed = False
+            for a, b in links:
+                if grounded[a] != grounded[b]:
+                    grounded[a] = grounded[b] = True
+                    changed = True
+    grounded = tuple(grounded)
+    missed = near_misses(design, joints, [c for c in contacts if c.on is None], components,
+                         grounded)
     _connectivity_violations(design, joints, components, grounded, violations,
                              {pid for miss in missed if len(miss.planks) == 2
                               for pid in miss.planks})
@@ -114,6 +133,9 @@ def follow_many(geometry: Geometry, edits: list) -> list[tuple[tuple[Joint, ...]
             contact = geometry.contacts[c]
             if contact.anchor is not None:      # it rides on its plank (``dofs.apply_dof``)
                 point = np.asarray(design.anchors[contact.anchor].point, dtype=float)
+            elif contact.on is not None:        # a resting joint's corner, measured again
+                followed.append(_rest_followed(design, contact))
+                continue
             else:
                 point = support_point(design, contact.wall,
                                       design.planks[index[contact.plank]].corners[contact.corner])
@@ -219,13 +241,16 @@ def _unchanged_joints(design: Design, previous: tuple[Design, Geometry] | None,
     return known
 
 
-def _listed_joints(design: Design, violations: list[Violation]) -> list[Joint]:
+def _listed_joints(design: Design,
+                   violations: list[Violation]) -> tuple[list[Joint], list[Contact]]:
+    """The listed joints, measured, and the contacts of the resting ones (``_rest``);
+    a listed joint whose planks do not touch, or cut into each other, is disconnected."""
     slack = design.tolerance + _GEOMETRY_EPS
     specs = design.joints or ()
     pairs = np.array([[design.plank_index[a], design.plank_index[b]] for a, b in
                       (spec.planks for spec in specs)], dtype=int).reshape(-1, 2)
     best = _best_touches(design.planks, pairs, slack, keep_deep=True)
-    joints = []
+    joints, rests = [], []
     for index, (spec, (i, j)) in enumerate(zip(specs, pairs)):
         key = f"joints[{index}]"
         touch = best.get((int(i), int(j)))
@@ -241,9 +266,60 @@ def _listed_joints(design: Design, violations: list[Violation]) -> list[Joint]:
                 f"planks interpenetrate by {_fmt_len(-touch.gap, design)}, more than the "
                 f"tolerance {_fmt_len(design.tolerance, design)}", line))
             continue
+        if spec.rests:
+            rests.extend(rest_contacts(touch, index))
+            continue
         nails = spec.nails or nail_count(touch.length, design.material.nail_spacing)
         joints.append(_joint_from_touch(touch, spec.planks, nails, key))
-    return joints
+    return joints, rests
+
+
+def resting_apart(design: Design) -> DesignError | None:
+    """The input error of a resting joint (``type: rests``) whose planks do not touch
+    within the tolerance, or cut into each other: a file that says a plank rests on
+    another must draw it there (contract section 1); None if every one touches."""
+    slack = design.tolerance + _GEOMETRY_EPS
+    for index, spec in enumerate(design.joints or ()):
+        if not spec.rests:
+            continue
+        i, j = (design.plank_index[p] for p in spec.planks)
+        touch = _best_touches(design.planks, np.array([[i, j]]), slack,
+                              keep_deep=True).get((i, j))
+        key = f"joints[{index}]"
+        if touch is None:
+            return DesignError(design.source, key, design.line_of(key),
+                               f"{spec.planks[0]} does not rest on {spec.planks[1]}: "
+                               + _apart_message(design, i, j))
+        if touch.gap < -slack:
+            return DesignError(design.source, key, design.line_of(key),
+                               f"{spec.planks[0]} and {spec.planks[1]} cut "
+                               f"{_fmt_len(-touch.gap, design)} into each other")
+    return None
+
+
+def _rest_followed(design: Design, contact: Contact) -> Contact:
+    """A resting joint's corner on an edited design: its touching region measured again
+    (the old corner where the planks no longer touch)."""
+    index = design.plank_index
+    i, j = index[contact.plank], index[contact.on]
+    touch = _best_touches(design.planks, np.array([[min(i, j), max(i, j)]]), slack=np.inf,
+                          keep_deep=True).get((min(i, j), max(i, j)))
+    if touch is None or touch.edge.id != contact.plank:
+        return contact
+    return rest_contacts(touch, contact.rest)[contact.corner]
+
+
+def rest_contacts(touch: _Touch, index: int) -> list[Contact]:
+    """The contacts of resting joint ``index`` (``Contact.on``): the four corners of the
+    region where the edge plank's end face lies on the face plank, point +- L/2 along the
+    joint line and +- w/2 across it (w = area / L), in the frame (x, y, n) of the touch."""
+    x, y, n = touch.frame[:, 0], touch.frame[:, 1], touch.frame[:, 2]
+    half_length = 0.5 * touch.length
+    half_width = 0.5 * touch.area / max(touch.length, 1e-12)
+    frame = np.array([x, y, n])
+    return [Contact(touch.edge.id, touch.point + sx * half_width * x + sy * half_length * y,
+                    k, None, None, touch.face.id, index, frame)
+            for k, (sx, sy) in enumerate(((-1, -1), (1, -1), (-1, 1), (1, 1)))]
 
 
 def _joint_from_touch(touch: _Touch, planks: tuple[str, str], nails: int, key: str) -> Joint:
@@ -294,7 +370,7 @@ def _ground_contacts(design: Design, violations: list[Violation],
     reused: dict[str, list] = {}
     if earlier is not None:
         for contact in earlier.contacts:
-            if contact.anchor is None:
+            if contact.anchor is None and contact.on is None:
                 reused.setdefault(contact.plank, []).append(contact)
         for violation in earlier.violations:
             if violation.kind == "penetration":

@@ -59,6 +59,11 @@ class Contact:
     anchor : index into ``Design.anchors`` for an anchor's tie (``point`` its point on the
              plank, ``corner`` -1, ``wall`` its wall; it holds both ways, without friction
              limit), else None
+    on     : for a corner of a resting joint (``type: rests``, contract section 2), the
+             plank it rests on (``plank`` is the joint's edge plank, ``on`` its face plank;
+             ``corner`` 0-3 the corner of their touching region, ``rest`` the joint's
+             index in ``Design.joints``, ``frame`` rows t1, t2 and the face plank's normal
+             n pointing into the edge plank: the contact's frame), else None
     """
 
     plank: str
@@ -66,6 +71,9 @@ class Contact:
     corner: int = 0
     wall: int | None = None
     anchor: int | None = None
+    on: str | None = None
+    rest: int | None = None
+    frame: np.ndarray | None = None
 
 
 def anchor_contacts(design) -> list[Contact]:

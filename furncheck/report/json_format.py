@@ -110,4 +110,6 @@ def _contact_dict(contact: ContactResult) -> dict[str, Any]:
     entry = {"plank": contact.plank, "point": list(contact.point), "force": list(contact.force)}
     if contact.wall is not None:
         entry["wall"] = contact.wall
+    if contact.on is not None:
+        entry["on"] = contact.on
     return entry

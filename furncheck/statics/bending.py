@@ -262,9 +262,11 @@ def _lying_on_floor(model: StaticsModel) -> set[int]:
     corners: dict[tuple, set[int]] = {}
     for row, c in enumerate(model.contacts):
         contact = model.geometry.contacts[c]
-        corners.setdefault((int(model.contact_plank[row]), contact.wall), set()).add(
-            contact.corner)
-    lying = {k for (k, _), found in corners.items()
+        if contact.on is not None:      # a resting joint's corners are not the plank's
+            continue
+        corners.setdefault((int(model.contact_plank[row]), contact.wall),
+                           set()).add(contact.corner)
+    lying = {k for (k, *_), found in corners.items()
              if {0, 1, 2, 3} <= found or {4, 5, 6, 7} <= found}
     model.plank_cache["lying"] = lying
     return lying

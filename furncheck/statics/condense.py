@@ -214,6 +214,10 @@ def _condense(model: StaticsModel) -> _Condensed | None:
     (``_condense_beams``), larger rigid ones through the sparse mixed system by SuperLU."""
     n, m = model.n_dof, 6 * len(model.joints)
     grounded, contact_block = np.unique(model.contact_node, return_inverse=True)
+    if model.rest_node is not None:     # the nodes that resting corners rest on, too
+        grounded = np.unique(np.concatenate([model.contact_node,
+                                             model.rest_node[model.rest_rows]]))
+        contact_block = np.searchsorted(grounded, model.contact_node)
     ground = (6 * grounded[:, None] + _SIX[None, :]).ravel()
     contact_block, plank_offsets = contact_block.astype(int), 6 * np.arange(len(grounded))
     if n <= tol.DENSE_PLANKS_MAX:
@@ -314,7 +318,7 @@ def _condensed_stiffness(model: StaticsModel, springs: np.ndarray) -> np.ndarray
     """S0 + K_c: the condensed system's matrix with the contact springs (n_g, n_g)."""
     maps = model.contact_maps
     blocks = np.transpose(maps, (0, 2, 1)) @ (springs @ maps)       # (nK, 6, 6)
-    return _with_contact_blocks(model, blocks)
+    return _with_rest_blocks(model, _with_contact_blocks(model, blocks), springs)
 
 
 def _anchored_stiffness(model: StaticsModel, holding: np.ndarray,
@@ -323,7 +327,44 @@ def _anchored_stiffness(model: StaticsModel, holding: np.ndarray,
     holding contact adds scale k M^T M, M^T M kept once per model."""
     blocks = model.contact_gram * (scale * model.contact_springs
                                    * holding.astype(float))[:, None, None]
-    return _with_contact_blocks(model, blocks)
+    stiffness = _with_contact_blocks(model, blocks)
+    if model.rest_node is None:
+        return stiffness
+    return _with_rest_blocks(model, stiffness,
+                             anchor_springs(holding, model.contact_springs) * scale)
+
+
+def _rest_coupling(model: StaticsModel, springs: np.ndarray) -> list[tuple]:
+    """For the resting corners, the blocks their springs S (nK, 3, 3) add besides
+    M_a^T S M_a at their own node's: (block of the node they rest on, that node's own
+    M_b^T S M_b), and the cross blocks -M_a^T S M_b, -M_b^T S M_a, as (rows' node, columns'
+    node, (nR, 6, 6) blocks) triples."""
+    rows = model.rest_rows
+    a, b = model.contact_node[rows], model.rest_node[rows]
+    m_a, m_b, s = model.contact_maps[rows], model.rest_maps[rows], springs[rows]
+    t_a, t_b = np.transpose(m_a, (0, 2, 1)), np.transpose(m_b, (0, 2, 1))
+    return [(b, b, t_b @ s @ m_b), (a, b, -(t_a @ s @ m_b)), (b, a, -(t_b @ s @ m_a))]
+
+
+def rest_blocks(model: StaticsModel) -> np.ndarray:
+    """(nR,) the x_g block of the node each resting corner rests on (``rest_rows``)."""
+    nodes = model.condensation.ground[::6] // 6
+    return np.searchsorted(nodes, model.rest_node[model.rest_rows])
+
+
+def _with_rest_blocks(model: StaticsModel, stiffness: np.ndarray,
+                      springs: np.ndarray) -> np.ndarray:
+    """The condensed matrix with the resting corners' other blocks (``_rest_coupling``)
+    added (it is unchanged without rests)."""
+    if model.rest_node is None:
+        return stiffness
+    nodes = model.condensation.ground[::6] // 6
+    for row_nodes, col_nodes, blocks in _rest_coupling(model, springs):
+        r = 6 * np.searchsorted(nodes, row_nodes)
+        c = 6 * np.searchsorted(nodes, col_nodes)
+        for k in range(len(blocks)):
+            stiffness[r[k]:r[k] + 6, c[k]:c[k] + 6] += blocks[k]
+    return stiffness
 
 
 def _with_contact_blocks(model: StaticsModel, blocks: np.ndarray) -> np.ndarray:
@@ -359,7 +400,15 @@ def system_matrix(model: StaticsModel, holding: np.ndarray) -> sp.csr_matrix:
     base = 6 * model.contact_node[:, None, None]
     rows = np.broadcast_to(base + _SIX[None, :, None], blocks.shape).ravel()
     cols = np.broadcast_to(base + _SIX[None, None, :], blocks.shape).ravel()
-    K_c = sp.coo_matrix((blocks.ravel(), (rows, cols)), shape=(n + m, n + m))
+    parts = [(blocks.ravel(), rows, cols)]
+    if model.rest_node is not None:
+        springs = anchor_springs(holding, model.contact_springs)
+        for row_nodes, col_nodes, extra in _rest_coupling(model, springs):
+            r = np.broadcast_to(6 * row_nodes[:, None, None] + _SIX[None, :, None], extra.shape)
+            c = np.broadcast_to(6 * col_nodes[:, None, None] + _SIX[None, None, :], extra.shape)
+            parts.append((extra.ravel(), r.ravel(), c.ravel()))
+    values, rows, cols = (np.concatenate(part) for part in zip(*parts))
+    K_c = sp.coo_matrix((values, (rows, cols)), shape=(n + m, n + m))
     return (_contact_free_matrix(model) + K_c).tocsr()
 
 

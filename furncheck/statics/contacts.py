@@ -14,7 +14,7 @@ import numpy as np
 
 from furncheck import tolerances as tol
 from furncheck.plain import plain_number
-from furncheck.statics.condense import _accurate, anchored_system
+from furncheck.statics.condense import _accurate, anchored_system, rest_blocks
 from furncheck.statics.feasibility import (
     INFEASIBLE,
     UNDECIDED,
@@ -24,7 +24,7 @@ from furncheck.statics.feasibility import (
     unilateral_feasible,
 )
 from furncheck.statics.friction import _anderson, _ContactSpace, _FrictionEnergy
-from furncheck.statics.model import CaseStatics, StaticsModel, spring_rows
+from furncheck.statics.model import CaseStatics, StaticsModel, _skew_many, spring_rows
 
 STICK, LIFT = 0, 2
 _LINE_DETAIL = ("all its ground contacts lie on one line: it can at best balance on that "
@@ -210,12 +210,18 @@ class _ActiveSet:
         forces = solution.contact_forces
         over = self._outside_cones(forces)
         if model.contact_frames is not None:        # walls too: the friction each needs
-            needed = float(np.hypot(forces[:, 0], forces[:, 1]).sum())
-            capacity = self.mu * float(np.maximum(forces[:, 2], 0.0).sum())
+            resting = self._rests_phrase(over, "slides on")
+            counted = np.ones(len(forces), dtype=bool)
+            if resting:                             # what the resting joints must hold
+                counted = np.zeros(len(forces), dtype=bool)
+                counted[model.rest_rows] = True
+            needed = float(np.hypot(forces[counted, 0], forces[counted, 1]).sum())
+            capacity = self.mu * float(np.maximum(forces[counted, 2], 0.0).sum())
+            holders = "resting joints" if resting else self._supports()
             detail = (f"no equilibrium within the friction cones (mu = "
-                      f"{plain_number(self.mu, 6)}): the ground and walls must hold "
-                      f"{plain_number(needed)} N along their faces, friction gives at most "
-                      f"{plain_number(capacity)} N")
+                      f"{plain_number(self.mu, 6)}): {resting + ': ' if resting else ''}"
+                      f"the {holders} must hold {plain_number(needed)} N along their faces, "
+                      f"friction gives at most {plain_number(capacity)} N")
             return CaseStatics("sliding", _wrenches(solution.h), forces,
                                self._plank_ids(over), detail, displacements=solution.q)
         sideways = float(np.hypot(*forces[:, :2].sum(axis=0)))
@@ -246,7 +252,12 @@ class _ActiveSet:
         pulling = bolted.contact_forces[:, 2] < -self.force_tol
         if self.anchored is not None:
             pulling &= ~self.anchored
-        if stability == "lift-off":
+        resting = self._rests_phrase(pulling, "lifts off")
+        if stability == "lift-off" and resting:
+            detail = (f"no equilibrium with the {self._supports()} only pushing: {resting} "
+                      f"(held down, the {self._supports()} would have to pull "
+                      f"{plain_number(-bolted.contact_forces[pulling, 2].sum())} N)")
+        elif stability == "lift-off":
             detail = (f"no equilibrium with the {self._supports()} only pushing: the load's "
                       "line of action "
                       "falls outside the support polygon, the design topples "
@@ -290,10 +301,13 @@ class _ActiveSet:
         judged against the loads' scale: its own right-hand side is round-off).
         """
         model = self.model
-        f = self.f.copy()
-        for row, force in enumerate(contact_forces):
-            k = model.contact_node[row]
-            f[6 * k:6 * k + 6] += model.contact_maps[row].T @ force
+        if model.rest_node is not None:     # forces on both planks of a resting corner
+            f = self.f + model.contact_generalized(contact_forces)
+        else:
+            f = self.f.copy()
+            for row, force in enumerate(contact_forces):
+                k = model.contact_node[row]
+                f[6 * k:6 * k + 6] += model.contact_maps[row].T @ force
         feeble = _ActiveSet(model, f, self.scale)
         solution = feeble.solve(np.full(len(model.contacts), STICK), stiffness_scale=1e-9,
                                 load_scale=self.scale)
@@ -304,8 +318,27 @@ class _ActiveSet:
                            displacements=solution.q)
 
     def _supports(self) -> str:
-        """What the contacts stand on, for messages: 'ground', or 'ground and walls'."""
+        """What the contacts stand on, for messages: 'ground', 'ground and walls', or
+        'supports' where planks rest on others."""
+        if self.model.rest_node is not None:
+            return "supports"
         return "ground" if self.model.contact_frames is None else "ground and walls"
+
+    def _rests_phrase(self, mask: np.ndarray, verb: str) -> str:
+        """'top lifts off side_l; ...' for the resting joints with a corner in ``mask``:
+        the upper plank (the face plank when its face looks down onto the edge plank)
+        first; '' for none."""
+        model, phrases = self.model, []
+        for k in model.rest_rows:
+            if not mask[k]:
+                continue
+            contact = model.geometry.contacts[model.contacts[k]]
+            upper, lower = (contact.on, contact.plank) if contact.frame[2][2] < 0.0 \
+                else (contact.plank, contact.on)
+            phrase = f"{upper} {verb} {lower}"
+            if phrase not in phrases:
+                phrases.append(phrase)
+        return "; ".join(phrases)
 
     def _pressing(self, forces: np.ndarray) -> np.ndarray:
         """(nK,) bool: the contacts that hold with forces (nK, 3): those that press, and
@@ -343,6 +376,10 @@ class _ActiveSet:
             return None
         plank_q = ground.reshape(-1, 6)[condensed.contact_block]           # (nK, 6)
         displacement = (model.contact_maps @ plank_q[:, :, None])[:, :, 0]
+        if model.rest_node is not None:     # a resting corner moves against its support
+            rows = model.rest_rows
+            other = ground.reshape(-1, 6)[rest_blocks(model)]
+            displacement[rows] -= (model.rest_maps[rows] @ other[:, :, None])[:, :, 0]
         # the anchor springs: k (x the scale) in all three directions where a contact holds
         forces = -(spring_rows(model.contact_springs, trailing=1) * stiffness_scale) \
             * displacement * holding[:, None]
@@ -393,15 +430,21 @@ class _ActiveSet:
         return bool(pulling.any() or sinking.any())
 
     def _plank_ids(self, mask: np.ndarray) -> tuple[str, ...]:
+        """The planks of the contacts in ``mask`` (both planks of a resting corner)."""
         design, model = self.model.design, self.model
         ids = {design.planks[model.planks[model.contact_plank[k]]].id
                for k in np.nonzero(mask)[0]}
+        if model.rest_node is not None:
+            ids |= {model.geometry.contacts[model.contacts[k]].on
+                    for k in np.nonzero(mask)[0] if model.rest_node[k] >= 0}
         return tuple(p.id for p in design.planks if p.id in ids)
 
 
 def _rigidly_held(model: StaticsModel, holding: np.ndarray) -> bool:
     """Whether the ``holding`` contacts hold every grounded component of the model in all
     six rigid directions."""
+    if model.rest_node is not None:
+        return _held_with_rests(model, holding)
     grams = model.rigid_grams
     for c in range(len(model.components)):
         members = (model.contact_component == c) & holding
@@ -409,6 +452,31 @@ def _rigidly_held(model: StaticsModel, holding: np.ndarray) -> bool:
             return False
         stiffness = grams[members].sum(axis=0)
         singular = np.linalg.svd(stiffness, compute_uv=False)
+        if singular[-1] <= tol.MECHANISM_RCOND * max(singular[0], 1e-300):
+            return False
+    return True
+
+
+def _held_with_rests(model: StaticsModel, holding: np.ndarray) -> bool:
+    """``_rigidly_held`` where planks rest on others: each component is held in all six
+    rigid directions by its own holding contacts and by those of the planks resting on it
+    (each taken as held by what it rests on)."""
+    rest_component = np.full(len(model.contacts), -1)
+    rows = model.rest_rows
+    rest_component[rows] = [model.contact_component_of_node(node)
+                            for node in model.rest_node[rows]]
+    for c in range(len(model.components)):
+        members = holding & ((model.contact_component == c) | (rest_component == c))
+        if not members.any():
+            return False
+        points = model.contact_points[members]
+        arm = points - points.mean(axis=0)
+        length = max(float(np.abs(arm).max()), 1e-6)
+        rigid = np.zeros((len(points), 3, 6))
+        rigid[:, :, :3] = np.eye(3)
+        rigid[:, :, 3:] = -_skew_many(arm) / length
+        singular = np.linalg.svd((np.transpose(rigid, (0, 2, 1)) @ rigid).sum(axis=0),
+                                 compute_uv=False)
         if singular[-1] <= tol.MECHANISM_RCOND * max(singular[0], 1e-300):
             return False
     return True

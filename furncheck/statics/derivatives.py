@@ -51,8 +51,9 @@ class AssemblySide:
 @dataclass
 class AssemblyDifferences:
     """The differences over the sides: ``residual`` (N, D) of b - A x, ``maps``
-    (D, nK, 3, 6) of the contact maps, ``lengths`` (D, nJ) of the joint lengths (m), per
-    DOF unit; for the planks' rates (elastic model only), ``sides``: per side (column,
+    (D, nK, 3, 6) of the contact maps (and ``rest_maps`` of the resting corners' other
+    planks' maps, when the model has them), ``lengths`` (D, nJ) of the joint lengths (m),
+    per DOF unit; for the planks' rates (elastic model only), ``sides``: per side (column,
     weight, offset, stepped model, its case), and the state's displacements ``q`` and
     holding contacts."""
 
@@ -60,6 +61,7 @@ class AssemblyDifferences:
     maps: np.ndarray
     lengths: np.ndarray
     sides: list = field(default_factory=list)
+    rest_maps: np.ndarray | None = None
     q: np.ndarray | None = None
     holding: np.ndarray | None = None
 
@@ -123,6 +125,8 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
                               np.zeros((n_dofs, *model.contact_maps.shape)),
                               np.zeros((n_dofs, len(model.joints))), q=q,
                               holding=law.holding)
+    if model.rest_maps is not None:
+        out.rest_maps = np.zeros((n_dofs, *model.rest_maps.shape))
     geometry = model.geometry
     unchanged = {}                  # case name -> b - A x of the model itself
     for side in sides:
@@ -134,6 +138,8 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
                 unchanged[case.name] = _residual(model, case, q, h, law)
             out.residual[:, side.column] += side.weight * unchanged[case.name]
             out.maps[side.column] += side.weight * model.contact_maps
+            if model.rest_maps is not None:
+                out.rest_maps[side.column] += side.weight * model.rest_maps
             out.lengths[side.column] += side.weight * np.array(
                 [geometry.joints[j].length for j in model.joints])
             out.sides.append((side.column, side.weight, side.offset, model, case))
@@ -149,6 +155,8 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
         stepped = build_elastic_model(side.design, stepped_geometry, template=model)
         out.residual[:, side.column] += side.weight * _residual(stepped, case, q, h, law)
         out.maps[side.column] += side.weight * stepped.contact_maps
+        if stepped.rest_maps is not None:
+            out.rest_maps[side.column] += side.weight * stepped.rest_maps
         out.lengths[side.column] += side.weight * np.array(
             [stepped_geometry.joints[j].length for j in model.joints])
         out.sides.append((side.column, side.weight, side.offset, stepped, case))
@@ -168,9 +176,13 @@ def _residual(model: StaticsModel, case, q: np.ndarray, h: np.ndarray,
     """b - A x of the mixed system [[K_b, G^T], [G, -E]] [q; h] = [f + M^T f_c; 0], the
     contact forces f_c as ``law`` gives them for the contact displacements M q."""
     w = model.contact_displacements(q)
-    contact = -np.transpose(model.contact_maps, (0, 2, 1)) @ law.forces(w)[:, :, None]
-    top = model.beam_forces(q) + model.reactions(h) \
-        + block_sums(model.contact_node, contact[:, :, 0], model.n_nodes).ravel()
+    if model.rest_node is not None:     # a resting corner's force acts on both planks
+        top = model.beam_forces(q) + model.reactions(h) \
+            - model.contact_generalized(law.forces(w))
+    else:
+        contact = -np.transpose(model.contact_maps, (0, 2, 1)) @ law.forces(w)[:, :, None]
+        top = model.beam_forces(q) + model.reactions(h) \
+            + block_sums(model.contact_node, contact[:, :, 0], model.n_nodes).ravel()
     compliance = (model.joint_compliance @ h.reshape(-1, 6, 1)).ravel()
     bottom = model.deviations(q) - compliance
     return np.concatenate([external_forces(model, case) - top, -bottom])
@@ -195,7 +207,8 @@ def _local(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name: s
     local_plank = {plank: k for k, plank in enumerate(model.planks)}
     joint_row = {j: row for row, j in enumerate(model.joints)}
     contact_row = {k: row for row, k in enumerate(model.contacts)}
-    joint_rows, contact_rows, plank_rows = [], [], []
+    joint_rows, contact_rows, plank_rows, rest_rows = [], [], [], []
+    rest_maps = None if model.rest_maps is None else np.zeros((n_dofs, *model.rest_maps.shape))
     for side in sides:
         column, weight, design = side.column, side.weight, side.design
         index = design.plank_index
@@ -209,10 +222,17 @@ def _local(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name: s
                                *design.planks[model.planks[b]].center_array, joint.length))
         for k, contact in zip(side.contacts, side.followed_contacts):
             row = contact_row.get(k)
-            if row is not None:
-                a = model.contact_node[row]
-                contact_rows.append((column, weight, row, a, *(
-                    contact.point - design.planks[model.planks[a]].center_array)))
+            if row is None:
+                continue
+            a = model.contact_node[row]
+            if model.rest_node is not None and model.rest_node[row] >= 0:
+                b = model.rest_node[row]
+                rest_rows.append((column, weight, row, a, b, *(
+                    contact.point - design.planks[model.planks[a]].center_array), *(
+                    contact.point - design.planks[model.planks[b]].center_array)))
+                continue
+            contact_rows.append((column, weight, row, a, *(
+                contact.point - design.planks[model.planks[a]].center_array)))
         case = next(c for c in design.load_cases if c.name == case_name)
         for i in side.changed:
             a = local_plank.get(i)
@@ -247,13 +267,26 @@ def _local(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name: s
         force = np.einsum("eba,eb->ea", stepped_maps, law.forces(w, row))
         _add(residual, 6 * a, column, force * weight[:, None])
         np.add.at(maps, (column, row), stepped_maps * weight[:, None, None])
+    if rest_rows:           # a resting corner: its force on both planks, against each other
+        table = np.array(rest_rows)
+        column, weight = table[:, 0].astype(int), table[:, 1]
+        row, a, b = (table[:, k].astype(int) for k in (2, 3, 4))
+        maps_a = model.contact_frames[row] @ point_maps(table[:, 5:8])
+        maps_b = model.contact_frames[row] @ point_maps(table[:, 8:11])
+        w = np.einsum("ebd,ed->eb", maps_a, q[a]) - np.einsum("ebd,ed->eb", maps_b, q[b])
+        forces = law.forces(w, row)
+        _add(residual, 6 * a, column, np.einsum("eba,eb->ea", maps_a, forces) * weight[:, None])
+        _add(residual, 6 * b, column, -np.einsum("eba,eb->ea", maps_b, forces)
+             * weight[:, None])
+        np.add.at(maps, (column, row), maps_a * weight[:, None, None])
+        np.add.at(rest_maps, (column, row), maps_b * weight[:, None, None])
     if plank_rows:
         table = np.array(plank_rows)
         column, weight = table[:, 0].astype(int), table[:, 1]
         a = table[:, 2].astype(int)
         np.add.at(residual, (6 * a + 2, column), table[:, 3] * weight)
         _add(residual, 6 * a + 3, column, table[:, 4:7] * weight[:, None])
-    return AssemblyDifferences(residual, maps, lengths)
+    return AssemblyDifferences(residual, maps, lengths, rest_maps=rest_maps)
 
 
 def _add(matrix: np.ndarray, first_row: np.ndarray, column: np.ndarray,

@@ -43,6 +43,7 @@ from furncheck.statics.model import (
     in_contact_frames,
     joint_deviation_blocks,
     point_maps,
+    rest_maps,
 )
 
 
@@ -243,6 +244,11 @@ def build_elastic_model(design: Design, geometry: Geometry,
         keys.append(("contact", row))
         owners.append(local[design.plank_index[geometry.contacts[c].plank]])
         points.append(geometry.contacts[c].point)
+    for row, c in enumerate(contacts):              # a resting corner's other plank
+        if geometry.contacts[c].on is not None:
+            keys.append(("rest", row))
+            owners.append(local[design.plank_index[geometry.contacts[c].on]])
+            points.append(geometry.contacts[c].point)
     for ci, case in enumerate(design.load_cases):
         for li, load in enumerate(case.loads):
             k = local.get(design.plank_index[load.plank])
@@ -292,6 +298,12 @@ def build_elastic_model(design: Design, geometry: Geometry,
                   if (k := local.get(design.plank_index[load.plank])) is not None}
     component_of = {p: c for c, comp in enumerate(components) for p in comp}
     frames = contact_frames(design, geometry, contacts)
+    rest_node = None
+    if any(key[0] == "rest" for key in keys):
+        rest_node = np.full(len(contacts), -1)
+        for index, key in enumerate(keys):
+            if key[0] == "rest":
+                rest_node[key[1]] = layout.row_node[index]
     model = StaticsModel(
         design=design, geometry=geometry, planks=tuple(planks_used), joints=tuple(joints),
         contacts=tuple(contacts), node_plank=node_plank, node_points=node_points,
@@ -299,6 +311,8 @@ def build_elastic_model(design: Design, geometry: Geometry,
         contact_maps=in_contact_frames(
             point_maps(contact_points - node_points[contact_node].reshape(-1, 3)), frames),
         contact_frames=frames, contact_anchored=anchored_contacts(geometry, contacts),
+        rest_node=rest_node,
+        rest_maps=rest_maps(rest_node, contact_points, node_points, frames),
         contact_node=contact_node, contact_plank=owner, contact_points=contact_points,
         contact_component=np.array([component_of[p] for p in owner], dtype=int),
         components=components, friction=material.friction,

@@ -68,6 +68,51 @@ def _component_problem(model: StaticsModel, f: np.ndarray, component: int):
     return members, rows, wrench
 
 
+def _problems(model: StaticsModel, f: np.ndarray):
+    """The equilibrium problems to solve, (contacts, rows, wrench) each: one per grounded
+    component (``_component_problem``), or, where planks rest on others, one for all:
+    each component's six rows about its own contacts, a resting corner's force in the rows
+    of the component it belongs to and, against it, of the one it rests on."""
+    if model.rest_node is None:
+        for component in range(len(model.components)):
+            yield _component_problem(model, f, component)
+        return
+    count = len(model.components)
+    rows = np.zeros((6 * count, 3 * len(model.contacts)))
+    wrench = np.zeros(6 * count)
+    for c in range(count):
+        members, own_rows, own_wrench = _component_problem(model, f, c)
+        cols = (3 * members[:, None] + np.arange(3)[None, :]).ravel()
+        rows[6 * c:6 * c + 6, cols] = own_rows
+        wrench[6 * c:6 * c + 6] = own_wrench
+        resting = [k for k in model.rest_rows
+                   if model.contact_component_of_node(model.rest_node[k]) == c]
+        if not resting:
+            continue
+        points = model.contact_points[members] if len(members) else \
+            model.contact_points[resting]
+        reference = points.mean(axis=0)
+        spread = max(float(np.abs(points - reference).max(initial=0.0)), 1e-6)
+        if not len(members):            # the wrench about the resting corners' mean
+            wrench[6 * c:6 * c + 6] = _wrench_about(model, f, c, reference, spread)
+        for k in resting:               # its force acts on this component reversed
+            block = np.vstack([np.eye(3), _skew(model.contact_points[k] - reference) / spread])
+            rows[6 * c:6 * c + 6, 3 * k:3 * k + 3] -= block @ model.contact_frames[k].T
+    yield np.arange(len(model.contacts)), rows, wrench
+
+
+def _wrench_about(model: StaticsModel, f: np.ndarray, component: int,
+                  reference: np.ndarray, spread: float) -> np.ndarray:
+    """The component's applied wrench (6,) about ``reference``, moments / ``spread``."""
+    wrench = np.zeros(6)
+    for k in model.component_nodes[component]:
+        centre = model.node_points[k]
+        force, moment = f[6 * k:6 * k + 3], f[6 * k + 3:6 * k + 6]
+        wrench[:3] += force
+        wrench[3:] += (moment + np.cross(centre - reference, force)) / spread
+    return wrench
+
+
 def _linprog(c, **problem) -> tuple[str, object]:
     """HiGHS on the program; an unproven answer is tried again with the other method."""
     from scipy.optimize import linprog
@@ -84,8 +129,7 @@ def _linprog(c, **problem) -> tuple[str, object]:
 
 def unilateral_feasible(model: StaticsModel, f: np.ndarray) -> Feasibility:
     """Whether every component can be held with normal forces >= 0 (friction unlimited)."""
-    for component in range(len(model.components)):
-        members, rows, wrench = _component_problem(model, f, component)
+    for members, rows, wrench in _problems(model, f):
         if len(members) == 0:
             return Feasibility(INFEASIBLE)
         bounds = [b for member in members
@@ -133,8 +177,7 @@ def cone_solution(model: StaticsModel, f: np.ndarray) -> Feasibility:
     """Whether contact forces inside the friction pyramids hold every component, and some
     such forces ((nK, 3) N) when they do."""
     forces = np.zeros((len(model.contacts), 3))
-    for component in range(len(model.components)):
-        members, rows, wrench = _component_problem(model, f, component)
+    for members, rows, wrench in _problems(model, f):
         if len(members) == 0:
             return Feasibility(INFEASIBLE)
         heading = _heading(-wrench[:2])
@@ -143,7 +186,7 @@ def cone_solution(model: StaticsModel, f: np.ndarray) -> Feasibility:
         status, result = _linprog(np.zeros(A.shape[1]), A_eq=A, b_eq=-wrench, bounds=(0, None))
         if status != FEASIBLE:
             return Feasibility(status, message=result.message)
-        if model.contact_anchored is None:          # one pyramid for all
+        if model.contact_anchored is None and model.rest_node is None:   # one pyramid for all
             forces[members] = result.x.reshape(len(members), -1) @ generators[0].T
             continue
         offsets = np.cumsum([0] + [edges.shape[1] for edges in generators])
@@ -169,8 +212,7 @@ def closest_admissible(model: StaticsModel, f: np.ndarray, target: np.ndarray) -
 
     forces = np.zeros((len(model.contacts), 3))
     weight = tol.EQUILIBRIUM_WEIGHT
-    for component in range(len(model.components)):
-        members, rows, wrench = _component_problem(model, f, component)
+    for members, rows, wrench in _problems(model, f):
         n = len(members)
         blocks = [_member_generators(model, member,       # each pyramid along its target's
                                      _heading(target[member, :2])   # push

@@ -64,6 +64,13 @@ class _ContactSpace:
         count, blocks = len(maps), len(condensed.plank_offsets)
         dense = np.zeros((count, 3, blocks, 6))
         dense[np.arange(count), :, condensed.contact_block[active], :] = maps
+        if model.rest_node is not None:         # a resting corner moves against its support
+            resting = np.flatnonzero(model.rest_node[active] >= 0)
+            if resting.size:
+                rows = np.flatnonzero(active)[resting]
+                nodes = condensed.ground[::6] // 6
+                dense[resting, :, np.searchsorted(nodes, model.rest_node[rows]), :] -= \
+                    model.rest_maps[rows]
         self.map = dense.reshape(3 * count, 6 * blocks)
         self.tangential = np.ascontiguousarray(dense[:, :2].reshape(2 * count, 6 * blocks))
         self.model, self.active = model, active

@@ -51,6 +51,11 @@ class StaticsModel:
                when every contact is on the ground (the world frame: x, y, z)
     contact_anchored : (nK,) bool, the anchors' ties among the contacts (they hold both
                ways, never lift or slip), or None when the design has none
+    rest_node, rest_maps : for a resting joint's corner (``Contact.on``), the node of the
+               plank it rests on (-1 for other contacts) and that plank's map (nK, 3, 6)
+               like ``contact_maps`` (zero for other contacts): the contact's displacement
+               is contact_maps q[contact_node] - rest_maps q[rest_node], its force acts on
+               the first plank and against it on the second; both None without rests
     contact_node, contact_plank : (nK,) local node and local plank of each contact
     contact_component : (nK,) component number of each contact
     contact_stiffness : N/m, the contacts' normal and anchor springs
@@ -84,6 +89,8 @@ class StaticsModel:
     load_nodes: dict | None = None     # (case name, load index) -> node (elastic model)
     contact_frames: np.ndarray | None = None
     contact_anchored: np.ndarray | None = None
+    rest_node: np.ndarray | None = None
+    rest_maps: np.ndarray | None = None
 
     @property
     def n_dof(self) -> int:
@@ -121,9 +128,39 @@ class StaticsModel:
         return np.einsum("kji,kj->ki", self.contact_frames, forces)
 
     def contact_displacements(self, q: np.ndarray) -> np.ndarray:
-        """(nK, 3) m: each contact point's displacement for node displacements q (6 nN,)."""
+        """(nK, 3) m: each contact point's displacement for node displacements q (6 nN,),
+        relative to the plank it rests on for a resting joint's corner."""
         node_q = q[:self.n_dof].reshape(-1, 6)[self.contact_node]
-        return (self.contact_maps @ node_q[:, :, None])[:, :, 0]
+        w = (self.contact_maps @ node_q[:, :, None])[:, :, 0]
+        if self.rest_node is not None:
+            rows = self.rest_rows
+            other = q[:self.n_dof].reshape(-1, 6)[self.rest_node[rows]]
+            w[rows] -= (self.rest_maps[rows] @ other[:, :, None])[:, :, 0]
+        return w
+
+    def contact_component_of_node(self, node: int) -> int:
+        """The grounded component that node ``node``'s plank belongs to."""
+        plank = int(self.node_plank[node])
+        return next(c for c, members in enumerate(self.components) if plank in members)
+
+    @cached_property
+    def rest_rows(self) -> np.ndarray:
+        """The contacts that are resting joints' corners (indices; none without rests)."""
+        if self.rest_node is None:
+            return np.zeros(0, dtype=int)
+        return np.flatnonzero(self.rest_node >= 0)
+
+    def contact_generalized(self, forces: np.ndarray) -> np.ndarray:
+        """(6 nN,) the node loads of contact forces (nK, 3) in the contacts' frames: M^T f
+        at each contact's node, and -M_b^T f at the node a resting corner rests on."""
+        per_contact = (np.transpose(self.contact_maps, (0, 2, 1)) @ forces[:, :, None])[:, :, 0]
+        out = block_sums(self.contact_node, per_contact, self.n_nodes)
+        if self.rest_node is not None:
+            rows = self.rest_rows
+            other = (np.transpose(self.rest_maps[rows], (0, 2, 1))
+                     @ forces[rows, :, None])[:, :, 0]
+            out -= block_sums(self.rest_node[rows], other, self.n_nodes)
+        return out.ravel()
 
     def beam_forces(self, q: np.ndarray) -> np.ndarray:
         """(6 nN,) K_b q element by element (zero for rigid planks)."""
@@ -328,6 +365,9 @@ def _build_rigid_model(design: Design, geometry: Geometry) -> StaticsModel:
                               dtype=float).reshape(-1, 3)
     component_of = {p: c for c, comp in enumerate(components) for p in comp}
     frames = contact_frames(design, geometry, contacts)
+    resting = [geometry.contacts[k].on for k in contacts]
+    rest_node = None if all(on is None for on in resting) else np.array(
+        [-1 if on is None else local[design.plank_index[on]] for on in resting], dtype=int)
     return StaticsModel(
         design=design, geometry=geometry, planks=tuple(grounded_planks), joints=tuple(joints),
         contacts=tuple(contacts), node_plank=np.arange(len(grounded_planks)),
@@ -338,7 +378,20 @@ def _build_rigid_model(design: Design, geometry: Geometry) -> StaticsModel:
         contact_node=owner, contact_plank=owner, contact_points=contact_points,
         contact_component=np.array([component_of[p] for p in owner], dtype=int),
         components=components, friction=design.material.friction, contact_frames=frames,
-        contact_anchored=anchored_contacts(geometry, contacts))
+        contact_anchored=anchored_contacts(geometry, contacts), rest_node=rest_node,
+        rest_maps=rest_maps(rest_node, contact_points, centres, frames))
+
+
+def rest_maps(rest_node: np.ndarray | None, contact_points: np.ndarray,
+              node_points: np.ndarray, frames: np.ndarray | None) -> np.ndarray | None:
+    """``StaticsModel.rest_maps``: each resting corner's displacement from the q of the
+    node it rests on (``rest_node``), in the contact's frame; zero for other contacts."""
+    if rest_node is None:
+        return None
+    resting = rest_node >= 0
+    offsets = np.where(resting[:, None], contact_points - node_points[np.maximum(rest_node, 0)],
+                       0.0)
+    return in_contact_frames(point_maps(offsets), frames) * resting[:, None, None]
 
 
 def anchored_contacts(geometry: Geometry, contacts: list[int]) -> np.ndarray | None:
@@ -350,15 +403,17 @@ def anchored_contacts(geometry: Geometry, contacts: list[int]) -> np.ndarray | N
 
 def contact_frames(design: Design, geometry: Geometry, contacts: list[int]) -> np.ndarray | None:
     """(nK, 3, 3) rows t1, t2, n of each contact's frame: the world frame for the ground;
-    for a wall with horizontal normal n, t1 = z x n along the wall, t2 = z up (t1 x t2 = n).
-    None when every contact is on the ground."""
-    walls = [geometry.contacts[c].wall for c in contacts]
-    if all(wall is None for wall in walls):
+    for a wall with horizontal normal n, t1 = z x n along the wall, t2 = z up (t1 x t2 = n);
+    a resting joint's own (``Contact.frame``).  None when every contact is on the ground."""
+    found = [geometry.contacts[c] for c in contacts]
+    if all(contact.wall is None and contact.frame is None for contact in found):
         return None
     frames = np.broadcast_to(np.eye(3), (len(contacts), 3, 3)).copy()
-    for row, wall in enumerate(walls):
-        if wall is not None:
-            nx, ny, _ = design.walls[wall].normal
+    for row, contact in enumerate(found):
+        if contact.frame is not None:                 # a resting joint's corner
+            frames[row] = contact.frame
+        elif contact.wall is not None:
+            nx, ny, _ = design.walls[contact.wall].normal
             frames[row] = ((-ny, nx, 0.0), (0.0, 0.0, 1.0), (nx, ny, 0.0))
     return frames
 

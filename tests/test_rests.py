@@ -1,0 +1,161 @@
+"""Resting joints (``type: rests``, contract section 2): a plank lying on another without
+nails, held by contact and friction only, in both models.
+
+The test frame: two 700 x 300 x 18 mm sides standing on the floor, nailed to a bottom
+stretcher, and a loose top (18 mm MDF, 750 kg/m^3) lying on the sides' top edges.  Each
+resting joint is four contact corners where a side's end face lies on the top's face.
+
+* A loose top pushed sideways at its own height (no arm to tip it over its supports)
+  slides on the sides once the push passes what friction on them can hold, mu W_top:
+  the sides press on it with W_top in all, friction gives at most mu W_top.  The frame
+  stands meanwhile (the floor holds mu (W_top + W_frame), more).  For the 700 x 300 top
+  W_top = 750 x 0.7 x 0.3 x 0.018 x 9.81 = 27.81 N, mu W_top = 13.9 N at mu = 0.5.
+* A 900 mm top overhanging the right side by 300 mm, pressed down at x_p = 590 mm, tips
+  about the right side's outer edge (x_e = 300 mm) once P (x_p - x_e) > W_top (x_e - x_c),
+  x_c = 150 mm its centre: P = 35.76 N x 150 / 290 = 18.50 N; beyond it the top lifts off
+  the left side (``lift-off``).
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+
+import numpy as np
+import pytest
+import yaml
+from cli_checks import assert_suggestions_validate
+from click.testing import CliRunner
+
+from furncheck.check import check_design
+from furncheck.cli.main import main
+from furncheck.design import parse_design
+from furncheck.geometry import analyze
+
+G, DENSITY, MU = 9.81, 750.0, 0.5
+
+FRAME = {
+    "furncheck": 1, "name": "loose-top",
+    "material": {"thickness": 18, "friction": MU},
+    "planks": [
+        {"id": "side_l", "size": [700, 300], "center": [-291, 0, 350], "rotation": [0, -90, 0]},
+        {"id": "side_r", "size": [700, 300], "center": [291, 0, 350], "rotation": [0, -90, 0]},
+        {"id": "bottom", "size": [564, 300], "center": [0, 0, 109]},
+        {"id": "top", "size": [700, 300], "center": [0, 0, 709]},
+    ],
+    "joints": [["side_l", "bottom"], ["side_r", "bottom"],
+               {"planks": ["top", "side_l"], "type": "rests"},
+               {"planks": ["top", "side_r"], "type": "rests"}],
+}
+
+
+def _design(model: str, loads: list, top=None):
+    doc = copy.deepcopy(FRAME)
+    doc["model"] = model
+    doc["loads"] = loads
+    if top is not None:
+        doc["planks"][3] = top
+    return parse_design(yaml.safe_dump(doc, sort_keys=False), "rests.yaml", "yaml")
+
+
+def _top_weight(length: float) -> float:
+    return DENSITY * length * 0.3 * 0.018 * G / 1000.0
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_loose_top_slides_at_mu_times_its_weight(model):
+    threshold = MU * _top_weight(700.0)
+    assert threshold == pytest.approx(13.90, abs=0.01)
+    for factor, expected in ((0.9, "stable"), (1.1, "sliding")):
+        push = factor * threshold
+        design = _design(model, [{"plank": "top", "force": [push, 0, 0], "at": [350, 0, 709]}])
+        report = check_design(design)
+        (case,) = report.cases
+        assert case.stability == expected, factor
+        if expected == "sliding":
+            (violation,) = report.violations
+            assert "top slides on side_l; top slides on side_r" in violation.message
+            assert f"friction gives at most {threshold:.4g} N" in violation.message
+            assert set(violation.where.split(",")) == {"side_l", "side_r", "top"}
+            continue
+        resting = [c for c in case.contacts if c.on == "top"]
+        assert len(resting) == 8 and {c.plank for c in resting} == {"side_l", "side_r"}
+        # the top's force on the sides: its weight down, the push along x
+        total = np.sum([c.force for c in resting], axis=0)
+        assert total == pytest.approx([push, 0.0, -_top_weight(700.0)],
+                                      abs=1e-6 * _top_weight(700.0))
+        assert all(c.force[2] <= 1e-9 for c in resting)            # it only presses
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_top_loaded_on_its_overhang_lifts_off_its_far_support(model):
+    top = {"id": "top", "size": [900, 300], "center": [150, 0, 709]}
+    threshold = _top_weight(900.0) * (300.0 - 150.0) / (590.0 - 300.0)
+    assert threshold == pytest.approx(18.50, abs=0.01)
+    for factor, expected in ((0.9, "stable"), (1.1, "lift-off")):
+        load = [{"plank": "top", "force": [0, 0, -factor * threshold], "at": [590, 0, 718]}]
+        report = check_design(_design(model, load, top))
+        assert report.cases[0].stability == expected, factor
+        if expected == "lift-off":
+            (violation,) = report.violations
+            assert violation.kind == "lift-off" and "top lifts off side_l" in violation.message
+
+
+def test_resting_contacts_are_reported_with_the_plank_that_presses(tmp_path):
+    doc = copy.deepcopy(FRAME) | {"loads": [{"plank": "top", "mass": 5}]}
+    path = tmp_path / "top.yaml"
+    path.write_text(yaml.safe_dump(doc, sort_keys=False))
+    result = CliRunner().invoke(main, ["validate", str(path), "--format", "json"])
+    assert result.exit_code == 0, result.output
+    contacts = json.loads(result.output)["reports"][0]["cases"][0]["contacts"]
+    resting = [c for c in contacts if "on" in c]
+    assert len(resting) == 8 and {c["on"] for c in resting} == {"top"}
+    assert all(c["point"][2] == pytest.approx(700.0) for c in resting)
+
+
+def test_a_resting_joint_has_no_nails_and_does_not_join_the_groups():
+    """The top is its own group (no nails), grounded through what it rests on; the sides'
+    and the bottom's nailed joints are the only joints."""
+    design = _design("rigid", [])
+    geometry = analyze(design)
+    assert not geometry.violations
+    assert [j.planks for j in geometry.joints] == [("side_l", "bottom"), ("side_r", "bottom")]
+    assert len(geometry.components) == 2 and all(geometry.grounded)
+
+
+@pytest.mark.parametrize("joint, message", [
+    ({"planks": ["top", "side_l"], "type": "glued"}, "joints[2].type: unknown joint type"),
+    ({"planks": ["top", "side_l"], "type": "rests", "nails": 4},
+     "joints[2].nails: a joint of type rests has no nails"),
+    ({"planks": ["top", "bottom"], "type": "rests"},
+     "joints[2]: top does not rest on bottom"),
+])
+def test_bad_resting_joints_give_one_line_and_exit_2(tmp_path, joint, message):
+    doc = copy.deepcopy(FRAME) | {"loads": [{"plank": "top", "mass": 5}]}
+    doc["joints"][2] = joint
+    path = tmp_path / "bad.yaml"
+    path.write_text(yaml.safe_dump(doc, sort_keys=False))
+    for command in (["validate", str(path)], ["range", str(path)], ["suggest", str(path)]):
+        result = CliRunner().invoke(main, command)
+        assert result.exit_code == 2, (command, result.output)
+        assert message in result.output and "Traceback" not in result.output
+
+
+def test_resting_joints_round_trip_through_a_written_file(tmp_path):
+    from furncheck.design import load_design, write_design
+
+    design = _design("rigid", [{"plank": "top", "mass": 5}])
+    path = tmp_path / "written.yaml"
+    write_design(design, str(path))
+    again = load_design(str(path))
+    assert [j.rests for j in again.joints] == [False, False, True, True]
+    assert check_design(again).valid == check_design(design).valid
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_suggest_on_a_sliding_top_writes_only_designs_that_validate(tmp_path, model):
+    doc = copy.deepcopy(FRAME) | {"model": model, "loads": [
+        {"plank": "top", "force": [15.0, 0, 0], "at": [350, 0, 709]}]}
+    path = tmp_path / "top.yaml"
+    path.write_text(yaml.safe_dump(doc, sort_keys=False))
+    assert_suggestions_validate(path, "top.x", "top.length")
