@@ -150,13 +150,14 @@ def ground_moment_inside(edge_mm: tuple[float, float], inward: tuple[float, floa
                          ) -> Quantity:
     """N m: sum N_i d_i, the moment of the ground's normal forces about a tipping edge
     through ``edge_mm`` (x, y), with d_i the distance of contact i inside it (along
-    ``inward``).  The horizontal forces act at z = 0, on the edge's level: no moment.
+    ``inward``; resting joints' corners are inside the design, not on the ground).  The
+    horizontal forces act at z = 0, on the edge's level: no moment.
     Equilibrium makes it the restoring minus the overturning moment about the edge."""
     direction = np.array(inward, dtype=float) / np.linalg.norm(inward)
 
     def value(design, case):
         return sum(c.force[2] * float(np.dot(np.array(c.point[:2]) - edge_mm, direction))
-                   for c in case.contacts) / 1000.0
+                   for c in case.contacts if c.on is None) / 1000.0
     return value
 
 
@@ -544,6 +545,21 @@ ESTIMATES = [
              model="elastic"),
     Estimate("table-pine-top", "default", "top strength (N/mm^2)", plank("top", "strength"),
              24.0, "bending strength 24 N/mm^2", rel=1e-9, model="elastic"),
+
+    # the bookcase with a loose shelf on pins (resting joints)
+    *(Estimate("bookcase-pins", "default", f"side_{s}/pin_{s}{e} shear (N per nail)",
+               joint(f"side_{s}", f"pin_{s}{e}", "shear"), 35.37, "35.37 N shear on each")
+      for s in "lr" for e in "fb"),
+    Estimate("bookcase-pins", "default", "shelf's press on its pins (N)",
+             lambda d, c: -sum(k.force[2] for k in c.contacts if k.on == "shelf"), 141.48,
+             "with 141.48 N in all", rel=1e-3),
+    tipping("bookcase-pins", "push", (0.0, 150.0), (0.0, -1.0), 58.2, 20.4,
+            "20 N x 1.018 m = 20.4 Nm passes 387.8 N x 0.150 m = 58.2 Nm"),
+    Estimate("bookcase-pins", "default", "shelf sag bracket (mm)", plank("shelf", "sag"),
+             (0.180, 0.901), "0.180 to 0.901 mm", kind="between", model="elastic"),
+    Estimate("bookcase-pins", "default", "shelf allowed sag (mm)",
+             plank("shelf", "sag_allowed"), 1.495, "598 / 400 = 1.495 mm", rel=1e-3,
+             model="elastic"),
 
     # --- the elastic model (the default): the headers' "Elastic model" estimates ----------
     # Sag brackets from the beam formulas quoted in each header: the lower end with fixed

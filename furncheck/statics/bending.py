@@ -344,12 +344,21 @@ def _moment_lines(model: StaticsModel, layout: _Layout, w: np.ndarray, slope: np
 def _outermost_supports(model: StaticsModel, layout: _Layout,
                         holding: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
     """(low, high) per local plank (nP,) int: its carrying support nearest its -e1 end and
-    nearest its +e1 end (nodes where a joint carries it, ``_carrying_neighbours``, or a
-    holding contact stands), -1 for a plank with none or lying on the floor."""
+    nearest its +e1 end (nodes where a joint carries it, ``_carrying_neighbours``, a
+    holding contact stands, or it lies on top of a holding resting joint), -1 for a plank
+    with none or lying on the floor."""
     beams = model.beams
     carrying = np.ones(len(model.contacts), dtype=bool) if holding is None \
         else np.asarray(holding, dtype=bool)
-    supports = np.concatenate([layout.joint_supports, model.contact_node[carrying]])
+    rows = np.flatnonzero(carrying)
+    nodes = model.contact_node[rows]
+    if model.rest_node is not None:     # a resting joint carries the plank lying on top
+        nodes = nodes.copy()
+        for i, k in enumerate(rows):
+            if model.rest_node[k] >= 0 and \
+                    model.geometry.contacts[model.contacts[k]].frame[2][2] < 0.0:
+                nodes[i] = model.rest_node[k]         # the face plank lies on the edge one
+    supports = np.concatenate([layout.joint_supports, nodes])
     plank = model.node_plank[supports]
     order = np.lexsort((beams.node_s[supports], plank))      # by plank, then along it
     supports, plank = supports[order], plank[order]
