@@ -24,7 +24,7 @@ from furncheck.statics.feasibility import (
     unilateral_feasible,
 )
 from furncheck.statics.friction import _anderson, _ContactSpace, _FrictionEnergy
-from furncheck.statics.model import CaseStatics, StaticsModel, _skew_many, spring_rows
+from furncheck.statics.model import CaseStatics, StaticsModel, rigid_motions, spring_rows
 
 STICK, LIFT = 0, 2
 _LINE_DETAIL = ("all its ground contacts lie on one line: it can at best balance on that "
@@ -469,12 +469,7 @@ def _held_with_rests(model: StaticsModel, holding: np.ndarray) -> bool:
         members = holding & ((model.contact_component == c) | (rest_component == c))
         if not members.any():
             return False
-        points = model.contact_points[members]
-        arm = points - points.mean(axis=0)
-        length = max(float(np.abs(arm).max()), 1e-6)
-        rigid = np.zeros((len(points), 3, 6))
-        rigid[:, :, :3] = np.eye(3)
-        rigid[:, :, 3:] = -_skew_many(arm) / length
+        rigid = rigid_motions(model.contact_points[members])
         singular = np.linalg.svd((np.transpose(rigid, (0, 2, 1)) @ rigid).sum(axis=0),
                                  compute_uv=False)
         if singular[-1] <= tol.MECHANISM_RCOND * max(singular[0], 1e-300):

@@ -59,13 +59,7 @@ def _component_problem(model: StaticsModel, f: np.ndarray, component: int):
         blocks = rows.reshape(6, len(members), 3).transpose(1, 0, 2)     # (nk, 6, 3)
         turned = blocks @ model.contact_frames[members].transpose(0, 2, 1)
         rows = turned.transpose(1, 0, 2).reshape(6, 3 * len(members))
-    wrench = np.zeros(6)
-    for k in model.component_nodes[component]:
-        centre = model.node_points[k]
-        force, moment = f[6 * k:6 * k + 3], f[6 * k + 3:6 * k + 6]
-        wrench[:3] += force
-        wrench[3:] += (moment + np.cross(centre - reference, force)) / spread
-    return members, rows, wrench
+    return members, rows, _wrench_about(model, f, component, reference, spread)
 
 
 def _problems(model: StaticsModel, f: np.ndarray):

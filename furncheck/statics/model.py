@@ -258,12 +258,7 @@ class StaticsModel:
             members = self.contact_component == c
             if not members.any():
                 continue
-            points = self.contact_points[members]
-            arm = points - points.mean(axis=0)
-            length = max(float(np.abs(arm).max()), 1e-6)
-            rigid = np.zeros((len(points), 3, 6))
-            rigid[:, :, :3] = np.eye(3)
-            rigid[:, :, 3:] = -_skew_many(arm) / length
+            rigid = rigid_motions(self.contact_points[members])
             grams[members] = np.transpose(rigid, (0, 2, 1)) @ rigid
         return grams
 
@@ -380,6 +375,17 @@ def _build_rigid_model(design: Design, geometry: Geometry) -> StaticsModel:
         components=components, friction=design.material.friction, contact_frames=frames,
         contact_anchored=anchored_contacts(geometry, contacts), rest_node=rest_node,
         rest_maps=rest_maps(rest_node, contact_points, centres, frames))
+
+
+def rigid_motions(points: np.ndarray) -> np.ndarray:
+    """(k, 3, 6) R per point: its displacement under a rigid motion of the body the points
+    belong to (translation, and rotation x the points' spread about their mean)."""
+    arm = points - points.mean(axis=0)
+    length = max(float(np.abs(arm).max()), 1e-6)
+    rigid = np.zeros((len(points), 3, 6))
+    rigid[:, :, :3] = np.eye(3)
+    rigid[:, :, 3:] = -_skew_many(arm) / length
+    return rigid
 
 
 def rest_maps(rest_node: np.ndarray | None, contact_points: np.ndarray,
