@@ -159,3 +159,29 @@ def test_suggest_on_a_sliding_top_writes_only_designs_that_validate(tmp_path, mo
     path = tmp_path / "top.yaml"
     path.write_text(yaml.safe_dump(doc, sort_keys=False))
     assert_suggestions_validate(path, "top.x", "top.length")
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_block_standing_on_a_board_slides_on_it_at_mu_times_its_weight(model):
+    """The other way round: the edge plank on top.  A 200 x 300 x 18 mm block stands on
+    its 300 mm end on a board lying on the floor (it rests on the board's face), pushed
+    along its width at its top: it tips at W x 150 / 200 = 0.75 W, so it slides first, at
+    mu W = 3.973 N (W = 750 x 0.2 x 0.3 x 0.018 x 9.81 = 7.946 N).  The message gives the
+    force the joint must pass on, its corners' forces summed, against mu W."""
+    weight = DENSITY * 0.2 * 0.3 * 0.018 * G
+    for factor, expected in ((0.9, "stable"), (1.1, "sliding")):
+        doc = {"furncheck": 1, "name": "block", "model": model,
+               "material": {"thickness": 18, "friction": MU},
+               "planks": [{"id": "board", "size": [600, 400], "center": [0, 0, 9]},
+                          {"id": "block", "size": [200, 300], "center": [0, 0, 118],
+                           "rotation": [0, -90, 0]}],
+               "joints": [{"planks": ["block", "board"], "type": "rests"}],
+               "loads": [{"plank": "block", "force": [0, factor * MU * weight, 0],
+                          "at": [0, 0, 218]}]}
+        report = check_design(parse_design(yaml.safe_dump(doc), "block.yaml", "yaml"))
+        assert report.cases[0].stability == expected, factor
+        if expected == "sliding":
+            message = report.violations[0].message
+            assert "block slides on board" in message
+            assert f"must hold {1.1 * MU * weight:.3g} N" in message
+            assert f"at most {MU * weight:.4g} N" in message

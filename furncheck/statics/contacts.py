@@ -211,12 +211,11 @@ class _ActiveSet:
         over = self._outside_cones(forces)
         if model.contact_frames is not None:        # walls too: the friction each needs
             resting = self._rests_phrase(over, "slides on")
-            counted = np.ones(len(forces), dtype=bool)
             if resting:                             # what the resting joints must hold
-                counted = np.zeros(len(forces), dtype=bool)
-                counted[model.rest_rows] = True
-            needed = float(np.hypot(forces[counted, 0], forces[counted, 1]).sum())
-            capacity = self.mu * float(np.maximum(forces[counted, 2], 0.0).sum())
+                needed, capacity = self._rests_friction(forces)
+            else:
+                needed = float(np.hypot(forces[:, 0], forces[:, 1]).sum())
+                capacity = self.mu * float(np.maximum(forces[:, 2], 0.0).sum())
             holders = "resting joints" if resting else self._supports()
             detail = (f"no equilibrium within the friction cones (mu = "
                       f"{plain_number(self.mu, 6)}): {resting + ': ' if resting else ''}"
@@ -323,6 +322,17 @@ class _ActiveSet:
         if self.model.rest_node is not None:
             return "supports"
         return "ground" if self.model.contact_frames is None else "ground and walls"
+
+    def _rests_friction(self, forces: np.ndarray) -> tuple[float, float]:
+        """(N, N): the sideways force the resting joints must pass on, each joint's
+        corners' forces summed (what the corners push against each other cancels), and
+        the friction mu N they give."""
+        model, sideways = self.model, {}
+        for k in model.rest_rows:
+            rest = model.geometry.contacts[model.contacts[k]].rest
+            sideways[rest] = sideways.get(rest, np.zeros(2)) + forces[k, :2]
+        needed = float(sum(np.hypot(*total) for total in sideways.values()))
+        return needed, self.mu * float(np.maximum(forces[model.rest_rows, 2], 0.0).sum())
 
     def _rests_phrase(self, mask: np.ndarray, verb: str) -> str:
         """'top lifts off side_l; ...' for the resting joints with a corner in ``mask``:
