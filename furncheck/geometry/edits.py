@@ -314,7 +314,7 @@ class EditMargins:
             self.edge, self.face, self.f, self.g, self.is_joint = (
                 self.edge[keep], self.face[keep], self.f[keep], self.g[keep], self.is_joint[keep])
         self.detected = design.joints is None
-        grounded = {c.plank for c in geometry.contacts}
+        grounded = {c.plank for c in geometry.contacts if c.on is None and c.anchor is None}
         sunk = {v.where for v in geometry.violations if v.kind == "penetration"}
         self.grounded = [design.planks[i].id in grounded for i in self.changed]
         self.sunk = [design.planks[i].id in sunk for i in self.changed]

@@ -84,7 +84,7 @@ def missed_ground(design: Design, contacts: list[Contact],
     slack, band = near_band(design)
     if band <= slack:
         return []
-    touching = {contact.plank for contact in contacts}
+    touching = {contact.plank for contact in contacts if contact.on is None}
     candidates = sorted(i for component, on_ground in zip(components, grounded)
                         if on_ground for i in component)
     if only is not None:

@@ -212,15 +212,23 @@ class _ActiveSet:
         if model.contact_frames is not None:        # walls too: the friction each needs
             resting = self._rests_phrase(over, "slides on")
             if resting:                             # what the resting joints must hold
-                needed, capacity = self._rests_friction(forces)
+                needed, capacity = self._rests_friction(forces, over)
+            else:                                   # the ground's and walls' corners
+                own = np.ones(len(forces), dtype=bool)
+                if model.rest_node is not None:
+                    own[model.rest_rows] = False
+                needed = float(np.hypot(forces[own, 0], forces[own, 1]).sum())
+                capacity = self.mu * float(np.maximum(forces[own, 2], 0.0).sum())
+            walls = any(model.geometry.contacts[c].wall is not None for c in model.contacts)
+            if resting:
+                what = (f"{resting}: a resting joint must pass on {plain_number(needed)} N "
+                        f"along its faces, its friction gives at most {plain_number(capacity)} N")
             else:
-                needed = float(np.hypot(forces[:, 0], forces[:, 1]).sum())
-                capacity = self.mu * float(np.maximum(forces[:, 2], 0.0).sum())
-            holders = "resting joints" if resting else self._supports()
+                what = (f"the {'ground and walls' if walls else 'ground'} must hold "
+                        f"{plain_number(needed)} N along their faces, friction gives at most "
+                        f"{plain_number(capacity)} N")
             detail = (f"no equilibrium within the friction cones (mu = "
-                      f"{plain_number(self.mu, 6)}): {resting + ': ' if resting else ''}"
-                      f"the {holders} must hold {plain_number(needed)} N along their faces, "
-                      f"friction gives at most {plain_number(capacity)} N")
+                      f"{plain_number(self.mu, 6)}): {what}")
             return CaseStatics("sliding", _wrenches(solution.h), forces,
                                self._plank_ids(over), detail, displacements=solution.q)
         sideways = float(np.hypot(*forces[:, :2].sum(axis=0)))
@@ -251,17 +259,32 @@ class _ActiveSet:
         pulling = bolted.contact_forces[:, 2] < -self.force_tol
         if self.anchored is not None:
             pulling &= ~self.anchored
-        resting = self._rests_phrase(pulling, "lifts off")
+        resting, pulled = "", -float(bolted.contact_forces[pulling, 2].sum())
+        if self.model.rest_node is not None:    # a resting joint lifts where its corners'
+            forces = bolted.contact_forces      # forces add up to a pull
+            lifting = {rest for rest, total in self._rest_totals(forces).items()
+                       if total[2] < -self.force_tol}
+            corners = np.zeros(len(forces), dtype=bool)
+            for k in self.model.rest_rows:
+                corners[k] = self.model.geometry.contacts[self.model.contacts[k]].rest \
+                    in lifting
+            resting = self._rests_phrase(corners, "lifts off")
+            ground = pulling.copy()
+            ground[self.model.rest_rows] = False
+            pulled = -float(forces[ground, 2].sum()) - sum(
+                float(total[2]) for rest, total in self._rest_totals(forces).items()
+                if rest in lifting)
+            pulling = ground | corners          # the planks named: those that lift
         if stability == "lift-off" and resting:
             detail = (f"no equilibrium with the {self._supports()} only pushing: {resting} "
                       f"(held down, the {self._supports()} would have to pull "
-                      f"{plain_number(-bolted.contact_forces[pulling, 2].sum())} N)")
+                      f"{plain_number(pulled)} N)")
         elif stability == "lift-off":
             detail = (f"no equilibrium with the {self._supports()} only pushing: the load's "
                       "line of action "
                       "falls outside the support polygon, the design topples "
                       f"(held down, the {self._supports()} would have to pull "
-                      f"{plain_number(-bolted.contact_forces[pulling, 2].sum())} N)")
+                      f"{plain_number(pulled)} N)")
         else:
             detail = (f"no equilibrium within the friction cones "
                       f"(mu = {plain_number(self.mu, 6)}); forces shown as if the design were "
@@ -323,16 +346,31 @@ class _ActiveSet:
             return "supports"
         return "ground" if self.model.contact_frames is None else "ground and walls"
 
-    def _rests_friction(self, forces: np.ndarray) -> tuple[float, float]:
-        """(N, N): the sideways force the resting joints must pass on, each joint's
-        corners' forces summed (what the corners push against each other cancels), and
-        the friction mu N they give."""
-        model, sideways = self.model, {}
+    def _rest_totals(self, forces: np.ndarray) -> dict[int, np.ndarray]:
+        """Per resting joint (its index in ``Design.joints``), its corners' forces (nK, 3)
+        summed: what the corners push against each other cancels."""
+        model, totals = self.model, {}
         for k in model.rest_rows:
             rest = model.geometry.contacts[model.contacts[k]].rest
-            sideways[rest] = sideways.get(rest, np.zeros(2)) + forces[k, :2]
-        needed = float(sum(np.hypot(*total) for total in sideways.values()))
-        return needed, self.mu * float(np.maximum(forces[model.rest_rows, 2], 0.0).sum())
+            totals[rest] = totals.get(rest, np.zeros(3)) + forces[k]
+        return totals
+
+    def _rests_friction(self, forces: np.ndarray, over: np.ndarray) -> tuple[float, float]:
+        """(N, N) of the resting joint that needs the most friction for what it gives
+        (among those with a corner in ``over``): the sideways force it must pass on, its
+        corners' forces summed, and the friction mu N it gives."""
+        model = self.model
+        sliding = {model.geometry.contacts[model.contacts[k]].rest
+                   for k in model.rest_rows if over[k]}
+        worst = (0.0, 0.0)
+        for rest, total in self._rest_totals(forces).items():
+            if rest not in sliding:
+                continue
+            needed, capacity = float(np.hypot(total[0], total[1])), \
+                self.mu * max(float(total[2]), 0.0)
+            if needed - capacity > worst[0] - worst[1]:
+                worst = (needed, capacity)
+        return worst
 
     def _rests_phrase(self, mask: np.ndarray, verb: str) -> str:
         """'top lifts off side_l; ...' for the resting joints with a corner in ``mask``:
