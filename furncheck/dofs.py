@@ -162,7 +162,8 @@ class Structure:
 
 
 def structure(design: Design, geometry: Geometry) -> Structure:
-    """The held ends and attachments of every plank, from its joints and ground contacts."""
+    """The held ends and attachments of every plank, from its joints (nailed or resting)
+    and ground contacts."""
     ends: dict[str, list[End]] = {p.id: [] for p in design.planks}
     attached: dict[str, list[tuple[str, End]]] = {p.id: [] for p in design.planks}
     joint_count = {p.id: 0 for p in design.planks}
@@ -172,6 +173,18 @@ def structure(design: Design, geometry: Geometry) -> Structure:
         attached[joint.face].append((joint.edge, end))
         joint_count[joint.edge] += 1
         joint_count[joint.face] += 1
+    for contact in geometry.contacts:     # a resting joint holds its end like a nailed one
+        if contact.on is None or contact.corner != 0:
+            continue
+        normal = np.asarray(contact.frame[2], dtype=float)   # into the edge plank
+        axes = design.plank(contact.plank).rotation_matrix
+        along = [float(axes[:, a] @ normal) for a in (0, 1)]
+        axis = int(np.argmax(np.abs(along)))
+        end = End(axis, -1 if along[axis] > 0.0 else 1, contact.on, normal.copy())
+        ends[contact.plank].append(end)
+        attached[contact.on].append((contact.plank, end))
+        joint_count[contact.plank] += 1
+        joint_count[contact.on] += 1
     corners: dict[str, dict[int | None, set[int]]] = {}     # plank -> support -> corners
     for contact in geometry.contacts:
         if contact.anchor is None and contact.on is None:   # nor an anchor, nor a rest
