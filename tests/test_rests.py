@@ -190,3 +190,52 @@ def test_a_block_standing_on_a_board_slides_on_it_at_mu_times_its_weight(model):
             assert "block slides on board" in message
             assert f"must pass on {1.1 * MU * weight:.3g} N" in message
             assert f"at most {MU * weight:.4g} N" in message
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_the_force_sensitivity_of_a_resting_top_matches_finite_differences(model):
+    """``sensitivity`` on the loose top (pushed with 10 N, below its 13.9 N): for every
+    DOF that keeps the contacts, their holding set and the top on its sides, the joint
+    wrench and contact force rates (each contact's force in its own frame, as the statics
+    reports it: a resting corner's frame turns with the plank it rests on) equal the central
+    differences of the full solve, (F(+h) - F(-h)) / 2h, to 1e-4 of the DOF's largest rate
+    (plus half the one-sided slopes' spread where they differ by more than 1e-3 of it)."""
+    from furncheck.dofs import all_dofs, apply_dof, structure
+    from furncheck.edit_check import check_edit
+    from furncheck.sensitivity import sensitivity
+    from furncheck.statics import build_model, solve_load_case
+
+    design = _design(model, [{"plank": "top", "force": [10, 0, 0], "at": [350, 0, 709]}])
+    geometry = analyze(design)
+    frame = structure(design, geometry)
+
+    def state(edited):
+        statics = solve_load_case(build_model(edited, analyze(edited)), edited.load_cases[0])
+        if statics.stability != "stable":
+            return None
+        return statics, np.concatenate([statics.joint_wrenches.ravel(),
+                                        statics.contact_forces.ravel()])
+
+    base, base_forces = state(design)
+    sens = sensitivity(design, all_dofs(design), "default")
+    compared = 0
+    for row, dof in enumerate(sens.dofs):
+        h = 1e-3 if dof.is_rotation else 1e-2
+        sides = [apply_dof(design, frame, dof, step) for step in (h, -h)]
+        if any(check_edit(geometry, side)[0] for side in sides):
+            continue
+        found = [state(side) for side in sides]
+        if any(f is None or not np.array_equal(f[0].holding, base.holding) for f in found):
+            continue
+        (_, plus), (_, minus) = found
+        central = (plus - minus) / (2 * h)
+        kink = np.abs((plus - base_forces) / h - (base_forces - minus) / h).max()
+        analytic = np.concatenate([sens.joint_wrenches[row].ravel(),
+                                   sens.contact_forces[row].ravel()])
+        scale = max(np.abs(central).max(), np.abs(analytic).max())
+        if scale < 1e-6 * _top_weight(700.0):
+            continue
+        allowed = 1e-4 * scale + (0.5 * kink if kink > 1e-3 * scale else 0.0)
+        assert np.abs(analytic - central).max() <= allowed, dof.name
+        compared += 1
+    assert compared >= 5

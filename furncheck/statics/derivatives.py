@@ -226,10 +226,11 @@ def _local(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name: s
                 continue
             a = model.contact_node[row]
             if model.rest_node is not None and model.rest_node[row] >= 0:
-                b = model.rest_node[row]
+                b = model.rest_node[row]        # its frame turns with the face plank
                 rest_rows.append((column, weight, row, a, b, *(
                     contact.point - design.planks[model.planks[a]].center_array), *(
-                    contact.point - design.planks[model.planks[b]].center_array)))
+                    contact.point - design.planks[model.planks[b]].center_array),
+                    *np.asarray(contact.frame, dtype=float).ravel()))
                 continue
             contact_rows.append((column, weight, row, a, *(
                 contact.point - design.planks[model.planks[a]].center_array)))
@@ -271,8 +272,9 @@ def _local(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name: s
         table = np.array(rest_rows)
         column, weight = table[:, 0].astype(int), table[:, 1]
         row, a, b = (table[:, k].astype(int) for k in (2, 3, 4))
-        maps_a = model.contact_frames[row] @ point_maps(table[:, 5:8])
-        maps_b = model.contact_frames[row] @ point_maps(table[:, 8:11])
+        frames = table[:, 11:20].reshape(-1, 3, 3)
+        maps_a = frames @ point_maps(table[:, 5:8])
+        maps_b = frames @ point_maps(table[:, 8:11])
         w = np.einsum("ebd,ed->eb", maps_a, q[a]) - np.einsum("ebd,ed->eb", maps_b, q[b])
         forces = law.forces(w, row)
         _add(residual, 6 * a, column, np.einsum("eba,eb->ea", maps_a, forces) * weight[:, None])
