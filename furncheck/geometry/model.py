@@ -75,6 +75,12 @@ class Contact:
     rest: int | None = None
     frame: np.ndarray | None = None
 
+    @property
+    def face_above(self) -> bool:
+        """For a resting joint's corner: whether the face plank (``on``) lies on top of
+        the edge plank (``plank``), its face looking down onto it; False otherwise."""
+        return self.frame is not None and self.on is not None and self.frame[2][2] < 0.0
+
 
 def anchor_contacts(design) -> list[Contact]:
     """The design's anchors as contacts (see ``Contact.anchor``), in order."""

@@ -353,11 +353,7 @@ def _outermost_supports(model: StaticsModel, layout: _Layout,
     rows = np.flatnonzero(carrying)
     nodes = model.contact_node[rows]
     if model.rest_node is not None:     # a resting joint carries the plank lying on top
-        nodes = nodes.copy()
-        for i, k in enumerate(rows):
-            if model.rest_node[k] >= 0 and \
-                    model.geometry.contacts[model.contacts[k]].frame[2][2] < 0.0:
-                nodes[i] = model.rest_node[k]         # the face plank lies on the edge one
+        nodes = np.where(model.rest_face_above[rows], model.rest_node[rows], nodes)
     supports = np.concatenate([layout.joint_supports, nodes])
     plank = model.node_plank[supports]
     order = np.lexsort((beams.node_s[supports], plank))      # by plank, then along it

@@ -381,7 +381,7 @@ class _ActiveSet:
             if not mask[k]:
                 continue
             contact = model.geometry.contacts[model.contacts[k]]
-            upper, lower = (contact.on, contact.plank) if contact.frame[2][2] < 0.0 \
+            upper, lower = (contact.on, contact.plank) if contact.face_above \
                 else (contact.plank, contact.on)
             phrase = f"{upper} {verb} {lower}"
             if phrase not in phrases:
@@ -490,36 +490,22 @@ class _ActiveSet:
 
 def _rigidly_held(model: StaticsModel, holding: np.ndarray) -> bool:
     """Whether the ``holding`` contacts hold every grounded component of the model in all
-    six rigid directions."""
-    if model.rest_node is not None:
-        return _held_with_rests(model, holding)
-    grams = model.rigid_grams
+    six rigid directions.  Where planks rest on others, a component is held by its own
+    holding contacts and by those of the planks resting on it (each taken as held by what
+    it rests on), its rigid motions measured about all of them."""
+    resting = model.rest_node is not None
     for c in range(len(model.components)):
         members = (model.contact_component == c) & holding
+        if resting:
+            members |= (model.rest_component == c) & holding
         if not members.any():
             return False
-        stiffness = grams[members].sum(axis=0)
+        if resting:
+            rigid = rigid_motions(model.contact_points[members])
+            stiffness = (np.transpose(rigid, (0, 2, 1)) @ rigid).sum(axis=0)
+        else:
+            stiffness = model.rigid_grams[members].sum(axis=0)
         singular = np.linalg.svd(stiffness, compute_uv=False)
-        if singular[-1] <= tol.MECHANISM_RCOND * max(singular[0], 1e-300):
-            return False
-    return True
-
-
-def _held_with_rests(model: StaticsModel, holding: np.ndarray) -> bool:
-    """``_rigidly_held`` where planks rest on others: each component is held in all six
-    rigid directions by its own holding contacts and by those of the planks resting on it
-    (each taken as held by what it rests on)."""
-    rest_component = np.full(len(model.contacts), -1)
-    rows = model.rest_rows
-    rest_component[rows] = [model.contact_component_of_node(node)
-                            for node in model.rest_node[rows]]
-    for c in range(len(model.components)):
-        members = holding & ((model.contact_component == c) | (rest_component == c))
-        if not members.any():
-            return False
-        rigid = rigid_motions(model.contact_points[members])
-        singular = np.linalg.svd((np.transpose(rigid, (0, 2, 1)) @ rigid).sum(axis=0),
-                                 compute_uv=False)
         if singular[-1] <= tol.MECHANISM_RCOND * max(singular[0], 1e-300):
             return False
     return True

@@ -134,26 +134,23 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
         if side.design is model.design and _followed_as_is(geometry, side):
             # the design itself (the base of a one-sided difference): its model is
             # ``model`` (built on itself, a template gives the same model bit for bit)
+            stepped, stepped_geometry = model, geometry
             if case.name not in unchanged:
                 unchanged[case.name] = _residual(model, case, q, h, law)
-            out.residual[:, side.column] += side.weight * unchanged[case.name]
-            out.maps[side.column] += side.weight * model.contact_maps
-            if model.rest_maps is not None:
-                out.rest_maps[side.column] += side.weight * model.rest_maps
-            out.lengths[side.column] += side.weight * np.array(
-                [geometry.joints[j].length for j in model.joints])
-            out.sides.append((side.column, side.weight, side.offset, model, case))
-            continue
-        joints = list(geometry.joints)
-        for j, joint in zip(side.joints, side.followed_joints):
-            nails = geometry.joints[j].nails                             # nails held
-            joints[j] = joint if joint.nails == nails else replace(joint, nails=nails)
-        contacts = list(geometry.contacts)
-        for k, contact in zip(side.contacts, side.followed_contacts):
-            contacts[k] = contact
-        stepped_geometry = replace(geometry, joints=tuple(joints), contacts=tuple(contacts))
-        stepped = build_elastic_model(side.design, stepped_geometry, template=model)
-        out.residual[:, side.column] += side.weight * _residual(stepped, case, q, h, law)
+            residual = unchanged[case.name]
+        else:
+            joints = list(geometry.joints)
+            for j, joint in zip(side.joints, side.followed_joints):
+                nails = geometry.joints[j].nails                         # nails held
+                joints[j] = joint if joint.nails == nails else replace(joint, nails=nails)
+            contacts = list(geometry.contacts)
+            for k, contact in zip(side.contacts, side.followed_contacts):
+                contacts[k] = contact
+            stepped_geometry = replace(geometry, joints=tuple(joints),
+                                       contacts=tuple(contacts))
+            stepped = build_elastic_model(side.design, stepped_geometry, template=model)
+            residual = _residual(stepped, case, q, h, law)
+        out.residual[:, side.column] += side.weight * residual
         out.maps[side.column] += side.weight * stepped.contact_maps
         if stepped.rest_maps is not None:
             out.rest_maps[side.column] += side.weight * stepped.rest_maps

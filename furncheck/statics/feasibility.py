@@ -79,9 +79,8 @@ def _problems(model: StaticsModel, f: np.ndarray):
         cols = (3 * members[:, None] + np.arange(3)[None, :]).ravel()
         rows[6 * c:6 * c + 6, cols] = own_rows
         wrench[6 * c:6 * c + 6] = own_wrench
-        resting = [k for k in model.rest_rows
-                   if model.contact_component_of_node(model.rest_node[k]) == c]
-        if not resting:
+        resting = np.flatnonzero(model.rest_component == c)
+        if not resting.size:
             continue
         points = model.contact_points[members] if len(members) else \
             model.contact_points[resting]

@@ -138,10 +138,24 @@ class StaticsModel:
             w[rows] -= (self.rest_maps[rows] @ other[:, :, None])[:, :, 0]
         return w
 
-    def contact_component_of_node(self, node: int) -> int:
-        """The grounded component that node ``node``'s plank belongs to."""
-        plank = int(self.node_plank[node])
-        return next(c for c, members in enumerate(self.components) if plank in members)
+    @cached_property
+    def rest_component(self) -> np.ndarray:
+        """(nK,) the grounded component of the plank each resting corner rests on (-1 for
+        other contacts and without rests)."""
+        component = np.full(len(self.contacts), -1)
+        if self.rest_node is not None:
+            of_plank = {p: c for c, members in enumerate(self.components) for p in members}
+            rows = self.rest_rows
+            component[rows] = [of_plank[int(self.node_plank[node])]
+                               for node in self.rest_node[rows]]
+        return component
+
+    @cached_property
+    def rest_face_above(self) -> np.ndarray:
+        """(nK,) bool: resting corners whose face plank lies on top of the edge plank (its
+        face looks down onto it: the face plank is the one carried, ``Contact.face_above``)."""
+        return np.array([self.geometry.contacts[c].face_above for c in self.contacts],
+                        dtype=bool)
 
     @cached_property
     def rest_rows(self) -> np.ndarray:
