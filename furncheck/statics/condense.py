@@ -346,22 +346,14 @@ def _rest_coupling(model: StaticsModel, springs: np.ndarray) -> list[tuple]:
     return [(b, b, t_b @ s @ m_b), (a, b, -(t_a @ s @ m_b)), (b, a, -(t_b @ s @ m_a))]
 
 
-def rest_blocks(model: StaticsModel) -> np.ndarray:
-    """(nR,) the x_g block of the node each resting corner rests on (``rest_rows``)."""
-    nodes = model.condensation.ground[::6] // 6
-    return np.searchsorted(nodes, model.rest_node[model.rest_rows])
-
-
 def _with_rest_blocks(model: StaticsModel, stiffness: np.ndarray,
                       springs: np.ndarray) -> np.ndarray:
     """The condensed matrix with the resting corners' other blocks (``_rest_coupling``)
     added (it is unchanged without rests)."""
     if model.rest_node is None:
         return stiffness
-    nodes = model.condensation.ground[::6] // 6
     for row_nodes, col_nodes, blocks in _rest_coupling(model, springs):
-        r = 6 * np.searchsorted(nodes, row_nodes)
-        c = 6 * np.searchsorted(nodes, col_nodes)
+        r, c = 6 * model.ground_block[row_nodes], 6 * model.ground_block[col_nodes]
         for k in range(len(blocks)):
             stiffness[r[k]:r[k] + 6, c[k]:c[k] + 6] += blocks[k]
     return stiffness

@@ -14,7 +14,7 @@ import numpy as np
 
 from furncheck import tolerances as tol
 from furncheck.plain import plain_number
-from furncheck.statics.condense import _accurate, anchored_system, rest_blocks
+from furncheck.statics.condense import _accurate, anchored_system
 from furncheck.statics.feasibility import (
     INFEASIBLE,
     UNDECIDED,
@@ -426,7 +426,7 @@ class _ActiveSet:
         displacement = (model.contact_maps @ plank_q[:, :, None])[:, :, 0]
         if model.rest_node is not None:     # a resting corner moves against its support
             rows = model.rest_rows
-            other = ground.reshape(-1, 6)[rest_blocks(model)]
+            other = ground.reshape(-1, 6)[model.ground_block[model.rest_node[rows]]]
             displacement[rows] -= (model.rest_maps[rows] @ other[:, :, None])[:, :, 0]
         # the anchor springs: k (x the scale) in all three directions where a contact holds
         forces = -(spring_rows(model.contact_springs, trailing=1) * stiffness_scale) \

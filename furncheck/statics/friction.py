@@ -68,8 +68,7 @@ class _ContactSpace:
             resting = np.flatnonzero(model.rest_node[active] >= 0)
             if resting.size:
                 rows = np.flatnonzero(active)[resting]
-                nodes = condensed.ground[::6] // 6
-                dense[resting, :, np.searchsorted(nodes, model.rest_node[rows]), :] -= \
+                dense[resting, :, model.ground_block[model.rest_node[rows]], :] -= \
                     model.rest_maps[rows]
         self.map = dense.reshape(3 * count, 6 * blocks)
         self.tangential = np.ascontiguousarray(dense[:, :2].reshape(2 * count, 6 * blocks))

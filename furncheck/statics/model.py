@@ -139,6 +139,15 @@ class StaticsModel:
         return w
 
     @cached_property
+    def ground_block(self) -> np.ndarray:
+        """(nN,) each node's 6-block in the condensation's x_g (-1 for a node that is not
+        in it): where a resting corner's other node sits, for the solves."""
+        block = np.full(self.n_nodes, -1)
+        nodes = self.condensation.ground[::6] // 6
+        block[nodes] = np.arange(len(nodes))
+        return block
+
+    @cached_property
     def rest_component(self) -> np.ndarray:
         """(nK,) the grounded component of the plank each resting corner rests on (-1 for
         other contacts and without rests)."""
