@@ -191,11 +191,16 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
     return result, violations
 
 
+def anchor_capacity(design: Design, index: int) -> float:
+    """N: what anchor ``index`` may hold, its capacity / safety factor."""
+    return design.anchors[index].capacity / design.safety_factor
+
+
 def _anchor_held(design: Design, index: int, force: list[float]) -> AnchorResult:
     """An anchor's result for the wall's force on its plank (N, world)."""
     anchor = design.anchors[index]
     size = float(np.linalg.norm(force))
-    capacity = anchor.capacity / design.safety_factor
+    capacity = anchor_capacity(design, index)
     return AnchorResult(anchor.plank, anchor.wall,
                         tuple(float(c) / design.unit_scale for c in anchor.point),
                         tuple(force), size, capacity, size / capacity)
@@ -209,9 +214,9 @@ def anchor_utilization(design: Design, geometry: Geometry, model: StaticsModel,
         return 0.0
     worst = 0.0
     for row in np.flatnonzero(model.contact_anchored):
-        anchor = design.anchors[geometry.contacts[model.contacts[row]].anchor]
+        index = geometry.contacts[model.contacts[row]].anchor
         size = float(np.linalg.norm(statics.contact_forces[row]))
-        worst = max(worst, size * design.safety_factor / anchor.capacity)
+        worst = max(worst, size / anchor_capacity(design, index))
     return worst
 
 

@@ -37,7 +37,7 @@ from furncheck.sensitivity import Linearization, Sensitivity
 from furncheck.statics import external_forces
 from furncheck.suggest.edits import Editor
 from furncheck.tolerances import GRAVITY
-from furncheck.validity import nail_pull_shear, plank_limits
+from furncheck.validity import anchor_capacity, nail_pull_shear, plank_limits
 
 GEOMETRY_STEP = 1e-4
 """Central-difference step of the geometric margins, in scaled DOF units."""
@@ -351,7 +351,7 @@ def _anchors(linear: Linearization, force_rates: np.ndarray,
     margins = []
     for k in np.flatnonzero(model.contact_anchored):
         index = linear.geometry.contacts[model.contacts[k]].anchor
-        capacity = design.anchors[index].capacity / design.safety_factor
+        capacity = anchor_capacity(design, index)
         force = linear.contact_forces[k]
         size = max(float(np.linalg.norm(force)), 1e-12)
         rates = -(force_rates[:, k, :] @ force) * scales / (size * capacity)
