@@ -323,13 +323,7 @@ class _ActiveSet:
         judged against the loads' scale: its own right-hand side is round-off).
         """
         model = self.model
-        if model.rest_node is not None:     # forces on both planks of a resting corner
-            f = self.f + model.contact_generalized(contact_forces)
-        else:
-            f = self.f.copy()
-            for row, force in enumerate(contact_forces):
-                k = model.contact_node[row]
-                f[6 * k:6 * k + 6] += model.contact_maps[row].T @ force
+        f = self.f + model.contact_generalized(contact_forces)
         feeble = _ActiveSet(model, f, self.scale)
         solution = feeble.solve(np.full(len(model.contacts), STICK), stiffness_scale=1e-9,
                                 load_scale=self.scale)

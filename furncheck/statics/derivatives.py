@@ -26,7 +26,7 @@ from furncheck import tolerances as tol
 from furncheck.design.model import Design
 from furncheck.geometry import Contact, Joint
 from furncheck.statics.contact_law import ContactLaw
-from furncheck.statics.model import StaticsModel, block_sums, external_forces, point_maps
+from furncheck.statics.model import StaticsModel, external_forces, point_maps
 from furncheck.tolerances import GRAVITY
 
 
@@ -173,13 +173,7 @@ def _residual(model: StaticsModel, case, q: np.ndarray, h: np.ndarray,
     """b - A x of the mixed system [[K_b, G^T], [G, -E]] [q; h] = [f + M^T f_c; 0], the
     contact forces f_c as ``law`` gives them for the contact displacements M q."""
     w = model.contact_displacements(q)
-    if model.rest_node is not None:     # a resting corner's force acts on both planks
-        top = model.beam_forces(q) + model.reactions(h) \
-            - model.contact_generalized(law.forces(w))
-    else:
-        contact = -np.transpose(model.contact_maps, (0, 2, 1)) @ law.forces(w)[:, :, None]
-        top = model.beam_forces(q) + model.reactions(h) \
-            + block_sums(model.contact_node, contact[:, :, 0], model.n_nodes).ravel()
+    top = model.beam_forces(q) + model.reactions(h) - model.contact_generalized(law.forces(w))
     compliance = (model.joint_compliance @ h.reshape(-1, 6, 1)).ravel()
     bottom = model.deviations(q) - compliance
     return np.concatenate([external_forces(model, case) - top, -bottom])
