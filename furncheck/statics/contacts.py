@@ -416,12 +416,9 @@ class _ActiveSet:
         ground = system.solve(self.ground_rhs)
         if ground is None or not _accurate(system.matrix, ground, self.ground_rhs, load_scale):
             return None
-        plank_q = ground.reshape(-1, 6)[condensed.contact_block]           # (nK, 6)
-        displacement = (model.contact_maps @ plank_q[:, :, None])[:, :, 0]
-        if model.rest_node is not None:     # a resting corner moves against its support
-            rows = model.rest_rows
-            other = ground.reshape(-1, 6)[model.ground_block[model.rest_node[rows]]]
-            displacement[rows] -= (model.rest_maps[rows] @ other[:, :, None])[:, :, 0]
+        q = np.zeros(model.n_dof)             # the contacts move with the grounded nodes
+        q[condensed.ground] = ground
+        displacement = model.contact_displacements(q)
         # the anchor springs: k (x the scale) in all three directions where a contact holds
         forces = -(spring_rows(model.contact_springs, trailing=1) * stiffness_scale) \
             * displacement * holding[:, None]
