@@ -109,7 +109,9 @@ def test_suggestions_are_consistent(results, name):
     for rank, suggestion in enumerate(result.suggestions, start=1):
         assert suggestion.rank == rank
         if suggestion.kind == "discrete":
-            assert len(suggestion.design.planks) == len(design.planks) + 1
+            assert [p.id for p in suggestion.design.planks] == \
+                [p.id for p in design.planks] + [p.id for p in suggestion.adds]
+            assert suggestion.rule and suggestion.advice.endswith(".")
             continue
         assert math.isclose(np.linalg.norm(suggestion.direction), 1.0, rel_tol=1e-9)
         low, high = suggestion.range
@@ -262,7 +264,8 @@ def test_locked_dofs_never_change():
 
 def test_max_dofs_and_max_suggestions_are_respected():
     design = catalog_design("side-table-hovering.yaml")
-    assert suggest_design(design, max_dofs=1).suggestions == ()     # needs both legs
+    one = suggest_design(design, max_dofs=1)                 # no DOF alone: it needs both legs
+    assert [s.rule for s in one.suggestions] == ["reconnect"]       # the discrete fix does
     two = suggest_design(design, max_dofs=2)
     assert two.suggestions and all(len(s.dofs) <= 2 for s in two.suggestions)
     design = catalog_design("bench-tips.yaml")
@@ -358,8 +361,9 @@ def test_cli_json_of_a_discrete_suggestion():
     discrete = [e for e in entries if e["kind"] == "discrete"]
     assert discrete
     entry = discrete[0]
-    assert list(entry) == ["rank", "kind", "restores", "adds", "between", "advice",
+    assert list(entry) == ["rank", "kind", "rule", "restores", "adds", "between", "advice",
                            "design_file", "meshes", "plots"]
+    assert entry["rule"] == "support"
     (support,) = entry["adds"]
     assert list(support) == ["id", "size", "center", "rotation"]
     assert support["id"] == "support-1"

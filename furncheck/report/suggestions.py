@@ -40,7 +40,7 @@ def advice(suggestion: Suggestion, original: Design) -> str:
     or 'Add support-1 (582 x 300 mm) between shelf and base, centred at (250, 0, 303) mm,
     nailed to both.' (or 'under ledge, standing on the floor, ...')"""
     if suggestion.kind == "discrete":
-        return _support_advice(suggestion, original)
+        return suggestion.advice
     phrases = []
     for k, (name, change, unit) in enumerate(zip(suggestion.dofs, suggestion.changes,
                                                  suggestion.units)):
@@ -56,26 +56,6 @@ def advice(suggestion: Suggestion, original: Design) -> str:
     valid_for = (f"valid for {_amount(low * lead)}-{_amount(high * lead)} {_unit(unit)}"
                  + (" of the first change" if len(suggestion.dofs) > 1 else ""))
     return f"{sentence[0].upper()}{sentence[1:]} ({valid_for})."
-
-
-def _support_advice(suggestion: Suggestion, original: Design) -> str:
-    scale, unit = original.unit_scale, original.units
-    upper, lower = suggestion.between[:2]
-    parts = []
-    for plank in suggestion.adds:
-        size = " x ".join(_amount(v / scale) for v in (plank.length, plank.width))
-        centre = ", ".join(_amount(v / scale) for v in plank.center)
-        if len(suggestion.between) == 3:        # a stiffening rail under a bent plank
-            ends = suggestion.between[1:]
-            parts.append(f"{plank.id} ({size} {unit}) on edge under {upper}, from {ends[0]} "
-                         f"to {ends[1]}, centred at ({centre}) {unit}, nailed to all three")
-        elif lower == "the floor":
-            parts.append(f"{plank.id} ({size} {unit}) under {upper}, standing on the floor, "
-                         f"centred at ({centre}) {unit}, nailed to {upper}")
-        else:
-            parts.append(f"{plank.id} ({size} {unit}) between {upper} and {lower}, centred "
-                         f"at ({centre}) {unit}, nailed to both")
-    return f"Add {'; '.join(parts)}."
 
 
 def _phrase(design: Design, plank: str, subject: str, kind: str, change: float,
@@ -174,6 +154,7 @@ def _suggestion_dict(suggestion: Suggestion, original: Design,
         return {
             "rank": suggestion.rank,
             "kind": suggestion.kind,
+            "rule": suggestion.rule,
             "restores": list(suggestion.restores),
             "adds": [plank_entry(plank, original) for plank in suggestion.adds],
             "between": list(suggestion.between),

@@ -4,8 +4,8 @@ suggestion's file is valid; one that is not is dropped, never listed).
 
 Order: the continuous suggestions by their score (the valid interval's width minus its
 lower end), then the discrete ones (an added plank is a bigger change than moving one);
-when both kinds are found and there are more than K, at least one discrete suggestion is
-kept.
+when both kinds are found and there are more than K, at least DISCRETE_KEPT discrete
+suggestions are kept.
 """
 
 from __future__ import annotations
@@ -20,8 +20,12 @@ from furncheck.design.write import design_text
 from furncheck.dofs import Dof
 from furncheck.geometry import analyze
 from furncheck.suggest.continuous import ContinuousSearch
-from furncheck.suggest.discrete import support_planks
+from furncheck.suggest.discrete import discrete_fixes
 from furncheck.suggest.suggestion import Suggestion, SuggestionReport
+
+DISCRETE_KEPT = 2
+"""When there are more than K suggestions, at least this many discrete fixes (as many as
+were found, up to K) are kept: a different kind of fix than the continuous ones."""
 
 
 def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
@@ -37,12 +41,13 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
     searching = time.perf_counter()
     continuous = search.run(directions, max_suggestions)
     discrete_start = time.perf_counter()
-    supports = support_planks(design, geometry, report)
+    fixes = discrete_fixes(design, geometry, report, bool(continuous), locked)
     end = time.perf_counter()
-    if supports and len(continuous) + len(supports) > max_suggestions:
-        keep = max(1, max_suggestions - len(continuous))
-        supports = supports[:keep]
-        continuous = continuous[:max_suggestions - len(supports)]
+    if fixes and len(continuous) + len(fixes) > max_suggestions:
+        keep = max(min(len(fixes), DISCRETE_KEPT, max_suggestions),
+                   max_suggestions - len(continuous))
+        fixes = fixes[:keep]
+        continuous = continuous[:max_suggestions - len(fixes)]
     suggestions: list[Suggestion] = []
     for found in continuous:
         moved = search.representative(found)
@@ -57,12 +62,12 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
                 direction=tuple(float(v) for v in found.direction),
                 range=(found.low, found.high), step=step, changes=changes,
                 units=tuple(d.unit(design) for d in found.dofs)))
-    for support in supports:
-        written = _written(support.design, len(suggestions) + 1)
+    for fix in fixes:
+        written = _written(fix.design, len(suggestions) + 1)
         if written is not None:
-            suggestions.append(Suggestion(len(suggestions) + 1, "discrete", support.restores,
-                                          *written, adds=(support.plank,),
-                                          between=support.between))
+            suggestions.append(Suggestion(len(suggestions) + 1, "discrete", fix.restores,
+                                          *written, adds=fix.adds, between=fix.between,
+                                          rule=fix.rule, advice=fix.advice))
     return SuggestionReport(design.source, design.name, report, tuple(suggestions),
                             search.searched, search.editor.checks,
                             {"candidates": searching - start,

@@ -17,6 +17,9 @@ class Suggestion:
     step      : the representative step (middle of ``range``), or None
     changes   : each DOF's change at ``step``, its own unit (file length unit or degrees)
     adds      : planks added (discrete); ``between`` the planks a support joins
+    rule      : the discrete rule that made it ('support', 'rail', 'apron', 'stretcher',
+                'back panel', 'brace', 'outrigger', 'anchor', 'thicker', 'reconnect');
+                ``advice`` its sentence
     restores  : the kinds of violation it removes ('durability', 'stability', 'geometry',
                 'stiffness' for sag, 'strength' for bending stress)
     design    : the representative design, parsed from ``text`` (its YAML file), and
@@ -37,6 +40,8 @@ class Suggestion:
     units: tuple[str, ...] = ()
     adds: tuple[Plank, ...] = ()
     between: tuple[str, ...] = ()
+    rule: str = ""
+    advice: str = ""
 
 
 @dataclass(frozen=True)

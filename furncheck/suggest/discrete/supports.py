@@ -1,4 +1,4 @@
-"""Discrete suggestions (paper section 6.5): add a support plank.
+"""The paper's discrete suggestion (section 6.5): add a support plank.
 
 When a joint is not durable, a support is added between two nearly parallel planks P_i
 and P_j that a third plank P_k joins, where the failing joint is P_k's joint with one of
@@ -20,19 +20,24 @@ not built at all.
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from dataclasses import dataclass, replace
+from collections.abc import Callable, Iterator
 
 import numpy as np
 
-from furncheck.check import check_design, is_valid
-from furncheck.design.model import Design, JointSpec, Plank
-from furncheck.dofs import euler_degrees
-from furncheck.geometry import Geometry, analyze, interpenetrations
-from furncheck.result import DesignReport
-
-PARALLEL_COS = 0.95
-"""P_i and P_j count as parallel when their face normals' cosine is at least this."""
+from furncheck.design.model import Design, Plank
+from furncheck.suggest.discrete.common import (
+    PARALLEL_COS,
+    Candidate,
+    Fix,
+    Search,
+    board,
+    level,
+    new_id,
+    parallel,
+    point_of,
+    size_of,
+    with_planks,
+)
 
 PLACES = (("far", 1.0), ("middle", 0.0))
 """Candidate places across the overlap, away from P_k: its far edge (1) and middle (0)."""
@@ -41,39 +46,28 @@ MIN_OVERLAP = 3.0
 """The overlap of P_i and P_j must be at least this many plank thicknesses wide (in
 both directions) to hold a support."""
 
-MAX_DISCRETE = 1
-"""At most this many support planks are suggested (the paper lists one or two): the first
-that works, far side before middle."""
+REPAIRED = ("non-durable", "sagging", "overstressed")
+"""The violations a support plank can repair."""
+
+STIFFENER_DEPTHS = (4.0, 6.0, 8.0)
+"""Depths of a stiffening rail tried under a bent plank, in plank thicknesses (48, 72 and
+96 mm for 12 mm stock): the shallowest that works is suggested."""
 
 
-@dataclass(frozen=True)
-class Support:
-    """A working support plank: the plank, between which planks, where, the design with
-    it and that design's validation."""
-
-    plank: Plank
-    between: tuple[str, ...]     # (P_i, P_j or 'the floor'); a rail: (bent plank, its ends)
-    place: str
-    design: Design
-    report: DesignReport
-    restores: tuple[str, ...] = ("durability",)
+def support_planks(search: Search) -> Fix | None:
+    """The first working support plank or stiffening rail (``support_candidates``)."""
+    return search.first_valid(support_candidates(search))
 
 
-def support_planks(design: Design, geometry: Geometry, report: DesignReport,
-                   limit: int = MAX_DISCRETE) -> list[Support]:
-    """Working support planks for the non-durable joints and the sagging or overstressed
-    planks of ``report`` (see the module docstring), at most ``limit``, in the order
-    tried: failing joints and planks as reported, then P_k, P_i, P_j, places."""
+def support_candidates(search: Search) -> Iterator[Candidate]:
+    """Support planks and stiffening rails for the non-durable joints and the sagging or
+    overstressed planks of the report (see the module docstring), in the order tried:
+    failing joints and planks as reported, then P_k, P_i, P_j, places."""
+    design, geometry, report = search.design, search.geometry, search.report
     if geometry.violations or not report.violations or \
-            any(v.kind not in _REPAIRED for v in report.violations):
-        return []
-    restores = tuple(sorted({_REPAIRED[v.kind] for v in report.violations}))
-    neighbours: dict[str, list[str]] = {p.id: [] for p in design.planks}
-    for joint in geometry.joints:
-        a, b = joint.planks
-        neighbours[a].append(b)
-        neighbours[b].append(a)
-    found: list[Support] = []
+            any(v.kind not in REPAIRED for v in report.violations):
+        return
+    neighbours = search.neighbours
     tried: set[tuple] = set()
     failing = dict.fromkeys(_place(design, v.where) for v in report.violations)
     reaches = _reach(failing, neighbours)
@@ -82,31 +76,28 @@ def support_planks(design: Design, geometry: Geometry, report: DesignReport,
             pair = where.split("/", 1)
             trials = [(k, i, PLACES) for k, i in (pair, pair[::-1])]
         else:                                            # a bent plank i
-            for depth in STIFFENER_DEPTHS:
-                key = (where, "stiffener")
-                if key in tried or len(found) >= limit:
-                    break
-                support = _try_stiffener(design, geometry, where, neighbours[where], depth,
-                                         reaches)
-                if support is not None:
-                    tried.add(key)
-                    found.append(replace(support, restores=restores))
+            if (where, "stiffener") not in tried:
+                tried.add((where, "stiffener"))
+                for depth in STIFFENER_DEPTHS:
+                    yield from _stiffeners(search, where, neighbours[where], depth, reaches)
             trials = [(k, where, PLACES[1:]) for k in neighbours[where]]
         for k, i, places in trials:
             partners = [j for j in neighbours[k]
-                        if j != i and _parallel(design.plank(i), design.plank(j))]
-            if _level(design.plank(i)):
+                        if j != i and parallel(design.plank(i), design.plank(j))]
+            if level(design.plank(i)):
                 partners.append(None)                    # the floor, under a level plank
             for j in partners:
-                for place, position in places:
-                    key = (*sorted((i, j or "")), place)
-                    if key in tried or len(found) >= limit or not reaches({i, j}):
+                for _, position in places:
+                    key = (*sorted((i, j or "")), position)
+                    if key in tried or not reaches({i, j}):
                         continue
                     tried.add(key)
-                    support = _try(design, geometry, k, i, j, place, position)
-                    if support is not None:
-                        found.append(replace(support, restores=restores))
-    return found
+                    plank_i, plank_k = design.plank(i), design.plank(k)
+                    away = (plank_k.center_array - plank_i.center_array) @ \
+                        plank_i.rotation_matrix[:, :2]               # where k stands
+                    candidate = support_candidate(search, away, i, j, position)
+                    if candidate is not None:
+                        yield candidate
 
 
 def _reach(failing, neighbours: dict[str, list[str]]) -> Callable[[set], bool]:
@@ -138,27 +129,19 @@ def _place(design: Design, where: str) -> str:
     return where
 
 
-_REPAIRED = {"non-durable": "durability", "sagging": "stiffness", "overstressed": "strength"}
-"""The violations a support plank can repair, and what it restores."""
-
-STIFFENER_DEPTHS = (4.0, 6.0, 8.0)
-"""Depths of a stiffening rail tried under a bent plank, in plank thicknesses (48, 72 and
-96 mm for 12 mm stock): the shallowest that works is suggested."""
-
-
-def _try_stiffener(design: Design, geometry: Geometry, i: str, neighbours: list[str],
-                   depth: float, reaches: Callable[[set], bool]) -> Support | None:
-    """A rail on edge under one long edge of the level plank i (a shelf's front lip), or
+def _stiffeners(search: Search, i: str, neighbours: list[str], depth: float,
+                reaches: Callable[[set], bool]) -> Iterator[Candidate]:
+    """Rails on edge under one long edge of the level plank i (a shelf's front lip), or
     under its middle, between the two parallel planks that hold i's ends, nailed to i and
     to both: the woodworker's fix for a sagging shelf.  (A lip at one edge carries that
     edge; the beam model's shelf, whose section does not bend across its width, then
     twists about its axis: where that is too much, the rail under the middle does it.)
-    None when i is not level, is not held at both ends by parallel planks, or the rail
-    does not work (checked as ``_try`` does), or it would not reach every failing place
-    (``reaches``, see ``_reach``)."""
+    None when i is not level, is not held at both ends by parallel planks, or it would
+    not reach every failing place (``reaches``, see ``_reach``)."""
+    design = search.design
     shelf = design.plank(i)
-    if not _level(shelf):
-        return None
+    if not level(shelf):
+        return
     from furncheck.statics.beams import beam_frame, beam_length_width
 
     frame = beam_frame(shelf)
@@ -166,83 +149,59 @@ def _try_stiffener(design: Design, geometry: Geometry, i: str, neighbours: list[
     ends = []
     for k in neighbours:
         other = design.plank(k)
-        normal = other.rotation_matrix[:, 2]
-        if abs(float(normal @ axis)) >= PARALLEL_COS:
+        if abs(float(other.rotation_matrix[:, 2] @ axis)) >= PARALLEL_COS:
             ends.append((float((other.center_array - shelf.center_array) @ axis), other))
     below = [e for e in ends if e[0] < 0]
     above = [e for e in ends if e[0] > 0]
     if not below or not above:
-        return None
+        return
     (s_low, low), (s_high, high) = max(below, key=lambda e: e[0]), min(above, key=lambda e: e[0])
     if not reaches({i, low.id, high.id}):
-        return None
+        return
     start = s_low + low.half_extents[2]
     stop = s_high - high.half_extents[2]
     thickness = design.material.thickness
     rail_depth = depth * thickness
     length, width = beam_length_width(shelf)
     down = -frame[:, 2] if frame[2, 2] > 0 else frame[:, 2]
-    taken = {p.id for p in design.planks}
-    name = next(f"rail-{n}" for n in range(1, len(taken) + 2) if f"rail-{n}" not in taken)
+    name = new_id(design, "rail")
+    nailed = (i, low.id, high.id)
     for side, edge in ((-1.0, 1.0), (1.0, 1.0), (1.0, 0.0)):  # a long edge of i, its middle
         across = frame[:, 1] * side
         centre = (shelf.center_array + axis * 0.5 * (start + stop)
                   + across * edge * (0.5 * width - 0.5 * thickness)
                   + down * (shelf.half_extents[2] + 0.5 * rail_depth))
-        rotation = euler_degrees(np.column_stack([axis, np.cross(across, axis), across]),
-                                 (0.0, 0.0, 0.0))
-        rail = Plank(name, float(stop - start), float(rail_depth), thickness,
-                     tuple(float(v) for v in centre), tuple(float(v) for v in rotation))
-        support = _checked(design, geometry, rail, (i, low.id, high.id))
-        if support is not None:
-            return Support(rail, (i, low.id, high.id), f"under {i}", support[0], support[1])
-    return None
+        rail = board(name, stop - start, rail_depth, thickness, centre, axis, across)
+        advice = (f"Add {name} ({size_of(rail, design)}) on edge under {i}, from {low.id} "
+                  f"to {high.id}, centred at {point_of(rail.center, design)}, nailed to "
+                  f"all three.")
+        yield Candidate("rail", with_planks(design, (rail,)), advice, (rail,), nailed,
+                        tuple((end, name) for end in nailed))
 
 
-def _checked(design: Design, geometry: Geometry, plank: Plank,
-             ends: tuple[str, ...]) -> tuple[Design, DesignReport] | None:
-    """(the design with ``plank`` added, nailed to ``ends``, and its report) when it is
-    valid, the new plank is joined to exactly ``ends`` and cuts into nothing; else None."""
-    joints = None if design.joints is None else \
-        (*design.joints, *(JointSpec((end, plank.id)) for end in ends))
-    edited = replace(design, planks=(*design.planks, plank), joints=joints)
-    after = analyze(edited)
-    new = {frozenset(joint.planks) for joint in after.joints if plank.id in joint.planks}
-    if after.violations or new != {frozenset((end, plank.id)) for end in ends}:
-        return None
-    if len(after.joints) != len(geometry.joints) + len(ends) or interpenetrations(edited):
-        return None
-    if not is_valid(edited, after):      # stops at the first case that fails
-        return None
-    return edited, check_design(edited, after)      # the winner's report, solved once more
-
-
-def _level(plank: Plank) -> bool:
-    """Whether the plank lies level (its broad faces horizontal)."""
-    return abs(float(plank.rotation_matrix[2, 2])) >= PARALLEL_COS
-
-
-def _parallel(a: Plank, b: Plank) -> bool:
-    return abs(float(a.rotation_matrix[:, 2] @ b.rotation_matrix[:, 2])) >= PARALLEL_COS
-
-
-def _try(design: Design, geometry: Geometry, k: str, i: str, j: str | None, place: str,
-         position: float) -> Support | None:
-    """The design with a support between i and j (None: the floor) at ``position`` (1 far
-    side, 0 middle) of their overlap, away from k; None when it does not fit or does not
-    work."""
+def support_candidate(search: Search, away: np.ndarray, i: str, j: str | None,
+                      position: float, rule: str = "support") -> Candidate | None:
+    """A support between i and j (None: the floor) at ``position`` (1 far side, 0
+    middle) of their overlap, on the side of i opposite to ``away`` ((2,) in i's local
+    x-y: where the plank k it is to relieve stands); None when it does not fit."""
+    design = search.design
     other = None if j is None else design.plank(j)
-    plank = _support(design, design.plank(k), design.plank(i), other, position)
+    plank = _support(design, away, design.plank(i), other, position)
     if plank is None:
         return None
     ends = (i,) if j is None else (i, j)
-    checked = _checked(design, geometry, plank, ends)
-    if checked is None:
-        return None
-    return Support(plank, (i, j or "the floor"), place, *checked)
+    size, centre = size_of(plank, design), point_of(plank.center, design)
+    if j is None:
+        advice = (f"Add {plank.id} ({size}) under {i}, standing on the floor, centred at "
+                  f"{centre}, nailed to {i}.")
+    else:
+        advice = (f"Add {plank.id} ({size}) between {i} and {j}, centred at {centre}, nailed "
+                  f"to both.")
+    return Candidate(rule, with_planks(design, (plank,)), advice, (plank,),
+                     (i, j or "the floor"), tuple((end, plank.id) for end in ends))
 
 
-def _support(design: Design, k: Plank, i: Plank, j: Plank | None,
+def _support(design: Design, away: np.ndarray, i: Plank, j: Plank | None,
              position: float) -> Plank | None:
     """The support plank between the facing broad faces of i and j, or between i's
     underside and the floor (j None); None if they do not face each other over an
@@ -267,7 +226,6 @@ def _support(design: Design, k: Plank, i: Plank, j: Plank | None,
         high = np.minimum(high, corners_j.max(axis=0))
     if np.any(high - low < MIN_OVERLAP * thickness):
         return None
-    away = (k.center_array - i.center_array) @ axes                   # where k stands
     along = int(np.argmax(np.abs(away)))                              # axis away from k
     sign = -1.0 if away[along] > 0 else 1.0
     middle = 0.5 * (low + high)
@@ -279,9 +237,4 @@ def _support(design: Design, k: Plank, i: Plank, j: Plank | None,
     centre = i.center_array + axes @ spot + normal * (i.half_extents[2] + 0.5 * gap)
     x_axis = normal                                                   # its length spans the gap
     z_axis = axes[:, along] * sign                                    # its face looks at k
-    y_axis = np.cross(z_axis, x_axis)
-    rotation = euler_degrees(np.column_stack([x_axis, y_axis, z_axis]), (0.0, 0.0, 0.0))
-    taken = {p.id for p in design.planks}
-    name = next(f"support-{n}" for n in range(1, len(taken) + 2) if f"support-{n}" not in taken)
-    return Plank(name, float(gap), width, thickness, tuple(float(v) for v in centre),
-                 tuple(float(v) for v in rotation))
+    return board(new_id(design, "support"), gap, width, thickness, centre, x_axis, z_axis)
