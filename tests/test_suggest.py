@@ -67,7 +67,8 @@ BEYOND_ONE_CHANGE = {
         "150 kg on a 12 mm particleboard shelf: its stress needs w L^2 halved and its sag "
         "w L^4 / EI cut thirtyfold (see its header); no move within half the design's size "
         "and no single added support or rail does both (a rail of 96 mm sags 8.8 mm under "
-        "the load alone); the maker's fix is a thicker board, which is no design DOF",
+        "the load alone); a thicker board would need (125 / 2.25)^(1/3) = 3.8 x 12 = 46 mm, "
+        "beyond the 44 mm (two 22 mm boards) of the thicker rule",
 }
 """Invalid catalog designs that no single change can repair, and why: suggest must say
 so (no suggestion), and starts failing here if it finds one (then it must be valid)."""

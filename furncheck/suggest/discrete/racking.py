@@ -87,29 +87,29 @@ def racking_places(search: Search) -> list[str] | None:
 
 def aprons(search: Search) -> Fix | None:
     """The first working aprons between each failing leg and its nearest facing leg."""
-    return _first(search, "apron", _rail_candidates)
+    return _first(search, _apron_candidates)
 
 
 def stretchers(search: Search) -> Fix | None:
     """The first working stretchers between each failing leg and its nearest facing leg."""
-    return _first(search, "stretcher", _rail_candidates)
+    return _first(search, _stretcher_candidates)
 
 
 def back_panels(search: Search) -> Fix | None:
-    """The first working back panel over the legs' edges."""
-    return _first(search, "back panel", _panel_candidates)
+    """The first working back panels over the legs' edges."""
+    return _first(search, _back_panel_candidates)
 
 
 def braces(search: Search) -> Fix | None:
-    """The first working diagonal brace across the legs' edges."""
-    return _first(search, "brace", _panel_candidates)
+    """The first working diagonal braces across the legs' edges."""
+    return _first(search, _brace_candidates)
 
 
-def _first(search: Search, rule: str, candidates) -> Fix | None:
+def _first(search: Search, candidates) -> Fix | None:
     failing = racking_places(search)
     if failing is None:
         return None
-    return search.first_valid(c for c in candidates(search, failing) if c.rule == rule)
+    return search.first_valid(candidates(search, failing))
 
 
 # --- aprons and stretchers ------------------------------------------------------------------
@@ -142,55 +142,66 @@ def _pairs(design: Design, standing: list[str], failing: list[str]) -> list[tupl
     return pairs
 
 
-def _rail_candidates(search: Search, failing: list[str]) -> Iterator[Candidate]:
+def _apron_candidates(search: Search, failing: list[str]) -> Iterator[Candidate]:
+    """Aprons on every pair of ``_pairs``, RAIL_DEPTHS deep, each under the plank its two
+    legs carry; none when a pair carries no level plank above it."""
     design = search.design
     pairs = _pairs(design, legs(design, search.geometry), failing)
-    if not pairs:
-        return
     thickness = design.material.thickness
-    for depth in RAIL_DEPTHS:
-        aprons = []
+    for depth in RAIL_DEPTHS if pairs else ():
+        made: list[tuple[Plank, str, str, str]] = []
         for a, b in pairs:
             carried = _carried(search, a, b)
-            rail = None if carried is None else \
-                _rail(design, a, b, carried.corners[:, 2].min() - 0.5 * depth * thickness,
-                      depth * thickness, "apron", aprons)
+            if carried is None:
+                return
+            height = carried.corners[:, 2].min() - 0.5 * depth * thickness
+            rail = _rail(design, a, b, height, depth * thickness, "apron", made)
             if rail is None:
                 break
-            aprons.append((rail, a, b, carried.id))
+            made.append((rail, a, b, carried.id))
         else:
-            joints = tuple(pair for rail, a, b, top in aprons
-                           for pair in ((a, rail.id), (b, rail.id), (top, rail.id)))
-            phrases = [f"{rail.id} ({size_of(rail, design)}) between {a} and {b}"
-                       for rail, a, b, _ in aprons]
-            tops = names(sorted({top for *_, top in aprons}, key=design.plank_index.get))
-            advice = (f"Add {_noun('apron', len(aprons))} {names(phrases)}, on edge, the "
-                      f"top edge under {tops}, nailed to the legs and to {tops}.")
-            yield Candidate("apron", with_planks(design, tuple(r for r, *_ in aprons)), advice,
-                            tuple(r for r, *_ in aprons), tuple(p for pair in pairs for p in pair),
-                            joints)
+            tops = names(sorted({top for *_, top in made}, key=design.plank_index.get))
+            yield _rail_candidate(
+                design, "apron", made, pairs,
+                f"on edge, the top edge under {tops}, nailed to the legs and to {tops}")
+
+
+def _stretcher_candidates(search: Search, failing: list[str]) -> Iterator[Candidate]:
+    """Stretchers on every pair of ``_pairs``, RAIL_DEPTHS deep, at STRETCHER_HEIGHTS."""
+    design = search.design
+    pairs = _pairs(design, legs(design, search.geometry), failing)
+    thickness = design.material.thickness
+    for depth in RAIL_DEPTHS if pairs else ():
         for height in STRETCHER_HEIGHTS:
-            stretchers = []
+            made: list[tuple[Plank, str, str, str]] = []
             for a, b in pairs:
-                foot = min(design.plank(a).corners[:, 2].min(), design.plank(b).corners[:, 2].min())
-                top = max(design.plank(a).corners[:, 2].max(), design.plank(b).corners[:, 2].max())
+                ends = (design.plank(a).corners[:, 2], design.plank(b).corners[:, 2])
+                foot = min(float(z.min()) for z in ends)
+                top = max(float(z.max()) for z in ends)
                 rail = _rail(design, a, b, foot + height * (top - foot), depth * thickness,
-                             "stretcher", stretchers)
+                             "stretcher", made)
                 if rail is None:
                     break
-                stretchers.append((rail, a, b, None))
+                made.append((rail, a, b, ""))
             else:
-                joints = tuple(pair for rail, a, b, _ in stretchers
-                               for pair in ((a, rail.id), (b, rail.id)))
-                centre = stretchers[0][0].center[2] / design.unit_scale
-                phrases = [f"{rail.id} ({size_of(rail, design)}) between {a} and {b}"
-                           for rail, a, b, _ in stretchers]
-                advice = (f"Add {_noun('stretcher', len(stretchers))} {names(phrases)}, on "
-                          f"edge, centred {amount(centre)} {design.units} above the floor, "
-                          f"nailed to the legs.")
-                rails_ = tuple(r for r, *_ in stretchers)
-                yield Candidate("stretcher", with_planks(design, rails_), advice, rails_,
-                                tuple(p for pair in pairs for p in pair), joints)
+                centre = made[0][0].center[2] / design.unit_scale
+                yield _rail_candidate(
+                    design, "stretcher", made, pairs,
+                    f"on edge, centred {amount(centre)} {design.units} above the floor, "
+                    f"nailed to the legs")
+
+
+def _rail_candidate(design: Design, rule: str, made: list, pairs: list,
+                    where: str) -> Candidate:
+    """The candidate adding the rails ``made`` ((rail, leg, leg, carried plank or ''))."""
+    rails = tuple(rail for rail, *_ in made)
+    joints = tuple(pair for rail, a, b, top in made
+                   for pair in ((a, rail.id), (b, rail.id), *(((top, rail.id),) if top else ())))
+    phrases = [f"{rail.id} ({size_of(rail, design)}) between {a} and {b}"
+               for rail, a, b, _ in made]
+    advice = f"Add {_noun(rule, len(made))} {names(phrases)}, {where}."
+    return Candidate(rule, with_planks(design, rails), advice, rails,
+                     tuple(p for pair in pairs for p in pair), joints)
 
 
 def _noun(word: str, count: int) -> str:
@@ -292,22 +303,31 @@ def _cover(planes: list[dict], failing: list[str]) -> list[dict]:
     return chosen if covered >= set(failing) else []
 
 
-def _panel_candidates(search: Search, failing: list[str]) -> Iterator[Candidate]:
-    """A back panel over each plane of ``_cover`` (one suggestion), then diagonal
-    braces over them (BRACE_WIDTHS, both diagonals)."""
+def _planes(search: Search, failing: list[str]) -> list[dict]:
+    """The planes of ``_cover`` for the failing legs, each with 'rectangle' (holding every
+    edge in it) and 'leg_rectangle' (the legs' edges only): see ``_rectangle``."""
     design = search.design
     thickness = design.material.thickness
-    standing = legs(design, search.geometry)
-    planes = _cover(_edge_planes(design, standing, failing), failing)
+    planes = _cover(_edge_planes(design, legs(design, search.geometry), failing), failing)
+    for plane in planes:
+        plane["rectangle"] = _rectangle(plane, plane["corners"], thickness)
+        plane["leg_rectangle"] = _rectangle(plane, plane["legs"], thickness)
+    return planes
+
+
+def _back_panel_candidates(search: Search, failing: list[str]) -> Iterator[Candidate]:
+    """A back panel over each plane of ``_planes`` (one suggestion)."""
+    design = search.design
+    planes = _planes(search, failing)
     if not planes:
         return
-    rectangles = [_rectangle(plane, plane["corners"], thickness) for plane in planes]
-    leg_rectangles = [_rectangle(plane, plane["legs"], thickness) for plane in planes]
     made: list[Plank] = []
-    for _, along, outward, centre, width, height in rectangles:
+    for plane in planes:
+        along, outward, centre, width, height = plane["rectangle"]
         name = new_id(design, "back", {p.id for p in made})
-        made.append(board(name, width, height, thickness, centre, along, outward))
-    nailed = [tuple(plane["planks"]) for plane, *_ in rectangles]
+        made.append(board(name, width, height, design.material.thickness, centre, along,
+                          outward))
+    nailed = [tuple(plane["planks"]) for plane in planes]
     phrases = [f"{panel.id} ({size_of(panel, design)}) over the edges of {names(over)}"
                for panel, over in zip(made, nailed)]
     advice = (f"Add {_noun('back panel', len(made))} {names(phrases)}, nailed to each "
@@ -315,33 +335,43 @@ def _panel_candidates(search: Search, failing: list[str]) -> Iterator[Candidate]
     yield Candidate("back panel", with_planks(design, tuple(made)), advice, tuple(made),
                     tuple(dict.fromkeys(p for over in nailed for p in over)),
                     tuple((p, panel.id) for panel, over in zip(made, nailed) for p in over))
-    for strap in BRACE_WIDTHS:
+
+
+def _brace_candidates(search: Search, failing: list[str]) -> Iterator[Candidate]:
+    """Diagonal braces over each plane of ``_planes`` (BRACE_WIDTHS, both diagonals), each
+    crossing the edges of at least two legs."""
+    design = search.design
+    thickness = design.material.thickness
+    standing = legs(design, search.geometry)
+    planes = _planes(search, failing)
+    for strap in BRACE_WIDTHS if planes else ():
         for flip in (1.0, -1.0):
-            braces_, crossed_all = [], []
-            for plane, along, outward, centre, width, height in leg_rectangles:
+            made, crossed_all = [], []
+            for plane in planes:
+                along, outward, centre, width, height = plane["leg_rectangle"]
                 brace = _brace(design, width, height, strap * thickness, thickness, centre,
-                               along * flip, outward, {b.id for b in braces_})
+                               along * flip, outward, {b.id for b in made})
                 crossed = () if brace is None else _crossed(design, brace, tuple(plane["planks"]))
                 if sum(1 for p in crossed if p in standing) < 2:
                     break
-                braces_.append(brace)
+                made.append(brace)
                 crossed_all.append(crossed)
             else:
                 phrases = [f"{brace.id} ({size_of(brace, design)}) across the edges of "
-                           f"{names(crossed)}" for brace, crossed in zip(braces_, crossed_all)]
-                advice = (f"Add {_noun('diagonal brace', len(braces_))} {names(phrases)}, "
+                           f"{names(crossed)}" for brace, crossed in zip(made, crossed_all)]
+                advice = (f"Add {_noun('diagonal brace', len(made))} {names(phrases)}, "
                           f"from the foot of a leg to the top of the other, nailed to each "
                           f"plank it crosses.")
-                yield Candidate("brace", with_planks(design, tuple(braces_)), advice,
-                                tuple(braces_),
+                yield Candidate("brace", with_planks(design, tuple(made)), advice,
+                                tuple(made),
                                 tuple(dict.fromkeys(p for over in crossed_all for p in over)),
-                                tuple((p, brace.id) for brace, over in zip(braces_, crossed_all)
+                                tuple((p, brace.id) for brace, over in zip(made, crossed_all)
                                       for p in over))
 
 
 def _rectangle(plane: dict, corners: np.ndarray, thickness: float) -> tuple:
-    """(plane, along, outward, centre, width, height): the rectangle in the plane (just
-    outside it, a thickness deep) that holds ``corners``; ``along`` horizontal in it."""
+    """(along, outward, centre, width, height): the rectangle in the plane (just outside
+    it, a thickness deep) that holds ``corners``; ``along`` horizontal in it."""
     outward = plane["normal"]
     along = np.cross(np.array([0.0, 0.0, 1.0]), outward)
     along /= np.linalg.norm(along)
@@ -349,7 +379,7 @@ def _rectangle(plane: dict, corners: np.ndarray, thickness: float) -> tuple:
     z = corners[:, 2]
     centre = outward * (plane["offset"] + 0.5 * thickness) + \
         along * 0.5 * (s.min() + s.max()) + np.array([0.0, 0.0, 0.5 * (z.min() + z.max())])
-    return plane, along, outward, centre, s.max() - s.min(), z.max() - z.min()
+    return along, outward, centre, s.max() - s.min(), z.max() - z.min()
 
 
 def _brace(design: Design, width: float, height: float, strap: float, thickness: float,

@@ -8,8 +8,10 @@ nails' lever is t / 2).  So from the report, each failing plank needs its thickn
 
     max over the cases of  max((sag (1 + creep) / allowed)^(1/3), (stress / strength)^(1/2))
 
-and the edge plank of a joint whose nails pull out (and do not shear off: a thicker plank
-does not help the shear) its thickness times pull / capacity.  The thickness suggested is
+and the edge plank of a joint whose nails pull out the thickness at which the moment about
+the joint line, over the nails' lever t / 2, leaves the pull within capacity, the joint's
+wrench kept (``_edge_thickness``; none when the nails shear off or the rocking moment
+across the row alone pulls them out: a thicker plank helps neither).  The thickness suggested is
 the next board of ``STOCK_THICKNESSES`` at or above that; if the design is still not
 valid (a thicker plank is heavier, and its joints stiffer, so the loads shift), the
 estimate is made again from the new report, at most ``THICKEN_TRIES`` times.
@@ -36,9 +38,10 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.check import check_design
 from furncheck.design.model import Design, Plank
-from furncheck.geometry import Geometry, analyze, interpenetrations
-from furncheck.result import DesignReport
+from furncheck.geometry import Geometry, Joint, analyze, interpenetrations
+from furncheck.result import DesignReport, JointResult
 from furncheck.suggest.discrete.common import BENDING, Fix, Search, amount, names
+from furncheck.validity import nail_row
 
 THICKEN_TRIES = 3
 """Thicknesses tried per suggestion (the estimate, then from the reports of the tries)."""
@@ -129,7 +132,7 @@ def _needed(design: Design, geometry: Geometry, report: DesignReport) -> dict[st
     factors: dict[str, float] = {}
     failing_planks = {v.where for v in report.violations if v.kind in BENDING}
     failing_joints = {v.where for v in report.violations if v.kind in PULL_FAILING}
-    edges = {joint.name: joint.edge for joint in geometry.joints}
+    joints = {joint.name: joint for joint in geometry.joints}
     for case in report.cases:
         for result in case.planks or ():
             if result.id not in failing_planks:
@@ -139,16 +142,39 @@ def _needed(design: Design, geometry: Geometry, report: DesignReport) -> dict[st
             stress = result.stress / result.strength if result.strength else 0.0
             factor = max(max(sag, 0.0) ** (1.0 / 3.0), max(stress, 0.0) ** 0.5)
             factors[result.id] = max(factors.get(result.id, 0.0), factor)
-        for joint in case.joints:
-            name = "/".join(joint.planks)
-            if name not in failing_joints or name not in edges:
+        for result in case.joints:
+            name = "/".join(result.planks)
+            if name not in failing_joints or name not in joints:
                 continue
-            if joint.shear > joint.shear_capacity:
-                return {}                       # shear: no thickness helps
-            edge = edges[name]
-            factors[edge] = max(factors.get(edge, 0.0), joint.pull / joint.pull_capacity)
+            joint = joints[name]
+            needed = _edge_thickness(joint, result)
+            if needed is None:
+                return {}                     # shear, or the rocking moment: no thickness helps
+            factors[joint.edge] = max(factors.get(joint.edge, 0.0),
+                                      needed / design.plank(joint.edge).thickness)
     return {plank: design.plank(plank).thickness * factor
             for plank, factor in factors.items() if factor > 1.0}
+
+
+def _edge_thickness(joint: Joint, result: JointResult) -> float | None:
+    """m: the edge plank's thickness at which the joint's nails hold in this case, its
+    wrench kept: with F and M in the joint frame (``validity.nail_pull_shear``),
+
+        pull(t) = (2 |M_y| / t - F_n) / n + |M_x| y_max / S <= capacity
+        <=>  t >= 2 |M_y| / (n (capacity - |M_x| y_max / S) + F_n);
+
+    None when no thickness will do (the right side is not positive, or the shear, which
+    the thickness does not change, is over its capacity)."""
+    if result.shear > result.shear_capacity * (1.0 + tol.CAPACITY_REL_TOL):
+        return None
+    sign = 1.0 if joint.planks[0] == joint.face else -1.0
+    force = joint.frame.T @ (sign * np.asarray(result.force))
+    moment = joint.frame.T @ (sign * np.asarray(result.moment))
+    y_max, spread = (float(v[0]) for v in nail_row([joint]))
+    room = joint.nails * (result.pull_capacity - abs(moment[0]) * y_max / spread) + force[2]
+    if room <= 0.0:
+        return None
+    return 2.0 * abs(float(moment[1])) / room
 
 
 def _stock(thickness: float, above: bool = False) -> float | None:
@@ -191,7 +217,7 @@ def grown(design: Design, geometry: Geometry, thicknesses: dict[str, float]) -> 
         elif sides:
             side = -next(iter(sides))
         else:
-            side = _free_side(design, geometry, plank, grow)
+            side = _free_side(design, geometry, plank, grow, planks)
             if side is None:
                 return None
         centre = plank.center_array + axis * side * 0.5 * grow
@@ -226,15 +252,16 @@ def _resting(geometry: Geometry) -> dict[tuple[str, int], list[str]]:
     return found
 
 
-def _free_side(design: Design, geometry: Geometry, plank: Plank, grow: float) -> int | None:
+def _free_side(design: Design, geometry: Geometry, plank: Plank, grow: float,
+               planks: dict[str, Plank]) -> int | None:
     """How a plank held on neither face grows: 0 both ways, else toward +1 or -1 local
     z; the first whose new corners stay out of the floor and of the faces its ends rest
     on (a splayed leg, its ends cut square to it, cannot grow either way without
-    cutting in); None if none does."""
+    cutting in); None if none does.  ``planks``: the planks as grown so far."""
     planes = [(np.array([0.0, 0.0, 1.0]), 0.0)]
     for joint in geometry.joints:
         if joint.edge == plank.id:
-            face = design.plank(joint.face)
+            face = planks[joint.face]
             outward = face.rotation_matrix[:, 2] * joint.face_side
             planes.append((outward, float(outward @ face.center_array) + face.half_extents[2]))
     slack = design.tolerance + tol.ON_PLANK_EPS
