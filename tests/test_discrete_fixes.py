@@ -348,3 +348,20 @@ def test_discrete_search_stops_at_the_first_valid_candidate(monkeypatch):
     fix = aprons(search)
     assert fix is not None and seen == [pytest.approx(0.072)]
     assert math.isclose(search.checks, 1)
+
+
+def test_an_anchor_suggestion_lists_its_fixings_in_json(tmp_path):
+    """``--format json`` of the free bookcase (rigid): the anchor suggestion's
+    ``anchors`` are the fixings as a design file lists them: on top, at (-+141, 15, 1791)
+    mm (see ``test_a_bookcase_by_a_wall_gets_anchored``), wall 0, 196 N."""
+    path = tmp_path / "bookcase-free.yaml"
+    path.write_text(re.sub(r"anchors:\n(  - .*\n)+", "",
+                           (CATALOG / "bookcase-anchored.yaml").read_text()))
+    run = CliRunner().invoke(main, ["suggest", str(path), "--model", "rigid", "--format", "json"])
+    assert run.exit_code == 0, run.output
+    entry = next(e for e in json.loads(run.output)["suggestions"] if e.get("rule") == "anchor")
+    assert entry["adds"] == [] and entry["between"] == ["top"]
+    assert [a["plank"] for a in entry["anchors"]] == ["top", "top"]
+    assert [a["at"] for a in entry["anchors"]] == [pytest.approx([-141, 15, 1791]),
+                                                   pytest.approx([141, 15, 1791])]
+    assert all(a["wall"] == 0 and a["capacity"] == 196.0 for a in entry["anchors"])

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from furncheck.design.model import Design
-from furncheck.design.write import plank_entry
+from furncheck.design.write import anchor_entry, plank_entry
 from furncheck.export.suggestions import Written
 from furncheck.report.common import plural
 from furncheck.report.numbers import format_number, json_ready
@@ -151,7 +151,7 @@ def render_json(result: SuggestionReport, original: Design,
 def _suggestion_dict(suggestion: Suggestion, original: Design,
                      files: Written) -> dict[str, Any]:
     if suggestion.kind == "discrete":
-        return {
+        entry = {
             "rank": suggestion.rank,
             "kind": suggestion.kind,
             "rule": suggestion.rule,
@@ -163,6 +163,10 @@ def _suggestion_dict(suggestion: Suggestion, original: Design,
             "meshes": list(files.meshes),
             "plots": list(files.plots),
         }
+        added = suggestion.design.anchors[len(original.anchors):]
+        if added:           # a wall anchor: the fixings, as a design file lists them
+            entry["anchors"] = [anchor_entry(anchor, original) for anchor in added]
+        return entry
     return {
         "rank": suggestion.rank,
         "kind": suggestion.kind,
