@@ -149,7 +149,8 @@ class Search:
         report is the full one when the design is valid or ``full`` is asked for (a
         candidate that fails by bending alone may be finished); else an invalid
         candidate's report is cut short (``is_valid`` stops at its first failing case)
-        and says only that it is invalid."""
+        and says only that it is invalid.  (With one load case there is nothing to cut
+        short: the full check is made at once, and a valid candidate is solved once.)"""
         if edited.joints is not None and new_joints:
             listed = {frozenset(spec.planks) for spec in edited.joints}
             edited = replace(edited, joints=(*edited.joints, *(
@@ -167,7 +168,7 @@ class Search:
         if interpenetrations(edited):
             return None
         self.checks += 1
-        if not full and not is_valid(edited, after):
+        if not full and len(edited.load_cases) > 1 and not is_valid(edited, after):
             return edited, after, DesignReport(edited.source, edited.name, False)
         return edited, after, check_design(edited, after)
 
