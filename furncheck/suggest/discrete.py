@@ -261,7 +261,8 @@ def _checked(design: Design, geometry: Geometry, plank: Plank, ends: tuple[str, 
     new = {frozenset(joint.planks) for joint in after.joints if plank.id in joint.planks}
     wanted = {frozenset((end, plank.id)) for end in ends}
     if after.violations:
-        why[:] = [f"it would leave {after.violations[0].kind}: {after.violations[0].where}", None]
+        first = after.violations[0]
+        why[:] = [f"with it, {first.kind}: {first.where}: {first.message}", None]
         return None
     if new != wanted:
         others = sorted({p for pair in new - wanted for p in pair} - {plank.id})
