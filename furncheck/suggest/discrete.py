@@ -30,6 +30,7 @@ from furncheck.design.model import Design, JointSpec, Plank
 from furncheck.dofs import euler_degrees
 from furncheck.geometry import Geometry, analyze, interpenetrations
 from furncheck.result import DesignReport
+from furncheck.suggest.tried import FAILED, FOUND, NOT_APPLICABLE, Trial
 
 PARALLEL_COS = 0.95
 """P_i and P_j count as parallel when their face normals' cosine is at least this."""
@@ -60,12 +61,18 @@ class Support:
 
 
 def support_planks(design: Design, geometry: Geometry, report: DesignReport,
-                   limit: int = MAX_DISCRETE) -> list[Support]:
+                   limit: int = MAX_DISCRETE, trials: list[Trial] | None = None) -> list[Support]:
     """Working support planks for the non-durable joints and the sagging or overstressed
     planks of ``report`` (see the module docstring), at most ``limit``, in the order
-    tried: failing joints and planks as reported, then P_k, P_i, P_j, places."""
-    if geometry.violations or not report.violations or \
-            any(v.kind not in _REPAIRED for v in report.violations):
+    tried: failing joints and planks as reported, then P_k, P_i, P_j, places.  Every
+    candidate built or ruled out is appended to ``trials`` (``tried.Trial``)."""
+    trials = [] if trials is None else trials
+    unrepaired = sorted({v.kind for v in report.violations} - set(_REPAIRED))
+    if geometry.violations or not report.violations or unrepaired:
+        if report.violations:
+            trials.append(Trial(SUPPORT, "", NOT_APPLICABLE,
+                                "the geometry is repaired first" if geometry.violations
+                                else f"it does not repair {' or '.join(unrepaired)}"))
         return []
     restores = tuple(sorted({_REPAIRED[v.kind] for v in report.violations}))
     neighbours: dict[str, list[str]] = {p.id: [] for p in design.planks}
@@ -80,19 +87,20 @@ def support_planks(design: Design, geometry: Geometry, report: DesignReport,
     for where in failing:
         if "/" in where:                                 # a joint k/i: brackets and posts
             pair = where.split("/", 1)
-            trials = [(k, i, PLACES) for k, i in (pair, pair[::-1])]
+            placements = [(k, i, PLACES) for k, i in (pair, pair[::-1])]
         else:                                            # a bent plank i
             for depth in STIFFENER_DEPTHS:
                 key = (where, "stiffener")
                 if key in tried or len(found) >= limit:
                     break
                 support = _try_stiffener(design, geometry, where, neighbours[where], depth,
-                                         reaches)
+                                         reaches, trials)
                 if support is not None:
                     tried.add(key)
                     found.append(replace(support, restores=restores))
-            trials = [(k, where, PLACES[1:]) for k in neighbours[where]]
-        for k, i, places in trials:
+            placements = [(k, where, PLACES[1:]) for k in neighbours[where]]
+        out_of_reach = []
+        for k, i, places in placements:
             partners = [j for j in neighbours[k]
                         if j != i and _parallel(design.plank(i), design.plank(j))]
             if _level(design.plank(i)):
@@ -100,13 +108,37 @@ def support_planks(design: Design, geometry: Geometry, report: DesignReport,
             for j in partners:
                 for place, position in places:
                     key = (*sorted((i, j or "")), place)
-                    if key in tried or len(found) >= limit or not reaches({i, j}):
+                    if key in tried or len(found) >= limit:
+                        continue
+                    if not reaches({i, j}):
+                        out_of_reach.append(f"{i} and {j or 'the floor'}")
                         continue
                     tried.add(key)
-                    support = _try(design, geometry, k, i, j, place, position)
+                    support = _try(design, geometry, k, i, j, place, position, trials, where)
                     if support is not None:
                         found.append(replace(support, restores=restores))
+        if out_of_reach and len(found) < limit:
+            trials.append(Trial(SUPPORT, where, FAILED,
+                                f"one between {_listed(sorted(set(out_of_reach)))} would not "
+                                f"come near every failing joint and plank"))
     return found
+
+
+SUPPORT = "support plank"
+"""The name of the support-plank rule in ``Trial`` values."""
+
+STIFFENER = "stiffening rail"
+"""The name of the stiffening-rail rule in ``Trial`` values."""
+
+
+_PLACE_WORDS = {"far": "at the far side", "middle": "in the middle"}
+"""``PLACES`` in a ``Trial``'s reason."""
+
+
+def _listed(items: list[str], most: int = 3) -> str:
+    """'a, b, c' or 'a, b, c and 2 more'."""
+    head = ", ".join(items[:most])
+    return head if len(items) <= most else f"{head} and {len(items) - most} more"
 
 
 def _reach(failing, neighbours: dict[str, list[str]]) -> Callable[[set], bool]:
@@ -147,7 +179,8 @@ STIFFENER_DEPTHS = (4.0, 6.0, 8.0)
 
 
 def _try_stiffener(design: Design, geometry: Geometry, i: str, neighbours: list[str],
-                   depth: float, reaches: Callable[[set], bool]) -> Support | None:
+                   depth: float, reaches: Callable[[set], bool],
+                   trials: list[Trial]) -> Support | None:
     """A rail on edge under one long edge of the level plank i (a shelf's front lip), or
     under its middle, between the two parallel planks that hold i's ends, nailed to i and
     to both: the woodworker's fix for a sagging shelf.  (A lip at one edge carries that
@@ -155,9 +188,10 @@ def _try_stiffener(design: Design, geometry: Geometry, i: str, neighbours: list[
     twists about its axis: where that is too much, the rail under the middle does it.)
     None when i is not level, is not held at both ends by parallel planks, or the rail
     does not work (checked as ``_try`` does), or it would not reach every failing place
-    (``reaches``, see ``_reach``)."""
+    (``reaches``, see ``_reach``).  What it tried is appended to ``trials``."""
     shelf = design.plank(i)
     if not _level(shelf):
+        trials.append(Trial(STIFFENER, i, NOT_APPLICABLE, f"{i} is not level"))
         return None
     from furncheck.statics.beams import beam_frame, beam_length_width
 
@@ -172,9 +206,13 @@ def _try_stiffener(design: Design, geometry: Geometry, i: str, neighbours: list[
     below = [e for e in ends if e[0] < 0]
     above = [e for e in ends if e[0] > 0]
     if not below or not above:
+        trials.append(Trial(STIFFENER, i, NOT_APPLICABLE,
+                            f"{i} is not held at both ends by parallel planks"))
         return None
     (s_low, low), (s_high, high) = max(below, key=lambda e: e[0]), min(above, key=lambda e: e[0])
     if not reaches({i, low.id, high.id}):
+        trials.append(Trial(STIFFENER, i, FAILED, f"a rail under {i} would not come near "
+                                                  f"every failing joint and plank"))
         return None
     start = s_low + low.half_extents[2]
     stop = s_high - high.half_extents[2]
@@ -193,26 +231,52 @@ def _try_stiffener(design: Design, geometry: Geometry, i: str, neighbours: list[
                                  (0.0, 0.0, 0.0))
         rail = Plank(name, float(stop - start), float(rail_depth), thickness,
                      tuple(float(v) for v in centre), tuple(float(v) for v in rotation))
-        support = _checked(design, geometry, rail, (i, low.id, high.id))
+        why: list = []
+        support = _checked(design, geometry, rail, (i, low.id, high.id), why)
         if support is not None:
+            trials.append(Trial(STIFFENER, i, FOUND, plank=name))
             return Support(rail, (i, low.id, high.id), f"under {i}", support[0], support[1])
+    trials.append(Trial(STIFFENER, i, FAILED,
+                        f"{_length(rail_depth, design)} deep, from {low.id} to {high.id}, under "
+                        f"either long edge or the middle: {why[0]}", name, why[1]))
     return None
 
 
-def _checked(design: Design, geometry: Geometry, plank: Plank,
-             ends: tuple[str, ...]) -> tuple[Design, DesignReport] | None:
+def _length(value: float, design: Design) -> str:
+    """A length (m) in the design's unit, for a reason: '48 mm'."""
+    return f"{float(f'{value / design.unit_scale:.4g}'):g} {design.units}"
+
+
+def _checked(design: Design, geometry: Geometry, plank: Plank, ends: tuple[str, ...],
+             why: list | None = None) -> tuple[Design, DesignReport] | None:
     """(the design with ``plank`` added, nailed to ``ends``, and its report) when it is
-    valid, the new plank is joined to exactly ``ends`` and cuts into nothing; else None."""
+    valid, the new plank is joined to exactly ``ends`` and cuts into nothing; else None,
+    and ``why`` (when given) gets [the reason in words, the design with the plank when
+    its checks failed, else None]."""
+    why = [] if why is None else why
     joints = None if design.joints is None else \
         (*design.joints, *(JointSpec((end, plank.id)) for end in ends))
     edited = replace(design, planks=(*design.planks, plank), joints=joints)
     after = analyze(edited)
     new = {frozenset(joint.planks) for joint in after.joints if plank.id in joint.planks}
-    if after.violations or new != {frozenset((end, plank.id)) for end in ends}:
+    wanted = {frozenset((end, plank.id)) for end in ends}
+    if after.violations:
+        first = after.violations[0]
+        why[:] = [f"with it, {first.kind}: {first.where}: {first.message}", None]
         return None
-    if len(after.joints) != len(geometry.joints) + len(ends) or interpenetrations(edited):
+    if new != wanted:
+        others = sorted({p for pair in new - wanted for p in pair} - {plank.id})
+        why[:] = [f"it would also meet {', '.join(others)}" if others
+                  else "it would not be nailed to every plank it spans", None]
+        return None
+    cuts = interpenetrations(edited)
+    if len(after.joints) != len(geometry.joints) + len(ends) or cuts:
+        crossed = sorted({p for pair in cuts for p in pair[:2]} - {plank.id})
+        why[:] = [f"it would cut into {', '.join(crossed)}" if crossed
+                  else "it would change the design's other joints", None]
         return None
     if not is_valid(edited, after):      # stops at the first case that fails
+        why[:] = ["the design with it is still not valid", edited]
         return None
     return edited, check_design(edited, after)      # the winner's report, solved once more
 
@@ -227,18 +291,26 @@ def _parallel(a: Plank, b: Plank) -> bool:
 
 
 def _try(design: Design, geometry: Geometry, k: str, i: str, j: str | None, place: str,
-         position: float) -> Support | None:
+         position: float, trials: list[Trial], target: str) -> Support | None:
     """The design with a support between i and j (None: the floor) at ``position`` (1 far
     side, 0 middle) of their overlap, away from k; None when it does not fit or does not
-    work."""
+    work.  The attempt, for ``target`` (the failing joint or plank), is appended to
+    ``trials``."""
     other = None if j is None else design.plank(j)
     plank = _support(design, design.plank(k), design.plank(i), other, position)
+    between = f"between {i} and {j or 'the floor'} {_PLACE_WORDS.get(place, place)}"
     if plank is None:
+        trials.append(Trial(SUPPORT, target, FAILED,
+                            f"{between}: no room (a gap no wider than a plank, or an overlap "
+                            f"narrower than {MIN_OVERLAP:g} plank thicknesses)"))
         return None
     ends = (i,) if j is None else (i, j)
-    checked = _checked(design, geometry, plank, ends)
+    why: list = []
+    checked = _checked(design, geometry, plank, ends, why)
     if checked is None:
+        trials.append(Trial(SUPPORT, target, FAILED, f"{between}: {why[0]}", plank.id, why[1]))
         return None
+    trials.append(Trial(SUPPORT, target, FOUND, plank=plank.id))
     return Support(plank, (i, j or "the floor"), place, *checked)
 
 

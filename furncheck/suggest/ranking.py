@@ -17,11 +17,13 @@ from furncheck.check import check_design
 from furncheck.design.load import parse_design
 from furncheck.design.model import Design
 from furncheck.design.write import design_text
-from furncheck.dofs import Dof
+from furncheck.dofs import Dof, all_dofs
 from furncheck.geometry import analyze
-from furncheck.suggest.continuous import ContinuousSearch
+from furncheck.suggest.continuous import LINE_SEARCHES_PER_SUGGESTION, ContinuousSearch
 from furncheck.suggest.discrete import support_planks
+from furncheck.suggest.explain import explain
 from furncheck.suggest.suggestion import Suggestion, SuggestionReport
+from furncheck.suggest.tried import Trial, Tried
 
 
 def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
@@ -37,13 +39,15 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
     searching = time.perf_counter()
     continuous = search.run(directions, max_suggestions)
     discrete_start = time.perf_counter()
-    supports = support_planks(design, geometry, report)
+    trials: list[Trial] = []
+    supports = support_planks(design, geometry, report, trials=trials)
     end = time.perf_counter()
     if supports and len(continuous) + len(supports) > max_suggestions:
         keep = max(1, max_suggestions - len(continuous))
         supports = supports[:keep]
         continuous = continuous[:max_suggestions - len(supports)]
     suggestions: list[Suggestion] = []
+    dropped = len(continuous) + len(supports)
     for found in continuous:
         moved = search.representative(found)
         if moved is None:
@@ -63,11 +67,19 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
             suggestions.append(Suggestion(len(suggestions) + 1, "discrete", support.restores,
                                           *written, adds=(support.plank,),
                                           between=support.between))
+    tried = Tried(len(all_dofs(design)), len(search.margins.dofs), len(locked),
+                  dict(search.margins.blocked), max_dofs, max_suggestions,
+                  bool(geometry.violations),
+                  tuple(search.tally), tuple(search.line_searches),
+                  LINE_SEARCHES_PER_SUGGESTION * max_suggestions, search.unsearched,
+                  dropped - len(suggestions), tuple(trials))
     return SuggestionReport(design.source, design.name, report, tuple(suggestions),
                             search.searched, search.editor.checks,
                             {"candidates": searching - start,
                              "line search": discrete_start - searching,
-                             "discrete": end - discrete_start})
+                             "discrete": end - discrete_start},
+                            explain(design, geometry, report, tried, len(suggestions),
+                                    search.editor))
 
 
 def _written(design: Design, rank: int, keeps=analyze):
