@@ -337,7 +337,7 @@ def test_cli_json_follows_the_contract_and_is_deterministic(tmp_path):
     second = run("suggest", path, "--format", "json")
     assert first.exit_code == 0 and first.output == second.output
     document = json.loads(first.output)
-    assert list(document) == ["design", "valid", "violations", "suggestions"]
+    assert list(document) == ["design", "valid", "violations", "suggestions", "explanation"]
     assert document["valid"] is False and document["violations"][0]["kind"] == "lift-off"
     entry = document["suggestions"][0]
     assert list(entry)[:9] == ["rank", "kind", "restores", "dofs", "direction", "range",
@@ -395,6 +395,7 @@ def test_cli_out_writes_files_that_validate(tmp_path):
     (("--lock", "shelf.height"), "unknown DOF kind"),
     (("--lock", "nosuch.x"), "no plank 'nosuch'"),
     (("--max-dofs", "0"), "--max-dofs"),
+    (("--max-dofs", "5"), "one suggestion changes 1 to 4 DOFs together"),
 ])
 def test_cli_bad_input_is_one_line_and_exit_2(args, message):
     result = CliRunner().invoke(main, ["suggest", str(CATALOG / "bench-tips.yaml"), *args])

@@ -20,6 +20,7 @@ from furncheck.design.model import Design
 from furncheck.design.write import anchor_entry, plank_entry
 from furncheck.export.suggestions import Written
 from furncheck.report.common import plural
+from furncheck.report.explanation import explanation_dict, explanation_lines
 from furncheck.report.numbers import format_number, json_ready
 from furncheck.report.text import INDENT, design_lines
 from furncheck.suggest import Suggestion, SuggestionReport
@@ -115,9 +116,12 @@ def render_text(result: SuggestionReport, original: Design,
     if result.valid:
         lines.append("Nothing needs to change: the design is valid.")
         return "\n".join(lines) + "\n"
+    explanation = result.explanation
     if not result.suggestions:
         lines.append("No suggestion: no change of the allowed DOFs was found that makes "
                      "the design valid.")
+        if explanation is not None:
+            lines.extend(explanation_lines(explanation, original.units, 0, INDENT))
         return "\n".join(lines) + "\n"
     lines.append(f"{plural(len(result.suggestions), 'suggestion')}:")
     for suggestion in result.suggestions:
@@ -129,13 +133,18 @@ def render_text(result: SuggestionReport, original: Design,
             lines.append(f"{INDENT}   design: {files.design_file}")
             for path in (*files.meshes, *files.plots):
                 lines.append(f"{INDENT}   {path}")
+    if explanation is not None and len(result.suggestions) < explanation.tried.wanted:
+        lines.append(f"Fewer than the {explanation.tried.wanted} asked for:")
+        lines.extend(explanation_lines(explanation, original.units, len(result.suggestions),
+                                       INDENT))
     return "\n".join(lines) + "\n"
 
 
 def render_json(result: SuggestionReport, original: Design,
                 written: dict[int, Written]) -> str:
     """Contract section 4: design, valid, violations, suggestions (with ``advice`` and
-    ``plots`` added; files null/empty without ``--out``)."""
+    ``plots`` added; files null/empty without ``--out``), and for an invalid design the
+    ``explanation`` (what remains, what it would take, what was tried)."""
     report = result.report
     document: dict[str, Any] = {
         "design": result.design,
@@ -145,6 +154,8 @@ def render_json(result: SuggestionReport, original: Design,
         "suggestions": [_suggestion_dict(s, original, written.get(s.rank, Written()))
                         for s in result.suggestions],
     }
+    if result.explanation is not None:
+        document["explanation"] = explanation_dict(result.explanation, original.units)
     return json.dumps(json_ready(document), indent=2, allow_nan=False) + "\n"
 
 

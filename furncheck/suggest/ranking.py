@@ -17,11 +17,13 @@ from furncheck.check import check_design
 from furncheck.design.load import parse_design
 from furncheck.design.model import Design
 from furncheck.design.write import design_text
-from furncheck.dofs import Dof
+from furncheck.dofs import Dof, all_dofs
 from furncheck.geometry import analyze
-from furncheck.suggest.continuous import ContinuousSearch
+from furncheck.suggest.continuous import LINE_SEARCHES_PER_SUGGESTION, ContinuousSearch
 from furncheck.suggest.discrete import discrete_fixes
+from furncheck.suggest.explain import explain
 from furncheck.suggest.suggestion import Suggestion, SuggestionReport
+from furncheck.suggest.tried import Trial, Tried
 
 DISCRETE_KEPT = 2
 """When there are more than K suggestions, at least this many discrete fixes (as many as
@@ -41,7 +43,8 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
     searching = time.perf_counter()
     continuous = search.run(directions, max_suggestions)
     discrete_start = time.perf_counter()
-    fixes = discrete_fixes(design, geometry, report, bool(continuous), locked)
+    trials: list[Trial] = []
+    fixes = discrete_fixes(design, geometry, report, bool(continuous), locked, trials)
     end = time.perf_counter()
     if fixes and len(continuous) + len(fixes) > max_suggestions:
         keep = max(min(len(fixes), DISCRETE_KEPT, max_suggestions),
@@ -49,6 +52,7 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
         fixes = fixes[:keep]
         continuous = continuous[:max_suggestions - len(fixes)]
     suggestions: list[Suggestion] = []
+    dropped = len(continuous) + len(fixes)
     for found in continuous:
         moved = search.representative(found)
         if moved is None:
@@ -68,11 +72,19 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
             suggestions.append(Suggestion(len(suggestions) + 1, "discrete", fix.restores,
                                           *written, adds=fix.adds, between=fix.between,
                                           rule=fix.rule, advice=fix.advice))
+    tried = Tried(len(all_dofs(design)), len(search.margins.dofs), len(locked),
+                  dict(search.margins.blocked), max_dofs, max_suggestions,
+                  bool(geometry.violations),
+                  tuple(search.tally), tuple(search.line_searches),
+                  LINE_SEARCHES_PER_SUGGESTION * max_suggestions, search.unsearched,
+                  dropped - len(suggestions), tuple(trials))
     return SuggestionReport(design.source, design.name, report, tuple(suggestions),
                             search.searched, search.editor.checks,
                             {"candidates": searching - start,
                              "line search": discrete_start - searching,
-                             "discrete": end - discrete_start})
+                             "discrete": end - discrete_start},
+                            explain(design, geometry, report, tried, len(suggestions),
+                                    search.editor))
 
 
 def _written(design: Design, rank: int, keeps=analyze):

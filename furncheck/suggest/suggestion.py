@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 
 from furncheck.design.model import Design, Plank
 from furncheck.result import DesignReport
+from furncheck.suggest.explain import Explanation
 
 
 @dataclass(frozen=True)
@@ -58,6 +59,9 @@ class SuggestionReport:
     """Wall time of the phases ('candidates': margins, sensitivities and directions;
     'line search': line searches; 'discrete': support planks), for benchmarks; never
     reported."""
+    explanation: Explanation | None = None
+    """Which violations remain, what was tried and what each violation would need (None
+    for a valid design)."""
 
     @property
     def valid(self) -> bool:

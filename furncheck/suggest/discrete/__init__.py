@@ -29,9 +29,10 @@ from furncheck.suggest.discrete.anchors import wall_anchors
 from furncheck.suggest.discrete.common import Fix, Search
 from furncheck.suggest.discrete.feet import outriggers, overhang_supports
 from furncheck.suggest.discrete.racking import aprons, back_panels, braces, stretchers
-from furncheck.suggest.discrete.reconnect import reconnect_near_misses
+from furncheck.suggest.discrete.reconnect import RECONNECT, reconnect_near_misses
 from furncheck.suggest.discrete.supports import _reach, support_planks
 from furncheck.suggest.discrete.thicker import thicker_planks
+from furncheck.suggest.tried import Trial
 
 __all__ = ["RULES", "Fix", "Search", "_reach", "discrete_fixes", "support_planks"]
 
@@ -43,18 +44,21 @@ thicker board (a change of material)."""
 
 
 def discrete_fixes(design: Design, geometry: Geometry, report: DesignReport,
-                   covered: bool = False, locked: tuple[Dof, ...] = ()) -> list[Fix]:
+                   covered: bool = False, locked: tuple[Dof, ...] = (),
+                   trials: list[Trial] | None = None) -> list[Fix]:
     """The working fixes of the rules for the invalid ``design`` (its geometry and
     report given), each with what it restores.  A design that does not stand as drawn
     gets ``reconnect`` only, and only when the continuous search found nothing
     (``covered`` False).  A fix that adds a part and thickens planks is dropped when it
     thickens every plank that the thicker rule's fix alone thickens (the part spares
-    no board).  No fix changes a DOF of ``locked``."""
-    search = Search(design, geometry, report, locked)
-    if geometry.violations:
-        found = [] if covered else [reconnect_near_misses(search)]
+    no board).  No fix changes a DOF of ``locked``.  Every rule's trials (each candidate,
+    or why the rule does not apply) are appended to ``trials`` (``tried.Trial``)."""
+    search = Search(design, geometry, report, locked, [] if trials is None else trials)
+    found = [rule(search) for rule in RULES]
+    if covered and geometry.violations:
+        search.not_applicable(RECONNECT, "the continuous search closes the gaps")
     else:
-        found = [rule(search) for rule in RULES]
+        found.append(reconnect_near_misses(search))
     found = [fix for fix in found if fix is not None]
     alone = next((fix.thickened for fix in found if fix.rule == "thicker"), None)
     if alone:

@@ -24,9 +24,19 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.design.model import Anchor
 from furncheck.plain import plain_number
-from furncheck.suggest.discrete.common import Candidate, Fix, Search, names, point_of
+from furncheck.suggest.discrete.common import (
+    Candidate,
+    Fix,
+    Search,
+    amount,
+    names,
+    point_of,
+)
 
 REPAIRED = ("lift-off", "sliding", "non-durable")
+
+ANCHOR = "wall anchor"
+"""The rule's name in ``tried.Trial`` values."""
 
 UPRIGHT_COS = 0.7
 """A near face whose long side is within 45 degrees of vertical counts as upright."""
@@ -41,9 +51,11 @@ anchors, at a quarter of its length from each end; a shorter one one, at its mid
 
 def wall_anchors(search: Search) -> Fix | None:
     """The first working anchors into a wall behind the design."""
-    design, report = search.design, search.report
-    if not design.walls or search.geometry.violations or not report.violations or \
-            any(v.kind not in REPAIRED for v in report.violations):
+    design = search.design
+    if not design.walls:
+        search.not_applicable(ANCHOR, "the design stands by no wall")
+        return None
+    if not search.repairs(ANCHOR, REPAIRED):
         return None
     fix = search.first_valid(_candidates(search))
     if fix is None:
@@ -70,6 +82,9 @@ def _candidates(search: Search) -> Iterator[Candidate]:
             near = plank.corners[distances <= nearest + slack]
             found.append((-float(near[:, 2].mean()), design.plank_index[plank.id], plank.id,
                           w, near))
+    if not found:
+        search.failed(ANCHOR, f"no plank stands within "
+                      f"{amount(reach / design.unit_scale)} {design.units} of a wall")
     for _, _, plank_id, wall, near in sorted(found, key=lambda f: f[:2])[:PLANKS_TRIED]:
         plank = design.plank(plank_id)
         points = _anchor_points(plank, near, design.material.thickness)
@@ -83,7 +98,9 @@ def _candidates(search: Search) -> Iterator[Candidate]:
                   f"{'a fixing' if len(points) == 1 else 'fixings'} rated "
                   f"{plain_number(tol.ANCHOR_CAPACITY, 3)} N.")
         yield Candidate("anchor", replace(design, anchors=(*design.anchors, *anchors)),
-                        advice, between=(plank_id,))
+                        advice, between=(plank_id,), trial_rule=ANCHOR,
+                        place=f"{plank_id} to {wall_name} at {where}",
+                        plank=f"{len(points)} {'fixing' if len(points) == 1 else 'fixings'}")
 
 
 def _anchor_points(plank, near: np.ndarray, thickness: float) -> list[np.ndarray]:

@@ -16,6 +16,7 @@ from furncheck.dofs import Dof, dof_value, euler_degrees
 from furncheck.geometry import Geometry, analyze, interpenetrations
 from furncheck.plain import plain_number
 from furncheck.result import DesignReport
+from furncheck.suggest.tried import FAILED, FOUND, NOT_APPLICABLE, Trial
 from furncheck.tolerances import REPORT_DECIMALS
 
 PARALLEL_COS = 0.95
@@ -70,13 +71,15 @@ class Fix:
 class Search:
     """One invalid design's discrete search: the design, its geometry and report, the
     DOFs that must not change (``--lock``: a fix that moves or resizes a plank so that
-    one of them changes is not offered; added planks change none), and the count of
-    candidate designs checked in full (``checks``)."""
+    one of them changes is not offered; added planks change none), what the rules tried
+    (``trials``, ``tried.Trial`` values for ``explain``) and the count of candidate
+    designs checked in full (``checks``)."""
 
     design: Design
     geometry: Geometry
     report: DesignReport
     locked: tuple[Dof, ...] = ()
+    trials: list[Trial] = field(default_factory=list)
     checks: int = 0
     _neighbours: dict[str, list[str]] | None = field(default=None, repr=False)
 
@@ -103,23 +106,49 @@ class Search:
     def kinds(self) -> set[str]:
         return {v.kind for v in self.report.violations}
 
+    def repairs(self, rule: str, kinds: tuple[str, ...]) -> bool:
+        """Whether ``rule`` (its name in the reports) applies: the design stands as drawn
+        and every violation is of ``kinds``; if not, that is recorded, with why."""
+        if self.geometry.violations:
+            self.not_applicable(rule, "the geometry is repaired first")
+            return False
+        unrepaired = sorted(self.kinds() - set(kinds))
+        if unrepaired or not self.report.violations:
+            self.not_applicable(rule, f"it does not repair {' or '.join(unrepaired)}")
+            return False
+        return True
+
+    def not_applicable(self, rule: str, reason: str, target: str = "") -> None:
+        """Record that ``rule`` (its name in the reports) does not apply, and why."""
+        self.trials.append(Trial(rule, target, NOT_APPLICABLE, reason))
+
+    def failed(self, rule: str, reason: str, target: str = "") -> None:
+        """Record a candidate of ``rule`` ruled out before any check, and why."""
+        self.trials.append(Trial(rule, target, FAILED, reason))
+
     def first_valid(self, candidates: Iterable[Candidate]) -> Fix | None:
         """The Fix of the first candidate that is valid (``verdict``), trying at most
         MAX_CANDIDATES of them; when none is, but one failed only by planks that bend
         too much (elastic model), the first such one with those planks thickened
-        (``thicker.finish``), if that is valid; else None."""
+        (``thicker.finish``), if that is valid; else None.  Every candidate checked is
+        recorded in ``trials`` (``tried.Trial``: found, or failed and why)."""
         bent = None
         for count, candidate in enumerate(candidates):
             if count >= MAX_CANDIDATES:
+                self.failed(candidate.trial_rule or candidate.rule, f"the rule checks "
+                            f"{MAX_CANDIDATES} candidates at most", candidate.target)
                 break
             outcome = self.verdict(candidate.design, candidate.new_joints,
                                    full=self.elastic and bent is None)
-            if outcome is None:
+            if isinstance(outcome, str):
+                self._record(candidate, FAILED, outcome)
                 continue
             edited, after, report = outcome
             if report.valid:
+                self._record(candidate, FOUND)
                 return Fix(candidate.rule, candidate.advice, edited, report, candidate.adds,
                            candidate.between)
+            self._record(candidate, FAILED, "the design with it is still not valid", edited)
             if bent is None and report.violations and \
                     all(v.kind in BENDING for v in report.violations):
                 bent = (candidate, edited, after, report)
@@ -130,11 +159,23 @@ class Search:
         candidate, edited, after, report = bent
         finished = finish(self, edited, after, report)
         if finished is None:
+            self._record(candidate, FAILED, "no thicker boards (up to 44 mm) make the design "
+                         "with it valid", thickening=True)
             return None
         design, report, thickened = finished
+        self._record(candidate, FOUND, thickening=True)
         advice = f"{candidate.advice[:-1]}, and {thickness_phrase(thickened, self.design)}."
         return Fix(candidate.rule, advice, design, report, candidate.adds, candidate.between,
                    thickened={p: new for p, (_, new) in thickened.items()})
+
+    def _record(self, candidate: Candidate, outcome: str, reason: str = "",
+                design: Design | None = None, thickening: bool = False) -> None:
+        """A Trial of ``candidate``: its place and the reason ('place: reason')."""
+        place = candidate.place + (" with thicker planks" if thickening else "")
+        self.trials.append(Trial(candidate.trial_rule or candidate.rule, candidate.target,
+                                 outcome,
+                                 f"{place}: {reason}" if reason else "",
+                                 candidate.plank, design))
 
     def keeps_locks(self, edited: Design) -> bool:
         """Whether every locked DOF has the same value in ``edited``."""
@@ -142,12 +183,12 @@ class Search:
                    for dof in self.locked)
 
     def verdict(self, edited: Design, new_joints: tuple[tuple[str, str], ...] = (),
-                full: bool = False) -> tuple[Design, Geometry, DesignReport] | None:
+                full: bool = False) -> tuple[Design, Geometry, DesignReport] | str:
         """(the design, its geometry, its report) when ``edited`` keeps every joint of the
         design, adds exactly ``new_joints`` (plank id pairs, also listed when the design
-        lists its joints) and no other, and no plank cuts into another; else None.  The
-        report is the full one when the design is valid or ``full`` is asked for (a
-        candidate that fails by bending alone may be finished); else an invalid
+        lists its joints) and no other, and no plank cuts into another; else why not, in
+        words.  The report is the full one when the design is valid or ``full`` is asked
+        for (a candidate that fails by bending alone may be finished); else an invalid
         candidate's report is cut short (``is_valid`` stops at its first failing case)
         and says only that it is invalid.  (With one load case there is nothing to cut
         short: the full check is made at once, and a valid candidate is solved once.)"""
@@ -156,17 +197,26 @@ class Search:
             edited = replace(edited, joints=(*edited.joints, *(
                 JointSpec(pair) for pair in new_joints if frozenset(pair) not in listed)))
         if not self.keeps_locks(edited):
-            return None
+            return "it would change a locked DOF"
         after = analyze(edited)
         if after.violations:
-            return None
-        wanted = {frozenset(j.planks) for j in self.geometry.joints} | \
-            {frozenset(pair) for pair in new_joints}
-        if {frozenset(j.planks) for j in after.joints} != wanted or \
-                len(after.joints) != len(self.geometry.joints) + len(new_joints):
-            return None
-        if interpenetrations(edited):
-            return None
+            first = after.violations[0]
+            return f"with it, {first.kind}: {first.where}: {first.message}"
+        before = {frozenset(j.planks) for j in self.geometry.joints}
+        wanted = before | {frozenset(pair) for pair in new_joints}
+        found = {frozenset(j.planks) for j in after.joints}
+        if found - wanted:
+            others = sorted({p for pair in found - wanted for p in pair}
+                            - {p for pair in new_joints for p in pair})
+            return f"it would also meet {', '.join(others)}" if others else \
+                "it would change the design's other joints"
+        if wanted - found or len(after.joints) != len(self.geometry.joints) + len(new_joints):
+            return "it would not be nailed to every plank it should be" if wanted - found - \
+                before else "it would change the design's other joints"
+        cuts = interpenetrations(edited)
+        if cuts:
+            crossed = sorted({p for pair in cuts for p in pair[:2]})
+            return f"it would cut into {', '.join(crossed)}"
         self.checks += 1
         if not full and len(edited.load_cases) > 1 and not is_valid(edited, after):
             return edited, after, DesignReport(edited.source, edited.name, False)
@@ -175,7 +225,14 @@ class Search:
 
 @dataclass(frozen=True)
 class Candidate:
-    """A fix to check: the edited design, the joints it adds, and its advice."""
+    """A fix to check: the edited design, the joints it adds, and its advice.
+
+    trial_rule : the rule's name in ``tried.Trial`` (the reports), e.g. 'support plank'
+    target     : what it is for (a failing joint or plank; '' for the whole design)
+    place      : where it goes, in words, for the Trial's reason ('between shelf and base
+                 at the far side')
+    plank      : the plank (or fixing) it adds, as the advice names it
+    """
 
     rule: str
     design: Design
@@ -183,6 +240,10 @@ class Candidate:
     adds: tuple[Plank, ...] = ()
     between: tuple[str, ...] = ()
     new_joints: tuple[tuple[str, str], ...] = ()
+    trial_rule: str = ""
+    target: str = ""
+    place: str = ""
+    plank: str = ""
 
 
 # --- geometry a woodworker reads off a design ---------------------------------------------

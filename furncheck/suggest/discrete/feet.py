@@ -27,6 +27,7 @@ leaning on a wall gets a wall anchor instead, ``anchors``).
 from __future__ import annotations
 
 from collections.abc import Iterator
+from dataclasses import replace
 
 import numpy as np
 
@@ -62,9 +63,14 @@ SUPPORTS_TRIED = 3
 """Level planks tried for a support under their far end, farthest reaching first."""
 
 
+OVERHANG = "support under the overhang"
+"""The names of the rules in ``tried.Trial`` values."""
+OUTRIGGER = "outrigger"
+
+
 def overhang_supports(search: Search) -> Fix | None:
     """The first working support under the far end of an overhanging plank."""
-    tipping = _tipping(search)
+    tipping = _tipping(search, OVERHANG)
     if tipping is None:
         return None
     return search.first_valid(_support_candidates(search, *tipping))
@@ -72,28 +78,31 @@ def overhang_supports(search: Search) -> Fix | None:
 
 def outriggers(search: Search) -> Fix | None:
     """The first working outrigger foot on the leg at the polygon's edge."""
-    tipping = _tipping(search)
+    tipping = _tipping(search, OUTRIGGER)
     if tipping is None:
         return None
     return search.first_valid(_outrigger_candidates(search, *tipping))
 
 
-def _tipping(search: Search) -> tuple[np.ndarray, np.ndarray, float] | None:
+def _tipping(search: Search, rule: str) -> tuple[np.ndarray, np.ndarray, float] | None:
     """(c (2,) m, d (2,) unit, its distance past the polygon m) of the lift-off case whose
-    centre of pressure lies farthest outside the support polygon; None unless every
-    violation is a lift-off of a design without walls or anchors, or when the centre of
-    pressure lies inside (a part lifts, not the whole)."""
-    design, report = search.design, search.report
-    if search.geometry.violations or design.walls or design.anchors or \
-            not report.violations or any(v.kind != "lift-off" for v in report.violations):
+    centre of pressure lies farthest outside the support polygon; None (and why recorded
+    for ``rule``) unless every violation is a lift-off of a design without walls or
+    anchors, or when the centre of pressure lies inside (a part lifts, not the whole)."""
+    design = search.design
+    if not search.repairs(rule, ("lift-off",)):
+        return None
+    if design.walls or design.anchors:
+        search.not_applicable(rule, "the design stands by a wall (a wall anchor is tried)")
         return None
     points = np.array([c.point[:2] for c in search.geometry.contacts
                        if c.wall is None and c.anchor is None and c.on is None])
     if len(points) < 3:
+        search.not_applicable(rule, "the design stands on fewer than three floor points")
         return None
     hull = _hull(points)
     worst = None
-    for case_name in dict.fromkeys(v.case for v in report.violations):
+    for case_name in dict.fromkeys(v.case for v in search.report.violations):
         case = next(c for c in design.load_cases if c.name == case_name)
         centre = _pressure_centre(design, case)
         if centre is None:
@@ -104,6 +113,9 @@ def _tipping(search: Search) -> tuple[np.ndarray, np.ndarray, float] | None:
         distance = float(np.linalg.norm(centre - nearest))
         if worst is None or distance > worst[2]:
             worst = (centre, (centre - nearest) / distance, distance)
+    if worst is None:
+        search.not_applicable(rule, "the loads' line of action meets the floor inside the "
+                              "support polygon (a part lifts, not the whole)")
     return worst
 
 
@@ -174,12 +186,18 @@ def _support_candidates(search: Search, centre: np.ndarray, d: np.ndarray,
         reach = float((plank.corners @ direction).max())
         if reach > beyond:
             reaching.append((-reach, design.plank_index[plank.id], plank.id))
+    if not reaching:
+        search.failed(OVERHANG, "no level plank reaches past the point where the loads' "
+                      "line of action meets the floor")
     for _, _, plank_id in sorted(reaching)[:SUPPORTS_TRIED]:
         plank = design.plank(plank_id)
         away = -(plank.rotation_matrix[:, :2].T @ direction)
-        candidate = support_candidate(search, away, plank_id, None, 1.0)
-        if candidate is not None:
-            yield candidate
+        candidate = support_candidate(search, away, plank_id, None, 1.0, "support", OVERHANG)
+        place = f"under the far end of {plank_id}"
+        if candidate is None:
+            search.failed(OVERHANG, f"{place}: no room")
+            continue
+        yield replace(candidate, place=place)
 
 
 def _outrigger_candidates(search: Search, centre: np.ndarray, d: np.ndarray,
@@ -193,6 +211,7 @@ def _outrigger_candidates(search: Search, centre: np.ndarray, d: np.ndarray,
     edge = max(float(c.point @ direction) for c in contacts)
     at_edge = {c.plank for c in contacts if float(c.point @ direction) >= edge - thickness}
     floor_point = np.array([centre[0], centre[1], 0.0])
+    facing_legs = 0
     for leg_id in legs(design, geometry):
         if leg_id not in at_edge:
             continue
@@ -200,6 +219,7 @@ def _outrigger_candidates(search: Search, centre: np.ndarray, d: np.ndarray,
         outward = normal(leg) * (1.0 if normal(leg) @ direction >= 0 else -1.0)
         if float(outward @ direction) < FACING_COS:
             continue
+        facing_legs += 1
         face = float(leg.center_array @ outward) + leg.half_extents[2]
         gap = float(floor_point @ outward) - face
         if gap <= 0.0:
@@ -220,5 +240,9 @@ def _outrigger_candidates(search: Search, centre: np.ndarray, d: np.ndarray,
                       f"the floor against the outer face of {leg_id}, reaching "
                       f"{amount(length / design.unit_scale)} {design.units} out from it, "
                       f"nailed to {leg_id}.")
+            place = (f"on {leg_id}, reaching {amount(length / design.unit_scale)} "
+                     f"{design.units} out")
             yield Candidate("outrigger", with_planks(design, (foot,)), advice, (foot,),
-                            (leg_id,), ((leg_id, name),))
+                            (leg_id,), ((leg_id, name),), OUTRIGGER, "", place, name)
+    if not facing_legs:
+        search.failed(OUTRIGGER, "no leg at the edge it tips over turns a broad face that way")

@@ -65,14 +65,21 @@ MIN_GAP = 3.0
 
 REPAIRED = ("non-durable", *BENDING)
 
+NO_PAIR = "a failing leg has no leg whose broad face faces its own"
+NO_PLANE = ("the failing legs' edges do not lie in vertical planes, each with another "
+            "leg's edge")
 
-def racking_places(search: Search) -> list[str] | None:
+
+APRON, STRETCHER, BACK_PANEL, BRACE = "apron", "stretcher", "back panel", "diagonal brace"
+"""The rules' names in ``tried.Trial`` values."""
+
+
+def racking_places(search: Search, rule: str) -> list[str] | None:
     """The failing legs (plank ids, in plank order) when the design racks: every violation
     is a failing joint or a bent plank, and some failing joint of a leg or bent leg is in
-    a load case with a sideways load; else None."""
+    a load case with a sideways load; else None (and why, recorded for ``rule``)."""
     design, report = search.design, search.report
-    if search.geometry.violations or not report.violations or \
-            any(v.kind not in REPAIRED for v in report.violations):
+    if not search.repairs(rule, REPAIRED):
         return None
     pushed = {case.name for case in design.load_cases
               if any(np.hypot(*load.force[:2]) > 0.0 for load in case.loads)}
@@ -82,34 +89,39 @@ def racking_places(search: Search) -> list[str] | None:
         if violation.case not in pushed:
             continue
         failing.update(p for p in violation.where.split("/") if p in standing)
+    if not failing:
+        search.not_applicable(rule, "no leg's joint fails, and no leg bends, in a load case "
+                              "with a sideways load (racking)")
     return [p for p in standing if p in failing] or None
 
 
 def aprons(search: Search) -> Fix | None:
     """The first working aprons between each failing leg and its nearest facing leg."""
-    return _first(search, _apron_candidates)
+    return _first(search, APRON, _apron_candidates)
 
 
 def stretchers(search: Search) -> Fix | None:
     """The first working stretchers between each failing leg and its nearest facing leg."""
-    return _first(search, _stretcher_candidates)
+    return _first(search, STRETCHER, _stretcher_candidates)
 
 
 def back_panels(search: Search) -> Fix | None:
     """The first working back panels over the legs' edges."""
-    return _first(search, _back_panel_candidates)
+    return _first(search, BACK_PANEL, _back_panel_candidates)
 
 
 def braces(search: Search) -> Fix | None:
     """The first working diagonal braces across the legs' edges."""
-    return _first(search, _brace_candidates)
+    return _first(search, BRACE, _brace_candidates)
 
 
-def _first(search: Search, candidates) -> Fix | None:
-    failing = racking_places(search)
+def _first(search: Search, rule: str, candidates) -> Fix | None:
+    failing = racking_places(search, rule)
     if failing is None:
         return None
-    return search.first_valid(candidates(search, failing))
+    target = ",".join(failing)
+    return search.first_valid(replace(candidate, trial_rule=rule, target=target)
+                              for candidate in candidates(search, failing))
 
 
 # --- aprons and stretchers ------------------------------------------------------------------
@@ -147,12 +159,16 @@ def _apron_candidates(search: Search, failing: list[str]) -> Iterator[Candidate]
     legs carry; none when a pair carries no level plank above it."""
     design = search.design
     pairs = _pairs(design, legs(design, search.geometry), failing)
+    if not pairs:
+        search.failed(APRON, NO_PAIR, ",".join(failing))
     thickness = design.material.thickness
     for depth in RAIL_DEPTHS if pairs else ():
         made: list[tuple[Plank, str, str, str]] = []
         for a, b in pairs:
             carried = _carried(search, a, b)
             if carried is None:
+                search.failed(APRON, f"{a} and {b} carry no level plank above them",
+                              ",".join(failing))
                 return
             height = carried.corners[:, 2].min() - 0.5 * depth * thickness
             rail = _rail(design, a, b, height, depth * thickness, "apron", made)
@@ -161,15 +177,18 @@ def _apron_candidates(search: Search, failing: list[str]) -> Iterator[Candidate]
             made.append((rail, a, b, carried.id))
         else:
             tops = names(sorted({top for *_, top in made}, key=design.plank_index.get))
-            yield _rail_candidate(
+            candidate = _rail_candidate(
                 design, "apron", made, pairs,
                 f"on edge, the top edge under {tops}, nailed to the legs and to {tops}")
+            yield replace(candidate, place=f"{_depth(depth, design)} deep, under {tops}")
 
 
 def _stretcher_candidates(search: Search, failing: list[str]) -> Iterator[Candidate]:
     """Stretchers on every pair of ``_pairs``, RAIL_DEPTHS deep, at STRETCHER_HEIGHTS."""
     design = search.design
     pairs = _pairs(design, legs(design, search.geometry), failing)
+    if not pairs:
+        search.failed(STRETCHER, NO_PAIR, ",".join(failing))
     thickness = design.material.thickness
     for depth in RAIL_DEPTHS if pairs else ():
         for height in STRETCHER_HEIGHTS:
@@ -185,10 +204,17 @@ def _stretcher_candidates(search: Search, failing: list[str]) -> Iterator[Candid
                 made.append((rail, a, b, ""))
             else:
                 centre = made[0][0].center[2] / design.unit_scale
-                yield _rail_candidate(
+                candidate = _rail_candidate(
                     design, "stretcher", made, pairs,
                     f"on edge, centred {amount(centre)} {design.units} above the floor, "
                     f"nailed to the legs")
+                yield replace(candidate, place=f"{_depth(depth, design)} deep, "
+                              f"{amount(centre)} {design.units} up")
+
+
+def _depth(depth: float, design: Design) -> str:
+    """'72 mm': ``depth`` plank thicknesses in the design's unit."""
+    return f"{amount(depth * design.material.thickness / design.unit_scale)} {design.units}"
 
 
 def _rail_candidate(design: Design, rule: str, made: list, pairs: list,
@@ -201,7 +227,8 @@ def _rail_candidate(design: Design, rule: str, made: list, pairs: list,
                for rail, a, b, _ in made]
     advice = f"Add {_noun(rule, len(made))} {names(phrases)}, {where}."
     return Candidate(rule, with_planks(design, rails), advice, rails,
-                     tuple(p for pair in pairs for p in pair), joints)
+                     tuple(p for pair in pairs for p in pair), joints,
+                     plank=names([rail.id for rail in rails]))
 
 
 def _noun(word: str, count: int) -> str:
@@ -320,6 +347,7 @@ def _back_panel_candidates(search: Search, failing: list[str]) -> Iterator[Candi
     design = search.design
     planes = _planes(search, failing)
     if not planes:
+        search.failed(BACK_PANEL, NO_PLANE, ",".join(failing))
         return
     made: list[Plank] = []
     for plane in planes:
@@ -334,7 +362,9 @@ def _back_panel_candidates(search: Search, failing: list[str]) -> Iterator[Candi
               f"plank it covers.")
     yield Candidate("back panel", with_planks(design, tuple(made)), advice, tuple(made),
                     tuple(dict.fromkeys(p for over in nailed for p in over)),
-                    tuple((p, panel.id) for panel, over in zip(made, nailed) for p in over))
+                    tuple((p, panel.id) for panel, over in zip(made, nailed) for p in over),
+                    place=f"over the edges of {names([names(over) for over in nailed])}",
+                    plank=names([panel.id for panel in made]))
 
 
 def _brace_candidates(search: Search, failing: list[str]) -> Iterator[Candidate]:
@@ -344,6 +374,8 @@ def _brace_candidates(search: Search, failing: list[str]) -> Iterator[Candidate]
     thickness = design.material.thickness
     standing = legs(design, search.geometry)
     planes = _planes(search, failing)
+    if not planes:
+        search.failed(BRACE, NO_PLANE, ",".join(failing))
     for strap in BRACE_WIDTHS if planes else ():
         for flip in (1.0, -1.0):
             made, crossed_all = [], []
@@ -366,7 +398,10 @@ def _brace_candidates(search: Search, failing: list[str]) -> Iterator[Candidate]
                                 tuple(made),
                                 tuple(dict.fromkeys(p for over in crossed_all for p in over)),
                                 tuple((p, brace.id) for brace, over in zip(made, crossed_all)
-                                      for p in over))
+                                      for p in over),
+                                place=f"{_depth(strap, design)} wide, "
+                                      f"{'one' if flip > 0 else 'the other'} diagonal",
+                                plank=names([brace.id for brace in made]))
 
 
 def _rectangle(plane: dict, corners: np.ndarray, thickness: float) -> tuple:

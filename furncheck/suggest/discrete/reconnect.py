@@ -31,17 +31,29 @@ from furncheck.dofs import carried_point
 from furncheck.geometry.faces import _best_touches
 from furncheck.geometry.near import near_band
 from furncheck.suggest.discrete.common import Candidate, Fix, Search, amount, names
+from furncheck.tolerances import NEAR_MISS_FACTOR
 
 
 def reconnect_near_misses(search: Search) -> Fix | None:
     """The design with its near misses closed, when that (or that with thicker planks)
     is valid; else None."""
+    if not search.geometry.violations:
+        search.not_applicable(RECONNECT, "the design stands as drawn")
+        return None
     closed = _closed(search)
     if closed is None:
+        search.not_applicable(RECONNECT, "a geometric violation is not a near miss within "
+                              f"{NEAR_MISS_FACTOR:g} times the tolerance")
         return None
     design, ends, joints = closed
     return search.first_valid([Candidate("reconnect", design, _advice(search.design, ends),
-                                         between=tuple(ends), new_joints=joints)])
+                                         between=tuple(ends), new_joints=joints,
+                                         trial_rule=RECONNECT, place="the gaps closed",
+                                         plank=names(list(ends)))])
+
+
+RECONNECT = "reconnect"
+"""The rule's name in ``tried.Trial`` values."""
 
 
 def _closed(search: Search) -> tuple[Design, dict, tuple] | None:

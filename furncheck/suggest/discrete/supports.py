@@ -21,6 +21,7 @@ not built at all.
 from __future__ import annotations
 
 from collections.abc import Callable, Iterator
+from dataclasses import replace
 
 import numpy as np
 
@@ -30,6 +31,7 @@ from furncheck.suggest.discrete.common import (
     Candidate,
     Fix,
     Search,
+    amount,
     board,
     level,
     new_id,
@@ -49,6 +51,15 @@ both directions) to hold a support."""
 REPAIRED = ("non-durable", "sagging", "overstressed")
 """The violations a support plank can repair."""
 
+SUPPORT = "support plank"
+"""The name of the support-plank rule in ``tried.Trial`` values."""
+
+STIFFENER = "stiffening rail"
+"""The name of the stiffening-rail rule in ``tried.Trial`` values."""
+
+_PLACE_WORDS = {"far": "at the far side", "middle": "in the middle"}
+"""``PLACES`` in a Trial's reason."""
+
 STIFFENER_DEPTHS = (4.0, 6.0, 8.0)
 """Depths of a stiffening rail tried under a bent plank, in plank thicknesses (48, 72 and
 96 mm for 12 mm stock): the shallowest that works is suggested."""
@@ -63,9 +74,8 @@ def support_candidates(search: Search) -> Iterator[Candidate]:
     """Support planks and stiffening rails for the non-durable joints and the sagging or
     overstressed planks of the report (see the module docstring), in the order tried:
     failing joints and planks as reported, then P_k, P_i, P_j, places."""
-    design, geometry, report = search.design, search.geometry, search.report
-    if geometry.violations or not report.violations or \
-            any(v.kind not in REPAIRED for v in report.violations):
+    design, report = search.design, search.report
+    if not search.repairs(SUPPORT, REPAIRED):
         return
     neighbours = search.neighbours
     tried: set[tuple] = set()
@@ -74,30 +84,47 @@ def support_candidates(search: Search) -> Iterator[Candidate]:
     for where in failing:
         if "/" in where:                                 # a joint k/i: brackets and posts
             pair = where.split("/", 1)
-            trials = [(k, i, PLACES) for k, i in (pair, pair[::-1])]
+            placements = [(k, i, PLACES) for k, i in (pair, pair[::-1])]
         else:                                            # a bent plank i
             if (where, "stiffener") not in tried:
                 tried.add((where, "stiffener"))
-                for depth in STIFFENER_DEPTHS:
-                    yield from _stiffeners(search, where, neighbours[where], depth, reaches)
-            trials = [(k, where, PLACES[1:]) for k in neighbours[where]]
-        for k, i, places in trials:
+                yield from _stiffeners(search, where, neighbours[where], reaches)
+            placements = [(k, where, PLACES[1:]) for k in neighbours[where]]
+        out_of_reach = []
+        for k, i, places in placements:
             partners = [j for j in neighbours[k]
                         if j != i and parallel(design.plank(i), design.plank(j))]
             if level(design.plank(i)):
                 partners.append(None)                    # the floor, under a level plank
             for j in partners:
-                for _, position in places:
+                for place, position in places:
                     key = (*sorted((i, j or "")), position)
-                    if key in tried or not reaches({i, j}):
+                    if key in tried:
+                        continue
+                    if not reaches({i, j}):
+                        out_of_reach.append(f"{i} and {j or 'the floor'}")
                         continue
                     tried.add(key)
                     plank_i, plank_k = design.plank(i), design.plank(k)
                     away = (plank_k.center_array - plank_i.center_array) @ \
                         plank_i.rotation_matrix[:, :2]               # where k stands
+                    between = f"between {i} and {j or 'the floor'} {_PLACE_WORDS[place]}"
                     candidate = support_candidate(search, away, i, j, position)
-                    if candidate is not None:
-                        yield candidate
+                    if candidate is None:
+                        search.failed(SUPPORT, f"{between}: no room (a gap no wider than a "
+                                      f"plank, or an overlap narrower than {MIN_OVERLAP:g} "
+                                      f"plank thicknesses)", where)
+                        continue
+                    yield replace(candidate, target=where, place=between)
+        if out_of_reach:
+            search.failed(SUPPORT, f"one between {_listed(sorted(set(out_of_reach)))} would "
+                          f"not come near every failing joint and plank", where)
+
+
+def _listed(items: list[str], most: int = 3) -> str:
+    """'a, b, c' or 'a, b, c and 2 more'."""
+    head = ", ".join(items[:most])
+    return head if len(items) <= most else f"{head} and {len(items) - most} more"
 
 
 def _reach(failing, neighbours: dict[str, list[str]]) -> Callable[[set], bool]:
@@ -129,18 +156,20 @@ def _place(design: Design, where: str) -> str:
     return where
 
 
-def _stiffeners(search: Search, i: str, neighbours: list[str], depth: float,
+def _stiffeners(search: Search, i: str, neighbours: list[str],
                 reaches: Callable[[set], bool]) -> Iterator[Candidate]:
     """Rails on edge under one long edge of the level plank i (a shelf's front lip), or
     under its middle, between the two parallel planks that hold i's ends, nailed to i and
     to both: the woodworker's fix for a sagging shelf.  (A lip at one edge carries that
     edge; the beam model's shelf, whose section does not bend across its width, then
     twists about its axis: where that is too much, the rail under the middle does it.)
-    None when i is not level, is not held at both ends by parallel planks, or it would
-    not reach every failing place (``reaches``, see ``_reach``)."""
+    STIFFENER_DEPTHS deep, the shallowest first.  None (and the reason recorded) when i
+    is not level, is not held at both ends by parallel planks, or a rail would not reach
+    every failing place (``reaches``, see ``_reach``)."""
     design = search.design
     shelf = design.plank(i)
     if not level(shelf):
+        search.not_applicable(STIFFENER, f"{i} is not level", i)
         return
     from furncheck.statics.beams import beam_frame, beam_length_width
 
@@ -154,33 +183,43 @@ def _stiffeners(search: Search, i: str, neighbours: list[str], depth: float,
     below = [e for e in ends if e[0] < 0]
     above = [e for e in ends if e[0] > 0]
     if not below or not above:
+        search.not_applicable(STIFFENER, f"{i} is not held at both ends by parallel planks",
+                              i)
         return
     (s_low, low), (s_high, high) = max(below, key=lambda e: e[0]), min(above, key=lambda e: e[0])
     if not reaches({i, low.id, high.id}):
+        search.failed(STIFFENER, f"a rail under {i} would not come near every failing joint "
+                      f"and plank", i)
         return
     start = s_low + low.half_extents[2]
     stop = s_high - high.half_extents[2]
     thickness = design.material.thickness
-    rail_depth = depth * thickness
     length, width = beam_length_width(shelf)
     down = -frame[:, 2] if frame[2, 2] > 0 else frame[:, 2]
     name = new_id(design, "rail")
     nailed = (i, low.id, high.id)
-    for side, edge in ((-1.0, 1.0), (1.0, 1.0), (1.0, 0.0)):  # a long edge of i, its middle
-        across = frame[:, 1] * side
-        centre = (shelf.center_array + axis * 0.5 * (start + stop)
-                  + across * edge * (0.5 * width - 0.5 * thickness)
-                  + down * (shelf.half_extents[2] + 0.5 * rail_depth))
-        rail = board(name, stop - start, rail_depth, thickness, centre, axis, across)
-        advice = (f"Add {name} ({size_of(rail, design)}) on edge under {i}, from {low.id} "
-                  f"to {high.id}, centred at {point_of(rail.center, design)}, nailed to "
-                  f"all three.")
-        yield Candidate("rail", with_planks(design, (rail,)), advice, (rail,), nailed,
-                        tuple((end, name) for end in nailed))
+    for depth in STIFFENER_DEPTHS:
+        rail_depth = depth * thickness
+        for side, edge, where in ((-1.0, 1.0, "under one long edge"),
+                                  (1.0, 1.0, "under the other long edge"),
+                                  (1.0, 0.0, "under the middle")):
+            across = frame[:, 1] * side
+            centre = (shelf.center_array + axis * 0.5 * (start + stop)
+                      + across * edge * (0.5 * width - 0.5 * thickness)
+                      + down * (shelf.half_extents[2] + 0.5 * rail_depth))
+            rail = board(name, stop - start, rail_depth, thickness, centre, axis, across)
+            advice = (f"Add {name} ({size_of(rail, design)}) on edge under {i}, from "
+                      f"{low.id} to {high.id}, centred at {point_of(rail.center, design)}, "
+                      f"nailed to all three.")
+            place = (f"{amount(rail_depth / design.unit_scale)} {design.units} deep, from "
+                     f"{low.id} to {high.id}, {where}")
+            yield Candidate("rail", with_planks(design, (rail,)), advice, (rail,), nailed,
+                            tuple((end, name) for end in nailed), STIFFENER, i, place, name)
 
 
 def support_candidate(search: Search, away: np.ndarray, i: str, j: str | None,
-                      position: float, rule: str = "support") -> Candidate | None:
+                      position: float, rule: str = "support",
+                      trial_rule: str = "support plank") -> Candidate | None:
     """A support between i and j (None: the floor) at ``position`` (1 far side, 0
     middle) of their overlap, on the side of i opposite to ``away`` ((2,) in i's local
     x-y: where the plank k it is to relieve stands); None when it does not fit."""
@@ -198,7 +237,8 @@ def support_candidate(search: Search, away: np.ndarray, i: str, j: str | None,
         advice = (f"Add {plank.id} ({size}) between {i} and {j}, centred at {centre}, nailed "
                   f"to both.")
     return Candidate(rule, with_planks(design, (plank,)), advice, (plank,),
-                     (i, j or "the floor"), tuple((end, plank.id) for end in ends))
+                     (i, j or "the floor"), tuple((end, plank.id) for end in ends),
+                     trial_rule, plank=plank.id)
 
 
 def _support(design: Design, away: np.ndarray, i: Plank, j: Plank | None,

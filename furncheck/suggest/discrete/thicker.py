@@ -41,10 +41,14 @@ from furncheck.design.model import Design, Plank
 from furncheck.geometry import Geometry, Joint, analyze, interpenetrations
 from furncheck.result import DesignReport, JointResult
 from furncheck.suggest.discrete.common import BENDING, Fix, Search, amount, names
+from furncheck.suggest.tried import FOUND, Trial
 from furncheck.validity import nail_row
 
 THICKEN_TRIES = 3
 """Thicknesses tried per suggestion (the estimate, then from the reports of the tries)."""
+
+THICKER = "thicker board"
+"""The rule's name in ``tried.Trial`` values."""
 
 PULL_FAILING = ("non-durable",)
 """The joint violation a thicker edge plank can repair (by its pull)."""
@@ -56,13 +60,15 @@ def thicker_planks(search: Search) -> Fix | None:
     every violation is one of these (a design that also tips needs more than thicker
     boards)."""
     report = search.report
-    if search.geometry.violations or not report.violations or \
-            any(v.kind not in (*BENDING, *PULL_FAILING) for v in report.violations):
+    if not search.repairs(THICKER, (*BENDING, *PULL_FAILING)):
         return None
-    checked = _thickened(search, search.design, search.geometry, report)
+    why: list[str] = []
+    checked = _thickened(search, search.design, search.geometry, report, why)
     if checked is None:
+        search.failed(THICKER, why[0] if why else "no thicker boards make it valid")
         return None
     edited, after_report, thickened = checked
+    search.trials.append(Trial(THICKER, "", FOUND, plank=names(list(thickened))))
     advice = f"{thickness_phrase(thickened, search.design, capital=True)}."
     return Fix("thicker", advice, edited, after_report, between=tuple(thickened),
                thickened={p: new for p, (_, new) in thickened.items()})
@@ -90,39 +96,55 @@ def thickness_phrase(thickened: dict, design: Design, capital: bool = False) -> 
     return f"{verb} {names(parts)}"
 
 
-def _thickened(search: Search, design: Design, geometry: Geometry,
-               report: DesignReport) -> tuple[Design, DesignReport, dict] | None:
+def _thickened(search: Search, design: Design, geometry: Geometry, report: DesignReport,
+               why: list[str] | None = None) -> tuple[Design, DesignReport, dict] | None:
     """The tries of the module docstring, from ``design`` (whose geometry and failing
-    report are given); (design, report, {id: (old, new) m}) of the first valid one."""
+    report are given); (design, report, {id: (old, new) m}) of the first valid one, else
+    None and the reason in ``why``."""
+    why = [] if why is None else why
     original = {p.id: p.thickness for p in design.planks}
     current: dict[str, float] = {}
     wanted = _needed(design, geometry, report)
+    if not wanted:
+        why[:] = ["no thickness helps (a joint's nails shear off, or the moment across "
+                  "its nail row alone pulls them out)"]
+        return None
     for _ in range(THICKEN_TRIES):
-        if not wanted:
-            return None
         for plank, thickness in wanted.items():
             stock = _stock(thickness)
             if plank in current and (stock is None or stock <= current[plank]):
                 stock = _stock(current[plank], above=True)     # at least one board up
             if stock is None:
+                largest = amount(tol.STOCK_THICKNESSES[-1] / design.unit_scale)
+                why[:] = [f"{plank} would need {amount(thickness / design.unit_scale)} "
+                          f"{design.units}, more than the thickest board ({largest} "
+                          f"{design.units})"]
                 return None
             current[plank] = stock
         edited = grown(design, geometry, current)
         if edited is None or not search.keeps_locks(edited):
+            why[:] = ["a plank held on both faces cannot grow, or a locked DOF would change"
+                      if edited is None else "it would change a locked DOF"]
             return None
         after = analyze(edited)
         if after.violations or interpenetrations(edited) or \
                 {frozenset(j.planks) for j in after.joints} != \
                 {frozenset(j.planks) for j in geometry.joints}:
+            why[:] = ["the thicker planks would cut into others or change the joints"]
             return None
         search.checks += 1
         after_report = check_design(edited, after)
         if after_report.valid:
             order = sorted(current, key=design.plank_index.get)
             return edited, after_report, {p: (original[p], current[p]) for p in order}
+        first = after_report.violations[0]
+        why[:] = [f"with {names(list(current))} thicker, {first.kind}: {first.where}: "
+                  f"{first.message}"]
         if any(v.kind not in (*BENDING, *PULL_FAILING) for v in after_report.violations):
             return None
         wanted = _needed(edited, after, after_report)
+        if not wanted:
+            return None
     return None
 
 
