@@ -365,3 +365,45 @@ def test_an_anchor_suggestion_lists_its_fixings_in_json(tmp_path):
     assert [a["at"] for a in entry["anchors"]] == [pytest.approx([-141, 15, 1791]),
                                                    pytest.approx([141, 15, 1791])]
     assert all(a["wall"] == 0 and a["capacity"] == 196.0 for a in entry["anchors"])
+
+
+def test_locked_dofs_hold_for_the_fixes_too():
+    """The elastic cantilever's thicker post grows away from the shelf nailed to its +x
+    face, so its centre moves 16 mm along x (``test_a_plank_grows_away_...``): with
+    ``post.x`` locked that fix is not offered, and no fix changes post.x."""
+    from furncheck.dofs import dof_value, parse_dof
+
+    design = with_model(load_design(str(CATALOG / "shelf-cantilever-overloaded.yaml")), "elastic")
+    geometry = analyze(design)
+    report = check_design(design, geometry)
+    free = discrete_fixes(design, geometry, report)
+    assert any(f.rule == "thicker" and "post" in f.thickened for f in free)
+    lock = parse_dof(design, "post.x")
+    locked = discrete_fixes(design, geometry, report, locked=(lock,))
+    assert not any("post" in f.thickened for f in locked)
+    assert all(dof_value(f.design, lock) == pytest.approx(dof_value(design, lock))
+               for f in locked)
+
+
+def test_every_rule_says_what_it_tried():
+    """bench-tips (rigid) topples: the paper's support rule and the racking rules do not
+    apply ('it does not repair lift-off'), the wall anchor neither (no wall), the support
+    under the overhang is found (``test_the_tipping_bench_gets_a_leg_under_its_overhang``);
+    every rule leaves at least one ``Trial``."""
+    from furncheck.suggest.discrete import RULES
+    from furncheck.suggest.tried import FOUND, NOT_APPLICABLE
+
+    design = with_model(load_design(str(CATALOG / "bench-tips.yaml")), "rigid")
+    geometry = analyze(design)
+    trials: list = []
+    discrete_fixes(design, geometry, check_design(design, geometry), trials=trials)
+    by_name = {}
+    for trial in trials:
+        by_name.setdefault(trial.rule, []).append(trial)
+    assert len(by_name) == len(RULES) + 1                      # and reconnect
+    for name in ("support plank", "apron", "stretcher", "back panel", "diagonal brace",
+                 "thicker board"):
+        assert [(t.outcome, t.reason) for t in by_name[name]] == \
+            [(NOT_APPLICABLE, "it does not repair lift-off")], name
+    assert by_name["wall anchor"][0].reason == "the design stands by no wall"
+    assert [t.outcome for t in by_name["support under the overhang"]] == [FOUND]
