@@ -21,7 +21,7 @@ import pytest
 from furncheck.check import check_design
 from furncheck.design import Design, load_design, parse_design
 from furncheck.design.model import with_model
-from furncheck.export import ExportUnavailable, force_space_figure, plot_force_space
+from furncheck.export import ExportUnavailable, force_space_picture, plot_force_space
 from furncheck.export.colours import UTILIZATION_STOPS, utilization_rgb
 from furncheck.export.deflection import axis_curves, deflected_shape
 from furncheck.export.errors import EXPORT_HINT
@@ -335,14 +335,16 @@ def test_plot_draws_joints_and_contacts_once_each(tipping_change) -> None:
     shear / capacity); contacts: rings before at their (N, |T|) (the left panel's four
     feet would pull: N < 0), dots after (none pulls)."""
     before, after = tipping_change
-    figure = force_space_figure(before, after, 0.5, "suggestion 1: move leg_r")
-    joints, contacts = figure.axes
-    texts = [text.get_text() for text in figure.texts]
+    picture = force_space_picture(before, after, 0.5, "suggestion 1: move leg_r")
+    joints, contacts = "joints", "contacts"
+    texts = picture.texts
     assert texts[0] == "bench-tips: suggestion 1: move leg_r"
     assert texts[1].startswith("before: INVALID (lift-off in 'default')  ->  after: valid.")
 
-    def points(axes, filled: bool) -> np.ndarray:
-        lines = [line for line in axes.lines if line.get_marker() == "o"
+    def points(panel: str, filled: bool) -> np.ndarray:
+        """The markers of a panel (its artists' gid), rings or dots, in data units."""
+        lines = [line for line in picture.figure.artists if line.get_gid() == panel
+                 and getattr(line, "get_marker", lambda: None)() == "o"
                  and (line.get_markerfacecolor() != "none") == filled]
         return np.concatenate([line.get_xydata() for line in lines]) if lines else \
             np.zeros((0, 2))
@@ -365,10 +367,11 @@ def test_plot_labels_only_the_worst_of_many() -> None:
     design = load_design(str(DESIGNS / "cabinet-28.yaml"))
     report = check_design(design)
     assert sum(len(c.contacts) for c in report.cases[:1]) >= 50
-    figure = force_space_figure(report, report)
-    for axes in figure.axes:
-        labels = [t for t in axes.texts if t.get_text()]
-        assert 1 <= len(labels) <= 3
+    picture = force_space_picture(report, report)
+    labelled = [text for text in picture.texts if ("% ('" in text or "of mu N" in text)
+                and not text.startswith("contacts:")]
+    joints = [text for text in labelled if "/" in text.split()[0]]
+    assert len(joints) == 3 and len(labelled) - len(joints) == 3
 
 
 def test_friction_budget_by_hand(tipping_change) -> None:
@@ -380,8 +383,9 @@ def test_friction_budget_by_hand(tipping_change) -> None:
     weight = sum(design.plank_mass(p) for p in design.planks) * GRAVITY
     budget = 100 * 110.0 / (0.5 * weight)
     assert budget > 100
-    figure = force_space_figure(report, report, 0.5)
-    assert f"friction used {budget:.1f} % ('shove')" in figure.axes[1].get_title()
+    picture = force_space_picture(report, report, 0.5)
+    title = next(text for text in picture.texts if text.startswith("contacts:"))
+    assert title.endswith(f"friction used {budget:.1f} % -> {budget:.1f} % ('shove')")
 
 
 def test_plot_png_is_deterministic(tipping_change, tmp_path: Path) -> None:
@@ -400,16 +404,14 @@ def test_plot_of_a_case_without_forces(tipping_change) -> None:
     loose = CaseResult("loose", durable=True, stable=False, joints=(), contacts=(),
                        stability="mechanism")
     report = dataclasses.replace(tipping_change[0], cases=(loose,))
-    figure = force_space_figure(report, report)
-    assert [t.get_text() for t in figure.axes[0].texts] == ["no joint forces"]
-    assert [t.get_text() for t in figure.axes[1].texts] == \
-        ["no contact forces (no equilibrium)"]
+    texts = force_space_picture(report, report).texts
+    assert texts.index("no joint forces") < texts.index("no contact forces (no equilibrium)")
 
 
 def test_plot_needs_load_cases() -> None:
     unreadable = DesignReport(design="broken.yaml", name="broken", valid=None, error="line 1")
     with pytest.raises(ValueError, match="no load case results"):
-        force_space_figure(unreadable, unreadable)
+        force_space_picture(unreadable, unreadable)
 
 
 def test_pictures_without_matplotlib_raise_export_unavailable(tipping_change,

@@ -17,7 +17,7 @@ stays cheap and works without the extra; drawing without it raises ``ExportUnava
 
 from furncheck.export.errors import ExportUnavailable
 from furncheck.export.meshes import glb_bytes, mtl_text, obj_text, write_meshes
-from furncheck.export.plots import force_space_figure, force_space_png, plot_force_space
+from furncheck.export.plots import force_space_picture, force_space_png, plot_force_space
 
-__all__ = ["ExportUnavailable", "force_space_figure", "force_space_png", "glb_bytes",
+__all__ = ["ExportUnavailable", "force_space_picture", "force_space_png", "glb_bytes",
            "mtl_text", "obj_text", "plot_force_space", "write_meshes"]

@@ -25,17 +25,17 @@ At most LABELLED_JOINTS joints and LABELLED_CONTACTS contacts, the worst after t
 design and the change, and the verdicts before and after.
 
 Figures are built with matplotlib's object API on an Agg canvas (no pyplot, no layout
-engine: the panels sit at fixed places) and written without a software version, so the
-same reports always give the same bytes with one matplotlib installation.
+engine: the panels sit at fixed places), their text written with Pillow (``labels``), and
+saved without a software version, so the same reports always give the same bytes with one
+matplotlib and Pillow installation.
 """
 
 from __future__ import annotations
 
-import io
 import math
 from collections.abc import Callable, Hashable, Iterable
 from pathlib import Path
-from typing import TYPE_CHECKING, TypeVar
+from typing import TypeVar
 
 import numpy as np
 
@@ -47,12 +47,9 @@ from furncheck.export.findings import (
     friction_demand,
     tangential,
 )
+from furncheck.export.labels import Label, Picture, Sheet
 from furncheck.plain import plain_number
 from furncheck.result import ContactResult, DesignReport, JointResult
-
-if TYPE_CHECKING:
-    from matplotlib.axes import Axes
-    from matplotlib.figure import Figure
 
 PRESSED_CLIP = -1.0
 """Lowest pull ratio drawn: a joint pressed harder than one nail's pull capacity is drawn
@@ -66,10 +63,15 @@ FIGURE_SIZE = (12.0, 5.2)      # inches
 PANELS = ((0.06, 0.12, 0.40, 0.68), (0.56, 0.12, 0.40, 0.68))
 """(left, bottom, width, height) of the joints and the contacts panel, figure fractions."""
 DPI = 100
-PNG_METADATA = {"Software": None}
-"""PNG text chunks: matplotlib writes its version as 'Software' unless told not to."""
-PNG_OPTIONS = {"compress_level": 6}
 FONT = 8
+TICKS = 6
+"""Most grid lines (with their numbers) per axis."""
+GRID_COLOR = "0.9"
+LABEL_OFFSET = (14.0, 14.0)
+LABEL_STEP = 16.0
+RIGHT_ROOM = 230.0
+"""Pixels a label needs: items nearer the panel's right edge are labelled to the left."""
+"""Pixels from a labelled item to its label, and between stacked labels."""
 
 BEFORE_COLOR = "0.55"
 AFTER_COLOR = "tab:blue"
@@ -92,21 +94,17 @@ def plot_force_space(before: DesignReport, after: DesignReport, path: Path,
 def force_space_png(before: DesignReport, after: DesignReport,
                     friction: float = tol.DEFAULT_FRICTION, change: str | None = None
                     ) -> bytes:
-    """PNG bytes of ``force_space_figure``; the same reports give the same bytes."""
-    figure = force_space_figure(before, after, friction, change)
-    buffer = io.BytesIO()
-    figure.savefig(buffer, format="png", dpi=DPI, metadata=PNG_METADATA,
-                   pil_kwargs=PNG_OPTIONS)
-    return buffer.getvalue()
+    """PNG bytes of ``force_space_picture``; the same reports give the same bytes."""
+    return force_space_picture(before, after, friction, change).png()
 
 
-def force_space_figure(before: DesignReport, after: DesignReport,
-                       friction: float = tol.DEFAULT_FRICTION, change: str | None = None
-                       ) -> Figure:
+def force_space_picture(before: DesignReport, after: DesignReport,
+                        friction: float = tol.DEFAULT_FRICTION, change: str | None = None
+                        ) -> Picture:
     """The force space of ``before`` and ``after`` (reports of a design and of its changed
-    version; ``friction``: the design's mu; ``change``: what changed, for the heading) on
-    an Agg canvas: joints left, contacts right.  ValueError when neither report has a
-    load case (an unreadable design)."""
+    version; ``friction``: the design's mu; ``change``: what changed, for the heading):
+    joints left, contacts right, drawn on an Agg canvas, with its labels.  ValueError
+    when neither report has a load case (an unreadable design)."""
     try:
         from matplotlib.backends.backend_agg import FigureCanvasAgg
         from matplotlib.figure import Figure
@@ -117,23 +115,26 @@ def force_space_figure(before: DesignReport, after: DesignReport,
 
     figure = Figure(figsize=FIGURE_SIZE, dpi=DPI, facecolor="white")
     FigureCanvasAgg(figure)
-    joints_axes = figure.add_axes(PANELS[0])
-    contacts_axes = figure.add_axes(PANELS[1])
-    _draw_joints(joints_axes, before, after)
-    _draw_contacts(contacts_axes, before, after, friction)
+    picture = Picture(figure)
+    width, height = (DPI * side for side in FIGURE_SIZE)
+    slots = [(left * width, bottom * height, wide * width, high * height)
+             for left, bottom, wide, high in PANELS]
+    _draw_joints(figure, slots[0], picture, before, after)
+    _draw_contacts(figure, slots[1], picture, before, after, friction)
     name = after.name or before.name
-    figure.text(0.01, 0.975, f"{name}: {change}" if change else name, fontsize=FONT + 3,
-                weight="bold", va="top", ha="left")
-    figure.text(0.01, 0.915, f"before: {_verdict(before)}  ->  after: {_verdict(after)}.  "
-                "Force space, each joint and contact at its worst load case: before "
-                "(grey rings), after (dots, red when failing).", fontsize=FONT + 1,
-                va="top", ha="left", color="0.2")
-    return figure
+    picture.labels.insert(0, Label(8, height - 8, f"{name}: {change}" if change else name,
+                                   FONT + 3, va="top", bold=True))
+    picture.labels.insert(1, Label(
+        8, height - 34, f"before: {_verdict(before)}  ->  after: {_verdict(after)}.  "
+        "Each joint and contact at its worst load case: before (grey rings), after (dots, "
+        "red when failing).", FONT + 1, (0.2, 0.2, 0.2), va="top"))
+    return picture
 
 
 # --- joints -----------------------------------------------------------------------------
 
-def _draw_joints(axes: Axes, before: DesignReport, after: DesignReport) -> None:
+def _draw_joints(figure, slot, picture: Picture, before: DesignReport,
+                 after: DesignReport) -> None:
     """Joints in (pull / capacity, shear / capacity) space, the durable region shaded."""
     old = _worst_joints(before)
     new = _worst_joints(after)
@@ -141,25 +142,23 @@ def _draw_joints(axes: Axes, before: DesignReport, after: DesignReport) -> None:
     left = PRESSED_CLIP - 0.05
     right = max([1.15] + [x + 0.1 for x, _ in ratios])
     top = max([1.15] + [y + 0.1 for _, y in ratios])
-    axes.fill_between([left, 1.0], 0.0, 1.0, color=REGION_COLOR, alpha=REGION_ALPHA, lw=0)
-    axes.plot([left, 1.0, 1.0], [1.0, 1.0, 0.0], color=REGION_COLOR, lw=1)
-    axes.axvline(0.0, color="0.8", lw=0.8, zorder=0)
+    axes = _sheet(figure, slot, (left, right), (-0.05, top), "joints")
+    _area(axes, [(left, 0.0), (1.0, 0.0), (1.0, 1.0), (left, 1.0)], REGION_COLOR, REGION_ALPHA)
+    _line(axes, [left, 1.0, 1.0], [1.0, 1.0, 0.0], REGION_COLOR, 1.0)
+    _line(axes, [0.0, 0.0], [-0.05, top], "0.8", 0.8)
     _moves(axes, old, new, lambda item: _ratio(item[0]))
     _markers(axes, [_ratio(j) for j, _ in old.values()], [True] * len(old), before=True)
     _markers(axes, [_ratio(j) for j, _ in new.values()],
              [joint.durable for joint, _ in new.values()], before=False)
-    _labels(axes, old, new, LABELLED_JOINTS, lambda item: item[0].utilization,
+    _frame(axes, picture, (left, right), (-0.05, top),
+           "pull / pull capacity, per nail (< 0: pressed)", "shear / shear capacity, per nail",
+           f"joints: {_count_change(old, new)}, shaded: durable")
+    _labels(axes, picture, old, new, LABELLED_JOINTS, lambda item: item[0].utilization,
             lambda item: _ratio(item[0]),
             lambda item: f"{'/'.join(item[0].planks)} "
-                         f"{plain_number(100 * item[0].utilization, 3)} % ('{item[1]}')")
-    axes.set_xlim(left, right)
-    axes.set_ylim(-0.05, top)
-    axes.set_xlabel("pull / pull capacity, per nail (< 0: pressed)", fontsize=FONT)
-    axes.set_ylabel("shear / shear capacity, per nail", fontsize=FONT)
-    axes.tick_params(labelsize=FONT)
-    axes.set_title(f"joints: {_count_change(old, new)}, shaded: durable", fontsize=FONT + 1)
+                         f"{plain_number(100 * item[0].utilization, 3)} % ('{item[1]}')", right)
     if not old and not new:
-        _say(axes, "no joint forces")
+        _say(picture, slot, "no joint forces")
 
 
 def _worst_joints(report: DesignReport) -> dict[tuple, tuple[JointResult, str]]:
@@ -182,8 +181,8 @@ def _ratio(joint: JointResult) -> tuple[float, float]:
 
 # --- contacts ---------------------------------------------------------------------------
 
-def _draw_contacts(axes: Axes, before: DesignReport, after: DesignReport,
-                   friction: float) -> None:
+def _draw_contacts(figure, slot, picture: Picture, before: DesignReport,
+                   after: DesignReport, friction: float) -> None:
     """Contacts in (N, |T|) space, the friction cone shaded."""
     old = _worst_contacts(before, friction)
     new = _worst_contacts(after, friction)
@@ -191,31 +190,32 @@ def _draw_contacts(axes: Axes, before: DesignReport, after: DesignReport,
     span = max([1.0] + [abs(x) for x, _ in points] + [y / friction for _, y in points])
     left = min([-0.08 * span] + [1.08 * x for x, _ in points])
     right, top = 1.08 * span, max([friction * span] + [1.08 * y for _, y in points])
-    axes.fill_between([0.0, right], 0.0, [0.0, friction * right], color=REGION_COLOR,
-                      alpha=REGION_ALPHA, lw=0)
-    axes.plot([0.0, right], [0.0, friction * right], color=REGION_COLOR, lw=1)
-    axes.axvspan(left, 0.0, color=LIFT_COLOR, alpha=0.07, lw=0)
-    axes.axvline(0.0, color="0.6", lw=0.8, zorder=0)
+    bottom, ceiling = -0.03 * top, 1.05 * top
+    axes = _sheet(figure, slot, (left, right), (bottom, ceiling), "contacts")
+    cone = min(friction * right, ceiling)
+    _area(axes, [(0.0, 0.0), (right, 0.0), (right, cone), (cone / friction, cone)],
+          REGION_COLOR, REGION_ALPHA)
+    _line(axes, [0.0, cone / friction], [0.0, cone], REGION_COLOR, 1.0)
+    _area(axes, [(left, bottom), (0.0, bottom), (0.0, ceiling), (left, ceiling)],
+          LIFT_COLOR, 0.07)
+    _line(axes, [0.0, 0.0], [bottom, ceiling], "0.6", 0.8)
     _moves(axes, old, new, lambda item: _cone_point(item[0]))
     _markers(axes, [_cone_point(c) for c, _ in old.values()], [True] * len(old), before=True)
     unstable = {case.name for case in after.cases if case.stability != "stable"}
     _markers(axes, [_cone_point(c) for c, _ in new.values()],
              [case not in unstable or _holds(c, friction) for c, case in new.values()],
              before=False)
-    _labels(axes, old, new, LABELLED_CONTACTS,
+    budget = _budget_change(before, after, friction)
+    _frame(axes, picture, (left, right), (bottom, ceiling),
+           "normal force N, newtons (< 0: it would pull: lifts)",
+           "friction force |T|, newtons",
+           f"contacts: shaded |T| <= mu N, mu {plain_number(friction)}; friction used {budget}")
+    _labels(axes, picture, old, new, LABELLED_CONTACTS,
             lambda item: _demand_order(item[0], friction), lambda item: _cone_point(item[0]),
             lambda item: f"{item[0].plank} {_contact_state(item[0], friction)} "
-                         f"('{item[1]}')")
-    axes.set_xlim(left, right)
-    axes.set_ylim(-0.03 * top, top * 1.05)
-    axes.set_xlabel("normal force N, newtons (< 0: it would pull: lifts)", fontsize=FONT)
-    axes.set_ylabel("friction force |T|, newtons", fontsize=FONT)
-    axes.tick_params(labelsize=FONT)
-    budget = " -> ".join(_budget(report, friction) for report in (before, after))
-    axes.set_title(f"contacts: shaded the friction cone |T| <= mu N, mu = "
-                   f"{plain_number(friction)}; friction used {budget}", fontsize=FONT + 1)
+                         f"('{item[1]}')", right)
     if not old and not new:
-        _say(axes, "no contact forces (no equilibrium)")
+        _say(picture, slot, "no contact forces (no equilibrium)")
 
 
 def _worst_contacts(report: DesignReport, friction: float
@@ -254,8 +254,16 @@ def _contact_state(contact: ContactResult, friction: float) -> str:
     return f"{plain_number(100 * friction_demand(contact, friction), 3)} % of mu N"
 
 
-def _budget(report: DesignReport, friction: float) -> str:
-    """The worst case's |sum T| / (mu sum N) over ground contacts, as '23 % ('shove')'."""
+def _budget_change(before: DesignReport, after: DesignReport, friction: float) -> str:
+    """'41.2 % -> 23 % ('shove')', or with each case named when they differ."""
+    old, new = _budget(before, friction), _budget(after, friction)
+    if old[1] == new[1]:
+        return f"{old[0]} -> {new[0]}" + (f" ('{new[1]}')" if new[1] else "")
+    return " -> ".join(f"{value} ('{name}')" if name else value for value, name in (old, new))
+
+
+def _budget(report: DesignReport, friction: float) -> tuple[str, str]:
+    """The worst case's |sum T| / (mu sum N) over ground contacts, as ('23 %', case)."""
     worst, name = None, ""
     for case in report.cases:
         ground = [c for c in case.contacts if c.wall is None and c.on is None]
@@ -268,50 +276,115 @@ def _budget(report: DesignReport, friction: float) -> str:
         if worst is None or used > worst:
             worst, name = used, case.name
     if worst is None:
-        return "-"
+        return "-", ""
     if not math.isfinite(worst):
-        return f"all ('{name}')"
-    return f"{100 * worst:.1f} % ('{name}')"
+        return "all", name
+    return f"{100 * worst:.1f} %", name
 
 
 # --- shared -----------------------------------------------------------------------------
 
-def _moves(axes: Axes, old: dict, new: dict, point: Callable) -> None:
+def _sheet(figure, slot, xlim: tuple[float, float], ylim: tuple[float, float],
+           name: str) -> Sheet:
+    """The panel in the pixel rectangle ``slot`` (left, bottom, width, height) showing
+    ``xlim`` x ``ylim``; its artists carry the gid ``name``."""
+    from matplotlib.transforms import Affine2D
+
+    left, bottom, width, height = slot
+    transform = Affine2D().translate(-xlim[0], -ylim[0]).scale(
+        width / (xlim[1] - xlim[0]), height / (ylim[1] - ylim[0])).translate(left, bottom)
+    return Sheet(figure, transform, name)
+
+
+def _area(axes: Sheet, corners: list, colour, alpha: float) -> None:
+    from matplotlib.patches import Polygon
+
+    axes.add(Polygon(corners, closed=True, facecolor=colour, alpha=alpha, lw=0, zorder=0))
+
+
+def _line(axes: Sheet, xs: list, ys: list, colour, width: float) -> None:
+    from matplotlib.lines import Line2D
+
+    axes.add(Line2D(xs, ys, color=colour, lw=width, zorder=1))
+
+
+def _moves(axes: Sheet, old: dict, new: dict, point: Callable) -> None:
     """A grey line from each item's position before to after (one LineCollection)."""
     from matplotlib.collections import LineCollection
 
     segments = [[point(old[key]), point(new[key])] for key in new if key in old]
     if segments:
-        axes.add_collection(LineCollection(segments, colors=BEFORE_COLOR, linewidths=0.7,
-                                           zorder=2))
+        axes.add(LineCollection(segments, colors=BEFORE_COLOR, linewidths=0.7, zorder=2))
 
 
-def _markers(axes: Axes, points: list, holds: list[bool], before: bool) -> None:
+def _markers(axes: Sheet, points: list, holds: list[bool], before: bool) -> None:
     """Before: grey rings; after: dots, red where failing."""
+    from matplotlib.lines import Line2D
+
     if not points:
         return
     x, y = np.array(points, dtype=float).T
     if before:
-        axes.plot(x, y, ls="", marker="o", mfc="none", mec=BEFORE_COLOR, ms=6.5, mew=1.1,
-                  zorder=3)
+        axes.add(Line2D(x, y, ls="", marker="o", mfc="none", mec=BEFORE_COLOR, ms=6.5,
+                        mew=1.1, zorder=3))
         return
     ok = np.array(holds, dtype=bool)
-    axes.plot(x[ok], y[ok], ls="", marker="o", color=AFTER_COLOR, ms=4.5, zorder=4)
-    axes.plot(x[~ok], y[~ok], ls="", marker="o", color=FAILING_RGB, ms=5.0, zorder=4)
+    axes.add(Line2D(x[ok], y[ok], ls="", marker="o", color=AFTER_COLOR, ms=4.5, zorder=4))
+    axes.add(Line2D(x[~ok], y[~ok], ls="", marker="o", color=FAILING_RGB, ms=5.0, zorder=4))
 
 
-def _labels(axes: Axes, old: dict, new: dict, count: int, badness: Callable,
-            point: Callable, text: Callable) -> None:
+def _labels(axes: Sheet, picture: Picture, old: dict, new: dict, count: int,
+            badness: Callable, point: Callable, text: Callable, right: float) -> None:
     """Label the ``count`` worst items after the change (then those only before),
-    stacked by rank with a leader line: items crowd, labels must not."""
+    stacked by rank with a leader line: items crowd, labels must not (``right``: the
+    panel's right limit)."""
+    from matplotlib.collections import LineCollection
+
     ranked = sorted(new, key=lambda key: -badness(new[key]))
     ranked += sorted((key for key in old if key not in new), key=lambda key: -badness(old[key]))
+    leaders = []
     for rank, key in enumerate(ranked[:count]):
         item = new.get(key) or old[key]
-        axes.annotate(text(item), point(item), xytext=(10, 10 + 12 * rank),
-                      textcoords="offset points", fontsize=FONT, zorder=5,
-                      arrowprops={"arrowstyle": "-", "color": "0.5", "lw": 0.6,
-                                  "shrinkA": 0, "shrinkB": 2})
+        (x, y), = axes.pixels(point(item))
+        # to the right of the item, or to its left in the panel's right part
+        side = -1.0 if x > axes.pixels((right, 0.0))[0, 0] - RIGHT_ROOM else 1.0
+        label_x, label_y = x + side * LABEL_OFFSET[0], y + LABEL_OFFSET[1] + LABEL_STEP * rank
+        leaders.append([point(item), tuple(axes.points((label_x, label_y))[0])])
+        picture.labels.append(Label(label_x + side, label_y, text(item), FONT, va="bottom",
+                                    ha="left" if side > 0 else "right"))
+    if leaders:
+        axes.add(LineCollection(leaders, colors="0.5", linewidths=0.6, zorder=5))
+
+
+def _frame(axes: Sheet, picture: Picture, xlim: tuple[float, float],
+           ylim: tuple[float, float], xlabel: str, ylabel: str, title: str) -> None:
+    """Limits, light grid lines at round values and their numbers, axis names and the
+    title (labels: see ``labels``; matplotlib's own ticks would cost more than the plot)."""
+    from matplotlib.collections import LineCollection
+    from matplotlib.patches import Rectangle
+    from matplotlib.ticker import MaxNLocator
+
+    xs = [t for t in MaxNLocator(TICKS).tick_values(*xlim) if xlim[0] <= t <= xlim[1]]
+    ys = [t for t in MaxNLocator(TICKS).tick_values(*ylim) if ylim[0] <= t <= ylim[1]]
+    axes.add(LineCollection(
+        [[(x, ylim[0]), (x, ylim[1])] for x in xs] + [[(xlim[0], y), (xlim[1], y)] for y in ys],
+        colors=GRID_COLOR, linewidths=0.6, zorder=-1))
+    axes.add(Rectangle((xlim[0], ylim[0]), xlim[1] - xlim[0], ylim[1] - ylim[0], fill=False,
+                       edgecolor="black", lw=0.8, zorder=6))
+    (x0, y0), (x1, y1) = axes.pixels([(xlim[0], ylim[0]), (xlim[1], ylim[1])])
+    for x in xs:
+        picture.labels.append(Label(axes.pixels((x, ylim[0]))[0, 0], y0 - 4,
+                                    _tick(x), FONT, ha="center", va="top"))
+    for y in ys:
+        picture.labels.append(Label(x0 - 4, axes.pixels((xlim[0], y))[0, 1],
+                                    _tick(y), FONT, ha="right", va="center"))
+    picture.labels.append(Label((x0 + x1) / 2, y0 - 20, xlabel, FONT, ha="center", va="top"))
+    picture.labels.append(Label(x0 - 42, (y0 + y1) / 2, ylabel, FONT, rotation=90))
+    picture.labels.append(Label((x0 + x1) / 2, y1 + 6, title, FONT + 1, ha="center"))
+
+
+def _tick(value: float) -> str:
+    return f"{round(value, 9):g}"
 
 
 def _verdict(report: DesignReport) -> str:
@@ -357,6 +430,8 @@ def _keyed(items: Iterable[Item], key: Callable[[Item], Hashable]) -> dict[tuple
     return keyed
 
 
-def _say(axes: Axes, text: str) -> None:
-    axes.text(0.5, 0.5, text, transform=axes.transAxes, ha="center", va="center",
-              color="0.4")
+def _say(picture: Picture, slot, text: str) -> None:
+    """A note in the middle of the panel in the pixel rectangle ``slot``."""
+    left, bottom, width, height = slot
+    picture.labels.append(Label(left + width / 2, bottom + height / 2, text, FONT + 1,
+                                (0.4, 0.4, 0.4), ha="center", va="center"))

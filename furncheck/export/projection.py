@@ -84,24 +84,23 @@ def plank_order(planks, unit_scale: float, slack: float = 0.0) -> list[int]:
     (file unit) planks may overlap and still count as separated (the design's
     tolerance)."""
     count = len(planks)
-    corners = [plank.corners / unit_scale for plank in planks]
+    corners = np.stack([plank.corners for plank in planks]) / unit_scale if count else \
+        np.zeros((0, 8, 3))
     axes = [plank.rotation_matrix.T for plank in planks]
-    depth = [float(c.mean(axis=0) @ VIEW) for c in corners]
-    outline = [project(c) for c in corners]
-    low = [o.min(axis=0) for o in outline]
-    high = [o.max(axis=0) for o in outline]
+    depth = (corners.mean(axis=1) @ VIEW).tolist()
+    outline = project(corners)                                  # (n, 8, 2)
+    low, high = outline.min(axis=1), outline.max(axis=1)
+    overlap = np.all((high[:, None] >= low[None]) & (high[None] >= low[:, None]), axis=2)
     behind: list[set[int]] = [set() for _ in range(count)]     # i: the planks behind i
-    for i in range(count):
-        for j in range(i + 1, count):
-            if np.any(high[i] < low[j]) or np.any(high[j] < low[i]):
-                continue                                         # pictures apart
-            order = _separated(corners[i], corners[j], np.vstack([axes[i], axes[j]]), slack)
-            if order is None:
-                order = 1 if depth[i] < depth[j] else -1 if depth[i] > depth[j] else 0
-            if order > 0:
-                behind[j].add(i)
-            elif order < 0:
-                behind[i].add(j)
+    for i, j in zip(*np.nonzero(np.triu(overlap, 1))):
+        i, j = int(i), int(j)
+        order = _separated(corners[i], corners[j], np.vstack([axes[i], axes[j]]), slack)
+        if order is None:
+            order = 1 if depth[i] < depth[j] else -1 if depth[i] > depth[j] else 0
+        if order > 0:
+            behind[j].add(i)
+        elif order < 0:
+            behind[i].add(j)
     drawn: list[int] = []
     done = [False] * count
     while len(drawn) < count:
@@ -119,17 +118,14 @@ def _separated(one: np.ndarray, other: np.ndarray, axes: np.ndarray,
     separates them and ``other`` is on the viewer's side), -1 when in front, 0 when a
     separating plane runs along the line of sight (neither hides the other), None when
     no axis separates them."""
-    for axis in axes:
-        toward = float(axis @ VIEW)
-        a, b = one @ axis, other @ axis
-        if a.max() <= b.min() + slack:
-            sign = 1
-        elif b.max() <= a.min() + slack:
-            sign = -1
-        else:
-            continue
+    a, b = axes @ one.T, axes @ other.T                           # (6, 8) each
+    below = a.max(axis=1) <= b.min(axis=1) + slack
+    above = b.max(axis=1) <= a.min(axis=1) + slack
+    for k in np.flatnonzero(below | above):
+        toward = float(axes[k] @ VIEW)
         if abs(toward) < 1e-9:
             return 0
+        sign = 1 if below[k] else -1
         return sign if toward > 0 else -sign
     return None
 

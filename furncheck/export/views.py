@@ -27,7 +27,6 @@ without a software version: the same input gives the same bytes with one matplot
 
 from __future__ import annotations
 
-import io
 import math
 from dataclasses import dataclass, field
 
@@ -51,6 +50,7 @@ from furncheck.export.findings import (
     governing_case,
     plank_utilization,
 )
+from furncheck.export.labels import Label, Picture, Sheet
 from furncheck.plain import plain_number
 from furncheck.result import NOT_SOLVED, CaseResult, DesignReport
 
@@ -58,8 +58,6 @@ PANEL_SIZE = (6.0, 4.6)      # inches per panel (width, height)
 HEADING_HEIGHT = 0.45        # inches above the panels
 FOOTER_HEIGHT = 0.55         # inches below them: colour bar and legend
 DPI = 100
-PNG_METADATA = {"Software": None}
-PNG_OPTIONS = {"compress_level": 6}
 MARGIN = 0.06
 """Share of the drawing's extent left around it."""
 DEFLECTION_SHARE = 0.06
@@ -78,6 +76,7 @@ DEFLECTION_RGB = (0.05, 0.05, 0.05)
 FLOOR_RGB = (0.93, 0.93, 0.92)
 WALL_EDGE_RGB = (0.75, 0.75, 0.74)
 FONT = 8
+NOTE_RGB = (0.25, 0.25, 0.25)
 
 
 @dataclass(frozen=True)
@@ -138,15 +137,11 @@ def suggestion_view_png(original: Design, original_report: DesignReport | None,
 
 def view_png(panels: list[Panel], heading: str | None = None) -> bytes:
     """The panels side by side as PNG bytes."""
-    figure = view_figure(panels, heading)
-    buffer = io.BytesIO()
-    figure.savefig(buffer, format="png", dpi=DPI, metadata=PNG_METADATA,
-                   pil_kwargs=PNG_OPTIONS)
-    return buffer.getvalue()
+    return view_picture(panels, heading).png()
 
 
-def view_figure(panels: list[Panel], heading: str | None = None):
-    """The matplotlib Figure of ``view_png`` (Agg canvas)."""
+def view_picture(panels: list[Panel], heading: str | None = None) -> Picture:
+    """The figure (Agg canvas) and labels of ``view_png``."""
     try:
         from matplotlib.backends.backend_agg import FigureCanvasAgg
         from matplotlib.figure import Figure
@@ -158,41 +153,50 @@ def view_figure(panels: list[Panel], heading: str | None = None):
     height = (HEADING_HEIGHT if heading else 0.0) + PANEL_SIZE[1] + FOOTER_HEIGHT
     figure = Figure(figsize=(width, height), dpi=DPI, facecolor="white")
     FigureCanvasAgg(figure)
+    picture = Picture(figure)
     limits = _shared_limits(panels)
-    bottom = FOOTER_HEIGHT / height
+    bottom = FOOTER_HEIGHT * DPI
     for k, panel in enumerate(panels):
-        axes = figure.add_axes((k / len(panels), bottom, 1 / len(panels),
-                                PANEL_SIZE[1] / height))
-        axes.set_axis_off()
-        title, notes = _draw_panel(axes, panel, limits)
-        left = (k + 0.02) / len(panels)
-        figure.text(left, bottom + (PANEL_SIZE[1] - 0.1) / height, title,
-                    fontsize=FONT + 1, va="top", ha="left")
+        slot = (k * PANEL_SIZE[0] * DPI, bottom, PANEL_SIZE[0] * DPI, PANEL_SIZE[1] * DPI)
+        title, notes = _draw_panel(Sheet(figure, _fit(limits, slot)), picture, panel)
+        left = (k * PANEL_SIZE[0] + 0.12) * DPI
+        picture.labels.append(Label(left, bottom + (PANEL_SIZE[1] - 0.1) * DPI, title,
+                                    FONT + 1, va="top"))
         if notes:
-            figure.text(left, bottom + 0.05 / height, "\n".join(notes), fontsize=FONT,
-                        va="bottom", ha="left", color="0.25")
+            picture.labels.append(Label(left, bottom + 5, "\n".join(notes), FONT,
+                                        NOTE_RGB, va="bottom"))
     if heading:
-        figure.text(0.01, 1 - 0.2 / height, heading, fontsize=FONT + 2, va="center",
-                    ha="left", weight="bold")
-    _draw_scale(figure, width, height, any(panel.marks for panel in panels))
-    return figure
+        picture.labels.append(Label(0.12 * DPI, (height - 0.2) * DPI, heading, FONT + 2,
+                                    va="center", bold=True))
+    _draw_scale(figure, picture, width, height, any(panel.marks for panel in panels))
+    return picture
 
 
 # --- one panel --------------------------------------------------------------------------
 
-def _draw_panel(axes, panel: Panel, limits) -> tuple[str, list[str]]:
-    """Draw the panel into ``axes``; return its title and the notes to write under it."""
+def _fit(limits, slot):
+    """The Affine2D taking the picture rectangle ``limits`` (x0, x1, y0, y1) into the
+    middle of the pixel rectangle ``slot`` (left, bottom, width, height), one scale for
+    both axes."""
+    from matplotlib.transforms import Affine2D
+
+    x0, x1, y0, y1 = limits
+    left, bottom, width, height = slot
+    scale = min(width / (x1 - x0), height / (y1 - y0))
+    return Affine2D().translate(-(x0 + x1) / 2, -(y0 + y1) / 2).scale(scale).translate(
+        left + width / 2, bottom + height / 2)
+
+
+def _draw_panel(sheet: Sheet, picture: Picture, panel: Panel) -> tuple[str, list[str]]:
+    """Draw the panel on ``sheet``; return its title and the notes to write under it."""
     from matplotlib.collections import LineCollection, PolyCollection
 
     design, report = panel.design, panel.report
     scale = design.unit_scale
     size = _extent(design)
-    axes.set_xlim(limits[0], limits[1])
-    axes.set_ylim(limits[2], limits[3])
-    axes.set_aspect("equal", adjustable="box", anchor="C")
 
     backdrop = [_floor(design), *_walls(design)]
-    axes.add_collection(PolyCollection(projection.project(np.array(backdrop)),
+    sheet.add(PolyCollection(projection.project(np.array(backdrop)),
                                        facecolors=[FLOOR_RGB], edgecolors=[WALL_EDGE_RGB],
                                        linewidths=[0.0] + [0.6] * (len(backdrop) - 1),
                                        zorder=0))
@@ -205,19 +209,19 @@ def _draw_panel(axes, panel: Panel, limits) -> tuple[str, list[str]]:
     mark_of = [panel.marks.get(design.planks[i].id) for i in owner[order]]
     edge_colours = [MARK_RGB[mark] if mark else EDGE_RGB for mark in mark_of]
     widths = [1.8 if mark else 0.4 for mark in mark_of]
-    axes.add_collection(PolyCollection(projection.project(faces[order]),
+    sheet.add(PolyCollection(projection.project(faces[order]),
                                        facecolors=face_colours, edgecolors=edge_colours,
                                        linewidths=widths, zorder=1))
     case = governing_case(report) if report is not None else None
     notes = []
     if panel.deflection is not None and panel.deflection.largest > 0.0:
-        notes.append(_draw_deflection(axes, panel.deflection, size, design.units,
+        notes.append(_draw_deflection(sheet, panel.deflection, size, design.units,
                                       LineCollection))
     elif design.model == "rigid":
         notes.append("rigid planks: no deflection drawn")
     if case is not None:
-        _draw_loads(axes, design, case, size, LineCollection, PolyCollection)
-        _draw_failures(axes, design, report, case)
+        _draw_loads(sheet, picture, design, case, size, LineCollection, PolyCollection)
+        _draw_failures(sheet, picture, design, report, case)
         notes.insert(0, f"loads of case '{case.name}'"
                         + (f" (worst of {len(report.cases)})" if len(report.cases) > 1 else ""))
         if case.stability == NOT_SOLVED:
@@ -225,12 +229,12 @@ def _draw_panel(axes, panel: Panel, limits) -> tuple[str, list[str]]:
     return panel.title, notes
 
 
-def _draw_deflection(axes, deflection: Deflection, size: float, units: str,
+def _draw_deflection(sheet: Sheet, deflection: Deflection, size: float, units: str,
                      LineCollection) -> str:
     factor = _magnification(deflection.largest, size)
     lines = [projection.project(points + factor * moves)
              for _, points, moves in deflection.curves]
-    axes.add_collection(LineCollection(lines, colors=[DEFLECTION_RGB], linewidths=0.9,
+    sheet.add(LineCollection(lines, colors=[DEFLECTION_RGB], linewidths=0.9,
                                        linestyles=(0, (3, 2)), alpha=0.85, zorder=4))
     return (f"deflected shape (dashed) x {plain_number(factor)}: largest "
             f"{plain_number(deflection.largest, 3)} {units} at {deflection.where}")
@@ -245,8 +249,8 @@ def _magnification(largest: float, size: float) -> float:
     return max(step * power for step in (1.0, 2.0, 5.0) if step * power <= wanted)
 
 
-def _draw_loads(axes, design: Design, case: CaseResult, size: float, LineCollection,
-                PolyCollection) -> None:
+def _draw_loads(sheet: Sheet, picture: Picture, design: Design, case: CaseResult, size: float,
+                LineCollection, PolyCollection) -> None:
     arrows = []          # (head point, unit direction, magnitude N, label or None)
     scale = design.unit_scale
     for load in case.loads:
@@ -277,20 +281,24 @@ def _draw_loads(axes, design: Design, case: CaseResult, size: float, LineCollect
     if not arrows:
         return
     largest = max(magnitude for _, _, magnitude, _ in arrows)
-    shafts, heads = [], []
-    labelled = sorted({label for *_, label in arrows if label})
-    texts = 0
-    for point, direction, magnitude, label in arrows:
+    shafts, heads, tails = [], [], []
+    for point, direction, magnitude, _ in arrows:
         length = LOAD_ARROW_SHARE * size * (0.4 + 0.6 * magnitude / largest)
         tail2, head2 = projection.project([point - direction * length, point])
         shafts.append([tail2, head2])
         heads.append(_arrow_head(tail2, head2, 0.022 * size))
-        if label and texts < LABELLED_LOADS and label in labelled:
-            axes.annotate(label, tail2, xytext=(-3, 2), textcoords="offset points",
-                          fontsize=FONT, color=LOAD_RGB, ha="right", va="bottom", zorder=6)
-            texts += 1
-    axes.add_collection(LineCollection(shafts, colors=[LOAD_RGB], linewidths=1.4, zorder=5))
-    axes.add_collection(PolyCollection(heads, facecolors=[LOAD_RGB], edgecolors="none",
+        tails.append(tail2)
+    # each different label once first (in load order), then repeats while there is room
+    labels = [(k, label) for k, (*_, label) in enumerate(arrows) if label]
+    firsts = {label: k for k, label in reversed(labels)}
+    chosen = sorted(k for k, label in labels if firsts[label] == k)
+    chosen += [k for k, _ in labels if k not in chosen]
+    for k in sorted(chosen[:LABELLED_LOADS]):
+        (x, y), = sheet.pixels(tails[k])
+        picture.labels.append(Label(x - 3, y + 2, arrows[k][3], FONT, LOAD_RGB, ha="right",
+                                    halo=True))
+    sheet.add(LineCollection(shafts, colors=[LOAD_RGB], linewidths=1.4, zorder=5))
+    sheet.add(PolyCollection(heads, facecolors=[LOAD_RGB], edgecolors="none",
                                        zorder=5))
 
 
@@ -310,29 +318,34 @@ def _upward(plank) -> np.ndarray:
     return normal if normal[2] >= 0 else -normal
 
 
-def _draw_failures(axes, design: Design, report: DesignReport, case: CaseResult) -> None:
+def _draw_failures(sheet: Sheet, picture: Picture, design: Design, report: DesignReport,
+                   case: CaseResult) -> None:
+    from matplotlib.lines import Line2D
+
     joints = failing_joints(report)
     if joints:
         points = projection.project([joint.point for joint, _ in joints])
-        axes.scatter(points[:, 0], points[:, 1], s=70, marker="X", c=[FAILING_RGB],
-                     edgecolors="white", linewidths=0.8, zorder=7)
+        sheet.add(Line2D(points[:, 0], points[:, 1], ls="", marker="X", ms=9,
+                         color=FAILING_RGB, mec="white", mew=0.8, zorder=7))
         for (joint, case_name), point in list(zip(joints, points))[:LABELLED_JOINTS]:
-            axes.text(point[0], point[1], f"  {'/'.join(joint.planks)} "
-                      f"{plain_number(100 * joint.utilization, 3)} % ('{case_name}')",
-                      fontsize=FONT, color=FAILING_RGB, ha="left", va="center", zorder=8)
+            (x, y), = sheet.pixels(point)
+            picture.labels.append(Label(
+                x + 8, y, f"{'/'.join(joint.planks)} {plain_number(100 * joint.utilization, 3)}"
+                f" % ('{case_name}')", FONT, FAILING_RGB, va="center", halo=True))
     contacts = failing_contacts(case, design.material.friction)
     if contacts:
         points = projection.project([item.contact.point for item in contacts])
-        axes.scatter(points[:, 0], points[:, 1], s=60, marker="^", c=[FAILING_RGB],
-                     edgecolors="white", linewidths=0.8, zorder=7)
+        sheet.add(Line2D(points[:, 0], points[:, 1], ls="", marker="^", ms=8,
+                         color=FAILING_RGB, mec="white", mew=0.8, zorder=7))
         named = set()
         for item, point in zip(contacts, points):
             key = (item.contact.plank, item.reason)
             if key in named or len(named) >= LABELLED_CONTACTS:
                 continue
             named.add(key)
-            axes.text(point[0], point[1], f"  {item.contact.plank} {item.reason}",
-                      fontsize=FONT, color=FAILING_RGB, ha="left", va="top", zorder=8)
+            (x, y), = sheet.pixels(point)
+            picture.labels.append(Label(x + 8, y, f"{item.contact.plank} {item.reason}",
+                                        FONT, FAILING_RGB, va="top", halo=True))
 
 
 # --- shared geometry --------------------------------------------------------------------
@@ -402,20 +415,24 @@ def _shared_limits(panels: list[Panel]) -> tuple[float, float, float, float]:
     return (low[0] - pad, high[0] + pad, low[1] - 2.5 * pad, high[1] + 1.5 * pad)
 
 
-def _draw_scale(figure, width: float, height: float, marked: bool) -> None:
+def _draw_scale(figure, picture: Picture, width: float, height: float, marked: bool
+                ) -> None:
     """The utilization colour bar (right) and the legend (left) along the bottom."""
     values, colours = scale_samples()
-    bar = figure.add_axes(((width - 2.2) / width, 0.3 / height, 2.0 / width, 0.14 / height))
-    bar.set_axis_off()
-    bar.imshow(colours[None, :, :], aspect="auto", extent=(0.0, values[-1], 0.0, 1.0),
-               interpolation="nearest")
-    bar.set_xlim(0.0, values[-1])
+    left, bar_width = width - 2.2, 2.0
+    columns = int(bar_width * DPI)
+    strip = colours[np.minimum((np.arange(columns) * len(colours)) // columns,
+                               len(colours) - 1)]
+    figure.figimage(np.repeat(strip[None], int(0.14 * DPI), axis=0), xo=int(left * DPI),
+                    yo=int(0.3 * DPI), origin="upper")
     for value in (0.0, 0.5, 1.0, 1.5):
-        bar.text(value, -0.25, f"{value * 100:.0f} %" + ("+" if value == 1.5 else ""),
-                 fontsize=FONT - 1, ha="center", va="top", transform=bar.transData)
-    bar.text(0.0, 1.3, "utilization (worst of all cases)", fontsize=FONT - 1, ha="left",
-             va="bottom", transform=bar.transAxes)
-    figure.text(0.1 / width, 0.3 / height, "red X: joint past its capacity\n"
-                "red triangle: contact that lifts or slides"
-                + ("\noutline: blue changed, purple added" if marked else ""),
-                fontsize=FONT - 1, ha="left", va="center", color="0.25")
+        x = (left + bar_width * value / values[-1]) * DPI
+        picture.labels.append(Label(x, 0.27 * DPI, f"{value * 100:.0f} %"
+                                    + ("+" if value == 1.5 else ""), FONT - 1, ha="center",
+                                    va="top"))
+    picture.labels.append(Label(left * DPI, 0.48 * DPI, "utilization (worst of all cases)",
+                                FONT - 1))
+    picture.labels.append(Label(0.1 * DPI, 0.3 * DPI, "red X: joint past its capacity\n"
+                                "red triangle: contact that lifts or slides"
+                                + ("\noutline: blue changed, purple added" if marked else ""),
+                                FONT - 1, NOTE_RGB, va="center"))
