@@ -76,7 +76,7 @@ def validate(paths: tuple[str, ...], fmt: str, output: str | None, jobs: int | N
 
 def _check_views_dir(views_dir: str) -> None:
     """Fail before any work when ``--views DIR`` cannot be written or drawn."""
-    from furncheck.export.suggestions import pictures_missing, prepare_out_dir
+    from furncheck.export.folders import pictures_missing, prepare_out_dir
 
     problem = prepare_out_dir(views_dir)
     if problem:

@@ -6,9 +6,11 @@
     meshes       GLB (metres, Y-up) and OBJ + MTL (file unit), coloured   (numpy only)
     deflection   an elastic design's deflected shape in its governing case
     projection   the fixed oblique view: planks as depth-sorted faces
+    labels       Picture (a figure and its text), Label, Sheet: text written with Pillow
     views        design views and before/after views of a suggestion (PNG, matplotlib)
     plots        the force space of a change (PNG, matplotlib)
     suggestions  the files of ``suggest --out``; catalog: ``validate --views``
+    folders      the checks before any work: output folder usable, matplotlib there
     errors       ExportUnavailable: the ``export`` extra (matplotlib) is not installed
 
 matplotlib is imported only inside the functions that draw, so importing this package

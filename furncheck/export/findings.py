@@ -9,8 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-
-import numpy as np
+from functools import lru_cache
 
 from furncheck import tolerances as tol
 from furncheck.design.model import Design, Plank
@@ -42,12 +41,19 @@ class FailingContact:
 
 def plank_utilization(report: DesignReport, planks: tuple[Plank, ...] | list[Plank]
                       ) -> dict[str, float | None]:
+    """``utilization_of`` the plank ids (a copy: callers may change it)."""
+    return dict(utilization_of(report, tuple(plank.id for plank in planks)))
+
+
+@lru_cache(maxsize=64)
+def utilization_of(report: DesignReport, plank_ids: tuple[str, ...]
+                   ) -> dict[str, float | None]:
     """Per plank id, its largest utilization over all load cases: its own sag and stress
     (elastic model), the joints and anchors it takes part in (in cases where they count:
     ``DURABILITY_COUNTS``).  None when no case was solved (the design does not stand).  A
     plank named by a geometric violation, or whose contacts lift or slide, is at least at
     the scale's failing end (1.5)."""
-    used: dict[str, float | None] = {plank.id: None for plank in planks}
+    used: dict[str, float | None] = {plank_id: None for plank_id in plank_ids}
 
     def raise_to(plank_id: str, value: float) -> None:
         if plank_id in used:
@@ -115,8 +121,8 @@ def failing_joints(report: DesignReport) -> list[tuple[JointResult, str]]:
 
 def tangential(contact: ContactResult) -> float:
     """N: the friction force of a contact (its force across its surface's normal)."""
-    force = np.asarray(contact.force, dtype=float)
-    return math.sqrt(max(float(force @ force) - contact.pressing ** 2, 0.0))
+    fx, fy, fz = contact.force
+    return math.sqrt(max(fx * fx + fy * fy + fz * fz - contact.pressing ** 2, 0.0))
 
 
 def friction_demand(contact: ContactResult, friction: float) -> float:

@@ -17,17 +17,20 @@ nothing beyond numpy.
 
 from __future__ import annotations
 
-import importlib.util
 import os
 import re
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from furncheck.design.model import Design
 from furncheck.export.errors import ExportUnavailable
 from furncheck.export.findings import changed_planks
+from furncheck.export.folders import pictures_missing, prepare_out_dir
 from furncheck.export.meshes import write_meshes
-from furncheck.suggest import SuggestionReport
+
+if TYPE_CHECKING:
+    from furncheck.suggest import SuggestionReport
 
 __all__ = ["ExportUnavailable", "Written", "pictures_missing", "prepare_out_dir",
            "suggestion_prefix", "write_files"]
@@ -52,26 +55,6 @@ class Written:
     design_file: str | None = None
     meshes: tuple[str, ...] = ()
     plots: tuple[str, ...] = ()
-
-
-def pictures_missing() -> ExportUnavailable | None:
-    """Why pictures cannot be drawn here (matplotlib is not installed), or None."""
-    if importlib.util.find_spec("matplotlib") is None:
-        return ExportUnavailable("matplotlib")
-    return None
-
-
-def prepare_out_dir(out_dir: str) -> str | None:
-    """Create ``out_dir`` (with its parents) if needed; why it cannot be used, or None."""
-    if os.path.exists(out_dir) and not os.path.isdir(out_dir):
-        return "it is not a directory"
-    try:
-        os.makedirs(out_dir, exist_ok=True)
-    except OSError as error:
-        return error.strerror or str(error)
-    if not os.access(out_dir, os.W_OK):
-        return "permission denied"
-    return None
 
 
 def suggestion_prefix(out_dir: str, name: str) -> str:

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import numpy as np
 
@@ -200,8 +201,7 @@ def _draw_panel(sheet: Sheet, picture: Picture, panel: Panel) -> tuple[str, list
                                        facecolors=[FLOOR_RGB], edgecolors=[WALL_EDGE_RGB],
                                        linewidths=[0.0] + [0.6] * (len(backdrop) - 1),
                                        zorder=0))
-    faces, normals, owner = projection.plank_faces(design.planks, scale)
-    order = projection.visible_order(design.planks, scale, normals, design.tolerance / scale)
+    faces, normals, owner, order = _faces(design.planks, scale, design.tolerance / scale)
     used = plank_utilization(report, design.planks) if report is not None else {}
     colours = np.array([utilization_rgb(used.get(plank.id)) if report is not None
                         else NOT_SOLVED_RGB for plank in design.planks]).reshape(-1, 3)
@@ -227,6 +227,14 @@ def _draw_panel(sheet: Sheet, picture: Picture, panel: Panel) -> tuple[str, list
         if case.stability == NOT_SOLVED:
             notes.insert(1, "statics not solved: the design does not stand as drawn")
     return panel.title, notes
+
+
+@lru_cache(maxsize=16)
+def _faces(planks: tuple, unit_scale: float, slack: float):
+    """``projection.plank_faces`` of the planks and their ``visible_order``: kept for the
+    planks of a design drawn again (the design before each of its suggestions)."""
+    faces, normals, owner = projection.plank_faces(planks, unit_scale)
+    return faces, normals, owner, projection.visible_order(planks, unit_scale, normals, slack)
 
 
 def _draw_deflection(sheet: Sheet, deflection: Deflection, size: float, units: str,
