@@ -33,6 +33,7 @@ matplotlib and Pillow installation.
 from __future__ import annotations
 
 import math
+import textwrap
 from collections.abc import Callable, Hashable, Iterable
 from pathlib import Path
 from typing import TypeVar
@@ -59,11 +60,13 @@ LABELLED_CONTACTS = 3
 SLIP_SLACK = 1e-6
 """Relative slack of the friction cone's edge in the drawing: the friction phase leaves a
 slipping contact's |T| at mu N to about solver precision."""
-FIGURE_SIZE = (12.0, 5.2)      # inches
-PANELS = ((0.06, 0.12, 0.40, 0.68), (0.56, 0.12, 0.40, 0.68))
+FIGURE_SIZE = (12.0, 5.4)      # inches
+PANELS = ((0.06, 0.11, 0.40, 0.64), (0.56, 0.11, 0.40, 0.64))
 """(left, bottom, width, height) of the joints and the contacts panel, figure fractions."""
 DPI = 100
 FONT = 8
+HEADING_CHARACTERS = 110
+"""The heading (design and change) is wrapped to lines of at most this many characters."""
 TICKS = 6
 """Most grid lines (with their numbers) per axis."""
 GRID_COLOR = "0.9"
@@ -121,13 +124,14 @@ def force_space_picture(before: DesignReport, after: DesignReport,
              for left, bottom, wide, high in PANELS]
     _draw_joints(figure, slots[0], picture, before, after)
     _draw_contacts(figure, slots[1], picture, before, after, friction)
-    name = after.name or before.name
-    picture.labels.insert(0, Label(8, height - 8, f"{name}: {change}" if change else name,
-                                   FONT + 3, va="top", bold=True))
+    name = before.name or after.name
+    heading = textwrap.wrap(f"{name}: {change}" if change else name, HEADING_CHARACTERS)
+    picture.labels.insert(0, Label(8, height - 8, "\n".join(heading), FONT + 3, va="top",
+                                   bold=True))
     picture.labels.insert(1, Label(
-        8, height - 34, f"before: {_verdict(before)}  ->  after: {_verdict(after)}.  "
-        "Each joint and contact at its worst load case: before (grey rings), after (dots, "
-        "red when failing).", FONT + 1, (0.2, 0.2, 0.2), va="top"))
+        8, height - 14 - 20 * len(heading), f"before: {_verdict(before)}  ->  after: "
+        f"{_verdict(after)}.  Each joint and contact at its worst load case: before (grey "
+        "rings), after (dots, red when failing).", FONT + 1, (0.2, 0.2, 0.2), va="top"))
     return picture
 
 

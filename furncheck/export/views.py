@@ -28,6 +28,7 @@ without a software version: the same input gives the same bytes with one matplot
 from __future__ import annotations
 
 import math
+import textwrap
 from dataclasses import dataclass, field
 from functools import lru_cache
 
@@ -56,7 +57,8 @@ from furncheck.plain import plain_number
 from furncheck.result import NOT_SOLVED, CaseResult, DesignReport
 
 PANEL_SIZE = (6.0, 4.6)      # inches per panel (width, height)
-HEADING_HEIGHT = 0.45        # inches above the panels
+HEADING_LINE = 0.22          # inches per line of the heading above the panels
+HEADING_CHARACTERS = 55      # per panel: the heading is wrapped to this many per line
 FOOTER_HEIGHT = 0.55         # inches below them: colour bar and legend
 DPI = 100
 MARGIN = 0.06
@@ -151,7 +153,8 @@ def view_picture(panels: list[Panel], heading: str | None = None) -> Picture:
     if not panels:
         raise ValueError("no design to draw")
     width = PANEL_SIZE[0] * len(panels)
-    height = (HEADING_HEIGHT if heading else 0.0) + PANEL_SIZE[1] + FOOTER_HEIGHT
+    lines = textwrap.wrap(heading, int(HEADING_CHARACTERS * len(panels))) if heading else []
+    height = HEADING_LINE * (len(lines) + 0.5 * bool(lines)) + PANEL_SIZE[1] + FOOTER_HEIGHT
     figure = Figure(figsize=(width, height), dpi=DPI, facecolor="white")
     FigureCanvasAgg(figure)
     picture = Picture(figure)
@@ -166,9 +169,9 @@ def view_picture(panels: list[Panel], heading: str | None = None) -> Picture:
         if notes:
             picture.labels.append(Label(left, bottom + 5, "\n".join(notes), FONT,
                                         NOTE_RGB, va="bottom"))
-    if heading:
-        picture.labels.append(Label(0.12 * DPI, (height - 0.2) * DPI, heading, FONT + 2,
-                                    va="center", bold=True))
+    if lines:
+        picture.labels.append(Label(0.12 * DPI, (height - 0.12) * DPI, "\n".join(lines),
+                                    FONT + 2, va="top", bold=True))
     _draw_scale(figure, picture, width, height, any(panel.marks for panel in panels))
     return picture
 
