@@ -6,9 +6,11 @@ machine's speed drifts, so both meet the same phases):
 * force-space plots: the time to draw and write one plot (``plot_force_space``, PNG)
   of a design change, per design, and per load case in it;
 * ``suggest --out``: on the 28-plank cabinet made invalid (its 30 kg on the cap becomes
-  230 kg at the cap's front right corner, which overloads the kick board's joint with
-  side_r; rigid model: 8 suggestions), what writing every suggestion's files adds to
-  ``suggest`` alone, measured in a fresh process, so it includes importing matplotlib.
+  230 kg at the cap's front right corner, which overloads a joint: the kick board's with
+  side_r in the rigid model, 8 suggestions; the cap's with slat_12 in the elastic one,
+  3 suggestions), what writing every suggestion's files adds to ``suggest`` alone,
+  measured in a fresh process, so it includes importing matplotlib (and, elastic, the
+  deflection solve of each view).
 
 Each version runs in child processes with ``PYTHONPATH`` set to its source tree: this
 one, and with ``--old PATH`` a worktree of an earlier commit (its library only: the
@@ -83,7 +85,10 @@ def child_plots(folder: Path, repeat: int) -> dict:
     return times
 
 
-def child_out(folder: Path) -> dict:
+OUT_MODELS = ("rigid", "elastic")
+
+
+def child_out(folder: Path, model: str) -> dict:
     """suggest_design's time, and writing every suggestion's files (cold imports)."""
     import inspect
 
@@ -93,7 +98,7 @@ def child_out(folder: Path) -> dict:
     from furncheck.export import suggestions
     from furncheck.suggest import suggest_design
 
-    design = with_model(load_design(str(heavy_cabinet(folder))), "rigid")
+    design = with_model(load_design(str(heavy_cabinet(folder))), model)
     start = time.perf_counter()
     result = suggest_design(design)
     suggested = time.perf_counter() - start
@@ -114,24 +119,26 @@ def child_out(folder: Path) -> dict:
 
 # --- parent -----------------------------------------------------------------------------
 
-def run_child(tree: Path, job: str, repeat: int) -> dict:
+def run_child(tree: Path, job: str, repeat: int, model: str = "rigid") -> dict:
     env = dict(os.environ, PYTHONPATH=str(tree), OPENBLAS_NUM_THREADS="1",
                OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
     with tempfile.TemporaryDirectory() as folder:
         done = subprocess.run([sys.executable, str(HERE), "--child", job, "--folder", folder,
-                               "--repeat", str(repeat)], env=env, capture_output=True,
-                              text=True, check=True, cwd=folder)
+                               "--repeat", str(repeat), "--model", model], env=env,
+                              capture_output=True, text=True, check=True, cwd=folder)
     return json.loads(done.stdout)
 
 
 def main(old: Path | None, rounds: int, repeat: int) -> None:
     versions = {"new": ROOT} | ({"old": old} if old else {})
     plots: dict[str, list[dict]] = {name: [] for name in versions}
-    outs: dict[str, list[dict]] = {name: [] for name in versions}
+    outs: dict[tuple, list[dict]] = {(name, model): [] for model in OUT_MODELS
+                                     for name in versions}
     for _ in range(rounds):
         for name, tree in versions.items():
             plots[name].append(run_child(tree, "plots", repeat))
-            outs[name].append(run_child(tree, "out", repeat))
+            for model in OUT_MODELS:
+                outs[(name, model)].append(run_child(tree, "out", repeat, model))
     names = list(versions)
     print("force-space plot, one PNG (ms; median of "
           f"{rounds} x {repeat} runs per version)\n")
@@ -145,15 +152,15 @@ def main(old: Path | None, rounds: int, repeat: int) -> None:
             cases = plots[name][0][row]["cases"]
             cells.append(f"{ms:.0f} | {ms / cases:.0f}")
         print(f"| {row} | {plots[names[0]][0][row]['cases']} | " + " | ".join(cells) + " |")
-    print(f"\nsuggest --out on the cabinet with 230 kg on its cap (rigid; median of {rounds})\n")
-    print("| version | suggestions | files | suggest alone (s) | --out adds (s) | "
+    print(f"\nsuggest --out on the cabinet with 230 kg on its cap (median of {rounds})\n")
+    print("| model | version | suggestions | files | suggest alone (s) | --out adds (s) | "
           "per suggestion (ms) |")
-    print("|---|---:|---:|---:|---:|---:|")
-    for name in names:
-        runs = outs[name]
+    print("|---|---|---:|---:|---:|---:|---:|")
+    for model, name in ((model, name) for model in OUT_MODELS for name in names):
+        runs = outs[(name, model)]
         out = statistics.median(run["out"] for run in runs)
         count = runs[0]["suggestions"]
-        print(f"| {name} | {count} | {runs[0]['files']} | "
+        print(f"| {model} | {name} | {count} | {runs[0]['files']} | "
               f"{statistics.median(run['suggest'] for run in runs):.2f} | {out:.2f} | "
               f"{1000 * out / max(count, 1):.0f} |")
 
@@ -167,10 +174,11 @@ if __name__ == "__main__":
                         help="plots timed per design in each child")
     parser.add_argument("--child", choices=["plots", "out"], help=argparse.SUPPRESS)
     parser.add_argument("--folder", type=Path, help=argparse.SUPPRESS)
+    parser.add_argument("--model", default="rigid", help=argparse.SUPPRESS)
     arguments = parser.parse_args()
     if arguments.child == "plots":
         print(json.dumps(child_plots(arguments.folder, arguments.repeat)))
     elif arguments.child == "out":
-        print(json.dumps(child_out(arguments.folder)))
+        print(json.dumps(child_out(arguments.folder, arguments.model)))
     else:
         main(arguments.old, arguments.rounds, arguments.repeat)
