@@ -99,3 +99,18 @@ def test_catalog_view_names_count_repeated_names() -> None:
     reports = [DesignReport("a/t.yaml", "t", True), DesignReport("b/t.yaml", "t", False),
                DesignReport("x.yaml", "x", None, error="bad")]
     assert view_names(reports) == ["t-view.png", "t-2-view.png", None]
+
+
+def test_pictures_drawn_in_workers_are_those_drawn_here(tmp_path: Path, monkeypatch) -> None:
+    """With several suggestions the pictures are drawn in forked worker processes; with
+    one core, here.  Both write the same files, byte for byte."""
+    pytest.importorskip("matplotlib")
+    import os
+
+    parallel = suggest(tmp_path / "parallel")
+    monkeypatch.setattr(os, "cpu_count", lambda: 1)
+    serial = suggest(tmp_path / "serial")
+    assert listed(parallel) == listed(serial)
+    for name in listed(parallel):
+        assert (tmp_path / "parallel" / name).read_bytes() == \
+            (tmp_path / "serial" / name).read_bytes(), name

@@ -12,14 +12,20 @@ When the folder holds another design's suggestion-NN.yaml (its ``name`` says who
 is), this run names its suggestion files after its design, ``<name>-suggestion-01.yaml``
 and so on, so several designs can share a folder.  Pictures (PNG) need matplotlib (the
 ``export`` extra) and can be left out (``pictures=False``); meshes and design files need
-nothing beyond numpy.
+nothing beyond numpy.  Pictures take most of the time: with several suggestions they are
+drawn in worker processes, one per core (``draw_in_parallel``).
 """
 
 from __future__ import annotations
 
+import multiprocessing
 import os
 import re
-from dataclasses import dataclass
+from collections.abc import Callable
+from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
+from dataclasses import dataclass, replace
+from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -99,30 +105,61 @@ def write_files(result: SuggestionReport, out_dir: str, design: Design,
 
     own = Path(out_dir) / design.name
     written = {0: Written(None, tuple(write_meshes(design, own, result.report)))}
-    before = None
-    if pictures:
-        from furncheck.export.views import design_panel, view_png
-
-        before = design_panel(design, result.report)
-        view = Path(f"{own}-view.png")
-        view.write_bytes(view_png([before]))
-        written[0] = Written(None, written[0].meshes, (str(view),))
+    jobs = []
     for suggestion in result.suggestions:
         stem = Path(out_dir) / f"{prefix}suggestion-{suggestion.rank:02d}"
         design_file = f"{stem}.yaml"
         Path(design_file).write_text(suggestion.text, encoding="utf-8")
         marks = changed_planks(design, suggestion.design)
         meshes = tuple(write_meshes(suggestion.design, stem, suggestion.report, marks))
-        plots: tuple[str, ...] = ()
-        if pictures:
-            plots = _pictures(design, result, suggestion, marks, stem, before,
-                              titles.get(suggestion.rank))
-        written[suggestion.rank] = Written(design_file, meshes, plots)
+        written[suggestion.rank] = Written(design_file, meshes)
+        jobs.append(partial(_pictures, design, result, suggestion, marks, stem,
+                            titles.get(suggestion.rank)))
+    if not pictures:
+        return written
+    from furncheck.export.views import design_panel, view_png
+
+    before = design_panel(design, result.report)       # its deflection solved once
+    view = Path(f"{own}-view.png")
+    view.write_bytes(view_png([before]))               # (and every import made, once)
+    written[0] = Written(None, written[0].meshes, (str(view),))
+    for suggestion, plots in zip(result.suggestions,
+                                 draw_in_parallel([partial(job, before) for job in jobs])):
+        written[suggestion.rank] = replace(written[suggestion.rank], plots=plots)
     return written
 
 
+_JOBS: list[Callable[[], tuple[str, ...]]] = []
+"""The jobs of ``draw_in_parallel``, for its forked workers (which inherit them)."""
+
+
+def draw_in_parallel(jobs: list[Callable[[], tuple[str, ...]]]) -> list[tuple[str, ...]]:
+    """Run the jobs (each draws and writes pictures, returning their paths) and return
+    their results in order: in worker processes forked from this one, one per core (the
+    jobs need not be pickled: the workers inherit them), or here, one after the other,
+    with one core, one job, or no fork on this system.  A job's OSError reaches the
+    caller either way."""
+    workers = min(len(jobs), os.cpu_count() or 1)
+    if workers < 2 or "fork" not in multiprocessing.get_all_start_methods():
+        return [job() for job in jobs]
+    global _JOBS
+    _JOBS = jobs
+    try:
+        with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) \
+                as pool:
+            return list(pool.map(_run_job, range(len(jobs))))
+    except BrokenProcessPool:            # a worker died: draw here instead
+        return [job() for job in jobs]
+    finally:
+        _JOBS = []
+
+
+def _run_job(index: int) -> tuple[str, ...]:
+    return _JOBS[index]()
+
+
 def _pictures(design: Design, result: SuggestionReport, suggestion, marks: dict[str, str],
-              stem: Path, before, title: str | None) -> tuple[str, str]:
+              stem: Path, title: str | None, before) -> tuple[str, str]:
     """The force-space plot and the before/after view of one suggestion."""
     from furncheck.export.plots import force_space_png
     from furncheck.export.views import suggestion_view_png
