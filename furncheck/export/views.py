@@ -98,10 +98,11 @@ class Panel:
 def design_panel(design: Design, report: DesignReport | None, marks: dict[str, str] | None
                  = None, title: str | None = None, deflect: bool = True) -> Panel:
     """A panel of ``design``; its deflection in the report's governing case is solved
-    here when ``deflect`` (elastic model only)."""
+    here when ``deflect`` (elastic model only, and only when that case is stable)."""
     case = governing_case(report) if report is not None else None
-    deflection = deflected_shape(design, case.name) if deflect and case is not None \
-        else None
+    # only an equilibrium has a deflected shape (an unstable case shows forces held down)
+    deflection = deflected_shape(design, case.name) \
+        if deflect and case is not None and case.stability == "stable" else None
     return Panel(design, report, deflection, dict(marks or {}),
                  verdict_title(design, report) if title is None else title)
 
@@ -200,10 +201,9 @@ def _draw_panel(sheet: Sheet, picture: Picture, panel: Panel) -> tuple[str, list
     size = _extent(design)
 
     backdrop = [_floor(design), *_walls(design)]
-    sheet.add(PolyCollection(projection.project(np.array(backdrop)),
-                                       facecolors=[FLOOR_RGB], edgecolors=[WALL_EDGE_RGB],
-                                       linewidths=[0.0] + [0.6] * (len(backdrop) - 1),
-                                       zorder=0))
+    sheet.add(PolyCollection(projection.project(np.array(backdrop)), facecolors=[FLOOR_RGB],
+                             edgecolors=[WALL_EDGE_RGB],
+                             linewidths=[0.0] + [0.6] * (len(backdrop) - 1), zorder=0))
     faces, normals, owner, order = _faces(design.planks, scale, design.tolerance / scale)
     used = plank_utilization(report, design.planks) if report is not None else {}
     colours = np.array([utilization_rgb(used.get(plank.id)) if report is not None
@@ -212,9 +212,8 @@ def _draw_panel(sheet: Sheet, picture: Picture, panel: Panel) -> tuple[str, list
     mark_of = [panel.marks.get(design.planks[i].id) for i in owner[order]]
     edge_colours = [MARK_RGB[mark] if mark else EDGE_RGB for mark in mark_of]
     widths = [1.8 if mark else 0.4 for mark in mark_of]
-    sheet.add(PolyCollection(projection.project(faces[order]),
-                                       facecolors=face_colours, edgecolors=edge_colours,
-                                       linewidths=widths, zorder=1))
+    sheet.add(PolyCollection(projection.project(faces[order]), facecolors=face_colours,
+                             edgecolors=edge_colours, linewidths=widths, zorder=1))
     case = governing_case(report) if report is not None else None
     notes = []
     if panel.deflection is not None and panel.deflection.largest > 0.0:
@@ -222,6 +221,8 @@ def _draw_panel(sheet: Sheet, picture: Picture, panel: Panel) -> tuple[str, list
                                       LineCollection))
     elif design.model == "rigid":
         notes.append("rigid planks: no deflection drawn")
+    elif case is not None and case.stability not in ("stable", NOT_SOLVED):
+        notes.append("no deflection drawn: the case has no equilibrium")
     if case is not None:
         _draw_loads(sheet, picture, design, case, size, LineCollection, PolyCollection)
         _draw_failures(sheet, picture, design, report, case)
