@@ -114,3 +114,18 @@ def test_pictures_drawn_in_workers_are_those_drawn_here(tmp_path: Path, monkeypa
     for name in listed(parallel):
         assert (tmp_path / "parallel" / name).read_bytes() == \
             (tmp_path / "serial" / name).read_bytes(), name
+
+
+def test_validate_views_without_matplotlib_is_a_usage_error(tmp_path: Path,
+                                                            monkeypatch) -> None:
+    """--views asks for pictures: without the export extra, one line and exit 2 before
+    any design is checked."""
+    import importlib.util
+
+    real = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec",
+                        lambda name, *args: None if name == "matplotlib" else real(name, *args))
+    result = CliRunner().invoke(main, ["validate", TIPS, "--views", str(tmp_path / "v")])
+    assert result.exit_code == 2
+    assert result.output.strip() == ("furncheck: cannot write views: pictures need the "
+                                     "export extra: pip install 'furncheck[export]'")
