@@ -3,11 +3,13 @@
 Each design that could be read gets ``DIR/<name>-view.png`` (``views.design_view_png``:
 coloured by utilization, the loads of its governing case, failing joints and contacts,
 the deflected shape in the elastic model); a second design of the same name gets
-``<name>-2-view.png``, and so on, in the order of the report.
+``<name>-2-view.png``, and so on, in the order of the report.  The views are drawn in
+worker processes, one per core (``suggestions.draw_in_parallel``).
 """
 
 from __future__ import annotations
 
+from functools import partial
 from pathlib import Path
 
 from furncheck.result import DesignReport
@@ -36,9 +38,11 @@ def write_catalog_views(reports: list[DesignReport] | tuple[DesignReport, ...], 
     from furncheck.check import load_checked
     from furncheck.design.model import with_model
     from furncheck.errors import DesignError
-    from furncheck.export.views import design_view_png
+    from furncheck.export.suggestions import draw_in_parallel
+    from furncheck.export.views import view_figure_modules
 
-    written = []
+    view_figure_modules()          # imported once here, not in every worker
+    jobs = []
     for report, name in zip(reports, view_names(reports)):
         if name is None:
             continue
@@ -46,7 +50,12 @@ def write_catalog_views(reports: list[DesignReport] | tuple[DesignReport, ...], 
             design = with_model(load_checked(report.design), model)
         except DesignError:      # changed since it was checked: its report says enough
             continue
-        path = Path(out_dir) / name
-        path.write_bytes(design_view_png(design, report))
-        written.append(str(path))
-    return written
+        jobs.append(partial(_write_view, design, report, Path(out_dir) / name))
+    return [path for (path,) in draw_in_parallel(jobs)]
+
+
+def _write_view(design, report: DesignReport, path: Path) -> tuple[str]:
+    from furncheck.export.views import design_view_png
+
+    path.write_bytes(design_view_png(design, report))
+    return (str(path),)

@@ -177,7 +177,8 @@ def _pictures(design: Design, result: SuggestionReport, suggestion, marks: dict[
 
 def _entries(out_dir: str) -> list[str]:
     try:
-        return sorted(entry.name for entry in os.scandir(out_dir) if entry.is_file())
+        with os.scandir(out_dir) as entries:
+            return sorted(entry.name for entry in entries if entry.is_file())
     except OSError:
         return []
 

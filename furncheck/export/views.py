@@ -144,6 +144,19 @@ def view_png(panels: list[Panel], heading: str | None = None) -> bytes:
     return view_picture(panels, heading).png()
 
 
+def view_figure_modules() -> None:
+    """Import what drawing a view needs (matplotlib, Pillow), or raise ExportUnavailable:
+    done once before forking workers that draw, so that none imports them again."""
+    try:
+        import matplotlib.backends.backend_agg  # noqa: F401
+        import matplotlib.collections  # noqa: F401
+        import matplotlib.figure  # noqa: F401
+        import matplotlib.lines  # noqa: F401
+        import PIL.ImageDraw  # noqa: F401
+    except ImportError as error:
+        raise ExportUnavailable("matplotlib") from error
+
+
 def view_picture(panels: list[Panel], heading: str | None = None) -> Picture:
     """The figure (Agg canvas) and labels of ``view_png``."""
     try:
