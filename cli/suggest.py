@@ -39,15 +39,20 @@ def _combined_dofs(value: int) -> int:
                    "(repeatable), e.g. --lock seat.z.")
 @click.option("--out", "out_dir", metavar="DIR", default=None,
               help="Write each suggestion there: suggestion-NN.yaml (a complete design "
-                   "file), .glb and .obj meshes and a force-space plot (meshes and plots "
-                   "need the export extra).")
+                   "file), coloured .glb and .obj/.mtl meshes, a force-space plot and a "
+                   "before/after view (pictures need the export extra); and the design's "
+                   "own view and meshes.  Files of an earlier run of the design there are "
+                   "replaced; beside another design's, files are named after the design.")
+@click.option("--no-plots", "no_plots", is_flag=True, default=False,
+              help="With --out: write no pictures (PNG), only design files and meshes.")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text",
               show_default=True, help="Report format.")
 @click.option("-o", "--output", metavar="FILE", default=None,
               help="Write the report to FILE instead of standard output.")
 @MODEL_OPTION
 def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, ...],
-            out_dir: str | None, fmt: str, output: str | None, model: str | None) -> None:
+            out_dir: str | None, no_plots: bool, fmt: str, output: str | None,
+            model: str | None) -> None:
     """Ranked suggestions that make DESIGN valid: small changes of one to --max-dofs
     plank positions, angles and sizes (continuous, paper section 6.4), then support
     planks to add (discrete, 6.5), each checked with the full statics.  A continuous
@@ -60,8 +65,8 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
     Exit code 0: done (also when the design is valid already, or no suggestion was
     found); 2: unreadable or ill-formed design, unknown DOF or plank, unwritable --out.
     """
-    from furncheck.export.suggestions import ExportUnavailable, prepare_out_dir, write_files
-    from furncheck.report.suggestions import render_json, render_text
+    from furncheck.export.suggestions import pictures_missing, prepare_out_dir, write_files
+    from furncheck.report.suggestions import advice, render_json, render_text
     from furncheck.suggest import suggest_design
 
     check_output(output)
@@ -74,11 +79,13 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
     result = suggest_design(loaded, max_dofs, max_suggestions, locked)
     written = {}
     if out_dir is not None:
+        pictures = not no_plots
+        if pictures and (missing := pictures_missing()) is not None:
+            click.echo(f"furncheck: pictures not written: {missing}", err=True)
+            pictures = False
+        titles = {s.rank: advice(s, loaded) for s in result.suggestions}
         try:
-            written = write_files(result, out_dir)
-        except ExportUnavailable as missing:
-            written = write_files(result, out_dir, meshes=False)
-            click.echo(f"furncheck: meshes and plots not written: {missing}", err=True)
+            written = write_files(result, out_dir, loaded, pictures, titles)
         except OSError as error:
             fail(f"cannot write suggestions to {out_dir}: {error.strerror or error}")
     render = render_json if fmt == "json" else render_text

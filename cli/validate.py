@@ -38,9 +38,12 @@ CHUNKS_PER_WORKER = 4
 @click.option("-j", "--jobs", type=click.IntRange(min=1), default=None,
               help=f"Worker processes, used from {PARALLEL_MIN_FILES} files on.  "
                    "[default: all cores]")
+@click.option("--views", "views_dir", metavar="DIR", default=None,
+              help="Also write a view of each design there, DIR/<name>-view.png (needs "
+                   "the export extra).")
 @MODEL_OPTION
 def validate(paths: tuple[str, ...], fmt: str, output: str | None, jobs: int | None,
-             model: str | None) -> None:
+             views_dir: str | None, model: str | None) -> None:
     """Check the designs in PATH... (files, or directories searched recursively for
     .yaml, .yml and .json files; hidden files and folders are skipped).
 
@@ -48,6 +51,8 @@ def validate(paths: tuple[str, ...], fmt: str, output: str | None, jobs: int | N
     read or is ill-formed (its entry in the report says why), or a usage error.
     """
     check_output(output)
+    if views_dir is not None:
+        _check_views_dir(views_dir)
     sources = collect_sources(paths)
     to_check = [source for source in sources if isinstance(source, str)]
     checked = iter(check_all(to_check, jobs if jobs is not None else (os.cpu_count() or 1),
@@ -59,7 +64,26 @@ def validate(paths: tuple[str, ...], fmt: str, output: str | None, jobs: int | N
     except Exception as error:  # a reporter bug must not become a traceback
         fail(f"internal error while writing the {fmt} report: {type(error).__name__}: {error}")
     write_output(document, output)
+    if views_dir is not None:
+        from furncheck.export.catalog import write_catalog_views
+
+        try:
+            write_catalog_views(batch.reports, views_dir, model)
+        except OSError as error:
+            fail(f"cannot write views to {views_dir}: {error.strerror or error}")
     click.get_current_context().exit(batch.return_code)
+
+
+def _check_views_dir(views_dir: str) -> None:
+    """Fail before any work when ``--views DIR`` cannot be written or drawn."""
+    from furncheck.export.folders import pictures_missing, prepare_out_dir
+
+    problem = prepare_out_dir(views_dir)
+    if problem:
+        fail(f"cannot write views to {views_dir}: {problem}")
+    missing = pictures_missing()
+    if missing is not None:
+        fail(f"cannot write views: {missing}")
 
 
 # --- collecting files -----------------------------------------------------------------------

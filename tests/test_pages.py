@@ -16,6 +16,8 @@ import pytest
 
 from furncheck.check import check_design
 from furncheck.design import load_design
+from furncheck.export.colours import MARK_RGB, UTILIZATION_STOPS, utilization_rgb
+from furncheck.export.projection import shaded
 from furncheck.geometry import analyze
 from furncheck.report.pages import (
     CatalogEntry,
@@ -24,12 +26,7 @@ from furncheck.report.pages import (
     suggestion_page,
     worst_utilization,
 )
-from furncheck.report.svg import (
-    FAILED_UTILIZATION,
-    design_svg,
-    plank_utilizations,
-    utilization_colour,
-)
+from furncheck.report.svg import design_svg, plank_utilizations
 
 CATALOG = Path(__file__).resolve().parent.parent / "designs"
 ARTIFACTS = Path(os.environ.get("FURNCHECK_TEST_ARTIFACTS",
@@ -47,42 +44,41 @@ def _entry(name: str, model: str = "rigid") -> CatalogEntry:
     return CatalogEntry(check_design(design, analyze(design)), design)
 
 
-def test_colour_scale_runs_green_to_red():
-    """The scale's documented stops: green at 0, yellow at 0.7, orange at 1, red from
-    FAILED_UTILIZATION on; linear in between (0.35 is halfway between green and yellow);
-    grey where nothing was computed."""
-    assert utilization_colour(0.0) == (46, 160, 67)
-    assert utilization_colour(0.7) == (234, 196, 53)
-    assert utilization_colour(1.0) == (240, 128, 30)
-    assert utilization_colour(FAILED_UTILIZATION) == utilization_colour(9.0) == (205, 35, 35)
-    assert utilization_colour(0.35) == (140, 178, 60)
-    assert utilization_colour(None) == (150, 150, 150)
-
-
-def test_plank_utilization_is_the_worst_of_joints_planks_and_violations():
-    """A plank's colour value is the most it uses of any capacity: the shelf-cantilever
-    overloaded design's post/shelf joint fails (utilization > 1, its own violation), so
-    both planks read at least that joint's utilization; a lift-off names its planks, which
-    read FAILED_UTILIZATION."""
+def test_plank_colours_are_the_pictures_scale():
+    """The SVG colours a plank as the PNG views do: the utilization scale's colour lit by
+    the same light.  The overloaded cantilever's post/shelf joint fails (utilization > 1),
+    so both planks read at least that joint's utilization; a lift-off names its planks,
+    which read the scale's failing end."""
     entry = _entry("shelf-cantilever-overloaded.yaml")
-    used = plank_utilizations(entry.report)
+    used = plank_utilizations(entry.report, entry.design)
     joint = next(j for c in entry.report.cases for j in c.joints
                  if set(j.planks) == {"post", "shelf"})
     assert joint.utilization > 1.0
     assert used["post"] >= joint.utilization and used["shelf"] >= joint.utilization
-    assert worst_utilization(entry.report) == max(used.values())
+    assert worst_utilization(used) == max(used.values())
+    svg = design_svg(entry.design, used)
+    fills = {(title, fill) for fill, title in re.findall(
+        r'fill="(rgb\([^)]*\))"[^>]*><title>([^<]+)</title>', svg)}
+    for plank in entry.design.planks:
+        lit = [shaded(np.array([utilization_rgb(used[plank.id])]), np.array([normal]))[0]
+               for normal in np.vstack([plank.rotation_matrix.T, -plank.rotation_matrix.T])]
+        allowed = {"rgb({},{},{})".format(*(round(255 * c) for c in colour)) for colour in lit}
+        drawn = {fill for title, fill in fills if title == plank.id}
+        assert drawn and drawn <= allowed
     tipping = _entry("bench-tips.yaml")
     lifting = next(v for v in tipping.report.violations if v.kind == "lift-off")
+    failing = UTILIZATION_STOPS[-1][0]
     for plank in lifting.where.split(","):
-        assert plank_utilizations(tipping.report)[plank.strip()] >= FAILED_UTILIZATION
+        assert plank_utilizations(tipping.report, tipping.design)[plank.strip()] >= failing
 
 
 def test_svg_view_draws_each_plank_and_outlines_the_changed_ones():
-    """Each plank shows at least one face (a box seen from an oblique view shows three),
-    every polygon stays inside the picture, and an outlined plank is drawn thicker."""
+    """Each plank shows at least one face and at most three (a box seen from an oblique
+    view), every polygon stays inside the picture, and a changed plank is outlined in the
+    'changed' mark's colour, an added one in the 'added' colour."""
     entry = _entry("table.yaml")
-    svg = design_svg(entry.design, plank_utilizations(entry.report), 240, 180,
-                     outlined=frozenset({"top"}))
+    svg = design_svg(entry.design, plank_utilizations(entry.report, entry.design), 240, 180,
+                     marks={"top": "changed", "apron": "added"})
     titles = re.findall(r"<title>([^<]+)</title></polygon>", svg)
     for plank in entry.design.planks:
         assert 1 <= titles.count(plank.id) <= 3
@@ -91,7 +87,10 @@ def test_svg_view_draws_each_plank_and_outlines_the_changed_ones():
                             for pair in points.split()])
     assert coordinates[:, 0].min() >= 0 and coordinates[:, 0].max() <= 240
     assert coordinates[:, 1].min() >= 0 and coordinates[:, 1].max() <= 180
-    assert svg.count('stroke-width="2"') == titles.count("top")
+    for plank, mark in (("top", "changed"), ("apron", "added")):
+        colour = "rgb({},{},{})".format(*(round(255 * c) for c in MARK_RGB[mark]))
+        assert len(re.findall(rf'stroke="{re.escape(colour)}" stroke-width="2"[^>]*>'
+                              rf"<title>{plank}</title>", svg)) == titles.count(plank)
 
 
 def test_svg_view_is_the_same_for_a_moved_design():
@@ -114,6 +113,7 @@ def test_catalog_page_lists_every_design_and_fetches_nothing():
         assert entry.report.design in page
     assert page.count('<tr data-verdict="') == 3
     assert 'data-verdict="invalid"' in page and "lift-off" in page
+    assert page.count("<svg") == 2 * len(entries)             # a thumbnail and a view each
     assert not _RESOURCE.search(page)
     assert "customElements" not in page                      # no viewer script needed
 
@@ -216,11 +216,10 @@ def test_catalog_page_sorts_and_filters_in_chromium(tmp_path):
 
 @pytest.mark.browser
 def test_suggestion_page_renders_its_3d_view_in_chromium(tmp_path):
-    pytest.importorskip("trimesh")
-    from furncheck.export.meshes import design_scene
+    from furncheck.export.meshes import glb_bytes
 
     entry = _entry("table.yaml")
-    glb = design_scene(entry.design, metres=True).export(file_type="glb")
+    glb = glb_bytes(entry.design, entry.report)
     document = {"design": entry.report.design, "valid": True, "suggestions": []}
     page = tmp_path / "index.html"
     page.write_text(suggestion_page(document, PageDesign(entry.report, entry.design, glb), {}),
@@ -245,6 +244,7 @@ def test_suggestion_page_renders_its_3d_view_in_chromium(tmp_path):
 
         assert WebDriverWait(browser, 60, poll_frequency=0.5).until(drawn_share) > 0.02
         ARTIFACTS.mkdir(parents=True, exist_ok=True)
+        browser.execute_script("window.scrollTo(0, 0)")
         browser.save_screenshot(str(ARTIFACTS / "suggestion-page.png"))
         assert all(url.startswith(("file:", "data:")) for url in _requests(browser))
     finally:

@@ -386,8 +386,11 @@ def test_cli_out_writes_files_that_validate(tmp_path):
     assert document["suggestions"]
     for entry in document["suggestions"]:
         assert check_file(entry["design_file"]).valid
-        pytest.importorskip("trimesh")
-        assert [Path(m).suffix for m in entry["meshes"]] == [".glb", ".obj"]
+        assert [Path(m).suffix for m in entry["meshes"]] == [".glb", ".obj", ".mtl"]
+        pytest.importorskip("matplotlib")
+        stem = Path(entry["design_file"]).stem
+        assert [Path(m).name for m in entry["plots"]] == [f"{stem}-forces.png",
+                                                          f"{stem}-view.png"]
         assert all(Path(m).stat().st_size > 0 for m in entry["meshes"] + entry["plots"])
 
 
@@ -426,21 +429,22 @@ def test_representative_is_valid_in_every_case():
 
 
 def test_cli_out_without_the_export_extra_still_writes_design_files(tmp_path, monkeypatch):
-    """Without trimesh (the export extra), --out writes the design files, says on stderr
-    that meshes and plots were skipped, and exits 0."""
+    """Without matplotlib (the export extra), --out writes the design files and meshes,
+    says on stderr that pictures were skipped, and exits 0."""
     import importlib.util
 
     real = importlib.util.find_spec
     monkeypatch.setattr(importlib.util, "find_spec",
-                        lambda name, *args: None if name == "trimesh" else real(name, *args))
+                        lambda name, *args: None if name == "matplotlib" else real(name, *args))
     out = tmp_path / "out"
     result = CliRunner().invoke(main, ["suggest", str(CATALOG / "bench-long-leg.yaml"),
                                        "--out", str(out), "--model", "rigid"])
     assert result.exit_code == 0
-    assert "meshes and plots not written" in result.output
+    assert "pictures not written" in result.output
     written = sorted(p.name for p in out.iterdir())
-    assert written and all(name.endswith(".yaml") for name in written)
-    assert all(check_file(str(out / name)).valid for name in written)
+    assert written and not any(name.endswith(".png") for name in written)
+    designs = [name for name in written if name.endswith(".yaml")]
+    assert designs and all(check_file(str(out / name)).valid for name in designs)
 
 
 @pytest.mark.parametrize("model", ["rigid", "elastic"])

@@ -18,8 +18,10 @@ from importlib import resources
 from typing import Any
 
 from furncheck.design.model import Design
+from furncheck.export.colours import UTILIZATION_STOPS, utilization_rgb
+from furncheck.export.findings import changed_planks
 from furncheck.report.numbers import format_number
-from furncheck.report.svg import design_svg, plank_utilizations, utilization_colour
+from furncheck.report.svg import design_svg, plank_utilizations
 from furncheck.result import BatchReport, DesignReport
 
 VIEWER_SCRIPT = "model-viewer-umd.min.js"
@@ -72,27 +74,30 @@ def _verdict(report: DesignReport) -> str:
     return "valid" if report.valid else "invalid"
 
 
-def worst_utilization(report: DesignReport) -> float | None:
-    """The largest utilization of any joint, plank or anchor over the cases (None when
+def worst_utilization(used: dict[str, float | None]) -> float | None:
+    """The largest of the planks' utilizations (``svg.plank_utilizations``; None when
     nothing was computed)."""
-    used = plank_utilizations(report)
-    values = [u for u in used.values()]
+    values = [u for u in used.values() if u is not None]
     return max(values) if values else None
+
+
+def _css_rgb(utilization: float | None) -> str:
+    return "rgb({},{},{})".format(*(round(255 * c) for c in utilization_rgb(utilization)))
 
 
 def _bar(utilization: float | None) -> str:
     if utilization is None:
         return ""
-    width = min(utilization, 1.5) / 1.5 * 100
-    colour = f"rgb{utilization_colour(utilization)}"
-    return (f'<span class="bar"><span style="width:{width:.0f}%;background:{colour}">'
-            f"</span></span>")
+    top = UTILIZATION_STOPS[-1][0]
+    width = min(utilization, top) / top * 100
+    return (f'<span class="bar"><span style="width:{width:.0f}%;'
+            f'background:{_css_rgb(utilization)}"></span></span>')
 
 
 def _legend() -> str:
-    stops = ((0.0, "0"), (0.7, "0.7"), (1.0, "1 (limit)"), (1.5, "failing"))
-    items = "".join(f'<span style="background:rgb{utilization_colour(u)}"></span>{label}'
-                    for u, label in stops)
+    labels = {0.0: "0", 1.0: "1 (the limit)"}
+    items = "".join(f'<span style="background:{_css_rgb(u)}"></span>'
+                    f"{labels.get(u, format_number(u, 2))}" for u, _ in UTILIZATION_STOPS)
     return (f'<p class="legend small">Colour: share of capacity used {items}; '
             "grey: not computed.</p>")
 
@@ -127,8 +132,9 @@ def catalog_page(entries: list[CatalogEntry], title: str = "furncheck catalog") 
     for number, entry in enumerate(entries, start=1):
         report = entry.report
         verdict = _verdict(report)
-        worst = worst_utilization(report) if report.error is None else None
-        used = plank_utilizations(report) if report.error is None else None
+        used = None if report.error is not None or entry.design is None else \
+            plank_utilizations(report, entry.design)
+        worst = None if used is None else worst_utilization(used)
         thumbnail = "" if entry.design is None else design_svg(entry.design, used, 160, 120)
         kinds = sorted({v.kind for v in report.violations})
         violations = report.error or (", ".join(kinds) if kinds else "")
@@ -233,7 +239,7 @@ def suggestion_page(document: dict[str, Any], original: PageDesign,
     (``report.suggestions.render_json``, parsed)."""
     report = original.report
     verdict = _verdict(report)
-    used = plank_utilizations(report)
+    used = plank_utilizations(report, original.design)
     parts = [f"<h1>{escape(report.name)}: <span class=\"{verdict}\">{verdict}</span></h1>",
              f'<p class="small">{escape(report.design)}</p>', _legend(),
              '<div class="views">' + design_svg(original.design, used, 420, 300,
@@ -256,9 +262,9 @@ def suggestion_page(document: dict[str, Any], original: PageDesign,
                         if entry.get("design_file") else "") + "</p>")
         parts.append(_edits_table(entry.get("edits")))
         if shown is not None:
-            changed = frozenset(_edited_planks(entry))
-            views = [design_svg(shown.design, plank_utilizations(shown.report), 420, 300,
-                                outlined=changed, title=f"suggestion {rank}")]
+            views = [design_svg(shown.design, plank_utilizations(shown.report, shown.design),
+                                420, 300, marks=changed_planks(original.design, shown.design),
+                                title=f"suggestion {rank}")]
             views += [f'<img src="{escape(picture)}" alt="{escape(picture)}" width="420">'
                       for picture in shown.pictures]
             views.append(_model_viewer(shown.glb, f"suggestion {rank}"))
@@ -266,16 +272,6 @@ def suggestion_page(document: dict[str, Any], original: PageDesign,
         parts.append("</div>")
     viewer = original.glb is not None or any(s.glb is not None for s in suggested.values())
     return _page(f"furncheck: {report.name}", "\n".join(parts), viewer=viewer)
-
-
-def _edited_planks(entry: dict[str, Any]) -> list[str]:
-    """The plank ids a suggestion changes or adds (its ``edits``, else its DOFs' planks
-    and added planks)."""
-    edits = entry.get("edits")
-    if edits:
-        return [str(edit.get("plank", edit.get("id", ""))) for edit in edits]
-    planks = [dof.rpartition(".")[0] for dof in entry.get("dofs", [])]
-    return planks + [str(plank.get("id")) for plank in entry.get("adds", [])]
 
 
 def _edits_table(edits: list[dict[str, Any]] | None) -> str:
