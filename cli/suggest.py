@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import json
+
 import click
 
 from furncheck.cli.output import (
@@ -65,7 +67,12 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
     Exit code 0: done (also when the design is valid already, or no suggestion was
     found); 2: unreadable or ill-formed design, unknown DOF or plank, unwritable --out.
     """
-    from furncheck.export.suggestions import pictures_missing, prepare_out_dir, write_files
+    from furncheck.export.suggestions import (
+        pictures_missing,
+        prepare_out_dir,
+        write_files,
+        write_page,
+    )
     from furncheck.report.suggestions import advice, render_json, render_text
     from furncheck.suggest import suggest_design
 
@@ -88,5 +95,11 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
             written = write_files(result, out_dir, loaded, pictures, titles)
         except OSError as error:
             fail(f"cannot write suggestions to {out_dir}: {error.strerror or error}")
+        try:
+            page = write_page(out_dir, loaded, result, written,
+                              json.loads(render_json(result, loaded, written)))
+        except OSError as error:
+            fail(f"cannot write the report page to {out_dir}: {error.strerror or error}")
+        click.echo(f"furncheck: report page {page}", err=True)
     render = render_json if fmt == "json" else render_text
     write_output(render(result, loaded, written), output)

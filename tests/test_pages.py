@@ -9,6 +9,7 @@ import json
 import os
 import re
 import shutil
+from html import escape
 from pathlib import Path
 
 import numpy as np
@@ -249,3 +250,26 @@ def test_suggestion_page_renders_its_3d_view_in_chromium(tmp_path):
         assert all(url.startswith(("file:", "data:")) for url in _requests(browser))
     finally:
         browser.quit()
+
+
+def test_suggest_out_writes_the_folders_page(tmp_path):
+    """``suggest --out DIR`` writes DIR/index.html: every suggestion's advice, the
+    design's and each suggestion's model embedded (one GLB each), its pictures linked by
+    the names written beside it, nothing fetched from the network."""
+    from click.testing import CliRunner
+
+    from furncheck.cli.main import main
+
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["suggest", str(CATALOG / "bench-tips.yaml"), "--model",
+                                       "rigid", "--out", str(out), "--format", "json",
+                                       "--no-plots"])
+    assert result.exit_code == 0, result.output
+    document = json.loads(result.stdout)
+    page = (out / "index.html").read_text(encoding="utf-8")
+    for entry in document["suggestions"]:
+        assert escape(entry["advice"]) in page
+    assert page.count("data:model/gltf-binary;base64,") == 1 + len(document["suggestions"])
+    for picture in re.findall(r'<img src="([^"]+)"', page):
+        assert (out / picture).is_file()
+    assert not _RESOURCE.search(page)

@@ -4,6 +4,7 @@ force-space plot and its before/after view.
 
     DIR/<name>-view.png  DIR/<name>.glb  DIR/<name>.obj  DIR/<name>.mtl     the design
     DIR/suggestion-01.yaml  .glb  .obj  .mtl  -forces.png  -view.png        suggestion 1
+    DIR/index.html        the report page (``write_page``: the design, every suggestion)
 
 ``<name>`` is the design's name.  The folder is the run's: before writing, the files an
 earlier run of the same design wrote there are removed (only names this run would write:
@@ -39,13 +40,13 @@ if TYPE_CHECKING:
     from furncheck.suggest import SuggestionReport
 
 __all__ = ["ExportUnavailable", "Written", "pictures_missing", "prepare_out_dir",
-           "suggestion_prefix", "write_files"]
+           "suggestion_prefix", "write_files", "write_page"]
 
 SUGGESTION_FILE = re.compile(
     r"^(?P<prefix>.*?)suggestion-(?P<rank>\d{2,})(?:\.yaml|\.glb|\.obj|\.mtl|-forces\.png"
     r"|-view\.png)$")
 """Names of the files written for a suggestion, after the optional '<name>-' prefix."""
-DESIGN_SUFFIXES = (".glb", ".obj", ".mtl", "-view.png")
+DESIGN_SUFFIXES = (".glb", ".obj", ".mtl", "-view.png", "-index.html")
 """Suffixes of the files written for the design itself, after its name."""
 NAME_LINE = re.compile(r"^name:\s*(['\"]?)(?P<name>.*?)\1\s*$", re.MULTILINE)
 HEAD_BYTES = 4096
@@ -192,3 +193,26 @@ def _owner(path: Path) -> str | None:
         return None
     match = NAME_LINE.search(head)
     return match["name"] if match else None
+
+
+def write_page(out_dir: str, design: Design, result: SuggestionReport,
+               written: dict[int, Written], document: dict) -> str:
+    """Write the folder's report page (``report.pages.suggestion_page``): ``index.html``,
+    or ``<name>-index.html`` where the suggestion files are named after the design; its
+    path.  ``document``: the suggest JSON (parsed).  The meshes written are embedded in
+    it, the pictures linked by their names (they sit beside it)."""
+    from furncheck.report.pages import PageDesign, suggestion_page
+
+    def shown(rank: int, report, shown_design: Design) -> PageDesign:
+        files = written.get(rank, Written())
+        glb = next((Path(path).read_bytes() for path in files.meshes
+                    if path.endswith(".glb")), None)
+        return PageDesign(report, shown_design, glb,
+                          tuple(Path(path).name for path in files.plots))
+
+    page = suggestion_page(document, shown(0, result.report, design),
+                           {s.rank: shown(s.rank, s.report, s.design)
+                            for s in result.suggestions})
+    path = Path(out_dir) / f"{suggestion_prefix(out_dir, design.name)}index.html"
+    path.write_text(page, encoding="utf-8")
+    return str(path)
