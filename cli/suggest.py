@@ -96,10 +96,9 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
         except OSError as error:
             fail(f"cannot write suggestions to {out_dir}: {error.strerror or error}")
         try:
-            page = write_page(out_dir, loaded, result, written,
-                              json.loads(render_json(result, loaded, written)))
+            write_page(out_dir, loaded, result, written,
+                       json.loads(render_json(result, loaded, written)))
         except OSError as error:
             fail(f"cannot write the report page to {out_dir}: {error.strerror or error}")
-        click.echo(f"furncheck: report page {page}", err=True)
     render = render_json if fmt == "json" else render_text
     write_output(render(result, loaded, written), output)

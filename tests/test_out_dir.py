@@ -44,7 +44,7 @@ def test_a_second_run_removes_only_its_own_stale_files(tmp_path: Path) -> None:
     (out / "notes.txt").write_text("mine")
     document = suggest(out, "--no-plots")
     assert document["suggestions"]           # the count is the ranking's business
-    own = {"bench-tips.glb", "bench-tips.obj", "bench-tips.mtl"}
+    own = {"bench-tips.glb", "bench-tips.obj", "bench-tips.mtl", "index.html"}
     assert {p.name for p in out.iterdir()} == listed(document) | own | {"notes.txt"}
     assert all(name.startswith("suggestion-0") for name in listed(document))
 
