@@ -1,8 +1,9 @@
-"""A ``DesignReport`` <-> nested lists of strings, numbers, booleans and None, exactly (the
-result cache stores them with ``marshal``; JSON could hold them too).
+"""A ``DesignReport`` <-> nested tuples of strings, numbers, booleans and None, exactly (the
+result cache stores them with ``marshal``, which keeps tuples as tuples).
 
-Every field of every result dataclass is kept, in field order, as a list: floats keep all
-their bits (nan and inf too), ints stay ints, tuples become lists and back.  So
+Every field of every result dataclass is kept, in field order, as a tuple: floats keep all
+their bits (nan and inf too), ints stay ints, tuples stay tuples.  Decoding calls each
+dataclass on its fields and converts only the fields that hold dataclasses.  So
 ``decode(encode(report)) == report`` field for field, and every reporter renders the
 decoded report to the same bytes as the original.  The layout follows the dataclasses'
 fields (read from their type hints), so a field added to a result class is carried without
@@ -32,14 +33,14 @@ _PLAIN = (str, int, float, bool, type(None))
 
 
 def encode(value: Any) -> Any:
-    """``value`` (a result dataclass, tuple, or scalar) as nested lists and scalars; a
+    """``value`` (a result dataclass, tuple, or scalar) as nested tuples and scalars; a
     numpy scalar becomes the Python scalar of the same value (``.item()``)."""
     if type(value) in _PLAIN:
         return value
     if dataclasses.is_dataclass(value):
-        return [encode(getattr(value, item.name)) for item in dataclasses.fields(value)]
+        return tuple(encode(getattr(value, item.name)) for item in dataclasses.fields(value))
     if isinstance(value, (tuple, list)):
-        return [encode(item) for item in value]
+        return tuple(encode(item) for item in value)
     if hasattr(value, "item"):
         return value.item()
     raise TypeError(f"cannot encode a {type(value).__name__}")
@@ -57,9 +58,9 @@ def decode_report(data: Any) -> DesignReport:
 @functools.cache
 def _decoder(hint: Any) -> Decoder | None:
     """A function that turns encoded data back into a value of the type ``hint``; None
-    where the data is the value already (str, int, float, bool).  Scalars are not checked
-    one by one (a cache entry is checked whole against its CRC, ``furncheck.cache``); a
-    wrong shape fails here (CodecError, or TypeError from a dataclass or a tuple)."""
+    where the data is the value already (scalars, tuples of scalars).  Scalars are not
+    checked one by one (a cache entry is checked whole against its CRC,
+    ``furncheck.cache``); a wrong shape fails here (CodecError, TypeError)."""
     if isinstance(hint, type) and dataclasses.is_dataclass(hint):
         return _dataclass_decoder(hint)
     origin = typing.get_origin(hint)
@@ -76,10 +77,10 @@ def _decoder(hint: Any) -> Decoder | None:
         if len(arguments) == 2 and arguments[1] is Ellipsis:
             item = _decoder(arguments[0])
             if item is None:
-                return tuple
+                return None
             return lambda data: tuple(map(item, data))
         if all(_decoder(argument) is None for argument in arguments):
-            return tuple
+            return None
         raise TypeError(f"cannot decode {hint}")
     if hint in (str, int, float, bool):
         return None
@@ -87,6 +88,7 @@ def _decoder(hint: Any) -> Decoder | None:
 
 
 def _dataclass_decoder(kind: type) -> Decoder:
+    """``kind(*data)``, the fields that hold dataclasses decoded first."""
     hints = typing.get_type_hints(kind)
     names = [item.name for item in dataclasses.fields(kind)]
     conversions = [(index, part) for index, name in enumerate(names)
@@ -94,9 +96,11 @@ def _dataclass_decoder(kind: type) -> Decoder:
     count = len(names)
 
     def decode(data: Any) -> Any:
-        if type(data) is not list or len(data) != count:
+        if type(data) is not tuple or len(data) != count:
             raise CodecError(f"{kind.__name__}: expected {count} fields")
-        values = data.copy()
+        if not conversions:
+            return kind(*data)
+        values = list(data)
         for index, part in conversions:
             values[index] = part(values[index])
         return kind(*values)
