@@ -59,8 +59,8 @@ STDIN_NAME = "<stdin>"
               help="Leave out what this gitignore pattern matches in directory scans, "
                    "relative to the current folder (repeatable), e.g. --exclude drafts.")
 @click.option("--skip-non-designs", is_flag=True, default=None,
-              help="Leave out named YAML/JSON files without a top-level 'furncheck' key "
-                   "too, as directory scans do (for hooks that pass every changed file).")
+              help="Leave out named files without a top-level 'furncheck' key too, as "
+                   "directory scans do (for hooks that pass every changed file).")
 @click.option("--cache/--no-cache", "use_cache", default=None,
               help="Reuse the results of unchanged designs.  [default: --cache]")
 @click.option("--cache-dir", metavar="DIR", default=None,
@@ -98,7 +98,7 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
         skip_non_designs=bool(skip_non_designs or config.skip_non_designs))
     collected = collect(paths, scan_options)
     if collected.skipped:
-        click.echo(f"furncheck: skipped {collected.skipped} YAML/JSON "
+        click.echo(f"furncheck: skipped {collected.skipped} "
                    f"file{'s' if collected.skipped != 1 else ''} without a top-level "
                    f"'furncheck' key (not designs)", err=True)
     cache = None

@@ -135,6 +135,12 @@ class ResultCache:
         digest.update(content)
         return digest.hexdigest()
 
+    def key_of(self, path: str) -> str | None:
+        """The key of the file ``path`` as it is now, or None for an input that is not
+        cached (not a regular file that can be read: ``read_source``)."""
+        content = read_source(path)
+        return None if content is None else self.key(path, content)
+
     def entry_path(self, key: str) -> str:
         return os.path.join(self.directory, LAYOUT, key[:2], key[2:])
 
@@ -158,6 +164,14 @@ class ResultCache:
         if report.design != path or report.error is not None:
             return None
         return report
+
+    def store(self, path: str, key: str | None, report: DesignReport) -> None:
+        """``put`` the report of the file ``path`` under ``key`` (its ``key_of`` before it
+        was checked) if the file still holds what it held then: a file edited during its
+        check is not stored under its old content's key.  (It may run in a worker
+        process: entries are written atomically.)"""
+        if key is not None and self.key_of(path) == key:
+            self.put(key, report)
 
     def put(self, key: str, report: DesignReport) -> None:
         """Store ``report`` (a checked design, not an input error) under ``key``."""
@@ -198,26 +212,14 @@ def check_with_cache(paths: list[str], cache: ResultCache,
                      ) -> Iterator[DesignReport]:
     """The reports of ``paths`` in order: stored ones from ``cache``, the others from
     ``check_many`` (called once with all of them, in order; again with one path for an
-    entry found damaged), then stored.
-
-    A result is stored only if its file still holds the bytes it was keyed by after the
-    check (a file edited during the run is not stored under its old content's key).
-    """
-    keys = []
-    for path in paths:
-        content = read_source(path)
-        keys.append(None if content is None else cache.key(path, content))
+    entry found damaged), then stored (``ResultCache.store``: only if the file is
+    unchanged).  Only the keys are held while the others are checked, not the reports."""
+    keys = [cache.key_of(path) for path in paths]
     stored = [key is not None and os.path.isfile(cache.entry_path(key)) for key in keys]
     fresh = iter(check_many([path for path, hit in zip(paths, stored) if not hit]))
     for path, key, hit in zip(paths, keys, stored):
         report = cache.get(key, path) if hit else None
         if report is None:
             report = next(fresh) if not hit else next(iter(check_many([path])))
-            if key is not None and _unchanged(path, key, cache):
-                cache.put(key, report)
+            cache.store(path, key, report)
         yield report
-
-
-def _unchanged(path: str, key: str, cache: ResultCache) -> bool:
-    content = read_source(path)
-    return content is not None and cache.key(path, content) == key

@@ -2,8 +2,8 @@
 
 Each PATH is a file, ``-`` (a design on standard input) or a directory.  A file named on
 the command line is always checked (whatever its name, ignore rules or content), unless
-``skip_non_designs`` asks to leave out named YAML/JSON files that are no designs too (for
-hooks that pass every changed YAML file).  A directory is searched recursively for
+``skip_non_designs`` asks to leave out named files that are no designs too (for hooks
+that pass every changed YAML file).  A directory is searched recursively for
 ``.yaml``, ``.yml`` and ``.json`` files, leaving out
 
 - hidden files and folders (names starting with '.'),
@@ -41,7 +41,7 @@ STDIN = "-"
 @dataclass(frozen=True)
 class ScanOptions:
     """How PATHs become files.  ``excludes``: exclude patterns, each anchored at its own
-    folder; ``skip_non_designs``: also leave out named YAML/JSON files without a top-level
+    folder; ``skip_non_designs``: also leave out named files without a top-level
     ``furncheck`` key."""
 
     excludes: tuple[PatternFile, ...] = ()

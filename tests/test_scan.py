@@ -173,7 +173,7 @@ def test_yaml_and_json_files_without_a_furncheck_key_are_skipped_and_counted(che
     result = run("validate", str(tmp_path))
     checked = sorted(Path(path).relative_to(tmp_path).as_posix() for path in checked_paths)
     assert checked == ["designs/broken.yaml", "designs/shelf.yaml", "designs/table.json"]
-    assert "skipped 6 YAML/JSON files without a top-level 'furncheck' key" in result.stderr
+    assert "skipped 6 files without a top-level 'furncheck' key (not designs)" in result.stderr
 
 
 @pytest.mark.parametrize(("text", "fmt", "expected"), [
@@ -211,7 +211,7 @@ def test_a_named_file_is_always_checked(checked_paths, tmp_path):
     checked_paths.clear()
     result = run("validate", *named, "--skip-non-designs", "--no-cache")
     assert checked_paths == named[2:]
-    assert "skipped 2 YAML/JSON files" in result.stderr
+    assert "skipped 2 files without a top-level" in result.stderr
 
 
 # --- symlinks -----------------------------------------------------------------------------
