@@ -9,6 +9,7 @@ import click
 from furncheck.cli.output import (
     MODEL_OPTION,
     check_output,
+    config_or_fail,
     dofs_or_fail,
     load_or_fail,
     write_output,
@@ -41,10 +42,12 @@ def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str
     from furncheck.ranges import RangeFinder
     from furncheck.report.ranges import render_json, render_text
 
+    config = config_or_fail((design,))
+    model = model or config.model
     check_output(output)
     loaded = load_or_fail(design, model)
     dofs_or_fail(design, loaded, (*dofs, *locks))
     ranges = RangeFinder(loaded, tuple(locks)).ranges(list(dofs) or None,
-                                                      jobs or os.cpu_count() or 1)
+                                                      jobs or config.jobs or os.cpu_count() or 1)
     render = render_json if fmt == "json" else render_text
     write_output(render(design, ranges), output)

@@ -9,6 +9,7 @@ import click
 from furncheck.cli.output import (
     MODEL_OPTION,
     check_output,
+    config_or_fail,
     dofs_or_fail,
     fail,
     load_or_fail,
@@ -76,6 +77,8 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
     from furncheck.report.suggestions import advice, render_json, render_text
     from furncheck.suggest import suggest_design
 
+    config = config_or_fail((design,))
+    model = model or config.model
     check_output(output)
     loaded = load_or_fail(design, model)
     locked = dofs_or_fail(design, loaded, locks)

@@ -70,7 +70,7 @@ def write(folder: Path, *names: str) -> list[str]:
     for name in names:
         path = folder / name
         path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text("furncheck: 1\n")
+        path.write_text('{"furncheck": 1}\n' if path.suffix == ".json" else "furncheck: 1\n")
         paths.append(str(path))
     return paths
 

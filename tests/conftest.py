@@ -1,0 +1,39 @@
+"""Shared test set-up: every test gets its own result cache directory; the fake checker.
+
+``furncheck validate`` caches results in the user cache directory by default; a test that
+runs it must neither write to the developer's cache nor be served a result that another
+test computed (several tests replace part of the checker).  ``FURNCHECK_CACHE_DIR`` points
+the default at a fresh folder per test, for the CLI in this process and in subprocesses.
+"""
+
+from __future__ import annotations
+
+import sys
+import types
+
+import pytest
+
+
+@pytest.fixture(autouse=True)
+def _own_cache_directory(tmp_path_factory: pytest.TempPathFactory,
+                         monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("FURNCHECK_CACHE_DIR", str(tmp_path_factory.mktemp("cache")))
+
+
+@pytest.fixture
+def checked_paths(monkeypatch: pytest.MonkeyPatch) -> list[str]:
+    """``furncheck.check`` replaced by the fake checker of ``test_cli`` (the verdict comes
+    from the file name: valid*, bad*, boom*, garbage*); returns the paths it checks, in
+    order, so a test sees which files the command chose and which it took from the cache."""
+    from test_cli import fake_check_file
+
+    seen: list[str] = []
+
+    def check_file(path: str, model: str | None = None):
+        seen.append(path)
+        return fake_check_file(path, model)
+
+    fake = types.ModuleType("furncheck.check")
+    fake.check_file = check_file
+    monkeypatch.setitem(sys.modules, "furncheck.check", fake)
+    return seen
