@@ -57,6 +57,11 @@ STDIN_NAME = "<stdin>"
 @click.option("--views", "views_dir", metavar="DIR", default=None,
               help="Also write a view of each design there, DIR/<name>-view.png (needs "
                    "the export extra).")
+@click.option("--html", "html_file", metavar="FILE", default=None,
+              help="Also write a report page of the whole run there: a sortable, "
+                   "filterable table of the designs (verdict, worst utilization, "
+                   "violations, a view of each) and their details; one self-contained "
+                   "file that opens offline.")
 @MODEL_OPTION
 @click.option("--exclude", "excludes", metavar="GLOB", multiple=True,
               help="Leave out what this gitignore pattern matches in directory scans, "
@@ -73,7 +78,8 @@ STDIN_NAME = "<stdin>"
               help="The name reports give a design read from '-' (standard input); its "
                    "extension picks YAML or JSON.  [default: <stdin>, format by content]")
 def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: int | None,
-             views_dir: str | None, model: str | None, excludes: tuple[str, ...],
+             views_dir: str | None, html_file: str | None, model: str | None,
+             excludes: tuple[str, ...],
              skip_non_designs: bool | None,
              use_cache: bool | None, cache_dir: str | None,
              stdin_filename: str | None) -> None:
@@ -94,6 +100,8 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
     model = model or config.model
     jobs = jobs or config.jobs or os.cpu_count() or 1
     check_output(output)
+    if html_file is not None:
+        check_output(html_file)
     if views_dir is not None:
         _check_views_dir(views_dir)
     scan_options = ScanOptions(
@@ -130,6 +138,13 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
             write_catalog_views(batch.reports, views_dir, model)
         except OSError as error:
             fail(f"cannot write views to {views_dir}: {error.strerror or error}")
+    if html_file is not None:
+        from furncheck.export.catalog import write_catalog_page
+
+        try:
+            write_catalog_page(batch.reports, html_file)
+        except OSError as error:
+            fail(f"cannot write the report page {html_file}: {error.strerror or error}")
     click.get_current_context().exit(batch.return_code)
 
 

@@ -273,3 +273,26 @@ def test_suggest_out_writes_the_folders_page(tmp_path):
     for picture in re.findall(r'<img src="([^"]+)"', page):
         assert (out / picture).is_file()
     assert not _RESOURCE.search(page)
+
+
+def test_validate_html_writes_one_page_for_the_run(tmp_path):
+    """``validate --html FILE`` keeps the run's report and exit code and writes one page
+    with a row per design (an unreadable one included, marked 'error')."""
+    from click.testing import CliRunner
+
+    from furncheck.cli.main import main
+
+    broken = tmp_path / "broken.yaml"
+    broken.write_text("furncheck: 1\nplanks: 3\n", encoding="utf-8")
+    names = [str(CATALOG / "table.yaml"), str(CATALOG / "bench-tips.yaml"), str(broken)]
+    page_file = tmp_path / "catalog.html"
+    with_page = CliRunner().invoke(main, ["validate", *names, "--model", "rigid", "--no-cache",
+                                          "--html", str(page_file), "--format", "json"])
+    without = CliRunner().invoke(main, ["validate", *names, "--model", "rigid", "--no-cache",
+                                        "--format", "json"])
+    assert with_page.exit_code == without.exit_code == 2
+    assert with_page.stdout == without.stdout
+    page = page_file.read_text(encoding="utf-8")
+    assert page.count('<tr data-verdict="') == 3
+    assert page.count('data-verdict="error"') == 1 and page.count('data-verdict="valid"') == 1
+    assert not _RESOURCE.search(page)

@@ -59,3 +59,25 @@ def _write_view(design, report: DesignReport, path: Path) -> tuple[str]:
 
     path.write_bytes(design_view_png(design, report))
     return (str(path),)
+
+
+def write_catalog_page(reports: list[DesignReport] | tuple[DesignReport, ...], path: str,
+                       title: str = "furncheck catalog") -> None:
+    """``validate --html FILE``: the catalog page (``report.pages.catalog_page``) of
+    ``reports``, each readable design read again for its view, written atomically (an
+    interrupted run leaves an earlier page whole)."""
+    from furncheck.check import load_checked
+    from furncheck.errors import DesignError
+    from furncheck.files import write_atomically
+    from furncheck.report.pages import CatalogEntry, catalog_page
+
+    entries = []
+    for report in reports:
+        design = None
+        if report.error is None and Path(report.design).is_file():
+            try:
+                design = load_checked(report.design)
+            except DesignError:  # changed since it was checked: its report says enough
+                design = None
+        entries.append(CatalogEntry(report, design))
+    write_atomically(path, catalog_page(entries, title).encode("utf-8"))
