@@ -1,11 +1,12 @@
-"""``suggest_design``: continuous and discrete suggestions, ranked, each written as a
-design file and validated from that very text (contract section 4: every listed
-suggestion's file is valid; one that is not is dropped, never listed).
+"""``suggest_design``: continuous and discrete suggestions, each written as a design file
+and validated from that very text (contract section 4: every listed suggestion's file is
+valid; one that is not is dropped, never listed), with its cut list (``cutlist``), ranked
+by the shop's score (``score``).
 
-Order: the continuous suggestions by their score (the valid interval's width minus its
-lower end), then the discrete ones (an added plank is a bigger change than moving one);
-when both kinds are found and there are more than K, at least one discrete suggestion is
-kept.
+Order: by ``ShopScore.key`` (plausible proportions, then the design's symmetry kept, then
+the smallest relative change of the fewest planks), ties by the smaller step and the
+order found (continuous before discrete); when both kinds are found and there are more
+than K, at least one discrete suggestion is kept.
 """
 
 from __future__ import annotations
@@ -20,7 +21,9 @@ from furncheck.design.write import design_text
 from furncheck.dofs import Dof
 from furncheck.geometry import analyze
 from furncheck.suggest.continuous import ContinuousSearch
+from furncheck.suggest.cutlist import plank_edits
 from furncheck.suggest.discrete import support_planks
+from furncheck.suggest.score import shop_score
 from furncheck.suggest.suggestion import Suggestion, SuggestionReport
 
 
@@ -39,10 +42,6 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
     discrete_start = time.perf_counter()
     supports = support_planks(design, geometry, report)
     end = time.perf_counter()
-    if supports and len(continuous) + len(supports) > max_suggestions:
-        keep = max(1, max_suggestions - len(continuous))
-        supports = supports[:keep]
-        continuous = continuous[:max_suggestions - len(supports)]
     suggestions: list[Suggestion] = []
     for found in continuous:
         moved = search.representative(found)
@@ -56,18 +55,50 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
                 dofs=tuple(d.name for d in found.dofs),
                 direction=tuple(float(v) for v in found.direction),
                 range=(found.low, found.high), step=step, changes=changes,
-                units=tuple(d.unit(design) for d in found.dofs)))
+                units=tuple(d.unit(design) for d in found.dofs), limited=found.limited))
     for support in supports:
         written = _written(support.design, len(suggestions) + 1)
         if written is not None:
             suggestions.append(Suggestion(len(suggestions) + 1, "discrete", support.restores,
                                           *written, adds=(support.plank,),
                                           between=support.between))
-    return SuggestionReport(design.source, design.name, report, tuple(suggestions),
+    ranked = _ranked(design, geometry, search.planes, suggestions, max_suggestions)
+    return SuggestionReport(design.source, design.name, report, ranked,
                             search.searched, search.editor.checks,
                             {"candidates": searching - start,
                              "line search": discrete_start - searching,
                              "discrete": end - discrete_start})
+
+
+def _ranked(design: Design, geometry, planes, suggestions: list[Suggestion],
+            limit: int) -> tuple[Suggestion, ...]:
+    """The suggestions with their cut lists and scores, best first (module docstring),
+    at most ``limit``, renumbered (their files' names follow their new ranks)."""
+    scored = []
+    for suggestion in suggestions:
+        edits = plank_edits(design, suggestion.design)
+        score = shop_score(design, geometry, planes, suggestion.design, edits)
+        scored.append(replace(suggestion, edits=edits, score=score))
+    scored.sort(key=lambda s: (s.score.key(), s.step if s.step is not None else 0.0,
+                               s.rank))
+    kept = scored[:limit]
+    if len(scored) > limit and all(s.kind != "discrete" for s in kept):
+        discrete = next((s for s in scored if s.kind == "discrete"), None)
+        if discrete is not None:
+            kept[-1] = discrete
+    return tuple(_renamed(suggestion, rank) for rank, suggestion in enumerate(kept, start=1))
+
+
+def _renamed(suggestion: Suggestion, rank: int) -> Suggestion:
+    """The suggestion as rank ``rank``: its design named ``<name>-suggestion-NN`` after it
+    (the file's text written again with that name; nothing else in it changes)."""
+    if suggestion.rank == rank:
+        return suggestion
+    base = suggestion.design.name.rsplit("-suggestion-", 1)[0]
+    design = replace(suggestion.design, name=f"{base}-suggestion-{rank:02d}",
+                     source=f"suggestion-{rank:02d}.yaml")
+    return replace(suggestion, rank=rank, design=design, text=design_text(design, "yaml"),
+                   report=replace(suggestion.report, design=design.source, name=design.name))
 
 
 def _written(design: Design, rank: int, keeps=analyze):

@@ -6,6 +6,8 @@ from dataclasses import dataclass, field
 
 from furncheck.design.model import Design, Plank
 from furncheck.result import DesignReport
+from furncheck.suggest.cutlist import PlankEdit
+from furncheck.suggest.score import ShopScore
 
 
 @dataclass(frozen=True)
@@ -13,14 +15,19 @@ class Suggestion:
     """One ranked suggestion, continuous (changed DOFs) or discrete (added planks).
 
     dofs      : DOF names; ``direction`` (unit, scaled units) over them (continuous)
-    range     : (low, high) valid steps along the direction, scaled units, or None
-    step      : the representative step (middle of ``range``), or None
+    range     : (low, high) valid steps along the direction, scaled units, or None: both
+                ends valid, a step one resolution beyond each invalid -- or, ``limited``,
+                ``high`` is where the search stopped (half the design's size, 29 degrees)
+    step      : the representative step (the smallest change plus a reserve), or None
     changes   : each DOF's change at ``step``, its own unit (file length unit or degrees)
     adds      : planks added (discrete); ``between`` the planks a support joins
     restores  : the kinds of violation it removes ('durability', 'stability', 'geometry',
                 'stiffness' for sag, 'strength' for bending stress)
     design    : the representative design, parsed from ``text`` (its YAML file), and
                 ``report`` its validation (valid: suggestions that are not are dropped)
+    edits     : its cut list: every plank of the input it changes, adds or removes
+                (``cutlist.plank_edits`` of the input and ``design``)
+    score     : the shop's score it is ranked by (``score.ShopScore``)
     """
 
     rank: int
@@ -37,6 +44,9 @@ class Suggestion:
     units: tuple[str, ...] = ()
     adds: tuple[Plank, ...] = ()
     between: tuple[str, ...] = ()
+    limited: bool = False
+    edits: tuple[PlankEdit, ...] = ()
+    score: ShopScore | None = None
 
 
 @dataclass(frozen=True)
