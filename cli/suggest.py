@@ -57,10 +57,13 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
             out_dir: str | None, no_plots: bool, fmt: str, output: str | None,
             model: str | None) -> None:
     """Ranked suggestions that make DESIGN valid: small changes of one to --max-dofs
-    plank positions, angles and sizes (continuous, paper section 6.4), then support
-    planks to add (discrete, 6.5), each checked with the full statics.  A continuous
-    suggestion's design is the middle of its valid interval; every file written with
-    --out validates as valid.
+    plank positions, angles and sizes (continuous, paper section 6.4; symmetric changes of
+    mirror planks first) and support planks to add (discrete, 6.5), each checked with the
+    full statics and listed with its cut list (every plank it changes, from -> to).  A
+    continuous suggestion's interval is where it is valid, both ends checked; its design
+    is the smallest change plus a reserve.  Ranked by the shop's score: plausible
+    proportions, the design's symmetry kept, the smallest relative change of the fewest
+    planks.  Every file written with --out validates as valid.
 
     With fewer suggestions than --max-suggestions (none at all, too), it says what each
     violation would need (hand statics) and what the search tried.

@@ -209,6 +209,23 @@ which the component is a mechanism (free to move)."""
 CAPACITY_REL_TOL = 1e-9
 """A nail force within this relative slack of its capacity counts as durable."""
 
+# --- suggestions: the cut list and the shop's score ---------------------------------------
+CUT_LIST_EPS = 1e-6
+"""A plank's field counts as changed by a suggestion when it moves by more than this, in
+its own unit (the file's length unit, degrees, or the material key's unit): far below a
+saw's kerf, far above the round-off of writing a design file back (12 digits)."""
+
+STOCK_BOARD = (2.440, 1.220)
+"""m: the largest board a plank is cut from, length x width: the standard full sheet of
+MDF, 2440 x 1220 mm (8 x 4 ft; EN 622-5 boards and the sheet sizes of MDF makers). A
+suggestion that makes a plank too big to cut from one sheet, when it was not, is
+implausible (``suggest.score``)."""
+
+MIRROR_TOLERANCE_FACTOR = 1.0
+"""Two planks are mirror images of each other when every mirrored corner of one lies
+within this many times the design's tolerance of a corner of the other
+(``suggest.symmetry``)."""
+
 # --- output -------------------------------------------------------------------------------
 REPORT_SIGNIFICANT_DIGITS = 6
 """Floats in reports are rounded to this many significant digits (deterministic output)."""

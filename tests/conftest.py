@@ -1,4 +1,6 @@
-"""Shared test set-up: every test gets its own result cache directory; the fake checker.
+"""Shared test set-up: every test gets its own result cache directory; the fake checker;
+``suggest`` on the invalid catalog designs, computed once per session and only for the
+(design, model) pairs a test asks for.
 
 ``furncheck validate`` caches results in the user cache directory by default; a test that
 runs it must neither write to the developer's cache nor be served a result that another
@@ -10,8 +12,13 @@ from __future__ import annotations
 
 import sys
 import types
+from pathlib import Path
 
 import pytest
+
+from furncheck.design import load_design
+from furncheck.design.model import with_model
+from furncheck.suggest import suggest_design
 
 
 @pytest.fixture(autouse=True)
@@ -37,3 +44,20 @@ def checked_paths(monkeypatch: pytest.MonkeyPatch) -> list[str]:
     fake.check_file = check_file
     monkeypatch.setitem(sys.modules, "furncheck.check", fake)
     return seen
+
+CATALOG = Path(__file__).resolve().parents[1] / "designs"
+
+
+@pytest.fixture(scope="session")
+def catalog_suggestions():
+    """``get(name, model)`` -> (the catalog design in that model, its ``SuggestionReport``),
+    each computed on first use (the line searches are the slow part)."""
+    cache: dict[tuple[str, str], tuple] = {}
+
+    def get(name: str, model: str):
+        if (name, model) not in cache:
+            design = with_model(load_design(str(CATALOG / name)), model)
+            cache[(name, model)] = (design, suggest_design(design))
+        return cache[(name, model)]
+
+    return get

@@ -4,9 +4,13 @@ section 4.
     designs/shelf-cantilever-overloaded.yaml: INVALID, 1 violation
       non-durable: post/shelf in case 'default': pull 1005 N per nail exceeds 700 N
     3 suggestions:
-      1. Shorten shelf by 180 mm (valid for 120-241 mm). Restores durability.
+      1. Shorten shelf by 180 mm (valid for 120-397 mm). Restores durability.
+         changes 1 plank:
+           shelf: length 400 -> 219.5 mm, x 350 -> 259.8 mm
          design: out/suggestion-01.yaml
       ...
+
+The sentence of a continuous suggestion is ``shop_words``', its cut list ``cutlist``'s.
 """
 
 from __future__ import annotations
@@ -14,26 +18,19 @@ from __future__ import annotations
 import json
 from typing import Any
 
-import numpy as np
-
 from furncheck.design.model import Design
 from furncheck.design.write import anchor_entry, plank_entry
 from furncheck.export.suggestions import Written
 from furncheck.report.common import plural
+from furncheck.report.cutlist import cut_list_lines, edits_json
 from furncheck.report.explanation import explanation_dict, explanation_lines
 from furncheck.report.numbers import format_number, json_ready
+from furncheck.report.shop_words import continuous_advice
 from furncheck.report.text import INDENT, design_lines
 from furncheck.suggest import Suggestion, SuggestionReport
 
 ADVICE_DIGITS = 3
 """Significant digits of the amounts in the advice (the JSON keeps REPORT digits)."""
-
-PARALLEL_COSINE = 0.95
-"""Planks whose face normals' cosine exceeds this count as parallel."""
-
-TOWARD_COSINE = 0.5
-"""A plank is 'toward' which a move goes when the direction to its centre is within 60
-degrees of the move."""
 
 
 def advice(suggestion: Suggestion, original: Design) -> str:
@@ -42,61 +39,9 @@ def advice(suggestion: Suggestion, original: Design) -> str:
     nailed to both.' (or 'under ledge, standing on the floor, ...')"""
     if suggestion.kind == "discrete":
         return suggestion.advice
-    phrases = []
-    for k, (name, change, unit) in enumerate(zip(suggestion.dofs, suggestion.changes,
-                                                 suggestion.units)):
-        plank, _, kind = name.rpartition(".")
-        subject = plank if k == 0 or suggestion.dofs[k - 1].rpartition(".")[0] != plank \
-            else "it"
-        phrases.append(_phrase(original, plank, subject, kind, change, unit))
-    sentence = " and ".join(phrases)
-    low, high = suggestion.range
-    step = suggestion.step
-    lead = abs(suggestion.changes[0]) / step if step else 0.0
-    unit = suggestion.units[0]
-    valid_for = (f"valid for {_amount(low * lead)}-{_amount(high * lead)} {_unit(unit)}"
-                 + (" of the first change" if len(suggestion.dofs) > 1 else ""))
-    return f"{sentence[0].upper()}{sentence[1:]} ({valid_for})."
-
-
-def _phrase(design: Design, plank: str, subject: str, kind: str, change: float,
-            unit: str) -> str:
-    amount = f"{_amount(abs(change))} {_unit(unit)}"
-    if kind == "z":
-        return f"{'raise' if change > 0 else 'lower'} {subject} by {amount}"
-    if kind in ("x", "y"):
-        sign = 1.0 if change > 0 else -1.0
-        ahead = _toward(design, plank, "xy".index(kind), sign)
-        behind = _toward(design, plank, "xy".index(kind), -sign)
-        where = f"toward {ahead}" if ahead else f"away from {behind}" if behind else \
-            f"along {'+' if change > 0 else '-'}{kind}"
-        return f"move {subject} {amount} {where}"
-    if kind == "length":
-        return f"{'lengthen' if change > 0 else 'shorten'} {subject} by {amount}"
-    if kind == "width":
-        return f"{'widen' if change > 0 else 'narrow'} {subject} by {amount}"
-    verb = "turn" if kind == "rz" else "tilt"
-    sign = "+" if change > 0 else "-"
-    return f"{verb} {subject} by {sign}{amount} about {kind[1]}"
-
-
-def _toward(design: Design, plank_id: str, axis: int, sign: float) -> str | None:
-    """The plank ahead of a move along ``axis``: among the others whose centre lies
-    within 60 degrees of the move, a parallel one (the other leg of a pair) before the
-    rest, then the nearest."""
-    moved = design.plank(plank_id)
-    normal = moved.rotation_matrix[:, 2]
-    best, best_key = None, None
-    for plank in design.planks:
-        offset = plank.center_array - moved.center_array
-        distance = float(np.linalg.norm(offset))
-        if plank.id == plank_id or distance == 0 or sign * offset[axis] < TOWARD_COSINE * distance:
-            continue
-        parallel = abs(float(plank.rotation_matrix[:, 2] @ normal)) > PARALLEL_COSINE
-        key = (not parallel, distance)
-        if best_key is None or key < best_key:
-            best, best_key = plank.id, key
-    return best
+    return continuous_advice(suggestion.dofs, suggestion.changes, suggestion.units,
+                             suggestion.step, suggestion.range, suggestion.limited, original,
+                             suggestion.design)
 
 
 def _amount(value: float) -> str:
@@ -128,6 +73,8 @@ def render_text(result: SuggestionReport, original: Design,
         restores = " and ".join(suggestion.restores)
         lines.append(f"{INDENT}{suggestion.rank}. {advice(suggestion, original)} "
                      f"Restores {restores}.")
+        for line in cut_list_lines(suggestion.edits, original):
+            lines.append(f"{INDENT}   {line}")
         files = written.get(suggestion.rank)
         if files is not None and files.design_file:
             lines.append(f"{INDENT}   design: {files.design_file}")
@@ -170,6 +117,8 @@ def _suggestion_dict(suggestion: Suggestion, original: Design,
             "adds": [plank_entry(plank, original) for plank in suggestion.adds],
             "between": list(suggestion.between),
             "advice": advice(suggestion, original),
+            "edits": edits_json(suggestion.edits),
+            "score": _score_json(suggestion),
             "design_file": files.design_file,
             "meshes": list(files.meshes),
             "plots": list(files.plots),
@@ -188,7 +137,19 @@ def _suggestion_dict(suggestion: Suggestion, original: Design,
         "step": suggestion.step,
         "changes": dict(zip(suggestion.dofs, suggestion.changes)),
         "advice": advice(suggestion, original),
+        "limited": suggestion.limited,
+        "edits": edits_json(suggestion.edits),
+        "score": _score_json(suggestion),
         "design_file": files.design_file,
         "meshes": list(files.meshes),
         "plots": list(files.plots),
     }
+
+
+def _score_json(suggestion: Suggestion) -> dict[str, Any] | None:
+    """The shop's score it was ranked by (``suggest.score``)."""
+    score = suggestion.score
+    if score is None:
+        return None
+    return {"implausible": list(score.implausible), "broken_mirrors": score.broken,
+            "cost": score.cost, "planks": score.touched}

@@ -58,6 +58,7 @@ class Candidate:
     direction: np.ndarray
     enter: float
     leave: float
+    units: tuple[int, ...] = ()     # the symmetric units it combines (``unit_candidates``)
 
 
 def candidates(margins: Margins, max_dofs: int,
@@ -90,6 +91,53 @@ def candidates(margins: Margins, max_dofs: int,
         if tally is not None:
             tally.append(DirectionTally(m, len(relevant), comb(len(relevant), m), len(combos),
                                         len(kept) - before, *(int(c) for c in culled)))
+    kept.sort(key=lambda c: (c.enter, len(c.dofs), c.dofs))
+    return kept
+
+
+def unit_candidates(margins: Margins, units: list, max_dofs: int) -> list[Candidate]:
+    """Kept directions (as ``candidates``) in the span of one or two *units* -- fixed
+    directions of one or two DOFs each (``symmetry.Unit``: a mirror pair changed
+    symmetrically, a DOF its mirror keeps) -- with at least one unit of two DOFs, the
+    units' DOFs disjoint and at most ``max_dofs`` in all; a combination containing a kept
+    smaller one is skipped.  Nearest first; each direction over the DOFs of its units,
+    in ascending order."""
+    rows = margins.margins
+    paired = {u for u, unit in enumerate(units) if len(unit.dofs) == 2}
+    if not rows or not margins.dofs or not paired or max_dofs < 2:
+        return []
+    rates = np.array([m.rates for m in rows])
+    values = np.array([m.value for m in rows])
+    violated = values < 0.0
+    if not violated.any():
+        return []
+    deficit = np.array([m.target for m in rows])[violated] - values[violated]
+    basis = np.zeros((len(margins.dofs), len(units)))
+    for u, unit in enumerate(units):
+        basis[list(unit.dofs), u] = unit.coefficients
+    unit_rates = rates @ basis                                       # (rows, units)
+    relevant = set(_relevant(np.abs(unit_rates[violated]).max(axis=0)))
+    kept: list[Candidate] = []
+    working: set[int] = set()          # units that work alone (paired or not)
+    for m in (1, 2):
+        combos = [c for c in combinations(sorted(relevant), m)
+                  if (m == 1 or any(u in paired for u in c))
+                  and sum(len(units[u].dofs) for u in c) <= max_dofs
+                  and len({i for u in c for i in units[u].dofs})
+                  == sum(len(units[u].dofs) for u in c)
+                  and not any(u in working for u in c)]
+        if not combos:
+            continue
+        combos_array = np.array(combos, dtype=int).reshape(-1, m)
+        for candidate in _evaluate(unit_rates, values, violated, deficit, combos_array)[0]:
+            if m == 1:
+                working.add(candidate.dofs[0])
+                if candidate.dofs[0] not in paired:
+                    continue            # one DOF alone: an ordinary candidate
+            real = basis[:, list(candidate.dofs)] @ candidate.direction
+            dofs = tuple(int(i) for i in np.nonzero(real)[0])
+            kept.append(Candidate(dofs, real[list(dofs)], candidate.enter, candidate.leave,
+                                  candidate.dofs))
     kept.sort(key=lambda c: (c.enter, len(c.dofs), c.dofs))
     return kept
 

@@ -6,7 +6,9 @@ from dataclasses import dataclass, field
 
 from furncheck.design.model import Design, Plank
 from furncheck.result import DesignReport
+from furncheck.suggest.cutlist import PlankEdit
 from furncheck.suggest.explain import Explanation
+from furncheck.suggest.score import ShopScore
 
 
 @dataclass(frozen=True)
@@ -14,8 +16,10 @@ class Suggestion:
     """One ranked suggestion, continuous (changed DOFs) or discrete (added planks).
 
     dofs      : DOF names; ``direction`` (unit, scaled units) over them (continuous)
-    range     : (low, high) valid steps along the direction, scaled units, or None
-    step      : the representative step (middle of ``range``), or None
+    range     : (low, high) valid steps along the direction, scaled units, or None: both
+                ends valid, a step one resolution beyond each invalid -- or, ``limited``,
+                ``high`` is where the search stopped (half the design's size, 29 degrees)
+    step      : the representative step (the smallest change plus a reserve), or None
     changes   : each DOF's change at ``step``, its own unit (file length unit or degrees)
     adds      : planks added (discrete); ``between`` the planks a support joins
     rule      : the discrete rule that made it ('support', 'rail', 'apron', 'stretcher',
@@ -25,6 +29,9 @@ class Suggestion:
                 'stiffness' for sag, 'strength' for bending stress)
     design    : the representative design, parsed from ``text`` (its YAML file), and
                 ``report`` its validation (valid: suggestions that are not are dropped)
+    edits     : its cut list: every plank of the input it changes, adds or removes
+                (``cutlist.plank_edits`` of the input and ``design``)
+    score     : the shop's score it is ranked by (``score.ShopScore``)
     """
 
     rank: int
@@ -43,6 +50,9 @@ class Suggestion:
     between: tuple[str, ...] = ()
     rule: str = ""
     advice: str = ""
+    limited: bool = False
+    edits: tuple[PlankEdit, ...] = ()
+    score: ShopScore | None = None
 
 
 @dataclass(frozen=True)
