@@ -1,43 +1,39 @@
 """``furncheck validate PATH...``: check designs, write one report, exit 0 / 1 / 2.
 
-The command is thin: collect the design files, run ``furncheck.check.check_file`` on each
-(in worker processes for a catalog), render the ``BatchReport`` with the chosen reporter,
-write it, and exit with ``BatchReport.return_code``.  Every input gets a report entry,
-also a missing path or a file of another type (``check_file`` says what is wrong), so one
-bad file never hides the verdicts on the others.
+The command is thin: collect the design files, check each and make its part of the
+report with the chosen reporter (``furncheck.batch``: in worker processes for a large
+catalog), write the parts as they come, in input order, and exit with the summary's
+return code.  Every input gets a report entry, also a missing path or a file of another
+type (``check_file`` says what is wrong), so one bad file never hides the verdicts on the
+others.
 """
 
 from __future__ import annotations
 
-import math
 import os
 from pathlib import Path, PurePath
 
 import click
 
-from furncheck.cli.output import MODEL_OPTION, check_output, fail, write_output
-from furncheck.report import REPORTERS, render
-from furncheck.result import BatchReport, DesignReport
+from furncheck.batch import entries
+from furncheck.cli.output import MODEL_OPTION, check_output, fail, write_chunks
+from furncheck.report import FORMAT_MODULES, reporter
+from furncheck.report.entries import Summary
+from furncheck.result import DesignReport
 
 DESIGN_SUFFIXES = (".yaml", ".yml", ".json")
 """Extensions of design files found when a PATH is a directory (case-insensitive)."""
 
-PARALLEL_MIN_FILES = 8
-"""Fewer files than this are checked in-process: starting workers would cost more."""
-
-CHUNKS_PER_WORKER = 4
-"""Work is handed to each worker in about this many chunks (balance vs. overhead)."""
-
 
 @click.command()
 @click.argument("paths", metavar="PATH...", nargs=-1, required=True)
-@click.option("--format", "fmt", type=click.Choice(list(REPORTERS)), default="text",
+@click.option("--format", "fmt", type=click.Choice(list(FORMAT_MODULES)), default="text",
               show_default=True, help="Report format.")
 @click.option("-o", "--output", metavar="FILE", default=None,
               help="Write the report to FILE instead of standard output ('-': stdout).")
 @click.option("-j", "--jobs", type=click.IntRange(min=1), default=None,
-              help=f"Worker processes, used from {PARALLEL_MIN_FILES} files on.  "
-                   "[default: all cores]")
+              help="Processes checking designs; a catalog that takes less than about half "
+                   "a second is checked in one.  [default: all cores]")
 @MODEL_OPTION
 def validate(paths: tuple[str, ...], fmt: str, output: str | None, jobs: int | None,
              model: str | None) -> None:
@@ -49,17 +45,17 @@ def validate(paths: tuple[str, ...], fmt: str, output: str | None, jobs: int | N
     """
     check_output(output)
     sources = collect_sources(paths)
-    to_check = [source for source in sources if isinstance(source, str)]
-    checked = iter(check_all(to_check, jobs if jobs is not None else (os.cpu_count() or 1),
-                             model))
-    batch = BatchReport(tuple(source if isinstance(source, DesignReport) else next(checked)
-                              for source in sources))
+    summary = Summary()
+    parts = reporter(fmt).document(
+        summary.add(entry) for entry in entries(
+            sources, fmt, jobs if jobs is not None else (os.cpu_count() or 1), model))
     try:
-        document = render(batch, fmt)
+        write_chunks(parts, output)
+    except click.exceptions.Exit:
+        raise
     except Exception as error:  # a reporter bug must not become a traceback
         fail(f"internal error while writing the {fmt} report: {type(error).__name__}: {error}")
-    write_output(document, output)
-    click.get_current_context().exit(batch.return_code)
+    click.get_current_context().exit(summary.return_code)
 
 
 # --- collecting files -----------------------------------------------------------------------
@@ -112,63 +108,6 @@ def find_design_files(directory: str) -> tuple[list[str], list[tuple[str, str]]]
     files.sort(key=lambda file: PurePath(file).parts)
     unreadable.sort()
     return files, unreadable
-
-
-# --- checking -------------------------------------------------------------------------------
-
-def check_all(paths: list[str], jobs: int, model: str | None = None) -> list[DesignReport]:
-    """``check_one`` of every path, in order; in ``jobs`` worker processes for many files.
-
-    The result is the same either way; if worker processes cannot be started at all the
-    files are checked in this process.
-    """
-    if jobs > 1 and len(paths) >= PARALLEL_MIN_FILES:
-        reports = _check_in_workers(paths, jobs, model)
-        if reports is not None:
-            return reports
-    return [check_one(path, model) for path in paths]
-
-
-def check_one(path: str, model: str | None = None) -> DesignReport:
-    """``check_file(path, model)``, with any unexpected exception turned into an error
-    report."""
-    try:
-        from furncheck.check import check_file  # heavy (numpy, scipy): imported on use
-
-        report = check_file(path, model)
-    except Exception as error:
-        return _error_report(path, f"internal error: {type(error).__name__}: {error}")
-    if not isinstance(report, DesignReport):
-        return _error_report(path, f"internal error: the checker returned a "
-                                   f"{type(report).__name__}, not a DesignReport")
-    return report
-
-
-def _check_in_workers(paths: list[str], jobs: int,
-                      model: str | None = None) -> list[DesignReport] | None:
-    """Reports from a process pool, or None when the pool cannot be started."""
-    from concurrent.futures import ProcessPoolExecutor
-
-    try:  # import the checker once here: forked workers then start with it loaded
-        import furncheck.check  # noqa: F401
-    except Exception:  # noqa: BLE001 - check_one turns the same failure into error entries
-        pass
-    workers = min(jobs, len(paths))
-    chunksize = max(1, math.ceil(len(paths) / (workers * CHUNKS_PER_WORKER)))
-    try:
-        pool = ProcessPoolExecutor(max_workers=workers)
-    except (OSError, NotImplementedError, ImportError):  # no multiprocessing here
-        return None
-    reports: list[DesignReport] = []
-    with pool:
-        try:
-            for report in pool.map(check_one, paths, [model] * len(paths),
-                                   chunksize=chunksize):
-                reports.append(report)
-        except Exception as error:  # a worker died (BrokenProcessPool) or could not reply
-            reason = f"internal error: a checking process failed ({type(error).__name__})"
-            reports.extend(_error_report(path, reason) for path in paths[len(reports):])
-    return reports
 
 
 # --- small helpers --------------------------------------------------------------------------
