@@ -5,12 +5,17 @@ in input order as they are done (``entries``), ready to be written out one by on
 How many processes (``--jobs N``, default: all cores).  Starting a worker costs about as
 much as checking a few small designs, so the files are checked in this process first.
 Once the designs after the first (which also pays for the imports) have taken
-PARALLEL_AFTER seconds, and the files left would take as long again at their average
-time, the rest go to min(N, files left) worker processes; a small catalog is therefore
-never split.  The workers are forked where the platform can (they then start with
-everything this process has imported), and each task is a run of consecutive files of
-about TASK_SECONDS of work.  Which process checks a file changes nothing in the report:
-the output is the same for every N.
+PARALLEL_AFTER seconds of CPU time, and the files left would take as much again at their
+average, the rest go to min(N, files left) worker processes; a small catalog is therefore
+never split.  (CPU time measures the work whatever else the machine is running.)  The
+workers are forked where the platform can (they then start with everything this process
+has imported), and each task is a run of consecutive files of about TASK_SECONDS of work.
+Which process checks a file changes nothing in the report: the output is the same for
+every N.
+
+With the result cache (``furncheck.cache``), only the files whose result is not stored are
+checked (and counted above); the others' entries come from their stored piece of the
+report in the format, or are made from their stored result.
 """
 
 from __future__ import annotations
@@ -32,8 +37,8 @@ if TYPE_CHECKING:
     from furncheck.cache import ResultCache
 
 PARALLEL_AFTER = 0.25
-"""Seconds of checking in this process (after the first design) before worker processes
-are started for the rest, if the rest would take as long again."""
+"""CPU seconds of checking in this process (after the first design) before worker
+processes are started for the rest, if the rest would take as much again."""
 
 TASK_SECONDS = 0.1
 """About this much work (at the average time per design so far) is handed to a worker in
@@ -167,7 +172,7 @@ def _checked(items: list[tuple[str, str | None]], fmt: str, jobs: int, model: st
     start = None
     for k, (path, key) in enumerate(items):
         if start is not None and jobs > 1:
-            spent, left = time.perf_counter() - start, len(items) - k
+            spent, left = time.process_time() - start, len(items) - k
             average = spent / (k - 1) if k > 1 else 0.0
             if spent >= PARALLEL_AFTER and average * left >= PARALLEL_AFTER and left >= 2:
                 rest = items[k:]
@@ -176,7 +181,7 @@ def _checked(items: list[tuple[str, str | None]], fmt: str, jobs: int, model: st
                 return
         yield entry_of(path, fmt, model, cache, key)
         if start is None:
-            start = time.perf_counter()
+            start = time.process_time()
 
 
 def entries_in_workers(paths: list[str], fmt: str, jobs: int, model: str | None = None,

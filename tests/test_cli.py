@@ -219,15 +219,17 @@ def test_a_small_catalog_is_checked_in_one_process(calls, tmp_path):
 
 
 def test_a_slow_catalog_goes_to_workers(calls, tmp_path, monkeypatch):
-    """Designs of 30 ms each: after PARALLEL_AFTER (0.25 s, about 9 designs after the
-    first) the 10 left would take 0.3 s more, so they go to workers: the parent checks
+    """Designs of 30 ms of CPU each: after PARALLEL_AFTER (0.25 s, about 9 designs after
+    the first) the 10 left would take 0.3 s more, so they go to workers: the parent checks
     only some of the 20 files, and the report is the one of a single process."""
     paths = write(tmp_path, *[f"valid{i:02d}.yaml" for i in range(20)])
     fake = sys.modules["furncheck.check"]
     fast = fake.check_file
 
     def slow(path, model=None):
-        time.sleep(0.03)
+        start = time.process_time()
+        while time.process_time() - start < 0.03:
+            pass
         return fast(path, model)
 
     monkeypatch.setattr(fake, "check_file", slow)

@@ -15,6 +15,7 @@ design.  Each design's entry is one ``piece``, made where the design was checked
 
 from __future__ import annotations
 
+import functools
 import json
 from collections.abc import Iterable, Iterator, Sequence
 from json.encoder import encode_basestring_ascii as _string
@@ -212,9 +213,26 @@ def _report_text(report: DesignReport, indent: str) -> str:
     ], indent)
 
 
+def _record(layout: tuple[tuple[str, int | None], ...], values: Iterable[Any],
+            indent: str) -> str:
+    """An object of scalars and lists of scalars: ``layout`` gives its keys in order, each
+    with None for a scalar or the length of a list, and ``values`` the scalars in order
+    (a list's items in place)."""
+    return _template(layout, indent) % tuple(map(_value, values))
+
+
+@functools.lru_cache(maxsize=256)
+def _template(layout: tuple[tuple[str, int | None], ...], indent: str) -> str:
+    """The text of a ``_record`` with ``%s`` for every scalar (the writer's own text holds
+    no ``%``: its keys are plain words)."""
+    inner = indent + _STEP
+    return _object([(key, "%s" if length is None else _array(["%s"] * length, inner))
+                    for key, length in layout], indent)
+
+
 def _violation_text(violation: Violation, indent: str) -> str:
-    return _object([("kind", _value(violation.kind)), ("where", _value(violation.where)),
-                    ("case", _value(violation.case)), ("message", _value(violation.message))],
+    return _record((("kind", None), ("where", None), ("case", None), ("message", None)),
+                   (violation.kind, violation.where, violation.case, violation.message),
                    indent)
 
 
@@ -240,59 +258,61 @@ def _case_text(case: CaseResult, indent: str) -> str:
 
 
 def _joint_text(joint: JointResult, indent: str) -> str:
-    inner = indent + _STEP
-    return _object([
-        ("planks", _values(joint.planks, inner)),
-        ("point", _values(joint.point, inner)),
-        ("nails", _value(joint.nails)),
-        ("force", _values(joint.force, inner)),
-        ("moment", _values(joint.moment, inner)),
-        ("pull", _value(joint.pull)),
-        ("shear", _value(joint.shear)),
-        ("pull_capacity", _value(joint.pull_capacity)),
-        ("shear_capacity", _value(joint.shear_capacity)),
-        ("utilization", _value(joint.utilization)),
-        ("durable", _value(joint.durable)),
-    ], indent)
+    return _record((("planks", len(joint.planks)), ("point", len(joint.point)),
+                    ("nails", None), ("force", len(joint.force)),
+                    ("moment", len(joint.moment)), ("pull", None), ("shear", None),
+                    ("pull_capacity", None), ("shear_capacity", None), ("utilization", None),
+                    ("durable", None)),
+                   (*joint.planks, *joint.point, joint.nails, *joint.force, *joint.moment,
+                    joint.pull, joint.shear, joint.pull_capacity, joint.shear_capacity,
+                    joint.utilization, joint.durable), indent)
 
 
 def _contact_text(contact: ContactResult, indent: str) -> str:
-    inner = indent + _STEP
-    pairs = [("plank", _value(contact.plank)), ("point", _values(contact.point, inner)),
-             ("force", _values(contact.force, inner))]
+    layout = [("plank", None), ("point", len(contact.point)), ("force", len(contact.force))]
+    values = [contact.plank, *contact.point, *contact.force]
     if contact.wall is not None:
-        pairs.append(("wall", _value(contact.wall)))
+        layout.append(("wall", None))
+        values.append(contact.wall)
     if contact.on is not None:
-        pairs.append(("on", _value(contact.on)))
-    return _object(pairs, indent)
+        layout.append(("on", None))
+        values.append(contact.on)
+    return _record(tuple(layout), values, indent)
 
 
 def _load_text(load: LoadResult, indent: str) -> str:
-    inner = indent + _STEP
-    pairs = [("plank", _value(load.plank))]
+    layout: list[tuple[str, int | None]] = [("plank", None)]
+    values = [load.plank]
     if load.mass is not None:
-        pairs.append(("mass", _value(load.mass)))
+        layout.append(("mass", None))
+        values.append(load.mass)
     else:
-        pairs.append(("force", _values(load.force, inner)))
-    pairs.append(("at", "null" if load.at is None else _values(load.at, inner)))
+        layout.append(("force", len(load.force)))
+        values.extend(load.force)
+    if load.at is None:
+        layout.append(("at", None))
+        values.append(None)
+    else:
+        layout.append(("at", len(load.at)))
+        values.extend(load.at)
     if load.spread:
-        pairs.append(("spread", "true"))
+        layout.append(("spread", None))
+        values.append(True)
     if load.origin is not None:
-        pairs.append(("from", _value(load.origin)))
-    return _object(pairs, indent)
+        layout.append(("from", None))
+        values.append(load.origin)
+    return _record(tuple(layout), values, indent)
 
 
 def _plank_text(plank: PlankResult, indent: str) -> str:
-    return _object([("id", _value(plank.id)), ("sag", _value(plank.sag)),
-                    ("sag_allowed", _value(plank.sag_allowed)),
-                    ("stress", _value(plank.stress)), ("strength", _value(plank.strength)),
-                    ("utilization", _value(plank.utilization))], indent)
+    return _record((("id", None), ("sag", None), ("sag_allowed", None), ("stress", None),
+                    ("strength", None), ("utilization", None)),
+                   (plank.id, plank.sag, plank.sag_allowed, plank.stress, plank.strength,
+                    plank.utilization), indent)
 
 
 def _anchor_text(anchor: AnchorResult, indent: str) -> str:
-    inner = indent + _STEP
-    return _object([("plank", _value(anchor.plank)), ("wall", _value(anchor.wall)),
-                    ("point", _values(anchor.point, inner)),
-                    ("force", _values(anchor.force, inner)),
-                    ("capacity", _value(anchor.capacity)),
-                    ("utilization", _value(anchor.utilization))], indent)
+    return _record((("plank", None), ("wall", None), ("point", len(anchor.point)),
+                    ("force", len(anchor.force)), ("capacity", None), ("utilization", None)),
+                   (anchor.plank, anchor.wall, *anchor.point, *anchor.force, anchor.capacity,
+                    anchor.utilization), indent)
