@@ -13,12 +13,26 @@ from furncheck.cli.output import (
     load_or_fail,
     write_output,
 )
+from furncheck.tolerances import MAX_COMBINED_DOFS
+
+
+def _combined_dofs(value: int) -> int:
+    """--max-dofs, refused outside 1..MAX_COMBINED_DOFS with the reason."""
+    if not 1 <= value <= MAX_COMBINED_DOFS:
+        raise click.BadParameter(
+            f"{value}: one suggestion changes 1 to {MAX_COMBINED_DOFS} DOFs together (the "
+            f"combinations of {MAX_COMBINED_DOFS + 1} of a large design's DOFs take minutes "
+            f"to form; see the README)")
+    return value
 
 
 @click.command("suggest")
 @click.argument("design", metavar="DESIGN")
-@click.option("--max-dofs", "max_dofs", type=click.IntRange(1, 4), default=3,
-              show_default=True, help="Most DOFs changed together by one suggestion.")
+@click.option("--max-dofs", "max_dofs", type=int, default=3, show_default=True,
+              callback=lambda _ctx, _param, value: _combined_dofs(value),
+              help=f"Most DOFs changed together by one suggestion, 1 to {MAX_COMBINED_DOFS} "
+                   f"(their combinations grow as C(n, M): 5 takes minutes on a large "
+                   f"design).")
 @click.option("--max-suggestions", "max_suggestions", type=click.IntRange(1, 100),
               default=8, show_default=True, help="Most suggestions listed.")
 @click.option("--lock", "locks", metavar="DOF", multiple=True,
@@ -40,6 +54,9 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
     planks to add (discrete, 6.5), each checked with the full statics.  A continuous
     suggestion's design is the middle of its valid interval; every file written with
     --out validates as valid.
+
+    With fewer suggestions than --max-suggestions (none at all, too), it says what each
+    violation would need (hand statics) and what the search tried.
 
     Exit code 0: done (also when the design is valid already, or no suggestion was
     found); 2: unreadable or ill-formed design, unknown DOF or plank, unwritable --out.

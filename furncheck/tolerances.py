@@ -255,3 +255,26 @@ section 2); a normal within this of horizontal is made exactly horizontal."""
 ON_PLANK_EPS = 1e-9
 """m: round-off slack (on top of the design's tolerance) when a load point is checked to
 lie on its plank, so a point exactly on a face is on the plank even with tolerance 0."""
+
+# --- suggest ----------------------------------------------------------------------------
+MAX_COMBINED_DOFS = 4
+"""The most DOFs one continuous suggestion may change together (``suggest --max-dofs``).
+Directions are formed for every combination of up to M of the DOFs that move the violated
+margins (at most 48 of them, ``suggest.candidates``): C(48, 4) = 194,580 combinations take
+12 s on the 37-plank bookshelf-20 in the elastic model, C(48, 5) = 1.7 million took over
+150 s, C(48, 6) = 12 million would take about 20 minutes; and on the catalog no design got
+a suggestion from 5 or 6 DOFs that 4 did not give (README, "How do I fix it?")."""
+# --- discrete suggestions (furncheck.suggest.discrete) -----------------------------------
+STOCK_THICKNESSES = (0.012, 0.015, 0.018, 0.022, 0.025, 0.030, 0.036, 0.044)
+"""m: board thicknesses a thicker plank is chosen from: the MDF and plywood sheets sold
+in 12 to 30 mm, and two 18 or 22 mm sheets glued face to face (36, 44 mm)."""
+STOCK_MATCH = 1e-6
+"""Relative slack when a needed thickness is matched to a board (12.000000001 mm is a 12 mm
+board)."""
+ANCHOR_CAPACITY = 196.0
+"""N: the rating of a wall anchor that ``suggest`` proposes: one plasterboard fixing's safe
+static load in tension, 20 kg (Gripit red, data sheet GR0049 UK, 2018; the catalog's
+``bookcase-anchored`` uses it too)."""
+WALL_ANCHOR_REACH = 0.05
+"""m: a plank whose nearest corner stands at most this far in front of a wall can be
+anchored to it (a bracket or a packing piece bridges the gap)."""

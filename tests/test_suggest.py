@@ -67,7 +67,8 @@ BEYOND_ONE_CHANGE = {
         "150 kg on a 12 mm particleboard shelf: its stress needs w L^2 halved and its sag "
         "w L^4 / EI cut thirtyfold (see its header); no move within half the design's size "
         "and no single added support or rail does both (a rail of 96 mm sags 8.8 mm under "
-        "the load alone); the maker's fix is a thicker board, which is no design DOF",
+        "the load alone); a thicker board would need (125 / 2.25)^(1/3) = 3.8 x 12 = 46 mm, "
+        "beyond the 44 mm (two 22 mm boards) of the thicker rule",
 }
 """Invalid catalog designs that no single change can repair, and why: suggest must say
 so (no suggestion), and starts failing here if it finds one (then it must be valid)."""
@@ -109,7 +110,9 @@ def test_suggestions_are_consistent(results, name):
     for rank, suggestion in enumerate(result.suggestions, start=1):
         assert suggestion.rank == rank
         if suggestion.kind == "discrete":
-            assert len(suggestion.design.planks) == len(design.planks) + 1
+            assert [p.id for p in suggestion.design.planks] == \
+                [p.id for p in design.planks] + [p.id for p in suggestion.adds]
+            assert suggestion.rule and suggestion.advice.endswith(".")
             continue
         assert math.isclose(np.linalg.norm(suggestion.direction), 1.0, rel_tol=1e-9)
         low, high = suggestion.range
@@ -262,7 +265,8 @@ def test_locked_dofs_never_change():
 
 def test_max_dofs_and_max_suggestions_are_respected():
     design = catalog_design("side-table-hovering.yaml")
-    assert suggest_design(design, max_dofs=1).suggestions == ()     # needs both legs
+    one = suggest_design(design, max_dofs=1)                 # no DOF alone: it needs both legs
+    assert [s.rule for s in one.suggestions] == ["reconnect"]       # the discrete fix does
     two = suggest_design(design, max_dofs=2)
     assert two.suggestions and all(len(s.dofs) <= 2 for s in two.suggestions)
     design = catalog_design("bench-tips.yaml")
@@ -333,7 +337,7 @@ def test_cli_json_follows_the_contract_and_is_deterministic(tmp_path):
     second = run("suggest", path, "--format", "json")
     assert first.exit_code == 0 and first.output == second.output
     document = json.loads(first.output)
-    assert list(document) == ["design", "valid", "violations", "suggestions"]
+    assert list(document) == ["design", "valid", "violations", "suggestions", "explanation"]
     assert document["valid"] is False and document["violations"][0]["kind"] == "lift-off"
     entry = document["suggestions"][0]
     assert list(entry)[:9] == ["rank", "kind", "restores", "dofs", "direction", "range",
@@ -358,8 +362,9 @@ def test_cli_json_of_a_discrete_suggestion():
     discrete = [e for e in entries if e["kind"] == "discrete"]
     assert discrete
     entry = discrete[0]
-    assert list(entry) == ["rank", "kind", "restores", "adds", "between", "advice",
+    assert list(entry) == ["rank", "kind", "rule", "restores", "adds", "between", "advice",
                            "design_file", "meshes", "plots"]
+    assert entry["rule"] == "support"
     (support,) = entry["adds"]
     assert list(support) == ["id", "size", "center", "rotation"]
     assert support["id"] == "support-1"
@@ -390,6 +395,7 @@ def test_cli_out_writes_files_that_validate(tmp_path):
     (("--lock", "shelf.height"), "unknown DOF kind"),
     (("--lock", "nosuch.x"), "no plank 'nosuch'"),
     (("--max-dofs", "0"), "--max-dofs"),
+    (("--max-dofs", "5"), "one suggestion changes 1 to 4 DOFs together"),
 ])
 def test_cli_bad_input_is_one_line_and_exit_2(args, message):
     result = CliRunner().invoke(main, ["suggest", str(CATALOG / "bench-tips.yaml"), *args])

@@ -17,9 +17,10 @@ from typing import Any
 import numpy as np
 
 from furncheck.design.model import Design
-from furncheck.design.write import plank_entry
+from furncheck.design.write import anchor_entry, plank_entry
 from furncheck.export.suggestions import Written
 from furncheck.report.common import plural
+from furncheck.report.explanation import explanation_dict, explanation_lines
 from furncheck.report.numbers import format_number, json_ready
 from furncheck.report.text import INDENT, design_lines
 from furncheck.suggest import Suggestion, SuggestionReport
@@ -40,7 +41,7 @@ def advice(suggestion: Suggestion, original: Design) -> str:
     or 'Add support-1 (582 x 300 mm) between shelf and base, centred at (250, 0, 303) mm,
     nailed to both.' (or 'under ledge, standing on the floor, ...')"""
     if suggestion.kind == "discrete":
-        return _support_advice(suggestion, original)
+        return suggestion.advice
     phrases = []
     for k, (name, change, unit) in enumerate(zip(suggestion.dofs, suggestion.changes,
                                                  suggestion.units)):
@@ -56,26 +57,6 @@ def advice(suggestion: Suggestion, original: Design) -> str:
     valid_for = (f"valid for {_amount(low * lead)}-{_amount(high * lead)} {_unit(unit)}"
                  + (" of the first change" if len(suggestion.dofs) > 1 else ""))
     return f"{sentence[0].upper()}{sentence[1:]} ({valid_for})."
-
-
-def _support_advice(suggestion: Suggestion, original: Design) -> str:
-    scale, unit = original.unit_scale, original.units
-    upper, lower = suggestion.between[:2]
-    parts = []
-    for plank in suggestion.adds:
-        size = " x ".join(_amount(v / scale) for v in (plank.length, plank.width))
-        centre = ", ".join(_amount(v / scale) for v in plank.center)
-        if len(suggestion.between) == 3:        # a stiffening rail under a bent plank
-            ends = suggestion.between[1:]
-            parts.append(f"{plank.id} ({size} {unit}) on edge under {upper}, from {ends[0]} "
-                         f"to {ends[1]}, centred at ({centre}) {unit}, nailed to all three")
-        elif lower == "the floor":
-            parts.append(f"{plank.id} ({size} {unit}) under {upper}, standing on the floor, "
-                         f"centred at ({centre}) {unit}, nailed to {upper}")
-        else:
-            parts.append(f"{plank.id} ({size} {unit}) between {upper} and {lower}, centred "
-                         f"at ({centre}) {unit}, nailed to both")
-    return f"Add {'; '.join(parts)}."
 
 
 def _phrase(design: Design, plank: str, subject: str, kind: str, change: float,
@@ -135,9 +116,12 @@ def render_text(result: SuggestionReport, original: Design,
     if result.valid:
         lines.append("Nothing needs to change: the design is valid.")
         return "\n".join(lines) + "\n"
+    explanation = result.explanation
     if not result.suggestions:
         lines.append("No suggestion: no change of the allowed DOFs was found that makes "
                      "the design valid.")
+        if explanation is not None:
+            lines.extend(explanation_lines(explanation, original.units, 0, INDENT))
         return "\n".join(lines) + "\n"
     lines.append(f"{plural(len(result.suggestions), 'suggestion')}:")
     for suggestion in result.suggestions:
@@ -149,13 +133,18 @@ def render_text(result: SuggestionReport, original: Design,
             lines.append(f"{INDENT}   design: {files.design_file}")
             for path in (*files.meshes, *files.plots):
                 lines.append(f"{INDENT}   {path}")
+    if explanation is not None and len(result.suggestions) < explanation.tried.wanted:
+        lines.append(f"Fewer than the {explanation.tried.wanted} asked for:")
+        lines.extend(explanation_lines(explanation, original.units, len(result.suggestions),
+                                       INDENT))
     return "\n".join(lines) + "\n"
 
 
 def render_json(result: SuggestionReport, original: Design,
                 written: dict[int, Written]) -> str:
     """Contract section 4: design, valid, violations, suggestions (with ``advice`` and
-    ``plots`` added; files null/empty without ``--out``)."""
+    ``plots`` added; files null/empty without ``--out``), and for an invalid design the
+    ``explanation`` (what remains, what it would take, what was tried)."""
     report = result.report
     document: dict[str, Any] = {
         "design": result.design,
@@ -165,15 +154,18 @@ def render_json(result: SuggestionReport, original: Design,
         "suggestions": [_suggestion_dict(s, original, written.get(s.rank, Written()))
                         for s in result.suggestions],
     }
+    if result.explanation is not None:
+        document["explanation"] = explanation_dict(result.explanation, original.units)
     return json.dumps(json_ready(document), indent=2, allow_nan=False) + "\n"
 
 
 def _suggestion_dict(suggestion: Suggestion, original: Design,
                      files: Written) -> dict[str, Any]:
     if suggestion.kind == "discrete":
-        return {
+        entry = {
             "rank": suggestion.rank,
             "kind": suggestion.kind,
+            "rule": suggestion.rule,
             "restores": list(suggestion.restores),
             "adds": [plank_entry(plank, original) for plank in suggestion.adds],
             "between": list(suggestion.between),
@@ -182,6 +174,10 @@ def _suggestion_dict(suggestion: Suggestion, original: Design,
             "meshes": list(files.meshes),
             "plots": list(files.plots),
         }
+        added = suggestion.design.anchors[len(original.anchors):]
+        if added:           # a wall anchor: the fixings, as a design file lists them
+            entry["anchors"] = [anchor_entry(anchor, original) for anchor in added]
+        return entry
     return {
         "rank": suggestion.rank,
         "kind": suggestion.kind,

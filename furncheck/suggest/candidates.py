@@ -21,10 +21,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from itertools import combinations
+from math import comb
 
 import numpy as np
 
 from furncheck.suggest.margins import Margins
+from furncheck.suggest.tried import DirectionTally
 
 MAX_STEP = 0.5
 """Furthest step searched along a direction, scaled units: half the design's size for
@@ -58,8 +60,10 @@ class Candidate:
     leave: float
 
 
-def candidates(margins: Margins, max_dofs: int) -> list[Candidate]:
-    """Kept directions of 1..max_dofs DOFs, nearest (smallest predicted step) first."""
+def candidates(margins: Margins, max_dofs: int,
+               tally: list[DirectionTally] | None = None) -> list[Candidate]:
+    """Kept directions of 1..max_dofs DOFs, nearest (smallest predicted step) first;
+    ``tally`` (when given) gets one ``DirectionTally`` per number of DOFs."""
     rows = margins.margins
     if not rows or not margins.dofs:
         return []
@@ -74,11 +78,18 @@ def candidates(margins: Margins, max_dofs: int) -> list[Candidate]:
     found: set[tuple[int, ...]] = set()
     for m in range(1, max_dofs + 1):
         combos = _combinations(relevant, m, found)
+        culled = np.zeros(3, dtype=int)
+        before = len(kept)
         for start in range(0, len(combos), _CHUNK):
             chunk = combos[start:start + _CHUNK]
-            for candidate in _evaluate(rates, values, violated, deficit, chunk):
+            chunk_kept, chunk_culled = _evaluate(rates, values, violated, deficit, chunk)
+            culled += chunk_culled
+            for candidate in chunk_kept:
                 kept.append(candidate)
                 found.add(candidate.dofs)
+        if tally is not None:
+            tally.append(DirectionTally(m, len(relevant), comb(len(relevant), m), len(combos),
+                                        len(kept) - before, *(int(c) for c in culled)))
     kept.sort(key=lambda c: (c.enter, len(c.dofs), c.dofs))
     return kept
 
@@ -103,8 +114,10 @@ def _combinations(relevant: list[int], m: int, found: set[tuple[int, ...]]) -> n
 
 
 def _evaluate(rates: np.ndarray, values: np.ndarray, violated: np.ndarray,
-              deficit: np.ndarray, combos: np.ndarray) -> list[Candidate]:
-    """Least-squares directions and slab tests of a batch of combinations."""
+              deficit: np.ndarray, combos: np.ndarray) -> tuple[list[Candidate], np.ndarray]:
+    """Least-squares directions and slab tests of a batch of combinations; and how many
+    were culled because a violated margin does not grow, another margin fails first, or
+    the valid region is beyond MAX_STEP (3,) (in that order of precedence)."""
     block = np.transpose(rates[:, combos], (1, 0, 2))                # (B, rows, m)
     system = block[:, violated, :]                                   # (B, |V|, m)
     y = np.einsum("bmv,v->bm", np.linalg.pinv(system), deficit)
@@ -120,5 +133,9 @@ def _evaluate(rates: np.ndarray, values: np.ndarray, violated: np.ndarray,
         leave_each = np.where(falling, values[~violated] / -slope[:, ~violated], np.inf)
         leave = leave_each.min(axis=1, initial=np.inf)
     keep = usable & (enter < leave) & (enter <= MAX_STEP)
+    facing_away = ~usable | ~np.isfinite(enter)
+    breaks_other = ~facing_away & (enter >= leave)
+    too_far = ~facing_away & ~breaks_other & (enter > MAX_STEP)
+    culled = np.array([facing_away.sum(), breaks_other.sum(), too_far.sum()])
     return [Candidate(tuple(int(i) for i in combos[b]), s[b].copy(), float(enter[b]),
-                      float(leave[b])) for b in np.nonzero(keep)[0]]
+                      float(leave[b])) for b in np.nonzero(keep)[0]], culled

@@ -25,6 +25,7 @@ from furncheck.result import DesignReport
 from furncheck.suggest.candidates import MAX_STEP, Candidate, candidates
 from furncheck.suggest.edits import Editor, utilization_margin
 from furncheck.suggest.margins import Margins
+from furncheck.suggest.tried import DirectionTally, LineSearch, ProbeLog
 
 FIRST_PROBE = 1.05
 """The first step tried, as a multiple of the predicted step (the linear prediction is
@@ -90,6 +91,9 @@ class ContinuousSearch:
         self.margins = Margins(design, geometry, report, self.editor,
                                [dof for dof in all_dofs(design) if dof not in locked])
         self.searched = 0
+        self.tally: list[DirectionTally] = []       # what ``directions`` formed
+        self.line_searches: list[LineSearch] = []   # what ``run`` searched
+        self.unsearched = 0                         # kept directions ``run`` left
 
     @property
     def restores(self) -> tuple[str, ...]:
@@ -97,7 +101,8 @@ class ContinuousSearch:
 
     def directions(self, max_dofs: int) -> list[Candidate]:
         """The kept directions of 1..max_dofs DOFs, nearest first (``candidates``)."""
-        return candidates(self.margins, max_dofs)
+        self.tally.clear()
+        return candidates(self.margins, max_dofs, self.tally)
 
     def run(self, directions: list[Candidate], wanted: int) -> list[Found]:
         """Line-search the directions in order until ``wanted`` have a valid interval (at
@@ -105,12 +110,18 @@ class ContinuousSearch:
         margins = self.margins
         own_margin = utilization_margin(self.report)
         found: list[Found] = []
-        for candidate in directions:
+        for index, candidate in enumerate(directions):
             if len(found) >= wanted or self.searched >= LINE_SEARCHES_PER_SUGGESTION * wanted:
+                self.unsearched = len(directions) - index
                 break
             self.searched += 1
             dofs = tuple(margins.dofs[i] for i in candidate.dofs)
-            interval = _line_search(self.editor, dofs, candidate, own_margin)
+            probes: list[tuple[float, float]] = []
+            interval = _line_search(ProbeLog(self.editor, probes), dofs, candidate, own_margin)
+            self.line_searches.append(LineSearch(
+                tuple(d.name for d in dofs), self.editor.changes(dofs, candidate.direction, 1.0),
+                candidate.enter, tuple(probes), interval,
+                tuple(d.unit(self.editor.design) for d in dofs)))
             if interval is not None:
                 found.append(Found(dofs, candidate.direction, *interval))
         found.sort(key=lambda f: (-f.score, len(f.dofs), [d.name for d in f.dofs]))

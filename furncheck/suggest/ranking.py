@@ -4,8 +4,8 @@ suggestion's file is valid; one that is not is dropped, never listed).
 
 Order: the continuous suggestions by their score (the valid interval's width minus its
 lower end), then the discrete ones (an added plank is a bigger change than moving one);
-when both kinds are found and there are more than K, at least one discrete suggestion is
-kept.
+when both kinds are found and there are more than K, at least DISCRETE_KEPT discrete
+suggestions are kept.
 """
 
 from __future__ import annotations
@@ -17,11 +17,17 @@ from furncheck.check import check_design
 from furncheck.design.load import parse_design
 from furncheck.design.model import Design
 from furncheck.design.write import design_text
-from furncheck.dofs import Dof
+from furncheck.dofs import Dof, all_dofs
 from furncheck.geometry import analyze
-from furncheck.suggest.continuous import ContinuousSearch
-from furncheck.suggest.discrete import support_planks
+from furncheck.suggest.continuous import LINE_SEARCHES_PER_SUGGESTION, ContinuousSearch
+from furncheck.suggest.discrete import discrete_fixes
+from furncheck.suggest.explain import explain
 from furncheck.suggest.suggestion import Suggestion, SuggestionReport
+from furncheck.suggest.tried import Trial, Tried
+
+DISCRETE_KEPT = 2
+"""When there are more than K suggestions, at least this many discrete fixes (as many as
+were found, up to K) are kept: a different kind of fix than the continuous ones."""
 
 
 def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
@@ -37,13 +43,16 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
     searching = time.perf_counter()
     continuous = search.run(directions, max_suggestions)
     discrete_start = time.perf_counter()
-    supports = support_planks(design, geometry, report)
+    trials: list[Trial] = []
+    fixes = discrete_fixes(design, geometry, report, bool(continuous), locked, trials)
     end = time.perf_counter()
-    if supports and len(continuous) + len(supports) > max_suggestions:
-        keep = max(1, max_suggestions - len(continuous))
-        supports = supports[:keep]
-        continuous = continuous[:max_suggestions - len(supports)]
+    if fixes and len(continuous) + len(fixes) > max_suggestions:
+        keep = max(min(len(fixes), DISCRETE_KEPT, max_suggestions),
+                   max_suggestions - len(continuous))
+        fixes = fixes[:keep]
+        continuous = continuous[:max_suggestions - len(fixes)]
     suggestions: list[Suggestion] = []
+    dropped = len(continuous) + len(fixes)
     for found in continuous:
         moved = search.representative(found)
         if moved is None:
@@ -57,17 +66,25 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
                 direction=tuple(float(v) for v in found.direction),
                 range=(found.low, found.high), step=step, changes=changes,
                 units=tuple(d.unit(design) for d in found.dofs)))
-    for support in supports:
-        written = _written(support.design, len(suggestions) + 1)
+    for fix in fixes:
+        written = _written(fix.design, len(suggestions) + 1)
         if written is not None:
-            suggestions.append(Suggestion(len(suggestions) + 1, "discrete", support.restores,
-                                          *written, adds=(support.plank,),
-                                          between=support.between))
+            suggestions.append(Suggestion(len(suggestions) + 1, "discrete", fix.restores,
+                                          *written, adds=fix.adds, between=fix.between,
+                                          rule=fix.rule, advice=fix.advice))
+    tried = Tried(len(all_dofs(design)), len(search.margins.dofs), len(locked),
+                  dict(search.margins.blocked), max_dofs, max_suggestions,
+                  bool(geometry.violations),
+                  tuple(search.tally), tuple(search.line_searches),
+                  LINE_SEARCHES_PER_SUGGESTION * max_suggestions, search.unsearched,
+                  dropped - len(suggestions), tuple(trials))
     return SuggestionReport(design.source, design.name, report, tuple(suggestions),
                             search.searched, search.editor.checks,
                             {"candidates": searching - start,
                              "line search": discrete_start - searching,
-                             "discrete": end - discrete_start})
+                             "discrete": end - discrete_start},
+                            explain(design, geometry, report, tried, len(suggestions),
+                                    search.editor))
 
 
 def _written(design: Design, rank: int, keeps=analyze):

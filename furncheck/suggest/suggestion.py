@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 
 from furncheck.design.model import Design, Plank
 from furncheck.result import DesignReport
+from furncheck.suggest.explain import Explanation
 
 
 @dataclass(frozen=True)
@@ -17,6 +18,9 @@ class Suggestion:
     step      : the representative step (middle of ``range``), or None
     changes   : each DOF's change at ``step``, its own unit (file length unit or degrees)
     adds      : planks added (discrete); ``between`` the planks a support joins
+    rule      : the discrete rule that made it ('support', 'rail', 'apron', 'stretcher',
+                'back panel', 'brace', 'outrigger', 'anchor', 'thicker', 'reconnect');
+                ``advice`` its sentence
     restores  : the kinds of violation it removes ('durability', 'stability', 'geometry',
                 'stiffness' for sag, 'strength' for bending stress)
     design    : the representative design, parsed from ``text`` (its YAML file), and
@@ -37,6 +41,8 @@ class Suggestion:
     units: tuple[str, ...] = ()
     adds: tuple[Plank, ...] = ()
     between: tuple[str, ...] = ()
+    rule: str = ""
+    advice: str = ""
 
 
 @dataclass(frozen=True)
@@ -53,6 +59,9 @@ class SuggestionReport:
     """Wall time of the phases ('candidates': margins, sensitivities and directions;
     'line search': line searches; 'discrete': support planks), for benchmarks; never
     reported."""
+    explanation: Explanation | None = None
+    """Which violations remain, what was tried and what each violation would need (None
+    for a valid design)."""
 
     @property
     def valid(self) -> bool:
