@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+from collections.abc import Iterable
 from typing import NoReturn
 
 import click
@@ -40,17 +41,43 @@ def check_output(output: str | None) -> None:
 
 
 def write_output(document: str, output: str | None) -> None:
-    """Write the report to stdout or to ``output``, atomically: until the new report is
-    complete, ``output`` holds the old one (an interrupted run leaves it as it was)."""
-    from furncheck.files import write_atomically
+    """Write the report to stdout or to ``output``."""
+    write_chunks([document], output)
+
+
+WRITE_BLOCK = 1 << 16
+"""Characters of a report gathered before they are written (a streamed report comes in
+one piece per design)."""
+
+
+def write_chunks(chunks: Iterable[str], output: str | None) -> None:
+    """Write the report, given as consecutive pieces, to stdout or to ``output``, as the
+    pieces come (in blocks of about WRITE_BLOCK characters).  ``output`` is written
+    atomically: until the report is complete it holds the old one (an interrupted run
+    leaves it as it was)."""
+    from furncheck.files import replacing
 
     if output is None or output == "-":
-        click.echo(document, nl=False)
+        _write_blocks(chunks, lambda text: click.echo(text, nl=False))
         return
     try:
-        write_atomically(output, document.encode("utf-8"), durable=True)
+        with replacing(output, durable=True) as stream:
+            _write_blocks(chunks, lambda text: stream.write(text.encode("utf-8")))
     except OSError as error:
         fail(f"cannot write the report to {output}: {error.strerror or error}")
+
+
+def _write_blocks(chunks: Iterable[str], write) -> None:
+    block: list[str] = []
+    size = 0
+    for chunk in chunks:
+        block.append(chunk)
+        size += len(chunk)
+        if size >= WRITE_BLOCK:
+            write("".join(block))
+            block, size = [], 0
+    if block:
+        write("".join(block))
 
 
 MODEL_OPTION = click.option(

@@ -1,20 +1,18 @@
 """``furncheck validate PATH...``: check designs, write one report, exit 0 / 1 / 2.
 
 The command is thin: read the options (command line over ``[tool.furncheck]``:
-``furncheck.config``), collect the design files (``furncheck.scan``), run
-``furncheck.check.check_file`` on each that the result cache (``furncheck.cache``) does not
-hold (in worker processes for a catalog), render the ``BatchReport`` with the chosen
-reporter, write it, and exit with ``BatchReport.return_code``.  Every input gets a report
-entry, also a missing path or a file of another type (``check_file`` says what is wrong),
-so one bad file never hides the verdicts on the others.
+``furncheck.config``), collect the design files (``furncheck.scan``), check each that the
+result cache (``furncheck.cache``) does not hold and make its part of the report with the
+chosen reporter (``furncheck.batch``: in worker processes for a large catalog), write the
+parts as they come, in input order, and exit with the summary's return code.  Every input
+gets a report entry, also a missing path or a file of another type (``check_file`` says
+what is wrong), so one bad file never hides the verdicts on the others.
 """
 
 from __future__ import annotations
 
-import math
 import os
 import sys
-from collections.abc import Callable
 
 import click
 
@@ -23,19 +21,14 @@ from furncheck.cli.output import (
     check_output,
     config_or_fail,
     fail,
-    write_output,
+    write_chunks,
 )
-from furncheck.report import REPORTERS, render
-from furncheck.result import BatchReport, DesignReport
-
-PARALLEL_MIN_FILES = 8
-"""Fewer files than this are checked in-process: starting workers would cost more."""
-
-CHUNKS_PER_WORKER = 4
-"""Work is handed to each worker in about this many chunks (balance vs. overhead)."""
+from furncheck.report import FORMAT_MODULES
+from furncheck.result import DesignReport
 
 PROGRESS_MIN_FILES = 50
-"""A progress bar is shown on a terminal's stderr from this many files to check on."""
+"""A progress bar is shown on a terminal's stderr from this many files to check on, when
+the report does not go to that terminal too."""
 
 STDIN = "-"
 """The PATH that stands for a design on standard input (``furncheck.scan.STDIN``)."""
@@ -46,14 +39,14 @@ STDIN_NAME = "<stdin>"
 
 @click.command()
 @click.argument("paths", metavar="PATH...", nargs=-1, required=True)
-@click.option("--format", "fmt", type=click.Choice(list(REPORTERS)), default=None,
+@click.option("--format", "fmt", type=click.Choice(list(FORMAT_MODULES)), default=None,
               help="Report format.  [default: text]")
 @click.option("-o", "--output", metavar="FILE", default=None,
               help="Write the report to FILE instead of standard output ('-': stdout); "
                    "the old FILE stays whole until the new report replaces it.")
 @click.option("-j", "--jobs", type=click.IntRange(min=1), default=None,
-              help=f"Worker processes, used from {PARALLEL_MIN_FILES} files on.  "
-                   "[default: all cores]")
+              help="Processes checking designs; a catalog that takes less than about half "
+                   "a second is checked in one.  [default: all cores]")
 @click.option("--views", "views_dir", metavar="DIR", default=None,
               help="Also write a view of each design there, DIR/<name>-view.png (needs "
                    "the export extra).")
@@ -92,7 +85,10 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
     Exit code 0: every design valid; 1: some design invalid; 2: some input could not be
     read or is ill-formed (its entry in the report says why), or a usage error.
     """
+    from furncheck.batch import entries
     from furncheck.ignores import patterns
+    from furncheck.report import reporter
+    from furncheck.report.entries import Summary
     from furncheck.scan import ScanOptions, collect
 
     config = config_or_fail(paths)
@@ -120,32 +116,44 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
         cache = open_cache(cache_dir or config.cache_dir, model)
     sources = [_check_stdin(stdin_filename, model, cache) if source == STDIN else source
                for source in collected.sources]
-    to_check = [source for source in sources if isinstance(source, str)]
-    checked = iter(check_paths(to_check, jobs, model, cache))
-    batch = BatchReport(tuple(source if isinstance(source, DesignReport) else next(checked)
-                              for source in sources))
-    if cache is not None and cache.unwritable:
-        click.echo(f"furncheck: results not cached: {cache.unwritable}", err=True)
+    summary = Summary()
+    progress = _progress_bar if output not in (None, "-") or not _is_terminal(sys.stdout) \
+        else None
+    parts = reporter(fmt).document(
+        summary.add(entry) for entry in entries(sources, fmt, jobs, model, cache, progress))
     try:
-        document = render(batch, fmt)
+        write_chunks(parts, output)
+    except click.exceptions.Exit:
+        raise
     except Exception as error:  # a reporter bug must not become a traceback
         fail(f"internal error while writing the {fmt} report: {type(error).__name__}: {error}")
-    write_output(document, output)
-    if views_dir is not None:
-        from furncheck.export.catalog import write_catalog_views
+    if cache is not None and cache.unwritable:
+        click.echo(f"furncheck: results not cached: {cache.unwritable}", err=True)
+    if views_dir is not None or html_file is not None:
+        _pictures(sources, model, views_dir, html_file)
+    click.get_current_context().exit(summary.return_code)
 
+
+def _pictures(sources: list, model: str | None, views_dir: str | None,
+              html_file: str | None) -> None:
+    """``--views DIR`` and ``--html FILE``: each design's report again (the report
+    written above keeps only its text: the designs are checked once more here) and the
+    pictures and page drawn from them."""
+    from furncheck.batch import check_one
+    from furncheck.export.catalog import write_catalog_page, write_catalog_views
+
+    reports = [source if isinstance(source, DesignReport) else check_one(source, model)
+               for source in sources]
+    if views_dir is not None:
         try:
-            write_catalog_views(batch.reports, views_dir, model)
+            write_catalog_views(reports, views_dir, model)
         except OSError as error:
             fail(f"cannot write views to {views_dir}: {error.strerror or error}")
     if html_file is not None:
-        from furncheck.export.catalog import write_catalog_page
-
         try:
-            write_catalog_page(batch.reports, html_file)
+            write_catalog_page(reports, html_file)
         except OSError as error:
             fail(f"cannot write the report page {html_file}: {error.strerror or error}")
-    click.get_current_context().exit(batch.return_code)
 
 
 def _check_views_dir(views_dir: str) -> None:
@@ -162,27 +170,12 @@ def _check_views_dir(views_dir: str) -> None:
 
 def open_cache(directory: str | None, model: str | None):
     """The result cache in ``directory`` (default: the user cache directory) for runs in
-    ``model``."""
+    ``model``, its writability found out (``ResultCache.probe``)."""
     from furncheck.cache import ResultCache, default_directory
 
-    return ResultCache(directory or default_directory(), {"model": model})
-
-
-def check_paths(paths: list[str], jobs: int, model: str | None, cache) -> list[DesignReport]:
-    """``check_all`` of ``paths``, through ``cache`` when there is one, with a progress bar
-    for the files that are checked (not those read from the cache)."""
-    from furncheck.cache import check_with_cache
-
-    def check_many(some: list[str]) -> list[DesignReport]:
-        bar = _progress_bar(len(some))
-        if bar is None:
-            return check_all(some, jobs, model)
-        with bar:
-            return check_all(some, jobs, model, lambda: bar.update(1))
-
-    if cache is None:
-        return check_many(paths)
-    return list(check_with_cache(paths, cache, check_many))
+    cache = ResultCache(directory or default_directory(), {"model": model})
+    cache.probe()
+    return cache
 
 
 def _progress_bar(total: int):
@@ -222,75 +215,3 @@ def _check_stdin(name: str | None, model: str | None, cache) -> DesignReport:
         if cache is not None:
             cache.put(key, report)
     return report
-
-
-# --- checking -------------------------------------------------------------------------------
-
-def check_all(paths: list[str], jobs: int, model: str | None = None,
-              on_result: Callable[[], object] | None = None) -> list[DesignReport]:
-    """``check_one`` of every path, in order; in ``jobs`` worker processes for many files.
-    ``on_result`` is called as each report arrives (a progress bar).
-
-    The result is the same either way; if worker processes cannot be started at all the
-    files are checked in this process.
-    """
-    if jobs > 1 and len(paths) >= PARALLEL_MIN_FILES:
-        reports = _check_in_workers(paths, jobs, model, on_result)
-        if reports is not None:
-            return reports
-    reports = []
-    for path in paths:
-        reports.append(check_one(path, model))
-        if on_result is not None:
-            on_result()
-    return reports
-
-
-def check_one(path: str, model: str | None = None) -> DesignReport:
-    """``check_file(path, model)``, with any unexpected exception turned into an error
-    report."""
-    from furncheck.scan import error_report
-
-    try:
-        from furncheck.check import check_file  # heavy (numpy, scipy): imported on use
-
-        report = check_file(path, model)
-    except Exception as error:
-        return error_report(path, f"internal error: {type(error).__name__}: {error}")
-    if not isinstance(report, DesignReport):
-        return error_report(path, f"internal error: the checker returned a "
-                                   f"{type(report).__name__}, not a DesignReport")
-    return report
-
-
-def _check_in_workers(paths: list[str], jobs: int, model: str | None = None,
-                      on_result: Callable[[], object] | None = None
-                      ) -> list[DesignReport] | None:
-    """Reports from a process pool, or None when the pool cannot be started."""
-    from concurrent.futures import ProcessPoolExecutor
-
-    from furncheck.scan import error_report
-
-    try:  # import the checker once here: forked workers then start with it loaded
-        import furncheck.check  # noqa: F401
-    except Exception:  # noqa: BLE001 - check_one turns the same failure into error entries
-        pass
-    workers = min(jobs, len(paths))
-    chunksize = max(1, math.ceil(len(paths) / (workers * CHUNKS_PER_WORKER)))
-    try:
-        pool = ProcessPoolExecutor(max_workers=workers)
-    except (OSError, NotImplementedError, ImportError):  # no multiprocessing here
-        return None
-    reports: list[DesignReport] = []
-    with pool:
-        try:
-            for report in pool.map(check_one, paths, [model] * len(paths),
-                                   chunksize=chunksize):
-                reports.append(report)
-                if on_result is not None:
-                    on_result()
-        except Exception as error:  # a worker died (BrokenProcessPool) or could not reply
-            reason = f"internal error: a checking process failed ({type(error).__name__})"
-            reports.extend(error_report(path, reason) for path in paths[len(reports):])
-    return reports
-

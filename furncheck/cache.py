@@ -45,9 +45,9 @@ import os
 import stat
 import sys
 import zlib
-from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 from furncheck import __version__
 from furncheck import tolerances as tol
@@ -144,46 +144,95 @@ class ResultCache:
     def entry_path(self, key: str) -> str:
         return os.path.join(self.directory, LAYOUT, key[:2], key[2:])
 
+    def piece_path(self, key: str, fmt: str) -> str:
+        """Where the report piece of ``key`` in format ``fmt`` is stored."""
+        return f"{self.entry_path(key)}.{fmt}"
+
     def get(self, key: str, path: str) -> DesignReport | None:
         """The stored result of ``key`` (its report naming ``path``), or None: not stored,
         or the entry is damaged (it is then overwritten by the next ``put``)."""
-        try:
-            with open(self.entry_path(key), "rb") as stream:
-                entry = stream.read()
-        except OSError:
-            return None
-        header = _MARKER + bytes.fromhex(key)
-        payload = entry[len(header) + 4:]
-        if not entry.startswith(header) \
-                or entry[len(header):len(header) + 4] != _crc(payload):
+        data = _read_entry(self.entry_path(key), _MARKER + bytes.fromhex(key))
+        if data is None:
             return None
         try:
-            report = decode_report(marshal.loads(payload))
-        except (ValueError, EOFError, TypeError, CodecError, RecursionError):
+            report = decode_report(data)
+        except (CodecError, TypeError, ValueError):
             return None
         if report.design != path or report.error is not None:
             return None
         return report
 
-    def store(self, path: str, key: str | None, report: DesignReport) -> None:
+    def get_piece(self, key: str, fmt: str) -> tuple[bool | None, bool, Any] | None:
+        """The stored ``(valid, error, piece)`` of ``key``'s report in format ``fmt`` (an
+        ``Entry``'s fields), or None: not stored, or damaged."""
+        data = _read_entry(self.piece_path(key, fmt),
+                           _MARKER + bytes.fromhex(key) + fmt.encode() + b"\0")
+        if type(data) is not tuple or len(data) != 3:
+            return None
+        return data
+
+    def probe(self) -> None:
+        """Find out now whether entries can be written (``unwritable`` says why not), so
+        that worker processes, whose own findings are lost, need not try."""
+        folder = os.path.join(self.directory, LAYOUT)
+        try:
+            os.makedirs(folder, exist_ok=True)
+            if not os.access(folder, os.W_OK | os.X_OK):
+                raise PermissionError(13, "Permission denied")
+        except OSError as error:
+            self.unwritable = f"{self.directory}: {error.strerror or error}"
+
+    def store(self, path: str, key: str | None, report: DesignReport) -> bool:
         """``put`` the report of the file ``path`` under ``key`` (its ``key_of`` before it
         was checked) if the file still holds what it held then: a file edited during its
-        check is not stored under its old content's key.  (It may run in a worker
-        process: entries are written atomically.)"""
-        if key is not None and self.key_of(path) == key:
-            self.put(key, report)
+        check is not stored under its old content's key.  Whether it was stored.  (It may
+        run in a worker process: entries are written atomically.)"""
+        if key is None or self.unwritable is not None or report.error is not None \
+                or self.key_of(path) != key:
+            return False
+        return self.put(key, report)
 
-    def put(self, key: str, report: DesignReport) -> None:
-        """Store ``report`` (a checked design, not an input error) under ``key``."""
+    def put(self, key: str, report: DesignReport) -> bool:
+        """Store ``report`` (a checked design, not an input error) under ``key``; whether
+        it was stored."""
         if self.unwritable is not None or report.error is not None:
-            return
-        payload = marshal.dumps(encode(report))
-        target = self.entry_path(key)
+            return False
+        return self._write(self.entry_path(key), _MARKER + bytes.fromhex(key), encode(report))
+
+    def put_piece(self, key: str, fmt: str, fields: tuple[bool | None, bool, Any]) -> bool:
+        """Store ``(valid, error, piece)`` of ``key``'s report in format ``fmt`` (only for
+        a key whose report is stored: the piece is made from it)."""
+        if self.unwritable is not None:
+            return False
+        return self._write(self.piece_path(key, fmt),
+                           _MARKER + bytes.fromhex(key) + fmt.encode() + b"\0", fields)
+
+    def _write(self, target: str, header: bytes, data: Any) -> bool:
         try:
+            payload = marshal.dumps(data)
             os.makedirs(os.path.dirname(target), exist_ok=True)
-            write_atomically(target, _MARKER + bytes.fromhex(key) + _crc(payload) + payload)
+            write_atomically(target, header + _crc(payload) + payload)
         except (OSError, ValueError) as error:   # ValueError: marshal of an odd value
             self.unwritable = f"{self.directory}: {getattr(error, 'strerror', None) or error}"
+            return False
+        return True
+
+
+def _read_entry(path: str, header: bytes) -> Any:
+    """The data of the entry at ``path``, or None when it is missing, does not start with
+    ``header``, fails its CRC or does not unmarshal."""
+    try:
+        with open(path, "rb") as stream:
+            entry = stream.read()
+    except OSError:
+        return None
+    payload = entry[len(header) + 4:]
+    if not entry.startswith(header) or entry[len(header):len(header) + 4] != _crc(payload):
+        return None
+    try:
+        return marshal.loads(payload)
+    except (ValueError, EOFError, TypeError, RecursionError):
+        return None
 
 
 _MARKER = b"furncheck-result\0"
@@ -205,21 +254,3 @@ def read_source(path: str) -> bytes | None:
             return stream.read()
     except OSError:
         return None
-
-
-def check_with_cache(paths: list[str], cache: ResultCache,
-                     check_many: Callable[[list[str]], Iterable[DesignReport]]
-                     ) -> Iterator[DesignReport]:
-    """The reports of ``paths`` in order: stored ones from ``cache``, the others from
-    ``check_many`` (called once with all of them, in order; again with one path for an
-    entry found damaged), then stored (``ResultCache.store``: only if the file is
-    unchanged).  Only the keys are held while the others are checked, not the reports."""
-    keys = [cache.key_of(path) for path in paths]
-    stored = [key is not None and os.path.isfile(cache.entry_path(key)) for key in keys]
-    fresh = iter(check_many([path for path, hit in zip(paths, stored) if not hit]))
-    for path, key, hit in zip(paths, keys, stored):
-        report = cache.get(key, path) if hit else None
-        if report is None:
-            report = next(fresh) if not hit else next(iter(check_many([path])))
-            cache.store(path, key, report)
-        yield report

@@ -9,34 +9,46 @@ processes writing the same path leave one complete file, the last writer's.  The
 
 from __future__ import annotations
 
+import contextlib
 import os
 import tempfile
+from collections.abc import Iterator
+from typing import BinaryIO
 
 TEMP_SUFFIX = ".tmp"
 """Suffix of the temporary files (``.NAME.XXXXXXXX.tmp`` beside the target)."""
 
 
 def write_atomically(path: str, data: bytes, *, durable: bool = False) -> None:
-    """Replace the file at ``path`` by ``data`` in one step.
+    """Replace the file at ``path`` by ``data`` in one step (see ``replacing``)."""
+    with replacing(path, durable=durable) as stream:
+        stream.write(data)
+
+
+@contextlib.contextmanager
+def replacing(path: str, *, durable: bool = False) -> Iterator[BinaryIO]:
+    """A binary stream whose bytes replace the file at ``path`` in one step when the
+    ``with`` block ends without an exception.
 
     The new file gets the old file's permission bits, or the usual ones for a new file
     (0o666 less the umask).  ``durable``: flush the data to the disk before the rename (a
-    power cut then leaves the old or the new file, never an empty one).  An OSError
-    leaves ``path`` untouched and no temporary file behind.  A symlink at ``path`` stays:
-    the file it points to is replaced.  A special file (``/dev/stdout``, a pipe) cannot be
-    replaced: it is written directly.
+    power cut then leaves the old or the new file, never an empty one).  An exception in
+    the block (also KeyboardInterrupt) or an OSError leaves ``path`` untouched and no
+    temporary file behind.  A symlink at ``path`` stays: the file it points to is
+    replaced.  A special file (``/dev/stdout``, a pipe) cannot be replaced: it is written
+    directly.
     """
     path = os.path.realpath(path)
     if os.path.exists(path) and not os.path.isfile(path):
         with open(path, "wb") as stream:
-            stream.write(data)
+            yield stream
         return
     folder = os.path.dirname(path)
     handle, temporary = tempfile.mkstemp(dir=folder, prefix=f".{os.path.basename(path)}.",
                                          suffix=TEMP_SUFFIX)
     try:
         with os.fdopen(handle, "wb") as stream:
-            stream.write(data)
+            yield stream
             if durable:
                 stream.flush()
                 os.fsync(stream.fileno())

@@ -94,7 +94,7 @@ class Linearization:
         elif bolted and self.statics.joint_wrenches is not None and self.model.planks:
             self.holding = np.ones(len(self.model.contacts), dtype=bool)
             self.state = solve_system(self.model, self.holding,
-                                      np.concatenate([f, np.zeros(self.model.G.shape[0])]))
+                                      np.concatenate([f, np.zeros(6 * len(self.model.joints))]))
             self.law = ContactLaw(self.holding, np.zeros_like(self.holding),
                                   self.model.contact_springs, self.model.friction)
         else:
@@ -189,7 +189,7 @@ class Linearization:
                                    stepped.joints, stepped.contacts, *stepped.minus)]
             moving.append(dof)
         model = self.model
-        n_joints, n_contacts = model.G.shape[0] // 6, len(model.contacts)
+        n_joints, n_contacts = len(model.joints), len(model.contacts)
         if not moving:
             return Sensitivity(self.case.name, (), np.zeros((0, n_joints, 6)),
                                np.zeros((0, n_contacts, 3)), blocked, np.zeros((0, n_joints)))

@@ -17,7 +17,7 @@ import pytest
 from test_cli import fake_check_file, run, write
 
 from furncheck import cache as cache_module
-from furncheck.cache import ResultCache, check_with_cache
+from furncheck.cache import ResultCache
 from furncheck.check import check_file
 from furncheck.report import REPORTERS, render
 from furncheck.result import BatchReport
@@ -28,7 +28,12 @@ CATALOG = sorted((ROOT / "designs").glob("*.yaml"))
 
 
 def entries(directory: Path) -> list[Path]:
-    return sorted(path for path in directory.rglob("*") if path.is_file())
+    """The result entries under ``directory`` (not the report pieces, NAME.FORMAT)."""
+    return sorted(path for path in directory.rglob("*") if path.is_file() and not path.suffix)
+
+
+def pieces(directory: Path) -> list[Path]:
+    return sorted(path for path in directory.rglob("*.*") if path.is_file())
 
 
 # --- hits, misses, invalidation -------------------------------------------------------------
@@ -37,7 +42,7 @@ def test_an_unchanged_file_is_not_checked_again(checked_paths, tmp_path):
     valid, bad = write(tmp_path, "valid.yaml", "bad.yaml")
     cache = tmp_path / "cache"
     first = run("validate", valid, bad, "--cache-dir", str(cache), "--format", "json")
-    assert checked_paths == [valid, bad] and len(entries(cache)) == 2
+    assert checked_paths == [valid, bad] and len(entries(cache)) == len(pieces(cache)) == 2
     second = run("validate", valid, bad, "--cache-dir", str(cache), "--format", "json")
     assert checked_paths == [valid, bad]                      # nothing checked the second time
     assert second.stdout == first.stdout and second.exit_code == first.exit_code == 1
@@ -92,30 +97,61 @@ def test_input_errors_are_not_cached(checked_paths, tmp_path):
     missing = str(tmp_path / "missing.yaml")
     run("validate", missing, "--cache-dir", str(tmp_path / "cache"))
     run("validate", missing, "--cache-dir", str(tmp_path / "cache"))
-    assert checked_paths == [missing, missing] and not (tmp_path / "cache").exists()
+    assert checked_paths == [missing, missing]
+    assert not [path for path in (tmp_path / "cache").rglob("*") if path.is_file()]
 
 
 # --- damaged entries and concurrency --------------------------------------------------------
 
 @pytest.mark.parametrize("damage", ["truncate", "flip", "empty", "garbage", "other-key"])
 def test_a_damaged_entry_is_ignored_and_written_again(checked_paths, tmp_path, damage):
+    """The result entry damaged (and its piece gone): checked again, both written again;
+    the piece damaged: made again from the result, without a check."""
     (valid,) = write(tmp_path, "valid.yaml")
     cache = tmp_path / "cache"
     first = run("validate", valid, "--cache-dir", str(cache), "--format", "json").stdout
-    (entry,) = entries(cache)
-    good = entry.read_bytes()
-    damaged = {"truncate": good[:len(good) // 2],
-               "flip": good[:-5] + bytes([good[-5] ^ 0x01]) + good[-4:],
-               "empty": b"",
-               "garbage": os.urandom(len(good)),
-               "other-key": good[:20] + bytes([good[20] ^ 0xFF]) + good[21:]}[damage]
-    entry.write_bytes(damaged)
+    (entry,), (piece,) = entries(cache), pieces(cache)
+    good, good_piece = entry.read_bytes(), piece.read_bytes()
+
+    def damaged(data: bytes) -> bytes:
+        return {"truncate": data[:len(data) // 2],
+                "flip": data[:-5] + bytes([data[-5] ^ 0x01]) + data[-4:],
+                "empty": b"",
+                "garbage": os.urandom(len(data)),
+                "other-key": data[:20] + bytes([data[20] ^ 0xFF]) + data[21:]}[damage]
+
+    entry.write_bytes(damaged(good))
+    piece.unlink()
     again = run("validate", valid, "--cache-dir", str(cache), "--format", "json")
     assert again.stdout == first and again.exit_code == 0
-    assert checked_paths == [valid, valid]                     # checked again
-    assert entry.read_bytes() == good                  # and the entry rewritten
-    run("validate", valid, "--cache-dir", str(cache))
-    assert checked_paths == [valid, valid]                     # a hit once more
+    assert checked_paths == [valid, valid]              # checked again
+    assert entry.read_bytes() == good and piece.read_bytes() == good_piece  # rewritten
+    piece.write_bytes(damaged(good_piece))
+    third = run("validate", valid, "--cache-dir", str(cache), "--format", "json")
+    assert third.stdout == first and checked_paths == [valid, valid]   # not checked
+    assert piece.read_bytes() == good_piece
+
+
+def test_a_piece_is_reused_as_it_is_and_other_formats_use_the_result(checked_paths,
+                                                                      tmp_path, monkeypatch):
+    """A second run in one format reads the stored piece (the result is not even decoded);
+    a run in another format makes its piece from the stored result (no check), equal to a
+    run without the cache."""
+    valid, bad = write(tmp_path, "valid.yaml", "bad.yaml")
+    cache = ["--cache-dir", str(tmp_path / "cache")]
+    first = run("validate", valid, bad, "--format", "json", *cache).stdout
+    with monkeypatch.context() as patch:
+        patch.setattr(cache_module, "decode_report",
+                      lambda data: pytest.fail("a result was decoded"))
+        assert run("validate", valid, bad, "--format", "json", *cache).stdout == first
+    assert checked_paths == [valid, bad]
+    for fmt in ("text", "junit", "github", "sarif"):
+        cached = run("validate", valid, bad, "--format", fmt, *cache)
+        assert checked_paths == [valid, bad]
+        fresh = run("validate", valid, bad, "--format", fmt, "--no-cache")
+        assert cached.stdout == fresh.stdout and cached.exit_code == fresh.exit_code == 1
+        del checked_paths[2:]
+    assert len(pieces(tmp_path / "cache")) == 2 * 5
 
 
 def _write_and_read(directory: str, rounds: int) -> list[str]:
@@ -161,20 +197,24 @@ def test_an_unwritable_cache_directory_is_one_warning(checked_paths, tmp_path):
     assert "2 designs: 1 valid, 1 invalid" in result.stdout
 
 
-def test_a_file_edited_during_the_check_is_not_stored_under_its_old_key(tmp_path):
+def test_a_file_edited_during_the_check_is_not_stored_under_its_old_key(tmp_path,
+                                                                       monkeypatch):
     """The checker edits the file while checking it (as an editor saving mid-run would):
     the report is returned but not stored, so the next run with the old content does not
     get the result of the new one."""
+    from furncheck import batch
+
     path = tmp_path / "valid.yaml"
     path.write_text("furncheck: 1\n")
     cache = ResultCache(str(tmp_path / "cache"), {"model": None})
 
-    def check_many(paths):
+    def check_one(checked: str, model: str | None = None):
         path.write_text("furncheck: 1\n# edited while checked\n")
-        return [fake_check_file(p) for p in paths]
+        return fake_check_file(checked, model)
 
-    reports = list(check_with_cache([str(path)], cache, check_many))
-    assert reports[0].valid is True and not entries(tmp_path / "cache")
+    monkeypatch.setattr(batch, "check_one", check_one)
+    (entry,) = batch.entries([str(path)], "text", 1, None, cache)
+    assert entry.valid is True and not list((tmp_path / "cache").rglob("*"))
 
 
 # --- same output as a cold run ---------------------------------------------------------------

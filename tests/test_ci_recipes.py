@@ -207,8 +207,8 @@ def test_no_progress_bar_when_stderr_is_no_terminal(checked_paths, tmp_path):
 
 def test_the_progress_bar_counts_the_files_checked(checked_paths, tmp_path, monkeypatch):
     """On a terminal, PROGRESS_MIN_FILES files to check get a bar of that length, advanced
-    once per file; a warm run (every file from the cache) and a run with one file fewer
-    get none."""
+    once per file; a warm run (every file from the cache), a run with one file fewer and
+    a run whose report goes to the terminal too (no -o) get none."""
     import click
 
     from furncheck.cli import validate as validate_module
@@ -234,10 +234,13 @@ def test_the_progress_bar_counts_the_files_checked(checked_paths, tmp_path, monk
     count = validate_module.PROGRESS_MIN_FILES
     write(tmp_path / "many", *[f"valid{i:03d}.yaml" for i in range(count)])
     write(tmp_path / "fewer", *[f"valid{i:03d}.yaml" for i in range(count - 1)])
-    run("validate", str(tmp_path / "many"), "--jobs", "1")
+    report = ["-o", str(tmp_path / "report.txt")]
+    run("validate", str(tmp_path / "many"), "--jobs", "1", "--no-cache")
+    assert bars == []                                  # the report goes to the terminal
+    run("validate", str(tmp_path / "many"), "--jobs", "1", *report)
     assert [(bar.length, bar.steps) for bar in bars] == [(count, [1] * count)]
-    run("validate", str(tmp_path / "many"), "--jobs", "1")
-    run("validate", str(tmp_path / "fewer"), "--jobs", "1")
+    run("validate", str(tmp_path / "many"), "--jobs", "1", *report)
+    run("validate", str(tmp_path / "fewer"), "--jobs", "1", *report)
     assert len(bars) == 1
 
 

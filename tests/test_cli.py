@@ -9,15 +9,15 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
 
-from furncheck.cli import validate as validate_module
+from furncheck import batch
 from furncheck.cli.main import main
 from furncheck.result import (
-    BatchReport,
     CaseResult,
     DesignReport,
     JointResult,
@@ -170,22 +170,67 @@ def test_unwritable_output_is_one_line_and_exit_2(calls, tmp_path, target):
     assert calls == []  # found before any design was checked
 
 
-def test_jobs_give_the_same_output(calls, tmp_path):
+@pytest.mark.parametrize("fmt", ["text", "json", "junit", "github", "sarif"])
+def test_jobs_give_the_same_output(calls, tmp_path, monkeypatch, fmt):
+    """With workers started after the first design (PARALLEL_AFTER 0), ``--jobs 2`` gives
+    the bytes of ``--jobs 1`` in every format; the parent checked only some of the files
+    (the workers' calls are not seen here), so the workers really ran."""
+    monkeypatch.setattr(batch, "PARALLEL_AFTER", 0.0)
     names = [f"valid{i:02d}.yaml" for i in range(10)] + ["bad.yaml", "boom.yaml"]
     write(tmp_path, *names)
     (tmp_path / "empty-subfolder").mkdir()  # inside a searched folder: no entry
-    one = run("validate", str(tmp_path), "--jobs", "1", "--format", "json")
-    two = run("validate", str(tmp_path), "--jobs", "2", "--format", "json")
-    assert one.exit_code == two.exit_code == 2
-    assert one.stdout == two.stdout
-    assert len(json.loads(one.stdout)["reports"]) == 12
+    one = run("validate", str(tmp_path), "--jobs", "1", "--format", fmt, "--no-cache")
+    assert len(calls) == 12
+    two = run("validate", str(tmp_path), "--jobs", "2", "--format", fmt,
+              str(tmp_path / "missing.yaml"), "--no-cache")
+    assert 12 < len(calls) < 24
+    one_more = run("validate", str(tmp_path), "--jobs", "1", "--format", fmt,
+                   str(tmp_path / "missing.yaml"), "--no-cache")
+    assert one.exit_code == two.exit_code == one_more.exit_code == 2
+    assert two.stdout == one_more.stdout
+    if fmt == "json":
+        assert len(json.loads(one_more.stdout)["reports"]) == 13
 
 
 def test_worker_pool_matches_sequential(calls, tmp_path):
     paths = write(tmp_path, *[f"valid{i}.yaml" for i in range(9)], "bad.yaml")
-    parallel = validate_module._check_in_workers(paths, 2)
-    assert parallel is not None  # the pool really ran
-    assert BatchReport(tuple(parallel)) == BatchReport(tuple(map(fake_check_file, paths)))
+    parallel = list(batch.entries_in_workers(paths, "json", 2))
+    assert calls == []  # every design was checked by a worker
+    sequential = [batch.entry_of(path, "json") for path in paths]
+    assert parallel == sequential
+    assert [entry.valid for entry in parallel] == [True] * 9 + [False]
+
+
+def test_a_small_catalog_is_checked_in_one_process(calls, tmp_path):
+    """Checking the fake's designs takes microseconds: no worker is started, every file
+    is checked here."""
+    paths = write(tmp_path, *[f"valid{i:02d}.yaml" for i in range(40)])
+    assert run("validate", *paths, "--jobs", "2").exit_code == 0
+    assert calls == paths
+
+
+def test_a_slow_catalog_goes_to_workers(calls, tmp_path, monkeypatch):
+    """Designs of 30 ms of CPU each: after PARALLEL_AFTER (0.25 s, about 9 designs after
+    the first) the 10 left would take 0.3 s more, so they go to workers: the parent checks
+    only some of the 20 files, and the report is the one of a single process."""
+    paths = write(tmp_path, *[f"valid{i:02d}.yaml" for i in range(20)])
+    fake = sys.modules["furncheck.check"]
+    fast = fake.check_file
+
+    def slow(path, model=None):
+        start = time.process_time()
+        while time.process_time() - start < 0.03:
+            pass
+        return fast(path, model)
+
+    monkeypatch.setattr(fake, "check_file", slow)
+    two = run("validate", *paths, "--jobs", "2", "--format", "json", "--no-cache")
+    assert 2 <= len(calls) < 20 and calls == paths[:len(calls)]
+    monkeypatch.setattr(batch, "PARALLEL_AFTER", 1e9)
+    calls.clear()
+    one = run("validate", *paths, "--jobs", "2", "--format", "json", "--no-cache")
+    assert calls == paths
+    assert one.stdout == two.stdout
 
 
 def test_cli_start_up_imports_nothing_heavy():

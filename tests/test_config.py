@@ -103,12 +103,13 @@ def test_excludes_of_config_and_command_line_add_up(checked_paths, tmp_path, mon
 
 
 def test_jobs_come_from_the_config_unless_given(checked_paths, tmp_path, monkeypatch):
-    from furncheck.cli import validate as validate_module
+    from furncheck import batch
 
     used = []
-    original = validate_module.check_all
-    monkeypatch.setattr(validate_module, "check_all",
-                        lambda paths, jobs, *rest: used.append(jobs) or original(paths, 1))
+    original = batch.entries
+    monkeypatch.setattr(batch, "entries",
+                        lambda sources, fmt, jobs, *rest: used.append(jobs)
+                        or original(sources, fmt, 1, *rest))
     pyproject(tmp_path, "jobs = 3\ncache = false")
     (design,) = write(tmp_path, "valid.yaml")
     run("validate", design)

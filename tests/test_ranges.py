@@ -394,13 +394,35 @@ def test_lock_on_the_catalog_cantilever():
     assert ranges["base.y"] == one_range(design, "base.y")
 
 
-def test_ranges_in_worker_processes_equal_the_ranges_in_one():
-    """Every DOF's search is independent of the others: two worker processes give the same
-    ranges, in the same order, and the same evaluation count as one process."""
+def test_ranges_in_worker_processes_equal_the_ranges_in_one(monkeypatch):
+    """Every DOF's search is independent of the others: two worker processes (started
+    whatever the first shares took: PARALLEL_AFTER 0) give the same ranges, in the same
+    order, and the same evaluation count as one process."""
+    import furncheck.ranges.finder as finder
+
+    monkeypatch.setattr(finder, "PARALLEL_AFTER", 0.0)
+    started = []
+    in_workers = RangeFinder._ranges_in_workers
+    monkeypatch.setattr(RangeFinder, "_ranges_in_workers",
+                        lambda self, tasks, jobs: started.append(len(tasks))
+                        or in_workers(self, tasks, jobs))
     design = load_design(str(DESIGNS / "shelf-cantilever.yaml"))
     alone, shared = RangeFinder(design), RangeFinder(design)
     assert shared.ranges(jobs=2) == alone.ranges(jobs=1)
     assert shared.evaluations == alone.evaluations
+    assert started == [2]   # 24 DOFs in 2 x 2 shares: the first two searched here
+
+
+def test_small_range_work_stays_in_one_process(monkeypatch):
+    """When the rest would take less than PARALLEL_AFTER (here: always), ``jobs`` 2 starts
+    no worker, and the ranges are those of one process."""
+    import furncheck.ranges.finder as finder
+
+    monkeypatch.setattr(finder, "PARALLEL_AFTER", 1e9)
+    monkeypatch.setattr(RangeFinder, "_ranges_in_workers", lambda *args: pytest.fail(
+        "a worker was started"))
+    design = load_design(str(DESIGNS / "shelf-cantilever.yaml"))
+    assert RangeFinder(design).ranges(jobs=2) == RangeFinder(design).ranges(jobs=1)
 
 
 def test_ranges_do_not_depend_on_how_the_searches_are_batched(monkeypatch):

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import gc
 import multiprocessing
+import time
 from collections.abc import Generator
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
@@ -68,6 +69,11 @@ DROP_STEPS = 6
 
 PARALLEL_MIN_DOFS = 16
 """Fewer DOFs than this are searched in this process: starting workers would cost more."""
+
+PARALLEL_AFTER = 1.0
+"""CPU seconds: with ``jobs`` > 1 the first two shares of the DOFs are searched in this
+process, and the rest goes to worker processes only if it would take at least this much
+work here (at the second share's CPU time per share); else it is searched here too."""
 
 DOFS_PER_TASK = 16
 """DOFs per task of a worker process: a task's DOFs are searched together (the more, the
@@ -134,52 +140,80 @@ class RangeFinder(Evaluator):
         One process is the default: the statics' small dense solves gain nothing from a
         multi-threaded BLAS, but its threads spin on the cores that the workers need
         (2 workers on 2 cores run twice as fast as one process only with
-        OPENBLAS_NUM_THREADS=1; with threaded BLAS they are slower than one process)."""
+        OPENBLAS_NUM_THREADS=1; with threaded BLAS they are slower than one process).
+
+        With ``jobs`` > 1 the work is sized first: the first two of the shares the
+        workers would get are searched here (the first also pays for what every search
+        shares: imports, the design's sensitivities), and the rest goes to workers only
+        if it would take PARALLEL_AFTER CPU seconds or more at the second's pace (CPU time:
+        the work, whatever else the machine is doing); else it is
+        searched here as well, all together.  Small designs so stay in one process, and
+        the workers, forked after those shares, start with what they imported
+        (scipy.optimize, when an edit needed a feasibility program: 0.5 s or more to
+        import in every worker)."""
         dofs = all_dofs(self.design) if names is None else \
             [parse_dof(self.design, name) for name in names]
         if jobs > 1 and len(dofs) >= PARALLEL_MIN_DOFS:
-            found = self._ranges_in_workers(dofs, jobs)
-            if found is not None:
-                return found
+            return self._ranges_shared(dofs, jobs)
         return self._ranges_together(dofs)
 
     def range(self, dof: Dof) -> DofRange:
         return self._ranges_together([dof])[0]
 
-    def _ranges_in_workers(self, dofs: list[Dof], jobs: int) -> list[DofRange] | None:
-        """The ranges of ``dofs`` in forked worker processes (which inherit this finder):
-        tasks of at most DOFS_PER_TASK DOFs, at least two per worker, the DOFs of each kind
-        dealt out in turn (DOFs of one kind are alike in cost: rotations cost most); None
-        when processes cannot be forked here."""
+    def _ranges_shared(self, dofs: list[Dof], jobs: int) -> list[DofRange]:
+        """The ranges of ``dofs`` in shares: tasks of at most DOFS_PER_TASK DOFs, at least
+        two per worker, the DOFs of each kind dealt out in turn (DOFs of one kind are alike
+        in cost: rotations cost most).  The first two shares are searched here; the others
+        in worker processes when they are worth it (``ranges``), else here."""
+        count = min(len(dofs), max(2 * jobs, -(-len(dofs) // DOFS_PER_TASK)))
+        order = sorted(range(len(dofs)), key=lambda n: (DOF_KINDS.index(dofs[n].kind), n))
+        shares = [order[k::count] for k in range(count)]
+        found: list[DofRange | None] = [None] * len(dofs)
+        pace = 0.0
+        for share in shares[:2]:
+            start = time.process_time()
+            for n, dof_range in zip(share, self._ranges_together([dofs[n] for n in share])):
+                found[n] = dof_range
+            pace = time.process_time() - start
+        rest = shares[2:]
+        done = None
+        if len(rest) > 1 and pace * len(rest) >= PARALLEL_AFTER:
+            done = self._ranges_in_workers([[dofs[n] for n in share] for share in rest], jobs)
+        if done is None and rest:
+            together = [n for share in rest for n in share]
+            done = [self._ranges_together([dofs[n] for n in together])]
+            rest = [together]
+        for share, ranges in zip(rest, done or ()):
+            for n, dof_range in zip(share, ranges):
+                found[n] = dof_range
+        return found
+
+    def _ranges_in_workers(self, tasks: list[list[Dof]],
+                           jobs: int) -> list[list[DofRange]] | None:
+        """The ranges of each task's DOFs, from min(``jobs``, tasks) forked worker
+        processes (which inherit this finder); None when processes cannot be forked
+        here."""
         global _WORKER_FINDER
         try:
             context = multiprocessing.get_context("fork")
         except ValueError:          # no fork on this platform
             return None
-        count = min(len(dofs), max(2 * jobs, -(-len(dofs) // DOFS_PER_TASK)))
-        order = sorted(range(len(dofs)), key=lambda n: (DOF_KINDS.index(dofs[n].kind), n))
-        shares = [order[k::count] for k in range(count)]
         _WORKER_FINDER = self
         # The workers inherit this process's objects; frozen, the garbage collector leaves
         # them alone in the workers and does not copy their memory pages by touching them
         # (measured: a tenth of the cabinet's work in the workers).
         gc.freeze()
         try:
-            with ProcessPoolExecutor(max_workers=min(jobs, count),
+            with ProcessPoolExecutor(max_workers=min(jobs, len(tasks)),
                                      mp_context=context) as pool:
-                done = list(pool.map(_ranges_of, [[dofs[n] for n in share]
-                                                  for share in shares]))
+                done = list(pool.map(_ranges_of, tasks))
         except (OSError, BrokenProcessPool):
             return None
         finally:
             gc.unfreeze()
             _WORKER_FINDER = None
         self.evaluations += sum(evaluations for _, evaluations in done)
-        found: list[DofRange | None] = [None] * len(dofs)
-        for share, (ranges, _) in zip(shares, done):
-            for n, dof_range in zip(share, ranges):
-                found[n] = dof_range
-        return found
+        return [ranges for ranges, _ in done]
 
     def _ranges_together(self, dofs: list[Dof]) -> list[DofRange]:
         """The ranges of ``dofs``, all their searches advanced together (``_run``): each

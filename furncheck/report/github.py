@@ -12,18 +12,31 @@ additionally ``:`` and ``,`` in property values.
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Iterator
+
 from furncheck.report.common import INPUT_ERROR, describe_violation, input_error
+from furncheck.report.entries import Entry, Summary
 from furncheck.report.text import summary_line
 from furncheck.result import BatchReport, DesignReport
 
 
 def render(batch: BatchReport) -> str:
     """One workflow command per line, ending with the summary notice."""
-    lines: list[str] = []
-    for report in batch.reports:
-        lines.extend(design_commands(report))
-    lines.append(command("notice", {"title": "furncheck"}, summary_line(batch)))
-    return "\n".join(lines) + "\n"
+    return "".join(document(Entry.of(report, piece(report)) for report in batch.reports))
+
+
+def piece(report: DesignReport) -> str:
+    """The design's commands (``design_commands``), each ending with a newline; '' for a
+    valid design."""
+    return "".join(line + "\n" for line in design_commands(report))
+
+
+def document(entries: Iterable[Entry]) -> Iterator[str]:
+    """The commands of ``entries`` in order, then the summary notice."""
+    summary = Summary()
+    for entry in entries:
+        yield summary.add(entry).piece
+    yield command("notice", {"title": "furncheck"}, summary_line(summary.as_dict())) + "\n"
 
 
 def design_commands(report: DesignReport) -> list[str]:

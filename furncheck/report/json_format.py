@@ -4,15 +4,27 @@ Keys are written in the contract's order; floats are rounded by ``numbers.json_r
 (REPORT_SIGNIFICANT_DIGITS significant digits, -0.0 as 0.0, nan/inf as null), so the same
 batch always gives byte-identical text.  (The module is not called ``json.py`` so that it
 does not shadow the standard library for tools that run from this folder.)
+
+The text is what ``json.dumps(json_ready(document), indent=2)`` writes for the document
+of ``report_dict``s, but written straight from the result values by a writer that knows
+the schema (``piece``): ``json.dumps`` with an indent runs in pure Python and, with the
+rounding of every number through ``json_ready``, took twice as long as checking the
+design.  Each design's entry is one ``piece``, made where the design was checked, and
+``document`` writes the entries as they come.
 """
 
 from __future__ import annotations
 
+import functools
 import json
+from collections.abc import Iterable, Iterator, Sequence
+from json.encoder import encode_basestring_ascii as _string
 from typing import Any
 
-from furncheck.report.numbers import json_ready
+from furncheck.report.entries import Entry, Summary
+from furncheck.report.numbers import json_ready, real_text
 from furncheck.result import (
+    AnchorResult,
     BatchReport,
     CaseResult,
     ContactResult,
@@ -20,16 +32,33 @@ from furncheck.result import (
     JointResult,
     LoadResult,
     PlankResult,
+    Violation,
 )
+
+_STEP = "  "
+_ENTRY_INDENT = 2 * _STEP          # a design's entry is an item of the "reports" list
 
 
 def render(batch: BatchReport) -> str:
     """The batch as a JSON document: ``{"reports": [...], "summary": {...}}``, indent 2."""
-    document = {
-        "reports": [report_dict(report) for report in batch.reports],
-        "summary": dict(batch.summary),
-    }
-    return json.dumps(json_ready(document), indent=2, allow_nan=False) + "\n"
+    return "".join(document(Entry.of(report, piece(report)) for report in batch.reports))
+
+
+def document(entries: Iterable[Entry]) -> Iterator[str]:
+    """The document of ``entries`` (their pieces in order), written as they come."""
+    summary = Summary()
+    yield '{\n  "reports": ['
+    for entry in entries:
+        yield (",\n" if summary.designs else "\n") + summary.add(entry).piece
+    yield ("\n  ]" if summary.designs else "]") + ',\n  "summary": ' \
+        + _object([(key, str(count)) for key, count in summary.as_dict().items()], _STEP) \
+        + "\n}\n"
+
+
+def piece(report: DesignReport) -> str:
+    """The design's entry, indented as an item of the document's "reports" list (no line
+    end after it): ``json.dumps`` of its ``report_dict``, to the byte."""
+    return _ENTRY_INDENT + _report_text(report, _ENTRY_INDENT)
 
 
 def report_dict(report: DesignReport) -> dict[str, Any]:
@@ -113,3 +142,177 @@ def _contact_dict(contact: ContactResult) -> dict[str, Any]:
     if contact.on is not None:
         entry["on"] = contact.on
     return entry
+
+
+# --- the writer: each function gives the JSON text of a value whose first line is already
+# --- started (after a key or an item's indent) and whose last line is at ``indent``
+
+def _object(pairs: Sequence[tuple[str, str]], indent: str) -> str:
+    """``{"key": value, ...}`` from (key, value's text) pairs (keys: plain ASCII)."""
+    if not pairs:
+        return "{}"
+    inner = "\n" + indent + _STEP
+    return "{" + inner + ("," + inner).join(f'"{key}": {text}' for key, text in pairs) \
+        + "\n" + indent + "}"
+
+
+def _array(items: Sequence[str], indent: str) -> str:
+    """``[item, ...]`` from the items' texts (each made at ``indent + _STEP``)."""
+    if not items:
+        return "[]"
+    inner = "\n" + indent + _STEP
+    return "[" + inner + ("," + inner).join(items) + "\n" + indent + "]"
+
+
+def _values(values: Iterable[Any], indent: str) -> str:
+    """A list of numbers or strings (a point, a force, a joint's planks)."""
+    return _array([_value(value) for value in values], indent)
+
+
+_REAL_TEXTS: dict[float, str] = {}
+_REAL_TEXTS_MAX = 1 << 16
+"""Texts of finite floats already written (joint capacities, zeros and repeated loads
+recur), up to this many; +0.0 and -0.0 share one, as both are written 0.0."""
+
+
+def _value(value: Any) -> str:
+    """A scalar as ``json.dumps(json_ready(value))`` writes it: floats (numpy's too)
+    rounded by ``round_significant`` (nan and inf: null), ints, bools, None and strings as
+    they are."""
+    kind = type(value)
+    if kind is float or isinstance(value, float):
+        text = _REAL_TEXTS.get(value)
+        if text is None:
+            text = real_text(float(value))
+            if len(_REAL_TEXTS) < _REAL_TEXTS_MAX and text != "null":
+                _REAL_TEXTS[float(value)] = text
+        return text
+    if kind is str:
+        return _string(value)
+    if kind is bool:
+        return "true" if value else "false"
+    if kind is int:
+        return int.__repr__(value)
+    if value is None:
+        return "null"
+    return json.dumps(json_ready(value), allow_nan=False)   # numpy scalars and the like
+
+
+def _report_text(report: DesignReport, indent: str) -> str:
+    if report.error is not None:
+        return _object([("design", _string(report.design)), ("name", _string(report.name)),
+                        ("error", _string(report.error))], indent)
+    inner = indent + _STEP
+    return _object([
+        ("design", _string(report.design)),
+        ("name", _string(report.name)),
+        ("valid", _value(report.valid)),
+        ("violations", _array([_violation_text(v, inner + _STEP)
+                               for v in report.violations], inner)),
+        ("cases", _array([_case_text(case, inner + _STEP) for case in report.cases], inner)),
+    ], indent)
+
+
+def _record(layout: tuple[tuple[str, int | None], ...], values: Iterable[Any],
+            indent: str) -> str:
+    """An object of scalars and lists of scalars: ``layout`` gives its keys in order, each
+    with None for a scalar or the length of a list, and ``values`` the scalars in order
+    (a list's items in place)."""
+    return _template(layout, indent) % tuple(map(_value, values))
+
+
+@functools.lru_cache(maxsize=256)
+def _template(layout: tuple[tuple[str, int | None], ...], indent: str) -> str:
+    """The text of a ``_record`` with ``%s`` for every scalar (the writer's own text holds
+    no ``%``: its keys are plain words)."""
+    inner = indent + _STEP
+    return _object([(key, "%s" if length is None else _array(["%s"] * length, inner))
+                    for key, length in layout], indent)
+
+
+def _violation_text(violation: Violation, indent: str) -> str:
+    return _record((("kind", None), ("where", None), ("case", None), ("message", None)),
+                   (violation.kind, violation.where, violation.case, violation.message),
+                   indent)
+
+
+def _case_text(case: CaseResult, indent: str) -> str:
+    inner = indent + _STEP
+    item = inner + _STEP
+    pairs = [
+        ("name", _value(case.name)),
+        ("durable", _value(case.durable)),
+        ("stable", _value(case.stable)),
+        ("joints", _array([_joint_text(joint, item) for joint in case.joints], inner)),
+        ("contacts", _array([_contact_text(contact, item) for contact in case.contacts],
+                            inner)),
+        ("loads", _array([_load_text(load, item) for load in case.loads], inner)),
+    ]
+    if case.planks is not None:
+        pairs.append(("planks", _array([_plank_text(plank, item) for plank in case.planks],
+                                       inner)))
+    if case.anchors:
+        pairs.append(("anchors", _array([_anchor_text(anchor, item)
+                                         for anchor in case.anchors], inner)))
+    return _object(pairs, indent)
+
+
+def _joint_text(joint: JointResult, indent: str) -> str:
+    return _record((("planks", len(joint.planks)), ("point", len(joint.point)),
+                    ("nails", None), ("force", len(joint.force)),
+                    ("moment", len(joint.moment)), ("pull", None), ("shear", None),
+                    ("pull_capacity", None), ("shear_capacity", None), ("utilization", None),
+                    ("durable", None)),
+                   (*joint.planks, *joint.point, joint.nails, *joint.force, *joint.moment,
+                    joint.pull, joint.shear, joint.pull_capacity, joint.shear_capacity,
+                    joint.utilization, joint.durable), indent)
+
+
+def _contact_text(contact: ContactResult, indent: str) -> str:
+    layout = [("plank", None), ("point", len(contact.point)), ("force", len(contact.force))]
+    values = [contact.plank, *contact.point, *contact.force]
+    if contact.wall is not None:
+        layout.append(("wall", None))
+        values.append(contact.wall)
+    if contact.on is not None:
+        layout.append(("on", None))
+        values.append(contact.on)
+    return _record(tuple(layout), values, indent)
+
+
+def _load_text(load: LoadResult, indent: str) -> str:
+    layout: list[tuple[str, int | None]] = [("plank", None)]
+    values = [load.plank]
+    if load.mass is not None:
+        layout.append(("mass", None))
+        values.append(load.mass)
+    else:
+        layout.append(("force", len(load.force)))
+        values.extend(load.force)
+    if load.at is None:
+        layout.append(("at", None))
+        values.append(None)
+    else:
+        layout.append(("at", len(load.at)))
+        values.extend(load.at)
+    if load.spread:
+        layout.append(("spread", None))
+        values.append(True)
+    if load.origin is not None:
+        layout.append(("from", None))
+        values.append(load.origin)
+    return _record(tuple(layout), values, indent)
+
+
+def _plank_text(plank: PlankResult, indent: str) -> str:
+    return _record((("id", None), ("sag", None), ("sag_allowed", None), ("stress", None),
+                    ("strength", None), ("utilization", None)),
+                   (plank.id, plank.sag, plank.sag_allowed, plank.stress, plank.strength,
+                    plank.utilization), indent)
+
+
+def _anchor_text(anchor: AnchorResult, indent: str) -> str:
+    return _record((("plank", None), ("wall", None), ("point", len(anchor.point)),
+                    ("force", len(anchor.force)), ("capacity", None), ("utilization", None)),
+                   (anchor.plank, anchor.wall, *anchor.point, *anchor.force, anchor.capacity,
+                    anchor.utilization), indent)

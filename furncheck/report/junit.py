@@ -20,8 +20,10 @@ from __future__ import annotations
 import functools
 import re
 import xml.etree.ElementTree as ET
+from collections.abc import Iterable, Iterator
 
 from furncheck.report.common import INPUT_ERROR, case_violations, describe_violation, plural
+from furncheck.report.entries import Entry
 from furncheck.result import BatchReport, DesignReport, Violation
 
 LOAD_TESTCASE = "load"
@@ -33,19 +35,44 @@ _XML_INVALID = "[^\t\n\r\x20-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]"
 """Characters XML 1.0 cannot hold (compiled on first use: keeps CLI start-up fast)."""
 
 
+DECLARATION = "<?xml version='1.0' encoding='utf-8'?>"
+"""What ``ET.tostring(..., encoding="unicode", xml_declaration=True)`` starts with."""
+
+_TOTALS = ("tests", "failures", "errors")
+
+
 def render(batch: BatchReport) -> str:
     """The batch as a JUnit XML document (UTF-8 declaration, indented, trailing newline)."""
-    root = ET.Element("testsuites", name="furncheck")
-    totals = {"tests": 0, "failures": 0, "errors": 0}
-    for report in batch.reports:
-        suite = design_suite(report)
-        root.append(suite)
-        for key in totals:
-            totals[key] += int(suite.get(key, "0"))
-    for key, count in totals.items():
-        root.set(key, str(count))
-    ET.indent(root)
-    return ET.tostring(root, encoding="unicode", xml_declaration=True) + "\n"
+    return "".join(document(Entry.of(report, piece(report)) for report in batch.reports))
+
+
+def piece(report: DesignReport) -> tuple[str, tuple[int, int, int]]:
+    """(the design's ``<testsuite>``, indented as in the document, in one line per element,
+    with no line end after it; its tests, failures and errors)."""
+    suite = design_suite(report)
+    ET.indent(suite, level=1)
+    counts = tuple(int(suite.get(key, "0")) for key in _TOTALS)
+    return "  " + ET.tostring(suite, encoding="unicode"), counts
+
+
+def document(entries: Iterable[Entry]) -> Iterator[str]:
+    """``<testsuites>`` with the suites of ``entries`` in order.  Its start tag holds the
+    totals, so nothing is written before the last entry has arrived."""
+    suites: list[str] = []
+    totals = [0, 0, 0]
+    for entry in entries:
+        text, counts = entry.piece
+        suites.append(text)
+        totals = [total + count for total, count in zip(totals, counts)]
+    start = "<testsuites name=\"furncheck\" " + " ".join(
+        f'{key}="{count}"' for key, count in zip(_TOTALS, totals))
+    if not suites:
+        yield f"{DECLARATION}\n{start} />\n"
+        return
+    yield f"{DECLARATION}\n{start}>\n"
+    for text in suites:
+        yield text + "\n"
+    yield "</testsuites>\n"
 
 
 def design_suite(report: DesignReport) -> ET.Element:

@@ -29,6 +29,18 @@ def round_significant(value: float, digits: int = REPORT_SIGNIFICANT_DIGITS) -> 
     return float(f"{value:.{digits}g}") + 0.0  # + 0.0 turns -0.0 into 0.0
 
 
+_ROUNDED = f"%.{REPORT_SIGNIFICANT_DIGITS}g"
+
+
+def real_text(value: float) -> str:
+    """``json.dumps(json_ready(value))`` of a float, the same steps as ``round_significant``
+    written out for the JSON writer (it runs for every number of every report): the
+    rounded value's ``repr``, or null when it is not finite."""
+    if value - value != 0.0:                    # nan or inf
+        return "null"
+    return float.__repr__(float(_ROUNDED % round(value, REPORT_DECIMALS)) + 0.0)
+
+
 def json_ready(value: Any) -> Any:
     """A copy of ``value`` that ``json.dumps`` writes deterministically.
 

@@ -11,12 +11,14 @@ absolute ones become ``file://`` URIs.
 from __future__ import annotations
 
 import json
+from collections.abc import Iterable, Iterator
 from pathlib import PurePath
 from typing import Any
 from urllib.parse import quote
 
 from furncheck import __version__
 from furncheck.report.common import INPUT_ERROR, describe_violation, input_error
+from furncheck.report.entries import Entry
 from furncheck.result import VIOLATION_KINDS, BatchReport, DesignReport
 
 SARIF_VERSION = "2.1.0"
@@ -39,13 +41,26 @@ RULE_DESCRIPTIONS = {
 
 def render(batch: BatchReport) -> str:
     """The batch as a SARIF 2.1.0 JSON document (indent 2, trailing newline)."""
+    return "".join(document(Entry.of(report, piece(report)) for report in batch.reports))
+
+
+def piece(report: DesignReport) -> tuple[str, tuple[tuple[str, int | None, str], ...]]:
+    """(the design's path, its findings: (rule id, line, message) of every problem)."""
+    return report.design, tuple(_findings(report))
+
+
+def document(entries: Iterable[Entry]) -> Iterator[str]:
+    """The log of ``entries``' findings.  The rules come before the results (and a rule
+    unknown to this version is added when it is first met), so the log is written when
+    the last entry has arrived."""
     rule_ids = list(VIOLATION_KINDS) + [INPUT_ERROR]
     results: list[dict[str, Any]] = []
-    for report in batch.reports:
-        for rule_id, line, text in _findings(report):
+    for entry in entries:
+        design, findings = entry.piece
+        for rule_id, line, text in findings:
             if rule_id not in rule_ids:  # a kind this version does not know: still a rule
                 rule_ids.append(rule_id)
-            results.append(_result(rule_id, rule_ids.index(rule_id), report.design, line, text))
+            results.append(_result(rule_id, rule_ids.index(rule_id), design, line, text))
     log = {
         "$schema": SARIF_SCHEMA,
         "version": SARIF_VERSION,
@@ -58,7 +73,7 @@ def render(batch: BatchReport) -> str:
             "results": results,
         }],
     }
-    return json.dumps(log, indent=2) + "\n"
+    yield json.dumps(log, indent=2) + "\n"
 
 
 def artifact_uri(path: str) -> str:

@@ -16,6 +16,8 @@ Each checked design ends with one line per load case naming the loads that act i
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Iterator, Mapping
+
 from furncheck.report.common import (
     describe_violation,
     input_error,
@@ -23,6 +25,7 @@ from furncheck.report.common import (
     worst_joint,
     worst_plank,
 )
+from furncheck.report.entries import Entry, Summary
 from furncheck.report.numbers import format_number, format_percent
 from furncheck.result import BatchReport, CaseResult, DesignReport, LoadResult
 
@@ -34,11 +37,20 @@ _AXIS_NAMES = ("x", "y", "z")
 
 def render(batch: BatchReport) -> str:
     """One block per design in input order, then the summary line."""
-    lines: list[str] = []
-    for report in batch.reports:
-        lines.extend(design_lines(report))
-    lines.append(summary_line(batch))
-    return "\n".join(lines) + "\n"
+    return "".join(document(Entry.of(report, piece(report)) for report in batch.reports))
+
+
+def piece(report: DesignReport) -> str:
+    """The design's block: ``design_lines``, each ending with a newline."""
+    return "\n".join(design_lines(report)) + "\n"
+
+
+def document(entries: Iterable[Entry]) -> Iterator[str]:
+    """The blocks of ``entries`` in order, then the summary line."""
+    summary = Summary()
+    for entry in entries:
+        yield summary.add(entry).piece
+    yield summary_line(summary.as_dict()) + "\n"
 
 
 def design_lines(report: DesignReport) -> list[str]:
@@ -109,9 +121,8 @@ def _load_amount(load: LoadResult) -> str:
     return f"({', '.join(format_number(c, 4) for c in load.force)}) N"
 
 
-def summary_line(batch: BatchReport) -> str:
-    """``12 designs: 9 valid, 2 invalid, 1 error``."""
-    summary = batch.summary
+def summary_line(summary: Mapping[str, int]) -> str:
+    """``12 designs: 9 valid, 2 invalid, 1 error`` (``summary``: ``BatchReport.summary``)."""
     return (f"{plural(summary['designs'], 'design')}: {summary['valid']} valid, "
             f"{summary['invalid']} invalid, {plural(summary['errors'], 'error')}")
 

@@ -15,14 +15,17 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-import scipy.linalg.lapack as lapack
-import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 from furncheck import tolerances as tol
+from furncheck.statics.elastic import assemble_beams_dense
+from furncheck.statics.lapack import routines
 from furncheck.statics.model import _SIX, StaticsModel, block_sums, spring_rows
+
+if TYPE_CHECKING:
+    import scipy.sparse as sp
 
 
 @dataclass(frozen=True)
@@ -155,9 +158,8 @@ def _condense_planks(model: StaticsModel, ground: np.ndarray,
     per_pair = block_sums((placed[:, :, None] * n_nodes + placed[:, None, :]).ravel(),
                           pairs.reshape(-1, 36), n_nodes * n_nodes)
     K = per_pair.reshape(n_nodes, n_nodes, 6, 6).transpose(0, 2, 1, 3).reshape(n, n)
-    if model.beam_stiffness is not None:
-        dof_order = (6 * order[:, None] + _SIX[None, :]).ravel()
-        K += model.beam_stiffness[dof_order][:, dof_order].toarray()
+    if model.beams is not None:
+        K += assemble_beams_dense(model.beams, position)
     ni = len(inner)
     coupling = K[:ni, ni:]
     reduced = np.zeros((ni, len(ground)))
@@ -185,6 +187,8 @@ def _condense_beams(model: StaticsModel, ground: np.ndarray,
     definite on the nodes that are not grounded), K_ii factored by one sparse LU (half the
     unknowns of the mixed system, and no indefinite joint rows to pivot on); None if K_ii
     is singular."""
+    import scipy.sparse as sp
+
     n, m = model.n_dof, 6 * len(model.joints)
     G = model.G
     W = sp.block_diag(list(model.joint_stiffness), format="csr") if len(model.joints) \
@@ -245,6 +249,8 @@ def _condense(model: StaticsModel) -> _Condensed | None:
 def _contact_free_matrix(model: StaticsModel) -> sp.coo_matrix:
     """[[K_b, G^T], [G, -E]]: the mixed system without contact springs (K_b the beams'
     stiffness, zero for rigid planks; E the joints' compliance blocks)."""
+    import scipy.sparse as sp
+
     n, m = model.n_dof, 6 * len(model.joints)
     G = model.G.tocoo()
     block = np.arange(m).reshape(-1, 6)
@@ -278,6 +284,8 @@ def _factor(A: sp.csc_matrix, probe: np.ndarray):
     times sparser than the default; if it solves the probe columns poorly (a tiny pivot),
     partial pivoting (SuperLU's default) is used instead.
     """
+    import scipy.sparse.linalg as spla
+
     rhs = probe if np.any(probe) else np.ones(A.shape[0])
     for options in (_SYMMETRIC_LU, {}):
         try:
@@ -385,6 +393,8 @@ def _diagonal_blocks(count: int) -> tuple[np.ndarray, np.ndarray]:
 def system_matrix(model: StaticsModel, holding: np.ndarray) -> sp.csr_matrix:
     """The full mixed matrix [[K_b + K_c, G^T], [G, -E]] with anchor springs at the
     holding contacts (sparse, (6 nN + 6 nJ) square): the A of the paper's eq. 6."""
+    import scipy.sparse as sp
+
     n, m = model.n_dof, 6 * len(model.joints)
     maps = model.contact_maps
     blocks = np.transpose(maps, (0, 2, 1)) @ (anchor_springs(holding, model.contact_springs)
@@ -466,14 +476,12 @@ def _cholesky(matrix: np.ndarray) -> np.ndarray | None:
     """The upper Cholesky factor of a symmetric matrix (its upper triangle read), None if
     it is not positive definite (LAPACK's potrf directly: scipy's wrappers cost more than
     the factoring of these small matrices)."""
-    factor, info = _POTRF(matrix, lower=0, clean=0)
+    factor, info = routines().potrf(matrix, lower=0, clean=0)
     return factor if info == 0 else None
 
 
 def _cholesky_solve(factor: np.ndarray, rhs: np.ndarray) -> np.ndarray:
     """x with U^T U x = rhs for the upper Cholesky factor U (``_cholesky``)."""
-    x, _ = _POTRS(factor, rhs, lower=0)
+    x, _ = routines().potrs(factor, rhs, lower=0)
     return x
 
-
-_POTRF, _POTRS = lapack.get_lapack_funcs(("potrf", "potrs"), (np.zeros(1),))

@@ -17,9 +17,9 @@ plank's sag and stress.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-import scipy.sparse as sp
 
 from furncheck import tolerances as tol
 from furncheck.design.model import Design, LoadCase, Material, Plank
@@ -45,6 +45,9 @@ from furncheck.statics.model import (
     point_maps,
     rest_maps,
 )
+
+if TYPE_CHECKING:
+    import scipy.sparse as sp
 
 
 @dataclass(frozen=True)
@@ -364,13 +367,37 @@ def _element_dofs(beams: Beams) -> np.ndarray:
 
 def assemble_beams(beams: Beams, n_nodes: int) -> sp.csr_matrix:
     """K_b = sum T^T K_local T over the elements, (6 nN, 6 nN) sparse."""
+    import scipy.sparse as sp
+
+    world, rows, cols = _element_entries(beams)
+    n = 6 * n_nodes
+    return sp.csr_matrix((world.ravel(), (rows.ravel(), cols.ravel())), shape=(n, n))
+
+
+def assemble_beams_dense(beams: Beams, position: np.ndarray) -> np.ndarray:
+    """K_b as ``assemble_beams`` gives it, dense, with node k's rows and columns at block
+    ``position[k]`` (a permutation of the nodes), for designs small enough for dense
+    matrices.  An entry sums the terms of at most two elements (the two that meet at a
+    node, on its diagonal block), and a sum of two terms does not depend on their order,
+    so the matrix is the sparse one's to the last bit."""
+    world, rows, cols = _element_entries(beams)
+    n_dof = 6 * len(position)
+    block = 6 * np.asarray(position)
+    rows = (block[rows // 6] + rows % 6).ravel()
+    cols = (block[cols // 6] + cols % 6).ravel()
+    return block_sums(rows * n_dof + cols, world.reshape(-1, 1), n_dof * n_dof) \
+        .reshape(n_dof, n_dof)
+
+
+def _element_entries(beams: Beams) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(T^T K_local T (nE, 12, 12), the global row and the column of each of its
+    entries, each (nE, 12, 12))."""
     T = beams.transform()
     world = np.transpose(T, (0, 2, 1)) @ beams.local_stiffness @ T
     dofs = _element_dofs(beams)
-    rows = np.broadcast_to(dofs[:, :, None], world.shape).ravel()
-    cols = np.broadcast_to(dofs[:, None, :], world.shape).ravel()
-    n = 6 * n_nodes
-    return sp.csr_matrix((world.ravel(), (rows, cols)), shape=(n, n))
+    rows = np.broadcast_to(dofs[:, :, None], world.shape)
+    cols = np.broadcast_to(dofs[:, None, :], world.shape)
+    return world, rows, cols
 
 
 def element_end_forces(beams: Beams, q: np.ndarray) -> np.ndarray:

@@ -16,7 +16,6 @@ import math
 from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.linalg import lapack
 
 from furncheck import tolerances as tol
 from furncheck.statics.condense import (
@@ -25,6 +24,7 @@ from furncheck.statics.condense import (
     _Factored,
     anchored_system,
 )
+from furncheck.statics.lapack import routines
 from furncheck.statics.model import StaticsModel, spring_rows
 
 if TYPE_CHECKING:
@@ -33,7 +33,6 @@ if TYPE_CHECKING:
 
 _EYE2 = np.eye(2)
 _TWO = np.arange(2)
-_GESV = lapack.get_lapack_funcs("gesv", (np.zeros(1),))
 
 _ROUNDOFF = 1e-13
 """Relative round-off of a matrix-vector product of the condensed system (a few hundred
@@ -190,7 +189,7 @@ class _FrictionEnergy:
         compliance = self.space.compliance[rows[:, None], rows].reshape(count, 2, 2 * count)
         capacitance = np.eye(2 * count) - np.einsum(
             "kij,kjm->kim", lost, compliance).reshape(2 * count, 2 * count)
-        weights, info = _GESV(capacitance, pulled.reshape((2 * count,) + tail))[2:]
+        weights, info = routines().gesv(capacitance, pulled.reshape((2 * count,) + tail))[2:]
         return weights if info == 0 else None
 
     def _factored_hessian(self, x: np.ndarray) -> _Factored:
@@ -309,7 +308,7 @@ class _FrictionEnergy:
         pressing = force[:, 2] > 0.0
         jacobian = (self.solver.mu * spring_rows(self.k, None, 1)) * normal_moves \
             * pressing[:, None]                                                   # (na, p)
-        change, info = _GESV(np.eye(count) - jacobian[slipping],
+        change, info = routines().gesv(np.eye(count) - jacobian[slipping],
                              residual[self.active][slipping])[2:]
         if info != 0:
             return None

@@ -13,13 +13,14 @@ from functools import cached_property
 from typing import TYPE_CHECKING
 
 import numpy as np
-import scipy.sparse as sp
 
 from furncheck import tolerances as tol
 from furncheck.design.model import Design, LoadCase
 from furncheck.geometry import Geometry
 
 if TYPE_CHECKING:
+    import scipy.sparse as sp
+
     from furncheck.statics.condense import _Condensed
 
 _SIX = np.arange(6)
@@ -201,7 +202,10 @@ class StaticsModel:
 
     @cached_property
     def G(self) -> sp.csr_matrix:
-        """(6 nJ, 6 nN) sparse joint deviation map, d = G q."""
+        """(6 nJ, 6 nN) sparse joint deviation map, d = G q (for the sparse paths of large
+        designs: scipy.sparse is imported here)."""
+        import scipy.sparse as sp
+
         n_joints = len(self.joints)
         shape = (n_joints, 2, 6, 6)
         rows = np.broadcast_to(6 * np.arange(n_joints)[:, None, None, None]

@@ -1,0 +1,63 @@
+"""Start-up: ``furncheck validate`` imports only the scipy its designs need.
+
+scipy takes several times as long to import as a small design takes to check, so it is
+imported where it is used: scipy.sparse for designs above the dense limit
+(DENSE_PLANKS_MAX plank displacements), scipy.optimize for the feasibility programs (a
+design that may slide or lift off); a small design needs neither, and its Cholesky and LU
+come from scipy's compiled LAPACK module, loaded without the packages around it
+(``furncheck.statics.lapack``).
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+SCRIPT = """
+import contextlib, io, json, sys
+from furncheck.cli.main import main
+
+def loaded():
+    return sorted(m for m in sys.modules
+                  if m.split(".")[0] in ("scipy", "trimesh", "matplotlib"))
+
+seen = {"import": [None, loaded()]}
+for label, args in [("stool rigid", ["designs/stool.yaml", "--model", "rigid"]),
+                    ("stool elastic", ["designs/stool.yaml"]),
+                    ("cabinet elastic", ["designs/cabinet-28.yaml"]),
+                    ("table slides", ["designs/table-slides.yaml", "--model", "rigid"])]:
+    with contextlib.redirect_stdout(io.StringIO()):
+        code = main(["validate", *args, "--format", "json"], standalone_mode=False)
+    seen[label] = [code, loaded()]
+    if label == "stool elastic":
+        from furncheck.statics.lapack import routines
+        seen["lapack"] = routines().source
+print(json.dumps(seen))
+"""
+
+
+def test_validate_imports_only_the_scipy_a_design_needs():
+    """The stool (4 planks, both models) is checked without any scipy package imported:
+    only scipy's compiled LAPACK module is loaded, from its file; the 28-plank cabinet in
+    the elastic model (hundreds of beam nodes: above the dense limit) brings scipy.sparse
+    and its LU, but
+    no scipy.optimize (it stands: no feasibility program runs); the table that slides
+    (rigid) brings scipy.optimize for its linear programs.  Nothing loads trimesh or
+    matplotlib."""
+    output = subprocess.run([sys.executable, "-c", SCRIPT], capture_output=True, text=True,
+                            check=True, cwd=ROOT).stdout
+    seen = json.loads(output.splitlines()[-1])
+    assert seen["import"] == [None, []]
+    assert seen["stool rigid"] == [0, ["scipy.linalg._flapack"]]
+    assert seen["stool elastic"] == [1, ["scipy.linalg._flapack"]]
+    assert seen["lapack"] == "file"
+    code, cabinet = seen["cabinet elastic"]
+    assert "scipy.sparse.linalg" in cabinet
+    assert not any(m.startswith("scipy.optimize") for m in cabinet)
+    code, table = seen["table slides"]
+    assert code == 1 and "scipy.optimize" in table
+    assert not any(m.split(".")[0] in ("trimesh", "matplotlib") for m in table)
