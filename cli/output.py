@@ -54,26 +54,35 @@ def write_chunks(chunks: Iterable[str], output: str | None) -> None:
     """Write the report, given as consecutive pieces, to stdout or to ``output``, as the
     pieces come (in blocks of about WRITE_BLOCK characters)."""
     if output is None or output == "-":
-        _write_blocks(chunks, lambda text: click.echo(text, nl=False))
+        _write_blocks(chunks, lambda text: click.echo(text, nl=False), "standard output")
         return
     try:
-        with open(output, "w", encoding="utf-8", newline="\n") as stream:
-            _write_blocks(chunks, stream.write)
+        stream = open(output, "w", encoding="utf-8", newline="\n")
     except OSError as error:
         fail(f"cannot write the report to {output}: {error.strerror or error}")
+    with stream:
+        _write_blocks(chunks, stream.write, output)
 
 
-def _write_blocks(chunks: Iterable[str], write) -> None:
+def _write_blocks(chunks: Iterable[str], write, where: str) -> None:
+    """``write`` the chunks joined in blocks; a failing write is one line, exit 2."""
     block: list[str] = []
     size = 0
     for chunk in chunks:
         block.append(chunk)
         size += len(chunk)
         if size >= WRITE_BLOCK:
-            write("".join(block))
+            _write(write, "".join(block), where)
             block, size = [], 0
     if block:
-        write("".join(block))
+        _write(write, "".join(block), where)
+
+
+def _write(write, text: str, where: str) -> None:
+    try:
+        write(text)
+    except OSError as error:
+        fail(f"cannot write the report to {where}: {error.strerror or error}")
 
 
 MODEL_OPTION = click.option(

@@ -32,8 +32,8 @@ DESIGN_SUFFIXES = (".yaml", ".yml", ".json")
 @click.option("-o", "--output", metavar="FILE", default=None,
               help="Write the report to FILE instead of standard output ('-': stdout).")
 @click.option("-j", "--jobs", type=click.IntRange(min=1), default=None,
-              help="Processes checking designs; a catalog that takes less than about half "
-                   "a second is checked in one.  [default: all cores]")
+              help="Processes checking designs; a catalog that takes less than about "
+                   "0.2 s is checked in one.  [default: all cores]")
 @MODEL_OPTION
 def validate(paths: tuple[str, ...], fmt: str, output: str | None, jobs: int | None,
              model: str | None) -> None:

@@ -17,7 +17,6 @@ in ``furncheck.design.load``, which also uses the message helpers at the end of 
 from __future__ import annotations
 
 import codecs
-import json
 import os
 import re
 import stat
@@ -278,6 +277,8 @@ def _json_constant(name: str) -> float:
 
 def _read_json(text: str, source: str) -> Any:
     """Tree of dicts, lists, str, float (every number), bool and None."""
+    import json  # for JSON designs only: YAML is the common case
+
     try:
         return json.loads(text, object_pairs_hook=_json_object, parse_constant=_json_constant,
                           parse_int=float, parse_float=float)
