@@ -8,7 +8,8 @@ machine whose speed drifts slows both alike):
 
 1. cold start: ``python -c "import numpy, yaml, click"`` (the floor), then ``furncheck
    validate designs/stool.yaml`` as a fresh process (the installed ``furncheck`` script,
-   and each tree's command line), with the ratio to the floor;
+   and each tree's command line), with the ratio to the floor; and what the modules that
+   ``validate`` may import cost (``python -X importtime``, the new tree);
 2. throughput: ``validate --format json`` of N generated designs of 5 to 30 planks
    (``benchmarks/catalog.py``) with ``--jobs 1`` and ``--jobs 2``: seconds, designs per
    second, peak RSS of the largest process, and a small catalog (10 designs) with
@@ -110,6 +111,33 @@ def cold_start(trees: dict[str, Path], repeat: int) -> None:
         print(f"| {name} | {seconds * 1000:.0f} | {seconds / floor:.2f} |")
 
 
+IMPORTS = ("scipy.linalg", "scipy.sparse", "scipy.sparse.linalg", "scipy.optimize",
+           "furncheck.cli.main", "furncheck.check")
+"""What ``validate`` may import beyond numpy, yaml and click: each one's import time."""
+
+
+def import_costs(repeat: int) -> None:
+    """``python -X importtime``: each module's cumulative import time after numpy, yaml
+    and click (the least of ``repeat`` runs: the machine's other load only adds)."""
+    print("\n| import (after numpy, yaml, click) | ms (least of "
+          f"{repeat} runs) |")
+    print("|---|---:|")
+    for module in ("numpy, yaml, click",) + IMPORTS:
+        names = module.split(", ")
+        code = "import numpy, yaml, click" if len(names) > 1 else \
+            f"import numpy, yaml, click; import {module}"
+        times = []
+        for _ in range(repeat):
+            done = subprocess.run([sys.executable, "-X", "importtime", "-c", code],
+                                  capture_output=True, text=True, env=environment(),
+                                  cwd=NEW_TREE)
+            cumulative = {line.split("|")[2].strip(): int(line.split("|")[1])
+                          for line in done.stderr.splitlines()
+                          if line.startswith("import time:") and "self" not in line}
+            times.append(sum(cumulative.get(name, 0) for name in names))
+        print(f"| {module} | {min(times) / 1000:.0f} |")
+
+
 def throughput(trees: dict[str, Path], catalog: Path, small: Path, repeat: int,
                count: int) -> dict[str, tuple[float, float]]:
     commands = {}
@@ -164,6 +192,7 @@ def main() -> None:
     trees["new"] = NEW_TREE
     if not args.skip_cold:
         cold_start(trees, max(args.repeat, 9))
+        import_costs(max(args.repeat, 7))
     with tempfile.TemporaryDirectory() as folder:
         catalog, small = Path(folder) / "catalog", Path(folder) / "small"
         paths = write_catalog(catalog, args.big or args.count)

@@ -58,26 +58,34 @@ def write_chunks(chunks: Iterable[str], output: str | None) -> None:
     from furncheck.files import replacing
 
     if output is None or output == "-":
-        _write_blocks(chunks, lambda text: click.echo(text, nl=False))
+        _write_blocks(chunks, lambda text: click.echo(text, nl=False), "standard output")
         return
     try:
         with replacing(output, durable=True) as stream:
-            _write_blocks(chunks, lambda text: stream.write(text.encode("utf-8")))
+            _write_blocks(chunks, lambda text: stream.write(text.encode("utf-8")), output)
     except OSError as error:
         fail(f"cannot write the report to {output}: {error.strerror or error}")
 
 
-def _write_blocks(chunks: Iterable[str], write) -> None:
+def _write_blocks(chunks: Iterable[str], write, where: str) -> None:
+    """``write`` the chunks joined in blocks; a failing write is one line, exit 2."""
     block: list[str] = []
     size = 0
     for chunk in chunks:
         block.append(chunk)
         size += len(chunk)
         if size >= WRITE_BLOCK:
-            write("".join(block))
+            _write(write, "".join(block), where)
             block, size = [], 0
     if block:
-        write("".join(block))
+        _write(write, "".join(block), where)
+
+
+def _write(write, text: str, where: str) -> None:
+    try:
+        write(text)
+    except OSError as error:
+        fail(f"cannot write the report to {where}: {error.strerror or error}")
 
 
 MODEL_OPTION = click.option(

@@ -45,8 +45,8 @@ STDIN_NAME = "<stdin>"
               help="Write the report to FILE instead of standard output ('-': stdout); "
                    "the old FILE stays whole until the new report replaces it.")
 @click.option("-j", "--jobs", type=click.IntRange(min=1), default=None,
-              help="Processes checking designs; a catalog that takes less than about half "
-                   "a second is checked in one.  [default: all cores]")
+              help="Processes checking designs; a catalog that takes less than about "
+                   "0.2 s is checked in one.  [default: all cores]")
 @click.option("--views", "views_dir", metavar="DIR", default=None,
               help="Also write a view of each design there, DIR/<name>-view.png (needs "
                    "the export extra).")

@@ -210,9 +210,9 @@ def test_a_small_catalog_is_checked_in_one_process(calls, tmp_path):
 
 
 def test_a_slow_catalog_goes_to_workers(calls, tmp_path, monkeypatch):
-    """Designs of 30 ms of CPU each: after PARALLEL_AFTER (0.25 s, about 9 designs after
-    the first) the 10 left would take 0.3 s more, so they go to workers: the parent checks
-    only some of the 20 files, and the report is the one of a single process."""
+    """Designs of 30 ms of CPU each: after PARALLEL_AFTER (0.1 s, about 4 designs after
+    the first) the 15 left would take 0.45 s more, so they go to workers: the parent
+    checks only some of the 20 files, and the report is the one of a single process."""
     paths = write(tmp_path, *[f"valid{i:02d}.yaml" for i in range(20)])
     fake = sys.modules["furncheck.check"]
     fast = fake.check_file

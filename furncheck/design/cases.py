@@ -19,7 +19,6 @@ include that is not a list of case names, a case mapping with unknown keys or no
 
 from __future__ import annotations
 
-import difflib
 from dataclasses import dataclass
 from typing import Any
 
@@ -30,6 +29,7 @@ from furncheck.design.model import Load, LoadCase, Plank
 from furncheck.design.source import _child, _quote
 from furncheck.design.values import (
     _describe,
+    _did_you_mean,
     _Doc,
     _identifier,
     _plank_ref,
@@ -134,10 +134,8 @@ def _check_included_names(doc: _Doc, case: _WrittenCase, by_name: dict[str, _Wri
             continue
         if name == DEFAULT_CASE and not has_default:
             doc.fail(key, 'unknown load case "default": the file has no top-level "loads"')
-        close = difflib.get_close_matches(name, list(by_name), n=1)
-        hint = f" (did you mean {_quote(close[0])}?)" if close else ""
-        doc.fail(key, f"unknown load case {_quote(name)}{hint}; cases: "
-                      f"{', '.join(by_name)}")
+        doc.fail(key, f"unknown load case {_quote(name)}{_did_you_mean(name, by_name)}; "
+                      f"cases: {', '.join(by_name)}")
 
 
 def _refuse_cycles(doc: _Doc, written: list[_WrittenCase],

@@ -17,13 +17,11 @@ in ``furncheck.design.load``, which also uses the message helpers at the end of 
 from __future__ import annotations
 
 import codecs
-import json
 import os
 import re
 import stat
-from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import yaml
 
@@ -107,8 +105,7 @@ def _checked_text(text: str, source: str) -> str:
 
 # --- step 2a: YAML text -> tree -----------------------------------------------------------------
 
-@dataclass(frozen=True)
-class _Scalar:
+class _Scalar(NamedTuple):
     """A YAML scalar as written: its text, and ``plain`` when it was not quoted (so its
     meaning, number, boolean, null or text, is decided by where it stands)."""
 
@@ -119,14 +116,17 @@ class _Scalar:
 _NO_DOCUMENT = object()
 
 
-@dataclass
 class _Frame:
-    """An open YAML mapping or list while its events are read."""
+    """An open YAML mapping or list while its events are read: ``key`` a mapping's key
+    waiting for its value, ``key_lines`` its keys' lines.  (The two classes here are a
+    named tuple and a plain class, not dataclasses, which cost more to create on import:
+    they are on the path of every cold ``furncheck validate``.)"""
 
-    value: dict | list
-    path: str
-    key: str | None = None            # mapping: key waiting for its value
-    key_lines: dict | None = None     # mapping: key -> line
+    __slots__ = ("value", "path", "key", "key_lines")
+
+    def __init__(self, value: dict | list, path: str, key: str | None = None,
+                 key_lines: dict | None = None):
+        self.value, self.path, self.key, self.key_lines = value, path, key, key_lines
 
 
 def _read_yaml(text: str, source: str) -> tuple[Any, dict[str, int]]:
@@ -278,6 +278,8 @@ def _json_constant(name: str) -> float:
 
 def _read_json(text: str, source: str) -> Any:
     """Tree of dicts, lists, str, float (every number), bool and None."""
+    import json  # for JSON designs only: YAML is the common case
+
     try:
         return json.loads(text, object_pairs_hook=_json_object, parse_constant=_json_constant,
                           parse_int=float, parse_float=float)

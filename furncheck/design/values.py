@@ -7,7 +7,6 @@ units).  The schema that uses them is ``load`` (and ``cases`` for the loads)."""
 
 from __future__ import annotations
 
-import difflib
 import math
 import re
 from dataclasses import dataclass
@@ -149,9 +148,17 @@ def _describe(node: Any) -> str:
 
 
 def _unknown_key_message(name: str, allowed: tuple[str, ...]) -> str:
-    close = difflib.get_close_matches(name, allowed, n=1)
-    hint = f" (did you mean {_quote(close[0])}?)" if close else ""
-    return f"unknown key {_quote(name)}{hint}; allowed keys: {', '.join(allowed)}"
+    return f"unknown key {_quote(name)}{_did_you_mean(name, allowed)}; allowed keys: " \
+           f"{', '.join(allowed)}"
+
+
+def _did_you_mean(name: str, choices) -> str:
+    """`` (did you mean "x"?)`` with the closest of ``choices``, or '' (difflib is imported
+    for the message only: a file without mistakes never needs it)."""
+    import difflib
+
+    close = difflib.get_close_matches(name, list(choices), n=1)
+    return f" (did you mean {_quote(close[0])}?)" if close else ""
 
 
 # --- quantities: SI values from the file's units -----------------------------------------------
@@ -212,7 +219,5 @@ def _plank_ref(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank]) -> Plank
     """The plank that ``node`` names."""
     name = doc.text(node, key)
     if name not in by_id:
-        close = difflib.get_close_matches(name, list(by_id), n=1)
-        hint = f" (did you mean {_quote(close[0])}?)" if close else ""
-        doc.fail(key, f"unknown plank {_quote(name)}{hint}")
+        doc.fail(key, f"unknown plank {_quote(name)}{_did_you_mean(name, by_id)}")
     return by_id[name]

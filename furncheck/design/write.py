@@ -8,7 +8,6 @@ the written text equals the design up to float round-off.
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Any
 
@@ -68,6 +67,8 @@ def design_text(design: Design, fmt: str) -> str:
     """The design file's text: ``fmt`` 'yaml' or 'json'."""
     doc = design_to_document(design)
     if fmt == "json":
+        import json  # for JSON files only: keeps ``import furncheck.design`` light
+
         return json.dumps(doc, indent=2, ensure_ascii=False) + "\n"
     return yaml.dump(doc, Dumper=_Dumper, sort_keys=False, default_flow_style=None,
                      allow_unicode=True, width=100)

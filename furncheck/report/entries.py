@@ -10,18 +10,16 @@ together.  Only the standard library is imported here.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Any
+from typing import Any, NamedTuple
 
 from furncheck import exitcodes
 from furncheck.result import DesignReport
 
 
-@dataclass(frozen=True)
-class Entry:
+class Entry(NamedTuple):
     """One design's verdict (``valid``: as ``DesignReport.valid``; ``error``: whether it
     could not be read or checked) and its ``piece`` of the report, made by the reporter's
-    ``piece``."""
+    ``piece``.  (A named tuple: cheap to make, to pickle and to import.)"""
 
     valid: bool | None
     error: bool
