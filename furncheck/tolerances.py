@@ -201,6 +201,12 @@ DENSE_PLANKS_MAX = 360
 planks) are condensed through the planks with a dense joint stiffness matrix
 (``statics.condense._PlankCondensation``); larger ones through the sparse mixed system."""
 
+CONDENSED_DENSE_BYTES = 32 * 2 ** 20
+"""Largest dense X = A_ii^-1 A_ig (bytes) that a condensation keeps (the catalog's take a
+few MB); a larger one (a 2,000-plank wall's: 47,580 x 246, 94 MB, and as much again for
+A_ig made dense) is never stored: S0 is summed a block of its columns at a time and
+X x_g solved for when needed (``statics.condense._implicit``)."""
+
 MECHANISM_RCOND = 1e-10
 """Smallest singular value (relative) of a component's ground-support stiffness below
 which the component is a mechanism (free to move)."""

@@ -13,6 +13,7 @@ is read once per model (``_layout``, kept in ``model.plank_cache``).
 
 from __future__ import annotations
 
+import bisect
 from dataclasses import dataclass
 
 import numpy as np
@@ -231,24 +232,66 @@ def _carrying_neighbours(model: StaticsModel) -> list[set[int]]:
     cached = model.plank_cache.get("carrying")
     if cached is not None:
         return cached
-    n = len(model.planks)
+    pairs = model.node_plank[model.joint_nodes].reshape(-1, 2).tolist()
+    carrying = carriers(len(model.planks), pairs, {int(k) for k in model.contact_plank})
+    model.plank_cache["carrying"] = carrying
+    return carrying
+
+
+def carriers(n: int, pairs: list, grounded: set[int]) -> list[set[int]]:
+    """Per plank P of n, its neighbours (``pairs``: jointed planks (a, b)) that still reach
+    a plank of ``grounded`` other than P when P is taken away.
+
+    That is reaching the ground node, joined to every grounded plank, in the graph without
+    P, which one depth-first search from the ground node answers for every P at once
+    (the articulation-point search, linear in planks and joints): a neighbour found before
+    P is its ancestor and reaches the ground above P; one found after P lies in the subtree
+    of a child c of P, which is cut off when nothing in it reaches above P (low[c] >=
+    disc[P]).  A plank whose part stands on nothing has no carrier."""
     neighbours: list[set[int]] = [set() for _ in range(n)]
-    for nodes in model.joint_nodes:
-        a, b = (int(model.node_plank[node]) for node in nodes)
+    for a, b in pairs:
         neighbours[a].add(b)
         neighbours[b].add(a)
-    grounded = {int(k) for k in model.contact_plank}
+    root = n
+    adjacency = [sorted(others) for others in neighbours] + [sorted(grounded)]
+    for k in grounded:
+        adjacency[k].append(root)
+    disc, low = [-1] * (n + 1), [0] * (n + 1)
+    parent, size = [-1] * (n + 1), [1] * (n + 1)
+    children: list[list[int]] = [[] for _ in range(n + 1)]
+    disc[root], time = 0, 1
+    stack = [(root, iter(adjacency[root]))]
+    while stack:
+        v, rest = stack[-1]
+        for w in rest:
+            if disc[w] < 0:
+                parent[w] = v
+                children[v].append(w)
+                disc[w] = low[w] = time
+                time += 1
+                stack.append((w, iter(adjacency[w])))
+                break
+            low[v] = min(low[v], disc[w])
+        else:
+            stack.pop()
+            if stack:
+                up = parent[v]
+                low[up] = min(low[up], low[v])
+                size[up] += size[v]
     carrying: list[set[int]] = []
     for removed in range(n):
-        reached = {k for k in grounded if k != removed}
-        frontier = list(reached)
-        while frontier:
-            k = frontier.pop()
-            for other in neighbours[k] - reached - {removed}:
-                reached.add(other)
-                frontier.append(other)
-        carrying.append(neighbours[removed] & reached)
-    model.plank_cache["carrying"] = carrying
+        found: set[int] = set()
+        if disc[removed] >= 0:
+            below = children[removed]                   # in order of discovery
+            starts = [disc[c] for c in below]
+            for other in neighbours[removed]:
+                if disc[other] < disc[removed]:
+                    found.add(other)
+                    continue
+                child = below[bisect.bisect_right(starts, disc[other]) - 1]
+                if low[child] < disc[removed]:
+                    found.add(other)
+        carrying.append(found)
     return carrying
 
 

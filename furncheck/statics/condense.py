@@ -34,7 +34,8 @@ class _Condensed:
     ground: np.ndarray           # indices of g
     inner: np.ndarray            # indices of i
     coupling: object             # the i-g block (sparse or dense)
-    reduced: np.ndarray          # X
+    reduced: np.ndarray | None   # X; None for a large system (``_implicit``): X x_g is
+                                 # then solved for when needed, never stored
     schur: np.ndarray            # S0
     contact_block: np.ndarray    # per contact, number of its plank's 6-block in x_g
     plank_offsets: np.ndarray    # offset of each grounded plank's block in x_g
@@ -75,7 +76,7 @@ class _Condensation(_Condensed):
         """The full unknown vector [q; h] (or k of them, columns) from x_g."""
         x = np.zeros((self.size,) + ground.shape[1:])
         x[self.ground] = ground
-        x[self.inner] = inner_part - self.reduced @ ground
+        x[self.inner] = inner_part - _times_reduced(self, ground)
         return x
 
 
@@ -127,7 +128,7 @@ class _PlankCondensation(_Condensed):
         parts = np.zeros((n, 2) + shape)          # [0; y] and [x_g; -X x_g] side by side
         parts[self.inner, 0] = inner
         parts[self.ground, 1] = ground
-        parts[self.inner, 1] = -(self.reduced @ ground)
+        parts[self.inner, 1] = -_times_reduced(self, ground)
         deviations = self.model.deviations(parts.reshape((n, -1))).reshape((-1, 2) + shape)
         h = self.model.joint_wrench((deviations[:, 0] - r_h) + deviations[:, 1])
         q = parts[:, 0] + parts[:, 1]
@@ -192,6 +193,15 @@ def _condense_beams(model: StaticsModel, ground: np.ndarray,
     K = (model.beam_stiffness + (G.T @ W @ G)).tocsc()
     inner = _others(n, ground)
     coupling_sparse = K[inner][:, ground]
+    if _implicit(len(inner), len(ground)):
+        lu = _factor(K[inner][:, inner].tocsc(),
+                     np.asarray(coupling_sparse.sum(axis=1)).ravel()) if len(inner) else None
+        if lu is None and len(inner):
+            return None
+        coupling = coupling_sparse.tocsr()
+        schur = _blocked_schur(K[ground][:, ground].toarray(), coupling, lu)
+        return _PlankCondensation(ground, inner, coupling, None, schur, contact_block,
+                                  plank_offsets, n + m, model=model, lu=lu)
     coupling = coupling_sparse.toarray()
     reduced = np.zeros((len(inner), len(ground)))
     lu = None
@@ -204,6 +214,39 @@ def _condense_beams(model: StaticsModel, ground: np.ndarray,
     schur = K[ground][:, ground].toarray() - coupling.T @ reduced
     return _PlankCondensation(ground, inner, coupling, reduced, schur, contact_block,
                               plank_offsets, n + m, model=model, lu=lu)
+
+
+def _implicit(n_inner: int, n_ground: int) -> bool:
+    """Whether X = A_ii^-1 A_ig of a condensation would take more than CONDENSED_DENSE_BYTES
+    as a dense matrix: then it is never stored (``_blocked_schur``, ``_times_reduced``)."""
+    return 8 * n_inner * n_ground > tol.CONDENSED_DENSE_BYTES
+
+
+def _blocked_schur(ground_block: np.ndarray, coupling, lu) -> np.ndarray:
+    """S0 = A_gg - A_ig^T A_ii^-1 A_ig from the sparse coupling A_ig, a few columns of X at
+    a time (at most CONDENSED_DENSE_BYTES of them)."""
+    schur = ground_block
+    n_inner, n_ground = coupling.shape
+    if not n_inner or not n_ground:
+        return schur
+    width = max(1, tol.CONDENSED_DENSE_BYTES // (8 * n_inner))
+    columns = coupling.tocsc()
+    transposed = coupling.T.tocsr()
+    for start in range(0, n_ground, width):
+        block = slice(start, min(start + width, n_ground))
+        reduced = lu.solve(columns[:, block].toarray())
+        schur[:, block] -= transposed @ reduced
+    return schur
+
+
+def _times_reduced(condensed: _Condensed, ground: np.ndarray) -> np.ndarray:
+    """X x_g (x_g (n_g,) or (n_g, k)): by the stored X, or for an implicit condensation by
+    one more solve, A_ii^-1 (A_ig x_g)."""
+    if condensed.reduced is not None:
+        return condensed.reduced @ ground
+    if not len(condensed.inner):
+        return np.zeros((0,) + ground.shape[1:])
+    return condensed.lu.solve(np.ascontiguousarray(condensed.coupling @ ground))
 
 
 def _condense(model: StaticsModel) -> _Condensed | None:
@@ -235,6 +278,10 @@ def _condense(model: StaticsModel) -> _Condensed | None:
         lu = _factor(permuted[:ni, :ni].tocsc(), np.asarray(coupling.sum(axis=1)).ravel())
         if lu is None:
             return None
+        if _implicit(ni, len(ground)):
+            schur = _blocked_schur(permuted[ni:, ni:].toarray(), coupling.tocsr(), lu)
+            return _Condensation(ground, inner, coupling.tocsr(), None, schur, contact_block,
+                                 plank_offsets, n + m, lu=lu)
         if len(ground):
             reduced = lu.solve(coupling.toarray())
     schur = permuted[ni:, ni:].toarray() - np.asarray(coupling.T @ reduced)
