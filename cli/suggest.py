@@ -41,8 +41,10 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
     --out validates as valid.
 
     Exit code 0: done (also when the design is valid already, or no suggestion was
-    found); 2: unreadable or ill-formed design, unknown DOF or plank, unwritable --out.
+    found); 2: unreadable or ill-formed design, unknown DOF or plank, unwritable --out,
+    a design too big to check.
     """
+    from furncheck.errors import DesignTooBig
     from furncheck.export.suggestions import ExportUnavailable, prepare_out_dir, write_files
     from furncheck.report.suggestions import render_json, render_text
     from furncheck.suggest import suggest_design
@@ -54,7 +56,10 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
         problem = prepare_out_dir(out_dir)
         if problem:
             fail(f"cannot write suggestions to {out_dir}: {problem}")
-    result = suggest_design(loaded, max_dofs, max_suggestions, locked)
+    try:
+        result = suggest_design(loaded, max_dofs, max_suggestions, locked)
+    except DesignTooBig as error:
+        fail(str(error))
     written = {}
     if out_dir is not None:
         try:

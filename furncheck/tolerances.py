@@ -207,6 +207,40 @@ few MB); a larger one (a 2,000-plank wall's: 47,580 x 246, 94 MB, and as much ag
 A_ig made dense) is never stored: S0 is summed a block of its columns at a time and
 X x_g solved for when needed (``statics.condense._implicit``)."""
 
+SENSITIVITY_BLOCK_BYTES = 32 * 2 ** 20
+"""The force sensitivity (eq. 6) solves its DOFs' right-hand sides a block at a time, at
+most this many bytes of them (the catalog's designs: all DOFs in one block; a 2,000-plank
+wall's 71,346 unknowns: 58 DOFs a block), so that no dense all-DOF x all-unknown matrix is
+made (``sensitivity.Linearization.derivatives``)."""
+
+PLANK_BATCH = 4096
+"""Most planks whose sag and stress are read in one stacked pass of the sensitivity
+(``bending.plank_results_many``: about 30 kB of temporaries per plank; 224 DOFs of the
+28-plank cabinet are 6,272 planks)."""
+
+MAX_GROUND_UNKNOWNS = 3600
+"""Most unknowns of a design's dense contact system (six per node a ground contact sits
+on: 600 planks standing on the floor): its condensed matrix, the factors of its contact
+states and the friction phase's contact maps are dense, about ten such matrices of
+8 n^2 bytes, 1 GB at this size.  A design with more is refused before anything is solved
+(``check.refuse_too_big``; measured on a wall of 800 sides in a row, 4,800 unknowns:
+1.25 GB to validate)."""
+
+SUGGEST_ALL_PLANKS = 128
+"""``suggest`` considers every DOF of a design with at most this many planks (1,024 DOFs;
+the catalog's and the paper's designs have at most 28); in a larger one only the DOFs of
+the SUGGEST_NEAR_PLANKS planks nearest its violations (``neighbourhood``)."""
+
+SUGGEST_NEAR_PLANKS = 12
+"""Planks whose DOFs a big design's suggestions may change (``neighbourhood``): the ones
+its violations name and those nearest them (96 DOFs)."""
+
+SENSITIVITY_ALL_PLANKS = 128
+"""The force sensitivity of an elastic model of at most this many planks reads every
+plank's sag and stress rate; of a larger one only those of the planks its DOFs change and
+of the planks jointed to them (``sensitivity.Linearization._planks_read``): reading a
+plank costs about 0.25 ms per DOF, all 2,000 of a shelving wall half a second."""
+
 MECHANISM_RCOND = 1e-10
 """Smallest singular value (relative) of a component's ground-support stiffness below
 which the component is a mechanism (free to move)."""

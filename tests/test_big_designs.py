@@ -4,12 +4,16 @@ that carry each plank), and the size guard of the commands."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from furncheck.geometry.boxes import meeting_pairs, overlapping_pairs
+
+DESIGNS = Path(__file__).resolve().parent.parent / "designs"
 
 
 def _all_pairs(lo, hi, slack, strict):
@@ -134,3 +138,131 @@ def test_implicit_condensation_solves_as_the_stored_one(model, monkeypatch):
                         solve_system(statics_model, statics.holding, rhs)))
     for stored, implicit in zip(*results):
         assert np.allclose(implicit, stored, rtol=1e-9, atol=1e-9 * np.abs(stored).max())
+
+
+def _linearized(design):
+    from furncheck.sensitivity import Linearization
+
+    return Linearization(design, design.load_cases[0], bolted=True, one_sided=True)
+
+
+def _rates(sens):
+    return [sens.joint_wrenches, sens.contact_forces, sens.joint_lengths, sens.plank_sags,
+            sens.plank_spans, sens.plank_stresses]
+
+
+def test_sensitivity_in_blocks_is_the_sensitivity_at_once(monkeypatch):
+    """The elastic cabinet's 224 DOFs solved one DOF per block (a block limit of 1 byte)
+    and its planks read 28 at a time (a batch of 28 planks) give the rates of one block
+    and one stacked pass: every DOF's right-hand side, solve and planks are its own, the
+    blocks only bound the memory.  Equal to round-off: a solve of one right-hand side
+    rounds differently from a solve of 224 (measured: 1.3e-12 of the largest joint rate,
+    4e-11 of the largest stress rate, whose one-sided difference over the small assembly
+    step amplifies round-off), so within 1e-9 of each kind's largest rate; the catalog's
+    designs fit one block and their JSON stays the same byte for byte."""
+    from furncheck import tolerances as tol
+    from furncheck.design import load_design
+    from furncheck.dofs import all_dofs
+
+    design = load_design(str(DESIGNS / "cabinet-28.yaml"))
+    dofs = all_dofs(design)
+    whole = _linearized(design).derivatives(dofs)
+    monkeypatch.setattr(tol, "SENSITIVITY_BLOCK_BYTES", 1)
+    monkeypatch.setattr(tol, "PLANK_BATCH", 28)
+    blocked = _linearized(design).derivatives(dofs)
+    assert blocked.dofs == whole.dofs and len(whole.dofs) > 100
+    for a, b in zip(_rates(blocked), _rates(whole)):
+        assert a.shape == b.shape
+        assert np.abs(a - b).max(initial=0.0) <= 1e-9 * np.abs(b).max(initial=0.0)
+
+
+def test_plank_rates_of_a_big_model_only_near_its_dofs(monkeypatch):
+    """Above SENSITIVITY_ALL_PLANKS (forced to 0 here) the sag and stress rates are read
+    only for the planks the DOFs change and the planks jointed to them.  Moving shelf1_1
+    of a 3-bay, 3-row wall up changes that shelf alone (its ends slide along its sides),
+    so its rates and its two sides' (side1, side2) are read, equal to the full read's,
+    and every other plank's are 0 (in the full read the other planks' sag and stress
+    move a little with the wall; no span but the moved shelf's changes); the joint and
+    contact rates are the full ones."""
+    from furncheck import tolerances as tol
+    from furncheck.dofs import parse_dof
+
+    design = _shelving(3, 3, "elastic")
+    dofs = [parse_dof(design, "shelf1_1.z")]
+    linear = _linearized(design)
+    whole = linear.derivatives(dofs)
+    monkeypatch.setattr(tol, "SENSITIVITY_ALL_PLANKS", 0)
+    near = _linearized(design).derivatives(dofs)
+    local = [design.planks[i].id for i in linear.model.planks]
+    read = [local.index(name) for name in ("side1", "side2", "shelf1_1")]
+    others = [k for k in range(len(local)) if k not in read]
+    for a, b in zip(_rates(near)[3:], _rates(whole)[3:]):
+        assert np.allclose(a[:, read], b[:, read], rtol=1e-9, atol=0.0)
+        assert not np.any(a[:, others])
+    assert np.any(whole.plank_sags[:, others]) and np.any(whole.plank_stresses[:, others])
+    for a, b in zip(_rates(near)[:3], _rates(whole)[:3]):
+        assert np.array_equal(a, b)
+
+
+def test_nearest_planks_by_joint_rings_then_distance():
+    """Around shelf1_1 of a 3-bay, 3-row wall (bays 412 mm apart, shelves 250 mm apart):
+    ring 0 the shelf, ring 1 its two sides, ring 2 the shelves on those sides, nearest
+    first: the shelves above and below it in its bay (250 mm) before the shelves at its
+    height in the next bays (412 mm); five planks are those, sorted by index."""
+    from furncheck.geometry import analyze
+    from furncheck.neighbourhood import nearest_planks
+
+    design = _shelving(3, 3, "rigid")
+    ids = [p.id for p in design.planks]
+    near = nearest_planks(design, analyze(design), [ids.index("shelf1_1")], 5)
+    assert sorted(ids[k] for k in near) == sorted(
+        ["shelf1_1", "side1", "side2", "shelf1_0", "shelf1_2"])
+    assert near == sorted(near)
+
+
+def test_big_design_suggestions_change_only_planks_near_the_violation(monkeypatch):
+    """With the big-design limit forced down (SUGGEST_ALL_PLANKS 4, SUGGEST_NEAR_PLANKS
+    3), an 11-plank wall whose middle shelf sags under 20 kg gets suggestions that change
+    only that shelf and its two sides, among them the same widening of the shelf as the
+    search over every DOF finds (the widening's direction and line search involve that
+    shelf alone, so restricting the others away changes nothing of it)."""
+    from furncheck import tolerances as tol
+    from furncheck.suggest import suggest_design
+
+    design = _shelving(2, 4, "elastic", heavy_kg=20.0)
+    everything = suggest_design(design)
+    monkeypatch.setattr(tol, "SUGGEST_ALL_PLANKS", 4)
+    monkeypatch.setattr(tol, "SUGGEST_NEAR_PLANKS", 3)
+    near = suggest_design(design)
+    assert [v.where for v in near.report.violations] == ["shelf1_2"]
+    changed = {name.split(".")[0] for s in near.suggestions for name in s.dofs}
+    assert changed and changed <= {"shelf1_2", "side1", "side2"}
+    widen = [s for s in near.suggestions if s.dofs == ("shelf1_2.width",)]
+    assert widen and widen[0].changes == next(
+        s.changes for s in everything.suggestions if s.dofs == ("shelf1_2.width",))
+
+
+@pytest.mark.parametrize("command", [["validate"], ["suggest"], ["range", "top.z"]])
+def test_a_design_too_big_is_refused_in_one_line_with_exit_2(command, monkeypatch):
+    """The splayed coffee table stands on four legs, each on one node of the ground
+    (rigid: one per plank; elastic: the leg's foot), 4 x 6 = 24 unknowns of the dense
+    contact system.  With the limit set to 18 (three nodes) every command refuses it
+    before solving: one line naming the file, the 4 nodes and 24 unknowns, exit code 2,
+    no traceback."""
+    from click.testing import CliRunner
+
+    from furncheck import tolerances as tol
+    from furncheck.cli.main import main
+
+    monkeypatch.setattr(tol, "MAX_GROUND_UNKNOWNS", 18)
+    path = str(DESIGNS / "coffee-table-splayed.yaml")
+    result = CliRunner().invoke(main, [command[0], path, *command[1:]])
+    assert result.exit_code == 2
+    assert result.exception is None or isinstance(result.exception, SystemExit)
+    lines = result.output.strip().splitlines()
+    message = next(line for line in lines if "too big to check" in line)
+    assert path in message
+    assert "sit on 4 nodes, a dense contact system of 24 unknowns" in message
+    assert "at most 18, 3 nodes" in message
+    assert "Traceback" not in result.output
+

@@ -29,6 +29,7 @@ from furncheck.dofs import (
 from furncheck.edit_check import check_edit_many
 from furncheck.geometry import EditMargins, Geometry, analyze, edit_margins_many
 from furncheck.ranges.estimates import _Probe
+from furncheck.statics import build_model
 
 SEARCHES_IN_FLIGHT = 64
 """Most searches (sides of DOFs) advanced together: their evaluations are batched, their
@@ -71,7 +72,8 @@ class Evaluator:
         self.geometry: Geometry = analyze(design)
         self.frame: Structure = structure(design, self.geometry)
         self.locked = tuple(parse_dof(design, name) for name in locked)
-        self.starts = holding_states(design, self.geometry)
+        self.model = build_model(design, self.geometry)     # shared by the design's own
+        self.starts = holding_states(design, self.geometry, self.model)   # checks
         self._kept: dict[Dof, dict[float, tuple]] = {}
         self._edits: dict[Dof, dict[float, Design]] = {}
         self.evaluations = 0

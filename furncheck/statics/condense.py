@@ -249,6 +249,16 @@ def _times_reduced(condensed: _Condensed, ground: np.ndarray) -> np.ndarray:
     return condensed.lu.solve(np.ascontiguousarray(condensed.coupling @ ground))
 
 
+def ground_unknowns(model: StaticsModel) -> int:
+    """Unknowns of the condensed system (rows of S0, the dense matrix that every contact
+    state factors): six per node that a ground contact sits on or a resting corner rests
+    on, the g of ``_condense``."""
+    nodes = model.contact_node
+    if model.rest_node is not None:
+        nodes = np.concatenate([nodes, model.rest_node[model.rest_rows]])
+    return 6 * len(np.unique(nodes))
+
+
 def _condense(model: StaticsModel) -> _Condensed | None:
     """Build the condensation; None if the contact-free part is singular (a plank that
     is neither grounded nor jointed to a grounded plank cannot be held).  Designs of up

@@ -41,6 +41,10 @@ of the largest rate of any DOF."""
 _CHUNK = 4096
 """Combinations evaluated per vectorized batch (bounds memory: rows x chunk x m)."""
 
+_CHUNK_BYTES = 64 * 2 ** 20
+"""...and fewer when a batch's rates (rows x chunk x m) would take more than this (a
+2,000-plank design has 12,000 margins: 4,096 triples of them would take 1.2 GB)."""
+
 
 @dataclass(frozen=True)
 class Candidate:
@@ -74,8 +78,9 @@ def candidates(margins: Margins, max_dofs: int) -> list[Candidate]:
     found: set[tuple[int, ...]] = set()
     for m in range(1, max_dofs + 1):
         combos = _combinations(relevant, m, found)
-        for start in range(0, len(combos), _CHUNK):
-            chunk = combos[start:start + _CHUNK]
+        size = max(1, min(_CHUNK, _CHUNK_BYTES // (8 * len(rows) * m)))
+        for start in range(0, len(combos), size):
+            chunk = combos[start:start + size]
             for candidate in _evaluate(rates, values, violated, deficit, chunk):
                 kept.append(candidate)
                 found.add(candidate.dofs)

@@ -21,6 +21,7 @@ import numpy as np
 from furncheck.design.model import Design
 from furncheck.dofs import Blocked, Dof, OutOfReach, all_dofs, structure
 from furncheck.geometry import Geometry
+from furncheck.neighbourhood import suggestion_dofs
 from furncheck.result import DesignReport
 from furncheck.suggest.candidates import MAX_STEP, Candidate, candidates
 from furncheck.suggest.edits import Editor, utilization_margin
@@ -88,7 +89,9 @@ class ContinuousSearch:
         self.report = report
         self.editor = Editor(design, geometry, structure(design, _standing(geometry)), locked)
         self.margins = Margins(design, geometry, report, self.editor,
-                               [dof for dof in all_dofs(design) if dof not in locked])
+                               suggestion_dofs(design, geometry, report.violations,
+                                               [dof for dof in all_dofs(design)
+                                                if dof not in locked]))
         self.searched = 0
 
     @property
