@@ -71,11 +71,12 @@ def _run(tree: Path, args: list[str], cap: int) -> tuple[float, float, str]:
     error = child.stderr.read().decode(errors="replace").strip().splitlines()
     child.stderr.close()
     code = os.waitstatus_to_exitcode(status)
-    if code in (0, 1):
-        outcome = f"exit {code}"
-    else:
-        last = error[-1] if error else ""
-        outcome = f"exit {code}: {last[:70]}"
+    outcome = f"exit {code}"
+    if code < 0:
+        outcome = f"killed by signal {-code}"
+    elif code not in (0, 1) or any(line.startswith("Traceback") for line in error):
+        kind, _, message = (error[-1] if error else "").rpartition(": ")
+        outcome += f": {kind.rsplit('.', 1)[-1]}: {message}" if kind else f": {message}"
     return seconds, usage.ru_maxrss / 1024.0, outcome
 
 
@@ -113,7 +114,8 @@ def main() -> None:
             runs: dict[str, list] = {label: [] for label, _ in trees}
             for _ in range(args.repeat):
                 for label, tree in trees:
-                    if any(run[2] not in ("exit 0", "exit 1") for run in runs[label]):
+                    if any(run[2] not in ("exit 0", "exit 1", "exit 2")
+                           for run in runs[label]):
                         continue        # failed once: not again
                     runs[label].append(_run(tree, argv, args.cap))
             for label, _ in trees:

@@ -218,13 +218,21 @@ PLANK_BATCH = 4096
 (``bending.plank_results_many``: about 30 kB of temporaries per plank; 224 DOFs of the
 28-plank cabinet are 6,272 planks)."""
 
+ANCHORED_CACHE_BYTES = 256 * 2 ** 20
+"""Most bytes of factored contact-state matrices a statics model keeps for its next
+solves (``statics.condense.anchored_system``; the least recently used go first): all
+of them for the catalog's designs (a few kB each), one or two of a design standing on
+600 planks (2 x 104 MB each)."""
+
 MAX_GROUND_UNKNOWNS = 3600
 """Most unknowns of a design's dense contact system (six per node a ground contact sits
-on: 600 planks standing on the floor): its condensed matrix, the factors of its contact
-states and the friction phase's contact maps are dense, about ten such matrices of
-8 n^2 bytes, 1 GB at this size.  A design with more is refused before anything is solved
-(``check.refuse_too_big``; measured on a wall of 800 sides in a row, 4,800 unknowns:
-1.25 GB to validate)."""
+on: 600 planks standing on the floor).  Its condensed matrix, the factors of its contact
+states and the friction phase's contact maps are dense, 8 n^2 bytes each (104 MB at this
+size), so memory grows with the square of the planks on the floor.  A design with more is
+refused before anything is solved (``check.refuse_too_big``).  Measured on walls of sides
+standing in a row (one shelf between neighbours, one loaded to sag): 600 sides (3,600
+unknowns) take 0.75 GB to validate and 1.07 GB to suggest; 800 sides 1.25 GB to
+validate; 1,001 sides 1.84 GB."""
 
 SUGGEST_ALL_PLANKS = 128
 """``suggest`` considers every DOF of a design with at most this many planks (1,024 DOFs;

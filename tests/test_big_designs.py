@@ -266,3 +266,58 @@ def test_a_design_too_big_is_refused_in_one_line_with_exit_2(command, monkeypatc
     assert "at most 18, 3 nodes" in message
     assert "Traceback" not in result.output
 
+
+
+def test_a_statics_model_is_freed_when_dropped():
+    """A solved model (its condensation, factored contact states, planks' layout) holds no
+    reference cycle: dropping the last reference frees it at once, not at the garbage
+    collector's next full pass (a big design's line search drops a model of hundreds of MB
+    per check)."""
+    import gc
+    import weakref
+
+    from furncheck.design import load_design
+    from furncheck.design.model import with_model
+    from furncheck.geometry import analyze
+    from furncheck.statics import build_model, solve_load_case
+
+    for model_name in ("elastic", "rigid"):
+        design = with_model(load_design(str(DESIGNS / "cabinet-28.yaml")), model_name)
+        geometry = analyze(design)
+        enabled = gc.isenabled()
+        gc.disable()
+        try:
+            model = build_model(design, geometry)
+            for case in design.load_cases:
+                solve_load_case(model, case)
+            alive = weakref.ref(model)
+            del model
+            assert alive() is None
+        finally:
+            if enabled:
+                gc.enable()
+
+
+def test_forgotten_contact_states_are_factored_again_to_the_same_numbers(monkeypatch):
+    """With room for one factored contact state only (ANCHORED_CACHE_BYTES 1), the
+    cabinet's four cases -- whose contact iterations meet several states -- solve to
+    exactly the forces of an unbounded cache: a forgotten state is factored again from the
+    same matrix."""
+    from furncheck import tolerances as tol
+    from furncheck.design import load_design
+    from furncheck.geometry import analyze
+    from furncheck.statics import build_model, solve_load_case
+
+    design = load_design(str(DESIGNS / "cabinet-28.yaml"))
+    geometry = analyze(design)
+    solved, kept = [], []
+    for limit in (tol.ANCHORED_CACHE_BYTES, 1):
+        monkeypatch.setattr(tol, "ANCHORED_CACHE_BYTES", limit)
+        model = build_model(design, geometry)
+        solved.append([solve_load_case(model, case) for case in design.load_cases])
+        kept.append(len(model.anchored_systems))
+    assert kept[0] > 1 and kept[1] == 1
+    for full, capped in zip(*solved):
+        assert full.stability == capped.stability
+        assert np.array_equal(full.joint_wrenches, capped.joint_wrenches)
+        assert np.array_equal(full.contact_forces, capped.contact_forces)

@@ -14,6 +14,7 @@ sensitivity analysis.
 from __future__ import annotations
 
 import functools
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -97,7 +98,10 @@ class _PlankCondensation(_Condensed):
     """
 
     factor: np.ndarray | None = None    # Cholesky factor of K_ii (the coupling is K_ig, dense)
-    model: StaticsModel | None = None    # its joint blocks apply G, G^T and W
+    model: StaticsModel | None = None    # its joint blocks apply G, G^T and W (a weak
+                                         # proxy: the model keeps its condensation, and a
+                                         # cycle would keep a big model's memory until the
+                                         # garbage collector's next full pass)
     lu: object = None                    # instead of ``factor``: SuperLU of a sparse K_ii
 
     def split(self, rhs: np.ndarray):
@@ -176,7 +180,7 @@ def _condense_planks(model: StaticsModel, ground: np.ndarray,
             reduced = _cholesky_solve(factor, coupling)
     schur = K[ni:, ni:] - coupling.T @ reduced
     return _PlankCondensation(ground, inner, coupling, reduced, schur, contact_block,
-                              plank_offsets, n + m, factor=factor, model=model)
+                              plank_offsets, n + m, factor=factor, model=weakref.proxy(model))
 
 
 def _condense_beams(model: StaticsModel, ground: np.ndarray,
@@ -201,7 +205,7 @@ def _condense_beams(model: StaticsModel, ground: np.ndarray,
         coupling = coupling_sparse.tocsr()
         schur = _blocked_schur(K[ground][:, ground].toarray(), coupling, lu)
         return _PlankCondensation(ground, inner, coupling, None, schur, contact_block,
-                                  plank_offsets, n + m, model=model, lu=lu)
+                                  plank_offsets, n + m, model=weakref.proxy(model), lu=lu)
     coupling = coupling_sparse.toarray()
     reduced = np.zeros((len(inner), len(ground)))
     lu = None
@@ -213,7 +217,7 @@ def _condense_beams(model: StaticsModel, ground: np.ndarray,
             reduced = lu.solve(coupling)
     schur = K[ground][:, ground].toarray() - coupling.T @ reduced
     return _PlankCondensation(ground, inner, coupling, reduced, schur, contact_block,
-                              plank_offsets, n + m, model=model, lu=lu)
+                              plank_offsets, n + m, model=weakref.proxy(model), lu=lu)
 
 
 def _implicit(n_inner: int, n_ground: int) -> bool:
@@ -513,10 +517,22 @@ def anchored_system(model: StaticsModel, holding: np.ndarray,
     model and contact state: the load cases of a design mostly start from the same state."""
     key = (holding.tobytes(), scale)
     systems = model.anchored_systems
-    if key not in systems:
-        matrix = _anchored_stiffness(model, holding, scale)
-        systems[key] = _Factored(matrix, _cholesky(matrix))
+    if key in systems:
+        systems[key] = systems.pop(key)         # the most recently used last
+        return systems[key]
+    matrix = _anchored_stiffness(model, holding, scale)
+    systems[key] = _Factored(matrix, _cholesky(matrix))
+    _trim(systems, 2 * matrix.nbytes)
     return systems[key]
+
+
+def _trim(systems: dict, each: int) -> None:
+    """Forget the least recently used factored systems beyond ANCHORED_CACHE_BYTES (each
+    takes ``each`` bytes, matrix and factor; the newest is always kept): a big design's
+    contact iterations meet many states of a matrix of tens of MB.  A forgotten state met
+    again is factored again, to the same numbers."""
+    while len(systems) > 1 and len(systems) * each > tol.ANCHORED_CACHE_BYTES:
+        del systems[next(iter(systems))]
 
 
 def _cholesky(matrix: np.ndarray) -> np.ndarray | None:
