@@ -13,7 +13,11 @@ commands run from that tree too, alternately with this one, so both meet the sam
 of a busy machine.
 
     python benchmarks/bench_big.py [--repeat N] [--old TREE] [--cap BYTES]
-                                   [--columns C] [--rows R]
+                                   [--columns C] [--rows R] [--scaling]
+
+``--scaling`` times ``validate`` alone on walls of about 250, 500, 1,000 and 2,000 planks
+in both models instead, with the exponent of time in planks between the two largest (the
+command's start, about 0.5 s, weighs on the smaller ones).
 """
 
 from __future__ import annotations
@@ -90,7 +94,12 @@ def main() -> None:
     parser.add_argument("--rows", type=int, default=49)
     parser.add_argument("--only", action="append", default=None, choices=list(COMMANDS),
                         help="run only these commands (repeatable)")
+    parser.add_argument("--scaling", action="store_true",
+                        help="validate walls of 250 to 2,000 planks, both models")
     args = parser.parse_args()
+    if args.scaling:
+        _scaling(args)
+        return
 
     sys.path.insert(0, str(HERE))
     sys.path.insert(0, str(TREE))
@@ -124,6 +133,52 @@ def main() -> None:
                 peak = statistics.median(r[1] for r in done)
                 print(f"| {name:<13} | {label:<7} | {seconds:>8.1f} | {peak:>13.0f} | "
                       f"{done[-1][2]} |", flush=True)
+
+
+SCALING_SIZES = ((10, 24), (20, 24), (20, 49), (40, 49))
+"""(columns, rows) of the walls of ``--scaling``: 251, 501, 1,001 and 2,001 planks."""
+
+
+def _scaling(args) -> None:
+    """``validate`` time and peak memory by wall size, both models, each tree; the
+    exponent k of time ~ planks^k between the two largest walls."""
+    import math
+
+    sys.path.insert(0, str(HERE))
+    sys.path.insert(0, str(TREE))
+    from shelving import shelving_wall
+
+    from furncheck.design import write_design
+
+    trees = [("this", TREE)] + ([("old", Path(args.old).resolve())] if args.old else [])
+    print(f"validate, medians of {args.repeat}\n")
+    print("| model   | planks | version | time (s) | peak RSS (MB) |")
+    print("|---------|-------:|---------|---------:|--------------:|")
+    with tempfile.TemporaryDirectory() as tmp:
+        paths = []
+        for columns, rows in SCALING_SIZES:
+            design = shelving_wall(columns, rows)
+            path = Path(tmp) / f"shelving-{len(design.planks)}.yaml"
+            write_design(design, str(path))
+            paths.append((len(design.planks), path))
+        for model in ("rigid", "elastic"):
+            times: dict[str, list[float]] = {label: [] for label, _ in trees}
+            for planks, path in paths:
+                argv = ["validate", str(path), "--format", "json", "--model", model]
+                runs: dict[str, list] = {label: [] for label, _ in trees}
+                for _ in range(args.repeat):
+                    for label, tree in trees:
+                        runs[label].append(_run(tree, argv, args.cap))
+                for label, _ in trees:
+                    seconds = statistics.median(r[0] for r in runs[label])
+                    peak = statistics.median(r[1] for r in runs[label])
+                    times[label].append(seconds)
+                    print(f"| {model:<7} | {planks:>6} | {label:<7} | {seconds:>8.2f} | "
+                          f"{peak:>13.0f} |", flush=True)
+            span = math.log(paths[-1][0] / paths[-2][0])
+            for label, _ in trees:
+                exponent = math.log(times[label][-1] / times[label][-2]) / span
+                print(f"| {model:<7} | exponent | {label:<7} | {exponent:>8.2f} | |")
 
 
 if __name__ == "__main__":

@@ -44,6 +44,7 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
     found); 2: unreadable or ill-formed design, unknown DOF or plank, unwritable --out,
     a design too big to check.
     """
+    from furncheck.check import refuse_too_big
     from furncheck.errors import DesignTooBig
     from furncheck.export.suggestions import ExportUnavailable, prepare_out_dir, write_files
     from furncheck.report.suggestions import render_json, render_text
@@ -57,9 +58,10 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
         if problem:
             fail(f"cannot write suggestions to {out_dir}: {problem}")
     try:
-        result = suggest_design(loaded, max_dofs, max_suggestions, locked)
+        refuse_too_big(loaded)
     except DesignTooBig as error:
         fail(str(error))
+    result = suggest_design(loaded, max_dofs, max_suggestions, locked)
     written = {}
     if out_dir is not None:
         try:

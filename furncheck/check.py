@@ -42,7 +42,6 @@ def check_design(design: Design, geometry: Geometry | None = None,
         return DesignReport(design=design.source, name=design.name, valid=False,
                             violations=tuple(violations), cases=cases, units=design.units)
     model = model or build_model(design, geometry)
-    refuse_too_big(design, model)
     cases = []
     for case in design.load_cases:
         statics = solve_load_case(model, case)
@@ -53,12 +52,20 @@ def check_design(design: Design, geometry: Geometry | None = None,
                         violations=tuple(violations), cases=tuple(cases), units=design.units)
 
 
-def refuse_too_big(design: Design, model) -> None:
-    """Raise DesignTooBig when the model's dense contact system would have more than
-    MAX_GROUND_UNKNOWNS unknowns (``condense.ground_unknowns``), before anything is
-    solved."""
+def refuse_too_big(design: Design, model: StaticsModel | None = None,
+                   geometry: Geometry | None = None) -> None:
+    """Raise DesignTooBig when the design's dense contact system would have more than
+    MAX_GROUND_UNKNOWNS unknowns (``condense.ground_unknowns``; ``model``, ``geometry``:
+    the design's, built here when not given), before anything is solved.  The commands
+    ask it of the design they are given (``check_file``, ``range``, ``suggest``), not of
+    the edits they check on the way."""
     from furncheck.statics.condense import ground_unknowns
 
+    if model is None:
+        geometry = geometry or analyze(design)
+        if not geometry.stands:         # its statics are not solved
+            return
+        model = build_model(design, geometry)
     unknowns = ground_unknowns(model)
     if unknowns > tol.MAX_GROUND_UNKNOWNS:
         raise DesignTooBig(design.source, unknowns, tol.MAX_GROUND_UNKNOWNS)
@@ -123,7 +130,6 @@ def holding_states(design: Design, geometry: Geometry, model: StaticsModel | Non
     equilibrium): the ``starts`` of ``is_valid`` for edits of this design (``model``: its
     statics model, if the caller already has it)."""
     model = model or build_model(design, geometry)
-    refuse_too_big(design, model)
     return tuple(solve_load_case(model, case).holding for case in design.load_cases)
 
 
@@ -145,7 +151,11 @@ def check_file(path: str, model: str | None = None) -> DesignReport:
     command line's ``--model`` over the file's); an unreadable or ill-formed file gives an
     error report."""
     try:
-        return check_design(with_model(load_checked(path), model))
+        design = with_model(load_checked(path), model)
+        geometry = analyze(design)
+        statics_model = build_model(design, geometry) if geometry.stands else None
+        refuse_too_big(design, statics_model, geometry)
+        return check_design(design, geometry, statics_model)
     except DesignError as error:        # unreadable, ill-formed or too big
         return DesignReport(design=path, name=Path(path).stem, valid=None, error=str(error))
 

@@ -14,7 +14,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from furncheck.check import holding_states, is_valid, margin_of
+from furncheck.check import holding_states, is_valid, margin_of, refuse_too_big
 from furncheck.design.model import Design
 from furncheck.dofs import (
     Blocked,
@@ -73,7 +73,8 @@ class Evaluator:
         self.frame: Structure = structure(design, self.geometry)
         self.locked = tuple(parse_dof(design, name) for name in locked)
         self.model = build_model(design, self.geometry)     # shared by the design's own
-        self.starts = holding_states(design, self.geometry, self.model)   # checks
+        refuse_too_big(design, self.model)                  # checks
+        self.starts = holding_states(design, self.geometry, self.model)
         self._kept: dict[Dof, dict[float, tuple]] = {}
         self._edits: dict[Dof, dict[float, Design]] = {}
         self.evaluations = 0
