@@ -229,10 +229,10 @@ MAX_GROUND_UNKNOWNS = 3600
 on: 600 planks standing on the floor).  Its condensed matrix, the factors of its contact
 states and the friction phase's contact maps are dense, 8 n^2 bytes each (104 MB at this
 size), so memory grows with the square of the planks on the floor.  A design with more is
-refused before anything is solved (``check.refuse_too_big``).  Measured on walls of sides
-standing in a row (one shelf between neighbours, one loaded to sag): 600 sides (3,600
-unknowns) take 0.75 GB to validate and 1.07 GB to suggest; 800 sides 1.25 GB to
-validate; 1,001 sides 1.84 GB."""
+refused before anything is solved (``check.refuse_too_big``).  Measured on rows of sides
+standing on the floor (a shelf nailed between each two, one loaded to sag): 600 sides
+(3,600 unknowns) take 650 MB to validate and 1.10 GB to suggest; 1,001 sides 1.56 GB to
+validate."""
 
 SUGGEST_ALL_PLANKS = 128
 """``suggest`` considers every DOF of a design with at most this many planks (1,024 DOFs;
