@@ -18,7 +18,8 @@ THICKNESS = 0.012      # m
 SIZES = {10: (2, 4), 28: (3, 8), 100: (9, 10), 400: (19, 20)}
 
 
-def shelving_wall(columns: int, rows: int, books_kg: float = 8.0) -> Design:
+def shelving_wall(columns: int, rows: int, books_kg: float = 8.0,
+                  heavy_kg: float | None = None) -> Design:
     """A wall of ``columns`` bays with ``rows`` shelves each (see the module docstring)."""
     height = SHELF_PITCH * (rows + 1)
     planks = []
@@ -33,6 +34,7 @@ def shelving_wall(columns: int, rows: int, books_kg: float = 8.0) -> Design:
             shelf_id = f"shelf{c}_{r}"
             z = SHELF_PITCH * (r + 1)
             planks.append(Plank(shelf_id, BAY_WIDTH, SIDE_DEPTH, THICKNESS, (x, 0.0, z)))
-            loads.append(Load.of_mass(shelf_id, books_kg))
+            heavy = heavy_kg is not None and (c, r) == (columns // 2, rows // 2)
+            loads.append(Load.of_mass(shelf_id, heavy_kg if heavy else books_kg))
     return Design(f"shelving-{len(planks)}", tuple(planks),
                   (LoadCase("default", tuple(loads)),))

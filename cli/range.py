@@ -11,6 +11,7 @@ from furncheck.cli.output import (
     check_output,
     config_or_fail,
     dofs_or_fail,
+    fail,
     load_or_fail,
     write_output,
 )
@@ -37,8 +38,10 @@ def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str
     <plank>.rx|ry|rz (rotation about world axes, degrees) and <plank>.length|width;
     with none named, all are listed.
 
-    Exit code 0: done; 2: unreadable or ill-formed design, unknown DOF or plank.
+    Exit code 0: done; 2: unreadable or ill-formed design, unknown DOF or plank, a design
+    too big to check.
     """
+    from furncheck.errors import DesignTooBig
     from furncheck.ranges import RangeFinder
     from furncheck.report.ranges import render_json, render_text
 
@@ -47,7 +50,10 @@ def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str
     check_output(output)
     loaded = load_or_fail(design, model)
     dofs_or_fail(design, loaded, (*dofs, *locks))
-    ranges = RangeFinder(loaded, tuple(locks)).ranges(list(dofs) or None,
-                                                      jobs or config.jobs or os.cpu_count() or 1)
+    try:
+        finder = RangeFinder(loaded, tuple(locks))
+    except DesignTooBig as error:
+        fail(str(error))
+    ranges = finder.ranges(list(dofs) or None, jobs or config.jobs or os.cpu_count() or 1)
     render = render_json if fmt == "json" else render_text
     write_output(render(design, ranges), output)

@@ -69,8 +69,11 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
     violation would need (hand statics) and what the search tried.
 
     Exit code 0: done (also when the design is valid already, or no suggestion was
-    found); 2: unreadable or ill-formed design, unknown DOF or plank, unwritable --out.
+    found); 2: unreadable or ill-formed design, unknown DOF or plank, unwritable --out,
+    a design too big to check.
     """
+    from furncheck.check import refuse_too_big
+    from furncheck.errors import DesignTooBig
     from furncheck.export.suggestions import (
         pictures_missing,
         prepare_out_dir,
@@ -89,6 +92,10 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
         problem = prepare_out_dir(out_dir)
         if problem:
             fail(f"cannot write suggestions to {out_dir}: {problem}")
+    try:
+        refuse_too_big(loaded)
+    except DesignTooBig as error:
+        fail(str(error))
     result = suggest_design(loaded, max_dofs, max_suggestions, locked)
     written = {}
     if out_dir is not None:

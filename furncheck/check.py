@@ -9,10 +9,10 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.design import Design
 from furncheck.design.model import with_model
-from furncheck.errors import DesignError
+from furncheck.errors import DesignError, DesignTooBig
 from furncheck.geometry import Geometry, analyze
 from furncheck.result import NOT_SOLVED, CaseResult, DesignReport
-from furncheck.statics import build_model, solve_load_case
+from furncheck.statics import StaticsModel, build_model, solve_load_case
 from furncheck.validity import (
     anchor_utilization,
     case_holds,
@@ -23,9 +23,10 @@ from furncheck.validity import (
 )
 
 
-def check_design(design: Design, geometry: Geometry | None = None) -> DesignReport:
-    """Validate a loaded design in every load case (``geometry``: its analysis, if the
-    caller already has it).
+def check_design(design: Design, geometry: Geometry | None = None,
+                 model: StaticsModel | None = None) -> DesignReport:
+    """Validate a loaded design in every load case (``geometry``, ``model``: its analysis
+    and statics model, if the caller already has them).
 
     A design that does not stand as drawn (a group of planks reaching the ground nowhere,
     or a joint or ground contact missed narrowly: ``Geometry.stands``) gets its geometric
@@ -40,7 +41,7 @@ def check_design(design: Design, geometry: Geometry | None = None) -> DesignRepo
                       for case in design.load_cases)
         return DesignReport(design=design.source, name=design.name, valid=False,
                             violations=tuple(violations), cases=cases, units=design.units)
-    model = build_model(design, geometry)
+    model = model or build_model(design, geometry)
     cases = []
     for case in design.load_cases:
         statics = solve_load_case(model, case)
@@ -49,6 +50,25 @@ def check_design(design: Design, geometry: Geometry | None = None) -> DesignRepo
         violations.extend(case_violations)
     return DesignReport(design=design.source, name=design.name, valid=not violations,
                         violations=tuple(violations), cases=tuple(cases), units=design.units)
+
+
+def refuse_too_big(design: Design, model: StaticsModel | None = None,
+                   geometry: Geometry | None = None) -> None:
+    """Raise DesignTooBig when the design's dense contact system would have more than
+    MAX_GROUND_UNKNOWNS unknowns (``condense.ground_unknowns``; ``model``, ``geometry``:
+    the design's, built here when not given), before anything is solved.  The commands
+    ask it of the design they are given (``check_file``, ``range``, ``suggest``), not of
+    the edits they check on the way."""
+    from furncheck.statics.condense import ground_unknowns
+
+    if model is None:
+        geometry = geometry or analyze(design)
+        if not geometry.stands:         # its statics are not solved
+            return
+        model = build_model(design, geometry)
+    unknowns = ground_unknowns(model)
+    if unknowns > tol.MAX_GROUND_UNKNOWNS:
+        raise DesignTooBig(design.source, unknowns, tol.MAX_GROUND_UNKNOWNS)
 
 
 def is_valid(design: Design, geometry: Geometry | None = None,
@@ -69,15 +89,16 @@ def is_valid(design: Design, geometry: Geometry | None = None,
 
 
 def margin_of(design: Design, geometry: Geometry,
-              starts: tuple[np.ndarray | None, ...] | None = None
-              ) -> tuple[bool, float, np.ndarray]:
+              starts: tuple[np.ndarray | None, ...] | None = None,
+              model: StaticsModel | None = None) -> tuple[bool, float, np.ndarray]:
     """(whether the design is valid, its durability margin, each joint's utilization):
     the margin is the smallest 1 - utilization of any joint, anchor (and, elastic model,
     any plank's sag or stress) in any load case, -inf if a case is not stable; the
     utilization (``validity.joint_utilization``) is per joint of ``geometry.joints``, the
     largest of the load cases (0 for a joint outside the statics).  Every case is solved,
-    except that an unstable one ends the search.  The geometry must have no violations."""
-    model = build_model(design, geometry)
+    except that an unstable one ends the search.  The geometry must have no violations
+    (``model``: its statics model, if the caller already has it)."""
+    model = model or build_model(design, geometry)
     wrenches = []
     plank_used = 0.0
     stable = True
@@ -103,10 +124,12 @@ def margin_of(design: Design, geometry: Geometry,
     return valid, 1.0 - worst, utilization
 
 
-def holding_states(design: Design, geometry: Geometry) -> tuple[np.ndarray | None, ...]:
+def holding_states(design: Design, geometry: Geometry, model: StaticsModel | None = None
+                   ) -> tuple[np.ndarray | None, ...]:
     """Per load case, which ground contacts hold (None for a case without a stable
-    equilibrium): the ``starts`` of ``is_valid`` for edits of this design."""
-    model = build_model(design, geometry)
+    equilibrium): the ``starts`` of ``is_valid`` for edits of this design (``model``: its
+    statics model, if the caller already has it)."""
+    model = model or build_model(design, geometry)
     return tuple(solve_load_case(model, case).holding for case in design.load_cases)
 
 
@@ -132,10 +155,13 @@ def check_file(path: str, model: str | None = None) -> DesignReport:
     command line's ``--model`` over the file's); an unreadable or ill-formed file gives an
     error report."""
     try:
-        design = load_checked(path)
-    except DesignError as error:
+        design = with_model(load_checked(path), model)
+        geometry = analyze(design)
+        statics_model = build_model(design, geometry) if geometry.stands else None
+        refuse_too_big(design, statics_model, geometry)
+        return check_design(design, geometry, statics_model)
+    except DesignError as error:        # unreadable, ill-formed or too big
         return DesignReport(design=path, name=Path(path).stem, valid=None, error=str(error))
-    return check_design(with_model(design, model))
 
 
 

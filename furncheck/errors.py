@@ -32,6 +32,21 @@ class DesignError(FurncheckError):
         return f"{where}: {self.key}: {self.message}" if self.key else f"{where}: {self.message}"
 
 
+class DesignTooBig(DesignError):
+    """A design whose check would need more memory than furncheck allows itself: the
+    dense system of its grounded planks' displacements (``statics.condense``) would have
+    ``unknowns`` rows and columns, more than ``limit``.  Refused before any solve."""
+
+    def __init__(self, file: str, unknowns: int, limit: int):
+        self.unknowns = unknowns
+        self.limit = limit
+        nodes, most = unknowns // 6, limit // 6
+        super().__init__(file, "", None,
+                         f"too big to check: its ground contacts sit on {nodes} nodes, a "
+                         f"dense contact system of {unknowns} unknowns (furncheck takes at "
+                         f"most {limit}, {most} nodes: about 1 GB of memory)")
+
+
 class MechanismError(FurncheckError):
     """The statics system has no unique solution: some planks are free to move.
 

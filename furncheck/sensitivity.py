@@ -20,14 +20,16 @@ a DOF costs about as much as its few moved planks, not a new assembly of the des
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
+from furncheck import tolerances as tol
 from furncheck.design.model import Design, LoadCase
 from furncheck.dofs import Blocked, Dof, OutOfReach, Structure, apply_dof, design_size, structure
 from furncheck.geometry import Contact, Geometry, Joint, analyze, follow_many
 from furncheck.statics import (
+    StaticsModel,
     build_model,
     external_forces,
     solve_load_case,
@@ -69,19 +71,22 @@ class Linearization:
 
     def __init__(self, design: Design, case: LoadCase, geometry: Geometry | None = None,
                  frame: Structure | None = None, shared: dict | None = None,
-                 bolted: bool = False, one_sided: bool = False):
+                 bolted: bool = False, one_sided: bool = False,
+                 model: StaticsModel | None = None):
         """``bolted``: a case without a solved equilibrium (it lifts off or slides, or its
         forces came from the feasibility program) is linearized as if every contact were
         held -- the state whose pulling contacts say how far it is from standing.
         ``one_sided``: forward differences of the assembly (+h and the design itself),
-        half the work and accurate to ~h (1e-4 relative): enough to choose directions."""
+        half the work and accurate to ~h (1e-4 relative): enough to choose directions.
+        ``model``: the design's statics model, if the caller has it (shared by the load
+        cases: its factorizations are made once)."""
         self.one_sided = one_sided
         self.shared = {} if shared is None else shared   # edited models, across load cases
         self.design = design
         self.case = case
         self.geometry = geometry or analyze(design)
         self.frame = frame or structure(design, self.geometry)
-        self.model = build_model(design, self.geometry)
+        self.model = model or build_model(design, self.geometry)
         f = external_forces(self.model, case)
         self.statics = solve_load_case(self.model, case)
         self.bolted = self.statics.stability != "stable" or self.statics.state is None
@@ -193,30 +198,67 @@ class Linearization:
         if not moving:
             return Sensitivity(self.case.name, (), np.zeros((0, n_joints, 6)),
                                np.zeros((0, n_contacts, 3)), blocked, np.zeros((0, n_joints)))
-        differences = assembly_differences(model, self.state, self.law, self.case.name,
-                                           sides, len(moving))
-        map_rates, length_rates = differences.maps, differences.lengths
         springs = self.law.tangent(self._contact_displacements())
+        width = max(1, tol.SENSITIVITY_BLOCK_BYTES // (8 * len(self.state)))
+        planks = self._planks_read(sides)
+        parts = []
+        for start in range(0, len(moving), width):
+            end = min(start + width, len(moving))
+            block = [replace(side, column=side.column - start) for side in sides
+                     if start <= side.column < end]
+            parts.append(self._rates(block, end - start, springs, planks))
+        joint_rates, contact_rates, length_rates, *bending = \
+            (np.concatenate(arrays) for arrays in zip(*parts))
+        return Sensitivity(self.case.name, tuple(moving), joint_rates, contact_rates,
+                           blocked, length_rates, *bending)
+
+    def _planks_read(self, sides: list[AssemblySide]) -> np.ndarray | None:
+        """The local planks whose sag and stress rates are read: all (None) in a model of
+        at most SENSITIVITY_ALL_PLANKS planks; in a larger one those the DOFs change and
+        the planks jointed to them (sorted), the others' rates taken as 0 (a plank far
+        from every change bends by a vanishing amount more; every suggestion and range
+        end is checked in full)."""
+        model = self.model
+        if model.beams is None or len(model.planks) <= tol.SENSITIVITY_ALL_PLANKS:
+            return None
+        local = {i: k for k, i in enumerate(model.planks)}
+        changed = {local[i] for side in sides for i in side.changed if i in local}
+        pairs = model.node_plank[model.joint_nodes].reshape(-1, 2)
+        touched = np.isin(pairs, list(changed)).any(axis=1)
+        return np.union1d(np.array(sorted(changed), dtype=int),
+                          pairs[touched].ravel()).astype(int)
+
+    def _rates(self, sides: list[AssemblySide], n_dofs: int, springs: np.ndarray,
+               planks: np.ndarray | None = None) -> tuple[np.ndarray, ...]:
+        """Eq. 6 for ``n_dofs`` DOFs (the columns of ``sides``): their joint wrench rates
+        (D, nJ, 6), contact force rates (D, nK, 3), joint length rates (D, nJ) and plank
+        sag, span and stress rates (D, nP) each (of ``planks``, ``_planks_read``).
+        ``derivatives`` hands the DOFs over a block at a time (at most
+        SENSITIVITY_BLOCK_BYTES of right-hand sides), so that no dense all-DOF x
+        all-unknown matrix is ever made."""
+        model = self.model
+        differences = assembly_differences(model, self.state, self.law, self.case.name,
+                                           sides, n_dofs, planks)
+        map_rates, length_rates = differences.maps, differences.lengths
         if self.law.slipping.any():         # a slipping contact's tangent is not symmetric
             rates = solve_with_springs(model, springs, differences.residual)
         else:
             rates = solve_system(model, self.holding, differences.residual)  # (n, n_dofs)
         n = model.n_dof
-        joint_rates = rates[n:].T.reshape(len(moving), n_joints, 6)
+        joint_rates = rates[n:].T.reshape(n_dofs, -1, 6)
         q = self.state[:n].reshape(-1, 6)[model.contact_node]               # (nK, 6)
-        dq = rates[:n].T.reshape(len(moving), -1, 6)[:, model.contact_node]  # (D, nK, 6)
+        dq = rates[:n].T.reshape(n_dofs, -1, 6)[:, model.contact_node]      # (D, nK, 6)
         dw = (np.einsum("dkab,kb->dka", map_rates, q)
               + np.einsum("kab,dkb->dka", model.contact_maps, dq))
         if model.rest_node is not None:     # a resting corner moves against its support
             rows, nodes = model.rest_rows, model.rest_node[model.rest_rows]
             q_b = self.state[:n].reshape(-1, 6)[nodes]
-            dq_b = rates[:n].T.reshape(len(moving), -1, 6)[:, nodes]
+            dq_b = rates[:n].T.reshape(n_dofs, -1, 6)[:, nodes]
             dw[:, rows] -= (np.einsum("dkab,kb->dka", differences.rest_maps[:, rows], q_b)
                             + np.einsum("kab,dkb->dka", model.rest_maps[rows], dq_b))
         contact_rates = -np.einsum("kab,dkb->dka", springs, dw)
         bending = differences.plank_rates(rates[:n])
-        return Sensitivity(self.case.name, tuple(moving), joint_rates, contact_rates,
-                           blocked, length_rates, *bending)
+        return (joint_rates, contact_rates, length_rates, *bending)
 
 
 

@@ -201,6 +201,54 @@ DENSE_PLANKS_MAX = 360
 planks) are condensed through the planks with a dense joint stiffness matrix
 (``statics.condense._PlankCondensation``); larger ones through the sparse mixed system."""
 
+CONDENSED_DENSE_BYTES = 32 * 2 ** 20
+"""Largest dense X = A_ii^-1 A_ig (bytes) that a condensation keeps (the catalog's take a
+few MB); a larger one (a 2,000-plank wall's: 47,580 x 246, 94 MB, and as much again for
+A_ig made dense) is never stored: S0 is summed a block of its columns at a time and
+X x_g solved for when needed (``statics.condense._implicit``)."""
+
+SENSITIVITY_BLOCK_BYTES = 32 * 2 ** 20
+"""The force sensitivity (eq. 6) solves its DOFs' right-hand sides a block at a time, at
+most this many bytes of them (the catalog's designs: all DOFs in one block; a 2,000-plank
+wall's 71,346 unknowns: 58 DOFs a block), so that no dense all-DOF x all-unknown matrix is
+made (``sensitivity.Linearization.derivatives``)."""
+
+PLANK_BATCH = 4096
+"""Most planks whose sag and stress are read in one stacked pass of the sensitivity
+(``bending.plank_results_many``: about 30 kB of temporaries per plank; 224 DOFs of the
+28-plank cabinet are 6,272 planks)."""
+
+ANCHORED_CACHE_BYTES = 256 * 2 ** 20
+"""Most bytes of factored contact-state matrices a statics model keeps for its next
+solves (``statics.condense.anchored_system``; the least recently used go first): all
+of them for the catalog's designs (a few kB each), one or two of a design standing on
+600 planks (2 x 104 MB each)."""
+
+MAX_GROUND_UNKNOWNS = 3600
+"""Most unknowns of a design's dense contact system (six per node a ground contact sits
+on: 600 planks standing on the floor).  Its condensed matrix, the factors of its contact
+states and the friction phase's contact maps are dense, 8 n^2 bytes each (104 MB at this
+size), so memory grows with the square of the planks on the floor.  A design with more is
+refused before anything is solved (``check.refuse_too_big``).  Measured on rows of sides
+standing on the floor (a shelf nailed between each two, one loaded to sag): 600 sides
+(3,600 unknowns) take 650 MB to validate and 1.10 GB to suggest; 1,001 sides 1.56 GB to
+validate."""
+
+SUGGEST_ALL_PLANKS = 128
+"""``suggest`` considers every DOF of a design with at most this many planks (1,024 DOFs;
+the catalog's and the paper's designs have at most 28); in a larger one only the DOFs of
+the SUGGEST_NEAR_PLANKS planks nearest its violations (``neighbourhood``)."""
+
+SUGGEST_NEAR_PLANKS = 12
+"""Planks whose DOFs a big design's suggestions may change (``neighbourhood``): the ones
+its violations name and those nearest them (96 DOFs)."""
+
+SENSITIVITY_ALL_PLANKS = 128
+"""The force sensitivity of an elastic model of at most this many planks reads every
+plank's sag and stress rate; of a larger one only those of the planks its DOFs change and
+of the planks jointed to them (``sensitivity.Linearization._planks_read``): reading a
+plank costs about 0.25 ms per DOF, all 2,000 of a shelving wall half a second."""
+
 MECHANISM_RCOND = 1e-10
 """Smallest singular value (relative) of a component's ground-support stiffness below
 which the component is a mechanism (free to move)."""

@@ -15,6 +15,7 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.design.model import Design, Plank
 from furncheck.errors import DesignError
+from furncheck.geometry.boxes import meeting_pairs
 from furncheck.geometry.faces import (
     _best_touches,
     _bounding_boxes,
@@ -176,7 +177,7 @@ def _pairs_to_detect(design: Design, lo: np.ndarray, hi: np.ndarray,
     """The plank pairs (i < j) whose boxes (``lo``, ``hi``) meet within the slack, and
     whether each must be detected (not both planks among the ``known`` unchanged ones)."""
     slack = design.tolerance + _GEOMETRY_EPS
-    pairs = np.argwhere(np.triu(_boxes_meet(lo, hi, lo, hi, slack), k=1))
+    pairs = meeting_pairs(lo, hi, slack)
     if known is None:
         return pairs, np.ones(len(pairs), dtype=bool)
     changed = np.array([plank.id not in known["planks"] for plank in design.planks])

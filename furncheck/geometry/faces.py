@@ -15,6 +15,7 @@ import numpy as np
 
 from furncheck import tolerances as tol
 from furncheck.design.model import Plank
+from furncheck.geometry.boxes import overlapping_pairs
 from furncheck.geometry.model import _COS_MAX_TILT
 
 
@@ -359,9 +360,7 @@ def _stacked_tables(planks: tuple[Plank, ...],
 
 def _overlapping(lo: np.ndarray, hi: np.ndarray, slack: float) -> np.ndarray:
     """Pairs (i < j) of boxes that overlap by more than the slack along every axis."""
-    overlap = np.all((lo[:, None, :] < hi[None, :, :] - slack)
-                     & (lo[None, :, :] < hi[:, None, :] - slack), axis=2)
-    return np.argwhere(np.triu(overlap, k=1))
+    return overlapping_pairs(lo, hi, slack)
 
 
 def _box_depths(rot: np.ndarray, half: np.ndarray, centre: np.ndarray,

@@ -31,6 +31,7 @@ import numpy as np
 
 from furncheck import tolerances as tol
 from furncheck.design.model import Design
+from furncheck.geometry.boxes import meeting_pairs
 from furncheck.geometry.faces import _best_touches, _bounding_boxes
 from furncheck.geometry.model import _COS_MAX_TILT, _GEOMETRY_EPS, Contact, Joint, NearMiss
 from furncheck.plain import plain_length
@@ -59,14 +60,12 @@ def missed_joints(design: Design, joints: list[Joint]) -> list[NearMiss]:
     slack, band = near_band(design)
     if design.joints is not None or band <= slack or len(design.planks) < 2:
         return []
-    lo, hi = _bounding_boxes(design.planks)
-    meet = np.all((lo[:, None, :] <= hi[None, :, :] + band)
-                  & (lo[None, :, :] <= hi[:, None, :] + band), axis=2)
-    index = design.plank_index
-    for joint in joints:
-        i, j = index[joint.face], index[joint.edge]
-        meet[i, j] = meet[j, i] = False
-    pairs = np.argwhere(np.triu(meet, k=1))
+    pairs = meeting_pairs(*_bounding_boxes(design.planks), band)
+    index, n = design.plank_index, len(design.planks)
+    jointed = np.array([min(index[joint.face], index[joint.edge]) * n
+                        + max(index[joint.face], index[joint.edge]) for joint in joints],
+                       dtype=int)
+    pairs = pairs[~np.isin(pairs[:, 0] * n + pairs[:, 1], jointed)]
     best = _best_touches(design.planks, pairs, band, keep_deep=False)
     missed = []
     for i, j in pairs.tolist():

@@ -14,7 +14,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from furncheck.check import holding_states, is_valid, margin_of
+from furncheck.check import holding_states, is_valid, margin_of, refuse_too_big
 from furncheck.design.model import Design
 from furncheck.dofs import (
     Blocked,
@@ -29,6 +29,7 @@ from furncheck.dofs import (
 from furncheck.edit_check import check_edit_many, standing_geometry
 from furncheck.geometry import EditMargins, Geometry, analyze, edit_margins_many
 from furncheck.ranges.estimates import _Probe
+from furncheck.statics import build_model
 
 SEARCHES_IN_FLIGHT = 64
 """Most searches (sides of DOFs) advanced together: their evaluations are batched, their
@@ -71,7 +72,9 @@ class Evaluator:
         self.geometry: Geometry = analyze(design)
         self.frame: Structure = structure(design, standing_geometry(self.geometry))
         self.locked = tuple(parse_dof(design, name) for name in locked)
-        self.starts = holding_states(design, self.geometry)
+        self.model = build_model(design, self.geometry)     # shared by the design's own
+        refuse_too_big(design, self.model)                  # checks
+        self.starts = holding_states(design, self.geometry, self.model)
         self._kept: dict[Dof, dict[float, tuple]] = {}
         self._edits: dict[Dof, dict[float, Design]] = {}
         self.evaluations = 0

@@ -119,9 +119,9 @@ class RangeFinder(Evaluator):
 
     def __init__(self, design: Design, locked: tuple[str, ...] = ()):
         super().__init__(design, locked)
-        self.valid_now = check_design(design, self.geometry).valid
+        self.valid_now = check_design(design, self.geometry, self.model).valid
         _, self.margin_now, self.utilization_now = margin_of(design, self.geometry,
-                                                             self.starts)
+                                                             self.starts, self.model)
         self.size = design_size(design)
         self._joint_index = {(j.face, j.edge, j.edge_face): n
                              for n, j in enumerate(self.geometry.joints)}
@@ -556,7 +556,8 @@ class RangeFinder(Evaluator):
             for case in self.design.load_cases:
                 try:
                     self._linear.append(Linearization(self.design, case, self.geometry,
-                                                      self.frame, self._shared))
+                                                      self.frame, self._shared,
+                                                      model=self.model))
                 except ValueError:
                     continue
         return self._linear

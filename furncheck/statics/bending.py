@@ -13,7 +13,9 @@ is read once per model (``_layout``, kept in ``model.plank_cache``).
 
 from __future__ import annotations
 
+import bisect
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -94,20 +96,60 @@ class _Stacked:
     planks: range
     node_plank: np.ndarray
 
+    @property
+    def n_nodes(self) -> int:
+        return len(self.node_plank)
+
+
+class PlankPart(NamedTuple):
+    """What ``plank_results_of`` reads of one (model, case) besides its displacements: the
+    model (or a ``_Stacked`` cut of some of its planks), its ``_Layout``, line loads
+    (nE, 3) N/m, outermost supports (low, high), and for a cut the model's nodes it keeps
+    (None: all of them)."""
+
+    model: object
+    layout: _Layout
+    line_loads: np.ndarray
+    low: np.ndarray
+    high: np.ndarray
+    nodes: np.ndarray | None = None
+
+
+def plank_part(model: StaticsModel, case: LoadCase, holding: np.ndarray | None = None,
+               planks: np.ndarray | None = None) -> PlankPart:
+    """The ``PlankPart`` of a model and case: of all its planks, or cut down to the local
+    ``planks`` (sorted; a cut keeps only their elements and nodes, renumbered, not the
+    model)."""
+    layout = _layout(model)
+    low, high = _outermost_supports(model, layout, holding)
+    part = PlankPart(model, layout, case_line_loads(model, case), low, high)
+    return part if planks is None else _only(part, planks)
+
 
 def plank_results_many(runs: list[tuple[StaticsModel, LoadCase, np.ndarray]],
-                       holding: np.ndarray | None = None) -> list[PlankStatics]:
+                       holding: np.ndarray | None = None,
+                       planks: np.ndarray | None = None) -> list[PlankStatics]:
     """``plank_results`` of several (model, case, q) at once: their elements, nodes and
     planks stacked into one set (each model's numbered after the previous ones'), so that
     the array operations run once for all, not once per model (a sensitivity reads the
     planks of every stepped design).  The same numbers as one call each: every step is
-    element by element, sample by sample, or a maximum per plank."""
+    element by element, sample by sample, or a maximum per plank.  ``planks``: read only
+    these local planks (sorted) of each model; the results are theirs, in that order."""
+    return plank_results_of([plank_part(model, case, holding, planks)
+                             for model, case, _ in runs], [q for *_, q in runs])
+
+
+def plank_results_of(prepared: list[PlankPart],
+                     displacements: list[np.ndarray]) -> list[PlankStatics]:
+    """``plank_results_many`` of parts made beforehand (``plank_part``) at the node
+    displacements (6 nN,) of each part's model."""
     parts = []
-    for model, case, q in runs:
-        layout = _layout(model)
-        low, high = _outermost_supports(model, layout, holding)
-        parts.append((model, layout, case_line_loads(model, case), q.reshape(-1, 6),
-                      low, high))
+    for part, q in zip(prepared, displacements):
+        displacement = q.reshape(-1, 6)
+        if part.nodes is not None:
+            displacement = displacement[part.nodes]
+        parts.append((part.model, part.layout, part.line_loads, displacement, part.low,
+                      part.high))
     node_offsets = np.cumsum([0] + [part[0].n_nodes for part in parts])
     plank_offsets = np.cumsum([0] + [len(part[0].planks) for part in parts])
 
@@ -150,6 +192,41 @@ def plank_results_many(runs: list[tuple[StaticsModel, LoadCase, np.ndarray]],
     sag, span = _sag(model, s, deflection, sample_plank, w, slope, low, high)
     return [PlankStatics(sag[a:b], span[a:b], stress[a:b])
             for a, b in zip(plank_offsets[:-1], plank_offsets[1:])]
+
+
+def _only(part: PlankPart, planks: np.ndarray) -> PlankPart:
+    """A part cut down to the local ``planks`` (sorted): their elements and nodes in order,
+    renumbered, as a ``_Stacked`` model of their own."""
+    model, layout = part.model, part.layout
+    beams = model.beams
+    kept = np.zeros(len(model.planks), dtype=bool)
+    kept[planks] = True
+    elements = np.flatnonzero(kept[beams.plank])
+    nodes = np.flatnonzero(kept[model.node_plank])
+    node_number = np.full(model.n_nodes, -1)
+    node_number[nodes] = np.arange(len(nodes))
+    plank_number = np.full(len(model.planks), -1)
+    plank_number[planks] = np.arange(len(planks))
+    cut = Beams(plank=plank_number[beams.plank[elements]],
+                nodes=node_number[beams.nodes[elements]], length=beams.length[elements],
+                frames=beams.frames[elements], local_stiffness=beams.local_stiffness[elements],
+                width=beams.width[elements], thickness=beams.thickness[elements],
+                elastic_modulus=beams.elastic_modulus[elements],
+                shear_modulus=beams.shear_modulus[elements], node_s=beams.node_s[nodes],
+                plank_half=beams.plank_half[planks])
+    cut_layout = _Layout(node_frame=layout.node_frame[nodes], inertia=layout.inertia[elements],
+                         area=layout.area[elements], bending=layout.bending[elements],
+                         in_plane=layout.in_plane[elements],
+                         joint_supports=np.zeros(0, dtype=int),
+                         measured=layout.measured[planks])
+
+    def supports(values: np.ndarray) -> np.ndarray:
+        mine = values[planks]
+        return np.where(mine >= 0, node_number[mine], -1)
+
+    return PlankPart(_Stacked(cut, range(len(planks)), plank_number[model.node_plank[nodes]]),
+                     cut_layout, part.line_loads[elements], supports(part.low),
+                     supports(part.high), nodes)
 
 
 def _layout(model: StaticsModel) -> _Layout:
@@ -231,24 +308,66 @@ def _carrying_neighbours(model: StaticsModel) -> list[set[int]]:
     cached = model.plank_cache.get("carrying")
     if cached is not None:
         return cached
-    n = len(model.planks)
+    pairs = model.node_plank[model.joint_nodes].reshape(-1, 2).tolist()
+    carrying = carriers(len(model.planks), pairs, {int(k) for k in model.contact_plank})
+    model.plank_cache["carrying"] = carrying
+    return carrying
+
+
+def carriers(n: int, pairs: list, grounded: set[int]) -> list[set[int]]:
+    """Per plank P of n, its neighbours (``pairs``: jointed planks (a, b)) that still reach
+    a plank of ``grounded`` other than P when P is taken away.
+
+    That is reaching the ground node, joined to every grounded plank, in the graph without
+    P, which one depth-first search from the ground node answers for every P at once
+    (the articulation-point search, linear in planks and joints): a neighbour found before
+    P is its ancestor and reaches the ground above P; one found after P lies in the subtree
+    of a child c of P, which is cut off when nothing in it reaches above P (low[c] >=
+    disc[P]).  A plank whose part stands on nothing has no carrier."""
     neighbours: list[set[int]] = [set() for _ in range(n)]
-    for nodes in model.joint_nodes:
-        a, b = (int(model.node_plank[node]) for node in nodes)
+    for a, b in pairs:
         neighbours[a].add(b)
         neighbours[b].add(a)
-    grounded = {int(k) for k in model.contact_plank}
+    root = n
+    adjacency = [sorted(others) for others in neighbours] + [sorted(grounded)]
+    for k in grounded:
+        adjacency[k].append(root)
+    disc, low = [-1] * (n + 1), [0] * (n + 1)
+    parent, size = [-1] * (n + 1), [1] * (n + 1)
+    children: list[list[int]] = [[] for _ in range(n + 1)]
+    disc[root], time = 0, 1
+    stack = [(root, iter(adjacency[root]))]
+    while stack:
+        v, rest = stack[-1]
+        for w in rest:
+            if disc[w] < 0:
+                parent[w] = v
+                children[v].append(w)
+                disc[w] = low[w] = time
+                time += 1
+                stack.append((w, iter(adjacency[w])))
+                break
+            low[v] = min(low[v], disc[w])
+        else:
+            stack.pop()
+            if stack:
+                up = parent[v]
+                low[up] = min(low[up], low[v])
+                size[up] += size[v]
     carrying: list[set[int]] = []
     for removed in range(n):
-        reached = {k for k in grounded if k != removed}
-        frontier = list(reached)
-        while frontier:
-            k = frontier.pop()
-            for other in neighbours[k] - reached - {removed}:
-                reached.add(other)
-                frontier.append(other)
-        carrying.append(neighbours[removed] & reached)
-    model.plank_cache["carrying"] = carrying
+        found: set[int] = set()
+        if disc[removed] >= 0:
+            below = children[removed]                   # in order of discovery
+            starts = [disc[c] for c in below]
+            for other in neighbours[removed]:
+                if disc[other] < disc[removed]:
+                    found.add(other)
+                    continue
+                child = below[bisect.bisect_right(starts, disc[other]) - 1]
+                if low[child] < disc[removed]:
+                    found.add(other)
+        carrying.append(found)
     return carrying
 
 

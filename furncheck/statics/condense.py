@@ -14,6 +14,7 @@ sensitivity analysis.
 from __future__ import annotations
 
 import functools
+import weakref
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -37,7 +38,8 @@ class _Condensed:
     ground: np.ndarray           # indices of g
     inner: np.ndarray            # indices of i
     coupling: object             # the i-g block (sparse or dense)
-    reduced: np.ndarray          # X
+    reduced: np.ndarray | None   # X; None for a large system (``_implicit``): X x_g is
+                                 # then solved for when needed, never stored
     schur: np.ndarray            # S0
     contact_block: np.ndarray    # per contact, number of its plank's 6-block in x_g
     plank_offsets: np.ndarray    # offset of each grounded plank's block in x_g
@@ -78,7 +80,7 @@ class _Condensation(_Condensed):
         """The full unknown vector [q; h] (or k of them, columns) from x_g."""
         x = np.zeros((self.size,) + ground.shape[1:])
         x[self.ground] = ground
-        x[self.inner] = inner_part - self.reduced @ ground
+        x[self.inner] = inner_part - _times_reduced(self, ground)
         return x
 
 
@@ -99,7 +101,10 @@ class _PlankCondensation(_Condensed):
     """
 
     factor: np.ndarray | None = None    # Cholesky factor of K_ii (the coupling is K_ig, dense)
-    model: StaticsModel | None = None    # its joint blocks apply G, G^T and W
+    model: StaticsModel | None = None    # its joint blocks apply G, G^T and W (a weak
+                                         # proxy: the model keeps its condensation, and a
+                                         # cycle would keep a big model's memory until the
+                                         # garbage collector's next full pass)
     lu: object = None                    # instead of ``factor``: SuperLU of a sparse K_ii
 
     def split(self, rhs: np.ndarray):
@@ -130,7 +135,7 @@ class _PlankCondensation(_Condensed):
         parts = np.zeros((n, 2) + shape)          # [0; y] and [x_g; -X x_g] side by side
         parts[self.inner, 0] = inner
         parts[self.ground, 1] = ground
-        parts[self.inner, 1] = -(self.reduced @ ground)
+        parts[self.inner, 1] = -_times_reduced(self, ground)
         deviations = self.model.deviations(parts.reshape((n, -1))).reshape((-1, 2) + shape)
         h = self.model.joint_wrench((deviations[:, 0] - r_h) + deviations[:, 1])
         q = parts[:, 0] + parts[:, 1]
@@ -177,7 +182,7 @@ def _condense_planks(model: StaticsModel, ground: np.ndarray,
             reduced = _cholesky_solve(factor, coupling)
     schur = K[ni:, ni:] - coupling.T @ reduced
     return _PlankCondensation(ground, inner, coupling, reduced, schur, contact_block,
-                              plank_offsets, n + m, factor=factor, model=model)
+                              plank_offsets, n + m, factor=factor, model=weakref.proxy(model))
 
 
 def _condense_beams(model: StaticsModel, ground: np.ndarray,
@@ -196,6 +201,15 @@ def _condense_beams(model: StaticsModel, ground: np.ndarray,
     K = (model.beam_stiffness + (G.T @ W @ G)).tocsc()
     inner = _others(n, ground)
     coupling_sparse = K[inner][:, ground]
+    if _implicit(len(inner), len(ground)):
+        lu = _factor(K[inner][:, inner].tocsc(),
+                     np.asarray(coupling_sparse.sum(axis=1)).ravel()) if len(inner) else None
+        if lu is None and len(inner):
+            return None
+        coupling = coupling_sparse.tocsr()
+        schur = _blocked_schur(K[ground][:, ground].toarray(), coupling, lu)
+        return _PlankCondensation(ground, inner, coupling, None, schur, contact_block,
+                                  plank_offsets, n + m, model=weakref.proxy(model), lu=lu)
     coupling = coupling_sparse.toarray()
     reduced = np.zeros((len(inner), len(ground)))
     lu = None
@@ -207,7 +221,50 @@ def _condense_beams(model: StaticsModel, ground: np.ndarray,
             reduced = lu.solve(coupling)
     schur = K[ground][:, ground].toarray() - coupling.T @ reduced
     return _PlankCondensation(ground, inner, coupling, reduced, schur, contact_block,
-                              plank_offsets, n + m, model=model, lu=lu)
+                              plank_offsets, n + m, model=weakref.proxy(model), lu=lu)
+
+
+def _implicit(n_inner: int, n_ground: int) -> bool:
+    """Whether X = A_ii^-1 A_ig of a condensation would take more than CONDENSED_DENSE_BYTES
+    as a dense matrix: then it is never stored (``_blocked_schur``, ``_times_reduced``)."""
+    return 8 * n_inner * n_ground > tol.CONDENSED_DENSE_BYTES
+
+
+def _blocked_schur(ground_block: np.ndarray, coupling, lu) -> np.ndarray:
+    """S0 = A_gg - A_ig^T A_ii^-1 A_ig from the sparse coupling A_ig, a few columns of X at
+    a time (at most CONDENSED_DENSE_BYTES of them)."""
+    schur = ground_block
+    n_inner, n_ground = coupling.shape
+    if not n_inner or not n_ground:
+        return schur
+    width = max(1, tol.CONDENSED_DENSE_BYTES // (8 * n_inner))
+    columns = coupling.tocsc()
+    transposed = coupling.T.tocsr()
+    for start in range(0, n_ground, width):
+        block = slice(start, min(start + width, n_ground))
+        reduced = lu.solve(columns[:, block].toarray())
+        schur[:, block] -= transposed @ reduced
+    return schur
+
+
+def _times_reduced(condensed: _Condensed, ground: np.ndarray) -> np.ndarray:
+    """X x_g (x_g (n_g,) or (n_g, k)): by the stored X, or for an implicit condensation by
+    one more solve, A_ii^-1 (A_ig x_g)."""
+    if condensed.reduced is not None:
+        return condensed.reduced @ ground
+    if not len(condensed.inner):
+        return np.zeros((0,) + ground.shape[1:])
+    return condensed.lu.solve(np.ascontiguousarray(condensed.coupling @ ground))
+
+
+def ground_unknowns(model: StaticsModel) -> int:
+    """Unknowns of the condensed system (rows of S0, the dense matrix that every contact
+    state factors): six per node that a ground contact sits on or a resting corner rests
+    on, the g of ``_condense``."""
+    nodes = model.contact_node
+    if model.rest_node is not None:
+        nodes = np.concatenate([nodes, model.rest_node[model.rest_rows]])
+    return 6 * len(np.unique(nodes))
 
 
 def _condense(model: StaticsModel) -> _Condensed | None:
@@ -239,6 +296,10 @@ def _condense(model: StaticsModel) -> _Condensed | None:
         lu = _factor(permuted[:ni, :ni].tocsc(), np.asarray(coupling.sum(axis=1)).ravel())
         if lu is None:
             return None
+        if _implicit(ni, len(ground)):
+            schur = _blocked_schur(permuted[ni:, ni:].toarray(), coupling.tocsr(), lu)
+            return _Condensation(ground, inner, coupling.tocsr(), None, schur, contact_block,
+                                 plank_offsets, n + m, lu=lu)
         if len(ground):
             reduced = lu.solve(coupling.toarray())
     schur = permuted[ni:, ni:].toarray() - np.asarray(coupling.T @ reduced)
@@ -466,10 +527,22 @@ def anchored_system(model: StaticsModel, holding: np.ndarray,
     model and contact state: the load cases of a design mostly start from the same state."""
     key = (holding.tobytes(), scale)
     systems = model.anchored_systems
-    if key not in systems:
-        matrix = _anchored_stiffness(model, holding, scale)
-        systems[key] = _Factored(matrix, _cholesky(matrix))
+    if key in systems:
+        systems[key] = systems.pop(key)         # the most recently used last
+        return systems[key]
+    matrix = _anchored_stiffness(model, holding, scale)
+    systems[key] = _Factored(matrix, _cholesky(matrix))
+    _trim(systems, 2 * matrix.nbytes)
     return systems[key]
+
+
+def _trim(systems: dict, each: int) -> None:
+    """Forget the least recently used factored systems beyond ANCHORED_CACHE_BYTES (each
+    takes ``each`` bytes, matrix and factor; the newest is always kept): a big design's
+    contact iterations meet many states of a matrix of tens of MB.  A forgotten state met
+    again is factored again, to the same numbers."""
+    while len(systems) > 1 and len(systems) * each > tol.ANCHORED_CACHE_BYTES:
+        del systems[next(iter(systems))]
 
 
 def _cholesky(matrix: np.ndarray) -> np.ndarray | None:

@@ -12,8 +12,8 @@ of the contact maps and of the joint lengths; ``rates = A^-1 (their residual)`` 
 * Elastic planks: the stepped design's model is built again on the same nodes
   (``elastic.build_elastic_model(..., template=model)``: every node at the new place of
   what it serves) and b - A x evaluated whole; the planks' sag, span and stress at the
-  stepped state x + dx give their rates (``AssemblyDifferences.plank_rates``: all stepped
-  models read in one stacked pass, ``bending.plank_results_many``).
+  stepped state x + dx give their rates (``AssemblyDifferences.plank_rates``: the stepped
+  models read in stacked passes, ``bending.plank_results_of``).
 """
 
 from __future__ import annotations
@@ -54,8 +54,9 @@ class AssemblyDifferences:
     (D, nK, 3, 6) of the contact maps (and ``rest_maps`` of the resting corners' other
     planks' maps, when the model has them), ``lengths`` (D, nJ) of the joint lengths (m),
     per DOF unit; for the planks' rates (elastic model only), ``sides``: per side (column,
-    weight, offset, stepped model, its case), and the state's displacements ``q`` and
-    holding contacts."""
+    weight, offset, the stepped model's ``bending.PlankPart``, its case), the state's
+    displacements ``q`` and holding contacts, and the local ``planks`` read (None: all;
+    ``n_planks`` in the model)."""
 
     residual: np.ndarray
     maps: np.ndarray
@@ -64,35 +65,60 @@ class AssemblyDifferences:
     rest_maps: np.ndarray | None = None
     q: np.ndarray | None = None
     holding: np.ndarray | None = None
+    planks: np.ndarray | None = None
+    n_planks: int = 0
 
     def plank_rates(self, dq: np.ndarray) -> tuple[np.ndarray, ...]:
         """(D, nP) each: d sag (m), d span (m), d stress (Pa) per DOF unit, from the
         stepped models at x + offset dx (dq: (6 nN, D), the displacement rates); (D, 0)
-        each for rigid planks."""
+        each for rigid planks.  With ``planks`` only those local planks' rates are read
+        (the others' are 0)."""
         n_dofs = self.residual.shape[1]
         if not self.sides:
             empty = np.zeros((n_dofs, 0))
             return empty, empty.copy(), empty.copy()
-        from furncheck.statics.bending import plank_results, plank_results_many
+        from furncheck.statics.bending import plank_results, plank_results_of
 
-        n_planks = len(self.sides[0][3].planks)
+        n_planks = self.n_planks
+        read = slice(None) if self.planks is None else self.planks
         sag, span, stress = (np.zeros((n_dofs, n_planks)) for _ in range(3))
-        at_rest = {}                # (model, case) -> its results at q (offset 0)
-        stepped = [(model, case, self.q + offset * dq[:, column])
-                   for column, _, offset, model, case in self.sides if offset != 0.0]
-        moved = iter(plank_results_many(stepped, self.holding) if stepped else ())
-        for column, weight, offset, model, case in self.sides:
+        at_rest = {}                # (part's model, case) -> its results at q (offset 0)
+        stepped = [(part, column, offset)
+                   for column, _, offset, part, _ in self.sides if offset != 0.0]
+        moved = _plank_results_batched(stepped, self.q, dq)
+        for column, weight, offset, part, case in self.sides:
             if offset == 0.0:
-                key = (id(model), case.name)
+                key = (id(part.model), case.name)
                 if key not in at_rest:
-                    at_rest[key] = plank_results(model, case, self.q, self.holding)
+                    at_rest[key] = plank_results(part.model, case, self.q, self.holding) \
+                        if part.nodes is None else plank_results_of([part], [self.q])[0]
                 result = at_rest[key]
             else:
                 result = next(moved)
-            sag[column] += weight * result.sag
-            span[column] += weight * result.span
-            stress[column] += weight * result.stress
+            sag[column, read] += weight * result.sag
+            span[column, read] += weight * result.span
+            stress[column, read] += weight * result.stress
         return sag, span, stress
+
+
+def _plank_results_batched(stepped: list, q: np.ndarray, dq: np.ndarray):
+    """The planks of each stepped (part, column, offset) at q + offset dq[:, column], in
+    order: ``bending.plank_results_of`` of at most PLANK_BATCH planks at a time (its
+    numbers are those of one call each, so the batches change nothing but the memory)."""
+    from furncheck.statics.bending import plank_results_of
+
+    batch: list = []
+    displacements: list = []
+    count = 0
+    for part, column, offset in stepped:
+        if batch and count + len(part.model.planks) > tol.PLANK_BATCH:
+            yield from plank_results_of(batch, displacements)
+            batch, displacements, count = [], [], 0
+        batch.append(part)
+        displacements.append(q + offset * dq[:, column])
+        count += len(part.model.planks)
+    if batch:
+        yield from plank_results_of(batch, displacements)
 
 
 def assembly_steps(model: StaticsModel) -> tuple[float, float]:
@@ -105,18 +131,23 @@ def assembly_steps(model: StaticsModel) -> tuple[float, float]:
 
 
 def assembly_differences(model: StaticsModel, state: np.ndarray, law: ContactLaw,
-                         case_name: str, sides: list[AssemblySide],
-                         n_dofs: int) -> AssemblyDifferences:
+                         case_name: str, sides: list[AssemblySide], n_dofs: int,
+                         planks: np.ndarray | None = None) -> AssemblyDifferences:
     """The differences of b - A x over ``sides`` (see the module docstring); the contacts
-    push as ``law`` says (springs where they stick, mu N where they slipped)."""
+    push as ``law`` says (springs where they stick, mu N where they slipped).  ``planks``:
+    the local planks whose rates ``plank_rates`` reads (None: all)."""
     if model.beams is not None:
-        return _rebuilt(model, state, law, case_name, sides, n_dofs)
+        return _rebuilt(model, state, law, case_name, sides, n_dofs, planks)
     return _local(model, state, law, case_name, sides, n_dofs)
 
 
 def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name: str,
-             sides: list[AssemblySide], n_dofs: int) -> AssemblyDifferences:
-    """Elastic model: each side's model built on the same nodes, b - A x evaluated whole."""
+             sides: list[AssemblySide], n_dofs: int,
+             planks: np.ndarray | None) -> AssemblyDifferences:
+    """Elastic model: each side's model built on the same nodes, b - A x evaluated whole;
+    of each stepped model only what its planks' rates read is kept (``bending.plank_part``:
+    with ``planks``, a cut of those planks, so the stepped models themselves are let go)."""
+    from furncheck.statics.bending import plank_part
     from furncheck.statics.elastic import build_elastic_model
 
     n = model.n_dof
@@ -124,11 +155,11 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
     out = AssemblyDifferences(np.zeros((len(state), n_dofs)),
                               np.zeros((n_dofs, *model.contact_maps.shape)),
                               np.zeros((n_dofs, len(model.joints))), q=q,
-                              holding=law.holding)
+                              holding=law.holding, planks=planks, n_planks=len(model.planks))
     if model.rest_maps is not None:
         out.rest_maps = np.zeros((n_dofs, *model.rest_maps.shape))
     geometry = model.geometry
-    unchanged = {}                  # case name -> b - A x of the model itself
+    unchanged = {}                  # case name -> b - A x of the model itself, its part
     for side in sides:
         case = next(c for c in side.design.load_cases if c.name == case_name)
         if side.design is model.design and _followed_as_is(geometry, side):
@@ -136,8 +167,9 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
             # ``model`` (built on itself, a template gives the same model bit for bit)
             stepped, stepped_geometry = model, geometry
             if case.name not in unchanged:
-                unchanged[case.name] = _residual(model, case, q, h, law)
-            residual = unchanged[case.name]
+                unchanged[case.name] = (_residual(model, case, q, h, law),
+                                        plank_part(model, case, law.holding, planks))
+            residual, part = unchanged[case.name]
         else:
             joints = list(geometry.joints)
             for j, joint in zip(side.joints, side.followed_joints):
@@ -150,13 +182,14 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
                                        contacts=tuple(contacts))
             stepped = build_elastic_model(side.design, stepped_geometry, template=model)
             residual = _residual(stepped, case, q, h, law)
+            part = plank_part(stepped, case, law.holding, planks)
         out.residual[:, side.column] += side.weight * residual
         out.maps[side.column] += side.weight * stepped.contact_maps
         if stepped.rest_maps is not None:
             out.rest_maps[side.column] += side.weight * stepped.rest_maps
         out.lengths[side.column] += side.weight * np.array(
             [stepped_geometry.joints[j].length for j in model.joints])
-        out.sides.append((side.column, side.weight, side.offset, stepped, case))
+        out.sides.append((side.column, side.weight, side.offset, part, case))
     return out
 
 

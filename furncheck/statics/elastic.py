@@ -35,7 +35,7 @@ from furncheck.statics.beams import (
 from furncheck.statics.model import (
     _SIX,
     StaticsModel,
-    add_point_load,
+    add_point_loads,
     anchored_contacts,
     block_sums,
     contact_frames,
@@ -469,16 +469,22 @@ def elastic_forces(model: StaticsModel, case: LoadCase) -> np.ndarray:
     local = model.local_planks
     if any(load.spread and load.plank in local for load in case.loads):
         f += _nodal_loads(model.beams, _spread_line_loads(model, case), model.n_nodes)
+    nodes, forces, points = [], [], []
     for index, load in enumerate(case.loads):
         if load.spread or load.plank not in local:
             continue
         plank = model.design.planks[model.planks[local[load.plank]]]
+        point = plank.center if load.point is None else load.point
         node = model.load_nodes.get((case.name, index))
         if node is None:        # a case built after the model: the nearest node
-            node = _node_of(model, local[load.plank],
-                            plank.center if load.point is None else load.point)
-        add_point_load(f, node, model.node_points[node], load.force,
-                       plank.center if load.point is None else load.point)
+            node = _node_of(model, local[load.plank], point)
+        nodes.append(node)
+        forces.append(load.force)
+        points.append(point)
+    if nodes:
+        nodes = np.array(nodes, dtype=int)
+        add_point_loads(f, nodes, model.node_points[nodes],
+                        np.array(forces, dtype=float), np.array(points, dtype=float))
     return f
 
 

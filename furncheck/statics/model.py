@@ -503,6 +503,19 @@ def add_point_load(f: np.ndarray, node: int, node_point, force, point) -> None:
         f[6 * node + 3:6 * node + 6] += (ry * fz - rz * fy, rz * fx - rx * fz, rx * fy - ry * fx)
 
 
+def add_point_loads(f: np.ndarray, nodes: np.ndarray, node_points: np.ndarray,
+                    forces: np.ndarray, points: np.ndarray) -> None:
+    """``add_point_load`` of many loads at once ((n,) nodes, (n, 3) node points, forces
+    and points), in order: the same sums, one load after the other."""
+    r = points - node_points
+    moments = np.column_stack([r[:, 1] * forces[:, 2] - r[:, 2] * forces[:, 1],
+                               r[:, 2] * forces[:, 0] - r[:, 0] * forces[:, 2],
+                               r[:, 0] * forces[:, 1] - r[:, 1] * forces[:, 0]])
+    rows = 6 * nodes[:, None] + np.arange(3)
+    np.add.at(f, rows.ravel(), forces.ravel())
+    np.add.at(f, (rows + 3).ravel(), moments.ravel())
+
+
 # --- small helpers ----------------------------------------------------------------------------
 
 def block_sums(index: np.ndarray, values: np.ndarray, count: int) -> np.ndarray:

@@ -43,6 +43,10 @@ of the largest rate of any DOF."""
 _CHUNK = 4096
 """Combinations evaluated per vectorized batch (bounds memory: rows x chunk x m)."""
 
+_CHUNK_BYTES = 64 * 2 ** 20
+"""...and fewer when a batch's rates (rows x chunk x m) would take more than this (a
+2,000-plank design has 12,000 margins: 4,096 triples of them would take 1.2 GB)."""
+
 
 @dataclass(frozen=True)
 class Candidate:
@@ -81,8 +85,9 @@ def candidates(margins: Margins, max_dofs: int,
         combos = _combinations(relevant, m, found)
         culled = np.zeros(3, dtype=int)
         before = len(kept)
-        for start in range(0, len(combos), _CHUNK):
-            chunk = combos[start:start + _CHUNK]
+        size = max(1, min(_CHUNK, _CHUNK_BYTES // (8 * len(rows) * m)))
+        for start in range(0, len(combos), size):
+            chunk = combos[start:start + size]
             chunk_kept, chunk_culled = _evaluate(rates, values, violated, deficit, chunk)
             culled += chunk_culled
             for candidate in chunk_kept:

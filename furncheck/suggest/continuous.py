@@ -21,6 +21,7 @@ from furncheck.design.model import Design
 from furncheck.dofs import Blocked, Dof, OutOfReach, all_dofs, structure
 from furncheck.edit_check import standing_geometry
 from furncheck.geometry import Geometry
+from furncheck.neighbourhood import suggestion_dofs
 from furncheck.result import DesignReport
 from furncheck.suggest.candidates import Candidate, candidates, unit_candidates
 from furncheck.suggest.edits import Editor, utilization_margin
@@ -69,7 +70,9 @@ class ContinuousSearch:
         frame = structure(design, standing_geometry(geometry))
         self.editor = Editor(design, geometry, frame, locked)
         self.margins = Margins(design, geometry, report, self.editor,
-                               [dof for dof in all_dofs(design) if dof not in locked])
+                               suggestion_dofs(design, geometry, report.violations,
+                                               [dof for dof in all_dofs(design)
+                                                if dof not in locked]))
         self.planes = mirror_planes(design)
         self.searched = 0
         self.tally: list[DirectionTally] = []       # what ``directions`` formed

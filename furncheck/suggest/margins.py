@@ -34,7 +34,7 @@ from furncheck.dofs import Blocked, Dof, OutOfReach, design_size
 from furncheck.geometry import Geometry, end_gap
 from furncheck.result import DesignReport
 from furncheck.sensitivity import Linearization, Sensitivity
-from furncheck.statics import external_forces
+from furncheck.statics import build_model, external_forces
 from furncheck.suggest.edits import Editor
 from furncheck.tolerances import GRAVITY
 from furncheck.validity import anchor_capacity, nail_pull_shear, plank_limits
@@ -129,11 +129,12 @@ class Margins:
         bolted one when it topples or slides); sets ``dofs`` to the free ones."""
         shared: dict = {}
         linears = []
+        model = build_model(self.design, self.geometry)     # one for all the cases
         for case in self.design.load_cases:
             try:
                 linears.append(Linearization(self.design, case, self.geometry,
                                              self.editor.frame, shared, bolted=True,
-                                             one_sided=True))
+                                             one_sided=True, model=model))
             except ValueError:
                 continue
         if not linears:
