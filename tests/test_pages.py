@@ -127,14 +127,13 @@ def test_suggestion_page_embeds_models_and_edits(tmp_path):
     document = {"design": entry.report.design, "valid": False, "suggestions": [
         {"rank": 1, "kind": "continuous", "restores": ["stability"], "dofs": ["leg_r.x"],
          "advice": "Move leg_r 255 mm away from leg_l.", "design_file": "s-01.yaml",
-         "edits": [{"plank": "leg_r", "kind": "change",
-                    "changes": {"center": {"from": [1, 2, 3], "to": [4, 2, 3]}}}]}]}
+         "edits": [{"plank": "leg_r", "edit": "change", "fields": {"x": [300.0, 555.0]}}]}]}
     page = suggestion_page(document, PageDesign(entry.report, entry.design, glb),
                            {1: PageDesign(entry.report, entry.design, glb, ("s-01.png",))})
     assert page.count("data:model/gltf-binary;base64,") == 2
     assert "customElements" in page.split("<body>")[0]       # the viewer, inlined
     assert "Move leg_r 255 mm away from leg_l." in page
-    assert "<td>leg_r</td>" in page and "[4, 2, 3]" in page
+    assert "<td>leg_r</td><td>change</td><td>x</td><td>300.0</td><td>555.0</td>" in page
     assert 'src="s-01.png"' in page
     assert not _RESOURCE.search(page)
 

@@ -275,22 +275,18 @@ def suggestion_page(document: dict[str, Any], original: PageDesign,
 
 
 def _edits_table(edits: list[dict[str, Any]] | None) -> str:
-    """A cut list of the suggestion's ``edits`` (plank, what, from, to)."""
+    """A cut list of the suggestion's ``edits`` (the suggest JSON's: plank, edit 'change',
+    'add' or 'remove', and per field [from, to] in the file's units)."""
     if not edits:
         return ""
     rows = []
     for edit in edits:
-        plank = escape(str(edit.get("plank", edit.get("id", ""))))
-        changes = edit.get("changes") or {}
-        if isinstance(changes, dict) and changes:
-            for key, change in changes.items():
-                before, after = (change.get("from"), change.get("to")) \
-                    if isinstance(change, dict) else (None, change)
-                rows.append(f"<tr><td>{plank}</td><td>{escape(str(edit.get('kind', 'change')))}"
-                            f"</td><td>{escape(str(key))}</td><td>{escape(json.dumps(before))}"
-                            f"</td><td>{escape(json.dumps(after))}</td></tr>")
-        else:
-            rows.append(f"<tr><td>{plank}</td><td>{escape(str(edit.get('kind', '')))}</td>"
-                        f"<td colspan=\"3\">{escape(json.dumps(edit))}</td></tr>")
+        plank, kind = escape(str(edit.get("plank", ""))), escape(str(edit.get("edit", "")))
+        for field, values in (edit.get("fields") or {}).items():
+            before, after = values if isinstance(values, list | tuple) and len(values) == 2 \
+                else (None, values)
+            rows.append(f"<tr><td>{plank}</td><td>{kind}</td><td>{escape(str(field))}</td>"
+                        f"<td>{escape(json.dumps(before))}</td>"
+                        f"<td>{escape(json.dumps(after))}</td></tr>")
     return ("<table><thead><tr><th>plank</th><th>edit</th><th>what</th><th>from</th>"
             "<th>to</th></tr></thead><tbody>" + "".join(rows) + "</tbody></table>")
