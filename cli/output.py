@@ -40,13 +40,15 @@ def check_output(output: str | None) -> None:
 
 
 def write_output(document: str, output: str | None) -> None:
-    """Write the report to stdout or to ``output``."""
+    """Write the report to stdout or to ``output``, atomically: until the new report is
+    complete, ``output`` holds the old one (an interrupted run leaves it as it was)."""
+    from furncheck.files import write_atomically
+
     if output is None or output == "-":
         click.echo(document, nl=False)
         return
     try:
-        with open(output, "w", encoding="utf-8", newline="\n") as stream:
-            stream.write(document)
+        write_atomically(output, document.encode("utf-8"), durable=True)
     except OSError as error:
         fail(f"cannot write the report to {output}: {error.strerror or error}")
 
@@ -54,8 +56,19 @@ def write_output(document: str, output: str | None) -> None:
 MODEL_OPTION = click.option(
     "--model", type=click.Choice(list(tol.MODELS)), default=None,
     help="Statics model, over the files' own 'model': elastic (planks bend: contract 3a) "
-         "or rigid (the paper's rigid planks).  [default: the file's 'model', elastic "
-         "for a file without one]")
+         "or rigid (the paper's rigid planks).  [default: 'model' of [tool.furncheck], "
+         "else the file's 'model', elastic for a file without one]")
+
+
+def config_or_fail(paths):
+    """``[tool.furncheck]`` for a run on ``paths`` (``furncheck.config``), or one line and
+    exit 2."""
+    from furncheck.config import ConfigError, load_config
+
+    try:
+        return load_config(paths)
+    except ConfigError as error:
+        fail(str(error))
 
 
 def load_or_fail(path: str, model: str | None = None):

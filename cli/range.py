@@ -9,6 +9,7 @@ import click
 from furncheck.cli.output import (
     MODEL_OPTION,
     check_output,
+    config_or_fail,
     dofs_or_fail,
     fail,
     load_or_fail,
@@ -44,6 +45,8 @@ def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str
     from furncheck.ranges import RangeFinder
     from furncheck.report.ranges import render_json, render_text
 
+    config = config_or_fail((design,))
+    model = model or config.model
     check_output(output)
     loaded = load_or_fail(design, model)
     dofs_or_fail(design, loaded, (*dofs, *locks))
@@ -51,6 +54,6 @@ def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str
         finder = RangeFinder(loaded, tuple(locks))
     except DesignTooBig as error:
         fail(str(error))
-    ranges = finder.ranges(list(dofs) or None, jobs or os.cpu_count() or 1)
+    ranges = finder.ranges(list(dofs) or None, jobs or config.jobs or os.cpu_count() or 1)
     render = render_json if fmt == "json" else render_text
     write_output(render(design, ranges), output)

@@ -2,22 +2,39 @@
 
 from __future__ import annotations
 
+import json
+
 import click
 
 from furncheck.cli.output import (
     MODEL_OPTION,
     check_output,
+    config_or_fail,
     dofs_or_fail,
     fail,
     load_or_fail,
     write_output,
 )
+from furncheck.tolerances import MAX_COMBINED_DOFS
+
+
+def _combined_dofs(value: int) -> int:
+    """--max-dofs, refused outside 1..MAX_COMBINED_DOFS with the reason."""
+    if not 1 <= value <= MAX_COMBINED_DOFS:
+        raise click.BadParameter(
+            f"{value}: one suggestion changes 1 to {MAX_COMBINED_DOFS} DOFs together (the "
+            f"combinations of {MAX_COMBINED_DOFS + 1} of a large design's DOFs take minutes "
+            f"to form; see the README)")
+    return value
 
 
 @click.command("suggest")
 @click.argument("design", metavar="DESIGN")
-@click.option("--max-dofs", "max_dofs", type=click.IntRange(1, 4), default=3,
-              show_default=True, help="Most DOFs changed together by one suggestion.")
+@click.option("--max-dofs", "max_dofs", type=int, default=3, show_default=True,
+              callback=lambda _ctx, _param, value: _combined_dofs(value),
+              help=f"Most DOFs changed together by one suggestion, 1 to {MAX_COMBINED_DOFS} "
+                   f"(their combinations grow as C(n, M): 5 takes minutes on a large "
+                   f"design).")
 @click.option("--max-suggestions", "max_suggestions", type=click.IntRange(1, 100),
               default=8, show_default=True, help="Most suggestions listed.")
 @click.option("--lock", "locks", metavar="DOF", multiple=True,
@@ -25,20 +42,31 @@ from furncheck.cli.output import (
                    "(repeatable), e.g. --lock seat.z.")
 @click.option("--out", "out_dir", metavar="DIR", default=None,
               help="Write each suggestion there: suggestion-NN.yaml (a complete design "
-                   "file), .glb and .obj meshes and a force-space plot (meshes and plots "
-                   "need the export extra).")
+                   "file), coloured .glb and .obj/.mtl meshes, a force-space plot and a "
+                   "before/after view (pictures need the export extra); and the design's "
+                   "own view and meshes.  Files of an earlier run of the design there are "
+                   "replaced; beside another design's, files are named after the design.")
+@click.option("--no-plots", "no_plots", is_flag=True, default=False,
+              help="With --out: write no pictures (PNG), only design files and meshes.")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text",
               show_default=True, help="Report format.")
 @click.option("-o", "--output", metavar="FILE", default=None,
               help="Write the report to FILE instead of standard output.")
 @MODEL_OPTION
 def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, ...],
-            out_dir: str | None, fmt: str, output: str | None, model: str | None) -> None:
+            out_dir: str | None, no_plots: bool, fmt: str, output: str | None,
+            model: str | None) -> None:
     """Ranked suggestions that make DESIGN valid: small changes of one to --max-dofs
-    plank positions, angles and sizes (continuous, paper section 6.4), then support
-    planks to add (discrete, 6.5), each checked with the full statics.  A continuous
-    suggestion's design is the middle of its valid interval; every file written with
-    --out validates as valid.
+    plank positions, angles and sizes (continuous, paper section 6.4; symmetric changes of
+    mirror planks first) and support planks to add (discrete, 6.5), each checked with the
+    full statics and listed with its cut list (every plank it changes, from -> to).  A
+    continuous suggestion's interval is where it is valid, both ends checked; its design
+    is the smallest change plus a reserve.  Ranked by the shop's score: plausible
+    proportions, the design's symmetry kept, the smallest relative change of the fewest
+    planks.  Every file written with --out validates as valid.
+
+    With fewer suggestions than --max-suggestions (none at all, too), it says what each
+    violation would need (hand statics) and what the search tried.
 
     Exit code 0: done (also when the design is valid already, or no suggestion was
     found); 2: unreadable or ill-formed design, unknown DOF or plank, unwritable --out,
@@ -46,10 +74,17 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
     """
     from furncheck.check import refuse_too_big
     from furncheck.errors import DesignTooBig
-    from furncheck.export.suggestions import ExportUnavailable, prepare_out_dir, write_files
-    from furncheck.report.suggestions import render_json, render_text
+    from furncheck.export.suggestions import (
+        pictures_missing,
+        prepare_out_dir,
+        write_files,
+        write_page,
+    )
+    from furncheck.report.suggestions import advice, render_json, render_text
     from furncheck.suggest import suggest_design
 
+    config = config_or_fail((design,))
+    model = model or config.model
     check_output(output)
     loaded = load_or_fail(design, model)
     locked = dofs_or_fail(design, loaded, locks)
@@ -64,12 +99,19 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
     result = suggest_design(loaded, max_dofs, max_suggestions, locked)
     written = {}
     if out_dir is not None:
+        pictures = not no_plots
+        if pictures and (missing := pictures_missing()) is not None:
+            click.echo(f"furncheck: pictures not written: {missing}", err=True)
+            pictures = False
+        titles = {s.rank: advice(s, loaded) for s in result.suggestions}
         try:
-            written = write_files(result, out_dir)
-        except ExportUnavailable as missing:
-            written = write_files(result, out_dir, meshes=False)
-            click.echo(f"furncheck: meshes and plots not written: {missing}", err=True)
+            written = write_files(result, out_dir, loaded, pictures, titles)
         except OSError as error:
             fail(f"cannot write suggestions to {out_dir}: {error.strerror or error}")
+        try:
+            write_page(out_dir, loaded, result, written,
+                       json.loads(render_json(result, loaded, written)))
+        except OSError as error:
+            fail(f"cannot write the report page to {out_dir}: {error.strerror or error}")
     render = render_json if fmt == "json" else render_text
     write_output(render(result, loaded, written), output)

@@ -137,9 +137,13 @@ def load_checked(path: str) -> Design:
     """``load_design`` and what the file's own drawing must satisfy besides its schema:
     every resting joint's planks touch (``geometry.resting_apart``); DesignError else."""
     from furncheck.design import load_design
+
+    return _drawing_checked(load_design(path))
+
+
+def _drawing_checked(design: Design) -> Design:
     from furncheck.geometry.analysis import resting_apart
 
-    design = load_design(path)
     problem = resting_apart(design)
     if problem is not None:
         raise problem
@@ -159,3 +163,16 @@ def check_file(path: str, model: str | None = None) -> DesignReport:
     except DesignError as error:        # unreadable, ill-formed or too big
         return DesignReport(design=path, name=Path(path).stem, valid=None, error=str(error))
 
+
+
+def check_data(data: bytes, source: str, fmt: str, model: str | None = None) -> DesignReport:
+    """``check_file`` of a document that comes from no file (standard input): its bytes,
+    the name that reports give it (``source``) and its format ('yaml' or 'json')."""
+    from furncheck.design.load import parse_design_bytes
+
+    try:
+        design = _drawing_checked(parse_design_bytes(data, source, fmt))
+    except DesignError as error:
+        return DesignReport(design=source, name=Path(source).stem, valid=None,
+                            error=str(error))
+    return check_design(with_model(design, model))

@@ -8,6 +8,8 @@ range search) say why not, or None; ``design_problem`` is the part that needs no
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from furncheck.design.model import Design
@@ -52,6 +54,17 @@ def check_edit_many(original: Geometry, edits: list[Design],
     return out
 
 
+def standing_geometry(geometry: Geometry) -> Geometry:
+    """The geometry without the ground contacts of planks that sink into the ground: such
+    a plank does not stand on the floor, it is to be shortened or raised onto it (the
+    constraint structure that edits of an invalid design keep, ``dofs.structure``)."""
+    sunk = {v.where for v in geometry.violations if v.kind == "penetration"}
+    if not sunk:
+        return geometry
+    return replace(geometry, contacts=tuple(c for c in geometry.contacts
+                                            if c.plank not in sunk))
+
+
 def design_problem(edited: Design) -> str | None:
     """What makes an edit no design at all: a plank with no length or width left (its
     box would read as a mirrored one of negative mass), or an anchor moved off its wall
@@ -85,9 +98,11 @@ def _edit_problem(original: Geometry, geometry: Geometry) -> str | None:
     if before - after:
         face, edge, _ = sorted(before - after)[0]
         return f"joint {face}/{edge} would come apart"
-    closing = {miss.planks for miss in original.near_misses}   # a near miss may close
+    closing = {miss.planks for miss in original.near_misses}   # a near miss may close,
+    listed = {frozenset(v.where.split("/")) for v in original.violations   # a listed joint
+              if v.kind == "disconnected" and "/" in v.where}             # that is open too
     new = sorted((face, edge) for face, edge, _ in after - before
-                 if (face, edge) not in closing)
+                 if (face, edge) not in closing and frozenset((face, edge)) not in listed)
     if new:
         return f"planks {new[0][0]}/{new[0][1]} would touch and form a new joint"
     # which planks stand on the ground and lean on which wall (anchors: design_problem)

@@ -257,6 +257,23 @@ which the component is a mechanism (free to move)."""
 CAPACITY_REL_TOL = 1e-9
 """A nail force within this relative slack of its capacity counts as durable."""
 
+# --- suggestions: the cut list and the shop's score ---------------------------------------
+CUT_LIST_EPS = 1e-6
+"""A plank's field counts as changed by a suggestion when it moves by more than this, in
+its own unit (the file's length unit, degrees, or the material key's unit): far below a
+saw's kerf, far above the round-off of writing a design file back (12 digits)."""
+
+STOCK_BOARD = (2.440, 1.220)
+"""m: the largest board a plank is cut from, length x width: the standard full sheet of
+MDF, 2440 x 1220 mm (8 x 4 ft; EN 622-5 boards and the sheet sizes of MDF makers). A
+suggestion that makes a plank too big to cut from one sheet, when it was not, is
+implausible (``suggest.score``)."""
+
+MIRROR_TOLERANCE_FACTOR = 1.0
+"""Two planks are mirror images of each other when every mirrored corner of one lies
+within this many times the design's tolerance of a corner of the other
+(``suggest.symmetry``)."""
+
 # --- output -------------------------------------------------------------------------------
 REPORT_SIGNIFICANT_DIGITS = 6
 """Floats in reports are rounded to this many significant digits (deterministic output)."""
@@ -303,3 +320,26 @@ section 2); a normal within this of horizontal is made exactly horizontal."""
 ON_PLANK_EPS = 1e-9
 """m: round-off slack (on top of the design's tolerance) when a load point is checked to
 lie on its plank, so a point exactly on a face is on the plank even with tolerance 0."""
+
+# --- suggest ----------------------------------------------------------------------------
+MAX_COMBINED_DOFS = 4
+"""The most DOFs one continuous suggestion may change together (``suggest --max-dofs``).
+Directions are formed for every combination of up to M of the DOFs that move the violated
+margins (at most 48 of them, ``suggest.candidates``): C(48, 4) = 194,580 combinations take
+12 s on the 37-plank bookshelf-20 in the elastic model, C(48, 5) = 1.7 million took over
+150 s, C(48, 6) = 12 million would take about 20 minutes; and on the catalog no design got
+a suggestion from 5 or 6 DOFs that 4 did not give (README, "How do I fix it?")."""
+# --- discrete suggestions (furncheck.suggest.discrete) -----------------------------------
+STOCK_THICKNESSES = (0.012, 0.015, 0.018, 0.022, 0.025, 0.030, 0.036, 0.044)
+"""m: board thicknesses a thicker plank is chosen from: the MDF and plywood sheets sold
+in 12 to 30 mm, and two 18 or 22 mm sheets glued face to face (36, 44 mm)."""
+STOCK_MATCH = 1e-6
+"""Relative slack when a needed thickness is matched to a board (12.000000001 mm is a 12 mm
+board)."""
+ANCHOR_CAPACITY = 196.0
+"""N: the rating of a wall anchor that ``suggest`` proposes: one plasterboard fixing's safe
+static load in tension, 20 kg (Gripit red, data sheet GR0049 UK, 2018; the catalog's
+``bookcase-anchored`` uses it too)."""
+WALL_ANCHOR_REACH = 0.05
+"""m: a plank whose nearest corner stands at most this far in front of a wall can be
+anchored to it (a bracket or a packing piece bridges the gap)."""

@@ -16,7 +16,7 @@ def assert_suggestions_validate(path: Path, *range_args: str) -> None:
     ``range_args`` (all DOFs when none) exits 0."""
     out = path.parent / "out"
     result = CliRunner().invoke(main, ["suggest", str(path), "--out", str(out),
-                                       "--format", "json"])
+                                       "--no-plots", "--format", "json"])
     assert result.exit_code == 0, result.output
     for suggestion in json.loads(result.output)["suggestions"]:
         check = CliRunner().invoke(main, ["validate", suggestion["design_file"]])

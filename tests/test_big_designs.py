@@ -228,7 +228,8 @@ def test_big_design_suggestions_change_only_planks_near_the_violation(monkeypatc
     3), an 11-plank wall whose middle shelf sags under 20 kg gets suggestions that change
     only that shelf and its two sides, among them the same widening of the shelf as the
     search over every DOF finds (the widening's direction and line search involve that
-    shelf alone, so restricting the others away changes nothing of it)."""
+    shelf alone, so restricting the others away changes nothing of it); the explanation
+    counts the other 8 planks' 64 DOFs as left out."""
     from furncheck import tolerances as tol
     from furncheck.suggest import suggest_design
 
@@ -243,6 +244,8 @@ def test_big_design_suggestions_change_only_planks_near_the_violation(monkeypatc
     widen = [s for s in near.suggestions if s.dofs == ("shelf1_2.width",)]
     assert widen and widen[0].changes == next(
         s.changes for s in everything.suggestions if s.dofs == ("shelf1_2.width",))
+    assert near.explanation.tried.far == (11 - 3) * 8      # the other 8 planks' DOFs
+    assert everything.explanation.tried.far == 0
 
 
 @pytest.mark.parametrize("command", [["validate"], ["suggest"], ["range", "top.z"]])

@@ -9,7 +9,6 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
-import types
 from pathlib import Path
 
 import pytest
@@ -47,18 +46,10 @@ def fake_check_file(path: str, model: str | None = None) -> DesignReport:
 
 
 @pytest.fixture
-def calls(monkeypatch) -> list[str]:
-    """Replace ``furncheck.check`` by a module holding the fake; record the paths checked."""
-    seen: list[str] = []
-
-    def check_file(path: str, model: str | None = None) -> DesignReport:
-        seen.append(path)
-        return fake_check_file(path, model)
-
-    fake = types.ModuleType("furncheck.check")
-    fake.check_file = check_file
-    monkeypatch.setitem(sys.modules, "furncheck.check", fake)
-    return seen
+def calls(checked_paths) -> list[str]:
+    """``furncheck.check`` replaced by the fake; the paths it checked
+    (``conftest.checked_paths``)."""
+    return checked_paths
 
 
 def run(*args: str):
@@ -70,7 +61,7 @@ def write(folder: Path, *names: str) -> list[str]:
     for name in names:
         path = folder / name
         path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text("furncheck: 1\n")
+        path.write_text('{"furncheck": 1}\n' if path.suffix == ".json" else "furncheck: 1\n")
         paths.append(str(path))
     return paths
 

@@ -1,4 +1,4 @@
-"""Which discrete candidates are built and checked (``suggest.discrete._reach``): a support
+"""Which discrete candidates are built and checked (``suggest.discrete.supports._reach``): a support
 or rail comes near every failing place or is not tried."""
 
 from __future__ import annotations
@@ -9,8 +9,8 @@ from pathlib import Path
 from furncheck.check import check_design
 from furncheck.design.model import with_model
 from furncheck.geometry import analyze
-from furncheck.suggest import discrete
-from furncheck.suggest.discrete import _reach, support_planks
+from furncheck.suggest.discrete import Search, support_planks
+from furncheck.suggest.discrete.supports import _reach
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -39,6 +39,6 @@ def test_a_bookcase_that_sags_all_over_gets_no_support_checked(monkeypatch):
     report = check_design(design, geometry)
     assert len({v.where for v in report.violations}) > 10
     checked = []
-    monkeypatch.setattr(discrete, "_checked", lambda *args: checked.append(args))
-    assert support_planks(design, geometry, report) == []
+    monkeypatch.setattr(Search, "verdict", lambda self, *args, **kw: checked.append(args))
+    assert support_planks(Search(design, geometry, report)) is None
     assert checked == []

@@ -1,37 +1,38 @@
-"""Exports: plank meshes (trimesh) and the force-space plot (matplotlib).
+"""Exports: coloured plank meshes (GLB, OBJ + MTL), design views and the force-space plot.
 
-Meshes are checked against hand-computed boxes (the stool's bounding box, a plank's volume
-length x width x thickness in the file's unit) and as closed, consistently wound boxes for
-every catalog design; files must re-load, name their planks and be byte-identical when
-written twice.  The plot is checked through its figure (what is drawn, from which numbers)
-and as a deterministic PNG.
+Meshes are loaded back with trimesh and checked against hand-computed boxes (the stool's
+bounding box, a plank's volume length x width x thickness), glTF's metres and Y-up, and
+the colour scale; pictures are decoded and checked as real images whose pixels say
+valid or invalid; the plot through its figure (what is drawn, from which numbers).
 """
 
 from __future__ import annotations
 
 import dataclasses
+import io
 import subprocess
 import sys
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
 from furncheck.check import check_design
 from furncheck.design import Design, load_design, parse_design
-from furncheck.export import (
-    ExportUnavailable,
-    design_mesh,
-    design_scene,
-    force_space_figure,
-    plot_force_space,
-    write_meshes,
-)
+from furncheck.design.model import with_model
+from furncheck.export import ExportUnavailable, force_space_picture, plot_force_space
+from furncheck.export.colours import UTILIZATION_STOPS, utilization_rgb
+from furncheck.export.deflection import axis_curves, deflected_shape
 from furncheck.export.errors import EXPORT_HINT
+from furncheck.export.findings import changed_planks, plank_utilization
+from furncheck.export.meshes import srgb_to_linear, write_meshes
 from furncheck.result import CaseResult, DesignReport
+from furncheck.tolerances import GRAVITY
 
 trimesh = pytest.importorskip("trimesh")
 pytest.importorskip("matplotlib")
+Image = pytest.importorskip("PIL.Image")
 
 DESIGNS = Path(__file__).resolve().parents[1] / "designs"
 CATALOG = sorted(DESIGNS.glob("*.yaml"))
@@ -54,119 +55,266 @@ def metre_table() -> Design:
     return parse_design(METRE_TABLE, "metre-table.yaml", "yaml")
 
 
-def box_volumes(design: Design) -> list[float]:
-    """length x width x thickness of each plank, in the file's unit cubed."""
-    return [p.length * p.width * p.thickness / design.unit_scale ** 3 for p in design.planks]
+def y_up(bounds) -> np.ndarray:
+    """glTF's frame from the design's: x stays, y = design z, z = -design y (so the
+    design's low and high y swap ends)."""
+    (x0, y0, z0), (x1, y1, z1) = bounds
+    return np.array([[x0, z0, -y1], [x1, z1, -y0]])
+
+
+def plank_geometries(scene) -> dict:
+    """The plank boxes of a loaded scene (outlines are paths), by name."""
+    return {name: geometry for name, geometry in scene.geometry.items()
+            if isinstance(geometry, trimesh.Trimesh)}
+
+
+def mesh_bounds(scene) -> np.ndarray:
+    """Bounds of the plank boxes in the scene frame (outlines left out)."""
+    corners = []
+    for node in scene.graph.nodes_geometry:
+        transform, name = scene.graph[node]
+        geometry = scene.geometry[name]
+        if isinstance(geometry, trimesh.Trimesh):
+            corners.append(trimesh.transform_points(geometry.vertices, transform))
+    corners = np.concatenate(corners)
+    return np.array([corners.min(axis=0), corners.max(axis=0)])
+
+
+# --- the colour scale -------------------------------------------------------------------
+
+def test_colour_scale_by_hand() -> None:
+    """Linear in RGB between the stops: 0.25 is halfway from green (0.16, 0.62, 0.24) to
+    yellow (0.96, 0.80, 0.14), i.e. (0.56, 0.71, 0.19); past 1.5 the darkest red stays;
+    no utilization is grey."""
+    assert utilization_rgb(0.25) == pytest.approx((0.56, 0.71, 0.19))
+    assert utilization_rgb(1.0) == pytest.approx(UTILIZATION_STOPS[2][1])
+    assert utilization_rgb(7.0) == utilization_rgb(1.5) == UTILIZATION_STOPS[-1][1]
+    assert utilization_rgb(None) == (0.72, 0.72, 0.72)
+    # sRGB 0.5 -> linear ((0.5 + 0.055) / 1.055) ** 2.4 = 0.2140; 0.04 -> 0.04 / 12.92
+    assert srgb_to_linear([0.5, 0.04]) == pytest.approx([0.214041, 0.003096], abs=1e-6)
 
 
 # --- meshes -----------------------------------------------------------------------------
 
 @pytest.mark.parametrize("path", CATALOG, ids=lambda path: path.stem)
-def test_every_plank_is_a_closed_outward_box(path: Path) -> None:
-    """8 vertices and 12 triangles per plank, watertight and consistently wound, with
-    positive volume length x width x thickness (file units): the normals point outward."""
+def test_every_catalog_mesh_loads_back_with_planks_bounds_and_colours(path: Path,
+                                                                      tmp_path: Path) -> None:
+    """GLB: one closed outward box per plank, named by its id, volume length x width x
+    thickness in m^3, bounds the corners in metres turned Y-up, base colour the linear
+    form of the plank's utilization colour.  OBJ: the same boxes in the file's unit, z up,
+    each with the material of its id, Kd the sRGB colour."""
     design = load_design(str(path))
-    mesh = design_mesh(design)
-    count = len(design.planks)
-    assert mesh.vertices.shape == (8 * count, 3) and mesh.faces.shape == (12 * count, 3)
-    assert mesh.metadata["planks"] == [p.id for p in design.planks]
-    scene = design_scene(design)
-    assert list(scene.geometry) == [p.id for p in design.planks]
-    for box, volume in zip(scene.geometry.values(), box_volumes(design)):
-        assert box.is_watertight and box.is_winding_consistent
-        assert box.volume == pytest.approx(volume, rel=1e-9)
-    assert mesh.volume == pytest.approx(sum(box_volumes(design)), rel=1e-9)
+    report = check_design(design)
+    glb, obj, mtl = write_meshes(design, tmp_path / path.stem, report)
+    assert [Path(glb).suffix, Path(obj).suffix, Path(mtl).suffix] == [".glb", ".obj", ".mtl"]
+    used = plank_utilization(report, design.planks)
+    corners = np.concatenate([p.corners for p in design.planks])
+    box = [corners.min(axis=0), corners.max(axis=0)]
+
+    scene = trimesh.load(glb, file_type="glb")
+    boxes = plank_geometries(scene)
+    assert list(boxes) == [p.id for p in design.planks]
+    for plank in design.planks:
+        mesh = boxes[plank.id]
+        assert mesh.vertices.shape == (8, 3) and mesh.faces.shape == (12, 3)
+        assert mesh.is_watertight and mesh.is_winding_consistent
+        assert mesh.volume == pytest.approx(plank.volume, rel=1e-5)        # float32
+        expected = np.round(255 * np.array(srgb_to_linear(utilization_rgb(used[plank.id]))))
+        np.testing.assert_allclose(mesh.visual.material.baseColorFactor[:3], expected, atol=1)
+    np.testing.assert_allclose(mesh_bounds(scene), y_up(box), atol=1e-6)
+    assert scene.metadata["units"] == design.units
+
+    loaded = trimesh.load(obj, file_type="obj", process=False, split_object=True,
+                          group_material=False)
+    objects = plank_geometries(loaded)
+    assert len(objects) == len(design.planks)
+    np.testing.assert_allclose(mesh_bounds(loaded), np.array(box) / design.unit_scale,
+                               atol=1e-6)
+    for plank in design.planks:
+        colour = next(m for m in objects.values()
+                      if m.visual.material.name == plank.id).visual.material.diffuse
+        expected = np.round(255 * np.array(utilization_rgb(used[plank.id])))
+        np.testing.assert_allclose(colour[:3], expected, atol=1)
 
 
-@pytest.mark.parametrize("path", CATALOG, ids=lambda path: path.stem)
-def test_mesh_bounds_are_the_plank_corners_in_file_units(path: Path) -> None:
-    design = load_design(str(path))
-    corners = np.concatenate([p.corners for p in design.planks]) / design.unit_scale
-    bounds = design_mesh(design).bounds
-    np.testing.assert_allclose(bounds, [corners.min(axis=0), corners.max(axis=0)],
-                               rtol=0, atol=1e-9)
+def test_stool_and_metre_table_bounds_by_hand(tmp_path: Path) -> None:
+    """The stool: seat 400 x 300 with its top at 450 mm, feet at z = 0; the metre table:
+    (-0.3, -0.2, 0) .. (0.3, 0.2, 0.506) m.  GLB in metres Y-up, OBJ in the file unit."""
+    stool = load_design(str(DESIGNS / "stool.yaml"))
+    for design, file_box, metres in [
+            (stool, [[-200, -150, 0], [200, 150, 450]], [[-0.2, -0.15, 0], [0.2, 0.15, 0.45]]),
+            (metre_table(), [[-0.3, -0.2, 0], [0.3, 0.2, 0.506]],
+             [[-0.3, -0.2, 0], [0.3, 0.2, 0.506]])]:
+        glb, obj, _ = write_meshes(design, tmp_path / design.name)
+        np.testing.assert_allclose(mesh_bounds(trimesh.load(glb, file_type="glb")),
+                                   y_up(metres), atol=1e-6)
+        np.testing.assert_allclose(mesh_bounds(trimesh.load(obj, file_type="obj",
+                                                            process=False)),
+                                   file_box, atol=1e-9)
 
 
-@pytest.mark.parametrize(("design", "expected"), [
-    # seat 400 x 300 with its top at 450 mm; panels and rung inside it, feet at z = 0
-    (load_design(str(DESIGNS / "stool.yaml")), [[-200, -150, 0], [200, 150, 450]]),
-    (metre_table(), [[-0.3, -0.2, 0], [0.3, 0.2, 0.506]]),
-], ids=["stool-mm", "table-m"])
-def test_mesh_bounds_by_hand(design: Design, expected: list[list[float]]) -> None:
-    np.testing.assert_allclose(design_mesh(design).bounds, expected, rtol=0, atol=1e-9)
+def test_marked_planks_carry_their_mark(tmp_path: Path) -> None:
+    """Moving the stool's rung and adding a plank: the rung is 'changed', the new plank
+    'added' (``changed_planks``); the GLB nodes say so in their extras and carry an
+    outline (a path), the OBJ says so and lists the 12 box edges of each as lines."""
+    stool = load_design(str(DESIGNS / "stool.yaml"))
+    rung = dataclasses.replace(stool.planks[3], center=(0.0, 0.0, 0.2))
+    extra = dataclasses.replace(stool.planks[3], id="brace", center=(0.0, 0.0, 0.3))
+    moved = dataclasses.replace(stool, planks=(*stool.planks[:3], rung, extra))
+    marks = changed_planks(stool, moved)
+    assert marks == {"rung": "changed", "brace": "added"}
+    glb, obj, mtl = write_meshes(moved, tmp_path / "moved", check_design(moved), marks)
+    scene = trimesh.load(glb, file_type="glb")
+    assert len(plank_geometries(scene)) == 5
+    paths = [g for g in scene.geometry.values() if not isinstance(g, trimesh.Trimesh)]
+    assert len(paths) == 2
+    text = Path(obj).read_text()
+    assert "# rung: changed" in text and "# brace: added" in text
+    assert sum(line.startswith("l ") for line in text.splitlines()) == 24
+    assert "changed" in Path(mtl).read_text()
+    import json
+    import struct
 
-
-def test_metre_box_volume_is_in_cubic_metres() -> None:
-    """The top: 0.6 x 0.4 x 0.012 = 0.00288 m^3 (a mm design would say 2.88e6 mm^3)."""
-    scene = design_scene(metre_table())
-    assert scene.geometry["top"].volume == pytest.approx(0.00288, rel=1e-9)
-    assert scene.metadata == {"design": "metre-table", "units": "m"}
-
-
-def test_written_meshes_reload_with_named_planks(tmp_path: Path) -> None:
-    """GLB in metres (glTF's unit), OBJ in the file's unit (mm here)."""
-    design = load_design(str(DESIGNS / "stool.yaml"))
-    written = write_meshes(design, tmp_path / "stool")
-    assert written == [str(tmp_path / "stool.glb"), str(tmp_path / "stool.obj")]
-
-    glb = trimesh.load(written[0], file_type="glb")
-    assert isinstance(glb, trimesh.Scene)
-    assert list(glb.geometry) == ["seat", "leg_l", "leg_r", "rung"]
-    for plank, box in zip(design.planks, glb.geometry.values()):
-        assert box.vertices.shape == (8, 3) and box.faces.shape == (12, 3)
-        np.testing.assert_allclose(box.vertices, plank.corners, atol=1e-7)  # float32, m
-    np.testing.assert_allclose(glb.bounds, [[-0.2, -0.15, 0], [0.2, 0.15, 0.45]], atol=1e-7)
-    assert glb.metadata["units"] == "mm"
-
-    text = Path(written[1]).read_text(encoding="utf-8")
-    lines = text.splitlines()
-    assert lines[0] == "# furncheck plank mesh, lengths in mm"
-    assert [line[2:] for line in lines if line.startswith("o ")] == \
-        ["seat", "leg_l", "leg_r", "rung"]
-    assert sum(line.startswith("v ") for line in lines) == 32
-    assert sum(line.startswith("f ") for line in lines) == 48
-    obj = trimesh.load(written[1], file_type="obj", process=False)
-    assert obj.is_watertight and obj.volume == pytest.approx(sum(box_volumes(design)))
+    data = Path(glb).read_bytes()
+    (length,) = struct.unpack("<I", data[12:16])
+    nodes = {node["name"]: node for node in json.loads(data[20:20 + length])["nodes"]}
+    assert nodes["rung"]["extras"]["mark"] == "changed"
+    assert nodes["brace"]["extras"]["mark"] == "added"
+    assert "mark" not in nodes["seat"]["extras"]
 
 
 def test_a_plank_named_like_the_scene_root_keeps_its_name(tmp_path: Path) -> None:
-    """trimesh calls a scene's root 'world' unless told otherwise; a plank may too."""
+    """trimesh calls a scene's root 'world'; a plank may be called that too."""
     stool = load_design(str(DESIGNS / "stool.yaml"))
     world = dataclasses.replace(stool.planks[0], id="world")
     design = dataclasses.replace(stool, planks=(world, *stool.planks[1:]))
     glb = trimesh.load(write_meshes(design, tmp_path / "stool")[0], file_type="glb")
-    assert list(glb.geometry) == ["world", "leg_l", "leg_r", "rung"]
+    assert list(plank_geometries(glb)) == ["world", "leg_l", "leg_r", "rung"]
 
 
 def test_written_meshes_are_byte_identical(tmp_path: Path) -> None:
     design = load_design(str(DESIGNS / "chair-tilted.yaml"))
+    report = check_design(design)
     (tmp_path / "a").mkdir()
     (tmp_path / "b").mkdir()
-    first = write_meshes(design, tmp_path / "a" / "chair")
-    second = write_meshes(design, tmp_path / "b" / "chair")
+    first = write_meshes(design, tmp_path / "a" / "chair", report)
+    second = write_meshes(design, tmp_path / "b" / "chair", report)
     for one, other in zip(first, second):
         assert Path(one).read_bytes() == Path(other).read_bytes()
 
 
-def test_meshes_without_trimesh_raise_export_unavailable(monkeypatch: pytest.MonkeyPatch,
-                                                         tmp_path: Path) -> None:
-    monkeypatch.setitem(sys.modules, "trimesh", None)   # makes ``import trimesh`` fail
-    design = metre_table()
-    for export in (lambda: design_mesh(design), lambda: write_meshes(design, tmp_path / "x")):
-        with pytest.raises(ExportUnavailable) as caught:
-            export()
-        assert str(caught.value) == EXPORT_HINT == \
-            "meshes and plots need the export extra: pip install 'furncheck[export]'"
-        assert caught.value.module == "trimesh"
-    assert list(tmp_path.iterdir()) == []
-
-
-def test_importing_the_package_loads_neither_trimesh_nor_matplotlib() -> None:
-    code = ("import sys, furncheck.export; "
+def test_importing_the_package_loads_no_heavy_module() -> None:
+    code = ("import sys, furncheck.export, furncheck.export.suggestions; "
             "print(sorted(m for m in ('trimesh', 'matplotlib') if m in sys.modules))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True).stdout
     assert out.strip() == "[]"
+
+
+# --- deflection -------------------------------------------------------------------------
+
+def test_hermite_midpoint_by_hand() -> None:
+    """One element 1 m along x, ends displaced (0, 0, -1) and (0, 0, -3) mm, turned
+    theta_a = (0, 0.01, 0) and theta_b = (0, -0.01, 0) rad.  The slopes du/ds = theta x e
+    are (0, 0, -0.01) and (0, 0, 0.01); at the middle the Hermite weights are 1/2, 1/8,
+    1/2, -1/8: w = -0.5 - 1.5 + (1/8)(-10) - (1/8)(10) = -4.5 mm (design in mm)."""
+    design = SimpleNamespace(unit_scale=0.001,
+                             planks=[SimpleNamespace(id="shelf")])
+    beams = SimpleNamespace(nodes=np.array([[0, 1]]), plank=np.array([0]),
+                            node_s=np.array([-0.5, 0.5]))
+    model = SimpleNamespace(beams=beams, node_points=np.array([[0.0, 0, 0], [1.0, 0, 0]]),
+                            planks=(0,))
+    q = np.array([0, 0, -0.001, 0, 0.01, 0, 0, 0, -0.003, 0, -0.01, 0])
+    shape = axis_curves(design, model, "default", q)
+    (plank, points, moves), = shape.curves
+    middle = len(points) // 2                     # an odd number of samples: the middle
+    xi = (points[:, 0] + 0.0) / 1000.0
+    expected = -1 * (1 - 3 * xi ** 2 + 2 * xi ** 3) - 3 * (3 * xi ** 2 - 2 * xi ** 3) \
+        - 10 * (xi - 2 * xi ** 2 + xi ** 3) + 10 * (xi ** 3 - xi ** 2)
+    np.testing.assert_allclose(moves[:, 2], expected, atol=1e-9)
+    assert xi[middle] == pytest.approx(0.5) and moves[middle, 2] == pytest.approx(-4.5)
+    assert shape.where == "shelf" and shape.largest == pytest.approx(abs(moves[:, 2]).max())
+
+
+def test_stool_seat_deflects_by_its_sag() -> None:
+    """The elastic stool's seat sags 3.67 mm (README, measured from the line through its
+    supports); its largest displacement adds what its supports move, which on two stiff
+    legs is a few percent at most: sag <= largest <= 1.1 sag.  Rigid planks have none."""
+    stool = load_design(str(DESIGNS / "stool.yaml"))
+    report = check_design(stool)
+    sag = next(p.sag for p in report.cases[0].planks if p.id == "seat")
+    shape = deflected_shape(stool, "default")
+    assert shape.where == "seat" and sag <= shape.largest <= 1.1 * sag
+    assert deflected_shape(with_model(stool, "rigid"), "default") is None
+
+
+# --- design views -----------------------------------------------------------------------
+
+def decoded(data: bytes) -> np.ndarray:
+    assert data.startswith(PNG_MAGIC)
+    image = Image.open(io.BytesIO(data))
+    assert 400 <= image.width <= 2400 and 300 <= image.height <= 1200
+    return np.asarray(image.convert("RGB"), dtype=int)
+
+
+def reddish(pixels: np.ndarray) -> int:
+    """Pixels of the failing end of the scale (red, dark red), not of green or yellow."""
+    red, green, blue = pixels[..., 0], pixels[..., 1], pixels[..., 2]
+    return int(np.sum((red > 60) & (red > 2.5 * green) & (red > 2.5 * blue)))
+
+
+def test_views_of_a_valid_and_an_invalid_stool_differ_where_it_fails() -> None:
+    """The rigid stool (worst joint 23 %: all green to yellow) and the same stool with
+    ten times the load (its joints fail): the same planks, the same view, but the
+    invalid one is red (planks past capacity, failing joints marked) where the valid one
+    has no red at all (the colour bar below the drawing left out)."""
+    from furncheck.export.views import PANEL_SIZE, design_view_png
+
+    stool = with_model(load_design(str(DESIGNS / "stool.yaml")), "rigid")
+    heavy_cases = tuple(dataclasses.replace(case, loads=tuple(
+        dataclasses.replace(load, force=tuple(10 * f for f in load.force),
+                            mass=10 * load.mass if load.mass else None)
+        for load in case.loads)) for case in stool.load_cases)
+    heavy = dataclasses.replace(stool, load_cases=heavy_cases)
+    valid, invalid = check_design(stool), check_design(heavy)
+    assert valid.valid and not invalid.valid
+    pictures = [decoded(design_view_png(design, report))
+                for design, report in ((stool, valid), (heavy, invalid))]
+    assert pictures[0].shape == pictures[1].shape
+    drawing = int(pictures[0].shape[0] * PANEL_SIZE[1] / (PANEL_SIZE[1] + 0.55))
+    assert reddish(pictures[0][:drawing]) == 0
+    assert reddish(pictures[1][:drawing]) > 2000
+    assert np.mean(np.any(pictures[0] != pictures[1], axis=2)) > 0.02
+
+
+@pytest.mark.parametrize("path", CATALOG, ids=lambda path: path.stem)
+def test_every_catalog_view_is_an_image(path: Path) -> None:
+    """A real picture of sensible size that is not blank: the planks cover part of it."""
+    from furncheck.export.views import design_view_png
+
+    design = load_design(str(path))
+    pixels = decoded(design_view_png(design, check_design(design)))
+    not_white = np.mean(np.any(pixels < 235, axis=2))
+    assert 0.03 < not_white < 0.9
+
+
+def test_suggestion_view_has_two_panels_and_the_change_outlined() -> None:
+    """Before | after, twice as wide as one design's view; the moved rung is outlined in
+    the 'changed' blue in both panels."""
+    from furncheck.export.colours import MARK_RGB
+    from furncheck.export.views import design_view_png, suggestion_view_png
+
+    stool = with_model(load_design(str(DESIGNS / "stool.yaml")), "rigid")
+    rung = dataclasses.replace(stool.planks[3], center=(0.0, 0.0, 0.2))
+    moved = dataclasses.replace(stool, planks=(*stool.planks[:3], rung))
+    one = decoded(design_view_png(stool, check_design(stool)))
+    both = decoded(suggestion_view_png(stool, check_design(stool), moved, check_design(moved),
+                                       "stool, suggestion 1: raise rung", {"rung": "changed"}))
+    assert both.shape[1] == 2 * one.shape[1]
+    blue = np.round(255 * np.array(MARK_RGB["changed"])).astype(int)
+    near = np.all(np.abs(both - blue) <= 40, axis=2)
+    half = both.shape[1] // 2
+    assert near[:, :half].sum() > 50 and near[:, half:].sum() > 50
 
 
 # --- force-space plot -------------------------------------------------------------------
@@ -174,34 +322,70 @@ def test_importing_the_package_loads_neither_trimesh_nor_matplotlib() -> None:
 @pytest.fixture(scope="module")
 def tipping_change() -> tuple[DesignReport, DesignReport]:
     """bench-tips (a person on the overhanging end: it lifts off its left panel) and the
-    same load on the bench with its panels moved out to x = +-520 (stable)."""
-    tips = load_design(str(DESIGNS / "bench-tips.yaml"))
-    bench = load_design(str(DESIGNS / "bench.yaml"))
+    same load on the bench with its panels moved out to x = +-520 (stable); rigid."""
+    tips = with_model(load_design(str(DESIGNS / "bench-tips.yaml")), "rigid")
+    bench = with_model(load_design(str(DESIGNS / "bench.yaml")), "rigid")
     fixed = dataclasses.replace(bench, name=tips.name, load_cases=tips.load_cases)
     return check_design(tips), check_design(fixed)
 
 
-def test_plot_draws_both_force_spaces(tipping_change) -> None:
+def test_plot_draws_joints_and_contacts_once_each(tipping_change) -> None:
+    """Two panels; the heading names the change and the verdicts; before (lift-off) the
+    joints do not count, so no rings; after, one dot per joint at (pull / capacity,
+    shear / capacity); contacts: rings before at their (N, |T|) (the left panel's four
+    feet would pull: N < 0), dots after (none pulls)."""
     before, after = tipping_change
-    assert [c.stability for c in before.cases] == ["lift-off"]
-    assert [c.stability for c in after.cases] == ["stable"]
-    figure = force_space_figure(before, after)
-    durability, stability = figure.axes[:2]
-    assert "bench-tips" in figure.get_suptitle() and "'default'" in durability.get_title()
-    assert stability.get_title().endswith("stability (lift-off -> stable)")
+    picture = force_space_picture(before, after, 0.5, "suggestion 1: move leg_r")
+    joints, contacts = "joints", "contacts"
+    texts = picture.texts
+    assert texts[0] == "bench-tips: suggestion 1: move leg_r"
+    assert texts[1].startswith("before: INVALID (lift-off in 'default')  ->  after: valid.")
 
-    # stability: one bar per contact before and after, heights = ground normal forces
-    heights = sorted(round(bar.get_height(), 6) for bar in stability.patches)
-    normals = [contact.force[2] for case in (before.cases[0], after.cases[0])
-               for contact in case.contacts]
-    assert heights == sorted(round(normal, 6) for normal in normals)
-    assert sum(height < 0 for height in heights) == 4   # the left panel's feet lift
+    def points(panel: str, filled: bool) -> np.ndarray:
+        """The markers of a panel (its artists' gid), rings or dots, in data units."""
+        lines = [line for line in picture.figure.artists if line.get_gid() == panel
+                 and getattr(line, "get_marker", lambda: None)() == "o"
+                 and (line.get_markerfacecolor() != "none") == filled]
+        return np.concatenate([line.get_xydata() for line in lines]) if lines else \
+            np.zeros((0, 2))
 
-    # durability: an arrow per joint that moved (same plank pair), the worst 3 labelled
-    arrows = [text for text in durability.texts if text.get_text() == ""]
-    labels = {text.get_text() for text in durability.texts if text.get_text()}
-    assert len(arrows) == 4
-    assert len(labels) == 3 and all("/" in label for label in labels)
+    after_joints = after.cases[0].joints
+    assert len(points(joints, filled=False)) == 0
+    np.testing.assert_allclose(
+        sorted(map(tuple, points(joints, filled=True))),
+        sorted((max(j.pull / j.pull_capacity, -1.0), j.shear / j.shear_capacity)
+               for j in after_joints))
+    rings = points(contacts, filled=False)
+    normals = sorted(c.pressing for c in before.cases[0].contacts)
+    assert sorted(rings[:, 0]) == pytest.approx(normals)
+    assert np.sum(rings[:, 0] < 0) == 4
+    assert np.all(points(contacts, filled=True)[:, 0] >= 0)    # pressing or lifted a hair
+
+
+def test_plot_labels_only_the_worst_of_many() -> None:
+    """The cabinet: 88 joints and 60 contacts, at most 3 of each labelled."""
+    design = load_design(str(DESIGNS / "cabinet-28.yaml"))
+    report = check_design(design)
+    assert sum(len(c.contacts) for c in report.cases[:1]) >= 50
+    picture = force_space_picture(report, report)
+    labelled = [text for text in picture.texts if ("% ('" in text or "of mu N" in text)
+                and not text.startswith("contacts:")]
+    joints = [text for text in labelled if "/" in text.split()[0]]
+    assert len(joints) == 3 and len(labelled) - len(joints) == 3
+
+
+def test_friction_budget_by_hand(tipping_change) -> None:
+    """table-slides (rigid), case shove: 110 N sideways on a table of weight W (its
+    planks' masses x g; nothing else on it): the ground's friction must sum to 110 N and
+    its normal forces to W, so the budget is 110 / (0.5 W), beyond 100 %: it slides."""
+    design = with_model(load_design(str(DESIGNS / "table-slides.yaml")), "rigid")
+    report = check_design(design)
+    weight = sum(design.plank_mass(p) for p in design.planks) * GRAVITY
+    budget = 100 * 110.0 / (0.5 * weight)
+    assert budget > 100
+    picture = force_space_picture(report, report, 0.5)
+    title = next(text for text in picture.texts if text.startswith("contacts:"))
+    assert title.endswith(f"friction used {budget:.1f} % -> {budget:.1f} % ('shove')")
 
 
 def test_plot_png_is_deterministic(tipping_change, tmp_path: Path) -> None:
@@ -210,46 +394,35 @@ def test_plot_png_is_deterministic(tipping_change, tmp_path: Path) -> None:
     second = plot_force_space(before, after, tmp_path / "two.png")
     assert first == str(tmp_path / "one.png")
     data = Path(first).read_bytes()
-    assert data.startswith(PNG_MAGIC)
+    decoded(data)
     assert b"Software" not in data and b"matplotlib" not in data
     assert data == Path(second).read_bytes()
 
 
-def test_plot_of_no_change(tipping_change) -> None:
-    """before == after: every joint's two markers coincide, so no arrows; the bars pair
-    up with equal heights."""
-    report = tipping_change[0]
-    figure = force_space_figure(report, report)
-    assert not [text for text in figure.axes[0].texts if text.get_text() == ""]
-    heights = [bar.get_height() for bar in figure.axes[1].patches]
-    assert heights[0::2] == heights[1::2] == [c.force[2] for c in report.cases[0].contacts]
-    assert figure.axes[1].get_title().endswith("(lift-off -> lift-off)")
-
-
 def test_plot_of_a_case_without_forces(tipping_change) -> None:
-    """A case with neither joint nor contact forces (a mechanism) still gets its row,
-    saying so; a case only one report has is drawn for that one alone."""
-    before, after = tipping_change
+    """Reports with only a mechanism case (no joint or contact forces) say so."""
     loose = CaseResult("loose", durable=True, stable=False, joints=(), contacts=(),
                        stability="mechanism")
-    figure = force_space_figure(before, dataclasses.replace(after, cases=(*after.cases, loose)))
-    assert len(figure.axes) == 4
-    assert [text.get_text() for text in figure.axes[2].texts] == ["no joint forces"]
-    assert [text.get_text() for text in figure.axes[3].texts] == \
-        ["no contact forces (no equilibrium)"]
-    assert figure.axes[3].get_title().endswith("'loose': stability (- -> mechanism)")
+    report = dataclasses.replace(tipping_change[0], cases=(loose,))
+    texts = force_space_picture(report, report).texts
+    assert texts.index("no joint forces") < texts.index("no contact forces (no equilibrium)")
 
 
 def test_plot_needs_load_cases() -> None:
     unreadable = DesignReport(design="broken.yaml", name="broken", valid=None, error="line 1")
     with pytest.raises(ValueError, match="no load case results"):
-        force_space_figure(unreadable, unreadable)
+        force_space_picture(unreadable, unreadable)
 
 
-def test_plot_without_matplotlib_raises_export_unavailable(tipping_change,
-                                                           monkeypatch: pytest.MonkeyPatch,
-                                                           tmp_path: Path) -> None:
+def test_pictures_without_matplotlib_raise_export_unavailable(tipping_change,
+                                                              monkeypatch: pytest.MonkeyPatch,
+                                                              tmp_path: Path) -> None:
+    from furncheck.export.views import design_view_png
+
     monkeypatch.setitem(sys.modules, "matplotlib.figure", None)
-    with pytest.raises(ExportUnavailable, match="pip install 'furncheck\\[export\\]'"):
+    with pytest.raises(ExportUnavailable, match="pip install 'furncheck\\[export\\]'") as caught:
         plot_force_space(*tipping_change, tmp_path / "plot.png")
+    assert str(caught.value) == EXPORT_HINT
+    with pytest.raises(ExportUnavailable):
+        design_view_png(metre_table(), None)
     assert not (tmp_path / "plot.png").exists()

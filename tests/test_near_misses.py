@@ -259,7 +259,7 @@ def test_suggest_closes_the_near_misses_of_the_short_stool(tmp_path):
     path = tmp_path / "stool-short.yaml"
     path.write_text(stool_with_leg_l(430, 219))
     run = cli("suggest", str(path), "--model", "rigid", "--format", "json",
-              "--out", str(tmp_path / "out"))
+              "--out", str(tmp_path / "out"), "--no-plots")
     assert run.returncode == 0, run.stderr
     entries = json.loads(run.stdout)["suggestions"]
     assert entries and all(check_file(entry["design_file"], "rigid").valid

@@ -14,9 +14,10 @@ from furncheck.check import check_design
 from furncheck.design import load_design
 from furncheck.design.model import with_model
 from furncheck.dofs import all_dofs, design_size, structure
+from furncheck.edit_check import standing_geometry
 from furncheck.geometry import analyze
-from furncheck.suggest.continuous import _boundary, _standing
 from furncheck.suggest.edits import Editor
+from furncheck.suggest.line_search import _boundary
 from furncheck.suggest.margins import Margins
 
 CATALOG = Path(__file__).resolve().parents[1] / "designs"
@@ -27,7 +28,7 @@ def margins_of(name: str, model: str | None = None) -> Margins:
     design = with_model(load_design(str(CATALOG / name)), model)
     geometry = analyze(design)
     report = check_design(design, geometry)
-    editor = Editor(design, geometry, structure(design, _standing(geometry)))
+    editor = Editor(design, geometry, structure(design, standing_geometry(geometry)))
     return Margins(design, geometry, report, editor, all_dofs(design))
 
 
@@ -84,20 +85,21 @@ def test_penetration_margin_is_depth_against_tolerance():
 
 def test_regula_falsi_needs_fewer_checks_than_bisection():
     """A margin linear in the step, zero at 0.3: the boundary is found to the resolution
-    in a few evaluations (bisection of [0, 1] to 1e-4 would need 14)."""
+    (below the valid end: 1e-4 of it) in a few evaluations (bisection of [0, 1] to 3e-5
+    would need 16); above the valid end the resolution is absolute (1e-3)."""
     calls = []
 
     def margin(step: float) -> float:
         calls.append(step)
         return (step - 0.3) * 2.0
 
-    low = _boundary(margin, (1.0, margin(1.0)), (0.0, margin(0.0)), 1e-4)
+    low, _ = _boundary(margin, (1.0, margin(1.0)), (0.0, margin(0.0)), 1e-4)
     assert 0.3 <= low <= 0.3 + 1e-4
     assert len(calls) - 2 <= 8
 
     calls.clear()
-    high = _boundary(lambda s: 1.0 if s < 0.6 else -math.inf, (0.0, 1.0), (1.0, -math.inf),
-                     1e-3)
+    high, _ = _boundary(lambda s: 1.0 if s < 0.6 else -math.inf, (0.0, 1.0),
+                        (1.0, -math.inf), 1e-3)
     assert 0.599 <= high < 0.6
 
 

@@ -81,6 +81,14 @@ def load_design(path: str) -> Design:
     return parse_design(_decode(_read_bytes(path), path), path, fmt)
 
 
+def parse_design_bytes(data: bytes, source: str, fmt: str) -> Design:
+    """``parse_design`` of a document's bytes that come from no file (standard input):
+    refuses oversized, binary and non-UTF-8 data as ``load_design`` does."""
+    if len(data) > tol.MAX_FILE_BYTES:
+        raise _too_large(source, len(data))
+    return parse_design(_decode(data, source), source, fmt)
+
+
 def parse_design(text: str, source: str, fmt: str) -> Design:
     """Check the design document ``text`` ('yaml' or 'json'); ``source`` names it in errors
     and becomes ``Design.source``.  Returns the ``Design`` in SI units."""

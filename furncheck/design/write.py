@@ -15,7 +15,7 @@ from typing import Any
 import yaml
 
 from furncheck.design.materials import MATERIAL_KEYS, material_entry
-from furncheck.design.model import Design, JointSpec, Load, LoadCase, Plank
+from furncheck.design.model import Anchor, Design, JointSpec, Load, LoadCase, Plank
 from furncheck.errors import DesignError
 
 _Dumper = getattr(yaml, "CSafeDumper", yaml.SafeDumper)
@@ -50,9 +50,7 @@ def design_to_document(design: Design) -> dict[str, Any]:
         doc["walls"] = [{"point": _vector_in_unit(wall.point, scale),
                          "normal": [float(v) for v in wall.normal]} for wall in design.walls]
     if design.anchors:
-        doc["anchors"] = [{"plank": anchor.plank, "at": _vector_in_unit(anchor.point, scale),
-                           "wall": anchor.wall, "capacity": float(anchor.capacity)}
-                          for anchor in design.anchors]
+        doc["anchors"] = [anchor_entry(anchor, design) for anchor in design.anchors]
     doc["safety_factor"] = design.safety_factor
     doc["tolerance"] = _in_unit(design.tolerance, scale)
     return doc
@@ -96,6 +94,12 @@ def _rounded(value: float) -> float:
 
 def _vector_in_unit(metres, scale: float) -> list[float]:
     return [_in_unit(float(v), scale) for v in metres]
+
+
+def anchor_entry(anchor: Anchor, design: Design) -> dict[str, Any]:
+    """An anchor as the design file writes it (its point in file units)."""
+    return {"plank": anchor.plank, "at": _vector_in_unit(anchor.point, design.unit_scale),
+            "wall": anchor.wall, "capacity": float(anchor.capacity)}
 
 
 def plank_entry(plank: Plank, design: Design) -> dict[str, Any]:

@@ -1,17 +1,25 @@
-"""Exports of a design: plank meshes (GLB, OBJ) and the force-space plot of a change.
+"""Pictures and meshes of designs and suggestions.
 
-    meshes   design_mesh, design_scene, write_meshes   (trimesh)
-    plots    plot_force_space, force_space_figure      (matplotlib)
-    errors   ExportUnavailable: the ``export`` extra is not installed
+    colours      the utilization scale and the marks of changed and added planks
+    findings     what they show: plank utilizations, governing case, failing joints and
+                 contacts, changed planks (values only)
+    meshes       GLB (metres, Y-up) and OBJ + MTL (file unit), coloured   (numpy only)
+    deflection   an elastic design's deflected shape in its governing case
+    projection   the fixed oblique view: planks as depth-sorted faces
+    labels       Picture (a figure and its text), Label, Sheet: text written with Pillow
+    views        design views and before/after views of a suggestion (PNG, matplotlib)
+    plots        the force space of a change (PNG, matplotlib)
+    suggestions  the files of ``suggest --out``; catalog: ``validate --views``
+    folders      the checks before any work: output folder usable, matplotlib there
+    errors       ExportUnavailable: the ``export`` extra (matplotlib) is not installed
 
-trimesh and matplotlib are imported only inside the functions that use them, so importing
-this package stays cheap and works without the extra; calling an export without it raises
-``ExportUnavailable``.
+matplotlib is imported only inside the functions that draw, so importing this package
+stays cheap and works without the extra; drawing without it raises ``ExportUnavailable``.
 """
 
 from furncheck.export.errors import ExportUnavailable
-from furncheck.export.meshes import design_mesh, design_scene, write_meshes
-from furncheck.export.plots import force_space_figure, plot_force_space
+from furncheck.export.meshes import glb_bytes, mtl_text, obj_text, write_meshes
+from furncheck.export.plots import force_space_picture, force_space_png, plot_force_space
 
-__all__ = ["ExportUnavailable", "design_mesh", "design_scene", "force_space_figure",
-           "plot_force_space", "write_meshes"]
+__all__ = ["ExportUnavailable", "force_space_picture", "force_space_png", "glb_bytes",
+           "mtl_text", "obj_text", "plot_force_space", "write_meshes"]

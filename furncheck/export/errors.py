@@ -1,21 +1,21 @@
 """The one error of the export package: its optional dependencies are missing.
 
-trimesh and matplotlib are the ``export`` extra of the package; ``validate`` and ``range``
-never need them, so they are imported only inside the functions that draw or write meshes,
-and their absence is reported as a typed error that the CLI turns into one line.
+matplotlib is the ``export`` extra of the package; ``validate`` and ``range`` never need
+it, so it is imported only inside the functions that draw, and its absence is reported
+as a typed error that the CLI turns into one line.  (Meshes are written with numpy.)
 """
 
 from __future__ import annotations
 
 from furncheck.errors import FurncheckError
 
-EXPORT_HINT = "meshes and plots need the export extra: pip install 'furncheck[export]'"
+EXPORT_HINT = "pictures need the export extra: pip install 'furncheck[export]'"
 
 
 class ExportUnavailable(FurncheckError):
-    """trimesh or matplotlib is not installed.
+    """matplotlib is not installed.
 
-    module : the module whose import failed ('trimesh' or 'matplotlib')
+    module : the module whose import failed ('matplotlib')
     """
 
     def __init__(self, module: str):

@@ -26,7 +26,7 @@ from furncheck.dofs import (
     parse_dof,
     structure,
 )
-from furncheck.edit_check import check_edit_many
+from furncheck.edit_check import check_edit_many, standing_geometry
 from furncheck.geometry import EditMargins, Geometry, analyze, edit_margins_many
 from furncheck.ranges.estimates import _Probe
 from furncheck.statics import build_model
@@ -70,7 +70,7 @@ class Evaluator:
     def __init__(self, design: Design, locked: tuple[str, ...] = ()):
         self.design = design
         self.geometry: Geometry = analyze(design)
-        self.frame: Structure = structure(design, self.geometry)
+        self.frame: Structure = structure(design, standing_geometry(self.geometry))
         self.locked = tuple(parse_dof(design, name) for name in locked)
         self.model = build_model(design, self.geometry)     # shared by the design's own
         refuse_too_big(design, self.model)                  # checks

@@ -41,6 +41,7 @@ from furncheck.ranges.estimates import (
     _open_groups,
     _Probe,
 )
+from furncheck.ranges.nearest import nearest_window, predicted_steps
 from furncheck.sensitivity import Linearization, Sensitivity
 
 RANGE_RESOLUTION = 1e-3
@@ -185,6 +186,8 @@ class RangeFinder(Evaluator):
         side of each DOF is a generator of the evaluations it needs, and the evaluations
         that the searches wait for at one time are made as one batch."""
         searches: dict[tuple[int, float], Generator] = {}
+        predicted = {} if self.valid_now else predicted_steps(
+            self.design, self.geometry, self.frame, self.locked, dofs)
         for n, dof in enumerate(dofs):
             if dof in self.locked:
                 continue
@@ -194,7 +197,8 @@ class RangeFinder(Evaluator):
                 searches[(n, -1.0)] = self._side(dof, -1.0, limit, resolution)
                 searches[(n, 1.0)] = self._side(dof, 1.0, limit, resolution)
             else:
-                searches[(n, 0.0)] = self._nearest_valid(dof, value, unit, limit, resolution)
+                searches[(n, 0.0)] = self._nearest_valid(dof, value, unit, limit, resolution,
+                                                         predicted.get(dof))
         found = self._run(searches, dofs)
         out = []
         for n, dof in enumerate(dofs):
@@ -499,22 +503,17 @@ class RangeFinder(Evaluator):
         return good
 
     def _nearest_valid(self, dof: Dof, value: float, unit: str, limit: float,
-                       resolution: float) -> DofRange:
-        """For an invalid design: the valid interval nearest the current value, sampling
-        outward on both sides, the sensitivity's favoured side first."""
-        samples = [limit * 2.0 ** -k for k in range(6, -1, -1)]
-        order = (1.0, -1.0) if self._favoured_sign(dof) > 0 else (-1.0, 1.0)
-        for previous, step in zip([0.0] + samples, samples):
-            for sign in order:
-                if (yield from self._valid_at(dof, sign * step)):
-                    inner = yield from self._bisect(dof, sign, step, previous, resolution)
-                    outer = yield from self._expand(dof, sign, step, limit, resolution)
-                    ends = sorted((value + sign * inner, value + sign * outer))
-                    return DofRange(dof.name, value, (ends[0], ends[1]), unit,
-                                    "the current value is invalid; this is the nearest "
-                                    "valid interval")
-        return DofRange(dof.name, value, None, unit,
-                        f"no valid value within {plain_number(limit, 6)} {unit} either way")
+                       resolution: float, predicted: float | None = None) -> DofRange:
+        """For an invalid design: the valid window at the ``predicted`` change, else the
+        valid interval nearest the current value (``nearest.nearest_window``)."""
+        found = yield from nearest_window(self, dof, limit, resolution, predicted)
+        if found is None:
+            return DofRange(dof.name, value, None, unit,
+                            f"no valid value within {plain_number(limit, 6)} {unit} either way")
+        (inner, outer), reason = found
+        ends = sorted((value + inner, value + outer))
+        return DofRange(dof.name, value, (ends[0], ends[1]), unit,
+                        f"the current value is invalid; this is the {reason}")
 
     # -- predictions from the sensitivity ------------------------------------------------------
     def _linearizations(self) -> list[Linearization]:

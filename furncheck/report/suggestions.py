@@ -4,9 +4,13 @@ section 4.
     designs/shelf-cantilever-overloaded.yaml: INVALID, 1 violation
       non-durable: post/shelf in case 'default': pull 1005 N per nail exceeds 700 N
     3 suggestions:
-      1. Shorten shelf by 180 mm (valid for 120-241 mm). Restores durability.
+      1. Shorten shelf by 180 mm (valid for 120-397 mm). Restores durability.
+         changes 1 plank:
+           shelf: length 400 -> 219.5 mm, x 350 -> 259.8 mm
          design: out/suggestion-01.yaml
       ...
+
+The sentence of a continuous suggestion is ``shop_words``', its cut list ``cutlist``'s.
 """
 
 from __future__ import annotations
@@ -14,25 +18,19 @@ from __future__ import annotations
 import json
 from typing import Any
 
-import numpy as np
-
 from furncheck.design.model import Design
-from furncheck.design.write import plank_entry
+from furncheck.design.write import anchor_entry, plank_entry
 from furncheck.export.suggestions import Written
 from furncheck.report.common import plural
+from furncheck.report.cutlist import cut_list_lines, edits_json
+from furncheck.report.explanation import explanation_dict, explanation_lines
 from furncheck.report.numbers import format_number, json_ready
+from furncheck.report.shop_words import continuous_advice
 from furncheck.report.text import INDENT, design_lines
 from furncheck.suggest import Suggestion, SuggestionReport
 
 ADVICE_DIGITS = 3
 """Significant digits of the amounts in the advice (the JSON keeps REPORT digits)."""
-
-PARALLEL_COSINE = 0.95
-"""Planks whose face normals' cosine exceeds this count as parallel."""
-
-TOWARD_COSINE = 0.5
-"""A plank is 'toward' which a move goes when the direction to its centre is within 60
-degrees of the move."""
 
 
 def advice(suggestion: Suggestion, original: Design) -> str:
@@ -40,82 +38,10 @@ def advice(suggestion: Suggestion, original: Design) -> str:
     or 'Add support-1 (582 x 300 mm) between shelf and base, centred at (250, 0, 303) mm,
     nailed to both.' (or 'under ledge, standing on the floor, ...')"""
     if suggestion.kind == "discrete":
-        return _support_advice(suggestion, original)
-    phrases = []
-    for k, (name, change, unit) in enumerate(zip(suggestion.dofs, suggestion.changes,
-                                                 suggestion.units)):
-        plank, _, kind = name.rpartition(".")
-        subject = plank if k == 0 or suggestion.dofs[k - 1].rpartition(".")[0] != plank \
-            else "it"
-        phrases.append(_phrase(original, plank, subject, kind, change, unit))
-    sentence = " and ".join(phrases)
-    low, high = suggestion.range
-    step = suggestion.step
-    lead = abs(suggestion.changes[0]) / step if step else 0.0
-    unit = suggestion.units[0]
-    valid_for = (f"valid for {_amount(low * lead)}-{_amount(high * lead)} {_unit(unit)}"
-                 + (" of the first change" if len(suggestion.dofs) > 1 else ""))
-    return f"{sentence[0].upper()}{sentence[1:]} ({valid_for})."
-
-
-def _support_advice(suggestion: Suggestion, original: Design) -> str:
-    scale, unit = original.unit_scale, original.units
-    upper, lower = suggestion.between[:2]
-    parts = []
-    for plank in suggestion.adds:
-        size = " x ".join(_amount(v / scale) for v in (plank.length, plank.width))
-        centre = ", ".join(_amount(v / scale) for v in plank.center)
-        if len(suggestion.between) == 3:        # a stiffening rail under a bent plank
-            ends = suggestion.between[1:]
-            parts.append(f"{plank.id} ({size} {unit}) on edge under {upper}, from {ends[0]} "
-                         f"to {ends[1]}, centred at ({centre}) {unit}, nailed to all three")
-        elif lower == "the floor":
-            parts.append(f"{plank.id} ({size} {unit}) under {upper}, standing on the floor, "
-                         f"centred at ({centre}) {unit}, nailed to {upper}")
-        else:
-            parts.append(f"{plank.id} ({size} {unit}) between {upper} and {lower}, centred "
-                         f"at ({centre}) {unit}, nailed to both")
-    return f"Add {'; '.join(parts)}."
-
-
-def _phrase(design: Design, plank: str, subject: str, kind: str, change: float,
-            unit: str) -> str:
-    amount = f"{_amount(abs(change))} {_unit(unit)}"
-    if kind == "z":
-        return f"{'raise' if change > 0 else 'lower'} {subject} by {amount}"
-    if kind in ("x", "y"):
-        sign = 1.0 if change > 0 else -1.0
-        ahead = _toward(design, plank, "xy".index(kind), sign)
-        behind = _toward(design, plank, "xy".index(kind), -sign)
-        where = f"toward {ahead}" if ahead else f"away from {behind}" if behind else \
-            f"along {'+' if change > 0 else '-'}{kind}"
-        return f"move {subject} {amount} {where}"
-    if kind == "length":
-        return f"{'lengthen' if change > 0 else 'shorten'} {subject} by {amount}"
-    if kind == "width":
-        return f"{'widen' if change > 0 else 'narrow'} {subject} by {amount}"
-    verb = "turn" if kind == "rz" else "tilt"
-    sign = "+" if change > 0 else "-"
-    return f"{verb} {subject} by {sign}{amount} about {kind[1]}"
-
-
-def _toward(design: Design, plank_id: str, axis: int, sign: float) -> str | None:
-    """The plank ahead of a move along ``axis``: among the others whose centre lies
-    within 60 degrees of the move, a parallel one (the other leg of a pair) before the
-    rest, then the nearest."""
-    moved = design.plank(plank_id)
-    normal = moved.rotation_matrix[:, 2]
-    best, best_key = None, None
-    for plank in design.planks:
-        offset = plank.center_array - moved.center_array
-        distance = float(np.linalg.norm(offset))
-        if plank.id == plank_id or distance == 0 or sign * offset[axis] < TOWARD_COSINE * distance:
-            continue
-        parallel = abs(float(plank.rotation_matrix[:, 2] @ normal)) > PARALLEL_COSINE
-        key = (not parallel, distance)
-        if best_key is None or key < best_key:
-            best, best_key = plank.id, key
-    return best
+        return suggestion.advice
+    return continuous_advice(suggestion.dofs, suggestion.changes, suggestion.units,
+                             suggestion.step, suggestion.range, suggestion.limited, original,
+                             suggestion.design)
 
 
 def _amount(value: float) -> str:
@@ -135,27 +61,37 @@ def render_text(result: SuggestionReport, original: Design,
     if result.valid:
         lines.append("Nothing needs to change: the design is valid.")
         return "\n".join(lines) + "\n"
+    explanation = result.explanation
     if not result.suggestions:
         lines.append("No suggestion: no change of the allowed DOFs was found that makes "
                      "the design valid.")
+        if explanation is not None:
+            lines.extend(explanation_lines(explanation, original.units, 0, INDENT))
         return "\n".join(lines) + "\n"
     lines.append(f"{plural(len(result.suggestions), 'suggestion')}:")
     for suggestion in result.suggestions:
         restores = " and ".join(suggestion.restores)
         lines.append(f"{INDENT}{suggestion.rank}. {advice(suggestion, original)} "
                      f"Restores {restores}.")
+        for line in cut_list_lines(suggestion.edits, original):
+            lines.append(f"{INDENT}   {line}")
         files = written.get(suggestion.rank)
         if files is not None and files.design_file:
             lines.append(f"{INDENT}   design: {files.design_file}")
             for path in (*files.meshes, *files.plots):
                 lines.append(f"{INDENT}   {path}")
+    if explanation is not None and len(result.suggestions) < explanation.tried.wanted:
+        lines.append(f"Fewer than the {explanation.tried.wanted} asked for:")
+        lines.extend(explanation_lines(explanation, original.units, len(result.suggestions),
+                                       INDENT))
     return "\n".join(lines) + "\n"
 
 
 def render_json(result: SuggestionReport, original: Design,
                 written: dict[int, Written]) -> str:
     """Contract section 4: design, valid, violations, suggestions (with ``advice`` and
-    ``plots`` added; files null/empty without ``--out``)."""
+    ``plots`` added; files null/empty without ``--out``), and for an invalid design the
+    ``explanation`` (what remains, what it would take, what was tried)."""
     report = result.report
     document: dict[str, Any] = {
         "design": result.design,
@@ -165,23 +101,32 @@ def render_json(result: SuggestionReport, original: Design,
         "suggestions": [_suggestion_dict(s, original, written.get(s.rank, Written()))
                         for s in result.suggestions],
     }
+    if result.explanation is not None:
+        document["explanation"] = explanation_dict(result.explanation, original.units)
     return json.dumps(json_ready(document), indent=2, allow_nan=False) + "\n"
 
 
 def _suggestion_dict(suggestion: Suggestion, original: Design,
                      files: Written) -> dict[str, Any]:
     if suggestion.kind == "discrete":
-        return {
+        entry = {
             "rank": suggestion.rank,
             "kind": suggestion.kind,
+            "rule": suggestion.rule,
             "restores": list(suggestion.restores),
             "adds": [plank_entry(plank, original) for plank in suggestion.adds],
             "between": list(suggestion.between),
             "advice": advice(suggestion, original),
+            "edits": edits_json(suggestion.edits),
+            "score": _score_json(suggestion),
             "design_file": files.design_file,
             "meshes": list(files.meshes),
             "plots": list(files.plots),
         }
+        added = suggestion.design.anchors[len(original.anchors):]
+        if added:           # a wall anchor: the fixings, as a design file lists them
+            entry["anchors"] = [anchor_entry(anchor, original) for anchor in added]
+        return entry
     return {
         "rank": suggestion.rank,
         "kind": suggestion.kind,
@@ -192,7 +137,19 @@ def _suggestion_dict(suggestion: Suggestion, original: Design,
         "step": suggestion.step,
         "changes": dict(zip(suggestion.dofs, suggestion.changes)),
         "advice": advice(suggestion, original),
+        "limited": suggestion.limited,
+        "edits": edits_json(suggestion.edits),
+        "score": _score_json(suggestion),
         "design_file": files.design_file,
         "meshes": list(files.meshes),
         "plots": list(files.plots),
     }
+
+
+def _score_json(suggestion: Suggestion) -> dict[str, Any] | None:
+    """The shop's score it was ranked by (``suggest.score``)."""
+    score = suggestion.score
+    if score is None:
+        return None
+    return {"implausible": list(score.implausible), "broken_mirrors": score.broken,
+            "cost": score.cost, "planks": score.touched}

@@ -21,10 +21,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from itertools import combinations
+from math import comb
 
 import numpy as np
 
 from furncheck.suggest.margins import Margins
+from furncheck.suggest.tried import DirectionTally
 
 MAX_STEP = 0.5
 """Furthest step searched along a direction, scaled units: half the design's size for
@@ -60,10 +62,13 @@ class Candidate:
     direction: np.ndarray
     enter: float
     leave: float
+    units: tuple[int, ...] = ()     # the symmetric units it combines (``unit_candidates``)
 
 
-def candidates(margins: Margins, max_dofs: int) -> list[Candidate]:
-    """Kept directions of 1..max_dofs DOFs, nearest (smallest predicted step) first."""
+def candidates(margins: Margins, max_dofs: int,
+               tally: list[DirectionTally] | None = None) -> list[Candidate]:
+    """Kept directions of 1..max_dofs DOFs, nearest (smallest predicted step) first;
+    ``tally`` (when given) gets one ``DirectionTally`` per number of DOFs."""
     rows = margins.margins
     if not rows or not margins.dofs:
         return []
@@ -78,12 +83,66 @@ def candidates(margins: Margins, max_dofs: int) -> list[Candidate]:
     found: set[tuple[int, ...]] = set()
     for m in range(1, max_dofs + 1):
         combos = _combinations(relevant, m, found)
+        culled = np.zeros(3, dtype=int)
+        before = len(kept)
         size = max(1, min(_CHUNK, _CHUNK_BYTES // (8 * len(rows) * m)))
         for start in range(0, len(combos), size):
             chunk = combos[start:start + size]
-            for candidate in _evaluate(rates, values, violated, deficit, chunk):
+            chunk_kept, chunk_culled = _evaluate(rates, values, violated, deficit, chunk)
+            culled += chunk_culled
+            for candidate in chunk_kept:
                 kept.append(candidate)
                 found.add(candidate.dofs)
+        if tally is not None:
+            tally.append(DirectionTally(m, len(relevant), comb(len(relevant), m), len(combos),
+                                        len(kept) - before, *(int(c) for c in culled)))
+    kept.sort(key=lambda c: (c.enter, len(c.dofs), c.dofs))
+    return kept
+
+
+def unit_candidates(margins: Margins, units: list, max_dofs: int) -> list[Candidate]:
+    """Kept directions (as ``candidates``) in the span of one or two *units* -- fixed
+    directions of one or two DOFs each (``symmetry.Unit``: a mirror pair changed
+    symmetrically, a DOF its mirror keeps) -- with at least one unit of two DOFs, the
+    units' DOFs disjoint and at most ``max_dofs`` in all; a combination containing a kept
+    smaller one is skipped.  Nearest first; each direction over the DOFs of its units,
+    in ascending order."""
+    rows = margins.margins
+    paired = {u for u, unit in enumerate(units) if len(unit.dofs) == 2}
+    if not rows or not margins.dofs or not paired or max_dofs < 2:
+        return []
+    rates = np.array([m.rates for m in rows])
+    values = np.array([m.value for m in rows])
+    violated = values < 0.0
+    if not violated.any():
+        return []
+    deficit = np.array([m.target for m in rows])[violated] - values[violated]
+    basis = np.zeros((len(margins.dofs), len(units)))
+    for u, unit in enumerate(units):
+        basis[list(unit.dofs), u] = unit.coefficients
+    unit_rates = rates @ basis                                       # (rows, units)
+    relevant = set(_relevant(np.abs(unit_rates[violated]).max(axis=0)))
+    kept: list[Candidate] = []
+    working: set[int] = set()          # units that work alone (paired or not)
+    for m in (1, 2):
+        combos = [c for c in combinations(sorted(relevant), m)
+                  if (m == 1 or any(u in paired for u in c))
+                  and sum(len(units[u].dofs) for u in c) <= max_dofs
+                  and len({i for u in c for i in units[u].dofs})
+                  == sum(len(units[u].dofs) for u in c)
+                  and not any(u in working for u in c)]
+        if not combos:
+            continue
+        combos_array = np.array(combos, dtype=int).reshape(-1, m)
+        for candidate in _evaluate(unit_rates, values, violated, deficit, combos_array)[0]:
+            if m == 1:
+                working.add(candidate.dofs[0])
+                if candidate.dofs[0] not in paired:
+                    continue            # one DOF alone: an ordinary candidate
+            real = basis[:, list(candidate.dofs)] @ candidate.direction
+            dofs = tuple(int(i) for i in np.nonzero(real)[0])
+            kept.append(Candidate(dofs, real[list(dofs)], candidate.enter, candidate.leave,
+                                  candidate.dofs))
     kept.sort(key=lambda c: (c.enter, len(c.dofs), c.dofs))
     return kept
 
@@ -108,8 +167,10 @@ def _combinations(relevant: list[int], m: int, found: set[tuple[int, ...]]) -> n
 
 
 def _evaluate(rates: np.ndarray, values: np.ndarray, violated: np.ndarray,
-              deficit: np.ndarray, combos: np.ndarray) -> list[Candidate]:
-    """Least-squares directions and slab tests of a batch of combinations."""
+              deficit: np.ndarray, combos: np.ndarray) -> tuple[list[Candidate], np.ndarray]:
+    """Least-squares directions and slab tests of a batch of combinations; and how many
+    were culled because a violated margin does not grow, another margin fails first, or
+    the valid region is beyond MAX_STEP (3,) (in that order of precedence)."""
     block = np.transpose(rates[:, combos], (1, 0, 2))                # (B, rows, m)
     system = block[:, violated, :]                                   # (B, |V|, m)
     y = np.einsum("bmv,v->bm", np.linalg.pinv(system), deficit)
@@ -125,5 +186,9 @@ def _evaluate(rates: np.ndarray, values: np.ndarray, violated: np.ndarray,
         leave_each = np.where(falling, values[~violated] / -slope[:, ~violated], np.inf)
         leave = leave_each.min(axis=1, initial=np.inf)
     keep = usable & (enter < leave) & (enter <= MAX_STEP)
+    facing_away = ~usable | ~np.isfinite(enter)
+    breaks_other = ~facing_away & (enter >= leave)
+    too_far = ~facing_away & ~breaks_other & (enter > MAX_STEP)
+    culled = np.array([facing_away.sum(), breaks_other.sum(), too_far.sum()])
     return [Candidate(tuple(int(i) for i in combos[b]), s[b].copy(), float(enter[b]),
-                      float(leave[b])) for b in np.nonzero(keep)[0]]
+                      float(leave[b])) for b in np.nonzero(keep)[0]], culled

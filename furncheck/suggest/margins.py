@@ -153,6 +153,8 @@ class Margins:
             self._edited[dof] = (stepped.h, stepped.plus[0], stepped.minus[0])  # one-sided
             free.append(dof)
         self.dofs = free
+        if not free:
+            return []
         scales = np.array([self.editor.scale(dof) for dof in free])
         margins = []
         for linear in linears:

@@ -1,11 +1,12 @@
-"""``suggest_design``: continuous and discrete suggestions, ranked, each written as a
-design file and validated from that very text (contract section 4: every listed
-suggestion's file is valid; one that is not is dropped, never listed).
+"""``suggest_design``: continuous and discrete suggestions, each written as a design file
+and validated from that very text (contract section 4: every listed suggestion's file is
+valid; one that is not is dropped, never listed), with its cut list (``cutlist``), ranked
+by the shop's score (``score``).
 
-Order: the continuous suggestions by their score (the valid interval's width minus its
-lower end), then the discrete ones (an added plank is a bigger change than moving one);
-when both kinds are found and there are more than K, at least one discrete suggestion is
-kept.
+Order: by ``ShopScore.key`` (plausible proportions, then the design's symmetry kept, then
+the smallest relative change of the fewest planks), ties by the smaller step and the
+order found (continuous before discrete); when both kinds are found and there are more
+than K, at least DISCRETE_KEPT discrete suggestions are kept.
 """
 
 from __future__ import annotations
@@ -17,11 +18,19 @@ from furncheck.check import check_design
 from furncheck.design.load import parse_design
 from furncheck.design.model import Design
 from furncheck.design.write import design_text
-from furncheck.dofs import Dof
+from furncheck.dofs import Dof, all_dofs
 from furncheck.geometry import analyze
-from furncheck.suggest.continuous import ContinuousSearch
-from furncheck.suggest.discrete import support_planks
+from furncheck.suggest.continuous import LINE_SEARCHES_PER_SUGGESTION, ContinuousSearch
+from furncheck.suggest.cutlist import plank_edits
+from furncheck.suggest.discrete import discrete_fixes
+from furncheck.suggest.explain import explain
+from furncheck.suggest.score import shop_score
 from furncheck.suggest.suggestion import Suggestion, SuggestionReport
+from furncheck.suggest.tried import Trial, Tried
+
+DISCRETE_KEPT = 2
+"""When there are more than K suggestions, at least this many discrete fixes (as many as
+were found, up to K) are kept: a different kind of fix than the continuous ones."""
 
 
 def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
@@ -37,13 +46,11 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
     searching = time.perf_counter()
     continuous = search.run(directions, max_suggestions)
     discrete_start = time.perf_counter()
-    supports = support_planks(design, geometry, report)
+    trials: list[Trial] = []
+    fixes = discrete_fixes(design, geometry, report, bool(continuous), locked, trials)
     end = time.perf_counter()
-    if supports and len(continuous) + len(supports) > max_suggestions:
-        keep = max(1, max_suggestions - len(continuous))
-        supports = supports[:keep]
-        continuous = continuous[:max_suggestions - len(supports)]
     suggestions: list[Suggestion] = []
+    dropped = len(continuous) + len(fixes)
     for found in continuous:
         moved = search.representative(found)
         if moved is None:
@@ -56,18 +63,62 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
                 dofs=tuple(d.name for d in found.dofs),
                 direction=tuple(float(v) for v in found.direction),
                 range=(found.low, found.high), step=step, changes=changes,
-                units=tuple(d.unit(design) for d in found.dofs)))
-    for support in supports:
-        written = _written(support.design, len(suggestions) + 1)
+                units=tuple(d.unit(design) for d in found.dofs), limited=found.limited))
+    for fix in fixes:
+        written = _written(fix.design, len(suggestions) + 1)
         if written is not None:
-            suggestions.append(Suggestion(len(suggestions) + 1, "discrete", support.restores,
-                                          *written, adds=(support.plank,),
-                                          between=support.between))
-    return SuggestionReport(design.source, design.name, report, tuple(suggestions),
+            suggestions.append(Suggestion(len(suggestions) + 1, "discrete", fix.restores,
+                                          *written, adds=fix.adds, between=fix.between,
+                                          rule=fix.rule, advice=fix.advice))
+    tried = Tried(len(all_dofs(design)), len(search.margins.dofs), len(locked),
+                  dict(search.margins.blocked), max_dofs, max_suggestions,
+                  bool(geometry.violations),
+                  tuple(search.tally), tuple(search.line_searches),
+                  LINE_SEARCHES_PER_SUGGESTION * max_suggestions, search.unsearched,
+                  dropped - len(suggestions), tuple(trials), far=search.far)
+    ranked = _ranked(design, geometry, search.planes, suggestions, max_suggestions)
+    return SuggestionReport(design.source, design.name, report, ranked,
                             search.searched, search.editor.checks,
                             {"candidates": searching - start,
                              "line search": discrete_start - searching,
-                             "discrete": end - discrete_start})
+                             "discrete": end - discrete_start},
+                            explain(design, geometry, report, tried, len(ranked),
+                                    search.editor))
+
+
+def _ranked(design: Design, geometry, planes, suggestions: list[Suggestion],
+            limit: int) -> tuple[Suggestion, ...]:
+    """The suggestions with their cut lists and scores, best first (module docstring),
+    at most ``limit``, renumbered (their files' names follow their new ranks)."""
+    scored = []
+    for suggestion in suggestions:
+        edits = plank_edits(design, suggestion.design)
+        score = shop_score(design, geometry, planes, suggestion.design, edits)
+        scored.append(replace(suggestion, edits=edits, score=score))
+    scored.sort(key=lambda s: (s.score.key(), s.step if s.step is not None else 0.0,
+                               s.rank))
+    kept = scored[:limit]
+    discrete = [s for s in scored if s.kind == "discrete"]
+    wanted = min(DISCRETE_KEPT, len(discrete), limit)
+    missing = [s for s in discrete if all(s is not k for k in kept)][:wanted - sum(
+        s.kind == "discrete" for s in kept)]
+    for extra in missing:               # in place of the lowest-ranked continuous ones
+        last = max(k for k, s in enumerate(kept) if s.kind != "discrete")
+        kept[last] = extra
+    kept.sort(key=lambda s: (s.score.key(), s.step if s.step is not None else 0.0, s.rank))
+    return tuple(_renamed(suggestion, rank) for rank, suggestion in enumerate(kept, start=1))
+
+
+def _renamed(suggestion: Suggestion, rank: int) -> Suggestion:
+    """The suggestion as rank ``rank``: its design named ``<name>-suggestion-NN`` after it
+    (the file's text written again with that name; nothing else in it changes)."""
+    if suggestion.rank == rank:
+        return suggestion
+    base = suggestion.design.name.rsplit("-suggestion-", 1)[0]
+    design = replace(suggestion.design, name=f"{base}-suggestion-{rank:02d}",
+                     source=f"suggestion-{rank:02d}.yaml")
+    return replace(suggestion, rank=rank, design=design, text=design_text(design, "yaml"),
+                   report=replace(suggestion.report, design=design.source, name=design.name))
 
 
 def _written(design: Design, rank: int, keeps=analyze):

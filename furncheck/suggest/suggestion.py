@@ -6,6 +6,9 @@ from dataclasses import dataclass, field
 
 from furncheck.design.model import Design, Plank
 from furncheck.result import DesignReport
+from furncheck.suggest.cutlist import PlankEdit
+from furncheck.suggest.explain import Explanation
+from furncheck.suggest.score import ShopScore
 
 
 @dataclass(frozen=True)
@@ -13,14 +16,22 @@ class Suggestion:
     """One ranked suggestion, continuous (changed DOFs) or discrete (added planks).
 
     dofs      : DOF names; ``direction`` (unit, scaled units) over them (continuous)
-    range     : (low, high) valid steps along the direction, scaled units, or None
-    step      : the representative step (middle of ``range``), or None
+    range     : (low, high) valid steps along the direction, scaled units, or None: both
+                ends valid, a step one resolution beyond each invalid -- or, ``limited``,
+                ``high`` is where the search stopped (half the design's size, 29 degrees)
+    step      : the representative step (the smallest change plus a reserve), or None
     changes   : each DOF's change at ``step``, its own unit (file length unit or degrees)
     adds      : planks added (discrete); ``between`` the planks a support joins
+    rule      : the discrete rule that made it ('support', 'rail', 'apron', 'stretcher',
+                'back panel', 'brace', 'outrigger', 'anchor', 'thicker', 'reconnect');
+                ``advice`` its sentence
     restores  : the kinds of violation it removes ('durability', 'stability', 'geometry',
                 'stiffness' for sag, 'strength' for bending stress)
     design    : the representative design, parsed from ``text`` (its YAML file), and
                 ``report`` its validation (valid: suggestions that are not are dropped)
+    edits     : its cut list: every plank of the input it changes, adds or removes
+                (``cutlist.plank_edits`` of the input and ``design``)
+    score     : the shop's score it is ranked by (``score.ShopScore``)
     """
 
     rank: int
@@ -37,6 +48,11 @@ class Suggestion:
     units: tuple[str, ...] = ()
     adds: tuple[Plank, ...] = ()
     between: tuple[str, ...] = ()
+    rule: str = ""
+    advice: str = ""
+    limited: bool = False
+    edits: tuple[PlankEdit, ...] = ()
+    score: ShopScore | None = None
 
 
 @dataclass(frozen=True)
@@ -53,6 +69,9 @@ class SuggestionReport:
     """Wall time of the phases ('candidates': margins, sensitivities and directions;
     'line search': line searches; 'discrete': support planks), for benchmarks; never
     reported."""
+    explanation: Explanation | None = None
+    """Which violations remain, what was tried and what each violation would need (None
+    for a valid design)."""
 
     @property
     def valid(self) -> bool:

@@ -1,0 +1,225 @@
+"""The result cache of ``furncheck validate`` (contract section 4).
+
+What is cached: each design's check result (the ``DesignReport``), not a rendered report,
+so one entry serves every ``--format``; reporters render a cached result to the same bytes
+as a fresh one.  Only results of designs that were read and checked are stored; an input
+error (a missing file, a syntax error) costs nothing to find again and is never cached.
+
+The key of an entry (SHA-256) covers everything a result depends on:
+
+- the file's content (its bytes) and its path as given (a report names it, and a design
+  without ``name`` is named after its file);
+- every option that changes results: ``--model`` (the design's own ``model`` is part of its
+  content);
+- the code that computes it: furncheck's version, a digest of the source of the installed
+  ``furncheck`` package (a development install changes without a new version), the Python
+  version, the installed numpy, scipy and PyYAML (where each package's ``__init__.py`` is,
+  its size and modification time: an upgrade rewrites it; found without importing them),
+  and the BLAS thread variables (another thread count may round a last digit differently).
+
+Entries are files ``<dir>/v1/<2 hex digits>/<62 hex digits>`` holding a marker, the key,
+a CRC-32 of the rest and the result encoded as lists, strings and numbers
+(``furncheck.result_codec``) in Python's ``marshal`` format, which reads back four times
+faster than JSON.  Unlike a pickle, an entry is data only: reading one never runs code.
+(marshal is not hardened against data crafted to crash it: restore a cache directory
+only from where you would take code.)  Entries are written atomically
+(``furncheck.files.write_atomically``), so runs in parallel over one cache directory leave
+only complete entries.  An entry that cannot be read, is cut short, fails its CRC, holds
+another key or a malformed result is ignored: the design is checked and its entry written
+again.  The cache never fails a run: when its directory
+cannot be written, results are not stored and one warning says so.  Deleting the directory
+at any time is safe.
+
+The default directory is the user cache directory: ``$FURNCHECK_CACHE_DIR`` when set, else
+``$XDG_CACHE_HOME/furncheck`` or ``~/.cache/furncheck`` (Linux and other Unix),
+``~/Library/Caches/furncheck`` (macOS), ``%LOCALAPPDATA%\\furncheck\\Cache`` (Windows).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib.util
+import json
+import marshal
+import os
+import stat
+import sys
+import zlib
+from collections.abc import Callable, Iterable, Iterator
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from furncheck import __version__
+from furncheck import tolerances as tol
+from furncheck.files import write_atomically
+from furncheck.result import DesignReport
+from furncheck.result_codec import CodecError, decode_report, encode
+
+LAYOUT = "v1"
+"""Version of the entries' layout and encoding: the name of the folder they live in."""
+
+ENV_DIRECTORY = "FURNCHECK_CACHE_DIR"
+"""Environment variable naming the cache directory (over the platform's default)."""
+
+_DEPENDENCIES = ("numpy", "scipy", "yaml")
+_THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
+
+
+def default_directory() -> str:
+    """The user cache directory of furncheck (see the module docstring)."""
+    chosen = os.environ.get(ENV_DIRECTORY)
+    if chosen:
+        return os.path.expanduser(chosen)
+    if sys.platform == "win32":
+        base = os.environ.get("LOCALAPPDATA") or os.path.expanduser(r"~\AppData\Local")
+        return os.path.join(base, "furncheck", "Cache")
+    if sys.platform == "darwin":
+        return os.path.expanduser("~/Library/Caches/furncheck")
+    base = os.environ.get("XDG_CACHE_HOME")
+    if not base or not os.path.isabs(base):
+        base = os.path.expanduser("~/.cache")
+    return os.path.join(base, "furncheck")
+
+
+def code_fingerprint() -> str:
+    """A digest of the code that computes results: furncheck's version and source, the
+    Python version, the installed numerical dependencies, the BLAS thread settings."""
+    digest = hashlib.sha256()
+    for part in (__version__, sys.version, *_dependency_files(),
+                 *(f"{name}={os.environ.get(name, '')}" for name in _THREAD_VARIABLES)):
+        digest.update(part.encode() + b"\0")
+    package = Path(__file__).resolve().parent
+    for source in sorted(package.rglob("*.py")):
+        digest.update(source.relative_to(package).as_posix().encode() + b"\0")
+        digest.update(source.read_bytes() + b"\0")
+    return digest.hexdigest()
+
+
+def _dependency_files() -> list[str]:
+    """Per dependency: where its package is, the size and modification time of its
+    ``__init__.py`` (what an upgrade rewrites), found without importing it."""
+    versions = []
+    for name in _DEPENDENCIES:
+        try:
+            spec = importlib.util.find_spec(name)
+            origin = spec.origin if spec is not None else None
+            info = os.stat(origin) if origin else None
+        except (ImportError, ValueError, OSError):
+            info = origin = None
+        versions.append(f"{name}={origin}:{info.st_size}:{info.st_mtime_ns}" if info
+                        else f"{name}=?")
+    return versions
+
+
+@dataclass
+class ResultCache:
+    """Design results stored under ``directory`` for runs with the same code and
+    result-changing options (``options``, e.g. ``{"model": "rigid"}``; None values
+    count too).  ``unwritable`` holds the reason when storing failed (then no more tries).
+    """
+
+    directory: str
+    options: dict[str, str | None] = field(default_factory=dict)
+    unwritable: str | None = None
+    _prefix: bytes = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        context = {"code": code_fingerprint(), "options": self.options}
+        self._prefix = json.dumps(context, sort_keys=True).encode() + b"\0"
+
+    def key(self, path: str, content: bytes) -> str:
+        """The entry's key (64 hex digits) of the file ``path`` (as given) holding
+        ``content``."""
+        digest = hashlib.sha256(self._prefix)
+        digest.update(path.encode("utf-8", "surrogateescape") + b"\0")
+        digest.update(content)
+        return digest.hexdigest()
+
+    def key_of(self, path: str) -> str | None:
+        """The key of the file ``path`` as it is now, or None for an input that is not
+        cached (not a regular file that can be read: ``read_source``)."""
+        content = read_source(path)
+        return None if content is None else self.key(path, content)
+
+    def entry_path(self, key: str) -> str:
+        return os.path.join(self.directory, LAYOUT, key[:2], key[2:])
+
+    def get(self, key: str, path: str) -> DesignReport | None:
+        """The stored result of ``key`` (its report naming ``path``), or None: not stored,
+        or the entry is damaged (it is then overwritten by the next ``put``)."""
+        try:
+            with open(self.entry_path(key), "rb") as stream:
+                entry = stream.read()
+        except OSError:
+            return None
+        header = _MARKER + bytes.fromhex(key)
+        payload = entry[len(header) + 4:]
+        if not entry.startswith(header) \
+                or entry[len(header):len(header) + 4] != _crc(payload):
+            return None
+        try:
+            report = decode_report(marshal.loads(payload))
+        except (ValueError, EOFError, TypeError, CodecError, RecursionError):
+            return None
+        if report.design != path or report.error is not None:
+            return None
+        return report
+
+    def store(self, path: str, key: str | None, report: DesignReport) -> None:
+        """``put`` the report of the file ``path`` under ``key`` (its ``key_of`` before it
+        was checked) if the file still holds what it held then: a file edited during its
+        check is not stored under its old content's key.  (It may run in a worker
+        process: entries are written atomically.)"""
+        if key is not None and self.key_of(path) == key:
+            self.put(key, report)
+
+    def put(self, key: str, report: DesignReport) -> None:
+        """Store ``report`` (a checked design, not an input error) under ``key``."""
+        if self.unwritable is not None or report.error is not None:
+            return
+        payload = marshal.dumps(encode(report))
+        target = self.entry_path(key)
+        try:
+            os.makedirs(os.path.dirname(target), exist_ok=True)
+            write_atomically(target, _MARKER + bytes.fromhex(key) + _crc(payload) + payload)
+        except (OSError, ValueError) as error:   # ValueError: marshal of an odd value
+            self.unwritable = f"{self.directory}: {getattr(error, 'strerror', None) or error}"
+
+
+_MARKER = b"furncheck-result\0"
+
+
+def _crc(payload: bytes) -> bytes:
+    return zlib.crc32(payload).to_bytes(4, "big")
+
+
+def read_source(path: str) -> bytes | None:
+    """The bytes of the file ``path`` to key it by, or None when it is no regular file of
+    at most ``MAX_FILE_BYTES`` that can be read (the check reports it; such inputs are
+    never cached)."""
+    try:
+        info = os.stat(path)
+        if not stat.S_ISREG(info.st_mode) or info.st_size > tol.MAX_FILE_BYTES:
+            return None
+        with open(path, "rb") as stream:
+            return stream.read()
+    except OSError:
+        return None
+
+
+def check_with_cache(paths: list[str], cache: ResultCache,
+                     check_many: Callable[[list[str]], Iterable[DesignReport]]
+                     ) -> Iterator[DesignReport]:
+    """The reports of ``paths`` in order: stored ones from ``cache``, the others from
+    ``check_many`` (called once with all of them, in order; again with one path for an
+    entry found damaged), then stored (``ResultCache.store``: only if the file is
+    unchanged).  Only the keys are held while the others are checked, not the reports."""
+    keys = [cache.key_of(path) for path in paths]
+    stored = [key is not None and os.path.isfile(cache.entry_path(key)) for key in keys]
+    fresh = iter(check_many([path for path, hit in zip(paths, stored) if not hit]))
+    for path, key, hit in zip(paths, keys, stored):
+        report = cache.get(key, path) if hit else None
+        if report is None:
+            report = next(fresh) if not hit else next(iter(check_many([path])))
+            cache.store(path, key, report)
+        yield report

@@ -1,0 +1,94 @@
+"""Whether a YAML or JSON file found in a directory scan is a design file at all.
+
+A design file's top level has a ``furncheck`` key (the format version, contract section
+1); ``package.json``, ``tsconfig.json``, a CI workflow or a docker-compose file have none
+and are not designs.  ``declares_design`` decides that for the file's bytes:
+
+- without the word ``furncheck`` anywhere, no (one substring search: most files stop here);
+- JSON: the document is an object with a ``furncheck`` key (``package.json`` depending on a
+  package named furncheck is no design);
+- YAML: the first line that is not blank, a comment or ``---`` starts with ``furncheck:``
+  (the first key of a top-level block mapping: how design files begin), or else the first
+  document's top-level mapping has a ``furncheck`` key, read event by event (nothing is
+  constructed, values are skipped);
+- a file that does not parse: a top-level ``furncheck`` key written at the start of a line
+  (YAML) or a ``"furncheck":`` key (JSON): a design with a syntax error is still a design,
+  and its report says what is wrong.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+
+import yaml
+
+KEY = "furncheck"
+
+_Loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+_YAML_KEY_LINE = re.compile(rb"""^(?:\{\s*)?["']?furncheck["']?\s*:""", re.MULTILINE)
+_YAML_FIRST_KEY = re.compile(rb"""(?:\xef\xbb\xbf)?(?:[ \t]*(?:#[^\n]*)?\r?\n|---[ \t]*\r?\n)*"""
+                             rb"""furncheck[ \t]*:(?:[ \t]|\r?\n)""")
+_JSON_KEY = re.compile(rb'"furncheck"\s*:')
+
+
+def declares_design(data: bytes, fmt: str) -> bool:
+    """Whether ``data`` (a file's bytes; ``fmt`` 'yaml' or 'json') has a top-level
+    ``furncheck`` key: see the module docstring."""
+    if KEY.encode() not in data:
+        return False
+    try:
+        text = data.decode("utf-8-sig")
+        if fmt == "json":
+            document = json.loads(text)
+            return isinstance(document, dict) and KEY in document
+        if _YAML_FIRST_KEY.match(data):
+            return True
+        return _yaml_top_level_has_key(text)
+    except (UnicodeDecodeError, ValueError, yaml.YAMLError, RecursionError):
+        pattern = _JSON_KEY if fmt == "json" else _YAML_KEY_LINE
+        return pattern.search(data) is not None
+
+
+def _yaml_top_level_has_key(text: str) -> bool:
+    """Whether the first YAML document of ``text`` is a mapping with the key ``furncheck``."""
+    loader = _Loader(text)
+    try:
+        while loader.check_event():
+            event = loader.get_event()
+            if isinstance(event, yaml.MappingStartEvent):
+                return _mapping_has_key(loader)
+            if isinstance(event, (yaml.NodeEvent, yaml.DocumentEndEvent)):
+                return False      # the first document is a scalar or a list, or empty
+        return False
+    finally:
+        loader.dispose()
+
+
+def _mapping_has_key(loader) -> bool:
+    """Reads the pairs of the mapping just opened; True at the first key ``furncheck``."""
+    while True:
+        key = loader.get_event()
+        if isinstance(key, yaml.MappingEndEvent):
+            return False
+        if isinstance(key, yaml.ScalarEvent) and key.value == KEY:
+            return True
+        if isinstance(key, yaml.CollectionStartEvent):   # a complex key: skip it
+            _skip_collection(loader)
+        _skip_node(loader)                               # the value
+
+
+def _skip_node(loader) -> None:
+    event = loader.get_event()
+    if isinstance(event, yaml.CollectionStartEvent):
+        _skip_collection(loader)
+
+
+def _skip_collection(loader) -> None:
+    depth = 1
+    while depth:
+        event = loader.get_event()
+        if isinstance(event, yaml.CollectionStartEvent):
+            depth += 1
+        elif isinstance(event, yaml.CollectionEndEvent):
+            depth -= 1

@@ -1,0 +1,60 @@
+"""Writing files so that a reader never sees half of one.
+
+``write_atomically`` writes a temporary file beside the target and renames it over the
+target (``os.replace``, atomic on POSIX and Windows within one file system): a run that
+is interrupted, or that fails while writing, leaves the old file as it was, and two
+processes writing the same path leave one complete file, the last writer's.  The report of
+``-o FILE`` and every cache entry are written this way.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+
+TEMP_SUFFIX = ".tmp"
+"""Suffix of the temporary files (``.NAME.XXXXXXXX.tmp`` beside the target)."""
+
+
+def write_atomically(path: str, data: bytes, *, durable: bool = False) -> None:
+    """Replace the file at ``path`` by ``data`` in one step.
+
+    The new file gets the old file's permission bits, or the usual ones for a new file
+    (0o666 less the umask).  ``durable``: flush the data to the disk before the rename (a
+    power cut then leaves the old or the new file, never an empty one).  An OSError
+    leaves ``path`` untouched and no temporary file behind.  A symlink at ``path`` stays:
+    the file it points to is replaced.  A special file (``/dev/stdout``, a pipe) cannot be
+    replaced: it is written directly.
+    """
+    path = os.path.realpath(path)
+    if os.path.exists(path) and not os.path.isfile(path):
+        with open(path, "wb") as stream:
+            stream.write(data)
+        return
+    folder = os.path.dirname(path)
+    handle, temporary = tempfile.mkstemp(dir=folder, prefix=f".{os.path.basename(path)}.",
+                                         suffix=TEMP_SUFFIX)
+    try:
+        with os.fdopen(handle, "wb") as stream:
+            stream.write(data)
+            if durable:
+                stream.flush()
+                os.fsync(stream.fileno())
+        os.chmod(temporary, _mode_for(path))
+        os.replace(temporary, path)
+    except BaseException:   # also KeyboardInterrupt: never leave the temporary file
+        try:
+            os.unlink(temporary)
+        except OSError:
+            pass
+        raise
+
+
+def _mode_for(path: str) -> int:
+    """Permission bits for the new file: the old file's, else 0o666 less the umask."""
+    try:
+        return os.stat(path).st_mode & 0o7777
+    except OSError:
+        umask = os.umask(0)
+        os.umask(umask)
+        return 0o666 & ~umask

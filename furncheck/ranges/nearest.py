@@ -1,0 +1,93 @@
+"""The range of a DOF of an *invalid* design: the valid interval nearest its value.
+
+A valid window can be as narrow as twice the tolerance (a shelf 3 mm short of the side it
+should be nailed to joins when lengthened by 2.5 to 3.5 mm), far narrower than any
+sampling of the search's reach finds.  So the window is first looked for where
+``suggest`` looks: at the step the linearized margins predict for this DOF alone
+(``suggest.margins``, ``suggest.candidates`` with one DOF: the step at which every
+violated margin is restored), probed at PREDICTED_PROBES times that step; a valid probe
+is widened to the interval around it, each end closed to the finer of the range's
+resolution and WINDOW_RESOLUTION of the step.  A DOF without a prediction, or whose
+probes all fail, is sampled outward from the value as before (1/64 of the reach and
+doubling, both sides, the sensitivity's favoured side first).  ``suggest`` and ``range``
+see the same edits (the constraint structure of ``edit_check.standing_geometry``), so a
+one-DOF suggestion's change lies in the range of its DOF.
+"""
+
+from __future__ import annotations
+
+from furncheck.check import check_design
+from furncheck.design.model import Design
+from furncheck.dofs import Dof, Structure
+from furncheck.geometry import Geometry
+
+PREDICTED_PROBES = (1.05, 0.85, 1.5, 2.25, 3.4)
+"""Multiples of the predicted step probed, in order (the first as ``suggest``'s line
+search's first probe)."""
+
+WINDOW_RESOLUTION = 0.02
+"""The ends of a window found at a predicted step are closed to at most this fraction of
+the step (a window of a few millimetres needs a finer bracket than the range's 0.1 % of
+the design's size)."""
+
+
+def predicted_steps(design: Design, geometry: Geometry, frame: Structure,
+                    locked: tuple[Dof, ...], dofs: list[Dof]) -> dict[Dof, float]:
+    """Per DOF of ``dofs`` (among the strongest ``suggest`` combines): the signed change
+    (its unit) at which the linearized margins of the invalid ``design`` are all restored
+    when this DOF alone changes; DOFs with no such change are left out."""
+    # suggest builds on ranges (its line search's geometric estimates): imported here
+    from furncheck.suggest.candidates import candidates
+    from furncheck.suggest.edits import Editor
+    from furncheck.suggest.margins import Margins
+
+    free = [dof for dof in dict.fromkeys(dofs) if dof not in locked]
+    if not free:
+        return {}
+    report = check_design(design, geometry)
+    editor = Editor(design, geometry, frame, locked)
+    margins = Margins(design, geometry, report, editor, free)
+    steps: dict[Dof, float] = {}
+    for candidate in candidates(margins, 1):
+        dof = margins.dofs[candidate.dofs[0]]
+        steps.setdefault(dof, float(candidate.direction[0] * candidate.enter
+                                    * editor.scale(dof)))
+    return steps
+
+
+def nearest_window(finder, dof: Dof, limit: float, resolution: float,
+                   predicted: float | None):
+    """Search (a generator of ``finder``'s evaluations, ``ranges.RangeFinder``) of the
+    valid window of ``dof`` of an invalid design: ((inner, outer) signed changes of its
+    ends, which interval it is), or None when none is found within ``limit``."""
+    if predicted is not None:
+        window = yield from _predicted_window(finder, dof, predicted, limit, resolution)
+        if window is not None:
+            return window, "valid interval at the change its margins' rates predict"
+    samples = [limit * 2.0 ** -k for k in range(6, -1, -1)]
+    order = (1.0, -1.0) if finder._favoured_sign(dof) > 0 else (-1.0, 1.0)
+    for previous, step in zip([0.0] + samples, samples):
+        for sign in order:
+            if (yield from finder._valid_at(dof, sign * step)):
+                inner = yield from finder._bisect(dof, sign, step, previous, resolution)
+                outer = yield from finder._expand(dof, sign, step, limit, resolution)
+                return (sign * inner, sign * outer), "nearest valid interval"
+    return None
+
+
+def _predicted_window(finder, dof: Dof, predicted: float, limit: float, resolution: float):
+    """The valid window at the ``predicted`` change of ``dof``: (inner, outer) signed
+    changes of its ends, nearer end first, or None when no probe is valid."""
+    sign = 1.0 if predicted > 0.0 else -1.0
+    size = abs(predicted)
+    fine = min(resolution, WINDOW_RESOLUTION * size)
+    invalid = [0.0]
+    for factor in PREDICTED_PROBES:
+        step = min(size * factor, limit)
+        if (yield from finder._valid_at(dof, sign * step)):
+            below = max(s for s in invalid if s < step)
+            inner = yield from finder._bisect(dof, sign, step, below, fine)
+            outer = yield from finder._expand(dof, sign, step, limit, fine)
+            return sign * inner, sign * outer
+        invalid.append(step)
+    return None

@@ -1,0 +1,92 @@
+"""A suggestion's cut list in the text report and the JSON (``suggest.cutlist``):
+
+         changes 2 planks:
+           leg_r: x 300 -> 560.3 mm
+           stretcher: length 588 -> 848.6 mm, x 0 -> 130.3 mm
+
+Lengths in the file's unit and angles in degrees to a tenth of the unit (a saw cuts no
+finer), with more digits where a value would otherwise read unchanged; the JSON keeps the
+report's six significant digits.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from furncheck.design.model import Design
+from furncheck.report.common import plural
+from furncheck.report.numbers import format_number
+from furncheck.suggest.cutlist import ANGLE_FIELDS, PlankEdit
+
+MATERIAL_UNITS = {"density": "kg/m^3", "elastic_modulus": "N/mm^2",
+                  "shear_modulus": "N/mm^2", "bending_strength": "N/mm^2", "creep": "",
+                  "sag_limit": ""}
+"""Units of a plank's own material values in a design file (lengths: the file's unit)."""
+
+
+def cut_list_lines(edits: tuple[PlankEdit, ...], design: Design) -> list[str]:
+    """'changes N planks:' and one line per plank (unindented; the caller indents)."""
+    if not edits:
+        return []
+    lines = [f"changes {plural(len(edits), 'plank')}:"]
+    for edit in edits:
+        lines.append(f"  {edit.plank}: {_edit_text(edit, design)}")
+    return lines
+
+
+def edits_json(edits: tuple[PlankEdit, ...]) -> list[dict[str, Any]]:
+    """``[{"plank", "edit": "change"|"add"|"remove", "fields": {field: [from, to]}}]``,
+    null for the side where the plank does not exist."""
+    return [{"plank": edit.plank, "edit": edit.action,
+             "fields": {f.field: [f.before, f.after] for f in edit.fields}}
+            for edit in edits]
+
+
+def _edit_text(edit: PlankEdit, design: Design) -> str:
+    values = {f.field: (f.before, f.after) for f in edit.fields}
+    if edit.action == "add":
+        new = {name: after for name, (_, after) in values.items()}
+        unit = design.units
+        text = (f"new plank {_number(new['length'])} x {_number(new['width'])} x "
+                f"{_number(new['thickness'])} {unit}, centred at ({_number(new['x'])}, "
+                f"{_number(new['y'])}, {_number(new['z'])}) {unit}")
+        if any(new[name] for name in ANGLE_FIELDS):
+            text += (f", turned ({_number(new['rx'])}, {_number(new['ry'])}, "
+                     f"{_number(new['rz'])}) degrees")
+        return text
+    if edit.action == "remove":
+        return "taken away"
+    return ", ".join(f"{_label(f.field)} {_from_to(f.before, f.after)}"
+                     f"{_unit_of(f.field, design)}" for f in edit.fields)
+
+
+def _from_to(before: float, after: float) -> str:
+    """'588 -> 848.1'; with more digits where the two would read the same (a change
+    finer than a tenth of the unit is still a change)."""
+    for extra in range(0, 9):
+        old, new = _number(before, extra), _number(after, extra)
+        if old != new:
+            break
+    return f"{old} -> {new}"
+
+
+def _label(field: str) -> str:
+    return field.removeprefix("material.")
+
+
+def _unit_of(field: str, design: Design) -> str:
+    if field in ANGLE_FIELDS:
+        return " degrees"
+    if field.startswith("material."):
+        unit = MATERIAL_UNITS.get(field.removeprefix("material."), design.units)
+        return f" {unit}" if unit else ""
+    return f" {design.units}"
+
+
+def _number(value: float | None, extra: int = 0) -> str:
+    """To a tenth of the unit or finer (at least four significant digits), ``extra``
+    digits more; '-' for no value."""
+    if value is None:
+        return "-"
+    whole = len(str(int(abs(round(value)))))
+    return format_number(value, max(4, whole + 1) + extra)

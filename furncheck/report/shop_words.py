@@ -1,0 +1,250 @@
+"""A continuous suggestion in a maker's words:
+
+    Move leg_l and leg_r apart by 258 mm each (valid for 214-302 mm each).
+    Lower the top of back by 79.8 mm (valid for 60-120 mm).
+    Tilt leg_r 7.55 degrees about y, its top toward leg_l (valid for 5.04-10.1 degrees).
+
+A mirror pair changed symmetrically (``suggest.symmetry``) is one phrase: apart or closer
+for a move across the mirror plane, raise or lower, lengthen or shorten, tilt with their
+tops apart or together.  A size change that moves a plank's top edge reads as raising or
+lowering that edge (narrowing a chair's back lowers the back rest).  Every amount is a
+magnitude; the verb says which way, and the interval is of that same magnitude, so the
+sign of a change and of its interval never disagree.  Where the upper end is where the
+search stopped rather than an invalid step, the sentence says so.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from furncheck.design.model import Design
+from furncheck.dofs import parse_dof, structure
+from furncheck.edit_check import standing_geometry
+from furncheck.geometry import analyze
+from furncheck.report.numbers import format_number
+from furncheck.suggest.symmetry import MirrorPlane, mirror_planes, mirrored_dof
+
+ADVICE_DIGITS = 3
+"""Significant digits of the amounts in the advice (the JSON keeps REPORT digits)."""
+
+PARALLEL_COSINE = 0.95
+"""Planks whose face normals' cosine exceeds this count as parallel."""
+
+TOWARD_COSINE = 0.5
+"""A plank is 'toward' which a move goes when the direction to its centre is within 60
+degrees of the move."""
+
+VERTICAL_COSINE = 0.7
+"""A plank's axis (or the way its end moves) counts as vertical when its cosine with the
+world z axis exceeds this (45 degrees)."""
+
+PAIR_MATCH = 1e-6
+"""Two DOF changes are one symmetric change when they agree to this relative amount."""
+
+SEARCH_LIMITS = {"length": "half the design's size", "deg": "29 degrees (0.5 rad)"}
+"""Where the line search stops (``suggest.candidates.MAX_STEP``), in words."""
+
+
+def continuous_advice(dofs: tuple[str, ...], changes: tuple[float, ...],
+                      units: tuple[str, ...], step: float, interval: tuple[float, float],
+                      limited: bool, original: Design, edited: Design) -> str:
+    """The suggestion as one sentence: its phrases joined by 'and', then the valid interval
+    of the first phrase's amount."""
+    planes = mirror_planes(original)
+    held = structure(original, standing_geometry(analyze(original))).ends
+    phrases, first_each = [], False
+    done: set[int] = set()
+    for k, name in enumerate(dofs):
+        if k in done:
+            continue
+        pair = _pair(original, planes, dofs, changes, k, done)
+        if pair is not None:
+            j, plane = pair
+            done.add(j)
+            phrases.append(_pair_phrase(original, edited, plane, name, dofs[j], changes[k],
+                                        units[k]))
+            first_each = first_each or k == 0
+            continue
+        plank = name.rpartition(".")[0]
+        previous = dofs[k - 1].rpartition(".")[0] if k else None
+        subject = "it" if previous == plank and k - 1 not in done else plank
+        phrases.append(_phrase(original, edited, held, plank, subject,
+                               name.rpartition(".")[2], changes[k], units[k]))
+    sentence = " and ".join(phrases)
+    lead = abs(changes[0]) / step if step else 0.0
+    low, high = interval
+    unit = _unit(units[0])
+    each = " each" if first_each else ""
+    first = " of the first change" if len(phrases) > 1 else ""
+    valid = f"valid for {_amount(low * lead)}-{_amount(high * lead)} {unit}{each}{first}"
+    if limited:
+        limit = SEARCH_LIMITS["deg" if units[0] == "deg" else "length"] if len(dofs) == 1 \
+            else "its step limit"
+        valid += f"; the search stopped there, at {limit}"
+    return f"{sentence[0].upper()}{sentence[1:]} ({valid})."
+
+
+def _pair(design: Design, planes: tuple[MirrorPlane, ...], dofs: tuple[str, ...],
+          changes: tuple[float, ...], k: int, done: set[int]):
+    """(index of the DOF that mirrors DOF k by the mirrored amount, the plane), or None."""
+    dof = parse_dof(design, dofs[k])
+    for plane in planes:
+        found = mirrored_dof(design, plane, dof)
+        if found is None or found[0].plank == dof.plank:
+            continue
+        image, sign = found
+        for j in range(k + 1, len(dofs)):
+            if j not in done and dofs[j] == image.name and \
+                    math.isclose(changes[j], sign * changes[k], rel_tol=PAIR_MATCH):
+                return j, plane
+    return None
+
+
+def _pair_phrase(design: Design, edited: Design, plane: MirrorPlane, first: str,
+                 second: str, change: float, unit: str) -> str:
+    a, _, kind = first.rpartition(".")
+    b = second.rpartition(".")[0]
+    both = f"{a} and {b}"
+    amount = f"{_amount(abs(change))} {_unit(unit)} each"
+    if kind in ("x", "y", "z"):
+        axis = "xyz".index(kind)
+        if axis == plane.axis:
+            side = design.plank(a).center[axis] - plane.offset
+            apart = change * side > 0.0
+            return f"move {both} {'apart' if apart else 'closer together'} by {amount}"
+        if kind == "z":
+            return f"{'raise' if change > 0 else 'lower'} {both} by {amount}"
+        return f"move {both} {amount} {_where(design, a, axis, change)}"
+    if kind in ("length", "width"):
+        return f"{_size_verb(kind, change)} {both} by {amount}"
+    if kind == "rz":
+        return f"turn {both} by {amount} about the vertical, mirrored"
+    top_before = _top(design, a)
+    top_after = _top(edited, a)
+    if top_before is None or top_after is None:
+        return f"tilt {both} by {amount}, mirrored"
+    apart = abs(top_after[plane.axis] - plane.offset) > abs(top_before[plane.axis] - plane.offset)
+    return f"tilt {both} by {amount}, their tops {'apart' if apart else 'together'}"
+
+
+def _phrase(design: Design, edited: Design, held: dict, plank: str, subject: str,
+            kind: str, change: float, unit: str) -> str:
+    amount = f"{_amount(abs(change))} {_unit(unit)}"
+    if kind == "z":
+        return f"{'raise' if change > 0 else 'lower'} {subject} by {amount}"
+    if kind in ("x", "y"):
+        return f"move {subject} {amount} {_where(design, plank, 'xy'.index(kind), change)}"
+    if kind in ("length", "width"):
+        moved = _moved_end(design, held, plank, 0 if kind == "length" else 1)
+        if moved is not None and moved[2] > VERTICAL_COSINE:
+            return f"{'raise' if change > 0 else 'lower'} the top of {subject} by {amount}"
+        return f"{_size_verb(kind, change)} {subject} by {amount}"
+    if kind == "rz":
+        turn = "counterclockwise" if change > 0 else "clockwise"
+        return f"turn {subject} {amount} {turn} (seen from above)"
+    how = _tilt_effect(design, edited, plank)
+    return f"tilt {subject} {amount} about {kind[1]}" + (f", {how}" if how else "")
+
+
+def _size_verb(kind: str, change: float) -> str:
+    if kind == "length":
+        return "lengthen" if change > 0 else "shorten"
+    return "widen" if change > 0 else "narrow"
+
+
+def _where(design: Design, plank: str, axis: int, change: float) -> str:
+    sign = 1.0 if change > 0 else -1.0
+    ahead = _toward(design, plank, _unit_vector(axis, sign))
+    behind = _toward(design, plank, _unit_vector(axis, -sign))
+    if ahead:
+        return f"toward {ahead}"
+    if behind:
+        return f"away from {behind}"
+    return f"along {'+' if change > 0 else '-'}{'xyz'[axis]}"
+
+
+def _unit_vector(axis: int, sign: float) -> np.ndarray:
+    vector = np.zeros(3)
+    vector[axis] = sign
+    return vector
+
+
+def _toward(design: Design, plank_id: str, way: np.ndarray) -> str | None:
+    """The plank ahead of a move of ``plank_id`` the (unit, world) ``way``: among the others
+    whose centre lies within 60 degrees of it, a parallel one (the other leg of a pair)
+    before the rest, then the nearest."""
+    moved = design.plank(plank_id)
+    normal = moved.rotation_matrix[:, 2]
+    best, best_key = None, None
+    for plank in design.planks:
+        offset = plank.center_array - moved.center_array
+        distance = float(np.linalg.norm(offset))
+        if plank.id == plank_id or distance == 0 or \
+                float(offset @ way) < TOWARD_COSINE * distance:
+            continue
+        parallel = abs(float(plank.rotation_matrix[:, 2] @ normal)) > PARALLEL_COSINE
+        key = (not parallel, distance)
+        if best_key is None or key < best_key:
+            best, best_key = plank.id, key
+    return best
+
+
+def _moved_end(design: Design, held: dict, plank_id: str, axis: int) -> np.ndarray | None:
+    """The outward unit direction (world) of the plank's end that a size change along
+    local ``axis`` moves: the end opposite the one held by a joint or the ground (as
+    ``dofs.apply_dof`` does it); None when neither is held (both ends move alike)."""
+    ends = [end for end in held.get(plank_id, ()) if end.axis == axis]
+    if len(ends) != 1:
+        return None
+    return -ends[0].sign * design.plank(plank_id).rotation_matrix[:, axis]
+
+
+def _top(design: Design, plank_id: str) -> np.ndarray | None:
+    """The centre of the plank's higher end along its length (None if it lies flat)."""
+    if plank_id not in design.plank_index:
+        return None
+    plank = design.plank(plank_id)
+    axis = plank.rotation_matrix[:, 0]
+    if abs(float(axis[2])) < 1e-9:
+        return None
+    end = 0.5 * plank.length * (axis if axis[2] > 0 else -axis)
+    return plank.center_array + end
+
+
+def _tilt_effect(design: Design, edited: Design, plank_id: str) -> str:
+    """What a tilt does, for the phrase: where an upright plank's top goes ('its top toward
+    leg_l'), or which end of a lying one rises."""
+    plank = design.plank(plank_id)
+    length_axis = plank.rotation_matrix[:, 0]
+    if abs(float(length_axis[2])) > VERTICAL_COSINE:
+        before, after = _top(design, plank_id), _top(edited, plank_id)
+        if before is None or after is None:
+            return ""
+        way = after - before
+        way[2] = 0.0
+        if float(np.linalg.norm(way)) <= 1e-12:
+            return ""
+        way /= float(np.linalg.norm(way))
+        ahead = _toward(design, plank_id, way)
+        return f"its top toward {ahead}" if ahead else ""
+    if plank_id not in edited.plank_index:
+        return ""
+    turned = edited.plank(plank_id).rotation_matrix[:, 0]
+    rising = turned[2] - length_axis[2]
+    if abs(float(rising)) <= 1e-12:
+        return ""
+    end = length_axis if rising > 0 else -length_axis
+    ahead = _toward(design, plank_id, end / float(np.linalg.norm(end)))
+    return f"raising its end toward {ahead}" if ahead else ""
+
+
+def _amount(value: float) -> str:
+    """ADVICE_DIGITS significant digits, but whole units at least (1250 mm, not 1.25e+03)."""
+    whole = len(str(int(abs(round(value)))))
+    return format_number(value, max(ADVICE_DIGITS, whole))
+
+
+def _unit(unit: str) -> str:
+    return "degrees" if unit == "deg" else unit

@@ -1,0 +1,185 @@
+"""Which files ``furncheck validate PATH...`` checks (contract section 4).
+
+Each PATH is a file, ``-`` (a design on standard input) or a directory.  A file named on
+the command line is always checked (whatever its name, ignore rules or content), unless
+``skip_non_designs`` asks to leave out named files that are no designs too (for hooks
+that pass every changed YAML file).  A directory is searched recursively for
+``.yaml``, ``.yml`` and ``.json`` files, leaving out
+
+- hidden files and folders (names starting with '.'),
+- what ``.gitignore`` files ignore (in the tree and above it inside its repository) and
+  what an exclude pattern matches (``furncheck.ignores``),
+- YAML/JSON files whose top level has no ``furncheck`` key: they are not designs
+  (``furncheck.detect``; counted in ``Collected.skipped``).
+
+Symlinked folders are followed, each folder once: a folder reached a second time (a loop,
+or two links to one folder) is not searched again, and folders reached without a symlink
+are searched before those reached through one (so a file is listed by its real path when
+the tree has one).  Files are listed in path order; a file
+reached twice (named twice, or named and found) is checked once, at its first place.
+"""
+
+from __future__ import annotations
+
+import os
+import stat
+from dataclasses import dataclass, field
+from pathlib import Path, PurePath
+
+from furncheck import tolerances as tol
+from furncheck.detect import declares_design
+from furncheck.ignores import IgnoreRules, PatternFile, rules_above
+from furncheck.result import DesignReport
+
+DESIGN_SUFFIXES = {".yaml": "yaml", ".yml": "yaml", ".json": "json"}
+"""Extensions of the files a directory scan looks at (case-insensitive) -> format."""
+
+STDIN = "-"
+"""The PATH that stands for a design on standard input."""
+
+
+@dataclass(frozen=True)
+class ScanOptions:
+    """How PATHs become files.  ``excludes``: exclude patterns, each anchored at its own
+    folder; ``skip_non_designs``: also leave out named files without a top-level
+    ``furncheck`` key."""
+
+    excludes: tuple[PatternFile, ...] = ()
+    skip_non_designs: bool = False
+
+
+@dataclass
+class Collected:
+    """The sources to check in order: a path, ``STDIN``, or a finished error report (a
+    folder that cannot be read or holds no design); ``skipped``: YAML/JSON files left out
+    because they are no designs."""
+
+    sources: list[str | DesignReport] = field(default_factory=list)
+    skipped: int = 0
+
+
+def collect(paths: tuple[str, ...] | list[str], options: ScanOptions = ScanOptions()
+            ) -> Collected:
+    """The sources of ``paths`` (see the module docstring)."""
+    collected = Collected()
+    seen: set[str] = set()
+    for given in paths:
+        if given == STDIN:
+            files = [STDIN]
+        elif os.path.isdir(given):
+            files = _scan_folder(given, options, collected)
+        elif options.skip_non_designs and not _is_design(given):
+            collected.skipped += 1
+            files = []
+        else:
+            files = [given]
+        for file in files:
+            key = file if file == STDIN else os.path.normcase(os.path.realpath(file))
+            if key not in seen:
+                seen.add(key)
+                collected.sources.append(file)
+    return collected
+
+
+def _scan_folder(folder: str, options: ScanOptions, collected: Collected) -> list[str]:
+    """The design files under ``folder``, sorted; its unreadable folders and 'no design
+    files' become error reports in ``collected``."""
+    found = find_design_files(folder, options.excludes)
+    collected.sources.extend(
+        error_report(path, f"{path}: cannot read this directory: {why}")
+        for path, why in found.unreadable)
+    collected.skipped += found.skipped
+    if not found.files and not found.unreadable:
+        collected.sources.append(error_report(
+            folder, f"{folder}: no design files (.yaml, .yml or .json with a top-level "
+                    f"'furncheck' key) in this directory"))
+    return found.files
+
+
+@dataclass
+class FolderScan:
+    """What ``find_design_files`` found: design files (sorted by path), [(unreadable
+    folder, reason)], and how many YAML/JSON files were no designs."""
+
+    files: list[str] = field(default_factory=list)
+    unreadable: list[tuple[str, str]] = field(default_factory=list)
+    skipped: int = 0
+
+
+def find_design_files(folder: str, excludes: tuple[PatternFile, ...] = ()) -> FolderScan:
+    """The design files below ``folder`` (paths are ``folder`` joined with the relative
+    path, normalized), by the rules of the module docstring."""
+    scan = FolderScan()
+    visited: set[tuple[int, int]] = set()
+    candidates: list[str] = []
+    top = os.path.normpath(folder)
+    direct = [(top, rules_above(os.path.abspath(top), excludes))]
+    linked: list[tuple[str, IgnoreRules]] = []    # folders reached through a symlink
+    while direct or linked:
+        via_link = not direct
+        current, rules = (linked if via_link else direct).pop()
+        try:
+            identity = os.stat(current)
+            if (identity.st_dev, identity.st_ino) in visited:
+                continue             # a symlink loop, or a folder linked twice
+            visited.add((identity.st_dev, identity.st_ino))
+            with os.scandir(current) as entries:
+                listing = sorted(entries, key=lambda entry: entry.name)
+        except OSError as error:
+            scan.unreadable.append((current, error.strerror or str(error)))
+            continue
+        rules = rules.entering(os.path.abspath(current))
+        subfolders: list[tuple[str, IgnoreRules]] = []
+        links: list[tuple[str, IgnoreRules]] = []
+        for entry in listing:
+            if entry.name.startswith("."):
+                continue
+            path = os.path.normpath(os.path.join(current, entry.name))
+            is_dir = _is_folder(entry)
+            if rules.ignored(os.path.abspath(path), is_dir):
+                continue
+            if is_dir:
+                (links if via_link or entry.is_symlink() else subfolders).append((path, rules))
+            elif os.path.splitext(entry.name)[1].lower() in DESIGN_SUFFIXES:
+                candidates.append(path)
+        direct.extend(reversed(subfolders))   # depth first, in name order
+        linked.extend(reversed(links))
+    for path in candidates:
+        if _is_design(path):
+            scan.files.append(path)
+        else:
+            scan.skipped += 1
+    scan.files.sort(key=lambda path: PurePath(path).parts)
+    scan.unreadable.sort()
+    return scan
+
+
+def _is_folder(entry: os.DirEntry) -> bool:
+    """A folder, or a symlink to one (followed); False for a broken link."""
+    try:
+        return entry.is_dir(follow_symlinks=True)
+    except OSError:
+        return False
+
+
+def _is_design(path: str) -> bool:
+    """Whether the file at ``path`` is a design: a YAML/JSON file with a top-level
+    ``furncheck`` key.  A file that cannot be read counts as one: its report says why it
+    cannot be read.  Other extensions are no designs."""
+    fmt = DESIGN_SUFFIXES.get(Path(path).suffix.lower())
+    if fmt is None:
+        return False
+    try:
+        info = os.stat(path)
+        if not stat.S_ISREG(info.st_mode):
+            return True
+        with open(path, "rb") as stream:
+            data = stream.read(tol.MAX_FILE_BYTES + 1)
+    except OSError:
+        return True
+    return declares_design(data, fmt)
+
+
+def error_report(path: str, message: str) -> DesignReport:
+    """The report of a source that could not be checked."""
+    return DesignReport(design=path, name=Path(path).stem or path, valid=None, error=message)

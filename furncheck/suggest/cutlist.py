@@ -1,0 +1,138 @@
+"""The cut list of a suggestion: every plank it changes, adds or removes, from -> to.
+
+``plank_edits(before, after)`` compares two designs plank by plank (matched by id) in the
+values a design file writes: sizes and positions in the file's length unit, angles in
+degrees, a plank's own material values in the file's units.  Every suggestion kind gets
+its cut list from it (``ranking``): a continuous one's DOF changes *and* what the
+geometric constraints made the neighbours do (a stretcher that lengthens with the leg it
+joins), a discrete one's added planks.  The suggestion's design is parsed from the very
+text of its file, so its cut list is the difference between the input file and the
+written one.
+
+    fields : length, width, thickness, x, y, z (the centre), rx, ry, rz (degrees), then
+             material.<key> for the plank's own material values (``PLANK_MATERIAL_KEYS``)
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from furncheck.design.materials import PLANK_MATERIAL_KEYS, material_entry
+from furncheck.design.model import Design, Plank
+from furncheck.tolerances import CUT_LIST_EPS
+
+GEOMETRY_FIELDS = ("length", "width", "thickness", "x", "y", "z", "rx", "ry", "rz")
+"""The fields of a plank's cut-list entry, in order, before its material values."""
+
+SIZE_FIELDS = ("length", "width", "thickness")
+POSITION_FIELDS = ("x", "y", "z")
+ANGLE_FIELDS = ("rx", "ry", "rz")
+
+_SIGNIFICANT_DIGITS = 12
+"""Digits of a length in the file unit, as the design file writes it (``design.write``)."""
+
+
+@dataclass(frozen=True)
+class FieldChange:
+    """One field of one plank: its value before and after (None where the plank does not
+    exist: an added plank has no ``before``, a removed one no ``after``); file length unit,
+    degrees, or the material key's file unit."""
+
+    field: str
+    before: float | None
+    after: float | None
+
+    @property
+    def change(self) -> float:
+        """after - before (0 for an added or removed plank's field)."""
+        if self.before is None or self.after is None:
+            return 0.0
+        return self.after - self.before
+
+
+@dataclass(frozen=True)
+class PlankEdit:
+    """What a suggestion does to one plank: ``action`` 'change' (only the changed fields
+    listed), 'add' or 'remove' (every field listed, the missing side None)."""
+
+    plank: str
+    action: str
+    fields: tuple[FieldChange, ...]
+
+    def field(self, name: str) -> FieldChange | None:
+        return next((f for f in self.fields if f.field == name), None)
+
+
+def plank_values(plank: Plank, design: Design) -> dict[str, float]:
+    """The plank's cut-list fields (GEOMETRY_FIELDS, then material.<key>) as its design
+    file writes them: lengths in ``design``'s unit to 12 significant digits, degrees."""
+    scale = design.unit_scale
+    values = {
+        "length": _in_unit(plank.length, scale),
+        "width": _in_unit(plank.width, scale),
+        "thickness": _in_unit(plank.thickness, scale),
+        "x": _in_unit(plank.center[0], scale),
+        "y": _in_unit(plank.center[1], scale),
+        "z": _in_unit(plank.center[2], scale),
+        "rx": float(plank.rotation[0]),
+        "ry": float(plank.rotation[1]),
+        "rz": float(plank.rotation[2]),
+    }
+    own = material_entry(dict(plank.material), scale)
+    for key in PLANK_MATERIAL_KEYS:
+        if key in own:
+            values[f"material.{key}"] = float(own[key])
+    return values
+
+
+def plank_edits(before: Design, after: Design) -> tuple[PlankEdit, ...]:
+    """Every plank that ``after`` changes (in ``before``'s plank order), then every plank
+    it adds (in its order), then every plank of ``before`` it lacks.  A field counts as
+    changed when it moves by more than CUT_LIST_EPS (its unit); a material value that one
+    side sets and the other does not is listed with None on the other side.  Both designs
+    are read in ``before``'s length unit."""
+    edits: list[PlankEdit] = []
+    kept = {p.id for p in after.planks}
+    for plank in before.planks:
+        if plank.id not in kept:
+            continue
+        old = plank_values(plank, before)
+        new = plank_values(after.plank(plank.id), before)
+        changes = tuple(FieldChange(name, old.get(name), new.get(name))
+                        for name in _ordered(old, new) if _differs(old.get(name), new.get(name)))
+        if changes:
+            edits.append(PlankEdit(plank.id, "change", changes))
+    known = {p.id for p in before.planks}
+    for plank in after.planks:
+        if plank.id not in known:
+            values = plank_values(plank, before)
+            edits.append(PlankEdit(plank.id, "add", tuple(
+                FieldChange(name, None, value) for name, value in values.items())))
+    for plank in before.planks:
+        if plank.id not in kept:
+            values = plank_values(plank, before)
+            edits.append(PlankEdit(plank.id, "remove", tuple(
+                FieldChange(name, value, None) for name, value in values.items())))
+    return tuple(edits)
+
+
+def planks_touched(edits: tuple[PlankEdit, ...]) -> int:
+    """How many planks a maker has to cut, move or add (or take away)."""
+    return len(edits)
+
+
+def _ordered(old: dict[str, float], new: dict[str, float]) -> list[str]:
+    names = list(GEOMETRY_FIELDS)
+    names += [f"material.{key}" for key in PLANK_MATERIAL_KEYS
+              if f"material.{key}" in old or f"material.{key}" in new]
+    return names
+
+
+def _differs(old: float | None, new: float | None) -> bool:
+    if old is None or new is None:
+        return old is not new
+    return abs(new - old) > CUT_LIST_EPS
+
+
+def _in_unit(metres: float, scale: float) -> float:
+    return float(f"{metres / scale:.{_SIGNIFICANT_DIGITS}g}")

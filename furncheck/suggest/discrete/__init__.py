@@ -1,0 +1,69 @@
+"""Discrete suggestions: fixes a woodworker makes by adding or changing a part (paper
+section 6.5 and the shop's standard fixes), each checked in full like every suggestion.
+
+    common     Fix, Candidate, Search (the one validation of every candidate), plank
+               geometry (legs, parallel and facing planks), words
+    supports   the paper's support plank under a failing joint, a stiffening rail under a
+               bent plank
+    feet       against toppling: a support under the overhang, an outrigger foot
+    anchors    a wall anchor where the design stands by a wall
+    racking    aprons and stretchers between facing legs, back panels and diagonal braces
+               across their edges
+    thicker    a thicker plank for one that sags, breaks or whose nails pull out; also
+               finishes another rule's candidate that fails only by bending
+    reconnect  a near miss closed by lengthening or shortening the plank that misses
+
+``discrete_fixes`` runs the rules in order (``RULES``).  Each is tried only where the
+report's violations are of the kinds it repairs (a test of the report and the geometry,
+before any candidate is built), checks at most ``common.MAX_CANDIDATES`` candidates, its
+likeliest first, and gives at most one fix: its first valid candidate.
+"""
+
+from __future__ import annotations
+
+from furncheck.design.model import Design
+from furncheck.dofs import Dof
+from furncheck.geometry import Geometry
+from furncheck.result import DesignReport
+from furncheck.suggest.discrete.anchors import wall_anchors
+from furncheck.suggest.discrete.common import Fix, Search
+from furncheck.suggest.discrete.feet import outriggers, overhang_supports
+from furncheck.suggest.discrete.racking import aprons, back_panels, braces, stretchers
+from furncheck.suggest.discrete.reconnect import RECONNECT, reconnect_near_misses
+from furncheck.suggest.discrete.supports import _reach, support_planks
+from furncheck.suggest.discrete.thicker import thicker_planks
+from furncheck.suggest.tried import Trial
+
+__all__ = ["RULES", "Fix", "Search", "_reach", "discrete_fixes", "support_planks"]
+
+RULES = (support_planks, overhang_supports, outriggers, wall_anchors, aprons, stretchers,
+         back_panels, braces, thicker_planks)
+"""The rules for a design that stands as drawn, in the order their fixes are listed: the
+paper's support first, then added parts by how little they change the piece, then a
+thicker board (a change of material)."""
+
+
+def discrete_fixes(design: Design, geometry: Geometry, report: DesignReport,
+                   covered: bool = False, locked: tuple[Dof, ...] = (),
+                   trials: list[Trial] | None = None) -> list[Fix]:
+    """The working fixes of the rules for the invalid ``design`` (its geometry and
+    report given), each with what it restores.  A design that does not stand as drawn
+    gets ``reconnect`` only, and only when the continuous search found nothing
+    (``covered`` False).  A fix that adds a part and thickens planks is dropped when it
+    thickens every plank that the thicker rule's fix alone thickens (the part spares
+    no board).  No fix changes a DOF of ``locked``.  Every rule's trials (each candidate,
+    or why the rule does not apply) are appended to ``trials`` (``tried.Trial``)."""
+    search = Search(design, geometry, report, locked, [] if trials is None else trials)
+    found = [rule(search) for rule in RULES]
+    if covered and geometry.violations:
+        search.not_applicable(RECONNECT, "the continuous search closes the gaps")
+    else:
+        found.append(reconnect_near_misses(search))
+    found = [fix for fix in found if fix is not None]
+    alone = next((fix.thickened for fix in found if fix.rule == "thicker"), None)
+    if alone:
+        found = [fix for fix in found if fix.rule == "thicker" or not fix.thickened
+                 or not set(alone) <= set(fix.thickened)]
+    restores = search.restores
+    return [Fix(f.rule, f.advice, f.design, f.report, f.adds, f.between, restores,
+                f.thickened) for f in found]

@@ -1,0 +1,341 @@
+"""What every discrete rule shares: ``Fix`` (a checked fix with its advice), ``Search``
+(the invalid design, its geometry and report, and the one validation every candidate
+passes), and the geometry of planks a woodworker reads off a design: legs (planks
+standing on the floor), parallel and facing planks, level planks, new plank names."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from furncheck.check import check_design, is_valid
+from furncheck.design.model import Design, JointSpec, Plank
+from furncheck.dofs import Dof, dof_value, euler_degrees
+from furncheck.geometry import Geometry, analyze, interpenetrations
+from furncheck.plain import plain_number
+from furncheck.result import DesignReport
+from furncheck.suggest.tried import FAILED, FOUND, NOT_APPLICABLE, Trial
+from furncheck.tolerances import REPORT_DECIMALS
+
+PARALLEL_COS = 0.95
+"""Two planks count as parallel when their face normals' cosine is at least this (and a
+plank as level, or upright, when its normal is this close to vertical, or horizontal)."""
+
+ADVICE_DIGITS = 3
+"""Significant digits of the sizes and positions in the advice (whole units at least)."""
+
+RESTORES = {"non-durable": "durability", "lift-off": "stability", "sliding": "stability",
+            "sagging": "stiffness", "overstressed": "strength", "disconnected": "geometry",
+            "floating": "geometry", "penetration": "geometry"}
+"""What a fix restores, by the kind of violation it removes (as the continuous
+suggestions name it)."""
+
+MAX_CANDIDATES = 12
+"""Candidates checked in full per rule at most (each is a full check of every load case):
+the rules list their likeliest candidates first."""
+
+LOCK_SLACK = 1e-9
+"""A locked DOF counts as unchanged within this (file unit or degrees: round-off)."""
+
+BENDING = ("sagging", "overstressed")
+"""The violations a thicker plank repairs (``thicker.finish``)."""
+
+
+@dataclass(frozen=True)
+class Fix:
+    """A discrete fix whose design is valid.
+
+    rule     : the rule that made it ('support', 'rail', 'apron', 'stretcher', 'back panel',
+               'brace', 'outrigger', 'anchor', 'thicker', 'reconnect')
+    advice   : the sentence a maker acts on (``Add ...``, ``Make ... thick``), ending in '.'
+    design   : the design with the fix; ``report`` its validation (valid)
+    adds     : planks added; ``between`` the planks a support joins ((P_i, P_j or 'the
+               floor'), a rail: (bent plank, its ends); the planks nailed to, else)
+    restores : the kinds of violation it removes (set by ``Search.restores``)
+    thickened: {plank id: new thickness m} of the planks it makes thicker
+    """
+
+    rule: str
+    advice: str
+    design: Design
+    report: DesignReport
+    adds: tuple[Plank, ...] = ()
+    between: tuple[str, ...] = ()
+    restores: tuple[str, ...] = ()
+    thickened: dict = field(default_factory=dict)
+
+
+@dataclass
+class Search:
+    """One invalid design's discrete search: the design, its geometry and report, the
+    DOFs that must not change (``--lock``: a fix that moves or resizes a plank so that
+    one of them changes is not offered; added planks change none), what the rules tried
+    (``trials``, ``tried.Trial`` values for ``explain``) and the count of candidate
+    designs checked in full (``checks``)."""
+
+    design: Design
+    geometry: Geometry
+    report: DesignReport
+    locked: tuple[Dof, ...] = ()
+    trials: list[Trial] = field(default_factory=list)
+    checks: int = 0
+    _neighbours: dict[str, list[str]] | None = field(default=None, repr=False)
+
+    @property
+    def restores(self) -> tuple[str, ...]:
+        return tuple(sorted({RESTORES[v.kind] for v in self.report.violations}))
+
+    @property
+    def elastic(self) -> bool:
+        return self.design.model == "elastic"
+
+    @property
+    def neighbours(self) -> dict[str, list[str]]:
+        """plank id -> the planks jointed to it, in joint order."""
+        if self._neighbours is None:
+            found: dict[str, list[str]] = {p.id: [] for p in self.design.planks}
+            for joint in self.geometry.joints:
+                a, b = joint.planks
+                found[a].append(b)
+                found[b].append(a)
+            self._neighbours = found
+        return self._neighbours
+
+    def kinds(self) -> set[str]:
+        return {v.kind for v in self.report.violations}
+
+    def repairs(self, rule: str, kinds: tuple[str, ...]) -> bool:
+        """Whether ``rule`` (its name in the reports) applies: the design stands as drawn
+        and every violation is of ``kinds``; if not, that is recorded, with why."""
+        if self.geometry.violations:
+            self.not_applicable(rule, "the geometry is repaired first")
+            return False
+        unrepaired = sorted(self.kinds() - set(kinds))
+        if unrepaired or not self.report.violations:
+            self.not_applicable(rule, f"it does not repair {' or '.join(unrepaired)}")
+            return False
+        return True
+
+    def not_applicable(self, rule: str, reason: str, target: str = "") -> None:
+        """Record that ``rule`` (its name in the reports) does not apply, and why."""
+        self.trials.append(Trial(rule, target, NOT_APPLICABLE, reason))
+
+    def failed(self, rule: str, reason: str, target: str = "") -> None:
+        """Record a candidate of ``rule`` ruled out before any check, and why."""
+        self.trials.append(Trial(rule, target, FAILED, reason))
+
+    def first_valid(self, candidates: Iterable[Candidate]) -> Fix | None:
+        """The Fix of the first candidate that is valid (``verdict``), trying at most
+        MAX_CANDIDATES of them; when none is, but one failed only by planks that bend
+        too much (elastic model), the first such one with those planks thickened
+        (``thicker.finish``), if that is valid; else None.  Every candidate checked is
+        recorded in ``trials`` (``tried.Trial``: found, or failed and why)."""
+        bent = None
+        for count, candidate in enumerate(candidates):
+            if count >= MAX_CANDIDATES:
+                self.failed(candidate.trial_rule or candidate.rule, f"the rule checks "
+                            f"{MAX_CANDIDATES} candidates at most", candidate.target)
+                break
+            outcome = self.verdict(candidate.design, candidate.new_joints,
+                                   full=self.elastic and bent is None)
+            if isinstance(outcome, str):
+                self._record(candidate, FAILED, outcome)
+                continue
+            edited, after, report = outcome
+            if report.valid:
+                self._record(candidate, FOUND)
+                return Fix(candidate.rule, candidate.advice, edited, report, candidate.adds,
+                           candidate.between)
+            self._record(candidate, FAILED, "the design with it is still not valid", edited)
+            if bent is None and report.violations and \
+                    all(v.kind in BENDING for v in report.violations):
+                bent = (candidate, edited, after, report)
+        if bent is None:
+            return None
+        from furncheck.suggest.discrete.thicker import finish, thickness_phrase
+
+        candidate, edited, after, report = bent
+        finished = finish(self, edited, after, report)
+        if finished is None:
+            self._record(candidate, FAILED, "no thicker boards (up to 44 mm) make the design "
+                         "with it valid", thickening=True)
+            return None
+        design, report, thickened = finished
+        self._record(candidate, FOUND, thickening=True)
+        advice = f"{candidate.advice[:-1]}, and {thickness_phrase(thickened, self.design)}."
+        return Fix(candidate.rule, advice, design, report, candidate.adds, candidate.between,
+                   thickened={p: new for p, (_, new) in thickened.items()})
+
+    def _record(self, candidate: Candidate, outcome: str, reason: str = "",
+                design: Design | None = None, thickening: bool = False) -> None:
+        """A Trial of ``candidate``: its place and the reason ('place: reason')."""
+        place = candidate.place + (" with thicker planks" if thickening else "")
+        self.trials.append(Trial(candidate.trial_rule or candidate.rule, candidate.target,
+                                 outcome,
+                                 f"{place}: {reason}" if reason else "",
+                                 candidate.plank, design))
+
+    def keeps_locks(self, edited: Design) -> bool:
+        """Whether every locked DOF has the same value in ``edited``."""
+        return all(abs(dof_value(edited, dof) - dof_value(self.design, dof)) <= LOCK_SLACK
+                   for dof in self.locked)
+
+    def verdict(self, edited: Design, new_joints: tuple[tuple[str, str], ...] = (),
+                full: bool = False) -> tuple[Design, Geometry, DesignReport] | str:
+        """(the design, its geometry, its report) when ``edited`` keeps every joint of the
+        design, adds exactly ``new_joints`` (plank id pairs, also listed when the design
+        lists its joints) and no other, and no plank cuts into another; else why not, in
+        words.  The report is the full one when the design is valid or ``full`` is asked
+        for (a candidate that fails by bending alone may be finished); else an invalid
+        candidate's report is cut short (``is_valid`` stops at its first failing case)
+        and says only that it is invalid.  (With one load case there is nothing to cut
+        short: the full check is made at once, and a valid candidate is solved once.)"""
+        if edited.joints is not None and new_joints:
+            listed = {frozenset(spec.planks) for spec in edited.joints}
+            edited = replace(edited, joints=(*edited.joints, *(
+                JointSpec(pair) for pair in new_joints if frozenset(pair) not in listed)))
+        if not self.keeps_locks(edited):
+            return "it would change a locked DOF"
+        after = analyze(edited)
+        if after.violations:
+            first = after.violations[0]
+            return f"with it, {first.kind}: {first.where}: {first.message}"
+        before = {frozenset(j.planks) for j in self.geometry.joints}
+        wanted = before | {frozenset(pair) for pair in new_joints}
+        found = {frozenset(j.planks) for j in after.joints}
+        if found - wanted:
+            others = sorted({p for pair in found - wanted for p in pair}
+                            - {p for pair in new_joints for p in pair})
+            return f"it would also meet {', '.join(others)}" if others else \
+                "it would change the design's other joints"
+        if wanted - found or len(after.joints) != len(self.geometry.joints) + len(new_joints):
+            return "it would not be nailed to every plank it should be" if wanted - found - \
+                before else "it would change the design's other joints"
+        cuts = interpenetrations(edited)
+        if cuts:
+            crossed = sorted({p for pair in cuts for p in pair[:2]})
+            return f"it would cut into {', '.join(crossed)}"
+        self.checks += 1
+        if not full and len(edited.load_cases) > 1 and not is_valid(edited, after):
+            return edited, after, DesignReport(edited.source, edited.name, False)
+        return edited, after, check_design(edited, after)
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """A fix to check: the edited design, the joints it adds, and its advice.
+
+    trial_rule : the rule's name in ``tried.Trial`` (the reports), e.g. 'support plank'
+    target     : what it is for (a failing joint or plank; '' for the whole design)
+    place      : where it goes, in words, for the Trial's reason ('between shelf and base
+                 at the far side')
+    plank      : the plank (or fixing) it adds, as the advice names it
+    """
+
+    rule: str
+    design: Design
+    advice: str
+    adds: tuple[Plank, ...] = ()
+    between: tuple[str, ...] = ()
+    new_joints: tuple[tuple[str, str], ...] = ()
+    trial_rule: str = ""
+    target: str = ""
+    place: str = ""
+    plank: str = ""
+
+
+# --- geometry a woodworker reads off a design ---------------------------------------------
+
+def normal(plank: Plank) -> np.ndarray:
+    """(3,) the plank's face normal (local z) in world coordinates."""
+    return plank.rotation_matrix[:, 2]
+
+
+def level(plank: Plank) -> bool:
+    """Whether the plank lies level (its broad faces horizontal)."""
+    return abs(float(plank.rotation_matrix[2, 2])) >= PARALLEL_COS
+
+
+def upright(plank: Plank) -> bool:
+    """Whether the plank stands upright (its broad faces vertical)."""
+    return abs(float(plank.rotation_matrix[2, 2])) <= 1.0 - PARALLEL_COS
+
+
+def parallel(a: Plank, b: Plank) -> bool:
+    return abs(float(normal(a) @ normal(b))) >= PARALLEL_COS
+
+
+def legs(design: Design, geometry: Geometry) -> list[str]:
+    """The upright planks standing on the floor (a ground contact), in plank order."""
+    on_floor = {c.plank for c in geometry.contacts if c.wall is None and c.on is None
+                and c.anchor is None}
+    return [p.id for p in design.planks if p.id in on_floor and upright(p)]
+
+
+def facing(a: Plank, b: Plank) -> tuple[np.ndarray, float, np.ndarray, np.ndarray] | None:
+    """For parallel planks a and b whose broad faces look at each other: (the unit normal
+    from a toward b, the gap between their facing faces m, and the overlap of b with a in
+    a's plane as (low, high) (2,) local x-y of a); None when they are not parallel."""
+    if not parallel(a, b):
+        return None
+    toward = normal(a).copy()
+    offset = float((b.center_array - a.center_array) @ toward)
+    if offset < 0:
+        toward, offset = -toward, -offset
+    gap = offset - a.half_extents[2] - b.half_extents[2]
+    axes = a.rotation_matrix[:, :2]
+    corners = (b.corners - a.center_array) @ axes
+    low = np.maximum(-a.half_extents[:2], corners.min(axis=0))
+    high = np.minimum(a.half_extents[:2], corners.max(axis=0))
+    return toward, float(gap), low, high
+
+
+def new_id(design: Design, stem: str, taken: set[str] = frozenset()) -> str:
+    """``stem-1``, ``stem-2``, ...: the first not yet a plank id of the design (nor in
+    ``taken``)."""
+    used = {p.id for p in design.planks} | set(taken)
+    return next(f"{stem}-{n}" for n in range(1, len(used) + 2) if f"{stem}-{n}" not in used)
+
+
+def board(name: str, length: float, width: float, thickness: float, centre: np.ndarray,
+          x_axis: np.ndarray, z_axis: np.ndarray) -> Plank:
+    """A plank ``length`` along ``x_axis``, ``width`` across, its face normal ``z_axis``
+    (unit, orthogonal), centred at ``centre`` (m)."""
+    y_axis = np.cross(z_axis, x_axis)
+    rotation = euler_degrees(np.column_stack([x_axis, y_axis, z_axis]), (0.0, 0.0, 0.0))
+    return Plank(name, float(length), float(width), float(thickness),
+                 tuple(float(v) for v in centre), tuple(float(v) for v in rotation))
+
+
+def with_planks(design: Design, planks: tuple[Plank, ...]) -> Design:
+    """The design with ``planks`` added (after its own)."""
+    return replace(design, planks=(*design.planks, *planks))
+
+
+# --- words ---------------------------------------------------------------------------------
+
+def amount(value: float) -> str:
+    """ADVICE_DIGITS significant digits, but whole units at least (1250, not 1.25e+03)."""
+    value = round(float(value), REPORT_DECIMALS) + 0.0     # round-off (1e-14 mm) -> 0
+    whole = len(str(int(abs(round(value)))))
+    return plain_number(value, max(ADVICE_DIGITS, whole))
+
+
+def size_of(plank: Plank, design: Design) -> str:
+    """'582 x 300 mm': the plank's length and width in the design's unit."""
+    scale = design.unit_scale
+    return f"{amount(plank.length / scale)} x {amount(plank.width / scale)} {design.units}"
+
+
+def point_of(point, design: Design) -> str:
+    """'(250, 0, 303) mm': a world point (m) in the design's unit."""
+    scale = design.unit_scale
+    return f"({', '.join(amount(v / scale) for v in point)}) {design.units}"
+
+
+def names(ids) -> str:
+    """'a', 'a and b', 'a, b and c'."""
+    ids = list(ids)
+    return ids[0] if len(ids) == 1 else f"{', '.join(ids[:-1])} and {ids[-1]}"

@@ -1,0 +1,280 @@
+"""The paper's discrete suggestion (section 6.5): add a support plank.
+
+When a joint is not durable, a support is added between two nearly parallel planks P_i
+and P_j that a third plank P_k joins, where the failing joint is P_k's joint with one of
+them -- a shelf nailed to a post gets a support standing on the base, a chair's seat a
+post down to the stretcher.  Under a level P_i the floor serves as P_j too: a leg under a
+ledge nailed to the outside of a bookcase.  The support stands across the gap between the
+faces of P_i and P_j that face each other, its ends nailed to both (it becomes the edge
+plank of two new joints; on the floor it just stands), its broad face turned toward P_k.
+Candidate places are the far side of the overlap of P_i and P_j from P_k (a triangle with
+the joint that fails: the woodworker's bracket) and its middle.  A plank that sags or is
+overstressed (elastic model) is P_i itself: the support goes under the middle of its
+overlap with a parallel plank P_j that shares a neighbour P_k with it (a divider between
+a sagging shelf and the shelf below), or the floor.  Each candidate design is checked in
+full -- valid in every case, the new plank joined to P_i and P_j only, no plank cutting
+another -- and only working supports are suggested; a candidate that does not come near
+every failing joint and plank (one joint from the planks it is nailed to, ``_reach``) is
+not built at all.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterator
+from dataclasses import replace
+
+import numpy as np
+
+from furncheck.design.model import Design, Plank
+from furncheck.suggest.discrete.common import (
+    PARALLEL_COS,
+    Candidate,
+    Fix,
+    Search,
+    amount,
+    board,
+    level,
+    new_id,
+    parallel,
+    point_of,
+    size_of,
+    with_planks,
+)
+
+PLACES = (("far", 1.0), ("middle", 0.0))
+"""Candidate places across the overlap, away from P_k: its far edge (1) and middle (0)."""
+
+MIN_OVERLAP = 3.0
+"""The overlap of P_i and P_j must be at least this many plank thicknesses wide (in
+both directions) to hold a support."""
+
+REPAIRED = ("non-durable", "sagging", "overstressed")
+"""The violations a support plank can repair."""
+
+SUPPORT = "support plank"
+"""The name of the support-plank rule in ``tried.Trial`` values."""
+
+STIFFENER = "stiffening rail"
+"""The name of the stiffening-rail rule in ``tried.Trial`` values."""
+
+_PLACE_WORDS = {"far": "at the far side", "middle": "in the middle"}
+"""``PLACES`` in a Trial's reason."""
+
+STIFFENER_DEPTHS = (4.0, 6.0, 8.0)
+"""Depths of a stiffening rail tried under a bent plank, in plank thicknesses (48, 72 and
+96 mm for 12 mm stock): the shallowest that works is suggested."""
+
+
+def support_planks(search: Search) -> Fix | None:
+    """The first working support plank or stiffening rail (``support_candidates``)."""
+    return search.first_valid(support_candidates(search))
+
+
+def support_candidates(search: Search) -> Iterator[Candidate]:
+    """Support planks and stiffening rails for the non-durable joints and the sagging or
+    overstressed planks of the report (see the module docstring), in the order tried:
+    failing joints and planks as reported, then P_k, P_i, P_j, places."""
+    design, report = search.design, search.report
+    if not search.repairs(SUPPORT, REPAIRED):
+        return
+    neighbours = search.neighbours
+    tried: set[tuple] = set()
+    failing = dict.fromkeys(_place(design, v.where) for v in report.violations)
+    reaches = _reach(failing, neighbours)
+    for where in failing:
+        if "/" in where:                                 # a joint k/i: brackets and posts
+            pair = where.split("/", 1)
+            placements = [(k, i, PLACES) for k, i in (pair, pair[::-1])]
+        else:                                            # a bent plank i
+            if (where, "stiffener") not in tried:
+                tried.add((where, "stiffener"))
+                yield from _stiffeners(search, where, neighbours[where], reaches)
+            placements = [(k, where, PLACES[1:]) for k in neighbours[where]]
+        out_of_reach = []
+        for k, i, places in placements:
+            partners = [j for j in neighbours[k]
+                        if j != i and parallel(design.plank(i), design.plank(j))]
+            if level(design.plank(i)):
+                partners.append(None)                    # the floor, under a level plank
+            for j in partners:
+                for place, position in places:
+                    key = (*sorted((i, j or "")), position)
+                    if key in tried:
+                        continue
+                    if not reaches({i, j}):
+                        out_of_reach.append(f"{i} and {j or 'the floor'}")
+                        continue
+                    tried.add(key)
+                    plank_i, plank_k = design.plank(i), design.plank(k)
+                    away = (plank_k.center_array - plank_i.center_array) @ \
+                        plank_i.rotation_matrix[:, :2]               # where k stands
+                    between = f"between {i} and {j or 'the floor'} {_PLACE_WORDS[place]}"
+                    candidate = support_candidate(search, away, i, j, position)
+                    if candidate is None:
+                        search.failed(SUPPORT, f"{between}: no room (a gap no wider than a "
+                                      f"plank, or an overlap narrower than {MIN_OVERLAP:g} "
+                                      f"plank thicknesses)", where)
+                        continue
+                    yield replace(candidate, target=where, place=between)
+        if out_of_reach:
+            search.failed(SUPPORT, f"one between {_listed(sorted(set(out_of_reach)))} would "
+                          f"not come near every failing joint and plank", where)
+
+
+def _listed(items: list[str], most: int = 3) -> str:
+    """'a, b, c' or 'a, b, c and 2 more'."""
+    head = ", ".join(items[:most])
+    return head if len(items) <= most else f"{head} and {len(items) - most} more"
+
+
+def _reach(failing, neighbours: dict[str, list[str]]) -> Callable[[set], bool]:
+    """Whether an added plank nailed to ``ends`` (a set of plank ids) comes near every
+    failing place (``failing``: violations' ``where``, a joint 'a/b' or a plank): each
+    failing joint and plank is one of ``ends`` or jointed to one (``neighbours``).  A
+    support relieves what it is nailed to and the planks those carry (a support under a
+    cantilevered shelf unloads its post too, a leg under a table top its legs), not a
+    shelf two joints away; so a candidate that does not come near every failing place is
+    not built and checked (a bookcase whose shelves all sag gets no support tried, at
+    once instead of after a full check of each)."""
+    joints = [set(where.split("/", 1)) for where in failing if "/" in where]
+    planks = [{where} for where in failing if "/" not in where]
+
+    def reaches(ends: set) -> bool:
+        near = set(ends)
+        for end in ends:
+            near.update(neighbours.get(end, ()))
+        return all(place & near for place in (*joints, *planks))
+    return reaches
+
+
+def _place(design: Design, where: str) -> str:
+    """A violation's place as the discrete fixes take it: a joint k/i, a plank i, and for
+    an anchor over its capacity (``anchors[n]``) the plank it holds (a support under that
+    plank takes load off the anchor)."""
+    if where.startswith("anchors["):
+        return design.anchors[int(where[len("anchors["):-1])].plank
+    return where
+
+
+def _stiffeners(search: Search, i: str, neighbours: list[str],
+                reaches: Callable[[set], bool]) -> Iterator[Candidate]:
+    """Rails on edge under one long edge of the level plank i (a shelf's front lip), or
+    under its middle, between the two parallel planks that hold i's ends, nailed to i and
+    to both: the woodworker's fix for a sagging shelf.  (A lip at one edge carries that
+    edge; the beam model's shelf, whose section does not bend across its width, then
+    twists about its axis: where that is too much, the rail under the middle does it.)
+    STIFFENER_DEPTHS deep, the shallowest first.  None (and the reason recorded) when i
+    is not level, is not held at both ends by parallel planks, or a rail would not reach
+    every failing place (``reaches``, see ``_reach``)."""
+    design = search.design
+    shelf = design.plank(i)
+    if not level(shelf):
+        search.not_applicable(STIFFENER, f"{i} is not level", i)
+        return
+    from furncheck.statics.beams import beam_frame, beam_length_width
+
+    frame = beam_frame(shelf)
+    axis = frame[:, 0]
+    ends = []
+    for k in neighbours:
+        other = design.plank(k)
+        if abs(float(other.rotation_matrix[:, 2] @ axis)) >= PARALLEL_COS:
+            ends.append((float((other.center_array - shelf.center_array) @ axis), other))
+    below = [e for e in ends if e[0] < 0]
+    above = [e for e in ends if e[0] > 0]
+    if not below or not above:
+        search.not_applicable(STIFFENER, f"{i} is not held at both ends by parallel planks",
+                              i)
+        return
+    (s_low, low), (s_high, high) = max(below, key=lambda e: e[0]), min(above, key=lambda e: e[0])
+    if not reaches({i, low.id, high.id}):
+        search.failed(STIFFENER, f"a rail under {i} would not come near every failing joint "
+                      f"and plank", i)
+        return
+    start = s_low + low.half_extents[2]
+    stop = s_high - high.half_extents[2]
+    thickness = design.material.thickness
+    length, width = beam_length_width(shelf)
+    down = -frame[:, 2] if frame[2, 2] > 0 else frame[:, 2]
+    name = new_id(design, "rail")
+    nailed = (i, low.id, high.id)
+    for depth in STIFFENER_DEPTHS:
+        rail_depth = depth * thickness
+        for side, edge, where in ((-1.0, 1.0, "under one long edge"),
+                                  (1.0, 1.0, "under the other long edge"),
+                                  (1.0, 0.0, "under the middle")):
+            across = frame[:, 1] * side
+            centre = (shelf.center_array + axis * 0.5 * (start + stop)
+                      + across * edge * (0.5 * width - 0.5 * thickness)
+                      + down * (shelf.half_extents[2] + 0.5 * rail_depth))
+            rail = board(name, stop - start, rail_depth, thickness, centre, axis, across)
+            advice = (f"Add {name} ({size_of(rail, design)}) on edge under {i}, from "
+                      f"{low.id} to {high.id}, centred at {point_of(rail.center, design)}, "
+                      f"nailed to all three.")
+            place = (f"{amount(rail_depth / design.unit_scale)} {design.units} deep, from "
+                     f"{low.id} to {high.id}, {where}")
+            yield Candidate("rail", with_planks(design, (rail,)), advice, (rail,), nailed,
+                            tuple((end, name) for end in nailed), STIFFENER, i, place, name)
+
+
+def support_candidate(search: Search, away: np.ndarray, i: str, j: str | None,
+                      position: float, rule: str = "support",
+                      trial_rule: str = "support plank") -> Candidate | None:
+    """A support between i and j (None: the floor) at ``position`` (1 far side, 0
+    middle) of their overlap, on the side of i opposite to ``away`` ((2,) in i's local
+    x-y: where the plank k it is to relieve stands); None when it does not fit."""
+    design = search.design
+    other = None if j is None else design.plank(j)
+    plank = _support(design, away, design.plank(i), other, position)
+    if plank is None:
+        return None
+    ends = (i,) if j is None else (i, j)
+    size, centre = size_of(plank, design), point_of(plank.center, design)
+    if j is None:
+        advice = (f"Add {plank.id} ({size}) under {i}, standing on the floor, centred at "
+                  f"{centre}, nailed to {i}.")
+    else:
+        advice = (f"Add {plank.id} ({size}) between {i} and {j}, centred at {centre}, nailed "
+                  f"to both.")
+    return Candidate(rule, with_planks(design, (plank,)), advice, (plank,),
+                     (i, j or "the floor"), tuple((end, plank.id) for end in ends),
+                     trial_rule, plank=plank.id)
+
+
+def _support(design: Design, away: np.ndarray, i: Plank, j: Plank | None,
+             position: float) -> Plank | None:
+    """The support plank between the facing broad faces of i and j, or between i's
+    underside and the floor (j None); None if they do not face each other over an
+    overlap wide enough."""
+    normal = i.rotation_matrix[:, 2]
+    if j is None:
+        normal = -normal if normal[2] > 0 else normal                 # down, to the floor
+        gap = float(i.corners[:, 2].min())
+    else:
+        offset = float((j.center_array - i.center_array) @ normal)
+        if offset < 0:
+            normal, offset = -normal, -offset
+        gap = offset - i.half_extents[2] - j.half_extents[2]
+    thickness = design.material.thickness
+    if gap <= thickness:
+        return None
+    axes = i.rotation_matrix[:, :2]                                   # in-plane x, y of i
+    low, high = -i.half_extents[:2], i.half_extents[:2].copy()
+    if j is not None:
+        corners_j = (j.corners - i.center_array) @ axes               # j seen in i's plane
+        low = np.maximum(low, corners_j.min(axis=0))
+        high = np.minimum(high, corners_j.max(axis=0))
+    if np.any(high - low < MIN_OVERLAP * thickness):
+        return None
+    along = int(np.argmax(np.abs(away)))                              # axis away from k
+    sign = -1.0 if away[along] > 0 else 1.0
+    middle = 0.5 * (low + high)
+    half_span = 0.5 * (high[along] - low[along]) - 0.5 * thickness
+    spot = middle.copy()
+    spot[along] += sign * position * half_span
+    across = 1 - along
+    width = float(high[across] - low[across])
+    centre = i.center_array + axes @ spot + normal * (i.half_extents[2] + 0.5 * gap)
+    x_axis = normal                                                   # its length spans the gap
+    z_axis = axes[:, along] * sign                                    # its face looks at k
+    return board(new_id(design, "support"), gap, width, thickness, centre, x_axis, z_axis)

@@ -1,0 +1,340 @@
+"""A thicker plank: the maker's fix for a shelf that sags or breaks, and for a joint whose
+nails pull out under a moment.
+
+In the elastic model a plank's sag goes with 1 / t^3 and its bending stress with 1 / t^2
+(contract section 3a: its section is width x thickness); a nail joint's pull from the
+moment about its joint line goes with 1 / t of the edge plank (contract section 3: the
+nails' lever is t / 2).  So from the report, each failing plank needs its thickness times
+
+    max over the cases of  max((sag (1 + creep) / allowed)^(1/3), (stress / strength)^(1/2))
+
+and the edge plank of a joint whose nails pull out the thickness at which the moment about
+the joint line, over the nails' lever t / 2, leaves the pull within capacity, the joint's
+wrench kept (``_edge_thickness``; none when the nails shear off or the rocking moment
+across the row alone pulls them out: a thicker plank helps neither).  The thickness suggested is
+the next board of ``STOCK_THICKNESSES`` at or above that; if the design is still not
+valid (a thicker plank is heavier, and its joints stiffer, so the loads shift), the
+estimate is made again from the new report, at most ``THICKEN_TRIES`` times.
+
+A plank grows away from the faces that hold it: a face on which another plank's end is
+nailed or rests, or that lies on the floor or a wall stays where it is (a shelf on
+brackets grows upward, a post with a shelf nailed to its front grows backward); with
+neither face held it grows equally both ways; with both held it cannot grow.  Load and
+anchor points on a face that moves move with it.
+
+The rule (``thicker_planks``) thickens every failing plank and the edge planks of the
+joints that pull out, in one suggestion; ``finish`` does the same for the candidate of
+another rule that fails only by planks that bend too much (a support under a shelf's far
+end leaves the shelf, now simply supported, sagging a little: a thicker shelf finishes
+the job).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from furncheck import tolerances as tol
+from furncheck.check import check_design
+from furncheck.design.model import Design, Plank
+from furncheck.geometry import Geometry, Joint, analyze, interpenetrations
+from furncheck.result import DesignReport, JointResult
+from furncheck.suggest.discrete.common import BENDING, Fix, Search, amount, names
+from furncheck.suggest.tried import FOUND, Trial
+from furncheck.validity import nail_row
+
+THICKEN_TRIES = 3
+"""Thicknesses tried per suggestion (the estimate, then from the reports of the tries)."""
+
+THICKER = "thicker board"
+"""The rule's name in ``tried.Trial`` values."""
+
+PULL_FAILING = ("non-durable",)
+"""The joint violation a thicker edge plank can repair (by its pull)."""
+
+
+def thicker_planks(search: Search) -> Fix | None:
+    """Every failing plank and every edge plank of a joint whose nails pull out, made
+    thicker (module docstring), when that makes the design valid; else None.  Tried when
+    every violation is one of these (a design that also tips needs more than thicker
+    boards)."""
+    report = search.report
+    if not search.repairs(THICKER, (*BENDING, *PULL_FAILING)):
+        return None
+    why: list[str] = []
+    checked = _thickened(search, search.design, search.geometry, report, why)
+    if checked is None:
+        search.failed(THICKER, why[0] if why else "no thicker boards make it valid")
+        return None
+    edited, after_report, thickened = checked
+    search.trials.append(Trial(THICKER, "", FOUND, plank=names(list(thickened))))
+    advice = f"{thickness_phrase(thickened, search.design, capital=True)}."
+    return Fix("thicker", advice, edited, after_report, between=tuple(thickened),
+               thickened={p: new for p, (_, new) in thickened.items()})
+
+
+def finish(search: Search, edited: Design, geometry: Geometry,
+           report: DesignReport) -> tuple[Design, DesignReport, dict] | None:
+    """For another rule's candidate ``edited`` (valid geometry, ``report`` its failing
+    report): when every violation is a plank that sags or is overstressed, those planks
+    thickened (``thicker_planks``' estimate) and the result checked; (design, report,
+    {id: (old, new) thickness}) when valid, else None."""
+    if any(v.kind not in BENDING for v in report.violations):
+        return None
+    return _thickened(search, edited, geometry, report)
+
+
+def thickness_phrase(thickened: dict, design: Design, capital: bool = False) -> str:
+    """'make shelf 18 mm thick (now 12 mm) and post 36 mm (now 12 mm)' (a plank that
+    ``design`` does not have, one a fix adds, without 'now')."""
+    scale, unit = design.unit_scale, design.units
+    parts = [f"{plank} {amount(new / scale)} {unit}" + (" thick" if k == 0 else "")
+             + (f" (now {amount(old / scale)} {unit})" if plank in design.plank_index else "")
+             for k, (plank, (old, new)) in enumerate(thickened.items())]
+    verb = "Make" if capital else "make"
+    return f"{verb} {names(parts)}"
+
+
+def _thickened(search: Search, design: Design, geometry: Geometry, report: DesignReport,
+               why: list[str] | None = None) -> tuple[Design, DesignReport, dict] | None:
+    """The tries of the module docstring, from ``design`` (whose geometry and failing
+    report are given); (design, report, {id: (old, new) m}) of the first valid one, else
+    None and the reason in ``why``."""
+    why = [] if why is None else why
+    original = {p.id: p.thickness for p in design.planks}
+    current: dict[str, float] = {}
+    wanted = _needed(design, geometry, report)
+    if not wanted:
+        why[:] = ["no thickness helps (a joint's nails shear off, or the moment across "
+                  "its nail row alone pulls them out)"]
+        return None
+    for _ in range(THICKEN_TRIES):
+        for plank, thickness in wanted.items():
+            stock = _stock(thickness)
+            if plank in current and (stock is None or stock <= current[plank]):
+                stock = _stock(current[plank], above=True)     # at least one board up
+            if stock is None:
+                largest = amount(tol.STOCK_THICKNESSES[-1] / design.unit_scale)
+                why[:] = [f"{plank} would need {amount(thickness / design.unit_scale)} "
+                          f"{design.units}, more than the thickest board ({largest} "
+                          f"{design.units})"]
+                return None
+            current[plank] = stock
+        edited = grown(design, geometry, current)
+        if edited is None or not search.keeps_locks(edited):
+            why[:] = ["a plank held on both faces cannot grow, or a locked DOF would change"
+                      if edited is None else "it would change a locked DOF"]
+            return None
+        after = analyze(edited)
+        if after.violations or interpenetrations(edited) or \
+                {frozenset(j.planks) for j in after.joints} != \
+                {frozenset(j.planks) for j in geometry.joints}:
+            why[:] = ["the thicker planks would cut into others or change the joints"]
+            return None
+        search.checks += 1
+        after_report = check_design(edited, after)
+        if after_report.valid:
+            order = sorted(current, key=design.plank_index.get)
+            return edited, after_report, {p: (original[p], current[p]) for p in order}
+        first = after_report.violations[0]
+        why[:] = [f"with {names(list(current))} thicker, {first.kind}: {first.where}: "
+                  f"{first.message}"]
+        if any(v.kind not in (*BENDING, *PULL_FAILING) for v in after_report.violations):
+            return None
+        wanted = _needed(edited, after, after_report)
+        if not wanted:
+            return None
+    return None
+
+
+def _needed(design: Design, geometry: Geometry, report: DesignReport) -> dict[str, float]:
+    """m: the thickness each failing plank, and each edge plank of a joint whose nails
+    pull out, needs by the estimate of the module docstring (planks in report order)."""
+    factors: dict[str, float] = {}
+    failing_planks = {v.where for v in report.violations if v.kind in BENDING}
+    failing_joints = {v.where for v in report.violations if v.kind in PULL_FAILING}
+    joints = {joint.name: joint for joint in geometry.joints}
+    for case in report.cases:
+        for result in case.planks or ():
+            if result.id not in failing_planks:
+                continue
+            creep = design.material_of(design.plank(result.id)).creep
+            sag = result.sag * (1.0 + creep) / result.sag_allowed if result.sag_allowed else 0.0
+            stress = result.stress / result.strength if result.strength else 0.0
+            factor = max(max(sag, 0.0) ** (1.0 / 3.0), max(stress, 0.0) ** 0.5)
+            factors[result.id] = max(factors.get(result.id, 0.0), factor)
+        for result in case.joints:
+            name = "/".join(result.planks)
+            if name not in failing_joints or name not in joints:
+                continue
+            joint = joints[name]
+            needed = _edge_thickness(joint, result)
+            if needed is None:
+                return {}                     # shear, or the rocking moment: no thickness helps
+            factors[joint.edge] = max(factors.get(joint.edge, 0.0),
+                                      needed / design.plank(joint.edge).thickness)
+    return {plank: design.plank(plank).thickness * factor
+            for plank, factor in factors.items() if factor > 1.0}
+
+
+def _edge_thickness(joint: Joint, result: JointResult) -> float | None:
+    """m: the edge plank's thickness at which the joint's nails hold in this case, its
+    wrench kept: with F and M in the joint frame (``validity.nail_pull_shear``),
+
+        pull(t) = (2 |M_y| / t - F_n) / n + |M_x| y_max / S <= capacity
+        <=>  t >= 2 |M_y| / (n (capacity - |M_x| y_max / S) + F_n);
+
+    None when no thickness will do (the right side is not positive, or the shear, which
+    the thickness does not change, is over its capacity)."""
+    if result.shear > result.shear_capacity * (1.0 + tol.CAPACITY_REL_TOL):
+        return None
+    sign = 1.0 if joint.planks[0] == joint.face else -1.0
+    force = joint.frame.T @ (sign * np.asarray(result.force))
+    moment = joint.frame.T @ (sign * np.asarray(result.moment))
+    y_max, spread = (float(v[0]) for v in nail_row([joint]))
+    room = joint.nails * (result.pull_capacity - abs(moment[0]) * y_max / spread) + force[2]
+    if room <= 0.0:
+        return None
+    return 2.0 * abs(float(moment[1])) / room
+
+
+def _stock(thickness: float, above: bool = False) -> float | None:
+    """m: the thinnest board of STOCK_THICKNESSES at least ``thickness`` (``above``:
+    thicker than it); None beyond the thickest."""
+    least = thickness * (1.0 + tol.STOCK_MATCH) if above else \
+        thickness * (1.0 - tol.STOCK_MATCH)
+    return next((stock for stock in tol.STOCK_THICKNESSES
+                 if stock > least or (not above and stock == least)), None)
+
+
+def grown(design: Design, geometry: Geometry, thicknesses: dict[str, float]) -> Design | None:
+    """The design with the planks of ``thicknesses`` (id -> m) that thick, each grown away
+    from its held faces (module docstring); a plank held on both faces grows toward the
+    side where only planks nailed to it alone rest (a chair's back on its seat), which
+    move with that face; load and anchor points on a moved face move with it.  None when
+    a plank cannot grow."""
+    held = _held_sides(design, geometry)
+    resting = _resting(geometry)
+    planks = {p.id: p for p in design.planks}
+    moves: dict[str, list] = {}                    # plank id -> how its points move
+    for plank_id, thickness in thicknesses.items():
+        plank = planks[plank_id]
+        grow = thickness - plank.thickness
+        if grow <= 0.0:
+            continue
+        axis = plank.rotation_matrix[:, 2]
+        sides = held.get(plank_id, set())
+        if len(sides) == 2:
+            side = next((s for s in (1, -1) if all(
+                len(set(_neighbours(geometry, leaf))) == 1
+                for leaf in resting.get((plank_id, s), ()))), None)
+            if side is None:
+                return None
+            for leaf in resting.get((plank_id, side), ()):
+                shift = axis * side * grow
+                planks[leaf] = replace(planks[leaf], center=tuple(
+                    float(v) for v in planks[leaf].center_array + shift))
+                moves.setdefault(leaf, []).append(_translation(shift))
+        elif sides:
+            side = -next(iter(sides))
+        else:
+            side = _free_side(design, geometry, plank, grow, planks)
+            if side is None:
+                return None
+        centre = plank.center_array + axis * side * 0.5 * grow
+        planks[plank_id] = replace(plank, thickness=float(thickness),
+                                   center=tuple(float(v) for v in centre))
+        moves.setdefault(plank_id, []).append(_face_shift(plank, axis, side, grow, design))
+    if not moves:
+        return None
+
+    def moved(plank_id: str, point):
+        for move in moves.get(plank_id, ()):
+            point = move(point)
+        return point
+    cases = tuple(replace(case, loads=tuple(
+        replace(load, point=moved(load.plank, load.point)) if load.point is not None
+        else load for load in case.loads)) for case in design.load_cases)
+    anchors = tuple(replace(a, point=moved(a.plank, a.point)) for a in design.anchors)
+    return replace(design, planks=tuple(planks[p.id] for p in design.planks),
+                   load_cases=cases, anchors=anchors)
+
+
+def _neighbours(geometry: Geometry, plank_id: str) -> list[str]:
+    return [other for joint in geometry.joints if plank_id in joint.planks
+            for other in joint.planks if other != plank_id]
+
+
+def _resting(geometry: Geometry) -> dict[tuple[str, int], list[str]]:
+    """(face plank, its side) -> the edge planks nailed on that broad face."""
+    found: dict[tuple[str, int], list[str]] = {}
+    for joint in geometry.joints:
+        found.setdefault((joint.face, int(joint.face_side)), []).append(joint.edge)
+    return found
+
+
+def _free_side(design: Design, geometry: Geometry, plank: Plank, grow: float,
+               planks: dict[str, Plank]) -> int | None:
+    """How a plank held on neither face grows: 0 both ways, else toward +1 or -1 local
+    z; the first whose new corners stay out of the floor and of the faces its ends rest
+    on (a splayed leg, its ends cut square to it, cannot grow either way without
+    cutting in); None if none does.  ``planks``: the planks as grown so far."""
+    planes = [(np.array([0.0, 0.0, 1.0]), 0.0)]
+    for joint in geometry.joints:
+        if joint.edge == plank.id:
+            face = planks[joint.face]
+            outward = face.rotation_matrix[:, 2] * joint.face_side
+            planes.append((outward, float(outward @ face.center_array) + face.half_extents[2]))
+    slack = design.tolerance + tol.ON_PLANK_EPS
+    axis = plank.rotation_matrix[:, 2]
+    for side in (0, 1, -1):
+        moved = replace(plank, thickness=plank.thickness + grow, center=tuple(
+            float(v) for v in plank.center_array + axis * side * 0.5 * grow))
+        corners = moved.corners
+        old = plank.corners
+        if all((corners @ n - offset).min() >= min(float((old @ n - offset).min()), 0.0) - slack
+               for n, offset in planes):
+            return side
+    return None
+
+
+def _translation(shift: np.ndarray):
+    return lambda point: tuple(float(v) for v in np.asarray(point) + shift)
+
+
+def _face_shift(plank: Plank, axis: np.ndarray, side: int, grow: float, design: Design):
+    """How a point on ``plank`` moves when it grows by ``grow`` toward ``side`` (0: both
+    ways): with its face when it lies on a face that moves, else not at all."""
+    half = plank.half_extents[2]
+    slack = design.tolerance + tol.ON_PLANK_EPS
+
+    def move(point):
+        height = float((np.asarray(point) - plank.center_array) @ axis)
+        for face in (1, -1):
+            if abs(height - face * half) <= slack and side in (0, face):
+                step = grow if side else 0.5 * grow
+                return tuple(float(v) for v in np.asarray(point) + axis * face * step)
+        return point
+    return move
+
+
+def _held_sides(design: Design, geometry: Geometry) -> dict[str, set[int]]:
+    """plank id -> its broad faces (+1 local +z, -1 -z) that hold: a joint's face side,
+    a resting plank's, and the face a plank lying on the floor or a wall lies on."""
+    held: dict[str, set[int]] = {}
+    for joint in geometry.joints:
+        held.setdefault(joint.face, set()).add(int(joint.face_side))
+    for contact in geometry.contacts:
+        if contact.on is not None and contact.frame is not None:
+            face = design.plank(contact.on)
+            side = 1 if float(np.asarray(contact.frame[2]) @ face.rotation_matrix[:, 2]) > 0 \
+                else -1
+            held.setdefault(contact.on, set()).add(side)
+        elif contact.anchor is None and 0 <= contact.corner < 8:
+            plank = design.plank(contact.plank)
+            support = np.array([0.0, 0.0, 1.0]) if contact.wall is None else \
+                np.asarray(design.walls[contact.wall].normal)
+            if abs(float(plank.rotation_matrix[:, 2] @ support)) >= 0.95:
+                held.setdefault(plank.id, set()).add(-1 if contact.corner < 4 else 1)
+    return held

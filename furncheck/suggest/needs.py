@@ -1,0 +1,380 @@
+"""What each violation would need, by hand statics: the numbers behind "no suggestion".
+
+Each violation is taken on its own, in the load case where it is worst, with the loads
+and planks as they are:
+
+* sliding: friction holds while the sideways load H on a grounded group of planks stays
+  within mu W, W the downward load it stands with (its planks' weight and the loads on
+  them).  Needed: W >= H / mu (``extra_mass`` = (H / mu - W) / g more on it) or
+  mu >= H / W (``friction_needed``).
+* lift-off: the resultant of the group's weight and loads meets the floor at p; the
+  support polygon is the convex hull of its ground contacts.  p lies ``outside`` = d
+  beyond its nearest edge, so the overturning moment about that edge is V d (V the
+  downward resultant).  Needed: a base reaching d further that way (``wider``), or
+  ballast at the support point farthest from the edge, at arm a: V d / a (``ballast``);
+  with sideways loads, the largest fraction of them that keeps p inside (``push_max``).
+* non-durable joint: the pull and shear per nail are the joint's forces shared by its n
+  nails (``validity.nail_pull_shear``: every term goes with 1 / n for the same wrench),
+  so n' = ceil(n x max(pull / capacity, shear / capacity)) nails hold it; unless the file
+  lists the count, that is a joint n' x spacing long.
+* an anchor over its capacity: a rating of at least its force x the safety factor.
+* sagging / overstressed plank (elastic model): for the same load and span the sag goes
+  with 1 / (E I), I = b t^3 / 12, and the stress with 1 / S, S = b t^2 / 6 -- t the
+  dimension the plank bends across: its thickness, or its width for a plank on edge
+  under vertical loads.  Needed: t' = t (sag (1 + creep) / allowed)^(1/3), or
+  t' = t (stress / strength)^(1/2).  Its own weight, which grows with t, is left out;
+  and where nails hold its ends, a stiffer plank is held less firmly (the joints' springs
+  stay as they are), so its sag falls more slowly than 1 / t^3: the sag's t' is a lower
+  bound (the particleboard shelf of the catalog, 45.8 mm by the formula, still sags 2.5 x
+  its allowance at that thickness; the cantilever, whose support is a determinate joint,
+  1.05 x: its own weight).
+* geometric: the gap, depth or height to close, to within the tolerance.
+
+The values are SI-free for the reports: lengths in the design's unit, forces N, masses
+kg, stress N/mm^2.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from furncheck.design.model import Design, Plank
+from furncheck.geometry import Geometry, end_gap
+from furncheck.result import CaseResult, DesignReport, Violation
+from furncheck.tolerances import GRAVITY
+
+LEVEL_COS = 0.95
+"""A plank's length axis counts as horizontal, and a face normal as horizontal, when
+their vertical component is below 1 - this (about 18 degrees)."""
+
+
+@dataclass(frozen=True)
+class Need:
+    """What one violation would need (see the module docstring for ``values``' keys).
+
+    kind, where, case : the violation's (``case`` the worst of its cases, None for
+                geometry)
+    cases  : every case the violation occurs in
+    values : the numbers, by name; empty when there is no hand estimate (``why`` says
+             why)
+    """
+
+    kind: str
+    where: str
+    case: str | None
+    cases: tuple[str, ...] = ()
+    values: dict = field(default_factory=dict)
+    why: str = ""
+
+
+def violation_needs(design: Design, geometry: Geometry, report: DesignReport) -> tuple[Need, ...]:
+    """One ``Need`` per violated (kind, place), in the order of the report."""
+    groups: dict[tuple[str, str], list[Violation]] = {}
+    for violation in report.violations:
+        groups.setdefault((violation.kind, violation.where), []).append(violation)
+    cases = {case.name: case for case in report.cases}
+    needs = []
+    for (kind, where), violations in groups.items():
+        names = tuple(v.case for v in violations if v.case is not None)
+        estimate = _ESTIMATES.get(kind)
+        if estimate is None:
+            needs.append(Need(kind, where, None, names, {}, "no hand estimate"))
+            continue
+        found = [estimate(design, geometry, where, cases.get(v.case), v.case)
+                 for v in violations]
+        worst = max(found, key=lambda need: need.values.get("ratio", 0.0))
+        needs.append(Need(kind, where, worst.case, names, worst.values, worst.why))
+    return tuple(needs)
+
+
+# -- stability ---------------------------------------------------------------------------
+def _sliding(design: Design, geometry: Geometry, where: str, case: CaseResult | None,
+             case_name: str | None) -> Need:
+    if design.walls or design.anchors:
+        return Need("sliding", where, case_name, why="it leans on walls or is anchored")
+    forces, _ = _group_loads(design, geometry, where, case_name)
+    total = forces.sum(axis=0)
+    weight, push = float(-total[2]), float(np.hypot(total[0], total[1]))
+    mu = design.material.friction
+    if weight <= 0.0:
+        return Need("sliding", where, case_name, why="its loads lift it")
+    needed = push / mu
+    return Need("sliding", where, case_name, values={
+        "push": push, "weight": weight, "friction": mu, "holds": mu * weight,
+        "extra_mass": (needed - weight) / GRAVITY, "friction_needed": push / weight,
+        "ratio": push / (mu * weight)})
+
+
+def _lift_off(design: Design, geometry: Geometry, where: str, case: CaseResult | None,
+              case_name: str | None) -> Need:
+    if design.walls or design.anchors:
+        return Need("lift-off", where, case_name, why="it leans on walls or is anchored")
+    forces, points = _group_loads(design, geometry, where, case_name)
+    group = _group(design, geometry, where)
+    feet = [c for c in geometry.contacts if c.wall is None and c.anchor is None
+            and c.on is None and design.plank_index[c.plank] in group]
+    weight = float(-forces[:, 2].sum())
+    if weight <= 0.0 or not feet:
+        return Need("lift-off", where, case_name,
+                    why="its loads lift it" if feet else "it has no ground contact")
+    hull, owners = _hull([c.point[:2] for c in feet], [c.plank for c in feet])
+    crossing = _floor_crossing(forces, points)
+    outside, nearest = _outside(hull, crossing)
+    if outside <= 0.0:
+        return Need("lift-off", where, case_name,
+                    why="the loads' resultant meets the floor inside the support: it "
+                        "tips where planks only rest on each other")
+    scale = design.unit_scale
+    away = (crossing - nearest) / outside
+    arms = (nearest - hull) @ away
+    far = int(np.argmax(arms))
+    values = {"weight": weight, "point": tuple(float(v) / scale for v in crossing),
+              "outside": outside / scale, "edge_plank": owners[_nearest_vertex(hull, nearest)],
+              "wider": outside / scale, "ratio": 1.0 + outside / max(float(arms.max()), 1e-12)}
+    if arms[far] > 0.0:
+        values.update({"ballast": weight * outside / arms[far] / GRAVITY,
+                       "ballast_plank": owners[far], "ballast_arm": float(arms[far]) / scale})
+    sideways = forces.copy()
+    sideways[:, :2] = 0.0
+    push = float(np.hypot(*forces[:, :2].sum(axis=0)))
+    if push > 0.0:
+        still = _floor_crossing(sideways, points)
+        fraction = _inside_fraction(hull, still, crossing)
+        if fraction is not None:
+            values.update({"push": push, "push_max": fraction * push})
+    return Need("lift-off", where, case_name, values=values)
+
+
+def _group(design: Design, geometry: Geometry, where: str) -> set[int]:
+    """Plank indices of the group standing with the first plank of ``where``: jointed
+    together or resting on each other."""
+    parent = list(range(len(design.planks)))
+
+    def root(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    index = design.plank_index
+    links = [joint.planks for joint in geometry.joints]
+    links += [(c.plank, c.on) for c in geometry.contacts if c.on is not None]
+    for a, b in links:
+        parent[root(index[a])] = root(index[b])
+    first = root(index[where.split(",")[0].split("/")[0]])
+    return {i for i in range(len(design.planks)) if root(i) == first}
+
+
+def _group_loads(design: Design, geometry: Geometry, where: str,
+                 case_name: str | None) -> tuple[np.ndarray, np.ndarray]:
+    """(forces (k, 3) N, points (k, 3) m): the weight of each plank of the group at its
+    centre and every load of the case on its planks (a spread load at the plank's
+    centre, where its resultant acts)."""
+    group = _group(design, geometry, where)
+    forces, points = [], []
+    for i in sorted(group):
+        plank = design.planks[i]
+        forces.append((0.0, 0.0, -design.plank_mass(plank) * GRAVITY))
+        points.append(plank.center_array)
+    case = next((c for c in design.load_cases if c.name == case_name), None)
+    for load in case.loads if case is not None else ():
+        plank = design.plank(load.plank)
+        if design.plank_index[load.plank] in group:
+            forces.append(load.force)
+            points.append(plank.center_array if load.point is None else load.point)
+    return np.array(forces, dtype=float), np.array(points, dtype=float)
+
+
+def _floor_crossing(forces: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """(2,) m: where the loads' resultant line meets the floor (z = 0): the point p with
+    p x F = M, F the resultant and M the loads' moment about the origin (F_z < 0)."""
+    total = forces.sum(axis=0)
+    moment = np.cross(points, forces).sum(axis=0)
+    return np.array([-moment[1] / total[2], moment[0] / total[2]])
+
+
+def _hull(points: list, owners: list[str]) -> tuple[np.ndarray, list[str]]:
+    """The convex hull (h, 2) counter-clockwise (Andrew's monotone chain) of the contact
+    points and the plank of each hull point; one or two points for a design standing on a
+    point or a line."""
+    order = sorted(range(len(points)), key=lambda k: (round(float(points[k][0]), 12),
+                                                      round(float(points[k][1]), 12)))
+    unique: list[int] = []
+    for k in order:
+        if not unique or np.linalg.norm(points[k] - points[unique[-1]]) > 1e-9:
+            unique.append(k)
+
+    def cross(o, a, b) -> float:
+        return float((a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]))
+
+    def chain(indices: list[int]) -> list[int]:
+        kept: list[int] = []
+        for k in indices:
+            while len(kept) >= 2 and cross(points[kept[-2]], points[kept[-1]], points[k]) <= 0:
+                kept.pop()
+            kept.append(k)
+        return kept
+
+    if len(unique) <= 2:
+        chosen = unique
+    else:
+        lower, upper = chain(unique), chain(unique[::-1])
+        chosen = lower[:-1] + upper[:-1]
+    return np.array([points[k] for k in chosen], dtype=float), [owners[k] for k in chosen]
+
+
+def _outside(hull: np.ndarray, point: np.ndarray) -> tuple[float, np.ndarray]:
+    """(distance, nearest point) of ``point`` from the convex polygon ``hull``: 0 and the
+    point itself when it lies inside."""
+    if len(hull) >= 3 and all(
+            (b[0] - a[0]) * (point[1] - a[1]) - (b[1] - a[1]) * (point[0] - a[0]) >= 0.0
+            for a, b in zip(hull, np.roll(hull, -1, axis=0))):
+        return 0.0, point
+    best, nearest = math.inf, hull[0]
+    for a, b in zip(hull, np.roll(hull, -1, axis=0)):
+        edge = b - a
+        length = float(edge @ edge)
+        t = 0.0 if length == 0.0 else min(max(float((point - a) @ edge) / length, 0.0), 1.0)
+        candidate = a + t * edge
+        distance = float(np.linalg.norm(point - candidate))
+        if distance < best:
+            best, nearest = distance, candidate
+    return best, nearest
+
+
+def _nearest_vertex(hull: np.ndarray, point: np.ndarray) -> int:
+    return int(np.argmin(np.linalg.norm(hull - point, axis=1)))
+
+
+def _inside_fraction(hull: np.ndarray, start: np.ndarray, end: np.ndarray) -> float | None:
+    """The largest f in [0, 1] with start + f (end - start) inside the convex polygon, or
+    None when ``start`` itself lies outside (the loads topple it without the push)."""
+    if len(hull) < 3 or _outside(hull, start)[0] > 0.0:
+        return None
+    fraction = 1.0
+    delta = end - start
+    for a, b in zip(hull, np.roll(hull, -1, axis=0)):
+        normal = np.array([b[1] - a[1], a[0] - b[0]])        # outward (counter-clockwise)
+        rate = float(normal @ delta)
+        if rate > 0.0:
+            fraction = min(fraction, float(normal @ (a - start)) / rate)
+    return max(fraction, 0.0)
+
+
+# -- durability --------------------------------------------------------------------------
+def _non_durable(design: Design, geometry: Geometry, where: str, case: CaseResult | None,
+                 case_name: str | None) -> Need:
+    if where.startswith("anchors["):
+        return _anchor(design, where, case, case_name)
+    joint = next((j for j in geometry.joints if j.name == where), None)
+    result = next((j for j in case.joints if "/".join(j.planks) == where), None) \
+        if case is not None else None
+    if joint is None or result is None:
+        return Need("non-durable", where, case_name, why="no joint result")
+    ratio = max(result.pull / result.pull_capacity, result.shear / result.shear_capacity)
+    nails = int(math.ceil(result.nails * ratio - 1e-9))
+    values = {"pull": result.pull, "pull_capacity": result.pull_capacity,
+              "shear": result.shear, "shear_capacity": result.shear_capacity,
+              "nails": result.nails, "nails_needed": nails, "ratio": ratio}
+    if not _nails_listed(design, joint):
+        spacing = design.material.nail_spacing
+        values.update({"spacing": spacing / design.unit_scale,
+                       "length": joint.length / design.unit_scale,
+                       "length_needed": nails * spacing / design.unit_scale})
+    return Need("non-durable", where, case_name, values=values)
+
+
+def _anchor(design: Design, where: str, case: CaseResult | None,
+            case_name: str | None) -> Need:
+    index = int(where[len("anchors["):-1])
+    anchor = design.anchors[index]
+    result = next((a for a in case.anchors if a.plank == anchor.plank
+                   and a.wall == anchor.wall), None) if case is not None else None
+    if result is None:
+        return Need("non-durable", where, case_name, why="no anchor result")
+    return Need("non-durable", where, case_name, values={
+        "force": result.size, "capacity": result.capacity,
+        "rating_needed": result.size * design.safety_factor,
+        "ratio": result.size / result.capacity})
+
+
+def _nails_listed(design: Design, joint) -> bool:
+    if not joint.key or design.joints is None:
+        return False
+    return design.joints[int(joint.key.split("[", 1)[1].rstrip("]"))].nails is not None
+
+
+# -- bending (elastic model) -------------------------------------------------------------
+def _bent(design: Design, geometry: Geometry, where: str, case: CaseResult | None,
+          case_name: str | None, sagging: bool) -> Need:
+    kind = "sagging" if sagging else "overstressed"
+    result = next((p for p in case.planks or () if p.id == where), None) \
+        if case is not None else None
+    if result is None:
+        return Need(kind, where, case_name, why="no plank result")
+    plank = design.plank(where)
+    dimension, size = _bending_depth(plank)
+    if sagging:
+        creep = design.material_of(plank).creep
+        ratio = result.sag * (1.0 + creep) / result.sag_allowed
+        values = {"sag": result.sag, "creep": creep, "sag_allowed": result.sag_allowed,
+                  "ratio": ratio, "exponent": 3}
+    else:
+        ratio = result.stress / result.strength
+        values = {"stress": result.stress, "strength": result.strength, "ratio": ratio,
+                  "exponent": 2}
+    scale = design.unit_scale
+    values.update({"dimension": dimension, "size": size / scale,
+                   "size_needed": size * ratio ** (1.0 / values["exponent"]) / scale})
+    return Need(kind, where, case_name, values=values)
+
+
+def _bending_depth(plank: Plank) -> tuple[str, float]:
+    """('thickness', t) for a plank that bends across its thickness; ('width', w) for a
+    plank on edge with its length level (a rail or apron under vertical loads), which
+    bends across its width."""
+    rotation = plank.rotation_matrix
+    length_axis = rotation[:, 0] if plank.length >= plank.width else rotation[:, 1]
+    level = abs(float(length_axis[2])) < 1.0 - LEVEL_COS
+    on_edge = abs(float(rotation[2, 2])) < 1.0 - LEVEL_COS
+    if level and on_edge:
+        return "width", min(plank.length, plank.width)
+    return "thickness", plank.thickness
+
+
+# -- geometry ----------------------------------------------------------------------------
+def _geometric(design: Design, geometry: Geometry, where: str, case: CaseResult | None,
+               case_name: str | None, kind: str) -> Need:
+    tolerance = design.tolerance
+    if kind == "disconnected":
+        if "/" not in where:
+            return Need(kind, where, None, why="joined to nothing")
+        a, b = (design.plank_index[p] for p in where.split("/", 1))
+        distance = end_gap(design, a, b)
+        if distance is None:
+            return Need(kind, where, None, why="neither plank's end faces the other")
+    elif kind == "penetration":
+        distance = -float(design.plank(where).corners[:, 2].min())
+    else:
+        distance = min(float(design.plank(p).corners[:, 2].min()) for p in where.split(","))
+    scale = design.unit_scale
+    return Need(kind, where, None, values={
+        "distance": distance / scale, "tolerance": tolerance / scale,
+        "change_min": max(distance - tolerance, 0.0) / scale,
+        "change_max": (distance + tolerance) / scale})
+
+
+_ESTIMATES = {
+    "sliding": _sliding,
+    "lift-off": _lift_off,
+    "non-durable": _non_durable,
+    "sagging": lambda *args: _bent(*args, sagging=True),
+    "overstressed": lambda *args: _bent(*args, sagging=False),
+    "disconnected": lambda *args: _geometric(*args, kind="disconnected"),
+    "penetration": lambda *args: _geometric(*args, kind="penetration"),
+    "floating": lambda *args: _geometric(*args, kind="floating"),
+}
+"""Violation kind -> its estimate (design, geometry, where, case result, case name)."""

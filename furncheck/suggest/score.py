@@ -1,0 +1,123 @@
+"""The shop's score of a suggestion: which fix a maker would rather take.
+
+Every suggestion, continuous or discrete, is scored from its cut list (``cutlist``) and its
+design, and ranked by ``ShopScore.key`` (smaller first), lexicographically:
+
+1. ``implausible``: proportions a maker would not build, that the input did not have
+   already -- a plank too big to cut from one stock board (``tolerances.STOCK_BOARD``,
+   2440 x 1220 mm MDF), or a plank whose end is nailed to another plank's face and that is
+   wider there than that plank (a 594 mm leg under a 350 mm seat);
+2. ``broken``: mirror relations the edit breaks (``symmetry.broken_pairs``: a pair of
+   mirror planks no longer mirrored, or a plank on the mirror plane no longer symmetric)
+   -- on a symmetric design a symmetric fix comes first where one works;
+3. ``cost``: the sum over the planks touched of each one's largest *relative* change --
+   a size change over the size it had, a move over the design's size (its largest
+   dimension), a turn in radians, a plank's own material value over its old value, an
+   added or removed plank 1 -- plus PLANK_COST per plank touched (a change of one plank
+   is easier to make than the same change spread over five);
+4. the smaller change of the suggestion's own DOFs (``step``), then its rank as found.
+
+The score is documented in the README's ``suggest`` section.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from furncheck.design.model import Design, Plank
+from furncheck.dofs import design_size
+from furncheck.geometry import Geometry
+from furncheck.suggest.cutlist import (
+    ANGLE_FIELDS,
+    POSITION_FIELDS,
+    SIZE_FIELDS,
+    PlankEdit,
+)
+from furncheck.suggest.symmetry import MirrorPlane, broken_pairs
+from furncheck.tolerances import STOCK_BOARD
+
+PLANK_COST = 0.05
+"""Cost of each plank touched, on top of its relative change (twenty planks touched cost
+as much as doubling one plank's length)."""
+
+WHOLE_PLANK = 1.0
+"""The relative change of a plank added or taken away."""
+
+
+@dataclass(frozen=True)
+class ShopScore:
+    """A suggestion's score (module docstring); ``key`` orders suggestions, best first."""
+
+    implausible: tuple[str, ...]
+    broken: int
+    cost: float
+    touched: int
+
+    def key(self) -> tuple:
+        return (len(self.implausible), self.broken > 0, round(self.cost, 9))
+
+
+def shop_score(original: Design, geometry: Geometry, planes: tuple[MirrorPlane, ...],
+               edited: Design, edits: tuple[PlankEdit, ...]) -> ShopScore:
+    """The score of the suggestion whose design is ``edited`` and cut list ``edits``;
+    ``geometry`` is the original's, ``planes`` its mirror planes."""
+    size = design_size(original)
+    cost = sum(_relative(edit, size) for edit in edits) + PLANK_COST * len(edits)
+    return ShopScore(implausible(original, geometry, edited), broken_pairs(edited, planes),
+                     cost, len(edits))
+
+
+def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[str, ...]:
+    """Why ``edited`` has proportions a maker would not build that ``original`` did not
+    have: planks too big for a stock board, planks wider than the face they are nailed
+    to (the original's joints; a plank ``edited`` adds is checked for the board only)."""
+    reasons = []
+    for plank in edited.planks:
+        before = original.plank_index.get(plank.id)
+        if not _fits_board(plank) and (before is None or
+                                       _fits_board(original.planks[before])):
+            reasons.append(f"{plank.id} is larger than a stock board")
+    for joint in geometry.joints:
+        if joint.edge not in edited.plank_index or joint.face not in edited.plank_index:
+            continue
+        if _overhangs(edited, joint) and not _overhangs(original, joint):
+            reasons.append(f"{joint.edge} is wider than {joint.face}, which it is nailed to")
+    return tuple(reasons)
+
+
+def _relative(edit: PlankEdit, size: float) -> float:
+    """The plank's largest relative change (module docstring, item 3)."""
+    if edit.action != "change":
+        return WHOLE_PLANK
+    largest = 0.0
+    for field in edit.fields:
+        if field.before is None or field.after is None:
+            largest = max(largest, WHOLE_PLANK)
+        elif field.field in POSITION_FIELDS:
+            largest = max(largest, abs(field.change) / size)
+        elif field.field in ANGLE_FIELDS:
+            largest = max(largest, math.radians(abs(field.change)))
+        elif field.field in SIZE_FIELDS or field.before != 0.0:
+            largest = max(largest, abs(field.change) / abs(field.before))
+    return largest
+
+
+def _fits_board(plank: Plank) -> bool:
+    long_side, short_side = sorted((plank.length, plank.width), reverse=True)
+    return long_side <= STOCK_BOARD[0] and short_side <= STOCK_BOARD[1]
+
+
+def _overhangs(design: Design, joint) -> bool:
+    """Whether the joint's edge plank is wider, along its end face, than its face plank
+    reaches in that direction (beyond the tolerance)."""
+    edge = design.plank(joint.edge)
+    face = design.plank(joint.face)
+    across = 1 - joint.edge_face[0]                 # the end face's long side
+    direction = edge.rotation_matrix[:, across]
+    width = (edge.length, edge.width)[across]
+    reach = float(np.abs(face.rotation_matrix[:, :2].T @ direction) @
+                  np.array([face.length, face.width]))
+    return width > reach + design.tolerance

@@ -1,0 +1,63 @@
+"""Shared test set-up: every test gets its own result cache directory; the fake checker;
+``suggest`` on the invalid catalog designs, computed once per session and only for the
+(design, model) pairs a test asks for.
+
+``furncheck validate`` caches results in the user cache directory by default; a test that
+runs it must neither write to the developer's cache nor be served a result that another
+test computed (several tests replace part of the checker).  ``FURNCHECK_CACHE_DIR`` points
+the default at a fresh folder per test, for the CLI in this process and in subprocesses.
+"""
+
+from __future__ import annotations
+
+import sys
+import types
+from pathlib import Path
+
+import pytest
+
+from furncheck.design import load_design
+from furncheck.design.model import with_model
+from furncheck.suggest import suggest_design
+
+
+@pytest.fixture(autouse=True)
+def _own_cache_directory(tmp_path_factory: pytest.TempPathFactory,
+                         monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("FURNCHECK_CACHE_DIR", str(tmp_path_factory.mktemp("cache")))
+
+
+@pytest.fixture
+def checked_paths(monkeypatch: pytest.MonkeyPatch) -> list[str]:
+    """``furncheck.check`` replaced by the fake checker of ``test_cli`` (the verdict comes
+    from the file name: valid*, bad*, boom*, garbage*); returns the paths it checks, in
+    order, so a test sees which files the command chose and which it took from the cache."""
+    from test_cli import fake_check_file
+
+    seen: list[str] = []
+
+    def check_file(path: str, model: str | None = None):
+        seen.append(path)
+        return fake_check_file(path, model)
+
+    fake = types.ModuleType("furncheck.check")
+    fake.check_file = check_file
+    monkeypatch.setitem(sys.modules, "furncheck.check", fake)
+    return seen
+
+CATALOG = Path(__file__).resolve().parents[1] / "designs"
+
+
+@pytest.fixture(scope="session")
+def catalog_suggestions():
+    """``get(name, model)`` -> (the catalog design in that model, its ``SuggestionReport``),
+    each computed on first use (the line searches are the slow part)."""
+    cache: dict[tuple[str, str], tuple] = {}
+
+    def get(name: str, model: str):
+        if (name, model) not in cache:
+            design = with_model(load_design(str(CATALOG / name)), model)
+            cache[(name, model)] = (design, suggest_design(design))
+        return cache[(name, model)]
+
+    return get

@@ -1,0 +1,279 @@
+"""What CI recipes rely on: the pre-commit hook, ``-o`` written atomically, a design on
+standard input, ``python -m furncheck``, and the progress bar only on a terminal.
+
+The pre-commit hook is exercised in a temporary git repository with pre-commit itself:
+the hook of ``.pre-commit-hooks.yaml`` (its entry, file types and options exactly) as a
+``repo: local`` hook run by this test's Python environment (``language: system``), so no
+hook environment has to be installed from a package index.  The full install from the
+worktree (``pre-commit try-repo``, which builds furncheck and its dependencies into a new
+environment) runs when FURNCHECK_TEST_PRE_COMMIT_INSTALL=1.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+from test_cli import run, write
+
+from furncheck import files as files_module
+
+ROOT = Path(__file__).resolve().parents[1]
+HOOKS = ROOT / ".pre-commit-hooks.yaml"
+
+
+# --- pre-commit ---------------------------------------------------------------------------
+
+def hook_definition() -> dict:
+    (hook,) = yaml.safe_load(HOOKS.read_text())
+    return hook
+
+
+def test_the_hook_definition_is_complete():
+    hook = hook_definition()
+    assert hook["id"] == "furncheck" and hook["language"] == "python"
+    assert hook["entry"].split()[:2] == ["furncheck", "validate"]
+    assert set(hook["types_or"]) == {"yaml", "json"}
+
+
+def git(repository: Path, *args: str) -> None:
+    subprocess.run(["git", *args], cwd=repository, check=True, capture_output=True)
+
+
+@pytest.fixture
+def repository(tmp_path) -> Path:
+    """A git repository holding a valid design (rigid stool), an invalid one (bench that
+    tips), a CI workflow and a package.json (no designs), all staged."""
+    if shutil.which("git") is None or shutil.which("pre-commit",
+                                                  path=os.path.dirname(sys.executable)) is None:
+        pytest.skip("git or pre-commit is not installed")
+    repository = tmp_path / "repo"
+    (repository / "designs").mkdir(parents=True)
+    (repository / ".github" / "workflows").mkdir(parents=True)
+    stool = (ROOT / "designs" / "stool.yaml").read_text()
+    rigid = stool.replace("furncheck: 1\n", "furncheck: 1\nmodel: rigid\n", 1)
+    (repository / "designs" / "stool.yaml").write_text(rigid)
+    shutil.copy(ROOT / "designs" / "bench-tips.yaml", repository / "designs")
+    (repository / "ci.yml").write_text("on: push\njobs: {}\n")
+    (repository / "package.json").write_text('{"name": "shop"}\n')
+    git(repository, "init", "-q")
+    git(repository, "config", "user.email", "test@example.com")
+    git(repository, "config", "user.name", "test")
+    return repository
+
+
+def pre_commit(repository: Path, *args: str) -> subprocess.CompletedProcess:
+    environment = dict(os.environ, PRE_COMMIT_HOME=str(repository.parent / "pre-commit-home"),
+                       PATH=os.path.dirname(sys.executable) + os.pathsep + os.environ["PATH"])
+    return subprocess.run([os.path.join(os.path.dirname(sys.executable), "pre-commit"), *args],
+                          cwd=repository, capture_output=True, text=True, env=environment)
+
+
+def test_the_pre_commit_hook_passes_valid_designs_and_stops_invalid_ones(repository):
+    """With only the valid stool staged the hook passes (ci.yml and package.json are passed
+    to it too, and skipped: no designs); with the tipping bench staged it fails, and its
+    output names the bench's lift-off."""
+    hook = {**hook_definition(), "language": "system"}
+    (repository / ".pre-commit-config.yaml").write_text(yaml.safe_dump(
+        {"repos": [{"repo": "local", "hooks": [hook]}]}))
+    git(repository, "add", ".pre-commit-config.yaml", "ci.yml", "package.json",
+        "designs/stool.yaml")
+    passed = pre_commit(repository, "run")
+    assert passed.returncode == 0, passed.stdout + passed.stderr
+    assert "furncheck" in passed.stdout and "Passed" in passed.stdout
+    git(repository, "add", "designs/bench-tips.yaml")
+    failed = pre_commit(repository, "run", "--verbose")
+    assert failed.returncode == 1
+    assert "Failed" in failed.stdout and "bench-tips.yaml: INVALID" in failed.stdout
+    assert "lift-off" in failed.stdout and "stool.yaml: valid" in failed.stdout
+
+
+@pytest.mark.skipif(os.environ.get("FURNCHECK_TEST_PRE_COMMIT_INSTALL") != "1",
+                    reason="installs furncheck and its dependencies into a new environment "
+                           "(network, minutes): set FURNCHECK_TEST_PRE_COMMIT_INSTALL=1")
+def test_the_hook_installs_from_the_worktree(repository):
+    git(repository, "add", "ci.yml", "package.json", "designs/stool.yaml")
+    result = pre_commit(repository, "try-repo", str(ROOT), "furncheck")
+    assert result.returncode == 0, result.stdout + result.stderr
+
+
+# --- -o is written atomically -------------------------------------------------------------
+
+class _Interrupted:
+    """A stream that takes half of what is written, then is interrupted (Ctrl-C)."""
+
+    def __init__(self, stream):
+        self.stream = stream
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.stream.close()
+
+    def write(self, data):
+        self.stream.write(data[:len(data) // 2])
+        self.stream.flush()
+        raise KeyboardInterrupt
+
+    def __getattr__(self, name):
+        return getattr(self.stream, name)
+
+
+def test_an_interrupted_report_leaves_the_old_file(checked_paths, tmp_path, monkeypatch):
+    """-o report.json exists from an earlier run; this run is interrupted halfway through
+    writing the new report: report.json still holds the old report, whole, and no
+    temporary file is left in its folder."""
+    valid, bad = write(tmp_path / "designs", "valid.yaml", "bad.yaml")
+    out = tmp_path / "out"
+    out.mkdir()
+    report = out / "report.json"
+    report.write_text("old report\n")
+    real_fdopen = os.fdopen
+    monkeypatch.setattr(files_module.os, "fdopen",
+                        lambda *args, **kwargs: _Interrupted(real_fdopen(*args, **kwargs)))
+    result = run("validate", valid, bad, "--format", "json", "-o", str(report))
+    assert result.exit_code != 0
+    assert report.read_text() == "old report\n"
+    assert sorted(path.name for path in out.iterdir()) == ["report.json"]
+    monkeypatch.undo()
+    run("validate", valid, bad, "--format", "json", "-o", str(report), "--no-cache")
+    assert json.loads(report.read_text())["summary"]["designs"] == 2
+
+
+def test_output_keeps_the_files_permissions_and_symlinks(checked_paths, tmp_path):
+    """-o over an existing file keeps its permission bits; -o through a symlink replaces
+    the file it points to and leaves the link."""
+    (valid,) = write(tmp_path, "valid.yaml")
+    report = tmp_path / "report.txt"
+    report.write_text("old\n")
+    report.chmod(0o640)
+    link = tmp_path / "link.txt"
+    link.symlink_to(report)
+    run("validate", valid, "-o", str(link))
+    assert link.is_symlink() and report.read_text().startswith(valid)
+    assert report.stat().st_mode & 0o777 == 0o640
+
+
+# --- standard input, python -m furncheck --------------------------------------------------
+
+def test_a_design_on_standard_input(tmp_path):
+    """'-' reads the design from stdin: the stool in the rigid model is valid; named
+    '<stdin>' unless --stdin-filename names it; JSON is recognized by its '{'."""
+    text = (ROOT / "designs" / "stool.yaml").read_text()
+    result = run_input(text, "validate", "-", "--model", "rigid")
+    assert result.exit_code == 0 and result.stdout.startswith("<stdin>: valid")
+    named = run_input(text, "validate", "-", "--model", "rigid", "--stdin-filename",
+                      "designs/stool.yaml", "--format", "json")
+    assert json.loads(named.stdout)["reports"][0]["design"] == "designs/stool.yaml"
+    as_json = json.dumps(yaml.safe_load(text))
+    assert run_input(as_json, "validate", "-", "--model", "rigid").exit_code == 0
+    broken = run_input("furncheck: 1\nplanks: [\n", "validate", "-")
+    assert broken.exit_code == 2 and broken.stdout.startswith("<stdin>: error: line ")
+
+
+def run_input(text: str, *args: str):
+    from click.testing import CliRunner
+
+    from furncheck.cli.main import main
+
+    return CliRunner().invoke(main, list(args), input=text)
+
+
+def test_python_m_furncheck_is_the_command():
+    result = subprocess.run([sys.executable, "-m", "furncheck", "--version"],
+                            capture_output=True, text=True, check=True)
+    assert result.stdout.startswith("furncheck ")
+    helped = subprocess.run([sys.executable, "-m", "furncheck", "validate", "--help"],
+                            capture_output=True, text=True, check=True)
+    assert helped.stdout.startswith("Usage: furncheck validate")
+
+
+# --- progress bar -------------------------------------------------------------------------
+
+def test_no_progress_bar_when_stderr_is_no_terminal(checked_paths, tmp_path):
+    from furncheck.cli.validate import PROGRESS_MIN_FILES
+
+    write(tmp_path, *[f"valid{i:03d}.yaml" for i in range(PROGRESS_MIN_FILES)])
+    result = run("validate", str(tmp_path), "--jobs", "1")
+    assert result.exit_code == 0 and result.stderr == ""
+
+
+def test_the_progress_bar_counts_the_files_checked(checked_paths, tmp_path, monkeypatch):
+    """On a terminal, PROGRESS_MIN_FILES files to check get a bar of that length, advanced
+    once per file; a warm run (every file from the cache) and a run with one file fewer
+    get none."""
+    import click
+
+    from furncheck.cli import validate as validate_module
+
+    bars = []
+
+    class Bar:
+        def __init__(self, length, **options):
+            self.length, self.steps, self.file = length, [], options["file"]
+            bars.append(self)
+
+        def __enter__(self):
+            return self
+
+        def __exit__(self, *exc):
+            return False
+
+        def update(self, steps):
+            self.steps.append(steps)
+
+    monkeypatch.setattr(validate_module, "_is_terminal", lambda stream: True)
+    monkeypatch.setattr(click, "progressbar", Bar)
+    count = validate_module.PROGRESS_MIN_FILES
+    write(tmp_path / "many", *[f"valid{i:03d}.yaml" for i in range(count)])
+    write(tmp_path / "fewer", *[f"valid{i:03d}.yaml" for i in range(count - 1)])
+    run("validate", str(tmp_path / "many"), "--jobs", "1")
+    assert [(bar.length, bar.steps) for bar in bars] == [(count, [1] * count)]
+    run("validate", str(tmp_path / "many"), "--jobs", "1")
+    run("validate", str(tmp_path / "fewer"), "--jobs", "1")
+    assert len(bars) == 1
+
+
+# --- the README's CI recipes --------------------------------------------------------------
+
+def readme_ci_blocks() -> list[str]:
+    """The YAML blocks of the README's "In CI" section."""
+    text = (ROOT / "README.md").read_text()
+    section = text.split("### In CI", 1)[1].split("\n### ", 1)[0]
+    return [block.split("```", 1)[0] for block in section.split("```yaml\n")[1:]]
+
+
+def test_the_readme_recipes_are_yaml_whose_commands_furncheck_accepts(checked_paths,
+                                                                     tmp_path, monkeypatch):
+    """Three blocks (pre-commit, GitHub Actions, GitLab CI) that parse; the pre-commit one
+    names this repository's hook; every furncheck command line in the jobs runs on a
+    designs/ folder (exit 0, no usage error) and writes the report files the next steps
+    upload."""
+    import shlex
+
+    blocks = readme_ci_blocks()
+    assert len(blocks) == 3
+    pre_commit_config, github, gitlab = (yaml.safe_load(block) for block in blocks)
+    assert pre_commit_config["repos"][0]["hooks"][0]["id"] == hook_definition()["id"]
+    commands = [step["run"] for step in github["jobs"]["furncheck"]["steps"] if "run" in step]
+    commands += gitlab["furncheck"]["script"]
+    commands = [part.strip() for command in commands for part in command.split("||")
+                if part.strip().startswith("furncheck ")]
+    assert len(commands) == 4
+    write(tmp_path / "designs", "valid.yaml")
+    monkeypatch.chdir(tmp_path)
+    for command in commands:
+        result = run(*shlex.split(command)[1:])
+        assert result.exit_code == 0, (command, result.output)
+    upload = [step for step in github["jobs"]["furncheck"]["steps"]
+              if step.get("uses", "").startswith("github/codeql-action/upload-sarif")]
+    assert json.loads(Path(upload[0]["with"]["sarif_file"]).read_text())["version"] == "2.1.0"
+    assert Path(gitlab["furncheck"]["artifacts"]["reports"]["junit"]).read_text().startswith(
+        "<?xml")

@@ -1,0 +1,188 @@
+"""The cut list of a suggestion (``suggest.cutlist``): every plank it changes, adds or
+removes, from -> to, including what the geometric constraints change.
+
+The catalog test reads the input file and each suggestion's written file as plain YAML
+documents (not through the loader or ``plank_values``) and compares their planks field by
+field: the suggestion's ``edits`` must be exactly that difference.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+import pytest
+import yaml
+from click.testing import CliRunner
+
+from furncheck.check import check_file
+from furncheck.cli.main import main
+from furncheck.design.load import parse_design
+from furncheck.suggest.cutlist import plank_edits
+
+CATALOG = Path(__file__).resolve().parents[1] / "designs"
+MODELS = ("rigid", "elastic")
+INVALID = [(path.name, model) for path in sorted(CATALOG.glob("*.yaml")) for model in MODELS
+           if not check_file(str(path), model).valid]
+
+TWO_PLANKS = """
+furncheck: 1
+name: two
+units: mm
+planks:
+  - {id: top, size: [400, 300], center: [0, 0, 506]}
+  - {id: post, size: [500, 300], center: [0, 0, 250], rotation: [0, 90, 0]}
+"""
+
+
+def design(text: str):
+    return parse_design(text, "two.yaml", "yaml")
+
+
+def as_dict(edits) -> dict:
+    return {e.plank: (e.action, {f.field: (f.before, f.after) for f in e.fields})
+            for e in edits}
+
+
+def test_a_changed_plank_lists_only_its_changed_fields():
+    """top lengthened from 400 to 450 mm and moved 25 mm along x: two fields, from -> to in
+    the file's unit; post untouched is not listed."""
+    after = design(TWO_PLANKS.replace("{id: top, size: [400, 300], center: [0, 0, 506]}",
+                                      "{id: top, size: [450, 300], center: [25, 0, 506]}"))
+    assert as_dict(plank_edits(design(TWO_PLANKS), after)) == {
+        "top": ("change", {"length": (400.0, 450.0), "x": (0.0, 25.0)})}
+
+
+def test_an_added_plank_lists_every_field_and_a_removed_one_too():
+    """A support added: every field with no 'before'; the post taken away: every field
+    with no 'after' (its rotation 90 degrees about y as written)."""
+    added = TWO_PLANKS + "  - {id: support, size: [494, 80], center: [150, 0, 250], " \
+                         "rotation: [0, 90, 0]}\n"
+    edits = as_dict(plank_edits(design(TWO_PLANKS), design(added)))
+    assert edits == {"support": ("add", {
+        "length": (None, 494.0), "width": (None, 80.0), "thickness": (None, 12.0),
+        "x": (None, 150.0), "y": (None, 0.0), "z": (None, 250.0),
+        "rx": (None, 0.0), "ry": (None, 90.0), "rz": (None, 0.0)})}
+    removed = as_dict(plank_edits(design(added), design(TWO_PLANKS)))
+    assert removed["support"][0] == "remove"
+    assert removed["support"][1]["ry"] == (90.0, None)
+
+
+def test_thickness_and_own_material_values_are_fields_too():
+    """A thicker top (18 mm) of pine (E = 11000 N/mm^2, its own value) reads as two
+    changes, in the file's units (mm, N/mm^2)."""
+    after = design(TWO_PLANKS.replace(
+        "{id: top, size: [400, 300], center: [0, 0, 506]}",
+        "{id: top, size: [400, 300], center: [0, 0, 509], thickness: 18, "
+        "material: {elastic_modulus: 11000}}"))
+    assert as_dict(plank_edits(design(TWO_PLANKS), after)) == {
+        "top": ("change", {"thickness": (12.0, 18.0), "z": (506.0, 509.0),
+                           "material.elastic_modulus": (None, 11000.0)})}
+
+
+def test_a_change_below_a_micrometre_is_no_change():
+    """CUT_LIST_EPS is 1e-6 of the unit: 0.0000004 mm is round-off, 0.001 mm is a
+    change."""
+    before = design(TWO_PLANKS)
+    tiny = design(TWO_PLANKS.replace("center: [0, 0, 506]", "center: [0.0000004, 0, 506]"))
+    small = design(TWO_PLANKS.replace("center: [0, 0, 506]", "center: [0.001, 0, 506]"))
+    assert plank_edits(before, tiny) == ()
+    assert as_dict(plank_edits(before, small)) == {"top": ("change", {"x": (0.0, 0.001)})}
+
+
+def test_the_cut_list_is_in_the_designs_own_unit():
+    """A design in metres: the fields are read in metres (a 0.4 m top lengthened by
+    0.05 m)."""
+    text = TWO_PLANKS.replace("units: mm", "units: m").replace("[400, 300]", "[0.4, 0.3]") \
+        .replace("[500, 300]", "[0.5, 0.3]").replace("506", "0.506").replace("250]", "0.25]")
+    text = text.replace("furncheck: 1", "furncheck: 1\nmaterial: {thickness: 0.012}")
+    after = design(text.replace("[0.4, 0.3]", "[0.45, 0.3]"))
+    assert as_dict(plank_edits(design(text), after)) == {
+        "top": ("change", {"length": (0.4, 0.45)})}
+
+
+# --- the catalog: edits == the difference between the input and the written file ----------
+
+def file_planks(text: str) -> dict[str, dict[str, float]]:
+    """Plank id -> its fields as the YAML document writes them (defaults filled in: rotation
+    0, thickness the material's or 12 mm)."""
+    document = yaml.safe_load(text)
+    thickness = document.get("material", {}).get("thickness", 12.0)
+    planks = {}
+    for entry in document["planks"]:
+        own = dict(entry.get("material", {}))
+        rotation = entry.get("rotation", [0, 0, 0])
+        values = {"length": entry["size"][0], "width": entry["size"][1],
+                  "thickness": entry.get("thickness", own.pop("thickness", thickness)),
+                  "x": entry["center"][0], "y": entry["center"][1], "z": entry["center"][2],
+                  "rx": rotation[0], "ry": rotation[1], "rz": rotation[2]}
+        values.update({f"material.{key}": value for key, value in own.items()})
+        planks[entry["id"]] = {key: float(value) for key, value in values.items()}
+    return planks
+
+
+def file_difference(before: str, after: str) -> dict:
+    old, new = file_planks(before), file_planks(after)
+    difference = {}
+    for plank, values in old.items():
+        if plank not in new:
+            difference[plank] = ("remove", {k: (v, None) for k, v in values.items()})
+            continue
+        fields = {k: (values.get(k), new[plank].get(k))
+                  for k in {**values, **new[plank]}
+                  if values.get(k) is None or new[plank].get(k) is None
+                  or abs(values[k] - new[plank][k]) > 1e-6}
+        if fields:
+            difference[plank] = ("change", fields)
+    for plank, values in new.items():
+        if plank not in old:
+            difference[plank] = ("add", {k: (None, v) for k, v in values.items()})
+    return difference
+
+
+@pytest.mark.parametrize("name, model", INVALID)
+def test_every_cut_list_is_the_difference_of_the_files(catalog_suggestions, name, model):
+    """For every suggestion on every invalid catalog design, in both models: its edits are
+    the difference between the input file and its written file, plank by plank and field
+    by field (values to 1e-9 of the unit)."""
+    _, result = catalog_suggestions(name, model)
+    source = (CATALOG / name).read_text(encoding="utf-8")
+    for suggestion in result.suggestions:
+        expected = file_difference(source, suggestion.text)
+        found = as_dict(suggestion.edits)
+        assert found.keys() == expected.keys(), (name, suggestion.rank)
+        for plank, (action, fields) in expected.items():
+            assert found[plank][0] == action
+            assert found[plank][1].keys() == fields.keys(), (name, suggestion.rank, plank)
+            for field, (old, new) in fields.items():
+                for value, expected_value in zip(found[plank][1][field], (old, new)):
+                    assert (value is None) == (expected_value is None)
+                    if value is not None:
+                        assert value == pytest.approx(expected_value, rel=1e-9, abs=1e-9)
+
+
+def test_the_report_shows_the_cut_list_in_text_and_json(tmp_path):
+    """bench-tips (rigid): every suggestion's text lists as many planks as its JSON edits,
+    and the JSON edits are the written file's difference (rounded to 6 digits)."""
+    path = str(CATALOG / "bench-tips.yaml")
+    runner = CliRunner()
+    text = runner.invoke(main, ["suggest", path, "--model", "rigid"]).output
+    out = tmp_path / "out"
+    document = json.loads(runner.invoke(main, ["suggest", path, "--model", "rigid",
+                                               "--format", "json", "--out", str(out)]).output)
+    counts = [int(n) for n in re.findall(r"changes (\d+) planks?:", text)]
+    assert counts == [len(entry["edits"]) for entry in document["suggestions"]]
+    source = Path(path).read_text(encoding="utf-8")
+    for entry in document["suggestions"]:
+        written = Path(entry["design_file"]).read_text(encoding="utf-8")
+        expected = file_difference(source, written)
+        assert {e["plank"] for e in entry["edits"]} == expected.keys()
+        for edit in entry["edits"]:
+            action, fields = expected[edit["plank"]]
+            assert edit["edit"] == action and edit["fields"].keys() == fields.keys()
+            for field, (old, new) in fields.items():
+                for value, expected_value in zip(edit["fields"][field], (old, new)):
+                    assert (value is None) == (expected_value is None)
+                    if value is not None:
+                        assert value == pytest.approx(expected_value, rel=1e-5, abs=1e-9)

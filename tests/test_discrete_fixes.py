@@ -1,0 +1,409 @@
+"""The woodworker's discrete fixes (``furncheck.suggest.discrete``): aprons, stretchers,
+back panels and braces against racking, a support or an outrigger against toppling, a
+wall anchor, a thicker board, a near miss closed.
+
+Each test builds a design that fails in one way, says by hand why it fails and what the
+fix must look like, and checks the fix's written design file validates (the contract's
+promise for every suggestion).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+import sys
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from furncheck import tolerances as tol
+from furncheck.check import check_design
+from furncheck.cli.main import main
+from furncheck.design import load_design
+from furncheck.design.load import parse_design
+from furncheck.design.model import with_model
+from furncheck.design.write import design_text
+from furncheck.geometry import analyze
+from furncheck.suggest import suggest_design
+from furncheck.suggest.discrete import Search, discrete_fixes
+from furncheck.suggest.discrete.feet import _pressure_centre
+from furncheck.suggest.discrete.thicker import grown
+
+ROOT = Path(__file__).resolve().parents[1]
+CATALOG = ROOT / "designs"
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from physics_designs import plank_mass, table, to_text  # noqa: E402
+
+G = 9.81
+
+
+def parsed(text: str, model: str):
+    return with_model(parse_design(text, "test.yaml", "yaml"), model)
+
+
+def written_valid(suggestion) -> bool:
+    """The suggestion's design file text, read back, validates (in its file's model)."""
+    return check_design(parse_design(suggestion.text, "s.yaml", "yaml")).valid
+
+
+def by_rule(result, rule: str):
+    return next((s for s in result.suggestions if s.rule == rule), None)
+
+
+def fixes(design) -> list:
+    """The discrete fixes alone (no continuous search: the elastic tests stay fast)."""
+    geometry = analyze(design)
+    return discrete_fixes(design, geometry, check_design(design, geometry))
+
+
+def fix_valid(fix) -> bool:
+    """The fix's design written as a file and read back validates."""
+    return check_design(parse_design(design_text(fix.design, "yaml"), "f.yaml", "yaml")).valid
+
+
+# --- racking ---------------------------------------------------------------------------------
+
+PUSH = 100.0          # N along +x at the top's left end face, 706 mm up
+
+
+def racking_table(model: str = "rigid"):
+    """``physics_designs.table`` with 700 mm legs (60 x 12 mm, faces normal to x, at
+    x = +-444, y = +-270), 20 kg on the top and a case 'push' adding 100 N along +x."""
+    design = table(leg_height=700.0, loads=[{"plank": "top", "mass": 20}],
+                   load_cases={"push": {"include": ["default"], "loads": [
+                       {"plank": "top", "force": [PUSH, 0, 0], "at": [-500, 0, 706]}]}})
+    return parsed(to_text(design), model)
+
+
+@pytest.fixture(scope="module")
+def racking():
+    return suggest_design(racking_table())
+
+
+def test_a_pushed_table_racks_at_its_top_joints():
+    """Rigid model.  Each leg's top end is nailed to the top by 3 nails (60 mm / 20 mm),
+    whose lever against a moment about the row is half the leg's thickness, 6 mm.  The
+    push H = 100 N at 706 mm must come down the four legs, whose feet (12 x 60 mm ends)
+    hold no moment to speak of: the four top joints take H h = 70.6 N m together, 17.7 N m
+    each on average, i.e. 2 x 17.7 / 0.012 / 3 = 981 N per nail against 700 N.  So the
+    push case fails at top/leg joints, and nothing else fails (without the push each
+    joint is only pressed by a quarter of 20 kg and the top)."""
+    report = check_design(racking_table())
+    assert report.violations
+    assert all(v.kind == "non-durable" and v.case == "push" and v.where.startswith("top/leg_")
+               for v in report.violations)
+    pulls = [j.pull for case in report.cases if case.name == "push" for j in case.joints]
+    assert sum(pulls) / len(pulls) == pytest.approx(2 * PUSH * 0.706 / 4 / 0.012 / 3, rel=0.1)
+
+
+def test_a_racking_table_gets_aprons_stretchers_a_brace_and_a_back_panel(racking):
+    """The failing joints are the two legs' on the push's far side (leg_pp, leg_pm; the
+    others, pulled up, carry less).  Each gets a rail to the leg whose broad face faces
+    its own (leg_mp, leg_mm, 888 - 12 = 876 mm apart): aprons, 6 thicknesses (72 mm)
+    deep, their top edge under the top's underside (z = 700, so centred at 664), nailed
+    to both legs and the top; stretchers, nailed to the legs, centred a quarter up the
+    legs (175 mm).  Braces and back panels go over the legs' outer edges (y = +-300).
+    Every one of them validates."""
+    aprons = by_rule(racking, "apron")
+    assert aprons is not None
+    rails = aprons.adds
+    assert len(rails) == 2
+    for rail in rails:
+        assert rail.length == pytest.approx(0.876) and rail.width == pytest.approx(0.072)
+        assert rail.center[2] == pytest.approx(0.700 - 0.036)
+        assert abs(rail.center[1]) == pytest.approx(0.270)
+    joints = {frozenset(j.planks) for j in analyze(aprons.design).joints}
+    for rail in rails:
+        assert frozenset(("top", rail.id)) in joints
+    stretchers = by_rule(racking, "stretcher")
+    assert stretchers is not None
+    assert all(r.center[2] == pytest.approx(0.175) for r in stretchers.adds)
+    assert "centred 175 mm above the floor" in stretchers.advice
+    assert by_rule(racking, "brace") is not None and by_rule(racking, "back panel") is not None
+    for rule in ("apron", "stretcher", "brace", "back panel"):
+        assert written_valid(by_rule(racking, rule)), rule
+
+
+def test_a_racking_table_in_the_elastic_model_gets_a_rail_or_brace():
+    """Elastic model, 18 mm stock, a 30 mm top, 80 mm wide legs, 120 N push: the legs bend
+    as the table racks (a 700 mm leg, EI = 3000 x 80 x 18^3 / 12 = 1.17e8 N mm^2, with
+    about H / 4 = 30 N at its top and its foot free to turn sags far beyond 700 / 400 /
+    1.5 = 1.17 mm), only in the push case.  A rail, panel or brace that closes the frame
+    takes the push off their bending: at least one is offered and validates."""
+    legs = "".join(
+        f"  - {{id: {name}, size: [700, 80], center: [{x}, {y}, 350], rotation: [0, -90, 0]}}\n"
+        for name, x, y in (("leg_pp", 441, 260), ("leg_mp", -441, 260),
+                           ("leg_pm", 441, -260), ("leg_mm", -441, -260)))
+    text = ("furncheck: 1\nname: rack\nmaterial: {thickness: 18}\nplanks:\n"
+            "  - {id: top, size: [1000, 600], center: [0, 0, 715], thickness: 30}\n" + legs +
+            "loads:\n  - {plank: top, mass: 20}\nload_cases:\n  push:\n    include: [default]\n"
+            "    loads:\n      - {plank: top, force: [120, 0, 0], at: [-500, 0, 715]}\n")
+    design = parsed(text, "elastic")
+    report = check_design(design)
+    assert {v.kind for v in report.violations} == {"sagging"}
+    assert {v.case for v in report.violations} == {"push"}
+    closing = [f for f in fixes(design) if f.rule in ("apron", "stretcher", "back panel", "brace")]
+    assert closing and all(fix_valid(f) for f in closing)
+
+
+# --- the overloaded cantilever: a support, a thicker board ------------------------------------
+
+def test_the_overloaded_cantilever_in_the_elastic_model_gets_a_support_and_thicker_boards():
+    """designs/shelf-cantilever-overloaded.yaml, elastic (its header: the shelf joint pulls
+    1004 N per nail, the 400 mm cantilevered shelf sags 31 mm, 47 mm with creep, against
+    2 mm; the post 106 mm, 159 mm with creep, against 4 mm).
+
+    The support under the shelf's far end (582 mm, the paper's rule) leaves the shelf
+    simply supported over 394 mm, sagging 1.37 mm (2.06 with creep) against 394 / 400 =
+    0.985 mm: it needs (2.06 / 0.985)^(1/3) = 1.28 times its 12 mm, 15.3 mm: an 18 mm
+    board.  Alone, the thicker boards: the shelf (47 / 2)^(1/3) = 2.86 x 12 = 34.4 mm:
+    36 mm; the post (159 / 4)^(1/3) = 3.41 x 12 = 40.9 mm: 44 mm (two 22 mm boards)."""
+    design = with_model(load_design(str(CATALOG / "shelf-cantilever-overloaded.yaml")), "elastic")
+    result = suggest_design(design)
+    support = by_rule(result, "support")
+    assert support is not None
+    assert support.advice.endswith("and make shelf 18 mm thick (now 12 mm).")
+    assert support.design.plank("shelf").thickness == pytest.approx(0.018)
+    thicker = by_rule(result, "thicker")
+    assert thicker is not None
+    assert thicker.design.plank("shelf").thickness == pytest.approx(0.036)
+    assert thicker.design.plank("post").thickness == pytest.approx(0.044)
+    assert written_valid(support) and written_valid(thicker)
+
+
+def test_a_thicker_edge_plank_holds_its_nails_in_the_rigid_model():
+    """Rigid model: the shelf's 15 nails pull 1005 N each, from the moment about the
+    joint line over the shelf's half thickness (2 M / t / n).  An 18 mm shelf pulls
+    1005 x 12 / 18 = 670 N (plus 2 x 1.06 N m / 0.018 / 15 = 8 N for its heavier self),
+    below 700 N; 15 mm would pull 804 N.  So: 'Make shelf 18 mm thick'."""
+    design = with_model(load_design(str(CATALOG / "shelf-cantilever-overloaded.yaml")), "rigid")
+    thicker = by_rule(suggest_design(design), "thicker")
+    assert thicker is not None and thicker.advice == "Make shelf 18 mm thick (now 12 mm)."
+    assert written_valid(thicker)
+
+
+def test_a_plank_grows_away_from_the_faces_that_hold_it():
+    """In the cantilever the shelf's end rests on the post's +x face: the post is held on
+    that face and grows toward -x (12 -> 44 mm: its centre moves 16 mm to x = -166 mm);
+    the shelf is held on neither face and grows both ways (12 -> 18 mm: its centre stays
+    at z = 600, the load on its top face at z = 606 moves up 3 mm with the face)."""
+    design = load_design(str(CATALOG / "shelf-cantilever-overloaded.yaml"))
+    edited = grown(design, analyze(design), {"post": 0.044, "shelf": 0.018})
+    assert edited.plank("post").center == pytest.approx((-0.166, 0.0, 0.412))
+    assert edited.plank("shelf").center == pytest.approx((0.056, 0.0, 0.600))
+    (load,) = edited.load_cases[0].loads
+    assert load.point == pytest.approx((0.156, 0.0, 0.609))
+
+
+# --- toppling ----------------------------------------------------------------------------------
+
+def test_the_pressure_centre_of_the_tipping_bench():
+    """bench-tips: 80 kg at x = 560 mm; seat (3.24 kg) and stretcher (0.423 kg) at x = 0,
+    legs (1.183 kg each) at -+300 mm: c_x = 80 x 560 / 86.03 kg = 520.8 mm, beyond the
+    right leg's outer face at 306 mm."""
+    design = load_design(str(CATALOG / "bench-tips.yaml"))
+    masses = 80 + plank_mass(1200, 300) + 2 * plank_mass(438, 300) + plank_mass(588, 80)
+    centre = _pressure_centre(design, design.load_cases[0])
+    assert centre[0] == pytest.approx(0.560 * 80 / masses)
+    assert centre[1] == pytest.approx(0.0, abs=1e-12)
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_the_tipping_bench_gets_a_leg_under_its_overhang(model):
+    """bench-tips: the seat reaches x = 600 mm, past the pressure centre (520.8 mm): a
+    support from the floor to the seat's underside (438 mm), as wide as the seat (300 mm),
+    under its far end (x = 600 - 6 = 594 mm) moves the support polygon's edge to 600 mm,
+    and the bench stands."""
+    design = with_model(load_design(str(CATALOG / "bench-tips.yaml")), model)
+    support = next(f for f in fixes(design) if f.rule == "support")
+    assert support.between == ("seat", "the floor")
+    (leg,) = support.adds
+    assert (leg.length, leg.width) == pytest.approx((0.438, 0.300))
+    assert leg.center == pytest.approx((0.594, 0.0, 0.219))
+    assert fix_valid(support)
+
+
+STAND = """furncheck: 1
+name: stand
+planks:
+  - {id: top, size: [412, 300], center: [0, 0, 606]}
+  - {id: leg_l, size: [600, 300], center: [-200, 0, 300], rotation: [0, -90, 0]}
+  - {id: leg_r, size: [600, 300], center: [200, 0, 300], rotation: [0, -90, 0]}
+loads:
+  - {plank: top, mass: 5}
+load_cases:
+  push:
+    include: [default]
+    loads:
+      - {plank: top, force: [40, 0, 0], at: [-206, 0, 606]}
+"""
+
+
+def test_a_pushed_stand_gets_an_outrigger():
+    """Rigid model.  A 412 x 300 top on two 600 x 300 end panels (outer faces x = +-206),
+    5 kg on top and a 40 N push at 606 mm: W = 5 + 1.112 + 2 x 1.62 = 9.352 kg = 91.74 N,
+    so the pressure centre is at x = 0.606 x 40 / 91.74 = 264.2 mm, 58.2 mm past leg_r's
+    outer face: it topples.  The top has no overhang to put a leg under; an outrigger on
+    leg_r's outer face reaching 1.5 x 58.2 = 87.3 mm (as high as it is long) holds it."""
+    design = parsed(STAND, "rigid")
+    assert [v.kind for v in check_design(design).violations] == ["lift-off"]
+    outrigger = by_rule(suggest_design(design), "outrigger")
+    assert outrigger is not None
+    (foot,) = outrigger.adds
+    reach = 1.5 * (0.606 * 40 / (9.352 * G) - 0.206)
+    assert foot.length == pytest.approx(reach, rel=1e-3)
+    assert foot.width == pytest.approx(reach, rel=1e-3)
+    assert foot.center[0] == pytest.approx(0.206 + reach / 2, rel=1e-3)
+    assert written_valid(outrigger)
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_bookcase_by_a_wall_gets_anchored(model):
+    """designs/bookcase-anchored.yaml without its anchors: a 222 N pull at the top tips it
+    (its header: it topples at 70.3 N).  The top is the highest plank near the wall (its
+    back edge 15 mm in front of it): two fixings on its back edge, a quarter of its
+    564 mm from each end (x = -+141 mm), at its mid-thickness (z = 1791 mm), rated 196 N
+    each.  The header's hand estimate for the catalog's anchors (x = -+200): about 111 N
+    each of push, up to 139 N with the weight they share: within 196 N."""
+    text = re.sub(r"anchors:\n(  - .*\n)+", "", (CATALOG / "bookcase-anchored.yaml").read_text())
+    design = parsed(text, model)
+    assert [v.kind for v in check_design(design).violations] == ["lift-off"]
+    anchor = next(f for f in fixes(design) if f.rule == "anchor")
+    points = sorted(a.point for a in anchor.design.anchors)
+    assert points == [pytest.approx((-0.141, 0.015, 1.791)), pytest.approx((0.141, 0.015, 1.791))]
+    assert all(a.capacity == tol.ANCHOR_CAPACITY for a in anchor.design.anchors)
+    worst = max(a.size for case in anchor.report.cases for a in case.anchors)
+    assert 100.0 < worst < tol.ANCHOR_CAPACITY
+    assert anchor.advice.startswith("Screw top to the wall at (-141, 15, 1791) mm and "
+                                    "(141, 15, 1791) mm with fixings rated 196 N; each takes "
+                                    "at most ")
+    assert fix_valid(anchor)
+
+
+# --- near misses -------------------------------------------------------------------------------
+
+def test_a_hovering_side_table_is_stood_on_the_floor_in_the_elastic_model():
+    """designs/side-table-hovering.yaml floats 4 mm above the floor.  The continuous search
+    finds nothing in the elastic model (once it stands, its 12 mm top sags: 476 mm span,
+    10 kg: between P L^3 / 192 EI = 0.32 mm fixed and P L^3 / 48 EI = 1.28 mm pinned,
+    x 1.5 creep, against 476 / 400 = 1.19 mm); the discrete fix lengthens both panels by
+    the 4 mm at their feet (450 -> 454 mm, centres 229 -> 227 mm) and makes the top the
+    next board up that holds (15 or 18 mm: the sag ratio lies between 0.4 and 1.6)."""
+    design = with_model(load_design(str(CATALOG / "side-table-hovering.yaml")), "elastic")
+    result = suggest_design(design)
+    fix = by_rule(result, "reconnect")
+    assert fix is not None
+    for leg in ("leg_l", "leg_r"):
+        assert fix.design.plank(leg).length == pytest.approx(0.454)
+        assert fix.design.plank(leg).center[2] == pytest.approx(0.227)
+    assert fix.design.plank("top").thickness in (pytest.approx(0.015), pytest.approx(0.018))
+    assert fix.advice.startswith("Lengthen leg_l by 4 mm at its foot and lengthen leg_r by "
+                                 "4 mm at its foot, and make top ")
+    assert written_valid(fix)
+
+
+def test_a_near_miss_is_left_to_the_continuous_search_when_it_finds_one():
+    """Rigid model: lengthening the panels is found by the continuous search with its
+    valid interval, so the discrete rule does not repeat it."""
+    design = with_model(load_design(str(CATALOG / "side-table-hovering.yaml")), "rigid")
+    result = suggest_design(design)
+    assert result.suggestions and by_rule(result, "reconnect") is None
+
+
+# --- the report -----------------------------------------------------------------------------
+
+def test_discrete_json_names_its_rule(tmp_path):
+    """``--format json``: a discrete suggestion carries ``rule`` and its ``advice`` is the
+    text line's sentence."""
+    path = tmp_path / "stand.yaml"
+    path.write_text(STAND)
+    run = CliRunner().invoke(main, ["suggest", str(path), "--model", "rigid", "--format", "json"])
+    assert run.exit_code == 0, run.output
+    entries = json.loads(run.output)["suggestions"]
+    outrigger = next(e for e in entries if e["kind"] == "discrete")
+    assert outrigger["rule"] == "outrigger"
+    assert outrigger["between"] == ["leg_r"]
+    text = CliRunner().invoke(main, ["suggest", str(path), "--model", "rigid"]).output
+    assert outrigger["advice"] in text
+
+
+def test_discrete_search_stops_at_the_first_valid_candidate(monkeypatch):
+    """A rule checks its candidates in order and stops at the first valid one: the
+    racking table's aprons (72 mm deep) validate, so the 96 mm ones are never built into
+    a check."""
+    design = racking_table()
+    geometry = analyze(design)
+    search = Search(design, geometry, check_design(design, geometry))
+    from furncheck.suggest.discrete.racking import aprons
+
+    seen = []
+    original = Search.verdict
+
+    def counting(self, edited, *args, **kwargs):
+        seen.append(max(p.width for p in edited.planks if p.id.startswith("apron")))
+        return original(self, edited, *args, **kwargs)
+    monkeypatch.setattr(Search, "verdict", counting)
+    fix = aprons(search)
+    assert fix is not None and seen == [pytest.approx(0.072)]
+    assert math.isclose(search.checks, 1)
+
+
+def test_an_anchor_suggestion_lists_its_fixings_in_json(tmp_path):
+    """``--format json`` of the free bookcase (rigid): the anchor suggestion's
+    ``anchors`` are the fixings as a design file lists them: on top, at (-+141, 15, 1791)
+    mm (see ``test_a_bookcase_by_a_wall_gets_anchored``), wall 0, 196 N."""
+    path = tmp_path / "bookcase-free.yaml"
+    path.write_text(re.sub(r"anchors:\n(  - .*\n)+", "",
+                           (CATALOG / "bookcase-anchored.yaml").read_text()))
+    run = CliRunner().invoke(main, ["suggest", str(path), "--model", "rigid", "--format", "json"])
+    assert run.exit_code == 0, run.output
+    entry = next(e for e in json.loads(run.output)["suggestions"] if e.get("rule") == "anchor")
+    assert entry["adds"] == [] and entry["between"] == ["top"]
+    assert [a["plank"] for a in entry["anchors"]] == ["top", "top"]
+    assert [a["at"] for a in entry["anchors"]] == [pytest.approx([-141, 15, 1791]),
+                                                   pytest.approx([141, 15, 1791])]
+    assert all(a["wall"] == 0 and a["capacity"] == 196.0 for a in entry["anchors"])
+
+
+def test_locked_dofs_hold_for_the_fixes_too():
+    """The elastic cantilever's thicker post grows away from the shelf nailed to its +x
+    face, so its centre moves 16 mm along x (``test_a_plank_grows_away_...``): with
+    ``post.x`` locked that fix is not offered, and no fix changes post.x."""
+    from furncheck.dofs import dof_value, parse_dof
+
+    design = with_model(load_design(str(CATALOG / "shelf-cantilever-overloaded.yaml")), "elastic")
+    geometry = analyze(design)
+    report = check_design(design, geometry)
+    free = discrete_fixes(design, geometry, report)
+    assert any(f.rule == "thicker" and "post" in f.thickened for f in free)
+    lock = parse_dof(design, "post.x")
+    locked = discrete_fixes(design, geometry, report, locked=(lock,))
+    assert not any("post" in f.thickened for f in locked)
+    assert all(dof_value(f.design, lock) == pytest.approx(dof_value(design, lock))
+               for f in locked)
+
+
+def test_every_rule_says_what_it_tried():
+    """bench-tips (rigid) topples: the paper's support rule and the racking rules do not
+    apply ('it does not repair lift-off'), the wall anchor neither (no wall), the support
+    under the overhang is found (``test_the_tipping_bench_gets_a_leg_under_its_overhang``);
+    every rule leaves at least one ``Trial``."""
+    from furncheck.suggest.discrete import RULES
+    from furncheck.suggest.tried import FOUND, NOT_APPLICABLE
+
+    design = with_model(load_design(str(CATALOG / "bench-tips.yaml")), "rigid")
+    geometry = analyze(design)
+    trials: list = []
+    discrete_fixes(design, geometry, check_design(design, geometry), trials=trials)
+    by_name = {}
+    for trial in trials:
+        by_name.setdefault(trial.rule, []).append(trial)
+    assert len(by_name) == len(RULES) + 1                      # and reconnect
+    for name in ("support plank", "apron", "stretcher", "back panel", "diagonal brace",
+                 "thicker board"):
+        assert [(t.outcome, t.reason) for t in by_name[name]] == \
+            [(NOT_APPLICABLE, "it does not repair lift-off")], name
+    assert by_name["wall anchor"][0].reason == "the design stands by no wall"
+    assert [t.outcome for t in by_name["support under the overhang"]] == [FOUND]

@@ -1,0 +1,370 @@
+"""What ``suggest`` says when nothing (or not enough) works: the violations that remain,
+what the search tried, and what each violation would need (``furncheck.suggest.needs``,
+``furncheck.suggest.explain``, ``furncheck.report.explanation``).
+
+Each need is derived by hand in its test's docstring and then put to the full checks:
+the design with a little more than the need holds, with a little less it does not.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from furncheck.check import check_design
+from furncheck.cli.main import main
+from furncheck.design import load_design
+from furncheck.design.model import JointSpec, Load, Material, with_model
+from furncheck.geometry import analyze
+from furncheck.suggest import suggest_design
+from furncheck.suggest.discrete import Search, support_planks
+from furncheck.suggest.explain import explain
+from furncheck.suggest.needs import violation_needs
+from furncheck.suggest.tried import FAILED, FOUND, NOT_APPLICABLE, Tried
+
+ROOT = Path(__file__).resolve().parents[1]
+CATALOG = ROOT / "designs"
+G = 9.81
+MDF = 750.0                        # kg/m^3
+TABLE_MASS = MDF * 0.012 * (1.0 * 0.6 + 2 * 0.72 * 0.5 + 0.848 * 0.1)   # 12.643 kg
+BENCH_MASS = MDF * 0.012 * (1.2 * 0.3 + 2 * 0.438 * 0.3 + 0.588 * 0.08)  # 6.029 kg
+
+
+def catalog(name: str, model: str):
+    design = with_model(load_design(str(CATALOG / name)), model)
+    geometry = analyze(design)
+    return design, geometry, check_design(design, geometry)
+
+
+def need_of(design, geometry, report, kind: str, where: str | None = None):
+    return next(n for n in violation_needs(design, geometry, report)
+                if n.kind == kind and (where is None or n.where == where))
+
+
+def kinds(report, case: str | None = None) -> set[str]:
+    return {v.kind for v in report.violations if case is None or v.case == case}
+
+
+def with_case_load(design, case: str, load: Load):
+    cases = tuple(replace(c, loads=(*c.loads, load)) if c.name == case else c
+                  for c in design.load_cases)
+    return replace(design, load_cases=cases)
+
+
+# -- sliding -----------------------------------------------------------------------------
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_sliding_table_needs_weight_or_friction(model):
+    """table-slides, case 'shove' (no load on the table): its planks weigh
+    750 kg/m^3 x 12 mm x (1.0 x 0.6 + 2 x 0.72 x 0.5 + 0.848 x 0.1) m^2 = 12.643 kg, so
+    W = 124.03 N and friction holds mu W = 0.5 x 124.03 = 62.01 N against the push
+    H = 110 N.  Needed: W >= H / mu = 220 N, i.e. (220 - 124.03) / 9.81 = 9.78 kg more,
+    or mu >= H / W = 110 / 124.03 = 0.887.  The same in both models (hand statics)."""
+    design, geometry, report = catalog("table-slides.yaml", model)
+    need = need_of(design, geometry, report, "sliding")
+    weight = TABLE_MASS * G
+    assert need.case == "shove"
+    assert need.values["push"] == pytest.approx(110.0)
+    assert need.values["weight"] == pytest.approx(weight, rel=1e-6)
+    assert need.values["holds"] == pytest.approx(0.5 * weight, rel=1e-6)
+    assert need.values["extra_mass"] == pytest.approx((110.0 / 0.5 - weight) / G, rel=1e-6)
+    assert need.values["extra_mass"] == pytest.approx(9.78, abs=0.01)
+    assert need.values["friction_needed"] == pytest.approx(110.0 / weight, rel=1e-6)
+
+
+def test_sliding_need_is_the_threshold_of_the_checks():
+    """The rigid table-slides with 2 % more than the needed mass on its top (at the top's
+    centre, in case 'shove') no longer slides; with 2 % less it still does.  Likewise the
+    friction: mu = 1.02 x 0.887 holds, 0.98 x 0.887 does not."""
+    design, geometry, report = catalog("table-slides.yaml", "rigid")
+    need = need_of(design, geometry, report, "sliding")
+    for factor, slides in ((1.02, False), (0.98, True)):
+        heavier = with_case_load(design, "shove",
+                                 Load.of_mass("top", factor * need.values["extra_mass"]))
+        assert ("sliding" in kinds(check_design(heavier), "shove")) is slides, factor
+        mu = factor * need.values["friction_needed"]
+        grippier = replace(design, material=replace(design.material, friction=mu))
+        assert ("sliding" in kinds(check_design(grippier), "shove")) is slides, factor
+
+
+# -- lift-off ----------------------------------------------------------------------------
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_tipping_bench_needs_a_wider_base_or_ballast(model):
+    """bench-tips: planks of 750 kg/m^3 x 12 mm x (1.2 x 0.3 + 2 x 0.438 x 0.3 +
+    0.588 x 0.08) m^2 = 6.029 kg (59.14 N) centred on x = 0, and 80 kg (784.8 N) at
+    x = 560 mm: V = 843.94 N acts at x = 784.8 x 560 / 843.94 = 520.76 mm.  The support
+    is the legs' feet, x from -306 to 306 mm: the line of action is d = 214.76 mm beyond
+    leg_r's outer face.  A base reaching 214.76 mm further, or ballast over leg_l's outer
+    foot edge (arm a = 612 mm from the tipping edge): V d / a = 843.94 x 214.76 / 612 =
+    296.2 N = 30.19 kg."""
+    design, geometry, report = catalog("bench-tips.yaml", model)
+    need = need_of(design, geometry, report, "lift-off")
+    weight = BENCH_MASS * G + 80 * G
+    x = 80 * G * 560.0 / weight
+    assert need.values["weight"] == pytest.approx(weight, rel=1e-6)
+    assert need.values["point"][0] == pytest.approx(x, rel=1e-6)
+    assert need.values["outside"] == pytest.approx(x - 306.0, rel=1e-6)
+    assert need.values["wider"] == pytest.approx(214.76, abs=0.01)
+    assert need.values["edge_plank"] == "leg_r" and need.values["ballast_plank"] == "leg_l"
+    assert need.values["ballast_arm"] == pytest.approx(612.0)
+    assert need.values["ballast"] == pytest.approx(weight * (x - 306.0) / 612.0 / G, rel=1e-6)
+    assert need.values["ballast"] == pytest.approx(30.19, abs=0.01)
+    assert "push_max" not in need.values          # no sideways load
+
+
+def test_ballast_need_is_the_threshold_of_the_checks():
+    """The rigid bench-tips with 2 % more than the needed ballast at leg_l's outer foot
+    edge (x = -306 mm) stands; with 2 % less it still tips."""
+    design, geometry, report = catalog("bench-tips.yaml", "rigid")
+    need = need_of(design, geometry, report, "lift-off")
+    for factor, tips in ((1.02, False), (0.98, True)):
+        ballast = Load.of_mass("leg_l", factor * need.values["ballast"], (-0.306, 0.0, 0.005))
+        assert ("lift-off" in kinds(check_design(with_case_load(design, "default", ballast)))
+                ) is tips, factor
+
+
+def pushed_table():
+    """table-slides with a friction of 2 (it cannot slide) and 300 N +x on leg_l at
+    z = 700 mm instead of its shove: it topples over leg_r."""
+    design = load_design(str(CATALOG / "table-slides.yaml"))
+    design = replace(with_model(design, "rigid"),
+                     material=replace(design.material, friction=2.0))
+    cases = tuple(replace(c, loads=(Load("leg_l", (300.0, 0.0, 0.0), (-0.436, 0.0, 0.7)),))
+                  if c.name == "shove" else c for c in design.load_cases)
+    return replace(design, load_cases=cases)
+
+
+def test_pushed_over_table_needs_a_smaller_push():
+    """The table's 124.03 N of planks act at x = 0; a push H at height h = 0.7 m moves the
+    line of action to x = H h / W on the floor.  It stays on the feet (x <= 436 mm, leg_r's
+    outer face) for H <= 0.436 x 124.03 / 0.7 = 77.25 N.  With H = 300 N it meets the
+    floor at 300 x 0.7 / 124.03 = 1.6932 m, d = 1.2572 m outside; ballast over leg_l's
+    outer face (a = 872 mm): 124.03 x 1257.2 / 872 / 9.81 = 18.23 kg.  Checked: a push of
+    1.02 x 77.25 N topples it, 0.98 x 77.25 N does not."""
+    design = pushed_table()
+    geometry = analyze(design)
+    report = check_design(design, geometry)
+    assert kinds(report) == {"lift-off"}
+    need = need_of(design, geometry, report, "lift-off")
+    weight = TABLE_MASS * G
+    assert need.values["push"] == pytest.approx(300.0)
+    assert need.values["push_max"] == pytest.approx(0.436 * weight / 0.7, rel=1e-6)
+    assert need.values["outside"] == pytest.approx(300 * 700 / weight - 436.0, rel=1e-6)
+    assert need.values["ballast"] == pytest.approx(18.23, abs=0.01)
+    for factor, tips in ((1.02, True), (0.98, False)):
+        push = factor * need.values["push_max"]
+        cases = tuple(replace(c, loads=(Load("leg_l", (push, 0.0, 0.0), (-0.436, 0.0, 0.7)),))
+                      if c.name == "shove" else c for c in design.load_cases)
+        assert ("lift-off" in kinds(check_design(replace(design, load_cases=cases)))) is tips
+
+
+# -- durability --------------------------------------------------------------------------
+def test_overloaded_joint_needs_more_nails():
+    """shelf-cantilever-overloaded (its file's hand estimate): the shelf joint's moment is
+    90.4 N m, so the pull per nail is 2 x 90.4 / 0.012 / 15 = 1004 N against 700 N.  It
+    goes with 1 / n: ceil(15 x 1004 / 700) = ceil(21.5) = 22 nails hold it, i.e. a joint
+    22 x 20 = 440 mm long (now 300 mm).  Checked with the count listed in the file: 22
+    nails hold it, 21 do not (15 x 1004 / 21 = 717 N)."""
+    design, geometry, report = catalog("shelf-cantilever-overloaded.yaml", "rigid")
+    need = need_of(design, geometry, report, "non-durable", "post/shelf")
+    assert need.values["pull"] == pytest.approx(1004, rel=0.005)
+    assert need.values["pull_capacity"] == pytest.approx(700.0)
+    assert (need.values["nails"], need.values["nails_needed"]) == (15, 22)
+    assert need.values["length"] == pytest.approx(300.0)
+    assert need.values["length_needed"] == pytest.approx(440.0)
+    for nails, durable in ((22, True), (21, False)):
+        joints = tuple(JointSpec(j.planks, nails if j.name == "post/shelf" else None)
+                       for j in geometry.joints)
+        listed = check_design(replace(design, joints=joints))
+        assert ("non-durable" not in kinds(listed)) is durable, nails
+        if durable:
+            assert listed.valid
+
+
+# -- bending (elastic model) -------------------------------------------------------------
+def test_sagging_shelf_needs_a_thicker_plank():
+    """shelf-cantilever-overloaded, elastic: the shelf is a 400 mm cantilever (its
+    file's hand estimate: P a^2 (3 L - a) / 6 EI + w L^4 / 8 EI = 30.7 + 0.7 = 31 mm at its
+    tip), 31 x 1.5 = 46.5 mm with creep, allowed 800 / 400 = 2 mm.  Sag goes with 1 / t^3:
+    t' = 12 x (46.5 / 2)^(1/3) = 34.3 mm.  Checked: at that thickness (its own weight
+    grown by 2.9 x, the joint unchanged: a determinate cantilever) the sag is within 10 %
+    of its allowance, and not below it (the need is a lower bound)."""
+    design, geometry, report = catalog("shelf-cantilever-overloaded.yaml", "elastic")
+    need = need_of(design, geometry, report, "sagging", "shelf")
+    assert need.values["dimension"] == "thickness" and need.values["size"] == 12.0
+    assert need.values["sag"] == pytest.approx(31.0, rel=0.02)
+    assert need.values["sag_allowed"] == pytest.approx(2.0)
+    assert need.values["size_needed"] == pytest.approx(12 * (46.5 / 2) ** (1 / 3), rel=0.02)
+    thicker = _thickened(design, "shelf", need.values["size_needed"])
+    plank = _plank_result(check_design(thicker), "default", "shelf")
+    used = plank.sag * 1.5 / plank.sag_allowed
+    assert 1.0 <= used <= 1.1
+
+
+def test_overstressed_shelf_needs_a_thicker_plank():
+    """particleboard-shelf-overloaded (its file's hand estimate): the middle shelf's
+    largest moment lies between w L^2 / 16 and w L^2 / 8, a stress of 13.8 to 27.6 N/mm^2
+    against 11.5.  Stress goes with 1 / t^2: t' = 12 x (stress / 11.5)^(1/2), between
+    13.1 and 18.6 mm.  Checked: at t' the shelf's stress is its strength to 5 %."""
+    design, geometry, report = catalog("particleboard-shelf-overloaded.yaml", "elastic")
+    need = need_of(design, geometry, report, "overstressed", "middle")
+    assert need.values["strength"] == pytest.approx(11.5)
+    assert 13.8 <= need.values["stress"] <= 27.6
+    assert need.values["size_needed"] == pytest.approx(
+        12 * math.sqrt(need.values["stress"] / 11.5), rel=1e-9)
+    assert 13.1 <= need.values["size_needed"] <= 18.6
+    plank = _plank_result(check_design(_thickened(design, "middle", need.values["size_needed"])),
+                          "default", "middle")
+    assert plank.stress / plank.strength == pytest.approx(1.0, abs=0.05)
+
+
+def test_plank_on_edge_bends_across_its_width():
+    """A rail on edge (its face vertical, its length level) under vertical loads bends in
+    its own plane: its needed size is a depth (width), not a thickness."""
+    from furncheck.suggest.needs import _bending_depth
+    design = load_design(str(CATALOG / "table-slides.yaml"))
+    assert _bending_depth(design.plank("apron")) == ("width", pytest.approx(0.1))
+    assert _bending_depth(design.plank("top")) == ("thickness", pytest.approx(0.012))
+    assert _bending_depth(design.plank("leg_l")) == ("thickness", pytest.approx(0.012))
+
+
+def _thickened(design, plank_id: str, thickness_mm: float):
+    """The design with one plank that thick (about its middle plane)."""
+    planks = tuple(replace(p, thickness=thickness_mm * design.unit_scale)
+                   if p.id == plank_id else p for p in design.planks)
+    return replace(design, planks=planks)
+
+
+def _plank_result(report, case: str, plank_id: str):
+    return next(p for c in report.cases if c.name == case for p in c.planks if p.id == plank_id)
+
+
+# -- geometry ----------------------------------------------------------------------------
+def test_geometric_needs_close_the_gap():
+    """bookshelf-gap: the shelf's end is 3 mm from side_r, tolerance 0.5 mm: closing it by
+    2.5 to 3.5 mm joins them.  bench-long-leg: leg_m's corner is 2 mm below the floor:
+    1.5 to 2.5 mm.  side-table-hovering: 4 mm above it: 3.5 to 4.5 mm."""
+    for name, kind, distance in (("bookshelf-gap.yaml", "disconnected", 3.0),
+                                 ("bench-long-leg.yaml", "penetration", 2.0),
+                                 ("side-table-hovering.yaml", "floating", 4.0)):
+        need = need_of(*catalog(name, "rigid"), kind)
+        assert need.values["distance"] == pytest.approx(distance, abs=1e-9), name
+        assert need.values["change_min"] == pytest.approx(distance - 0.5, abs=1e-9)
+        assert need.values["change_max"] == pytest.approx(distance + 0.5, abs=1e-9)
+
+
+# -- what was tried ----------------------------------------------------------------------
+def sliding_table():
+    """The rigid table-slides shoved with 400 N at 20 mm above the floor: it slides (400 N
+    against 62 N: 68.9 kg more weight would be needed, (400 / 0.5 - 124.03) / 9.81), and
+    tipping is far (400 N x 0.02 m = 8 N m against 124 N x 0.436 m = 54 N m)."""
+    text = (CATALOG / "table-slides.yaml").read_text(encoding="utf-8")
+    return text.replace("force: [110, 0, 0], at: [-436, 0, 150]",
+                        "force: [400, 0, 0], at: [-436, 0, 20]")
+
+
+def test_no_suggestion_explains_why_with_the_numbers(tmp_path):
+    """The text names every remaining violation, the sliding need with its hand numbers
+    (sliding_table), the continuous search's counts and the discrete rule that does not
+    apply; the JSON carries the same, byte-identical on every run."""
+    path = tmp_path / "sliding.yaml"
+    path.write_text(sliding_table(), encoding="utf-8")
+    run = CliRunner().invoke(main, ["suggest", str(path), "--model", "rigid"],
+                             catch_exceptions=False)
+    assert run.exit_code == 0
+    text = run.output
+    assert "No suggestion" in text and "violations remain." in text
+    assert ("the push of 400 N exceeds mu W = 0.5 x 124 N = 62 N; 68.9 kg more weight on "
+            "it, or friction mu >= 3.23, would hold it") in text
+    assert "continuous changes (paper 6.4): " in text and "directions formed" in text
+    assert "support plank: not applicable: it does not repair sliding" in text
+    first, second = (CliRunner().invoke(main, ["suggest", str(path), "--model", "rigid",
+                                               "--format", "json"]).output for _ in range(2))
+    assert first == second
+    explanation = json.loads(first)["explanation"]
+    assert {(v["kind"], v["where"]) for v in explanation["remaining"]} >= \
+        {("sliding", "leg_l,leg_r")}
+    sliding = next(n for n in explanation["needs"] if n["kind"] == "sliding")
+    assert sliding["values"]["extra_mass"] == pytest.approx((800 - TABLE_MASS * G) / G,
+                                                            rel=1e-4)
+    tried = explanation["tried"]
+    assert tried["max_dofs"] == 3 and tried["max_suggestions"] == 8
+    assert [d["dofs"] for d in tried["directions"]] == [1, 2, 3]
+    assert tried["discrete"][0]["outcome"] == NOT_APPLICABLE
+
+
+def test_tally_adds_up():
+    """Per number of DOFs combined: every combination evaluated is kept or culled for
+    exactly one reason; C(relevant, m) are possible; every line search found an interval
+    exactly when one of its probes was valid."""
+    for name, model in (("bench-tips.yaml", "rigid"), ("table-slides.yaml", "elastic"),
+                        ("bookshelf-gap.yaml", "elastic")):
+        result = suggest_design(with_model(load_design(str(CATALOG / name)), model))
+        tried = result.explanation.tried
+        assert tried.free + len(tried.blocked) + tried.locked <= tried.dofs
+        for tally in tried.directions:
+            assert tally.possible == math.comb(tally.relevant, tally.size)
+            assert tally.evaluated <= tally.possible
+            assert tally.kept + tally.facing_away + tally.breaks_other + tally.too_far == \
+                tally.evaluated
+        assert len(tried.line_searches) == result.searched
+        for search in tried.line_searches:
+            assert (search.interval is not None) == any(m >= 0 for _, m in search.probes)
+        found = sum(1 for s in tried.line_searches if s.interval is not None)
+        assert found >= sum(1 for s in result.suggestions if s.kind == "continuous")
+        assert bool(result.explanation.remaining) == (not result.suggestions)
+
+
+def test_failed_support_names_what_remains():
+    """shelf-cantilever-overloaded, elastic: every support the rule builds is recorded;
+    when nothing was found, a support that was checked and failed names the violation
+    that remains with it, and the rule for a post that is not level says so."""
+    design, geometry, report = catalog("shelf-cantilever-overloaded.yaml", "elastic")
+    search = Search(design, geometry, report)
+    support = support_planks(search)
+    trials = search.trials
+    assert {t.outcome for t in trials} <= {FOUND, FAILED, NOT_APPLICABLE}
+    assert len([t for t in trials if t.outcome == FOUND]) == (support is not None)
+    tried = Tried(24, 0, 0, {}, 3, 8, False, (), (), 24, 0, 0, tuple(trials))
+    explained = explain(design, geometry, report, tried, found=0).tried.discrete
+    checked = [t for t in explained if t.outcome == FAILED and t.candidate is not None]
+    assert checked
+    for trial in checked:
+        assert f"with {trial.plank}, " in trial.reason
+        assert any(f"{kind}: " in trial.reason
+                   for kind in ("non-durable", "sagging", "overstressed", "lift-off"))
+    assert any(t.reason == "post is not level" for t in explained)
+    assert len(explained) == len({(t.rule, t.target, t.outcome, t.reason) for t in explained})
+
+
+def test_partial_results_say_what_was_tried():
+    """bench-tips (rigid) gets fewer than the 8 suggestions asked for: the text says so
+    after them, with the lift-off need and the line searches that found an interval."""
+    run = CliRunner().invoke(main, ["suggest", str(CATALOG / "bench-tips.yaml"),
+                                    "--model", "rigid"], catch_exceptions=False)
+    text = run.output
+    assert "Fewer than the 8 asked for:" in text
+    assert "215 mm outside the support beyond leg_r" in text
+    assert "30.2 kg of ballast over leg_l" in text
+    assert re.search(r"\n    \d+ line searches with the full checks, [1-9]\d* with a valid "
+                     r"interval\n", text), text
+    assert "support plank: not applicable: it does not repair lift-off" in text
+
+
+def test_valid_design_has_no_explanation():
+    result = suggest_design(with_model(load_design(str(CATALOG / "stool.yaml")), "rigid"))
+    assert result.valid and result.explanation is None
+    run = CliRunner().invoke(main, ["suggest", str(CATALOG / "stool.yaml"), "--model",
+                                    "rigid", "--format", "json"])
+    assert "explanation" not in json.loads(run.output)
+
+
+def test_material_defaults_used_in_the_hand_numbers():
+    """The tests' constants are the catalog's: 750 kg/m^3, mu 0.5, 700 N per nail."""
+    material = Material()
+    assert (material.density, material.friction, material.nail_pull) == (MDF, 0.5, 700.0)

@@ -1,0 +1,254 @@
+"""Which files a directory scan checks (contract section 4; ``furncheck.scan``).
+
+The library is tested on trees built in a temporary folder; the command line on the same
+trees with ``check_file`` replaced by the fake of ``test_cli`` (the verdict comes from the
+file name), so only the choice of files is under test.  Where git is installed, its own
+idea of ignored files is the reference for the .gitignore rules.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+from test_cli import run
+
+from furncheck.detect import declares_design
+from furncheck.ignores import patterns
+from furncheck.scan import ScanOptions, collect, find_design_files
+
+DESIGN = "furncheck: 1\nplanks: []\n"
+
+
+def tree(root: Path, files: dict[str, str]) -> Path:
+    """Write ``files`` (relative path -> text) under ``root``; returns ``root``."""
+    for name, text in files.items():
+        path = root / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text)
+    return root
+
+
+def found(folder: Path, **options) -> list[str]:
+    """The design files a scan of ``folder`` finds, relative to it, in order."""
+    scan = find_design_files(str(folder), **options)
+    return [Path(path).relative_to(folder).as_posix() for path in scan.files]
+
+
+# --- .gitignore ---------------------------------------------------------------------------
+
+def test_gitignore_files_in_the_tree_apply_below_their_folder(tmp_path):
+    """Root .gitignore: 'build/' (folders only), '*.draft.yaml' except 'keep.draft.yaml';
+    sub/.gitignore: 'local.yaml' (any depth below sub/) and '/top.yaml' (anchored at sub/).
+    So: build/ is not entered, a.draft.yaml goes, keep.draft.yaml stays, sub/local.yaml and
+    sub/deep/local.yaml go, local.yaml at the root stays (sub's rules do not reach up),
+    sub/top.yaml goes but sub/deep/top.yaml stays."""
+    (tmp_path / ".git").mkdir()
+    tree(tmp_path, {
+        ".gitignore": "build/\n*.draft.yaml\n!keep.draft.yaml\n",
+        "sub/.gitignore": "local.yaml\n/top.yaml\n",
+        "a.yaml": DESIGN, "a.draft.yaml": DESIGN, "keep.draft.yaml": DESIGN,
+        "build/out.yaml": DESIGN, "local.yaml": DESIGN,
+        "sub/local.yaml": DESIGN, "sub/deep/local.yaml": DESIGN,
+        "sub/top.yaml": DESIGN, "sub/deep/top.yaml": DESIGN, "sub/b.yaml": DESIGN,
+    })
+    assert found(tmp_path) == ["a.yaml", "keep.draft.yaml", "local.yaml", "sub/b.yaml",
+                               "sub/deep/top.yaml"]
+
+
+def test_gitignore_files_above_the_scanned_folder_apply_up_to_the_repository(tmp_path):
+    """repo/.gitignore ignores 'designs/drafts/' and '*.bak.yaml'; a .gitignore above the
+    repository ignores everything ('*') but is outside it, so it does not count; scanning
+    repo/designs leaves out drafts/ and x.bak.yaml only.  Without .git (no repository)
+    only the scanned tree's own .gitignore files count: the same scan keeps both."""
+    outer = tmp_path / "outer"
+    repo = outer / "repo"
+    tree(outer, {".gitignore": "*\n"})
+    tree(repo, {".gitignore": "designs/drafts/\n*.bak.yaml\n",
+                "designs/a.yaml": DESIGN, "designs/x.bak.yaml": DESIGN,
+                "designs/drafts/d.yaml": DESIGN})
+    assert found(repo / "designs") == ["a.yaml", "drafts/d.yaml", "x.bak.yaml"]
+    (repo / ".git").mkdir()
+    assert found(repo / "designs") == ["a.yaml"]
+
+
+def test_git_info_exclude_counts_at_the_repository_top(tmp_path):
+    """.git/info/exclude holds 'private.yaml': left out like a root .gitignore entry, and a
+    root .gitignore '!private.yaml' overrides it (the .gitignore files rank above it)."""
+    tree(tmp_path, {".git/info/exclude": "private.yaml\n", "private.yaml": DESIGN,
+                    "a.yaml": DESIGN})
+    assert found(tmp_path) == ["a.yaml"]
+    (tmp_path / ".gitignore").write_text("!private.yaml\n")
+    assert found(tmp_path) == ["a.yaml", "private.yaml"]
+
+
+@pytest.mark.skipif(shutil.which("git") is None, reason="git is not installed")
+def test_the_gitignore_rules_agree_with_git(tmp_path):
+    """A tree with nested .gitignore files, negations, anchored, folder-only and ** patterns:
+    the design files found are exactly the YAML/JSON files that ``git ls-files --others
+    --exclude-standard`` lists (git's own rules), hidden ones left out."""
+    tree(tmp_path, {
+        ".gitignore": "node_modules/\n/out\n*.tmp.yaml\ndocs/**/gen-*.yaml\n"
+                      "!docs/keep/gen-1.yaml\n",
+        "a/.gitignore": "*.yaml\n!important.yaml\nnested/\n",
+        "a/b/.gitignore": "!*.yaml\n",
+        "a/x.yaml": DESIGN, "a/important.yaml": DESIGN, "a/b/y.yaml": DESIGN,
+        "a/nested/z.yaml": DESIGN, "a/c/w.json": '{"furncheck": 1}',
+        "node_modules/pkg/d.yaml": DESIGN, "out/o.yaml": DESIGN, "sub/out/o.yaml": DESIGN,
+        "t.tmp.yaml": DESIGN, "docs/p/q/gen-2.yaml": DESIGN, "docs/keep/gen-1.yaml": DESIGN,
+        "docs/gen-3.yaml": DESIGN, "docs/plain.yml": DESIGN, "top.yaml": DESIGN,
+    })
+    subprocess.run(["git", "init", "-q", str(tmp_path)], check=True)
+    listed = subprocess.run(["git", "ls-files", "--others", "--exclude-standard"],
+                            cwd=tmp_path, capture_output=True, text=True, check=True).stdout
+    expected = sorted((name for name in listed.split()
+                       if name.endswith((".yaml", ".yml", ".json"))),
+                      key=lambda name: name.split("/"))
+    assert "a/b/y.yaml" in expected and "a/x.yaml" not in expected  # the tree is not trivial
+    assert found(tmp_path) == expected
+
+
+def test_a_named_folder_is_scanned_even_when_ignored(tmp_path):
+    """.gitignore ignores 'build/'; naming build/ on the command line scans it (as a named
+    file is always checked), and the rules still apply inside it ('*.skip.yaml')."""
+    tree(tmp_path, {".git/HEAD": "", ".gitignore": "build/\n*.skip.yaml\n",
+                    "build/a.yaml": DESIGN, "build/b.skip.yaml": DESIGN})
+    assert found(tmp_path / "build") == ["a.yaml"]
+
+
+# --- --exclude, hidden paths --------------------------------------------------------------
+
+def test_exclude_patterns_are_gitignore_patterns_anchored_at_their_folder(tmp_path):
+    """'drafts' (no slash) matches a name at any depth; '/b.yaml' only b.yaml right in the
+    base folder; '**/old-*.yaml' any depth.  An exclude beats a .gitignore '!' rule."""
+    tree(tmp_path, {".gitignore": "!b.yaml\n", "a.yaml": DESIGN, "b.yaml": DESIGN,
+                    "sub/b.yaml": DESIGN, "drafts/c.yaml": DESIGN,
+                    "sub/drafts/d.yaml": DESIGN, "sub/old-e.yaml": DESIGN})
+    excludes = (patterns(["drafts", "/b.yaml", "**/old-*.yaml"], str(tmp_path), "test"),)
+    assert found(tmp_path, excludes=excludes) == ["a.yaml", "sub/b.yaml"]
+
+
+def test_hidden_files_and_folders_are_skipped(tmp_path):
+    tree(tmp_path, {"a.yaml": DESIGN, ".b.yaml": DESIGN, ".hidden/c.yaml": DESIGN,
+                    "sub/.d.yml": DESIGN})
+    assert found(tmp_path) == ["a.yaml"]
+    assert found(tmp_path / ".hidden") == ["c.yaml"]   # named: scanned
+
+
+def test_exclude_on_the_command_line_is_relative_to_the_current_folder(checked_paths, tmp_path,
+                                                                      monkeypatch):
+    """--exclude sub/x.yaml (anchored: it has a slash) from tmp_path leaves out sub/x.yaml
+    but not other/sub/x.yaml; --exclude is repeatable."""
+    tree(tmp_path, {"sub/x.yaml": DESIGN, "other/sub/x.yaml": DESIGN, "y.yaml": DESIGN,
+                    "z.yaml": DESIGN})
+    monkeypatch.chdir(tmp_path)
+    result = run("validate", ".", "--exclude", "sub/x.yaml", "--exclude", "z.yaml")
+    assert [Path(path).as_posix() for path in checked_paths] == ["other/sub/x.yaml", "y.yaml"]
+    assert result.exit_code == 0
+
+
+# --- files that are no designs ------------------------------------------------------------
+
+def test_yaml_and_json_files_without_a_furncheck_key_are_skipped_and_counted(checked_paths,
+                                                                              tmp_path):
+    """A project folder: package.json, tsconfig.json, node_modules/x/package.json, a CI
+    workflow that mentions furncheck in a command, a compose file with a nested furncheck
+    key, and a package.json depending on a package named furncheck: 6 files that are no
+    designs.  The designs: a YAML and a JSON one, and a YAML design with a syntax error (it
+    starts with its furncheck key: still a design, its report says what is wrong)."""
+    tree(tmp_path, {
+        "package.json": '{"name": "x", "version": "1.0.0"}',
+        "tsconfig.json": '{"compilerOptions": {}}',
+        "node_modules/x/package.json": '{"name": "x"}',
+        "ci.yml": "jobs:\n  check:\n    steps:\n      - run: furncheck validate designs/\n",
+        "compose.yaml": "services:\n  furncheck:\n    image: x\n",
+        "deps/package.json": '{"dependencies": {"furncheck": "^1.0"}}',
+        "designs/shelf.yaml": DESIGN,
+        "designs/table.json": '{"furncheck": 1, "planks": []}',
+        "designs/broken.yaml": "furncheck: 1\nplanks: [\n",
+    })
+    result = run("validate", str(tmp_path))
+    checked = sorted(Path(path).relative_to(tmp_path).as_posix() for path in checked_paths)
+    assert checked == ["designs/broken.yaml", "designs/shelf.yaml", "designs/table.json"]
+    assert "skipped 6 files without a top-level 'furncheck' key (not designs)" in result.stderr
+
+
+@pytest.mark.parametrize(("text", "fmt", "expected"), [
+    ("furncheck: 1\n", "yaml", True),
+    ("# a comment\n---\nfurncheck: 1\n", "yaml", True),
+    ("name: x\nfurncheck: 1\n", "yaml", True),            # not the first key
+    ("{name: x, furncheck: 1}", "yaml", True),            # flow mapping
+    ('"furncheck": 1\n', "yaml", True),                   # quoted key
+    ("a:\n  furncheck: 1\n", "yaml", False),              # nested
+    ("- furncheck: 1\n", "yaml", False),                  # a list at the top
+    ("furncheck_version: 1\n", "yaml", False),
+    ("furncheck\n", "yaml", False),                       # a scalar document
+    ("x: 1\n---\nfurncheck: 1\n", "yaml", False),         # only the first document counts
+    ("name: [\nfurncheck: 1\n", "yaml", True),            # broken, key at a line start
+    ("text: [furncheck\n", "yaml", False),                # broken, no key
+    ('{"furncheck": 1}', "json", True),
+    ('{"a": {"furncheck": 1}}', "json", False),
+    ('["furncheck"]', "json", False),
+    ('{"furncheck": 1,', "json", True),                   # broken JSON with the key
+    ("{furncheck: 1}", "json", False),                    # broken JSON, no JSON key
+])
+def test_declares_design(text, fmt, expected):
+    assert declares_design(text.encode(), fmt) is expected
+
+
+def test_a_named_file_is_always_checked(checked_paths, tmp_path):
+    """A hidden, git-ignored, excluded file that is no design and no YAML, named on the
+    command line, is checked; with --skip-non-designs the named YAML/JSON files without a
+    furncheck key and files of other types are left out (and counted)."""
+    tree(tmp_path, {".git/HEAD": "", ".gitignore": ".notes.txt\nci.yml\n",
+                    ".notes.txt": "hello", "ci.yml": "on: push\n", "d.yaml": DESIGN})
+    named = [str(tmp_path / name) for name in (".notes.txt", "ci.yml", "d.yaml")]
+    run("validate", *named, "--exclude", "*.yml")
+    assert checked_paths == named
+    checked_paths.clear()
+    result = run("validate", *named, "--skip-non-designs", "--no-cache")
+    assert checked_paths == named[2:]
+    assert "skipped 2 files without a top-level" in result.stderr
+
+
+# --- symlinks -----------------------------------------------------------------------------
+
+def symlink(link: Path, target: Path) -> None:
+    try:
+        os.symlink(target, link, target_is_directory=True)
+    except (OSError, NotImplementedError):
+        pytest.skip("symlinks cannot be made here")
+
+
+def test_symlinked_folders_are_followed_once(tmp_path):
+    """real/ holds a.yaml; 'alias' links to real/ (listed under its real path only, the
+    real folder being searched first); 'outside' links to a folder outside the tree
+    (followed); real/loop links back to the top (a loop: not entered again)."""
+    top = tmp_path / "top"
+    tree(top, {"real/a.yaml": DESIGN})
+    tree(tmp_path, {"elsewhere/b.yaml": DESIGN})
+    symlink(top / "alias", top / "real")
+    symlink(top / "outside", tmp_path / "elsewhere")
+    symlink(top / "real" / "loop", top)
+    assert found(top) == ["outside/b.yaml", "real/a.yaml"]
+
+
+def test_a_folder_that_links_to_itself_ends(tmp_path):
+    """self -> . and a pair a/to_b -> b, b/to_a -> a: every folder is searched once."""
+    tree(tmp_path, {"a/x.yaml": DESIGN, "b/y.yaml": DESIGN})
+    symlink(tmp_path / "self", tmp_path)
+    symlink(tmp_path / "a" / "to_b", tmp_path / "b")
+    symlink(tmp_path / "b" / "to_a", tmp_path / "a")
+    assert found(tmp_path) == ["a/x.yaml", "b/y.yaml"]
+
+
+def test_a_file_reached_twice_is_checked_once(tmp_path):
+    """A file named, and also found in a named folder through a symlinked folder."""
+    tree(tmp_path, {"real/a.yaml": DESIGN})
+    symlink(tmp_path / "alias", tmp_path / "real")
+    collected = collect([str(tmp_path / "real" / "a.yaml"), str(tmp_path / "alias")],
+                        ScanOptions())
+    assert collected.sources == [str(tmp_path / "real" / "a.yaml")]

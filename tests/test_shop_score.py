@@ -1,0 +1,103 @@
+"""The shop's score that ranks suggestions (``suggest.score``), by hand.
+
+Designs in millimetres; the score's relative changes: a size change over the old size, a
+move over the design's size (its largest bounding-box edge), a turn in radians, an added
+plank 1; plus PLANK_COST = 0.05 per plank touched.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from furncheck.design.load import parse_design
+from furncheck.geometry import analyze
+from furncheck.suggest.cutlist import plank_edits
+from furncheck.suggest.score import ShopScore, shop_score
+from furncheck.suggest.symmetry import mirror_planes
+
+CATALOG = Path(__file__).resolve().parents[1] / "designs"
+STOOL = (CATALOG / "stool.yaml").read_text()
+
+SHELF = """
+furncheck: 1
+name: shelf
+units: mm
+planks:
+  - {id: side_l, size: [900, 300], center: [-906, 0, 450], rotation: [0, -90, 0]}
+  - {id: side_r, size: [900, 300], center: [906, 0, 450], rotation: [0, -90, 0]}
+  - {id: shelf, size: [1800, 300], center: [0, 0, 456]}
+"""
+
+
+def score_of(before_text: str, after_text: str) -> ShopScore:
+    before = parse_design(before_text, "a.yaml", "yaml")
+    after = parse_design(after_text, "b.yaml", "yaml")
+    return shop_score(before, analyze(before), mirror_planes(before), after,
+                      plank_edits(before, after))
+
+
+def test_relative_change_and_planks_touched():
+    """The stool's size is its height, 450 mm (seat 400 mm long, legs' outer faces at
+    +-176 mm, 300 mm deep).  Its rung shortened from 328 to 246 mm (-25 %) and raised
+    45 mm: its largest relative change is 0.25 (45 / 450 = 0.1 is smaller); one plank:
+    cost 0.25 + 0.05 = 0.3.  The rung, across the mirror plane, stays symmetric."""
+    after = STOOL.replace("{id: rung, size: [328, 80], center: [0, 0, 150]",
+                          "{id: rung, size: [246, 80], center: [0, 0, 195]")
+    score = score_of(STOOL, after)
+    assert score.touched == 1
+    assert score.cost == pytest.approx(0.25 + 0.05)
+    assert score.implausible == () and score.broken == 0
+
+
+def test_a_turn_counts_in_radians_and_an_added_plank_as_one():
+    """The rung turned 9 degrees about x: pi / 20 = 0.157 + 0.05; a brace added: 1 + 0.05."""
+    turned = STOOL.replace("rotation: [90, 0, 0]}", "rotation: [99, 0, 0]}")
+    assert score_of(STOOL, turned).cost == pytest.approx(math.pi / 20 + 0.05)
+    added = STOOL.replace("loads:", "  - {id: brace, size: [300, 80], center: [0, 100, 150], "
+                                    "rotation: [90, 0, 0]}\nloads:", 1)
+    assert score_of(STOOL, added).cost == pytest.approx(1.05)
+
+
+def test_a_plank_longer_than_a_stock_board_is_implausible():
+    """The 1800 mm shelf lengthened to 2500 mm (with the sides moved out) no longer fits a
+    2440 x 1220 mm sheet; at 2400 mm it still does."""
+    long = SHELF.replace("[1800, 300]", "[2500, 300]").replace("-906", "-1256") \
+        .replace("[906", "[1256")
+    fits = SHELF.replace("[1800, 300]", "[2400, 300]").replace("-906", "-1206") \
+        .replace("[906", "[1206")
+    assert score_of(SHELF, long).implausible == ("shelf is larger than a stock board",)
+    assert score_of(SHELF, fits).implausible == ()
+
+
+def test_a_plank_already_too_long_may_change():
+    """A 2500 mm shelf (too long for one sheet already) lengthened to 2600 mm: the
+    proportion was the maker's, nothing implausible is added."""
+    long = SHELF.replace("[1800, 300]", "[2500, 300]").replace("-906", "-1256") \
+        .replace("[906", "[1256")
+    longer = SHELF.replace("[1800, 300]", "[2600, 300]").replace("-906", "-1306") \
+        .replace("[906", "[1306")
+    assert score_of(long, longer).implausible == ()
+
+
+def test_a_leg_wider_than_the_seat_it_holds_is_implausible():
+    """The stool's leg_l widened from 300 mm to 594 mm under the seat, 300 mm wide along
+    y (the leg's end face runs along y): 594 > 300 + 0.5 mm.  Widened to 300.4 mm it is
+    still within the tolerance."""
+    wide = STOOL.replace("{id: leg_l, size: [438, 300]", "{id: leg_l, size: [438, 594]")
+    slight = STOOL.replace("{id: leg_l, size: [438, 300]", "{id: leg_l, size: [438, 300.4]")
+    assert score_of(STOOL, wide).implausible == ("leg_l is wider than seat, which it is "
+                                                 "nailed to",)
+    assert score_of(STOOL, slight).implausible == ()
+
+
+def test_the_ranking_key_is_lexicographic():
+    """Plausible before implausible, then the symmetry kept, then the smaller cost."""
+    cheap_odd = ShopScore(("leg_l is wider than seat, which it is nailed to",), 0, 0.1, 1)
+    asymmetric = ShopScore((), 1, 0.2, 1)
+    symmetric = ShopScore((), 0, 0.9, 3)
+    cheaper = ShopScore((), 0, 0.5, 1)
+    ranked = sorted([cheap_odd, asymmetric, symmetric, cheaper], key=ShopScore.key)
+    assert ranked == [cheaper, symmetric, asymmetric, cheap_odd]

@@ -1,0 +1,75 @@
+"""Continuous advice in a maker's words (``report.shop_words``), on edits made by hand.
+
+The stool (designs/stool.yaml): legs at x = -170 and +170 mm, their length along z
+(rotation [0, -90, 0] maps local x to world +z), nailed under the seat and standing on the
+floor.  The chair (designs/chair-upright.yaml): its back stands on the seat, its length
+along z, its bottom end nailed to the seat and its top free.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from furncheck.design import load_design
+from furncheck.design.model import with_model
+from furncheck.dofs import apply_dof, parse_dof, structure
+from furncheck.edit_check import standing_geometry
+from furncheck.geometry import analyze
+from furncheck.report.shop_words import continuous_advice
+
+CATALOG = Path(__file__).resolve().parents[1] / "designs"
+
+
+def edited(design, changes: dict[str, float]):
+    frame = structure(design, standing_geometry(analyze(design)))
+    for name, change in changes.items():
+        design = apply_dof(design, frame, parse_dof(design, name), change)
+    return design
+
+
+def advise(design, changes: dict[str, float], interval=(0.9, 1.2), limited=False) -> str:
+    """The advice for ``changes`` made at step 1 (so the quoted interval is the interval
+    times the first change's magnitude)."""
+    units = tuple("deg" if name.rpartition(".")[2] in ("rx", "ry", "rz") else "mm"
+                  for name in changes)
+    return continuous_advice(tuple(changes), tuple(changes.values()), units, 1.0, interval,
+                             limited, design, edited(design, changes))
+
+
+def test_a_mirror_pair_moves_apart_or_closer_together():
+    """leg_l -20 mm and leg_r +20 mm along x, the mirror plane x = 0 between them: apart,
+    20 mm each; the other way round: closer together.  The interval 0.9-1.2 of the step is
+    18-24 mm of each leg's move."""
+    stool = with_model(load_design(str(CATALOG / "stool.yaml")), "rigid")
+    assert advise(stool, {"leg_l.x": -20.0, "leg_r.x": 20.0}) == \
+        "Move leg_l and leg_r apart by 20 mm each (valid for 18-24 mm each)."
+    assert advise(stool, {"leg_l.x": 20.0, "leg_r.x": -20.0}) == \
+        "Move leg_l and leg_r closer together by 20 mm each (valid for 18-24 mm each)."
+
+
+def test_a_tilt_says_where_the_top_goes_and_quotes_magnitudes():
+    """leg_r turned -7.55 degrees about y: its top (local x = world +z) turns toward -x,
+    toward leg_l; the amount and the interval (5.04-10.1 degrees: 0.667 and 1.333 of the
+    step) are magnitudes, no minus sign."""
+    stool = with_model(load_design(str(CATALOG / "stool.yaml")), "rigid")
+    text = advise(stool, {"leg_r.ry": -7.55}, interval=(5.04 / 7.55, 10.1 / 7.55))
+    assert text == ("Tilt leg_r 7.55 degrees about y, its top toward leg_l "
+                    "(valid for 5.04-10.1 degrees).")
+
+
+def test_a_shorter_back_rest_is_its_top_lowered():
+    """The chair's back shortened by 79.8 mm: its bottom end is nailed to the seat, so its
+    top comes down: 'lower the top of back', not 'shorten back'.  Its seat shortened (no
+    end held: both ends move) stays 'shorten'."""
+    chair = with_model(load_design(str(CATALOG / "chair-upright.yaml")), "rigid")
+    assert advise(chair, {"back.length": -79.8}) == \
+        "Lower the top of back by 79.8 mm (valid for 71.8-95.8 mm)."
+    assert advise(chair, {"back.length": 20.0}).startswith("Raise the top of back by 20 mm")
+
+
+def test_the_search_limit_is_said():
+    """An interval whose upper end is the search limit says where the search stopped."""
+    stool = with_model(load_design(str(CATALOG / "stool.yaml")), "rigid")
+    assert advise(stool, {"seat.z": 30.0}, limited=True) == (
+        "Raise seat by 30 mm (valid for 27-36 mm; the search stopped there, at half the "
+        "design's size).")
