@@ -327,3 +327,18 @@ def test_forgotten_contact_states_are_factored_again_to_the_same_numbers(monkeyp
         assert full.stability == capped.stability
         assert np.array_equal(full.joint_wrenches, capped.joint_wrenches)
         assert np.array_equal(full.contact_forces, capped.contact_forces)
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.lists(st.tuples(_coordinate, _coordinate, _coordinate), min_size=1, max_size=25),
+       st.lists(st.tuples(_coordinate, _coordinate, _coordinate), min_size=1, max_size=25),
+       st.sampled_from([0.0, 0.25, 0.5]))
+def test_mirror_partners_near_pairs_are_the_all_pairs_ones(points, others, slack):
+    """The centres within the slack of a mirrored centre, found through a k-d tree, are
+    exactly the pairs of the all-pairs distance test, row-major (grid coordinates: pairs
+    exactly at the slack, and coincident centres)."""
+    from furncheck.suggest.symmetry import _near_pairs
+
+    a, b = np.array(points), np.array(others)
+    expected = np.argwhere(np.linalg.norm(a[:, None, :] - b[None, :, :], axis=2) <= slack)
+    assert np.array_equal(_near_pairs(a, b, slack), expected)
