@@ -342,3 +342,34 @@ def test_mirror_partners_near_pairs_are_the_all_pairs_ones(points, others, slack
     a, b = np.array(points), np.array(others)
     expected = np.argwhere(np.linalg.norm(a[:, None, :] - b[None, :, :], axis=2) <= slack)
     assert np.array_equal(_near_pairs(a, b, slack), expected)
+
+
+def test_trailing_schur_is_the_solved_one(monkeypatch):
+    """S0 of a large elastic condensation read from the trailing block of one more LU (the
+    grounded unknowns ordered last, their block shifted to be positive definite) equals S0
+    summed from one solve per grounded unknown, to round-off (1e-10 of its largest
+    entry), on the 73-plank wall forced onto the implicit path; and each way the case
+    solves to the same forces."""
+    from furncheck import tolerances as tol
+    from furncheck.geometry import analyze
+    from furncheck.statics import build_model, condense, solve_load_case
+
+    design = _shelving(8, 8, "elastic")
+    geometry = analyze(design)
+    monkeypatch.setattr(tol, "CONDENSED_DENSE_BYTES", 0)
+    read = []
+    trailing_schur = condense._trailing_schur
+    monkeypatch.setattr(condense, "_trailing_schur",
+                        lambda *args: read.append(trailing_schur(*args)) or read[-1])
+    found = []
+    for limit in (tol.TRAILING_SCHUR_MAX, 0):       # trailing block, then solves
+        monkeypatch.setattr(tol, "TRAILING_SCHUR_MAX", limit)
+        model = build_model(design, geometry)
+        statics = solve_load_case(model, design.load_cases[0])
+        found.append((model.condensation.schur, statics.joint_wrenches,
+                      statics.contact_forces))
+    assert read[0] is not None and read[1] is None
+    (trailing, *forces), (solved, *reference) = found
+    assert np.abs(trailing - solved).max() <= 1e-10 * np.abs(solved).max()
+    for a, b in zip(forces, reference):
+        assert np.allclose(a, b, rtol=1e-7, atol=1e-9 * np.abs(b).max())
