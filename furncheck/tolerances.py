@@ -207,6 +207,12 @@ few MB); a larger one (a 2,000-plank wall's: 47,580 x 246, 94 MB, and as much ag
 A_ig made dense) is never stored: S0 is summed a block of its columns at a time and
 X x_g solved for when needed (``statics.condense._implicit``)."""
 
+TRAILING_SCHUR_MAX = 1500
+"""A large elastic condensation's S0 is read from the trailing block of one more sparse LU
+when it has at most this many grounded unknowns (250 nodes; a 2,001-plank wall's 41
+sides: 246), else summed from one solve per unknown (``statics.condense._trailing_schur``):
+the trailing factors are dense, about 12 n^2 bytes each besides S0 (27 MB at this size)."""
+
 SENSITIVITY_BLOCK_BYTES = 32 * 2 ** 20
 """The force sensitivity (eq. 6) solves its DOFs' right-hand sides a block at a time, at
 most this many bytes of them (the catalog's designs: all DOFs in one block; a 2,000-plank

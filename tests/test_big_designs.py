@@ -228,7 +228,8 @@ def test_big_design_suggestions_change_only_planks_near_the_violation(monkeypatc
     3), an 11-plank wall whose middle shelf sags under 20 kg gets suggestions that change
     only that shelf and its two sides, among them the same widening of the shelf as the
     search over every DOF finds (the widening's direction and line search involve that
-    shelf alone, so restricting the others away changes nothing of it)."""
+    shelf alone, so restricting the others away changes nothing of it); the explanation
+    counts the other 8 planks' 64 DOFs as left out."""
     from furncheck import tolerances as tol
     from furncheck.suggest import suggest_design
 
@@ -243,6 +244,8 @@ def test_big_design_suggestions_change_only_planks_near_the_violation(monkeypatc
     widen = [s for s in near.suggestions if s.dofs == ("shelf1_2.width",)]
     assert widen and widen[0].changes == next(
         s.changes for s in everything.suggestions if s.dofs == ("shelf1_2.width",))
+    assert near.explanation.tried.far == (11 - 3) * 8      # the other 8 planks' DOFs
+    assert everything.explanation.tried.far == 0
 
 
 @pytest.mark.parametrize("command", [["validate"], ["suggest"], ["range", "top.z"]])
@@ -324,3 +327,49 @@ def test_forgotten_contact_states_are_factored_again_to_the_same_numbers(monkeyp
         assert full.stability == capped.stability
         assert np.array_equal(full.joint_wrenches, capped.joint_wrenches)
         assert np.array_equal(full.contact_forces, capped.contact_forces)
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.lists(st.tuples(_coordinate, _coordinate, _coordinate), min_size=1, max_size=25),
+       st.lists(st.tuples(_coordinate, _coordinate, _coordinate), min_size=1, max_size=25),
+       st.sampled_from([0.0, 0.25, 0.5]))
+def test_mirror_partners_near_pairs_are_the_all_pairs_ones(points, others, slack):
+    """The centres within the slack of a mirrored centre, found through a k-d tree, are
+    exactly the pairs of the all-pairs distance test, row-major (grid coordinates: pairs
+    exactly at the slack, and coincident centres)."""
+    from furncheck.suggest.symmetry import _near_pairs
+
+    a, b = np.array(points), np.array(others)
+    expected = np.argwhere(np.linalg.norm(a[:, None, :] - b[None, :, :], axis=2) <= slack)
+    assert np.array_equal(_near_pairs(a, b, slack), expected)
+
+
+def test_trailing_schur_is_the_solved_one(monkeypatch):
+    """S0 of a large elastic condensation read from the trailing block of one more LU (the
+    grounded unknowns ordered last, their block shifted to be positive definite) equals S0
+    summed from one solve per grounded unknown, to round-off (1e-10 of its largest
+    entry), on the 73-plank wall forced onto the implicit path; and each way the case
+    solves to the same forces."""
+    from furncheck import tolerances as tol
+    from furncheck.geometry import analyze
+    from furncheck.statics import build_model, condense, solve_load_case
+
+    design = _shelving(8, 8, "elastic")
+    geometry = analyze(design)
+    monkeypatch.setattr(tol, "CONDENSED_DENSE_BYTES", 0)
+    read = []
+    trailing_schur = condense._trailing_schur
+    monkeypatch.setattr(condense, "_trailing_schur",
+                        lambda *args: read.append(trailing_schur(*args)) or read[-1])
+    found = []
+    for limit in (tol.TRAILING_SCHUR_MAX, 0):       # trailing block, then solves
+        monkeypatch.setattr(tol, "TRAILING_SCHUR_MAX", limit)
+        model = build_model(design, geometry)
+        statics = solve_load_case(model, design.load_cases[0])
+        found.append((model.condensation.schur, statics.joint_wrenches,
+                      statics.contact_forces))
+    assert read[0] is not None and read[1] is None
+    (trailing, *forces), (solved, *reference) = found
+    assert np.abs(trailing - solved).max() <= 1e-10 * np.abs(solved).max()
+    for a, b in zip(forces, reference):
+        assert np.allclose(a, b, rtol=1e-7, atol=1e-9 * np.abs(b).max())

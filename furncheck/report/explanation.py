@@ -181,7 +181,8 @@ def _rules(trials: tuple[Trial, ...]) -> list[str]:
 def _continuous(tried: Tried) -> str:
     blocked = f"{len(tried.blocked)} cannot move on their own" if tried.blocked else ""
     locked = f"{tried.locked} locked" if tried.locked else ""
-    aside = ", ".join(part for part in (blocked, locked) if part)
+    far = f"{tried.far} far from the violations, left out" if tried.far else ""
+    aside = ", ".join(part for part in (blocked, locked, far) if part)
     head = (f"continuous changes (paper 6.4{', geometric repairs only' if tried.geometric else ''}"
             f"): {tried.free} of {tried.dofs} DOFs free" + (f" ({aside})" if aside else ""))
     if not tried.directions:

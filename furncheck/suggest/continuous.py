@@ -69,10 +69,10 @@ class ContinuousSearch:
         self.report = report
         frame = structure(design, standing_geometry(geometry))
         self.editor = Editor(design, geometry, frame, locked)
-        self.margins = Margins(design, geometry, report, self.editor,
-                               suggestion_dofs(design, geometry, report.violations,
-                                               [dof for dof in all_dofs(design)
-                                                if dof not in locked]))
+        unlocked = [dof for dof in all_dofs(design) if dof not in locked]
+        near = suggestion_dofs(design, geometry, report.violations, unlocked)
+        self.far = len(unlocked) - len(near)        # left out of a big design's search
+        self.margins = Margins(design, geometry, report, self.editor, near)
         self.planes = mirror_planes(design)
         self.searched = 0
         self.tally: list[DirectionTally] = []       # what ``directions`` formed

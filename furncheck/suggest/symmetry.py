@@ -148,13 +148,26 @@ def _partners(planks: tuple[Plank, ...], axis: int, offset: float,
     centers = np.array([p.center for p in planks])
     mirrored = centers.copy()
     mirrored[:, axis] = 2.0 * offset - mirrored[:, axis]
-    near = np.linalg.norm(mirrored[:, None, :] - centers[None, :, :], axis=2) <= slack
     partner: dict[str, str] = {}
-    for i, j in zip(*np.nonzero(near)):
+    for i, j in _near_pairs(mirrored, centers, slack):
         a, b = planks[int(i)], planks[int(j)]
         if a.id not in partner and _mirrored(a, b, axis, offset, slack):
             partner[a.id] = b.id
     return partner
+
+
+def _near_pairs(points: np.ndarray, others: np.ndarray, slack: float) -> np.ndarray:
+    """(P, 2) pairs (i, j), row-major, with |points[i] - others[j]| <= slack: the pairs of
+    the all-pairs comparison, found through a k-d tree of ``others`` (a little wider, as
+    candidates) and then that same comparison on the candidates, so that a big design
+    makes no n x n array."""
+    from scipy.spatial import cKDTree
+
+    found = cKDTree(others).query_ball_point(points, r=slack * (1.0 + 1e-6) + 1e-12)
+    i = np.repeat(np.arange(len(points)), [len(js) for js in found])
+    j = np.array([k for js in found for k in sorted(js)], dtype=int)
+    keep = np.linalg.norm(points[i] - others[j], axis=1) <= slack
+    return np.column_stack([i[keep], j[keep]]).astype(int).reshape(-1, 2)
 
 
 def _mirrored(a: Plank, b: Plank, axis: int, offset: float, slack: float) -> bool:

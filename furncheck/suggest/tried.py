@@ -142,6 +142,9 @@ class Tried:
     dropped     : intervals found whose middle design's file was not valid or could
                   not be made
     discrete    : every discrete rule's trials, in the order tried
+    far         : DOFs left out as far from the violations (a design of more than
+                  SUGGEST_ALL_PLANKS planks changes only the planks nearest them,
+                  ``neighbourhood``)
     """
 
     dofs: int
@@ -157,6 +160,7 @@ class Tried:
     unsearched: int
     dropped: int
     discrete: tuple[Trial, ...]
+    far: int = 0
 
 
 class ProbeLog:
