@@ -79,6 +79,12 @@ def tree_command(tree: Path) -> list[str]:
     return [sys.executable, "-c", LAUNCHER, str(tree)]
 
 
+def uncached(tree: Path) -> list[str]:
+    """``--no-cache`` for a tree that has the result cache: every run checks every design
+    (a warm cache is ``bench_cache.py``'s table)."""
+    return ["--no-cache"] if (tree / "furncheck" / "cache.py").exists() else []
+
+
 def medians(commands: dict[str, list[str]], repeat: int) -> dict[str, tuple[float, float]]:
     """Each command run once to warm up, then ``repeat`` times in turn: median seconds and
     the largest peak RSS."""
@@ -99,10 +105,10 @@ def cold_start(trees: dict[str, Path], repeat: int) -> None:
     script = Path(sys.executable).with_name("furncheck")
     if script.exists():
         commands["furncheck validate designs/stool.yaml (installed)"] = \
-            [str(script), "validate", str(stool)]
+            [str(script), "validate", str(stool), *uncached(NEW_TREE)]
     for side, tree in trees.items():
         commands[f"{side}: validate designs/stool.yaml"] = \
-            tree_command(tree) + ["validate", str(stool)]
+            tree_command(tree) + ["validate", str(stool), *uncached(tree)]
     found = medians(commands, repeat)
     floor = next(iter(found.values()))[0]
     print("| cold start | median (ms) | x floor |")
@@ -144,7 +150,8 @@ def throughput(trees: dict[str, Path], catalog: Path, small: Path, repeat: int,
     for side, tree in trees.items():
         for jobs in (1, 2):
             commands[f"{side} --jobs {jobs}"] = tree_command(tree) + [
-                "validate", str(catalog), "--format", "json", "--jobs", str(jobs)]
+                "validate", str(catalog), "--format", "json", "--jobs", str(jobs),
+                *uncached(tree)]
     found = medians(commands, repeat)
     print(f"\n| {count} designs, --format json | seconds | designs/s | peak RSS (MB) |")
     print("|---|---:|---:|---:|")
@@ -157,7 +164,8 @@ def throughput(trees: dict[str, Path], catalog: Path, small: Path, repeat: int,
     for side, tree in trees.items():
         for jobs in (1, 2):
             commands[f"{side} --jobs {jobs}"] = tree_command(tree) + [
-                "validate", str(small), "--format", "json", "--jobs", str(jobs)]
+                "validate", str(small), "--format", "json", "--jobs", str(jobs),
+                *uncached(tree)]
     found_small = medians(commands, repeat)
     print("\n| 10 designs, --format json | seconds |")
     print("|---|---:|")
@@ -173,7 +181,7 @@ def memory(trees: dict[str, Path], catalog: Path, count: int,
     print("|---|---:|---:|---:|")
     for side, tree in trees.items():
         seconds, rss = run(tree_command(tree) + ["validate", str(catalog), "--format", "json",
-                                                 "--jobs", "2"])
+                                                 "--jobs", "2", *uncached(tree)])
         print(f"| {side} | {smaller[f'{side} --jobs 2'][1]:.0f} | {rss:.0f} | {seconds:.0f} |")
 
 

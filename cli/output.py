@@ -128,3 +128,24 @@ def dofs_or_fail(path: str, design, names) -> tuple:
         return tuple(parse_dof(design, name) for name in names)
     except DofError as error:
         fail(f"{path}: {error}")
+
+
+SCHEDULER_OPTION = click.option(
+    "--scheduler", metavar="ADDRESS", envvar="FURNCHECK_SCHEDULER", default=None,
+    help="Do the work on the Dask cluster whose scheduler is at ADDRESS, e.g. "
+         "tcp://10.0.0.5:8786 (needs the dask extra; the workers need the same furncheck); "
+         "the output is the same as a local run's.  [env: FURNCHECK_SCHEDULER]")
+
+
+def client_or_fail(address: str | None):
+    """A Dask client of the scheduler at ``address`` (``furncheck.cluster.connect``), None
+    without one, or one line and exit 2."""
+    if address is None:
+        return None
+    from furncheck.cluster import connect
+    from furncheck.errors import ClusterError
+
+    try:
+        return connect(address)
+    except ClusterError as error:
+        fail(str(error))

@@ -8,7 +8,9 @@ import click
 
 from furncheck.cli.output import (
     MODEL_OPTION,
+    SCHEDULER_OPTION,
     check_output,
+    client_or_fail,
     config_or_fail,
     dofs_or_fail,
     fail,
@@ -31,17 +33,19 @@ from furncheck.cli.output import (
               help="Worker processes for many DOFs (default: all cores); the output is the "
                    "same.")
 @MODEL_OPTION
+@SCHEDULER_OPTION
 def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str, ...],
-                  output: str | None, jobs: int | None, model: str | None) -> None:
+                  output: str | None, jobs: int | None, model: str | None,
+                  scheduler: str | None) -> None:
     """Valid interval of each DOF of DESIGN, the others held fixed (their neighbours
     adjusted to keep the joints).  DOFs are <plank>.x|y|z (translation, length unit),
     <plank>.rx|ry|rz (rotation about world axes, degrees) and <plank>.length|width;
     with none named, all are listed.
 
     Exit code 0: done; 2: unreadable or ill-formed design, unknown DOF or plank, a design
-    too big to check.
+    too big to check, a Dask cluster (--scheduler) that cannot be used.
     """
-    from furncheck.errors import DesignTooBig
+    from furncheck.errors import ClusterError, DesignTooBig
     from furncheck.ranges import RangeFinder
     from furncheck.report.ranges import render_json, render_text
 
@@ -50,10 +54,15 @@ def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str
     check_output(output)
     loaded = load_or_fail(design, model)
     dofs_or_fail(design, loaded, (*dofs, *locks))
+    client = client_or_fail(scheduler)
     try:
         finder = RangeFinder(loaded, tuple(locks))
-    except DesignTooBig as error:
+        ranges = finder.ranges(list(dofs) or None, jobs or config.jobs or os.cpu_count() or 1,
+                               client)
+    except (ClusterError, DesignTooBig) as error:
         fail(str(error))
-    ranges = finder.ranges(list(dofs) or None, jobs or config.jobs or os.cpu_count() or 1)
+    finally:
+        if client is not None:
+            client.close()
     render = render_json if fmt == "json" else render_text
     write_output(render(design, ranges), output)

@@ -18,7 +18,9 @@ import click
 
 from furncheck.cli.output import (
     MODEL_OPTION,
+    SCHEDULER_OPTION,
     check_output,
+    client_or_fail,
     config_or_fail,
     fail,
     write_chunks,
@@ -56,6 +58,7 @@ STDIN_NAME = "<stdin>"
                    "violations, a view of each) and their details; one self-contained "
                    "file that opens offline.")
 @MODEL_OPTION
+@SCHEDULER_OPTION
 @click.option("--exclude", "excludes", metavar="GLOB", multiple=True,
               help="Leave out what this gitignore pattern matches in directory scans, "
                    "relative to the current folder (repeatable), e.g. --exclude drafts.")
@@ -72,7 +75,7 @@ STDIN_NAME = "<stdin>"
                    "extension picks YAML or JSON.  [default: <stdin>, format by content]")
 def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: int | None,
              views_dir: str | None, html_file: str | None, model: str | None,
-             excludes: tuple[str, ...],
+             scheduler: str | None, excludes: tuple[str, ...],
              skip_non_designs: bool | None,
              use_cache: bool | None, cache_dir: str | None,
              stdin_filename: str | None) -> None:
@@ -83,7 +86,8 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
     [tool.furncheck] in the nearest pyproject.toml; the command line wins.
 
     Exit code 0: every design valid; 1: some design invalid; 2: some input could not be
-    read or is ill-formed (its entry in the report says why), or a usage error.
+    read or is ill-formed (its entry in the report says why), a usage error, or a Dask
+    cluster (--scheduler) that cannot be used.
     """
     from furncheck.batch import entries
     from furncheck.ignores import patterns
@@ -119,14 +123,19 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
     summary = Summary()
     progress = _progress_bar if output not in (None, "-") or not _is_terminal(sys.stdout) \
         else None
+    client = client_or_fail(scheduler)
     parts = reporter(fmt).document(
-        summary.add(entry) for entry in entries(sources, fmt, jobs, model, cache, progress))
+        summary.add(entry)
+        for entry in entries(sources, fmt, jobs, model, cache, progress, client))
     try:
         write_chunks(parts, output)
     except click.exceptions.Exit:
         raise
     except Exception as error:  # a reporter bug must not become a traceback
         fail(f"internal error while writing the {fmt} report: {type(error).__name__}: {error}")
+    finally:
+        if client is not None:
+            client.close()
     if cache is not None and cache.unwritable:
         click.echo(f"furncheck: results not cached: {cache.unwritable}", err=True)
     if views_dir is not None or html_file is not None:

@@ -52,14 +52,15 @@ TASKS_PER_WORKER = 4
 
 def entries(sources: Sequence[str | DesignReport], fmt: str, jobs: int,
             model: str | None = None, cache: ResultCache | None = None,
-            progress: Progress | None = None) -> Iterator[Entry]:
+            progress: Progress | None = None, client=None) -> Iterator[Entry]:
     """The entries of format ``fmt`` of ``sources`` (a path to check, or a report already
     made, such as an unreadable folder's), in order, as they are done; the paths checked in
     up to ``jobs`` processes (see the module docstring).
 
     With a ``cache`` (``furncheck.cache``): a path whose piece in ``fmt`` is stored gets
     it back as it is; one whose result is stored gets its piece made from it (and stored);
-    the others are checked, and their results and pieces stored.  ``progress(total)``
+    the others are checked, and their results and pieces stored: on the Dask cluster of
+    ``client`` when given (``furncheck.cluster``), else here.  ``progress(total)``
     (for the paths to check, when there are any) gives None or a context manager whose
     value has ``update(1)``, called as each is done (a click progress bar)."""
     paths = [source for source in sources if isinstance(source, str)]
@@ -68,7 +69,12 @@ def entries(sources: Sequence[str | DesignReport], fmt: str, jobs: int,
     to_check = [(path, key) for path, key, kind in zip(paths, keys, stored) if kind is None]
     bar = progress(len(to_check)) if progress is not None and to_check else None
     with bar if bar is not None else contextlib.nullcontext() as shown:
-        checked = _checked(to_check, fmt, jobs, model, cache)
+        if client is not None:
+            from furncheck.cluster import cluster_entries
+
+            checked = cluster_entries(client, to_check, fmt, model, cache)
+        else:
+            checked = _checked(to_check, fmt, jobs, model, cache)
         if shown is not None:
             checked = _advancing(checked, shown)
         path_index = 0

@@ -88,11 +88,23 @@ def code_fingerprint() -> str:
     for part in (__version__, sys.version, *_dependency_files(),
                  *(f"{name}={os.environ.get(name, '')}" for name in _THREAD_VARIABLES)):
         digest.update(part.encode() + b"\0")
+    _digest_sources(digest)
+    return digest.hexdigest()
+
+
+def source_fingerprint() -> str:
+    """A digest of furncheck's version and source alone (``furncheck.cluster`` compares a
+    cluster's workers with this process by it)."""
+    digest = hashlib.sha256(__version__.encode() + b"\0")
+    _digest_sources(digest)
+    return digest.hexdigest()
+
+
+def _digest_sources(digest) -> None:
     package = Path(__file__).resolve().parent
     for source in sorted(package.rglob("*.py")):
         digest.update(source.relative_to(package).as_posix().encode() + b"\0")
         digest.update(source.read_bytes() + b"\0")
-    return digest.hexdigest()
 
 
 def _dependency_files() -> list[str]:

@@ -152,27 +152,32 @@ def _drawing_checked(design: Design) -> Design:
 
 def check_file(path: str, model: str | None = None) -> DesignReport:
     """Load and validate one file (in ``model``, 'elastic' or 'rigid', when given: the
-    command line's ``--model`` over the file's); an unreadable or ill-formed file gives an
-    error report."""
+    command line's ``--model`` over the file's); an unreadable, ill-formed or too big
+    design gives an error report."""
     try:
-        design = with_model(load_checked(path), model)
-        geometry = analyze(design)
-        statics_model = build_model(design, geometry) if geometry.stands else None
-        refuse_too_big(design, statics_model, geometry)
-        return check_design(design, geometry, statics_model)
+        return _check_loaded(load_checked(path), model)
     except DesignError as error:        # unreadable, ill-formed or too big
         return DesignReport(design=path, name=Path(path).stem, valid=None, error=str(error))
 
 
-
 def check_data(data: bytes, source: str, fmt: str, model: str | None = None) -> DesignReport:
-    """``check_file`` of a document that comes from no file (standard input): its bytes,
-    the name that reports give it (``source``) and its format ('yaml' or 'json')."""
+    """``check_file`` of a document's bytes (standard input, or a file read by another
+    process: ``furncheck.cluster``): the name that reports give it (``source``) and its
+    format ('yaml' or 'json')."""
     from furncheck.design.load import parse_design_bytes
 
     try:
-        design = _drawing_checked(parse_design_bytes(data, source, fmt))
+        return _check_loaded(_drawing_checked(parse_design_bytes(data, source, fmt)), model)
     except DesignError as error:
         return DesignReport(design=source, name=Path(source).stem, valid=None,
                             error=str(error))
-    return check_design(with_model(design, model))
+
+
+def _check_loaded(design: Design, model: str | None) -> DesignReport:
+    """The report of a design read and checked against its schema: analysed, refused
+    when too big (``DesignTooBig``, a DesignError), else checked in ``model``."""
+    design = with_model(design, model)
+    geometry = analyze(design)
+    statics_model = build_model(design, geometry) if geometry.stands else None
+    refuse_too_big(design, statics_model, geometry)
+    return check_design(design, geometry, statics_model)

@@ -66,3 +66,9 @@ class DofError(FurncheckError):
         self.name = name
         self.message = message
         super().__init__(f"{name}: {message}")
+
+
+class ClusterError(FurncheckError):
+    """A Dask cluster (``--scheduler ADDRESS``) that cannot be used: Dask not installed,
+    the scheduler not reachable, no worker answering, or workers running other furncheck
+    code (their results could differ from a local run's)."""

@@ -76,9 +76,18 @@ def load_design(path: str) -> Design:
     Raises ``DesignError`` (file = ``path`` as given) for a missing, unreadable, binary,
     empty, oversized or ill-formed file.
     """
+    data, fmt = read_design_file(path)
+    return parse_design(_decode(data, path), path, fmt)
+
+
+def read_design_file(path: str) -> tuple[bytes, str]:
+    """The bytes of the design file at ``path`` and its format ('yaml' or 'json', from its
+    extension), not yet parsed (``parse_design_bytes`` does that, also elsewhere: a Dask
+    worker).  Raises ``DesignError`` as ``load_design`` does for a missing, unreadable,
+    special or oversized file or an unknown extension."""
     _check_regular_file(path)
     fmt = _format_of(path)
-    return parse_design(_decode(_read_bytes(path), path), path, fmt)
+    return _read_bytes(path), fmt
 
 
 def parse_design_bytes(data: bytes, source: str, fmt: str) -> Design:

@@ -71,6 +71,7 @@ class Evaluator:
         self.design = design
         self.geometry: Geometry = analyze(design)
         self.frame: Structure = structure(design, standing_geometry(self.geometry))
+        self.locked_names = tuple(locked)
         self.locked = tuple(parse_dof(design, name) for name in locked)
         self.model = build_model(design, self.geometry)     # shared by the design's own
         refuse_too_big(design, self.model)                  # checks

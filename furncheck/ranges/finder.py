@@ -132,10 +132,13 @@ class RangeFinder(Evaluator):
         self._changes: dict[Dof, tuple[tuple[int, ...], tuple[int, ...]]] = {}
 
     # -- public --------------------------------------------------------------------------------
-    def ranges(self, names: list[str] | None = None, jobs: int = 1) -> list[DofRange]:
+    def ranges(self, names: list[str] | None = None, jobs: int = 1,
+               client=None) -> list[DofRange]:
         """The ranges of the named DOFs (all when None), in order.  With ``jobs`` > 1 the
         DOFs are shared among that many worker processes; every DOF's search is independent
-        of the others, so the result is the same either way.
+        of the others, so the result is the same either way.  With a Dask ``client``
+        (``furncheck.cluster.connect``) every share of the DOFs, dealt out as for ``jobs``
+        workers (its threads), is searched on the cluster.
 
         One process is the default: the statics' small dense solves gain nothing from a
         multi-threaded BLAS, but its threads spin on the cores that the workers need
@@ -153,6 +156,8 @@ class RangeFinder(Evaluator):
         import in every worker)."""
         dofs = all_dofs(self.design) if names is None else \
             [parse_dof(self.design, name) for name in names]
+        if client is not None:
+            return self._ranges_on_cluster(dofs, client)
         if jobs > 1 and len(dofs) >= PARALLEL_MIN_DOFS:
             return self._ranges_shared(dofs, jobs)
         return self._ranges_together(dofs)
@@ -160,14 +165,30 @@ class RangeFinder(Evaluator):
     def range(self, dof: Dof) -> DofRange:
         return self._ranges_together([dof])[0]
 
+    def _ranges_on_cluster(self, dofs: list[Dof], client) -> list[DofRange]:
+        from furncheck.cluster import cluster_ranges, worker_threads
+
+        shares = _shares(dofs, worker_threads(client))
+        done = cluster_ranges(client, self.design, self.locked_names,
+                              [[dofs[n] for n in share] for share in shares])
+        found: list[DofRange | None] = [None] * len(dofs)
+        for share, (ranges, evaluations) in zip(shares, done):
+            self.evaluations += evaluations
+            for n, dof_range in zip(share, ranges):
+                found[n] = dof_range
+        return found
+
+    def search(self, dofs: list[Dof]) -> tuple[list[DofRange], int]:
+        """The ranges of ``dofs`` searched here, and the full checks they took."""
+        before = self.evaluations
+        found = self._ranges_together(dofs)
+        return found, self.evaluations - before
+
     def _ranges_shared(self, dofs: list[Dof], jobs: int) -> list[DofRange]:
-        """The ranges of ``dofs`` in shares: tasks of at most DOFS_PER_TASK DOFs, at least
-        two per worker, the DOFs of each kind dealt out in turn (DOFs of one kind are alike
-        in cost: rotations cost most).  The first two shares are searched here; the others
-        in worker processes when they are worth it (``ranges``), else here."""
-        count = min(len(dofs), max(2 * jobs, -(-len(dofs) // DOFS_PER_TASK)))
-        order = sorted(range(len(dofs)), key=lambda n: (DOF_KINDS.index(dofs[n].kind), n))
-        shares = [order[k::count] for k in range(count)]
+        """The ranges of ``dofs`` in shares (``_shares``).  The first two shares are
+        searched here; the others in worker processes when they are worth it
+        (``ranges``), else here."""
+        shares = _shares(dofs, jobs)
         found: list[DofRange | None] = [None] * len(dofs)
         pace = 0.0
         for share in shares[:2]:
@@ -609,10 +630,16 @@ _WORKER_FINDER: RangeFinder | None = None
 
 def _ranges_of(dofs: list[Dof]) -> tuple[list[DofRange], int]:
     """In a worker process: the ranges of ``dofs`` and the evaluations they took."""
-    finder = _WORKER_FINDER
-    before = finder.evaluations
-    found = finder._ranges_together(dofs)
-    return found, finder.evaluations - before
+    return _WORKER_FINDER.search(dofs)
+
+
+def _shares(dofs: list[Dof], workers: int) -> list[list[int]]:
+    """The indices of ``dofs`` in shares for ``workers``: tasks of at most DOFS_PER_TASK
+    DOFs, at least two per worker, the DOFs of each kind dealt out in turn (DOFs of one
+    kind are alike in cost: rotations cost most)."""
+    count = min(len(dofs), max(2 * workers, -(-len(dofs) // DOFS_PER_TASK)))
+    order = sorted(range(len(dofs)), key=lambda n: (DOF_KINDS.index(dofs[n].kind), n))
+    return [order[k::count] for k in range(count)]
 
 
 def dof_ranges(design: Design, names: list[str] | None = None,
