@@ -1,6 +1,6 @@
 """Benchmark: the pictures and meshes of ``suggest --out``, old version against new.
 
-Two tables, each row a median over rounds that alternate between the versions (the
+Three tables, each row a median over rounds that alternate between the versions (the
 machine's speed drifts, so both meet the same phases):
 
 * force-space plots: the time to draw and write one plot (``plot_force_space``, PNG)
@@ -8,9 +8,12 @@ machine's speed drifts, so both meet the same phases):
 * ``suggest --out``: on the 28-plank cabinet made invalid (its 30 kg on the cap becomes
   230 kg at the cap's front right corner, which overloads a joint: the kick board's with
   side_r in the rigid model, 8 suggestions; the cap's with slat_12 in the elastic one,
-  3 suggestions), what writing every suggestion's files adds to ``suggest`` alone,
+  4 suggestions), what writing every suggestion's files adds to ``suggest`` alone,
   measured in a fresh process, so it includes importing matplotlib (and, elastic, the
-  deflection solve of each view).
+  deflection solve of each view);
+* ``validate --html``: what the catalog's report page adds to ``validate designs/`` (this
+  version only, whole commands alternately, so imports and the designs' second check for
+  the page are included), per design.
 
 Each version runs in child processes with ``PYTHONPATH`` set to its source tree: this
 one, and with ``--old PATH`` a worktree of an earlier commit (its library only: the
@@ -129,6 +132,32 @@ def run_child(tree: Path, job: str, repeat: int, model: str = "rigid") -> dict:
     return json.loads(done.stdout)
 
 
+def html_costs(rounds: int) -> None:
+    """``validate designs/`` and ``validate designs/ --html FILE`` (this version, through
+    the installed command line, no cache), alternately in fresh processes: what the page
+    adds per design, medians of ``rounds`` runs each."""
+    designs = sorted(DESIGNS.rglob("*.yaml"))
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
+    times: dict[str, list[float]] = {"validate": [], "validate --html": []}
+    with tempfile.TemporaryDirectory() as folder:
+        page = Path(folder) / "catalog.html"
+        base = [sys.executable, "-m", "furncheck", "validate", str(DESIGNS), "--no-cache"]
+        for _ in range(rounds + 1):           # the first round writes bytecode: not counted
+            for name, command in (("validate", base),
+                                  ("validate --html", [*base, "--html", str(page)])):
+                start = time.perf_counter()
+                subprocess.run(command, env=env, cwd=folder, capture_output=True, check=False)
+                times[name].append(time.perf_counter() - start)
+        size = page.stat().st_size
+    alone, with_page = (statistics.median(times[name][1:]) for name in times)
+    print(f"\nvalidate --html on the catalog ({len(designs)} designs; median of {rounds})\n")
+    print("| validate alone (s) | with --html (s) | --html adds (s) | per design (ms) | "
+          "page (kB) |")
+    print("|---:|---:|---:|---:|---:|")
+    print(f"| {alone:.2f} | {with_page:.2f} | {with_page - alone:.2f} | "
+          f"{1000 * (with_page - alone) / len(designs):.1f} | {size / 1024:.0f} |")
+
+
 def main(old: Path | None, rounds: int, repeat: int) -> None:
     versions = {"new": ROOT} | ({"old": old} if old else {})
     plots: dict[str, list[dict]] = {name: [] for name in versions}
@@ -163,6 +192,7 @@ def main(old: Path | None, rounds: int, repeat: int) -> None:
         print(f"| {model} | {name} | {count} | {runs[0]['files']} | "
               f"{statistics.median(run['suggest'] for run in runs):.2f} | {out:.2f} | "
               f"{1000 * out / max(count, 1):.0f} |")
+    html_costs(rounds)
 
 
 if __name__ == "__main__":

@@ -129,11 +129,11 @@ def cluster_entries(client, items: list[tuple[str, str | None]], fmt: str,
 def _submit(client, task: list[tuple[str, str | None]], fmt: str, model: str | None,
             keep_reports: bool):
     """(task, per path its bytes and format or None, the future of the workers' part)."""
+    from furncheck.design.load import read_design_file
+
     documents = []
     for path, _ in task:
         try:
-            from furncheck.design.load import read_design_file
-
             documents.append((path, *read_design_file(path)))
         except DesignError:     # its error entry is made here (``_finished``)
             documents.append(None)

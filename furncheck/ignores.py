@@ -22,8 +22,10 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-import pathspec
+if TYPE_CHECKING:       # imported where patterns are read: a file named alone needs none
+    import pathspec
 
 GITIGNORE = ".gitignore"
 GIT_DIR = ".git"
@@ -64,11 +66,15 @@ class PatternFile:
                                                 for prefix in prefixes))]
         if len(kept) == len(self.spec.patterns):
             return self
+        import pathspec
+
         return PatternFile(self.base, pathspec.GitIgnoreSpec(kept), self.source)
 
 
 def patterns(lines: list[str] | tuple[str, ...], base: str, source: str) -> PatternFile:
     """Gitignore ``lines`` anchored at folder ``base``."""
+    import pathspec
+
     return PatternFile(os.path.abspath(base), pathspec.GitIgnoreSpec.from_lines(lines), source)
 
 

@@ -318,7 +318,16 @@ def ground_unknowns(model: StaticsModel) -> int:
     nodes = model.contact_node
     if model.rest_node is not None:
         nodes = np.concatenate([nodes, model.rest_node[model.rest_rows]])
-    return 6 * len(np.unique(nodes))
+    return 6 * len(_distinct(nodes))
+
+
+def _distinct(values: np.ndarray) -> np.ndarray:
+    """``np.unique(values)`` (sorted, each once) without numpy 2's test for a masked
+    array, which imports numpy.ma: 12 ms of a small design's cold start."""
+    ordered = np.sort(values)
+    if len(ordered) < 2:
+        return ordered
+    return ordered[np.concatenate(([True], ordered[1:] != ordered[:-1]))]
 
 
 def _condense(model: StaticsModel) -> _Condensed | None:
@@ -330,7 +339,7 @@ def _condense(model: StaticsModel) -> _Condensed | None:
     n, m = model.n_dof, 6 * len(model.joints)
     grounded, contact_block = np.unique(model.contact_node, return_inverse=True)
     if model.rest_node is not None:     # the nodes that resting corners rest on, too
-        grounded = np.unique(np.concatenate([model.contact_node,
+        grounded = _distinct(np.concatenate([model.contact_node,
                                              model.rest_node[model.rest_rows]]))
         contact_block = np.searchsorted(grounded, model.contact_node)
     ground = (6 * grounded[:, None] + _SIX[None, :]).ravel()
