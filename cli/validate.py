@@ -139,19 +139,25 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
     if cache is not None and cache.unwritable:
         click.echo(f"furncheck: results not cached: {cache.unwritable}", err=True)
     if views_dir is not None or html_file is not None:
-        _pictures(sources, model, views_dir, html_file)
+        _pictures(sources, model, views_dir, html_file, cache)
     click.get_current_context().exit(summary.return_code)
 
 
 def _pictures(sources: list, model: str | None, views_dir: str | None,
-              html_file: str | None) -> None:
+              html_file: str | None, cache=None) -> None:
     """``--views DIR`` and ``--html FILE``: each design's report again (the report
-    written above keeps only its text: the designs are checked once more here) and the
-    pictures and page drawn from them."""
+    written above keeps only its text: with the result cache, the results the run just
+    stored are read back, else the designs are checked once more here) and the pictures
+    and page drawn from them."""
     from furncheck.batch import check_one
     from furncheck.export.catalog import write_catalog_page, write_catalog_views
 
-    reports = [source if isinstance(source, DesignReport) else check_one(source, model)
+    def report_of(path: str) -> DesignReport:
+        key = cache.key_of(path) if cache is not None else None
+        stored = cache.get(key, path) if key is not None else None
+        return stored if stored is not None else check_one(path, model)
+
+    reports = [source if isinstance(source, DesignReport) else report_of(source)
                for source in sources]
     if views_dir is not None:
         try:

@@ -248,3 +248,19 @@ def test_a_warm_run_prints_what_the_cold_run_printed_and_loads_no_numpy(tmp_path
     assert cold.stderr.split() == ["True", "1"]
     assert warm.stderr.split() == ["False", "1"]
     assert warm.stdout == cold.stdout
+
+
+def test_the_report_page_reads_the_results_the_run_stored(tmp_path, monkeypatch):
+    """``validate --html`` draws its page from the results the run just cached (the
+    streamed report keeps only its text): with a warm cache nothing is checked at all, and
+    the page is byte-identical to one drawn from fresh checks (``--no-cache``)."""
+    designs = [str(Path(__file__).resolve().parents[1] / "designs" / name)
+               for name in ("stool.yaml", "table-slides.yaml", "shelf-cantilever.yaml")]
+    fresh, cold, warm = (tmp_path / f"{name}.html" for name in ("fresh", "cold", "warm"))
+    cache_dir = str(tmp_path / "cache")
+    assert run("validate", *designs, "--no-cache", "--html", str(fresh)).exit_code == 1
+    assert run("validate", *designs, "--cache-dir", cache_dir, "--html", str(cold)).exit_code == 1
+    monkeypatch.setattr("furncheck.batch.check_one",
+                        lambda *_: pytest.fail("a design was checked again"))
+    assert run("validate", *designs, "--cache-dir", cache_dir, "--html", str(warm)).exit_code == 1
+    assert fresh.read_bytes() == cold.read_bytes() == warm.read_bytes()
