@@ -127,13 +127,20 @@ def test_suggestion_page_embeds_models_and_edits(tmp_path):
     document = {"design": entry.report.design, "valid": False, "suggestions": [
         {"rank": 1, "kind": "continuous", "restores": ["stability"], "dofs": ["leg_r.x"],
          "advice": "Move leg_r 255 mm away from leg_l.", "design_file": "s-01.yaml",
-         "edits": [{"plank": "leg_r", "edit": "change", "fields": {"x": [300.0, 555.0]}}]}]}
+         "edits": [{"plank": "leg_r", "edit": "change", "fields": {"x": [300.0, 555.0]}},
+                   {"plank": "foot-1", "edit": "add", "fields": {
+                       "length": [None, 400.0], "width": [None, 72.0],
+                       "thickness": [None, 12.0], "x": [None, 555.0], "y": [None, 0.0],
+                       "z": [None, 6.0], "rx": [None, 0.0], "ry": [None, 0.0],
+                       "rz": [None, 90.0]}}]}]}
     page = suggestion_page(document, PageDesign(entry.report, entry.design, glb),
                            {1: PageDesign(entry.report, entry.design, glb, ("s-01.png",))})
     assert page.count("data:model/gltf-binary;base64,") == 2
     assert "customElements" in page.split("<body>")[0]       # the viewer, inlined
     assert "Move leg_r 255 mm away from leg_l." in page
-    assert "<td>leg_r</td><td>change</td><td>x</td><td>300.0</td><td>555.0</td>" in page
+    assert "<td>leg_r</td><td>change</td><td>x</td><td>300</td><td>555</td>" in page
+    assert ("<td>foot-1</td><td>add</td><td>new plank</td><td></td><td>400 x 72 x 12, "
+            "centred at (555, 0, 6), turned (0, 0, 90) degrees</td>") in page
     assert 'src="s-01.png"' in page
     assert not _RESOURCE.search(page)
 

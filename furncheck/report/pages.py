@@ -276,17 +276,51 @@ def suggestion_page(document: dict[str, Any], original: PageDesign,
 
 def _edits_table(edits: list[dict[str, Any]] | None) -> str:
     """A cut list of the suggestion's ``edits`` (the suggest JSON's: plank, edit 'change',
-    'add' or 'remove', and per field [from, to] in the file's units)."""
+    'add' or 'remove', and per field [from, to] in the file's units): a row per changed
+    field, one row per added plank (its size, centre and turn, as the text report words
+    it)."""
     if not edits:
         return ""
     rows = []
     for edit in edits:
         plank, kind = escape(str(edit.get("plank", ""))), escape(str(edit.get("edit", "")))
-        for field, values in (edit.get("fields") or {}).items():
+        fields = edit.get("fields") or {}
+        if edit.get("edit") == "add":
+            rows.append(f"<tr><td>{plank}</td><td>{kind}</td><td>new plank</td><td></td>"
+                        f"<td>{escape(_new_plank(fields))}</td></tr>")
+            continue
+        for field, values in fields.items():
             before, after = values if isinstance(values, list | tuple) and len(values) == 2 \
                 else (None, values)
             rows.append(f"<tr><td>{plank}</td><td>{kind}</td><td>{escape(str(field))}</td>"
-                        f"<td>{escape(json.dumps(before))}</td>"
-                        f"<td>{escape(json.dumps(after))}</td></tr>")
+                        f"<td>{escape(_shown(before))}</td>"
+                        f"<td>{escape(_shown(after))}</td></tr>")
     return ("<table><thead><tr><th>plank</th><th>edit</th><th>what</th><th>from</th>"
             "<th>to</th></tr></thead><tbody>" + "".join(rows) + "</tbody></table>")
+
+
+def _new_plank(fields: dict[str, Any]) -> str:
+    """'length x width x thickness, centred at (x, y, z), turned (rx, ry, rz) degrees' of
+    an added plank's fields (each [None, value]); the turn left out when there is none."""
+    def value(name: str):
+        values = fields.get(name)
+        return values[-1] if isinstance(values, list | tuple) and values else values
+
+    def listed(names: tuple[str, ...], separator: str) -> str:
+        return separator.join(_shown(value(name)) for name in names)
+
+    text = (f"{listed(('length', 'width', 'thickness'), ' x ')}, centred at "
+            f"({listed(('x', 'y', 'z'), ', ')})")
+    turn = [value(name) for name in ("rx", "ry", "rz")]
+    if any(isinstance(angle, int | float) and angle for angle in turn):
+        text += f", turned ({listed(('rx', 'ry', 'rz'), ', ')}) degrees"
+    return text
+
+
+def _shown(value: Any) -> str:
+    """A cut-list value as the reports write numbers ('' for none)."""
+    if value is None:
+        return ""
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return json.dumps(value)
+    return format_number(float(value))
