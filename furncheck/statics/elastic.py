@@ -224,6 +224,8 @@ def build_elastic_model(design: Design, geometry: Geometry,
     ``template``: a model of the same design before a small edit (the same joints,
     contacts and loads): its nodes are kept, each at the new place of what it serves, so
     that the two models' unknowns correspond (the force sensitivity differences them)."""
+    if template is not None and "attachments" in template.plank_cache:
+        return _built_on(design, geometry, template)
     material = design.material
     planks_used, joints, contacts, components = grounded_parts(design, geometry)
     local = {plank: k for k, plank in enumerate(planks_used)}
@@ -282,6 +284,7 @@ def build_elastic_model(design: Design, geometry: Geometry,
     beams = _beams(plank_list, frames, node_plank, node_s, halves,
                    [design.material_of(p) for p in plank_list], origins, crosswise)
 
+    weights = _read_only(_weights_per_length(design, plank_list, beams))
     n_sides = 2 * len(joints)
     joint_nodes = layout.row_node[:n_sides].reshape(-1, 2)
     points = np.array([geometry.joints[j].point for j in joints], dtype=float).reshape(-1, 3)
@@ -322,16 +325,103 @@ def build_elastic_model(design: Design, geometry: Geometry,
         contact_stiffness=tol.ELASTIC_CONTACT_STIFFNESS,
         anchor_stiffness=tol.ANCHOR_STIFFNESS,
         beams=beams,
-        nodal_weight=_nodal_loads(beams, _weights_per_length(design, plank_list, beams),
-                                  len(node_plank)),
+        nodal_weight=_nodal_loads(beams, weights, len(node_plank)),
         load_nodes=load_nodes)
     model.plank_cache["node_layout"] = layout
+    model.plank_cache["weights_per_length"] = weights
+    model.plank_cache["attachments"] = _Attachments(
+        owner_array, tuple(key[1] for key in keys if key[0] == "rest"),
+        tuple(key[1:] for key in keys if key[0] == "load"))
     if template is not None:        # the same joints and contacts: the same topology
         assert template.joints == model.joints and template.contacts == model.contacts
         for key in TOPOLOGY_CACHE:
             if key in template.plank_cache:
                 model.plank_cache[key] = template.plank_cache[key]
     return model
+
+
+@dataclass(frozen=True)
+class _Attachments:
+    """What a model built on a template (``_built_on``) takes over of how the template's
+    attachments were listed: each row's local plank (joints' two sides, contacts, resting
+    corners' other planks, loads at a point), the contact rows of the resting corners and
+    the (case, load) numbers of the loads, in that order."""
+
+    owners: np.ndarray
+    rest_rows: tuple[int, ...]
+    loads: tuple[tuple[int, int], ...]
+
+
+def _built_on(design: Design, geometry: Geometry, template: StaticsModel) -> StaticsModel:
+    """``build_elastic_model(design, geometry, template)``: the same model, with what
+    depends only on which joints, contacts and loads there are (the grounded parts, the
+    attachments' owners and nodes, the loads' nodes, the contacts' components and resting
+    corners) taken from the template instead of listed again; every number that depends
+    on where things are is computed as there."""
+    material = design.material
+    planks_used, joints, contacts = template.planks, list(template.joints), \
+        list(template.contacts)
+    attachments: _Attachments = template.plank_cache["attachments"]
+    plank_list = [design.planks[i] for i in planks_used]
+    crosswise = template.beams.crosswise
+    frames = [beam_frame(p, c) for p, c in zip(plank_list, crosswise)]
+    halves = np.array([0.5 * beam_length_width(p, c)[0]
+                       for p, c in zip(plank_list, crosswise)])
+    joint_points = [geometry.joints[j].point for j in joints]
+    contact_points = [geometry.contacts[c].point for c in contacts]
+    points = [point for point in joint_points for _ in (0, 1)] + contact_points \
+        + [contact_points[row] for row in attachments.rest_rows] \
+        + [design.load_cases[ci].loads[li].point for ci, li in attachments.loads]
+    centres = np.array([p.center_array for p in plank_list], dtype=float).reshape(-1, 3)
+    axes = np.array([frame[:, 0] for frame in frames], dtype=float).reshape(-1, 3)
+    owner_array = attachments.owners
+    along = ((np.array(points, dtype=float).reshape(-1, 3) - centres[owner_array])
+             * axes[owner_array]).sum(axis=1)
+    layout = template.plank_cache["node_layout"]
+    node_plank = layout.node_plank
+    node_s = layout.positions(along, halves)
+    node_points = (centres[node_plank] + node_s[:, None] * axes[node_plank]).reshape(-1, 3)
+    beams = _beams(plank_list, frames, node_plank, node_s, halves,
+                   [design.material_of(p) for p in plank_list], template.beams.origins,
+                   crosswise)
+    weights = _read_only(_weights_per_length(design, plank_list, beams))
+    joint_nodes = template.joint_nodes
+    joint_blocks = joint_deviation_blocks(
+        np.array(joint_points, dtype=float).reshape(-1, 3), node_points[joint_nodes])
+    stiffness = nail_row_springs([geometry.joints[j] for j in joints], material.nail_slip,
+                                 material.nail_withdrawal)
+    contact_points = np.array(contact_points, dtype=float).reshape(-1, 3)
+    contact_node = template.contact_node
+    frames = contact_frames(design, geometry, contacts)
+    rest_node = template.rest_node
+    model = StaticsModel(
+        design=design, geometry=geometry, planks=template.planks, joints=template.joints,
+        contacts=template.contacts, node_plank=node_plank, node_points=node_points,
+        joint_nodes=joint_nodes, joint_blocks=joint_blocks, joint_stiffness=stiffness,
+        contact_maps=in_contact_frames(
+            point_maps(contact_points - node_points[contact_node].reshape(-1, 3)), frames),
+        contact_frames=frames, contact_anchored=anchored_contacts(geometry, contacts),
+        rest_node=rest_node,
+        rest_maps=rest_maps(rest_node, contact_points, node_points, frames),
+        contact_node=contact_node, contact_plank=template.contact_plank,
+        contact_points=contact_points, contact_component=template.contact_component,
+        components=template.components, friction=material.friction,
+        contact_stiffness=tol.ELASTIC_CONTACT_STIFFNESS,
+        anchor_stiffness=tol.ANCHOR_STIFFNESS,
+        beams=beams,
+        nodal_weight=_nodal_loads(beams, weights, len(node_plank)),
+        load_nodes=template.load_nodes)
+    for key in ("node_layout", "attachments", *TOPOLOGY_CACHE):
+        if key in template.plank_cache:
+            model.plank_cache[key] = template.plank_cache[key]
+    model.plank_cache["weights_per_length"] = weights
+    return model
+
+
+def _read_only(array: np.ndarray) -> np.ndarray:
+    """The array, marked read-only (kept in ``StaticsModel.plank_cache`` and shared)."""
+    array.flags.writeable = False
+    return array
 
 
 def _beams(planks: list[Plank], frames: list[np.ndarray], node_plank: np.ndarray,
@@ -443,13 +533,25 @@ def _nodal_loads(beams: Beams, loads: np.ndarray, n_nodes: int) -> np.ndarray:
 
 def case_line_loads(model: StaticsModel, case: LoadCase) -> np.ndarray:
     """(nE, 3) N/m: self-weight and the case's spread loads along each element."""
-    plank_list = [model.design.planks[i] for i in model.planks]
-    return _weights_per_length(model.design, plank_list, model.beams) \
-        + _spread_line_loads(model, case)
+    weights = model.plank_cache.get("weights_per_length")
+    if weights is None:
+        plank_list = [model.design.planks[i] for i in model.planks]
+        weights = _weights_per_length(model.design, plank_list, model.beams)
+    return weights + _spread_line_loads(model, case)
 
 
 def _spread_line_loads(model: StaticsModel, case: LoadCase) -> np.ndarray:
-    """(nE, 3) N/m: the case's spread loads, each along its plank's whole beam."""
+    """(nE, 3) N/m: the case's spread loads, each along its plank's whole beam (kept per
+    model and case, read-only: the forces and the planks' results both read them)."""
+    kept = model.plank_cache.get(("spread", id(case)))
+    if kept is not None and kept[0] is case:
+        return kept[1]
+    loads = _read_only(_spread_line_loads_of(model, case))
+    model.plank_cache[("spread", id(case))] = (case, loads)
+    return loads
+
+
+def _spread_line_loads_of(model: StaticsModel, case: LoadCase) -> np.ndarray:
     beams, local = model.beams, model.local_planks
     loads = np.zeros((len(beams.plank), 3))
     for load in case.loads:
