@@ -148,7 +148,7 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
     of each stepped model only what its planks' rates read is kept (``bending.plank_part``:
     with ``planks``, a cut of those planks, so the stepped models themselves are let go)."""
     from furncheck.statics.bending import plank_part
-    from furncheck.statics.elastic import build_elastic_model
+    from furncheck.statics.elastic import build_elastic_models
 
     n = model.n_dof
     q, h = state[:n], state[n:]
@@ -160,9 +160,15 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
         out.rest_maps = np.zeros((n_dofs, *model.rest_maps.shape))
     geometry = model.geometry
     unchanged = {}                  # case name -> b - A x of the model itself, its part
-    for side in sides:
+    own = [side.design is model.design and _followed_as_is(geometry, side) for side in sides]
+    stepped_geometries = [_stepped_geometry(geometry, side)
+                          for side, itself in zip(sides, own) if not itself]
+    built = (build_elastic_models([side.design for side, itself in zip(sides, own)
+                                       if not itself], stepped_geometries, model))
+    stepped_geometries = iter(stepped_geometries)
+    for side, itself in zip(sides, own):
         case = next(c for c in side.design.load_cases if c.name == case_name)
-        if side.design is model.design and _followed_as_is(geometry, side):
+        if itself:
             # the design itself (the base of a one-sided difference): its model is
             # ``model`` (built on itself, a template gives the same model bit for bit)
             stepped, stepped_geometry = model, geometry
@@ -170,17 +176,8 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
                 unchanged[case.name] = (_residual(model, case, q, h, law),
                                         plank_part(model, case, law.holding, planks))
             residual, part = unchanged[case.name]
-        else:
-            joints = list(geometry.joints)
-            for j, joint in zip(side.joints, side.followed_joints):
-                nails = geometry.joints[j].nails                         # nails held
-                joints[j] = joint if joint.nails == nails else replace(joint, nails=nails)
-            contacts = list(geometry.contacts)
-            for k, contact in zip(side.contacts, side.followed_contacts):
-                contacts[k] = contact
-            stepped_geometry = replace(geometry, joints=tuple(joints),
-                                       contacts=tuple(contacts))
-            stepped = build_elastic_model(side.design, stepped_geometry, template=model)
+        else:       # each stepped model is let go once its residual and part are made
+            stepped, stepped_geometry = next(built), next(stepped_geometries)
             residual = _residual(stepped, case, q, h, law)
             part = plank_part(stepped, case, law.holding, planks)
         out.residual[:, side.column] += side.weight * residual
@@ -191,6 +188,19 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
             [stepped_geometry.joints[j].length for j in model.joints])
         out.sides.append((side.column, side.weight, side.offset, part, case))
     return out
+
+
+def _stepped_geometry(geometry, side: AssemblySide):
+    """The geometry with the side's joints and contacts followed (each joint keeping the
+    nails it has)."""
+    joints = list(geometry.joints)
+    for j, joint in zip(side.joints, side.followed_joints):
+        nails = geometry.joints[j].nails                         # nails held
+        joints[j] = joint if joint.nails == nails else replace(joint, nails=nails)
+    contacts = list(geometry.contacts)
+    for k, contact in zip(side.contacts, side.followed_contacts):
+        contacts[k] = contact
+    return replace(geometry, joints=tuple(joints), contacts=tuple(contacts))
 
 
 def _followed_as_is(geometry, side: AssemblySide) -> bool:
