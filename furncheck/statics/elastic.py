@@ -372,16 +372,23 @@ def build_elastic_models(designs: list[Design], geometries: list[Geometry],
     numbers depends on its own element, joint or contact alone, so batching changes none
     of them, only how many array operations make them.  A generator: only one batch of
     models is kept at a time."""
+    for batch in build_elastic_model_batches(designs, geometries, template):
+        yield from batch
+
+
+def build_elastic_model_batches(designs: list[Design], geometries: list[Geometry],
+                                template: StaticsModel) -> Iterator[list[StaticsModel]]:
+    """``build_elastic_models`` a batch (a list of models, in order) at a time."""
     if "attachments" not in template.plank_cache:
         for design, geometry in zip(designs, geometries):
-            yield build_elastic_model(design, geometry, template=template)
+            yield [build_elastic_model(design, geometry, template=template)]
         return
     per_batch = max(1, BATCH_ELEMENTS // max(len(template.beams.length), 1))
     for start in range(0, len(designs), per_batch):
         placed = [_placed_on(d, g, template)
                   for d, g in zip(designs[start:start + per_batch],
                                   geometries[start:start + per_batch])]
-        yield from _finished_on(placed, template)
+        yield _finished_on(placed, template)
 
 
 BATCH_ELEMENTS = 16384
