@@ -12,7 +12,7 @@ from furncheck.design.model import with_model
 from furncheck.errors import DesignError, DesignTooBig
 from furncheck.geometry import Geometry, analyze
 from furncheck.result import NOT_SOLVED, CaseResult, DesignReport
-from furncheck.statics import StaticsModel, build_model, solve_load_case
+from furncheck.statics import CaseStatics, StaticsModel, build_model, solve_load_case
 from furncheck.validity import (
     anchor_utilization,
     case_holds,
@@ -24,9 +24,11 @@ from furncheck.validity import (
 
 
 def check_design(design: Design, geometry: Geometry | None = None,
-                 model: StaticsModel | None = None) -> DesignReport:
+                 model: StaticsModel | None = None,
+                 solved: dict[str, CaseStatics] | None = None) -> DesignReport:
     """Validate a loaded design in every load case (``geometry``, ``model``: its analysis
-    and statics model, if the caller already has them).
+    and statics model, if the caller already has them; ``solved``: a dict that gets each
+    case's ``CaseStatics`` by case name, for a caller that goes on with them).
 
     A design that does not stand as drawn (a group of planks reaching the ground nowhere,
     or a joint or ground contact missed narrowly: ``Geometry.stands``) gets its geometric
@@ -45,6 +47,8 @@ def check_design(design: Design, geometry: Geometry | None = None,
     cases = []
     for case in design.load_cases:
         statics = solve_load_case(model, case)
+        if solved is not None:
+            solved[case.name] = statics
         result, case_violations = evaluate_case(design, geometry, model, case, statics)
         cases.append(result)
         violations.extend(case_violations)

@@ -29,6 +29,7 @@ from furncheck.design.model import Design, LoadCase
 from furncheck.dofs import Blocked, Dof, OutOfReach, Structure, apply_dof, design_size, structure
 from furncheck.geometry import Contact, Geometry, Joint, analyze, follow_many
 from furncheck.statics import (
+    CaseStatics,
     StaticsModel,
     build_model,
     external_forces,
@@ -72,14 +73,15 @@ class Linearization:
     def __init__(self, design: Design, case: LoadCase, geometry: Geometry | None = None,
                  frame: Structure | None = None, shared: dict | None = None,
                  bolted: bool = False, one_sided: bool = False,
-                 model: StaticsModel | None = None):
+                 model: StaticsModel | None = None, statics: CaseStatics | None = None):
         """``bolted``: a case without a solved equilibrium (it lifts off or slides, or its
         forces came from the feasibility program) is linearized as if every contact were
         held -- the state whose pulling contacts say how far it is from standing.
         ``one_sided``: forward differences of the assembly (+h and the design itself),
         half the work and accurate to ~h (1e-4 relative): enough to choose directions.
         ``model``: the design's statics model, if the caller has it (shared by the load
-        cases: its factorizations are made once)."""
+        cases: its factorizations are made once); ``statics``: the case solved on that
+        model (``solve_load_case``), if the caller has it."""
         self.one_sided = one_sided
         self.shared = {} if shared is None else shared   # edited models, across load cases
         self.design = design
@@ -88,7 +90,8 @@ class Linearization:
         self.frame = frame or structure(design, self.geometry)
         self.model = model or build_model(design, self.geometry)
         f = external_forces(self.model, case)
-        self.statics = solve_load_case(self.model, case)
+        self.statics = statics if statics is not None and model is not None \
+            else solve_load_case(self.model, case)
         self.bolted = self.statics.stability != "stable" or self.statics.state is None
         if not self.bolted:
             self.holding = self.statics.holding

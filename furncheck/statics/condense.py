@@ -192,12 +192,9 @@ def _condense_beams(model: StaticsModel, ground: np.ndarray,
     definite on the nodes that are not grounded), K_ii factored by one sparse LU (half the
     unknowns of the mixed system, and no indefinite joint rows to pivot on); None if K_ii
     is singular."""
-    import scipy.sparse as sp
-
     n, m = model.n_dof, 6 * len(model.joints)
     G = model.G
-    W = sp.block_diag(list(model.joint_stiffness), format="csr") if len(model.joints) \
-        else sp.csr_matrix((0, 0))
+    W = _block_diagonal(model.joint_stiffness)
     K = (model.beam_stiffness + (G.T @ W @ G)).tocsc()
     inner = _others(n, ground)
     coupling_sparse = K[inner][:, ground]
@@ -225,6 +222,20 @@ def _condense_beams(model: StaticsModel, ground: np.ndarray,
     schur = K[ground][:, ground].toarray() - coupling.T @ reduced
     return _PlankCondensation(ground, inner, coupling, reduced, schur, contact_block,
                               plank_offsets, n + m, model=weakref.proxy(model), lu=lu)
+
+
+def _block_diagonal(blocks: np.ndarray):
+    """(6 nJ, 6 nJ) CSR matrix of the (nJ, 6, 6) blocks on its diagonal, every entry of
+    a block stored (zeros too): the matrix ``scipy.sparse.block_diag(list(blocks),
+    format="csr")`` gives, entry for entry and in the same order, made without a sparse
+    matrix per block."""
+    import scipy.sparse as sp
+
+    size = 6 * len(blocks)
+    columns = (6 * (np.arange(size, dtype=np.int32)[:, None] // 6) + _SIX[None, :]) \
+        .astype(np.int32).ravel()
+    pointers = np.arange(0, 6 * size + 1, 6, dtype=np.int32)
+    return sp.csr_matrix((blocks.reshape(-1).copy(), columns, pointers), shape=(size, size))
 
 
 def _implicit(n_inner: int, n_ground: int) -> bool:

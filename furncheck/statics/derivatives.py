@@ -26,7 +26,7 @@ from furncheck import tolerances as tol
 from furncheck.design.model import Design
 from furncheck.geometry import Contact, Joint
 from furncheck.statics.contact_law import ContactLaw
-from furncheck.statics.model import StaticsModel, external_forces, point_maps
+from furncheck.statics.model import StaticsModel, block_sums, external_forces, point_maps
 from furncheck.tolerances import GRAVITY
 
 
@@ -148,7 +148,6 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
     of each stepped model only what its planks' rates read is kept (``bending.plank_part``:
     with ``planks``, a cut of those planks, so the stepped models themselves are let go)."""
     from furncheck.statics.bending import plank_part
-    from furncheck.statics.elastic import build_elastic_model
 
     n = model.n_dof
     q, h = state[:n], state[n:]
@@ -160,9 +159,12 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
         out.rest_maps = np.zeros((n_dofs, *model.rest_maps.shape))
     geometry = model.geometry
     unchanged = {}                  # case name -> b - A x of the model itself, its part
-    for side in sides:
+    own = [side.design is model.design and _followed_as_is(geometry, side) for side in sides]
+    built = _stepped_models(model, [side for side, itself in zip(sides, own) if not itself],
+                            case_name, q, h, law)
+    for side, itself in zip(sides, own):
         case = next(c for c in side.design.load_cases if c.name == case_name)
-        if side.design is model.design and _followed_as_is(geometry, side):
+        if itself:
             # the design itself (the base of a one-sided difference): its model is
             # ``model`` (built on itself, a template gives the same model bit for bit)
             stepped, stepped_geometry = model, geometry
@@ -170,18 +172,8 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
                 unchanged[case.name] = (_residual(model, case, q, h, law),
                                         plank_part(model, case, law.holding, planks))
             residual, part = unchanged[case.name]
-        else:
-            joints = list(geometry.joints)
-            for j, joint in zip(side.joints, side.followed_joints):
-                nails = geometry.joints[j].nails                         # nails held
-                joints[j] = joint if joint.nails == nails else replace(joint, nails=nails)
-            contacts = list(geometry.contacts)
-            for k, contact in zip(side.contacts, side.followed_contacts):
-                contacts[k] = contact
-            stepped_geometry = replace(geometry, joints=tuple(joints),
-                                       contacts=tuple(contacts))
-            stepped = build_elastic_model(side.design, stepped_geometry, template=model)
-            residual = _residual(stepped, case, q, h, law)
+        else:       # each stepped model is let go once its residual and part are made
+            stepped, stepped_geometry, residual = next(built)
             part = plank_part(stepped, case, law.holding, planks)
         out.residual[:, side.column] += side.weight * residual
         out.maps[side.column] += side.weight * stepped.contact_maps
@@ -191,6 +183,85 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
             [stepped_geometry.joints[j].length for j in model.joints])
         out.sides.append((side.column, side.weight, side.offset, part, case))
     return out
+
+
+def _stepped_models(model: StaticsModel, sides: list[AssemblySide], case_name: str,
+                    q: np.ndarray, h: np.ndarray, law: ContactLaw):
+    """(stepped model, its geometry, its b - A x) of each side in order, the models built
+    on ``model`` a batch at a time (``elastic.build_elastic_model_batches``) and each
+    batch's residuals computed together (``_residuals``)."""
+    from furncheck.statics.elastic import build_elastic_model_batches
+
+    geometries = [_stepped_geometry(model.geometry, side) for side in sides]
+    done = 0
+    for batch in build_elastic_model_batches([side.design for side in sides], geometries,
+                                             model):
+        cases = [next(c for c in side.design.load_cases if c.name == case_name)
+                 for side in sides[done:done + len(batch)]]
+        yield from zip(batch, geometries[done:done + len(batch)],
+                       _residuals(batch, cases, q, h, law))
+        done += len(batch)
+
+
+def _residuals(models: list[StaticsModel], cases: list, q: np.ndarray, h: np.ndarray,
+               law: ContactLaw) -> list[np.ndarray]:
+    """``_residual`` of several models of one topology (built on one template) at the same
+    q and h: each contact's, element's and joint's terms computed for all the models in
+    one pass, and summed at each model's nodes in the same order as ``_residual`` does,
+    so the numbers are its own.  One model at a time where resting corners are."""
+    first = models[0]
+    if len(models) == 1 or first.rest_node is not None or not len(first.joints) \
+            or not len(first.contacts):
+        return [_residual(m, c, q, h, law) for m, c in zip(models, cases)]
+    count, n_nodes = len(models), first.n_nodes
+    nodes_q = q[:first.n_dof].reshape(-1, 6)
+    maps = np.concatenate([m.contact_maps for m in models])                   # (S nK, 3, 6)
+    contact_q = np.tile(nodes_q[first.contact_node], (count, 1))
+    w = (maps @ contact_q[:, :, None])[:, :, 0]
+    forces = law.forces(w, np.tile(np.arange(len(first.contacts)), count))
+    per_contact = (np.transpose(maps, (0, 2, 1)) @ forces[:, :, None])[:, :, 0]
+    generalized = _summed(first.contact_node, per_contact, n_nodes, count)
+    beams = first.beams
+    u = np.tile(nodes_q[beams.nodes].reshape(-1, 4, 3), (count, 1, 1))
+    frames = np.concatenate([m.beams.frames for m in models])
+    stiffness = np.concatenate([m.beams.local_stiffness for m in models])
+    local = np.einsum("eab,eb->ea", stiffness, (u @ frames).reshape(-1, 12))
+    world = local.reshape(-1, 4, 3) @ np.transpose(frames, (0, 2, 1))
+    beam = _summed(beams.nodes.ravel(), world.reshape(-1, 6), n_nodes, count)
+    wrench = np.tile(h.reshape(-1, 6), (count, 1))
+    per_joint = np.einsum("jsab,ja...->jsb...", np.concatenate([m.joint_blocks for m in models]),
+                          wrench)
+    reactions = _summed(first.joint_nodes.ravel(), per_joint.reshape(-1, 6), n_nodes, count)
+    top = beam + reactions - generalized                                       # (S, 6 nN)
+    compliance = (np.concatenate([m.joint_compliance for m in models])
+                  @ wrench.reshape(-1, 6, 1)).reshape(count, -1)
+    columns = np.tile(nodes_q[first.joint_nodes].reshape(len(first.joints), 12, 1),
+                      (count, 1, 1))
+    deviations = (np.concatenate([m.joint_rows for m in models]) @ columns).reshape(count, -1)
+    bottom = deviations - compliance
+    return [np.concatenate([external_forces(m, c) - top[k], -bottom[k]])
+            for k, (m, c) in enumerate(zip(models, cases))]
+
+
+def _summed(index: np.ndarray, values: np.ndarray, n_nodes: int, count: int) -> np.ndarray:
+    """(count, 6 nN): ``model.block_sums`` of each model's rows of ``values`` (count x
+    len(index), 6) by ``index``, each model's nodes numbered after the previous one's (a
+    node's terms are summed in the same order as one model at a time)."""
+    shifted = (np.asarray(index)[None, :] + n_nodes * np.arange(count)[:, None]).ravel()
+    return block_sums(shifted, values, count * n_nodes).reshape(count, -1)
+
+
+def _stepped_geometry(geometry, side: AssemblySide):
+    """The geometry with the side's joints and contacts followed (each joint keeping the
+    nails it has)."""
+    joints = list(geometry.joints)
+    for j, joint in zip(side.joints, side.followed_joints):
+        nails = geometry.joints[j].nails                         # nails held
+        joints[j] = joint if joint.nails == nails else replace(joint, nails=nails)
+    contacts = list(geometry.contacts)
+    for k, contact in zip(side.contacts, side.followed_contacts):
+        contacts[k] = contact
+    return replace(geometry, joints=tuple(joints), contacts=tuple(contacts))
 
 
 def _followed_as_is(geometry, side: AssemblySide) -> bool:

@@ -58,6 +58,36 @@ class _ContactSpace:
     """
 
     def __init__(self, model: StaticsModel, active: np.ndarray):
+        key = active.tobytes()
+        shared = model.contact_spaces.get(key)
+        if shared is None:          # the maps and A's pieces serve every load case
+            shared = model.contact_spaces[key] = _SharedSpace(model, active)
+        self.map, self.tangential = shared.map, shared.tangential
+        self.model, self.active = model, active
+        self.reach: np.ndarray | None = None
+        self.solves = 0
+        self._shared = shared
+
+    def through_sticking(self) -> bool:
+        """Whether a Hessian solve (counted here, per load case) goes through A by
+        Woodbury's identity: once more than DIRECT_NEWTON_SOLVES were asked of this active
+        set, if A is regular."""
+        self.solves += 1
+        if self.solves == tol.DIRECT_NEWTON_SOLVES + 1:
+            shared = self._shared.through_sticking(self.model)
+            self.system, self.reach = shared.system, shared.reach
+            if self.reach is not None:
+                self.compliance = shared.compliance
+                self.normal_compliance = shared.normal_compliance
+        return self.reach is not None
+
+
+class _SharedSpace:
+    """What ``_ContactSpace`` holds of an active set that does not depend on the load case
+    (kept per model: ``StaticsModel.contact_spaces``): the maps, and A's factor, reach
+    and compliances once a case asks for them (``through_sticking``)."""
+
+    def __init__(self, model: StaticsModel, active: np.ndarray):
         condensed = model.condensation
         maps = model.contact_maps[active]                           # (na, 3, 6)
         count, blocks = len(maps), len(condensed.plank_offsets)
@@ -71,22 +101,20 @@ class _ContactSpace:
                     model.rest_maps[rows]
         self.map = dense.reshape(3 * count, 6 * blocks)
         self.tangential = np.ascontiguousarray(dense[:, :2].reshape(2 * count, 6 * blocks))
-        self.model, self.active = model, active
-        self.reach: np.ndarray | None = None
-        self.solves = 0
+        self.active = active        # not the model: it keeps this (no reference cycle)
+        self.system = None
 
-    def through_sticking(self) -> bool:
-        """Whether a Hessian solve (counted here) goes through A by Woodbury's identity:
-        once more than DIRECT_NEWTON_SOLVES were asked of this active set, if A is
-        regular."""
-        self.solves += 1
-        if self.solves == tol.DIRECT_NEWTON_SOLVES + 1:
-            self.system = anchored_system(self.model, self.active)
+    def through_sticking(self, model: StaticsModel) -> _SharedSpace:
+        """Itself, with A factored (``anchored_system`` of ``model``, the one that keeps
+        it), reach = A^-1 T^T (None if A is singular) and the compliances, made on the
+        first call."""
+        if self.system is None:
+            self.system = anchored_system(model, self.active)
             self.reach = self.system.solve(self.tangential.T)
             if self.reach is not None:
                 self.compliance = self.tangential @ self.reach
                 self.normal_compliance = self.map[2::3] @ self.reach
-        return self.reach is not None
+        return self
 
 
 class _FrictionEnergy:

@@ -303,6 +303,12 @@ class StaticsModel:
         return {}
 
     @cached_property
+    def contact_spaces(self) -> dict:
+        """Active contact set -> ``friction._SharedSpace``: what the friction phases of
+        all load cases share of it (filled by ``friction._ContactSpace``)."""
+        return {}
+
+    @cached_property
     def anchored_systems(self) -> dict:
         """(contact state, spring scale) -> ``condense._Factored``, filled as the
         contact iterations meet them (``condense.anchored_system``)."""

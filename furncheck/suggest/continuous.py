@@ -23,6 +23,7 @@ from furncheck.edit_check import standing_geometry
 from furncheck.geometry import Geometry
 from furncheck.neighbourhood import suggestion_dofs
 from furncheck.result import DesignReport
+from furncheck.statics import StaticsModel
 from furncheck.suggest.candidates import Candidate, candidates, unit_candidates
 from furncheck.suggest.edits import Editor, utilization_margin
 from furncheck.suggest.line_search import line_search
@@ -65,14 +66,17 @@ class ContinuousSearch:
     order searched; ``representative`` turns one into its design."""
 
     def __init__(self, design: Design, geometry: Geometry, report: DesignReport,
-                 locked: tuple[Dof, ...] = ()):
+                 locked: tuple[Dof, ...] = (), model: StaticsModel | None = None,
+                 solved: dict | None = None):
+        """``model``, ``solved``: the design's statics model and its cases' statics by
+        name (``check.check_design``), if the caller has them."""
         self.report = report
         frame = structure(design, standing_geometry(geometry))
         self.editor = Editor(design, geometry, frame, locked)
         unlocked = [dof for dof in all_dofs(design) if dof not in locked]
         near = suggestion_dofs(design, geometry, report.violations, unlocked)
         self.far = len(unlocked) - len(near)        # left out of a big design's search
-        self.margins = Margins(design, geometry, report, self.editor, near)
+        self.margins = Margins(design, geometry, report, self.editor, near, model, solved)
         self.planes = mirror_planes(design)
         self.searched = 0
         self.tally: list[DirectionTally] = []       # what ``directions`` formed

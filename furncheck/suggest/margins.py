@@ -34,7 +34,7 @@ from furncheck.dofs import Blocked, Dof, OutOfReach, design_size
 from furncheck.geometry import Geometry, end_gap
 from furncheck.result import DesignReport
 from furncheck.sensitivity import Linearization, Sensitivity
-from furncheck.statics import build_model, external_forces
+from furncheck.statics import StaticsModel, build_model, external_forces
 from furncheck.suggest.edits import Editor
 from furncheck.tolerances import GRAVITY
 from furncheck.validity import anchor_capacity, nail_pull_shear, plank_limits
@@ -81,8 +81,12 @@ class Margins:
     """
 
     def __init__(self, design: Design, geometry: Geometry, report: DesignReport,
-                 editor: Editor, dofs: list[Dof]):
+                 editor: Editor, dofs: list[Dof], model: StaticsModel | None = None,
+                 solved: dict | None = None):
+        """``model``, ``solved``: the design's statics model and its cases' statics by
+        name (``check.check_design``), if the caller has them: not solved again."""
         self.design = design
+        self._model, self._solved = model, solved or {}
         self.geometry = geometry
         self.editor = editor
         self.size = design_size(design)
@@ -129,12 +133,13 @@ class Margins:
         bolted one when it topples or slides); sets ``dofs`` to the free ones."""
         shared: dict = {}
         linears = []
-        model = build_model(self.design, self.geometry)     # one for all the cases
+        model = self._model or build_model(self.design, self.geometry)  # one for all cases
         for case in self.design.load_cases:
             try:
                 linears.append(Linearization(self.design, case, self.geometry,
                                              self.editor.frame, shared, bolted=True,
-                                             one_sided=True, model=model))
+                                             one_sided=True, model=model,
+                                             statics=self._solved.get(case.name)))
             except ValueError:
                 continue
         if not linears:

@@ -20,6 +20,7 @@ from furncheck.design.model import Design
 from furncheck.design.write import design_text
 from furncheck.dofs import Dof, all_dofs
 from furncheck.geometry import analyze
+from furncheck.statics import build_model
 from furncheck.suggest.continuous import LINE_SEARCHES_PER_SUGGESTION, ContinuousSearch
 from furncheck.suggest.cutlist import plank_edits
 from furncheck.suggest.discrete import discrete_fixes
@@ -37,11 +38,13 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
                    locked: tuple[Dof, ...] = ()) -> SuggestionReport:
     """Ranked suggestions for ``design`` (none when it is valid already)."""
     geometry = analyze(design)
-    report = check_design(design, geometry)
+    model = build_model(design, geometry) if geometry.stands else None
+    solved: dict = {}       # the cases' statics, which the candidates linearize
+    report = check_design(design, geometry, model, solved)
     if report.valid or max_suggestions <= 0:
         return SuggestionReport(design.source, design.name, report, ())
     start = time.perf_counter()
-    search = ContinuousSearch(design, geometry, report, locked)
+    search = ContinuousSearch(design, geometry, report, locked, model, solved)
     directions = search.directions(max_dofs)
     searching = time.perf_counter()
     continuous = search.run(directions, max_suggestions)
