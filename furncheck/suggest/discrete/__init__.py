@@ -60,9 +60,9 @@ def discrete_fixes(design: Design, geometry: Geometry, report: DesignReport,
     report given), each with what it restores.  A design that does not stand as drawn
     gets ``reconnect`` only, and only when the continuous search found nothing
     (``covered`` False).  A fix that adds a part and thickens planks is dropped when it
-    thickens every plank that the thicker rule's fix alone thickens (the part spares
-    no board).  No fix changes a DOF of ``locked``.  Every rule's trials (each candidate,
-    or why the rule does not apply) are appended to ``trials`` (``tried.Trial``)."""
+    spares no board of the thicker rule's fix alone (``spares_no_board``).  No fix
+    changes a DOF of ``locked``.  Every rule's trials (each candidate, or why the rule
+    does not apply) are appended to ``trials`` (``tried.Trial``)."""
     search = Search(design, geometry, report, locked, [] if trials is None else trials)
     found = [rule(search) for rule in RULES]
     if covered and geometry.violations:

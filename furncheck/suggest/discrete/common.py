@@ -168,8 +168,14 @@ class Search:
                              "design with it valid", thickening=True)
                 continue
             added = _added_board(edited, finished[2])
-            if best is None or added < best[0]:
-                best = (added, candidate, finished)
+            if best is not None and added >= best[0]:
+                self._record(candidate, FAILED, "valid, but it adds more board than "
+                             f"{best[1].place}", thickening=True)
+                continue
+            if best is not None:
+                self._record(best[1], FAILED, f"valid, but it adds more board than "
+                             f"{candidate.place}", thickening=True)
+            best = (added, candidate, finished)
         if best is None:
             return None
         _, candidate, (design, report, thickened) = best
