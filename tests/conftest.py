@@ -16,6 +16,7 @@ from pathlib import Path
 
 import pytest
 
+import furncheck.cli  # noqa: F401  (first: one BLAS thread, as the command line runs)
 from furncheck.design import load_design
 from furncheck.design.model import with_model
 from furncheck.suggest import suggest_design

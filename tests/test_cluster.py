@@ -25,7 +25,7 @@ DESIGNS = Path(__file__).resolve().parent.parent / "designs"
 @pytest.fixture(scope="module")
 def scheduler():
     cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                       dashboard_address=None)
+                                       dashboard_address=":0")   # any free port: runs may overlap
     try:
         yield cluster.scheduler_address
     finally:

@@ -52,6 +52,33 @@ def continuous_advice(dofs: tuple[str, ...], changes: tuple[float, ...],
                       limited: bool, original: Design, edited: Design) -> str:
     """The suggestion as one sentence: its phrases joined by 'and', then the valid interval
     of the first phrase's amount."""
+    sentence, first_each, count = _changes_sentence(dofs, changes, units, original, edited)
+    lead = abs(changes[0]) / step if step else 0.0
+    low, high = interval
+    unit = _unit(units[0])
+    each = " each" if first_each else ""
+    first = " of the first change" if count > 1 else ""
+    valid = f"valid for {_amount(low * lead)}-{_amount(high * lead)} {unit}{each}{first}"
+    if limited:
+        limit = SEARCH_LIMITS["deg" if units[0] == "deg" else "length"] if len(dofs) == 1 \
+            else "its step limit"
+        valid += f"; the search stopped there, at {limit}"
+    return f"{sentence[0].upper()}{sentence[1:]} ({valid})."
+
+
+def change_sentence(dofs: tuple[str, ...], changes: tuple[float, ...],
+                    units: tuple[str, ...], original: Design, edited: Design) -> str:
+    """The DOF changes as shop words joined by 'and', capitalized, without an interval
+    ('Move side_l and side_r closer together by 1.31 mm each')."""
+    sentence = _changes_sentence(dofs, changes, units, original, edited)[0]
+    return f"{sentence[0].upper()}{sentence[1:]}"
+
+
+def _changes_sentence(dofs: tuple[str, ...], changes: tuple[float, ...],
+                      units: tuple[str, ...], original: Design,
+                      edited: Design) -> tuple[str, bool, int]:
+    """(the phrases joined by 'and', whether the first is a mirror pair's ('each'), how
+    many phrases)."""
     planes = mirror_planes(original)
     held = structure(original, standing_geometry(analyze(original))).ends
     phrases, first_each = [], False
@@ -72,18 +99,7 @@ def continuous_advice(dofs: tuple[str, ...], changes: tuple[float, ...],
         subject = "it" if previous == plank and k - 1 not in done else plank
         phrases.append(_phrase(original, edited, held, plank, subject,
                                name.rpartition(".")[2], changes[k], units[k]))
-    sentence = " and ".join(phrases)
-    lead = abs(changes[0]) / step if step else 0.0
-    low, high = interval
-    unit = _unit(units[0])
-    each = " each" if first_each else ""
-    first = " of the first change" if len(phrases) > 1 else ""
-    valid = f"valid for {_amount(low * lead)}-{_amount(high * lead)} {unit}{each}{first}"
-    if limited:
-        limit = SEARCH_LIMITS["deg" if units[0] == "deg" else "length"] if len(dofs) == 1 \
-            else "its step limit"
-        valid += f"; the search stopped there, at {limit}"
-    return f"{sentence[0].upper()}{sentence[1:]} ({valid})."
+    return " and ".join(phrases), first_each, len(phrases)
 
 
 def _pair(design: Design, planes: tuple[MirrorPlane, ...], dofs: tuple[str, ...],

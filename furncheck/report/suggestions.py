@@ -25,7 +25,7 @@ from furncheck.report.common import plural
 from furncheck.report.cutlist import cut_list_lines, edits_json
 from furncheck.report.explanation import explanation_dict, explanation_lines
 from furncheck.report.numbers import format_number, json_ready
-from furncheck.report.shop_words import continuous_advice
+from furncheck.report.shop_words import change_sentence, continuous_advice
 from furncheck.report.text import INDENT, design_lines
 from furncheck.suggest import Suggestion, SuggestionReport
 
@@ -37,6 +37,10 @@ def advice(suggestion: Suggestion, original: Design) -> str:
     """'Move shelf 42 mm toward post and tilt it 3 degrees about y (valid for 18-61 mm).'
     or 'Add support-1 (582 x 300 mm) between shelf and base, centred at (250, 0, 303) mm,
     nailed to both.' (or 'under ledge, standing on the floor, ...')"""
+    if suggestion.kind == "discrete" and suggestion.dofs:      # a closure, finished
+        closing = change_sentence(suggestion.dofs, suggestion.changes, suggestion.units,
+                                  original, suggestion.design)
+        return f"{closing}, and {suggestion.advice}"
     if suggestion.kind == "discrete":
         return suggestion.advice
     return continuous_advice(suggestion.dofs, suggestion.changes, suggestion.units,

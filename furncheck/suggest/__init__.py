@@ -2,6 +2,8 @@
 
     margins, candidates, continuous, edits   continuous suggestions (Algorithm 1)
     discrete                                 an added support plank
+    closures                                 a near miss closed along each direction
+                                             tried, with thicker boards
     ranking                                  ``suggest_design``: both, ranked and validated
 """
 

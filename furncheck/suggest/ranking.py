@@ -21,9 +21,10 @@ from furncheck.design.write import design_text
 from furncheck.dofs import Dof, all_dofs
 from furncheck.geometry import analyze
 from furncheck.statics import build_model
+from furncheck.suggest.closures import finished_closures
 from furncheck.suggest.continuous import LINE_SEARCHES_PER_SUGGESTION, ContinuousSearch
 from furncheck.suggest.cutlist import plank_edits
-from furncheck.suggest.discrete import discrete_fixes
+from furncheck.suggest.discrete import Search, discrete_fixes
 from furncheck.suggest.explain import explain
 from furncheck.suggest.score import shop_score
 from furncheck.suggest.suggestion import Suggestion, SuggestionReport
@@ -51,9 +52,13 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
     discrete_start = time.perf_counter()
     trials: list[Trial] = []
     fixes = discrete_fixes(design, geometry, report, bool(continuous), locked, trials)
+    closing = Search(design, geometry, report, locked, trials)
+    closures = [] if continuous or not geometry.violations else finished_closures(
+        search, directions, closing,
+        {plank for fix in fixes if fix.rule == "reconnect" for plank in fix.between})
     end = time.perf_counter()
     suggestions: list[Suggestion] = []
-    dropped = len(continuous) + len(fixes)
+    dropped = len(continuous) + len(fixes) + len(closures)
     for found in continuous:
         moved = search.representative(found)
         if moved is None:
@@ -73,6 +78,15 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
             suggestions.append(Suggestion(len(suggestions) + 1, "discrete", fix.restores,
                                           *written, adds=fix.adds, between=fix.between,
                                           rule=fix.rule, advice=fix.advice))
+    for closure in closures:
+        written = _written(closure.design, len(suggestions) + 1, search.editor.keeps)
+        if written is not None:
+            suggestions.append(Suggestion(
+                len(suggestions) + 1, "discrete", closing.restores, *written,
+                dofs=tuple(d.name for d in closure.dofs), changes=closure.changes,
+                units=tuple(d.unit(design) for d in closure.dofs),
+                between=tuple(dict.fromkeys(d.plank for d in closure.dofs)),
+                rule="reconnect", advice=closure.advice))
     tried = Tried(len(all_dofs(design)), len(search.margins.dofs), len(locked),
                   dict(search.margins.blocked), max_dofs, max_suggestions,
                   bool(geometry.violations),

@@ -34,13 +34,23 @@ from furncheck.suggest.discrete.supports import _reach, support_planks
 from furncheck.suggest.discrete.thicker import thicker_planks
 from furncheck.suggest.tried import Trial
 
-__all__ = ["RULES", "Fix", "Search", "_reach", "discrete_fixes", "support_planks"]
+__all__ = ["RULES", "Fix", "Search", "_reach", "discrete_fixes", "spares_no_board",
+           "support_planks"]
 
 RULES = (support_planks, overhang_supports, outriggers, wall_anchors, aprons, stretchers,
          back_panels, braces, thicker_planks)
 """The rules for a design that stands as drawn, in the order their fixes are listed: the
 paper's support first, then added parts by how little they change the piece, then a
 thicker board (a change of material)."""
+
+
+def spares_no_board(thickened: dict, alone: dict) -> bool:
+    """Whether a fix that adds a part and thickens the planks ``thickened`` ({id: m})
+    spares no board of the thicker rule's fix alone (``alone``): it thickens every plank
+    that fix thickens, each at least as much (the part then only adds material; a part
+    that lets one plank stay thinner is a different fix)."""
+    return bool(thickened) and all(plank in thickened and thickened[plank] >= new
+                                   for plank, new in alone.items())
 
 
 def discrete_fixes(design: Design, geometry: Geometry, report: DesignReport,
@@ -50,9 +60,9 @@ def discrete_fixes(design: Design, geometry: Geometry, report: DesignReport,
     report given), each with what it restores.  A design that does not stand as drawn
     gets ``reconnect`` only, and only when the continuous search found nothing
     (``covered`` False).  A fix that adds a part and thickens planks is dropped when it
-    thickens every plank that the thicker rule's fix alone thickens (the part spares
-    no board).  No fix changes a DOF of ``locked``.  Every rule's trials (each candidate,
-    or why the rule does not apply) are appended to ``trials`` (``tried.Trial``)."""
+    spares no board of the thicker rule's fix alone (``spares_no_board``).  No fix
+    changes a DOF of ``locked``.  Every rule's trials (each candidate, or why the rule
+    does not apply) are appended to ``trials`` (``tried.Trial``)."""
     search = Search(design, geometry, report, locked, [] if trials is None else trials)
     found = [rule(search) for rule in RULES]
     if covered and geometry.violations:
@@ -62,8 +72,8 @@ def discrete_fixes(design: Design, geometry: Geometry, report: DesignReport,
     found = [fix for fix in found if fix is not None]
     alone = next((fix.thickened for fix in found if fix.rule == "thicker"), None)
     if alone:
-        found = [fix for fix in found if fix.rule == "thicker" or not fix.thickened
-                 or not set(alone) <= set(fix.thickened)]
+        found = [fix for fix in found if fix.rule == "thicker" or not spares_no_board(
+            fix.thickened, alone)]
     restores = search.restores
     return [Fix(f.rule, f.advice, f.design, f.report, f.adds, f.between, restores,
                 f.thickened) for f in found]

@@ -39,6 +39,12 @@ the rules list their likeliest candidates first."""
 LOCK_SLACK = 1e-9
 """A locked DOF counts as unchanged within this (file unit or degrees: round-off)."""
 
+FINISHED = 3
+"""Candidates of a rule that fail only by bending (elastic model) that are finished with
+thicker planks at most: the last ones checked (the deepest rail, the biggest part), of
+which the one that needs the least extra board is kept (a 96 mm rail under a table top
+may spare the top that a 48 mm one leaves sagging)."""
+
 BENDING = ("sagging", "overstressed")
 """The violations a thicker plank repairs (``thicker.finish``)."""
 
@@ -128,18 +134,19 @@ class Search:
 
     def first_valid(self, candidates: Iterable[Candidate]) -> Fix | None:
         """The Fix of the first candidate that is valid (``verdict``), trying at most
-        MAX_CANDIDATES of them; when none is, but one failed only by planks that bend
-        too much (elastic model), the first such one with those planks thickened
-        (``thicker.finish``), if that is valid; else None.  Every candidate checked is
-        recorded in ``trials`` (``tried.Trial``: found, or failed and why)."""
-        bent = None
+        MAX_CANDIDATES of them; when none is, but some failed only by planks that bend
+        too much (elastic model), the last FINISHED of those (the rules list their
+        smallest parts first) with those planks thickened (``thicker.finish``): of the
+        ones that are then valid, the one that adds the least board (``_added_board``);
+        else None.  Every candidate checked is recorded in ``trials`` (``tried.Trial``:
+        found, or failed and why)."""
+        bent: list[tuple] = []
         for count, candidate in enumerate(candidates):
             if count >= MAX_CANDIDATES:
                 self.failed(candidate.trial_rule or candidate.rule, f"the rule checks "
                             f"{MAX_CANDIDATES} candidates at most", candidate.target)
                 break
-            outcome = self.verdict(candidate.design, candidate.new_joints,
-                                   full=self.elastic and bent is None)
+            outcome = self.verdict(candidate.design, candidate.new_joints, full=self.elastic)
             if isinstance(outcome, str):
                 self._record(candidate, FAILED, outcome)
                 continue
@@ -149,20 +156,29 @@ class Search:
                 return Fix(candidate.rule, candidate.advice, edited, report, candidate.adds,
                            candidate.between)
             self._record(candidate, FAILED, "the design with it is still not valid", edited)
-            if bent is None and report.violations and \
-                    all(v.kind in BENDING for v in report.violations):
-                bent = (candidate, edited, after, report)
-        if bent is None:
-            return None
+            if report.violations and all(v.kind in BENDING for v in report.violations):
+                bent.append((candidate, edited, after, report))
         from furncheck.suggest.discrete.thicker import finish, thickness_phrase
 
-        candidate, edited, after, report = bent
-        finished = finish(self, edited, after, report)
-        if finished is None:
-            self._record(candidate, FAILED, "no thicker boards (up to 44 mm) make the design "
-                         "with it valid", thickening=True)
+        best = None
+        for candidate, edited, after, report in reversed(bent[-FINISHED:]):
+            finished = finish(self, edited, after, report)
+            if finished is None:
+                self._record(candidate, FAILED, "no thicker boards (up to 44 mm) make the "
+                             "design with it valid", thickening=True)
+                continue
+            added = _added_board(edited, finished[2])
+            if best is not None and added >= best[0]:
+                self._record(candidate, FAILED, "valid, but it adds more board than "
+                             f"{best[1].place}", thickening=True)
+                continue
+            if best is not None:
+                self._record(best[1], FAILED, f"valid, but it adds more board than "
+                             f"{candidate.place}", thickening=True)
+            best = (added, candidate, finished)
+        if best is None:
             return None
-        design, report, thickened = finished
+        _, candidate, (design, report, thickened) = best
         self._record(candidate, FOUND, thickening=True)
         advice = f"{candidate.advice[:-1]}, and {thickness_phrase(thickened, self.design)}."
         return Fix(candidate.rule, advice, design, report, candidate.adds, candidate.between,
@@ -247,6 +263,13 @@ class Candidate:
 
 
 # --- geometry a woodworker reads off a design ---------------------------------------------
+
+def _added_board(design: Design, thickened: dict) -> float:
+    """m^3 of board that thickening adds to ``design``: over the planks {id: (old, new)
+    thickness m}, (new - old) x length x width."""
+    return sum((new - old) * design.plank(plank).length * design.plank(plank).width
+               for plank, (old, new) in thickened.items())
+
 
 def normal(plank: Plank) -> np.ndarray:
     """(3,) the plank's face normal (local z) in world coordinates."""

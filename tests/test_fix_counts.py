@@ -1,0 +1,148 @@
+"""How many suggestions an invalid catalog design gets (issue 15: "at least 4 suggestions
+where 4 distinct valid fixes exist").
+
+For every invalid catalog design, in both models, ``suggest`` must list at least
+min(4, E) suggestions, where E counts the distinct valid fixes found here without
+``suggest``'s search (its margins, directions, line searches, ranking and dedup):
+
+* one per DOF whose ``range`` (``ranges.finder``: probes and sampling of that DOF alone)
+  holds a valid value within the search's limits -- half the design's size for a length,
+  MAX_STEP radians for a turn -- except a turn that tilts a level plank (a top, seat or
+  shelf) out of level and a length or width change that is valid only past the plank's
+  other side (the elastic model bends a plank along its longer side: a seat widened past
+  its length stops bending across its legs in the model, not in the shop);
+* one per discrete rule whose fix, written to YAML and checked again here, is valid,
+  unless it only adds a part to the thicker-board fix: it makes every plank that fix
+  thickens at least as thick (read off the design files);
+* ``reconnect`` (closing a near miss as drawn) only when no DOF closes it alone: it is
+  the same edit as the one-DOF closure.
+
+Designs with 4 or more suggestions pass without counting (min(4, E) <= 4).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from furncheck.check import check_design, check_file
+from furncheck.design.load import load_design, parse_design
+from furncheck.design.model import Design, with_model
+from furncheck.design.write import design_text
+from furncheck.dofs import design_size
+from furncheck.geometry import analyze
+from furncheck.ranges.finder import dof_ranges
+from furncheck.report.suggestions import advice
+from furncheck.suggest.candidates import MAX_STEP
+from furncheck.suggest.discrete import RULES
+from furncheck.suggest.discrete.common import Search
+from furncheck.suggest.discrete.reconnect import reconnect_near_misses
+
+CATALOG = Path(__file__).resolve().parents[1] / "designs"
+MODELS = ("rigid", "elastic")
+WANTED = 4
+LEVEL_COS = 0.95        # a plank whose face normal is this close to vertical lies level
+
+INVALID = [(path.name, model) for model in MODELS for path in sorted(CATALOG.glob("*.yaml"))
+           if not check_file(str(path), model).valid]
+
+
+def _counted_dofs(design: Design) -> list[str]:
+    """The DOFs with a valid value within the search's limits (module docstring)."""
+    size = design_size(design)
+    counted = []
+    for found in dof_ranges(design):
+        if found.valid is None:
+            continue
+        plank_id, kind = found.dof.rsplit(".", 1)
+        plank = design.plank(plank_id)
+        turn = found.unit == "deg"
+        limit = math.degrees(MAX_STEP) if turn else MAX_STEP * size
+        low = max(found.valid[0], found.value - limit)
+        high = min(found.valid[1], found.value + limit)
+        if low > high:
+            continue
+        if turn and kind in ("rx", "ry") and abs(plank.rotation_matrix[2, 2]) >= LEVEL_COS:
+            continue                    # a level plank tilted
+        if kind in ("length", "width"):
+            other = (plank.width if kind == "length" else plank.length) / design.unit_scale
+            if (low > other) if found.value <= other else (high < other):
+                continue                # valid only with its sides swapped
+        counted.append(found.dof)
+    return counted
+
+
+def _thicknesses(design: Design) -> dict[str, float]:
+    return {p.id: p.thickness for p in design.planks}
+
+
+def _counted_fixes(design: Design, dofs_found: bool) -> list[str]:
+    """The discrete rules with a valid, not merely added-to, fix (module docstring)."""
+    geometry = analyze(design)
+    search = Search(design, geometry, check_design(design, geometry))
+    fixes = [fix for fix in (rule(search) for rule in RULES) if fix is not None]
+    if geometry.violations and not dofs_found:
+        fixes += [fix for fix in [reconnect_near_misses(search)] if fix is not None]
+    original = _thicknesses(design)
+    valid = []
+    for fix in fixes:
+        text = design_text(fix.design, "yaml")
+        if check_design(parse_design(text, "fix.yaml", "yaml")).valid:
+            valid.append((fix.rule, _thicknesses(fix.design)))
+    alone = next((after for rule, after in valid if rule == "thicker"), None)
+    counted = []
+    for rule, after in valid:
+        if alone is not None and rule != "thicker":
+            grown = {p: t for p, t in alone.items() if t > original.get(p, t)}
+            if grown and all(after.get(p, 0.0) >= t for p, t in grown.items()):
+                continue                # the thicker fix with a part added
+        counted.append(rule)
+    return counted
+
+
+@pytest.mark.parametrize("name, model", INVALID)
+def test_as_many_suggestions_as_distinct_valid_fixes(catalog_suggestions, name, model):
+    """suggest lists at least min(4, E) suggestions (E: module docstring)."""
+    design, result = catalog_suggestions(name, model)
+    listed = len(result.suggestions)
+    if listed >= WANTED:
+        return
+    dofs = _counted_dofs(design)
+    fixes = _counted_fixes(design, bool(dofs))
+    assert listed >= min(WANTED, len(dofs) + len(fixes)), (
+        name, model, [s.advice for s in result.suggestions], dofs, fixes)
+
+
+def test_a_fix_that_spares_a_board_is_counted_and_listed(catalog_suggestions):
+    """The table in the elastic model: an apron under its top lets the top stay 15 mm
+    where the thicker-board fix alone makes it 22 mm (legs 22 mm both): a fix of its own,
+    counted here and listed by suggest."""
+    design = with_model(load_design(str(CATALOG / "table.yaml")), "elastic")
+    assert "apron" in _counted_fixes(design, False)
+    _, result = catalog_suggestions("table.yaml", "elastic")
+    assert "apron" in [s.rule for s in result.suggestions]
+
+
+def test_each_way_to_close_a_gap_is_offered_with_the_boards_it_needs(catalog_suggestions):
+    """bookshelf-gap in the elastic model: its shelf ends 3 mm short of side_r, and its
+    12 mm shelf and bottom sag (with creep 29 mm against 2.98 mm, 5.93 against 1.5).  The
+    rigid model closes the gap four ways (shelf longer, sides closer, either side moved);
+    in the elastic one each of them is offered with the thicker boards it then needs, the
+    shelf's once (reconnect), each file valid as checked here from its text, and the
+    advice says the change in shop words before the boards."""
+    _, rigid = catalog_suggestions("bookshelf-gap.yaml", "rigid")
+    design, elastic = catalog_suggestions("bookshelf-gap.yaml", "elastic")
+    closing = [s for s in elastic.suggestions if s.rule == "reconnect"]
+    assert len(closing) == len(rigid.suggestions) == 4
+    changed = {frozenset(e.plank for e in s.edits
+                         if {f.field for f in e.fields} - {"thickness"}) for s in closing}
+    assert len(changed) == 4
+    for suggestion in closing:
+        assert check_design(parse_design(suggestion.text, "s.yaml", "yaml")).valid
+        assert any(e.field("thickness") for e in suggestion.edits)
+    words = sorted(advice(s, design).split(",")[0] for s in closing if s.dofs)
+    assert words == ["Move side_l 2.62 mm toward side_r",
+                     "Move side_l and side_r closer together by 1.31 mm each",
+                     "Move side_r 2.62 mm toward side_l"]
