@@ -529,8 +529,8 @@ def block_sums(index: np.ndarray, values: np.ndarray, count: int) -> np.ndarray:
     ``np.add.at`` gives; ``np.bincount`` is many times faster)."""
     k = values.shape[1]
     flat = (np.asarray(index)[:, None] * k + np.arange(k)).ravel()
-    return np.bincount(flat, weights=values.ravel(), minlength=count * k).astype(float) \
-        .reshape(count, k)
+    return np.bincount(flat, weights=values.ravel(), minlength=count * k) \
+        .astype(float, copy=False).reshape(count, k)
 
 
 def _skew(v: np.ndarray) -> np.ndarray:
