@@ -22,7 +22,6 @@ the file and the key), as in design files: a typo must not be silently ignored.
 from __future__ import annotations
 
 import os
-import tomllib
 from dataclasses import dataclass
 
 from furncheck import tolerances as tol
@@ -86,6 +85,8 @@ def start_folder(paths: tuple[str, ...] | list[str]) -> str:
 
 
 def _furncheck_table(path: str) -> dict | None:
+    import tomllib  # here: most runs find no pyproject.toml to read
+
     try:
         with open(path, "rb") as stream:
             document = tomllib.load(stream)
