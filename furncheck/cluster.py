@@ -41,9 +41,12 @@ if TYPE_CHECKING:
 CONNECT_SECONDS = 10
 """How long to try to reach the scheduler (Dask retries a refused connection until then)."""
 
-WORKER_SECONDS = 120
-"""How long to wait for a worker to take the first task (a cluster still starting its
-workers, or one with none)."""
+CONNECT_GRACE = 5
+"""Seconds beyond CONNECT_SECONDS before a connection that hangs is given up."""
+
+WORKER_SECONDS = 60
+"""How long to wait for a worker to join and take the first task (a cluster still
+starting its workers, or one with none)."""
 
 TASK_FILES = 16
 """Designs per task: a task costs a few ms of scheduling, a small design ~5 ms to check."""
@@ -66,12 +69,9 @@ def connect(address: str):
     except (OSError, ValueError) as error:
         raise ClusterError(f"not a Dask scheduler address: {address} "
                            f"({_first_line(error)})") from None
+    client = _opened(Client, address)
     try:
-        client = Client(address, timeout=CONNECT_SECONDS, set_as_default=False)
-    except (OSError, TimeoutError, ValueError) as error:
-        raise ClusterError(f"cannot reach the Dask scheduler at {address}: "
-                           f"{_first_line(error)}") from None
-    try:
+        client.wait_for_workers(1, timeout=WORKER_SECONDS)
         theirs = client.submit(_worker_fingerprint, pure=False).result(timeout=WORKER_SECONDS)
     except TimeoutError:
         client.close()
@@ -89,6 +89,33 @@ def connect(address: str):
                            f"furncheck code than this command (install the same version "
                            f"there): their results could differ")
     return client
+
+
+def _opened(client_class, address: str):
+    """A client of the scheduler at ``address``, or ClusterError.  Opened in a thread of
+    its own, waited for at most CONNECT_SECONDS and a little more: a server there that
+    is not a Dask scheduler may accept the connection and never answer (Dask's own
+    timeout does not cover its handshake), or answer with what Dask cannot read."""
+    outcome: list = []
+
+    def open_client() -> None:
+        try:
+            outcome.append(client_class(address, timeout=CONNECT_SECONDS,
+                                        set_as_default=False))
+        except BaseException as error:  # noqa: BLE001 - reported by the caller's thread
+            outcome.append(error)
+
+    opener = threading.Thread(target=open_client, name="furncheck-connect", daemon=True)
+    opener.start()
+    opener.join(CONNECT_SECONDS + CONNECT_GRACE)
+    if not outcome:
+        raise ClusterError(f"cannot reach the Dask scheduler at {address}: no answer "
+                           f"within {CONNECT_SECONDS} s (is it a Dask scheduler?)")
+    if isinstance(outcome[0], BaseException):
+        error = outcome[0]
+        raise ClusterError(f"cannot reach the Dask scheduler at {address}: "
+                           f"{type(error).__name__}: {_first_line(error)}")
+    return outcome[0]
 
 
 def _worker_fingerprint() -> str:

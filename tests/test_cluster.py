@@ -180,3 +180,37 @@ def test_a_failed_task_gives_error_entries_and_the_batch_goes_on(tmp_path):
     assert "a task on the Dask cluster failed (RuntimeError: worker tcp://10.0.0.9:4000 " \
            "lost)" in second[0].piece
     assert "no such file" in entries[-1].piece
+
+
+def test_a_server_that_never_answers_is_one_line_and_exit_2(monkeypatch):
+    """Something listens at the address but is no Dask scheduler: it accepts the
+    connection and says nothing (Dask's own timeout does not cover the handshake)."""
+    import socket
+
+    import furncheck.cluster as cluster
+
+    monkeypatch.setattr(cluster, "CONNECT_SECONDS", 1)
+    monkeypatch.setattr(cluster, "CONNECT_GRACE", 1)
+    with socket.socket() as silent:
+        silent.bind(("127.0.0.1", 0))
+        silent.listen()
+        port = silent.getsockname()[1]
+        result = CliRunner().invoke(cli, ["validate", str(DESIGNS / "stool.yaml"),
+                                          "--scheduler", f"tcp://127.0.0.1:{port}"])
+    assert result.exit_code == 2
+    assert result.stderr == (f"furncheck: cannot reach the Dask scheduler at "
+                             f"tcp://127.0.0.1:{port}: no answer within 1 s (is it a Dask "
+                             f"scheduler?)\n")
+
+
+def test_a_scheduler_without_workers_is_one_line_and_exit_2(monkeypatch):
+    import furncheck.cluster as cluster
+
+    monkeypatch.setattr(cluster, "WORKER_SECONDS", 1)
+    with distributed.LocalCluster(n_workers=0, processes=False,
+                                  dashboard_address=":0") as empty:
+        result = CliRunner().invoke(cli, ["validate", str(DESIGNS / "stool.yaml"),
+                                          "--scheduler", empty.scheduler_address])
+    assert result.exit_code == 2
+    assert result.stderr == (f"furncheck: no worker of the Dask scheduler at "
+                             f"{empty.scheduler_address} took a task within 1 s\n")
