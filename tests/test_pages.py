@@ -302,3 +302,21 @@ def test_validate_html_writes_one_page_for_the_run(tmp_path):
     assert page.count('<tr data-verdict="') == 3
     assert page.count('data-verdict="error"') == 1 and page.count('data-verdict="valid"') == 1
     assert not _RESOURCE.search(page)
+
+
+def test_a_toppling_case_shows_no_forces_as_if_bolted_down():
+    """bench-tips (elastic) tips over: its case's joint and plank figures come from a solve
+    held down to the ground (the seat 'sags' 44 mm there), which raise no violation; the
+    page and the colours must not show them as overloads.  The plank the lift-off names
+    reads the scale's failing end, the others no more than that."""
+    from furncheck.report.pages import _case_table, worst_utilization
+
+    entry = _entry("bench-tips.yaml", "elastic")
+    (case,) = entry.report.cases
+    assert case.stability == "lift-off"
+    assert max(plank.utilization for plank in case.planks) > 10      # the bolted solve's
+    used = plank_utilizations(entry.report, entry.design)
+    assert worst_utilization(used) == 1.5
+    table = _case_table(entry.report)
+    assert "not counted: the design does not stand in this case" in table
+    assert "sag 4" not in table and "<td>seat: " not in table

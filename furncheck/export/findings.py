@@ -49,10 +49,11 @@ def plank_utilization(report: DesignReport, planks: tuple[Plank, ...] | list[Pla
 def utilization_of(report: DesignReport, plank_ids: tuple[str, ...]
                    ) -> dict[str, float | None]:
     """Per plank id, its largest utilization over all load cases: its own sag and stress
-    (elastic model), the joints and anchors it takes part in (in cases where they count:
-    ``DURABILITY_COUNTS``).  None when no case was solved (the design does not stand).  A
-    plank named by a geometric violation, or whose contacts lift or slide, is at least at
-    the scale's failing end (1.5)."""
+    (elastic model) and the joints and anchors it takes part in, in cases where they count
+    (``DURABILITY_COUNTS``: not the as-if-bolted forces of a case that topples).  None
+    when no case was solved (the design does not stand).  A plank named by a geometric
+    violation, or whose contacts lift or slide, is at least at the scale's failing end
+    (1.5)."""
     used: dict[str, float | None] = {plank_id: None for plank_id in plank_ids}
 
     def raise_to(plank_id: str, value: float) -> None:
@@ -65,10 +66,10 @@ def utilization_of(report: DesignReport, plank_ids: tuple[str, ...]
     for case in solved:
         for plank_id in used:
             raise_to(plank_id, 0.0)
+        if case.stability not in DURABILITY_COUNTS:
+            continue            # a toppling case's forces are as if bolted down: not counted
         for plank in case.planks or ():
             raise_to(plank.id, plank.utilization)
-        if case.stability not in DURABILITY_COUNTS:
-            continue
         for joint in case.joints:
             for plank_id in joint.planks:
                 raise_to(plank_id, joint.utilization)

@@ -19,7 +19,7 @@ from typing import Any
 
 from furncheck.design.model import Design
 from furncheck.export.colours import UTILIZATION_STOPS, utilization_rgb
-from furncheck.export.findings import changed_planks
+from furncheck.export.findings import DURABILITY_COUNTS, changed_planks
 from furncheck.report.numbers import format_number
 from furncheck.report.svg import design_svg, plank_utilizations
 from furncheck.result import BatchReport, DesignReport
@@ -193,6 +193,11 @@ def _case_table(report: DesignReport) -> str:
         return ""
     rows = []
     for case in report.cases:
+        if case.stability not in DURABILITY_COUNTS:     # as if bolted down: not counted
+            rows.append(f"<tr><td>{escape(case.name)}</td><td>{escape(case.stability)}</td>"
+                        f"<td>-</td><td colspan=\"2\">not counted: the design does not "
+                        f"stand in this case</td></tr>")
+            continue
         joint = case.worst_joint
         joint_text = "" if joint is None else (
             f"{escape('/'.join(joint.planks))}: {format_number(joint.utilization, 3)}")
