@@ -20,7 +20,7 @@ from typing import Any
 from furncheck.design.model import Design
 from furncheck.export.colours import UTILIZATION_STOPS, utilization_rgb
 from furncheck.export.findings import DURABILITY_COUNTS, changed_planks
-from furncheck.report.numbers import format_number
+from furncheck.report.numbers import format_number, format_percent
 from furncheck.report.svg import design_svg, plank_utilizations
 from furncheck.result import BatchReport, DesignReport
 
@@ -95,9 +95,9 @@ def _bar(utilization: float | None) -> str:
 
 
 def _legend() -> str:
-    labels = {0.0: "0", 1.0: "1 (the limit)"}
     items = "".join(f'<span style="background:{_css_rgb(u)}"></span>'
-                    f"{labels.get(u, format_number(u, 2))}" for u, _ in UTILIZATION_STOPS)
+                    f"{format_percent(u)}{' (the limit)' if u == 1.0 else ''}"
+                    for u, _ in UTILIZATION_STOPS)
     return (f'<p class="legend small">Colour: share of capacity used {items}; '
             "grey: not computed.</p>")
 
@@ -137,15 +137,17 @@ def catalog_page(entries: list[CatalogEntry], title: str = "furncheck catalog") 
         worst = None if used is None else worst_utilization(used)
         thumbnail = "" if entry.design is None else design_svg(entry.design, used, 160, 120)
         kinds = sorted({v.kind for v in report.violations})
-        violations = report.error or (", ".join(kinds) if kinds else "")
+        count = len(report.violations)
+        violations = report.error or (
+            f"{count} violation{'s' if count != 1 else ''}: {', '.join(kinds)}" if kinds
+            else "")
         rows.append(
             f'<tr data-verdict="{verdict}"><td><a href="#d{number}">{escape(report.design)}'
             f'</a><br><span class="small">{escape(report.name)}</span></td>'
             f'<td class="{verdict}">{verdict}</td>'
             f'<td class="num" data-value="{-1 if worst is None else round(worst, 6)}">'
-            f'{"" if worst is None else format_number(worst, 3)}{_bar(worst)}</td>'
-            f'<td data-value="{len(report.violations)}">{len(report.violations) or ""} '
-            f'{escape(violations)}</td><td>{thumbnail}</td></tr>')
+            f'{"" if worst is None else format_percent(worst)}{_bar(worst)}</td>'
+            f'<td data-value="{count}">{escape(violations)}</td><td>{thumbnail}</td></tr>')
         details.append(_details(number, entry, used))
     body = (f"<h1>{escape(title)}</h1>\n<p>{summary['designs']} designs: "
             f'<span class="valid">{summary["valid"]} valid</span>, '
