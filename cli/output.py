@@ -32,12 +32,13 @@ def output_problem(output: str) -> str | None:
     return None
 
 
-def check_output(output: str | None) -> None:
-    """Fail early if ``-o output`` cannot be written ('-' and None mean stdout)."""
+def check_output(output: str | None, what: str = "the report") -> None:
+    """Fail early if ``-o output`` (or another file: ``what`` names it) cannot be written
+    ('-' and None mean stdout)."""
     if output is not None and output != "-":
         problem = output_problem(output)
         if problem:
-            fail(f"cannot write the report to {output}: {problem}")
+            fail(f"cannot write {what} to {output}: {problem}")
 
 
 def write_output(document: str, output: str | None) -> None:

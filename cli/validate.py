@@ -101,7 +101,7 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
     jobs = jobs or config.jobs or os.cpu_count() or 1
     check_output(output)
     if html_file is not None:
-        check_output(html_file)
+        check_output(html_file, "the report page")
     if views_dir is not None:
         _check_views_dir(views_dir)
     scan_options = ScanOptions(

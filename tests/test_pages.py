@@ -302,6 +302,10 @@ def test_validate_html_writes_one_page_for_the_run(tmp_path):
     assert page.count('<tr data-verdict="') == 3
     assert page.count('data-verdict="error"') == 1 and page.count('data-verdict="valid"') == 1
     assert not _RESOURCE.search(page)
+    to_folder = CliRunner().invoke(main, ["validate", *names, "--html", str(tmp_path)])
+    assert to_folder.exit_code == 2
+    assert to_folder.stderr == (f"furncheck: cannot write the report page to {tmp_path}: it "
+                                f"is a directory\n")
 
 
 def test_a_toppling_case_shows_no_forces_as_if_bolted_down():
