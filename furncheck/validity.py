@@ -173,7 +173,8 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
             line = design.line_of(f"planks[{model.planks[k]}]")
             if final > allowed * (1.0 + tol.CAPACITY_REL_TOL):
                 violations.append(Violation("sagging", plank.id, case.name, _sag_message(
-                    design, material, sag, allowed, statics.planks.span[k]), line))
+                    design, material, sag, allowed, statics.planks.span[k],
+                    _upright(plank)), line))
             if stress > strength * (1.0 + tol.CAPACITY_REL_TOL):
                 violations.append(Violation("overstressed", plank.id, case.name,
                                             _stress_message(design, stress, strength), line))
@@ -264,12 +265,28 @@ def plank_limits(design: Design, model: StaticsModel) -> tuple[np.ndarray, ...]:
     return cached
 
 
+UPRIGHT_SINE = 0.5 ** 0.5
+"""A beam whose axis rises more than 45 degrees from level is upright (``_upright``)."""
+
+
+def _upright(plank) -> bool:
+    """Whether the plank's beam (along its longer side, contract 3a) stands more upright
+    than level: its bending is then a bow sideways (a leg, a side), not a sag."""
+    along = plank.axes[0] if plank.length >= plank.width else plank.axes[1]
+    return abs(along[2]) > UPRIGHT_SINE
+
+
 def _sag_message(design: Design, material: Material, sag: float, allowed: float,
-                 span: float) -> str:
+                 span: float, upright: bool = False) -> str:
+    """The ``sagging`` violation's words; an upright plank's (a leg, a side: ``_upright``)
+    say it bows sideways, as a woodworker would, with the same numbers."""
     unit, scale = design.units, design.unit_scale
     creep = material.creep
-    return (f"sags {plain_number(sag / scale, 3)} {unit} over a "
-            f"{plain_number(span / scale)} {unit} span, "
+    bends = (f"bows {plain_number(sag / scale, 3)} {unit} sideways between supports "
+             f"{plain_number(span / scale)} {unit} apart, " if upright else
+             f"sags {plain_number(sag / scale, 3)} {unit} over a "
+             f"{plain_number(span / scale)} {unit} span, ")
+    return (bends +
             f"{plain_number(sag * (1 + creep) / scale, 3)} {unit} with creep "
             f"(x {plain_number(1 + creep, 6)}); allowed {plain_number(allowed / scale, 3)} "
             f"{unit} (span / {plain_number(material.sag_limit, 6)})")

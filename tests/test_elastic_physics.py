@@ -567,3 +567,22 @@ def test_determinate_tree_same_wrenches_in_both_models(name):
         assert np.allclose(e_sum, r_sum, rtol=0, atol=1e-6 * scale)
 
 
+
+
+def test_an_upright_plank_bows_sideways_and_a_level_one_sags():
+    """The ``sagging`` message says what a woodworker sees: the elastic racking table's
+    level top 'sags ... over a ... span', its upright legs (700 mm between the floor and
+    the top) 'bow ... sideways between supports ... apart'; the kind, numbers and limit
+    are the same check (contract 3a)."""
+    from pathlib import Path
+
+    from furncheck.check import check_file
+
+    path = Path(__file__).resolve().parents[1] / "designs" / "table-racking.yaml"
+    report = check_file(str(path), "elastic")
+    words = {v.where: v.message for v in report.violations
+             if v.kind == "sagging" and v.case == "default"}
+    assert words["top"].startswith("sags ") and " span, " in words["top"]
+    assert words["leg_pp"].startswith("bows ")
+    assert "sideways between supports 700 mm apart" in words["leg_pp"]
+    assert words["leg_pp"].endswith("(span / 400)")
