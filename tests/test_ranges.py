@@ -398,14 +398,14 @@ def test_ranges_in_worker_processes_equal_the_ranges_in_one(monkeypatch):
     """Every DOF's search is independent of the others: two worker processes (started
     whatever the first shares took: PARALLEL_AFTER 0) give the same ranges, in the same
     order, and the same evaluation count as one process."""
-    import furncheck.ranges.finder as finder
+    import furncheck.ranges.shares as shares
 
-    monkeypatch.setattr(finder, "PARALLEL_AFTER", 0.0)
+    monkeypatch.setattr(shares, "PARALLEL_AFTER", 0.0)
     started = []
-    in_workers = RangeFinder._ranges_in_workers
-    monkeypatch.setattr(RangeFinder, "_ranges_in_workers",
-                        lambda self, tasks, jobs: started.append(len(tasks))
-                        or in_workers(self, tasks, jobs))
+    in_workers = shares.ranges_in_workers
+    monkeypatch.setattr(shares, "ranges_in_workers",
+                        lambda finder, tasks, jobs: started.append(len(tasks))
+                        or in_workers(finder, tasks, jobs))
     design = load_design(str(DESIGNS / "shelf-cantilever.yaml"))
     alone, shared = RangeFinder(design), RangeFinder(design)
     assert shared.ranges(jobs=2) == alone.ranges(jobs=1)
@@ -416,10 +416,10 @@ def test_ranges_in_worker_processes_equal_the_ranges_in_one(monkeypatch):
 def test_small_range_work_stays_in_one_process(monkeypatch):
     """When the rest would take less than PARALLEL_AFTER (here: always), ``jobs`` 2 starts
     no worker, and the ranges are those of one process."""
-    import furncheck.ranges.finder as finder
+    import furncheck.ranges.shares as shares
 
-    monkeypatch.setattr(finder, "PARALLEL_AFTER", 1e9)
-    monkeypatch.setattr(RangeFinder, "_ranges_in_workers", lambda *args: pytest.fail(
+    monkeypatch.setattr(shares, "PARALLEL_AFTER", 1e9)
+    monkeypatch.setattr(shares, "ranges_in_workers", lambda *args: pytest.fail(
         "a worker was started"))
     design = load_design(str(DESIGNS / "shelf-cantilever.yaml"))
     assert RangeFinder(design).ranges(jobs=2) == RangeFinder(design).ranges(jobs=1)

@@ -32,8 +32,8 @@ another's results, so the ranges are the same however the DOFs are batched.
 
 The package, by job:
 
-    finder     RangeFinder: the searches of each side of a DOF, DofRange, dof_ranges,
-               worker processes
+    finder     RangeFinder: the searches of each side of a DOF, DofRange, dof_ranges
+    shares     the DOFs shared among worker processes (--jobs) or a Dask cluster
     batches    Evaluator: a design's edits and their checks, answered in batches for
                searches advanced together
     estimates  where validity is likely to change: the margin's zero, a joint losing a

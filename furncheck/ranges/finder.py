@@ -5,12 +5,7 @@ See the package's docstring for the two stages of a side's search.
 
 from __future__ import annotations
 
-import gc
-import multiprocessing
-import time
 from collections.abc import Generator
-from concurrent.futures import ProcessPoolExecutor
-from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 
 import numpy as np
@@ -18,7 +13,6 @@ import numpy as np
 from furncheck.check import check_design, margin_of
 from furncheck.design.model import Design
 from furncheck.dofs import (
-    DOF_KINDS,
     Blocked,
     Dof,
     OutOfReach,
@@ -66,18 +60,6 @@ DROP_RESOLUTION = 0.1
 
 DROP_STEPS = 6
 """Most geometry evaluations finding the step at which a joint loses a nail."""
-
-PARALLEL_MIN_DOFS = 16
-"""Fewer DOFs than this are searched in this process: starting workers would cost more."""
-
-PARALLEL_AFTER = 1.0
-"""CPU seconds: with ``jobs`` > 1 the first two shares of the DOFs are searched in this
-process, and the rest goes to worker processes only if it would take at least this much
-work here (at the second share's CPU time per share); else it is searched here too."""
-
-DOFS_PER_TASK = 16
-"""DOFs per task of a worker process: a task's DOFs are searched together (the more, the
-larger the batches of evaluations); small tasks balance the uneven DOFs."""
 
 REACH_PREDICTIONS = 4
 """Most predictions of the geometric reach of one side of a DOF before it is bisected."""
@@ -148,93 +130,30 @@ class RangeFinder(Evaluator):
         With ``jobs`` > 1 the work is sized first: the first two of the shares the
         workers would get are searched here (the first also pays for what every search
         shares: imports, the design's sensitivities), and the rest goes to workers only
-        if it would take PARALLEL_AFTER CPU seconds or more at the second's pace (CPU time:
-        the work, whatever else the machine is doing); else it is
+        if it would take ``shares.PARALLEL_AFTER`` CPU seconds or more at the second's
+        pace (CPU time: the work, whatever else the machine is doing); else it is
         searched here as well, all together.  Small designs so stay in one process, and
         the workers, forked after those shares, start with what they imported
         (scipy.optimize, when an edit needed a feasibility program: 0.5 s or more to
         import in every worker)."""
+        from furncheck.ranges import shares
+
         dofs = all_dofs(self.design) if names is None else \
             [parse_dof(self.design, name) for name in names]
         if client is not None:
-            return self._ranges_on_cluster(dofs, client)
-        if jobs > 1 and len(dofs) >= PARALLEL_MIN_DOFS:
-            return self._ranges_shared(dofs, jobs)
+            return shares.ranges_on_cluster(self, dofs, client)
+        if jobs > 1 and len(dofs) >= shares.PARALLEL_MIN_DOFS:
+            return shares.ranges_shared(self, dofs, jobs)
         return self._ranges_together(dofs)
 
     def range(self, dof: Dof) -> DofRange:
         return self._ranges_together([dof])[0]
-
-    def _ranges_on_cluster(self, dofs: list[Dof], client) -> list[DofRange]:
-        from furncheck.cluster import cluster_ranges, worker_threads
-
-        shares = _shares(dofs, worker_threads(client))
-        done = cluster_ranges(client, self.design, self.locked_names,
-                              [[dofs[n] for n in share] for share in shares])
-        found: list[DofRange | None] = [None] * len(dofs)
-        for share, (ranges, evaluations) in zip(shares, done):
-            self.evaluations += evaluations
-            for n, dof_range in zip(share, ranges):
-                found[n] = dof_range
-        return found
 
     def search(self, dofs: list[Dof]) -> tuple[list[DofRange], int]:
         """The ranges of ``dofs`` searched here, and the full checks they took."""
         before = self.evaluations
         found = self._ranges_together(dofs)
         return found, self.evaluations - before
-
-    def _ranges_shared(self, dofs: list[Dof], jobs: int) -> list[DofRange]:
-        """The ranges of ``dofs`` in shares (``_shares``).  The first two shares are
-        searched here; the others in worker processes when they are worth it
-        (``ranges``), else here."""
-        shares = _shares(dofs, jobs)
-        found: list[DofRange | None] = [None] * len(dofs)
-        pace = 0.0
-        for share in shares[:2]:
-            start = time.process_time()
-            for n, dof_range in zip(share, self._ranges_together([dofs[n] for n in share])):
-                found[n] = dof_range
-            pace = time.process_time() - start
-        rest = shares[2:]
-        done = None
-        if len(rest) > 1 and pace * len(rest) >= PARALLEL_AFTER:
-            done = self._ranges_in_workers([[dofs[n] for n in share] for share in rest], jobs)
-        if done is None and rest:
-            together = [n for share in rest for n in share]
-            done = [self._ranges_together([dofs[n] for n in together])]
-            rest = [together]
-        for share, ranges in zip(rest, done or ()):
-            for n, dof_range in zip(share, ranges):
-                found[n] = dof_range
-        return found
-
-    def _ranges_in_workers(self, tasks: list[list[Dof]],
-                           jobs: int) -> list[list[DofRange]] | None:
-        """The ranges of each task's DOFs, from min(``jobs``, tasks) forked worker
-        processes (which inherit this finder); None when processes cannot be forked
-        here."""
-        global _WORKER_FINDER
-        try:
-            context = multiprocessing.get_context("fork")
-        except ValueError:          # no fork on this platform
-            return None
-        _WORKER_FINDER = self
-        # The workers inherit this process's objects; frozen, the garbage collector leaves
-        # them alone in the workers and does not copy their memory pages by touching them
-        # (measured: a tenth of the cabinet's work in the workers).
-        gc.freeze()
-        try:
-            with ProcessPoolExecutor(max_workers=min(jobs, len(tasks)),
-                                     mp_context=context) as pool:
-                done = list(pool.map(_ranges_of, tasks))
-        except (OSError, BrokenProcessPool):
-            return None
-        finally:
-            gc.unfreeze()
-            _WORKER_FINDER = None
-        self.evaluations += sum(evaluations for _, evaluations in done)
-        return [ranges for ranges, _ in done]
 
     def _ranges_together(self, dofs: list[Dof]) -> list[DofRange]:
         """The ranges of ``dofs``, all their searches advanced together (``_run``): each
@@ -622,24 +541,6 @@ class RangeFinder(Evaluator):
         if dof.is_rotation:
             return 90.0 * SEARCH_LIMIT, 100.0 * RANGE_RESOLUTION
         return self.size * SEARCH_LIMIT, self.size * RANGE_RESOLUTION
-
-
-_WORKER_FINDER: RangeFinder | None = None
-"""The finder whose DOFs a forked worker process searches (set while its pool runs)."""
-
-
-def _ranges_of(dofs: list[Dof]) -> tuple[list[DofRange], int]:
-    """In a worker process: the ranges of ``dofs`` and the evaluations they took."""
-    return _WORKER_FINDER.search(dofs)
-
-
-def _shares(dofs: list[Dof], workers: int) -> list[list[int]]:
-    """The indices of ``dofs`` in shares for ``workers``: tasks of at most DOFS_PER_TASK
-    DOFs, at least two per worker, the DOFs of each kind dealt out in turn (DOFs of one
-    kind are alike in cost: rotations cost most)."""
-    count = min(len(dofs), max(2 * workers, -(-len(dofs) // DOFS_PER_TASK)))
-    order = sorted(range(len(dofs)), key=lambda n: (DOF_KINDS.index(dofs[n].kind), n))
-    return [order[k::count] for k in range(count)]
 
 
 def dof_ranges(design: Design, names: list[str] | None = None,
