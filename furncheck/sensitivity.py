@@ -36,7 +36,7 @@ from furncheck.statics import (
     solve_load_case,
     solve_system,
 )
-from furncheck.statics.condense import solve_with_springs
+from furncheck.statics.anchored import solve_with_springs
 from furncheck.statics.contact_law import ContactLaw
 from furncheck.statics.derivatives import AssemblySide, assembly_differences, assembly_steps
 

@@ -226,7 +226,7 @@ PLANK_BATCH = 4096
 
 ANCHORED_CACHE_BYTES = 256 * 2 ** 20
 """Most bytes of factored contact-state matrices a statics model keeps for its next
-solves (``statics.condense.anchored_system``; the least recently used go first): all
+solves (``statics.anchored.anchored_system``; the least recently used go first): all
 of them for the catalog's designs (a few kB each), one or two of a design standing on
 600 planks (2 x 104 MB each)."""
 

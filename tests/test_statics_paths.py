@@ -28,13 +28,9 @@ from furncheck.check import check_design, holding_states, margin_of
 from furncheck.design import load_design
 from furncheck.geometry import analyze
 from furncheck.statics import build_model, external_forces, solve_case
-from furncheck.statics.condense import (
-    _accurate,
-    _anchored_stiffness,
-    _cholesky,
-    _Factored,
-    anchored_system,
-)
+from furncheck.statics.anchored import _anchored_stiffness, _Factored, anchored_system
+from furncheck.statics.condense import _accurate
+from furncheck.statics.lapack import cholesky as _cholesky
 
 CATALOG = sorted((Path(__file__).resolve().parents[1] / "designs").glob("*.yaml"))
 

@@ -27,7 +27,11 @@ The package, by job:
                  external_forces (self-weight and loads)
     condense     static condensation onto the grounded planks (through the planks with a
                  dense Cholesky factor up to 60 planks, else the sparse LU of the mixed
-                 system), the full mixed matrix (system_matrix) and its solve (solve_system)
+                 system)
+    anchored     the contact springs on the condensed system: a contact state's matrix
+                 factored once (anchored_system), the full mixed matrix (system_matrix)
+                 and its solve (solve_system)
+    lapack       scipy's LAPACK routines without importing scipy.linalg (cholesky)
     contacts     solve_case: the contact active set and the friction energy
     feasibility  linear programs: does any admissible equilibrium exist?
     beams        the elastic model's elements: Timoshenko beam, consistent loads, a nail
@@ -48,7 +52,7 @@ from dataclasses import replace
 import numpy as np
 
 from furncheck.design.model import LoadCase
-from furncheck.statics.condense import anchor_springs, solve_system, system_matrix
+from furncheck.statics.anchored import anchor_springs, solve_system, system_matrix
 from furncheck.statics.contacts import LIFT, STICK, solve_case
 from furncheck.statics.model import CaseStatics, StaticsModel, build_model, external_forces
 

@@ -14,7 +14,8 @@ import numpy as np
 
 from furncheck import tolerances as tol
 from furncheck.plain import plain_number
-from furncheck.statics.condense import _accurate, anchored_system
+from furncheck.statics.anchored import anchored_system
+from furncheck.statics.condense import _accurate
 from furncheck.statics.feasibility import (
     INFEASIBLE,
     UNDECIDED,

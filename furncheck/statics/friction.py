@@ -18,13 +18,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.statics.condense import (
-    _cholesky,
-    _condensed_stiffness,
-    _Factored,
-    anchored_system,
-)
-from furncheck.statics.lapack import routines
+from furncheck.statics.anchored import _condensed_stiffness, _Factored, anchored_system
+from furncheck.statics.lapack import cholesky, routines
 from furncheck.statics.model import StaticsModel, spring_rows
 
 if TYPE_CHECKING:
@@ -235,7 +230,7 @@ class _FrictionEnergy:
         hessian = _condensed_stiffness(self.model, springs)
         shift = tol.SOLVE_RESIDUAL * max(float(np.abs(np.diag(hessian)).max()), 1.0)
         hessian[np.diag_indices(len(x))] += shift
-        return _Factored(hessian, _cholesky(hessian))
+        return _Factored(hessian, cholesky(hessian))
 
     def minimize(self, x: np.ndarray) -> np.ndarray | None:
         """Newton's method from x with a line search on the directional derivative (the

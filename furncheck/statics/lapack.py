@@ -1,5 +1,6 @@
-"""The LAPACK routines of the dense statics: Cholesky (``potrf``, ``potrs``) and LU
-(``gesv``), scipy's own double-precision ones, without the cost of importing scipy.linalg.
+"""The LAPACK routines of the dense statics: Cholesky (``potrf``, ``potrs``; ``cholesky``
+and ``cholesky_solve``) and LU (``gesv``), scipy's own double-precision ones, without the
+cost of importing scipy.linalg.
 
 ``import scipy.linalg`` takes 0.2 to 0.6 s (its array-API layer imports numpy.f2py,
 numpy.testing and numpy.ma), several times what a small design's whole check takes, while
@@ -72,3 +73,17 @@ def _load_flapack_file():
     except (ImportError, OSError, AttributeError, ValueError):
         return None
     return None
+
+
+def cholesky(matrix):
+    """The upper Cholesky factor of a symmetric matrix (its upper triangle read), None if
+    it is not positive definite (LAPACK's potrf directly: scipy's wrappers cost more than
+    the factoring of these small matrices)."""
+    factor, info = routines().potrf(matrix, lower=0, clean=0)
+    return factor if info == 0 else None
+
+
+def cholesky_solve(factor, rhs):
+    """x with U^T U x = rhs for the upper Cholesky factor U (``cholesky``)."""
+    x, _ = routines().potrs(factor, rhs, lower=0)
+    return x

@@ -310,8 +310,8 @@ class StaticsModel:
 
     @cached_property
     def anchored_systems(self) -> dict:
-        """(contact state, spring scale) -> ``condense._Factored``, filled as the
-        contact iterations meet them (``condense.anchored_system``)."""
+        """(contact state, spring scale) -> ``anchored._Factored``, filled as the
+        contact iterations meet them (``anchored.anchored_system``)."""
         return {}
 
     @cached_property
