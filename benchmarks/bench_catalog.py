@@ -144,15 +144,17 @@ def import_costs(repeat: int) -> None:
         print(f"| {module} | {min(times) / 1000:.0f} |")
 
 
+def _validate_commands(trees: dict[str, Path], folder: Path) -> dict[str, list[str]]:
+    """``validate FOLDER --format json --no-cache`` with ``--jobs`` 1 and 2, per tree."""
+    return {f"{side} --jobs {jobs}": tree_command(tree) + [
+                "validate", str(folder), "--format", "json", "--jobs", str(jobs),
+                *uncached(tree)]
+            for side, tree in trees.items() for jobs in (1, 2)}
+
+
 def throughput(trees: dict[str, Path], catalog: Path, small: Path, repeat: int,
                count: int) -> dict[str, tuple[float, float]]:
-    commands = {}
-    for side, tree in trees.items():
-        for jobs in (1, 2):
-            commands[f"{side} --jobs {jobs}"] = tree_command(tree) + [
-                "validate", str(catalog), "--format", "json", "--jobs", str(jobs),
-                *uncached(tree)]
-    found = medians(commands, repeat)
+    found = medians(_validate_commands(trees, catalog), repeat)
     print(f"\n| {count} designs, --format json | seconds | designs/s | peak RSS (MB) |")
     print("|---|---:|---:|---:|")
     for name, (seconds, rss) in found.items():
@@ -160,13 +162,7 @@ def throughput(trees: dict[str, Path], catalog: Path, small: Path, repeat: int,
     if "old" in trees:
         ratio = found["old --jobs 2"][0] / found["new --jobs 2"][0]
         print(f"\nnew --jobs 2 / old --jobs 2: {ratio:.2f}x the designs per second")
-    commands = {}
-    for side, tree in trees.items():
-        for jobs in (1, 2):
-            commands[f"{side} --jobs {jobs}"] = tree_command(tree) + [
-                "validate", str(small), "--format", "json", "--jobs", str(jobs),
-                *uncached(tree)]
-    found_small = medians(commands, repeat)
+    found_small = medians(_validate_commands(trees, small), repeat)
     print("\n| 10 designs, --format json | seconds |")
     print("|---|---:|")
     for name, (seconds, _) in found_small.items():

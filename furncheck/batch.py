@@ -133,15 +133,24 @@ def _advancing(checked: Iterator[Entry], shown) -> Iterator[Entry]:
 def check_one(path: str, model: str | None = None) -> DesignReport:
     """``check_file(path, model)``, with any unexpected exception turned into an error
     report."""
-    try:
+    def check() -> DesignReport:
         from furncheck.check import check_file  # heavy (numpy): imported on use
 
-        report = check_file(path, model)
+        return check_file(path, model)
+
+    return guarded(path, check)
+
+
+def guarded(source: str, check: Callable[[], DesignReport]) -> DesignReport:
+    """``check()``, the report of the design ``source``; an unexpected exception, or
+    something else than a report, turned into an error report saying so."""
+    try:
+        report = check()
     except Exception as error:
-        return error_report(path, f"internal error: {type(error).__name__}: {error}")
+        return error_report(source, f"internal error: {type(error).__name__}: {error}")
     if not isinstance(report, DesignReport):
-        return error_report(path, f"internal error: the checker returned a "
-                                  f"{type(report).__name__}, not a DesignReport")
+        return error_report(source, f"internal error: the checker returned a "
+                                    f"{type(report).__name__}, not a DesignReport")
     return report
 
 

@@ -26,6 +26,7 @@ with one line.  Dask's nanny starts workers with one BLAS thread (its
 
 from __future__ import annotations
 
+import functools
 import threading
 from collections import deque
 from collections.abc import Iterator
@@ -204,16 +205,13 @@ def _check_documents(documents: list[tuple[str, bytes, str]], fmt: str, model: s
                      keep_reports: bool) -> list[tuple[Entry, object]]:
     """On a worker: per (path, bytes, format) its entry in ``fmt``, and its report when
     ``keep_reports`` (for the cache of the process that asked)."""
-    from furncheck.batch import entry_of_report
+    from furncheck.batch import entry_of_report, guarded
     from furncheck.check import check_data
-    from furncheck.scan import error_report
 
     out = []
     for path, data, document_format in documents:
-        try:
-            report = check_data(data, path, document_format, model)
-        except Exception as error:  # noqa: BLE001 - as ``batch.check_one``
-            report = error_report(path, f"internal error: {type(error).__name__}: {error}")
+        report = guarded(path, functools.partial(check_data, data, path, document_format,
+                                                 model))
         out.append((entry_of_report(report, fmt), report if keep_reports else None))
     return out
 

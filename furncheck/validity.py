@@ -33,7 +33,7 @@ from furncheck.result import (
     Violation,
 )
 from furncheck.statics import CaseStatics, StaticsModel
-from furncheck.statics.beams import nail_row_spread
+from furncheck.statics.beams import beam_frame, nail_row_spread
 
 
 @dataclass(frozen=True)
@@ -174,7 +174,7 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
             if final > allowed * (1.0 + tol.CAPACITY_REL_TOL):
                 violations.append(Violation("sagging", plank.id, case.name, _sag_message(
                     design, material, sag, allowed, statics.planks.span[k],
-                    _upright(plank)), line))
+                    _upright(plank, model.beams.crosswise[k])), line))
             if stress > strength * (1.0 + tol.CAPACITY_REL_TOL):
                 violations.append(Violation("overstressed", plank.id, case.name,
                                             _stress_message(design, stress, strength), line))
@@ -269,11 +269,11 @@ UPRIGHT_SINE = 0.5 ** 0.5
 """A beam whose axis rises more than 45 degrees from level is upright (``_upright``)."""
 
 
-def _upright(plank) -> bool:
-    """Whether the plank's beam (along its longer side, contract 3a) stands more upright
-    than level: its bending is then a bow sideways (a leg, a side), not a sag."""
-    along = plank.axes[0] if plank.length >= plank.width else plank.axes[1]
-    return abs(along[2]) > UPRIGHT_SINE
+def _upright(plank, crosswise: bool) -> bool:
+    """Whether the plank's beam (``crosswise``: along its local y, as the elastic model
+    laid it, ``StaticsModel.beams``) stands more upright than level: its bending is then
+    a bow sideways (a leg, a side), not a sag."""
+    return abs(float(beam_frame(plank, crosswise)[2, 0])) > UPRIGHT_SINE
 
 
 def _sag_message(design: Design, material: Material, sag: float, allowed: float,
