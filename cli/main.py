@@ -4,13 +4,52 @@ from __future__ import annotations
 
 import click
 
-from furncheck import __version__
+from furncheck import __version__, exitcodes
 from furncheck.cli.range import range_command
 from furncheck.cli.suggest import suggest
 from furncheck.cli.validate import validate
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+class _OneLine(click.ClickException):
+    """A usage error as one line on stderr (contract section 4: one line per problem),
+    exit code 2."""
+
+    exit_code = exitcodes.BAD_INPUT
+
+    def show(self, file=None) -> None:
+        click.echo(self.message, err=True)
+
+
+def _one_line(error: click.UsageError) -> click.UsageError | _OneLine:
+    """``error`` as one line: the command, click's message and where help is, e.g.
+    "furncheck validate: no such option '--bogus'. Did you mean '--jobs'? (see 'furncheck
+    validate --help')".  A bare ``furncheck`` keeps showing its help."""
+    if isinstance(error, click.exceptions.NoArgsIsHelpError):
+        return error
+    path = error.ctx.command_path if error.ctx is not None else "furncheck"
+    message = " ".join(error.format_message().split())
+    message = message[:1].lower() + message[1:].rstrip(".")
+    return _OneLine(f"{path}: {message} (see '{path} --help')")
+
+
+class _Commands(click.Group):
+    """The command group, its usage errors (an unknown option or command, a missing
+    argument, a value of the wrong type) one line each instead of click's usage block."""
+
+    def make_context(self, *args, **kwargs):
+        try:
+            return super().make_context(*args, **kwargs)
+        except click.UsageError as error:
+            raise _one_line(error) from None
+
+    def invoke(self, ctx: click.Context):
+        try:
+            return super().invoke(ctx)
+        except click.UsageError as error:
+            raise _one_line(error) from None
+
+
+@click.group("furncheck", cls=_Commands, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, "--version", prog_name="furncheck",
                       message="%(prog)s %(version)s")
 def main() -> None:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import sys
 from collections.abc import Iterable
 from typing import NoReturn
 
@@ -107,15 +108,40 @@ def config_or_fail(paths):
         fail(str(error))
 
 
-def load_or_fail(path: str, model: str | None = None):
-    """The design at ``path`` (in ``model`` when given), or one line and exit 2 when it
-    cannot be read."""
-    from furncheck.check import load_checked
+STDIN = "-"
+"""The PATH or DESIGN that stands for a design on standard input."""
+
+STDIN_NAME = "<stdin>"
+"""How reports name a design read from standard input without ``--stdin-filename``."""
+
+STDIN_FILENAME_OPTION = click.option(
+    "--stdin-filename", metavar="NAME", default=None,
+    help="The name reports give a design read from '-' (standard input); its extension "
+         "picks YAML or JSON.  [default: <stdin>, format by content]")
+
+
+def stdin_document(name: str | None) -> tuple[bytes, str, str]:
+    """Standard input's bytes, the name reports give them (``name``, else STDIN_NAME) and
+    their format: by the name's extension, else JSON when the text starts with '{'."""
+    data = sys.stdin.buffer.read()
+    source = name or STDIN_NAME
+    suffix = os.path.splitext(source)[1].lower()
+    fmt = {".json": "json", ".yaml": "yaml", ".yml": "yaml"}.get(suffix)
+    if fmt is None:
+        fmt = "json" if data.lstrip(b"\xef\xbb\xbf \t\r\n").startswith(b"{") else "yaml"
+    return data, source, fmt
+
+
+def load_or_fail(path: str, model: str | None = None, stdin_name: str | None = None):
+    """The design at ``path`` (standard input for STDIN, named ``stdin_name``), in
+    ``model`` when given, or one line and exit 2 when it cannot be read."""
+    from furncheck.check import load_checked, load_data
     from furncheck.design.model import with_model
     from furncheck.errors import DesignError
 
     try:
-        return with_model(load_checked(path), model)
+        loaded = load_data(*stdin_document(stdin_name)) if path == STDIN else load_checked(path)
+        return with_model(loaded, model)
     except DesignError as error:
         fail(str(error))
 

@@ -9,6 +9,7 @@ import click
 from furncheck.cli.output import (
     MODEL_OPTION,
     SCHEDULER_OPTION,
+    STDIN_FILENAME_OPTION,
     check_output,
     client_or_fail,
     config_or_fail,
@@ -34,9 +35,10 @@ from furncheck.cli.output import (
                    "same.")
 @MODEL_OPTION
 @SCHEDULER_OPTION
+@STDIN_FILENAME_OPTION
 def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str, ...],
                   output: str | None, jobs: int | None, model: str | None,
-                  scheduler: str | None) -> None:
+                  scheduler: str | None, stdin_filename: str | None) -> None:
     """Valid interval of each DOF of DESIGN, the others held fixed (their neighbours
     adjusted to keep the joints).  DOFs are <plank>.x|y|z (translation, length unit),
     <plank>.rx|ry|rz (rotation about world axes, degrees) and <plank>.length|width;
@@ -52,7 +54,8 @@ def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str
     config = config_or_fail((design,))
     model = model or config.model
     check_output(output)
-    loaded = load_or_fail(design, model)
+    loaded = load_or_fail(design, model, stdin_filename)
+    design = loaded.source          # the path as given, or the name of standard input
     dofs_or_fail(design, loaded, (*dofs, *locks))
     client = client_or_fail(scheduler)
     try:

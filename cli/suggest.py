@@ -8,6 +8,7 @@ import click
 
 from furncheck.cli.output import (
     MODEL_OPTION,
+    STDIN_FILENAME_OPTION,
     check_output,
     config_or_fail,
     dofs_or_fail,
@@ -53,9 +54,10 @@ def _combined_dofs(value: int) -> int:
 @click.option("-o", "--output", metavar="FILE", default=None,
               help="Write the report to FILE instead of standard output.")
 @MODEL_OPTION
+@STDIN_FILENAME_OPTION
 def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, ...],
             out_dir: str | None, no_plots: bool, fmt: str, output: str | None,
-            model: str | None) -> None:
+            model: str | None, stdin_filename: str | None) -> None:
     """Ranked suggestions that make DESIGN valid: small changes of one to --max-dofs
     plank positions, angles and sizes (continuous, paper section 6.4; symmetric changes of
     mirror planks first) and support planks to add (discrete, 6.5), each checked with the
@@ -86,7 +88,8 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
     config = config_or_fail((design,))
     model = model or config.model
     check_output(output)
-    loaded = load_or_fail(design, model)
+    loaded = load_or_fail(design, model, stdin_filename)
+    design = loaded.source          # the path as given, or the name of standard input
     locked = dofs_or_fail(design, loaded, locks)
     if out_dir is not None:
         problem = prepare_out_dir(out_dir)

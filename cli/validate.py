@@ -19,10 +19,13 @@ import click
 from furncheck.cli.output import (
     MODEL_OPTION,
     SCHEDULER_OPTION,
+    STDIN,
+    STDIN_FILENAME_OPTION,
     check_output,
     client_or_fail,
     config_or_fail,
     fail,
+    stdin_document,
     write_chunks,
 )
 from furncheck.report import FORMAT_MODULES
@@ -32,11 +35,6 @@ PROGRESS_MIN_FILES = 50
 """A progress bar is shown on a terminal's stderr from this many files to check on, when
 the report does not go to that terminal too."""
 
-STDIN = "-"
-"""The PATH that stands for a design on standard input (``furncheck.scan.STDIN``)."""
-
-STDIN_NAME = "<stdin>"
-"""How reports name a design read from standard input without ``--stdin-filename``."""
 
 
 @click.command()
@@ -70,9 +68,7 @@ STDIN_NAME = "<stdin>"
 @click.option("--cache-dir", metavar="DIR", default=None,
               help="Where results are cached.  [default: $FURNCHECK_CACHE_DIR, else the "
                    "user cache directory, e.g. ~/.cache/furncheck]")
-@click.option("--stdin-filename", metavar="NAME", default=None,
-              help="The name reports give a design read from '-' (standard input); its "
-                   "extension picks YAML or JSON.  [default: <stdin>, format by content]")
+@STDIN_FILENAME_OPTION
 def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: int | None,
              views_dir: str | None, html_file: str | None, model: str | None,
              scheduler: str | None, excludes: tuple[str, ...],
@@ -214,12 +210,7 @@ def _check_stdin(name: str | None, model: str | None, cache) -> DesignReport:
     from furncheck.check import check_data
     from furncheck.scan import error_report
 
-    data = sys.stdin.buffer.read()
-    source = name or STDIN_NAME
-    suffix = os.path.splitext(source)[1].lower()
-    fmt = {".json": "json", ".yaml": "yaml", ".yml": "yaml"}.get(suffix)
-    if fmt is None:
-        fmt = "json" if data.lstrip(b"\xef\xbb\xbf \t\r\n").startswith(b"{") else "yaml"
+    data, source, fmt = stdin_document(name)
     key = cache.key(source, data) if cache is not None else None
     report = cache.get(key, source) if cache is not None else None
     if report is None:

@@ -145,6 +145,14 @@ def load_checked(path: str) -> Design:
     return _drawing_checked(load_design(path))
 
 
+def load_data(data: bytes, source: str, fmt: str) -> Design:
+    """``load_checked`` of a document's bytes that come from no file (standard input, or a
+    file read by another process): ``source`` names it, ``fmt`` is 'yaml' or 'json'."""
+    from furncheck.design.load import parse_design_bytes
+
+    return _drawing_checked(parse_design_bytes(data, source, fmt))
+
+
 def _drawing_checked(design: Design) -> Design:
     from furncheck.geometry.analysis import resting_apart
 
@@ -168,10 +176,8 @@ def check_data(data: bytes, source: str, fmt: str, model: str | None = None) -> 
     """``check_file`` of a document's bytes (standard input, or a file read by another
     process: ``furncheck.cluster``): the name that reports give it (``source``) and its
     format ('yaml' or 'json')."""
-    from furncheck.design.load import parse_design_bytes
-
     try:
-        return _check_loaded(_drawing_checked(parse_design_bytes(data, source, fmt)), model)
+        return _check_loaded(load_data(data, source, fmt), model)
     except DesignError as error:
         return DesignReport(design=source, name=Path(source).stem, valid=None,
                             error=str(error))

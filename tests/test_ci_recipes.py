@@ -178,6 +178,25 @@ def test_a_design_on_standard_input(tmp_path):
     assert broken.exit_code == 2 and broken.stdout.startswith("<stdin>: error: line ")
 
 
+def test_suggest_and_range_read_standard_input_too():
+    """``suggest -`` and ``range -`` read the design from stdin as ``validate -`` does: the
+    same report as for the file, named '<stdin>' or by --stdin-filename; a broken
+    document is one line and exit 2."""
+    path = ROOT / "designs" / "stool.yaml"
+    text = path.read_text()
+    for command, extra in (("suggest", ("--max-suggestions", "1")), ("range", ("seat.z",))):
+        from_file = run_input("", command, str(path), *extra, "--format", "json")
+        named = run_input(text, command, "-", *extra, "--format", "json",
+                          "--stdin-filename", str(path))
+        assert named.exit_code == from_file.exit_code == 0, named.output
+        assert named.stdout == from_file.stdout
+        plain = run_input(text, command, "-", *extra)
+        assert plain.exit_code == 0 and plain.stdout.startswith("<stdin>")
+        broken = run_input("furncheck: 1\nplanks: [\n", command, "-")
+        assert broken.exit_code == 2 and len(broken.output.splitlines()) == 1
+        assert broken.output.startswith("furncheck: <stdin>:3: YAML syntax error")
+
+
 def run_input(text: str, *args: str):
     from click.testing import CliRunner
 

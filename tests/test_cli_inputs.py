@@ -88,6 +88,33 @@ def test_bad_input_is_one_clear_line_and_exit_2(tmp_path: Path, name: str) -> No
         assert f"line {line}" in first or f":{line}:" in first, first
 
 
+@pytest.mark.parametrize("args, fragment", [
+    (("validate", "--bogus", "designs/stool.yaml"),
+     "furncheck validate: no such option '--bogus'"),
+    (("suggest",), "furncheck suggest: missing argument 'DESIGN'"),
+    (("frob",), "furncheck: no such command 'frob'"),
+    (("validate", "--jobs", "x", "designs"), "furncheck validate: invalid value for '-j'"),
+    (("range", "designs/stool.yaml", "--model", "foo"),
+     "furncheck range: invalid value for '--model'"),
+    (("suggest", "designs/stool.yaml", "--max-dofs", "9"),
+     "furncheck suggest: invalid value for '--max-dofs'"),
+])
+def test_a_usage_error_is_one_line_and_exit_2(args, fragment) -> None:
+    """A wrong command line (unknown option or command, missing argument, bad value) is
+    one line naming the command, click's message and where help is; exit 2."""
+    result = CliRunner().invoke(main, list(args))
+    assert result.exit_code == 2
+    assert len(result.output.splitlines()) == 1, result.output
+    assert result.output.startswith(fragment), result.output
+    command = fragment.split(":")[0]
+    assert result.output.rstrip().endswith(f"(see '{command} --help')")
+
+
+def test_a_bare_command_still_shows_its_help() -> None:
+    result = CliRunner().invoke(main, [])
+    assert "Usage: furncheck" in result.output and "validate" in result.output
+
+
 def test_binary_and_missing_files(tmp_path: Path) -> None:
     binary = tmp_path / "blob.yaml"
     binary.write_bytes(b"\x00\x01\x02furncheck\xff")
