@@ -131,7 +131,10 @@ def test_each_way_to_close_a_gap_is_offered_with_the_boards_it_needs(catalog_sug
     rigid model closes the gap four ways (shelf longer, sides closer, either side moved);
     in the elastic one each of them is offered with the thicker boards it then needs, the
     shelf's once (reconnect), each file valid as checked here from its text, and the
-    advice says the change in shop words before the boards."""
+    advice says the change in shop words before the boards, in amounts a maker measures
+    (``shop_round``): closing the 3 mm gap to within the 0.5 mm tolerance takes 2.5 to
+    3.5 mm, so one side moves 3 mm, and the two sides 1.5 mm each (1 mm each would leave
+    a 1 mm gap; 2 mm each would close 4 mm, the shelf's end 1 mm into the side)."""
     _, rigid = catalog_suggestions("bookshelf-gap.yaml", "rigid")
     design, elastic = catalog_suggestions("bookshelf-gap.yaml", "elastic")
     closing = [s for s in elastic.suggestions if s.rule == "reconnect"]
@@ -143,6 +146,6 @@ def test_each_way_to_close_a_gap_is_offered_with_the_boards_it_needs(catalog_sug
         assert check_design(parse_design(suggestion.text, "s.yaml", "yaml")).valid
         assert any(e.field("thickness") for e in suggestion.edits)
     words = sorted(advice(s, design).split(",")[0] for s in closing if s.dofs)
-    assert words == ["Move side_l 2.62 mm toward side_r",
-                     "Move side_l and side_r closer together by 1.31 mm each",
-                     "Move side_r 2.62 mm toward side_l"]
+    assert words == ["Move side_l 3 mm toward side_r",
+                     "Move side_l and side_r closer together by 1.5 mm each",
+                     "Move side_r 3 mm toward side_l"]

@@ -101,9 +101,11 @@ def test_every_invalid_catalog_design_gets_a_valid_suggestion(results, name, tmp
 
 @pytest.mark.parametrize("name", INVALID)
 def test_suggestions_are_consistent(results, name):
-    """Ranks 1..n; unit directions; changes = step x direction x DOF scale; the step is
+    """Ranks 1..n; unit directions; changes = step x direction x DOF scale, the step
     the smallest change plus half of it again, at most the middle of a non-empty range
-    (``representative_step``); the representative design has exactly these DOF changes
+    (``representative_step``), or each change rounded for the shop (a multiple of half a
+    millimetre or a tenth of a degree, the step it implies inside the range; the step the
+    first DOF's); the representative design has exactly these DOF changes
     for translations and sizes of the moved planks (rotations: the angle changes); ids,
     loads cases and material are kept."""
     result = results[name]
@@ -118,11 +120,19 @@ def test_suggestions_are_consistent(results, name):
         assert math.isclose(np.linalg.norm(suggestion.direction), 1.0, rel_tol=1e-9)
         low, high = suggestion.range
         assert 0.0 < low <= high
-        assert math.isclose(suggestion.step, min(1.5 * low, 0.5 * (low + high)),
-                            rel_tol=1e-12)
-        for name_, s, change in zip(suggestion.dofs, suggestion.direction, suggestion.changes):
-            scale = dof_scale(design, parse_dof(design, name_))
-            assert math.isclose(change, suggestion.step * s * scale, rel_tol=1e-9)
+        rates = [s * dof_scale(design, parse_dof(design, name_))
+                 for name_, s in zip(suggestion.dofs, suggestion.direction)]
+        representative = min(1.5 * low, 0.5 * (low + high))
+        if math.isclose(suggestion.step, representative, rel_tol=1e-12):      # exact
+            for change, rate in zip(suggestion.changes, rates):
+                assert math.isclose(change, suggestion.step * rate, rel_tol=1e-9)
+        else:           # rounded for the shop: each change on its unit's grid, inside
+            for change, rate, unit in zip(suggestion.changes, rates, suggestion.units):
+                grid = {"mm": 0.5, "m": 0.0005, "deg": 0.1}[unit]
+                assert math.isclose(change / grid, round(change / grid), abs_tol=1e-9)
+                assert low <= change / rate <= high
+            assert math.isclose(suggestion.step, suggestion.changes[0] / rates[0],
+                                rel_tol=1e-12)
         written = suggestion.design
         assert [p.id for p in written.planks] == [p.id for p in design.planks]
         assert [c.name for c in written.load_cases] == [c.name for c in design.load_cases]

@@ -10,7 +10,9 @@ side moved, the shelf lengthened).  Each, at its line search's first probe (the 
 linearized margins predict, times FIRST_PROBE), whose design keeps its geometry (the
 continuous suggestions' rule: every joint kept, only the missed ones added) and fails only
 by planks that bend too much, is finished by the thicker rule (``thicker.finish``) and is a
-fix when that is valid.  A closure that changes only the planks ``reconnect`` moves is
+fix when that is valid.  Its changes are rounded to the shop's grid first
+(``shop_round``: 1.5 mm each rather than 1.31), the exact ones kept where no rounding
+closes it.  A closure that changes only the planks ``reconnect`` moves is
 left to it.
 """
 
@@ -28,6 +30,7 @@ from furncheck.suggest.discrete.common import BENDING, Search
 from furncheck.suggest.discrete.reconnect import RECONNECT
 from furncheck.suggest.discrete.thicker import finish, thickness_phrase
 from furncheck.suggest.line_search import FIRST_PROBE
+from furncheck.suggest.shop_round import rounded_changes
 from furncheck.suggest.tried import FAILED, FOUND, Trial
 
 
@@ -61,24 +64,49 @@ def finished_closures(search: ContinuousSearch, directions: list[Candidate],
             continue
         step = min(candidate.enter * FIRST_PROBE, MAX_STEP)
         changes = search.editor.changes(dofs, candidate.direction, step)
-        try:
-            edited = search.editor.moved(dofs, changes)
-        except (Blocked, OutOfReach):
+        rates = search.editor.changes(dofs, candidate.direction, 1.0)
+        units = tuple(dof.unit(discrete.design) for dof in dofs)
+        closed = None
+        for _, amounts in [*rounded_changes(changes, units, rates, 0.0, MAX_STEP),
+                           (step, changes)]:
+            closed = _closed(search, discrete, dofs, amounts)
+            if closed is not None:
+                break
+        if closed is None:
             continue
-        geometry = search.editor.keeps(edited)
-        if geometry is None or geometry.violations:
-            continue
-        report = check_design(edited, geometry)
-        if report.valid or not all(v.kind in BENDING for v in report.violations):
-            continue
-        finished = finish(discrete, edited, geometry, report)
-        if finished is None:
+        if closed is _NOT_FINISHED:
             discrete.trials.append(Trial(RECONNECT, target, FAILED, "closed along the "
                                          "direction: no thicker boards (up to 44 mm) make "
                                          "it valid"))
             continue
-        design, valid_report, thickened = finished
+        amounts, design, valid_report, thickened = closed
         discrete.trials.append(Trial(RECONNECT, target, FOUND))
-        closures.append(Closure(dofs, tuple(changes), design, valid_report,
+        closures.append(Closure(dofs, amounts, design, valid_report,
                                 f"{thickness_phrase(thickened, discrete.design)}."))
     return closures
+
+
+_NOT_FINISHED = object()
+"""``_closed``'s answer for a closed design that no thicker boards make valid."""
+
+
+def _closed(search: ContinuousSearch, discrete: Search, dofs: tuple[Dof, ...],
+            changes: tuple[float, ...]):
+    """The design closed by ``changes`` and finished with thicker boards: (changes, design,
+    report, the planks thickened); _NOT_FINISHED if it keeps its geometry and fails only
+    by bending but no thicker boards make it valid; None if it is no closure (a change
+    that cannot be made, a geometry not kept, valid already, or another violation)."""
+    try:
+        edited = search.editor.moved(dofs, changes)
+    except (Blocked, OutOfReach):
+        return None
+    geometry = search.editor.keeps(edited)
+    if geometry is None or geometry.violations:
+        return None
+    report = check_design(edited, geometry)
+    if report.valid or not all(v.kind in BENDING for v in report.violations):
+        return None
+    finished = finish(discrete, edited, geometry, report)
+    if finished is None:
+        return _NOT_FINISHED
+    return (tuple(changes), *finished)

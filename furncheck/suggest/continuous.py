@@ -7,8 +7,9 @@
    a mirror pair together (``unit_candidates``), where they are about as near.
 3. For each direction, nearest first, a line search with the full nonlinear checks
    (``line_search``): the valid interval of steps, both ends checked.
-4. Each suggestion's design is the smallest change that works plus a RESERVE
-   (``representative``; ``ranking`` writes, validates and ranks it).
+4. Each suggestion's design is the smallest change that works plus a RESERVE, its
+   changes rounded to whole millimetres or half degrees where that is valid too
+   (``representatives``, ``shop_round``; ``ranking`` writes, validates and ranks it).
 """
 
 from __future__ import annotations
@@ -28,6 +29,7 @@ from furncheck.suggest.candidates import Candidate, candidates, unit_candidates
 from furncheck.suggest.edits import Editor, utilization_margin
 from furncheck.suggest.line_search import line_search
 from furncheck.suggest.margins import Margins
+from furncheck.suggest.shop_round import rounded_changes
 from furncheck.suggest.symmetry import mirror_planes, symmetric_units
 from furncheck.suggest.tried import DirectionTally, LineSearch, ProbeLog
 
@@ -124,15 +126,25 @@ class ContinuousSearch:
                                    interval.limited))
         return found
 
-    def representative(self, found: Found) -> tuple[Design, float, tuple[float, ...]] | None:
-        """The design RESERVE past the interval's lower end (at most its middle), its
-        step and DOF changes (None if that step cannot be made)."""
+    def representatives(self, found: Found) -> list[tuple[Design, float, tuple[float, ...]]]:
+        """The designs that may stand for ``found``, to be validated in order (the first
+        valid one is the suggestion): its changes at the step RESERVE past the interval's
+        lower end (at most its middle) rounded to the shop's grid
+        (``shop_round.rounded_changes``), then those changes exact; each with its step and
+        DOF changes (none whose changes cannot be made)."""
         step = representative_step(found.low, found.high)
         changes = self.editor.changes(found.dofs, found.direction, step)
-        try:
-            return self.editor.moved(found.dofs, changes), step, changes
-        except (Blocked, OutOfReach):
-            return None
+        rates = self.editor.changes(found.dofs, found.direction, 1.0)
+        units = tuple(dof.unit(self.editor.design) for dof in found.dofs)
+        tried = [*rounded_changes(changes, units, rates, found.low, found.high),
+                 (step, changes)]
+        out = []
+        for at, amounts in tried:
+            try:
+                out.append((self.editor.moved(found.dofs, amounts), at, amounts))
+            except (Blocked, OutOfReach):
+                continue
+        return out
 
 
 def _same(a: Candidate, b: Candidate) -> bool:

@@ -60,18 +60,16 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
     suggestions: list[Suggestion] = []
     dropped = len(continuous) + len(fixes) + len(closures)
     for found in continuous:
-        moved = search.representative(found)
-        if moved is None:
+        first = _first_written(search, found, len(suggestions) + 1)
+        if first is None:
             continue
-        edited, step, changes = moved
-        written = _written(edited, len(suggestions) + 1, search.editor.keeps)
-        if written is not None:
-            suggestions.append(Suggestion(
-                len(suggestions) + 1, "continuous", search.restores, *written,
-                dofs=tuple(d.name for d in found.dofs),
-                direction=tuple(float(v) for v in found.direction),
-                range=(found.low, found.high), step=step, changes=changes,
-                units=tuple(d.unit(design) for d in found.dofs), limited=found.limited))
+        written, step, changes = first
+        suggestions.append(Suggestion(
+            len(suggestions) + 1, "continuous", search.restores, *written,
+            dofs=tuple(d.name for d in found.dofs),
+            direction=tuple(float(v) for v in found.direction),
+            range=(found.low, found.high), step=step, changes=changes,
+            units=tuple(d.unit(design) for d in found.dofs), limited=found.limited))
     for fix in fixes:
         written = _written(fix.design, len(suggestions) + 1)
         if written is not None:
@@ -136,6 +134,17 @@ def _renamed(suggestion: Suggestion, rank: int) -> Suggestion:
                      source=f"suggestion-{rank:02d}.yaml")
     return replace(suggestion, rank=rank, design=design, text=design_text(design, "yaml"),
                    report=replace(suggestion.report, design=design.source, name=design.name))
+
+
+def _first_written(search: ContinuousSearch, found, rank: int):
+    """(``_written``, step, changes) of the first of the found direction's designs
+    (``ContinuousSearch.representatives``: shop-rounded changes first) that is valid from
+    its text; None if none is."""
+    for edited, step, changes in search.representatives(found):
+        written = _written(edited, rank, search.editor.keeps)
+        if written is not None:
+            return written, step, changes
+    return None
 
 
 def _written(design: Design, rank: int, keeps=analyze):
