@@ -94,6 +94,33 @@ def test_svg_view_draws_each_plank_and_outlines_the_changed_ones():
                               rf"<title>{plank}</title>", svg)) == titles.count(plank)
 
 
+def test_svg_view_draws_the_loads_of_the_case_as_arrows():
+    """The loads of the case given (the pages give the governing one) are arrows, as in
+    the PNG views (``export.arrows``): the overloaded cantilever's 30 kg on its shelf one
+    arrow pointing down (gravity: its head below its tail in the picture), labelled
+    '30 kg' in a detail view but not in a thumbnail; the bookcase's books spread on four
+    shelves, three arrows each, the label once; no case, no arrows."""
+    from furncheck.export.findings import governing_case
+
+    entry = _entry("shelf-cantilever-overloaded.yaml")
+    case = governing_case(entry.report)
+    detail = design_svg(entry.design, None, 420, 300, case=case)
+    (x0, y0, x1, y1), = [tuple(float(v) for v in found) for found in re.findall(
+        r'<line x1="([^"]+)" y1="([^"]+)" x2="([^"]+)" y2="([^"]+)"', detail)]
+    assert abs(x1 - x0) < 1e-6 and y1 > y0 + 20
+    assert re.findall(r"<text[^>]*>([^<]+)</text>", detail) == ["30 kg"]
+    thumbnail = design_svg(entry.design, None, 160, 120, case=case)
+    assert thumbnail.count("<line ") == 1 and "<text" not in thumbnail
+    assert "<line " not in design_svg(entry.design)
+    shelves = _entry("bookshelf-18.yaml")
+    case = governing_case(shelves.report)
+    spread = [load for load in case.loads if load.spread]
+    svg = design_svg(shelves.design, None, 420, 300, case=case)
+    assert svg.count("<line ") == 3 * len(spread) + len(case.loads) - len(spread) > 3
+    labels = re.findall(r"<text[^>]*>([^<]+)</text>", svg)
+    assert len(labels) == len(set(labels)) and any(t.endswith("spread") for t in labels)
+
+
 def test_svg_view_is_the_same_for_a_moved_design():
     """The view is fitted to the picture: moving the whole design changes no pixel."""
     from dataclasses import replace

@@ -34,9 +34,9 @@ from functools import lru_cache
 
 import numpy as np
 
-from furncheck import tolerances as tol
 from furncheck.design.model import Design
 from furncheck.export import projection
+from furncheck.export.arrows import LOAD_ARROW_SHARE, design_extent, load_arrows
 from furncheck.export.colours import (
     FAILING_RGB,
     MARK_RGB,
@@ -66,10 +66,6 @@ MARGIN = 0.06
 DEFLECTION_SHARE = 0.06
 """The deflected shape's largest displacement is magnified to about this share of the
 design's largest extent (by a factor 1, 2 or 5 x 10^k, never below 1)."""
-LOAD_ARROW_SHARE = 0.16
-"""Length of the largest load's arrow, as a share of the design's largest extent; the
-others are 40 % of it plus the rest in proportion to their size."""
-SPREAD_ARROWS = 3
 LABELLED_JOINTS = 3
 LABELLED_CONTACTS = 2
 LABELLED_LOADS = 6
@@ -211,7 +207,7 @@ def _draw_panel(sheet: Sheet, picture: Picture, panel: Panel) -> tuple[str, list
 
     design, report = panel.design, panel.report
     scale = design.unit_scale
-    size = _extent(design)
+    size = design_extent(design)
 
     backdrop = [_floor(design), *_walls(design)]
     sheet.add(PolyCollection(projection.project(np.array(backdrop)), facecolors=[FLOOR_RGB],
@@ -276,51 +272,23 @@ def _magnification(largest: float, size: float) -> float:
 
 def _draw_loads(sheet: Sheet, picture: Picture, design: Design, case: CaseResult, size: float,
                 LineCollection, PolyCollection) -> None:
-    arrows = []          # (head point, unit direction, magnitude N, label or None)
-    scale = design.unit_scale
-    for load in case.loads:
-        if load.mass is not None:
-            force = np.array([0.0, 0.0, -load.mass * tol.GRAVITY])
-            label = f"{plain_number(load.mass)} kg"
-        else:
-            force = np.asarray(load.force, dtype=float)
-            label = f"{plain_number(float(np.linalg.norm(force)))} N"
-        magnitude = float(np.linalg.norm(force))
-        if magnitude == 0.0:
-            continue
-        plank = design.plank(load.plank) if load.plank in design.plank_index else None
-        if plank is None:
-            continue
-        centre = plank.center_array / scale
-        top = centre + 0.5 * plank.thickness / scale * _upward(plank)
-        if load.spread:
-            axis = plank.rotation_matrix[:, 0] * plank.length / scale
-            points = [top + axis * offset for offset in
-                      np.linspace(-1 / 3, 1 / 3, SPREAD_ARROWS)]
-            label += " spread"
-        else:
-            points = [np.asarray(load.at, dtype=float) if load.at is not None else top]
-        for k, point in enumerate(points):
-            arrows.append((point, force / magnitude, magnitude,
-                           label if k == len(points) // 2 else None))
+    arrows = load_arrows(design, case, size)
     if not arrows:
         return
-    largest = max(magnitude for _, _, magnitude, _ in arrows)
     shafts, heads, tails = [], [], []
-    for point, direction, magnitude, _ in arrows:
-        length = LOAD_ARROW_SHARE * size * (0.4 + 0.6 * magnitude / largest)
-        tail2, head2 = projection.project([point - direction * length, point])
+    for arrow in arrows:
+        tail2, head2 = projection.project([arrow.tail, arrow.head])
         shafts.append([tail2, head2])
         heads.append(_arrow_head(tail2, head2, 0.022 * size))
         tails.append(tail2)
     # each different label once first (in load order), then repeats while there is room
-    labels = [(k, label) for k, (*_, label) in enumerate(arrows) if label]
+    labels = [(k, arrow.label) for k, arrow in enumerate(arrows) if arrow.label]
     firsts = {label: k for k, label in reversed(labels)}
     chosen = sorted(k for k, label in labels if firsts[label] == k)
     chosen += [k for k, _ in labels if k not in chosen]
     for k in sorted(chosen[:LABELLED_LOADS]):
         (x, y), = sheet.pixels(tails[k])
-        picture.labels.append(Label(x - 3, y + 2, arrows[k][3], FONT, LOAD_RGB, ha="right",
+        picture.labels.append(Label(x - 3, y + 2, arrows[k].label, FONT, LOAD_RGB, ha="right",
                                     halo=True))
     sheet.add(LineCollection(shafts, colors=[LOAD_RGB], linewidths=1.4, zorder=5))
     sheet.add(PolyCollection(heads, facecolors=[LOAD_RGB], edgecolors="none",
@@ -335,12 +303,6 @@ def _arrow_head(tail: np.ndarray, head: np.ndarray, size: float) -> np.ndarray:
     across = np.array([-along[1], along[0]])
     base = head - along * size
     return np.array([head, base + across * size * 0.45, base - across * size * 0.45])
-
-
-def _upward(plank) -> np.ndarray:
-    """The plank's face normal turned upward (its top face's side)."""
-    normal = plank.rotation_matrix[:, 2]
-    return normal if normal[2] >= 0 else -normal
 
 
 def _draw_failures(sheet: Sheet, picture: Picture, design: Design, report: DesignReport,
@@ -374,14 +336,6 @@ def _draw_failures(sheet: Sheet, picture: Picture, design: Design, report: Desig
 
 
 # --- shared geometry --------------------------------------------------------------------
-
-def _extent(design: Design) -> float:
-    """The design's largest extent along a world axis, file unit (1 for no planks)."""
-    if not design.planks:
-        return 1.0
-    corners = np.concatenate([plank.corners for plank in design.planks]) / design.unit_scale
-    return float(np.ptp(corners, axis=0).max()) or 1.0
-
 
 def _floor(design: Design) -> np.ndarray:
     """(4, 3) the floor's rectangle under the design, a margin around its footprint."""
@@ -426,7 +380,7 @@ def _shared_limits(panels: list[Panel]) -> tuple[float, float, float, float]:
             points.append(projection.project(corners / design.unit_scale))
             points.append(projection.project(_floor(design)))
             points.extend(projection.project(wall) for wall in _walls(design))
-            size = _extent(design)
+            size = design_extent(design)
             top = corners[:, 2].max() / design.unit_scale
             points.append(projection.project(corners / design.unit_scale
                                              + [0, 0, LOAD_ARROW_SHARE * size])

@@ -19,7 +19,7 @@ from typing import Any
 
 from furncheck.design.model import Design
 from furncheck.export.colours import UTILIZATION_STOPS, utilization_rgb
-from furncheck.export.findings import DURABILITY_COUNTS, changed_planks
+from furncheck.export.findings import DURABILITY_COUNTS, changed_planks, governing_case
 from furncheck.report.numbers import format_number, format_percent
 from furncheck.report.svg import design_svg, plank_utilizations
 from furncheck.result import BatchReport, DesignReport
@@ -135,7 +135,8 @@ def catalog_page(entries: list[CatalogEntry], title: str = "furncheck catalog") 
         used = None if report.error is not None or entry.design is None else \
             plank_utilizations(report, entry.design)
         worst = None if used is None else worst_utilization(used)
-        thumbnail = "" if entry.design is None else design_svg(entry.design, used, 160, 120)
+        thumbnail = "" if entry.design is None else design_svg(
+            entry.design, used, 160, 120, case=governing_case(report))
         kinds = sorted({v.kind for v in report.violations})
         count = len(report.violations)
         violations = report.error or (
@@ -174,7 +175,8 @@ def _details(number: int, entry: CatalogEntry, used: dict[str, float] | None) ->
         parts.append(f"<p>{escape(report.error)}</p>")
         return "\n".join(parts)
     if entry.design is not None:
-        parts.append(design_svg(entry.design, used, 420, 300, title=report.name))
+        parts.append(design_svg(entry.design, used, 420, 300, title=report.name,
+                                case=governing_case(report)))
     parts.append(_violation_list(report))
     parts.append(_case_table(report))
     return "\n".join(parts)
@@ -250,7 +252,8 @@ def suggestion_page(document: dict[str, Any], original: PageDesign,
     parts = [f"<h1>{escape(report.name)}: <span class=\"{verdict}\">{verdict}</span></h1>",
              f'<p class="small">{escape(report.design)}</p>', _legend(),
              '<div class="views">' + design_svg(original.design, used, 420, 300,
-                                               title=report.name)
+                                               title=report.name,
+                                               case=governing_case(report))
              + _model_viewer(original.glb, report.name) + "</div>",
              _violation_list(report), _case_table(report)]
     suggestions = document.get("suggestions", [])
@@ -271,7 +274,8 @@ def suggestion_page(document: dict[str, Any], original: PageDesign,
         if shown is not None:
             views = [design_svg(shown.design, plank_utilizations(shown.report, shown.design),
                                 420, 300, marks=changed_planks(original.design, shown.design),
-                                title=f"suggestion {rank}")]
+                                title=f"suggestion {rank}",
+                                case=governing_case(shown.report))]
             views += [f'<img src="{escape(picture)}" alt="{escape(picture)}" width="420">'
                       for picture in shown.pictures]
             views.append(_model_viewer(shown.glb, f"suggestion {rank}"))
