@@ -66,9 +66,11 @@ def load_arrows(design: Design, case: CaseResult, size: float) -> list[LoadArrow
     if not found:
         return []
     largest = max(magnitude for _, _, magnitude, _ in found)
-    return [LoadArrow(point - direction * LOAD_ARROW_SHARE * size
-                      * (0.4 + 0.6 * magnitude / largest), point, label)
-            for point, direction, magnitude, label in found]
+    arrows = []
+    for point, direction, magnitude, label in found:
+        length = LOAD_ARROW_SHARE * size * (0.4 + 0.6 * magnitude / largest)
+        arrows.append(LoadArrow(point - direction * length, point, label))
+    return arrows
 
 
 def design_extent(design: Design) -> float:
