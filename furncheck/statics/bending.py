@@ -27,11 +27,11 @@ from furncheck.statics.beams import (
     element_interior,
     section_properties,
 )
-from furncheck.statics.elastic import (
+from furncheck.statics.elements import (
     Beams,
-    _element_loads_local,
     case_line_loads,
     element_end_forces,
+    element_loads_local,
 )
 from furncheck.statics.model import StaticsModel
 
@@ -252,7 +252,7 @@ def _supports(model: StaticsModel) -> tuple[np.ndarray, np.ndarray]:
     """(the nodes where a joint carries its plank (``_carrying_neighbours``), whether each
     plank's sag is read (not lying on the floor, ``_lying_on_floor``)): which planks are
     jointed and which contacts stand decide them, so they are kept per model and shared
-    by the models built on it (``elastic.TOPOLOGY_CACHE``)."""
+    by the models built on it (``templated.TOPOLOGY_CACHE``)."""
     cached = model.plank_cache.get("supports")
     if cached is not None:
         return cached
@@ -282,7 +282,7 @@ def _stress(model: StaticsModel, layout: _Layout, displacement: np.ndarray, w: n
     uniform load ``line_loads`` (nE, 3) N/m), linear in between."""
     beams = model.beams
     forces = element_end_forces(beams, displacement.ravel()) \
-        - _element_loads_local(beams, line_loads)
+        - element_loads_local(beams, line_loads)
     # each plane's moment as M(xi) = c0 + c1 xi + c2 xi^2 along the element, (2, nE) each
     c0, V0, q = _moment_lines(model, layout, w, slope, line_loads)
     c1, c2 = V0 * beams.length, 0.5 * q * beams.length ** 2

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.statics.elastic import assemble_beams_dense
+from furncheck.statics.elements import assemble_beams_dense
 from furncheck.statics.lapack import cholesky, cholesky_solve
 from furncheck.statics.model import _SIX, StaticsModel, block_sums
 

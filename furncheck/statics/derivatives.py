@@ -26,7 +26,8 @@ from furncheck import tolerances as tol
 from furncheck.design.model import Design
 from furncheck.geometry import Contact, Joint
 from furncheck.statics.contact_law import ContactLaw
-from furncheck.statics.model import StaticsModel, block_sums, external_forces, point_maps
+from furncheck.statics.model import StaticsModel, block_sums, external_forces
+from furncheck.statics.offsets import point_maps
 from furncheck.tolerances import GRAVITY
 
 
@@ -188,9 +189,9 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
 def _stepped_models(model: StaticsModel, sides: list[AssemblySide], case_name: str,
                     q: np.ndarray, h: np.ndarray, law: ContactLaw):
     """(stepped model, its geometry, its b - A x) of each side in order, the models built
-    on ``model`` a batch at a time (``elastic.build_elastic_model_batches``) and each
+    on ``model`` a batch at a time (``templated.build_elastic_model_batches``) and each
     batch's residuals computed together (``_residuals``)."""
-    from furncheck.statics.elastic import build_elastic_model_batches
+    from furncheck.statics.templated import build_elastic_model_batches
 
     geometries = [_stepped_geometry(model.geometry, side) for side in sides]
     done = 0

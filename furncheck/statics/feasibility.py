@@ -23,7 +23,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.statics.model import StaticsModel, _skew
+from furncheck.statics.model import StaticsModel
+from furncheck.statics.offsets import skew
 
 FEASIBLE, INFEASIBLE, UNDECIDED = "feasible", "infeasible", "undecided"
 
@@ -54,7 +55,7 @@ def _component_problem(model: StaticsModel, f: np.ndarray, component: int):
     rows = np.zeros((6, 3 * len(members)))
     for col, point in enumerate(points):
         rows[:3, 3 * col:3 * col + 3] = np.eye(3)
-        rows[3:, 3 * col:3 * col + 3] = _skew(point - reference) / spread
+        rows[3:, 3 * col:3 * col + 3] = skew(point - reference) / spread
     if model.contact_frames is not None:        # forces in the contacts' frames
         blocks = rows.reshape(6, len(members), 3).transpose(1, 0, 2)     # (nk, 6, 3)
         turned = blocks @ model.contact_frames[members].transpose(0, 2, 1)
@@ -89,7 +90,7 @@ def _problems(model: StaticsModel, f: np.ndarray):
         if not len(members):            # the wrench about the resting corners' mean
             wrench[6 * c:6 * c + 6] = _wrench_about(model, f, c, reference, spread)
         for k in resting:               # its force acts on this component reversed
-            block = np.vstack([np.eye(3), _skew(model.contact_points[k] - reference) / spread])
+            block = np.vstack([np.eye(3), skew(model.contact_points[k] - reference) / spread])
             rows[6 * c:6 * c + 6, 3 * k:3 * k + 3] -= block @ model.contact_frames[k].T
     yield np.arange(len(model.contacts)), rows, wrench
 

@@ -2,7 +2,9 @@
 
 ``StaticsModel`` (the joint deviation map G, joint compliances and contact maps of the
 grounded components), ``CaseStatics`` (one case's result), ``build_model``,
-``external_forces`` and the small rotation helpers they share.
+``external_forces`` and the small helpers they share.  How what acts on a plank is tied
+to its node (offsets, contact frames, point loads) is in ``offsets``; the rigid model's
+build in ``rigid``, the elastic one's in ``elastic``.
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.design.model import Design, LoadCase
 from furncheck.geometry import Geometry
+from furncheck.statics.offsets import add_point_load, skew_many
 
 if TYPE_CHECKING:
     import scipy.sparse as sp
@@ -63,7 +66,7 @@ class StaticsModel:
     anchor_stiffness : N/m, the springs of the anchors' ties (``contact_springs``)
     components : local plank numbers of each grounded component (``component_nodes``:
                their nodes)
-    beams    : the elements themselves (``elastic.Beams``; None: rigid)
+    beams    : the elements themselves (``elements.Beams``; None: rigid)
     """
 
     design: Design
@@ -107,7 +110,7 @@ class StaticsModel:
         assembled on first use (``beam_forces`` needs no assembly)."""
         if self.beams is None:
             return None
-        from furncheck.statics.elastic import assemble_beams
+        from furncheck.statics.elements import assemble_beams
 
         return assemble_beams(self.beams, self.n_nodes)
 
@@ -190,7 +193,7 @@ class StaticsModel:
         """(6 nN,) K_b q element by element (zero for rigid planks)."""
         if self.beams is None:
             return np.zeros(self.n_dof)
-        from furncheck.statics.elastic import element_forces
+        from furncheck.statics.elements import element_forces
 
         return element_forces(self.beams, q, self.n_nodes)
 
@@ -353,7 +356,9 @@ def build_model(design: Design, geometry: Geometry) -> StaticsModel:
         from furncheck.statics.elastic import build_elastic_model
 
         return build_elastic_model(design, geometry)
-    return _build_rigid_model(design, geometry)
+    from furncheck.statics.rigid import build_rigid_model
+
+    return build_rigid_model(design, geometry)
 
 
 def grounded_parts(design: Design, geometry: Geometry):
@@ -371,45 +376,6 @@ def grounded_parts(design: Design, geometry: Geometry):
     return grounded_planks, joints, contacts, components
 
 
-def _build_rigid_model(design: Design, geometry: Geometry) -> StaticsModel:
-    """Assemble G, the compliances and the contact maps of rigid planks, one node each at
-    its centre."""
-    grounded_planks, joints, contacts, components = grounded_parts(design, geometry)
-    local = {plank: k for k, plank in enumerate(grounded_planks)}
-    centres = np.array([design.planks[i].center_array for i in grounded_planks],
-                       dtype=float).reshape(-1, 3)
-    joint_nodes = np.array([[local[design.plank_index[p]] for p in geometry.joints[j].planks]
-                            for j in joints], dtype=int).reshape(-1, 2)
-    points = np.array([geometry.joints[j].point for j in joints], dtype=float).reshape(-1, 3)
-    joint_blocks = joint_deviation_blocks(points, centres[joint_nodes])
-    thickness = np.array([geometry.joints[j].edge_thickness for j in joints], dtype=float)
-    stiffness = np.zeros((len(joints), 6, 6))
-    stiffness[:, _SIX[:3], _SIX[:3]] = 1.0 / tol.JOINT_COMPLIANCE_T
-    stiffness[:, _SIX[3:], _SIX[3:]] = 1.0 / tol.joint_compliance_r(thickness)[:, None]
-
-    owner = np.array([local[design.plank_index[geometry.contacts[k].plank]] for k in contacts],
-                     dtype=int)
-    contact_points = np.array([geometry.contacts[k].point for k in contacts],
-                              dtype=float).reshape(-1, 3)
-    component_of = {p: c for c, comp in enumerate(components) for p in comp}
-    frames = contact_frames(design, geometry, contacts)
-    resting = [geometry.contacts[k].on for k in contacts]
-    rest_node = None if all(on is None for on in resting) else np.array(
-        [-1 if on is None else local[design.plank_index[on]] for on in resting], dtype=int)
-    return StaticsModel(
-        design=design, geometry=geometry, planks=tuple(grounded_planks), joints=tuple(joints),
-        contacts=tuple(contacts), node_plank=np.arange(len(grounded_planks)),
-        node_points=centres, joint_nodes=joint_nodes, joint_blocks=joint_blocks,
-        joint_stiffness=stiffness,
-        contact_maps=in_contact_frames(point_maps(contact_points - centres[owner].reshape(-1, 3)),
-                                       frames),
-        contact_node=owner, contact_plank=owner, contact_points=contact_points,
-        contact_component=np.array([component_of[p] for p in owner], dtype=int),
-        components=components, friction=design.material.friction, contact_frames=frames,
-        contact_anchored=anchored_contacts(geometry, contacts), rest_node=rest_node,
-        rest_maps=rest_maps(rest_node, contact_points, centres, frames))
-
-
 def rigid_motions(points: np.ndarray) -> np.ndarray:
     """(k, 3, 6) R per point: its displacement under a rigid motion of the body the points
     belong to (translation, and rotation x the points' spread about their mean)."""
@@ -417,65 +383,8 @@ def rigid_motions(points: np.ndarray) -> np.ndarray:
     length = max(float(np.abs(arm).max()), 1e-6)
     rigid = np.zeros((len(points), 3, 6))
     rigid[:, :, :3] = np.eye(3)
-    rigid[:, :, 3:] = -_skew_many(arm) / length
+    rigid[:, :, 3:] = -skew_many(arm) / length
     return rigid
-
-
-def rest_maps(rest_node: np.ndarray | None, contact_points: np.ndarray,
-              node_points: np.ndarray, frames: np.ndarray | None) -> np.ndarray | None:
-    """``StaticsModel.rest_maps``: each resting corner's displacement from the q of the
-    node it rests on (``rest_node``), in the contact's frame; zero for other contacts."""
-    if rest_node is None:
-        return None
-    resting = rest_node >= 0
-    offsets = np.where(resting[:, None], contact_points - node_points[np.maximum(rest_node, 0)],
-                       0.0)
-    return in_contact_frames(point_maps(offsets), frames) * resting[:, None, None]
-
-
-def anchored_contacts(geometry: Geometry, contacts: list[int]) -> np.ndarray | None:
-    """(nK,) bool: which of the model's contacts are anchors' ties; None if none is."""
-    anchored = np.array([geometry.contacts[c].anchor is not None for c in contacts],
-                        dtype=bool)
-    return anchored if anchored.any() else None
-
-
-def contact_frames(design: Design, geometry: Geometry, contacts: list[int]) -> np.ndarray | None:
-    """(nK, 3, 3) rows t1, t2, n of each contact's frame: the world frame for the ground;
-    for a wall with horizontal normal n, t1 = z x n along the wall, t2 = z up (t1 x t2 = n);
-    a resting joint's own (``Contact.frame``).  None when every contact is on the ground."""
-    found = [geometry.contacts[c] for c in contacts]
-    if all(contact.wall is None and contact.frame is None for contact in found):
-        return None
-    frames = np.broadcast_to(np.eye(3), (len(contacts), 3, 3)).copy()
-    for row, contact in enumerate(found):
-        if contact.frame is not None:                 # a resting joint's corner
-            frames[row] = contact.frame
-        elif contact.wall is not None:
-            nx, ny, _ = design.walls[contact.wall].normal
-            frames[row] = ((-ny, nx, 0.0), (0.0, 0.0, 1.0), (nx, ny, 0.0))
-    return frames
-
-
-def in_contact_frames(maps: np.ndarray, frames: np.ndarray | None) -> np.ndarray:
-    """Contact maps (nK, 3, 6) in world components turned into the contacts' frames."""
-    return maps if frames is None else frames @ maps
-
-
-def joint_deviation_blocks(points: np.ndarray, node_points: np.ndarray) -> np.ndarray:
-    """The joint deviation map G (paper eq. 1, small rotations) by blocks: each joint's
-    signed (6, 6) blocks ((nJ, 2, 6, 6)) for its two nodes (``node_points`` (nJ, 2, 3)),
-
-        d^t = (u_a + theta_a x r_a) - (u_b + theta_b x r_b),   d^r = theta_a - theta_b
-
-    with a, b the joint's first and second node and r = joint point - node point.
-    """
-    blocks = np.zeros((len(points), 2, 6, 6))
-    for position, side in ((0, 1.0), (1, -1.0)):
-        blocks[:, position, :3, :3] = side * np.eye(3)
-        blocks[:, position, :3, 3:] = -side * _skew_many(points - node_points[:, position])
-        blocks[:, position, 3:, 3:] = side * np.eye(3)
-    return blocks
 
 
 def external_forces(model: StaticsModel, case: LoadCase) -> np.ndarray:
@@ -484,7 +393,7 @@ def external_forces(model: StaticsModel, case: LoadCase) -> np.ndarray:
     a spread load at its plank's centre in the rigid model, along its beam in the
     elastic one."""
     if model.beams is not None:
-        from furncheck.statics.elastic import elastic_forces
+        from furncheck.statics.elements import elastic_forces
 
         return elastic_forces(model, case)
     design = model.design
@@ -499,29 +408,6 @@ def external_forces(model: StaticsModel, case: LoadCase) -> np.ndarray:
     return f
 
 
-def add_point_load(f: np.ndarray, node: int, node_point, force, point) -> None:
-    """f[node] += ``force`` (N) and its moment r x F about ``node_point`` when it acts at
-    ``point`` (None: at the node point itself)."""
-    fx, fy, fz = (float(v) for v in force)
-    f[6 * node:6 * node + 3] += (fx, fy, fz)
-    if point is not None:
-        rx, ry, rz = (float(p) - float(c) for p, c in zip(point, node_point))
-        f[6 * node + 3:6 * node + 6] += (ry * fz - rz * fy, rz * fx - rx * fz, rx * fy - ry * fx)
-
-
-def add_point_loads(f: np.ndarray, nodes: np.ndarray, node_points: np.ndarray,
-                    forces: np.ndarray, points: np.ndarray) -> None:
-    """``add_point_load`` of many loads at once ((n,) nodes, (n, 3) node points, forces
-    and points), in order: the same sums, one load after the other."""
-    r = points - node_points
-    moments = np.column_stack([r[:, 1] * forces[:, 2] - r[:, 2] * forces[:, 1],
-                               r[:, 2] * forces[:, 0] - r[:, 0] * forces[:, 2],
-                               r[:, 0] * forces[:, 1] - r[:, 1] * forces[:, 0]])
-    rows = 6 * nodes[:, None] + np.arange(3)
-    np.add.at(f, rows.ravel(), forces.ravel())
-    np.add.at(f, (rows + 3).ravel(), moments.ravel())
-
-
 # --- small helpers ----------------------------------------------------------------------------
 
 def block_sums(index: np.ndarray, values: np.ndarray, count: int) -> np.ndarray:
@@ -531,28 +417,6 @@ def block_sums(index: np.ndarray, values: np.ndarray, count: int) -> np.ndarray:
     flat = (np.asarray(index)[:, None] * k + np.arange(k)).ravel()
     return np.bincount(flat, weights=values.ravel(), minlength=count * k) \
         .astype(float, copy=False).reshape(count, k)
-
-
-def _skew(v: np.ndarray) -> np.ndarray:
-    """[v]x, so that _skew(v) @ w = v x w."""
-    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
-
-
-def _skew_many(v: np.ndarray) -> np.ndarray:
-    out = np.zeros((len(v), 3, 3))
-    out[:, 0, 1], out[:, 0, 2] = -v[:, 2], v[:, 1]
-    out[:, 1, 0], out[:, 1, 2] = v[:, 2], -v[:, 0]
-    out[:, 2, 0], out[:, 2, 1] = -v[:, 1], v[:, 0]
-    return out
-
-
-def point_maps(r: np.ndarray) -> np.ndarray:
-    """(n, 3, 6): displacement of points at offsets r (n, 3) from their planks' centres,
-    [I, -[r]x] @ (u, theta)."""
-    maps = np.zeros((len(r), 3, 6))
-    maps[:, :, :3] = np.eye(3)
-    maps[:, :, 3:] = -_skew_many(r)
-    return maps
 
 
 def spring_rows(springs: float | np.ndarray, rows=None, trailing: int = 0):
