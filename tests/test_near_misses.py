@@ -287,3 +287,69 @@ def test_range_of_the_short_leg_finds_the_length_that_closes_both_gaps(tmp_path)
     (entry,) = json.loads(run.stdout)["ranges"]
     low, high = entry["valid"]
     assert 437.0 - 0.1 <= low <= 438.0 <= high <= 439.0 + 0.1
+
+
+def shelf_between_sides(mid_length: float) -> str:
+    """A carcass: sides 18 mm thick centred at x = -+409 (inner faces at -+400), a bottom
+    and a top 800 mm long between them, and a middle shelf of ``mid_length`` centred at
+    x = 0: 800 fits; 784 misses each side by 8 mm, 802 cuts 1 mm into each, 830 15 mm."""
+    return f"""furncheck: 1
+name: shelf-{mid_length:g}
+units: mm
+model: rigid
+material: {{thickness: 18}}
+planks:
+  - {{id: side_l, size: [1200, 300], center: [-409, 0, 600], rotation: [0, 90, 0]}}
+  - {{id: side_r, size: [1200, 300], center: [409, 0, 600], rotation: [0, 90, 0]}}
+  - {{id: bottom, size: [800, 300], center: [0, 0, 100]}}
+  - {{id: mid, size: [{mid_length}, 300], center: [0, 0, 600]}}
+  - {{id: top, size: [800, 300], center: [0, 0, 1191]}}
+loads:
+  - {{plank: mid, mass: 20, spread: true}}
+  - {{plank: bottom, mass: 20, spread: true}}
+"""
+
+
+def test_a_shelf_short_at_both_ends_is_lengthened_not_lowered():
+    """784 mm between inner faces 800 mm apart: 8 mm short at each end, so it floats 591
+    mm up (it hangs on the two joints it misses).  That float is no plank to lower to the
+    floor (``near.carried_groups``): the fix closes both gaps, 'Lengthen mid by 16 mm'
+    (to 800, the distance between the faces), first; ``range`` of mid.length holds 800;
+    the hand estimate says closing the joints carries it."""
+    from furncheck.ranges import dof_ranges
+    from furncheck.report.explanation import need_text
+    from furncheck.suggest import suggest_design
+
+    design = parsed(shelf_between_sides(784))
+    kinds = sorted(v.kind for v in analyze(design).violations)
+    assert kinds == ["disconnected", "disconnected", "floating"]
+    result = suggest_design(design)
+    first = result.suggestions[0]
+    assert first.dofs == ("mid.length",) and first.changes == (16.0,)
+    assert first.report.valid
+    (found,) = dof_ranges(design, ["mid.length"])
+    low, high = found.valid
+    assert low <= 800.0 <= high and high - low < 2.0
+    floating = next(n for n in result.explanation.needs if n.kind == "floating")
+    assert "closing those carries it, nothing to lower" in need_text(floating, "mm")
+
+
+def test_an_end_cutting_into_a_face_is_said_as_such():
+    """802 mm: each end cuts 1 mm into a side (a near miss, an overlap): the hand estimate
+    says the end cuts in and is drawn back 0.5 to 1.5 mm, and the fix shortens mid by 2
+    mm.  830 mm, 15 mm into each side (beyond the 10 mm band): the plank joined to nothing
+    says why."""
+    from furncheck.report.explanation import need_text
+    from furncheck.suggest import suggest_design
+
+    result = suggest_design(parsed(shelf_between_sides(802)))
+    assert result.suggestions[0].dofs == ("mid.length",)
+    assert result.suggestions[0].changes == (-2.0,)
+    texts = [need_text(n, "mm") for n in result.explanation.needs if n.kind == "disconnected"]
+    assert texts and all("the end cuts 1 mm into the face; drawing it back by 0.5 to 1.5 mm"
+                         in text for text in texts)
+    through = analyze(parsed(shelf_between_sides(830)))
+    message = next(v.message for v in through.violations if v.where == "mid"
+                   and v.kind == "disconnected")
+    assert message.endswith("its end cuts 15 mm into the face of side_l and of side_r: "
+                            "shorten or move it to rest on those faces")

@@ -32,7 +32,7 @@ from furncheck.geometry.model import (
     corner_contacts,
     support_point,
 )
-from furncheck.geometry.near import near_miss_violation, near_misses
+from furncheck.geometry.near import near_band, near_miss_violation, near_misses
 from furncheck.plain import plain_length, plain_number
 from furncheck.result import Violation
 
@@ -330,12 +330,15 @@ def _joint_from_touch(touch: _Touch, planks: tuple[str, str], nails: int, key: s
                  face_side=touch.face_side, key=key)
 
 
-def end_gap(design: Design, i: int, j: int) -> float | None:
+def end_gap(design: Design, i: int, j: int, signed: bool = False) -> float | None:
     """How far (m) the end face of one of planks i, j is from the broad face of the other
-    that it faces (its gap, or its depth when it cuts in), None when neither plank's end
-    faces the other: what keeps a listed joint from closing."""
+    that it faces (its gap, or its depth when it cuts in; with ``signed``, a depth is
+    negative), None when neither plank's end faces the other: what keeps a listed joint
+    from closing."""
     touch = _nearest_touch(design, i, j)
-    return None if touch is None else abs(float(touch.gap))
+    if touch is None:
+        return None
+    return float(touch.gap) if signed else abs(float(touch.gap))
 
 
 def _nearest_touch(design: Design, i: int, j: int) -> _Touch | None:
@@ -430,7 +433,8 @@ def _connectivity_violations(design: Design, joints: list[Joint],
                 violations.append(Violation(
                     "disconnected", plank.id, None,
                     "plank is joined to no other plank (no end face rests on a neighbour's "
-                    "face, and no neighbour's end face rests on it)",
+                    "face, and no neighbour's end face rests on it)"
+                    + _cut_in_phrase(design, index),
                     design.line_of(f"planks[{index}]")))
     for component, is_grounded in zip(components, grounded):
         if not is_grounded:
@@ -442,6 +446,27 @@ def _connectivity_violations(design: Design, joints: list[Joint],
                 f"ground nowhere (lowest corner "
                 f"{_fmt_len(lowest, design)} above it)",
                 design.line_of(f"planks[{component[0]}]")))
+
+
+def _cut_in_phrase(design: Design, index: int) -> str:
+    """For a plank joined to nothing: '; its end cuts 15 mm into the face of side_l (and
+    of side_r)' where its end faces sink into neighbours' faces deeper than a near miss
+    (a board cut too long: the real reason it forms no joint), else ''."""
+    others = [j for j in range(len(design.planks)) if j != index]
+    if not others:
+        return ""
+    pairs = np.array([[index, j] for j in others])
+    touches = _best_touches(design.planks, pairs, slack=np.inf, keep_deep=True)
+    _, band = near_band(design)
+    deep = sorted((float(touch.gap), touch.face.id) for touch in touches.values()
+                  if touch.edge.id == design.planks[index].id and touch.gap < -band)
+    if not deep:
+        return ""
+    depth, face = deep[0]
+    rest = "".join(f" and of {other}" for _, other in deep[1:])
+    more = f" (and {len(deep) - 1} more)" if len(deep) > 3 else rest
+    return (f"; its end cuts {_fmt_len(-depth, design)} into the face of {face}{more}: "
+            f"shorten or move it to rest on {'that face' if len(deep) == 1 else 'those faces'}")
 
 
 # --- formatting helpers for messages ----------------------------------------------------------

@@ -33,7 +33,14 @@ from furncheck import tolerances as tol
 from furncheck.design.model import Design
 from furncheck.geometry.boxes import meeting_pairs
 from furncheck.geometry.faces import _best_touches, _bounding_boxes
-from furncheck.geometry.model import _COS_MAX_TILT, _GEOMETRY_EPS, Contact, Joint, NearMiss
+from furncheck.geometry.model import (
+    _COS_MAX_TILT,
+    _GEOMETRY_EPS,
+    Contact,
+    Geometry,
+    Joint,
+    NearMiss,
+)
 from furncheck.plain import plain_length
 from furncheck.result import Violation
 
@@ -99,6 +106,32 @@ def missed_ground(design: Design, contacts: list[Contact],
         if standing and slack < height <= band:
             missed.append(NearMiss((plank.id,), height))
     return missed
+
+
+def carried_groups(design: Design, geometry: Geometry) -> set[str]:
+    """The floating groups (as a ``floating`` violation names them: plank ids joined by
+    ',') that only float because joints are missed: the ``disconnected`` pairs among
+    ``violations`` (a near miss, or a listed joint that does not close) join them to a
+    group that stands on the ground.  Such a group hangs on those joints; closing them
+    carries it (a shelf 8 mm short of both sides is no plank to lower to the floor)."""
+    components, grounded = geometry.components, geometry.grounded
+    parent = list(range(len(components)))
+
+    def root(c: int) -> int:
+        while parent[c] != c:
+            parent[c] = parent[parent[c]]
+            c = parent[c]
+        return c
+
+    of = {i: c for c, component in enumerate(components) for i in component}
+    for violation in geometry.violations:
+        if violation.kind == "disconnected" and "/" in violation.where:
+            a, b = (of[design.plank_index[p]] for p in violation.where.split("/", 1))
+            parent[root(a)] = root(b)
+    standing = {root(c) for c, is_grounded in enumerate(grounded) if is_grounded}
+    return {",".join(design.planks[i].id for i in component)
+            for c, (component, is_grounded) in enumerate(zip(components, grounded))
+            if not is_grounded and root(c) in standing}
 
 
 def near_miss_violation(design: Design, miss: NearMiss) -> Violation:

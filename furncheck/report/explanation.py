@@ -109,8 +109,14 @@ def _bent(v: dict, units: str) -> str:
 
 def _geometric(kind: str):
     def sentence(v: dict, units: str) -> str:
+        if v.get("carried"):
+            return f"{_n(v['distance'])} {units} above the floor, it hangs on joints it " \
+                   "misses: closing those carries it, nothing to lower"
         span = f"{_n(v['change_min'])} to {_n(v['change_max'])} {units}"
         tolerance = f"to within the {_n(v['tolerance'])} {units} tolerance"
+        if kind == "disconnected" and v.get("overlap"):
+            return f"the end cuts {_n(v['distance'])} {units} into the face; drawing it " \
+                   f"back by {span} ({tolerance}) would join them"
         if kind == "disconnected":
             return f"the end is {_n(v['distance'])} {units} from the face; closing it by " \
                    f"{span} ({tolerance}) would join them"

@@ -32,6 +32,7 @@ import numpy as np
 from furncheck.design.model import Design
 from furncheck.dofs import Blocked, Dof, OutOfReach, design_size
 from furncheck.geometry import Geometry, end_gap
+from furncheck.geometry.near import carried_groups
 from furncheck.result import DesignReport
 from furncheck.sensitivity import Linearization, Sensitivity
 from furncheck.statics import StaticsModel, build_model, external_forces
@@ -201,14 +202,16 @@ class Margins:
     # -- geometry --------------------------------------------------------------------------
     def _geometric(self, report: DesignReport) -> list[Margin]:
         """Margins of the geometric violations: a listed joint's gap, a corner in the
-        ground, a hovering component (its lowest planks)."""
+        ground, a hovering component (its lowest planks; not one that hangs on joints it
+        misses, ``near.carried_groups``: closing them carries it)."""
         design, tolerance = self.design, self.design.tolerance
         measures: list[tuple[str, object]] = []
+        carried = carried_groups(design, self.geometry)
         for violation in report.violations:
             if violation.kind == "penetration":
                 plank = design.plank_index[violation.where]
                 measures.append((violation.where, _depth(plank)))
-            elif violation.kind == "floating":
+            elif violation.kind == "floating" and violation.where not in carried:
                 ids = violation.where.split(",")
                 lows = {i: float(design.planks[design.plank_index[i]].corners[:, 2].min())
                         for i in ids}

@@ -28,7 +28,10 @@ and planks as they are:
   bound (the particleboard shelf of the catalog, 45.8 mm by the formula, still sags 2.5 x
   its allowance at that thickness; the cantilever, whose support is a determinate joint,
   1.05 x: its own weight).
-* geometric: the gap, depth or height to close, to within the tolerance.
+* geometric: the gap, depth or height to close, to within the tolerance; an overlap
+  (an end cutting into a face) as a negative gap.  A group that floats only because it
+  misses joints to a standing group (``near.carried_groups``) has nothing to lower:
+  ``carried``, closing those joints carries it.
 
 The values are SI-free for the reports: lengths in the design's unit, forces N, masses
 kg, stress N/mm^2.
@@ -43,6 +46,7 @@ import numpy as np
 
 from furncheck.design.model import Design, Plank
 from furncheck.geometry import Geometry, end_gap
+from furncheck.geometry.near import carried_groups
 from furncheck.result import CaseResult, DesignReport, Violation
 from furncheck.tolerances import GRAVITY
 
@@ -349,22 +353,29 @@ def _bending_depth(plank: Plank) -> tuple[str, float]:
 def _geometric(design: Design, geometry: Geometry, where: str, case: CaseResult | None,
                case_name: str | None, kind: str) -> Need:
     tolerance = design.tolerance
+    scale = design.unit_scale
     if kind == "disconnected":
         if "/" not in where:
             return Need(kind, where, None, why="joined to nothing")
         a, b = (design.plank_index[p] for p in where.split("/", 1))
-        distance = end_gap(design, a, b)
-        if distance is None:
+        gap = end_gap(design, a, b, signed=True)
+        if gap is None:
             return Need(kind, where, None, why="neither plank's end faces the other")
+        distance = abs(gap)
     elif kind == "penetration":
         distance = -float(design.plank(where).corners[:, 2].min())
     else:
         distance = min(float(design.plank(p).corners[:, 2].min()) for p in where.split(","))
-    scale = design.unit_scale
-    return Need(kind, where, None, values={
-        "distance": distance / scale, "tolerance": tolerance / scale,
-        "change_min": max(distance - tolerance, 0.0) / scale,
-        "change_max": (distance + tolerance) / scale})
+        if where in carried_groups(design, geometry):
+            return Need(kind, where, None, values={
+                "distance": distance / scale, "tolerance": tolerance / scale,
+                "carried": True})
+    values = {"distance": distance / scale, "tolerance": tolerance / scale,
+              "change_min": max(distance - tolerance, 0.0) / scale,
+              "change_max": (distance + tolerance) / scale}
+    if kind == "disconnected" and gap < 0.0:
+        values["overlap"] = True
+    return Need(kind, where, None, values=values)
 
 
 _ESTIMATES = {

@@ -328,8 +328,14 @@ def board(name: str, length: float, width: float, thickness: float, centre: np.n
     (unit, orthogonal), centred at ``centre`` (m)."""
     y_axis = np.cross(z_axis, x_axis)
     rotation = euler_degrees(np.column_stack([x_axis, y_axis, z_axis]), (0.0, 0.0, 0.0))
-    return Plank(name, float(length), float(width), float(thickness),
-                 tuple(float(v) for v in centre), tuple(float(v) for v in rotation))
+    return Plank(name, _clean(length), _clean(width), float(thickness),
+                 tuple(_clean(v) for v in centre), tuple(float(v) for v in rotation))
+
+
+def _clean(value: float) -> float:
+    """``value`` (m) to the micrometre: the round-off of the geometry that placed a part
+    (a rail 0.388000117481 m long) left out of its file (388 mm), far below any tolerance."""
+    return round(float(value), 6) + 0.0
 
 
 def with_planks(design: Design, planks: tuple[Plank, ...]) -> Design:
@@ -340,10 +346,11 @@ def with_planks(design: Design, planks: tuple[Plank, ...]) -> Design:
 # --- words ---------------------------------------------------------------------------------
 
 def amount(value: float) -> str:
-    """ADVICE_DIGITS significant digits, but whole units at least (1250, not 1.25e+03)."""
+    """ADVICE_DIGITS significant digits, but a tenth of the unit at least (443.5, not 444;
+    1250, not 1.25e+03), as the cut list shows it (``report.cutlist``)."""
     value = round(float(value), REPORT_DECIMALS) + 0.0     # round-off (1e-14 mm) -> 0
     whole = len(str(int(abs(round(value)))))
-    return plain_number(value, max(ADVICE_DIGITS, whole))
+    return plain_number(value, max(ADVICE_DIGITS, whole + 1))
 
 
 def size_of(plank: Plank, design: Design) -> str:

@@ -12,6 +12,9 @@ of the drawing.  The fix moves the end face of the plank that misses by exactly 
   reach lowest (within the tolerance) get their lower end h longer;
 - a plank sunk d into the floor: its lower end d shorter.
 
+A group that floats only because such joints are missed (a shelf 8 mm short of both
+sides: ``geometry.near.carried_groups``) hangs on them once they close: nothing lowers it.
+
 A plank's other end stays where it is (its joints stay); loads and anchors on a changed
 plank keep their place along it.  Every geometric violation must be one of these, and
 close within the band (a plank 50 mm off is no slip).  Offered only when the continuous
@@ -29,7 +32,7 @@ import numpy as np
 from furncheck.design.model import Design, Plank
 from furncheck.dofs import carried_point
 from furncheck.geometry.faces import _best_touches
-from furncheck.geometry.near import near_band
+from furncheck.geometry.near import carried_groups, near_band
 from furncheck.suggest.discrete.common import Candidate, Fix, Search, amount, names
 from furncheck.tolerances import NEAR_MISS_FACTOR
 
@@ -79,9 +82,12 @@ def _closed(search: Search) -> tuple[Design, dict, tuple] | None:
             axis, sign = _lower_end(plank)
             moves.setdefault(plank.id, []).append((axis, sign, miss.distance, "at its foot"))
             handled.add(("floating", plank.id))
+    carried = carried_groups(design, geometry)
     for violation in geometry.violations:
         if (violation.kind, violation.where) in handled:
             continue
+        if violation.kind == "floating" and violation.where in carried:
+            continue            # it hangs on the missed joints, closed here
         if violation.kind == "disconnected" and "/" in violation.where:
             a, b = (design.plank_index[p] for p in violation.where.split("/", 1))
             touch = _best_touches(design.planks, np.array([[a, b]]), slack=np.inf,
