@@ -21,7 +21,10 @@ from furncheck.tolerances import MAX_COMBINED_DOFS
 
 def _combined_dofs(value: int) -> int:
     """--max-dofs, refused outside 1..MAX_COMBINED_DOFS with the reason."""
-    if not 1 <= value <= MAX_COMBINED_DOFS:
+    if value < 1:
+        raise click.BadParameter(f"{value}: one suggestion changes 1 to {MAX_COMBINED_DOFS} "
+                                 "DOFs together")
+    if value > MAX_COMBINED_DOFS:
         raise click.BadParameter(
             f"{value}: one suggestion changes 1 to {MAX_COMBINED_DOFS} DOFs together (the "
             f"combinations of {MAX_COMBINED_DOFS + 1} of a large design's DOFs take minutes "

@@ -317,6 +317,46 @@ def test_suggestion_view_has_two_panels_and_the_change_outlined() -> None:
     assert near[:, :half].sum() > 50 and near[:, half:].sum() > 50
 
 
+def test_a_hidden_added_part_is_drawn_in_hidden_lines() -> None:
+    """A rail added right under the stool's seat is hidden by it in the oblique view: its
+    box edges are drawn dashed over everything in the 'added' purple, so the after panel
+    has purple pixels (the before panel, without it, has none).  A box has 12 edges, each
+    joining two corners that differ in one sign."""
+    from furncheck.export.colours import MARK_RGB
+    from furncheck.export.views import _BOX_EDGES, suggestion_view_png
+
+    assert len(_BOX_EDGES) == 12 and all(bin(a ^ b).count("1") == 1 for a, b in _BOX_EDGES)
+    stool = with_model(load_design(str(DESIGNS / "stool.yaml")), "rigid")
+    seat = stool.plank("seat")
+    rail = dataclasses.replace(seat, id="rail", width=0.05, center=(
+        seat.center[0], seat.center[1], seat.center[2] - 0.5 * seat.thickness - 0.026),
+        rotation=(90.0, 0.0, 0.0))
+    added = dataclasses.replace(stool, planks=(*stool.planks, rail))
+    both = decoded(suggestion_view_png(stool, check_design(stool), added,
+                                       check_design(added), "stool: add a rail",
+                                       {"rail": "added"}))
+    purple = np.round(255 * np.array(MARK_RGB["added"])).astype(int)
+    near = np.all(np.abs(both - purple) <= 30, axis=2)
+    half = both.shape[1] // 2
+    assert near[:, half:].sum() > 30 and near[:, :half].sum() == 0
+
+
+def test_before_and_after_share_the_deflection_scale() -> None:
+    """The deflected shapes of both panels are magnified alike (one factor from the
+    larger deflection), so a suggestion that halves the sag reads as half."""
+    from furncheck.export.deflection import Deflection
+    from furncheck.export.views import Panel, _magnification, _shared_magnification
+
+    stool = load_design(str(DESIGNS / "stool.yaml"))
+    big = Panel(stool, None, Deflection("default", (), 2.0, "seat"), {}, "before")
+    small = Panel(stool, None, Deflection("default", (), 0.2, "seat"), {}, "after")
+    shared = _shared_magnification([big, small])
+    extent = float(np.ptp(np.concatenate([p.corners for p in stool.planks]), axis=0).max())
+    assert shared == _magnification(2.0, extent / stool.unit_scale)
+    assert shared == _shared_magnification([big])
+    assert _shared_magnification([small]) > shared
+
+
 # --- force-space plot -------------------------------------------------------------------
 
 @pytest.fixture(scope="module")

@@ -121,6 +121,21 @@ def test_svg_view_draws_the_loads_of_the_case_as_arrows():
     assert len(labels) == len(set(labels)) and any(t.endswith("spread") for t in labels)
 
 
+def test_case_table_reads_utilization_in_percent():
+    """The details' case table gives the worst joint's and plank's utilization in percent,
+    as the rest of the page does (``format_percent``), not as a fraction."""
+    from furncheck.report.numbers import format_percent
+    from furncheck.report.pages import _case_table
+
+    entry = _entry("table.yaml", "elastic")
+    table = _case_table(entry.report)
+    case = entry.report.cases[0]
+    assert f"{'/'.join(case.worst_joint.planks)}: {format_percent(case.worst_joint.utilization)}" \
+        in table
+    plank = max(case.planks, key=lambda p: p.utilization)
+    assert f"{format_percent(plank.utilization)}</td>" in table
+
+
 def test_svg_view_is_the_same_for_a_moved_design():
     """The view is fitted to the picture: moving the whole design changes no pixel."""
     from dataclasses import replace

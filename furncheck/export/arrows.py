@@ -26,8 +26,9 @@ either side)."""
 @dataclass(frozen=True)
 class LoadArrow:
     """One arrow: from ``tail`` to ``head`` (where the load acts), 3D points in the file's
-    unit; ``label`` the load's mass or force ('80 kg', '100 N', '30 kg spread') on one
-    arrow of each load, None on the others."""
+    unit; ``label`` the load's mass or force ('80 kg', '100 N', '30 kg spread') on the
+    first arrow of each load (a spread load's at its plank's -x third, so that the label,
+    drawn left of its arrow, clears the others), None on the others."""
 
     tail: np.ndarray
     head: np.ndarray
@@ -62,7 +63,7 @@ def load_arrows(design: Design, case: CaseResult, size: float) -> list[LoadArrow
             points = [np.asarray(load.at, dtype=float) if load.at is not None else top]
         for k, point in enumerate(points):
             found.append((point, force / magnitude, magnitude,
-                          label if k == len(points) // 2 else None))
+                          label if k == 0 else None))
     if not found:
         return []
     largest = max(magnitude for _, _, magnitude, _ in found)

@@ -169,10 +169,11 @@ def view_picture(panels: list[Panel], heading: str | None = None) -> Picture:
     FigureCanvasAgg(figure)
     picture = Picture(figure)
     limits = _shared_limits(panels)
+    factor = _shared_magnification(panels)
     bottom = FOOTER_HEIGHT * DPI
     for k, panel in enumerate(panels):
         slot = (k * PANEL_SIZE[0] * DPI, bottom, PANEL_SIZE[0] * DPI, PANEL_SIZE[1] * DPI)
-        title, notes = _draw_panel(Sheet(figure, _fit(limits, slot)), picture, panel)
+        title, notes = _draw_panel(Sheet(figure, _fit(limits, slot)), picture, panel, factor)
         left = (k * PANEL_SIZE[0] + 0.12) * DPI
         picture.labels.append(Label(left, bottom + (PANEL_SIZE[1] - 0.1) * DPI, title,
                                     FONT + 1, va="top"))
@@ -201,8 +202,10 @@ def _fit(limits, slot):
         left + width / 2, bottom + height / 2)
 
 
-def _draw_panel(sheet: Sheet, picture: Picture, panel: Panel) -> tuple[str, list[str]]:
-    """Draw the panel on ``sheet``; return its title and the notes to write under it."""
+def _draw_panel(sheet: Sheet, picture: Picture, panel: Panel,
+                factor: float = 1.0) -> tuple[str, list[str]]:
+    """Draw the panel on ``sheet`` (its deflection magnified ``factor`` times); return its
+    title and the notes to write under it."""
     from matplotlib.collections import LineCollection, PolyCollection
 
     design, report = panel.design, panel.report
@@ -223,10 +226,11 @@ def _draw_panel(sheet: Sheet, picture: Picture, panel: Panel) -> tuple[str, list
     widths = [1.8 if mark else 0.4 for mark in mark_of]
     sheet.add(PolyCollection(projection.project(faces[order]), facecolors=face_colours,
                              edgecolors=edge_colours, linewidths=widths, zorder=1))
+    _draw_mark_edges(sheet, design, panel.marks, LineCollection)
     case = governing_case(report) if report is not None else None
     notes = []
     if panel.deflection is not None and panel.deflection.largest > 0.0:
-        notes.append(_draw_deflection(sheet, panel.deflection, size, design.units,
+        notes.append(_draw_deflection(sheet, panel.deflection, factor, design.units,
                                       LineCollection))
     elif design.model == "rigid":
         notes.append("rigid planks: no deflection drawn")
@@ -250,9 +254,43 @@ def _faces(planks: tuple, unit_scale: float, slack: float):
     return faces, normals, owner, projection.visible_order(planks, unit_scale, normals, slack)
 
 
-def _draw_deflection(sheet: Sheet, deflection: Deflection, size: float, units: str,
+def _draw_mark_edges(sheet: Sheet, design: Design, marks: dict[str, str],
+                     LineCollection) -> None:
+    """The box edges of every marked plank (changed or added) as thin dashed lines in its
+    mark's colour, over everything: a part hidden behind another (a rail under a shelf)
+    still shows where it goes, as hidden lines do in a drawing."""
+    marked = [(plank, MARK_RGB[marks[plank.id]]) for plank in design.planks
+              if marks.get(plank.id) in MARK_RGB]
+    if not marked:
+        return
+    lines, colours = [], []
+    for plank, colour in marked:
+        corners = projection.project(plank.corners / design.unit_scale)
+        lines.extend(corners[[a, b]] for a, b in _BOX_EDGES)
+        colours.extend([colour] * len(_BOX_EDGES))
+    sheet.add(LineCollection(lines, colors=colours, linewidths=1.0, linestyles=(0, (2, 2)),
+                             alpha=0.9, zorder=3))
+
+
+_BOX_EDGES = tuple((a, b) for a in range(8) for b in range(a + 1, 8)
+                   if bin(a ^ b).count("1") == 1)
+"""The 12 edges of a box by its corners (``Plank.corners``' order: the corner's index
+bits are its signs along the local x, y and z: an edge joins two that differ in one)."""
+
+
+def _shared_magnification(panels: list[Panel]) -> float:
+    """The deflection's magnification, one for all panels (before and after compare):
+    ``_magnification`` of the largest displacement of any panel and the largest design."""
+    drawn = [panel for panel in panels
+             if panel.deflection is not None and panel.deflection.largest > 0.0]
+    if not drawn:
+        return 1.0
+    return _magnification(max(panel.deflection.largest for panel in drawn),
+                          max(design_extent(panel.design) for panel in drawn))
+
+
+def _draw_deflection(sheet: Sheet, deflection: Deflection, factor: float, units: str,
                      LineCollection) -> str:
-    factor = _magnification(deflection.largest, size)
     lines = [projection.project(points + factor * moves)
              for _, points, moves in deflection.curves]
     sheet.add(LineCollection(lines, colors=[DEFLECTION_RGB], linewidths=0.9,

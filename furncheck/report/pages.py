@@ -204,11 +204,11 @@ def _case_table(report: DesignReport) -> str:
             continue
         joint = case.worst_joint
         joint_text = "" if joint is None else (
-            f"{escape('/'.join(joint.planks))}: {format_number(joint.utilization, 3)}")
+            f"{escape('/'.join(joint.planks))}: {format_percent(joint.utilization)}")
         plank = max(case.planks or (), key=lambda p: p.utilization, default=None)
         plank_text = "" if plank is None else (
             f"{escape(plank.id)}: sag {format_number(plank.sag, 3)} {escape(report.units)}, "
-            f"{format_number(plank.utilization, 3)}")
+            f"{format_percent(plank.utilization)}")
         rows.append(f"<tr><td>{escape(case.name)}</td><td>{escape(case.stability)}</td>"
                     f"<td>{'yes' if case.durable else 'no'}</td><td>{joint_text}</td>"
                     f"<td>{plank_text}</td></tr>")
@@ -276,7 +276,8 @@ def suggestion_page(document: dict[str, Any], original: PageDesign,
                                 420, 300, marks=changed_planks(original.design, shown.design),
                                 title=f"suggestion {rank}",
                                 case=governing_case(shown.report))]
-            views += [f'<img src="{escape(picture)}" alt="{escape(picture)}" width="420">'
+            views += [f'<a href="{escape(picture)}" title="full size"><img '
+                      f'src="{escape(picture)}" alt="{escape(picture)}" width="420"></a>'
                       for picture in shown.pictures]
             views.append(_model_viewer(shown.glb, f"suggestion {rank}"))
             parts.append('<div class="views">' + "".join(views) + "</div>")
