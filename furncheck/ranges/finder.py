@@ -102,8 +102,8 @@ class RangeFinder(Evaluator):
     def __init__(self, design: Design, locked: tuple[str, ...] = ()):
         super().__init__(design, locked)
         self.valid_now = check_design(design, self.geometry, self.model).valid
-        _, self.margin_now, self.utilization_now = margin_of(design, self.geometry,
-                                                             self.starts, self.model)
+        _, self.margin_now, self.utilization_now, self.limiting_now = margin_of(
+            design, self.geometry, self.starts, self.model)
         self.size = design_size(design)
         self._joint_index = {(j.face, j.edge, j.edge_face): n
                              for n, j in enumerate(self.geometry.joints)}
@@ -199,7 +199,7 @@ class RangeFinder(Evaluator):
         reach = yield from self._geometric_reach(dof, sign, limit, resolution)
         if reach <= 0.0:
             return reach
-        at_reach = yield from self._probe(dof, sign, reach)
+        at_reach = yield from self._probe(dof, sign, reach, self.limiting_now)
         if at_reach.valid:
             return reach
         return (yield from self._physical_limit(dof, sign, at_reach, resolution))
@@ -220,12 +220,16 @@ class RangeFinder(Evaluator):
         interpolated through the probes (``_margin_zero``), each probe a little past the
         estimated zero towards the end that has not moved (two good estimates close the
         bracket); bisection when the bracket did not halve in three probes or the margin
-        is -inf.
+        is -inf.  Each probe solves first the load case that failed last (at first the
+        one that limits the design) and an invalid probe stops at its first failing case:
+        its verdict is the full check's, its margin that of the cases solved.
         """
-        good = _Probe(0.0, True, self.margin_now, self.utilization_now, self.geometry)
+        good = _Probe(0.0, True, self.margin_now, self.utilization_now, self.geometry,
+                      self.limiting_now)
         bad = at_reach
         predicted = self._predicted(dof)[0 if sign < 0 else 1]
         spacing = self.design.material.nail_spacing
+        failing = self.limiting_now if bad.case is None else bad.case
         widths, moves, probes = [bad.step], [], [good, bad]
         while bad.step - good.step > resolution:
             low = good.step + INSIDE_BRACKET * resolution
@@ -248,13 +252,14 @@ class RangeFinder(Evaluator):
             if len(widths) > 3 and widths[-1] > 0.5 * widths[-4]:
                 step = 0.5 * (good.step + bad.step)
             predicted = None
-            probe = yield from self._probe(dof, sign, min(max(step, low), high))
+            probe = yield from self._probe(dof, sign, min(max(step, low), high), failing)
             probes.append(probe)
             moves.append(probe.valid)
             if probe.valid:
                 good = probe
             else:
                 bad = probe
+                failing = failing if probe.case is None else probe.case
             widths.append(bad.step - good.step)
         return good.step
 
