@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
@@ -19,6 +20,7 @@ from furncheck.validity import (
     case_loads,
     evaluate_case,
     joint_utilization,
+    nail_rows,
     worst_plank_utilization,
 )
 
@@ -92,40 +94,76 @@ def is_valid(design: Design, geometry: Geometry | None = None,
     return True
 
 
+class Margin(NamedTuple):
+    """What ``margin_of`` finds of a design: whether it is valid, its durability margin,
+    each joint's utilization, and the load case (its index in ``design.load_cases``)
+    that failed (an invalid design: the first that did) or has the smallest margin."""
+
+    valid: bool
+    margin: float
+    utilization: np.ndarray
+    case: int
+
+
 def margin_of(design: Design, geometry: Geometry,
               starts: tuple[np.ndarray | None, ...] | None = None,
-              model: StaticsModel | None = None) -> tuple[bool, float, np.ndarray]:
-    """(whether the design is valid, its durability margin, each joint's utilization):
-    the margin is the smallest 1 - utilization of any joint, anchor (and, elastic model,
-    any plank's sag or stress) in any load case, -inf if a case is not stable; the
-    utilization (``validity.joint_utilization``) is per joint of ``geometry.joints``, the
-    largest of the load cases (0 for a joint outside the statics).  Every case is solved,
-    except that an unstable one ends the search.  The geometry must have no violations
-    (``model``: its statics model, if the caller already has it)."""
+              model: StaticsModel | None = None, first: int | None = None) -> Margin:
+    """The design's ``Margin``: the margin is the smallest 1 - utilization of any joint,
+    anchor (and, elastic model, any plank's sag or stress) in any load case, -inf if a
+    case is not stable; the utilization (``validity.joint_utilization``) is per joint of
+    ``geometry.joints``, the largest of the load cases (0 for a joint outside the
+    statics).  Every case is solved, except that an unstable one ends the search.  The
+    geometry must have no violations (``model``: its statics model, if the caller already
+    has it).
+
+    With ``first`` (a case's index), for a search that needs of an invalid design only
+    its verdict and a margin to interpolate: that case is solved first and the cases stop
+    at the first that fails (a failing case cannot be made good by another), the margin
+    and utilization then being those of the cases solved (at least the design's).  A
+    valid design's cases are all solved, its ``Margin`` the same as without ``first``."""
     model = model or build_model(design, geometry)
-    wrenches = []
+    order = list(range(len(design.load_cases)))
+    if first is not None:
+        order.insert(0, order.pop(first))
+    rows = nail_rows([geometry.joints[j] for j in model.joints]) if model.joints else None
+    wrenches: dict[int, np.ndarray] = {}
     plank_used = 0.0
-    stable = True
-    for k, case in enumerate(design.load_cases):
-        statics = solve_load_case(model, case, None if starts is None else starts[k])
+    stable, stopped = True, False
+    limiting, worst_used = order[0], -np.inf
+    for k in order:
+        statics = solve_load_case(model, design.load_cases[k],
+                                  None if starts is None else starts[k])
         if statics.stability != "stable":
-            stable = False
+            stable, limiting = False, k
             break
+        used = max(worst_plank_utilization(design, model, statics),
+                   anchor_utilization(design, geometry, model, statics))
+        plank_used = max(plank_used, used)
+        holds = used <= 1.0 + tol.CAPACITY_REL_TOL
         if statics.joint_wrenches is not None and model.joints:
-            wrenches.append(statics.joint_wrenches)
-        plank_used = max(plank_used, worst_plank_utilization(design, model, statics),
-                         anchor_utilization(design, geometry, model, statics))
+            wrenches[k] = statics.joint_wrenches
+            joint_used, joint_holds = joint_utilization(design, geometry, model,
+                                                        statics.joint_wrenches, rows)
+            used = max(used, float(joint_used.max()))
+            holds = holds and bool(np.all(joint_holds))
+        if used > worst_used:
+            limiting, worst_used = k, used
+        if first is not None and not holds:
+            limiting, stopped = k, True
+            break
     utilization = np.zeros(len(geometry.joints))
-    valid = stable
+    valid = stable and not stopped
     if wrenches:        # the joints' utilization in all those cases at once
-        used, holds = joint_utilization(design, geometry, model, np.stack(wrenches))
+        used, holds = joint_utilization(design, geometry, model,
+                                        np.stack([wrenches[k] for k in sorted(wrenches)]),
+                                        rows)
         utilization[np.asarray(model.joints, dtype=int)] = used.max(axis=0)
         valid = valid and bool(np.all(holds))
     if not stable:
-        return False, -np.inf, utilization
+        return Margin(False, -np.inf, utilization, limiting)
     valid = valid and plank_used <= 1.0 + tol.CAPACITY_REL_TOL
     worst = max(float(utilization.max(initial=0.0)), plank_used)
-    return valid, 1.0 - worst, utilization
+    return Margin(valid, 1.0 - worst, utilization, limiting)
 
 
 def holding_states(design: Design, geometry: Geometry, model: StaticsModel | None = None

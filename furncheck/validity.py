@@ -16,6 +16,7 @@ safety_factor.  Stability comes from the statics: 'lift-off' and 'sliding' cases
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -80,9 +81,32 @@ def nail_row(joints: list[Joint]) -> tuple[np.ndarray, np.ndarray]:
     return y_max, np.maximum(spread, 1e-300)
 
 
-def nail_pull_shear(joints: list[Joint], wrenches: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+class NailRows(NamedTuple):
+    """What ``nail_pull_shear`` needs of each of nJ joints: its frame (nJ, 3, 3), the
+    sign turning a wrench into the face plank's action (nJ, 1), the edge plank's
+    thickness (m), the nails and the lever y_max / S (1/m) of its row (``nail_row``)."""
+
+    frames: np.ndarray
+    sign: np.ndarray
+    thickness: np.ndarray
+    nails: np.ndarray
+    lever: np.ndarray
+
+
+def nail_rows(joints: list[Joint]) -> NailRows:
+    """The ``NailRows`` of ``joints`` (for many calls of ``nail_pull_shear`` on them)."""
+    y_max, spread = nail_row(joints)
+    return NailRows(np.stack([j.frame for j in joints]),
+                    np.array([1.0 if j.planks[0] == j.face else -1.0 for j in joints])[:, None],
+                    np.array([j.edge_thickness for j in joints]),
+                    np.array([j.nails for j in joints], dtype=float), y_max / spread)
+
+
+def nail_pull_shear(joints: list[Joint], wrenches: np.ndarray,
+                    rows: NailRows | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Per-nail pull and shear (N) of the worst nail of many joints; wrenches (nJ, 6)
-    first plank on second (or (k, nJ, 6): k sets of them at once, e.g. one per load case).
+    first plank on second (or (k, nJ, 6): k sets of them at once, e.g. one per load case);
+    ``rows``: the joints' ``nail_rows``, if the caller has them.
 
     The wrench is turned into the face plank's action on the edge plank and expressed in
     the joint frame (x edge thickness normal, y joint line, n nail axis), and shared by the
@@ -97,14 +121,9 @@ def nail_pull_shear(joints: list[Joint], wrenches: np.ndarray) -> tuple[np.ndarr
     """
     if not joints:
         return np.zeros(wrenches.shape[:-1]), np.zeros(wrenches.shape[:-1])
-    frames = np.stack([j.frame for j in joints])                       # (nJ, 3, 3)
-    sign = np.array([1.0 if j.planks[0] == j.face else -1.0 for j in joints])[:, None]
+    frames, sign, thickness, nails, lever = rows or nail_rows(joints)
     force = np.einsum("jab,...ja->...jb", frames, sign * wrenches[..., :3])   # frame^T F
     moment = np.einsum("jab,...ja->...jb", frames, sign * wrenches[..., 3:])  # frame^T M
-    thickness = np.array([j.edge_thickness for j in joints])
-    nails = np.array([j.nails for j in joints], dtype=float)
-    y_max, spread = nail_row(joints)
-    lever = y_max / spread
     pull = (2.0 * np.abs(moment[..., 1]) / thickness - force[..., 2]) / nails \
         + np.abs(moment[..., 0]) * lever
     shear = np.hypot(np.abs(force[..., 0]) / nails + np.abs(moment[..., 2]) * lever,
@@ -333,11 +352,14 @@ def worst_plank_utilization(design: Design, model: StaticsModel,
 
 
 def joint_utilization(design: Design, geometry: Geometry, model: StaticsModel,
-                      wrenches: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+                      wrenches: np.ndarray,
+                      rows: NailRows | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Per model joint, for its wrenches in a solved case ((nJ, 6), or (k, nJ, 6) for k
     cases): max(pull / pull capacity, shear / shear capacity), and whether it is within
-    capacity (``within_capacity``)."""
-    pulls, shears = nail_pull_shear([geometry.joints[j] for j in model.joints], wrenches)
+    capacity (``within_capacity``); ``rows``: the model joints' ``nail_rows``, if the
+    caller has them."""
+    pulls, shears = nail_pull_shear([geometry.joints[j] for j in model.joints], wrenches,
+                                    rows)
     pull_cap = design.material.nail_pull / design.safety_factor
     shear_cap = design.material.nail_shear / design.safety_factor
     return (np.maximum(pulls / pull_cap, shears / shear_cap),

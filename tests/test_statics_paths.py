@@ -10,7 +10,11 @@
     result equals the cold start's whatever the start (even every contact lifted).
 (c) ``check.margin_of`` gives the same verdict as ``check_design`` and, as its margin,
     1 - the worst joint or plank utilization of the report (or -inf for a case that is not
-    stable).  It is defined only for geometries without violations: catalog designs with a
+    stable); with any load case solved first and the cases stopping at the first that
+    fails (``first``, for the range search's probes), the same verdict, a valid design's
+    margin and utilization unchanged, an invalid one's stopping at a case the report
+    names in a violation, its margin that of the cases solved (not below the full one).
+    It is defined only for geometries without violations: catalog designs with a
     geometric violation are skipped, with their kinds as the reason.
 (d) A contact state's condensed matrix is factored once (Cholesky, LU when it is not
     positive definite) and solved as a plain LU solve would.
@@ -87,8 +91,17 @@ def test_margin_of_agrees_with_the_report(path):
         pytest.skip(f"geometric violations ({kinds}): margin_of is only defined for "
                     "geometries without them")
     report = check_design(design, geometry)
-    valid, margin, utilization = margin_of(design, geometry)
+    valid, margin, utilization, _ = margin_of(design, geometry)
     assert valid == report.valid
+    for first in range(len(design.load_cases)):     # a case first, stopping at a failure
+        ordered = margin_of(design, geometry, first=first)
+        assert ordered.valid == valid
+        if valid:
+            assert (ordered.margin, ordered.utilization.tobytes()) == \
+                (margin, utilization.tobytes())
+        else:       # the case it stopped at has a violation in the report
+            assert design.load_cases[ordered.case].name in {v.case for v in report.violations}
+            assert ordered.margin >= margin
     if any(case.stability != "stable" for case in report.cases):
         assert margin == -np.inf
         return

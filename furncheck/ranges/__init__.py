@@ -32,7 +32,9 @@ another's results, so the ranges are the same however the DOFs are batched.
 
 The package, by job:
 
-    finder     RangeFinder: the searches of each side of a DOF, DofRange, dof_ranges
+    finder     RangeFinder: the searches of each side of a DOF, its physical limit,
+               DofRange, dof_ranges
+    reach      ReachSearch: how far the geometry lets a DOF go; doubling and bisection
     shares     the DOFs shared among worker processes (--jobs) or a Dask cluster
     batches    Evaluator: a design's edits and their checks, answered in batches for
                searches advanced together

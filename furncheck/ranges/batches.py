@@ -56,11 +56,13 @@ class _Margins(NamedTuple):
 
 class _Statics(NamedTuple):
     """Evaluation request: the full check of an edited design that keeps the joints and
-    contacts, ``check.margin_of`` if ``margin`` else ``check.is_valid``."""
+    contacts, ``check.margin_of`` (with ``first``: that load case solved first, the
+    cases stopping at the first that fails) if ``margin`` else ``check.is_valid``."""
 
     design: Design
     geometry: Geometry
     margin: bool
+    first: int | None = None
 
 
 class Evaluator:
@@ -154,8 +156,8 @@ class Evaluator:
         for k, request in enumerate(requests):
             if isinstance(request, _Statics):
                 if request.margin:
-                    answers[k] = (margin_of(request.design, request.geometry, self.starts),
-                                  None)
+                    answers[k] = (margin_of(request.design, request.geometry, self.starts,
+                                            first=request.first), None)
                 else:
                     answers[k] = (is_valid(request.design, request.geometry, self.starts),
                                   None)
@@ -207,14 +209,15 @@ class Evaluator:
             return True
         return (yield _Statics(edited, geometry, False))
 
-    def _probe(self, dof: Dof, sign: float, step: float):
+    def _probe(self, dof: Dof, sign: float, step: float, first: int | None = None):
         """The full check of one step (>= 0) in direction ``sign``, with the design's
-        margin (``check.margin_of``): a ``_Probe``."""
+        margin (``check.margin_of``; with ``first``, that load case solved first and an
+        invalid step's cases stopping at the first that fails): a ``_Probe``."""
         edited, geometry = yield _Kept(dof, sign * step)
         if geometry is None:
             return _Probe(step, False, -np.inf, None, None)
-        valid, margin, utilization = yield _Statics(edited, geometry, True)
-        return _Probe(step, valid, margin, utilization, geometry)
+        valid, margin, utilization, case = yield _Statics(edited, geometry, True, first)
+        return _Probe(step, valid, margin, utilization, geometry, case)
 
     def _edited(self, dof: Dof, step: float) -> Design:
         """The design with ``dof`` changed by ``step``, kept while the DOF's searches run

@@ -29,13 +29,16 @@ second time within the first scan's step)."""
 class _Probe:
     """A full check of one step (``check.margin_of``): valid, the margin, each joint's
     utilization and the geometry (the last two None where the step does not keep the
-    joints and contacts)."""
+    joints and contacts), and the load case that failed or limits the margin (None where
+    no case was solved).  An invalid step's margin and utilization are those of the
+    cases solved up to the first that failed (``margin_of`` with ``first``)."""
 
     step: float
     valid: bool
     margin: float
     utilization: np.ndarray | None
     geometry: Geometry | None
+    case: int | None = None
 
 
 def _margin_zero(good: _Probe, bad: _Probe, probes: list[_Probe]) -> float:

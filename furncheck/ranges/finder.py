@@ -21,22 +21,17 @@ from furncheck.dofs import (
     dof_value,
     parse_dof,
 )
-from furncheck.geometry import EditMargins, follow_many
+from furncheck.geometry import follow_many
 from furncheck.plain import plain_number
-from furncheck.ranges.batches import Evaluator, _Margins
 from furncheck.ranges.estimates import (
     _Drop,
-    _first_flip,
-    _flip_values,
-    _flipped,
     _margin_zero,
     _margins,
-    _modelled_flip,
     _nail_drops,
-    _open_groups,
     _Probe,
 )
 from furncheck.ranges.nearest import nearest_window, predicted_steps
+from furncheck.ranges.reach import ReachSearch
 from furncheck.sensitivity import Linearization, Sensitivity
 
 RANGE_RESOLUTION = 1e-3
@@ -61,29 +56,6 @@ DROP_RESOLUTION = 0.1
 DROP_STEPS = 6
 """Most geometry evaluations finding the step at which a joint loses a nail."""
 
-REACH_PREDICTIONS = 4
-"""Most predictions of the geometric reach of one side of a DOF before it is bisected."""
-
-ROTATION_WATCH = 15.0
-"""Degrees: a rotation's reach is first predicted within this turn, watching only the
-faces that so small a turn can bring to rest on one another (far fewer than all); past
-it, all of them."""
-
-MARGINS_KEPT = 32
-"""How many ``EditMargins`` (with their values for the design) a finder keeps."""
-
-REACH_PROBE = 0.25
-"""The margins' slope is taken over this fraction of the resolution."""
-
-REACH_SECANTS = 8
-"""Most evaluations of the margins refining a rotation's predicted reach."""
-
-MODEL_OFFSET = 0.2
-"""A rotation's margins are evaluated this fraction of the resolution past the modelled
-flip (before it, once the last evaluation was flipped): a good model closes the bracket
-to half a resolution in two evaluations."""
-
-
 @dataclass(frozen=True)
 class DofRange:
     """The valid interval of one DOF (absolute values, file unit or degrees), or None with
@@ -96,22 +68,20 @@ class DofRange:
     reason: str | None = None
 
 
-class RangeFinder(Evaluator):
+class RangeFinder(ReachSearch):
     """Valid ranges of the DOFs of one design, sharing its analysis and linearizations."""
 
     def __init__(self, design: Design, locked: tuple[str, ...] = ()):
         super().__init__(design, locked)
         self.valid_now = check_design(design, self.geometry, self.model).valid
-        _, self.margin_now, self.utilization_now = margin_of(design, self.geometry,
-                                                             self.starts, self.model)
+        _, self.margin_now, self.utilization_now, self.limiting_now = margin_of(
+            design, self.geometry, self.starts, self.model)
         self.size = design_size(design)
         self._joint_index = {(j.face, j.edge, j.edge_face): n
                              for n, j in enumerate(self.geometry.joints)}
         self._linear: list[Linearization] | None = None
         self._shared: dict = {}
         self._predictions: dict[Dof, tuple[float | None, float | None]] = {}
-        self._margins: dict[tuple, tuple[EditMargins, tuple]] = {}
-        self._changes: dict[Dof, tuple[tuple[int, ...], tuple[int, ...]]] = {}
 
     # -- public --------------------------------------------------------------------------------
     def ranges(self, names: list[str] | None = None, jobs: int = 1,
@@ -127,13 +97,14 @@ class RangeFinder(Evaluator):
         (2 workers on 2 cores run twice as fast as one process only with
         OPENBLAS_NUM_THREADS=1; with threaded BLAS they are slower than one process).
 
-        With ``jobs`` > 1 the work is sized first: the first two of the shares the
-        workers would get are searched here (the first also pays for what every search
-        shares: imports, the design's sensitivities), and the rest goes to workers only
-        if it would take ``shares.PARALLEL_AFTER`` CPU seconds or more at the second's
-        pace (CPU time: the work, whatever else the machine is doing); else it is
-        searched here as well, all together.  Small designs so stay in one process, and
-        the workers, forked after those shares, start with what they imported
+        With ``jobs`` > 1 the work is sized first: a sample of each of the first two of
+        the shares the workers would get is searched here (``shares.SAMPLE_STRIDE``; the
+        first also pays for what every search shares: imports, the design's
+        sensitivities), and the rest goes to workers only if it would take
+        ``shares.PARALLEL_AFTER`` CPU seconds or more at the second sample's pace per DOF
+        (CPU time: the work, whatever else the machine is doing); else it is searched
+        here as well, all together.  Small designs so stay in one process, and
+        the workers, forked after those samples, start with what they imported
         (scipy.optimize, when an edit needed a feasibility program: 0.5 s or more to
         import in every worker)."""
         from furncheck.ranges import shares
@@ -199,7 +170,7 @@ class RangeFinder(Evaluator):
         reach = yield from self._geometric_reach(dof, sign, limit, resolution)
         if reach <= 0.0:
             return reach
-        at_reach = yield from self._probe(dof, sign, reach)
+        at_reach = yield from self._probe(dof, sign, reach, self.limiting_now)
         if at_reach.valid:
             return reach
         return (yield from self._physical_limit(dof, sign, at_reach, resolution))
@@ -220,12 +191,16 @@ class RangeFinder(Evaluator):
         interpolated through the probes (``_margin_zero``), each probe a little past the
         estimated zero towards the end that has not moved (two good estimates close the
         bracket); bisection when the bracket did not halve in three probes or the margin
-        is -inf.
+        is -inf.  Each probe solves first the load case that failed last (at first the
+        one that limits the design) and an invalid probe stops at its first failing case:
+        its verdict is the full check's, its margin that of the cases solved.
         """
-        good = _Probe(0.0, True, self.margin_now, self.utilization_now, self.geometry)
+        good = _Probe(0.0, True, self.margin_now, self.utilization_now, self.geometry,
+                      self.limiting_now)
         bad = at_reach
         predicted = self._predicted(dof)[0 if sign < 0 else 1]
         spacing = self.design.material.nail_spacing
+        failing = self.limiting_now if bad.case is None else bad.case
         widths, moves, probes = [bad.step], [], [good, bad]
         while bad.step - good.step > resolution:
             low = good.step + INSIDE_BRACKET * resolution
@@ -248,13 +223,14 @@ class RangeFinder(Evaluator):
             if len(widths) > 3 and widths[-1] > 0.5 * widths[-4]:
                 step = 0.5 * (good.step + bad.step)
             predicted = None
-            probe = yield from self._probe(dof, sign, min(max(step, low), high))
+            probe = yield from self._probe(dof, sign, min(max(step, low), high), failing)
             probes.append(probe)
             moves.append(probe.valid)
             if probe.valid:
                 good = probe
             else:
                 bad = probe
+                failing = failing if probe.case is None else probe.case
             widths.append(bad.step - good.step)
         return good.step
 
@@ -290,191 +266,6 @@ class RangeFinder(Evaluator):
                 over_low *= 0.5 if side < 0 else 1.0
                 side = -1
         return 0.5 * (low + high)
-
-    def _geometric_reach(self, dof: Dof, sign: float, limit: float, resolution: float) -> float:
-        """The furthest step (>= 0) in direction ``sign`` keeping the joints and contacts
-        (``check_edit``, no statics), within ``resolution``.
-
-        A rotation is first checked one resolution step out: most turns that change
-        anything do so at once.  The margins of the criteria (``EditMargins``) predict
-        the step at which the first one flips; two checks confirm it: the step half a
-        resolution before is valid, the one half a resolution after is not.  A flip that
-        changes nothing (two faces that meet but do not outrank the joint's) is passed and
-        the next one predicted; a check failing before the prediction falls back to
-        bisection, as does a DOF whose margins cannot be computed.
-        """
-        good = 0.0
-        if dof.is_rotation:     # most turns that part a joint or cut a neighbour do it at once
-            if not (yield from self._valid_at(dof, sign * resolution, full=False)):
-                return 0.0
-            good = resolution
-        for _ in range(REACH_PREDICTIONS):
-            if good >= limit:
-                return limit
-            predicted = yield from self._predicted_reach(
-                dof, sign, good if good > resolution else 0.0, limit, resolution)
-            if predicted is None:
-                break
-            end = limit if predicted >= limit else predicted - 0.5 * resolution
-            if end >= good + 0.5 * resolution:      # else one step past good is past the flip
-                if not (yield from self._valid_at(dof, sign * end, full=False)):
-                    return (yield from self._bisect(dof, sign, good, end, resolution,
-                                                    full=False))
-                good = end
-            if good >= limit:
-                return limit
-            beyond = min(good + resolution, limit)
-            if not (yield from self._valid_at(dof, sign * beyond, full=False)):
-                return good
-            good = beyond
-        return (yield from self._expand(dof, sign, good, limit, resolution, full=False))
-
-    def _predicted_reach(self, dof: Dof, sign: float, start: float, limit: float,
-                         resolution: float) -> float | None:
-        """The step (>= ``start``, at most ``limit``) at which the first criterion of
-        ``EditMargins`` flips, the margins taken as linear in the step through their
-        values at ``start`` and one nearby step; None if an edited design cannot be made.
-
-        A rotation's margins are not linear (a corner's height changes with the cosine of
-        the turn): ``_predicted_turn`` refines the prediction on the margins themselves,
-        first within ROTATION_WATCH degrees watching only the faces that so small a turn
-        can bring to rest on one another, then, if nothing flips there, from that turn on
-        watching all of them."""
-        try:
-            if dof.is_rotation:
-                horizons = (ROTATION_WATCH, limit) if start < ROTATION_WATCH < limit \
-                    else (limit,)
-                for horizon in horizons:
-                    predicted = yield from self._predicted_turn(dof, sign, start, horizon,
-                                                                resolution)
-                    if predicted < horizon:
-                        return predicted
-                    start = horizon
-                return limit
-            margins, now = self._edit_margins(dof, 0.0)
-            at_start = now if start == 0.0 else \
-                (yield _Margins(margins, self._edited(dof, sign * start)))
-            step = start + REACH_PROBE * resolution
-            at_step = yield _Margins(margins, self._edited(dof, sign * step))
-            return _first_flip(at_start, at_step, start, step, limit)
-        except OutOfReach:
-            return None
-
-    def _predicted_turn(self, dof: Dof, sign: float, start: float, horizon: float,
-                        resolution: float) -> float:
-        """For a rotation: the turn (>= ``start``) at which the first criterion of
-        ``EditMargins`` (faces within ``horizon`` degrees of resting on one another)
-        flips, ``horizon`` if none does up to there.
-
-        Every margin is modelled as a quadratic in the turn through three evaluated turns
-        (``_modelled_flip``; at first the start, a turn just past it and the linear
-        prediction from the slope there), the modelled flip is evaluated a little past
-        (or before) itself, so that two good predictions close a bracket of an unflipped
-        and a flipped turn to half a resolution; the horizon is evaluated before it is
-        returned.  A bracket whose same end moves three times running, or whose flipped
-        end is a turn the DOF cannot make, is halved.  At most REACH_SECANTS evaluations: the last
-        prediction is returned, to be confirmed."""
-        margins, now = self._edit_margins(dof, horizon)
-        at_start = now if start == 0.0 else \
-            (yield _Margins(margins, self._edited(dof, sign * start)))
-        step = start + REACH_PROBE * resolution
-        at_step = yield _Margins(margins, self._edited(dof, sign * step))
-        closed = _open_groups(at_start)
-        samples = [(start, _flip_values(closed, at_start)),
-                   (step, _flip_values(closed, at_step))]
-        predicted = _first_flip(at_start, at_step, start, step, horizon)
-        del at_start, at_step           # kept while the search waits: large for big designs
-        low, high, high_made = start, None, True
-        offset = MODEL_OFFSET * resolution
-        moved = []                      # whether each evaluation moved the flipped end
-        for _ in range(REACH_SECANTS):
-            try:
-                measured = yield _Margins(margins, self._edited(dof, sign * predicted))
-                flipped = _flipped(closed, measured)
-                samples.append((predicted, _flip_values(closed, measured)))
-                made = True
-                del measured
-            except OutOfReach:          # no such design: past the reach as well
-                flipped, made = True, False
-            if flipped:
-                high, high_made = predicted, made
-            elif predicted >= horizon:
-                return horizon
-            else:
-                low = predicted
-            moved.append(flipped)
-            end = horizon if high is None else high
-            if high is not None and high - low <= 0.5 * resolution:
-                return high
-            if high is not None and (not high_made or moved[-3:] in ([True] * 3,
-                                                                    [False] * 3)):
-                predicted = 0.5 * (low + high)
-                continue
-            nearest = sorted(samples, key=lambda sample: min(abs(sample[0] - low),
-                                                             abs(sample[0] - end)))[:3]
-            modelled = _modelled_flip(nearest, low, end)
-            if modelled >= end and high is None:
-                predicted = horizon
-                continue
-            predicted = modelled + (-offset if flipped else offset)
-            predicted = min(max(predicted, low + REACH_PROBE * resolution),
-                            end - REACH_PROBE * resolution)
-        return predicted
-
-    def _edit_margins(self, dof: Dof, turn: float) -> tuple[EditMargins, tuple]:
-        """The margins of the planks that ``dof`` changes (one small step either way) for
-        steps turning them at most ``turn`` degrees, and their values for the design
-        itself.  They depend only on which planks change and turn, so DOFs that change
-        the same planks share them (the MARGINS_KEPT used last are kept)."""
-        if dof not in self._changes:
-            changed, turning = set(), set()
-            for sign in (-1.0, 1.0):
-                try:
-                    edited = self._edited(dof, sign * REACH_PROBE * self._scales(dof)[1])
-                except OutOfReach:
-                    continue
-                for i, (a, b) in enumerate(zip(self.design.planks, edited.planks)):
-                    if a != b:
-                        changed.add(i)
-                    if a.rotation != b.rotation:
-                        turning.add(i)
-            self._changes[dof] = (tuple(sorted(changed)), tuple(sorted(turning)))
-        changed, turning = self._changes[dof]
-        key = (changed, turning, turn if turning else 0.0)
-        if key in self._margins:
-            self._margins[key] = self._margins.pop(key)        # used last
-        else:
-            margins = EditMargins(self.design, self.geometry, changed, turn, turning)
-            if len(self._margins) >= MARGINS_KEPT:
-                del self._margins[next(iter(self._margins))]
-            self._margins[key] = (margins, margins(self.design))
-        return self._margins[key]
-
-    def _expand(self, dof: Dof, sign: float, start: float, limit: float, resolution: float,
-                full: bool = True) -> float:
-        """From a valid step ``start``, double outward (from limit / 16) until invalid or
-        at the limit, then bisect the last bracket; returns the furthest valid step."""
-        good, step = start, max(start, limit / 16.0)
-        while True:
-            if step > good:
-                if not (yield from self._valid_at(dof, sign * step, full)):
-                    return (yield from self._bisect(dof, sign, good, step, resolution, full))
-                good = step
-            if good >= limit:
-                return limit
-            step = min(2.0 * good, limit)
-
-    def _bisect(self, dof: Dof, sign: float, good: float, bad: float,
-                resolution: float, full: bool = True) -> float:
-        """Close a bracket of a valid step ``good`` and an invalid step ``bad`` (either may
-        be the larger) to ``resolution``; returns the valid end."""
-        while abs(bad - good) > resolution:
-            middle = 0.5 * (good + bad)
-            if (yield from self._valid_at(dof, sign * middle, full)):
-                good = middle
-            else:
-                bad = middle
-        return good
 
     def _nearest_valid(self, dof: Dof, value: float, unit: str, limit: float,
                        resolution: float, predicted: float | None = None) -> DofRange:

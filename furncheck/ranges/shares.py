@@ -24,9 +24,17 @@ PARALLEL_MIN_DOFS = 16
 """Fewer DOFs than this are searched in this process: starting workers would cost more."""
 
 PARALLEL_AFTER = 1.0
-"""CPU seconds: with ``jobs`` > 1 the first two shares of the DOFs are searched in this
-process, and the rest goes to worker processes only if it would take at least this much
-work here (at the second share's CPU time per share); else it is searched here too."""
+"""CPU seconds: with ``jobs`` > 1 samples of the first two shares of the DOFs are searched
+in this process, and the rest goes to worker processes only if it would take at least
+this much work here (at the second sample's CPU time per DOF); else it is searched here
+too."""
+
+SAMPLE_STRIDE = 4
+"""The samples searched here before the workers start: every SAMPLE_STRIDE-th DOF of each
+of the first two shares when they are full tasks (DOFS_PER_TASK DOFs; smaller shares are
+searched whole, as their pace is the noisier).  A share holds DOFs of every kind in turn,
+so a stride keeps them mixed; the smaller the samples, the less of the work waits for
+them on one core."""
 
 DOFS_PER_TASK = 16
 """DOFs per task of a worker process: a task's DOFs are searched together (the more, the
@@ -34,20 +42,25 @@ larger the batches of evaluations); small tasks balance the uneven DOFs."""
 
 
 def ranges_shared(finder: RangeFinder, dofs: list[Dof], jobs: int) -> list[DofRange]:
-    """The ranges of ``dofs`` in shares for ``jobs`` workers.  The first two shares are
-    searched here; the others in worker processes when they are worth it
-    (``RangeFinder.ranges``), else here."""
+    """The ranges of ``dofs`` in shares for ``jobs`` workers.  A sample of each of the
+    first two shares (every SAMPLE_STRIDE-th DOF of full tasks) is searched here, the first's (which
+    also pays for what every search shares) and then the second's; the rest (those two
+    shares' other DOFs and the other shares) in worker processes when it is worth it at
+    the second sample's pace per DOF (``RangeFinder.ranges``), else here."""
     shared = shares(dofs, jobs)
+    stride = SAMPLE_STRIDE if len(shared[1]) >= DOFS_PER_TASK else 1
+    samples = [share[::stride] for share in shared[:2]]
+    rest = [[n for k, n in enumerate(share) if k % stride] for share in shared[:2]]
+    rest = [share for share in rest + shared[2:] if share]
     found: list[DofRange | None] = [None] * len(dofs)
     pace = 0.0
-    for share in shared[:2]:
+    for sample in samples:
         start = time.process_time()
-        for n, dof_range in zip(share, finder.search([dofs[n] for n in share])[0]):
+        for n, dof_range in zip(sample, finder.search([dofs[n] for n in sample])[0]):
             found[n] = dof_range
-        pace = time.process_time() - start
-    rest = shared[2:]
+        pace = (time.process_time() - start) / max(len(sample), 1)
     done = None
-    if len(rest) > 1 and pace * len(rest) >= PARALLEL_AFTER:
+    if len(rest) > 1 and pace * sum(map(len, rest)) >= PARALLEL_AFTER:
         done = ranges_in_workers(finder, [[dofs[n] for n in share] for share in rest], jobs)
     if done is None and rest:
         together = [n for share in rest for n in share]
