@@ -132,6 +132,11 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
     finally:
         if client is not None:
             client.close()
+    if output not in (None, "-"):       # the report went to a file: the log gets the count
+        from furncheck.report.text import summary_line
+
+        click.echo(f"furncheck: {summary_line(summary.as_dict())}; report written to "
+                   f"{output}", err=True)
     if cache is not None and cache.unwritable:
         click.echo(f"furncheck: results not cached: {cache.unwritable}", err=True)
     if views_dir is not None or html_file is not None:

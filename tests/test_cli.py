@@ -158,6 +158,8 @@ def test_output_file_gets_exactly_the_report(calls, tmp_path, fmt):
     assert to_file.exit_code == to_stdout.exit_code == 1
     assert to_file.stdout == ""
     assert out.read_text(encoding="utf-8") == to_stdout.stdout
+    assert to_file.stderr == (f"furncheck: 2 designs: 1 valid, 1 invalid, 0 errors; report "
+                              f"written to {out}\n")     # the CI log still gets the count
 
 
 @pytest.mark.parametrize("target", ["missing-dir/report.json", "."])
