@@ -132,6 +132,14 @@ def stdin_document(name: str | None) -> tuple[bytes, str, str]:
     return data, source, fmt
 
 
+def check_stdin_name(stdin_name: str | None, paths) -> None:
+    """Fail (one line, exit 2) when ``--stdin-filename`` is given but no design is read
+    from '-': it would name nothing (a forgotten '-')."""
+    if stdin_name is not None and STDIN not in paths:
+        fail("--stdin-filename names the design read from '-' (standard input), and no "
+             "'-' was given")
+
+
 def load_or_fail(path: str, model: str | None = None, stdin_name: str | None = None):
     """The design at ``path`` (standard input for STDIN, named ``stdin_name``), in
     ``model`` when given, or one line and exit 2 when it cannot be read."""
@@ -139,6 +147,7 @@ def load_or_fail(path: str, model: str | None = None, stdin_name: str | None = N
     from furncheck.design.model import with_model
     from furncheck.errors import DesignError
 
+    check_stdin_name(stdin_name, (path,))
     try:
         loaded = load_data(*stdin_document(stdin_name)) if path == STDIN else load_checked(path)
         return with_model(loaded, model)

@@ -22,6 +22,7 @@ from furncheck.cli.output import (
     STDIN,
     STDIN_FILENAME_OPTION,
     check_output,
+    check_stdin_name,
     client_or_fail,
     config_or_fail,
     fail,
@@ -92,6 +93,7 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
     from furncheck.scan import ScanOptions, collect
 
     config = config_or_fail(paths)
+    check_stdin_name(stdin_filename, paths)
     fmt = fmt or config.format or "text"
     model = model or config.model
     jobs = jobs or config.jobs or os.cpu_count() or 1

@@ -195,6 +195,11 @@ def test_suggest_and_range_read_standard_input_too():
         broken = run_input("furncheck: 1\nplanks: [\n", command, "-")
         assert broken.exit_code == 2 and len(broken.output.splitlines()) == 1
         assert broken.output.startswith("furncheck: <stdin>:3: YAML syntax error")
+    for command in ("validate", "suggest", "range"):        # a forgotten '-'
+        named = run_input(text, command, str(path), "--stdin-filename", "x.yaml")
+        assert named.exit_code == 2 and named.output == (
+            "furncheck: --stdin-filename names the design read from '-' (standard input), "
+            "and no '-' was given\n")
 
 
 def run_input(text: str, *args: str):
