@@ -407,3 +407,18 @@ def test_every_rule_says_what_it_tried():
             [(NOT_APPLICABLE, "it does not repair lift-off")], name
     assert by_name["wall anchor"][0].reason == "the design stands by no wall"
     assert [t.outcome for t in by_name["support under the overhang"]] == [FOUND]
+
+
+@pytest.mark.parametrize("limit", [1, 2, 3])
+def test_fewer_asked_than_discrete_fixes_found(limit):
+    """table-racking (elastic) has more discrete fixes than K = 1..3 ask for: the list is
+    K long, every one kept is ranked, and the discrete ones kept are at least
+    min(DISCRETE_KEPT, K) (with K = 3 and three discrete fixes ranked first, the old code
+    sliced the candidates with a negative count and ended in max() of nothing)."""
+    from furncheck.suggest.ranking import DISCRETE_KEPT
+
+    design = load_design(str(CATALOG / "table-racking.yaml"))
+    result = suggest_design(design, max_suggestions=limit)
+    assert len(result.suggestions) == limit
+    assert [s.rank for s in result.suggestions] == list(range(1, limit + 1))
+    assert sum(s.kind == "discrete" for s in result.suggestions) >= min(DISCRETE_KEPT, limit)

@@ -115,8 +115,8 @@ def _ranked(design: Design, geometry, planes, suggestions: list[Suggestion],
     kept = scored[:limit]
     discrete = [s for s in scored if s.kind == "discrete"]
     wanted = min(DISCRETE_KEPT, len(discrete), limit)
-    missing = [s for s in discrete if all(s is not k for k in kept)][:wanted - sum(
-        s.kind == "discrete" for s in kept)]
+    short = max(0, wanted - sum(s.kind == "discrete" for s in kept))   # never a negative slice
+    missing = [s for s in discrete if all(s is not k for k in kept)][:short]
     for extra in missing:               # in place of the lowest-ranked continuous ones
         last = max(k for k, s in enumerate(kept) if s.kind != "discrete")
         kept[last] = extra
