@@ -69,8 +69,13 @@ def test_plank_colours_are_the_pictures_scale():
     tipping = _entry("bench-tips.yaml")
     lifting = next(v for v in tipping.report.violations if v.kind == "lift-off")
     failing = UTILIZATION_STOPS[-1][0]
+    used = plank_utilizations(tipping.report, tipping.design)
     for plank in lifting.where.split(","):
-        assert plank_utilizations(tipping.report, tipping.design)[plank.strip()] >= failing
+        assert used[plank.strip()] >= failing
+    assert [c.stability for c in tipping.report.cases] == ["lift-off"]
+    named = {p.strip() for p in lifting.where.split(",")}
+    assert all(used[p.id] is None for p in tipping.design.planks if p.id not in named), \
+        used       # its only case topples: nothing counted, grey ("not computed")
 
 
 def test_svg_view_draws_each_plank_and_outlines_the_changed_ones():

@@ -51,9 +51,9 @@ def utilization_of(report: DesignReport, plank_ids: tuple[str, ...]
     """Per plank id, its largest utilization over all load cases: its own sag and stress
     (elastic model) and the joints and anchors it takes part in, in cases where they count
     (``DURABILITY_COUNTS``: not the as-if-bolted forces of a case that topples).  None
-    when no case was solved (the design does not stand).  A plank named by a geometric
-    violation, or whose contacts lift or slide, is at least at the scale's failing end
-    (1.5)."""
+    when no case counts (the design does not stand as drawn, or topples in every case:
+    grey, as the scale says for "not computed").  A plank named by a geometric violation,
+    or whose contacts lift or slide, is at least at the scale's failing end (1.5)."""
     used: dict[str, float | None] = {plank_id: None for plank_id in plank_ids}
 
     def raise_to(plank_id: str, value: float) -> None:
@@ -61,13 +61,10 @@ def utilization_of(report: DesignReport, plank_ids: tuple[str, ...]
             current = used[plank_id]
             used[plank_id] = value if current is None else max(current, value)
 
-    solved = [case for case in report.cases if case.stability in DURABILITY_COUNTS
-              or case.stability == "lift-off"]
-    for case in solved:
+    counted = [case for case in report.cases if case.stability in DURABILITY_COUNTS]
+    for case in counted:        # a toppling case's forces are as if bolted down: not counted
         for plank_id in used:
             raise_to(plank_id, 0.0)
-        if case.stability not in DURABILITY_COUNTS:
-            continue            # a toppling case's forces are as if bolted down: not counted
         for plank in case.planks or ():
             raise_to(plank.id, plank.utilization)
         for joint in case.joints:
