@@ -734,3 +734,22 @@ def test_the_readme_design_example_is_a_design():
     assert len(design.walls) == 1 and len(design.anchors) == 1
     report = check_design(design)
     assert report.error is None and not any(v.kind == "penetration" for v in report.violations)
+
+
+def test_written_files_drop_the_round_off_of_zero():
+    """A centre at x = 1.3e-15 mm beside z = 456 mm (the round-off of a suggestion's
+    geometry) is written 0, a rotation of 1e-14 degrees beside 90 too; each component
+    keeps 12 significant digits of its vector's largest, and the design reads back the
+    same up to that round-off."""
+    from dataclasses import replace
+
+    from furncheck.design.load import parse_design
+    from furncheck.design.write import design_text
+
+    design = parse_design("furncheck: 1\nplanks:\n- {id: a, size: [400, 300], "
+                          "center: [0, 0, 6]}\n", "a.yaml", "yaml")
+    plank = replace(design.planks[0], center=(1.30104260698e-18, 0.25e-3, 0.456),
+                    rotation=(90.0, 1e-14, -2.5e-13))
+    text = design_text(replace(design, planks=(plank,)), "yaml")
+    assert "center: [0.0, 0.25, 456.0]" in text and "rotation: [90.0, 0.0, 0.0]" in text
+    assert "e-" not in text

@@ -8,6 +8,7 @@ the written text equals the design up to float round-off.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Any
 
@@ -94,7 +95,17 @@ def _rounded(value: float) -> float:
 
 
 def _vector_in_unit(metres, scale: float) -> list[float]:
-    return [_in_unit(float(v), scale) for v in metres]
+    return _vector_rounded([float(v) / scale for v in metres])
+
+
+def _vector_rounded(values: list[float]) -> list[float]:
+    """A point, size or turn: each component to 12 significant digits of the largest (a
+    centre at x = 1.3e-15 mm beside z = 456 mm is the round-off of 0: written 0)."""
+    largest = max((abs(v) for v in values), default=0.0)
+    if largest == 0.0:
+        return [0.0 for _ in values]
+    decimals = _SIGNIFICANT_DIGITS - 1 - math.floor(math.log10(largest))
+    return [_rounded(round(v, decimals) + 0.0) for v in values]
 
 
 def anchor_entry(anchor: Anchor, design: Design) -> dict[str, Any]:
@@ -111,7 +122,7 @@ def plank_entry(plank: Plank, design: Design) -> dict[str, Any]:
         "id": plank.id,
         "size": _vector_in_unit((plank.length, plank.width), scale),
         "center": _vector_in_unit(plank.center, scale),
-        "rotation": [float(v) for v in plank.rotation],
+        "rotation": _vector_rounded([float(v) for v in plank.rotation]),
     }
     if plank.thickness != design.material.thickness:
         entry["thickness"] = _in_unit(plank.thickness, scale)
