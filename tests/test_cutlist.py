@@ -162,6 +162,48 @@ def test_every_cut_list_is_the_difference_of_the_files(catalog_suggestions, name
                         assert value == pytest.approx(expected_value, rel=1e-9, abs=1e-9)
 
 
+@pytest.mark.parametrize("name, model", INVALID)
+def test_every_moved_load_is_the_difference_of_the_files(catalog_suggestions, name, model):
+    """Every load at a point whose point differs between the input file and a suggestion's
+    written file is in its ``loads_moved`` (from -> to, file unit), and nothing else."""
+    _, result = catalog_suggestions(name, model)
+    before = parse_design((CATALOG / name).read_text(encoding="utf-8"), name, "yaml")
+    scale = before.unit_scale
+    for suggestion in result.suggestions:
+        after = parse_design(suggestion.text, "s.yaml", "yaml")
+        expected = set()
+        for old_case, new_case in zip(before.load_cases, after.load_cases):
+            for old, new in zip(old_case.loads, new_case.loads):
+                if old.point is not None and any(
+                        abs(a - b) / scale > 1e-6 for a, b in zip(old.point, new.point)):
+                    expected.add((old.plank, tuple(round(v / scale, 6) for v in old.point),
+                                  tuple(round(v / scale, 6) for v in new.point)))
+        found = {(m.plank, tuple(round(v, 6) for v in m.before),
+                  tuple(round(v, 6) for v in m.after)) for m in suggestion.loads_moved}
+        assert found == expected, (name, model, suggestion.rank)
+
+
+def test_a_shortened_seat_carries_its_load_to_the_same_place_along_it():
+    """bench-tips (rigid): 80 kg at x = 560 mm on a 1200 mm seat centred at x = 0;
+    'Shorten seat by 553 mm' (1200 -> 647, centre kept) carries the load to the same
+    fraction of its half length, x = 560 x 647 / 1200 = 301.9 mm, and says so."""
+    from furncheck.design import load_design
+    from furncheck.design.model import with_model
+    from furncheck.report.cutlist import load_move_lines
+    from furncheck.suggest import suggest_design
+
+    design = with_model(load_design(str(CATALOG / "bench-tips.yaml")), "rigid")
+    result = suggest_design(design)
+    shorten = next(s for s in result.suggestions if s.dofs == ("seat.length",))
+    length = next(e for e in shorten.edits if e.plank == "seat").field("length").after
+    (move,) = shorten.loads_moved
+    assert move.before == (560.0, 0.0, 450.0)
+    assert move.after[0] == pytest.approx(560.0 * length / 1200.0, abs=1e-6)
+    assert load_move_lines(shorten.loads_moved, design)[1] == (
+        f"  80 kg on seat (case 'default'): at (560, 0, 450) -> "
+        f"({560.0 * length / 1200.0:.1f}, 0, 450) mm")
+
+
 def test_the_report_shows_the_cut_list_in_text_and_json(tmp_path):
     """bench-tips (rigid): every suggestion's text lists as many planks as its JSON edits,
     and the JSON edits are the written file's difference (rounded to 6 digits)."""

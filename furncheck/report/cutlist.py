@@ -16,7 +16,7 @@ from typing import Any
 from furncheck.design.model import Design
 from furncheck.report.common import plural
 from furncheck.report.numbers import format_number
-from furncheck.suggest.cutlist import ANGLE_FIELDS, PlankEdit
+from furncheck.suggest.cutlist import ANGLE_FIELDS, LoadMove, PlankEdit
 
 MATERIAL_UNITS = {"density": "kg/m^3", "elastic_modulus": "N/mm^2",
                   "shear_modulus": "N/mm^2", "bending_strength": "N/mm^2", "creep": "",
@@ -32,6 +32,27 @@ def cut_list_lines(edits: tuple[PlankEdit, ...], design: Design) -> list[str]:
     for edit in edits:
         lines.append(f"  {edit.plank}: {_edit_text(edit, design)}")
     return lines
+
+
+def load_move_lines(moves: tuple[LoadMove, ...], design: Design) -> list[str]:
+    """'moves N loads with their planks:' and one line per load (unindented): '80 kg on
+    seat (case 'default'): at (560, 0, 450) -> (303.3, 0, 450) mm'."""
+    if not moves:
+        return []
+    planks = "its plank" if len(moves) == 1 else "their planks"
+    lines = [f"moves {plural(len(moves), 'load')} with {planks}:"]
+    for move in moves:
+        start = ", ".join(_number(v) for v in move.before)
+        end = ", ".join(_number(v) for v in move.after)
+        lines.append(f"  {move.load} on {move.plank} (case '{move.case}'): at ({start}) -> "
+                     f"({end}) {design.units}")
+    return lines
+
+
+def load_moves_json(moves: tuple[LoadMove, ...]) -> list[dict[str, Any]]:
+    """``[{"case", "plank", "load", "from": [x, y, z], "to": [x, y, z]}]``."""
+    return [{"case": move.case, "plank": move.plank, "load": move.load,
+             "from": list(move.before), "to": list(move.after)} for move in moves]
 
 
 def edits_json(edits: tuple[PlankEdit, ...]) -> list[dict[str, Any]]:

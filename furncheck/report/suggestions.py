@@ -22,7 +22,12 @@ from furncheck.design.model import Design
 from furncheck.design.write import anchor_entry, plank_entry
 from furncheck.export.suggestions import Written
 from furncheck.report.common import plural
-from furncheck.report.cutlist import cut_list_lines, edits_json
+from furncheck.report.cutlist import (
+    cut_list_lines,
+    edits_json,
+    load_move_lines,
+    load_moves_json,
+)
 from furncheck.report.explanation import explanation_dict, explanation_lines
 from furncheck.report.numbers import format_number, json_ready
 from furncheck.report.shop_words import change_sentence, continuous_advice
@@ -77,7 +82,8 @@ def render_text(result: SuggestionReport, original: Design,
         restores = " and ".join(suggestion.restores)
         lines.append(f"{INDENT}{suggestion.rank}. {advice(suggestion, original)} "
                      f"Restores {restores}.")
-        for line in cut_list_lines(suggestion.edits, original):
+        for line in (*cut_list_lines(suggestion.edits, original),
+                     *load_move_lines(suggestion.loads_moved, original)):
             lines.append(f"{INDENT}   {line}")
         files = written.get(suggestion.rank)
         if files is not None and files.design_file:
@@ -122,6 +128,7 @@ def _suggestion_dict(suggestion: Suggestion, original: Design,
             "between": list(suggestion.between),
             "advice": advice(suggestion, original),
             "edits": edits_json(suggestion.edits),
+            "loads_moved": load_moves_json(suggestion.loads_moved),
             "score": _score_json(suggestion),
             "design_file": files.design_file,
             "meshes": list(files.meshes),
@@ -143,6 +150,7 @@ def _suggestion_dict(suggestion: Suggestion, original: Design,
         "advice": advice(suggestion, original),
         "limited": suggestion.limited,
         "edits": edits_json(suggestion.edits),
+        "loads_moved": load_moves_json(suggestion.loads_moved),
         "score": _score_json(suggestion),
         "design_file": files.design_file,
         "meshes": list(files.meshes),

@@ -116,6 +116,48 @@ def plank_edits(before: Design, after: Design) -> tuple[PlankEdit, ...]:
     return tuple(edits)
 
 
+@dataclass(frozen=True)
+class LoadMove:
+    """A load at a point that a suggestion carries along with its plank (a load keeps its
+    place along a plank that is moved, turned or resized: the person at the seat's end
+    sits at the end of the shortened seat): the first case it is in, its plank, what it
+    is ('80 kg' or '100 N', as the case's load list says it) and its point before and
+    after (file length unit)."""
+
+    case: str
+    plank: str
+    load: str
+    before: tuple[float, float, float]
+    after: tuple[float, float, float]
+
+
+def load_moves(before: Design, after: Design) -> tuple[LoadMove, ...]:
+    """Every load at a point whose point ``after`` moves by more than CUT_LIST_EPS (the
+    same load in several cases, through ``include``, once), in case and load order."""
+    scale = before.unit_scale
+    cases = {case.name: case for case in after.load_cases}
+    moves: list[LoadMove] = []
+    seen = set()
+    for case in before.load_cases:
+        other = cases.get(case.name)
+        if other is None or len(other.loads) != len(case.loads):
+            continue
+        for old, new in zip(case.loads, other.loads):
+            if old.point is None or new.point is None or old.plank != new.plank:
+                continue
+            start = tuple(_in_unit(v, scale) for v in old.point)
+            end = tuple(_in_unit(v, scale) for v in new.point)
+            if not any(_differs(a, b) for a, b in zip(start, end)):
+                continue
+            what = (f"{_in_unit(old.mass, 1.0):g} kg" if old.mass is not None
+                    else f"{_in_unit(sum(f * f for f in old.force) ** 0.5, 1.0):g} N")
+            key = (old.plank, what, start, end)
+            if key not in seen:
+                seen.add(key)
+                moves.append(LoadMove(case.name, old.plank, what, start, end))
+    return tuple(moves)
+
+
 def planks_touched(edits: tuple[PlankEdit, ...]) -> int:
     """How many planks a maker has to cut, move or add (or take away)."""
     return len(edits)

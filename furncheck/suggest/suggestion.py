@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 
 from furncheck.design.model import Design, Plank
 from furncheck.result import DesignReport
-from furncheck.suggest.cutlist import PlankEdit
+from furncheck.suggest.cutlist import LoadMove, PlankEdit
 from furncheck.suggest.explain import Explanation
 from furncheck.suggest.score import ShopScore
 
@@ -31,6 +31,8 @@ class Suggestion:
                 ``report`` its validation (valid: suggestions that are not are dropped)
     edits     : its cut list: every plank of the input it changes, adds or removes
                 (``cutlist.plank_edits`` of the input and ``design``)
+    loads_moved : the loads at a point it carries along with their planks
+                (``cutlist.load_moves``)
     score     : the shop's score it is ranked by (``score.ShopScore``)
     """
 
@@ -53,6 +55,7 @@ class Suggestion:
     limited: bool = False
     edits: tuple[PlankEdit, ...] = ()
     score: ShopScore | None = None
+    loads_moved: tuple[LoadMove, ...] = ()
 
 
 @dataclass(frozen=True)
