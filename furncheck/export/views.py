@@ -295,8 +295,9 @@ def _draw_deflection(sheet: Sheet, deflection: Deflection, factor: float, units:
              for _, points, moves in deflection.curves]
     sheet.add(LineCollection(lines, colors=[DEFLECTION_RGB], linewidths=0.9,
                                        linestyles=(0, (3, 2)), alpha=0.85, zorder=4))
-    return (f"deflected shape (dashed) x {plain_number(factor)}: largest "
-            f"{plain_number(deflection.largest, 3)} {units} at {deflection.where}")
+    return (f"deflected shape (dashed) x {plain_number(factor)}: largest displacement "
+            f"{plain_number(deflection.largest, 3)} {units} at {deflection.where}\n"
+            "(the joints' give too; sag, a plank's own bending, is in the report)")
 
 
 def _magnification(largest: float, size: float) -> float:
