@@ -323,9 +323,10 @@ def test_a_hidden_added_part_is_drawn_in_hidden_lines() -> None:
     has purple pixels (the before panel, without it, has none).  A box has 12 edges, each
     joining two corners that differ in one sign."""
     from furncheck.export.colours import MARK_RGB
-    from furncheck.export.views import _BOX_EDGES, suggestion_view_png
+    from furncheck.export.projection import BOX_EDGES
+    from furncheck.export.views import suggestion_view_png
 
-    assert len(_BOX_EDGES) == 12 and all(bin(a ^ b).count("1") == 1 for a, b in _BOX_EDGES)
+    assert len(BOX_EDGES) == 12 and all(bin(a ^ b).count("1") == 1 for a, b in BOX_EDGES)
     stool = with_model(load_design(str(DESIGNS / "stool.yaml")), "rigid")
     seat = stool.plank("seat")
     rail = dataclasses.replace(seat, id="rail", width=0.05, center=(

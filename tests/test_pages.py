@@ -81,7 +81,8 @@ def test_plank_colours_are_the_pictures_scale():
 def test_svg_view_draws_each_plank_and_outlines_the_changed_ones():
     """Each plank shows at least one face and at most three (a box seen from an oblique
     view), every polygon stays inside the picture, and a changed plank is outlined in the
-    'changed' mark's colour, an added one in the 'added' colour."""
+    'changed' mark's colour, an added one in the 'added' colour, and its 12 edges drawn
+    dashed over everything (as the PNG views do: a hidden part still shows)."""
     entry = _entry("table.yaml")
     svg = design_svg(entry.design, plank_utilizations(entry.report, entry.design), 240, 180,
                      marks={"top": "changed", "apron": "added"})
@@ -97,6 +98,9 @@ def test_svg_view_draws_each_plank_and_outlines_the_changed_ones():
         colour = "rgb({},{},{})".format(*(round(255 * c) for c in MARK_RGB[mark]))
         assert len(re.findall(rf'stroke="{re.escape(colour)}" stroke-width="2"[^>]*>'
                               rf"<title>{plank}</title>", svg)) == titles.count(plank)
+        dashed = re.findall(rf'<path d="([^"]+)" fill="none" stroke="{re.escape(colour)}" '
+                            r'stroke-width="1" stroke-dasharray="2 2"/>', svg)
+        assert len(dashed) == 1 and dashed[0].count("M") == 12     # its 12 edges, hidden too
 
 
 def test_svg_view_draws_the_loads_of_the_case_as_arrows():

@@ -49,6 +49,12 @@ QUAD_SIGN = np.array([-1.0, 1.0, -1.0, 1.0, -1.0, 1.0])
 """Each face's outward normal: sign x the plank's local axis QUAD_AXIS."""
 
 
+BOX_EDGES = tuple((a, b) for a in range(8) for b in range(a + 1, 8)
+                  if bin(a ^ b).count("1") == 1)
+"""The 12 edges of a box by its corners (``Plank.corners``' order: the corner's index
+bits are its signs along the local x, y and z: an edge joins two that differ in one)."""
+
+
 def project(points: np.ndarray) -> np.ndarray:
     """(..., 2): picture coordinates of world points (..., 3), in their unit."""
     points = np.asarray(points, dtype=float)

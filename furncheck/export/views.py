@@ -266,16 +266,10 @@ def _draw_mark_edges(sheet: Sheet, design: Design, marks: dict[str, str],
     lines, colours = [], []
     for plank, colour in marked:
         corners = projection.project(plank.corners / design.unit_scale)
-        lines.extend(corners[[a, b]] for a, b in _BOX_EDGES)
-        colours.extend([colour] * len(_BOX_EDGES))
+        lines.extend(corners[[a, b]] for a, b in projection.BOX_EDGES)
+        colours.extend([colour] * len(projection.BOX_EDGES))
     sheet.add(LineCollection(lines, colors=colours, linewidths=1.0, linestyles=(0, (2, 2)),
                              alpha=0.9, zorder=3))
-
-
-_BOX_EDGES = tuple((a, b) for a in range(8) for b in range(a + 1, 8)
-                   if bin(a ^ b).count("1") == 1)
-"""The 12 edges of a box by its corners (``Plank.corners``' order: the corner's index
-bits are its signs along the local x, y and z: an edge joins two that differ in one)."""
 
 
 def _shared_magnification(panels: list[Panel]) -> float:

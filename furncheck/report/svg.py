@@ -17,7 +17,13 @@ from furncheck.design.model import Design
 from furncheck.export.arrows import design_extent, load_arrows
 from furncheck.export.colours import MARK_RGB, utilization_rgb
 from furncheck.export.findings import utilization_of
-from furncheck.export.projection import plank_faces, project, shaded, visible_order
+from furncheck.export.projection import (
+    BOX_EDGES,
+    plank_faces,
+    project,
+    shaded,
+    visible_order,
+)
 from furncheck.result import CaseResult, DesignReport
 
 _MARGIN = 6.0
@@ -88,6 +94,13 @@ def design_svg(design: Design, utilization: dict[str, float | None] | None = Non
         corners = " ".join(f"{x:.1f},{y:.1f}" for x, y in zip(xs[face], ys[face]))
         parts.append(f'<polygon points="{corners}" fill="{_rgb(colours[face])}" {stroke} '
                      f'stroke-linejoin="round"><title>{escape(plank_id)}</title></polygon>')
+    hidden = [(plank, MARK_RGB[marks[plank.id]]) for plank in planks
+              if marks.get(plank.id) in MARK_RGB]
+    for plank, colour in hidden:    # a marked plank's edges over everything, as the PNG
+        x, y = pixels(project(plank.corners / design.unit_scale))
+        edges = "".join(f"M{x[a]:.1f},{y[a]:.1f}L{x[b]:.1f},{y[b]:.1f}" for a, b in BOX_EDGES)
+        parts.append(f'<path d="{edges}" fill="none" stroke="{_rgb(colour)}" '
+                     f'stroke-width="1" stroke-dasharray="2 2"/>')
     if arrows:
         parts.append(_arrows_svg(arrows, *pixels(ends), width >= LABELLED_WIDTH))
     parts.append("</svg>")
