@@ -101,3 +101,56 @@ def test_the_ranking_key_is_lexicographic():
     cheaper = ShopScore((), 0, 0.5, 1)
     ranked = sorted([cheap_odd, asymmetric, symmetric, cheaper], key=ShopScore.key)
     assert ranked == [cheaper, symmetric, asymmetric, cheap_odd]
+
+
+BENCH = """
+furncheck: 1
+name: bench
+units: mm
+planks:
+  - {{id: seat, size: [900, 300], center: [0, 0, 456], thickness: 25}}
+  - {{id: leg_l, size: [443.5, 300], center: [{left}, 0, 221.75], rotation: [0, 90, 0]}}
+  - {{id: leg_r, size: [443.5, 300], center: [{right}, 0, 221.75], rotation: [0, 90, 0]}}
+"""
+
+
+@pytest.mark.parametrize("left, right, flagged", [
+    (-200, 200, False),         # 450 - 206 = 244 mm past the legs: 27 % of 900
+    (-113, 113, True),          # 450 - 119 = 331 mm: 36.8 %, over a third
+    (-380, 40, True),           # right end 450 - 46 = 404 mm: 44.9 %
+])
+def test_a_seat_overhanging_its_legs_by_over_a_third_is_implausible(left, right, flagged):
+    """A 900 mm bench seat on 12 mm legs at x = -+380 (they reach 386 mm out: 64 mm, 7 %
+    of its length, past them at each end).  Legs moved in so that the seat reaches past
+    the outer face of a leg by more than OVERHANG_SHARE = 1/3 of its length at one end
+    read as implausible (whoever sits on that end tips it), however valid; the seat's
+    depth (300 mm, the legs' width) stays covered."""
+    from furncheck.suggest.score import OVERHANG_SHARE
+
+    assert OVERHANG_SHARE == pytest.approx(1 / 3)
+    before = BENCH.format(left=-380, right=380)
+    score = score_of(before, BENCH.format(left=left, right=right))
+    reasons = [r for r in score.implausible if "overhangs" in r]
+    assert bool(reasons) is flagged
+    if flagged:
+        reach = 450 - min(abs(left), abs(right)) - 6
+        assert reasons == [f"seat overhangs its supports by {round(100 * reach / 900)} % "
+                           f"of its length"]
+
+
+def test_a_chair_seat_across_its_depth_and_an_overhang_already_there():
+    """The chair's 420 mm deep seat on sides 400 mm wide at y = -+204 (12 mm thick): the
+    sides moved 165 mm in each (y = -+39) leave 210 - 45 = 165 mm, 39 %, past them across
+    the depth: implausible.  A cantilever shelf (held at one end: its overhang is the
+    design) may grow: the rule flags only overhangs the input did not have."""
+    chair = (CATALOG / "chair-upright.yaml").read_text()
+    moved = chair.replace("center: [0, -204, 219]", "center: [0, -39, 219]").replace(
+        "center: [0, 204, 219]", "center: [0, 39, 219]")
+    assert moved != chair
+    assert "seat overhangs its supports by 39 % of its length" in score_of(chair,
+                                                                          moved).implausible
+    cantilever = (CATALOG / "shelf-cantilever.yaml").read_text()
+    longer = cantilever.replace("{id: shelf, size: [300, 300], center: [6, 0, 600]}",
+                                "{id: shelf, size: [400, 300], center: [56, 0, 600]}")
+    assert longer != cantilever
+    assert not [r for r in score_of(cantilever, longer).implausible if "overhangs" in r]

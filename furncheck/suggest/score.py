@@ -5,8 +5,11 @@ design, and ranked by ``ShopScore.key`` (smaller first), lexicographically:
 
 1. ``implausible``: proportions a maker would not build, that the input did not have
    already -- a plank too big to cut from one stock board (``tolerances.STOCK_BOARD``,
-   2440 x 1220 mm MDF), or a plank whose end is nailed to another plank's face and that is
-   wider there than that plank (a 594 mm leg under a 350 mm seat);
+   2440 x 1220 mm MDF), a plank whose end is nailed to another plank's face and that is
+   wider there than that plank (a 594 mm leg under a 350 mm seat), or a level plank
+   (seat, top, shelf) that overhangs its supports by more than OVERHANG_SHARE of its
+   length at one end (legs moved 267 mm in under a 900 mm bench seat: whoever sits at
+   its end tips it, whatever the load cases say);
 2. ``broken``: mirror relations the edit breaks (``symmetry.broken_pairs``: a pair of
    mirror planks no longer mirrored, or a plank on the mirror plane no longer symmetric)
    -- on a symmetric design a symmetric fix comes first where one works;
@@ -45,6 +48,14 @@ as much as doubling one plank's length)."""
 
 WHOLE_PLANK = 1.0
 """The relative change of a plank added or taken away."""
+
+OVERHANG_SHARE = 1.0 / 3.0
+"""A level plank may overhang its outermost support at one end by at most this share of
+its length before a suggestion reads as implausible (a table top's or bench seat's
+overhang is commonly kept to a quarter or a third of its length)."""
+
+LEVEL_COS = math.cos(math.radians(30.0))
+"""A plank is level when its face normal is within 30 degrees of vertical."""
 
 
 @dataclass(frozen=True)
@@ -85,7 +96,50 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
             continue
         if _overhangs(edited, joint) and not _overhangs(original, joint):
             reasons.append(f"{joint.edge} is wider than {joint.face}, which it is nailed to")
+    for plank_id in _level_planks(original, geometry):
+        if plank_id not in edited.plank_index:
+            continue
+        before = _overhang_share(original, geometry, plank_id)
+        after = _overhang_share(edited, geometry, plank_id)
+        if before is not None and after is not None and before <= OVERHANG_SHARE < after:
+            reasons.append(f"{plank_id} overhangs its supports by "
+                           f"{round(100 * after)} % of its length")
     return tuple(reasons)
+
+
+def _level_planks(design: Design, geometry: Geometry) -> list[str]:
+    """The level planks (face normal within 30 degrees of vertical) that a joint holds."""
+    held = {joint.face for joint in geometry.joints} | {joint.edge for joint in geometry.joints}
+    return [plank.id for plank in design.planks
+            if plank.id in held and abs(float(plank.rotation_matrix[2, 2])) >= LEVEL_COS]
+
+
+def _overhang_share(design: Design, geometry: Geometry, plank_id: str) -> float | None:
+    """How far the level plank reaches past its supports at either end, along either of
+    its in-plane axes, as a share of its size along that axis (0 where a support reaches
+    its end); None without supports.  Its supports (the original's joints, placed on
+    ``design``'s planks): the planks below it whose ends are nailed to its face, and the
+    faces its own ends are nailed to, each covering what its corners span along the axis
+    (a side under a chair seat covers the seat's whole depth, and only its own thickness
+    across)."""
+    plank = design.plank(plank_id)
+    supports = []
+    for joint in geometry.joints:
+        if joint.edge == plank_id and joint.face in design.plank_index:
+            supports.append(design.plank(joint.face))
+        elif joint.face == plank_id and joint.edge in design.plank_index:
+            under = design.plank(joint.edge)
+            if under.center_array[2] < plank.center_array[2]:
+                supports.append(under)
+    if not supports:
+        return None
+    corners = np.concatenate([support.corners for support in supports]) - plank.center_array
+    share = 0.0
+    for axis, size in ((0, plank.length), (1, plank.width)):
+        along = corners @ plank.rotation_matrix[:, axis]
+        reach = max(0.5 * size - float(along.max()), float(along.min()) + 0.5 * size, 0.0)
+        share = max(share, reach / size)
+    return share
 
 
 def _relative(edit: PlankEdit, size: float) -> float:
