@@ -422,3 +422,22 @@ def test_fewer_asked_than_discrete_fixes_found(limit):
     assert len(result.suggestions) == limit
     assert [s.rank for s in result.suggestions] == list(range(1, limit + 1))
     assert sum(s.kind == "discrete" for s in result.suggestions) >= min(DISCRETE_KEPT, limit)
+
+
+def test_a_tables_legs_are_thickened_alike():
+    """table-racking (rigid): the push fails the top/leg joints of leg_pp and leg_pm only
+    (the nails of the legs at the pushed side), and the thicker rule's estimate asks a
+    thicker board for those two; the four legs are mirror pairs about both planes, so all
+    four get that board (a maker cuts a table's legs from one board), and the fix keeps
+    the table symmetric (no broken mirror pair)."""
+    design = with_model(load_design(str(CATALOG / "table-racking.yaml")), "rigid")
+    report = check_design(design)
+    failing = {v.where for v in report.violations}
+    assert failing == {"top/leg_pp", "top/leg_pm"}
+    result = suggest_design(design)
+    thicker = next(s for s in result.suggestions if s.rule == "thicker")
+    boards = {e.plank: e.field("thickness").after for e in thicker.edits
+              if e.field("thickness")}
+    assert set(boards) == {"leg_pp", "leg_mp", "leg_pm", "leg_mm"}
+    assert len(set(boards.values())) == 1 and boards["leg_pp"] > 12.0
+    assert thicker.score.broken == 0

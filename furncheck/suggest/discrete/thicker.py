@@ -40,7 +40,8 @@ from furncheck.check import check_design
 from furncheck.design.model import Design, Plank
 from furncheck.geometry import Geometry, Joint, analyze, interpenetrations
 from furncheck.result import DesignReport, JointResult
-from furncheck.suggest.discrete.common import BENDING, Fix, Search, amount, names
+from furncheck.suggest.discrete.common import BENDING, Fix, Search, amount, names, upright
+from furncheck.suggest.symmetry import MirrorPlane, mirror_planes
 from furncheck.suggest.tried import FOUND, Trial
 from furncheck.validity import nail_row
 
@@ -104,6 +105,7 @@ def _thickened(search: Search, design: Design, geometry: Geometry, report: Desig
     why = [] if why is None else why
     original = {p.id: p.thickness for p in design.planks}
     current: dict[str, float] = {}
+    planes = mirror_planes(design)
     wanted = _needed(design, geometry, report)
     if not wanted:
         why[:] = ["no thickness helps (a joint's nails shear off, or the moment across "
@@ -121,6 +123,7 @@ def _thickened(search: Search, design: Design, geometry: Geometry, report: Desig
                           f"{design.units})"]
                 return None
             current[plank] = stock
+        _alike(current, planes, original, design)
         edited = grown(design, geometry, current)
         if edited is None or not search.keeps_locks(edited):
             why[:] = ["a plank held on both faces cannot grow, or a locked DOF would change"
@@ -146,6 +149,29 @@ def _thickened(search: Search, design: Design, geometry: Geometry, report: Desig
         if not wanted:
             return None
     return None
+
+
+def _alike(current: dict[str, float], planes: tuple[MirrorPlane, ...],
+           original: dict[str, float], design: Design) -> None:
+    """Mirror legs made alike (in place): where one of a pair of upright planks
+    (``planes``' pairs: the four legs of a table are pairs about both planes) gets a
+    thicker board, its image gets the same board, the thicker of the two (a maker cuts a
+    table's legs from one board, whichever of them the push loads most).  Level planks
+    are left to what each needs (a shelf over a rail may stay thinner than its image)."""
+    pairs = [(a, b) for plane in planes for a, b in plane.pairs
+             if upright(design.plank(a)) and upright(design.plank(b))]
+    for _ in range(len(pairs) + 1):
+        changed = False
+        for a, b in pairs:
+            if a not in current and b not in current:
+                continue
+            both = max(current.get(a, original.get(a, 0.0)), current.get(b, original.get(b, 0.0)))
+            for plank in (a, b):
+                if plank in original and current.get(plank, original[plank]) < both:
+                    current[plank] = both
+                    changed = True
+        if not changed:
+            return
 
 
 def _needed(design: Design, geometry: Geometry, report: DesignReport) -> dict[str, float]:
