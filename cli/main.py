@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+
 import click
 
 from furncheck import __version__, exitcodes
@@ -9,10 +11,13 @@ from furncheck.cli.range import range_command
 from furncheck.cli.suggest import suggest
 from furncheck.cli.validate import validate
 
+DEBUG_VARIABLE = "FURNCHECK_DEBUG"
+"""Set (to anything), an internal error shows its traceback instead of one line."""
+
 
 class _OneLine(click.ClickException):
-    """A usage error as one line on stderr (contract section 4: one line per problem),
-    exit code 2."""
+    """A usage error, or an internal error (a bug), as one line on stderr (contract
+    section 4: one line per problem, never a traceback), exit code 2."""
 
     exit_code = exitcodes.BAD_INPUT
 
@@ -47,6 +52,16 @@ class _Commands(click.Group):
             return super().invoke(ctx)
         except click.UsageError as error:
             raise _one_line(error) from None
+        except (click.exceptions.ClickException, click.exceptions.Exit, click.Abort,
+                KeyboardInterrupt, SystemExit):
+            raise
+        except Exception as error:      # a bug: one line and exit 2, not a traceback
+            if os.environ.get(DEBUG_VARIABLE):
+                raise
+            said = " ".join(str(error).split())
+            raise _OneLine(f"furncheck: internal error: {type(error).__name__}: {said} "
+                           f"(a bug: please report it with the design; {DEBUG_VARIABLE}=1 "
+                           "shows the traceback)") from None
 
 
 @click.group("furncheck", cls=_Commands, context_settings={"help_option_names": ["-h", "--help"]})

@@ -110,6 +110,25 @@ def test_a_usage_error_is_one_line_and_exit_2(args, fragment) -> None:
     assert result.output.rstrip().endswith(f"(see '{command} --help')")
 
 
+def test_an_internal_error_is_one_line_and_exit_2(monkeypatch) -> None:
+    """A bug (any exception the command does not expect) is one line naming it and exit 2
+    (CI reads exit 1 as 'invalid design'), not a traceback; FURNCHECK_DEBUG=1 lets the
+    exception through for a developer."""
+    import furncheck.suggest
+
+    def broken(*_args, **_kwargs):
+        raise ValueError("max() arg is an\nempty sequence")
+
+    monkeypatch.setattr(furncheck.suggest, "suggest_design", broken)
+    result = CliRunner().invoke(main, ["suggest", "designs/stool.yaml"])
+    assert result.exit_code == 2 and result.output == (
+        "furncheck: internal error: ValueError: max() arg is an empty sequence (a bug: "
+        "please report it with the design; FURNCHECK_DEBUG=1 shows the traceback)\n")
+    monkeypatch.setenv("FURNCHECK_DEBUG", "1")
+    debug = CliRunner().invoke(main, ["suggest", "designs/stool.yaml"])
+    assert isinstance(debug.exception, ValueError)
+
+
 def test_a_bare_command_still_shows_its_help() -> None:
     result = CliRunner().invoke(main, [])
     assert "Usage: furncheck" in result.output and "validate" in result.output
