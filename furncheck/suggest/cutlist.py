@@ -15,10 +15,12 @@ written one.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from furncheck.design.materials import PLANK_MATERIAL_KEYS, material_entry
 from furncheck.design.model import Design, Plank
+from furncheck.plain import plain_number
 from furncheck.tolerances import CUT_LIST_EPS
 
 GEOMETRY_FIELDS = ("length", "width", "thickness", "x", "y", "z", "rx", "ry", "rz")
@@ -149,8 +151,8 @@ def load_moves(before: Design, after: Design) -> tuple[LoadMove, ...]:
             end = tuple(_in_unit(v, scale) for v in new.point)
             if not any(_differs(a, b) for a, b in zip(start, end)):
                 continue
-            what = (f"{_in_unit(old.mass, 1.0):g} kg" if old.mass is not None
-                    else f"{_in_unit(sum(f * f for f in old.force) ** 0.5, 1.0):g} N")
+            what = (f"{plain_number(old.mass)} kg" if old.mass is not None
+                    else f"{plain_number(math.hypot(*old.force))} N")
             key = (old.plank, what, start, end)
             if key not in seen:
                 seen.add(key)
