@@ -53,8 +53,12 @@ class _Commands(click.Group):
         except click.UsageError as error:
             raise _one_line(error) from None
         except (click.exceptions.ClickException, click.exceptions.Exit, click.Abort,
-                KeyboardInterrupt, SystemExit):
-            raise
+                KeyboardInterrupt, SystemExit, EOFError):
+            raise                       # click's own handling (EOF: 'Aborted!')
+        except OSError as error:        # the machine's, not a bug: a full disk, a pipe
+            if os.environ.get(DEBUG_VARIABLE):
+                raise
+            raise _OneLine(f"furncheck: {error.strerror or error}") from None
         except Exception as error:      # a bug: one line and exit 2, not a traceback
             if os.environ.get(DEBUG_VARIABLE):
                 raise

@@ -129,6 +129,19 @@ def test_an_internal_error_is_one_line_and_exit_2(monkeypatch) -> None:
     assert isinstance(debug.exception, ValueError)
 
 
+def test_an_os_error_is_the_machines_one_line_not_a_bug(monkeypatch) -> None:
+    """An OSError on the way (a full disk, a dead pipe) is the machine's, not a bug: its
+    own words on one line, exit 2."""
+    import furncheck.suggest
+
+    def full(*_args, **_kwargs):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(furncheck.suggest, "suggest_design", full)
+    result = CliRunner().invoke(main, ["suggest", "designs/stool.yaml"])
+    assert result.exit_code == 2 and result.output == "furncheck: No space left on device\n"
+
+
 def test_a_bare_command_still_shows_its_help() -> None:
     result = CliRunner().invoke(main, [])
     assert "Usage: furncheck" in result.output and "validate" in result.output

@@ -12,8 +12,9 @@ def test_nearest_whole_millimetre_first_then_away_then_the_half_millimetre():
     (nearest), then 40 again away from zero (dropped: the same), 39 toward zero, then
     the half-millimetre grid's 39.5 (nearest; 40 is tried already)."""
     tried = rounded_changes((39.71,), ("mm",), (1.0,), 30.0, 60.0)
-    assert [changes for _, changes in tried] == [(40.0,), (39.0,), (39.5,)][:MOST_TRIED]
-    assert [step for step, _ in tried] == [40.0, 39.0, 39.5][:MOST_TRIED]
+    assert MOST_TRIED == 3 and len(tried) == 3
+    assert [changes for _, changes in tried] == [(40.0,), (39.0,), (39.5,)]
+    assert [step for step, _ in tried] == [40.0, 39.0, 39.5]
 
 
 def test_a_mirror_pair_rounds_alike_and_no_change_rounds_to_zero():

@@ -138,16 +138,30 @@ def test_a_seat_overhanging_its_legs_by_over_a_third_is_implausible(left, right,
                            f"of its length"]
 
 
+def test_an_overhang_that_barely_grows_is_no_new_overhang():
+    """Legs at -+154 under the 900 mm seat leave 450 - 160 = 290 mm, 32.2 %, past them;
+    moved 11 mm in (-+143: 301 mm, 33.4 %) the seat crosses a third but grows its
+    overhang by 1.2 % of its length, less than OVERHANG_GROWTH = 5 %: not implausible;
+    60 mm in (-+94: 350 mm, 38.9 %, 6.7 % more) is."""
+    before = BENCH.format(left=-154, right=154)
+    small = score_of(before, BENCH.format(left=-143, right=143))
+    large = score_of(before, BENCH.format(left=-94, right=94))
+    assert not [r for r in small.implausible if "overhangs" in r]
+    assert [r for r in large.implausible if "overhangs" in r] == [
+        "seat overhangs its supports by 39 % of its length"]
+
+
 def test_a_chair_seat_across_its_depth_and_an_overhang_already_there():
-    """The chair's 420 mm deep seat on sides 400 mm wide at y = -+204 (12 mm thick): the
-    sides moved 165 mm in each (y = -+39) leave 210 - 45 = 165 mm, 39 %, past them across
-    the depth: implausible.  A cantilever shelf (held at one end: its overhang is the
-    design) may grow: the rule flags only overhangs the input did not have."""
+    """The chair's seat, 400 mm long and 420 mm wide (deep), on sides 400 mm wide at
+    y = -+204 (12 mm thick): the sides moved 165 mm in each (y = -+39) leave 210 - 45 =
+    165 mm, 39 % of its width, past them: implausible.  A cantilever shelf (held at one
+    end: its overhang is the design) may grow: the rule flags only overhangs the input did
+    not have."""
     chair = (CATALOG / "chair-upright.yaml").read_text()
     moved = chair.replace("center: [0, -204, 219]", "center: [0, -39, 219]").replace(
         "center: [0, 204, 219]", "center: [0, 39, 219]")
     assert moved != chair
-    assert "seat overhangs its supports by 39 % of its length" in score_of(chair,
+    assert "seat overhangs its supports by 39 % of its width" in score_of(chair,
                                                                           moved).implausible
     cantilever = (CATALOG / "shelf-cantilever.yaml").read_text()
     longer = cantilever.replace("{id: shelf, size: [300, 300], center: [6, 0, 600]}",

@@ -69,9 +69,12 @@ def finished_closures(search: ContinuousSearch, directions: list[Candidate],
         closed = None
         for _, amounts in [*rounded_changes(changes, units, rates, 0.0, MAX_STEP),
                            (step, changes)]:
-            closed = _closed(search, discrete, dofs, amounts)
-            if closed is not None:
+            tried = _closed(search, discrete, dofs, amounts)
+            if isinstance(tried, tuple):            # closed and finished: the fix
+                closed = tried
                 break
+            if tried is _NOT_FINISHED:              # closed, not finished: try on
+                closed = _NOT_FINISHED
         if closed is None:
             continue
         if closed is _NOT_FINISHED:

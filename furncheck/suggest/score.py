@@ -39,6 +39,7 @@ from furncheck.suggest.cutlist import (
     SIZE_FIELDS,
     PlankEdit,
 )
+from furncheck.suggest.discrete.common import level
 from furncheck.suggest.symmetry import MirrorPlane, broken_pairs
 from furncheck.tolerances import STOCK_BOARD
 
@@ -50,12 +51,13 @@ WHOLE_PLANK = 1.0
 """The relative change of a plank added or taken away."""
 
 OVERHANG_SHARE = 1.0 / 3.0
-"""A level plank may overhang its outermost support at one end by at most this share of
-its length before a suggestion reads as implausible (a table top's or bench seat's
-overhang is commonly kept to a quarter or a third of its length)."""
+"""A level plank may reach past its outermost support at one end by at most this share of
+its length (or width, across) before a suggestion reads as implausible (a table top's or
+bench seat's overhang is commonly kept to a quarter or a third of its length)."""
 
-LEVEL_COS = math.cos(math.radians(30.0))
-"""A plank is level when its face normal is within 30 degrees of vertical."""
+OVERHANG_GROWTH = 0.05
+"""... and only when the suggestion adds at least this share to the input's overhang (a
+leg thickened 10 mm inward under a top at 32.9 % is no new overhang)."""
 
 
 @dataclass(frozen=True)
@@ -101,23 +103,26 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
             continue
         before = _overhang_share(original, geometry, plank_id)
         after = _overhang_share(edited, geometry, plank_id)
-        if before is not None and after is not None and before <= OVERHANG_SHARE < after:
-            reasons.append(f"{plank_id} overhangs its supports by "
-                           f"{round(100 * after)} % of its length")
+        if before is None or after is None:
+            continue
+        if before[0] <= OVERHANG_SHARE < after[0] and after[0] - before[0] >= OVERHANG_GROWTH:
+            reasons.append(f"{plank_id} overhangs its supports by {round(100 * after[0])} % "
+                           f"of its {after[1]}")
     return tuple(reasons)
 
 
 def _level_planks(design: Design, geometry: Geometry) -> list[str]:
-    """The level planks (face normal within 30 degrees of vertical) that a joint holds."""
+    """The level planks (``discrete.common.level``) that a joint holds."""
     held = {joint.face for joint in geometry.joints} | {joint.edge for joint in geometry.joints}
-    return [plank.id for plank in design.planks
-            if plank.id in held and abs(float(plank.rotation_matrix[2, 2])) >= LEVEL_COS]
+    return [plank.id for plank in design.planks if plank.id in held and level(plank)]
 
 
-def _overhang_share(design: Design, geometry: Geometry, plank_id: str) -> float | None:
+def _overhang_share(design: Design, geometry: Geometry,
+                    plank_id: str) -> tuple[float, str] | None:
     """How far the level plank reaches past its supports at either end, along either of
     its in-plane axes, as a share of its size along that axis (0 where a support reaches
-    its end); None without supports.  Its supports (the original's joints, placed on
+    its end), the larger of the two with its axis ('length' or 'width'); None without
+    supports.  Its supports (the original's joints, placed on
     ``design``'s planks): the planks below it whose ends are nailed to its face, and the
     faces its own ends are nailed to, each covering what its corners span along the axis
     (a side under a chair seat covers the seat's whole depth, and only its own thickness
@@ -134,12 +139,12 @@ def _overhang_share(design: Design, geometry: Geometry, plank_id: str) -> float 
     if not supports:
         return None
     corners = np.concatenate([support.corners for support in supports]) - plank.center_array
-    share = 0.0
-    for axis, size in ((0, plank.length), (1, plank.width)):
+    shares = []
+    for axis, size, name in ((0, plank.length, "length"), (1, plank.width, "width")):
         along = corners @ plank.rotation_matrix[:, axis]
         reach = max(0.5 * size - float(along.max()), float(along.min()) + 0.5 * size, 0.0)
-        share = max(share, reach / size)
-    return share
+        shares.append((reach / size, name))
+    return max(shares, key=lambda item: item[0])
 
 
 def _relative(edit: PlankEdit, size: float) -> float:

@@ -123,18 +123,17 @@ def _thickened(search: Search, design: Design, geometry: Geometry, report: Desig
                           f"{design.units})"]
                 return None
             current[plank] = stock
-        _alike(current, planes, original, design)
-        edited = grown(design, geometry, current)
-        if edited is None or not search.keeps_locks(edited):
-            why[:] = ["a plank held on both faces cannot grow, or a locked DOF would change"
-                      if edited is None else "it would change a locked DOF"]
+        matched = dict(current)
+        _alike(matched, planes, original, design)
+        grown_up = _grown_whole(search, design, geometry, matched, why) if matched != current \
+            else None
+        if grown_up is not None:
+            current = matched
+        else:       # the images cannot take the board: the planks that need it alone
+            grown_up = _grown_whole(search, design, geometry, current, why)
+        if grown_up is None:
             return None
-        after = analyze(edited)
-        if after.violations or interpenetrations(edited) or \
-                {frozenset(j.planks) for j in after.joints} != \
-                {frozenset(j.planks) for j in geometry.joints}:
-            why[:] = ["the thicker planks would cut into others or change the joints"]
-            return None
+        edited, after = grown_up
         search.checks += 1
         after_report = check_design(edited, after)
         if after_report.valid:
@@ -149,6 +148,25 @@ def _thickened(search: Search, design: Design, geometry: Geometry, report: Desig
         if not wanted:
             return None
     return None
+
+
+def _grown_whole(search: Search, design: Design, geometry: Geometry,
+                 thicknesses: dict[str, float], why: list[str]):
+    """(the design with those planks ``grown``, its geometry), or None and the reason in
+    ``why`` when a plank held on both faces cannot grow, a locked DOF would change, or the
+    thicker planks would cut into others or change the joints."""
+    edited = grown(design, geometry, thicknesses)
+    if edited is None or not search.keeps_locks(edited):
+        why[:] = ["a plank held on both faces cannot grow, or a locked DOF would change"
+                  if edited is None else "it would change a locked DOF"]
+        return None
+    after = analyze(edited)
+    if after.violations or interpenetrations(edited) or \
+            {frozenset(j.planks) for j in after.joints} != \
+            {frozenset(j.planks) for j in geometry.joints}:
+        why[:] = ["the thicker planks would cut into others or change the joints"]
+        return None
+    return edited, after
 
 
 def _alike(current: dict[str, float], planes: tuple[MirrorPlane, ...],
