@@ -39,7 +39,8 @@ def _one_line(error: click.UsageError) -> click.UsageError | _OneLine:
 
 class _Commands(click.Group):
     """The command group, its usage errors (an unknown option or command, a missing
-    argument, a value of the wrong type) one line each instead of click's usage block."""
+    argument, a value of the wrong type) one line each instead of click's usage block,
+    and so are an OSError (the machine's words) and any other exception (a bug)."""
 
     def make_context(self, *args, **kwargs):
         try:
@@ -53,8 +54,8 @@ class _Commands(click.Group):
         except click.UsageError as error:
             raise _one_line(error) from None
         except (click.exceptions.ClickException, click.exceptions.Exit, click.Abort,
-                KeyboardInterrupt, SystemExit, EOFError):
-            raise                       # click's own handling (EOF: 'Aborted!')
+                KeyboardInterrupt, SystemExit, EOFError, BrokenPipeError):
+            raise                       # click's own handling (EOF: 'Aborted!'; a closed pipe)
         except OSError as error:        # the machine's, not a bug: a full disk, a pipe
             if os.environ.get(DEBUG_VARIABLE):
                 raise
