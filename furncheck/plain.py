@@ -59,3 +59,11 @@ def plain_length(value_m: float, scale: float, unit: str,
                  digits: int = MESSAGE_SIGNIFICANT_DIGITS) -> str:
     """A length given in metres, in the design's unit (``scale`` m per unit): ``'4 mm'``."""
     return f"{plain_number(value_m / scale, digits)} {unit}"
+
+
+def plain_load(mass: float | None, force) -> str:
+    """A load as a message names it: its mass when the file gave one (``80 kg``), else
+    the size of its force (``100 N``)."""
+    if mass is not None:
+        return f"{plain_number(mass)} kg"
+    return f"{plain_number(math.hypot(*(float(v) for v in force)))} N"

@@ -52,7 +52,7 @@ def design_to_document(design: Design) -> dict[str, Any]:
     if design.anchors:
         doc["anchors"] = [anchor_entry(anchor, design) for anchor in design.anchors]
     doc["safety_factor"] = design.safety_factor
-    doc["tolerance"] = _in_unit(design.tolerance, scale)
+    doc["tolerance"] = in_unit(design.tolerance, scale)
     return doc
 
 
@@ -84,8 +84,9 @@ def write_design(design: Design, path: str) -> None:
     Path(path).write_text(design_text(design, fmt), encoding="utf-8")
 
 
-def _in_unit(metres: float, scale: float) -> float:
-    """A length (m) in the file unit (``scale`` m each), rounded to 12 significant digits."""
+def in_unit(metres: float, scale: float) -> float:
+    """A length (m) in the file unit (``scale`` m each), rounded to 12 significant digits
+    (as a design file writes a length; the cut list reads its values the same way)."""
     return _rounded(metres / scale)
 
 
@@ -125,7 +126,7 @@ def plank_entry(plank: Plank, design: Design) -> dict[str, Any]:
         "rotation": _vector_rounded([float(v) for v in plank.rotation]),
     }
     if plank.thickness != design.material.thickness:
-        entry["thickness"] = _in_unit(plank.thickness, scale)
+        entry["thickness"] = in_unit(plank.thickness, scale)
     if plank.material:
         entry["material"] = material_entry(dict(plank.material), scale)
     return entry

@@ -11,7 +11,7 @@ import numpy as np
 
 from furncheck import tolerances as tol
 from furncheck.design.model import Design
-from furncheck.plain import plain_number
+from furncheck.plain import plain_load
 from furncheck.result import CaseResult
 
 LOAD_ARROW_SHARE = 0.16
@@ -42,12 +42,9 @@ def load_arrows(design: Design, case: CaseResult, size: float) -> list[LoadArrow
     found = []          # (head point, unit direction, magnitude N, label or None)
     scale = design.unit_scale
     for load in case.loads:
-        if load.mass is not None:
-            force = np.array([0.0, 0.0, -load.mass * tol.GRAVITY])
-            label = f"{plain_number(load.mass)} kg"
-        else:
-            force = np.asarray(load.force, dtype=float)
-            label = f"{plain_number(float(np.linalg.norm(force)))} N"
+        force = np.array([0.0, 0.0, -load.mass * tol.GRAVITY]) if load.mass is not None \
+            else np.asarray(load.force, dtype=float)
+        label = plain_load(load.mass, force)
         magnitude = float(np.linalg.norm(force))
         if magnitude == 0.0 or load.plank not in design.plank_index:
             continue

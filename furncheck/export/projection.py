@@ -140,3 +140,9 @@ def shaded(colours: np.ndarray, normals: np.ndarray) -> np.ndarray:
     """(n, 3) colours lit by LIGHT for faces with (n, 3) unit normals."""
     light = AMBIENT + (1.0 - AMBIENT) * np.clip(normals @ LIGHT, 0.0, 1.0)
     return np.clip(colours * light[:, None], 0.0, 1.0)
+
+
+def box_edges(plank, unit_scale: float) -> np.ndarray:
+    """(12, 2, 2): the plank's box edges (``BOX_EDGES``) in the view, each from one corner
+    to the other, file unit (``unit_scale`` m each)."""
+    return project(plank.corners / unit_scale)[np.array(BOX_EDGES)]

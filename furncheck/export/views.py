@@ -265,9 +265,9 @@ def _draw_mark_edges(sheet: Sheet, design: Design, marks: dict[str, str],
         return
     lines, colours = [], []
     for plank, colour in marked:
-        corners = projection.project(plank.corners / design.unit_scale)
-        lines.extend(corners[[a, b]] for a, b in projection.BOX_EDGES)
-        colours.extend([colour] * len(projection.BOX_EDGES))
+        edges = projection.box_edges(plank, design.unit_scale)
+        lines.extend(edges)
+        colours.extend([colour] * len(edges))
     sheet.add(LineCollection(lines, colors=colours, linewidths=1.0, linestyles=(0, (2, 2)),
                              alpha=0.9, zorder=3))
 

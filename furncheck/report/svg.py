@@ -18,7 +18,7 @@ from furncheck.export.arrows import design_extent, load_arrows
 from furncheck.export.colours import MARK_RGB, utilization_rgb
 from furncheck.export.findings import utilization_of
 from furncheck.export.projection import (
-    BOX_EDGES,
+    box_edges,
     plank_faces,
     project,
     shaded,
@@ -97,8 +97,9 @@ def design_svg(design: Design, utilization: dict[str, float | None] | None = Non
     hidden = [(plank, MARK_RGB[marks[plank.id]]) for plank in planks
               if marks.get(plank.id) in MARK_RGB]
     for plank, colour in hidden:    # a marked plank's edges over everything, as the PNG
-        x, y = pixels(project(plank.corners / design.unit_scale))
-        edges = "".join(f"M{x[a]:.1f},{y[a]:.1f}L{x[b]:.1f},{y[b]:.1f}" for a, b in BOX_EDGES)
+        x, y = pixels(box_edges(plank, design.unit_scale))
+        edges = "".join(f"M{x0:.1f},{y0:.1f}L{x1:.1f},{y1:.1f}"
+                        for (x0, x1), (y0, y1) in zip(x, y))
         parts.append(f'<path d="{edges}" fill="none" stroke="{_rgb(colour)}" '
                      f'stroke-width="1" stroke-dasharray="2 2"/>')
     if arrows:

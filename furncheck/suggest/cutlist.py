@@ -15,12 +15,12 @@ written one.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 from furncheck.design.materials import PLANK_MATERIAL_KEYS, material_entry
 from furncheck.design.model import Design, Plank
-from furncheck.plain import plain_number
+from furncheck.design.write import in_unit
+from furncheck.plain import plain_load
 from furncheck.tolerances import CUT_LIST_EPS
 
 GEOMETRY_FIELDS = ("length", "width", "thickness", "x", "y", "z", "rx", "ry", "rz")
@@ -29,10 +29,6 @@ GEOMETRY_FIELDS = ("length", "width", "thickness", "x", "y", "z", "rx", "ry", "r
 SIZE_FIELDS = ("length", "width", "thickness")
 POSITION_FIELDS = ("x", "y", "z")
 ANGLE_FIELDS = ("rx", "ry", "rz")
-
-_SIGNIFICANT_DIGITS = 12
-"""Digits of a length in the file unit, as the design file writes it (``design.write``)."""
-
 
 @dataclass(frozen=True)
 class FieldChange:
@@ -70,12 +66,12 @@ def plank_values(plank: Plank, design: Design) -> dict[str, float]:
     file writes them: lengths in ``design``'s unit to 12 significant digits, degrees."""
     scale = design.unit_scale
     values = {
-        "length": _in_unit(plank.length, scale),
-        "width": _in_unit(plank.width, scale),
-        "thickness": _in_unit(plank.thickness, scale),
-        "x": _in_unit(plank.center[0], scale),
-        "y": _in_unit(plank.center[1], scale),
-        "z": _in_unit(plank.center[2], scale),
+        "length": in_unit(plank.length, scale),
+        "width": in_unit(plank.width, scale),
+        "thickness": in_unit(plank.thickness, scale),
+        "x": in_unit(plank.center[0], scale),
+        "y": in_unit(plank.center[1], scale),
+        "z": in_unit(plank.center[2], scale),
         "rx": float(plank.rotation[0]),
         "ry": float(plank.rotation[1]),
         "rz": float(plank.rotation[2]),
@@ -147,12 +143,11 @@ def load_moves(before: Design, after: Design) -> tuple[LoadMove, ...]:
         for old, new in zip(case.loads, other.loads):
             if old.point is None or new.point is None or old.plank != new.plank:
                 continue
-            start = tuple(_in_unit(v, scale) for v in old.point)
-            end = tuple(_in_unit(v, scale) for v in new.point)
+            start = tuple(in_unit(v, scale) for v in old.point)
+            end = tuple(in_unit(v, scale) for v in new.point)
             if not any(_differs(a, b) for a, b in zip(start, end)):
                 continue
-            what = (f"{plain_number(old.mass)} kg" if old.mass is not None
-                    else f"{plain_number(math.hypot(*old.force))} N")
+            what = plain_load(old.mass, old.force)
             key = (old.plank, what, start, end)
             if key not in seen:
                 seen.add(key)
@@ -176,7 +171,3 @@ def _differs(old: float | None, new: float | None) -> bool:
     if old is None or new is None:
         return old is not new
     return abs(new - old) > CUT_LIST_EPS
-
-
-def _in_unit(metres: float, scale: float) -> float:
-    return float(f"{metres / scale:.{_SIGNIFICANT_DIGITS}g}")
