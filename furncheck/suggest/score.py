@@ -88,21 +88,24 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
     have: planks too big for a stock board, planks wider than the face they are nailed
     to (the original's joints; a plank ``edited`` adds is checked for the board only)."""
     reasons = []
+    changed = {plank.id for plank in edited.planks          # what an unchanged plank
+               if plank.id in original.plank_index          # had, it still has
+               and plank != original.plank(plank.id)}
     for plank in edited.planks:
         before = original.plank_index.get(plank.id)
-        if not _fits_board(plank) and (before is None or
-                                       _fits_board(original.planks[before])):
+        if (before is None or plank.id in changed) and not _fits_board(plank) and \
+                (before is None or _fits_board(original.planks[before])):
             reasons.append(f"{plank.id} is larger than a stock board")
     for joint in geometry.joints:
-        if joint.edge not in edited.plank_index or joint.face not in edited.plank_index:
+        if joint.edge not in edited.plank_index or joint.face not in edited.plank_index \
+                or not {joint.edge, joint.face} & changed:
             continue
         if _overhangs(edited, joint) and not _overhangs(original, joint):
             reasons.append(f"{joint.edge} is wider than {joint.face}, which it is nailed to")
-    for plank_id in _level_planks(original, geometry):
-        if plank_id not in edited.plank_index:
-            continue
-        before = _overhang_share(original, geometry, plank_id)
-        after = _overhang_share(edited, geometry, plank_id)
+    supports = _supports(geometry)
+    for plank_id in _level_planks(original, supports, changed):
+        before = _overhang_share(original, plank_id, supports[plank_id])
+        after = _overhang_share(edited, plank_id, supports[plank_id])
         if before is None or after is None:
             continue
         if before[0] <= OVERHANG_SHARE < after[0] and after[0] - before[0] >= OVERHANG_GROWTH:
@@ -111,34 +114,48 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
     return tuple(reasons)
 
 
-def _level_planks(design: Design, geometry: Geometry) -> list[str]:
-    """The level planks (``discrete.common.level``) that a joint holds."""
-    held = {joint.face for joint in geometry.joints} | {joint.edge for joint in geometry.joints}
-    return [plank.id for plank in design.planks if plank.id in held and level(plank)]
+def _supports(geometry: Geometry) -> dict[str, list[tuple[str, bool]]]:
+    """Per plank id, the planks jointed to it that may hold it: (the other plank, whether
+    the plank is the joint's edge plank, its end resting on the other's face)."""
+    held: dict[str, list[tuple[str, bool]]] = {}
+    for joint in geometry.joints:
+        held.setdefault(joint.edge, []).append((joint.face, True))
+        held.setdefault(joint.face, []).append((joint.edge, False))
+    return held
 
 
-def _overhang_share(design: Design, geometry: Geometry,
-                    plank_id: str) -> tuple[float, str] | None:
+def _level_planks(design: Design, supports: dict[str, list[tuple[str, bool]]],
+                  changed: set[str]) -> list[str]:
+    """The level planks (``discrete.common.level``) held by joints whose overhang an edit
+    may change: the plank or one of its jointed planks is among ``changed``."""
+    return [plank.id for plank in design.planks if plank.id in supports and level(plank)
+            and (plank.id in changed or any(other in changed
+                                             for other, _ in supports[plank.id]))]
+
+
+def _overhang_share(design: Design, plank_id: str,
+                    jointed: list[tuple[str, bool]]) -> tuple[float, str] | None:
     """How far the level plank reaches past its supports at either end, along either of
     its in-plane axes, as a share of its size along that axis (0 where a support reaches
     its end), the larger of the two with its axis ('length' or 'width'); None without
-    supports.  Its supports (the original's joints, placed on
-    ``design``'s planks): the planks below it whose ends are nailed to its face, and the
-    faces its own ends are nailed to, each covering what its corners span along the axis
-    (a side under a chair seat covers the seat's whole depth, and only its own thickness
-    across)."""
-    plank = design.plank(plank_id)
-    supports = []
-    for joint in geometry.joints:
-        if joint.edge == plank_id and joint.face in design.plank_index:
-            supports.append(design.plank(joint.face))
-        elif joint.face == plank_id and joint.edge in design.plank_index:
-            under = design.plank(joint.edge)
-            if under.center_array[2] < plank.center_array[2]:
-                supports.append(under)
-    if not supports:
+    supports.  Its supports, among the planks ``jointed`` to it in the original (placed
+    on ``design``'s planks): the planks below it whose ends are nailed to its face, and
+    the faces its own ends are nailed to, each covering what its corners span along the
+    axis (a side under a chair seat covers the seat's whole depth, and only its own
+    thickness across)."""
+    if plank_id not in design.plank_index:
         return None
-    corners = np.concatenate([support.corners for support in supports]) - plank.center_array
+    plank = design.plank(plank_id)
+    holding = []
+    for other, rests_on_it in jointed:
+        if other not in design.plank_index:
+            continue
+        support = design.plank(other)
+        if rests_on_it or support.center_array[2] < plank.center_array[2]:
+            holding.append(support)
+    if not holding:
+        return None
+    corners = np.concatenate([support.corners for support in holding]) - plank.center_array
     shares = []
     for axis, size, name in ((0, plank.length, "length"), (1, plank.width, "width")):
         along = corners @ plank.rotation_matrix[:, axis]
