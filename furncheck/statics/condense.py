@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.statics.elements import assemble_beams_dense
+from furncheck.statics.elements import _element_entries, assemble_beams_dense
 from furncheck.statics.lapack import cholesky, cholesky_solve
 from furncheck.statics.model import _SIX, StaticsModel, block_sums
 
@@ -68,7 +68,7 @@ class _Condensation(_Condensed):
     def split(self, rhs: np.ndarray):
         """(y, b_g - A_gi y) for a right-hand side of the whole system, (size,) or
         (size, k): y is what ``expand`` needs besides x_g."""
-        inner = self.lu.solve(rhs[self.inner]) if len(self.inner) else \
+        inner = self.lu.solve(np.asfortranarray(rhs[self.inner])) if len(self.inner) else \
             np.zeros((0,) + rhs.shape[1:])
         return inner, rhs[self.ground] - self.coupling.T @ inner
 
@@ -117,8 +117,8 @@ class _PlankCondensation(_Condensed):
 
     def _inner_solve(self, rhs: np.ndarray) -> np.ndarray:
         """K_ii^-1 rhs, by the dense Cholesky factor or the sparse LU."""
-        if self.lu is not None:
-            return self.lu.solve(np.ascontiguousarray(rhs))
+        if self.lu is not None:     # columns in SuperLU's own (Fortran) order: no copy
+            return self.lu.solve(np.asfortranarray(rhs))
         return cholesky_solve(self.factor, rhs)
 
     def expand(self, inner_part, ground: np.ndarray) -> np.ndarray:
@@ -187,37 +187,72 @@ def _condense_beams(model: StaticsModel, ground: np.ndarray,
     eliminated as in ``_condense_planks``, K = K_b + G^T W G sparse (symmetric positive
     definite on the nodes that are not grounded), K_ii factored by one sparse LU (half the
     unknowns of the mixed system, and no indefinite joint rows to pivot on); None if K_ii
-    is singular."""
+    is singular.  K's parts are assembled apart from the joints' and elements' entries
+    (``_stiffness_entries``): K_ii sparse, K_ig and K_gg dense."""
+    import scipy.sparse as sp
+
     n, m = model.n_dof, 6 * len(model.joints)
-    G = model.G
-    W = _block_diagonal(model.joint_stiffness)
-    K = (model.beam_stiffness + (G.T @ W @ G)).tocsc()
     inner = _others(n, ground)
-    coupling_sparse = K[inner][:, ground]
-    if _implicit(len(inner), len(ground)):
-        lu = _factor(K[inner][:, inner].tocsc(),
-                     np.asarray(coupling_sparse.sum(axis=1)).ravel()) if len(inner) else None
-        if lu is None and len(inner):
+    ni, ng = len(inner), len(ground)
+    rows, cols, values = _stiffness_entries(model, inner, ground)
+    in_rows, in_cols = rows < ni, cols < ni
+    both = in_rows & in_cols
+    inner_block = sp.coo_matrix((values[both], (rows[both], cols[both])),
+                                shape=(ni, ni)).tocsc()
+    across = in_rows & ~in_cols
+    coupling_dense = _dense_sum(rows[across], cols[across] - ni, values[across], ni, ng)
+    grounded = ~in_rows & ~in_cols
+    ground_block = _dense_sum(rows[grounded] - ni, cols[grounded] - ni, values[grounded],
+                              ng, ng)
+    if _implicit(ni, ng):
+        lu = _factor(inner_block, coupling_dense.sum(axis=1)) if ni else None
+        if lu is None and ni:
             return None
-        coupling = coupling_sparse.tocsr()
-        ground_block = K[ground][:, ground].toarray()
-        schur = _trailing_schur(K[inner][:, inner].tocsc(), coupling, ground_block, lu)
+        coupling = sp.csr_matrix(coupling_dense)
+        schur = _trailing_schur(inner_block, coupling, ground_block, lu)
         if schur is None:
             schur = _blocked_schur(ground_block, coupling, lu)
         return _PlankCondensation(ground, inner, coupling, None, schur, contact_block,
                                   plank_offsets, n + m, model=weakref.proxy(model), lu=lu)
-    coupling = coupling_sparse.toarray()
-    reduced = np.zeros((len(inner), len(ground)))
+    reduced = np.zeros((ni, ng))
     lu = None
-    if len(inner):
-        lu = _factor(K[inner][:, inner].tocsc(), coupling.sum(axis=1))
+    if ni:
+        lu, reduced = _factor_solving(inner_block, coupling_dense)
         if lu is None:
             return None
-        if len(ground):
-            reduced = lu.solve(coupling)
-    schur = K[ground][:, ground].toarray() - coupling.T @ reduced
-    return _PlankCondensation(ground, inner, coupling, reduced, schur, contact_block,
+    schur = ground_block - coupling_dense.T @ reduced
+    return _PlankCondensation(ground, inner, coupling_dense, reduced, schur, contact_block,
                               plank_offsets, n + m, model=weakref.proxy(model), lu=lu)
+
+
+def _stiffness_entries(model: StaticsModel, inner: np.ndarray, ground: np.ndarray):
+    """(rows, columns, values) of K = K_b + G^T W G, the unknowns numbered ``inner``
+    first and ``ground`` after them: each joint's four (6, 6) blocks B_s^T W B_t between
+    its nodes s, t, then each beam element's (12, 12) entries; an entry may be listed
+    several times (to be summed)."""
+    order = np.empty(model.n_dof, dtype=np.int64)
+    order[inner] = np.arange(len(inner))
+    order[ground] = len(inner) + np.arange(len(ground))
+    blocks, nodes = model.joint_blocks, model.joint_nodes
+    weighted = model.joint_stiffness[:, None] @ blocks                  # (nJ, 2, 6, 6)
+    pairs = np.swapaxes(blocks, 2, 3)[:, :, None] @ weighted[:, None]   # (nJ, 2, 2, 6, 6)
+    dofs = 6 * nodes[:, :, None] + _SIX                                 # (nJ, 2, 6)
+    shape = pairs.shape
+    joint_rows = np.broadcast_to(dofs[:, :, None, :, None], shape).ravel()
+    joint_cols = np.broadcast_to(dofs[:, None, :, None, :], shape).ravel()
+    parts = [(joint_rows, joint_cols, pairs.ravel())]
+    if model.beams is not None:
+        world, rows, cols = _element_entries(model.beams)
+        parts.append((rows.ravel(), cols.ravel(), world.ravel()))
+    rows, cols, values = (np.concatenate(part) for part in zip(*parts))
+    return order[rows], order[cols], values
+
+
+def _dense_sum(rows: np.ndarray, cols: np.ndarray, values: np.ndarray, height: int,
+               width: int) -> np.ndarray:
+    """(height, width): the ``values`` summed at their (row, column), in order."""
+    return np.bincount(rows * width + cols, weights=values, minlength=height * width) \
+        .reshape(height, width)
 
 
 def _block_diagonal(blocks: np.ndarray):
@@ -252,7 +287,7 @@ def _blocked_schur(ground_block: np.ndarray, coupling, lu) -> np.ndarray:
     transposed = coupling.T.tocsr()
     for start in range(0, n_ground, width):
         block = slice(start, min(start + width, n_ground))
-        reduced = lu.solve(columns[:, block].toarray())
+        reduced = lu.solve(columns[:, block].toarray(order="F"))
         schur[:, block] -= transposed @ reduced
     return schur
 
@@ -315,7 +350,7 @@ def _times_reduced(condensed: _Condensed, ground: np.ndarray) -> np.ndarray:
         return condensed.reduced @ ground
     if not len(condensed.inner):
         return np.zeros((0,) + ground.shape[1:])
-    return condensed.lu.solve(np.ascontiguousarray(condensed.coupling @ ground))
+    return condensed.lu.solve(np.asfortranarray(condensed.coupling @ ground))
 
 
 def ground_unknowns(model: StaticsModel) -> int:
@@ -371,7 +406,7 @@ def _condense(model: StaticsModel) -> _Condensed | None:
             return _Condensation(ground, inner, coupling.tocsr(), None, schur, contact_block,
                                  plank_offsets, n + m, lu=lu)
         if len(ground):
-            reduced = lu.solve(coupling.toarray())
+            reduced = lu.solve(coupling.toarray(order="F"))
     schur = permuted[ni:, ni:].toarray() - np.asarray(coupling.T @ reduced)
     return _Condensation(ground, inner, coupling, reduced, schur, contact_block,
                          plank_offsets, n + m, lu=lu)
@@ -426,6 +461,29 @@ def _factor(A: sp.csc_matrix, probe: np.ndarray):
         if _accurate(A, lu.solve(rhs), rhs):
             return lu
     return None
+
+
+def _factor_solving(A: sp.csc_matrix, columns: np.ndarray):
+    """(SuperLU of the symmetric matrix A, A^-1 ``columns``), or (None, None) if A is
+    singular: ``_factor`` with its probe, the sum of the columns, solved along with them
+    (one solve for both)."""
+    import scipy.sparse.linalg as spla
+
+    probe = columns.sum(axis=1) if columns.shape[1] else np.zeros(A.shape[0])
+    if not np.any(probe):
+        probe = np.ones(A.shape[0])
+    rhs = np.empty((A.shape[0], columns.shape[1] + 1), order="F")  # SuperLU's own order:
+    rhs[:, :-1] = columns                                           # no copy per solve
+    rhs[:, -1] = probe
+    for options in (_SYMMETRIC_LU, {}):
+        try:
+            lu = spla.splu(A, **options)
+        except RuntimeError:
+            continue
+        solved = lu.solve(rhs)
+        if _accurate(A, solved[:, -1], probe):
+            return lu, solved[:, :-1]
+    return None, None
 
 
 def _accurate(A, x: np.ndarray, b: np.ndarray, load_scale: float = 0.0) -> bool:

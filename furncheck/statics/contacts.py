@@ -8,7 +8,7 @@ between 'lift-off', 'sliding' and an equilibrium taken from the program itself.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -93,13 +93,31 @@ def solve_case(model: StaticsModel, f: np.ndarray,
     return solver.from_programs(solution.contact_forces, on_failure=solution)
 
 
-@dataclass
 class _Solution:
-    q: np.ndarray
-    h: np.ndarray
-    contact_forces: np.ndarray
-    contact_displacements: np.ndarray
-    ground: np.ndarray              # x_g, the grounded planks' displacements
+    """A contact state's equilibrium: contact forces and displacements (nK, 3), the
+    grounded planks' displacements x_g (``ground``), and the whole solution [q; h] from
+    them (``q``, ``h``: expanded through the condensation when first asked for; the
+    iterations read only the contacts)."""
+
+    def __init__(self, solver: _ActiveSet, contact_forces: np.ndarray,
+                 contact_displacements: np.ndarray, ground: np.ndarray):
+        self.contact_forces = contact_forces
+        self.contact_displacements = contact_displacements
+        self.ground = ground
+        self._solver = solver
+
+    @cached_property
+    def _expanded(self) -> np.ndarray:
+        solver = self._solver
+        return solver.condensed.expand(solver.inner_part, self.ground)
+
+    @property
+    def q(self) -> np.ndarray:
+        return self._expanded[:self._solver.model.n_dof]
+
+    @property
+    def h(self) -> np.ndarray:
+        return self._expanded[self._solver.model.n_dof:]
 
 
 class _ActiveSet:
@@ -427,10 +445,8 @@ class _ActiveSet:
 
     def assemble(self, ground: np.ndarray, forces: np.ndarray,
                  displacement: np.ndarray) -> _Solution:
-        """The full solution from the grounded planks' displacements x_g."""
-        x = self.condensed.expand(self.inner_part, ground)
-        return _Solution(x[:self.model.n_dof], x[self.model.n_dof:], forces, displacement,
-                         ground)
+        """The solution from the grounded planks' displacements x_g."""
+        return _Solution(self, forces, displacement, ground)
 
     def contact_space(self, active: np.ndarray) -> _ContactSpace:
         """``_ContactSpace`` of the active contacts, kept per active set."""
