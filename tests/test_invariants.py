@@ -327,6 +327,81 @@ def test_catalog_contact_forces_balance_loads(path):
         pytest.skip("no load case with ground forces (the design floats)")
 
 
+def assert_planks_balance(model, report) -> int:
+    """(c2) on one report: for every stable case, each plank's free body balances: the
+    wrenches of its joints (what a joint's first plank exerts on its second, moment about
+    the joint's point: +h on the second plank, -h on the first), its contacts' and
+    anchors' forces (a resting corner's force acts on its plank and against it on the
+    plank it rests on), its self-weight and its loads (a spread load's resultant at its
+    centre), forces and moments about the origin to BALANCE of the case's applied force
+    magnitudes (x 1 m).  Returns the number of planks checked."""
+    checked = 0
+    centres = {p.id: p.center_array for p in model.planks}
+    for case_model, case in zip(model.load_cases, report.cases):
+        if case.stability != "stable" or not case.contacts:
+            continue
+        held = grounded_planks(case) | {c.on for c in case.contacts if c.on is not None}
+        force = {p: np.zeros(3) for p in held}
+        moment = {p: np.zeros(3) for p in force}
+
+        def push(plank, f, point, force=force, moment=moment):
+            force[plank] += f
+            moment[plank] += np.cross(point, f)
+
+        for joint in case.joints:
+            first, second = joint.planks
+            f, m = np.array(joint.force, dtype=float), np.array(joint.moment, dtype=float)
+            point = np.array(joint.point, dtype=float) * model.unit_scale
+            push(second, f, point)
+            moment[second] += m
+            push(first, -f, point)
+            moment[first] -= m
+        for contact in case.contacts:
+            point = np.array(contact.point, dtype=float) * model.unit_scale
+            push(contact.plank, np.array(contact.force, dtype=float), point)
+            if contact.on is not None:
+                push(contact.on, -np.array(contact.force, dtype=float), point)
+        for anchor in case.anchors:
+            push(anchor.plank, np.array(anchor.force, dtype=float),
+                 np.array(anchor.point, dtype=float) * model.unit_scale)
+        scale = 0.0
+        for plank in model.planks:
+            if plank.id in force:
+                weight = np.array([0.0, 0.0, -model.plank_mass(plank) * pd.G])
+                push(plank.id, weight, plank.center_array)
+                scale += float(np.linalg.norm(weight))
+        for load in case_model.loads:
+            if load.plank in force:
+                point = centres[load.plank] if load.point is None else np.array(load.point)
+                push(load.plank, np.array(load.force, dtype=float), point)
+                scale += float(np.linalg.norm(load.force))
+        for plank in force:
+            assert np.linalg.norm(force[plank]) <= BALANCE * scale, (case.name, plank)
+            assert np.linalg.norm(moment[plank]) <= BALANCE * scale, (case.name, plank)
+            checked += 1
+    return checked
+
+
+@pytest.mark.skipif(not CATALOG, reason="designs/ holds no design files yet")
+@pytest.mark.parametrize("model_name", ["rigid", "elastic"])
+def test_catalog_planks_balance(model_name):
+    """(c2): every plank of every stable case of the catalog, in both models, is in
+    equilibrium under what the report says acts on it (``assert_planks_balance``): the
+    joint wrenches' sign and moment point conventions of contract section 3 (JSON
+    ``joints``) hold plank by plank, not only summed over the design."""
+    from furncheck.design.model import with_model
+
+    checked = 0
+    for path in CATALOG:
+        try:
+            model = with_model(parse_design(path.read_text(encoding="utf-8"), str(path),
+                                            fmt_of(path)), model_name)
+        except DesignError:
+            continue
+        checked += assert_planks_balance(model, check_design(model))
+    assert checked >= 100
+
+
 # --- (d) a load inside the support polygon never topples ----------
 
 @settings(deadline=None, max_examples=25, derandomize=True, phases=PHASES)

@@ -171,8 +171,9 @@ class _ActiveSet:
         plastic.  With the normal forces N of the last iterate as the caps, the equilibrium
         minimizes a convex energy of the grounded planks' displacements (see
         ``_FrictionEnergy``), solved by Newton's method with a line search along each step
-        in closed form; a contact that pulls then lifts (and the caps restart from the
-        normal forces), else the caps are updated from the new normal forces until they
+        in closed form; a contact that pulls then lifts, and a lifted one that the
+        slipping pushed below the floor is seated again (either way the caps restart from
+        the normal forces), else the caps are updated from the new normal forces until they
         agree (to the force tolerance): by Newton's method on the caps
         (``_FrictionEnergy.cap_newton``, which also predicts where the next minimum lies),
         or by Anderson's mixing of the last iterates where a Newton update did not shrink
@@ -435,13 +436,19 @@ class _ActiveSet:
         ground = system.solve(self.ground_rhs)
         if ground is None or not _accurate(system.matrix, ground, self.ground_rhs, load_scale):
             return None
-        q = np.zeros(model.n_dof)             # the contacts move with the grounded nodes
-        q[condensed.ground] = ground
-        displacement = model.contact_displacements(q)
+        displacement = self.contact_displacements(ground)
         # the anchor springs: k (x the scale) in all three directions where a contact holds
         forces = -(spring_rows(model.contact_springs, trailing=1) * stiffness_scale) \
             * displacement * holding[:, None]
         return self.assemble(ground, forces, displacement)
+
+    def contact_displacements(self, ground: np.ndarray) -> np.ndarray:
+        """(nK, 3) m: every contact's displacement (lifted ones too: whether they sink)
+        for the grounded planks' displacements x_g (the contacts move with the grounded
+        nodes)."""
+        q = np.zeros(self.model.n_dof)
+        q[self.condensed.ground] = ground
+        return self.model.contact_displacements(q)
 
     def assemble(self, ground: np.ndarray, forces: np.ndarray,
                  displacement: np.ndarray) -> _Solution:

@@ -341,13 +341,13 @@ class _FrictionEnergy:
         return np.maximum(new_caps, 0.0), x - shift
 
     def contact_state(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The contact forces and displacements (nK, 3) at x (zero where lifted)."""
-        w, _, _, force = self._forces(x)
+        """The contact forces and displacements (nK, 3) at x: zero force where lifted,
+        and the lifted contacts' own displacements (a lifted corner that the slipping
+        has pushed below the floor must be seated again)."""
+        _, _, _, force = self._forces(x)
         forces = np.zeros((len(self.active), 3))
         forces[self.active] = force
-        displacements = np.zeros((len(self.active), 3))
-        displacements[self.active] = w
-        return forces, displacements
+        return forces, self.solver.contact_displacements(x)
 
 
 class _StepSlope:
