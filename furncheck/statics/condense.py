@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.statics.elements import _element_entries, assemble_beams_dense
+from furncheck.statics.elements import assemble_beams_dense, element_entries
 from furncheck.statics.lapack import cholesky, cholesky_solve
 from furncheck.statics.model import _SIX, StaticsModel, block_sums
 
@@ -242,7 +242,7 @@ def _stiffness_entries(model: StaticsModel, inner: np.ndarray, ground: np.ndarra
     joint_cols = np.broadcast_to(dofs[:, None, :, None, :], shape).ravel()
     parts = [(joint_rows, joint_cols, pairs.ravel())]
     if model.beams is not None:
-        world, rows, cols = _element_entries(model.beams)
+        world, rows, cols = element_entries(model.beams)
         parts.append((rows.ravel(), cols.ravel(), world.ravel()))
     rows, cols, values = (np.concatenate(part) for part in zip(*parts))
     return order[rows], order[cols], values
@@ -253,20 +253,6 @@ def _dense_sum(rows: np.ndarray, cols: np.ndarray, values: np.ndarray, height: i
     """(height, width): the ``values`` summed at their (row, column), in order."""
     return np.bincount(rows * width + cols, weights=values, minlength=height * width) \
         .reshape(height, width)
-
-
-def _block_diagonal(blocks: np.ndarray):
-    """(6 nJ, 6 nJ) CSR matrix of the (nJ, 6, 6) blocks on its diagonal, every entry of
-    a block stored (zeros too): the matrix ``scipy.sparse.block_diag(list(blocks),
-    format="csr")`` gives, entry for entry and in the same order, made without a sparse
-    matrix per block."""
-    import scipy.sparse as sp
-
-    size = 6 * len(blocks)
-    columns = (6 * (np.arange(size, dtype=np.int32)[:, None] // 6) + _SIX[None, :]) \
-        .astype(np.int32).ravel()
-    pointers = np.arange(0, 6 * size + 1, 6, dtype=np.int32)
-    return sp.csr_matrix((blocks.reshape(-1).copy(), columns, pointers), shape=(size, size))
 
 
 def _implicit(n_inner: int, n_ground: int) -> bool:

@@ -123,7 +123,7 @@ def assemble_beams(beams: Beams, n_nodes: int) -> sp.csr_matrix:
     """K_b = sum T^T K_local T over the elements, (6 nN, 6 nN) sparse."""
     import scipy.sparse as sp
 
-    world, rows, cols = _element_entries(beams)
+    world, rows, cols = element_entries(beams)
     n = 6 * n_nodes
     return sp.csr_matrix((world.ravel(), (rows.ravel(), cols.ravel())), shape=(n, n))
 
@@ -134,7 +134,7 @@ def assemble_beams_dense(beams: Beams, position: np.ndarray) -> np.ndarray:
     matrices.  An entry sums the terms of at most two elements (the two that meet at a
     node, on its diagonal block), and a sum of two terms does not depend on their order,
     so the matrix is the sparse one's to the last bit."""
-    world, rows, cols = _element_entries(beams)
+    world, rows, cols = element_entries(beams)
     n_dof = 6 * len(position)
     block = 6 * np.asarray(position)
     rows = (block[rows // 6] + rows % 6).ravel()
@@ -143,7 +143,7 @@ def assemble_beams_dense(beams: Beams, position: np.ndarray) -> np.ndarray:
         .reshape(n_dof, n_dof)
 
 
-def _element_entries(beams: Beams) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def element_entries(beams: Beams) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(T^T K_local T (nE, 12, 12), the global row and the column of each of its
     entries, each (nE, 12, 12))."""
     T = beams.transform()
