@@ -13,7 +13,13 @@ from furncheck.design.model import with_model
 from furncheck.errors import DesignError, DesignTooBig
 from furncheck.geometry import Geometry, analyze
 from furncheck.result import NOT_SOLVED, CaseResult, DesignReport
-from furncheck.statics import CaseStatics, StaticsModel, build_model, solve_load_case
+from furncheck.statics import (
+    CaseStatics,
+    StaticsModel,
+    build_model,
+    solve_load_case,
+    solve_load_cases,
+)
 from furncheck.validity import (
     anchor_utilization,
     case_holds,
@@ -47,8 +53,7 @@ def check_design(design: Design, geometry: Geometry | None = None,
                             violations=tuple(violations), cases=cases, units=design.units)
     model = model or build_model(design, geometry)
     cases = []
-    for case in design.load_cases:
-        statics = solve_load_case(model, case)
+    for case, statics in zip(design.load_cases, solve_load_cases(model, design.load_cases)):
         if solved is not None:
             solved[case.name] = statics
         result, case_violations = evaluate_case(design, geometry, model, case, statics)
