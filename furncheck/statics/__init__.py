@@ -75,7 +75,11 @@ def solve_load_cases(model: StaticsModel, cases: list[LoadCase]) -> list[CaseSta
     """``solve_load_case`` of each case, the elastic model's sag and stress of all of them
     read in one pass over their planks stacked (``bending.plank_results_of``: the same
     numbers as one case at a time, for a fraction of the calls)."""
-    statics = [solve_case(model, external_forces(model, case)) for case in cases]
+    statics, start = [], None
+    for case in cases:     # each case starts from the contacts that held in the one before
+        statics.append(solve_case(model, external_forces(model, case), start))
+        if statics[-1].holding is not None:
+            start = statics[-1].holding
     solved = [k for k, one in enumerate(statics) if one.displacements is not None]
     if model.beams is None or not solved:
         return statics
