@@ -113,6 +113,7 @@ def _ranked(design: Design, geometry, planes, suggestions: list[Suggestion],
                               loads_moved=load_moves(design, suggestion.design)))
     scored.sort(key=lambda s: (s.score.key(), s.step if s.step is not None else 0.0,
                                s.rank))
+    scored = _distinct_builds(scored)
     kept = scored[:limit]
     discrete = [s for s in scored if s.kind == "discrete"]
     wanted = min(DISCRETE_KEPT, len(discrete), limit)
@@ -123,6 +124,36 @@ def _ranked(design: Design, geometry, planes, suggestions: list[Suggestion],
         kept[last] = extra
     kept.sort(key=lambda s: (s.score.key(), s.step if s.step is not None else 0.0, s.rank))
     return tuple(_renamed(suggestion, rank) for rank, suggestion in enumerate(kept, start=1))
+
+
+def _distinct_builds(suggestions: list[Suggestion]) -> list[Suggestion]:
+    """The suggestions without those that build what a better-ranked one builds: the
+    same planks (sizes, places, turns and materials to the micrometre and the
+    thousandth of a degree) and the same listed joints, whatever the added planks are
+    called (two rules can reach one fix: a rail under the top between two legs is the
+    apron there)."""
+    seen, kept = set(), []
+    for suggestion in suggestions:
+        build = _build(suggestion.design)
+        if build not in seen:
+            seen.add(build)
+            kept.append(suggestion)
+    return kept
+
+
+def _build(design: Design) -> tuple:
+    """What a design builds, named by nothing: its planks' shapes and the listed joints
+    between them (``_distinct_builds``)."""
+    def shape(plank) -> tuple:
+        return (round(plank.length, 6), round(plank.width, 6), round(plank.thickness, 6),
+                tuple(round(v, 6) for v in plank.center),
+                tuple(round(v, 3) for v in plank.rotation), plank.material)
+
+    shapes = {plank.id: shape(plank) for plank in design.planks}
+    joints = None if design.joints is None else tuple(sorted(
+        (tuple(sorted((shapes[a], shapes[b]))), joint.nails, joint.rests)
+        for joint in design.joints for a, b in [joint.planks]))
+    return tuple(sorted(shapes.values())), joints
 
 
 def _renamed(suggestion: Suggestion, rank: int) -> Suggestion:
