@@ -112,6 +112,11 @@ FRICTION_CAP_MEMORY = 3
 FRICTION_NEWTON_ITERATIONS = 100
 """Most Newton steps when minimizing the energy with slipping friction springs."""
 
+CONTACT_NEWTON_ITERATIONS = 200
+"""Most (damped) steps of the semismooth Newton method on the whole contact law
+(``statics.newton``), the fallback where the active set and the friction phase cannot
+settle: the cycling cases met take 4 to 100."""
+
 FULL_STEP_GRADIENT = 0.5
 """A full Newton step of the friction energy is taken, whatever the line search would say,
 where it brings the largest out-of-balance force below this fraction of the least one met

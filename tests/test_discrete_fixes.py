@@ -187,14 +187,37 @@ def test_a_thicker_edge_plank_holds_its_nails_in_the_rigid_model():
 def test_a_plank_grows_away_from_the_faces_that_hold_it():
     """In the cantilever the shelf's end rests on the post's +x face: the post is held on
     that face and grows toward -x (12 -> 44 mm: its centre moves 16 mm to x = -166 mm);
-    the shelf is held on neither face and grows both ways (12 -> 18 mm: its centre stays
-    at z = 600, the load on its top face at z = 606 moves up 3 mm with the face)."""
+    the shelf, level and held on neither face, grows downward (12 -> 18 mm: its top face
+    stays at z = 606, its centre moves down 3 mm to z = 597, and the load on its top face
+    stays where it was)."""
     design = load_design(str(CATALOG / "shelf-cantilever-overloaded.yaml"))
     edited = grown(design, analyze(design), {"post": 0.044, "shelf": 0.018})
     assert edited.plank("post").center == pytest.approx((-0.166, 0.0, 0.412))
-    assert edited.plank("shelf").center == pytest.approx((0.056, 0.0, 0.600))
+    assert edited.plank("shelf").center == pytest.approx((0.056, 0.0, 0.597))
     (load,) = edited.load_cases[0].loads
-    assert load.point == pytest.approx((0.156, 0.0, 0.609))
+    assert load.point == pytest.approx((0.156, 0.0, 0.606))
+
+
+def test_a_shelf_flush_with_its_sides_tops_stays_flush_when_thickened():
+    """A 1000 x 250 shelf between two 400 mm sides, flush with their tops (z 388..400),
+    sagging under 30 kg of books: the thicker-board fix grows it downward (36 mm: z
+    364..400), its top still flush, not 12 mm proud of the sides."""
+    text = """\
+furncheck: 1
+name: flush-shelf
+units: mm
+planks:
+  - {id: side_l, size: [400, 250], center: [-506, 0, 200], rotation: [0, -90, 0]}
+  - {id: side_r, size: [400, 250], center: [506, 0, 200], rotation: [0, -90, 0]}
+  - {id: shelf, size: [1000, 250], center: [0, 0, 394]}
+loads:
+  - {plank: shelf, mass: 30, spread: true}
+"""
+    design = parse_design(text, "flush.yaml", "yaml")
+    edited = grown(design, analyze(design), {"shelf": 0.036})
+    shelf = edited.plank("shelf")
+    assert shelf.center[2] + shelf.thickness / 2 == pytest.approx(0.400)
+    assert shelf.center[2] - shelf.thickness / 2 == pytest.approx(0.364)
 
 
 # --- toppling ----------------------------------------------------------------------------------

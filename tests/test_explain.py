@@ -117,6 +117,21 @@ def test_tipping_bench_needs_a_wider_base_or_ballast(model):
     assert "push_max" not in need.values          # no sideways load
 
 
+def test_a_wall_the_design_does_not_touch_leaves_the_hand_estimate():
+    """bench-tips with a wall 1 m behind it (y = 1 m, facing it), touching nothing and
+    anchoring nothing: the floor alone holds it, so its tipping gets the hand estimate
+    of the test above (214.76 mm wider), not 'it leans on walls or is anchored'."""
+    from furncheck.design.model import Wall
+
+    design, _, _ = catalog("bench-tips.yaml", "rigid")
+    walled = replace(design, walls=(Wall((0.0, 1.0, 0.0), (0.0, -1.0, 0.0)),))
+    geometry = analyze(walled)
+    assert not any(c.wall is not None for c in geometry.contacts)
+    need = need_of(walled, geometry, check_design(walled, geometry), "lift-off")
+    assert need.why != "it leans on walls or is anchored"
+    assert need.values["wider"] == pytest.approx(214.76, abs=0.01)
+
+
 def test_ballast_need_is_the_threshold_of_the_checks():
     """The rigid bench-tips with 2 % more than the needed ballast at leg_l's outer foot
     edge (x = -306 mm) stands; with 2 % less it still tips."""

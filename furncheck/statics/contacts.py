@@ -26,6 +26,7 @@ from furncheck.statics.feasibility import (
 )
 from furncheck.statics.friction import _anderson, _ContactSpace, _FrictionEnergy
 from furncheck.statics.model import CaseStatics, StaticsModel, rigid_motions, spring_rows
+from furncheck.statics.newton import newton_equilibrium
 
 STICK, LIFT = 0, 2
 _LINE_DETAIL = ("all its ground contacts lie on one line: it can at best balance on that "
@@ -80,6 +81,9 @@ def solve_case(model: StaticsModel, f: np.ndarray,
         if not feasible.exists:
             return solver.unstable("lift-off", feasible)
         bolted = solver.solve(all_stick)
+        settled = None if bolted is None else solver.by_newton(bolted.ground)
+        if settled is not None:
+            return settled
         target = np.zeros((len(model.contacts), 3)) if bolted is None \
             else bolted.contact_forces
         return solver.from_programs(target, on_failure=None)
@@ -90,6 +94,10 @@ def solve_case(model: StaticsModel, f: np.ndarray,
     if frictional is not None:
         settled_status, settled = frictional
         return solver.stable(settled, settled_status)
+    bolted = solver.solve(all_stick)
+    settled = None if bolted is None else solver.by_newton(bolted.ground)
+    if settled is not None:
+        return settled
     return solver.from_programs(solution.contact_forces, on_failure=solution)
 
 
@@ -209,6 +217,17 @@ class _ActiveSet:
             if self.anchored is not None:
                 caps[self.anchored] = tol.ANCHOR_CAP
         return None
+
+    def by_newton(self, start: np.ndarray) -> CaseStatics | None:
+        """The stable equilibrium that the semismooth Newton method on the whole contact
+        law (``newton``) reaches from the grounded planks' displacements ``start``; None
+        where it reaches none."""
+        found = newton_equilibrium(self, start)
+        if found is None:
+            return None
+        ground, forces, pressed = found
+        solution = self.assemble(ground, forces, self.contact_displacements(ground))
+        return self.stable(solution, np.where(pressed, STICK, LIFT))
 
     def _caps(self, forces: np.ndarray) -> np.ndarray:
         """(nK,) N: the friction caps mu N for contact forces (nK, 3); ANCHOR_CAP for the

@@ -296,8 +296,7 @@ class _FrictionEnergy:
 
     def _gradient_floor(self, x: np.ndarray) -> float:
         """N: the force tolerance, or the round-off floor of S0 x if that is larger."""
-        roundoff = _ROUNDOFF * (self._schur_size * float(np.abs(x).sum()) + self._rhs_size)
-        return max(self.solver.force_tol, roundoff)
+        return balance_floor(self.solver.force_tol, self._schur_size, self._rhs_size, x)
 
     def cap_newton(self, x: np.ndarray, caps: np.ndarray, residual: np.ndarray):
         """Newton's step for the caps' fixed point c = G(c) (G: the caps mu N that the
@@ -469,6 +468,14 @@ class _StepSlope:
             guess = t - value / derivative if derivative > 0.0 else high
             t = guess if low < guess < high else _secant(low, high, low_slope, high_slope)
         return t
+
+
+def balance_floor(force_tol: float, schur_size: float, rhs_size: float,
+                  x: np.ndarray) -> float:
+    """N: the out-of-balance force below which the condensed equilibrium S0 x = b + M^T f
+    counts as met at x: the force tolerance, or the round-off of S0 x if that is larger
+    (``schur_size``, ``rhs_size``: the largest entries of S0 and b)."""
+    return max(force_tol, _ROUNDOFF * (schur_size * float(np.abs(x).sum()) + rhs_size))
 
 
 def slip_tangent(caps: np.ndarray, stretch: np.ndarray, unit: np.ndarray) -> np.ndarray:

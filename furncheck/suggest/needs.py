@@ -97,7 +97,7 @@ def violation_needs(design: Design, geometry: Geometry, report: DesignReport) ->
 # -- stability ---------------------------------------------------------------------------
 def _sliding(design: Design, geometry: Geometry, where: str, case: CaseResult | None,
              case_name: str | None) -> Need:
-    if design.walls or design.anchors:
+    if _on_walls(design, geometry, where):
         return Need("sliding", where, case_name, why="it leans on walls or is anchored")
     forces, _ = _group_loads(design, geometry, where, case_name)
     total = forces.sum(axis=0)
@@ -114,7 +114,7 @@ def _sliding(design: Design, geometry: Geometry, where: str, case: CaseResult | 
 
 def _lift_off(design: Design, geometry: Geometry, where: str, case: CaseResult | None,
               case_name: str | None) -> Need:
-    if design.walls or design.anchors:
+    if _on_walls(design, geometry, where):
         return Need("lift-off", where, case_name, why="it leans on walls or is anchored")
     forces, points = _group_loads(design, geometry, where, case_name)
     group = _group(design, geometry, where)
@@ -150,6 +150,18 @@ def _lift_off(design: Design, geometry: Geometry, where: str, case: CaseResult |
         if fraction is not None:
             values.update({"push": push, "push_max": fraction * push})
     return Need("lift-off", where, case_name, values=values)
+
+
+def _on_walls(design: Design, geometry: Geometry, where: str) -> bool:
+    """Whether the group of ``where`` touches a wall or is anchored to one (the hand
+    estimates take the floor alone: a design that merely has walls nearby, 10 mm off, is
+    estimated as it stands)."""
+    if not design.walls and not design.anchors:
+        return False
+    group = _group(design, geometry, where)
+    return any(design.plank_index[c.plank] in group for c in geometry.contacts
+               if c.wall is not None or c.anchor is not None) \
+        or any(design.plank_index[a.plank] in group for a in design.anchors)
 
 
 def _group(design: Design, geometry: Geometry, where: str) -> set[int]:

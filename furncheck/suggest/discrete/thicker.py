@@ -19,7 +19,9 @@ estimate is made again from the new report, at most ``THICKEN_TRIES`` times.
 A plank grows away from the faces that hold it: a face on which another plank's end is
 nailed or rests, or that lies on the floor or a wall stays where it is (a shelf on
 brackets grows upward, a post with a shelf nailed to its front grows backward); with
-neither face held it grows equally both ways; with both held it cannot grow.  Load and
+neither face held a level plank (a shelf between two sides) grows downward, its top face
+and what stands on it where they were (a shelf flush with the sides' tops stays flush),
+any other equally both ways; with both held it cannot grow.  Load and
 anchor points on a face that moves move with it.
 
 The rule (``thicker_planks``) thickens every failing plank and the edge planks of the
@@ -40,7 +42,15 @@ from furncheck.check import check_design
 from furncheck.design.model import Design, Plank
 from furncheck.geometry import Geometry, Joint, analyze, interpenetrations
 from furncheck.result import DesignReport, JointResult
-from furncheck.suggest.discrete.common import BENDING, Fix, Search, amount, names, upright
+from furncheck.suggest.discrete.common import (
+    BENDING,
+    Fix,
+    Search,
+    amount,
+    level,
+    names,
+    upright,
+)
 from furncheck.suggest.symmetry import MirrorPlane, mirror_planes
 from furncheck.suggest.tried import FOUND, Trial
 from furncheck.validity import nail_row
@@ -323,7 +333,8 @@ def _free_side(design: Design, geometry: Geometry, plank: Plank, grow: float,
     """How a plank held on neither face grows: 0 both ways, else toward +1 or -1 local
     z; the first whose new corners stay out of the floor and of the faces its ends rest
     on (a splayed leg, its ends cut square to it, cannot grow either way without
-    cutting in); None if none does.  ``planks``: the planks as grown so far."""
+    cutting in), trying a level plank's downward side first (its top face stays: module
+    docstring); None if none does.  ``planks``: the planks as grown so far."""
     planes = [(np.array([0.0, 0.0, 1.0]), 0.0)]
     for joint in geometry.joints:
         if joint.edge == plank.id:
@@ -332,7 +343,11 @@ def _free_side(design: Design, geometry: Geometry, plank: Plank, grow: float,
             planes.append((outward, float(outward @ face.center_array) + face.half_extents[2]))
     slack = design.tolerance + tol.ON_PLANK_EPS
     axis = plank.rotation_matrix[:, 2]
-    for side in (0, 1, -1):
+    order = (0, 1, -1)
+    if level(plank):
+        down = -1 if axis[2] > 0.0 else 1
+        order = (down, 0, -down)
+    for side in order:
         moved = replace(plank, thickness=plank.thickness + grow, center=tuple(
             float(v) for v in plank.center_array + axis * side * 0.5 * grow))
         corners = moved.corners

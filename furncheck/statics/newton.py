@@ -1,0 +1,116 @@
+"""The whole contact law at once: a semismooth Newton method, for the cases that the active
+set and the friction phase cannot settle (``contacts.solve_case`` asks it before the
+feasibility programs).
+
+With x the grounded planks' displacements (the condensed unknowns), w = M x every
+contact's displacement and f(w) the contact law of contract section 3a (a corner pressed
+into the floor, w_z < 0, pushes back -k w_z; its tangential spring pulls -k w_t up to
+mu N and with exactly mu N against w_t beyond; a corner above the floor carries nothing;
+an anchor's tie pulls -k w whatever it does), the equilibrium is the root of
+
+    R(x) = S0 x - b - M^T f(M x)
+
+(S0 and b those of the condensation).  f is piecewise smooth, so Newton's method takes its
+generalized Jacobian J = S0 + M^T D M, D = -df/dw per contact (``law``; not symmetric
+where a contact slips: pressing harder raises its friction), and damps each step by
+halving it until the residual's norm falls (Armijo); where no halving makes it fall (a
+kink of f lies right at x, and the Jacobian there is the wrong side's), the smallest
+step is taken all the same: it crosses the kink, and the next step uses the Jacobian
+beyond it.  It starts from every contact sticking (the bolted design's equilibrium).
+Unlike the active set, no contact status is carried from one iteration to the next, so
+statuses that switch back and forth there (a corner that lifts once friction is capped
+and sinks again once another slips) cannot cycle here: the residual decides.  The root,
+where found, is the same equilibrium the active set reaches where it settles (the
+catalog's cabinet: four cases, forces within 1e-9); with friction, where several
+equilibria could exist, it is one of them.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from furncheck import tolerances as tol
+from furncheck.statics.anchored import _condensed_stiffness
+from furncheck.statics.friction import balance_floor, slip_tangent
+from furncheck.statics.lapack import routines
+
+if TYPE_CHECKING:
+    from furncheck.statics.contacts import _ActiveSet
+
+ARMIJO = 1e-4
+"""A damped step is taken when the squared residual falls by at least this fraction of
+what the linearization promised (2 t |R|^2 for step length t)."""
+
+
+def law(w: np.ndarray, k: np.ndarray, mu: float, anchored: np.ndarray | None):
+    """The contact law at displacements w (nK, 3) (module docstring), with springs k (nK,)
+    N/m: (forces (nK, 3), D (nK, 3, 3) with df = -D dw, pressed (nK,) bool).  A slipping
+    contact's D keeps a feeble SLIP_STIFFNESS spring along its slip (as the friction
+    phase's Newton steps do), so that a design free to slide at the edge of sliding is
+    not singular."""
+    normal = np.where(w[:, 2] < 0.0, -k * w[:, 2], 0.0)
+    pressed = w[:, 2] < 0.0
+    cap = mu * normal
+    if anchored is not None:
+        pressed = pressed | anchored
+        cap = np.where(anchored, np.inf, cap)
+    stretch = np.hypot(w[:, 0], w[:, 1])
+    sticking = pressed & (k * stretch <= cap)
+    slipping = pressed & ~sticking
+    safe = np.where(stretch > 0.0, stretch, 1.0)
+    scale = np.where(sticking, k, np.where(slipping, cap / safe, 0.0))
+    forces = -scale[:, None] * w
+    forces[:, 2] = np.where(pressed, -k * w[:, 2], 0.0)
+    tangent = np.zeros((len(w), 3, 3))
+    tangent[sticking] = np.eye(3) * k[sticking][:, None, None]
+    if slipping.any():
+        unit = w[slipping, :2] / safe[slipping, None]
+        spring = k[slipping]
+        block = np.zeros((len(unit), 3, 3))
+        block[:, :2, :2] = slip_tangent(cap[slipping], safe[slipping], unit) \
+            + (tol.SLIP_STIFFNESS * spring)[:, None, None] * unit[:, :, None] * unit[:, None, :]
+        block[:, :2, 2] = -mu * spring[:, None] * unit
+        block[:, 2, 2] = spring
+        tangent[slipping] = block
+    return forces, tangent, pressed
+
+
+def newton_equilibrium(solver: _ActiveSet, start: np.ndarray):
+    """The root of R (module docstring) from the grounded planks' displacements ``start``:
+    (x, contact forces (nK, 3), pressed (nK,) bool), or None when Newton's method does
+    not reach the force tolerance within CONTACT_NEWTON_ITERATIONS steps (no equilibrium,
+    as when the design slides, or none that it finds), when a Jacobian is singular, or
+    when the displacements pass SLIDING_DISPLACEMENT."""
+    model = solver.model
+    count = len(model.contacts)
+    mapping = solver.contact_space(np.ones(count, dtype=bool)).map
+    schur, rhs = solver.condensed.schur, solver.ground_rhs
+    springs = np.broadcast_to(np.asarray(model.contact_springs, dtype=float), (count,))
+    size = float(np.abs(schur).max(initial=0.0)), float(np.abs(rhs).max(initial=0.0))
+
+    def residual(x: np.ndarray):
+        forces, tangent, pressed = law((mapping @ x).reshape(-1, 3), springs,
+                                       model.friction, model.contact_anchored)
+        return schur @ x - rhs - mapping.T @ forces.ravel(), forces, tangent, pressed
+
+    x = start
+    r, forces, tangent, pressed = residual(x)
+    for _ in range(tol.CONTACT_NEWTON_ITERATIONS):
+        if float(np.abs(r).max(initial=0.0)) <= balance_floor(solver.force_tol, *size, x):
+            return x, forces, pressed
+        step, info = routines().gesv(_condensed_stiffness(model, tangent), -r)[2:]
+        if info != 0 or not np.all(np.isfinite(step)):
+            return None
+        norm, t = float(r @ r), 1.0
+        for _ in range(tol.LINE_SEARCH_ITERATIONS):     # no decrease at all: the smallest
+            trial = residual(x + t * step)              # step is taken (module docstring)
+            if float(trial[0] @ trial[0]) <= (1.0 - 2.0 * ARMIJO * t) * norm:
+                break
+            t *= 0.5
+        x = x + t * step
+        r, forces, tangent, pressed = trial
+        if not np.abs(x).max() <= tol.SLIDING_DISPLACEMENT:
+            return None
+    return None
