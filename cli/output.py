@@ -140,9 +140,13 @@ def check_stdin_name(stdin_name: str | None, paths) -> None:
              "'-' was given")
 
 
-def load_or_fail(path: str, model: str | None = None, stdin_name: str | None = None):
+def load_or_fail(path: str, model: str | None = None, stdin_name: str | None = None,
+                 fmt: str = "text", output: str | None = None):
     """The design at ``path`` (standard input for STDIN, named ``stdin_name``), in
-    ``model`` when given, or one line and exit 2 when it cannot be read."""
+    ``model`` when given, or one line and exit 2 when it cannot be read; with ``fmt``
+    'json' the report (to ``output``, or stdout) is then a document of its own,
+    ``{"design": ..., "error": ...}``, as ``validate`` reports such a file, for the tools
+    that read it."""
     from furncheck.check import load_checked, load_data
     from furncheck.design.model import with_model
     from furncheck.errors import DesignError
@@ -152,6 +156,11 @@ def load_or_fail(path: str, model: str | None = None, stdin_name: str | None = N
         loaded = load_data(*stdin_document(stdin_name)) if path == STDIN else load_checked(path)
         return with_model(loaded, model)
     except DesignError as error:
+        if fmt == "json":
+            import json
+
+            document = {"design": error.file or path, "error": str(error)}
+            write_output(json.dumps(document, indent=2) + "\n", output)
         fail(str(error))
 
 

@@ -54,7 +54,7 @@ def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str
     config = config_or_fail((design,))
     model = model or config.model
     check_output(output)
-    loaded = load_or_fail(design, model, stdin_filename)
+    loaded = load_or_fail(design, model, stdin_filename, fmt, output)
     design = loaded.source          # the path as given, or the name of standard input
     dofs_or_fail(design, loaded, (*dofs, *locks))
     client = client_or_fail(scheduler)

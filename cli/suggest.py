@@ -91,7 +91,7 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
     config = config_or_fail((design,))
     model = model or config.model
     check_output(output)
-    loaded = load_or_fail(design, model, stdin_filename)
+    loaded = load_or_fail(design, model, stdin_filename, fmt, output)
     design = loaded.source          # the path as given, or the name of standard input
     locked = dofs_or_fail(design, loaded, locks)
     if out_dir is not None:

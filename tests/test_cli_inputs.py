@@ -172,3 +172,23 @@ def test_json_report_is_byte_identical_on_rerun() -> None:
     first, second = run(designs, "--format", "json"), run(designs, "--format", "json")
     assert first.exit_code == second.exit_code == 1
     assert first.output == second.output
+
+
+@pytest.mark.parametrize("command", ["suggest", "range"])
+def test_a_bad_design_in_json_is_a_json_error_document(tmp_path, command) -> None:
+    """``suggest`` and ``range`` with ``--format json`` on a file that cannot be read: exit
+    2, the one line on stderr, and on stdout (or ``-o``) a JSON document of its own,
+    ``{"design", "error"}`` (the error as ``validate --format json`` reports it), so that
+    a tool reading the report finds the reason there too."""
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("furncheck: 1\nplanks: 3\n")
+    result = CliRunner().invoke(main, [command, str(bad), "--format", "json"])
+    assert result.exit_code == 2
+    document = json.loads(result.stdout)
+    assert document == {"design": str(bad),
+                        "error": f"{bad}:2: planks: expected a list, got a number (3)"}
+    assert result.stderr == f"furncheck: {document['error']}\n"
+    report = tmp_path / "report.json"
+    result = CliRunner().invoke(main, [command, str(bad), "--format", "json", "-o",
+                                       str(report)])
+    assert result.exit_code == 2 and json.loads(report.read_text()) == document
