@@ -282,6 +282,8 @@ class _ActiveSet:
         detail = (f"no equilibrium within the friction cones (mu = {plain_number(self.mu, 6)}): "
                   f"the ground must resist {plain_number(sideways)} N sideways{twist_text}, "
                   f"friction gives at most {plain_number(capacity)} N")
+        if sideways > capacity + self.force_tol:    # it slides as a whole: all its feet
+            over = forces[:, 2] > self.force_tol
         return CaseStatics("sliding", _wrenches(solution.h), forces, self._plank_ids(over),
                            detail, displacements=solution.q)
 
