@@ -143,10 +143,8 @@ def check_stdin_name(stdin_name: str | None, paths) -> None:
 def load_or_fail(path: str, model: str | None = None, stdin_name: str | None = None,
                  fmt: str = "text", output: str | None = None):
     """The design at ``path`` (standard input for STDIN, named ``stdin_name``), in
-    ``model`` when given, or one line and exit 2 when it cannot be read; with ``fmt``
-    'json' the report (to ``output``, or stdout) is then a document of its own,
-    ``{"design": ..., "error": ...}``, as ``validate`` reports such a file, for the tools
-    that read it."""
+    ``model`` when given, or one line and exit 2 when it cannot be read (with ``fmt``
+    'json' a report of the error too: ``fail_as``)."""
     from furncheck.check import load_checked, load_data
     from furncheck.design.model import with_model
     from furncheck.errors import DesignError
@@ -156,23 +154,32 @@ def load_or_fail(path: str, model: str | None = None, stdin_name: str | None = N
         loaded = load_data(*stdin_document(stdin_name)) if path == STDIN else load_checked(path)
         return with_model(loaded, model)
     except DesignError as error:
-        if fmt == "json":
-            import json
-
-            document = {"design": error.file or path, "error": str(error)}
-            write_output(json.dumps(document, indent=2) + "\n", output)
-        fail(str(error))
+        fail_as(error.file or path, str(error), fmt, output)
 
 
-def dofs_or_fail(path: str, design, names) -> tuple:
-    """The named DOFs of ``design``, or one line naming the bad one and exit 2."""
+def fail_as(path: str, message: str, fmt: str, output: str | None) -> NoReturn:
+    """``fail(message)``, after writing with ``fmt`` 'json' the report (to ``output``, or
+    stdout) as a document of its own, ``{"design": path, "error": message}``, as
+    ``validate`` reports a file it cannot check, for the tools that read it."""
+    if fmt == "json":
+        import json
+
+        document = {"design": path, "error": message}
+        write_output(json.dumps(document, indent=2) + "\n", output)
+    fail(message)
+
+
+def dofs_or_fail(path: str, design, names, fmt: str = "text",
+                 output: str | None = None) -> tuple:
+    """The named DOFs of ``design``, or one line naming the bad one and exit 2 (with
+    ``fmt`` 'json' a report of the error too: ``fail_as``)."""
     from furncheck.dofs import parse_dof
     from furncheck.errors import DofError
 
     try:
         return tuple(parse_dof(design, name) for name in names)
     except DofError as error:
-        fail(f"{path}: {error}")
+        fail_as(path, f"{path}: {error}", fmt, output)
 
 
 SCHEDULER_OPTION = click.option(

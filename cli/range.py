@@ -56,7 +56,7 @@ def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str
     check_output(output)
     loaded = load_or_fail(design, model, stdin_filename, fmt, output)
     design = loaded.source          # the path as given, or the name of standard input
-    dofs_or_fail(design, loaded, (*dofs, *locks))
+    dofs_or_fail(design, loaded, (*dofs, *locks), fmt, output)
     client = client_or_fail(scheduler)
     try:
         finder = RangeFinder(loaded, tuple(locks))

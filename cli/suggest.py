@@ -93,7 +93,7 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
     check_output(output)
     loaded = load_or_fail(design, model, stdin_filename, fmt, output)
     design = loaded.source          # the path as given, or the name of standard input
-    locked = dofs_or_fail(design, loaded, locks)
+    locked = dofs_or_fail(design, loaded, locks, fmt, output)
     if out_dir is not None:
         problem = prepare_out_dir(out_dir)
         if problem:

@@ -176,10 +176,11 @@ def test_json_report_is_byte_identical_on_rerun() -> None:
 
 @pytest.mark.parametrize("command", ["suggest", "range"])
 def test_a_bad_design_in_json_is_a_json_error_document(tmp_path, command) -> None:
-    """``suggest`` and ``range`` with ``--format json`` on a file that cannot be read: exit
-    2, the one line on stderr, and on stdout (or ``-o``) a JSON document of its own,
-    ``{"design", "error"}`` (the error as ``validate --format json`` reports it), so that
-    a tool reading the report finds the reason there too."""
+    """``suggest`` and ``range`` with ``--format json`` on a file that cannot be read, or
+    with a DOF that does not exist: exit 2, the one line on stderr, and on stdout (or
+    ``-o``) a JSON document of its own, ``{"design", "error"}`` (the error as ``validate
+    --format json`` reports it), so that a tool reading the report finds the reason there
+    too."""
     bad = tmp_path / "bad.yaml"
     bad.write_text("furncheck: 1\nplanks: 3\n")
     result = CliRunner().invoke(main, [command, str(bad), "--format", "json"])
@@ -192,3 +193,10 @@ def test_a_bad_design_in_json_is_a_json_error_document(tmp_path, command) -> Non
     result = CliRunner().invoke(main, [command, str(bad), "--format", "json", "-o",
                                        str(report)])
     assert result.exit_code == 2 and json.loads(report.read_text()) == document
+    result = CliRunner().invoke(main, [command, "designs/stool.yaml", "--lock", "seat.bogus",
+                                       "--format", "json"])
+    assert result.exit_code == 2
+    assert json.loads(result.stdout) == {
+        "design": "designs/stool.yaml",
+        "error": "designs/stool.yaml: seat.bogus: unknown DOF kind 'bogus'; expected one of "
+                 "x, y, z, rx, ry, rz, length, width"}

@@ -200,9 +200,11 @@ def test_a_case_whose_friction_phase_cycles_settles_by_newton(monkeypatch):
     friction is capped and sinks again once another slips, round and round: the premise,
     checked).  The semismooth Newton method on the whole contact law (``statics.newton``)
     settles it without the feasibility programs, to the forces the contact law gives at
-    its own displacements (``_contact_law``), balancing the loads (sum F_c + sum F = 0).
-    With those forces the design is valid; the programs' admissible forces closest to
-    the bolted ones, used before, read 192.4 N of shear per nail at a brace (over 190)."""
+    its own displacements (``_contact_law``), balancing the loads (sum F_c + sum F = 0
+    and sum p_c x F_c + sum (p_n x F_n + M_n) = 0 about the origin, p_n the node points
+    where the loads act).  With those forces the design is valid; the programs'
+    admissible forces closest to the bolted ones, used before, read 192.4 N of shear per
+    nail at a brace (over 190)."""
     design = parse_design(BRACED, "braced.yaml", "yaml")
     model = build_model(design, analyze(design))
     case = next(c for c in design.load_cases if c.name == "push")
@@ -223,8 +225,12 @@ def test_a_case_whose_friction_phase_cycles_settles_by_newton(monkeypatch):
     w = model.contact_displacements(statics.displacements)
     law = _contact_law(w, model.contact_springs, model.friction, model.contact_anchored)
     assert np.abs(statics.contact_forces - law).max() <= 1e-6 * scale
+    loads = f.reshape(-1, 6)
     assert np.abs(statics.contact_forces.sum(axis=0)
-                  + f.reshape(-1, 6)[:, :3].sum(axis=0)).max() < 1e-6 * scale
+                  + loads[:, :3].sum(axis=0)).max() < 1e-6 * scale
+    moment = np.cross(model.contact_points, statics.contact_forces).sum(axis=0) \
+        + np.cross(model.node_points, loads[:, :3]).sum(axis=0) + loads[:, 3:].sum(axis=0)
+    assert np.abs(moment).max() < 1e-6 * scale * 1.0     # N m, lever arms about 1 m
     from furncheck.check import check_design
 
     assert check_design(design).valid

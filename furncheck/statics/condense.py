@@ -187,41 +187,58 @@ def _condense_beams(model: StaticsModel, ground: np.ndarray,
     eliminated as in ``_condense_planks``, K = K_b + G^T W G sparse (symmetric positive
     definite on the nodes that are not grounded), K_ii factored by one sparse LU (half the
     unknowns of the mixed system, and no indefinite joint rows to pivot on); None if K_ii
-    is singular.  K's parts are assembled apart from the joints' and elements' entries
-    (``_stiffness_entries``): K_ii sparse, K_ig and K_gg dense."""
+    is singular.  K's parts are assembled straight from the joints' and elements' entries
+    (``_stiffness_entries``): K_ii sparse, K_ig and K_gg dense; where X = K_ii^-1 K_ig
+    would be too big to store (``_implicit``), K comes from the sparse products instead
+    (``_condense_implicit``: the entry lists of thousands of planks take more memory and
+    time than they save)."""
     import scipy.sparse as sp
 
     n, m = model.n_dof, 6 * len(model.joints)
     inner = _others(n, ground)
     ni, ng = len(inner), len(ground)
+    if _implicit(ni, ng):
+        return _condense_implicit(model, ground, inner, contact_block, plank_offsets)
     rows, cols, values = _stiffness_entries(model, inner, ground)
     in_rows, in_cols = rows < ni, cols < ni
     both = in_rows & in_cols
     inner_block = sp.coo_matrix((values[both], (rows[both], cols[both])),
                                 shape=(ni, ni)).tocsc()
     across = in_rows & ~in_cols
-    coupling_dense = _dense_sum(rows[across], cols[across] - ni, values[across], ni, ng)
+    coupling = _dense_sum(rows[across], cols[across] - ni, values[across], ni, ng)
     grounded = ~in_rows & ~in_cols
     ground_block = _dense_sum(rows[grounded] - ni, cols[grounded] - ni, values[grounded],
                               ng, ng)
-    if _implicit(ni, ng):
-        lu = _factor(inner_block, coupling_dense.sum(axis=1)) if ni else None
-        if lu is None and ni:
-            return None
-        coupling = sp.csr_matrix(coupling_dense)
-        schur = _trailing_schur(inner_block, coupling, ground_block, lu)
-        if schur is None:
-            schur = _blocked_schur(ground_block, coupling, lu)
-        return _PlankCondensation(ground, inner, coupling, None, schur, contact_block,
-                                  plank_offsets, n + m, model=weakref.proxy(model), lu=lu)
     reduced = np.zeros((ni, ng))
     lu = None
     if ni:
-        lu, reduced = _factor_solving(inner_block, coupling_dense)
+        lu, reduced = _factor_solving(inner_block, coupling)
         if lu is None:
             return None
-    schur = ground_block - coupling_dense.T @ reduced
-    return _PlankCondensation(ground, inner, coupling_dense, reduced, schur, contact_block,
+    schur = ground_block - coupling.T @ reduced
+    return _PlankCondensation(ground, inner, coupling, reduced, schur, contact_block,
+                              plank_offsets, n + m, model=weakref.proxy(model), lu=lu)
+
+
+def _condense_implicit(model: StaticsModel, ground: np.ndarray, inner: np.ndarray,
+                       contact_block: np.ndarray, plank_offsets: np.ndarray):
+    """``_condense_beams`` of a model whose X = K_ii^-1 K_ig is never stored: K = K_b +
+    G^T W G by sparse products, S0 as the trailing block of one more factorization
+    (``_trailing_schur``) or a few columns at a time (``_blocked_schur``)."""
+    n, m = model.n_dof, 6 * len(model.joints)
+    G = model.G
+    K = (model.beam_stiffness + (G.T @ _block_diagonal(model.joint_stiffness) @ G)).tocsc()
+    coupling_sparse = K[inner][:, ground]
+    lu = _factor(K[inner][:, inner].tocsc(),
+                 np.asarray(coupling_sparse.sum(axis=1)).ravel()) if len(inner) else None
+    if lu is None and len(inner):
+        return None
+    coupling = coupling_sparse.tocsr()
+    ground_block = K[ground][:, ground].toarray()
+    schur = _trailing_schur(K[inner][:, inner].tocsc(), coupling, ground_block, lu)
+    if schur is None:
+        schur = _blocked_schur(ground_block, coupling, lu)
+    return _PlankCondensation(ground, inner, coupling, None, schur, contact_block,
                               plank_offsets, n + m, model=weakref.proxy(model), lu=lu)
 
 
@@ -253,6 +270,20 @@ def _dense_sum(rows: np.ndarray, cols: np.ndarray, values: np.ndarray, height: i
     """(height, width): the ``values`` summed at their (row, column), in order."""
     return np.bincount(rows * width + cols, weights=values, minlength=height * width) \
         .reshape(height, width)
+
+
+def _block_diagonal(blocks: np.ndarray):
+    """(6 nJ, 6 nJ) CSR matrix of the (nJ, 6, 6) blocks on its diagonal, every entry of
+    a block stored (zeros too): the matrix ``scipy.sparse.block_diag(list(blocks),
+    format="csr")`` gives, entry for entry and in the same order, made without a sparse
+    matrix per block."""
+    import scipy.sparse as sp
+
+    size = 6 * len(blocks)
+    columns = (6 * (np.arange(size, dtype=np.int32)[:, None] // 6) + _SIX[None, :]) \
+        .astype(np.int32).ravel()
+    pointers = np.arange(0, 6 * size + 1, 6, dtype=np.int32)
+    return sp.csr_matrix((blocks.reshape(-1).copy(), columns, pointers), shape=(size, size))
 
 
 def _implicit(n_inner: int, n_ground: int) -> bool:

@@ -225,9 +225,9 @@ class _ActiveSet:
         found = newton_equilibrium(self, start)
         if found is None:
             return None
-        ground, forces, pressed = found
+        ground, forces, _ = found
         solution = self.assemble(ground, forces, self.contact_displacements(ground))
-        return self.stable(solution, np.where(pressed, STICK, LIFT))
+        return self.stable(solution, np.where(self._pressing(forces), STICK, LIFT))
 
     def _caps(self, forces: np.ndarray) -> np.ndarray:
         """(nK,) N: the friction caps mu N for contact forces (nK, 3); ANCHOR_CAP for the

@@ -103,12 +103,12 @@ def newton_equilibrium(solver: _ActiveSet, start: np.ndarray):
         step, info = routines().gesv(_condensed_stiffness(model, tangent), -r)[2:]
         if info != 0 or not np.all(np.isfinite(step)):
             return None
-        norm, t = float(r @ r), 1.0
+        norm, t = float(r @ r), 2.0
         for _ in range(tol.LINE_SEARCH_ITERATIONS):     # no decrease at all: the smallest
-            trial = residual(x + t * step)              # step is taken (module docstring)
+            t *= 0.5                                    # step is taken (module docstring)
+            trial = residual(x + t * step)
             if float(trial[0] @ trial[0]) <= (1.0 - 2.0 * ARMIJO * t) * norm:
                 break
-            t *= 0.5
         x = x + t * step
         r, forces, tangent, pressed = trial
         if not np.abs(x).max() <= tol.SLIDING_DISPLACEMENT:

@@ -142,18 +142,28 @@ def _distinct_builds(suggestions: list[Suggestion]) -> list[Suggestion]:
 
 
 def _build(design: Design) -> tuple:
-    """What a design builds, named by nothing: its planks' shapes and the listed joints
-    between them (``_distinct_builds``)."""
+    """What a design builds, named by nothing: its planks' shapes, the listed joints
+    between them, its anchors and its loads, each by the shape of its plank
+    (``_distinct_builds``)."""
     def shape(plank) -> tuple:
         return (round(plank.length, 6), round(plank.width, 6), round(plank.thickness, 6),
                 tuple(round(v, 6) for v in plank.center),
                 tuple(round(v, 3) for v in plank.rotation), plank.material)
 
+    def place(point) -> tuple | None:
+        return None if point is None else tuple(round(v, 6) for v in point)
+
     shapes = {plank.id: shape(plank) for plank in design.planks}
     joints = None if design.joints is None else tuple(sorted(
         (tuple(sorted((shapes[a], shapes[b]))), joint.nails, joint.rests)
         for joint in design.joints for a, b in [joint.planks]))
-    return tuple(sorted(shapes.values())), joints
+    anchors = tuple(sorted((shapes[a.plank], place(a.point), a.wall, a.capacity, a.gap)
+                           for a in design.anchors))
+    loads = tuple((case.name, tuple((shapes[load.plank], place(load.force),
+                                     place(load.point), load.spread)
+                                    for load in case.loads))
+                  for case in design.load_cases)
+    return tuple(sorted(shapes.values())), joints, anchors, loads
 
 
 def _renamed(suggestion: Suggestion, rank: int) -> Suggestion:
