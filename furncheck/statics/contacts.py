@@ -29,6 +29,9 @@ from furncheck.statics.model import CaseStatics, StaticsModel, rigid_motions, sp
 from furncheck.statics.newton import newton_equilibrium
 
 STICK, LIFT = 0, 2
+FEEBLE_SCALES = (1e-9, 1e-12, 1e-15)
+"""The feeble springs' stiffness, as fractions of the contacts', tried in turn where a
+program's contact forces are imposed (``_ActiveSet.prescribed``)."""
 _LINE_DETAIL = ("all its ground contacts lie on one line: it can at best balance on that "
                 "edge, and the least push about it tips the design over")
 _LINE_SLIDING = ("no equilibrium within the friction cones, and its ground contacts lie on "
@@ -359,15 +362,27 @@ class _ActiveSet:
     def prescribed(self, contact_forces: np.ndarray) -> CaseStatics:
         """Joint wrenches for contact forces fixed by a feasibility program.
 
-        The contact forces enter as loads; feeble springs (contact stiffness x 1e-9) only
-        remove the rigid motions and carry no force since the loads balance (the solve is
-        judged against the loads' scale: its own right-hand side is round-off).
+        The contact forces enter as loads; feeble springs (the contact stiffness times
+        FEEBLE_SCALES, the first whose forces stay within the force tolerance) only remove
+        the rigid motions and carry no force since the loads balance (the solve is judged
+        against the loads' scale: its own right-hand side is round-off).  An elastic frame
+        loaded by forces far from its own equilibrium ones can deform by centimetres
+        (a racking table's feet, the program's friction fixed at them): 1e-9 of the
+        stiffness then held 0.2 N per corner, so that its planks' wrenches missed balance
+        by that much; the next scale holds a thousandth of it.
         """
         model = self.model
         f = self.f + model.contact_generalized(contact_forces)
         feeble = _ActiveSet(model, f, self.scale)
-        solution = feeble.solve(np.full(len(model.contacts), STICK), stiffness_scale=1e-9,
-                                load_scale=self.scale)
+        all_stick = np.full(len(model.contacts), STICK)
+        solution = None
+        for scale in FEEBLE_SCALES:
+            found = feeble.solve(all_stick, stiffness_scale=scale, load_scale=self.scale)
+            if found is None:
+                break
+            solution = found
+            if np.abs(found.contact_forces).max(initial=0.0) <= self.force_tol:
+                break
         if solution is None:
             return CaseStatics("lift-off", None, None, (), _LINE_DETAIL)
         return CaseStatics("stable", _wrenches(solution.h), contact_forces.copy(),
