@@ -183,6 +183,60 @@ def test_every_moved_load_is_the_difference_of_the_files(catalog_suggestions, na
         assert found == expected, (name, model, suggestion.rank)
 
 
+@pytest.mark.parametrize("name, model", INVALID)
+def test_every_spread_load_on_a_resized_plank_is_said(catalog_suggestions, name, model):
+    """Every spread load whose plank's length or width differs between the input file and
+    a suggestion's written file is in its ``loads_spread`` (plank sizes from -> to, file
+    unit), and nothing else."""
+    _, result = catalog_suggestions(name, model)
+    before = parse_design((CATALOG / name).read_text(encoding="utf-8"), name, "yaml")
+    scale = before.unit_scale
+    for suggestion in result.suggestions:
+        after = parse_design(suggestion.text, "s.yaml", "yaml")
+        sizes = {p.id: (round(p.length / scale, 6), round(p.width / scale, 6))
+                 for p in after.planks}
+        expected = set()
+        for case in before.load_cases:
+            for load in case.loads:
+                old = before.plank(load.plank)
+                start = (round(old.length / scale, 6), round(old.width / scale, 6))
+                if load.spread and sizes[load.plank] != start:
+                    expected.add((load.plank, start, sizes[load.plank]))
+        found = {(s.plank, tuple(round(v, 6) for v in s.before),
+                  tuple(round(v, 6) for v in s.after)) for s in suggestion.loads_spread}
+        assert found == expected, (name, model, suggestion.rank)
+
+
+def test_a_lengthened_top_says_its_spread_load_spreads_thinner():
+    """A table top 1200 x 700 mm carrying 20 kg spread along it: a suggestion that
+    lengthens the top says that the same 20 kg now spreads over the longer top, in text
+    and JSON (``loads_spread``)."""
+    from furncheck.report.cutlist import load_spread_lines, load_spreads_json
+    from furncheck.suggest.cutlist import load_spreads
+
+    text = """\
+furncheck: 1
+name: spread-top
+units: mm
+planks:
+  - {id: top, size: [1200, 700], center: [0, 0, 744], thickness: 18}
+loads:
+  - {plank: top, mass: 20, spread: true}
+"""
+    before = parse_design(text, "t.yaml", "yaml")
+    after = parse_design(text.replace("[1200, 700]", "[1749, 700]"), "t.yaml", "yaml")
+    (spread,) = load_spreads(before, after)
+    assert (spread.plank, spread.load, spread.before, spread.after) == \
+        ("top", "20 kg", (1200.0, 700.0), (1749.0, 700.0))
+    assert load_spread_lines((spread,), before) == [
+        "spreads 1 load over its resized plank:",
+        "  20 kg spread on top (case 'default'): over 1749 x 700 mm, was 1200 x 700 mm"]
+    assert load_spreads_json((spread,)) == [{"case": "default", "plank": "top",
+                                             "load": "20 kg", "from": [1200.0, 700.0],
+                                             "to": [1749.0, 700.0]}]
+    assert load_spreads(before, before) == ()
+
+
 def test_a_shortened_seat_carries_its_load_to_the_same_place_along_it():
     """bench-tips (rigid): 80 kg at x = 560 mm on a 1200 mm seat centred at x = 0;
     'Shorten seat by 553 mm' (1200 -> 647, centre kept) carries the load to the same

@@ -16,7 +16,7 @@ from typing import Any
 from furncheck.design.model import Design
 from furncheck.report.common import plural
 from furncheck.report.numbers import format_number
-from furncheck.suggest.cutlist import ANGLE_FIELDS, LoadMove, PlankEdit
+from furncheck.suggest.cutlist import ANGLE_FIELDS, LoadMove, LoadSpread, PlankEdit
 
 MATERIAL_UNITS = {"density": "kg/m^3", "elastic_modulus": "N/mm^2",
                   "shear_modulus": "N/mm^2", "bending_strength": "N/mm^2", "creep": "",
@@ -47,6 +47,27 @@ def load_move_lines(moves: tuple[LoadMove, ...], design: Design) -> list[str]:
         lines.append(f"  {move.load} on {move.plank} (case '{move.case}'): at ({start}) -> "
                      f"({end}) {design.units}")
     return lines
+
+
+def load_spread_lines(spreads: tuple[LoadSpread, ...], design: Design) -> list[str]:
+    """'spreads N loads over their resized planks:' and one line per load (unindented):
+    "20 kg spread on top (case 'default'): over 1749 x 600 mm, was 1200 x 600 mm"."""
+    if not spreads:
+        return []
+    planks = "its resized plank" if len(spreads) == 1 else "their resized planks"
+    lines = [f"spreads {plural(len(spreads), 'load')} over {planks}:"]
+    for spread in spreads:
+        lines.append(f"  {spread.load} spread on {spread.plank} (case '{spread.case}'): over "
+                     f"{_number(spread.after[0])} x {_number(spread.after[1])} "
+                     f"{design.units}, was {_number(spread.before[0])} x "
+                     f"{_number(spread.before[1])} {design.units}")
+    return lines
+
+
+def load_spreads_json(spreads: tuple[LoadSpread, ...]) -> list[dict[str, Any]]:
+    """``[{"case", "plank", "load", "from": [length, width], "to": [length, width]}]``."""
+    return [{"case": spread.case, "plank": spread.plank, "load": spread.load,
+             "from": list(spread.before), "to": list(spread.after)} for spread in spreads]
 
 
 def load_moves_json(moves: tuple[LoadMove, ...]) -> list[dict[str, Any]]:

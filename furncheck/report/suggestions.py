@@ -27,6 +27,8 @@ from furncheck.report.cutlist import (
     edits_json,
     load_move_lines,
     load_moves_json,
+    load_spread_lines,
+    load_spreads_json,
 )
 from furncheck.report.explanation import explanation_dict, explanation_lines
 from furncheck.report.numbers import format_number, json_ready
@@ -83,7 +85,8 @@ def render_text(result: SuggestionReport, original: Design,
         lines.append(f"{INDENT}{suggestion.rank}. {advice(suggestion, original)} "
                      f"Restores {restores}.")
         for line in (*cut_list_lines(suggestion.edits, original),
-                     *load_move_lines(suggestion.loads_moved, original)):
+                     *load_move_lines(suggestion.loads_moved, original),
+                     *load_spread_lines(suggestion.loads_spread, original)):
             lines.append(f"{INDENT}   {line}")
         files = written.get(suggestion.rank)
         if files is not None and files.design_file:
@@ -129,6 +132,7 @@ def _suggestion_dict(suggestion: Suggestion, original: Design,
             "advice": advice(suggestion, original),
             "edits": edits_json(suggestion.edits),
             "loads_moved": load_moves_json(suggestion.loads_moved),
+            "loads_spread": load_spreads_json(suggestion.loads_spread),
             "score": _score_json(suggestion),
             "design_file": files.design_file,
             "meshes": list(files.meshes),
@@ -151,6 +155,7 @@ def _suggestion_dict(suggestion: Suggestion, original: Design,
         "limited": suggestion.limited,
         "edits": edits_json(suggestion.edits),
         "loads_moved": load_moves_json(suggestion.loads_moved),
+        "loads_spread": load_spreads_json(suggestion.loads_spread),
         "score": _score_json(suggestion),
         "design_file": files.design_file,
         "meshes": list(files.meshes),

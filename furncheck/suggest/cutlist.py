@@ -155,6 +155,47 @@ def load_moves(before: Design, after: Design) -> tuple[LoadMove, ...]:
     return tuple(moves)
 
 
+@dataclass(frozen=True)
+class LoadSpread:
+    """A load spread along its plank (``spread: true``: books on a shelf) on a plank that
+    a suggestion lengthens or widens (or shortens, narrows): the same load then spreads
+    over the plank as it is after, so that a longer top carries it thinner, which a
+    maker should know before taking the fix (the dinner does not grow with the table).
+    Its first case, its plank, what it is ('20 kg'), and the plank's length and width
+    before and after (file length unit)."""
+
+    case: str
+    plank: str
+    load: str
+    before: tuple[float, float]
+    after: tuple[float, float]
+
+
+def load_spreads(before: Design, after: Design) -> tuple[LoadSpread, ...]:
+    """Every spread load whose plank ``after`` resizes by more than CUT_LIST_EPS (the
+    same load in several cases, through ``include``, once), in case and load order."""
+    scale = before.unit_scale
+    old_planks = {p.id: p for p in before.planks}
+    new_planks = {p.id: p for p in after.planks}
+    spreads: list[LoadSpread] = []
+    seen = set()
+    for case in before.load_cases:
+        for load in case.loads:
+            if not load.spread or load.plank not in new_planks:
+                continue
+            old, new = old_planks[load.plank], new_planks[load.plank]
+            start = (in_unit(old.length, scale), in_unit(old.width, scale))
+            end = (in_unit(new.length, scale), in_unit(new.width, scale))
+            if not any(_differs(a, b) for a, b in zip(start, end)):
+                continue
+            what = plain_load(load.mass, load.force)
+            key = (load.plank, what)
+            if key not in seen:
+                seen.add(key)
+                spreads.append(LoadSpread(case.name, load.plank, what, start, end))
+    return tuple(spreads)
+
+
 def planks_touched(edits: tuple[PlankEdit, ...]) -> int:
     """How many planks a maker has to cut, move or add (or take away)."""
     return len(edits)

@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 
 from furncheck.design.model import Design, Plank
 from furncheck.result import DesignReport
-from furncheck.suggest.cutlist import LoadMove, PlankEdit
+from furncheck.suggest.cutlist import LoadMove, LoadSpread, PlankEdit
 from furncheck.suggest.explain import Explanation
 from furncheck.suggest.score import ShopScore
 
@@ -33,6 +33,7 @@ class Suggestion:
                 (``cutlist.plank_edits`` of the input and ``design``)
     loads_moved : the loads at a point it carries along with their planks
                 (``cutlist.load_moves``)
+    loads_spread : the spread loads whose planks it resizes (``cutlist.load_spreads``)
     score     : the shop's score it is ranked by (``score.ShopScore``)
     """
 
@@ -56,6 +57,7 @@ class Suggestion:
     edits: tuple[PlankEdit, ...] = ()
     score: ShopScore | None = None
     loads_moved: tuple[LoadMove, ...] = ()
+    loads_spread: tuple[LoadSpread, ...] = ()
 
 
 @dataclass(frozen=True)
