@@ -44,6 +44,7 @@ from furncheck.check import check_design
 from furncheck.cli.main import main
 from furncheck.design import parse_design
 from furncheck.geometry import analyze
+from furncheck.suggest import suggest_design
 
 G = 9.81
 DENSITY = 750.0
@@ -295,3 +296,40 @@ def test_the_text_summary_names_the_worst_anchor(tmp_path):
     report = check_design(_parse(_cleat_shelf("rigid", load_kg=5.0)))
     worst = max(a.utilization for a in report.cases[0].anchors)
     assert f"worst anchor anchors[0] (cleat) at {round(100 * worst)} %" in result.output
+
+
+TALL_UNIT = """\
+furncheck: 1
+name: tall-wall
+units: mm
+walls: [{point: [0, -160, 0], normal: [0, 1, 0]}]
+planks:
+  - {id: side_l, size: [1800, 300], center: [-306, 0, 900], rotation: [0, -90, 0]}
+  - {id: side_r, size: [1800, 300], center: [306, 0, 900], rotation: [0, -90, 0]}
+  - {id: bottom, size: [600, 300], center: [0, 0, 60]}
+  - {id: top, size: [600, 300], center: [0, 0, 1794]}
+loads:
+  - {plank: bottom, mass: 10, spread: true}
+load_cases:
+  child:
+    - {plank: top, force: [0, 150, 0], at: [0, 150, 1794]}
+"""
+
+
+def test_a_unit_that_topples_and_sags_gets_an_anchor_with_a_thicker_board():
+    """A 1.8 m unit 10 mm in front of a wall (elastic): a child pulling its top forward
+    (150 N) topples it, and its 12 mm bottom sags under 10 kg.  The anchor rule repairs
+    toppling only, yet applies: its candidate then fails by the sag alone, which thicker
+    boards finish (as for a support plank), so the fix is to screw the top to the wall
+    and use a thicker bottom, and its file validates (before, 'not applicable: it does
+    not repair sagging', and no suggestion at all)."""
+    design = parse_design(TALL_UNIT, "tall.yaml", "yaml")
+    kinds = {v.kind for v in check_design(design, analyze(design)).violations}
+    assert kinds == {"lift-off", "sagging"}
+    result = suggest_design(design)
+    anchored = [s for s in result.suggestions if s.rule == "anchor"]
+    assert anchored
+    fix = anchored[0]
+    assert "make bottom" in fix.advice and fix.design.anchors
+    assert fix.design.plank("bottom").thickness > design.plank("bottom").thickness
+    assert check_design(parse_design(fix.text, "s.yaml", "yaml")).valid

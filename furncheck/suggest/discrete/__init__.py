@@ -14,9 +14,11 @@ section 6.5 and the shop's standard fixes), each checked in full like every sugg
     reconnect  a near miss closed by lengthening or shortening the plank that misses
 
 ``discrete_fixes`` runs the rules in order (``RULES``).  Each is tried only where the
-report's violations are of the kinds it repairs (a test of the report and the geometry,
-before any candidate is built), checks at most ``common.MAX_CANDIDATES`` candidates, its
-likeliest first, and gives at most one fix: its first valid candidate.
+report's violations are of the kinds it repairs, or some are and the others bend planks
+too much in the elastic model (``common.Search.repairs``: thicker boards finish them; a
+test of the report and the geometry, before any candidate is built), checks at most
+``common.MAX_CANDIDATES`` candidates, its likeliest first, and gives at most one fix:
+its first valid candidate.
 """
 
 from __future__ import annotations

@@ -113,12 +113,18 @@ class Search:
         return {v.kind for v in self.report.violations}
 
     def repairs(self, rule: str, kinds: tuple[str, ...]) -> bool:
-        """Whether ``rule`` (its name in the reports) applies: the design stands as drawn
-        and every violation is of ``kinds``; if not, that is recorded, with why."""
+        """Whether ``rule`` (its name in the reports) applies: the design stands as drawn,
+        some violation is of ``kinds`` and every other one bends a plank too much in the
+        elastic model (its candidates are then finished with thicker boards: an anchor
+        against toppling, and a thicker bottom for its sag); if not, that is recorded,
+        with why."""
         if self.geometry.violations:
             self.not_applicable(rule, "the geometry is repaired first")
             return False
-        unrepaired = sorted(self.kinds() - set(kinds))
+        finished = set(BENDING) if self.elastic else set()
+        unrepaired = sorted(self.kinds() - set(kinds) - finished)
+        if not self.kinds() & set(kinds):
+            unrepaired = sorted(self.kinds())
         if unrepaired or not self.report.violations:
             self.not_applicable(rule, f"it does not repair {' or '.join(unrepaired)}")
             return False
