@@ -199,7 +199,8 @@ def test_a_case_whose_friction_phase_cycles_settles_by_newton(monkeypatch):
     """In the braced table's 'push' the friction phase cannot settle (a corner lifts once
     friction is capped and sinks again once another slips, round and round: the premise,
     checked).  The semismooth Newton method on the whole contact law (``statics.newton``)
-    settles it without the feasibility programs, to the forces the contact law gives at
+    settles it (the feasibility program only says an equilibrium exists; its forces are
+    not used: ``prescribed`` is never called), to the forces the contact law gives at
     its own displacements (``_contact_law``), balancing the loads (sum F_c + sum F = 0
     and sum p_c x F_c + sum (p_n x F_n + M_n) = 0 about the origin, p_n the node points
     where the loads act).  With those forces the design is valid; the programs'
@@ -216,10 +217,10 @@ def test_a_case_whose_friction_phase_cycles_settles_by_newton(monkeypatch):
     assert settled and not solver.within_cones(solution)
     assert solver.friction_phase(status, solution) is None     # the premise: it cycles
 
-    def no_programs(*args, **kwargs):
-        raise AssertionError("the programs were asked")
+    def no_program_forces(*args, **kwargs):
+        raise AssertionError("the programs' forces were used")
 
-    monkeypatch.setattr(contacts_module._ActiveSet, "from_programs", no_programs)
+    monkeypatch.setattr(contacts_module._ActiveSet, "prescribed", no_program_forces)
     statics = solve_case(model, f)
     assert statics.stability == "stable" and statics.state is not None
     w = model.contact_displacements(statics.displacements)

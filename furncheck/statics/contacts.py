@@ -2,8 +2,10 @@
 
 ``_ActiveSet`` switches contacts between STICK and LIFT until every normal force is
 admissible, then lets contacts outside their friction cone slip by minimizing the convex
-energy ``friction._FrictionEnergy``; when that fails, the linear programs of ``feasibility`` decide
-between 'lift-off', 'sliding' and an equilibrium taken from the program itself.
+energy ``friction._FrictionEnergy``; when that fails, the linear programs of
+``feasibility`` decide between 'lift-off', 'sliding' and stable, and a stable case's
+forces come from Newton's method on the whole contact law (``newton``), else from the
+program itself.
 """
 
 from __future__ import annotations
@@ -52,9 +54,10 @@ def solve_case(model: StaticsModel, f: np.ndarray,
     from the last iterate.  When the active set or the friction phase cannot settle, the
     linear programs of ``feasibility`` decide: 'lift-off' only when no equilibrium exists
     with normal forces >= 0 even with unlimited friction, 'sliding' only when none exists
-    inside the friction cones; otherwise the case is stable with the admissible contact
-    forces closest to the elastic solution (``closest_admissible``) and the joint forces
-    they imply.
+    inside the friction cones; otherwise the case is stable, with the equilibrium of the
+    contact law that the semismooth Newton method (``newton``) reaches from every contact
+    sticking, or where it reaches none, the admissible contact forces closest to the
+    elastic solution (``closest_admissible``) and the joint forces they imply.
     """
     if not model.planks:
         return CaseStatics("stable", np.zeros((0, 6)), np.zeros((0, 3)))
@@ -84,12 +87,9 @@ def solve_case(model: StaticsModel, f: np.ndarray,
         if not feasible.exists:
             return solver.unstable("lift-off", feasible)
         bolted = solver.solve(all_stick)
-        settled = None if bolted is None else solver.by_newton(bolted.ground)
-        if settled is not None:
-            return settled
         target = np.zeros((len(model.contacts), 3)) if bolted is None \
             else bolted.contact_forces
-        return solver.from_programs(target, on_failure=None)
+        return solver.from_programs(target, on_failure=None, bolted=bolted)
     status, solution = normal
     if solver.within_cones(solution):
         return solver.stable(solution, status)
@@ -97,11 +97,8 @@ def solve_case(model: StaticsModel, f: np.ndarray,
     if frictional is not None:
         settled_status, settled = frictional
         return solver.stable(settled, settled_status)
-    bolted = solver.solve(all_stick)
-    settled = None if bolted is None else solver.by_newton(bolted.ground)
-    if settled is not None:
-        return settled
-    return solver.from_programs(solution.contact_forces, on_failure=solution)
+    return solver.from_programs(solution.contact_forces, on_failure=solution,
+                                bolted=solver.solve(all_stick))
 
 
 class _Solution:
@@ -337,15 +334,23 @@ class _ActiveSet:
                            self._plank_ids(pulling), detail + undecided,
                            displacements=bolted.q)
 
-    def from_programs(self, target: np.ndarray, on_failure: _Solution | None) -> CaseStatics:
+    def from_programs(self, target: np.ndarray, on_failure: _Solution | None,
+                      bolted: _Solution | None = None) -> CaseStatics:
         """The verdict of the friction program when the iterations could not settle:
-        stable with the admissible contact forces closest to ``target`` (the elastic
-        forces), else 'sliding' (with the forces of ``on_failure`` if given)."""
+        'sliding' when it finds no equilibrium inside the friction cones (with the forces
+        of ``on_failure`` if given); else stable, with the equilibrium of the contact law
+        that Newton's method (``by_newton``) reaches from ``bolted`` (every contact
+        sticking) where it reaches one, or the admissible contact forces closest to
+        ``target`` (the elastic forces).  The program goes first: a design that slides,
+        the usual reason the iterations fail, costs no Newton steps."""
         cone = cone_solution(self.model, self.f)
         if not cone.exists:
             if on_failure is not None and cone.status == INFEASIBLE:
                 return self.sliding(on_failure)
             return self.unstable("sliding", cone)
+        settled = None if bolted is None else self.by_newton(bolted.ground)
+        if settled is not None:
+            return settled
         closest = closest_admissible(self.model, self.f, target)
         return self.prescribed(closest if self._admissible(closest) else cone.forces)
 
