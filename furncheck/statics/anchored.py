@@ -1,6 +1,6 @@
 """The condensed system with the contact springs (contract 3a: stiff unilateral ground
 contacts), for a contact state: the springs ``anchor_springs``, the condensed matrix
-``_condensed_stiffness`` and, per contact state, its matrix factored once
+``condensed_stiffness`` and, per contact state, its matrix factored once
 (``anchored_system``, a ``_Factored``: Cholesky by LAPACK directly, LU when that fails);
 ``system_matrix`` and ``solve_system`` give the full mixed matrix and its solve to the
 sensitivity analysis, ``solve_with_springs`` a solve with given springs.
@@ -32,7 +32,7 @@ def anchor_springs(holding: np.ndarray, stiffness: float | np.ndarray) -> np.nda
     return springs
 
 
-def _condensed_stiffness(model: StaticsModel, springs: np.ndarray) -> np.ndarray:
+def condensed_stiffness(model: StaticsModel, springs: np.ndarray) -> np.ndarray:
     """S0 + K_c: the condensed system's matrix with the contact springs (n_g, n_g)."""
     maps = model.contact_maps
     blocks = np.transpose(maps, (0, 2, 1)) @ (springs @ maps)       # (nK, 6, 6)
@@ -41,7 +41,7 @@ def _condensed_stiffness(model: StaticsModel, springs: np.ndarray) -> np.ndarray
 
 def _anchored_stiffness(model: StaticsModel, holding: np.ndarray,
                         scale: float = 1.0) -> np.ndarray:
-    """``_condensed_stiffness`` for the anchor springs of ``holding`` (x ``scale``): each
+    """``condensed_stiffness`` for the anchor springs of ``holding`` (x ``scale``): each
     holding contact adds scale k M^T M, M^T M kept once per model."""
     blocks = model.contact_gram * (scale * model.contact_springs
                                    * holding.astype(float))[:, None, None]
@@ -144,7 +144,7 @@ def solve_with_springs(model: StaticsModel, springs: np.ndarray,
     LU and checked as ``solve`` is (LinAlgError when it is singular)."""
     condensed = model.condensation
     inner, ground_rhs = condensed.split(np.asarray(rhs, dtype=float))
-    matrix = _condensed_stiffness(model, springs)
+    matrix = condensed_stiffness(model, springs)
     ground = _Factored(matrix, None).solve(ground_rhs)
     if ground is None or not _accurate(matrix, ground, ground_rhs):
         raise np.linalg.LinAlgError("singular condensed system")

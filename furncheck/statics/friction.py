@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.statics.anchored import _condensed_stiffness, _Factored, anchored_system
+from furncheck.statics.anchored import _Factored, anchored_system, condensed_stiffness
 from furncheck.statics.lapack import cholesky, routines
 from furncheck.statics.model import StaticsModel, spring_rows
 
@@ -227,7 +227,7 @@ class _FrictionEnergy:
         springs = np.zeros((len(self.active), 3, 3))
         springs[self.active, :2, :2] = tangent
         springs[self.active, 2, 2] = k
-        hessian = _condensed_stiffness(self.model, springs)
+        hessian = condensed_stiffness(self.model, springs)
         shift = tol.SOLVE_RESIDUAL * max(float(np.abs(np.diag(hessian)).max()), 1.0)
         hessian[np.diag_indices(len(x))] += shift
         return _Factored(hessian, cholesky(hessian))

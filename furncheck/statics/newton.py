@@ -32,7 +32,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.statics.anchored import _condensed_stiffness
+from furncheck.statics.anchored import condensed_stiffness
 from furncheck.statics.friction import balance_floor, slip_tangent
 from furncheck.statics.lapack import routines
 
@@ -100,7 +100,7 @@ def newton_equilibrium(solver: _ActiveSet, start: np.ndarray):
     for _ in range(tol.CONTACT_NEWTON_ITERATIONS):
         if float(np.abs(r).max(initial=0.0)) <= balance_floor(solver.force_tol, *size, x):
             return x, forces, pressed
-        step, info = routines().gesv(_condensed_stiffness(model, tangent), -r)[2:]
+        step, info = routines().gesv(condensed_stiffness(model, tangent), -r)[2:]
         if info != 0 or not np.all(np.isfinite(step)):
             return None
         norm, t = float(r @ r), 2.0
