@@ -159,8 +159,9 @@ def load_or_fail(path: str, model: str | None = None, stdin_name: str | None = N
 
 def fail_as(path: str, message: str, fmt: str, output: str | None) -> NoReturn:
     """``fail(message)``, after writing with ``fmt`` 'json' the report (to ``output``, or
-    stdout) as a document of its own, ``{"design": path, "error": message}``, as
-    ``validate`` reports a file it cannot check, for the tools that read it."""
+    stdout) as a document of its own, ``{"design": path, "error": message}`` (the design
+    and error of ``validate``'s entry for a file it cannot check), for the tools that
+    read it."""
     if fmt == "json":
         import json
 

@@ -15,6 +15,7 @@ from furncheck.cli.output import (
     config_or_fail,
     dofs_or_fail,
     fail,
+    fail_as,
     load_or_fail,
     write_output,
 )
@@ -62,8 +63,10 @@ def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str
         finder = RangeFinder(loaded, tuple(locks))
         ranges = finder.ranges(list(dofs) or None, jobs or config.jobs or os.cpu_count() or 1,
                                client)
-    except (ClusterError, DesignTooBig) as error:
+    except ClusterError as error:
         fail(str(error))
+    except DesignTooBig as error:
+        fail_as(design, str(error), fmt, output)
     finally:
         if client is not None:
             client.close()

@@ -13,6 +13,7 @@ from furncheck.cli.output import (
     config_or_fail,
     dofs_or_fail,
     fail,
+    fail_as,
     load_or_fail,
     write_output,
 )
@@ -101,7 +102,7 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
     try:
         refuse_too_big(loaded)
     except DesignTooBig as error:
-        fail(str(error))
+        fail_as(design, str(error), fmt, output)
     result = suggest_design(loaded, max_dofs, max_suggestions, locked)
     written = {}
     if out_dir is not None:

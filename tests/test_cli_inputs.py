@@ -200,3 +200,18 @@ def test_a_bad_design_in_json_is_a_json_error_document(tmp_path, command) -> Non
         "design": "designs/stool.yaml",
         "error": "designs/stool.yaml: seat.bogus: unknown DOF kind 'bogus'; expected one of "
                  "x, y, z, rx, ry, rz, length, width"}
+
+
+@pytest.mark.parametrize("command", [["suggest"], ["range", "top.z"]])
+def test_a_design_too_big_in_json_is_a_json_error_document(monkeypatch, command) -> None:
+    """A design refused as too big (here with the limit lowered to 18 unknowns) gets the
+    JSON error document from ``suggest`` and ``range`` too, as ``validate`` gives it an
+    error entry."""
+    from furncheck import tolerances
+
+    monkeypatch.setattr(tolerances, "MAX_GROUND_UNKNOWNS", 18)
+    path = "designs/coffee-table-splayed.yaml"
+    result = CliRunner().invoke(main, [command[0], path, *command[1:], "--format", "json"])
+    assert result.exit_code == 2
+    document = json.loads(result.stdout)
+    assert document["design"] == path and "too big" in document["error"]

@@ -210,7 +210,8 @@ def test_every_spread_load_on_a_resized_plank_is_said(catalog_suggestions, name,
 def test_a_lengthened_top_says_its_spread_load_spreads_thinner():
     """A table top 1200 x 700 mm carrying 20 kg spread along it: a suggestion that
     lengthens the top says that the same 20 kg now spreads over the longer top, in text
-    and JSON (``loads_spread``)."""
+    and JSON (``loads_spread``); two such loads on it are two lines, and a case that
+    includes them adds none."""
     from furncheck.report.cutlist import load_spread_lines, load_spreads_json
     from furncheck.suggest.cutlist import load_spreads
 
@@ -235,6 +236,13 @@ loads:
                                              "load": "20 kg", "from": [1200.0, 700.0],
                                              "to": [1749.0, 700.0]}]
     assert load_spreads(before, before) == ()
+    two = text.replace("  - {plank: top, mass: 20, spread: true}\n",
+                       "  - {plank: top, mass: 20, spread: true}\n"
+                       "  - {plank: top, mass: 20, spread: true}\n"
+                       "load_cases:\n  more:\n    include: [default]\n")
+    before, after = (parse_design(two.replace("[1200, 700]", size), "t.yaml", "yaml")
+                     for size in ("[1200, 700]", "[1749, 700]"))
+    assert [s.case for s in load_spreads(before, after)] == ["default", "default"]
 
 
 def test_a_shortened_seat_carries_its_load_to_the_same_place_along_it():

@@ -342,15 +342,18 @@ class _ActiveSet:
         that Newton's method (``by_newton``) reaches from ``bolted`` (every contact
         sticking) where it reaches one, or the admissible contact forces closest to
         ``target`` (the elastic forces).  The program goes first: a design that slides,
-        the usual reason the iterations fail, costs no Newton steps."""
+        the usual reason the iterations fail, costs no Newton steps (where the program
+        cannot decide, an equilibrium that Newton's method finds decides it)."""
         cone = cone_solution(self.model, self.f)
+        settled = None
+        if bolted is not None and (cone.exists or cone.status == UNDECIDED):
+            settled = self.by_newton(bolted.ground)     # an equilibrium it finds exists
+        if settled is not None:
+            return settled
         if not cone.exists:
             if on_failure is not None and cone.status == INFEASIBLE:
                 return self.sliding(on_failure)
             return self.unstable("sliding", cone)
-        settled = None if bolted is None else self.by_newton(bolted.ground)
-        if settled is not None:
-            return settled
         closest = closest_admissible(self.model, self.f, target)
         return self.prescribed(closest if self._admissible(closest) else cone.forces)
 

@@ -1,6 +1,7 @@
 """The whole contact law at once: a semismooth Newton method, for the cases that the active
-set and the friction phase cannot settle (``contacts.solve_case`` asks it before the
-feasibility programs).
+set and the friction phase cannot settle (``contacts._ActiveSet.from_programs`` asks it
+once the friction program has found that an equilibrium exists, before taking the
+program's own forces).
 
 With x the grounded planks' displacements (the condensed unknowns), w = M x every
 contact's displacement and f(w) the contact law of contract section 3a (a corner pressed
@@ -113,4 +114,6 @@ def newton_equilibrium(solver: _ActiveSet, start: np.ndarray):
         r, forces, tangent, pressed = trial
         if not np.abs(x).max() <= tol.SLIDING_DISPLACEMENT:
             return None
+    if float(np.abs(r).max(initial=0.0)) <= balance_floor(solver.force_tol, *size, x):
+        return x, forces, pressed           # reached on the last step
     return None

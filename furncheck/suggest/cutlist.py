@@ -172,27 +172,28 @@ class LoadSpread:
 
 
 def load_spreads(before: Design, after: Design) -> tuple[LoadSpread, ...]:
-    """Every spread load whose plank ``after`` resizes by more than CUT_LIST_EPS (the
-    same load in several cases, through ``include``, once), in case and load order."""
+    """Every spread load whose plank ``after`` resizes by more than CUT_LIST_EPS, in case
+    and load order: each load of the file once (one that several cases include, by the
+    case whose entry gives it and its place there; two equal loads on one plank twice)."""
     scale = before.unit_scale
     old_planks = {p.id: p for p in before.planks}
     new_planks = {p.id: p for p in after.planks}
     spreads: list[LoadSpread] = []
     seen = set()
     for case in before.load_cases:
-        for load in case.loads:
-            if not load.spread or load.plank not in new_planks:
+        places: dict[str, int] = {}
+        for index, load in enumerate(case.loads):
+            origin = case.origin(index)
+            place = places[origin] = places.get(origin, -1) + 1
+            if not load.spread or load.plank not in new_planks or (origin, place) in seen:
                 continue
             old, new = old_planks[load.plank], new_planks[load.plank]
             start = (in_unit(old.length, scale), in_unit(old.width, scale))
             end = (in_unit(new.length, scale), in_unit(new.width, scale))
-            if not any(_differs(a, b) for a, b in zip(start, end)):
-                continue
-            what = plain_load(load.mass, load.force)
-            key = (load.plank, what)
-            if key not in seen:
-                seen.add(key)
-                spreads.append(LoadSpread(case.name, load.plank, what, start, end))
+            if any(_differs(a, b) for a, b in zip(start, end)):
+                seen.add((origin, place))
+                spreads.append(LoadSpread(case.name, load.plank,
+                                          plain_load(load.mass, load.force), start, end))
     return tuple(spreads)
 
 

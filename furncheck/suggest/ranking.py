@@ -130,9 +130,9 @@ def _ranked(design: Design, geometry, planes, suggestions: list[Suggestion],
 def _distinct_builds(suggestions: list[Suggestion]) -> list[Suggestion]:
     """The suggestions without those that build what a better-ranked one builds: the
     same planks (sizes, places, turns and materials to the micrometre and the
-    thousandth of a degree) and the same listed joints, whatever the added planks are
-    called (two rules can reach one fix: a rail under the top between two legs is the
-    apron there)."""
+    thousandth of a degree), listed joints, anchors and loads, whatever the added planks
+    are called (two rules can reach one fix: a rail under the top between two legs is
+    the apron there)."""
     seen, kept = set(), []
     for suggestion in suggestions:
         build = _build(suggestion.design)

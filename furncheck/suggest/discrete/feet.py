@@ -87,8 +87,10 @@ def outriggers(search: Search) -> Fix | None:
 def _tipping(search: Search, rule: str) -> tuple[np.ndarray, np.ndarray, float] | None:
     """(c (2,) m, d (2,) unit, its distance past the polygon m) of the lift-off case whose
     centre of pressure lies farthest outside the support polygon; None (and why recorded
-    for ``rule``) unless every violation is a lift-off of a design without walls or
-    anchors, or when the centre of pressure lies inside (a part lifts, not the whole)."""
+    for ``rule``) unless the violations are lift-offs of a design without walls or
+    anchors (and, elastic, planks bending too much, which thicker boards then finish:
+    ``Search.repairs``), or when the centre of pressure lies inside (a part lifts, not
+    the whole)."""
     design = search.design
     if not search.repairs(rule, ("lift-off",)):
         return None
