@@ -72,9 +72,12 @@ def solve_load_case(model: StaticsModel, case: LoadCase,
 
 
 def solve_load_cases(model: StaticsModel, cases: list[LoadCase]) -> list[CaseStatics]:
-    """``solve_load_case`` of each case, the elastic model's sag and stress of all of them
-    read in one pass over their planks stacked (``bending.plank_results_of``: the same
-    numbers as one case at a time, for a fraction of the calls)."""
+    """``solve_load_case`` of each case: each case's contact iterations start from the
+    contacts that held in the case before (``solve_case``'s ``start``: the same
+    equilibrium, sooner; a case that is not stable passes nothing on), and the elastic
+    model's sag and stress of all of them are read in one pass over their planks stacked
+    (``bending.plank_results_of``: the same numbers as one case at a time, for a
+    fraction of the calls)."""
     statics, start = [], None
     for case in cases:     # each case starts from the contacts that held in the one before
         statics.append(solve_case(model, external_forces(model, case), start))
