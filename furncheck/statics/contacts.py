@@ -51,7 +51,9 @@ def solve_case(model: StaticsModel, f: np.ndarray,
 
     Where the normal phase's statuses cycle (a contact that pulls while its anchor holds
     it sideways sinks once lifted), the friction phase, with friction capped, takes over
-    from the last iterate.  When the active set or the friction phase cannot settle, the
+    from the last iterate.  Where the friction phase's caps or statuses go round, the
+    semismooth Newton method on the whole contact law (``newton``) is tried from its last
+    iterate.  When the active set, the friction phase and that cannot settle, the
     linear programs of ``feasibility`` decide: 'lift-off' only when no equilibrium exists
     with normal forces >= 0 even with unlimited friction, 'sliding' only when none exists
     inside the friction cones; otherwise the case is stable, with the equilibrium of the
@@ -97,6 +99,10 @@ def solve_case(model: StaticsModel, f: np.ndarray,
     if frictional is not None:
         settled_status, settled = frictional
         return solver.stable(settled, settled_status)
+    if solver.cycled:       # the caps or statuses went round: not a sign of sliding
+        settled = solver.by_newton(solver.last_ground)
+        if settled is not None:
+            return settled
     return solver.from_programs(solution.contact_forces, on_failure=solution,
                                 bolted=solver.solve(all_stick))
 
@@ -143,6 +149,7 @@ class _ActiveSet:
         self.mu = model.friction
         self.anchored = model.contact_anchored
         self._spaces: dict[bytes, _ContactSpace] = {}
+        self.cycled, self.last_ground = False, None     # of the last friction phase
 
     # -- phases --------------------------------------------------------------------------------
     def normal_phase(self, status: np.ndarray, one_at_a_time: bool):
@@ -186,18 +193,23 @@ class _ActiveSet:
         (``_FrictionEnergy.cap_newton``, which also predicts where the next minimum lies),
         or by Anderson's mixing of the last iterates where a Newton update did not shrink
         the disagreement.  Only the solution returned is assembled in full.  None if there
-        is no minimum (the load exceeds what friction can hold) or the caps do not settle.
+        is no minimum (the load exceeds what friction can hold: ``cycled`` False) or the caps
+        or statuses do not settle (``cycled`` True; ``last_ground``: the last minimizer, from
+        which ``solve_case`` starts Newton's method on the whole law before the programs).
         """
         status = status.copy()
         ground = start.ground
         caps = self._caps(start.contact_forces)
         history: list[tuple[np.ndarray, np.ndarray]] = []     # (caps, the caps they gave)
         disagreement = np.inf
+        self.cycled, self.last_ground = True, ground
         for _ in range(tol.FRICTION_CAP_ITERATIONS):
             energy = _FrictionEnergy(self, status != LIFT, caps)
             ground = energy.minimize(ground)
             if ground is None:
+                self.cycled = False
                 return None
+            self.last_ground = ground
             forces, displacements = energy.contact_state(ground)
             new_caps = self._caps(forces)
             if self._update_normals(forces, displacements, status):
