@@ -1,7 +1,8 @@
 """The whole contact law at once: a semismooth Newton method, for the cases that the active
-set and the friction phase cannot settle (``contacts._ActiveSet.from_programs`` asks it
-once the friction program has found that an equilibrium exists, before taking the
-program's own forces).
+set and the friction phase cannot settle: ``contacts.solve_case`` asks it from the
+friction phase's last minimizer where that phase went round, and
+``contacts._ActiveSet.from_programs`` from every contact sticking once the friction
+program has found that an equilibrium exists, before taking the program's own forces.
 
 With x the grounded planks' displacements (the condensed unknowns), w = M x every
 contact's displacement and f(w) the contact law of contract section 3a (a corner pressed
@@ -17,13 +18,12 @@ where a contact slips: pressing harder raises its friction), and damps each step
 halving it until the residual's norm falls (Armijo); where no halving makes it fall (a
 kink of f lies right at x, and the Jacobian there is the wrong side's), the smallest
 step is taken all the same: it crosses the kink, and the next step uses the Jacobian
-beyond it.  It starts from every contact sticking (the bolted design's equilibrium).
-Unlike the active set, no contact status is carried from one iteration to the next, so
-statuses that switch back and forth there (a corner that lifts once friction is capped
-and sinks again once another slips) cannot cycle here: the residual decides.  The root,
-where found, is the same equilibrium the active set reaches where it settles (the
-catalog's cabinet: four cases, forces within 1e-9); with friction, where several
-equilibria could exist, it is one of them.
+beyond it.  Unlike the active set, no contact status is carried from one iteration to
+the next, so statuses that switch back and forth there (a corner that lifts once
+friction is capped and sinks again once another slips) cannot cycle here: the residual
+decides.  The root, where found, is the same equilibrium the active set reaches where
+it settles (the catalog's cabinet: four cases, forces within 1e-9); with friction,
+where several equilibria could exist, it is one of them.
 """
 
 from __future__ import annotations
