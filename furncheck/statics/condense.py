@@ -228,14 +228,16 @@ def _condense_implicit(model: StaticsModel, ground: np.ndarray, inner: np.ndarra
     n, m = model.n_dof, 6 * len(model.joints)
     G = model.G
     K = (model.beam_stiffness + (G.T @ _block_diagonal(model.joint_stiffness) @ G)).tocsc()
-    coupling_sparse = K[inner][:, ground]
-    lu = _factor(K[inner][:, inner].tocsc(),
+    inner_rows = K[inner]
+    coupling_sparse = inner_rows[:, ground]
+    inner_block = inner_rows[:, inner].tocsc()
+    lu = _factor(inner_block,
                  np.asarray(coupling_sparse.sum(axis=1)).ravel()) if len(inner) else None
     if lu is None and len(inner):
         return None
     coupling = coupling_sparse.tocsr()
     ground_block = K[ground][:, ground].toarray()
-    schur = _trailing_schur(K[inner][:, inner].tocsc(), coupling, ground_block, lu)
+    schur = _trailing_schur(inner_block, coupling, ground_block, lu)
     if schur is None:
         schur = _blocked_schur(ground_block, coupling, lu)
     return _PlankCondensation(ground, inner, coupling, None, schur, contact_block,

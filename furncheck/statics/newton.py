@@ -34,7 +34,8 @@ import numpy as np
 
 from furncheck import tolerances as tol
 from furncheck.statics.anchored import condensed_stiffness
-from furncheck.statics.friction import balance_floor, slip_tangent
+from furncheck.statics.contact_law import ContactLaw
+from furncheck.statics.friction import balance_floor
 from furncheck.statics.lapack import routines
 
 if TYPE_CHECKING:
@@ -47,35 +48,19 @@ what the linearization promised (2 t |R|^2 for step length t)."""
 
 def law(w: np.ndarray, k: np.ndarray, mu: float, anchored: np.ndarray | None):
     """The contact law at displacements w (nK, 3) (module docstring), with springs k (nK,)
-    N/m: (forces (nK, 3), D (nK, 3, 3) with df = -D dw, pressed (nK,) bool).  A slipping
-    contact's D keeps a feeble SLIP_STIFFNESS spring along its slip (as the friction
-    phase's Newton steps do), so that a design free to slide at the edge of sliding is
-    not singular."""
-    normal = np.where(w[:, 2] < 0.0, -k * w[:, 2], 0.0)
+    N/m: (forces (nK, 3), D (nK, 3, 3) with df = -D dw, pressed (nK,) bool): each
+    contact's state read from w (pressed where w_z < 0 or an anchor's tie; slipping where
+    k |w_t| passes mu N), then ``ContactLaw``'s forces and tangent for those states (a
+    slipping contact's D keeps a feeble SLIP_STIFFNESS spring along its slip, so that a
+    design free to slide at the edge of sliding is not singular)."""
     pressed = w[:, 2] < 0.0
-    cap = mu * normal
+    cap = mu * np.where(pressed, -k * w[:, 2], 0.0)
     if anchored is not None:
         pressed = pressed | anchored
         cap = np.where(anchored, np.inf, cap)
-    stretch = np.hypot(w[:, 0], w[:, 1])
-    sticking = pressed & (k * stretch <= cap)
-    slipping = pressed & ~sticking
-    safe = np.where(stretch > 0.0, stretch, 1.0)
-    scale = np.where(sticking, k, np.where(slipping, cap / safe, 0.0))
-    forces = -scale[:, None] * w
-    forces[:, 2] = np.where(pressed, -k * w[:, 2], 0.0)
-    tangent = np.zeros((len(w), 3, 3))
-    tangent[sticking] = np.eye(3) * k[sticking][:, None, None]
-    if slipping.any():
-        unit = w[slipping, :2] / safe[slipping, None]
-        spring = k[slipping]
-        block = np.zeros((len(unit), 3, 3))
-        block[:, :2, :2] = slip_tangent(cap[slipping], safe[slipping], unit) \
-            + (tol.SLIP_STIFFNESS * spring)[:, None, None] * unit[:, :, None] * unit[:, None, :]
-        block[:, :2, 2] = -mu * spring[:, None] * unit
-        block[:, 2, 2] = spring
-        tangent[slipping] = block
-    return forces, tangent, pressed
+    slipping = pressed & (k * np.hypot(w[:, 0], w[:, 1]) > cap)
+    contact = ContactLaw(pressed, slipping, k, mu)
+    return contact.forces(w), contact.tangent(w), pressed
 
 
 def newton_equilibrium(solver: _ActiveSet, start: np.ndarray):
