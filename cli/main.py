@@ -2,14 +2,18 @@
 
 from __future__ import annotations
 
+import importlib
 import os
 
 import click
 
 from furncheck import __version__, exitcodes
-from furncheck.cli.range import range_command
-from furncheck.cli.suggest import suggest
-from furncheck.cli.validate import validate
+
+COMMANDS = {"validate": ("furncheck.cli.validate", "validate"),
+            "suggest": ("furncheck.cli.suggest", "suggest"),
+            "range": ("furncheck.cli.range", "range_command")}
+"""Each command's module and function, imported when the command is run (or listed by
+--help): a run imports only its own command's options and checks."""
 
 DEBUG_VARIABLE = "FURNCHECK_DEBUG"
 """Set (to anything), an internal error shows its traceback instead of one line."""
@@ -40,7 +44,17 @@ def _one_line(error: click.UsageError) -> click.UsageError | _OneLine:
 class _Commands(click.Group):
     """The command group, its usage errors (an unknown option or command, a missing
     argument, a value of the wrong type) one line each instead of click's usage block,
-    and so are an OSError (the machine's words) and any other exception (a bug)."""
+    and so are an OSError (the machine's words) and any other exception (a bug).  Its
+    commands are imported by name when asked for (``COMMANDS``)."""
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return sorted(COMMANDS)
+
+    def get_command(self, ctx: click.Context, name: str) -> click.Command | None:
+        if name not in COMMANDS:
+            return None
+        module, function = COMMANDS[name]
+        return getattr(importlib.import_module(module), function)
 
     def make_context(self, *args, **kwargs):
         try:
@@ -80,11 +94,6 @@ def main() -> None:
     Exit codes: 0 all designs valid (or done), 1 some design invalid (validate), 2
     unreadable or ill-formed input, or a usage error.
     """
-
-
-main.add_command(validate)
-main.add_command(range_command)
-main.add_command(suggest)
 
 
 if __name__ == "__main__":  # pragma: no cover

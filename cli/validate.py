@@ -87,7 +87,6 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
     cluster (--scheduler) that cannot be used.
     """
     from furncheck.batch import entries
-    from furncheck.ignores import patterns
     from furncheck.report import reporter
     from furncheck.report.entries import Summary
     from furncheck.scan import ScanOptions, collect
@@ -102,6 +101,8 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
         check_output(html_file, "the report page")
     if views_dir is not None:
         _check_views_dir(views_dir)
+    if excludes or config.exclude:
+        from furncheck.ignores import patterns
     scan_options = ScanOptions(
         excludes=tuple(rule for rule in (
             patterns(excludes, os.curdir, "--exclude") if excludes else None,

@@ -22,14 +22,23 @@ the file and the key), as in design files: a typo must not be silently ignored.
 from __future__ import annotations
 
 import os
+import re
 from dataclasses import dataclass
 
 from furncheck import tolerances as tol
 from furncheck.errors import FurncheckError
-from furncheck.ignores import GIT_DIR
 from furncheck.report import REPORTERS
 
 PYPROJECT = "pyproject.toml"
+GIT_DIR = ".git"
+_MAY_HOLD_TABLE = re.compile(
+    r"""tool.*furncheck|^[ \t]*(\[+[ \t]*["']?tool["']?[ \t]*\]|["']?tool["']?[ \t]*=)""",
+    re.MULTILINE)
+"""Where a pyproject.toml could define ``tool.furncheck``: a line that names both (a
+``[tool.furncheck]`` header, a dotted key, or only a comment), a bare ``[tool]`` header
+or a ``tool = {...}`` inline table.  A file with none of them is passed over unparsed (a
+broken file too: it says nothing about furncheck); one with any is parsed in full."""
+"""The folder that marks the top of a git repository (where the search stops)."""
 
 
 class ConfigError(FurncheckError):
@@ -85,14 +94,18 @@ def start_folder(paths: tuple[str, ...] | list[str]) -> str:
 
 
 def _furncheck_table(path: str) -> dict | None:
-    import tomllib  # here: most runs find no pyproject.toml to read
-
+    """The ``[tool.furncheck]`` table of a pyproject.toml, None where it has none."""
     try:
         with open(path, "rb") as stream:
-            document = tomllib.load(stream)
+            data = stream.read()
+        if not _MAY_HOLD_TABLE.search(data.decode("utf-8")):
+            return None
+        import tomllib  # here: most runs find no pyproject.toml with the table to read
+
+        document = tomllib.loads(data.decode("utf-8"))
     except OSError as error:
         raise ConfigError(f"{path}: cannot read: {error.strerror or error}") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as error:
+    except (ValueError, UnicodeDecodeError) as error:   # tomllib.TOMLDecodeError too
         raise ConfigError(f"{path}: not valid TOML: {error}") from None
     tool = document.get("tool")
     table = tool.get("furncheck") if isinstance(tool, dict) else None

@@ -24,11 +24,12 @@ import os
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from furncheck.config import GIT_DIR
+
 if TYPE_CHECKING:       # imported where patterns are read: a file named alone needs none
     import pathspec
 
 GITIGNORE = ".gitignore"
-GIT_DIR = ".git"
 
 
 @dataclass(frozen=True)

@@ -25,11 +25,14 @@ import os
 import stat
 from dataclasses import dataclass, field
 from pathlib import Path, PurePath
+from typing import TYPE_CHECKING
 
 from furncheck import tolerances as tol
 from furncheck.detect import declares_design
-from furncheck.ignores import IgnoreRules, PatternFile, rules_above
 from furncheck.result import DesignReport
+
+if TYPE_CHECKING:       # the ignore rules are read where a folder is scanned
+    from furncheck.ignores import IgnoreRules, PatternFile
 
 DESIGN_SUFFIXES = {".yaml": "yaml", ".yml": "yaml", ".json": "json"}
 """Extensions of the files a directory scan looks at (case-insensitive) -> format."""
@@ -109,6 +112,8 @@ class FolderScan:
 def find_design_files(folder: str, excludes: tuple[PatternFile, ...] = ()) -> FolderScan:
     """The design files below ``folder`` (paths are ``folder`` joined with the relative
     path, normalized), by the rules of the module docstring."""
+    from furncheck.ignores import rules_above
+
     scan = FolderScan()
     visited: set[tuple[int, int]] = set()
     candidates: list[str] = []

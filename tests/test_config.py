@@ -82,6 +82,22 @@ def test_broken_toml_is_one_line_and_exit_2(checked_paths, tmp_path):
     assert "Traceback" not in result.output
 
 
+@pytest.mark.parametrize("text, found", [
+    ("[tool]\nfurncheck = {jobs = 3}\n", 3),
+    ('tool.furncheck.jobs = 3\n', 3),
+    ('[ tool . "furncheck" ]\njobs = 3\n', 3),
+    ("[tool.ruff]\nline-length = 100\n[project]\nname = 'furncheck'\n", None),
+    ("this is not [TOML at all\n", None),
+])
+def test_a_pyproject_is_parsed_only_where_it_may_hold_the_table(tmp_path, text, found):
+    """Every way TOML can write tool.furncheck is read (a bare [tool] table, a dotted key,
+    a spaced and quoted header); a file that names no such table is passed over unparsed,
+    even when it is not valid TOML (it says nothing about furncheck)."""
+    (tmp_path / "pyproject.toml").write_text(text)
+    (design,) = write(tmp_path, "valid.yaml")
+    assert load_config([design]).jobs == found
+
+
 def test_the_command_line_wins_over_the_format(checked_paths, tmp_path):
     pyproject(tmp_path, 'format = "json"')
     (design,) = write(tmp_path, "valid.yaml")

@@ -21,13 +21,19 @@ The package, by job:
 """
 
 from furncheck.geometry.analysis import analyze, end_gap, follow, follow_many, nail_count
-from furncheck.geometry.edits import (
-    EditedTables,
-    EditMargins,
-    edit_margins_many,
-    interpenetrations,
-)
 from furncheck.geometry.model import Contact, Geometry, Joint, NearMiss
+
+_EDITS = ("EditMargins", "EditedTables", "edit_margins_many", "interpenetrations")
+
+
+def __getattr__(name: str):
+    """The edits' names, imported on first use: a plain validate needs none of them."""
+    if name in _EDITS:
+        from furncheck.geometry import edits
+
+        return getattr(edits, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 __all__ = ["Contact", "EditMargins", "EditedTables", "Geometry", "Joint", "NearMiss", "analyze",
            "edit_margins_many", "end_gap", "follow", "follow_many", "interpenetrations",

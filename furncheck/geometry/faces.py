@@ -35,7 +35,7 @@ class _Touch(NamedTuple):
     face_side: int = 1
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)    # holds arrays: no == by value
 class _Faces:
     """Face tables of all planks (n planks).
 

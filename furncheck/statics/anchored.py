@@ -151,7 +151,7 @@ def solve_with_springs(model: StaticsModel, springs: np.ndarray,
     return condensed.expand(inner, ground)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)    # holds arrays: no == by value
 class _Factored:
     """A symmetric matrix factored once for all the right-hand sides that meet it: by
     Cholesky (positive definite: S0 + K_c of a contact state whose holding contacts

@@ -36,7 +36,7 @@ from furncheck.statics.elements import (
 from furncheck.statics.model import StaticsModel
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)    # holds arrays: no == by value
 class PlankStatics:
     """Per local plank of an elastic model, for one load case (SI).
 
@@ -51,7 +51,7 @@ class PlankStatics:
     stress: np.ndarray
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)    # holds arrays: no == by value
 class _Layout:
     """The load-independent facts ``plank_results`` reads, once per model.
 
@@ -87,7 +87,7 @@ def plank_results(model: StaticsModel, case: LoadCase, q: np.ndarray,
     return PlankStatics(sag, span, stress)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)    # holds arrays: no == by value
 class _Stacked:
     """Several models' elements, nodes and planks numbered one after another, with what
     the reading functions below take of a model (``plank_results_many``)."""

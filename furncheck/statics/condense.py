@@ -25,7 +25,7 @@ if TYPE_CHECKING:
     import scipy.sparse as sp
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)    # holds arrays: no == by value
 class _Condensed:
     """What the contact iterations use of a condensation onto the grounded planks g
     (i: the other unknowns): S0, the coupling and X = (i-i block)^-1 (i-g block); each
@@ -48,7 +48,7 @@ class _Condensed:
         return self.split(b)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)    # holds arrays: no == by value
 class _Condensation(_Condensed):
     """Static condensation of the mixed system onto the grounded planks.
 
@@ -80,7 +80,7 @@ class _Condensation(_Condensed):
         return x
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)    # holds arrays: no == by value
 class _PlankCondensation(_Condensed):
     """The same condensation for a design of few planks, through the planks alone.
 

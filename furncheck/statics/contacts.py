@@ -11,6 +11,7 @@ program itself.
 from __future__ import annotations
 
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -18,17 +19,11 @@ from furncheck import tolerances as tol
 from furncheck.plain import plain_number
 from furncheck.statics.anchored import anchored_system
 from furncheck.statics.condense import _accurate
-from furncheck.statics.feasibility import (
-    INFEASIBLE,
-    UNDECIDED,
-    Feasibility,
-    closest_admissible,
-    cone_solution,
-    unilateral_feasible,
-)
 from furncheck.statics.friction import _anderson, _ContactSpace, _FrictionEnergy
 from furncheck.statics.model import CaseStatics, StaticsModel, rigid_motions, spring_rows
-from furncheck.statics.newton import newton_equilibrium
+
+if TYPE_CHECKING:   # the programs and Newton's method are imported where a case needs them
+    from furncheck.statics.feasibility import Feasibility
 
 STICK, LIFT = 0, 2
 FEEBLE_SCALES = (1e-9, 1e-12, 1e-15)
@@ -85,6 +80,8 @@ def solve_case(model: StaticsModel, f: np.ndarray,
             settled_status, settled = frictional
             return solver.stable(settled, settled_status)
     if normal is None:
+        from furncheck.statics.feasibility import unilateral_feasible
+
         feasible = unilateral_feasible(model, f)
         if not feasible.exists:
             return solver.unstable("lift-off", feasible)
@@ -234,6 +231,8 @@ class _ActiveSet:
         """The stable equilibrium that the semismooth Newton method on the whole contact
         law (``newton``) reaches from the grounded planks' displacements ``start``; None
         where it reaches none."""
+        from furncheck.statics.newton import newton_equilibrium
+
         found = newton_equilibrium(self, start)
         if found is None:
             return None
@@ -302,6 +301,8 @@ class _ActiveSet:
     def unstable(self, stability: str, program: Feasibility | None = None) -> CaseStatics:
         """Report a case without admissible equilibrium: forces as if bolted to the ground
         (none when even bolted down the contacts, all on one line, cannot hold it)."""
+        from furncheck.statics.feasibility import UNDECIDED
+
         bolted = self.solve(np.full(len(self.model.contacts), STICK))
         undecided = "" if program is None or program.status != UNDECIDED else (
             f"; the solver could not prove it either way ({program.message}), so the "
@@ -356,6 +357,13 @@ class _ActiveSet:
         ``target`` (the elastic forces).  The program goes first: a design that slides,
         the usual reason the iterations fail, costs no Newton steps (where the program
         cannot decide, an equilibrium that Newton's method finds decides it)."""
+        from furncheck.statics.feasibility import (
+            INFEASIBLE,
+            UNDECIDED,
+            closest_admissible,
+            cone_solution,
+        )
+
         cone = cone_solution(self.model, self.f)
         settled = None
         if bolted is not None and (cone.exists or cone.status == UNDECIDED):

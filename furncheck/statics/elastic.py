@@ -99,7 +99,7 @@ def _crosswise(design: Design, geometry: Geometry, planks: list[Plank], joints: 
     return tuple(out)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)    # holds arrays: no == by value
 class _NodeLayout:
     """Which attachments each node serves, as arrays (from the nodes' origins: a local
     plank and the keys it serves, ``_plank_nodes``), so that the nodes of a model built on

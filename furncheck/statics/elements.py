@@ -28,7 +28,7 @@ if TYPE_CHECKING:
     import scipy.sparse as sp
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)    # holds arrays: no == by value
 class Beams:
     """The beam elements of an elastic model.
 

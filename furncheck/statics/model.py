@@ -29,7 +29,7 @@ if TYPE_CHECKING:
 _SIX = np.arange(6)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)    # holds arrays: no == by value
 class StaticsModel:
     """The load-independent part of a design's statics, in either model.
 
@@ -325,7 +325,7 @@ class StaticsModel:
         return _condense(self)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)    # holds arrays: no == by value
 class CaseStatics:
     """Solution of one load case.
 

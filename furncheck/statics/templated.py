@@ -49,7 +49,7 @@ planks are jointed and which contacts stand, not on where: a model built on a te
 ("node_layout", ``elastic._NodeLayout``)."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)    # holds arrays: no == by value
 class Attachments:
     """What a model built on a template (``built_on``) takes over of how the template's
     attachments were listed: each row's local plank (joints' two sides, contacts, resting
@@ -106,7 +106,7 @@ BATCH_ELEMENTS = 16384
 one pass (their stiffness matrices take 1,152 bytes each)."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)    # holds arrays: no == by value
 class _Placed:
     """A design's nodes placed on a template's (``_placed_on``): what ``_finished_on``
     needs of it besides the template."""
