@@ -144,11 +144,6 @@ LINE_SEARCH_BRACKET = 1e-12
 zero is this fraction of its upper end wide (the slope's round-off is then larger than
 what is left to find)."""
 
-DIRECT_NEWTON_SOLVES = 2
-"""Solves with the friction energy's Hessian that factor it afresh, per set of active
-contacts, before the compliance of the contacts all sticking is computed (about the cost of
-two factorings) and the rest go through it by Woodbury's identity."""
-
 SLIP_STIFFNESS = 1e-10
 """A slipping contact's stiffness along its slip in a Newton step, relative to the contact
 stiffness (its true stiffness there is zero): keeps the step finite where the whole design

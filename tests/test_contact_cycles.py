@@ -1,9 +1,10 @@
 """Contact statuses that cycle (contract section 3): with friction unlimited, a contact
 held sideways by its anchor can pull, and sink once lifted, so the normal phase's
 statuses come back to ones already tried.  The friction phase, with friction capped at
-mu N, settles such a case to an admissible equilibrium instead of leaving it to the
-linear programs (which are slow, and whose forces are only the admissible ones closest to
-an unsettled iterate).
+mu N and every corner pressing or lifting inside its energy, settles such a case to an
+admissible equilibrium instead of leaving it to the linear programs (which are slow, and
+whose forces are only the admissible ones closest to an unsettled iterate); the paths
+behind it (Newton's method on the whole contact law, the programs) run here on purpose.
 
 The design is the catalog's 28-plank cabinet in the elastic model with its left side
 turned by 1.7 degrees (a step of the ``range`` search met it): its 'lean' case cycles.
@@ -195,18 +196,11 @@ tolerance: 0.5
 (what ``suggest`` proposed for it in an earlier version), elastic."""
 
 
-def test_a_case_whose_friction_phase_cycles_settles_by_newton(monkeypatch):
-    """In the braced table's 'push' the friction phase cannot settle (a corner lifts once
-    friction is capped and sinks again once another slips, round and round: the premise,
-    checked).  The semismooth Newton method on the whole contact law (``statics.newton``)
-    settles it (the feasibility program only says an equilibrium exists; its forces are
-    not used: ``prescribed`` is never called), to the forces the contact law gives at
-    its own displacements (``_contact_law``), balancing the loads (sum F_c + sum F = 0
-    and sum p_c x F_c + sum (p_n x F_n + M_n) = 0 about the origin, p_n the node points
-    where the loads act).  With those forces the design is valid; the programs'
-    admissible forces closest to the bolted ones, used before, read 192.4 N of shear per
-    nail at a brace (over 190)."""
-    design = parse_design(BRACED, "braced.yaml", "yaml")
+def _braced_push(force: float = 100.0):
+    """The braced table's 'push' case (pushed with ``force`` N): design, model, loads f,
+    their scale and the normal phase's settled solution (outside the friction cones)."""
+    design = parse_design(BRACED.replace("force: [100.0, 0.0, 0.0]",
+                                         f"force: [{force}, 0.0, 0.0]"), "braced.yaml", "yaml")
     model = build_model(design, analyze(design))
     case = next(c for c in design.load_cases if c.name == "push")
     f = external_forces(model, case)
@@ -215,7 +209,66 @@ def test_a_case_whose_friction_phase_cycles_settles_by_newton(monkeypatch):
     status, solution, settled = solver.normal_phase(
         np.full(len(model.contacts), contacts_module.STICK), False)
     assert settled and not solver.within_cones(solution)
-    assert solver.friction_phase(status, solution) is None     # the premise: it cycles
+    return design, model, f, scale, solver, status, solution
+
+
+def _give_up(monkeypatch):
+    """Make every friction phase give up as if its caps went round (``cycled``, its last
+    minimizer the normal phase's solution): the paths behind it run on purpose."""
+    def gave_up(self, status, start):
+        self.cycled, self.last_ground = True, start.ground
+        return None
+
+    monkeypatch.setattr(contacts_module._ActiveSet, "friction_phase", gave_up)
+
+
+def _assert_balanced(model, f, forces, scale):
+    """sum F_c + sum F = 0 and sum p_c x F_c + sum (p_n x F_n + M_n) = 0 about the origin
+    (p_n the node points where the loads act), to 1e-6 of the loads."""
+    loads = f.reshape(-1, 6)
+    assert np.abs(forces.sum(axis=0) + loads[:, :3].sum(axis=0)).max() < 1e-6 * scale
+    moment = np.cross(model.contact_points, forces).sum(axis=0) \
+        + np.cross(model.node_points, loads[:, :3]).sum(axis=0) + loads[:, 3:].sum(axis=0)
+    assert np.abs(moment).max() < 1e-6 * scale * 1.0     # N m, lever arms about 1 m
+
+
+def test_the_friction_phase_settles_what_went_round_before():
+    """In the braced table's 'push' a corner lifts once friction is capped and sinks again
+    once another slips: when the friction phase lifted and re-seated corners between its
+    minimizations, their statuses went round and the case was left to Newton's method on
+    the whole contact law.  With pressing and lifting inside its energy it settles the
+    case itself, at the equilibrium of the contact law (``_contact_law`` at its own
+    displacements, to 1e-6 of the loads; ``statics.newton``'s residual of the whole law
+    is within the force tolerance there, so Newton's method takes no step from it),
+    balancing the loads."""
+    from furncheck.statics.newton import newton_equilibrium
+
+    _, model, f, scale, solver, status, solution = _braced_push()
+    settled = solver.friction_phase(status, solution)
+    assert settled is not None
+    forces = settled[1].contact_forces
+    w = model.contact_displacements(settled[1].q)
+    law = _contact_law(w, model.contact_springs, model.friction, model.contact_anchored)
+    assert np.abs(forces - law).max() <= 1e-6 * scale
+    found = newton_equilibrium(solver, settled[1].ground)      # a root of R: no step
+    assert found is not None and found[0] is settled[1].ground
+    assert np.abs(found[1] - forces).max() <= 1e-6 * scale
+    _assert_balanced(model, f, forces, scale)
+
+
+def test_a_case_the_friction_phase_gives_up_settles_by_newton(monkeypatch):
+    """Where the friction phase gives up with its caps going round (made to here: the
+    path runs on purpose), the semismooth Newton method on the whole contact law
+    (``statics.newton``) settles the braced table's 'push' from its last minimizer (the
+    feasibility program's forces are not used: ``prescribed`` is never called), to the
+    forces the contact law gives at its own displacements (``_contact_law``), balancing
+    the loads; with those forces the design is valid, as without the detour.  (Before,
+    the programs' admissible forces closest to the bolted ones read 192.4 N of shear per
+    nail at a brace, over 190.)"""
+    from furncheck.check import check_design
+
+    design, model, f, scale, *_ = _braced_push()
+    _give_up(monkeypatch)
 
     def no_program_forces(*args, **kwargs):
         raise AssertionError("the programs' forces were used")
@@ -226,37 +279,26 @@ def test_a_case_whose_friction_phase_cycles_settles_by_newton(monkeypatch):
     w = model.contact_displacements(statics.displacements)
     law = _contact_law(w, model.contact_springs, model.friction, model.contact_anchored)
     assert np.abs(statics.contact_forces - law).max() <= 1e-6 * scale
-    loads = f.reshape(-1, 6)
-    assert np.abs(statics.contact_forces.sum(axis=0)
-                  + loads[:, :3].sum(axis=0)).max() < 1e-6 * scale
-    moment = np.cross(model.contact_points, statics.contact_forces).sum(axis=0) \
-        + np.cross(model.node_points, loads[:, :3]).sum(axis=0) + loads[:, 3:].sum(axis=0)
-    assert np.abs(moment).max() < 1e-6 * scale * 1.0     # N m, lever arms about 1 m
-    from furncheck.check import check_design
-
+    _assert_balanced(model, f, statics.contact_forces, scale)
     assert check_design(design).valid
 
 
 def test_forces_imposed_by_the_programs_balance_every_plank(monkeypatch):
-    """Pushed at 130 N the braced table's 'push' is left to the feasibility programs (the
-    iterations do not settle it, and Newton's method is kept out here: the premise,
-    checked).  The program's contact forces are imposed as loads, with feeble springs
-    against the rigid motions; the frame then deforms by centimetres, so springs of 1e-9
-    of the contacts' stiffness held 0.2 N per corner and its planks' wrenches missed
-    balance by 0.2 % of the loads.  Now every plank balances
+    """Pushed at 130 N the braced table's 'push' is left to the feasibility programs (made
+    to here: the friction phase gives up and Newton's method is kept out, so the path
+    runs on purpose).  The program's contact forces are imposed as loads, with feeble
+    springs against the rigid motions; the frame then deforms by centimetres, so springs
+    of 1e-9 of the contacts' stiffness held 0.2 N per corner and its planks' wrenches
+    missed balance by 0.2 % of the loads.  Now every plank balances
     (``test_invariants.assert_planks_balance``) to 1e-6."""
     import test_invariants
 
     from furncheck.check import check_design
 
+    _give_up(monkeypatch)
     monkeypatch.setattr(contacts_module._ActiveSet, "by_newton", lambda *args: None)
-
-    design = parse_design(BRACED.replace("force: [100.0, 0.0, 0.0]",
-                                         "force: [130.0, 0.0, 0.0]"), "braced.yaml", "yaml")
-    model = build_model(design, analyze(design))
-    case = next(c for c in design.load_cases if c.name == "push")
-    assert case.loads[-1].force[0] == pytest.approx(130.0)
-    statics = solve_case(model, external_forces(model, case))
+    design, model, f, *_ = _braced_push(130.0)
+    statics = solve_case(model, f)
     assert statics.stability == "stable" and statics.state is None    # the programs'
     monkeypatch.setattr(test_invariants, "BALANCE", 1e-6)
     assert test_invariants.assert_planks_balance(design, check_design(design)) >= 9

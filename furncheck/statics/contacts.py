@@ -1,8 +1,10 @@
 """Unilateral, frictional ground contacts: ``solve_case`` and its active set.
 
 ``_ActiveSet`` switches contacts between STICK and LIFT until every normal force is
-admissible, then lets contacts outside their friction cone slip by minimizing the convex
-energy ``friction._FrictionEnergy``; when that fails, the linear programs of
+admissible, then lets contacts outside their friction cone slip: Tresca problems, each
+the minimum of a convex energy in which every corner presses or lifts as its
+displacement says and slips at a fixed friction cap (``friction._FrictionEnergy``), the
+caps updated to mu N until they agree; when that fails, the linear programs of
 ``feasibility`` decide between 'lift-off', 'sliding' and stable, and a stable case's
 forces come from Newton's method on the whole contact law (``newton``), else from the
 program itself.
@@ -19,7 +21,7 @@ from furncheck import tolerances as tol
 from furncheck.plain import plain_number
 from furncheck.statics.anchored import anchored_system
 from furncheck.statics.condense import _accurate
-from furncheck.statics.friction import _anderson, _ContactSpace, _FrictionEnergy
+from furncheck.statics.friction import _anderson, _FrictionEnergy
 from furncheck.statics.model import CaseStatics, StaticsModel, rigid_motions, spring_rows
 
 if TYPE_CHECKING:   # the programs and Newton's method are imported where a case needs them
@@ -46,9 +48,9 @@ def solve_case(model: StaticsModel, f: np.ndarray,
 
     Where the normal phase's statuses cycle (a contact that pulls while its anchor holds
     it sideways sinks once lifted), the friction phase, with friction capped, takes over
-    from the last iterate.  Where the friction phase's caps or statuses go round, the
-    semismooth Newton method on the whole contact law (``newton``) is tried from its last
-    iterate.  When the active set, the friction phase and that cannot settle, the
+    from the last iterate.  Where the friction phase's caps do not settle, the semismooth
+    Newton method on the whole contact law (``newton``) is tried from its last
+    minimizer.  When the active set, the friction phase and that cannot settle, the
     linear programs of ``feasibility`` decide: 'lift-off' only when no equilibrium exists
     with normal forces >= 0 even with unlimited friction, 'sliding' only when none exists
     inside the friction cones; otherwise the case is stable, with the equilibrium of the
@@ -96,7 +98,7 @@ def solve_case(model: StaticsModel, f: np.ndarray,
     if frictional is not None:
         settled_status, settled = frictional
         return solver.stable(settled, settled_status)
-    if solver.cycled:       # the caps or statuses went round: not a sign of sliding
+    if solver.cycled:       # the caps did not settle: not a sign of sliding
         settled = solver.by_newton(solver.last_ground)
         if settled is not None:
             return settled
@@ -145,7 +147,6 @@ class _ActiveSet:
         self.disp_tol = self.force_tol / model.contact_stiffness
         self.mu = model.friction
         self.anchored = model.contact_anchored
-        self._spaces: dict[bytes, _ContactSpace] = {}
         self.cycled, self.last_ground = False, None     # of the last friction phase
 
     # -- phases --------------------------------------------------------------------------------
@@ -181,27 +182,28 @@ class _ActiveSet:
         A slipping contact's anchor is relocated so that its spring pulls with exactly
         mu N, against the contact's motion: the tangential spring is elastic-perfectly-
         plastic.  With the normal forces N of the last iterate as the caps, the equilibrium
-        minimizes a convex energy of the grounded planks' displacements (see
-        ``_FrictionEnergy``), solved by Newton's method with a line search along each step
-        in closed form; a contact that pulls then lifts, and a lifted one that the
-        slipping pushed below the floor is seated again (either way the caps restart from
-        the normal forces), else the caps are updated from the new normal forces until they
-        agree (to the force tolerance): by Newton's method on the caps
-        (``_FrictionEnergy.cap_newton``, which also predicts where the next minimum lies),
-        or by Anderson's mixing of the last iterates where a Newton update did not shrink
-        the disagreement.  Only the solution returned is assembled in full.  None if there
-        is no minimum (the load exceeds what friction can hold: ``cycled`` False) or the caps
-        or statuses do not settle (``cycled`` True; ``last_ground``: the last minimizer, from
-        which ``solve_case`` starts Newton's method on the whole law before the programs).
+        minimizes a convex energy of the grounded planks' displacements in which every
+        corner presses or lifts as its displacement says (see ``_FrictionEnergy``),
+        solved by Newton's method with a line search along each step in closed form; the
+        caps are then updated from the new normal forces until they agree (to the force
+        tolerance): by Newton's method on the caps (``_FrictionEnergy.cap_newton``, which
+        also predicts where the next minimum lies), or by Anderson's mixing of the last
+        iterates where a Newton update did not shrink the disagreement.  The iterations
+        start from ``start``, the normal phase's solution, with the caps of its forces
+        (``status``, its contacts' statuses, is read from them).  Only the solution
+        returned is assembled in full.  None if there is no minimum (the load exceeds what
+        friction can hold: ``cycled`` False) or the caps do not settle within
+        FRICTION_CAP_ITERATIONS (``cycled`` True; ``last_ground``: the last minimizer, from
+        which ``solve_case`` starts Newton's method on the whole law before the
+        programs).
         """
-        status = status.copy()
         ground = start.ground
         caps = self._caps(start.contact_forces)
         history: list[tuple[np.ndarray, np.ndarray]] = []     # (caps, the caps they gave)
         disagreement = np.inf
         self.cycled, self.last_ground = True, ground
         for _ in range(tol.FRICTION_CAP_ITERATIONS):
-            energy = _FrictionEnergy(self, status != LIFT, caps)
+            energy = _FrictionEnergy(self, caps)
             ground = energy.minimize(ground)
             if ground is None:
                 self.cycled = False
@@ -209,12 +211,10 @@ class _ActiveSet:
             self.last_ground = ground
             forces, displacements = energy.contact_state(ground)
             new_caps = self._caps(forces)
-            if self._update_normals(forces, displacements, status):
-                caps, history, disagreement = new_caps, [], np.inf
-                continue
             residual = new_caps - caps
             size = np.abs(residual).max(initial=0.0)
             if size <= self.force_tol:
+                status = np.where(self._pressing(forces), STICK, LIFT)
                 return status, self.assemble(ground, forces, displacements)
             history = [*history[-tol.FRICTION_CAP_MEMORY:], (caps, new_caps)]
             newton = energy.cap_newton(ground, caps, residual) if size < disagreement else None
@@ -519,12 +519,14 @@ class _ActiveSet:
         """The solution from the grounded planks' displacements x_g."""
         return _Solution(self, forces, displacement, ground)
 
-    def contact_space(self, active: np.ndarray) -> _ContactSpace:
-        """``_ContactSpace`` of the active contacts, kept per active set."""
-        key = active.tobytes()
-        if key not in self._spaces:
-            self._spaces[key] = _ContactSpace(self.model, active)
-        return self._spaces[key]
+    def contact_map(self) -> np.ndarray:
+        """(3 nK, n) the contact displacements w = map @ x of every contact (x the grounded
+        planks' displacements, w per contact x, y, z; a resting corner's relative to
+        the node it rests on), dense, kept per model (``StaticsModel.contact_spaces``)."""
+        kept = self.model.contact_spaces
+        if "map" not in kept:
+            kept["map"] = _contact_map(self.model)
+        return kept["map"]
 
     def _restrained(self, holding: np.ndarray) -> bool:
         """Every grounded component is held in all six rigid directions by its holding
@@ -565,6 +567,19 @@ class _ActiveSet:
             ids |= {model.geometry.contacts[model.contacts[k]].on
                     for k in np.nonzero(mask)[0] if model.rest_node[k] >= 0}
         return tuple(p.id for p in design.planks if p.id in ids)
+
+
+def _contact_map(model: StaticsModel) -> np.ndarray:
+    """``_ActiveSet.contact_map`` of ``model``."""
+    condensed = model.condensation
+    maps = model.contact_maps                                       # (nK, 3, 6)
+    count, blocks = len(maps), len(condensed.plank_offsets)
+    dense = np.zeros((count, 3, blocks, 6))
+    dense[np.arange(count), :, condensed.contact_block, :] = maps
+    if model.rest_node is not None:         # a resting corner moves against its support
+        rows = np.flatnonzero(model.rest_node >= 0)
+        dense[rows, :, model.ground_block[model.rest_node[rows]], :] -= model.rest_maps[rows]
+    return dense.reshape(3 * count, 6 * blocks)
 
 
 def _rigidly_held(model: StaticsModel, holding: np.ndarray) -> bool:

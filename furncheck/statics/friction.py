@@ -1,13 +1,23 @@
-"""The friction phase's energy: contacts that slip, as elastic-perfectly-plastic springs.
+"""The friction phase's energy: Tresca problems, every contact unilateral and its friction
+capped at a fixed force.
 
 ``_FrictionEnergy`` is the condensed potential energy of the grounded nodes' displacements
-with each active contact's anchor spring capped at its friction force mu N (``caps``);
-its minimizer is the equilibrium for those caps (``contacts._ActiveSet.friction_phase``
-updates the caps from the normal forces it gives).  Newton steps solve through the
-all-sticking system by Woodbury's identity (``_ContactSpace``), and the line search along
-a step is exact in closed form (``_StepSlope``: each contact's displacement is affine in
-the step length, its stick/slip breakpoints the roots of a quadratic).  ``_anderson``
-mixes cap iterates where Newton's method on the caps does not shrink their mismatch.
+with every contact's normal spring pushing only (a corner that lifts carries nothing)
+and its anchor spring elastic-perfectly-plastic, capped at its friction cap (``caps``);
+its minimizer is the equilibrium for those caps, every corner pressing or lifted as its
+own displacement says (``contacts._ActiveSet.friction_phase`` updates the caps to mu N of
+the normal forces it gives, until they agree).  Newton's steps factor the small condensed
+Hessian afresh, and the line search along a step is exact in closed form (``_StepSlope``:
+each contact's displacement is affine in the step length, its breakpoints the roots of a
+quadratic or a line).  ``_anderson`` mixes cap iterates where Newton's method on the caps
+does not shrink their mismatch.
+
+Earlier versions lifted and re-seated corners between minimizations, each with the
+normal springs of its contacts' statuses; a corner that lifts once friction is capped and
+sinks once another slips sent those statuses round (a tenth of the elastic cabinet's
+``range`` cases, settled only by Newton's method on the whole contact law or the linear
+programs, at ten times the cost).  Inside the energy, pressing and lifting are part of
+the minimization and cannot go round.
 """
 
 from __future__ import annotations
@@ -18,216 +28,110 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.statics.anchored import _Factored, anchored_system, condensed_stiffness
+from furncheck.statics.anchored import _Factored, condensed_stiffness
 from furncheck.statics.lapack import cholesky, routines
-from furncheck.statics.model import StaticsModel, spring_rows
 
 if TYPE_CHECKING:
     from furncheck.statics.contacts import _ActiveSet
 
 
 _EYE2 = np.eye(2)
-_TWO = np.arange(2)
 
 _ROUNDOFF = 1e-13
 """Relative round-off of a matrix-vector product of the condensed system (a few hundred
 terms of double precision)."""
 
 
-class _ContactSpace:
-    """What the friction energy of one set of active contacts needs besides the caps, kept
-    per active set (the caps change from one iteration to the next, the set seldom):
-
-    map : (3 na, n) the contact displacements w = map @ x (x the grounded planks'
-        displacements, w per active contact x, y, z), dense
-    tangential : (2 na, n) its rows of w_x and w_y, T
-    system : A = S0 + k sum_active M^T M, the condensed matrix with every active contact
-        sticking, ``_Factored`` (``anchored_system``, kept per model)
-    reach : (n, 2 na) A^-1 T^T, or None (not built yet, or A singular)
-    compliance : (2 na, 2 na) T A^-1 T^T: the contacts' tangential displacements under
-        unit tangential forces at the contacts, all sticking
-    normal_compliance : (na, 2 na) their normal displacements under the same forces
-
-    ``reach`` and the compliances cost about two factorings of the Hessian, so they are
-    built only for an active set that needs more than DIRECT_NEWTON_SOLVES solves.
-    """
-
-    def __init__(self, model: StaticsModel, active: np.ndarray):
-        key = active.tobytes()
-        shared = model.contact_spaces.get(key)
-        if shared is None:          # the maps and A's pieces serve every load case
-            shared = model.contact_spaces[key] = _SharedSpace(model, active)
-        self.map, self.tangential = shared.map, shared.tangential
-        self.model, self.active = model, active
-        self.reach: np.ndarray | None = None
-        self.solves = 0
-        self._shared = shared
-
-    def through_sticking(self) -> bool:
-        """Whether a Hessian solve (counted here, per load case) goes through A by
-        Woodbury's identity: once more than DIRECT_NEWTON_SOLVES were asked of this active
-        set, if A is regular."""
-        self.solves += 1
-        if self.solves == tol.DIRECT_NEWTON_SOLVES + 1:
-            shared = self._shared.through_sticking(self.model)
-            self.system, self.reach = shared.system, shared.reach
-            if self.reach is not None:
-                self.compliance = shared.compliance
-                self.normal_compliance = shared.normal_compliance
-        return self.reach is not None
-
-
-class _SharedSpace:
-    """What ``_ContactSpace`` holds of an active set that does not depend on the load case
-    (kept per model: ``StaticsModel.contact_spaces``): the maps, and A's factor, reach
-    and compliances once a case asks for them (``through_sticking``)."""
-
-    def __init__(self, model: StaticsModel, active: np.ndarray):
-        condensed = model.condensation
-        maps = model.contact_maps[active]                           # (na, 3, 6)
-        count, blocks = len(maps), len(condensed.plank_offsets)
-        dense = np.zeros((count, 3, blocks, 6))
-        dense[np.arange(count), :, condensed.contact_block[active], :] = maps
-        if model.rest_node is not None:         # a resting corner moves against its support
-            resting = np.flatnonzero(model.rest_node[active] >= 0)
-            if resting.size:
-                rows = np.flatnonzero(active)[resting]
-                dense[resting, :, model.ground_block[model.rest_node[rows]], :] -= \
-                    model.rest_maps[rows]
-        self.map = dense.reshape(3 * count, 6 * blocks)
-        self.tangential = np.ascontiguousarray(dense[:, :2].reshape(2 * count, 6 * blocks))
-        self.active = active        # not the model: it keeps this (no reference cycle)
-        self.system = None
-
-    def through_sticking(self, model: StaticsModel) -> _SharedSpace:
-        """Itself, with A factored (``anchored_system`` of ``model``, the one that keeps
-        it), reach = A^-1 T^T (None if A is singular) and the compliances, made on the
-        first call."""
-        if self.system is None:
-            self.system = anchored_system(model, self.active)
-            self.reach = self.system.solve(self.tangential.T)
-            if self.reach is not None:
-                self.compliance = self.tangential @ self.reach
-                self.normal_compliance = self.map[2::3] @ self.reach
-        return self
-
-
 class _FrictionEnergy:
-    """The condensed potential energy with elastic-perfectly-plastic friction springs.
+    """The condensed potential energy of one Tresca problem: every contact unilateral, its
+    friction capped at a fixed force.
 
     For the grounded planks' displacements x (x_g of ``_Condensed``), with w_k = M_k x
-    the displacement of contact k, k the spring stiffness and c_k = mu N_k its friction cap:
+    the displacement of contact k, k its spring stiffness and c_k its friction cap:
 
-        Phi(x) = 1/2 x.S0.x - b.x + sum_active [ 1/2 k w_z^2 + psi(|w_t|) ]
+        Phi(x) = 1/2 x.S0.x - b.x + sum_k [ 1/2 k min(w_z, 0)^2 + psi(|w_t|) ]
         psi(r) = 1/2 k r^2           if k r <= c      (sticking to its anchor)
                = c r - c^2 / (2 k)   otherwise         (slipping: force c against w_t)
 
-    Phi is convex and once differentiable; its minimizer is the equilibrium, and it has
-    none when the loads exceed what friction can hold (the design slides).
+    (an anchor's tie pulls as well as it pushes: 1/2 k w_z^2, and never slips).  Phi is
+    convex and once differentiable; its minimizer is the equilibrium of the caps c, each
+    corner pressing or lifted as its own displacement says, and it has none when the
+    loads exceed what the caps can hold (the design slides).  ``contacts._ActiveSet.
+    friction_phase`` updates the caps to mu N of the normal forces the minimizer gives
+    until they agree (Coulomb's law).
 
-    Its Hessian is H = A - sum_slipping T_k^T D_k T_k: the all-sticking matrix A of
-    ``_ContactSpace`` (factored once per active set) less, at each slipping contact, the
-    tangential stiffness it lost, D_k = k I - (c / r) (I - u u^T) (u its slip direction,
-    T_k its two rows of T).  Newton's steps solve with H through A by Woodbury's identity
-    (a dense system of twice the slipping contacts' size) instead of factoring H afresh,
-    once the active set has had DIRECT_NEWTON_SOLVES solves.
+    Its Hessian is S0 + sum_k M_k^T D_k M_k with D_k of the contact's state: k along the
+    normal where it presses (0 where it lifts); k I across the floor where it sticks, and
+    where it slips the stiffness it keeps, (c / r) (I - u u^T) (u its slip direction), and
+    a feeble SLIP_STIFFNESS k along u (so that a design free to slide is not singular);
+    factored afresh at each Newton step (the condensed system is small: Woodbury updates
+    of one factored matrix per pattern of pressing contacts, or per minimization, tried,
+    met 6 to 20 contacts per step whose springs had changed on the catalog's cabinet, and
+    took longer).
     """
 
-    def __init__(self, solver: _ActiveSet, active: np.ndarray, caps: np.ndarray):
+    def __init__(self, solver: _ActiveSet, caps: np.ndarray):
+        model = solver.model
         self.solver = solver
-        self.model = solver.model
-        self.space = solver.contact_space(active)
-        self.caps = caps[active]
-        self.active = active
+        self.model = model
+        self.map = solver.contact_map()
         self.schur = solver.condensed.schur
         self.rhs = solver.ground_rhs
-        self.k = spring_rows(solver.model.contact_springs, active)   # N/m, scalar or (na,)
+        count = len(model.contacts)
+        self.k = np.broadcast_to(np.asarray(model.contact_springs, dtype=float), (count,))
+        self.tie = np.zeros(count, dtype=bool) if model.contact_anchored is None \
+            else np.asarray(model.contact_anchored, dtype=bool)
+        self.caps = caps
         self._schur_size = float(np.abs(self.schur).max(initial=0.0))
         self._rhs_size = float(np.abs(self.rhs).max(initial=0.0))
-        self._forces_at: np.ndarray | None = None     # the x of the kept _forces
-        self._slips_at: np.ndarray | None = None      # the x of the kept _slips
+        self._state_at: np.ndarray | None = None     # the x of the kept _state
+        self._last_hessian: _Factored | None = None  # of the last Newton step's start
 
-    def _forces(self, x: np.ndarray):
-        """Contact displacements w (na, 3), |w_t| (1 where 0), sticking mask and forces
-        (na, 3) at x (kept for the last x: the gradient, the Newton step and the line
-        search all start from them)."""
-        if x is self._forces_at:
-            return self._forces_kept
+    def _state(self, x: np.ndarray):
+        """Contact displacements w (nK, 3), |w_t| (1 where 0), pressing and sticking masks
+        and forces (nK, 3) at x (kept for the last x: the gradient, the Newton step and the
+        line search all start from them).  A contact without friction (cap 0: it lifted
+        in the caps' iterate) is not sticking."""
+        if x is self._state_at:
+            return self._state_kept
         k, caps = self.k, self.caps
-        w = (self.space.map @ x).reshape(-1, 3)
+        w = (self.map @ x).reshape(-1, 3)
         r = np.hypot(w[:, 0], w[:, 1])
-        sticking = k * r <= caps
+        sticking = (k * r <= caps) & (caps > 0.0)
+        pressing = (w[:, 2] < 0.0) | self.tie
         safe_r = np.where(r > 0.0, r, 1.0)
         forces = w * -np.where(sticking, k, caps / safe_r)[:, None]  # force_t = -scale w_t
-        forces[:, 2] = w[:, 2] * -k
-        self._forces_at, self._forces_kept = x, (w, safe_r, sticking, forces)
-        return self._forces_kept
+        forces[:, 2] = np.where(pressing, w[:, 2] * -k, 0.0)
+        self._state_at, self._state_kept = x, (w, safe_r, pressing, sticking, forces)
+        return self._state_kept
 
     def _gradient(self, x: np.ndarray) -> np.ndarray:
         """dPhi/dx: the out-of-balance generalized force on the grounded planks."""
-        force = self._forces(x)[3]
-        return self.schur @ x - self.rhs - self.space.map.T @ force.ravel()
+        force = self._state(x)[4]
+        return self.schur @ x - self.rhs - self.map.T @ force.ravel()
 
-    def _slips(self, x: np.ndarray):
-        """The slipping contacts at x (indices among the active ones), their rows in T
-        (2 each), their slip directions u (p, 2) and D_k (p, 2, 2), the stiffness each
-        lost by slipping: k I - (c / r) (I - u u^T) - SLIP_STIFFNESS k u u^T (the last a
-        feeble spring along the slip, so that a design free to slide is not singular)."""
-        if x is self._slips_at:
-            return self._slips_kept
-        w, safe_r, sticking, _ = self._forces(x)
-        slipping = np.flatnonzero(~sticking)
-        unit = w[slipping, :2] / safe_r[slipping, None]
-        along = unit[:, :, None] * unit[:, None, :]
-        across = slip_tangent(self.caps[slipping], safe_r[slipping], unit)
-        lost = spring_rows(self.k, slipping, 2) * (_EYE2 - tol.SLIP_STIFFNESS * along) - across
-        rows = (2 * slipping[:, None] + _TWO).ravel()
-        self._slips_at, self._slips_kept = x, (slipping, rows, unit, lost)
-        return self._slips_kept
-
-    def _hessian_solve(self, x: np.ndarray, rhs: np.ndarray) -> np.ndarray | None:
-        """H^-1 rhs (rhs (n,) or (n, m)) by Woodbury's identity: with a = A^-1 rhs,
-        H^-1 rhs = a + Y_P (I - D G_PP)^-1 D T_P a, Y_P = A^-1 T_P^T (``reach``) and
-        G_PP = T_P A^-1 T_P^T (``compliance``) of the slipping contacts P; by H itself
-        for an active set's first DIRECT_NEWTON_SOLVES solves, or where A or the Woodbury
-        system is singular.  None if H is singular."""
-        space = self.space
-        if not space.through_sticking():
-            return self._factored_hessian(x).solve(rhs)
-        base = space.system.solve(rhs)
-        slipping, rows, _, lost = self._slips(x)
-        if base is None or not slipping.size:
-            return base
-        weights = self._woodbury(rows, lost, space.tangential[rows] @ base)
-        if weights is None:
-            return self._factored_hessian(x).solve(rhs)
-        return base + space.reach[:, rows] @ weights
-
-    def _woodbury(self, rows: np.ndarray, lost: np.ndarray,
-                  moved: np.ndarray) -> np.ndarray | None:
-        """(I - D G_PP)^-1 D v for v = ``moved`` (2p,) or (2p, m), the slipping contacts'
-        tangential displacements T_P a; None if singular."""
-        count, tail = len(lost), moved.shape[1:]
-        pulled = np.einsum("kij,kj...->ki...", lost, moved.reshape((count, 2) + tail))
-        compliance = self.space.compliance[rows[:, None], rows].reshape(count, 2, 2 * count)
-        capacitance = np.eye(2 * count) - np.einsum(
-            "kij,kjm->kim", lost, compliance).reshape(2 * count, 2 * count)
-        weights, info = routines().gesv(capacitance, pulled.reshape((2 * count,) + tail))[2:]
-        return weights if info == 0 else None
+    def _springs(self, x: np.ndarray) -> np.ndarray:
+        """(nK, 3, 3) each contact's stiffness D_k at x (class docstring): k along the
+        normal where it presses; k I across where it sticks, where it slips (c / r)
+        (I - u u^T) + SLIP_STIFFNESS k u u^T, and nothing where it has no friction cap."""
+        k, caps = self.k, self.caps
+        w, safe_r, pressing, sticking, _ = self._state(x)
+        springs = np.zeros((len(k), 3, 3))
+        springs[:, 0, 0] = springs[:, 1, 1] = np.where(sticking, k, 0.0)
+        springs[:, 2, 2] = np.where(pressing, k, 0.0)
+        slipping = np.flatnonzero(~sticking & (caps > 0.0))
+        if slipping.size:
+            unit = w[slipping, :2] / safe_r[slipping, None]
+            springs[slipping, :2, :2] = slip_tangent(caps[slipping], safe_r[slipping], unit) \
+                + (tol.SLIP_STIFFNESS * k[slipping])[:, None, None] \
+                * unit[:, :, None] * unit[:, None, :]
+        return springs
 
     def _factored_hessian(self, x: np.ndarray) -> _Factored:
         """The Hessian at x, assembled and shifted by its round-off (SOLVE_RESIDUAL of its
         diagonal) so that a slipping contact's zero stiffness along its slip leaves it
-        factorable, and factored."""
-        k, caps = self.k, self.caps
-        w, safe_r, sticking, _ = self._forces(x)
-        unit = w[:, :2] / safe_r[:, None]
-        tangent = np.where(sticking[:, None, None], spring_rows(k, None, 2) * _EYE2,
-                           slip_tangent(caps, safe_r, unit))
-        springs = np.zeros((len(self.active), 3, 3))
-        springs[self.active, :2, :2] = tangent
-        springs[self.active, 2, 2] = k
-        hessian = condensed_stiffness(self.model, springs)
+        factorable, and factored (by LU where Cholesky fails)."""
+        hessian = condensed_stiffness(self.model, self._springs(x))
         shift = tol.SOLVE_RESIDUAL * max(float(np.abs(np.diag(hessian)).max()), 1.0)
         hessian[np.diag_indices(len(x))] += shift
         return _Factored(hessian, cholesky(hessian))
@@ -246,8 +150,9 @@ class _FrictionEnergy:
             if size <= self._gradient_floor(x):
                 return x
             best = min(best, size)
-            step = self._hessian_solve(x, -gradient)
-            if step is None:
+            self._last_hessian = self._factored_hessian(x)
+            step = self._last_hessian.solve(-gradient)
+            if step is None or not np.all(np.isfinite(step)):
                 return None
             x, gradient = self._line_search(x, step, gradient, best)
             if not np.abs(x).max() <= tol.SLIDING_DISPLACEMENT:
@@ -266,14 +171,14 @@ class _FrictionEnergy:
         start's (Newton's step near the minimum); where it is still < 0 but has risen to
         LINE_SEARCH_EXTEND of the start's or less; and, whatever the slope, where it brings
         the largest out-of-balance force below FULL_STEP_GRADIENT of ``best``, the least
-        met so far (a step that lets many contacts change between sticking and slipping
-        at once).  Otherwise the slope's zero is sought (``_StepSlope``: each contact's
-        displacement is affine in t, so the slope is a sum of closed forms, O(contacts)
-        per t): below t = 1 between the breakpoints where contacts pass between sticking
-        and slipping, beyond t = 1 (the energy is much flatter than the Hessian said, as
-        along a sliding motion) by doubling t, up to where the displacements pass
-        SLIDING_DISPLACEMENT (Phi has no minimum there: the design slides)."""
-        w, _, _, force = self._forces(x)
+        met so far (a step that lets many contacts change state at once).  Otherwise the
+        slope's zero is sought (``_StepSlope``: each contact's displacement is affine in
+        t, so the slope is a sum of closed forms, O(contacts) per t): below t = 1 between
+        the breakpoints where contacts lift, press, stick or slip, beyond t = 1 (the
+        energy is much flatter than the Hessian said, as along a sliding motion) by
+        doubling t, up to where the displacements pass SLIDING_DISPLACEMENT (Phi has no
+        minimum there: the design slides)."""
+        w, _, _, _, force = self._state(x)
         slope0 = float(gradient @ step)
         full = x + step
         full_gradient = self._gradient(full)
@@ -287,8 +192,8 @@ class _FrictionEnergy:
             return full, full_gradient
         if np.abs(full_gradient).max() <= tol.FULL_STEP_GRADIENT * best:
             return full, full_gradient
-        moved = (self.space.map @ step).reshape(-1, 3)
-        slope = _StepSlope(w, force, moved, self.k, self.caps, slope0,
+        moved = (self.map @ step).reshape(-1, 3)
+        slope = _StepSlope(w, force, moved, self.k, self.caps, self.tie, slope0,
                            float(step @ (self.schur @ step)))
         t = slope.zero(full_slope,
                        (tol.SLIDING_DISPLACEMENT + np.abs(x).max()) / np.abs(step).max())
@@ -303,70 +208,64 @@ class _FrictionEnergy:
         minimizer x of Phi with caps c gives; ``residual`` = G(c) - c, both (nK,)).
 
         A slipping contact's force changes with its cap by -u (u its slip direction), so
-        the minimizer moves by dx = -H^-1 T_k^T u dc (H the Hessian at x) and the normal
-        forces N = -k w_z with it: that is G' (columns only for the slipping contacts; a
+        the minimizer moves by dx = -H^-1 T_k^T u dc (H the Hessian at x, T_k the
+        contact's two tangential rows of M) and the normal forces N = -k w_z of the
+        pressing contacts with it: that is G' (columns only for the slipping contacts; a
         sticking contact's cap changes nothing).  Solves (I - G') dc = G(c) - c on the
         slipping contacts' caps and returns the caps c + dc (>= 0) with the minimizer
         x + dx predicted for them (the next ``minimize`` starts there); None if I - G' or
-        H is singular."""
-        force = self._forces(x)[3]
-        slipping, rows, unit, lost = self._slips(x)
+        H is singular.  H is the one factored at the start of ``minimize``'s last Newton
+        step, where there was one (that step met the force tolerance: its contacts'
+        states are x's, their slip directions nearly; an approximate G' costs the caps'
+        iteration nothing on the catalog and saves a factoring per update)."""
+        w, safe_r, pressing, sticking, force = self._state(x)
+        slipping = np.flatnonzero(~sticking & (self.caps > 0.0))
         if not slipping.size:               # G' = 0: the plain update is Newton's
             return caps + residual, x
-        space, count = self.space, len(slipping)
-        spread = np.zeros((count, 2, count))                  # B = T_P^T spread
-        spread[np.arange(count), :, np.arange(count)] = unit
-        spread = spread.reshape(2 * count, count)
-        weights = None if not space.through_sticking() else self._woodbury(
-            rows, lost, space.compliance[rows[:, None], rows] @ spread)
-        if weights is None:                 # by H itself
-            moves = self._factored_hessian(x).solve(space.tangential[rows].T @ spread)
-            if moves is None:
-                return None
-            normal_moves = space.map[2::3] @ moves
-        else:                               # H^-1 B = Y_P (spread + weights)
-            combined = spread + weights
-            normal_moves = space.normal_compliance[:, rows] @ combined
-        pressing = force[:, 2] > 0.0
-        jacobian = (self.solver.mu * spring_rows(self.k, None, 1)) * normal_moves \
-            * pressing[:, None]                                                   # (na, p)
-        change, info = routines().gesv(np.eye(count) - jacobian[slipping],
-                             residual[self.active][slipping])[2:]
+        unit = w[slipping, :2] / safe_r[slipping, None]
+        tangential = self.map.reshape(-1, 3, self.map.shape[1])[slipping, :2]  # (p, 2, n)
+        pushed = np.einsum("pi,pin->np", unit, tangential)                    # T_P^T U
+        moves = (self._last_hessian or self._factored_hessian(x)).solve(pushed)
+        if moves is None or not np.all(np.isfinite(moves)):
+            return None
+        normal_moves = self.map[2::3] @ moves                                  # (nK, p)
+        pressed = pressing & (force[:, 2] > 0.0)
+        jacobian = (self.solver.mu * self.k * pressed)[:, None] * normal_moves
+        change, info = routines().gesv(np.eye(len(slipping)) - jacobian[slipping],
+                                       residual[slipping])[2:]
         if info != 0:
             return None
-        new_caps = caps + residual
-        new_caps[self.active] += jacobian @ change
-        shift = moves @ change if weights is None else space.reach[:, rows] @ (combined @ change)
-        return np.maximum(new_caps, 0.0), x - shift
+        new_caps = caps + residual + jacobian @ change
+        return np.maximum(new_caps, 0.0), x - moves @ change
 
     def contact_state(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The contact forces and displacements (nK, 3) at x: zero force where lifted,
-        and the lifted contacts' own displacements (a lifted corner that the slipping
-        has pushed below the floor must be seated again)."""
-        _, _, _, force = self._forces(x)
-        forces = np.zeros((len(self.active), 3))
-        forces[self.active] = force
-        return forces, self.solver.contact_displacements(x)
+        """The contact forces and displacements (nK, 3) at x (zero force where a corner
+        lifted)."""
+        return self._state(x)[4].copy(), self.solver.contact_displacements(x)
 
 
 class _StepSlope:
     """The slope of Phi along x + t d (t >= 0) in closed form, from each contact's path
     w(t) = w + t dw:
 
-        Phi'(t) = Phi'(0) + t (d.S0.d + k sum dw_z^2) + sum_k [s_k(t) - s_k(0)]
-        s_k(t) = k p                 sticking (|w_t(t)| <= c_k / k)
-               = c_k p / |w_t(t)|    slipping,     p = w_t(t).dw_t
+        Phi'(t) = Phi'(0) + t d.S0.d + sum_k [s_k(t) - s_k(0)]
+        s_k(t) = k w_t(t).dw_t + k min(w_z(t), 0) dw_z       sticking (|w_t(t)| <= c_k / k)
+               = c_k w_t(t).dw_t / |w_t(t)| + ...             slipping
 
-    (s_k(0) = -F_t.dw_t from the forces F at x): O(contacts) per t, no matrix product."""
+    (an anchor's tie: k w_z(t) dw_z, pressing or not; s_k(0) = -F.dw from the forces F
+    at x): O(contacts) per t, no matrix product.  Its breakpoints are where a contact
+    passes between sticking and slipping or between pressing and lifting."""
 
-    def __init__(self, w: np.ndarray, force: np.ndarray, dw: np.ndarray, k: float,
-                 caps: np.ndarray, slope0: float, stretch: float):
+    def __init__(self, w: np.ndarray, force: np.ndarray, dw: np.ndarray, k: np.ndarray,
+                 caps: np.ndarray, tie: np.ndarray, slope0: float, stretch: float):
         self.wx, self.wy, self.dx, self.dy = w[:, 0], w[:, 1], dw[:, 0], dw[:, 1]
         self.k, self.caps, self.start = k, caps, slope0
         self.radius2 = (caps / k) ** 2                              # of the sticking disc
-        self.base = slope0 + float((force[:, :2] * dw[:, :2]).sum())
-        self.curvature = stretch + (k * float(dw[:, 2] @ dw[:, 2]) if not isinstance(k, np.ndarray)
-                                    else float((k * dw[:, 2]) @ dw[:, 2]))
+        free = ~tie                                                 # unilateral normals
+        self.wz, self.dz, self.kz = w[free, 2], dw[free, 2], k[free]
+        self.base = slope0 + float((force[:, :2] * dw[:, :2]).sum()) \
+            + float(force[free, 2] @ dw[free, 2])
+        self.curvature = stretch + float((k[tie] * dw[tie, 2]) @ dw[tie, 2])
         self.alpha = self.dx * self.dx + self.dy * self.dy          # |dw_t|^2
         self.beta = self.wx * self.dx + self.wy * self.dy           # w_t.dw_t
 
@@ -407,44 +306,47 @@ class _StepSlope:
         return self._root(low, high, low_slope, high_slope)
 
     def _breakpoints(self) -> np.ndarray:
-        """Sorted t > 0 where a contact passes between sticking and slipping: the roots of
-        |w_t + t dw_t|^2 = (c / k)^2."""
+        """Sorted t > 0 where a contact passes between sticking and slipping (the roots of
+        |w_t + t dw_t|^2 = (c / k)^2) or between pressing and lifting (w_z + t dw_z = 0)."""
         alpha, beta = self.alpha, self.beta
         excess = self.wx * self.wx + self.wy * self.wy - self.radius2
         discriminant = beta * beta - alpha * excess
         real = (alpha > 0.0) & (discriminant > 0.0)
         q = -(beta[real] + np.copysign(np.sqrt(discriminant[real]), beta[real]))
-        roots = np.concatenate([q / alpha[real], excess[real] / q])
+        moving = self.dz != 0.0
+        roots = np.concatenate([q / alpha[real], excess[real] / q,
+                                -self.wz[moving] / self.dz[moving]])
         return np.sort(roots[roots > 0.0])
 
     def _at(self, t: np.ndarray) -> np.ndarray:
         """The slope at each t (m,)."""
-        px = self.wx[:, None] + self.dx[:, None] * t                # (na, m)
+        px = self.wx[:, None] + self.dx[:, None] * t                # (nK, m)
         py = self.wy[:, None] + self.dy[:, None] * t
         along = px * self.dx[:, None] + py * self.dy[:, None]
         radius2 = px * px + py * py
         sticking = radius2 <= self.radius2[:, None]
         slipping = self.caps[:, None] * along / np.sqrt(np.where(sticking, 1.0, radius2))
-        terms = np.where(sticking, spring_rows(self.k, None, 1) * along, slipping)
-        return self.base + self.curvature * t + terms.sum(axis=0)
+        terms = np.where(sticking, self.k[:, None] * along, slipping)
+        normal = (self.kz * self.dz)[:, None] * np.minimum(
+            self.wz[:, None] + self.dz[:, None] * t, 0.0)
+        return self.base + self.curvature * t + terms.sum(axis=0) + normal.sum(axis=0)
 
     def _root(self, low: float, high: float, low_slope: float, high_slope: float) -> float:
         """The zero of the slope in [low, high] (< 0 at low, >= 0 at high, no contact
-        changing state in between): exact where every contact sticks (the slope is
-        linear), else by Newton's method on the smooth slope, from the full step (t = 1)
+        changing state in between): exact where no contact slips (the slope is linear),
+        else by Newton's method on the smooth slope, from the full step (t = 1)
         if it lies in the bracket, kept in the bracket (the secant through its ends where
         a Newton step would leave it), until the slope is within LINE_SEARCH_SLOPE of its
         start or the bracket within LINE_SEARCH_BRACKET of its size."""
         middle = 0.5 * (low + high)
         px, py = self.wx + middle * self.dx, self.wy + middle * self.dy
         sticking = px * px + py * py <= self.radius2
-        k = self.k
-        if not isinstance(k, np.ndarray):
-            constant = self.base + k * float(self.beta[sticking].sum())
-            linear = self.curvature + k * float(self.alpha[sticking].sum())
-        else:                               # the anchors' ties have their own springs
-            constant = self.base + float(k[sticking] @ self.beta[sticking])
-            linear = self.curvature + float(k[sticking] @ self.alpha[sticking])
+        pressing = self.wz + middle * self.dz < 0.0
+        k, kz = self.k, self.kz[pressing] * self.dz[pressing]
+        constant = self.base + float(k[sticking] @ self.beta[sticking]) \
+            + float(kz @ self.wz[pressing])
+        linear = self.curvature + float(k[sticking] @ self.alpha[sticking]) \
+            + float(kz @ self.dz[pressing])
         slipping = ~sticking & (self.caps > 0.0)
         if not slipping.any() and linear > 0.0:
             return min(max(-constant / linear, low), high)

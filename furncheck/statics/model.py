@@ -307,8 +307,8 @@ class StaticsModel:
 
     @cached_property
     def contact_spaces(self) -> dict:
-        """Active contact set -> ``friction._SharedSpace``: what the friction phases of
-        all load cases share of it (filled by ``friction._ContactSpace``)."""
+        """What the contact iterations of all load cases share: 'map', the contacts'
+        displacements from the grounded planks' (``contacts._ActiveSet.contact_map``)."""
         return {}
 
     @cached_property

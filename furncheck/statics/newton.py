@@ -1,6 +1,6 @@
 """The whole contact law at once: a semismooth Newton method, for the cases that the active
 set and the friction phase cannot settle: ``contacts.solve_case`` asks it from the
-friction phase's last minimizer where that phase went round, and
+friction phase's last minimizer where that phase's caps did not settle, and
 ``contacts._ActiveSet.from_programs`` from every contact sticking once the friction
 program has found that an equilibrium exists, before taking the program's own forces.
 
@@ -19,11 +19,9 @@ halving it until the residual's norm falls (Armijo); where no halving makes it f
 kink of f lies right at x, and the Jacobian there is the wrong side's), the smallest
 step is taken all the same: it crosses the kink, and the next step uses the Jacobian
 beyond it.  Unlike the active set, no contact status is carried from one iteration to
-the next, so statuses that switch back and forth there (a corner that lifts once
-friction is capped and sinks again once another slips) cannot cycle here: the residual
-decides.  The root, where found, is the same equilibrium the active set reaches where
-it settles (the catalog's cabinet: four cases, forces within 1e-9); with friction,
-where several equilibria could exist, it is one of them.
+the next: the residual decides.  The root, where found, is the same equilibrium the
+friction phase reaches where it settles (``tests/test_contact_cycles.py``); with
+friction, where several equilibria could exist, it is one of them.
 """
 
 from __future__ import annotations
@@ -71,7 +69,7 @@ def newton_equilibrium(solver: _ActiveSet, start: np.ndarray):
     when the displacements pass SLIDING_DISPLACEMENT."""
     model = solver.model
     count = len(model.contacts)
-    mapping = solver.contact_space(np.ones(count, dtype=bool)).map
+    mapping = solver.contact_map()
     schur, rhs = solver.condensed.schur, solver.ground_rhs
     springs = np.broadcast_to(np.asarray(model.contact_springs, dtype=float), (count,))
     size = float(np.abs(schur).max(initial=0.0)), float(np.abs(rhs).max(initial=0.0))
