@@ -174,3 +174,48 @@ def test_a_proven_infeasible_program_is_infeasible():
     f = external_forces(model, design.load_cases[0])
     assert feasibility.unilateral_feasible(model, f).status == feasibility.INFEASIBLE
     assert check_design(design).cases[0].stability == "lift-off"
+
+
+PINS = Path(__file__).resolve().parents[1] / "designs" / "bookcase-pins.yaml"
+
+
+def _pins_turned(degrees: float, model_name: str):
+    """The catalog's bookcase on shelf pins with ``side_r`` turned about x by ``degrees``
+    (its neighbours following, as ``range`` edits it): the model and its 'push' loads."""
+    from furncheck.design import load_design
+    from furncheck.design.model import with_model
+    from furncheck.dofs import apply_dof, parse_dof, structure
+    from furncheck.edit_check import standing_geometry
+
+    design = with_model(load_design(str(PINS)), model_name)
+    frame = structure(design, standing_geometry(analyze(design)))
+    edited = apply_dof(design, frame, parse_dof(design, "side_r.rx"), degrees)
+    model = build_model(edited, analyze(edited))
+    case = next(c for c in edited.load_cases if c.name == "push")
+    return model, external_forces(model, case)
+
+
+@pytest.mark.parametrize("model_name", ["rigid", "elastic"])
+@pytest.mark.parametrize("degrees", [-23.0, -23.2, -23.4, -23.7, -24.1, -24.4, -24.9])
+def test_a_mechanism_is_not_read_as_stable(model_name, degrees):
+    """``range`` met these edits: with ``side_r`` turned beyond about -23.3 degrees, the
+    unilateral program finds no equilibrium with normal forces >= 0 (the design topples
+    under its push), yet some contact states' linear solves passed the backward-error
+    check with the grounded planks displaced by some 2e6 m (a mechanism regular only by
+    round-off: the residual is judged against the matrix times those displacements) and
+    the case read stable, its ground forces missing the loads by 7.7 N.  The verdict is
+    stable exactly where the program finds an equilibrium, and a stable case's ground
+    forces balance its loads (sum F_c + sum F = 0 to 1e-6 of the loads; the resting
+    corners' forces are internal)."""
+    model, f = _pins_turned(degrees, model_name)
+    statics = solve_case(model, f)
+    exists = feasibility.unilateral_feasible(model, f).exists
+    assert (statics.stability == "stable") == exists
+    if exists:
+        ground = np.ones(len(model.contacts), dtype=bool)
+        if model.rest_node is not None:
+            ground[model.rest_rows] = False
+        scale = contacts_module._force_scale(model, f)
+        missing = statics.contact_forces[ground].sum(axis=0) + f.reshape(-1, 6)[:, :3].sum(axis=0)
+        assert np.abs(missing).max() <= 1e-6 * scale
+    assert exists == (degrees > -23.3)

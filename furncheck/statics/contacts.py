@@ -484,7 +484,10 @@ class _ActiveSet:
     # -- the linear solve ----------------------------------------------------------------------
     def solve(self, status: np.ndarray, stiffness_scale: float = 1.0,
               load_scale: float = 0.0) -> _Solution | None:
-        """Solve the mixed system for the given contact states; None if it is a mechanism.
+        """Solve the mixed system for the given contact states; None if it is a mechanism:
+        singular, or regular only by round-off, its contact springs then deflecting by
+        more than SLIDING_DISPLACEMENT (the backward-error check passes such a solve: the
+        residual is judged against the matrix times the huge displacements).
         ``load_scale`` (N): the loads' size, for judging a solve whose right-hand side is
         far smaller (balanced loads).
 
@@ -500,6 +503,8 @@ class _ActiveSet:
         ground = system.solve(self.ground_rhs)
         if ground is None or not _accurate(system.matrix, ground, self.ground_rhs, load_scale):
             return None
+        if stiffness_scale == 1.0 and not np.abs(ground).max() <= tol.SLIDING_DISPLACEMENT:
+            return None     # a mechanism in all but round-off: the springs cannot hold it
         displacement = self.contact_displacements(ground)
         # the anchor springs: k (x the scale) in all three directions where a contact holds
         forces = -(spring_rows(model.contact_springs, trailing=1) * stiffness_scale) \
