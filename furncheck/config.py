@@ -31,6 +31,7 @@ from furncheck.report import REPORTERS
 
 PYPROJECT = "pyproject.toml"
 GIT_DIR = ".git"
+"""The folder that marks the top of a git repository (where the search stops)."""
 _MAY_HOLD_TABLE = re.compile(
     r"""tool.*furncheck|^[ \t]*(\[+[ \t]*["']?tool["']?[ \t]*\]|["']?tool["']?[ \t]*=)""",
     re.MULTILINE)
@@ -38,7 +39,6 @@ _MAY_HOLD_TABLE = re.compile(
 ``[tool.furncheck]`` header, a dotted key, or only a comment), a bare ``[tool]`` header
 or a ``tool = {...}`` inline table.  A file with none of them is passed over unparsed (a
 broken file too: it says nothing about furncheck); one with any is parsed in full."""
-"""The folder that marks the top of a git repository (where the search stops)."""
 
 
 class ConfigError(FurncheckError):

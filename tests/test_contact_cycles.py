@@ -302,3 +302,67 @@ def test_forces_imposed_by_the_programs_balance_every_plank(monkeypatch):
     assert statics.stability == "stable" and statics.state is None    # the programs'
     monkeypatch.setattr(test_invariants, "BALANCE", 1e-6)
     assert test_invariants.assert_planks_balance(design, check_design(design)) >= 9
+
+
+@pytest.mark.parametrize("model_name", ["rigid", "elastic"])
+@pytest.mark.parametrize("name", ["bookcase-anchored", "bookcase-pins", "table-racking",
+                                  "cabinet-28"])
+def test_the_line_search_slope_is_the_energys(name, model_name):
+    """The friction phase's exact line search (``friction._StepSlope``) against the energy
+    itself: along a direction d from x, Phi'(t) = grad Phi(x + t d).d, the gradient
+    assembled from the contact law at x + t d (``_FrictionEnergy._gradient``).  From the
+    normal phase's solution of each case, with half its friction caps (so that contacts
+    slip) and a random direction large enough to lift, press, stick and slip corners (+-10
+    d, d of the size of x), the closed form agrees at t = 0.3, 1, 2 and on both sides of its
+    first breakpoints, to 1e-9 of
+    the largest slope; the breakpoints include the corners that pass between pressing and
+    lifting (w_z + t dw_z = 0); along the Newton step from x + 0.3 d, ``zero`` finds the
+    slope's zero where it lies below the full step (within LINE_SEARCH_SLOPE of the
+    start's slope).  Covers the anchors' bilateral ties
+    (bookcase-anchored), resting corners (bookcase-pins) and plain floors."""
+    from furncheck import tolerances as tol
+    from furncheck.design import load_design
+    from furncheck.design.model import with_model
+    from furncheck.statics.friction import _FrictionEnergy, _StepSlope
+
+    design = with_model(load_design(str(CABINET.parent / f"{name}.yaml")), model_name)
+    model = build_model(design, analyze(design))
+    rng = np.random.default_rng(7)
+    normal_crossings = zeros = 0
+    for case in design.load_cases:
+        f = external_forces(model, case)
+        solver = contacts_module._ActiveSet(model, f, contacts_module._force_scale(model, f))
+        found = solver.normal_phase(np.full(len(model.contacts), contacts_module.STICK), False)
+        if found is None:
+            continue
+        solution = found[1]
+        energy = _FrictionEnergy(solver, 0.5 * solver._caps(solution.contact_forces))
+        x = solution.ground
+        d = rng.standard_normal(len(x)) * np.abs(x).max()
+        for far in (10.0 * d, -10.0 * d):      # lift and press corners on every design
+            w, _, _, _, force = energy._state(x)
+            slope0 = float(energy._gradient(x) @ far)
+            moved = (energy.map @ far).reshape(-1, 3)
+            slope = _StepSlope(w, force, moved, energy.k, energy.caps, energy.tie, slope0,
+                               float(far @ (energy.schur @ far)))
+            breaks = slope._breakpoints()
+            free = ~energy.tie & (moved[:, 2] != 0.0)
+            normal_crossings += int(np.isin(breaks, -w[free, 2] / moved[free, 2]).sum())
+            breaks = breaks[:6]
+            ts = np.concatenate([[0.3, 1.0, 2.0], breaks * (1 - 1e-6), breaks * (1 + 1e-6)])
+            expected = np.array([float(energy._gradient(x + t * far) @ far) for t in ts])
+            assert np.abs(slope._at(ts) - expected).max() <= 1e-9 * np.abs(expected).max()
+        near = x + 0.3 * d                      # off the equilibrium: a real step
+        step = energy._factored_hessian(near).solve(-energy._gradient(near))  # Newton's
+        start = float(energy._gradient(near) @ step)
+        w, _, _, _, force = energy._state(near)
+        newton = _StepSlope(w, force, (energy.map @ step).reshape(-1, 3), energy.k,
+                            energy.caps, energy.tie, start, float(step @ (energy.schur @ step)))
+        full = float(newton._at(np.array([1.0]))[0])
+        if start < 0.0 < full:                  # the zero lies below the full step
+            t = newton.zero(full, 1e6)
+            assert 0.0 < t <= 1.0
+            assert abs(float(energy._gradient(near + t * step) @ step)) \
+                <= tol.LINE_SEARCH_SLOPE * -start * (1 + 1e-6)
+            zeros += 1
+    assert normal_crossings > 0 and zeros > 0

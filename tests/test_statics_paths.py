@@ -73,13 +73,19 @@ def test_plank_condensation_matches_the_sparse_mixed_system(path, monkeypatch):
 
 @pytest.mark.parametrize("path", CATALOG, ids=lambda p: p.stem)
 def test_a_warm_start_finds_the_same_equilibrium(path):
+    """Started from the contacts that held (or from none holding), the contact iterations
+    reach the equilibrium of a start from every contact holding: the same verdict, and
+    forces within ten force tolerances (FORCE_REL_TOL of the loads: the iterations stop
+    once the out-of-balance force and the friction caps' mismatch are within one, so two
+    paths may end a few apart; the cabinet's differ by 2.5 of them)."""
     design = load_design(str(path))
     geometry = analyze(design)
     cold = _solutions(design, geometry)
     held = holding_states(design, geometry)
-    _assert_same(cold, _solutions(design, geometry, held), 1e-9)
+    close = 10 * tolerances.FORCE_REL_TOL
+    _assert_same(cold, _solutions(design, geometry, held), close)
     lifted = tuple(None if h is None else np.zeros_like(h) for h in held)
-    _assert_same(cold, _solutions(design, geometry, lifted), 1e-9)
+    _assert_same(cold, _solutions(design, geometry, lifted), close)
 
 
 @pytest.mark.parametrize("path", CATALOG, ids=lambda p: p.stem)

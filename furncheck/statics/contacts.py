@@ -35,6 +35,8 @@ _LINE_DETAIL = ("all its ground contacts lie on one line: it can at best balance
                 "edge, and the least push about it tips the design over")
 _LINE_SLIDING = ("no equilibrium within the friction cones, and its ground contacts lie on "
                  "one line: no forces to show")
+_MECHANISM_DETAIL = ("held down at all its contacts it would still move (a mechanism): no "
+                     "forces to show")
 
 
 def solve_case(model: StaticsModel, f: np.ndarray,
@@ -190,7 +192,8 @@ class _ActiveSet:
         also predicts where the next minimum lies), or by Anderson's mixing of the last
         iterates where a Newton update did not shrink the disagreement.  The iterations
         start from ``start``, the normal phase's solution, with the caps of its forces
-        (``status``, its contacts' statuses, is read from them).  Only the solution
+        (its contacts' statuses ``status`` are not needed: the minimization finds which
+        corners press).  Only the solution
         returned is assembled in full.  None if there is no minimum (the load exceeds what
         friction can hold: ``cycled`` False) or the caps do not settle within
         FRICTION_CAP_ITERATIONS (``cycled`` True; ``last_ground``: the last minimizer, from
@@ -300,7 +303,8 @@ class _ActiveSet:
 
     def unstable(self, stability: str, program: Feasibility | None = None) -> CaseStatics:
         """Report a case without admissible equilibrium: forces as if bolted to the ground
-        (none when even bolted down the contacts, all on one line, cannot hold it)."""
+        (none when even bolted down the contacts cannot hold it: all on one line, or the
+        design a mechanism on them)."""
         from furncheck.statics.feasibility import UNDECIDED
 
         bolted = self.solve(np.full(len(self.model.contacts), STICK))
@@ -308,7 +312,8 @@ class _ActiveSet:
             f"; the solver could not prove it either way ({program.message}), so the "
             "case is not passed")
         if bolted is None:
-            detail = _LINE_DETAIL if stability == "lift-off" else _LINE_SLIDING
+            detail = _MECHANISM_DETAIL if not _on_one_line(self.model.contact_points) else \
+                _LINE_DETAIL if stability == "lift-off" else _LINE_SLIDING
             return CaseStatics(stability, None, None, (), detail + undecided)
         pulling = bolted.contact_forces[:, 2] < -self.force_tol
         if self.anchored is not None:
@@ -572,6 +577,15 @@ class _ActiveSet:
             ids |= {model.geometry.contacts[model.contacts[k]].on
                     for k in np.nonzero(mask)[0] if model.rest_node[k] >= 0}
         return tuple(p.id for p in design.planks if p.id in ids)
+
+
+def _on_one_line(points: np.ndarray) -> bool:
+    """Whether the contact points (nK, 3) lie on one line (or at one point), to
+    MECHANISM_RCOND of their spread."""
+    if len(points) < 2:
+        return True
+    spread = np.linalg.svd(points - points.mean(axis=0), compute_uv=False)
+    return bool(spread[1] <= tol.MECHANISM_RCOND * max(spread[0], 1e-300))
 
 
 def _contact_map(model: StaticsModel) -> np.ndarray:

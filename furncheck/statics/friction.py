@@ -2,15 +2,16 @@
 capped at a fixed force.
 
 ``_FrictionEnergy`` is the condensed potential energy of the grounded nodes' displacements
-with every contact's normal spring pushing only (a corner that lifts carries nothing)
-and its anchor spring elastic-perfectly-plastic, capped at its friction cap (``caps``);
-its minimizer is the equilibrium for those caps, every corner pressing or lifted as its
-own displacement says (``contacts._ActiveSet.friction_phase`` updates the caps to mu N of
-the normal forces it gives, until they agree).  Newton's steps factor the small condensed
-Hessian afresh, and the line search along a step is exact in closed form (``_StepSlope``:
-each contact's displacement is affine in the step length, its breakpoints the roots of a
-quadratic or a line).  ``_anderson`` mixes cap iterates where Newton's method on the caps
-does not shrink their mismatch.
+with every contact's normal spring pushing only (a corner that lifts carries no normal
+force) and its anchor spring elastic-perfectly-plastic, capped at its friction cap
+(``caps``); its minimizer is the equilibrium for those caps, every corner pressing or
+lifted as its own displacement says (``contacts._ActiveSet.friction_phase`` updates the
+caps to mu N of the normal forces it gives, until they agree: within one minimization a
+corner that lifts keeps the friction of its cap, which the next update takes away).
+Newton's steps factor the small condensed Hessian afresh, and the line search along a
+step is exact in closed form (``_StepSlope``: each contact's displacement is affine in the
+step length, its breakpoints the roots of a quadratic or a line).  ``_anderson`` mixes
+cap iterates where Newton's method on the caps does not shrink their mismatch.
 
 Earlier versions lifted and re-seated corners between minimizations, each with the
 normal springs of its contacts' statuses; a corner that lifts once friction is capped and
@@ -207,7 +208,8 @@ class _FrictionEnergy:
         """Newton's step for the caps' fixed point c = G(c) (G: the caps mu N that the
         minimizer x of Phi with caps c gives; ``residual`` = G(c) - c, both (nK,)).
 
-        A slipping contact's force changes with its cap by -u (u its slip direction), so
+        A slipping contact's force changes with its cap by -u (u its slip direction; a
+        contact whose cap is 0 and that has moved is on that branch too), so
         the minimizer moves by dx = -H^-1 T_k^T u dc (H the Hessian at x, T_k the
         contact's two tangential rows of M) and the normal forces N = -k w_z of the
         pressing contacts with it: that is G' (columns only for the slipping contacts; a
@@ -219,7 +221,7 @@ class _FrictionEnergy:
         states are x's, their slip directions nearly; an approximate G' costs the caps'
         iteration nothing on the catalog and saves a factoring per update)."""
         w, safe_r, pressing, sticking, force = self._state(x)
-        slipping = np.flatnonzero(~sticking & (self.caps > 0.0))
+        slipping = np.flatnonzero(~sticking & (np.hypot(w[:, 0], w[:, 1]) > 0.0))
         if not slipping.size:               # G' = 0: the plain update is Newton's
             return caps + residual, x
         unit = w[slipping, :2] / safe_r[slipping, None]
@@ -239,8 +241,8 @@ class _FrictionEnergy:
         return np.maximum(new_caps, 0.0), x - moves @ change
 
     def contact_state(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The contact forces and displacements (nK, 3) at x (zero force where a corner
-        lifted)."""
+        """The contact forces and displacements (nK, 3) at x (no normal force where a
+        corner lifted; its friction is its cap's, zero once the caps agree)."""
         return self._state(x)[4].copy(), self.solver.contact_displacements(x)
 
 
