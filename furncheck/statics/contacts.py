@@ -193,12 +193,11 @@ class _ActiveSet:
         iterates where a Newton update did not shrink the disagreement.  The iterations
         start from ``start``, the normal phase's solution, with the caps of its forces
         (its contacts' statuses ``status`` are not needed: the minimization finds which
-        corners press).  Only the solution
-        returned is assembled in full.  None if there is no minimum (the load exceeds what
-        friction can hold: ``cycled`` False) or the caps do not settle within
-        FRICTION_CAP_ITERATIONS (``cycled`` True; ``last_ground``: the last minimizer, from
-        which ``solve_case`` starts Newton's method on the whole law before the
-        programs).
+        corners press).  Only the solution returned is assembled in full.  None if there
+        is no minimum (the load exceeds what friction can hold: ``cycled`` False) or the
+        caps do not settle within FRICTION_CAP_ITERATIONS (``cycled`` True;
+        ``last_ground``: the last minimizer, from which ``solve_case`` starts Newton's
+        method on the whole law before the programs).
         """
         ground = start.ground
         caps = self._caps(start.contact_forces)
