@@ -233,3 +233,50 @@ def test_a_mechanism_held_down_is_not_said_to_stand_on_one_line():
     assert not contacts_module._on_one_line(line + np.array([[0.0, 0.0, 0.0],
                                                              [0.0, 0.3, 0.0],
                                                              [0.0, 0.0, 0.0]]))
+
+
+SWEPT = ["table", "table-racking", "stool", "bookshelf-20", "cabinet-28", "chair-tilted",
+         "bench", "magazine-rack", "coffee-table-splayed"]
+
+
+@pytest.mark.parametrize("model_name", ["rigid", "elastic"])
+@pytest.mark.parametrize("name", SWEPT)
+def test_verdicts_agree_with_the_programs_under_pushes(name, model_name):
+    """The catalog's standing designs, their first case plus a sideways push at the centre
+    of the highest plank (20, 60, 150 and 400 N, in three directions): every verdict is
+    the one the linear programs of ``feasibility`` give on their own, 'stable' only where
+    an equilibrium exists inside the friction cones (``cone_solution``), 'sliding' only
+    where one exists with normal forces >= 0 but none inside the cones, 'lift-off' only
+    where none exists with normal forces >= 0 (``unilateral_feasible``); and a stable
+    case's ground forces balance its loads (sum F_c + sum F = 0 to 1e-6 of the loads)."""
+    import dataclasses
+
+    from furncheck.design import load_design
+    from furncheck.design.model import Load, with_model
+
+    design = with_model(load_design(str(PINS.parent / f"{name}.yaml")), model_name)
+    geometry = analyze(design)
+    assert not geometry.violations
+    model = build_model(design, geometry)
+    top = max(design.planks, key=lambda plank: plank.center[2])
+    first = design.load_cases[0]
+    verdicts = set()
+    for size in (20.0, 60.0, 150.0, 400.0):
+        for angle in (0.0, 1.1, 2.3):
+            push = Load(top.id, (size * np.cos(angle), size * np.sin(angle), 0.0), None)
+            case = dataclasses.replace(first, name="push", loads=(*first.loads, push))
+            f = external_forces(model, case)
+            statics = solve_case(model, f)
+            upright = feasibility.unilateral_feasible(model, f).exists
+            held = feasibility.cone_solution(model, f).exists
+            expected = "stable" if held else "sliding" if upright else "lift-off"
+            assert statics.stability == expected, (size, angle)
+            verdicts.add(statics.stability)
+            if statics.stability == "stable":
+                ground = np.ones(len(model.contacts), dtype=bool)
+                if model.rest_node is not None:
+                    ground[model.rest_rows] = False
+                missing = statics.contact_forces[ground].sum(axis=0) \
+                    + f.reshape(-1, 6)[:, :3].sum(axis=0)
+                assert np.abs(missing).max() <= 1e-6 * contacts_module._force_scale(model, f)
+    assert "stable" in verdicts
