@@ -97,12 +97,12 @@ def _furncheck_table(path: str) -> dict | None:
     """The ``[tool.furncheck]`` table of a pyproject.toml, None where it has none."""
     try:
         with open(path, "rb") as stream:
-            data = stream.read()
-        if not _MAY_HOLD_TABLE.search(data.decode("utf-8")):
+            text = stream.read().decode("utf-8")
+        if not _MAY_HOLD_TABLE.search(text):
             return None
         import tomllib  # here: most runs find no pyproject.toml with the table to read
 
-        document = tomllib.loads(data.decode("utf-8"))
+        document = tomllib.loads(text)
     except OSError as error:
         raise ConfigError(f"{path}: cannot read: {error.strerror or error}") from None
     except (ValueError, UnicodeDecodeError) as error:   # tomllib.TOMLDecodeError too

@@ -74,8 +74,7 @@ class ContactLaw:
             k = spring_rows(self.k, self.slipping)
             cap = self.mu * -k * w[self.slipping, 2]
             block = np.zeros((len(r), 3, 3))
-            block[:, :2, :2] = slip_tangent(cap, r, t) \
-                + tol.SLIP_STIFFNESS * spring_rows(k, None, 2) * t[:, :, None] * t[:, None, :]
+            block[:, :2, :2] = slip_tangent(cap, r, t, np.broadcast_to(k, r.shape))
             block[:, :2, 2] = -self.mu * spring_rows(k, None, 1) * t
             block[:, 2, 2] = k
             springs[self.slipping] = block

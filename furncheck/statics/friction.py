@@ -123,9 +123,8 @@ class _FrictionEnergy:
         slipping = np.flatnonzero(~sticking & (caps > 0.0))
         if slipping.size:
             unit = w[slipping, :2] / safe_r[slipping, None]
-            springs[slipping, :2, :2] = slip_tangent(caps[slipping], safe_r[slipping], unit) \
-                + (tol.SLIP_STIFFNESS * k[slipping])[:, None, None] \
-                * unit[:, :, None] * unit[:, None, :]
+            springs[slipping, :2, :2] = slip_tangent(caps[slipping], safe_r[slipping], unit,
+                                                     k[slipping])
         return springs
 
     def _factored_hessian(self, x: np.ndarray) -> _Factored:
@@ -382,11 +381,16 @@ def balance_floor(force_tol: float, schur_size: float, rhs_size: float,
     return max(force_tol, _ROUNDOFF * (schur_size * float(np.abs(x).sum()) + rhs_size))
 
 
-def slip_tangent(caps: np.ndarray, stretch: np.ndarray, unit: np.ndarray) -> np.ndarray:
-    """(p, 2, 2): a slipping contact's tangential stiffness, (c / r) (I - u u^T): the force
-    c = mu N keeps its size and turns with the slip direction u (p, 2) as the tangential
-    displacement (of size r, ``stretch``) turns; nothing along u."""
-    return (caps / stretch)[:, None, None] * (_EYE2 - unit[:, :, None] * unit[:, None, :])
+def slip_tangent(caps: np.ndarray, stretch: np.ndarray, unit: np.ndarray,
+                 springs: np.ndarray) -> np.ndarray:
+    """(p, 2, 2): a slipping contact's tangential stiffness, (c / r) (I - u u^T) +
+    SLIP_STIFFNESS k u u^T: the force c = mu N keeps its size and turns with the slip
+    direction u (p, 2) as the tangential displacement (of size r, ``stretch``) turns;
+    along u only a feeble spring (k: ``springs``, (p,)), so that a design free to slide
+    at the edge of sliding is not singular."""
+    along = unit[:, :, None] * unit[:, None, :]
+    return (caps / stretch)[:, None, None] * (_EYE2 - along) \
+        + (tol.SLIP_STIFFNESS * springs)[:, None, None] * along
 
 
 def _secant(low: float, high: float, low_slope: float, high_slope: float) -> float:
