@@ -117,16 +117,16 @@ _NO_DOCUMENT = object()
 
 
 class _Frame:
-    """An open YAML mapping or list while its events are read: ``key`` a mapping's key
-    waiting for its value, ``key_lines`` its keys' lines.  (The two classes here are a
-    named tuple and a plain class, not dataclasses, which cost more to create on import:
-    they are on the path of every cold ``furncheck validate``.)"""
+    """An open YAML mapping or list while its events are read: a mapping's ``key`` waiting
+    for its value (and that value's ``key_path``), ``key_lines`` its keys' lines.  (The
+    two classes here are a named tuple and a plain class, not dataclasses, which cost more
+    to create on import: they are on the path of every cold ``furncheck validate``.)"""
 
-    __slots__ = ("value", "path", "key", "key_lines")
+    __slots__ = ("value", "path", "key", "key_path", "key_lines")
 
-    def __init__(self, value: dict | list, path: str, key: str | None = None,
-                 key_lines: dict | None = None):
-        self.value, self.path, self.key, self.key_lines = value, path, key, key_lines
+    def __init__(self, value: dict | list, path: str, key_lines: dict | None = None):
+        self.value, self.path, self.key, self.key_path = value, path, None, ""
+        self.key_lines = key_lines
 
 
 def _read_yaml(text: str, source: str) -> tuple[Any, dict[str, int]]:
@@ -142,57 +142,95 @@ def _read_yaml(text: str, source: str) -> tuple[Any, dict[str, int]]:
             loader.dispose()
 
 
+_SCALAR, _ALIAS, _MAPPING, _SEQUENCE, _END, _DOCUMENT, _OTHER = range(7)
+_KINDS = {yaml.ScalarEvent: _SCALAR, yaml.AliasEvent: _ALIAS, yaml.MappingStartEvent: _MAPPING,
+          yaml.SequenceStartEvent: _SEQUENCE, yaml.MappingEndEvent: _END,
+          yaml.SequenceEndEvent: _END, yaml.DocumentStartEvent: _DOCUMENT}
+"""YAML event class -> what it means for the tree (other classes: ``_kind_of``)."""
+
+
+def _kind_of(event_class: type) -> int:
+    """The ``_KINDS`` entry of an event class or of the nearest class it derives from
+    (_OTHER: stream and document ends, and the like)."""
+    return next((_KINDS[base] for base in event_class.__mro__ if base in _KINDS), _OTHER)
+
+
 def _build_yaml_tree(loader, source: str) -> tuple[Any, dict[str, int]]:
+    """The tree and lines of the loader's events, in one loop (it runs for every event of
+    every design file; a function call and a few type tests per event took a third of
+    reading the catalog's designs): a node's key path is made once, when its slot is
+    known (a list's next item, or the key just read), and recorded with its line."""
     lines: dict[str, int] = {}
     stack: list[_Frame] = []
     root: Any = _NO_DOCUMENT
     documents = 0
-    while loader.check_event():
-        event = loader.get_event()
-        line = event.start_mark.line + 1
-        if isinstance(event, yaml.DocumentStartEvent):
-            documents += 1
-            if documents > 1:
-                raise DesignError(source, "", line, "several YAML documents (the second starts "
-                                                    "here); put one design in each file")
-        elif isinstance(event, (yaml.MappingEndEvent, yaml.SequenceEndEvent)):
-            frame = stack.pop()
-            root = _place(stack, frame.value, root)
-        elif isinstance(event, yaml.NodeEvent):
-            path = _slot_path(stack, event, line, lines, source)
-            if path is None:
-                continue                      # the event was a mapping key
-            if isinstance(event, yaml.AliasEvent):
-                raise DesignError(source, path, line, f"YAML aliases (*{event.anchor}) are not "
-                                                      "allowed; write the value out")
-            if isinstance(event, yaml.ScalarEvent):
-                root = _place(stack, _yaml_scalar(event, path, line, source), root)
+    kinds = _KINDS
+    check_event, get_event = loader.check_event, loader.get_event
+    while check_event():
+        event = get_event()
+        kind = kinds.get(type(event))
+        if kind is None:
+            kind = _kind_of(type(event))
+        if kind == _END:
+            value = stack.pop().value
+            if not stack:
+                root = value
+                continue
+            parent = stack[-1]
+            if parent.key_lines is None:
+                parent.value.append(value)
             else:
-                _check_container_tag(event, path, line, source)
-                if len(stack) >= tol.MAX_NESTING:
-                    raise DesignError(source, path, line, "nested too deeply")
-                is_map = isinstance(event, yaml.MappingStartEvent)
-                stack.append(_Frame({} if is_map else [], path, None, {} if is_map else None))
+                parent.value[parent.key] = value
+                parent.key = None
+            continue
+        if kind >= _DOCUMENT:
+            if kind == _DOCUMENT:
+                documents += 1
+                if documents > 1:
+                    raise DesignError(source, "", event.start_mark.line + 1,
+                                      "several YAML documents (the second starts here); "
+                                      "put one design in each file")
+            continue
+        line = event.start_mark.line + 1
+        parent = stack[-1] if stack else None
+        if parent is None:
+            path = ""
+        elif parent.key_lines is None:                  # a list's next item
+            path = f"{parent.path}[{len(parent.value)}]"
+            lines[path] = line
+        elif parent.key is not None:                    # the value of the key just read
+            path = parent.key_path
+        else:                                           # a mapping key
+            _read_key(parent, event, kind, line, lines, source)
+            continue
+        if kind == _SCALAR:
+            value = _yaml_scalar(event, path, line, source)
+            if parent is None:
+                root = value
+            elif parent.key_lines is None:
+                parent.value.append(value)
+            else:
+                parent.value[parent.key] = value
+                parent.key = None
+        elif kind == _ALIAS:
+            raise DesignError(source, path, line, f"YAML aliases (*{event.anchor}) are not "
+                                                  "allowed; write the value out")
+        else:
+            _check_container_tag(event, path, line, source)
+            if len(stack) >= tol.MAX_NESTING:
+                raise DesignError(source, path, line, "nested too deeply")
+            stack.append(_Frame({}, path, {}) if kind == _MAPPING else _Frame([], path))
     return root, lines
 
 
-def _slot_path(stack: list[_Frame], event, line: int, lines: dict[str, int],
-               source: str) -> str | None:
-    """Key path of the node that ``event`` starts, recording its line; None when the event
-    is a mapping key (then it is held until its value arrives)."""
-    if not stack:
-        return ""
-    frame = stack[-1]
-    if isinstance(frame.value, list):
-        path = f"{frame.path}[{len(frame.value)}]"
-        lines[path] = line
-        return path
-    if frame.key is not None:
-        return _child(frame.path, frame.key)
-    if isinstance(event, yaml.AliasEvent):
+def _read_key(frame: _Frame, event, kind: int, line: int, lines: dict[str, int],
+              source: str) -> None:
+    """Take ``event`` (of ``_KINDS`` ``kind``) as the next key of the mapping ``frame``:
+    its path and line recorded, its value awaited."""
+    if kind == _ALIAS:
         raise DesignError(source, frame.path, line, f"YAML aliases (*{event.anchor}) are not "
                                                     "allowed; write the value out")
-    if not isinstance(event, yaml.ScalarEvent):
+    if kind != _SCALAR:
         raise DesignError(source, frame.path, line, "mapping keys must be plain text")
     key = event.value
     path = _child(frame.path, key)
@@ -200,33 +238,24 @@ def _slot_path(stack: list[_Frame], event, line: int, lines: dict[str, int],
         raise DesignError(source, path, line, f"duplicate key {_quote(key)} (first on line "
                                               f"{frame.key_lines[key]})")
     frame.key_lines[key] = line
-    frame.key = key
+    frame.key, frame.key_path = key, path
     lines[path] = line
-    return None
-
-
-def _place(stack: list[_Frame], value: Any, root: Any) -> Any:
-    """Put a finished node into its parent; returns the (possibly new) root."""
-    if not stack:
-        return value
-    frame = stack[-1]
-    if isinstance(frame.value, list):
-        frame.value.append(value)
-    else:
-        frame.value[frame.key] = value
-        frame.key = None
-    return root
 
 
 def _yaml_scalar(event, path: str, line: int, source: str) -> _Scalar:
     tag = event.tag
     if tag is None:
-        return _Scalar(event.value, plain=event.style in (None, "") and event.implicit[0])
-    if tag in _TEXT_TAGS:
-        return _Scalar(event.value, plain=False)
-    if tag in _PLAIN_TAGS:
-        return _Scalar(event.value, plain=True)
-    raise _tag_error(tag, path, line, source)
+        plain = event.style in (None, "") and event.implicit[0]
+    elif tag in _TEXT_TAGS:
+        plain = False
+    elif tag in _PLAIN_TAGS:
+        plain = True
+    else:
+        raise _tag_error(tag, path, line, source)
+    return _new_tuple(_Scalar, (event.value, plain))   # _Scalar(value, plain), sooner
+
+
+_new_tuple = tuple.__new__
 
 
 def _check_container_tag(event, path: str, line: int, source: str) -> None:
@@ -328,6 +357,17 @@ def _one_line(text: str) -> str:
 
 def _child(path: str, key: str) -> str:
     """Key path of mapping entry ``key`` under ``path``; odd keys are written ``["..."]``."""
-    if not _PATH_SAFE_KEY.fullmatch(key):
+    safe = _SAFE_KEYS.get(key)
+    if safe is None:
+        safe = _PATH_SAFE_KEY.fullmatch(key) is not None
+        if len(_SAFE_KEYS) < _SAFE_KEYS_MAX:
+            _SAFE_KEYS[key] = safe
+    if not safe:
         return f"{path}[{_quote(key)}]"
     return f"{path}.{key}" if path else key
+
+
+_SAFE_KEYS: dict[str, bool] = {}
+_SAFE_KEYS_MAX = 4096
+"""Keys already told safe or odd for key paths (a design's few dozen names recur in every
+file), up to this many."""
