@@ -8,6 +8,7 @@ print positions the way the maker wrote them.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 
@@ -24,14 +25,49 @@ def rotation_matrix(rotation_deg: Vec3) -> np.ndarray:
 
     Returns (3, 3) float; columns are the plank's local x, y, z axes in world coordinates.
     """
-    rx, ry, rz = (math.radians(float(angle)) for angle in rotation_deg)
-    cx, sx = math.cos(rx), math.sin(rx)
-    cy, sy = math.cos(ry), math.sin(ry)
-    cz, sz = math.cos(rz), math.sin(rz)
-    r_x = np.array([[1.0, 0.0, 0.0], [0.0, cx, -sx], [0.0, sx, cx]])
-    r_y = np.array([[cy, 0.0, sy], [0.0, 1.0, 0.0], [-sy, 0.0, cy]])
-    r_z = np.array([[cz, -sz, 0.0], [sz, cz, 0.0], [0.0, 0.0, 1.0]])
-    return r_z @ r_y @ r_x
+    return rotation_matrices([rotation_deg])[0]
+
+
+def rotation_matrices(rotations: Sequence[Vec3]) -> np.ndarray:
+    """(n, 3, 3): ``rotation_matrix`` of each rotation, the three factors stacked and
+    multiplied together (each product the same BLAS call as one plank's, so the same
+    numbers to the bit)."""
+    factors = np.zeros((3, len(rotations), 3, 3))
+    for i, rotation in enumerate(rotations):
+        rx, ry, rz = (math.radians(float(angle)) for angle in rotation)
+        cx, sx = math.cos(rx), math.sin(rx)
+        cy, sy = math.cos(ry), math.sin(ry)
+        cz, sz = math.cos(rz), math.sin(rz)
+        factors[0, i] = ((1.0, 0.0, 0.0), (0.0, cx, -sx), (0.0, sx, cx))
+        factors[1, i] = ((cy, 0.0, sy), (0.0, 1.0, 0.0), (-sy, 0.0, cy))
+        factors[2, i] = ((cz, -sz, 0.0), (sz, cz, 0.0), (0.0, 0.0, 1.0))
+    return factors[2] @ factors[1] @ factors[0]
+
+
+_CORNER_SIGNS = np.array([[sx, sy, sz] for sz in (-1, 1) for sy in (-1, 1) for sx in (-1, 1)],
+                         dtype=float)
+"""(8, 3) the local sign pattern of ``Plank.corners``."""
+
+
+def tabulate_planks(planks: Sequence[Plank]) -> None:
+    """Compute the cached arrays of every plank that has none yet (``rotation_matrix``,
+    ``center_array``, ``half_extents``, ``corners``) for all of them at once: the same
+    numbers as each plank's own (the same products, stacked), without numpy's per-call
+    overhead per plank (a design's geometry reads them all first)."""
+    todo = [plank for plank in planks if "corners" not in plank.__dict__]
+    if len(todo) < 2:
+        return
+    rotations = rotation_matrices([plank.rotation for plank in todo])
+    centers = np.array([plank.center for plank in todo], dtype=float)
+    halves = 0.5 * np.array([(p.length, p.width, p.thickness) for p in todo])
+    corners = centers[:, None, :] + (_CORNER_SIGNS * halves[:, None, :]) \
+        @ np.transpose(rotations, (0, 2, 1))
+    for k, plank in enumerate(todo):
+        cache = plank.__dict__              # what cached_property fills in, filled here
+        cache.setdefault("rotation_matrix", rotations[k])
+        cache.setdefault("center_array", centers[k])
+        cache.setdefault("half_extents", halves[k])
+        cache["corners"] = corners[k]
 
 
 @dataclass(frozen=True)
@@ -116,9 +152,10 @@ class Plank:
     def corners(self) -> np.ndarray:
         """(8, 3) float, m: world positions of the box corners (sign pattern of local axes
         in the order ---, +--, -+-, ++-, --+, +-+, -++, +++)."""
-        signs = np.array([[sx, sy, sz] for sz in (-1, 1) for sy in (-1, 1) for sx in (-1, 1)],
-                         dtype=float)
-        return self.center_array + (signs * self.half_extents) @ self.rotation_matrix.T
+        return self._corners()
+
+    def _corners(self) -> np.ndarray:
+        return self.center_array + (_CORNER_SIGNS * self.half_extents) @ self.rotation_matrix.T
 
     def to_local(self, points: np.ndarray) -> np.ndarray:
         """World points (n, 3) -> plank-local coordinates (n, 3)."""

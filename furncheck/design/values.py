@@ -119,13 +119,13 @@ def _resolved(node: Any) -> Any:
         return None
     if text in _BOOL_WORDS:
         return _BOOL_WORDS[text]
-    if _NON_FINITE.fullmatch(text):
-        return float(text.replace(".", "", 1))
-    if _DECIMAL.fullmatch(text):
+    if _DECIMAL.fullmatch(text):            # the common case first: the two never overlap
         try:
-            return float(text.replace("_", ""))
+            return float(text.replace("_", "") if "_" in text else text)
         except ValueError:
             return text
+    if _NON_FINITE.fullmatch(text):
+        return float(text.replace(".", "", 1))
     return text
 
 
@@ -177,13 +177,18 @@ def _quantity(doc: _Doc, node: Any, key: str, low: float, high: float, scale: fl
     """A number written in ``unit`` (``scale`` SI units each), checked to lie in
     [low, high] (SI) and, if ``positive``, to be > 0.  Returns it in SI."""
     value = doc.number(node, key)
-    shown = f" {unit}" if unit else ""
     if positive and value <= 0:
-        doc.fail(key, f"must be positive, got {plain_number(value, 6)}{shown}")
+        doc.fail(key, f"must be positive, got {plain_number(value, 6)}{_shown(unit)}")
     if not low <= value * scale <= high:
+        shown = _shown(unit)
         doc.fail(key, f"out of range: {plain_number(value, 6)}{shown}; allowed "
                       f"{plain_number(low / scale, 6)} to {plain_number(high / scale, 6)}{shown}")
     return value * scale
+
+
+def _shown(unit: str) -> str:
+    """A unit as a message writes it after a number (' mm'), or ''."""
+    return f" {unit}" if unit else ""
 
 
 def _length(doc: _Doc, node: Any, key: str, units: _Units) -> float:

@@ -13,7 +13,7 @@ from dataclasses import replace
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.design.model import Design, Plank
+from furncheck.design.model import Design, Plank, tabulate_planks
 from furncheck.errors import DesignError
 from furncheck.geometry.boxes import meeting_pairs
 from furncheck.geometry.faces import (
@@ -45,6 +45,7 @@ def analyze(design: Design, previous: tuple[Design, Geometry] | None = None) -> 
     of being detected again (the result is the same, only faster: for design edits).
     """
     violations: list[Violation] = []
+    tabulate_planks(design.planks)
     same = _unchanged_planks(design, previous)
     rests: list[Contact] = []
     if design.joints is None:
