@@ -213,6 +213,51 @@ def test_rigid_motion_changes_nothing(name, phi, tx, ty):
                         point_tol=1e-9 * pd.unit_factor(design))
 
 
+
+def _tall_bookcase() -> dict:
+    """A 2 m bookcase 318 mm wide (two 18 mm sides, seven shelves and a top nailed between
+    them, books on the shelves) pushed at its top by 60 N: its left side's feet slip at
+    mu N while the right side's stick.  (After ``benchmarks/catalog.py``'s design 176.)"""
+    shelves = [{"id": f"shelf{i}", "size": [300, 400], "center": [159, 0, 250 * (i + 1)]}
+               for i in range(7)]
+    masses = [8, 5, 12, 2, 8, 5, 2]
+    loads = [{"plank": f"shelf{i}", "mass": mass, **({"spread": True} if i in (4, 5) else {})}
+             for i, mass in enumerate(masses)]
+    loads[1]["at"] = [69, 0, 509]
+    return {"furncheck": 1, "name": "tall-bookcase", "units": "mm",
+            "material": {"thickness": 18},
+            "planks": [{"id": "side0", "size": [2000, 400], "center": [0, 0, 1000],
+                        "rotation": [0, 90, 0]},
+                       {"id": "side1", "size": [2000, 400], "center": [318, 0, 1000],
+                        "rotation": [0, 90, 0]},
+                       *shelves,
+                       {"id": "top", "size": [336, 400], "center": [159, 0, 2009]}],
+            "loads": loads,
+            "load_cases": {"push": {"include": ["default"], "loads": [
+                {"plank": "top", "force": [60, 0, 0], "at": [159, 0, 2009]}]}}}
+
+
+@pytest.mark.parametrize("phi", [37.0, -123.4])
+def test_rigid_motion_of_a_design_that_slips_in_part(phi):
+    """(a) where friction is at its limit at some feet only (in the rigid model; the
+    elastic one's feet all stick here).  The rigid model's stiff joints
+    put the round-off of its condensed matrix-vector products at about 1e-7 N here, but a
+    bound of that round-off a thousand times looser (the largest entry times the sum of
+    |x|) let Newton's method stop 7e-5 N short after this design was turned by 37
+    degrees, and its joint and contact forces moved by 2e-5 of themselves (they now agree
+    to 1e-6, the invariant's tolerance)."""
+    design, model = _tall_bookcase(), "rigid"
+    report = check(design, model=model)
+    push = next(case for case in report.cases if case.name == "push")
+    slipping = [c for c in push.contacts
+                if c.force[2] > 0 and math.hypot(*c.force[:2]) >= 0.5 * c.force[2] * (1 - 1e-6)]
+    sticking = [c for c in push.contacts
+                if c.force[2] > 0 and math.hypot(*c.force[:2]) < 0.5 * c.force[2] * 0.99]
+    assert push.stability == "stable" and slipping and sticking   # the case it is meant to be
+    new, rotation, map_point = moved(design, phi, 0.8, -1.7)
+    assert_same_physics(report, check(new, model=model), force_scale(design), rotation,
+                        map_point, point_tol=1e-9 * pd.unit_factor(design))
+
 # --- (b) units and format ----------
 
 @pytest.mark.parametrize("name", NAMES)

@@ -33,7 +33,7 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.statics.anchored import condensed_stiffness
 from furncheck.statics.contact_law import ContactLaw
-from furncheck.statics.friction import balance_floor
+from furncheck.statics.friction import balance_sizes, balanced
 from furncheck.statics.lapack import routines
 
 if TYPE_CHECKING:
@@ -72,18 +72,20 @@ def newton_equilibrium(solver: _ActiveSet, start: np.ndarray):
     mapping = solver.contact_map()
     schur, rhs = solver.condensed.schur, solver.ground_rhs
     springs = np.broadcast_to(np.asarray(model.contact_springs, dtype=float), (count,))
-    size = float(np.abs(schur).max(initial=0.0)), float(np.abs(rhs).max(initial=0.0))
+    sizes = balance_sizes(schur, rhs)
 
     def residual(x: np.ndarray):
         forces, tangent, pressed = law((mapping @ x).reshape(-1, 3), springs,
                                        model.friction, model.contact_anchored)
         return schur @ x - rhs - mapping.T @ forces.ravel(), forces, tangent, pressed
 
-    x = start
+    x, last = start, np.inf
     r, forces, tangent, pressed = residual(x)
     for _ in range(tol.CONTACT_NEWTON_ITERATIONS):
-        if float(np.abs(r).max(initial=0.0)) <= balance_floor(solver.force_tol, *size, x):
+        size = float(np.abs(r).max(initial=0.0))
+        if balanced(size, last, solver.force_tol, sizes, x):
             return x, forces, pressed
+        last = size
         step, info = routines().gesv(condensed_stiffness(model, tangent), -r)[2:]
         if info != 0 or not np.all(np.isfinite(step)):
             return None
@@ -97,6 +99,6 @@ def newton_equilibrium(solver: _ActiveSet, start: np.ndarray):
         r, forces, tangent, pressed = trial
         if not np.abs(x).max() <= tol.SLIDING_DISPLACEMENT:
             return None
-    if float(np.abs(r).max(initial=0.0)) <= balance_floor(solver.force_tol, *size, x):
+    if balanced(float(np.abs(r).max(initial=0.0)), last, solver.force_tol, sizes, x):
         return x, forces, pressed           # reached on the last step
     return None
