@@ -572,3 +572,22 @@ def test_elastic_contact_forces_balance_loads(name):
                                     fmt_of(path)), "elastic")
     assert model.model == "elastic"
     assert assert_contacts_balance_loads(model, check_design(model)) == len(model.load_cases)
+
+
+def test_the_generated_catalog_sweep_checks_and_passes(tmp_path):
+    """``benchmarks/sweep_catalog.py`` (these invariants and the push programs over a
+    generated catalog, far more designs than the suite affords) on three of its designs:
+    every kind of check is made, and none fails."""
+    import sys
+
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    from catalog import write_catalog
+    from sweep_catalog import KINDS, sweep_one
+
+    made = dict.fromkeys(KINDS, 0)
+    for path in write_catalog(tmp_path, 3):
+        counts, failures = sweep_one(str(path), pushes=True)
+        assert failures == []
+        for kind in KINDS:
+            made[kind] += counts[kind]
+    assert all(made[kind] > 0 for kind in KINDS), made

@@ -1,0 +1,177 @@
+"""The physics checks of ``tests/test_invariants.py`` and ``tests/test_stability_programs.py``
+over a generated catalog: far more designs than the suite can afford.
+
+    python benchmarks/sweep_catalog.py [--count N] [--seed S] [--every K] [--jobs J]
+
+Writes N designs (``benchmarks/catalog.py``, default 1,000: shelving walls of 5 to 30
+planks, two thirds with a second case that pushes the top) and checks each in both models:
+
+- motion: turned about the vertical (37 and -123.4 degrees) and moved (0.8, -1.7 m):
+  the same verdicts, forces turned with it, the same per-nail forces;
+- units: moved (71.3 degrees, 2.2 m) and written in metres: the same, and (elastic
+  model) every plank's sag scaled by 1000, the same stress and utilization;
+- json: the same design as JSON: the same report;
+- balance: every case's ground forces balance the loads, every plank its own forces;
+- pushes (every K-th design, default 10): a sideways push of 15 to 200 N in three
+  directions on the top plank: the verdict is the feasibility programs' own, stable
+  cases balance.
+
+Prints a table: checks made and failed per kind, then each failure.  The tolerances are
+the tests' (relative 1e-6 of the forces, 1e-3 of the loads for balance).  Designs are
+checked in J processes (default 2); the output is the same for any J.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import os
+import sys
+import tempfile
+from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
+
+for _threads in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ[_threads] = "1"      # one BLAS thread, as the command line runs
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+sys.path.insert(0, str(HERE.parent / "tests"))
+
+import numpy as np  # noqa: E402
+import test_invariants as invariants  # noqa: E402
+import yaml  # noqa: E402
+from catalog import write_catalog  # noqa: E402
+from test_stability_programs import _unbalanced  # noqa: E402
+
+from furncheck.check import check_design  # noqa: E402
+from furncheck.design import parse_design  # noqa: E402
+from furncheck.design.model import Load, with_model  # noqa: E402
+from furncheck.geometry import analyze  # noqa: E402
+from furncheck.statics import feasibility  # noqa: E402
+from furncheck.statics.contacts import _force_scale, solve_case  # noqa: E402
+from furncheck.statics.model import build_model, external_forces  # noqa: E402
+
+KINDS = ("motion", "units", "json", "balance", "pushes")
+MODELS = ("elastic", "rigid")
+
+
+def sweep_one(path: str, pushes: bool) -> tuple[dict[str, int], list[tuple[str, str]]]:
+    """(checks made per kind, failures as (kind, what)) of one design file."""
+    data = yaml.safe_load(Path(path).read_text(encoding="utf-8"))
+    made = dict.fromkeys(KINDS, 0)
+    failures: list[tuple[str, str]] = []
+
+    def attempt(kind: str, label: str, check, *arguments) -> None:
+        made[kind] += 1
+        try:
+            check(*arguments)
+        except AssertionError as error:
+            first = (str(error).splitlines() or [""])[0][:200]
+            failures.append((kind, f"{Path(path).name} {label}: {first}"))
+
+    for model in MODELS:
+        report = invariants.check(data, model=model)
+        for motion in ((37.0, 0.8, -1.7), (-123.4, -2.1, 0.3)):
+            attempt("motion", f"{model} turned {motion[0]}", _same_moved, data, report, model,
+                    motion, False)
+        attempt("units", f"{model} in metres", _same_moved, data, report, model,
+                (71.3, 2.2, -1.1), True)
+        attempt("json", f"{model} as JSON", _same_as_json, data, report, model)
+        design = with_model(parse_design(invariants.pd.to_text(data), path, "yaml"), model)
+        attempt("balance", f"{model} balance", _balanced, design)
+        if pushes:
+            for label, forces, model_of in _pushes(design):
+                attempt("pushes", f"{model} {label}", _agrees_with_programs, model_of, forces)
+    return made, failures
+
+
+def _same_moved(data: dict, report, model: str, motion: tuple[float, float, float],
+                in_metres: bool) -> None:
+    """The design turned by phi degrees and moved by (tx, ty) m (``motion``), and written
+    in metres (``in_metres``), gives ``report`` seen through that motion."""
+    pd = invariants.pd
+    moved, rotation, where = invariants.moved(data, *motion)
+    factor = 1.0
+    if in_metres:
+        converted = pd.convert_units(moved, "m")
+        factor = pd.unit_factor(converted) / pd.unit_factor(data)
+        moved = converted
+    other = invariants.check(moved, model=model)
+    invariants.assert_same_physics(report, other, invariants.force_scale(data), rotation,
+                                   lambda p: where(p) * factor,
+                                   point_tol=1e-9 * pd.unit_factor(moved))
+    if model == "elastic":
+        invariants.assert_same_planks(report, other, factor)
+
+
+def _same_as_json(data: dict, report, model: str) -> None:
+    invariants.assert_same_physics(report, invariants.check(data, "json", model=model),
+                                   invariants.force_scale(data), point_tol=0.0)
+
+
+def _balanced(design) -> None:
+    checked = check_design(design)
+    invariants.assert_contacts_balance_loads(design, checked)
+    invariants.assert_planks_balance(design, checked)
+
+
+def _pushes(design):
+    """(label, forces, statics model) of each push on the top plank of ``design``'s first
+    case (none where its geometry has violations)."""
+    geometry = analyze(design)
+    if geometry.violations:
+        return
+    model = build_model(design, geometry)
+    top = max(design.planks, key=lambda plank: plank.center[2])
+    first = design.load_cases[0]
+    for size in (15.0, 40.0, 90.0, 200.0):
+        for angle in (0.0, 0.7, 1.9):
+            push = Load(top.id, (size * np.cos(angle), size * np.sin(angle), 0.0), None)
+            case = dataclasses.replace(first, name="push", loads=(*first.loads, push))
+            yield f"push {size:g} N at {angle} rad", external_forces(model, case), model
+
+
+def _agrees_with_programs(model, forces: np.ndarray) -> None:
+    """The verdict is the feasibility programs' own; a stable case's ground forces balance
+    its loads (1e-6 of them)."""
+    statics = solve_case(model, forces)
+    upright = feasibility.unilateral_feasible(model, forces).exists
+    held = feasibility.cone_solution(model, forces).exists
+    expected = "stable" if held else "sliding" if upright else "lift-off"
+    assert statics.stability == expected, f"{statics.stability}, not {expected}"
+    if expected == "stable":
+        assert _unbalanced(model, statics, forces) <= 1e-6 * _force_scale(model, forces), \
+            "ground forces off balance"
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--count", type=int, default=1000)
+    parser.add_argument("--seed", type=int, default=16)
+    parser.add_argument("--every", type=int, default=10, help="pushes on every K-th design")
+    parser.add_argument("--jobs", type=int, default=2)
+    args = parser.parse_args()
+    with tempfile.TemporaryDirectory() as folder:
+        paths = [str(p) for p in write_catalog(folder, args.count, args.seed)]
+        pushes = [k % args.every == 0 for k in range(len(paths))]
+        with ProcessPoolExecutor(args.jobs) as pool:
+            results = list(pool.map(sweep_one, paths, pushes, chunksize=8))
+    made = dict.fromkeys(KINDS, 0)
+    failures = []
+    for counts, failed in results:
+        for kind in KINDS:
+            made[kind] += counts[kind]
+        failures += failed
+    print(f"{args.count} generated designs (seed {args.seed}), both models\n")
+    print("| check | made | failed |")
+    print("|-------|-----:|-------:|")
+    for kind in KINDS:
+        failed = sum(1 for found, _ in failures if found == kind)
+        print(f"| {kind} | {made[kind]} | {failed} |")
+    for _, line in failures:
+        print(line)
+
+
+if __name__ == "__main__":
+    main()
