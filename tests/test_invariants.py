@@ -258,6 +258,43 @@ def test_rigid_motion_of_a_design_that_slips_in_part(phi):
     assert_same_physics(report, check(new, model=model), force_scale(design), rotation,
                         map_point, point_tol=1e-9 * pd.unit_factor(design))
 
+
+def _askew_wall_shelf() -> dict:
+    """``designs/wall-shelf.yaml`` after two edits of a random sweep over the catalog's
+    DOFs: its shelf narrowed and turned 4.83 degrees about the vertical, the right cleat
+    raised 30.8 mm (no longer nailed to the shelf, still anchored).  With the friction
+    caps of its bonded solution the friction phase finds no minimum (it would slide), so
+    the feasibility programs decide: it holds, near the edge of sliding, with the
+    admissible forces closest to the elastic ones."""
+    return {"furncheck": 1, "name": "wall-shelf-askew", "units": "mm",
+            "material": {"thickness": 18},
+            "walls": [{"point": [0, 0, 0], "normal": [0, 1, 0]}],
+            "planks": [{"id": "cleat_l", "size": [150, 120], "center": [-220, 9, 1400],
+                        "rotation": [90, 0, 0]},
+                       {"id": "cleat_r", "size": [150, 120], "center": [220, 9, 1430.8],
+                        "rotation": [90, 0, 0]},
+                       {"id": "shelf", "size": [800, 216.6], "center": [-1.4, 141.6, 1469],
+                        "rotation": [0, 0, 4.83]}],
+            "anchors": [{"plank": "cleat_l", "at": [-220, 0, 1430], "wall": 0,
+                         "capacity": 196},
+                        {"plank": "cleat_r", "at": [220, 0, 1460.8], "wall": 0,
+                         "capacity": 196}],
+            "loads": [{"plank": "shelf", "mass": 15, "spread": True}]}
+
+
+@pytest.mark.parametrize("phi", [5.0, 37.0, -123.4])
+def test_rigid_motion_of_a_wall_shelf_the_programs_hold(phi):
+    """(a) where the friction programs give the forces, with walls: the pyramids of a wall's
+    contacts are turned in its own frame (``feasibility._headings``).  Turned with the
+    world's heading instead, they turned against the wall with the design, and this
+    shelf's nail joint force moved by 0.3 % (242.46 N to 241.76 N at 5 degrees)."""
+    design = _askew_wall_shelf()
+    report = check(design, model="elastic")
+    assert report.cases[0].stability == "stable"
+    new, rotation, map_point = moved(design, phi, 0.8, -1.7)
+    assert_same_physics(report, check(new, model="elastic"), force_scale(design), rotation,
+                        map_point, point_tol=1e-9 * pd.unit_factor(design))
+
 # --- (b) units and format ----------
 
 @pytest.mark.parametrize("name", NAMES)

@@ -197,11 +197,13 @@ def _pins_turned(degrees: float, model_name: str):
 
 def _unbalanced(model, statics, f: np.ndarray) -> float:
     """N: the largest component of sum F_c + sum F, the ground's (and walls') forces on
-    the design and its loads (a resting corner's force is internal, between two planks)."""
+    the design, in the world frame (a wall's contact forces are given in its contacts'
+    frames), and its loads (a resting corner's force is internal, between two planks)."""
     ground = np.ones(len(model.contacts), dtype=bool)
     if model.rest_node is not None:
         ground[model.rest_rows] = False
-    missing = statics.contact_forces[ground].sum(axis=0) + f.reshape(-1, 6)[:, :3].sum(axis=0)
+    forces = model.world_forces(statics.contact_forces)
+    missing = forces[ground].sum(axis=0) + f.reshape(-1, 6)[:, :3].sum(axis=0)
     return float(np.abs(missing).max())
 
 

@@ -167,6 +167,18 @@ def _heading(horizontal: np.ndarray) -> float:
     return float(np.arctan2(y, x)) if np.hypot(x, y) > 0.0 else 0.0
 
 
+def _headings(model: StaticsModel, members: np.ndarray, push: np.ndarray) -> list[float]:
+    """rad, per contact of ``members``: the direction of the force ``push`` (world, (3,))
+    in the contact's tangent plane, measured in its own frame (t1, t2: for the ground the
+    world's x and y; for a wall, along it and up), so that the pyramids turn with the
+    design, walls and all.  (The world's x, y angle taken as such in a wall's frame
+    turned the wall's pyramids against it as the design turned about the vertical: near
+    the edge of sliding, a wall shelf's forces moved by 4 %.)"""
+    if model.contact_frames is None:
+        return [_heading(push[:2])] * len(members)
+    return [_heading(local[:2]) for local in model.contact_frames[members] @ push]
+
+
 def cone_solution(model: StaticsModel, f: np.ndarray) -> Feasibility:
     """Whether contact forces inside the friction pyramids hold every component, and some
     such forces ((nK, 3) N) when they do."""
@@ -174,13 +186,14 @@ def cone_solution(model: StaticsModel, f: np.ndarray) -> Feasibility:
     for members, rows, wrench in _problems(model, f):
         if len(members) == 0:
             return Feasibility(INFEASIBLE)
-        heading = _heading(-wrench[:2])
-        generators = [_member_generators(model, member, heading) for member in members]
+        generators = [_member_generators(model, member, heading) for member, heading
+                      in zip(members, _headings(model, members, -wrench[:3]))]
         A = np.hstack([rows[:, 3 * c:3 * c + 3] @ edges for c, edges in enumerate(generators)])
         status, result = _linprog(np.zeros(A.shape[1]), A_eq=A, b_eq=-wrench, bounds=(0, None))
         if status != FEASIBLE:
             return Feasibility(status, message=result.message)
-        if model.contact_anchored is None and model.rest_node is None:   # one pyramid for all
+        if model.contact_frames is None and model.contact_anchored is None \
+                and model.rest_node is None:                            # one pyramid for all
             forces[members] = result.x.reshape(len(members), -1) @ generators[0].T
             continue
         offsets = np.cumsum([0] + [edges.shape[1] for edges in generators])
@@ -209,9 +222,9 @@ def closest_admissible(model: StaticsModel, f: np.ndarray, target: np.ndarray) -
     for members, rows, wrench in _problems(model, f):
         n = len(members)
         blocks = [_member_generators(model, member,       # each pyramid along its target's
-                                     _heading(target[member, :2])   # push
-                                     if np.any(target[member, :2]) else _heading(-wrench[:2]))
-                  for member in members]
+                                     _heading(target[member, :2])   # push (in its frame)
+                                     if np.any(target[member, :2]) else heading)
+                  for member, heading in zip(members, _headings(model, members, -wrench[:3]))]
         offsets = np.cumsum([0] + [block.shape[1] for block in blocks])
         edges = np.zeros((3 * n, offsets[-1]))
         for c, block in enumerate(blocks):
