@@ -2,9 +2,13 @@
 over a generated catalog: far more designs than the suite can afford.
 
     python benchmarks/sweep_catalog.py [--count N] [--seed S] [--every K] [--jobs J]
+                                       [--edits E]
 
 Writes N designs (``benchmarks/catalog.py``, default 1,000: shelving walls of 5 to 30
-planks, two thirds with a second case that pushes the top) and checks each in both models:
+planks, two thirds with a second case that pushes the top) and, with ``--edits``, E edits
+of every design of ``designs/`` (one or two random DOFs moved: up to 4 % of the design's
+size, or 5 degrees; tables, chairs, walls, anchors, resting planks), and checks each in
+both models:
 
 - motion: turned about the vertical (37 and -123.4 degrees) and moved (0.8, -1.7 m):
   the same verdicts, forces turned with it, the same per-nail forces;
@@ -47,6 +51,16 @@ from test_stability_programs import _unbalanced  # noqa: E402
 from furncheck.check import check_design  # noqa: E402
 from furncheck.design import parse_design  # noqa: E402
 from furncheck.design.model import Load, with_model  # noqa: E402
+from furncheck.design.write import write_design  # noqa: E402
+from furncheck.dofs import (  # noqa: E402
+    Blocked,
+    OutOfReach,
+    all_dofs,
+    apply_dof,
+    design_size,
+    structure,
+)
+from furncheck.errors import DesignError  # noqa: E402
 from furncheck.geometry import analyze  # noqa: E402
 from furncheck.statics import feasibility  # noqa: E402
 from furncheck.statics.contacts import _force_scale, solve_case  # noqa: E402
@@ -145,15 +159,48 @@ def _agrees_with_programs(model, forces: np.ndarray) -> None:
             "ground forces off balance"
 
 
+def write_edits(folder: Path, count: int, seed: int) -> list[Path]:
+    """``count`` random edits of each design of ``designs/`` written into ``folder``: one
+    or two DOFs, each moved by up to 4 % of the design's size or 5 degrees (``apply_dof``:
+    the joints kept); an edit that a DOF cannot make, or that leaves a plank without size,
+    is left out.  The same files for the same seed."""
+    import random
+
+    from furncheck.design import load_design
+
+    rng = random.Random(seed)
+    paths = []
+    for source in sorted((HERE.parent / "designs").glob("*.yaml")):
+        base = load_design(str(source))
+        for k in range(count):
+            design = base
+            try:
+                for _ in range(rng.randint(1, 2)):
+                    dof = rng.choice(all_dofs(design))
+                    step = rng.uniform(-5.0, 5.0) if dof.is_rotation else \
+                        rng.uniform(-0.04, 0.04) * design_size(design)
+                    design = apply_dof(design, structure(design, analyze(design)), dof, step)
+                path = folder / f"{source.stem}-edit-{k:02d}.yaml"
+                write_design(design, str(path))
+                parse_design(path.read_text(encoding="utf-8"), str(path), "yaml")
+            except (Blocked, OutOfReach, DesignError):
+                continue
+            paths.append(path)
+    return paths
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--count", type=int, default=1000)
     parser.add_argument("--seed", type=int, default=16)
     parser.add_argument("--every", type=int, default=10, help="pushes on every K-th design")
     parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--edits", type=int, default=0,
+                        help="random DOF edits of each design of designs/")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as folder:
         paths = [str(p) for p in write_catalog(folder, args.count, args.seed)]
+        paths += [str(p) for p in write_edits(Path(folder), args.edits, args.seed)]
         pushes = [k % args.every == 0 for k in range(len(paths))]
         with ProcessPoolExecutor(args.jobs) as pool:
             results = list(pool.map(sweep_one, paths, pushes, chunksize=8))
@@ -163,7 +210,9 @@ def main() -> None:
         for kind in KINDS:
             made[kind] += counts[kind]
         failures += failed
-    print(f"{args.count} generated designs (seed {args.seed}), both models\n")
+    edits = len(paths) - args.count
+    print(f"{args.count} generated designs and {edits} edits of the catalog's (seed "
+          f"{args.seed}), both models\n")
     print("| check | made | failed |")
     print("|-------|-----:|-------:|")
     for kind in KINDS:
