@@ -10,13 +10,14 @@ of every design of ``designs/`` (one or two random DOFs moved: up to 4 % of the 
 size, or 5 degrees; tables, chairs, walls, anchors, resting planks), and checks each in
 both models:
 
-- motion: turned about the vertical (37 and -123.4 degrees) and moved (0.8, -1.7 m):
-  the same verdicts, forces turned with it, the same per-nail forces;
+- motion: turned about the vertical by 37 degrees and moved by (0.8, -1.7 m), and by
+  -123.4 degrees and (-2.1, 0.3 m): the same verdicts, forces turned with it, the same
+  per-nail forces;
 - units: moved (71.3 degrees, 2.2 m) and written in metres: the same, and (elastic
   model) every plank's sag scaled by 1000, the same stress and utilization;
 - json: the same design as JSON: the same report;
 - balance: every case's ground forces balance the loads, every plank its own forces;
-- pushes (every K-th design, default 10): a sideways push of 15 to 200 N in three
+- pushes (every K-th design, default 10; 0: none): a sideways push of 15 to 200 N in three
   directions on the top plank: the verdict is the feasibility programs' own, stable
   cases balance.
 
@@ -35,8 +36,9 @@ import tempfile
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-for _threads in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ[_threads] = "1"      # one BLAS thread, as the command line runs
+if __name__ == "__main__":      # run as a script: one BLAS thread, as the command line runs
+    for _threads in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ[_threads] = "1"
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
@@ -80,12 +82,18 @@ def sweep_one(path: str, pushes: bool) -> tuple[dict[str, int], list[tuple[str, 
         made[kind] += 1
         try:
             check(*arguments)
-        except AssertionError as error:
+        except Exception as error:  # noqa: BLE001 - any error is a finding, the sweep goes on
             first = (str(error).splitlines() or [""])[0][:200]
-            failures.append((kind, f"{Path(path).name} {label}: {first}"))
+            what = "" if isinstance(error, AssertionError) else f"{type(error).__name__}: "
+            failures.append((kind, f"{Path(path).name} {label}: {what}{first}"))
 
     for model in MODELS:
-        report = invariants.check(data, model=model)
+        try:
+            report = invariants.check(data, model=model)
+        except Exception as error:  # noqa: BLE001
+            failures.append(("motion", f"{Path(path).name} {model}: cannot be checked: "
+                                       f"{type(error).__name__}: {error}"))
+            continue
         for motion in ((37.0, 0.8, -1.7), (-123.4, -2.1, 0.3)):
             attempt("motion", f"{model} turned {motion[0]}", _same_moved, data, report, model,
                     motion, False)
@@ -201,7 +209,7 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as folder:
         paths = [str(p) for p in write_catalog(folder, args.count, args.seed)]
         paths += [str(p) for p in write_edits(Path(folder), args.edits, args.seed)]
-        pushes = [k % args.every == 0 for k in range(len(paths))]
+        pushes = [args.every > 0 and k % args.every == 0 for k in range(len(paths))]
         with ProcessPoolExecutor(args.jobs) as pool:
             results = list(pool.map(sweep_one, paths, pushes, chunksize=8))
     made = dict.fromkeys(KINDS, 0)

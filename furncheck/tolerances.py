@@ -117,15 +117,21 @@ CONTACT_NEWTON_ITERATIONS = 200
 (``statics.newton``), the fallback where the active set and the friction phase cannot
 settle: the cycling cases met take 4 to 100."""
 
+BALANCE_ROUNDOFF = 1e-13
+"""Relative round-off of a matrix-vector product of the condensed system (a few hundred
+terms of double precision), as a fraction of its largest entry times the sum of |x|: a
+bound that holds for every row at once (the loose floor of
+``statics.friction.balance_floors``)."""
+
 BALANCE_ROW_ROUNDOFF = 1e-14
-"""Relative round-off of one row of a matrix-vector product of the condensed system (about
-45 units of the last place), as a fraction of the row's sum of |S0_ij x_j|: the tight
-floor below which an out-of-balance force is round-off (``statics.friction.balanced``)."""
+"""Relative round-off of one row of that product (about 45 units of the last place), as a
+fraction of the row's sum of |S0_ij x_j|: the tight floor below which an out-of-balance
+force is round-off (``statics.friction.balance_floors``)."""
 
 BALANCE_STALLED = 0.5
 """Between the tight floor and the loose one (a bound of the round-off that holds for every
 row at once), a Newton step that does not bring the out-of-balance force under this
-fraction of the last one has met round-off: the equilibrium is taken as met."""
+fraction of the last one has stalled: the equilibrium is taken as met."""
 
 FULL_STEP_GRADIENT = 0.5
 """A full Newton step of the friction energy is taken, whatever the line search would say,

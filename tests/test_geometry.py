@@ -443,3 +443,31 @@ def test_fresh_pairs_from_the_changed_planks_alone():
         assert _fresh_pairs(changed, lo, hi, slack).tolist() == pairs[fresh].tolist()
         compared += bool(changed)
     assert compared > 20
+
+
+def test_planks_tabulated_together_are_the_planks_computed_alone():
+    """``design.model.tabulate_planks`` (a design's planks' rotation matrices, centres, half
+    sizes and corners computed at once, stacked, where its geometry is analysed) gives
+    every plank the very bytes that its own cached properties compute: 200 planks of random
+    sizes, positions and turns, upright and gimbal-locked ones among them."""
+    import random
+
+    from furncheck.design.model import Plank, tabulate_planks
+
+    rng = random.Random(6)
+    angles = [0.0, 90.0, -90.0, 180.0, 45.0]
+
+    def random_plank(k: int) -> Plank:
+        turn = tuple(rng.choice(angles) if rng.random() < 0.4 else rng.uniform(-180, 180)
+                     for _ in range(3))
+        return Plank(f"p{k}", rng.uniform(0.01, 2.0), rng.uniform(0.01, 1.0),
+                     rng.uniform(0.006, 0.05),
+                     tuple(rng.uniform(-3.0, 3.0) for _ in range(3)), turn)
+
+    planks = [random_plank(k) for k in range(200)]
+    alone = [Plank(p.id, p.length, p.width, p.thickness, p.center, p.rotation) for p in planks]
+    tabulate_planks(planks)
+    for together, single in zip(planks, alone):
+        assert "corners" in together.__dict__           # filled by the batch, not lazily
+        for name in ("rotation_matrix", "center_array", "half_extents", "corners"):
+            assert getattr(together, name).tobytes() == getattr(single, name).tobytes(), name

@@ -611,13 +611,11 @@ def test_elastic_contact_forces_balance_loads(name):
     assert assert_contacts_balance_loads(model, check_design(model)) == len(model.load_cases)
 
 
-def test_the_generated_catalog_sweep_checks_and_passes(tmp_path):
+def test_the_generated_catalog_sweep_checks_and_passes(tmp_path, monkeypatch):
     """``benchmarks/sweep_catalog.py`` (these invariants and the push programs over a
     generated catalog, far more designs than the suite affords) on three of its designs:
     every kind of check is made, and none fails."""
-    import sys
-
-    sys.path.insert(0, str(ROOT / "benchmarks"))
+    monkeypatch.syspath_prepend(str(ROOT / "benchmarks"))
     from catalog import write_catalog
     from sweep_catalog import KINDS, sweep_one
 

@@ -152,9 +152,6 @@ class Plank:
     def corners(self) -> np.ndarray:
         """(8, 3) float, m: world positions of the box corners (sign pattern of local axes
         in the order ---, +--, -+-, ++-, --+, +-+, -++, +++)."""
-        return self._corners()
-
-    def _corners(self) -> np.ndarray:
         return self.center_array + (_CORNER_SIGNS * self.half_extents) @ self.rotation_matrix.T
 
     def to_local(self, points: np.ndarray) -> np.ndarray:

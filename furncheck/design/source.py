@@ -183,7 +183,7 @@ def _build_yaml_tree(loader, source: str) -> tuple[Any, dict[str, int]]:
                 parent.value[parent.key] = value
                 parent.key = None
             continue
-        if kind >= _DOCUMENT:
+        if kind == _DOCUMENT or kind == _OTHER:
             if kind == _DOCUMENT:
                 documents += 1
                 if documents > 1:
@@ -252,10 +252,7 @@ def _yaml_scalar(event, path: str, line: int, source: str) -> _Scalar:
         plain = True
     else:
         raise _tag_error(tag, path, line, source)
-    return _new_tuple(_Scalar, (event.value, plain))   # _Scalar(value, plain), sooner
-
-
-_new_tuple = tuple.__new__
+    return _Scalar(event.value, plain)
 
 
 def _check_container_tag(event, path: str, line: int, source: str) -> None:
@@ -360,7 +357,7 @@ def _child(path: str, key: str) -> str:
     safe = _SAFE_KEYS.get(key)
     if safe is None:
         safe = _PATH_SAFE_KEY.fullmatch(key) is not None
-        if len(_SAFE_KEYS) < _SAFE_KEYS_MAX:
+        if len(_SAFE_KEYS) < _SAFE_KEYS_MAX and len(key) <= _SAFE_KEY_LENGTH:
             _SAFE_KEYS[key] = safe
     if not safe:
         return f"{path}[{_quote(key)}]"
@@ -368,6 +365,6 @@ def _child(path: str, key: str) -> str:
 
 
 _SAFE_KEYS: dict[str, bool] = {}
-_SAFE_KEYS_MAX = 4096
+_SAFE_KEYS_MAX, _SAFE_KEY_LENGTH = 4096, 64
 """Keys already told safe or odd for key paths (a design's few dozen names recur in every
-file), up to this many."""
+file), up to this many, of at most this many characters (a batch reads many files)."""

@@ -38,12 +38,6 @@ if TYPE_CHECKING:
 
 _EYE2 = np.eye(2)
 
-_ROUNDOFF = 1e-13
-"""Relative round-off of a matrix-vector product of the condensed system (a few hundred
-terms of double precision), as a fraction of its largest entry times the sum of |x|: a
-bound that holds for every row at once (``balanced``'s loose floor; its tight one,
-row by row: BALANCE_ROW_ROUNDOFF)."""
-
 
 class _FrictionEnergy:
     """The condensed potential energy of one Tresca problem: every contact unilateral, its
@@ -145,19 +139,22 @@ class _FrictionEnergy:
         sliding motion: the displacements pass SLIDING_DISPLACEMENT) or Newton does not
         converge."""
         gradient = self._gradient(x)
-        best = last = np.inf                # the least out-of-balance force met so far
+        best = np.inf                       # the least out-of-balance force met so far
+        last = np.inf                       # the one before the last step
         for _ in range(tol.FRICTION_NEWTON_ITERATIONS):
             size = float(np.abs(gradient).max(initial=0.0))
-            if balanced(size, last, self.solver.force_tol, self._floor_sizes, x):
+            floors = balance_floors(self.solver.force_tol, self._floor_sizes, x)
+            if balanced(size, last, floors):
                 return x
             best, last = min(best, size), size
             self._last_hessian = self._factored_hessian(x)
             step = self._last_hessian.solve(-gradient)
             if step is None or not np.all(np.isfinite(step)):
-                return None
+                return x if size <= floors[1] else None
+            start = x
             x, gradient = self._line_search(x, step, gradient, best)
             if not np.abs(x).max() <= tol.SLIDING_DISPLACEMENT:
-                return None
+                return start if size <= floors[1] else None
             if gradient is None:
                 gradient = self._gradient(x)
         return None
@@ -371,34 +368,41 @@ class _StepSlope:
 
 
 def balance_sizes(schur: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, float, float]:
-    """What ``balanced`` measures round-off by, kept per condensed system: |S0|, the
+    """What ``balance_floors`` measures round-off by, kept per condensed system: |S0|, the
     largest entry of S0 and that of b."""
     magnitudes = np.abs(schur)
     return magnitudes, float(magnitudes.max(initial=0.0)), float(np.abs(rhs).max(initial=0.0))
 
 
-def balanced(size: float, last: float, force_tol: float,
-             sizes: tuple[np.ndarray, float, float], x: np.ndarray) -> bool:
-    """Whether the condensed equilibrium S0 x = b + M^T f counts as met at x, where the
-    largest out-of-balance force is ``size`` (N; ``last``: the one before the last Newton
-    step).  It is met below the force tolerance, or, if that is smaller, below the
-    round-off of S0 x row by row (the tight floor: BALANCE_ROW_ROUNDOFF of max_i sum_j
-    |S0_ij x_j|, plus that of b).  Where a Newton step stalled (it did not bring the force
-    under BALANCE_STALLED of the last one), it is met below the loose floor too
-    (_ROUNDOFF of max|S0| sum|x|, plus that of b: a bound for every row at once, however
-    their terms cancel).  The loose floor alone, about a thousand times the tight one for
-    the stiff joints of the rigid model, let Newton's method stop up to 1e-4 N short where
-    it still converged: the forces of a design turned about the vertical moved by 2e-5 of
-    themselves (``tests/test_invariants.py``)."""
+def balance_floors(force_tol: float, sizes: tuple[np.ndarray, float, float],
+                   x: np.ndarray) -> tuple[float, float]:
+    """N: (tight, loose), the out-of-balance forces below which the condensed equilibrium
+    S0 x = b + M^T f counts as met at x (``balanced``), each at least the force tolerance.
+    The tight floor is the round-off of S0 x row by row (BALANCE_ROW_ROUNDOFF of
+    max_i sum_j |S0_ij x_j|, plus that of b); the loose one bounds it for every row at
+    once, however their terms cancel (BALANCE_ROUNDOFF of max|S0| sum|x|, plus that of b).
+    The loose floor alone, about a thousand times the tight one for the stiff joints of
+    the rigid model, let Newton's method stop up to 1e-4 N short where it still converged:
+    the forces of a design turned about the vertical moved by 2e-5 of themselves
+    (``tests/test_invariants.py``)."""
     magnitudes, schur_size, rhs_size = sizes
-    if size <= force_tol:
-        return True
-    loose = _ROUNDOFF * (schur_size * float(np.abs(x).sum()) + rhs_size)
-    if size > loose:
-        return False
-    tight = tol.BALANCE_ROW_ROUNDOFF * (float((magnitudes @ np.abs(x)).max(initial=0.0))
-                                        + rhs_size)
-    return size <= tight or size > tol.BALANCE_STALLED * last
+    loose = max(force_tol, tol.BALANCE_ROUNDOFF * (schur_size * float(np.abs(x).sum())
+                                                   + rhs_size))
+    row = float((magnitudes @ np.abs(x)).max(initial=0.0))
+    tight = max(force_tol, min(loose, tol.BALANCE_ROW_ROUNDOFF * (row + rhs_size)))
+    return tight, loose
+
+
+def balanced(size: float, last: float, floors: tuple[float, float]) -> bool:
+    """Whether an out-of-balance force ``size`` (N; ``last``: the one before the last
+    Newton step) meets the equilibrium: below the tight floor of ``balance_floors``, or
+    below the loose one where the last step stalled (it did not bring the force under
+    BALANCE_STALLED of the one before: round-off, or a damped step; either way no worse
+    than the loose floor, which the earlier rule took alone).  A step that fails from
+    below the loose floor (a singular system, displacements past SLIDING_DISPLACEMENT)
+    leaves its start as the equilibrium, as that rule did."""
+    tight, loose = floors
+    return size <= tight or (size <= loose and size > tol.BALANCE_STALLED * last)
 
 
 def slip_tangent(caps: np.ndarray, stretch: np.ndarray, unit: np.ndarray,

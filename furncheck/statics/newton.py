@@ -33,7 +33,7 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.statics.anchored import condensed_stiffness
 from furncheck.statics.contact_law import ContactLaw
-from furncheck.statics.friction import balance_sizes, balanced
+from furncheck.statics.friction import balance_floors, balance_sizes, balanced
 from furncheck.statics.lapack import routines
 
 if TYPE_CHECKING:
@@ -83,22 +83,25 @@ def newton_equilibrium(solver: _ActiveSet, start: np.ndarray):
     r, forces, tangent, pressed = residual(x)
     for _ in range(tol.CONTACT_NEWTON_ITERATIONS):
         size = float(np.abs(r).max(initial=0.0))
-        if balanced(size, last, solver.force_tol, sizes, x):
+        floors = balance_floors(solver.force_tol, sizes, x)
+        if balanced(size, last, floors):
             return x, forces, pressed
         last = size
         step, info = routines().gesv(condensed_stiffness(model, tangent), -r)[2:]
         if info != 0 or not np.all(np.isfinite(step)):
-            return None
+            return (x, forces, pressed) if size <= floors[1] else None
         norm, t = float(r @ r), 2.0
         for _ in range(tol.LINE_SEARCH_ITERATIONS):     # no decrease at all: the smallest
             t *= 0.5                                    # step is taken (module docstring)
             trial = residual(x + t * step)
             if float(trial[0] @ trial[0]) <= (1.0 - 2.0 * ARMIJO * t) * norm:
                 break
+        previous = x, forces, pressed
         x = x + t * step
         r, forces, tangent, pressed = trial
         if not np.abs(x).max() <= tol.SLIDING_DISPLACEMENT:
-            return None
-    if balanced(float(np.abs(r).max(initial=0.0)), last, solver.force_tol, sizes, x):
+            return previous if size <= floors[1] else None
+    if balanced(float(np.abs(r).max(initial=0.0)), last,
+                balance_floors(solver.force_tol, sizes, x)):
         return x, forces, pressed           # reached on the last step
     return None
