@@ -157,7 +157,7 @@ def _kind_of(event_class: type) -> int:
 
 def _build_yaml_tree(loader, source: str) -> tuple[Any, dict[str, int]]:
     """The tree and lines of the loader's events, in one loop (it runs for every event of
-    every design file; a function call and a few type tests per event took a third of
+    every design file; a function call and a few type tests per event took a quarter of
     reading the catalog's designs): a node's key path is made once, when its slot is
     known (a list's next item, or the key just read), and recorded with its line."""
     lines: dict[str, int] = {}
