@@ -21,6 +21,7 @@ both models:
   directions on the top plank: the verdict is the feasibility programs' own, stable
   cases balance.
 
+It needs the ``test`` extra (``pip install -e '.[test]'``: the checks are the suite's).
 Prints a table: checks made and failed per kind, then each failure.  The tolerances are
 the tests' (relative 1e-6 of the forces, 1e-3 of the loads for balance).  Designs are
 checked in J processes (default 2); the output is the same for any J.
@@ -45,10 +46,15 @@ sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(HERE.parent / "tests"))
 
 import numpy as np  # noqa: E402
-import test_invariants as invariants  # noqa: E402
 import yaml  # noqa: E402
 from catalog import write_catalog  # noqa: E402
-from test_stability_programs import _unbalanced  # noqa: E402
+
+try:                        # the suite's own checks: they need the test extra
+    import test_invariants as invariants
+    from test_stability_programs import _unbalanced
+except ImportError as missing:
+    sys.exit(f"sweep_catalog.py runs the test suite's checks and needs its packages "
+             f"({missing.name} is missing): pip install -e '.[test]'")
 
 from furncheck.check import check_design  # noqa: E402
 from furncheck.design import parse_design  # noqa: E402
