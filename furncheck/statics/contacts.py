@@ -21,7 +21,7 @@ from furncheck import tolerances as tol
 from furncheck.plain import plain_number
 from furncheck.statics.anchored import anchored_system
 from furncheck.statics.condense import _accurate
-from furncheck.statics.friction import _anderson, _FrictionEnergy
+from furncheck.statics.friction import _anderson, _FrictionEnergy, balance_sizes
 from furncheck.statics.model import CaseStatics, StaticsModel, rigid_motions, spring_rows
 
 if TYPE_CHECKING:   # the programs and Newton's method are imported where a case needs them
@@ -527,6 +527,13 @@ class _ActiveSet:
                  displacement: np.ndarray) -> _Solution:
         """The solution from the grounded planks' displacements x_g."""
         return _Solution(self, forces, displacement, ground)
+
+    @cached_property
+    def balance_sizes(self) -> tuple[np.ndarray, float, float]:
+        """What the Newton iterations of this case (every friction minimization, and
+        ``newton``) measure round-off by: ``friction.balance_sizes`` of its condensed
+        system, made once."""
+        return balance_sizes(self.condensed.schur, self.ground_rhs)
 
     def contact_map(self) -> np.ndarray:
         """(3 nK, n) the contact displacements w = map @ x of every contact (x the grounded

@@ -79,7 +79,7 @@ class _FrictionEnergy:
         self.tie = np.zeros(count, dtype=bool) if model.contact_anchored is None \
             else np.asarray(model.contact_anchored, dtype=bool)
         self.caps = caps
-        self._floor_sizes = balance_sizes(self.schur, self.rhs)
+        self._floor_sizes = solver.balance_sizes
         self._state_at: np.ndarray | None = None     # the x of the kept _state
         self._last_hessian: _Factored | None = None  # of the last Newton step's start
 

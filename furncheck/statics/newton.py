@@ -33,7 +33,7 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.statics.anchored import condensed_stiffness
 from furncheck.statics.contact_law import ContactLaw
-from furncheck.statics.friction import balance_floors, balance_sizes, balanced
+from furncheck.statics.friction import balance_floors, balanced
 from furncheck.statics.lapack import routines
 
 if TYPE_CHECKING:
@@ -72,7 +72,7 @@ def newton_equilibrium(solver: _ActiveSet, start: np.ndarray):
     mapping = solver.contact_map()
     schur, rhs = solver.condensed.schur, solver.ground_rhs
     springs = np.broadcast_to(np.asarray(model.contact_springs, dtype=float), (count,))
-    sizes = balance_sizes(schur, rhs)
+    sizes = solver.balance_sizes
 
     def residual(x: np.ndarray):
         forces, tangent, pressed = law((mapping @ x).reshape(-1, 3), springs,
