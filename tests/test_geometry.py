@@ -100,6 +100,35 @@ def test_tilted_edge_plank_still_forms_a_joint():
     assert joints[0].nails == 5                     # floor(100 / 20)
 
 
+def _shelf_and_slat(degrees: float) -> str:
+    """A 500 x 300 shelf at z = 400 mm, its back edge along y = 0 from x = 0 to 500, turned
+    by ``degrees`` about the vertical through its back-left corner; a 100 mm slat standing
+    behind it (y from 0 to 12 mm) under its right end only (x from 400 to 500)."""
+    phi = np.radians(degrees)
+    x, y = 250 * np.cos(phi) + 150 * np.sin(phi), 250 * np.sin(phi) - 150 * np.cos(phi)
+    return ("furncheck: 1\nplanks:\n"
+            "  - {id: slat, size: [800, 100], center: [450, 6, 400], rotation: [90, 90, 0]}\n"
+            f"  - {{id: shelf, size: [500, 300], center: [{x:.12f}, {y:.12f}, 400], "
+            f"rotation: [0, 0, {degrees}]}}\n")
+
+
+def test_an_end_face_is_measured_where_it_meets_the_face():
+    """The gap of an end face on a face is that of the part that lies on it: the shelf's
+    back edge turned 0.2 degrees away from the slat stays on the slat's plane at x = 0,
+    but over the slat (x >= 400 mm) it lies 400 tan(0.2 deg) = 1.396 mm off: no joint
+    (tolerance 0.5 mm).  Measured at its nearest corner anywhere, it counted as touching
+    (gap 0), but only where the planks' bounding boxes met: turned by 37 degrees, a table's
+    apron gained a joint with a leg 0.62 mm away (``benchmarks/sweep_catalog.py``)."""
+    from furncheck.geometry import end_gap
+
+    flush = design(_shelf_and_slat(0.0))
+    assert [j.planks for j in analyze(flush).joints] == [("slat", "shelf")]
+    turned_away = design(_shelf_and_slat(-0.2))
+    assert analyze(turned_away).joints == ()
+    gap = end_gap(turned_away, 0, 1)
+    assert gap == pytest.approx(0.4 * np.tan(np.radians(0.2)), rel=1e-9)     # m
+
+
 def test_ground_contacts_penetration_and_floating():
     """Corners within tolerance of z = 0 are contacts; deeper ones penetrate; a design
     touching the ground nowhere floats."""
@@ -398,13 +427,14 @@ def test_quads_clipped_to_rectangles_by_hand():
 def test_quads_are_clipped_at_once_as_one_at_a_time(coordinates, half_x, half_y, turn):
     """Touching regions are clipped as arrays for large batches and one by one in plain
     floats for small ones (``faces.CLIP_AT_ONCE``): for a random quad (a rectangle of
-    random half sizes, turned and moved) both give the same vertices, area, centroid and
-    extent to the last bit."""
+    random half sizes, turned and moved, over a tilted plane) both give the same
+    vertices, area, centroid, extent and least height to the last bit."""
     from furncheck.geometry.faces import (
         _clip_to_rectangle,
         _clipped_region,
         _clipped_to_rectangles,
         _polygon_measures,
+        _region_gaps,
     )
 
     a, b, ox, oy = abs(coordinates[0]) + 0.05, abs(coordinates[1]) + 0.05, *coordinates[2:]
@@ -418,10 +448,17 @@ def test_quads_are_clipped_at_once_as_one_at_a_time(coordinates, half_x, half_y,
     assert [(float(x), float(y)) for x, y in zip(cx[0, :count[0]], cy[0, :count[0]])] == \
         [(float(x), float(y)) for x, y in expected]
     along = (np.cos(2.0 * turn), np.sin(2.0 * turn))
-    region = _clipped_region(quad, half_x, half_y, *along, 0.0)
+    slope = np.array([[0.3 * ox, 0.1 * c, -0.2 * s]])       # a tilted plane's heights
+    corners = slope[0, 0] + slope[0, 1] * xs[0] + slope[0, 2] * ys[0]
+    gap = float(corners.min())
+    region = _clipped_region(quad, half_x, half_y, *along, 0.0, slope[0].tolist(), gap)
     if region is not None:
         measured = _polygon_measures(cx, cy, count, np.array([along]))
-        assert tuple(float(m[0]) for m in measured) == region
+        local = np.stack([xs, ys], axis=2)
+        least = _region_gaps(cx, cy, count, slope, local, np.array([[half_x, half_y]]),
+                             np.array([gap]))
+        assert (*(float(m[0]) for m in measured), float(least[0])) == region
+        assert region[4] >= gap                # a part of the quad lies no lower
 
 
 def test_fresh_pairs_from_the_changed_planks_alone():

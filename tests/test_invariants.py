@@ -295,6 +295,70 @@ def test_rigid_motion_of_a_wall_shelf_the_programs_hold(phi):
     assert_same_physics(report, check(new, model="elastic"), force_scale(design), rotation,
                         map_point, point_tol=1e-9 * pd.unit_factor(design))
 
+
+def l_shelf_edit(edit: str) -> dict:
+    """``designs/l-shelf-pushed.yaml`` (pushed at 99 % of what its friction holds) after
+    one edit of a random sweep over the catalog's DOFs (``benchmarks/sweep_catalog.py``):
+    'post' moves its post 12.08 mm along y; 'base' moves its base 5.31 mm along -x (the
+    push's point with it)."""
+    design = yaml.safe_load((CATALOG_DIR / "l-shelf-pushed.yaml").read_text())
+    planks = {plank["id"]: plank for plank in design["planks"]}
+    if edit == "post":
+        planks["post0"]["center"][1] = -7.073547761
+    else:
+        planks["base"]["center"][0] = -5.30933050491
+        design["loads"][0]["at"][0] = 3.1244694951
+    return design
+
+
+@pytest.mark.parametrize("edit, phi", [("post", 37.0), ("post", -123.4), ("base", 37.0),
+                                       ("base", -123.4)])
+def test_rigid_motion_of_an_l_shelf_at_the_edge_of_sliding(edit, phi):
+    """(a) at 99 % of friction, elastic model.  'post': its four corners all slip under
+    the first caps and its Tresca energy is nearly flat along sliding; a full Newton step
+    taken because it halved the out-of-balance force went uphill, 5 cm and then metres
+    along that flat valley, and the minimization gave up (the programs' forces followed)
+    in some turns of the design and found the minimum 0.5 mm from its start in others: a
+    contact force differed by 15 %.  Such a step is now taken only where the slope along
+    it is still falling at its end (``friction._FrictionEnergy._line_search``).  'base':
+    its caps cannot hold it, the programs decide, and the forces closest to the elastic
+    ones missed balance inside the targets' pyramids; the program's own vertex was
+    reported, another one in each turn (``feasibility._admissible_edges``)."""
+    design = l_shelf_edit(edit)
+    report = check(design, model="elastic")
+    assert report.cases[0].stability == "stable"
+    new, rotation, map_point = moved(design, phi, 0.8, -1.7)
+    assert_same_physics(report, check(new, model="elastic"), force_scale(design), rotation,
+                        map_point, point_tol=1e-9 * pd.unit_factor(design))
+
+def _table_with_a_short_apron() -> dict:
+    """``designs/table.yaml`` after two edits of a random sweep (seed 23): its left leg
+    turned 4.09 degrees about the vertical and moved 7.6 mm, its apron shortened to 829.6
+    mm and moved 9.2 mm right.  The apron's end misses the leg's face by 0.62 mm where it
+    meets it (tolerance 0.5 mm), though the end face's far corner lies on the face's plane
+    beyond the leg."""
+    design = yaml.safe_load((CATALOG_DIR / "table.yaml").read_text())
+    planks = {plank["id"]: plank for plank in design["planks"]}
+    planks["leg_l"].update(center=[-430.0, 7.644951, 360.0], rotation=[0.0, -90.0, 4.089682972])
+    planks["apron"].update(size=[829.563094015, 100.0], center=[9.218452992, -244.0, 670.0])
+    return design
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_rigid_motion_of_a_table_whose_apron_misses_a_leg(model):
+    """(a) the joints themselves: an end face is measured over the part of it that lies
+    on the face (``geometry.faces._region_gaps``).  Measured at its nearest corner
+    anywhere, the apron was nailed to the leg only where the planks' bounding boxes met:
+    turned by 37 or -123.4 degrees, not as written, and the verdicts differed."""
+    design = _table_with_a_short_apron()
+    report = check(design, model=model)
+    missed = [v for v in report.violations if v.where == "leg_l/apron"]
+    assert [v.kind for v in missed] == ["disconnected"] and "0.6243 mm" in missed[0].message
+    for phi in (37.0, -123.4):
+        new, rotation, map_point = moved(design, phi, 0.8, -1.7)
+        assert_same_physics(report, check(new, model=model), force_scale(design), rotation,
+                            map_point, point_tol=1e-9 * pd.unit_factor(design))
+
 # --- (b) units and format ----------
 
 @pytest.mark.parametrize("name", NAMES)

@@ -298,11 +298,14 @@ CATALOG_DOFS = [
     ("bench-tips", "rigid", ["seat.x", "leg_r.x"]),
     # the cabinet: a turn whose joint loses its nails fast (side_r.rx), turns limited by a
     # joint's tilt (shelf_a1.ry, 60 degrees) and a rotation's watch horizon (cap.rx),
-    # a margin that bends (side_r.x)
-    ("cabinet-28", "rigid", ["side_r.rx", "shelf_b1.rz", "cap.rx", "shelf_a1.ry", "side_r.x"]),
+    # a margin that bends (side_r.x), a shelf moved between its nailed ends (shelf_b1.z).
+    # (Not shelf_b1.rz: its back edge leaves the far slats' faces by 0.5 mm within 0.07
+    # degrees, below the range's resolution; counted at the edge's nearest corner
+    # anywhere, they stayed nailed to +-0.53 degrees, 3.8 mm away at 0.5.)
+    ("cabinet-28", "rigid", ["side_r.rx", "shelf_b1.z", "cap.rx", "shelf_a1.ry", "side_r.x"]),
     ("stool-thick-seat", "elastic", ["seat.x", "rung.z", "leg_r.ry", "seat.length"]),
     ("bookshelf-18", "elastic", ["middle.z", "side_r.x", "top.width", "middle.ry"]),
-    ("cabinet-28", "elastic", ["shelf_b1.rz", "side_r.x"]),
+    ("cabinet-28", "elastic", ["shelf_b1.z", "side_r.x"]),
 ]
 
 

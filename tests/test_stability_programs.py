@@ -144,6 +144,53 @@ def test_closest_admissible_is_the_projection():
     assert np.abs(again - admissible).max() <= 1e-6 * _weight(design)
 
 
+def _solver_of(tree: dict):
+    """(the contact solver of the tree's first case, its model, its loads f)."""
+    design = _design(yaml.safe_dump(tree, sort_keys=False))
+    model = build_model(design, analyze(design))
+    f = external_forces(model, design.load_cases[0])
+    return contacts_module._ActiveSet(model, f, contacts_module._force_scale(model, f)), \
+        model, f
+
+
+def test_the_friction_phase_settles_a_shelf_its_caps_hold():
+    """The design with its post moved 12 mm (``test_invariants.l_shelf_edit``): all four
+    corners slip under the first caps (mu N of the bonded solution), which hold it.  The
+    minimization finds the minimum 0.5 mm from its start, and the caps settle; it used to
+    take a full Newton step 5 cm along sliding (it halved the out-of-balance force but
+    went uphill), wander metres away and give up, leaving the case to the programs."""
+    from test_invariants import l_shelf_edit
+
+    solver, model, _ = _solver_of(l_shelf_edit("post"))
+    status, solution, settled = solver.normal_phase(np.zeros(len(model.contacts), dtype=int),
+                                                    False)
+    assert settled and not solver.within_cones(solution)
+    settled_status, frictional = solver.friction_phase(status, solution)
+    assert np.abs(frictional.ground).max() < 1e-3          # m: near its start
+    assert solver.within_cones(frictional)
+
+
+def test_closest_admissible_balances_inside_the_cones_at_the_edge():
+    """The design with its base moved 5.3 mm (``test_invariants.l_shelf_edit``), held by
+    its friction with no corner to spare: the program finds forces inside its pyramids
+    (turned with the push); the forces closest to the elastic ones must balance the loads
+    inside the cones too.  Sought only inside pyramids turned along each corner's elastic
+    force, they could not: the least-squares weights missed balance by 8e-4 N, its exact
+    balance left a cone by 2.5e-4 of its friction, and the program's vertex was reported
+    instead (another in each turn of the design).  With the program's pyramids among the
+    edges, they balance to round-off, each inside its cone to the force tolerance."""
+    from test_invariants import l_shelf_edit
+
+    solver, model, f = _solver_of(l_shelf_edit("base"))
+    assert feasibility.cone_solution(model, f).exists
+    bolted = solver.solve(np.full(len(model.contacts), contacts_module.STICK))
+    closest = feasibility.closest_admissible(model, f, bolted.contact_forces)
+    assert solver._admissible(closest)
+    weight = -float(f[2::6].sum())
+    assert np.abs(closest.sum(axis=0) + f.reshape(-1, 6)[:, :3].sum(axis=0)).max() \
+        <= 1e-9 * weight
+
+
 def test_a_program_that_gives_up_is_not_read_as_infeasible(monkeypatch):
     """An iteration limit (HiGHS status 1) proves nothing: the answer is UNDECIDED, and a
     case whose verdict rests on it is not passed, with the solver's message in its detail

@@ -2,7 +2,7 @@
 
 Faces are handled as oriented rectangles; the touching region is the edge face's
 projection clipped to the face plank's face (in its local x-y), measured by its area,
-centroid and extent along the joint line.
+centroid, extent along the joint line and gap (its least height over the face).
 """
 
 from __future__ import annotations
@@ -77,7 +77,11 @@ def _best_touches(planks: tuple[Plank, ...], pairs: np.ndarray, slack: float, ke
     """For each plank pair (i, j) (indices into ``planks``, whose face tables ``faces`` are
     when given), the best narrow-face-on-broad-face contact either way round: contacts
     within the slack beat deeper ones, then the flushest, then the largest.  ``keep_deep``
-    keeps faces sunk deeper than the slack (to report interpenetration)."""
+    keeps faces sunk deeper than the slack (to report interpenetration).  A contact's gap
+    is that of the part of the narrow face over the broad face (``_region_gaps``), not of
+    its nearest corner anywhere: a long edge turned away from a narrow face touches its
+    plane beyond it, and counted as touching, but only where the planks' bounding boxes
+    met (in some turns of the design; ``tests/test_geometry.py``)."""
     if len(pairs) == 0:
         return {}
     faces = _face_tables(planks) if faces is None else faces
@@ -91,8 +95,8 @@ def _best_touches(planks: tuple[Plank, ...], pairs: np.ndarray, slack: float, ke
     gap = _least(heights)                                         # (P, 4, 2)
     outside = _dot(faces.centers[edge][:, None, :], broad) - offset >= 0.0
     candidates = (alignment >= _COS_MAX_TILT) & (gap <= slack) & outside[:, None, :]
-    if not keep_deep:
-        candidates &= gap >= -slack
+    if not keep_deep:           # sunk deeper whole: no part of it lies within the slack
+        candidates &= _most(heights) >= -slack
     best: dict[tuple[int, int], _Touch] = {}
     n_pairs = len(pairs)
     chosen = np.argwhere(candidates)
@@ -101,8 +105,8 @@ def _best_touches(planks: tuple[Plank, ...], pairs: np.ndarray, slack: float, ke
                              alignment[p, f, g])
     keys = [(i, j) for i, j in pairs.tolist()]
     for p_k, touch in zip(chosen[:, 0].tolist(), touches):
-        if touch is None:
-            continue
+        if touch is None or touch.gap > slack or (not keep_deep and touch.gap < -slack):
+            continue                        # the region's own gap (``_region_gaps``)
         key = keys[p_k % n_pairs]
         rank = (touch.gap >= -slack, round(touch.alignment, 9), touch.area)
         current = best.get(key)
@@ -116,9 +120,11 @@ def _touch_regions(planks, faces: _Faces, edge: np.ndarray, face: np.ndarray,
                    f: np.ndarray, g: np.ndarray, gap: np.ndarray,
                    alignment: np.ndarray) -> list[_Touch | None]:
     """For candidate contacts c (edge plank edge[c]'s narrow face f[c] on face plank
-    face[c]'s broad face g[c], indices into ``planks`` and ``faces``): clip the narrow
+    face[c]'s broad face g[c], indices into ``planks`` and ``faces``; ``gap``: the least
+    height of the narrow face's corners over the broad face's plane): clip the narrow
     face's projection to the broad face (in the face plank's local x-y) and measure the
-    touching region; None where it is empty."""
+    touching region, its gap the least height over the region (``_region_gaps``); None
+    where it is empty."""
     if len(edge) == 0:
         return []
     rot_f, half_f = faces.rotations[face], faces.halves[face]            # (C, 3, 3), (C, 3)
@@ -133,19 +139,21 @@ def _touch_regions(planks, faces: _Faces, edge: np.ndarray, face: np.ndarray,
     along_2d /= np.linalg.norm(along_2d, axis=1, keepdims=True)
     face_area = 4.0 * half_e[:, 2] * half_e[:, :2].max(axis=1)
     least = tol.MIN_JOINT_AREA_FRACTION * face_area
+    slope = _height_slopes(local, _dot(corners - face_center[:, None, :], normal[:, None, :]))
     if len(edge) >= CLIP_AT_ONCE:
         xs, ys, count = _clipped_to_rectangles(local[:, :, 0], local[:, :, 1], half_f[:, 0],
                                                half_f[:, 1])
         area, cx, cy, extent = _polygon_measures(xs, ys, count, along_2d)
         found = (count >= 3) & (area > least)
-        regions = [(a, x, y, e) if ok else None for a, x, y, e, ok in
+        gaps = _region_gaps(xs, ys, count, slope, local, half_f, gap)
+        regions = [(a, x, y, e, h) if ok else None for a, x, y, e, h, ok in
                    zip(area.tolist(), cx.tolist(), cy.tolist(), extent.tolist(),
-                       found.tolist())]
+                       gaps.tolist(), found.tolist())]
     else:
-        regions = [_clipped_region(quad, hx, hy, ax, ay, least_c)
-                   for quad, (hx, hy), (ax, ay), least_c in zip(
+        regions = [_clipped_region(quad, hx, hy, ax, ay, least_c, slope_c, gap_c)
+                   for quad, (hx, hy), (ax, ay), least_c, slope_c, gap_c in zip(
                        local.tolist(), half_f[:, :2].tolist(), along_2d.tolist(),
-                       least.tolist())]
+                       least.tolist(), slope.tolist(), gap.tolist())]
     thickness_normal = rot_e[:, :, 2]
     x_axis = thickness_normal - np.einsum("ca,ca->c", thickness_normal, normal)[:, None] * normal
     x_axis /= np.linalg.norm(x_axis, axis=1, keepdims=True)
@@ -153,14 +161,43 @@ def _touch_regions(planks, faces: _Faces, edge: np.ndarray, face: np.ndarray,
     centroids = np.array([(0.0, 0.0) if region is None else region[1:3] for region in regions])
     points = face_center + rot_f[:, :, 0] * centroids[:, :1] + rot_f[:, :, 1] * centroids[:, 1:]
     touches: list[_Touch | None] = []
-    for c, (region, face_c, edge_c, f_c, g_c, gap_c, alignment_c) in enumerate(zip(
-            regions, face.tolist(), edge.tolist(), f.tolist(), g.tolist(), gap.tolist(),
+    for c, (region, face_c, edge_c, f_c, g_c, alignment_c) in enumerate(zip(
+            regions, face.tolist(), edge.tolist(), f.tolist(), g.tolist(),
             alignment.tolist())):
         touches.append(None if region is None else _Touch(
-            planks[face_c], planks[edge_c], points[c], region[3], frames[c], gap_c,
+            planks[face_c], planks[edge_c], points[c], region[3], frames[c], region[4],
             alignment_c, region[0], edge_face=(f_c // 2, 1 - 2 * (f_c % 2)),
             face_side=1 - 2 * g_c))
     return touches
+
+
+def _height_slopes(local: np.ndarray, heights: np.ndarray) -> np.ndarray:
+    """(C, 3): the height over the broad face's plane of a point of each narrow face,
+    h0 + a x + b y of its projection (x, y) (the face plank's local x-y): affine, since
+    the narrow face is flat and, tilted by less than JOINT_MAX_TILT_DEG, projects one to
+    one.  From its corners' projections ``local`` (C, 4, >= 2) and ``heights`` (C, 4): the
+    slopes (a, b) along its two sides (corner 0 to 1, 1 to 2), h0 through corner 1."""
+    u = local[:, 0, :2] - local[:, 1, :2]
+    w = local[:, 1, :2] - local[:, 2, :2]
+    rise_u, rise_w = heights[:, 0] - heights[:, 1], heights[:, 1] - heights[:, 2]
+    det = u[:, 0] * w[:, 1] - u[:, 1] * w[:, 0]
+    safe = np.where(det != 0.0, det, 1.0)
+    a = np.where(det != 0.0, (rise_u * w[:, 1] - rise_w * u[:, 1]) / safe, 0.0)
+    b = np.where(det != 0.0, (u[:, 0] * rise_w - w[:, 0] * rise_u) / safe, 0.0)
+    return np.column_stack([heights[:, 1] - a * local[:, 1, 0] - b * local[:, 1, 1], a, b])
+
+
+def _region_gaps(xs: np.ndarray, ys: np.ndarray, count: np.ndarray, slope: np.ndarray,
+                 local: np.ndarray, half: np.ndarray, gap: np.ndarray) -> np.ndarray:
+    """(C,) m: the least height over the broad face of each clipped touching region
+    (vertices ``xs``, ``ys`` (C, 8), ``count`` used; heights by ``slope``,
+    ``_height_slopes``); ``gap``, its corners' least, where the narrow face lies on the
+    broad face whole (nothing was clipped): the same number as ``_clipped_region``'s."""
+    heights = slope[:, :1] + slope[:, 1:2] * xs + slope[:, 2:3] * ys
+    heights = np.where(np.arange(xs.shape[1])[None, :] < count[:, None], heights, np.inf)
+    inside = np.all((np.abs(local[:, :, 0]) <= half[:, :1])
+                    & (np.abs(local[:, :, 1]) <= half[:, 1:2]), axis=1)
+    return np.where(inside, gap, heights.min(axis=1))
 
 
 CLIP_AT_ONCE = 128
@@ -170,15 +207,20 @@ for them (the two give the same numbers to the last bit)."""
 
 
 def _clipped_region(quad: list, half_x: float, half_y: float, along_x: float,
-                    along_y: float, least: float) -> tuple | None:
-    """(area, centroid x, y, extent along (along_x, along_y)) of the quad [(x, y), ...]
-    clipped to |x| <= half_x, |y| <= half_y, or None if less than ``least`` is left."""
+                    along_y: float, least: float, slope: list, gap: float) -> tuple | None:
+    """(area, centroid x, y, extent along (along_x, along_y), least height) of the quad
+    [(x, y), ...] clipped to |x| <= half_x, |y| <= half_y, or None if less than ``least``
+    is left.  Its least height: ``gap`` (its corners') where nothing was clipped, else the
+    least of h0 + a x + b y (``slope``) over the clipped polygon's vertices."""
     polygon = _clip_to_rectangle(quad, half_x, half_y)
     if len(polygon) < 3:
         return None
     area, cx, cy = _polygon_area_centroid(polygon)
     extent = [x * along_x + y * along_y for x, y in polygon]
-    return (area, cx, cy, max(extent) - min(extent)) if area > least else None
+    if polygon is not quad:
+        h0, a, b = slope
+        gap = min(h0 + a * x + b * y for x, y in polygon)
+    return (area, cx, cy, max(extent) - min(extent), gap) if area > least else None
 
 
 def _clip_to_rectangle(polygon: list, half_x: float, half_y: float) -> list:

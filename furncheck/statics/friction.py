@@ -167,9 +167,11 @@ class _FrictionEnergy:
         Phi is convex, so its slope along the step rises with t from g.step < 0.  The full
         step (t = 1) is taken where the slope there is within LINE_SEARCH_SLOPE of the
         start's (Newton's step near the minimum); where it is still < 0 but has risen to
-        LINE_SEARCH_EXTEND of the start's or less; and, whatever the slope, where it brings
-        the largest out-of-balance force below FULL_STEP_GRADIENT of ``best``, the least
-        met so far (a step that lets many contacts change state at once).  Otherwise the
+        LINE_SEARCH_EXTEND of the start's or less; and, where the slope there is still <= 0
+        (Phi fell all along the step), where it brings the largest out-of-balance force
+        below FULL_STEP_GRADIENT of ``best``, the least met so far (a step that lets many
+        contacts change state at once; beyond the minimum along the step it could go
+        uphill, see FULL_STEP_GRADIENT).  Otherwise the
         slope's zero is sought (``_StepSlope``: each contact's displacement is affine in
         t, so the slope is a sum of closed forms, O(contacts) per t): below t = 1 between
         the breakpoints where contacts lift, press, stick or slip, beyond t = 1 (the
@@ -188,7 +190,8 @@ class _FrictionEnergy:
         if full_slope < 0.0 and (full_slope > tol.LINE_SEARCH_EXTEND * slope0
                                  or not np.abs(full).max() <= tol.SLIDING_DISPLACEMENT):
             return full, full_gradient
-        if np.abs(full_gradient).max() <= tol.FULL_STEP_GRADIENT * best:
+        if full_slope <= 0.0 \
+                and np.abs(full_gradient).max() <= tol.FULL_STEP_GRADIENT * best:
             return full, full_gradient
         moved = (self.map @ step).reshape(-1, 3)
         slope = _StepSlope(w, force, moved, self.k, self.caps, self.tie, slope0,
