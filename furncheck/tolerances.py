@@ -212,6 +212,11 @@ inscribed in the Coulomb cones, so a 'sliding' verdict from them is conservative
 most 1 - cos(pi / 64) = 0.12 % of the friction (the circumscribed pyramid, mu / cos(pi /
 64), would bound it from the other side)."""
 
+PUSH_ROUNDOFF = 1e-9
+"""A load's sideways part (in a contact's plane) smaller than this fraction of it is
+round-off: it gives the friction pyramids of the admissible forces closest to the elastic
+ones no direction (``feasibility._pushed``)."""
+
 EQUILIBRIUM_WEIGHT = 1e6
 """Weight of the equilibrium rows against the distance to the elastic forces when the
 admissible contact forces closest to them are sought (``feasibility.closest_admissible``):

@@ -225,8 +225,9 @@ def closest_admissible(model: StaticsModel, f: np.ndarray, target: np.ndarray) -
     weight = tol.EQUILIBRIUM_WEIGHT
     for members, rows, wrench in _problems(model, f):
         n = len(members)
+        pushed = _pushed(model, members, -wrench[:3])
         blocks = [_admissible_edges(model, member, heading, target[member])
-                  for member, heading in zip(members, _headings(model, members, -wrench[:3]))]
+                  for member, heading in zip(members, pushed)]
         offsets = np.cumsum([0] + [block.shape[1] for block in blocks])
         edges = np.zeros((3 * n, offsets[-1]))
         for c, block in enumerate(blocks):
@@ -243,18 +244,37 @@ def closest_admissible(model: StaticsModel, f: np.ndarray, target: np.ndarray) -
     return forces
 
 
-def _admissible_edges(model: StaticsModel, member: int, heading: float,
+def _pushed(model: StaticsModel, members: np.ndarray, push: np.ndarray) -> list[float | None]:
+    """``_headings`` of the contacts of ``members``, None where the push has no tangential
+    part in a contact's plane beyond round-off (PUSH_ROUNDOFF of its size: under weight
+    alone its direction is noise, and a pyramid turned by it would turn the forces with
+    it)."""
+    size = float(np.linalg.norm(push))
+    local = push[None, :] if model.contact_frames is None else model.contact_frames[members] @ push
+    significant = np.hypot(local[:, 0], local[:, 1]) > tol.PUSH_ROUNDOFF * size
+    headings = _headings(model, members, push)
+    if model.contact_frames is None:
+        significant = np.repeat(significant, len(members))
+    return [h if ok else None for h, ok in zip(headings, significant.tolist())]
+
+
+def _admissible_edges(model: StaticsModel, member: int, heading: float | None,
                       target: np.ndarray) -> np.ndarray:
     """(3, m): the edges of the forces ``closest_admissible`` lets contact ``member`` take:
-    the pyramid of ``cone_solution`` (along the push, ``heading``) and, where its
-    ``target`` force has a tangential part, the pyramid along that too (its frame).  Both
-    are inscribed in the Coulomb cone, so are their non-negative combinations.  The
-    target's pyramid alone misses forces that the program's holds: on ``l-shelf-pushed``
-    moved by 5 mm (held at 99 % of its friction, no corner to spare) no forces inside
-    the targets' pyramids balanced it, the least-squares weights missed balance by 8e-4 N,
-    their exact balance then left a cone by 2.5e-4 of its friction, and the program's own
-    vertex forces were reported instead: different ones as the design was turned."""
-    edges = _member_generators(model, member, heading)
-    if _tie(model, member) or not np.any(target[:2]):
+    its friction pyramid along its ``target`` force's tangential part (its frame), and
+    that of ``cone_solution`` (along the push, ``heading``) where the push has a
+    direction (both inscribed in the Coulomb cone, so are their non-negative
+    combinations); any force for an anchor's tie.  The targets' pyramids alone missed
+    forces that the program's hold: on ``l-shelf-pushed`` moved by 5 mm (held at 99 % of
+    its friction, no corner to spare) no forces inside them balanced it, the least-squares
+    weights missed balance by 8e-4 N, their exact balance left a cone by 2.5e-4 of its
+    friction, and the program's own vertex forces were reported instead: different ones
+    as the design was turned.  (The program's alone turn with the push, which under
+    weight alone is round-off: the forces then turned with it.)"""
+    if _tie(model, member):
+        return _BOTH_WAYS
+    own = _heading(target[:2]) if np.any(target[:2]) else heading or 0.0
+    edges = _generators(model.friction, own)
+    if heading is None or heading == own:
         return edges
-    return np.hstack([edges, _generators(model.friction, _heading(target[:2]))])
+    return np.hstack([edges, _generators(model.friction, heading)])
