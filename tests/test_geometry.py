@@ -129,6 +129,23 @@ def test_an_end_face_is_measured_where_it_meets_the_face():
     assert gap == pytest.approx(0.4 * np.tan(np.radians(0.2)), rel=1e-9)     # m
 
 
+def test_edit_margins_measure_an_end_face_where_it_meets_the_face():
+    """The edit margins (``geometry.edits.EditMargins``) watch the same gap: the shelf's
+    joint margins gap + slack and slack - gap (the first two of its row) for the shelf
+    turned 0.2 degrees are those of the 1.396 mm gap, so the margin says the joint is
+    lost; with its nearest corner anywhere (on the slat's plane) they stayed at 0.5 mm."""
+    from furncheck.geometry import EditMargins, end_gap
+    from furncheck.geometry.model import _GEOMETRY_EPS
+
+    flush = design(_shelf_and_slat(0.0))
+    margins = EditMargins(flush, analyze(flush), (1,))
+    turned_away = design(_shelf_and_slat(-0.2))
+    required, _ = margins(turned_away)
+    gap, slack = end_gap(turned_away, 0, 1), flush.tolerance + _GEOMETRY_EPS
+    assert required[:2] == pytest.approx([gap + slack, slack - gap], rel=1e-9, abs=1e-12)
+    assert required[1] < 0.0
+
+
 def test_ground_contacts_penetration_and_floating():
     """Corners within tolerance of z = 0 are contacts; deeper ones penetrate; a design
     touching the ground nowhere floats."""
@@ -450,7 +467,7 @@ def test_quads_are_clipped_at_once_as_one_at_a_time(coordinates, half_x, half_y,
     along = (np.cos(2.0 * turn), np.sin(2.0 * turn))
     slope = np.array([[0.3 * ox, 0.1 * c, -0.2 * s]])       # a tilted plane's heights
     corners = slope[0, 0] + slope[0, 1] * xs[0] + slope[0, 2] * ys[0]
-    gap = float(corners.min())
+    gap = float(corners.min()) - 1e-3     # the corners' own, told apart from the fitted one
     region = _clipped_region(quad, half_x, half_y, *along, 0.0, slope[0].tolist(), gap)
     if region is not None:
         measured = _polygon_measures(cx, cy, count, np.array([along]))
@@ -458,7 +475,8 @@ def test_quads_are_clipped_at_once_as_one_at_a_time(coordinates, half_x, half_y,
         least = _region_gaps(cx, cy, count, slope, local, np.array([[half_x, half_y]]),
                              np.array([gap]))
         assert (*(float(m[0]) for m in measured), float(least[0])) == region
-        assert region[4] >= gap                # a part of the quad lies no lower
+        whole = expected is quad                # nothing clipped: the corners' gap as given
+        assert (region[4] == gap) if whole else (region[4] >= corners.min() - 1e-12)
 
 
 def test_fresh_pairs_from_the_changed_planks_alone():

@@ -331,6 +331,7 @@ def test_rigid_motion_of_an_l_shelf_at_the_edge_of_sliding(edit, phi):
     assert_same_physics(report, check(new, model="elastic"), force_scale(design), rotation,
                         map_point, point_tol=1e-9 * pd.unit_factor(design))
 
+
 def _table_with_a_short_apron() -> dict:
     """``designs/table.yaml`` after two edits of a random sweep (seed 23): its left leg
     turned 4.09 degrees about the vertical and moved 7.6 mm, its apron shortened to 829.6

@@ -27,12 +27,15 @@ from furncheck.geometry.faces import (
     _best_touches,
     _bounding_boxes,
     _box_depths,
+    _clipped_to_rectangles,
     _design_tables,
     _dot,
     _Faces,
+    _height_slopes,
     _least,
     _most,
     _overlapping,
+    _region_gaps,
     _separating_axes,
     _stacked_tables,
 )
@@ -268,10 +271,12 @@ class EditMargins:
 
     The rows are fixed at construction, so the margins of two steps of one DOF compare
     entry by entry.  Under a translation or a size change every margin is linear in the
-    step: a search can predict where the first criterion flips and confirm it with
-    ``check_edit`` instead of bisecting blindly.  The criteria mirror ``analyze`` closely,
-    not exactly (the clipped area of a touching region is approximated by its separating
-    axes): a prediction is only ever a guess to be confirmed.
+    step (a joint's gap piecewise linear: the least point of the part of its end face over
+    the face moves where that part's clipping changes): a search can predict where the
+    first criterion flips and confirm it with ``check_edit`` instead of bisecting blindly.
+    The criteria mirror ``analyze`` closely, not exactly (the clipped area of a touching
+    region is approximated by its separating axes): a prediction is only ever a guess to
+    be confirmed.
     """
 
     def __init__(self, design: Design, geometry: Geometry, changed: tuple[int, ...],
@@ -381,7 +386,9 @@ def _combo_margins(faces: _Faces, rot: np.ndarray, half: np.ndarray,
                    f: np.ndarray, g: np.ndarray, slack: float) -> np.ndarray:
     """(C, 18) margins of narrow face f of plank edge resting on broad face g of plank face
     (``rot`` (n, 3, 3), ``half`` (n, 3), ``boxes``: all planks' rotations, half extents
-    and bounding boxes): gap + slack, slack - gap, tilt (alignment - cos of the largest
+    and bounding boxes): gap + slack, slack - gap (the gap of the part of the end face
+    over the face, ``_touching_gaps``: piecewise linear in a translation, where the
+    clipping changes), tilt (alignment - cos of the largest
     tilt), height of the edge plank's centre above the face, the overlap of the end face's
     projection with the face along the face's two axes and the projection's two edge
     normals (both ends each, less a round-off slack: faces that only share an edge do not
@@ -393,7 +400,6 @@ def _combo_margins(faces: _Faces, rot: np.ndarray, half: np.ndarray,
     # component by component (``_dot``, ``_least``, ``_most``): numpy's reductions and
     # matmuls over axes of two to four entries cost many times the arithmetic
     heights = _dot(corners, normal[:, None, :]) - offset[:, None]          # (C, 4)
-    gap = _least(heights)
     alignment = -_dot(faces.narrow_normal[edge, f], normal)
     outside = _dot(faces.centers[edge], normal) - offset
     half_f = half[face]
@@ -402,6 +408,7 @@ def _combo_margins(faces: _Faces, rot: np.ndarray, half: np.ndarray,
     rot_f = rot[face]
     qx = _dot(relative, rot_f[:, None, :, 0])                              # (C, 4) in the
     qy = _dot(relative, rot_f[:, None, :, 1])                              # face's x-y
+    gap = _touching_gaps(qx, qy, _dot(relative, normal[:, None, :]), half_f, _least(heights))
     overlap = np.empty((len(edge), 8))
     overlap[:, 0] = half_f[:, 0] - _least(qx)
     overlap[:, 1] = half_f[:, 1] - _least(qy)
@@ -424,6 +431,29 @@ def _combo_margins(faces: _Faces, rot: np.ndarray, half: np.ndarray,
     lo, hi = boxes
     return np.column_stack([gap + slack, slack - gap, alignment - _COS_MAX_TILT, outside,
                             overlap, hi[face] + slack - lo[edge], hi[edge] + slack - lo[face]])
+
+
+def _touching_gaps(qx: np.ndarray, qy: np.ndarray, heights: np.ndarray, half: np.ndarray,
+                   corner_gap: np.ndarray) -> np.ndarray:
+    """(C,) m: the gap of each end face (corners ``qx``, ``qy`` (C, 4) in the face's x-y,
+    ``heights`` above it) where it lies over the face, as ``analyze`` measures it
+    (``faces._region_gaps``: the least height over the clipped region); ``corner_gap``,
+    its corners' least, where no part of it lies over the face (the overlap margins
+    watch that)."""
+    hx, hy = half[:, :1], half[:, 1:2]
+    across = ~(np.all((np.abs(qx) <= hx) & (np.abs(qy) <= hy), axis=1)     # partly over
+               | np.all(qx > hx, axis=1) | np.all(qx < -hx, axis=1)        # the face: the
+               | np.all(qy > hy, axis=1) | np.all(qy < -hy, axis=1))       # others keep
+    rows = np.flatnonzero(across)                                          # their corners'
+    gaps = corner_gap.copy()
+    if len(rows):
+        x, y, h = qx[rows], qy[rows], half[rows]
+        local = np.stack([x, y], axis=2)
+        xs, ys, count = _clipped_to_rectangles(x, y, h[:, 0], h[:, 1])
+        clipped = _region_gaps(xs, ys, count, _height_slopes(local, heights[rows]), local, h,
+                               corner_gap[rows])
+        gaps[rows] = np.where(count >= 3, clipped, corner_gap[rows])
+    return gaps
 
 
 def _cut_margins(rot: np.ndarray, half: np.ndarray, centre: np.ndarray,

@@ -28,7 +28,7 @@ class _Touch(NamedTuple):
     point: np.ndarray
     length: float
     frame: np.ndarray
-    gap: float          # m, signed distance of the edge face's nearest corner (< 0: inside)
+    gap: float          # m, least height of the touching region over the face (< 0: inside)
     alignment: float    # -(edge face normal . face normal), 1 when flush
     area: float         # m^2 of the touching region
     edge_face: tuple[int, int] = (0, 1)
@@ -176,7 +176,9 @@ def _height_slopes(local: np.ndarray, heights: np.ndarray) -> np.ndarray:
     h0 + a x + b y of its projection (x, y) (the face plank's local x-y): affine, since
     the narrow face is flat and, tilted by less than JOINT_MAX_TILT_DEG, projects one to
     one.  From its corners' projections ``local`` (C, 4, >= 2) and ``heights`` (C, 4): the
-    slopes (a, b) along its two sides (corner 0 to 1, 1 to 2), h0 through corner 1."""
+    slopes (a, b) along its two sides (corner 0 to 1, 1 to 2), h0 through corner 1; a face
+    seen edge-on (no such filter before ``follow_many``'s re-measuring) is taken as flat
+    at its corners' least height."""
     u = local[:, 0, :2] - local[:, 1, :2]
     w = local[:, 1, :2] - local[:, 2, :2]
     rise_u, rise_w = heights[:, 0] - heights[:, 1], heights[:, 1] - heights[:, 2]
@@ -184,7 +186,9 @@ def _height_slopes(local: np.ndarray, heights: np.ndarray) -> np.ndarray:
     safe = np.where(det != 0.0, det, 1.0)
     a = np.where(det != 0.0, (rise_u * w[:, 1] - rise_w * u[:, 1]) / safe, 0.0)
     b = np.where(det != 0.0, (u[:, 0] * rise_w - w[:, 0] * rise_u) / safe, 0.0)
-    return np.column_stack([heights[:, 1] - a * local[:, 1, 0] - b * local[:, 1, 1], a, b])
+    h0 = np.where(det != 0.0, heights[:, 1] - a * local[:, 1, 0] - b * local[:, 1, 1],
+                  heights.min(axis=1))         # edge-on (never past the tilt filter): flat
+    return np.column_stack([h0, a, b])
 
 
 def _region_gaps(xs: np.ndarray, ys: np.ndarray, count: np.ndarray, slope: np.ndarray,

@@ -10,11 +10,11 @@ says which planks are joined, and a listed joint that does not close is ``discon
 already): two planks not joined, where a narrow (end) face of one faces a broad face of
 the other as a joint's would (tilted at most ``JOINT_MAX_TILT_DEG``, the end face's
 projection overlapping the broad face, the end's plank on the face's outer side) and the
-end face's nearest corner stands off the face (a gap) or cuts into it (an overlap) by
-more than the tolerance and at most the band.  Reported as ``disconnected``, named as the
-joint would be (face/edge): ``seat/leg_l: 4 mm gap between the end of leg_l and the face
-of seat ...``.  Two parallel shelves (face to face), or an end face beside a plank rather
-than over its face, are no joint and so no near miss.
+nearest point of the part of the end face over the face stands off the face (a gap) or
+cuts into it (an overlap) by more than the tolerance and at most the band.  Reported as
+``disconnected``, named as the joint would be (face/edge): ``seat/leg_l: 4 mm gap between
+the end of leg_l and the face of seat ...``.  Two parallel shelves (face to face), or an
+end face beside a plank rather than over its face, are no joint and so no near miss.
 
 *A missed ground contact*: a plank of a group that stands on the ground elsewhere,
 touching the ground nowhere itself, standing on an end (the floor taken as a face plank:

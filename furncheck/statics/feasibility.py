@@ -273,7 +273,7 @@ def _admissible_edges(model: StaticsModel, member: int, heading: float | None,
     weight alone is round-off: the forces then turned with it.)"""
     if _tie(model, member):
         return _BOTH_WAYS
-    own = _heading(target[:2]) if np.any(target[:2]) else heading or 0.0
+    own = _heading(target[:2]) if np.any(target[:2]) else 0.0 if heading is None else heading
     edges = _generators(model.friction, own)
     if heading is None or heading == own:
         return edges
