@@ -213,9 +213,9 @@ most 1 - cos(pi / 64) = 0.12 % of the friction (the circumscribed pyramid, mu / 
 64), would bound it from the other side)."""
 
 PUSH_ROUNDOFF = 1e-9
-"""A load's sideways part (in a contact's plane) smaller than this fraction of it is
-round-off: it gives the friction pyramids of the admissible forces closest to the elastic
-ones no direction (``feasibility._pushed``)."""
+"""A load's or an elastic contact force's sideways part (in a contact's plane) smaller than
+this fraction of it is round-off: it gives the friction pyramids of the admissible forces
+closest to the elastic ones no direction (``feasibility._pushed``, ``_admissible_edges``)."""
 
 EQUILIBRIUM_WEIGHT = 1e6
 """Weight of the equilibrium rows against the distance to the elastic forces when the

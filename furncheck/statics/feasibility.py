@@ -261,7 +261,8 @@ def _pushed(model: StaticsModel, members: np.ndarray, push: np.ndarray) -> list[
 def _admissible_edges(model: StaticsModel, member: int, heading: float | None,
                       target: np.ndarray) -> np.ndarray:
     """(3, m): the edges of the forces ``closest_admissible`` lets contact ``member`` take:
-    its friction pyramid along its ``target`` force's tangential part (its frame), and
+    its friction pyramid along its ``target`` force's tangential part (its frame; along
+    the push where that part is round-off, PUSH_ROUNDOFF of the force), and
     that of ``cone_solution`` (along the push, ``heading``) where the push has a
     direction (both inscribed in the Coulomb cone, so are their non-negative
     combinations); any force for an anchor's tie.  The targets' pyramids alone missed
@@ -273,7 +274,9 @@ def _admissible_edges(model: StaticsModel, member: int, heading: float | None,
     weight alone is round-off: the forces then turned with it.)"""
     if _tie(model, member):
         return _BOTH_WAYS
-    own = _heading(target[:2]) if np.any(target[:2]) else 0.0 if heading is None else heading
+    sideways = float(np.hypot(target[0], target[1]))
+    own = _heading(target[:2]) if sideways > tol.PUSH_ROUNDOFF * float(np.linalg.norm(target)) \
+        else 0.0 if heading is None else heading   # a round-off sideways part: no direction
     edges = _generators(model.friction, own)
     if heading is None or heading == own:
         return edges
