@@ -2,7 +2,7 @@
 over a generated catalog: far more designs than the suite can afford.
 
     python benchmarks/sweep_catalog.py [--count N] [--seed S] [--every K] [--jobs J]
-                                       [--edits E]
+                                       [--edits E] [--keep DIR]
 
 Writes N designs (``benchmarks/catalog.py``, default 1,000: shelving walls of 5 to 30
 planks, two thirds with a second case that pushes the top) and, with ``--edits``, E edits
@@ -22,7 +22,8 @@ both models:
   cases balance.
 
 It needs the ``test`` extra (``pip install -e '.[test]'``: the checks are the suite's).
-Prints a table: checks made and failed per kind, then each failure.  The tolerances are
+Prints a table: checks made and failed per kind, then each failure; with ``--keep`` the
+failing design files are copied into DIR (the sweep's own folder is temporary).  The tolerances are
 the tests' (relative 1e-6 of the forces, 1e-3 of the loads for balance).  Designs are
 checked in J processes (default 2); the output is the same for any J.
 """
@@ -203,6 +204,17 @@ def write_edits(folder: Path, count: int, seed: int) -> list[Path]:
     return paths
 
 
+def _keep_failing(paths: list[str], results: list, folder: Path) -> None:
+    """Copy the design files with a failure (``results`` per path) into ``folder``, so that
+    they outlive the sweep's temporary folder."""
+    import shutil
+
+    folder.mkdir(parents=True, exist_ok=True)
+    for path, (_, failed) in zip(paths, results):
+        if failed:
+            shutil.copy(path, folder / Path(path).name)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--count", type=int, default=1000)
@@ -211,6 +223,8 @@ def main() -> None:
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--edits", type=int, default=0,
                         help="random DOF edits of each design of designs/")
+    parser.add_argument("--keep", metavar="DIR",
+                        help="copy every design file with a failure into DIR")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as folder:
         paths = [str(p) for p in write_catalog(folder, args.count, args.seed)]
@@ -218,6 +232,8 @@ def main() -> None:
         pushes = [args.every > 0 and k % args.every == 0 for k in range(len(paths))]
         with ProcessPoolExecutor(args.jobs) as pool:
             results = list(pool.map(sweep_one, paths, pushes, chunksize=8))
+        if args.keep:
+            _keep_failing(paths, results, Path(args.keep))
     made = dict.fromkeys(KINDS, 0)
     failures = []
     for counts, failed in results:

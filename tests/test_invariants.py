@@ -685,9 +685,16 @@ def test_the_generated_catalog_sweep_checks_and_passes(tmp_path, monkeypatch):
     from sweep_catalog import KINDS, sweep_one
 
     made = dict.fromkeys(KINDS, 0)
-    for path in write_catalog(tmp_path, 3):
-        counts, failures = sweep_one(str(path), pushes=True)
+    paths = [str(path) for path in write_catalog(tmp_path, 3)]
+    results = [sweep_one(path, pushes=True) for path in paths]
+    for counts, failures in results:
         assert failures == []
         for kind in KINDS:
             made[kind] += counts[kind]
     assert all(made[kind] > 0 for kind in KINDS), made
+    # --keep copies the failing designs' files: here the second, as if it had failed
+    from sweep_catalog import _keep_failing
+
+    results[1] = (results[1][0], [("motion", "a finding")])
+    _keep_failing(paths, results, tmp_path / "kept")
+    assert [p.name for p in (tmp_path / "kept").iterdir()] == [Path(paths[1]).name]
