@@ -190,7 +190,10 @@ class _ActiveSet:
         caps are then updated from the new normal forces until they agree (to the force
         tolerance): by Newton's method on the caps (``_FrictionEnergy.cap_newton``, which
         also predicts where the next minimum lies), or by Anderson's mixing of the last
-        iterates where a Newton update did not shrink the disagreement.  The iterations
+        iterates where a Newton update did not shrink the disagreement, and once
+        FRICTION_CAP_STALLS updates in a row have not beaten the least disagreement, by
+        relaxed plain updates c + FRICTION_CAP_RELAXATION (mu N - c) (a corner at the edge
+        between sticking and slipping sent Newton's and Anderson's updates round).  The iterations
         start from ``start``, the normal phase's solution, with the caps of its forces
         (its contacts' statuses ``status`` are not needed: the minimization finds which
         corners press).  Only the solution returned is assembled in full.  None if there
@@ -202,7 +205,8 @@ class _ActiveSet:
         ground = start.ground
         caps = self._caps(start.contact_forces)
         history: list[tuple[np.ndarray, np.ndarray]] = []     # (caps, the caps they gave)
-        disagreement = np.inf
+        disagreement = least = np.inf
+        stalls = 0                          # updates since the least disagreement so far
         self.cycled, self.last_ground = True, ground
         for _ in range(tol.FRICTION_CAP_ITERATIONS):
             energy = _FrictionEnergy(self, caps)
@@ -218,10 +222,14 @@ class _ActiveSet:
             if size <= self.force_tol:
                 status = np.where(self._pressing(forces), STICK, LIFT)
                 return status, self.assemble(ground, forces, displacements)
+            least, stalls = (size, 0) if size < least else (least, stalls + 1)
             history = [*history[-tol.FRICTION_CAP_MEMORY:], (caps, new_caps)]
-            newton = energy.cap_newton(ground, caps, residual) if size < disagreement else None
+            newton = energy.cap_newton(ground, caps, residual) \
+                if size < disagreement and stalls < tol.FRICTION_CAP_STALLS else None
             disagreement = size
-            if newton is None:
+            if stalls >= tol.FRICTION_CAP_STALLS:     # going round: relaxed plain updates
+                caps = caps + tol.FRICTION_CAP_RELAXATION * residual
+            elif newton is None:
                 caps = _anderson(history)
             else:
                 caps, ground = newton
