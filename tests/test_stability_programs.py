@@ -26,6 +26,7 @@ from furncheck.design import parse_design
 from furncheck.geometry import analyze
 from furncheck.statics import build_model, external_forces, feasibility, solve_case
 from furncheck.statics import contacts as contacts_module
+from furncheck.statics import outcomes as outcomes_module
 
 L_SHELF = (Path(__file__).resolve().parents[1] / "designs" / "l-shelf-pushed.yaml").read_text()
 PUSH = np.array([9.77091957, 14.0397457, 0.0])
@@ -282,9 +283,9 @@ def test_a_mechanism_held_down_is_not_said_to_stand_on_one_line():
     its message says the contacts lie on one line only where they do (a board balanced
     on one corner line), else that the design is a mechanism on them."""
     line = np.array([[0.0, 0.0, 0.0], [0.5, 0.0, 0.0], [1.0, 0.0, 0.0]])
-    assert contacts_module._on_one_line(line)
-    assert contacts_module._on_one_line(line[:1])
-    assert not contacts_module._on_one_line(line + np.array([[0.0, 0.0, 0.0],
+    assert outcomes_module._on_one_line(line)
+    assert outcomes_module._on_one_line(line[:1])
+    assert not outcomes_module._on_one_line(line + np.array([[0.0, 0.0, 0.0],
                                                              [0.0, 0.3, 0.0],
                                                              [0.0, 0.0, 0.0]]))
 

@@ -32,7 +32,10 @@ The package, by job:
                  factored once (anchored_system), the full mixed matrix (system_matrix)
                  and its solve (solve_system)
     lapack       scipy's LAPACK routines without importing scipy.linalg (cholesky)
-    contacts     solve_case: the contact active set and the friction energy
+    contacts     solve_case: the contact active set and its phases
+    friction     the friction phase's energy (Tresca problems) and its line search
+    outcomes     what a case reports once decided: stable, sliding, lift-off, the
+                 programs' forces
     feasibility  linear programs: does any admissible equilibrium exist?
     beams        the elastic model's elements: Timoshenko beam, consistent loads, a nail
                  row's spring (pure functions)

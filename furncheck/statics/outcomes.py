@@ -1,0 +1,298 @@
+"""What a load case's contact solver reports (``contacts._ActiveSet``'s verdicts): a stable
+case's forces, a case that slides or lifts off with the forces it would need and why, and
+the feasibility programs' verdict with the forces they fix where the iterations could not
+settle (``from_programs``, ``prescribed``); the friction cones' tests the phases share.
+
+``_Outcomes`` is the part of ``contacts._ActiveSet`` that builds them, apart from the
+contact iterations themselves; it reads the solver's model, loads, tolerances and
+``solve``.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from furncheck import tolerances as tol
+from furncheck.plain import plain_number
+from furncheck.statics.model import CaseStatics
+
+if TYPE_CHECKING:   # the programs are imported where a case needs them
+    from furncheck.statics.contacts import _Solution
+    from furncheck.statics.feasibility import Feasibility
+
+STICK, LIFT = 0, 2
+FEEBLE_SCALES = (1e-9, 1e-12, 1e-15)
+"""The feeble springs' stiffness, as fractions of the contacts', tried in turn where a
+program's contact forces are imposed (``_ActiveSet.prescribed``)."""
+_LINE_DETAIL = ("all its ground contacts lie on one line: it can at best balance on that "
+                "edge, and the least push about it tips the design over")
+_LINE_SLIDING = ("no equilibrium within the friction cones, and its ground contacts lie on "
+                 "one line: no forces to show")
+_MECHANISM_DETAIL = ("held down at all its contacts it would still move (a mechanism): no "
+                     "forces to show")
+
+
+class _Outcomes:
+    """The verdicts and reports of ``contacts._ActiveSet`` (a mixin: it reads the solver's
+    ``model``, ``f``, ``scale``, ``force_tol``, ``mu`` and ``anchored``, and calls its
+    ``solve`` and ``by_newton``)."""
+
+    # -- results -------------------------------------------------------------------------------
+    def stable(self, solution: _Solution, status: np.ndarray) -> CaseStatics:
+        return CaseStatics("stable", _wrenches(solution.h), solution.contact_forces,
+                           state=np.concatenate([solution.q, solution.h]),
+                           holding=status != LIFT, displacements=solution.q)
+
+    def sliding(self, solution: _Solution) -> CaseStatics:
+        """Report a case that slides, with the forces it would need if friction were endless."""
+        model = self.model
+        forces = solution.contact_forces
+        over = self._outside_cones(forces)
+        if model.contact_frames is not None:        # walls too: the friction each needs
+            resting = self._rests_phrase(over, "slides on")
+            if resting:                             # what the resting joints must hold
+                needed, capacity = self._rests_friction(forces, over)
+            else:                                   # the ground's and walls' corners
+                own = np.ones(len(forces), dtype=bool)
+                if model.rest_node is not None:
+                    own[model.rest_rows] = False
+                needed = float(np.hypot(forces[own, 0], forces[own, 1]).sum())
+                capacity = self.mu * float(np.maximum(forces[own, 2], 0.0).sum())
+            walls = any(model.geometry.contacts[c].wall is not None for c in model.contacts)
+            if resting:
+                what = (f"{resting}: a resting joint must pass on {plain_number(needed)} N "
+                        f"along its faces, its friction gives at most {plain_number(capacity)} N")
+            else:
+                what = (f"the {'ground and walls' if walls else 'ground'} must hold "
+                        f"{plain_number(needed)} N along their faces, friction gives at most "
+                        f"{plain_number(capacity)} N")
+            detail = (f"no equilibrium within the friction cones (mu = "
+                      f"{plain_number(self.mu, 6)}): {what}")
+            return CaseStatics("sliding", _wrenches(solution.h), forces,
+                               self._plank_ids(over), detail, displacements=solution.q)
+        sideways = float(np.hypot(*forces[:, :2].sum(axis=0)))
+        capacity = self.mu * float(forces[:, 2].sum())
+        centre = (forces[:, 2] @ model.contact_points) / max(float(forces[:, 2].sum()), 1e-300)
+        arms = model.contact_points - centre
+        twist = abs(float((arms[:, 0] * forces[:, 1] - arms[:, 1] * forces[:, 0]).sum()))
+        radius = float(np.sqrt(forces[:, 2] @ (arms ** 2).sum(axis=1)
+                               / max(float(forces[:, 2].sum()), 1e-300)))
+        significant = twist > 0.05 * sideways * radius + self.force_tol
+        twist_text = f" and a {plain_number(twist, 3)} N m twist" if significant else ""
+        detail = (f"no equilibrium within the friction cones (mu = {plain_number(self.mu, 6)}): "
+                  f"the ground must resist {plain_number(sideways)} N sideways{twist_text}, "
+                  f"friction gives at most {plain_number(capacity)} N")
+        if sideways > capacity + self.force_tol:    # it slides as a whole: all its feet
+            over = forces[:, 2] > self.force_tol
+        return CaseStatics("sliding", _wrenches(solution.h), forces, self._plank_ids(over),
+                           detail, displacements=solution.q)
+
+    def unstable(self, stability: str, program: Feasibility | None = None) -> CaseStatics:
+        """Report a case without admissible equilibrium: forces as if bolted to the ground
+        (none when even bolted down the contacts cannot hold it: all on one line, or the
+        design a mechanism on them)."""
+        from furncheck.statics.feasibility import UNDECIDED
+
+        bolted = self.solve(np.full(len(self.model.contacts), STICK))
+        undecided = "" if program is None or program.status != UNDECIDED else (
+            f"; the solver could not prove it either way ({program.message}), so the "
+            "case is not passed")
+        if bolted is None:
+            detail = _MECHANISM_DETAIL if not _on_one_line(self.model.contact_points) else \
+                _LINE_DETAIL if stability == "lift-off" else _LINE_SLIDING
+            return CaseStatics(stability, None, None, (), detail + undecided)
+        pulling = bolted.contact_forces[:, 2] < -self.force_tol
+        if self.anchored is not None:
+            pulling &= ~self.anchored
+        resting, pulled = "", -float(bolted.contact_forces[pulling, 2].sum())
+        if self.model.rest_node is not None:    # a resting joint lifts where its corners'
+            forces = bolted.contact_forces      # forces add up to a pull
+            lifting = {rest for rest, total in self._rest_totals(forces).items()
+                       if total[2] < -self.force_tol}
+            corners = np.zeros(len(forces), dtype=bool)
+            for k in self.model.rest_rows:
+                corners[k] = self.model.geometry.contacts[self.model.contacts[k]].rest \
+                    in lifting
+            resting = self._rests_phrase(corners, "lifts off")
+            ground = pulling.copy()
+            ground[self.model.rest_rows] = False
+            pulled = -float(forces[ground, 2].sum()) - sum(
+                float(total[2]) for rest, total in self._rest_totals(forces).items()
+                if rest in lifting)
+            pulling = ground | corners          # the planks named: those that lift
+        if stability == "lift-off" and resting:
+            detail = (f"no equilibrium with the {self._supports()} only pushing: {resting} "
+                      f"(held down, the {self._supports()} would have to pull "
+                      f"{plain_number(pulled)} N)")
+        elif stability == "lift-off":
+            detail = (f"no equilibrium with the {self._supports()} only pushing: the load's "
+                      "line of action "
+                      "falls outside the support polygon, the design topples "
+                      f"(held down, the {self._supports()} would have to pull "
+                      f"{plain_number(pulled)} N)")
+        else:
+            detail = (f"no equilibrium within the friction cones "
+                      f"(mu = {plain_number(self.mu, 6)}); forces shown as if the design were "
+                      f"bolted to the {self._supports()}")
+        return CaseStatics(stability, _wrenches(bolted.h), bolted.contact_forces,
+                           self._plank_ids(pulling), detail + undecided,
+                           displacements=bolted.q)
+
+    def from_programs(self, target: np.ndarray, on_failure: _Solution | None,
+                      bolted: _Solution | None = None) -> CaseStatics:
+        """The verdict of the friction program when the iterations could not settle:
+        'sliding' when it finds no equilibrium inside the friction cones (with the forces
+        of ``on_failure`` if given); else stable, with the equilibrium of the contact law
+        that Newton's method (``by_newton``) reaches from ``bolted`` (every contact
+        sticking) where it reaches one, or the admissible contact forces closest to
+        ``target`` (the elastic forces).  The program goes first: a design that slides,
+        the usual reason the iterations fail, costs no Newton steps (where the program
+        cannot decide, an equilibrium that Newton's method finds decides it)."""
+        from furncheck.statics.feasibility import (
+            INFEASIBLE,
+            UNDECIDED,
+            closest_admissible,
+            cone_solution,
+        )
+
+        cone = cone_solution(self.model, self.f)
+        settled = None
+        if bolted is not None and (cone.exists or cone.status == UNDECIDED):
+            settled = self.by_newton(bolted.ground)     # an equilibrium it finds exists
+        if settled is not None:
+            return settled
+        if not cone.exists:
+            if on_failure is not None and cone.status == INFEASIBLE:
+                return self.sliding(on_failure)
+            return self.unstable("sliding", cone)
+        closest = closest_admissible(self.model, self.f, target)
+        return self.prescribed(closest if self._admissible(closest) else cone.forces)
+
+    def _admissible(self, forces: np.ndarray) -> bool:
+        """Whether contact forces (nK, 3) press (N >= 0) and stay inside the friction
+        cones, to the force tolerance (the exact balance of ``closest_admissible`` moves
+        them by round-off; should it ever move them out, the program's own are used); an
+        anchor's tie may pull."""
+        pressing = forces[:, 2] >= -self.force_tol
+        if self.anchored is not None:
+            pressing |= self.anchored
+        return bool(np.all(pressing) and not self._outside_cones(forces).any())
+
+    def prescribed(self, contact_forces: np.ndarray) -> CaseStatics:
+        """Joint wrenches for contact forces fixed by a feasibility program.
+
+        The contact forces enter as loads; feeble springs (the contact stiffness times
+        FEEBLE_SCALES, the first whose forces stay within the force tolerance) only remove
+        the rigid motions and carry no force since the loads balance (the solve is judged
+        against the loads' scale: its own right-hand side is round-off).  An elastic frame
+        loaded by forces far from its own equilibrium ones can deform by centimetres
+        (a racking table's feet, the program's friction fixed at them): 1e-9 of the
+        stiffness then held 0.2 N per corner, so that its planks' wrenches missed balance
+        by that much; the next scale holds a thousandth of it.
+        """
+        model = self.model
+        f = self.f + model.contact_generalized(contact_forces)
+        feeble = type(self)(model, f, self.scale)
+        all_stick = np.full(len(model.contacts), STICK)
+        solution = None
+        for scale in FEEBLE_SCALES:
+            found = feeble.solve(all_stick, stiffness_scale=scale, load_scale=self.scale)
+            if found is None:
+                break
+            solution = found
+            if np.abs(found.contact_forces).max(initial=0.0) <= self.force_tol:
+                break
+        if solution is None:
+            return CaseStatics("lift-off", None, None, (), _LINE_DETAIL)
+        return CaseStatics("stable", _wrenches(solution.h), contact_forces.copy(),
+                           holding=self._pressing(contact_forces),
+                           displacements=solution.q)
+
+    def _supports(self) -> str:
+        """What the contacts stand on, for messages: 'ground', 'ground and walls', or
+        'supports' where planks rest on others."""
+        if self.model.rest_node is not None:
+            return "supports"
+        return "ground" if self.model.contact_frames is None else "ground and walls"
+
+    def _rest_totals(self, forces: np.ndarray) -> dict[int, np.ndarray]:
+        """Per resting joint (its index in ``Design.joints``), its corners' forces (nK, 3)
+        summed: what the corners push against each other cancels."""
+        model, totals = self.model, {}
+        for k in model.rest_rows:
+            rest = model.geometry.contacts[model.contacts[k]].rest
+            totals[rest] = totals.get(rest, np.zeros(3)) + forces[k]
+        return totals
+
+    def _rests_friction(self, forces: np.ndarray, over: np.ndarray) -> tuple[float, float]:
+        """(N, N) of the resting joint that needs the most friction for what it gives
+        (among those with a corner in ``over``): the sideways force it must pass on, its
+        corners' forces summed, and the friction mu N it gives."""
+        model = self.model
+        sliding = {model.geometry.contacts[model.contacts[k]].rest
+                   for k in model.rest_rows if over[k]}
+        worst = (0.0, 0.0)
+        for rest, total in self._rest_totals(forces).items():
+            if rest not in sliding:
+                continue
+            needed, capacity = float(np.hypot(total[0], total[1])), \
+                self.mu * max(float(total[2]), 0.0)
+            if needed - capacity > worst[0] - worst[1]:
+                worst = (needed, capacity)
+        return worst
+
+    def _rests_phrase(self, mask: np.ndarray, verb: str) -> str:
+        """'top lifts off side_l; ...' for the resting joints with a corner in ``mask``:
+        the upper plank (the face plank when its face looks down onto the edge plank)
+        first; '' for none."""
+        model, phrases = self.model, []
+        for k in model.rest_rows:
+            if not mask[k]:
+                continue
+            contact = model.geometry.contacts[model.contacts[k]]
+            upper, lower = (contact.on, contact.plank) if contact.face_above \
+                else (contact.plank, contact.on)
+            phrase = f"{upper} {verb} {lower}"
+            if phrase not in phrases:
+                phrases.append(phrase)
+        return "; ".join(phrases)
+
+    def _pressing(self, forces: np.ndarray) -> np.ndarray:
+        """(nK,) bool: the contacts that hold with forces (nK, 3): those that press, and
+        the anchors' ties whatever they do."""
+        pressing = forces[:, 2] > self.force_tol
+        return pressing if self.anchored is None else pressing | self.anchored
+
+    def within_cones(self, solution: _Solution) -> bool:
+        return not self._outside_cones(solution.contact_forces).any()
+
+    def _outside_cones(self, forces: np.ndarray) -> np.ndarray:
+        """(nK,) bool: contact forces (nK, 3) whose sideways part exceeds mu N (beyond the
+        force tolerance); never an anchor's tie."""
+        outside = np.hypot(forces[:, 0], forces[:, 1]) > self.mu * forces[:, 2] + self.force_tol
+        return outside if self.anchored is None else outside & ~self.anchored
+
+    def _plank_ids(self, mask: np.ndarray) -> tuple[str, ...]:
+        """The planks of the contacts in ``mask`` (both planks of a resting corner)."""
+        design, model = self.model.design, self.model
+        ids = {design.planks[model.planks[model.contact_plank[k]]].id
+               for k in np.nonzero(mask)[0]}
+        if model.rest_node is not None:
+            ids |= {model.geometry.contacts[model.contacts[k]].on
+                    for k in np.nonzero(mask)[0] if model.rest_node[k] >= 0}
+        return tuple(p.id for p in design.planks if p.id in ids)
+
+
+def _on_one_line(points: np.ndarray) -> bool:
+    """Whether the contact points (nK, 3) lie on one line (or at one point), to
+    MECHANISM_RCOND of their spread."""
+    if len(points) < 2:
+        return True
+    spread = np.linalg.svd(points - points.mean(axis=0), compute_uv=False)
+    return bool(spread[1] <= tol.MECHANISM_RCOND * max(spread[0], 1e-300))
+
+
+def _wrenches(h: np.ndarray) -> np.ndarray:
+    return h.reshape(-1, 6).copy()
