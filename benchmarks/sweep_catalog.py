@@ -23,9 +23,10 @@ both models:
 
 It needs the ``test`` extra (``pip install -e '.[test]'``: the checks are the suite's).
 Prints a table: checks made and failed per kind, then each failure; with ``--keep`` the
-failing design files are copied into DIR (the sweep's own folder is temporary).  The tolerances are
-the tests' (relative 1e-6 of the forces, 1e-3 of the loads for balance).  Designs are
-checked in J processes (default 2); the output is the same for any J.
+failing design files are copied into DIR (the sweep's own folder is temporary; a second
+sweep into the same DIR may overwrite them).  The tolerances are the tests' (relative
+1e-6 of the forces, 1e-3 of the loads for balance).  Designs are checked in J processes
+(default 2); the output is the same for any J.
 """
 
 from __future__ import annotations

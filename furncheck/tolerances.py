@@ -112,17 +112,18 @@ FRICTION_CAP_MEMORY = 3
 FRICTION_CAP_STALLS = 2
 """Friction-cap updates in a row that do not beat the least disagreement met so far, after
 which the caps are updated by relaxed plain steps (FRICTION_CAP_RELAXATION) instead of
-Newton's method or Anderson's mixing: a splayed coffee table's corner at the edge between
+Newton's method or Anderson's mixing, until one beats it (then Newton's method again): a
+splayed coffee table's corner at the edge between
 sticking and slipping sent those round, its caps alternating between two states, and
 whether they settled within FRICTION_CAP_ITERATIONS, or the programs' forces were taken,
 depended on the design's turn (a leg joint's force by 6 %)."""
 
 FRICTION_CAP_RELAXATION = 0.7
 """The fraction of the caps' disagreement mu N - c that a relaxed plain update takes (a
-Krasnoselskii-Mann step: it settles where the full one goes round).  On 35 edits of the
-splayed coffee table, each in two turns, 0.7 after 2 stalls left none of their friction
-phases unsettled (5 before, 2 with 0.5) and took the fewest Newton steps of 0.3, 0.5 and
-0.7 after 1, 2 or 3 stalls."""
+Krasnoselskii-Mann step: it damps the two-state cycle that the full one goes round).  On 35
+edits of the splayed coffee table, each in two turns, 0.7 after 2 stalls left none of their
+friction phases unsettled (5 before, 2 with 0.5) and took the fewest Newton steps of 0.3,
+0.5 and 0.7 after 1, 2 or 3 stalls."""
 
 FRICTION_NEWTON_ITERATIONS = 100
 """Most Newton steps when minimizing the energy with slipping friction springs."""

@@ -360,6 +360,7 @@ def test_rigid_motion_of_a_table_whose_apron_misses_a_leg(model):
         assert_same_physics(report, check(new, model=model), force_scale(design), rotation,
                             map_point, point_tol=1e-9 * pd.unit_factor(design))
 
+
 def _coffee_table_with_a_corner_at_the_edge() -> dict:
     """``designs/coffee-table-splayed.yaml`` after two edits of a random sweep (seed 57):
     leg_pp shortened to 397.56 mm and splayed 2.92 degrees less, leg_mp widened to 125.5

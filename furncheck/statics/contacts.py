@@ -176,17 +176,17 @@ class _ActiveSet(_Outcomes):
         caps are then updated from the new normal forces until they agree (to the force
         tolerance): by Newton's method on the caps (``_FrictionEnergy.cap_newton``, which
         also predicts where the next minimum lies), or by Anderson's mixing of the last
-        iterates where a Newton update did not shrink the disagreement, and once
-        FRICTION_CAP_STALLS updates in a row have not beaten the least disagreement, by
-        relaxed plain updates c + FRICTION_CAP_RELAXATION (mu N - c) (a corner at the edge
-        between sticking and slipping sent Newton's and Anderson's updates round).  The iterations
-        start from ``start``, the normal phase's solution, with the caps of its forces
-        (its contacts' statuses ``status`` are not needed: the minimization finds which
-        corners press).  Only the solution returned is assembled in full.  None if there
-        is no minimum (the load exceeds what friction can hold: ``cycled`` False) or the
-        caps do not settle within FRICTION_CAP_ITERATIONS (``cycled`` True;
-        ``last_ground``: the last minimizer, from which ``solve_case`` starts Newton's
-        method on the whole law before the programs).
+        iterates where a Newton update did not shrink the disagreement; once
+        FRICTION_CAP_STALLS updates in a row have not beaten the least disagreement so far,
+        by relaxed plain updates c + FRICTION_CAP_RELAXATION (mu N - c) until one beats it,
+        then by Newton's method again (a corner at the edge between sticking and slipping
+        sent Newton's and Anderson's updates round).  The iterations start from ``start``,
+        the normal phase's solution, with the caps of its forces (its contacts' statuses
+        ``status`` are not needed: the minimization finds which corners press).  Only the
+        solution returned is assembled in full.  None if there is no minimum (the load
+        exceeds what friction can hold: ``cycled`` False) or the caps do not settle within
+        FRICTION_CAP_ITERATIONS (``cycled`` True; ``last_ground``: the last minimizer, from
+        which ``solve_case`` starts Newton's method on the whole law before the programs).
         """
         ground = start.ground
         caps = self._caps(start.contact_forces)
@@ -332,7 +332,6 @@ class _ActiveSet(_Outcomes):
         status[pulling] = LIFT
         status[sinking] = STICK
         return bool(pulling.any() or sinking.any())
-
 
 
 def _contact_map(model: StaticsModel) -> np.ndarray:

@@ -36,8 +36,9 @@ _MECHANISM_DETAIL = ("held down at all its contacts it would still move (a mecha
 
 class _Outcomes:
     """The verdicts and reports of ``contacts._ActiveSet`` (a mixin: it reads the solver's
-    ``model``, ``f``, ``scale``, ``force_tol``, ``mu`` and ``anchored``, and calls its
-    ``solve`` and ``by_newton``)."""
+    ``model``, ``f``, ``scale``, ``force_tol``, ``mu`` and ``anchored``, calls its
+    ``solve`` and ``by_newton``, and ``prescribed`` builds another solver of its class,
+    ``type(self)(model, f, scale)``)."""
 
     # -- results -------------------------------------------------------------------------------
     def stable(self, solution: _Solution, status: np.ndarray) -> CaseStatics:
