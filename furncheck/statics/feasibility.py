@@ -261,17 +261,17 @@ def _pushed(model: StaticsModel, members: np.ndarray, push: np.ndarray) -> list[
 def _admissible_edges(model: StaticsModel, member: int, heading: float | None,
                       target: np.ndarray) -> np.ndarray:
     """(3, m): the edges of the forces ``closest_admissible`` lets contact ``member`` take:
-    its friction pyramid along its ``target`` force's tangential part (its frame; along
-    the push where that part is round-off, PUSH_ROUNDOFF of the force), and
-    that of ``cone_solution`` (along the push, ``heading``) where the push has a
-    direction (both inscribed in the Coulomb cone, so are their non-negative
-    combinations); any force for an anchor's tie.  The targets' pyramids alone missed
-    forces that the program's hold: on ``l-shelf-pushed`` moved by 5 mm (held at 99 % of
-    its friction, no corner to spare) no forces inside them balanced it, the least-squares
-    weights missed balance by 8e-4 N, their exact balance left a cone by 2.5e-4 of its
-    friction, and the program's own vertex forces were reported instead: different ones
-    as the design was turned.  (The program's alone turn with the push, which under
-    weight alone is round-off: the forces then turned with it.)"""
+    its friction pyramid along its ``target`` force's tangential part (its frame; along the
+    push where that part is round-off, PUSH_ROUNDOFF of the force), and that of
+    ``cone_solution`` (along the push, ``heading``) where the push has a direction (both
+    inscribed in the Coulomb cone, so are their non-negative combinations); any force for an
+    anchor's tie.  The targets' pyramids alone missed forces that the program's hold: on
+    ``l-shelf-pushed`` moved by 5 mm (held at 99 % of its friction, no corner to spare) no
+    forces inside them balanced it, the least-squares weights missed balance by 8e-4 N,
+    their exact balance left a cone by 2.5e-4 of its friction, and the program's own vertex
+    forces were reported instead: different ones as the design was turned.  (The program's
+    alone turn with the push, which under weight alone is round-off: the forces then turned
+    with it.)"""
     if _tie(model, member):
         return _BOTH_WAYS
     sideways = float(np.hypot(target[0], target[1]))

@@ -170,14 +170,13 @@ class _FrictionEnergy:
         LINE_SEARCH_EXTEND of the start's or less; and, where the slope there is still <= 0
         (Phi fell all along the step), where it brings the largest out-of-balance force
         below FULL_STEP_GRADIENT of ``best``, the least met so far (a step that lets many
-        contacts change state at once; beyond the minimum along the step it could go
-        uphill, see FULL_STEP_GRADIENT).  Otherwise the
-        slope's zero is sought (``_StepSlope``: each contact's displacement is affine in
-        t, so the slope is a sum of closed forms, O(contacts) per t): below t = 1 between
-        the breakpoints where contacts lift, press, stick or slip, beyond t = 1 (the
-        energy is much flatter than the Hessian said, as along a sliding motion) by
-        doubling t, up to where the displacements pass SLIDING_DISPLACEMENT (Phi has no
-        minimum there: the design slides)."""
+        contacts change state at once; beyond the minimum along the step it could go uphill,
+        see FULL_STEP_GRADIENT).  Otherwise the slope's zero is sought (``_StepSlope``: each
+        contact's displacement is affine in t, so the slope is a sum of closed forms,
+        O(contacts) per t): below t = 1 between the breakpoints where contacts lift, press,
+        stick or slip, beyond t = 1 (the energy is much flatter than the Hessian said, as
+        along a sliding motion) by doubling t, up to where the displacements pass
+        SLIDING_DISPLACEMENT (Phi has no minimum there: the design slides)."""
         w, _, _, _, force = self._state(x)
         slope0 = float(gradient @ step)
         full = x + step
