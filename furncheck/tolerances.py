@@ -113,10 +113,10 @@ FRICTION_CAP_STALLS = 2
 """Friction-cap updates in a row that do not beat the least disagreement met so far, after
 which the caps are updated by relaxed plain steps (FRICTION_CAP_RELAXATION) instead of
 Newton's method or Anderson's mixing, until one beats it (then Newton's method again): a
-splayed coffee table's corner at the edge between
-sticking and slipping sent those round, its caps alternating between two states, and
-whether they settled within FRICTION_CAP_ITERATIONS, or the programs' forces were taken,
-depended on the design's turn (a leg joint's force by 6 %)."""
+splayed coffee table's corner at the edge between sticking and slipping sent those round,
+its caps alternating between two states, and whether they settled within
+FRICTION_CAP_ITERATIONS, or the programs' forces were taken, depended on the design's turn
+(a leg joint's force by 6 %)."""
 
 FRICTION_CAP_RELAXATION = 0.7
 """The fraction of the caps' disagreement mu N - c that a relaxed plain update takes (a

@@ -178,9 +178,16 @@ def _headings(model: StaticsModel, members: np.ndarray, push: np.ndarray) -> lis
     rest on others, the programs are one problem for all components, and ``push`` is the
     first component's (as before: a choice of orientation, the same for a turned
     design)."""
+    return _per_contact(model, members, push, lambda local: _heading(local[:2]))
+
+
+def _per_contact(model: StaticsModel, members: np.ndarray, push: np.ndarray,
+                 measure) -> list:
+    """``measure`` of the force ``push`` (world, (3,)) in each contact's frame, per contact
+    of ``members`` (once for all where every contact's frame is the world's)."""
     if model.contact_frames is None:
-        return [_heading(push[:2])] * len(members)
-    return [_heading(local[:2]) for local in model.contact_frames[members] @ push]
+        return [measure(push)] * len(members)
+    return [measure(local) for local in model.contact_frames[members] @ push]
 
 
 def cone_solution(model: StaticsModel, f: np.ndarray) -> Feasibility:
@@ -246,16 +253,17 @@ def closest_admissible(model: StaticsModel, f: np.ndarray, target: np.ndarray) -
 
 def _pushed(model: StaticsModel, members: np.ndarray, push: np.ndarray) -> list[float | None]:
     """``_headings`` of the contacts of ``members``, None where the push has no tangential
-    part in a contact's plane beyond round-off (PUSH_ROUNDOFF of its size: under weight
-    alone its direction is noise, and a pyramid turned by it would turn the forces with
-    it)."""
-    size = float(np.linalg.norm(push))
-    local = push[None, :] if model.contact_frames is None else model.contact_frames[members] @ push
-    significant = np.hypot(local[:, 0], local[:, 1]) > tol.PUSH_ROUNDOFF * size
-    headings = _headings(model, members, push)
-    if model.contact_frames is None:
-        significant = np.repeat(significant, len(members))
-    return [h if ok else None for h, ok in zip(headings, significant.tolist())]
+    part in a contact's plane beyond round-off (``_direction``: under weight alone its
+    direction is noise, and a pyramid turned by it would turn the forces with it)."""
+    return _per_contact(model, members, push, _direction)
+
+
+def _direction(force: np.ndarray) -> float | None:
+    """rad: ``_heading`` of a force (3,) in a contact's frame, None where its tangential
+    part is round-off (at most PUSH_ROUNDOFF of the force)."""
+    sideways = float(np.hypot(force[0], force[1]))
+    return _heading(force[:2]) if sideways > tol.PUSH_ROUNDOFF * float(np.linalg.norm(force)) \
+        else None
 
 
 def _admissible_edges(model: StaticsModel, member: int, heading: float | None,
@@ -274,9 +282,9 @@ def _admissible_edges(model: StaticsModel, member: int, heading: float | None,
     with it.)"""
     if _tie(model, member):
         return _BOTH_WAYS
-    sideways = float(np.hypot(target[0], target[1]))
-    own = _heading(target[:2]) if sideways > tol.PUSH_ROUNDOFF * float(np.linalg.norm(target)) \
-        else 0.0 if heading is None else heading   # a round-off sideways part: no direction
+    own = _direction(target)
+    if own is None:                         # a round-off sideways part: the push's, or 0
+        own = 0.0 if heading is None else heading
     edges = _generators(model.friction, own)
     if heading is None or heading == own:
         return edges
