@@ -6,6 +6,10 @@
 runs it must neither write to the developer's cache nor be served a result that another
 test computed (several tests replace part of the checker).  ``FURNCHECK_CACHE_DIR`` points
 the default at a fresh folder per test, for the CLI in this process and in subprocesses.
+
+Every hypothesis test is derandomized: the profile loaded here is the default that each
+test's own ``settings`` inherit, so the same examples run in every run and CI never fails
+on an example that no earlier run met (the tests also say so themselves).
 """
 
 from __future__ import annotations
@@ -15,11 +19,15 @@ import types
 from pathlib import Path
 
 import pytest
+from hypothesis import settings
 
 import furncheck.cli  # noqa: F401  (first: one BLAS thread, as the command line runs)
 from furncheck.design import load_design
 from furncheck.design.model import with_model
 from furncheck.suggest import suggest_design
+
+settings.register_profile("furncheck", derandomize=True)
+settings.load_profile("furncheck")
 
 
 @pytest.fixture(autouse=True)

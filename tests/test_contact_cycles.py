@@ -8,6 +8,8 @@ behind it (Newton's method on the whole contact law, the programs) run here on p
 
 The design is the catalog's 28-plank cabinet in the elastic model with its left side
 turned by 1.7 degrees (a step of the ``range`` search met it): its 'lean' case cycles.
+A table whose top is left on two corners by the lifts shows the normal phase following
+the top down onto a third instead of giving up (``_ActiveSet._seat_toppling``).
 """
 
 from __future__ import annotations
@@ -86,6 +88,54 @@ def test_settled_cases_do_not_change(case_name):
     assert statics.contact_forces[:, 2].min() >= -1e-9 * scale
     assert np.abs(statics.contact_forces.sum(axis=0)
                   + f.reshape(-1, 6)[:, :3].sum(axis=0)).max() < 1e-6 * scale
+
+
+def _table_on_two_feet():
+    """``designs/table-racking.yaml`` with leg_pp widened to 67.65 mm and moved in to x =
+    320.4 mm and leg_pm moved off the top (``test_invariants._table_on_two_feet_and_a_
+    corner``): the top's centre of mass lies about a millimetre inside the line through
+    leg_pp's inner corner and leg_mm's outer corners."""
+    tree = yaml.safe_load((CABINET.parent / "table-racking.yaml").read_text())
+    tree["model"] = "elastic"
+    planks = {plank["id"]: plank for plank in tree["planks"]}
+    planks["leg_pp"].update(size=[700.0, 67.654393096], center=[320.422934694, 270.0, 350.0])
+    planks["leg_pm"]["center"] = [444.0, -415.488120183, 350.0]
+    design = parse_design(yaml.safe_dump(tree, sort_keys=False), "table.yaml", "yaml")
+    return design, build_model(design, analyze(design))
+
+
+def test_a_lift_that_frees_the_top_seats_the_corner_it_comes_down_on(monkeypatch):
+    """Lifting the corners that pull left the top on leg_pp's corner and one corner of
+    leg_mm, a line about which it is free to turn: the normal phase gave up there, both
+    ways, and the case went to Newton's method and the programs.  Now the feeble-spring
+    equilibrium turns the top about that line and seats leg_mm's other corner, which the
+    turn drives into the floor (``_ActiveSet._seat_toppling``): the 'default' case is
+    stable without Newton's method or the programs, the top on three corners, which
+    carry the weight of the top, its three legs and the 20 kg, sum N = W =
+    (1000 x 600 + 2 x 700 x 60 + 700 x 67.65) mm^2 x 12 mm x 750 kg/m^3 x g + 20 kg x g
+    with g = 9.81 m/s^2
+    (the fourth leg, standing on its own, its own weight on its four corners)."""
+    design, model = _table_on_two_feet()
+    f = external_forces(model, design.load_cases[0])
+    solver = contacts_module._ActiveSet(model, f, contacts_module._force_scale(model, f))
+    all_stick = np.full(len(model.contacts), contacts_module.STICK)
+    for one_at_a_time in (False, True):
+        assert solver.normal_phase(all_stick, one_at_a_time) is not None
+
+    def not_asked(*args, **kwargs):
+        raise AssertionError("Newton's method or the programs were asked")
+
+    monkeypatch.setattr(contacts_module._ActiveSet, "from_programs", not_asked)
+    monkeypatch.setattr(contacts_module._ActiveSet, "by_newton", not_asked)
+    statics = solve_case(model, f)
+    assert statics.stability == "stable"
+    planks = [design.planks[model.planks[k]].id for k in model.contact_plank]
+    table = np.array([plank != "leg_pm" for plank in planks])
+    pressing = table & (statics.contact_forces[:, 2] > 1e-6)
+    assert sorted(planks[k] for k in np.flatnonzero(pressing)) == ["leg_mm", "leg_mm", "leg_pp"]
+    area = 1000 * 600 + 2 * 700 * 60 + 700 * 67.654393096              # mm^2
+    weight = (area * 12e-9 * 750 + 20.0) * 9.81                        # N, g as GRAVITY
+    assert statics.contact_forces[table, 2].sum() == pytest.approx(weight, rel=1e-6)
 
 
 def _contact_law(w: np.ndarray, k, mu: float, anchored) -> np.ndarray:

@@ -18,7 +18,7 @@ from functools import cached_property
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.statics.anchored import anchored_system
+from furncheck.statics.anchored import anchored_springs_system, anchored_system
 from furncheck.statics.condense import _accurate
 from furncheck.statics.friction import _anderson, _FrictionEnergy, balance_sizes
 from furncheck.statics.model import CaseStatics, StaticsModel, rigid_motions, spring_rows
@@ -145,7 +145,10 @@ class _ActiveSet(_Outcomes):
         phase may still settle it); None when a solve fails or the iterations run out.
 
         Lifting every pulling contact at once is fast; lifting only the one that pulls
-        hardest is the slower, surer fallback.
+        hardest is the slower, surer fallback.  A lift that leaves a grounded part free
+        to move (its holding corners on one line) seats the lifted corners that the
+        loads would drive into the floor (``_seat_toppling``) and goes on; where they
+        would drive none, the part topples or slides: None.
         """
         status = status.copy()
         seen = set()
@@ -155,9 +158,12 @@ class _ActiveSet(_Outcomes):
             if key in seen:
                 return solved, solution, False
             seen.add(key)
-            solution = self.solve(status)
-            if solution is None:
-                return None
+            found = self.solve(status)
+            if found is None:
+                if self._restrained(status == STICK) or not self._seat_toppling(status):
+                    return None
+                continue
+            solution = found
             solved = status.copy()
             if not self._update_normals(solution.contact_forces,
                                         solution.contact_displacements, status, one_at_a_time):
@@ -332,6 +338,36 @@ class _ActiveSet(_Outcomes):
         status[pulling] = LIFT
         status[sinking] = STICK
         return bool(pulling.any() or sinking.any())
+
+    def _seat_toppling(self, status: np.ndarray) -> bool:
+        """Seat (STICK, in ``status``) the lifted contacts that the loads drive into the
+        floor where the holding ones leave a grounded part free to move; whether any
+        was.
+
+        Lifting a corner that pulls can leave a part on corners along one line (a table
+        whose centre of mass lies near the line of two of its feet, after its third and
+        fourth feet lifted): no equilibrium of the holding corners alone, though the
+        part comes down on another corner.  With the lifted contacts held by feeble
+        springs (TOPPLING_SPRING_SCALE of their stiffness) the equilibrium moves the part
+        along its free motion, and the lifted corners that motion presses into the
+        floor (with more than the force tolerance) are those it comes down on.  False
+        where the loads lift every lifted corner: the part topples (the normal phase
+        gives up, and the programs say so)."""
+        lifted = status == LIFT
+        if not lifted.any():
+            return False
+        model = self.model
+        springs = np.broadcast_to(np.asarray(model.contact_springs, dtype=float),
+                                  lifted.shape) \
+            * np.where(lifted, tol.TOPPLING_SPRING_SCALE, 1.0)
+        system = anchored_springs_system(model, springs)
+        ground = system.solve(self.ground_rhs)
+        if ground is None or not np.all(np.isfinite(ground)):
+            return False
+        pressing = -springs * self.contact_displacements(ground)[:, 2]
+        sinking = lifted & (pressing > self.force_tol)
+        status[sinking] = STICK
+        return bool(sinking.any())
 
 
 def _contact_map(model: StaticsModel) -> np.ndarray:
