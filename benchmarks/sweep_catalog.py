@@ -2,13 +2,14 @@
 over a generated catalog: far more designs than the suite can afford.
 
     python benchmarks/sweep_catalog.py [--count N] [--seed S] [--every K] [--jobs J]
-                                       [--edits E] [--keep DIR]
+                                       [--edits E] [--edit-size F] [--edit-turn D]
+                                       [--edit-dofs M] [--keep DIR]
 
 Writes N designs (``benchmarks/catalog.py``, default 1,000: shelving walls of 5 to 30
 planks, two thirds with a second case that pushes the top) and, with ``--edits``, E edits
-of every design of ``designs/`` (one or two random DOFs moved: up to 4 % of the design's
-size, or 5 degrees; tables, chairs, walls, anchors, resting planks), and checks each in
-both models:
+of every design of ``designs/`` (one to M random DOFs moved, default 2: up to F of the
+design's size, default 0.04, or D degrees, default 5; tables, chairs, walls, anchors,
+resting planks), and checks each in both models:
 
 - motion: turned about the vertical by 37 degrees and moved by (0.8, -1.7 m), and by
   -123.4 degrees and (-2.1, 0.3 m): the same verdicts, forces turned with it, the same
@@ -175,11 +176,12 @@ def _agrees_with_programs(model, forces: np.ndarray) -> None:
             "ground forces off balance"
 
 
-def write_edits(folder: Path, count: int, seed: int) -> list[Path]:
+def write_edits(folder: Path, count: int, seed: int, size: float = 0.04, turn: float = 5.0,
+                most: int = 2) -> list[Path]:
     """``count`` random edits of each design of ``designs/`` written into ``folder``: one
-    or two DOFs, each moved by up to 4 % of the design's size or 5 degrees (``apply_dof``:
-    the joints kept); an edit that a DOF cannot make, or that leaves a plank without size,
-    is left out.  The same files for the same seed."""
+    to ``most`` DOFs, each moved by up to ``size`` of the design's size (4 %) or ``turn``
+    degrees (5) (``apply_dof``: the joints kept); an edit that a DOF cannot make, or that
+    leaves a plank without size, is left out.  The same files for the same arguments."""
     import random
 
     from furncheck.design import load_design
@@ -191,10 +193,10 @@ def write_edits(folder: Path, count: int, seed: int) -> list[Path]:
         for k in range(count):
             design = base
             try:
-                for _ in range(rng.randint(1, 2)):
+                for _ in range(rng.randint(1, most)):
                     dof = rng.choice(all_dofs(design))
-                    step = rng.uniform(-5.0, 5.0) if dof.is_rotation else \
-                        rng.uniform(-0.04, 0.04) * design_size(design)
+                    step = rng.uniform(-turn, turn) if dof.is_rotation else \
+                        rng.uniform(-size, size) * design_size(design)
                     design = apply_dof(design, structure(design, analyze(design)), dof, step)
                 path = folder / f"{source.stem}-edit-{k:02d}.yaml"
                 write_design(design, str(path))
@@ -224,12 +226,19 @@ def main() -> None:
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--edits", type=int, default=0,
                         help="random DOF edits of each design of designs/")
+    parser.add_argument("--edit-size", type=float, default=0.04,
+                        help="largest move of an edit, a fraction of the design's size")
+    parser.add_argument("--edit-turn", type=float, default=5.0,
+                        help="largest turn of an edit, degrees")
+    parser.add_argument("--edit-dofs", type=int, default=2, help="most DOFs of one edit")
     parser.add_argument("--keep", metavar="DIR",
                         help="copy every design file with a failure into DIR")
     args = parser.parse_args()
     with tempfile.TemporaryDirectory() as folder:
         paths = [str(p) for p in write_catalog(folder, args.count, args.seed)]
-        paths += [str(p) for p in write_edits(Path(folder), args.edits, args.seed)]
+        paths += [str(p) for p in write_edits(Path(folder), args.edits, args.seed,
+                                              args.edit_size, args.edit_turn,
+                                              args.edit_dofs)]
         pushes = [args.every > 0 and k % args.every == 0 for k in range(len(paths))]
         with ProcessPoolExecutor(args.jobs) as pool:
             results = list(pool.map(sweep_one, paths, pushes, chunksize=8))

@@ -227,7 +227,9 @@ SLIDING_DISPLACEMENT = 10.0
 loads exceed what friction can hold (springs deflect ~1e-3 m under real loads).  A
 linear solve of a contact state whose grounded planks' displacements (metres, and
 radians for their turns) pass it is a mechanism regular only by round-off
-(``contacts._ActiveSet.solve``)."""
+(``contacts._ActiveSet.solve``).  Measured as the longest translation or rotation vector
+of a grounded node (``friction.displacement_size``), the same in every turn of the
+design."""
 
 FORCE_REL_TOL = 1e-9
 """Relative force slack (of the total applied load) for contact sign and cone checks."""

@@ -420,6 +420,53 @@ def test_rigid_motion_of_a_table_left_on_two_feet(motion):
                         map_point, point_tol=1e-9 * pd.unit_factor(design))
 
 
+def _table_on_one_panel() -> dict:
+    """``designs/table-pine-top.yaml`` after three edits of a sweep with larger edits: its
+    top turned by 7.65 degrees, leg_r moved out to x = 568.2 mm (off the top, standing on
+    its own) and the apron out to y = -319.5 mm.  The top hangs on leg_l, a panel
+    standing on its 12 mm edge: it topples ('lift-off'), and bolted down its leg turns so
+    far on the rigid model's soft contact springs that the bolted solve moves it by about
+    SLIDING_DISPLACEMENT."""
+    design = yaml.safe_load((CATALOG_DIR / "table-pine-top.yaml").read_text())
+    planks = {plank["id"]: plank for plank in design["planks"]}
+    planks["top"]["rotation"] = [0.0, 0.0, 7.64589365311]
+    planks["leg_r"]["center"] = [568.177499982, 0.0, 360.0]
+    planks["apron"]["center"] = [0.0, -319.453080218, 670.0]
+    return design
+
+
+def test_displacement_size_is_the_length_of_each_move():
+    """A node moved by (3, 4, 0) m and turned by (0, 0, 0.5) rad moves 5 m (the length of
+    its translation, larger than its turn), and so does every rigid turn of it, where the
+    largest component ranges from 4 to 5 m."""
+    from furncheck.statics.friction import displacement_size
+
+    ground = np.array([3.0, 4.0, 0.0, 0.0, 0.0, 0.5, 0.1, 0.0, 0.0, 2.0, 0.0, 0.0])
+    assert displacement_size(ground) == pytest.approx(5.0, rel=1e-15)
+    for phi in np.radians([37.0, -123.4, 90.0]):
+        turn = np.array([[np.cos(phi), -np.sin(phi), 0.0], [np.sin(phi), np.cos(phi), 0.0],
+                         [0.0, 0.0, 1.0]])
+        turned = (ground.reshape(-1, 3) @ turn.T).ravel()   # every translation and rotation
+        assert displacement_size(turned) == pytest.approx(5.0, rel=1e-14)
+
+
+@pytest.mark.parametrize("phi", [37.0, -123.4])
+def test_rigid_motion_of_a_table_toppling_off_one_panel(phi):
+    """(a) the size of a solve's displacements (``statics.friction.displacement_size``):
+    as the largest component of the grounded planks' displacements, leg_l's bolted solve
+    moved 10.3 m as written and 8.3 m turned by 37 degrees, past SLIDING_DISPLACEMENT in
+    one turn and not in the other: the 'default' case's lift-off read "a mechanism" as
+    written and "the design topples (held down, the ground would have to pull 12,220 N)"
+    turned.  As the lengths of each node's translation and rotation vectors it is the
+    same in every turn."""
+    design = _table_on_one_panel()
+    report = check(design, model="rigid")
+    assert [case.stability for case in report.cases] == ["lift-off", "lift-off"]
+    new, rotation, map_point = moved(design, phi, 0.8, -1.7)
+    assert_same_physics(report, check(new, model="rigid"), force_scale(design), rotation,
+                        map_point, point_tol=1e-9 * pd.unit_factor(design))
+
+
 # --- (b) units and format ----------
 
 @pytest.mark.parametrize("name", NAMES)

@@ -20,7 +20,12 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.statics.anchored import anchored_springs_system, anchored_system
 from furncheck.statics.condense import _accurate
-from furncheck.statics.friction import _anderson, _FrictionEnergy, balance_sizes
+from furncheck.statics.friction import (
+    _anderson,
+    _FrictionEnergy,
+    balance_sizes,
+    displacement_size,
+)
 from furncheck.statics.model import CaseStatics, StaticsModel, rigid_motions, spring_rows
 from furncheck.statics.outcomes import LIFT, STICK, _Outcomes
 
@@ -272,7 +277,7 @@ class _ActiveSet(_Outcomes):
         ground = system.solve(self.ground_rhs)
         if ground is None or not _accurate(system.matrix, ground, self.ground_rhs, load_scale):
             return None
-        if stiffness_scale == 1.0 and not np.abs(ground).max() <= tol.SLIDING_DISPLACEMENT:
+        if stiffness_scale == 1.0 and not displacement_size(ground) <= tol.SLIDING_DISPLACEMENT:
             return None     # a mechanism in all but round-off: the springs cannot hold it
         displacement = self.contact_displacements(ground)
         # the anchor springs: k (x the scale) in all three directions where a contact holds
