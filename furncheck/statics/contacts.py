@@ -24,7 +24,7 @@ from furncheck.statics.friction import (
     _anderson,
     _FrictionEnergy,
     balance_sizes,
-    displacement_size,
+    past_sliding,
 )
 from furncheck.statics.model import CaseStatics, StaticsModel, rigid_motions, spring_rows
 from furncheck.statics.outcomes import LIFT, STICK, _Outcomes
@@ -277,7 +277,7 @@ class _ActiveSet(_Outcomes):
         ground = system.solve(self.ground_rhs)
         if ground is None or not _accurate(system.matrix, ground, self.ground_rhs, load_scale):
             return None
-        if stiffness_scale == 1.0 and not displacement_size(ground) <= tol.SLIDING_DISPLACEMENT:
+        if stiffness_scale == 1.0 and past_sliding(ground):
             return None     # a mechanism in all but round-off: the springs cannot hold it
         displacement = self.contact_displacements(ground)
         # the anchor springs: k (x the scale) in all three directions where a contact holds

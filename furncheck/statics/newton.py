@@ -33,7 +33,7 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.statics.anchored import condensed_stiffness
 from furncheck.statics.contact_law import ContactLaw
-from furncheck.statics.friction import balance_floors, balanced, displacement_size
+from furncheck.statics.friction import balance_floors, balanced, past_sliding
 from furncheck.statics.lapack import routines
 
 if TYPE_CHECKING:
@@ -99,7 +99,7 @@ def newton_equilibrium(solver: _ActiveSet, start: np.ndarray):
         previous = x, forces, pressed
         x = x + t * step
         r, forces, tangent, pressed = trial
-        if not displacement_size(x) <= tol.SLIDING_DISPLACEMENT:
+        if past_sliding(x):
             return previous if size <= floors[1] else None
     if balanced(float(np.abs(r).max(initial=0.0)), last,
                 balance_floors(solver.force_tol, sizes, x)):
