@@ -103,15 +103,11 @@ else and would only cost the solve digits."""
 CONTACT_ITERATIONS = 60
 """Most active-set / friction-anchor iterations per load case."""
 
-TOPPLING_SPRING_SCALE = 1e-6
-"""Where lifting the corners that pull leaves a grounded part free to move (a table left on
-two corners of a diagonal), the active set follows that motion: the equilibrium with the
-lifted corners held by springs this fraction of the contact stiffness moves the part along
-its free motion, by about its load over those feeble springs, and seats the lifted
-corners it drives into the floor (``contacts._ActiveSet._seat_toppling``).  The forces
-they carry there are of the loads' size whatever the scale; small enough that the free
-motion dwarfs the planks' own deformation, large enough that the condensed matrix stays
-within double precision."""
+SEAT_ROUNDOFF = 1e-9
+"""Where a lift leaves a grounded part free to move, a lifted corner whose velocity in
+that motion points down by more than this fraction of the fastest corner's is seated
+(``contacts._ActiveSet._seat_toppling``); one on the line the part turns about moves
+down by round-off only and stays lifted."""
 
 FRICTION_CAP_ITERATIONS = 20
 """Most updates of the friction caps mu N from the normal forces in one load case."""

@@ -107,9 +107,9 @@ def _table_on_two_feet():
 def test_a_lift_that_frees_the_top_seats_the_corner_it_comes_down_on(monkeypatch):
     """Lifting the corners that pull left the top on leg_pp's corner and one corner of
     leg_mm, a line about which it is free to turn: the normal phase gave up there, both
-    ways, and the case went to Newton's method and the programs.  Now the feeble-spring
-    equilibrium turns the top about that line and seats leg_mm's other corner, which the
-    turn drives into the floor (``_ActiveSet._seat_toppling``): the 'default' case is
+    ways, and the case went to Newton's method and the programs.  Now the free motion
+    that the loads drive, a turn about that line, seats leg_mm's other corner, which it
+    drives into the floor (``_ActiveSet._seat_toppling``): the 'default' case is
     stable without Newton's method or the programs, the top on three corners, which
     carry the weight of the top, its three legs and the 20 kg, sum N = W =
     (1000 x 600 + 2 x 700 x 60 + 700 x 67.65) mm^2 x 12 mm x 750 kg/m^3 x g + 20 kg x g
@@ -136,6 +136,26 @@ def test_a_lift_that_frees_the_top_seats_the_corner_it_comes_down_on(monkeypatch
     area = 1000 * 600 + 2 * 700 * 60 + 700 * 67.654393096              # mm^2
     weight = (area * 12e-9 * 750 + 20.0) * 9.81                        # N, g as GRAVITY
     assert statics.contact_forces[table, 2].sum() == pytest.approx(weight, rel=1e-6)
+
+
+@pytest.mark.parametrize("side", [1.0, -1.0])
+def test_the_free_motion_turns_a_part_about_its_two_held_corners(side):
+    """A part held at (0, 0, 0) and (1, 0, 0) m, corners lifted at (0.5, +-1, 0), 10 N down
+    at (0.5, 0.3 side, 0.5): the held corners leave it one free motion, a turn w about
+    the x axis, and the load's moment about that axis, 0.3 side x -10 N m, turns it with
+    w_x of that sign; a corner at p moves by w x p, so its height changes by w_x p_y: the
+    corner on the load's side (p_y = side) goes down, the other up, the held ones stay."""
+    from furncheck.statics.contacts import _free_motion
+
+    points = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.5, 1.0, 0.0], [0.5, -1.0, 0.0]])
+    holding = np.array([True, True, False, False])
+    loads = np.array([[0.0, 0.0, -10.0, 0.0, 0.0, 0.0]])
+    velocity = _free_motion(points, holding, np.array([[0.5, 0.3 * side, 0.5]]), loads)
+    assert np.abs(velocity[:2]).max() <= 1e-12 * np.abs(velocity).max()
+    assert velocity[2, 2] * side < 0.0 < velocity[3, 2] * side
+    assert velocity[2, 2] == pytest.approx(-velocity[3, 2], rel=1e-12)
+    assert _free_motion(points, np.array([True, True, True, False]),
+                        np.array([[0.5, 0.3, 0.5]]), loads) is None      # held on three
 
 
 def _contact_law(w: np.ndarray, k, mu: float, anchored) -> np.ndarray:

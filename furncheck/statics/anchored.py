@@ -43,16 +43,13 @@ def _anchored_stiffness(model: StaticsModel, holding: np.ndarray,
                         scale: float = 1.0) -> np.ndarray:
     """``condensed_stiffness`` for the anchor springs of ``holding`` (x ``scale``): each
     holding contact adds scale k M^T M, M^T M kept once per model."""
-    return _spring_stiffness(model, scale * model.contact_springs * holding.astype(float))
-
-
-def _spring_stiffness(model: StaticsModel, springs: np.ndarray) -> np.ndarray:
-    """``condensed_stiffness`` for anchor springs of stiffness ``springs`` (N/m, (nK,))
-    in all three directions at every contact: each adds k M^T M."""
-    stiffness = _with_contact_blocks(model, model.contact_gram * springs[:, None, None])
+    blocks = model.contact_gram * (scale * model.contact_springs
+                                   * holding.astype(float))[:, None, None]
+    stiffness = _with_contact_blocks(model, blocks)
     if model.rest_node is None:
         return stiffness
-    return _with_rest_blocks(model, stiffness, np.eye(3) * springs[:, None, None])
+    return _with_rest_blocks(model, stiffness,
+                             anchor_springs(holding, model.contact_springs) * scale)
 
 
 def _rest_coupling(model: StaticsModel, springs: np.ndarray) -> list[tuple]:
@@ -171,13 +168,6 @@ class _Factored:
             return np.linalg.solve(self.matrix, rhs)
         except np.linalg.LinAlgError:
             return None
-
-
-def anchored_springs_system(model: StaticsModel, springs: np.ndarray) -> _Factored:
-    """S0 + K_c of anchor springs ``springs`` (N/m, (nK,)) at every contact, factored
-    (not kept: the active set asks it only where a lift left a part free to move)."""
-    matrix = _spring_stiffness(model, springs)
-    return _Factored(matrix, cholesky(matrix))
 
 
 def anchored_system(model: StaticsModel, holding: np.ndarray,

@@ -18,7 +18,7 @@ from functools import cached_property
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.statics.anchored import anchored_springs_system, anchored_system
+from furncheck.statics.anchored import anchored_system
 from furncheck.statics.condense import _accurate
 from furncheck.statics.friction import (
     _anderson,
@@ -352,27 +352,67 @@ class _ActiveSet(_Outcomes):
         Lifting a corner that pulls can leave a part on corners along one line (a table
         whose centre of mass lies near the line of two of its feet, after its third and
         fourth feet lifted): no equilibrium of the holding corners alone, though the
-        part comes down on another corner.  With the lifted contacts held by feeble
-        springs (TOPPLING_SPRING_SCALE of their stiffness) the equilibrium moves the part
-        along its free motion, and the lifted corners that motion presses into the
-        floor (with more than the force tolerance) are those it comes down on.  False
-        where the loads lift every lifted corner: the part topples (the normal phase
-        gives up, and the programs say so)."""
-        lifted = status == LIFT
-        if not lifted.any():
-            return False
+        part comes down on another corner.  Its free motions are the rigid ones that
+        keep the holding corners in place (``_free_motion``); along the one the loads do
+        work on, the lifted corners that move down are those it comes down on.  False
+        where they move none down: the part topples (the normal phase gives up, and the
+        programs say so).  Where planks rest on others, nothing is seated (their parts'
+        motions are coupled through the resting corners)."""
         model = self.model
-        springs = np.broadcast_to(np.asarray(model.contact_springs, dtype=float),
-                                  lifted.shape) \
-            * np.where(lifted, tol.TOPPLING_SPRING_SCALE, 1.0)
-        system = anchored_springs_system(model, springs)
-        ground = system.solve(self.ground_rhs)
-        if ground is None or not np.all(np.isfinite(ground)):
+        if model.rest_node is not None:
             return False
-        pressing = -springs * self.contact_displacements(ground)[:, 2]
-        sinking = lifted & (pressing > self.force_tol)
-        status[sinking] = STICK
-        return bool(sinking.any())
+        lifted = status == LIFT
+        loads = self.f.reshape(-1, 6)
+        seated = False
+        for c, nodes in enumerate(model.component_nodes):
+            members = np.flatnonzero(model.contact_component == c)
+            if not lifted[members].any():
+                continue
+            velocity = _free_motion(model.contact_points[members], ~lifted[members],
+                                    model.node_points[list(nodes)], loads[list(nodes)])
+            if velocity is None:
+                continue
+            sinking = lifted[members] & (velocity[:, 2] < -tol.SEAT_ROUNDOFF
+                                         * float(np.abs(velocity).max()))
+            status[members[sinking]] = STICK
+            seated |= bool(sinking.any())
+        return seated
+
+
+def _free_motion(points: np.ndarray, holding: np.ndarray, node_points: np.ndarray,
+                 loads: np.ndarray) -> np.ndarray | None:
+    """(k, 3): the velocity of each contact point (``points``, of one grounded part) in
+    the free rigid motion of the part that the loads drive, or None where its holding
+    contacts (``holding``) leave it no free motion or the loads do no work on any.
+
+    A rigid motion t = (v, w') (``model.rigid_motions``: translation v, rotation w' / L
+    about the points' mean, L their spread) moves point p by R_p t; it is free where
+    R_p t = 0 at every holding contact (the null space of their stacked R, by singular
+    values, rank as ``_rigidly_held`` decides it).  The loads (``loads``: force and
+    moment per node, at ``node_points``) do work g.t on it, g = (F, M / L) with F their
+    sum and M their moment about the points' mean; the motion they drive is the free one
+    along g's projection onto the free motions (the only one where a single free motion
+    is left, a turn about the line through two corners)."""
+    rigid = rigid_motions(points)                                   # (k, 3, 6)
+    arm = points - points.mean(axis=0)
+    length = max(float(np.abs(arm).max()), 1e-6)
+    constraints = rigid[holding].reshape(-1, 6)
+    if len(constraints):
+        _, values, rows = np.linalg.svd(constraints)
+        rank = int((values > tol.MECHANISM_RCOND * max(values[0], 1e-300)).sum())
+        free = rows[rank:].T                                        # (6, r)
+    else:
+        free = np.eye(6)
+    if not free.size:
+        return None
+    lever = node_points - points.mean(axis=0)
+    force = loads[:, :3].sum(axis=0)
+    moment = (np.cross(lever, loads[:, :3]) + loads[:, 3:]).sum(axis=0)
+    driven = free @ (free.T @ np.concatenate([force, moment / length]))
+    velocity = rigid @ driven
+    if not np.abs(velocity).max() > 0.0:
+        return None
+    return velocity
 
 
 def _contact_map(model: StaticsModel) -> np.ndarray:
