@@ -234,6 +234,8 @@ def main() -> None:
     parser.add_argument("--keep", metavar="DIR",
                         help="copy every design file with a failure into DIR")
     args = parser.parse_args()
+    if args.edit_dofs < 1:
+        parser.error("--edit-dofs must be at least 1")
     with tempfile.TemporaryDirectory() as folder:
         paths = [str(p) for p in write_catalog(folder, args.count, args.seed)]
         paths += [str(p) for p in write_edits(Path(folder), args.edits, args.seed,

@@ -9,7 +9,7 @@ the default at a fresh folder per test, for the CLI in this process and in subpr
 
 Every hypothesis test is derandomized: the profile loaded here is the default that each
 test's own ``settings`` inherit, so the same examples run in every run and CI never fails
-on an example that no earlier run met (the tests also say so themselves).
+on an example that no earlier run met (most tests also say so in their own settings).
 """
 
 from __future__ import annotations

@@ -156,6 +156,27 @@ def test_the_free_motion_turns_a_part_about_its_two_held_corners(side):
     assert velocity[2, 2] == pytest.approx(-velocity[3, 2], rel=1e-12)
     assert _free_motion(points, np.array([True, True, True, False]),
                         np.array([[0.5, 0.3, 0.5]]), loads) is None      # held on three
+    assert _free_motion(points, holding, np.array([[0.5, 0.0, 0.5]]), loads) is None
+
+
+def test_the_free_motion_follows_the_moment_about_the_hinge():
+    """The hinge off the points' mean: held at (0, 0, 0) and (1, 0, 0) m, corners lifted
+    at (0.5, 2, 0) and (0.5, -0.5, 0) (mean (0.5, 0.375, 0)), 10 N down at (0.5, 0.2,
+    0.3). About the hinge (the x axis) the load's moment is M_x = y F_z = 0.2 x -10 = -2
+    N m: the part turns with w_x < 0, and a corner's height changes by w_x p_y, so the far
+    corner (p_y = 2) goes down by 2 / 0.5 = 4 times the near one's rise.  About the
+    points' mean the moment is (0.2 - 0.375) x -10 = +1.75 N m, of the other sign: the
+    load's work on the translation of the mean, F_z v_z, is what makes up the difference,
+    and a free motion taken from that moment alone would tip the part the wrong way."""
+    from furncheck.statics.contacts import _free_motion
+
+    points = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.5, 2.0, 0.0], [0.5, -0.5, 0.0]])
+    holding = np.array([True, True, False, False])
+    loads = np.array([[0.0, 0.0, -10.0, 0.0, 0.0, 0.0]])
+    velocity = _free_motion(points, holding, np.array([[0.5, 0.2, 0.3]]), loads)
+    assert velocity[2, 2] < 0.0 < velocity[3, 2]
+    assert velocity[2, 2] == pytest.approx(-4.0 * velocity[3, 2], rel=1e-12)
+    assert np.abs(velocity[:2]).max() <= 1e-12 * np.abs(velocity).max()
 
 
 def _contact_law(w: np.ndarray, k, mu: float, anchored) -> np.ndarray:

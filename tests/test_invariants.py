@@ -437,17 +437,38 @@ def _table_on_one_panel() -> dict:
 
 def test_displacement_size_is_the_length_of_each_move():
     """A node moved by (3, 4, 0) m and turned by (0, 0, 0.5) rad moves 5 m (the length of
-    its translation, larger than its turn), and so does every rigid turn of it, where the
-    largest component ranges from 4 to 5 m."""
+    its translation, larger than its turn), a second node turned by (6, 0, 8) rad 10
+    (its rotation vector, longer than its move), and so do their rigid turns, where the
+    largest component is anything from 5 / sqrt(2) to 5 and from 8 to 10."""
     from furncheck.statics.friction import displacement_size
 
-    ground = np.array([3.0, 4.0, 0.0, 0.0, 0.0, 0.5, 0.1, 0.0, 0.0, 2.0, 0.0, 0.0])
-    assert displacement_size(ground) == pytest.approx(5.0, rel=1e-15)
-    for phi in np.radians([37.0, -123.4, 90.0]):
+    ground = np.array([3.0, 4.0, 0.0, 0.0, 0.0, 0.5, 0.1, 0.0, 0.0, 6.0, 0.0, 8.0])
+    assert displacement_size(ground) == pytest.approx(10.0, rel=1e-15)
+    assert displacement_size(ground[:6]) == pytest.approx(5.0, rel=1e-15)
+    for phi in np.radians([37.0, -123.4, 45.0]):
         turn = np.array([[np.cos(phi), -np.sin(phi), 0.0], [np.sin(phi), np.cos(phi), 0.0],
                          [0.0, 0.0, 1.0]])
         turned = (ground.reshape(-1, 3) @ turn.T).ravel()   # every translation and rotation
-        assert displacement_size(turned) == pytest.approx(5.0, rel=1e-14)
+        assert displacement_size(turned) == pytest.approx(10.0, rel=1e-14)
+        assert displacement_size(turned[:6]) == pytest.approx(5.0, rel=1e-14)
+
+
+@pytest.mark.parametrize(("ground", "past"), [
+    ([5.0, 5.0, 5.0, 0.0, 0.0, 0.0], False),    # largest 5, sqrt(3) x 5 = 8.66 <= 10
+    ([7.0, 7.0, 0.0, 0.0, 0.0, 0.0], False),    # between: its length 9.90 <= 10
+    ([7.5, 7.5, 0.0, 0.0, 0.0, 0.0], True),     # between: its length 10.6 > 10
+    ([0.0, 0.0, 0.0, 0.0, 10.5, 0.0], True),    # a turn's component past 10
+    ([0.0, 0.0, 0.0, 0.0, np.nan, 0.0], True),  # not a number, in a turn too
+])
+def test_past_sliding_is_the_length_past_sliding_displacement(ground, past):
+    """``past_sliding`` says what ``displacement_size(x) > SLIDING_DISPLACEMENT`` (10 m)
+    says, through each of its shortcuts, and a displacement that is not a number is past
+    it (as the largest component's test took it)."""
+    from furncheck import tolerances as tol
+    from furncheck.statics.friction import past_sliding
+
+    assert tol.SLIDING_DISPLACEMENT == 10.0
+    assert past_sliding(np.array(ground)) is past
 
 
 @pytest.mark.parametrize("phi", [37.0, -123.4])
@@ -458,7 +479,7 @@ def test_rigid_motion_of_a_table_toppling_off_one_panel(phi):
     one turn and not in the other: the 'default' case's lift-off read "a mechanism" as
     written and "the design topples (held down, the ground would have to pull 12,220 N)"
     turned.  As the lengths of each node's translation and rotation vectors it is the
-    same in every turn."""
+    same in every turn (past it: "a mechanism" in every turn)."""
     design = _table_on_one_panel()
     report = check(design, model="rigid")
     assert [case.stability for case in report.cases] == ["lift-off", "lift-off"]

@@ -13,6 +13,7 @@ programs' forces), ``outcomes._Outcomes`` builds: ``_ActiveSet`` inherits it.
 
 from __future__ import annotations
 
+import math
 from functools import cached_property
 
 import numpy as np
@@ -26,7 +27,13 @@ from furncheck.statics.friction import (
     balance_sizes,
     past_sliding,
 )
-from furncheck.statics.model import CaseStatics, StaticsModel, rigid_motions, spring_rows
+from furncheck.statics.model import (
+    CaseStatics,
+    StaticsModel,
+    rigid_motions,
+    spread,
+    spring_rows,
+)
 from furncheck.statics.outcomes import LIFT, STICK, _Outcomes
 
 
@@ -259,9 +266,10 @@ class _ActiveSet(_Outcomes):
     def solve(self, status: np.ndarray, stiffness_scale: float = 1.0,
               load_scale: float = 0.0) -> _Solution | None:
         """Solve the mixed system for the given contact states; None if it is a mechanism:
-        singular, or regular only by round-off, its contact springs then deflecting by
-        more than SLIDING_DISPLACEMENT (the backward-error check passes such a solve: the
-        residual is judged against the matrix times the huge displacements).
+        singular, or regular only by round-off, its grounded planks then moving by more
+        than SLIDING_DISPLACEMENT (``friction.past_sliding``; the backward-error check
+        passes such a solve: the residual is judged against the matrix times the huge
+        displacements).
         ``load_scale`` (N): the loads' size, for judging a solve whose right-hand side is
         far smaller (balanced loads).
 
@@ -387,32 +395,32 @@ def _free_motion(points: np.ndarray, holding: np.ndarray, node_points: np.ndarra
 
     A rigid motion t = (v, w') (``model.rigid_motions``: translation v, rotation w' / L
     about the points' mean, L their spread) moves point p by R_p t; it is free where
-    R_p t = 0 at every holding contact (the null space of their stacked R, by singular
-    values, rank as ``_rigidly_held`` decides it).  The loads (``loads``: force and
+    R_p t = 0 at every holding contact: the null space of their stacked R, whose rank
+    counts the singular values above sqrt(MECHANISM_RCOND) of the largest (those of R^T R,
+    which ``_rigidly_held`` judges, are their squares).  The loads (``loads``: force and
     moment per node, at ``node_points``) do work g.t on it, g = (F, M / L) with F their
     sum and M their moment about the points' mean; the motion they drive is the free one
     along g's projection onto the free motions (the only one where a single free motion
-    is left, a turn about the line through two corners)."""
+    is left, a turn about the line through two corners).  A projection that is round-off
+    of g (the loads' line of action through that line) drives none."""
+    origin, length = spread(points)
     rigid = rigid_motions(points)                                   # (k, 3, 6)
-    arm = points - points.mean(axis=0)
-    length = max(float(np.abs(arm).max()), 1e-6)
     constraints = rigid[holding].reshape(-1, 6)
     if len(constraints):
         _, values, rows = np.linalg.svd(constraints)
-        rank = int((values > tol.MECHANISM_RCOND * max(values[0], 1e-300)).sum())
-        free = rows[rank:].T                                        # (6, r)
+        cut = math.sqrt(tol.MECHANISM_RCOND) * max(float(values[0]), 1e-300)
+        free = rows[int((values > cut).sum()):].T                  # (6, r)
     else:
         free = np.eye(6)
     if not free.size:
         return None
-    lever = node_points - points.mean(axis=0)
     force = loads[:, :3].sum(axis=0)
-    moment = (np.cross(lever, loads[:, :3]) + loads[:, 3:]).sum(axis=0)
-    driven = free @ (free.T @ np.concatenate([force, moment / length]))
-    velocity = rigid @ driven
-    if not np.abs(velocity).max() > 0.0:
+    moment = (np.cross(node_points - origin, loads[:, :3]) + loads[:, 3:]).sum(axis=0)
+    work = np.concatenate([force, moment / length])
+    along = free.T @ work
+    if not np.linalg.norm(along) > tol.SEAT_ROUNDOFF * np.linalg.norm(work):
         return None
-    return velocity
+    return rigid @ (free @ along)
 
 
 def _contact_map(model: StaticsModel) -> np.ndarray:

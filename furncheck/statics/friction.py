@@ -377,9 +377,9 @@ def displacement_size(ground: np.ndarray) -> float:
     table bolted down on one leg moved its leg 10.3 m as written and 8.3 m, the largest
     component, turned by 37 degrees: a mechanism in one turn, not in the other)."""
     nodes = ground.reshape(-1, 6)
-    moves = np.einsum("ij,ij->i", nodes[:, :3], nodes[:, :3])
-    turns = np.einsum("ij,ij->i", nodes[:, 3:], nodes[:, 3:])
-    return math.sqrt(max(float(moves.max(initial=0.0)), float(turns.max(initial=0.0))))
+    squares = np.concatenate([np.einsum("ij,ij->i", nodes[:, :3], nodes[:, :3]),
+                              np.einsum("ij,ij->i", nodes[:, 3:], nodes[:, 3:])])
+    return math.sqrt(float(squares.max(initial=0.0)))       # not a number where one is not
 
 
 def past_sliding(ground: np.ndarray) -> bool:
@@ -388,10 +388,10 @@ def past_sliding(ground: np.ndarray) -> bool:
     that component decides where it can, at a fraction of the cost (every Newton step
     asks)."""
     largest = float(np.abs(ground).max(initial=0.0))
+    if not largest <= tol.SLIDING_DISPLACEMENT:          # past it, or not a number
+        return True
     if math.sqrt(3.0) * largest <= tol.SLIDING_DISPLACEMENT:
         return False
-    if largest > tol.SLIDING_DISPLACEMENT:
-        return True
     return not displacement_size(ground) <= tol.SLIDING_DISPLACEMENT
 
 

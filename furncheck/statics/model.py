@@ -378,13 +378,20 @@ def grounded_parts(design: Design, geometry: Geometry):
 
 def rigid_motions(points: np.ndarray) -> np.ndarray:
     """(k, 3, 6) R per point: its displacement under a rigid motion of the body the points
-    belong to (translation, and rotation x the points' spread about their mean)."""
-    arm = points - points.mean(axis=0)
-    length = max(float(np.abs(arm).max()), 1e-6)
+    belong to (translation, and rotation x the points' spread about their mean:
+    ``spread``)."""
+    origin, length = spread(points)
     rigid = np.zeros((len(points), 3, 6))
     rigid[:, :, :3] = np.eye(3)
-    rigid[:, :, 3:] = -skew_many(arm) / length
+    rigid[:, :, 3:] = -skew_many(points - origin) / length
     return rigid
+
+
+def spread(points: np.ndarray) -> tuple[np.ndarray, float]:
+    """The points' mean and their spread about it (m, at least 1e-6): the centre and the
+    length by which ``rigid_motions`` scales its rotations."""
+    origin = points.mean(axis=0)
+    return origin, max(float(np.abs(points - origin).max()), 1e-6)
 
 
 def external_forces(model: StaticsModel, case: LoadCase) -> np.ndarray:
