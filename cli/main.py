@@ -92,7 +92,8 @@ def main() -> None:
     validate: verdicts on design files; suggest: ranked changes that make an invalid
     design valid; range: valid interval of each design DOF.
     Exit codes: 0 all designs valid (or done), 1 some design invalid (validate), 2
-    unreadable or ill-formed input, or a usage error.
+    unreadable, ill-formed or too big input, a usage error, or a Dask cluster
+    (--scheduler) that cannot be used.
     """
 
 
