@@ -107,7 +107,9 @@ SEAT_ROUNDOFF = 1e-9
 """Where a lift leaves a grounded part free to move, a lifted corner whose velocity in
 that motion points down by more than this fraction of the fastest corner's is seated
 (``contacts._ActiveSet._seat_toppling``); one on the line the part turns about moves
-down by round-off only and stays lifted."""
+down by round-off only and stays lifted.  And the loads drive no free motion where their
+work on the free motions is this fraction of their size or less (their line of action
+through that line: ``contacts._free_motion``)."""
 
 FRICTION_CAP_ITERATIONS = 20
 """Most updates of the friction caps mu N from the normal forces in one load case."""

@@ -362,7 +362,8 @@ class _ActiveSet(_Outcomes):
         fourth feet lifted): no equilibrium of the holding corners alone, though the
         part comes down on another corner.  Its free motions are the rigid ones that
         keep the holding corners in place (``_free_motion``); along the one the loads do
-        work on, the lifted corners that move down are those it comes down on.  False
+        work on, the lifted corners that move down (into a wall, for a wall's contact:
+        against its frame's normal) are those it comes down on.  False
         where they move none down: the part topples (the normal phase gives up, and the
         programs say so).  Where planks rest on others, nothing is seated (their parts'
         motions are coupled through the resting corners)."""
@@ -380,7 +381,9 @@ class _ActiveSet(_Outcomes):
                                     model.node_points[list(nodes)], loads[list(nodes)])
             if velocity is None:
                 continue
-            sinking = lifted[members] & (velocity[:, 2] < -tol.SEAT_ROUNDOFF
+            inward = velocity[:, 2] if model.contact_frames is None else \
+                np.einsum("kj,kj->k", model.contact_frames[members, 2], velocity)
+            sinking = lifted[members] & (inward < -tol.SEAT_ROUNDOFF
                                          * float(np.abs(velocity).max()))
             status[members[sinking]] = STICK
             seated |= bool(sinking.any())
