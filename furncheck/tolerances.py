@@ -95,6 +95,14 @@ and the moment for the stress (besides its ends and, for the stress, the peaks o
 moments): the sampled largest deviation of a span's deflection is within 1 - cos(pi / 64),
 0.12 %, of the true one."""
 
+SAG_ROUNDOFF = 1e-12
+"""m: a plank's deviation from its supports' line or tangent this small is round-off (a
+plank that does not bend: a magazine rack's end panel held by its slats at one node
+deviates 1e-16 to 1e-13 m).  Choosing the measure nearest its limit (``bending._sag``),
+such deviations tie and the first measure the plank has is taken: compared as they came,
+the round-off chose between its two overhangs, and the allowed sag read 0.35 or 1.04 mm
+as the design turned."""
+
 NODE_MERGE = 1e-3
 """m: attachments closer than this along a plank's axis share a node (at their mean, each
 held by a rigid arm): a beam element shorter than a millimetre is far stiffer than anything

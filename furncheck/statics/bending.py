@@ -532,11 +532,11 @@ def _sag(model: StaticsModel, s: np.ndarray, deflection: np.ndarray,
                                  largest(beyond_high, tangent_high)])
     spans = np.column_stack([sb - sa, 2.0 * (sa + half), 2.0 * (half - sb)])
 
-    # the measure nearest its limit: the largest sag / span (0 for no span; the first
-    # one on a tie), among those the plank has
+    # the measure nearest its limit: the largest sag / span (0 for no span or a sag of
+    # round-off, SAG_ROUNDOFF; the first one on a tie), among those the plank has
     present = deviation >= 0.0
     ratio = np.where(present, 0.0, -np.inf)
-    positive = present & (spans > 0.0)
+    positive = present & (spans > 0.0) & (deviation > tol.SAG_ROUNDOFF)
     ratio[positive] = deviation[positive] / spans[positive]
     rows, pick = np.arange(len(half)), np.argmax(ratio, axis=1)
     chosen = present[rows, pick]
