@@ -377,8 +377,9 @@ class _ActiveSet(_Outcomes):
             members = np.flatnonzero(model.contact_component == c)
             if not lifted[members].any():
                 continue
+            nodes = list(nodes)
             velocity = _free_motion(model.contact_points[members], ~lifted[members],
-                                    model.node_points[list(nodes)], loads[list(nodes)])
+                                    model.node_points[nodes], loads[nodes])
             if velocity is None:
                 continue
             inward = velocity[:, 2] if model.contact_frames is None else \
