@@ -160,6 +160,13 @@ BALANCE_ROW_ROUNDOFF = 1e-14
 fraction of the row's sum of |S0_ij x_j|: the tight floor below which an out-of-balance
 force is round-off (``statics.friction.balance_floors``)."""
 
+CONTACT_ROUNDOFF = 2.2e-16
+"""Relative round-off of a contact's displacement w = M x (a sum of six products, twelve for
+a resting corner), as a fraction of its sum of |M_j x_j|: one unit of the last place
+(machine epsilon; a stalled near-mechanism's w was off by 0.1 to 0.2 of it, measured
+against extended precision).  Times the contact's spring, the round-off of the force it
+computes from w, which ``statics.friction.balance_floors`` adds to its loose floor."""
+
 BALANCE_STALLED = 0.5
 """Between the tight floor and the loose one (a bound of the round-off that holds for every
 row at once), a Newton step that does not bring the out-of-balance force under this

@@ -520,6 +520,82 @@ def test_rigid_motion_of_a_magazine_rack_whose_end_does_not_bend():
         assert_same_elastic(design, new, rotation, map_point, 1.0)
 
 
+def _table_with_its_top_down_through_its_legs() -> dict:
+    """``designs/table-pine-top.yaml`` after four edits of a sweep with larger edits (seed
+    16, every third design pushed): its top (and its loads) 63.5 mm lower, through the
+    legs' top ends; leg_l cut to 681.7 mm, tilted by 10 degrees and moved out to x =
+    -547.7 mm; leg_r out to x = 582.3 mm; the apron 1117.9 x 36.5 mm at x = 17.3 mm,
+    31.8 mm lower.  In the elastic model a near-mechanism: under the friction phase's
+    first caps the minimizer turns a grounded plank by 2.7 rad."""
+    design = yaml.safe_load((CATALOG_DIR / "table-pine-top.yaml").read_text())
+    planks = {plank["id"]: plank for plank in design["planks"]}
+    planks["top"]["center"] = [0.0, 0.0, 665.493683099]
+    planks["leg_l"].update(size=[681.70052836, 500.0],
+                           center=[-547.650068861, -3.30302465, 378.862725416],
+                           rotation=[90.0, -80.0677195085, -90.0])
+    planks["leg_r"]["center"] = [582.299347736, 0.0, 360.0]
+    planks["apron"].update(size=[1117.9494166, 36.4936831],
+                           center=[17.324639437, -244.0, 638.246841549])
+    for load in (design["loads"][0], design["load_cases"]["lean"][0]):
+        load["at"][2] = 674.493683099
+    return design
+
+
+@pytest.mark.parametrize("motion", [(0.0, 0.0, 0.0, True), (37.0, 0.8, -1.7, False),
+                                    (-123.4, -2.1, 0.3, False)])
+def test_rigid_motion_of_a_near_mechanism_the_friction_phase_settles(motion, monkeypatch):
+    """(a) the round-off floors of Newton's method (``statics.friction.balance_floors``):
+    the minimizer of the 'default' case's first caps turns a grounded plank by 2.7 rad,
+    and each contact spring (1e10 N/m) turns the round-off of its displacement w = M x
+    (5e-17 m there) into 5e-7 N: the out-of-balance force stalled at 5e-7 to 6e-7 N
+    against a floor of 4.0e-7 N (the force tolerance; the floors counted the round-off
+    of S0 x only), the minimization ran out of Newton steps and the programs gave the
+    forces; turned by 37 or -123.4 degrees the minimization reached the floor and the
+    caps settled (the joint leg_l/apron 181.6 N as written, 182.2 N turned).  With the
+    contact springs' round-off in the loose floor (CONTACT_ROUNDOFF of |M|^T K |M| |x|,
+    met where a step stalls) the friction phase settles it in every turn and in metres,
+    the programs never asked."""
+    from furncheck.statics.contacts import _ActiveSet
+
+    def no_programs(*arguments, **options):
+        raise AssertionError("the programs were asked for the forces")
+
+    monkeypatch.setattr(_ActiveSet, "from_programs", no_programs)
+    design = _table_with_its_top_down_through_its_legs()
+    report = check(design, model="elastic")
+    phi, tx, ty, in_metres = motion
+    new, rotation, map_point = moved(design, phi, tx, ty)
+    factor = 1.0
+    if in_metres:
+        new = pd.convert_units(new, "m")
+        factor = pd.unit_factor(new) / pd.unit_factor(design)
+    assert_same_physics(report, check(new, model="elastic"), force_scale(design), rotation,
+                        lambda p: map_point(p) * factor,
+                        point_tol=1e-9 * pd.unit_factor(new))
+
+
+def test_balance_floors_count_the_contact_springs_round_off():
+    """Hand check of ``balance_floors``: S0 = diag(1, 1) N/m, b = 0, one contact at the
+    second unknown (M = [[0, 0], [0, 0], [0, 2]]: w_z = 2 x_2), k = 1e10 N/m, x = (3, 1.5)
+    m: |M|^T K |M| |x| = (0, 4e10 x 1.5) = (0, 6e10) N, so the contact round-off is
+    CONTACT_ROUNDOFF x 6e10 = 1.32e-5 N; loose = max(tol, 1e-13 x 1 x 4.5 + 1.32e-5) and
+    tight = max(tol, min(loose, 1e-14 x 3)) = tol, the contact springs' round-off only
+    in the loose floor (where a Newton step stalls)."""
+    from furncheck import tolerances as tol
+    from furncheck.statics.friction import balance_floors, balance_sizes, contact_magnitudes
+
+    mapping = np.array([[0.0, 0.0], [0.0, 0.0], [0.0, 2.0]])
+    contacts = contact_magnitudes(mapping, np.array([1e10]))
+    assert contacts.tolist() == [[0.0, 0.0], [0.0, 4e10]]
+    sizes = balance_sizes(np.eye(2), np.zeros(2), contacts)
+    x = np.array([3.0, 1.5])
+    assert tol.CONTACT_ROUNDOFF == 2.2e-16
+    assert balance_floors(1e-9, sizes, x) == pytest.approx((1e-9, 1e-13 * 4.5 + 1.32e-5),
+                                                            rel=1e-12)
+    assert balance_floors(1e-20, sizes, x)[0] == pytest.approx(3e-14, rel=1e-12)
+    assert balance_floors(1e-3, sizes, x) == (1e-3, 1e-3)      # the force tolerance above
+
+
 # --- (b) units and format ----------
 
 @pytest.mark.parametrize("name", NAMES)

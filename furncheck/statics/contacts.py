@@ -25,6 +25,7 @@ from furncheck.statics.friction import (
     _anderson,
     _FrictionEnergy,
     balance_sizes,
+    contact_magnitudes,
     past_sliding,
 )
 from furncheck.statics.model import (
@@ -307,11 +308,16 @@ class _ActiveSet(_Outcomes):
         return _Solution(self, forces, displacement, ground)
 
     @cached_property
-    def balance_sizes(self) -> tuple[np.ndarray, float, float]:
+    def balance_sizes(self) -> tuple[np.ndarray, float, float, np.ndarray]:
         """What the Newton iterations of this case (every friction minimization, and
         ``newton``) measure round-off by: ``friction.balance_sizes`` of its condensed
-        system, made once."""
-        return balance_sizes(self.condensed.schur, self.ground_rhs)
+        system, made once (its contacts' ``friction.contact_magnitudes`` once per model)."""
+        kept = self.model.contact_spaces
+        if "magnitudes" not in kept:
+            springs = np.broadcast_to(np.asarray(self.model.contact_springs, dtype=float),
+                                      (len(self.model.contacts),))
+            kept["magnitudes"] = contact_magnitudes(self.contact_map(), springs)
+        return balance_sizes(self.condensed.schur, self.ground_rhs, kept["magnitudes"])
 
     def contact_map(self) -> np.ndarray:
         """(3 nK, n) the contact displacements w = map @ x of every contact (x the grounded

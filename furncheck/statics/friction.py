@@ -395,14 +395,27 @@ def past_sliding(ground: np.ndarray) -> bool:
     return not displacement_size(ground) <= tol.SLIDING_DISPLACEMENT
 
 
-def balance_sizes(schur: np.ndarray, rhs: np.ndarray) -> tuple[np.ndarray, float, float]:
+def balance_sizes(schur: np.ndarray, rhs: np.ndarray,
+                  contact_magnitudes: np.ndarray) -> tuple[np.ndarray, float, float, np.ndarray]:
     """What ``balance_floors`` measures round-off by, kept per condensed system: |S0|, the
-    largest entry of S0 and that of b."""
+    largest entry of S0, that of b, and ``contact_magnitudes`` (``contact_magnitudes``)."""
     magnitudes = np.abs(schur)
-    return magnitudes, float(magnitudes.max(initial=0.0)), float(np.abs(rhs).max(initial=0.0))
+    return (magnitudes, float(magnitudes.max(initial=0.0)), float(np.abs(rhs).max(initial=0.0)),
+            contact_magnitudes)
 
 
-def balance_floors(force_tol: float, sizes: tuple[np.ndarray, float, float],
+def contact_magnitudes(mapping: np.ndarray, springs: np.ndarray) -> np.ndarray:
+    """(n, n): |M|^T K |M| for the contact map M (3 nK, n) and every contact's spring k in
+    all three directions (``springs`` (nK,)): row i of it times |x| bounds how much the
+    contact forces' part of the out-of-balance force at x, M^T f(M x), moves in row i
+    when each w = M x is off by its round-off, relative to |M| |x|.  Every spring counts,
+    as if it held (a bound: a corner that lifts carries no force, one that slips a force
+    that moves with w less than its spring's would)."""
+    magnitudes = np.abs(mapping)
+    return magnitudes.T @ (np.repeat(springs, 3)[:, None] * magnitudes)
+
+
+def balance_floors(force_tol: float, sizes: tuple[np.ndarray, float, float, np.ndarray],
                    x: np.ndarray) -> tuple[float, float]:
     """N: (tight, loose), the out-of-balance forces below which the condensed equilibrium
     S0 x = b + M^T f counts as met at x (``balanced``), each at least the force tolerance.
@@ -412,11 +425,25 @@ def balance_floors(force_tol: float, sizes: tuple[np.ndarray, float, float],
     The loose floor alone, about a thousand times the tight one for the stiff joints of
     the rigid model, let Newton's method stop up to 1e-4 N short where it still converged:
     the forces of a design turned about the vertical moved by 2e-5 of themselves
-    (``tests/test_invariants.py``)."""
-    magnitudes, schur_size, rhs_size = sizes
-    loose = max(force_tol, tol.BALANCE_ROUNDOFF * (schur_size * float(np.abs(x).sum())
-                                                   + rhs_size))
-    row = float((magnitudes @ np.abs(x)).max(initial=0.0))
+    (``tests/test_invariants.py``).
+
+    The loose floor adds the round-off of the contact forces M^T f(M x): CONTACT_ROUNDOFF
+    of max_i (|M|^T K |M| |x|)_i (``contact_magnitudes``, every spring counted: a bound).
+    A contact spring of the elastic model (1e10 N/m) turns each metre of |M| |x| into up
+    to 2e-6 N of round-off in the force it computes from w: a near-mechanism whose
+    grounded plank turned by 2.7 rad under the friction phase's first caps (a table's top
+    edited down through its legs' ends) stalled at 5e-7 to 6e-7 N against floors of 4e-7
+    N (the force tolerance), ran out of Newton steps and was left to the programs, in
+    some turns of the design only (a joint's force 181.6 N against 182.2 N).  In the
+    tight floor the bound stopped converging minimizations early: a racking table
+    edited into a near-mechanism (0.8 m) settled its caps one update sooner as written
+    than turned, its forces 5e-6 of themselves apart."""
+    magnitudes, schur_size, rhs_size, contacts = sizes
+    size = np.abs(x)
+    contact = tol.CONTACT_ROUNDOFF * float((contacts @ size).max(initial=0.0))
+    loose = max(force_tol, tol.BALANCE_ROUNDOFF * (schur_size * float(size.sum()) + rhs_size)
+                + contact)
+    row = float((magnitudes @ size).max(initial=0.0))
     tight = max(force_tol, min(loose, tol.BALANCE_ROW_ROUNDOFF * (row + rhs_size)))
     return tight, loose
 

@@ -308,7 +308,8 @@ class StaticsModel:
     @cached_property
     def contact_spaces(self) -> dict:
         """What the contact iterations of all load cases share: 'map', the contacts'
-        displacements from the grounded planks' (``contacts._ActiveSet.contact_map``)."""
+        displacements from the grounded planks' (``contacts._ActiveSet.contact_map``), and
+        'magnitudes', what their round-off is measured by (``friction.contact_magnitudes``)."""
         return {}
 
     @cached_property
