@@ -272,6 +272,39 @@ def test_geometric_repairs_close_the_measured_gap(results):
     assert -3.0 <= leg.changes[0] <= -1.5
 
 
+BOARD_94_MM_UP = """\
+furncheck: 1
+name: floating-board
+units: mm
+planks:
+  - {id: board, size: [600, 300], center: [0, 0, 100]}
+loads:
+  - {plank: board, mass: 5}
+"""
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_board_far_above_the_floor_is_lowered_onto_it(model, tmp_path):
+    """A 12 mm board centred 100 mm up floats: its underside is 100 - 6 = 94 mm above the
+    floor, and it stands on the floor only when lowered by 94 +- 0.5 mm (the tolerance).
+    The candidate's prediction is the window's near edge (93.5 mm) and the first probe
+    1.05 times it (98.2 mm) cuts 4.2 mm into the floor, as does every probe further out:
+    it found no suggestion, though the explanation said 93.5 to 94.5 mm would do.  Its
+    aim (the step that closes the gap: 94 mm) is tried next, and the suggestion lowers
+    the board by 94 mm; its file validates."""
+    path = tmp_path / "board.yaml"
+    path.write_text(BOARD_94_MM_UP)
+    result = suggest_design(with_model(load_design(str(path)), model))
+    lower = next(s for s in result.suggestions if s.dofs == ("board.z",))
+    assert 93.5 <= -lower.changes[0] <= 94.5
+    written = tmp_path / "lowered.yaml"
+    written.write_text(lower.text)
+    assert check_file(str(written)).valid
+    text = CliRunner().invoke(main, ["suggest", str(path), "--model", model]).output
+    assert "1. Lower board by 94 mm (valid for 94 mm only, to the search's resolution)" \
+        in text
+
+
 def test_locked_dofs_never_change():
     """--lock shelf.length: no suggestion uses it and no representative changes it (the
     widening remains); --lock leg_r.x likewise for the bench."""

@@ -58,7 +58,9 @@ def continuous_advice(dofs: tuple[str, ...], changes: tuple[float, ...],
     unit = _unit(units[0])
     each = " each" if first_each else ""
     first = " of the first change" if count > 1 else ""
-    valid = f"valid for {_amount(low * lead)}-{_amount(high * lead)} {unit}{each}{first}"
+    near, far = _amount(low * lead), _amount(high * lead)
+    valid = f"valid for {near}-{far} {unit}{each}{first}" if near != far else \
+        f"valid for {near} {unit}{each}{first} only, to the search's resolution"
     if limited:
         limit = SEARCH_LIMITS["deg" if units[0] == "deg" else "length"] if len(dofs) == 1 \
             else "its step limit"

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from itertools import combinations
-from math import comb
+from math import comb, inf
 
 import numpy as np
 
@@ -56,6 +56,9 @@ class Candidate:
     direction : (m,) unit vector, scaled DOF units
     enter     : predicted step at which every violated margin is restored
     leave     : predicted step at which another margin fails (inf if none)
+    aim       : predicted step at which the violated margins reach their targets (the
+                least-squares step |y*|; inf if not known): for a geometric repair the
+                middle of its tolerance window, where ``enter`` is the window's near edge
     """
 
     dofs: tuple[int, ...]
@@ -63,6 +66,7 @@ class Candidate:
     enter: float
     leave: float
     units: tuple[int, ...] = ()     # the symmetric units it combines (``unit_candidates``)
+    aim: float = inf
 
 
 def candidates(margins: Margins, max_dofs: int,
@@ -142,7 +146,7 @@ def unit_candidates(margins: Margins, units: list, max_dofs: int) -> list[Candid
             real = basis[:, list(candidate.dofs)] @ candidate.direction
             dofs = tuple(int(i) for i in np.nonzero(real)[0])
             kept.append(Candidate(dofs, real[list(dofs)], candidate.enter, candidate.leave,
-                                  candidate.dofs))
+                                  candidate.dofs, candidate.aim))
     kept.sort(key=lambda c: (c.enter, len(c.dofs), c.dofs))
     return kept
 
@@ -191,4 +195,4 @@ def _evaluate(rates: np.ndarray, values: np.ndarray, violated: np.ndarray,
     too_far = ~facing_away & ~breaks_other & (enter > MAX_STEP)
     culled = np.array([facing_away.sum(), breaks_other.sum(), too_far.sum()])
     return [Candidate(tuple(int(i) for i in combos[b]), s[b].copy(), float(enter[b]),
-                      float(leave[b])) for b in np.nonzero(keep)[0]], culled
+                      float(leave[b]), aim=float(norm[b])) for b in np.nonzero(keep)[0]], culled

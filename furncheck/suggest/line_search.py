@@ -86,7 +86,7 @@ def line_search(editor: Editor, dofs: tuple[Dof, ...], candidate: Candidate,
     def margin(step: float) -> float:
         return editor.margin_at(dofs, direction, step)
 
-    found = _first_valid(margin, candidate.enter, start)
+    found = _first_valid(margin, candidate.enter, start, candidate.aim)
     if found is None:
         return None
     below, first = found
@@ -101,17 +101,29 @@ def line_search(editor: Editor, dofs: tuple[Dof, ...], candidate: Candidate,
     return Interval(low[0], high, limited)
 
 
-def _first_valid(margin, predicted: float, start: float):
+def _first_valid(margin, predicted: float, start: float, aim: float = math.inf):
     """Probe outward from the predicted step until a valid step: ((step, margin) of the
     last invalid one, or (0, start); (step, margin) of the valid one), or None when
     MAX_PROBES or MAX_STEP are used up, or the joints' margin stops growing (the linear
-    prediction was wrong: a nail count that cannot grow, a load that does not move)."""
+    prediction was wrong: a nail count that cannot grow, a load that does not move).
+
+    Where the first probe fails the geometry (margin -inf) and the candidate's ``aim``
+    (the step where the violated margins reach their targets) lies between the
+    prediction and that probe, the aim is tried next: a geometric repair is valid only
+    within the tolerance on either side of closing its gap (a board 94 mm above the
+    floor stands on it when lowered by 93.5 to 94.5 mm, tolerance 0.5 mm), a window that
+    FIRST_PROBE's overshoot of the prediction (its near edge) steps over, and every probe
+    further out cuts the plank into the floor."""
     previous = (0.0, start)
     step = min(predicted * FIRST_PROBE, MAX_STEP)
-    for _ in range(MAX_PROBES):
+    for probe in range(MAX_PROBES):
         value = margin(step)
         if value >= 0.0:
             return previous, (step, value)
+        if probe == 0 and value == -math.inf and predicted <= aim < step:
+            aimed = margin(aim)
+            if aimed >= 0.0:
+                return previous, (aim, aimed)
         if step >= MAX_STEP:
             return None
         growth = GROWTH[1]
