@@ -1,6 +1,7 @@
 """Whether an edit of a design (``dofs.apply_dof``) is still the design: the same joints
-and contacts (none lost, none gained but a near miss closing), no plank cutting into
-another, no plank shrunk to nothing, no anchor moved off its wall.
+and contacts (none lost, none gained but a near miss closing or a floating plank coming
+to stand on the ground), no plank cutting into another, no plank shrunk to nothing, no
+anchor moved off its wall.
 
 ``check_edit`` and ``check_edit_many`` (many edits' geometry measured together, for the
 range search) say why not, or None; ``design_problem`` is the part that needs no geometry.
@@ -105,11 +106,16 @@ def _edit_problem(original: Geometry, geometry: Geometry) -> str | None:
                  if (face, edge) not in closing and frozenset((face, edge)) not in listed)
     if new:
         return f"planks {new[0][0]}/{new[0][1]} would touch and form a new joint"
-    # which planks stand on the ground and lean on which wall (anchors: design_problem)
+    # which planks stand on the ground and lean on which wall (anchors: design_problem);
+    # a plank that misses the ground narrowly, or floats, may come to stand on it (as in
+    # ``suggest``: standing it on the floor is the point)
     held_before = {_support(c) for c in original.contacts if c.anchor is None}
     held_after = {_support(c) for c in geometry.contacts if c.anchor is None}
+    floating = {plank for v in original.violations if v.kind == "floating"
+                for plank in v.where.split(",")}
     changed = sorted((held_before ^ held_after)
-                     - {(plank, None, None) for plank, *_ in held_after if (plank,) in closing},
+                     - {(plank, None, None) for plank, *_ in held_after
+                        if (plank,) in closing or plank in floating},
                      key=lambda key: (key[0], -1 if key[1] is None else key[1], key[2] or ""))
     if changed:
         plank, wall, on = changed[0]

@@ -30,6 +30,7 @@ from furncheck.cli.main import main
 from furncheck.design import load_design
 from furncheck.design.model import rotation_matrix, with_model
 from furncheck.dofs import dof_value, parse_dof
+from furncheck.ranges import RangeFinder
 from furncheck.suggest import suggest_design
 from furncheck.suggest.edits import dof_scale
 
@@ -291,7 +292,8 @@ def test_a_board_far_above_the_floor_is_lowered_onto_it(model, tmp_path):
     1.05 times it (98.2 mm) cuts 4.2 mm into the floor, as does every probe further out:
     it found no suggestion, though the explanation said 93.5 to 94.5 mm would do.  Its
     aim (the step that closes the gap: 94 mm) is tried next, and the suggestion lowers
-    the board by 94 mm; its file validates."""
+    the board by 94 mm; its file validates, and ``range`` of board.z (which looks where
+    ``suggest`` does) finds the window 5.5 .. 6.5 mm around the suggested z = 6 mm."""
     path = tmp_path / "board.yaml"
     path.write_text(BOARD_94_MM_UP)
     result = suggest_design(with_model(load_design(str(path)), model))
@@ -303,6 +305,11 @@ def test_a_board_far_above_the_floor_is_lowered_onto_it(model, tmp_path):
     text = CliRunner().invoke(main, ["suggest", str(path), "--model", model]).output
     assert "1. Lower board by 94 mm (valid for 94 mm only, to the search's resolution)" \
         in text
+    # range agrees: the window at the predicted change holds the suggested value; a
+    # floating plank may come to stand on the ground in range's edits too
+    (found,) = RangeFinder(with_model(load_design(str(path)), model)).ranges(["board.z"])
+    assert found.valid is not None, found.reason
+    assert 5.5 <= found.valid[0] <= 100.0 - 94.0 <= found.valid[1] <= 6.5
 
 
 def test_locked_dofs_never_change():

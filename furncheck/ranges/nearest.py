@@ -5,13 +5,17 @@ should be nailed to joins when lengthened by 2.5 to 3.5 mm), far narrower than a
 sampling of the search's reach finds.  So the window is first looked for where
 ``suggest`` looks: at the step the linearized margins predict for this DOF alone
 (``suggest.margins``, ``suggest.candidates`` with one DOF: the step at which every
-violated margin is restored), probed at PREDICTED_PROBES times that step; a valid probe
-is widened to the interval around it, each end closed to the finer of the range's
-resolution and WINDOW_RESOLUTION of the step.  A DOF without a prediction, or whose
-probes all fail, is sampled outward from the value as before (1/64 of the reach and
-doubling, both sides, the sensitivity's favoured side first).  ``suggest`` and ``range``
-see the same edits (the constraint structure of ``edit_check.standing_geometry``), so a
-one-DOF suggestion's change lies in the range of its DOF.
+violated margin is restored), probed at PREDICTED_PROBES times that step, and where the
+first of them fails, at the step that meets the margins' targets if it lies before that
+probe (as ``suggest`` does: a board 94 mm above the floor is valid lowered by 93.5 to
+94.5 mm, the predicted 93.5 mm is the window's near edge, and 1.05 times it is past the
+far one); a valid probe is widened to the interval around it, each end closed to the
+finer of the range's resolution and WINDOW_RESOLUTION of the step.  A DOF without a
+prediction, or whose probes all fail, is sampled outward from the value as before (1/64
+of the reach and doubling, both sides, the sensitivity's favoured side first).
+``suggest`` and ``range`` see the same edits (the constraint structure of
+``edit_check.standing_geometry``), so a one-DOF suggestion's change lies in the range of
+its DOF.
 """
 
 from __future__ import annotations
@@ -32,10 +36,12 @@ the design's size)."""
 
 
 def predicted_steps(design: Design, geometry: Geometry, frame: Structure,
-                    locked: tuple[Dof, ...], dofs: list[Dof]) -> dict[Dof, float]:
-    """Per DOF of ``dofs`` (among the strongest ``suggest`` combines): the signed change
+                    locked: tuple[Dof, ...], dofs: list[Dof]
+                    ) -> dict[Dof, tuple[float, float]]:
+    """Per DOF of ``dofs`` (among the strongest ``suggest`` combines): the signed changes
     (its unit) at which the linearized margins of the invalid ``design`` are all restored
-    when this DOF alone changes; DOFs with no such change are left out."""
+    when this DOF alone changes, and at which they meet their targets (``Candidate.enter``
+    and ``aim``; the aim inf where unknown); DOFs with no such change are left out."""
     # suggest builds on ranges (its line search's geometric estimates): imported here
     from furncheck.suggest.candidates import candidates
     from furncheck.suggest.edits import Editor
@@ -47,16 +53,16 @@ def predicted_steps(design: Design, geometry: Geometry, frame: Structure,
     report = check_design(design, geometry)
     editor = Editor(design, geometry, frame, locked)
     margins = Margins(design, geometry, report, editor, free)
-    steps: dict[Dof, float] = {}
+    steps: dict[Dof, tuple[float, float]] = {}
     for candidate in candidates(margins, 1):
         dof = margins.dofs[candidate.dofs[0]]
-        steps.setdefault(dof, float(candidate.direction[0] * candidate.enter
-                                    * editor.scale(dof)))
+        along = float(candidate.direction[0] * editor.scale(dof))
+        steps.setdefault(dof, (along * candidate.enter, along * candidate.aim))
     return steps
 
 
 def nearest_window(finder, dof: Dof, limit: float, resolution: float,
-                   predicted: float | None):
+                   predicted: tuple[float, float] | None):
     """Search (a generator of ``finder``'s evaluations, ``ranges.RangeFinder``) of the
     valid window of ``dof`` of an invalid design: ((inner, outer) signed changes of its
     ends, which interval it is), or None when none is found within ``limit``."""
@@ -75,15 +81,20 @@ def nearest_window(finder, dof: Dof, limit: float, resolution: float,
     return None
 
 
-def _predicted_window(finder, dof: Dof, predicted: float, limit: float, resolution: float):
-    """The valid window at the ``predicted`` change of ``dof``: (inner, outer) signed
-    changes of its ends, nearer end first, or None when no probe is valid."""
-    sign = 1.0 if predicted > 0.0 else -1.0
-    size = abs(predicted)
+def _predicted_window(finder, dof: Dof, predicted: tuple[float, float], limit: float,
+                      resolution: float):
+    """The valid window at the ``predicted`` changes of ``dof`` (``predicted_steps``):
+    (inner, outer) signed changes of its ends, nearer end first, or None when no probe is
+    valid."""
+    near, aim = predicted
+    sign = 1.0 if near > 0.0 else -1.0
+    size = abs(near)
     fine = min(resolution, WINDOW_RESOLUTION * size)
+    steps = [min(size * factor, limit) for factor in PREDICTED_PROBES]
+    if size <= sign * aim < steps[0]:
+        steps.insert(1, sign * aim)
     invalid = [0.0]
-    for factor in PREDICTED_PROBES:
-        step = min(size * factor, limit)
+    for step in steps:
         if (yield from finder._valid_at(dof, sign * step)):
             below = max(s for s in invalid if s < step)
             inner = yield from finder._bisect(dof, sign, step, below, fine)
