@@ -526,7 +526,7 @@ def _table_with_its_top_down_through_its_legs() -> dict:
     legs' top ends; leg_l cut to 681.7 mm, tilted by 10 degrees and moved out to x =
     -547.7 mm; leg_r out to x = 582.3 mm; the apron 1117.9 x 36.5 mm at x = 17.3 mm,
     31.8 mm lower.  In the elastic model a near-mechanism: under the friction phase's
-    first caps the minimizer turns a grounded plank by 2.7 rad."""
+    first caps the minimizer turns a grounded plank by 3.3 rad."""
     design = yaml.safe_load((CATALOG_DIR / "table-pine-top.yaml").read_text())
     planks = {plank["id"]: plank for plank in design["planks"]}
     planks["top"]["center"] = [0.0, 0.0, 665.493683099]
@@ -545,13 +545,14 @@ def _table_with_its_top_down_through_its_legs() -> dict:
                                     (-123.4, -2.1, 0.3, False)])
 def test_rigid_motion_of_a_near_mechanism_the_friction_phase_settles(motion, monkeypatch):
     """(a) the round-off floors of Newton's method (``statics.friction.balance_floors``):
-    the minimizer of the 'default' case's first caps turns a grounded plank by 2.7 rad,
+    the minimizer of the 'default' case's first caps turns a grounded plank by 3.3 rad,
     and each contact spring (1e10 N/m) turns the round-off of its displacement w = M x
     (5e-17 m there) into 5e-7 N: the out-of-balance force stalled at 5e-7 to 6e-7 N
     against a floor of 4.0e-7 N (the force tolerance; the floors counted the round-off
     of S0 x only), the minimization ran out of Newton steps and the programs gave the
     forces; turned by 37 or -123.4 degrees the minimization reached the floor and the
-    caps settled (the joint leg_l/apron 181.6 N as written, 182.2 N turned).  With the
+    caps settled (the joint leg_l/apron 181.6 N as written, 182.2 N turned; its 'lean'
+    case stalled alike: 82.7 N against 85.6 N).  With the
     contact springs' round-off in the loose floor (CONTACT_ROUNDOFF of |M|^T K |M| |x|,
     met where a step stalls) the friction phase settles it in every turn and in metres,
     the programs never asked."""
@@ -575,25 +576,54 @@ def test_rigid_motion_of_a_near_mechanism_the_friction_phase_settles(motion, mon
 
 
 def test_balance_floors_count_the_contact_springs_round_off():
-    """Hand check of ``balance_floors``: S0 = diag(1, 1) N/m, b = 0, one contact at the
-    second unknown (M = [[0, 0], [0, 0], [0, 2]]: w_z = 2 x_2), k = 1e10 N/m, x = (3, 1.5)
-    m: |M|^T K |M| |x| = (0, 4e10 x 1.5) = (0, 6e10) N, so the contact round-off is
-    CONTACT_ROUNDOFF x 6e10 = 1.32e-5 N; loose = max(tol, 1e-13 x 1 x 4.5 + 1.32e-5) and
-    tight = max(tol, min(loose, 1e-14 x 3)) = tol, the contact springs' round-off only
-    in the loose floor (where a Newton step stalls)."""
+    """Hand check of ``contact_magnitudes`` and ``balance_floors``: two contacts over two
+    unknowns, the first (k = 1e10 N/m) with rows (1, 0), (0, 0), (0, 2), the second (an
+    anchor's tie, k = 4.5e6 N/m) with rows (0.5, -3), (1, 0), (0, 0) (a resting corner's
+    row has two entries, of either sign).  |M|^T K |M| = sum over rows k |M_r|^T |M_r|:
+    [0][0] = 1e10 x 1 + 4.5e6 x (0.25 + 1) = 1.0005625e10, [0][1] = 4.5e6 x 0.5 x 3 =
+    6.75e6, [1][1] = 1e10 x 4 + 4.5e6 x 9 = 4.00405e10.  At x = (3, 1.5) m its rows
+    times |x| are 3.0027e10 and 2.025e7 + 6.006075e10 = 6.0081e10 N, so with S0 =
+    diag(1, 1) N/m and b = 0: loose = max(tol, 1e-13 x 1 x 4.5 + CONTACT_ROUNDOFF x
+    6.0081e10), tight = max(tol, min(loose, 1e-14 x 3)): the contact springs' round-off
+    only in the loose floor (where a Newton step stalls)."""
     from furncheck import tolerances as tol
     from furncheck.statics.friction import balance_floors, balance_sizes, contact_magnitudes
 
-    mapping = np.array([[0.0, 0.0], [0.0, 0.0], [0.0, 2.0]])
-    contacts = contact_magnitudes(mapping, np.array([1e10]))
-    assert contacts.tolist() == [[0.0, 0.0], [0.0, 4e10]]
+    mapping = np.array([[1.0, 0.0], [0.0, 0.0], [0.0, 2.0],
+                        [0.5, -3.0], [1.0, 0.0], [0.0, 0.0]])
+    contacts = contact_magnitudes(mapping, np.array([1e10, 4.5e6]))
+    np.testing.assert_allclose(contacts, [[1.0005625e10, 6.75e6], [6.75e6, 4.00405e10]],
+                               rtol=1e-15)
     sizes = balance_sizes(np.eye(2), np.zeros(2), contacts)
     x = np.array([3.0, 1.5])
-    assert tol.CONTACT_ROUNDOFF == 2.2e-16
-    assert balance_floors(1e-9, sizes, x) == pytest.approx((1e-9, 1e-13 * 4.5 + 1.32e-5),
+    contact = tol.CONTACT_ROUNDOFF * 6.0081e10
+    assert balance_floors(1e-9, sizes, x) == pytest.approx((1e-9, 1e-13 * 4.5 + contact),
                                                             rel=1e-12)
     assert balance_floors(1e-20, sizes, x)[0] == pytest.approx(3e-14, rel=1e-12)
-    assert balance_floors(1e-3, sizes, x) == (1e-3, 1e-3)      # the force tolerance above
+    assert balance_floors(1.0, sizes, x) == (1.0, 1.0)         # the force tolerance above
+
+
+def test_balance_floors_take_each_contacts_own_spring():
+    """``designs/bookcase-anchored.yaml`` (elastic): its anchors' ties are springs of
+    4.5e6 N/m among ground contacts of 1e10 N/m; the contact round-off of its Newton
+    iterations (``_ActiveSet.balance_sizes``) takes each contact's own spring, not the
+    ground's for all."""
+    from furncheck.geometry import analyze
+    from furncheck.statics import build_model, external_forces
+    from furncheck.statics.contacts import _ActiveSet
+    from furncheck.statics.friction import contact_magnitudes
+
+    design = with_model(parse_design((CATALOG_DIR / "bookcase-anchored.yaml").read_text(),
+                                     "bookcase-anchored.yaml", "yaml"), "elastic")
+    model = build_model(design, analyze(design))
+    springs = np.asarray(model.contact_springs)
+    assert sorted(set(springs.tolist())) == [model.anchor_stiffness, model.contact_stiffness]
+    solver = _ActiveSet(model, external_forces(model, design.load_cases[0]), 1.0)
+    made = solver.balance_sizes[3]
+    np.testing.assert_array_equal(made, contact_magnitudes(solver.contact_map(), springs))
+    uniform = contact_magnitudes(solver.contact_map(),
+                                 np.full(len(springs), model.contact_stiffness))
+    assert (made <= uniform).all() and (made < uniform).any()
 
 
 # --- (b) units and format ----------

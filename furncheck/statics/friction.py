@@ -396,21 +396,23 @@ def past_sliding(ground: np.ndarray) -> bool:
 
 
 def balance_sizes(schur: np.ndarray, rhs: np.ndarray,
-                  contact_magnitudes: np.ndarray) -> tuple[np.ndarray, float, float, np.ndarray]:
+                  contacts: np.ndarray) -> tuple[np.ndarray, float, float, np.ndarray]:
     """What ``balance_floors`` measures round-off by, kept per condensed system: |S0|, the
-    largest entry of S0, that of b, and ``contact_magnitudes`` (``contact_magnitudes``)."""
+    largest entry of S0, that of b, and the contacts' |M|^T K |M| (``contacts``, made by
+    ``contact_magnitudes``)."""
     magnitudes = np.abs(schur)
     return (magnitudes, float(magnitudes.max(initial=0.0)), float(np.abs(rhs).max(initial=0.0)),
-            contact_magnitudes)
+            contacts)
 
 
 def contact_magnitudes(mapping: np.ndarray, springs: np.ndarray) -> np.ndarray:
     """(n, n): |M|^T K |M| for the contact map M (3 nK, n) and every contact's spring k in
-    all three directions (``springs`` (nK,)): row i of it times |x| bounds how much the
-    contact forces' part of the out-of-balance force at x, M^T f(M x), moves in row i
-    when each w = M x is off by its round-off, relative to |M| |x|.  Every spring counts,
-    as if it held (a bound: a corner that lifts carries no force, one that slips a force
-    that moves with w less than its spring's would)."""
+    all three directions (``springs`` (nK,)): row i of it times |x| estimates how much
+    the contact forces' part of the out-of-balance force at x, M^T f(M x), moves in row i
+    when each w = M x is off by its round-off, relative to |M| |x| (one unit of the last
+    place per w: CONTACT_ROUNDOFF).  Every spring counts, as if it held (a corner that
+    lifts carries no force; one that slips carries its cap, which moves with w by at most
+    the spring's stiffness, mu k along the normal in ``newton``'s law)."""
     magnitudes = np.abs(mapping)
     return magnitudes.T @ (np.repeat(springs, 3)[:, None] * magnitudes)
 
@@ -428,16 +430,17 @@ def balance_floors(force_tol: float, sizes: tuple[np.ndarray, float, float, np.n
     (``tests/test_invariants.py``).
 
     The loose floor adds the round-off of the contact forces M^T f(M x): CONTACT_ROUNDOFF
-    of max_i (|M|^T K |M| |x|)_i (``contact_magnitudes``, every spring counted: a bound).
-    A contact spring of the elastic model (1e10 N/m) turns each metre of |M| |x| into up
-    to 2e-6 N of round-off in the force it computes from w: a near-mechanism whose
-    grounded plank turned by 2.7 rad under the friction phase's first caps (a table's top
-    edited down through its legs' ends) stalled at 5e-7 to 6e-7 N against floors of 4e-7
-    N (the force tolerance), ran out of Newton steps and was left to the programs, in
-    some turns of the design only (a joint's force 181.6 N against 182.2 N).  In the
-    tight floor the bound stopped converging minimizations early: a racking table
-    edited into a near-mechanism (0.8 m) settled its caps one update sooner as written
-    than turned, its forces 5e-6 of themselves apart."""
+    of max_i (|M|^T K |M| |x|)_i (``contact_magnitudes``: an estimate, every spring
+    counted).  A contact spring of the elastic model (1e10 N/m) turns each metre of
+    |M| |x| into about 2e-6 N of round-off in the force it computes from w: a
+    near-mechanism whose grounded plank turned by 3.3 rad under the friction phase's
+    first caps (a table's top edited down through its legs' ends) stalled at 5e-7 to
+    6e-7 N against floors of 4e-7 N (the force tolerance), ran out of Newton steps and was
+    left to the programs, in some turns of the design only (a leg/apron joint's force
+    181.6 N against 182.2 N; in its 'lean' case, which stalled alike, 82.7 N against
+    85.6 N).  In the tight floor the estimate stopped converging minimizations early: a
+    racking table edited into a near-mechanism (0.8 m) settled its caps one update sooner
+    as written than turned, its forces 5e-6 of themselves apart."""
     magnitudes, schur_size, rhs_size, contacts = sizes
     size = np.abs(x)
     contact = tol.CONTACT_ROUNDOFF * float((contacts @ size).max(initial=0.0))
