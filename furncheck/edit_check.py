@@ -1,6 +1,7 @@
 """Whether an edit of a design (``dofs.apply_dof``) is still the design: the same joints
-and contacts (none lost, none gained but a near miss closing or a floating plank coming
-to stand on the ground), no plank cutting into another, no plank shrunk to nothing, no
+and contacts (none lost, none gained but a near miss closing, a floating plank coming
+to stand on the ground or a plank joined to nothing coming to rest on the face its end
+cut into), no plank cutting into another, no plank shrunk to nothing, no
 anchor moved off its wall.
 
 ``check_edit`` and ``check_edit_many`` (many edits' geometry measured together, for the
@@ -14,7 +15,13 @@ from dataclasses import replace
 import numpy as np
 
 from furncheck.design.model import Design
-from furncheck.geometry import EditedTables, Geometry, analyze, interpenetrations
+from furncheck.geometry import (
+    EditedTables,
+    Geometry,
+    analyze,
+    cut_in_pairs,
+    interpenetrations,
+)
 from furncheck.plain import plain_number
 
 _ANCHOR_EPS = 1e-9
@@ -45,7 +52,8 @@ def check_edit_many(original: Geometry, edits: list[Design],
     sized = [k for k, (problem, _) in enumerate(out) if problem is None]
     tables = EditedTables(design, original, [edits[k] for k in sized])
     geometries = tables.geometries()
-    problems = [None if kept else _edit_problem(original, geometry)
+    cut_in = cut_in_pairs(design, original)
+    problems = [None if kept else _edit_problem(original, geometry, cut_in)
                 for kept, geometry in zip(tables.kept, geometries)]
     clear = [n for n, problem in enumerate(problems) if problem is None]
     for n, cutting in zip(clear, tables.cuts(clear)):
@@ -88,7 +96,11 @@ def _cut_problem(edited: Design, cutting: list[tuple[str, str, float]]) -> str |
     return f"{a} would cut {plain_number(depth / edited.unit_scale, 3)} {edited.units} into {b}"
 
 
-def _edit_problem(original: Geometry, geometry: Geometry) -> str | None:
+def _edit_problem(original: Geometry, geometry: Geometry,
+                  cut_in: set[tuple[str, str]] = frozenset()) -> str | None:
+    """Why ``geometry`` (of an edit) no longer has the ``original``'s joints and contacts,
+    or None.  ``cut_in``: the (face, edge) joints that planks joined to nothing may form
+    with the faces their ends cut into (``geometry.cut_in_pairs``)."""
     known = {(v.kind, v.where) for v in original.violations}
     problems = [v for v in geometry.violations if (v.kind, v.where) not in known]
     if problems:
@@ -103,7 +115,8 @@ def _edit_problem(original: Geometry, geometry: Geometry) -> str | None:
     listed = {frozenset(v.where.split("/")) for v in original.violations   # a listed joint
               if v.kind == "disconnected" and "/" in v.where}             # that is open too
     new = sorted((face, edge) for face, edge, _ in after - before
-                 if (face, edge) not in closing and frozenset((face, edge)) not in listed)
+                 if (face, edge) not in closing and frozenset((face, edge)) not in listed
+                 and (face, edge) not in cut_in)
     if new:
         return f"planks {new[0][0]}/{new[0][1]} would touch and form a new joint"
     # which planks stand on the ground and lean on which wall (anchors: design_problem);

@@ -27,7 +27,7 @@ from click.testing import CliRunner
 
 from furncheck.check import check_design, check_file
 from furncheck.cli.main import main
-from furncheck.design import load_design
+from furncheck.design import load_design, parse_design
 from furncheck.design.model import rotation_matrix, with_model
 from furncheck.dofs import dof_value, parse_dof
 from furncheck.ranges import RangeFinder
@@ -310,6 +310,50 @@ def test_a_board_far_above_the_floor_is_lowered_onto_it(model, tmp_path):
     (found,) = RangeFinder(with_model(load_design(str(path)), model)).ranges(["board.z"])
     assert found.valid is not None, found.reason
     assert 5.5 <= found.valid[0] <= 100.0 - 94.0 <= found.valid[1] <= 6.5
+
+
+STOOL_LEG_CUT_TOO_LONG = """\
+furncheck: 1
+name: stool-long-leg
+units: mm
+planks:
+  - {id: seat, size: [350, 300], center: [0, 0, 459], thickness: 18}
+  - {id: leg_l, size: [450, 300], center: [-169, 0, 225], rotation: [0, -90, 0]}
+  - {id: leg_r, size: [470, 300], center: [169, 0, 235], rotation: [0, -90, 0]}
+loads:
+  - {plank: seat, mass: 30}
+"""
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_leg_cut_too_long_is_shortened_at_its_top(model, tmp_path):
+    """A stool whose right leg was cut 20 mm too long: its top end (z = 470 mm) cuts 20 mm
+    into the seat's underside (z = 450 mm, the seat 18 mm thick), deeper than a near miss,
+    so it forms no joint (leg_r 'disconnected'), and the seat, on leg_l alone, topples.
+    The message names the cut (the leg's own end, though the seat's end, flush with the
+    leg's outer face, also sinks into the leg and is the larger touch), the cut's depth
+    is a margin to restore (``geometry.cut_ins``, 20 mm -> 0 within the 0.5 mm
+    tolerance), and the repair may form that joint: "Lower the top of leg_r by 20 mm",
+    450 mm long as leg_l.  Its file validates (the 18 mm seat carries 30 kg on two legs:
+    P L^3 / 48 EI = 294 N x 338^3 / (48 x 3000 x 300 x 18^3 / 12) = 0.54 mm pinned, x 1.5
+    creep = 0.81 mm < 338 / 400 = 0.845 mm in the elastic model; furncheck 0.51 mm, the
+    leg joints holding some of the ends' slope), and ``range`` of
+    leg_r.length holds 450 mm.  Before, it got "no check to restore has a rate along"
+    the DOFs, and no suggestion."""
+    path = tmp_path / "stool.yaml"
+    path.write_text(STOOL_LEG_CUT_TOO_LONG)
+    design = with_model(load_design(str(path)), model)
+    report = check_design(design)
+    (cut,) = [v for v in report.violations if v.kind == "disconnected"]
+    assert cut.where == "leg_r" and "its end cuts 20 mm into the face of seat" in cut.message
+    result = suggest_design(design)
+    shorter = next(s for s in result.suggestions if s.dofs == ("leg_r.length",))
+    assert 19.5 <= -shorter.changes[0] <= 20.5
+    assert check_design(parse_design(shorter.text, "s.yaml", "yaml")).valid
+    text = CliRunner().invoke(main, ["suggest", str(path), "--model", model]).output
+    assert "1. Lower the top of leg_r by 20 mm (valid for " in text
+    (found,) = RangeFinder(design).ranges(["leg_r.length"])
+    assert found.valid is not None and found.valid[0] <= 450.0 <= found.valid[1] < 470.0
 
 
 def test_locked_dofs_never_change():

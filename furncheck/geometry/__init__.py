@@ -20,7 +20,16 @@ The package, by job:
               (EditMargins, edit_margins_many)
 """
 
-from furncheck.geometry.analysis import analyze, end_gap, follow, follow_many, nail_count
+from furncheck.geometry.analysis import (
+    analyze,
+    cut_in_pairs,
+    cut_ins,
+    end_depth,
+    end_gap,
+    follow,
+    follow_many,
+    nail_count,
+)
 from furncheck.geometry.model import Contact, Geometry, Joint, NearMiss
 
 _EDITS = ("EditMargins", "EditedTables", "edit_margins_many", "interpenetrations")
@@ -36,5 +45,5 @@ def __getattr__(name: str):
 
 
 __all__ = ["Contact", "EditMargins", "EditedTables", "Geometry", "Joint", "NearMiss", "analyze",
-           "edit_margins_many", "end_gap", "follow", "follow_many", "interpenetrations",
-           "nail_count"]
+           "cut_in_pairs", "cut_ins", "edit_margins_many", "end_depth", "end_gap", "follow",
+           "follow_many", "interpenetrations", "nail_count"]

@@ -452,22 +452,52 @@ def _connectivity_violations(design: Design, joints: list[Joint],
 def _cut_in_phrase(design: Design, index: int) -> str:
     """For a plank joined to nothing: '; its end cuts 15 mm into the face of side_l (and
     of side_r)' where its end faces sink into neighbours' faces deeper than a near miss
-    (a board cut too long: the real reason it forms no joint), else ''."""
-    others = [j for j in range(len(design.planks)) if j != index]
-    if not others:
-        return ""
-    pairs = np.array([[index, j] for j in others])
-    touches = _best_touches(design.planks, pairs, slack=np.inf, keep_deep=True)
-    _, band = near_band(design)
-    deep = sorted((float(touch.gap), touch.face.id) for touch in touches.values()
-                  if touch.edge.id == design.planks[index].id and touch.gap < -band)
+    (``cut_ins``), else ''."""
+    deep = cut_ins(design, index)
     if not deep:
         return ""
     depth, face = deep[0]
-    rest = "".join(f" and of {other}" for _, other in deep[1:])
+    rest = "".join(f" and of {design.planks[other].id}" for _, other in deep[1:])
     more = f" (and {len(deep) - 1} more)" if len(deep) > 3 else rest
-    return (f"; its end cuts {_fmt_len(-depth, design)} into the face of {face}{more}: "
-            f"shorten or move it to rest on {'that face' if len(deep) == 1 else 'those faces'}")
+    return (f"; its end cuts {_fmt_len(depth, design)} into the face of "
+            f"{design.planks[face].id}{more}: shorten or move it to rest on "
+            f"{'that face' if len(deep) == 1 else 'those faces'}")
+
+
+def cut_ins(design: Design, index: int) -> list[tuple[float, int]]:
+    """(depth m, face plank index) of each neighbour whose broad face an end face of plank
+    ``index`` sinks into deeper than a near miss, deepest first (then by the face's id):
+    a board cut too long, the real reason a plank joined to nothing forms no joint.  Its
+    own end faces only: where the neighbour's end also cuts into it (a seat's end into a
+    leg that pokes up through the seat), the leg's end still counts."""
+    others = [j for j in range(len(design.planks)) if j != index]
+    if not others:
+        return []
+    pairs = np.array([[index, j] for j in others])
+    touches = _best_touches(design.planks, pairs, slack=np.inf, keep_deep=True, one_way=True)
+    _, band = near_band(design)
+    deep = sorted((float(touch.gap), touch.face.id) for touch in touches.values()
+                  if touch.gap < -band)
+    return [(-gap, design.plank_index[face]) for gap, face in deep]
+
+
+def cut_in_pairs(design: Design, geometry: Geometry) -> set[tuple[str, str]]:
+    """(face, edge) plank ids of the joints that the planks joined to nothing would form
+    with the faces their ends cut into (``cut_ins``): the joints a repair that shortens or
+    moves such a plank may add (as it may close a near miss)."""
+    return {(design.planks[face].id, violation.where)
+            for violation in geometry.violations
+            if violation.kind == "disconnected" and "/" not in violation.where
+            for _, face in cut_ins(design, design.plank_index[violation.where])}
+
+
+def end_depth(design: Design, face: int, edge: int) -> float | None:
+    """How far (m) an end face of plank ``edge`` lies from the broad face of plank ``face``
+    that it faces, above it (> 0) or sunk into it (< 0), however deep; None when no end
+    of it faces that face."""
+    touch = _best_touches(design.planks, np.array([[edge, face]]), slack=np.inf,
+                          keep_deep=True, one_way=True).get((edge, face))
+    return None if touch is None else float(touch.gap)
 
 
 # --- formatting helpers for messages ----------------------------------------------------------

@@ -73,11 +73,12 @@ def _face_tables(planks: tuple[Plank, ...]) -> _Faces:
 
 
 def _best_touches(planks: tuple[Plank, ...], pairs: np.ndarray, slack: float, keep_deep: bool,
-                  faces: _Faces | None = None) -> dict:
+                  faces: _Faces | None = None, one_way: bool = False) -> dict:
     """For each plank pair (i, j) (indices into ``planks``, whose face tables ``faces`` are
-    when given), the best narrow-face-on-broad-face contact either way round: contacts
-    within the slack beat deeper ones, then the flushest, then the largest.  ``keep_deep``
-    keeps faces sunk deeper than the slack (to report interpenetration).  A contact's gap
+    when given), the best narrow-face-on-broad-face contact either way round (``one_way``:
+    only i's narrow faces on j's broad faces): contacts within the slack beat deeper
+    ones, then the flushest, then the largest.  ``keep_deep`` keeps faces sunk deeper
+    than the slack (to report interpenetration).  A contact's gap
     is that of the part of the narrow face over the broad face (``_region_gaps``), not of
     its nearest corner anywhere: a long edge turned away from a narrow face touches its
     plane beyond it, and counted as touching, but only where the planks' bounding boxes
@@ -85,7 +86,7 @@ def _best_touches(planks: tuple[Plank, ...], pairs: np.ndarray, slack: float, ke
     if len(pairs) == 0:
         return {}
     faces = _face_tables(planks) if faces is None else faces
-    ordered = np.vstack([pairs, pairs[:, ::-1]])                 # (edge, face) both ways
+    ordered = pairs if one_way else np.vstack([pairs, pairs[:, ::-1]])   # (edge, face)
     edge, face = ordered[:, 0], ordered[:, 1]
     broad = faces.broad_normal[face]                              # (P, 2, 3)
     offset = faces.broad_offset[face]

@@ -28,7 +28,7 @@ from furncheck.dofs import (
     dof_value,
 )
 from furncheck.edit_check import design_problem
-from furncheck.geometry import Geometry, analyze, interpenetrations
+from furncheck.geometry import Geometry, analyze, cut_in_pairs, interpenetrations
 from furncheck.result import DesignReport
 from furncheck.statics import build_model, solve_load_case
 from furncheck.validity import case_margin
@@ -59,7 +59,8 @@ class Editor:
         self.locked = locked
         self.scales: dict[Dof, float] = {}
         self._joints = _joint_set(geometry)
-        self._closing = {miss.planks for miss in geometry.near_misses if len(miss.planks) == 2}
+        self._closing = {miss.planks for miss in geometry.near_misses if len(miss.planks) == 2} \
+            | cut_in_pairs(design, geometry)
         self.checks = 0
 
     def scale(self, dof: Dof) -> float:
@@ -98,8 +99,9 @@ class Editor:
     def keeps(self, edited: Design) -> Geometry | None:
         """The geometry of ``edited`` if it has no geometric violation, keeps the joints of
         the design (none lost; none added unless the joints are listed in the file, or
-        the design missed that joint narrowly: closing a near miss is the point) and no
-        two planks cut into each other; else None.  Ground contacts may change: standing a
+        the design missed that joint narrowly, or a plank joined to nothing cut its end
+        into that face (``geometry.cut_in_pairs``): closing it is the point) and no two
+        planks cut into each other; else None.  Ground contacts may change: standing a
         hovering leg on the floor is the point of some suggestions.  A plank shrunk to no
         length or width, or an anchor moved off its wall, is refused too
         (``edit_check.design_problem``)."""

@@ -31,7 +31,7 @@ import numpy as np
 
 from furncheck.design.model import Design
 from furncheck.dofs import Blocked, Dof, OutOfReach, design_size
-from furncheck.geometry import Geometry, end_gap
+from furncheck.geometry import Geometry, cut_ins, end_depth, end_gap
 from furncheck.geometry.near import carried_groups
 from furncheck.result import DesignReport
 from furncheck.sensitivity import Linearization, Sensitivity
@@ -203,7 +203,9 @@ class Margins:
     def _geometric(self, report: DesignReport) -> list[Margin]:
         """Margins of the geometric violations: a listed joint's gap, a corner in the
         ground, a hovering component (its lowest planks; not one that hangs on joints it
-        misses, ``near.carried_groups``: closing them carries it)."""
+        misses, ``near.carried_groups``: closing them carries it), and for a plank joined
+        to nothing the depth to which its end cuts into each face (``geometry.cut_ins``:
+        resting on the face, within the tolerance, joins it)."""
         design, tolerance = self.design, self.design.tolerance
         measures: list[tuple[str, object]] = []
         carried = carried_groups(design, self.geometry)
@@ -224,6 +226,11 @@ class Margins:
                 pair = (design.plank_index[a], design.plank_index[b])
                 if end_gap(design, *pair) is not None:
                     measures.append((violation.where, _gap_measure(pair)))
+            elif violation.kind == "disconnected":      # its end cut into faces: rest on them
+                edge = design.plank_index[violation.where]
+                for _, face in cut_ins(design, edge):
+                    measures.append((f"{design.planks[face].id}/{violation.where}",
+                                     _depth_measure(face, edge)))
         if not measures:
             return []
 
@@ -390,6 +397,15 @@ def _depth(plank: int):
 def _height(plank: int):
     """How high (m) the plank's lowest corner is above the ground."""
     return lambda design: float(design.planks[plank].corners[:, 2].min())
+
+
+def _depth_measure(face: int, edge: int):
+    """How far (m) the end of plank ``edge`` is from the face of plank ``face``, above it
+    or sunk into it (inf where no end of it faces that face)."""
+    def measure(design: Design) -> float:
+        gap = end_depth(design, face, edge)
+        return np.inf if gap is None else abs(gap)
+    return measure
 
 
 def _gap_measure(pair: tuple[int, int]):
