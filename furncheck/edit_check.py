@@ -1,7 +1,7 @@
 """Whether an edit of a design (``dofs.apply_dof``) is still the design: the same joints
-and contacts (none lost, none gained but a near miss closing, a floating plank coming
-to stand on the ground or a plank joined to nothing coming to rest on the face its end
-cut into), no plank cutting into another, no plank shrunk to nothing, no
+and contacts (none lost, none gained but a near miss closing, a plank joined to nothing
+coming to rest on the face its end cut into, or, for the edits of an invalid design, a
+plank coming to stand on the ground), no plank cutting into another, no plank shrunk to nothing, no
 anchor moved off its wall.
 
 ``check_edit`` and ``check_edit_many`` (many edits' geometry measured together, for the
@@ -29,13 +29,14 @@ _ANCHOR_EPS = 1e-9
 compared with the drawn one."""
 
 
-def check_edit(original: Geometry, edited: Design,
-               design: Design | None = None) -> tuple[str | None, Geometry | None]:
+def check_edit(original: Geometry, edited: Design, design: Design | None = None,
+               stand: bool = False) -> tuple[str | None, Geometry | None]:
     """Why the edited design no longer has the original's joints and contacts (or None),
     and the edited design's geometry (None when a plank lost its length).  With the
-    original ``design``, joints between unchanged planks are not detected again."""
+    original ``design``, joints between unchanged planks are not detected again, and
+    ``stand`` lets planks come to stand on the ground (``check_edit_many``)."""
     if design is not None:
-        return check_edit_many(original, [edited], design)[0]
+        return check_edit_many(original, [edited], design, stand)[0]
     problem = design_problem(edited)
     if problem is not None:
         return problem, None
@@ -44,16 +45,19 @@ def check_edit(original: Geometry, edited: Design,
     return problem, geometry
 
 
-def check_edit_many(original: Geometry, edits: list[Design],
-                    design: Design) -> list[tuple[str | None, Geometry | None]]:
+def check_edit_many(original: Geometry, edits: list[Design], design: Design,
+                    stand: bool = False) -> list[tuple[str | None, Geometry | None]]:
     """``check_edit`` of many edits of ``design`` (whose geometry is ``original``), their
-    geometries and plank cuts measured together (``geometry.EditedTables``)."""
+    geometries and plank cuts measured together (``geometry.EditedTables``).  ``stand``:
+    a plank may come to stand on the ground it did not touch (the edits of an invalid
+    design, as ``suggest``'s: standing a hovering leg on the floor is the point; the
+    ground contacts it had are still kept)."""
     out: list = [(design_problem(edited), None) for edited in edits]
     sized = [k for k, (problem, _) in enumerate(out) if problem is None]
     tables = EditedTables(design, original, [edits[k] for k in sized])
     geometries = tables.geometries()
     cut_in = cut_in_pairs(design, original)
-    problems = [None if kept else _edit_problem(original, geometry, cut_in)
+    problems = [None if kept else _edit_problem(original, geometry, cut_in, stand)
                 for kept, geometry in zip(tables.kept, geometries)]
     clear = [n for n, problem in enumerate(problems) if problem is None]
     for n, cutting in zip(clear, tables.cuts(clear)):
@@ -97,10 +101,11 @@ def _cut_problem(edited: Design, cutting: list[tuple[str, str, float]]) -> str |
 
 
 def _edit_problem(original: Geometry, geometry: Geometry,
-                  cut_in: set[tuple[str, str]] = frozenset()) -> str | None:
+                  cut_in: set[tuple[str, str]] = frozenset(), stand: bool = False) -> str | None:
     """Why ``geometry`` (of an edit) no longer has the ``original``'s joints and contacts,
     or None.  ``cut_in``: the (face, edge) joints that planks joined to nothing may form
-    with the faces their ends cut into (``geometry.cut_in_pairs``)."""
+    with the faces their ends cut into (``geometry.cut_in_pairs``); ``stand``: planks may
+    come to stand on the ground (``check_edit_many``)."""
     known = {(v.kind, v.where) for v in original.violations}
     problems = [v for v in geometry.violations if (v.kind, v.where) not in known]
     if problems:
@@ -120,15 +125,13 @@ def _edit_problem(original: Geometry, geometry: Geometry,
     if new:
         return f"planks {new[0][0]}/{new[0][1]} would touch and form a new joint"
     # which planks stand on the ground and lean on which wall (anchors: design_problem);
-    # a plank that misses the ground narrowly, or floats, may come to stand on it (as in
-    # ``suggest``: standing it on the floor is the point)
+    # a plank that misses the ground narrowly may come to stand on it, and with ``stand``
+    # any plank
     held_before = {_support(c) for c in original.contacts if c.anchor is None}
     held_after = {_support(c) for c in geometry.contacts if c.anchor is None}
-    floating = {plank for v in original.violations if v.kind == "floating"
-                for plank in v.where.split(",")}
     changed = sorted((held_before ^ held_after)
                      - {(plank, None, None) for plank, *_ in held_after
-                        if (plank,) in closing or plank in floating},
+                        if (plank,) in closing or stand},
                      key=lambda key: (key[0], -1 if key[1] is None else key[1], key[2] or ""))
     if changed:
         plank, wall, on = changed[0]

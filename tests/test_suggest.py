@@ -312,6 +312,61 @@ def test_a_board_far_above_the_floor_is_lowered_onto_it(model, tmp_path):
     assert 5.5 <= found.valid[0] <= 100.0 - 94.0 <= found.valid[1] <= 6.5
 
 
+def _window_margin(low: float, high: float, calls: list):
+    """A geometric repair's margin along its direction: valid (1) on [low, high], -inf
+    elsewhere (the board still floats, or cuts into the floor); every step asked for is
+    recorded in ``calls``."""
+    def margin(step: float) -> float:
+        calls.append(step)
+        return 1.0 if low <= step <= high else -math.inf
+    return margin
+
+
+@pytest.mark.parametrize(("aim", "found", "tried"), [
+    (0.094, 0.094, True),        # the middle of the window: found
+    (0.0935, 0.0935, True),      # its near edge (the prediction itself): found
+    (0.0946, None, True),        # past the window: tried, fails, the search goes on
+    (0.093, None, False),        # before the prediction: not tried
+    (0.098175, None, False),     # at the first probe (1.05 x 0.0935): not tried
+    (math.inf, None, False),     # no aim
+    (math.nan, None, False),
+])
+def test_the_first_probe_falls_back_on_the_aim(aim, found, tried):
+    """``line_search._first_valid`` on a window of 0.0935 .. 0.0945 (scaled steps: a board
+    94 mm up in a design 1 m in size, the tolerance 0.5 mm) predicted at its near edge,
+    0.0935: its first probe, 1.05 x 0.0935 = 0.098175, is past the window and -inf; the
+    aim is probed next only where it lies in [0.0935, 0.098175), and a valid aim comes
+    back with that first probe as the bracket's invalid end.  Every probe further out is
+    -inf: without a valid aim, nothing."""
+    from furncheck.suggest.line_search import _first_valid
+
+    calls: list = []
+    result = _first_valid(_window_margin(0.0935, 0.0945, calls), 0.0935, -math.inf, aim)
+    assert calls[0] == pytest.approx(0.098175)
+    assert (len(calls) > 1 and calls[1] == aim) is tried      # the aim comes second
+    if found is None:
+        assert result is None
+    else:
+        below, first, beyond = result
+        assert below == (0.0, -math.inf) and first == (found, 1.0)
+        assert beyond == (pytest.approx(0.098175), -math.inf)
+
+
+def test_a_finite_first_probe_never_asks_for_the_aim():
+    """Where the first probe fails by a finite margin (a joint short of its capacity), the
+    secant goes on as before and the aim is not probed."""
+    from furncheck.suggest.line_search import _first_valid
+
+    calls: list = []
+
+    def margin(step: float) -> float:
+        calls.append(step)
+        return step - 0.12         # valid from 0.12 on
+
+    below, first = _first_valid(margin, 0.0935, -0.0935, 0.094)
+    assert 0.094 not in calls and first[1] >= 0.0 and below[1] < 0.0
+
+
 STOOL_LEG_CUT_TOO_LONG = """\
 furncheck: 1
 name: stool-long-leg

@@ -81,6 +81,7 @@ class Evaluator:
         self._kept: dict[Dof, dict[float, tuple]] = {}
         self._edits: dict[Dof, dict[float, Design]] = {}
         self.evaluations = 0
+        self.stand = False     # planks may come to stand on the ground (an invalid design)
 
     # -- running searches ----------------------------------------------------------------------
     def _run(self, searches: dict[tuple[int, float], Generator],
@@ -192,7 +193,8 @@ class Evaluator:
                 continue
             todo.append((k, dof, step, edited))
         self.evaluations += len(todo)
-        checks = check_edit_many(self.geometry, [edited for *_, edited in todo], self.design)
+        checks = check_edit_many(self.geometry, [edited for *_, edited in todo], self.design,
+                                 self.stand)
         for (k, dof, step, edited), (problem, geometry) in zip(todo, checks):
             self._kept[dof][step] = (None, None) if problem is not None else (edited, geometry)
             answers[k] = (self._kept[dof][step], None)

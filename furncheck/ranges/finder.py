@@ -74,6 +74,7 @@ class RangeFinder(ReachSearch):
     def __init__(self, design: Design, locked: tuple[str, ...] = ()):
         super().__init__(design, locked)
         self.valid_now = check_design(design, self.geometry, self.model).valid
+        self.stand = not self.valid_now     # its nearest window may stand a plank on the floor
         _, self.margin_now, self.utilization_now, self.limiting_now = margin_of(
             design, self.geometry, self.starts, self.model)
         self.size = design_size(design)

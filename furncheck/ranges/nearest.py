@@ -6,8 +6,9 @@ sampling of the search's reach finds.  So the window is first looked for where
 ``suggest`` looks: at the step the linearized margins predict for this DOF alone
 (``suggest.margins``, ``suggest.candidates`` with one DOF: the step at which every
 violated margin is restored), probed at PREDICTED_PROBES times that step, and where the
-first of them fails, at the step that meets the margins' targets if it lies before that
-probe (as ``suggest`` does: a board 94 mm above the floor is valid lowered by 93.5 to
+first of them fails, at the least-squares step toward the margins' targets if it lies
+before that probe (as ``suggest`` does where its first probe fails outright; a range's
+probe says only valid or not: a board 94 mm above the floor is valid lowered by 93.5 to
 94.5 mm, the predicted 93.5 mm is the window's near edge, and 1.05 times it is past the
 far one); a valid probe is widened to the interval around it, each end closed to the
 finer of the range's resolution and WINDOW_RESOLUTION of the step.  A DOF without a

@@ -112,7 +112,8 @@ def _geometric(kind: str):
         if v.get("carried"):
             return f"{_n(v['distance'])} {units} above the floor, it hangs on joints it " \
                    "misses: closing those carries it, nothing to lower"
-        span = f"{_n(v['change_min'])} to {_n(v['change_max'])} {units}"
+        low, high = _n(v['change_min']), _n(v['change_max'])
+        span = f"{low} to {high} {units}" if low != high else f"{_n(v['distance'])} {units}"
         tolerance = f"to within the {_n(v['tolerance'])} {units} tolerance"
         if kind == "disconnected" and v.get("overlap"):
             return f"the end cuts {_n(v['distance'])} {units} into the face; drawing it " \

@@ -56,9 +56,10 @@ class Candidate:
     direction : (m,) unit vector, scaled DOF units
     enter     : predicted step at which every violated margin is restored
     leave     : predicted step at which another margin fails (inf if none)
-    aim       : predicted step at which the violated margins reach their targets (the
-                least-squares step |y*|; inf if not known): for a geometric repair the
-                middle of its tolerance window, where ``enter`` is the window's near edge
+    aim       : the least-squares step |y*| toward the violated margins' targets (inf if
+                not known): it meets them where one margin is violated, or there are as
+                many DOFs; for such a geometric repair the middle of its tolerance
+                window, where ``enter`` is the window's near edge
     """
 
     dofs: tuple[int, ...]

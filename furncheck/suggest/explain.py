@@ -75,7 +75,7 @@ def _verdict(editor, search: LineSearch) -> str:
         return getattr(why, "reason", str(why)) or "the change cannot be made"
     after = None
     if search.best is None:        # no probe kept the joints: say which change breaks them
-        problem, after = check_edit(editor.geometry, edited)
+        problem, after = check_edit(editor.geometry, edited, design, stand=True)
         if problem is not None or after is None:
             return problem or "it is no design"
     remaining = check_design(edited, after).violations

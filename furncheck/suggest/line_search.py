@@ -89,13 +89,15 @@ def line_search(editor: Editor, dofs: tuple[Dof, ...], candidate: Candidate,
     found = _first_valid(margin, candidate.enter, start, candidate.aim)
     if found is None:
         return None
-    below, first = found
+    below, first, *beyond = found
     if below[0] == 0.0 and not np.isfinite(below[1]) and \
             candidate.enter * PROBE_BELOW < first[0]:
         guess = (candidate.enter * PROBE_BELOW, margin(candidate.enter * PROBE_BELOW))
         below, first = (below, guess) if guess[1] >= 0.0 else (guess, first)
     low = _boundary(margin, first, below, LOWER_RESOLUTION)
     resolution = max(UPPER_RESOLUTION * low[0], MIN_RESOLUTION)
+    if beyond:                  # the aim's window: the probe past it closes the bracket
+        return Interval(low[0], _boundary(margin, first, beyond[0], resolution)[0])
     reach = _geometric_reach(editor, dofs, direction, low[0], max(first[0], low[0] + resolution))
     high, limited = _upper_end(margin, first, reach, resolution)
     return Interval(low[0], high, limited)
@@ -107,13 +109,15 @@ def _first_valid(margin, predicted: float, start: float, aim: float = math.inf):
     MAX_PROBES or MAX_STEP are used up, or the joints' margin stops growing (the linear
     prediction was wrong: a nail count that cannot grow, a load that does not move).
 
-    Where the first probe fails the geometry (margin -inf) and the candidate's ``aim``
-    (the step where the violated margins reach their targets) lies between the
+    Where the first probe fails outright (margin -inf) and the candidate's ``aim`` (the
+    least-squares step toward the violated margins' targets) lies between the
     prediction and that probe, the aim is tried next: a geometric repair is valid only
     within the tolerance on either side of closing its gap (a board 94 mm above the
     floor stands on it when lowered by 93.5 to 94.5 mm, tolerance 0.5 mm), a window that
     FIRST_PROBE's overshoot of the prediction (its near edge) steps over, and every probe
-    further out cuts the plank into the floor."""
+    further out cuts the plank into the floor.  A valid aim comes back with that first
+    probe as a third item, (step, margin): invalid, beyond the valid one (``line_search``
+    brackets the upper end with it)."""
     previous = (0.0, start)
     step = min(predicted * FIRST_PROBE, MAX_STEP)
     for probe in range(MAX_PROBES):
@@ -123,7 +127,7 @@ def _first_valid(margin, predicted: float, start: float, aim: float = math.inf):
         if probe == 0 and value == -math.inf and predicted <= aim < step:
             aimed = margin(aim)
             if aimed >= 0.0:
-                return previous, (aim, aimed)
+                return previous, (aim, aimed), (step, value)
         if step >= MAX_STEP:
             return None
         growth = GROWTH[1]

@@ -89,11 +89,13 @@ class LineSearch:
     @property
     def looked_at(self) -> float | None:
         """The step whose design tells most about the failure: the best finite probe,
-        else the first (nearest the prediction); None without probes."""
+        else the one nearest the prediction (the first, or a geometric repair's aim just
+        before it; ``line_search._first_valid``); None without probes."""
         best = self.best
         if best is not None:
             return best[0]
-        return self.probes[0][0] if self.probes else None
+        return min((step for step, _ in self.probes),
+                   key=lambda step: abs(step - self.predicted), default=None)
 
     @property
     def best(self) -> tuple[float, float] | None:
