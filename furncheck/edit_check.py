@@ -1,8 +1,8 @@
 """Whether an edit of a design (``dofs.apply_dof``) is still the design: the same joints
 and contacts (none lost, none gained but a near miss closing, a plank joined to nothing
 coming to rest on the face its end cut into, or, for the edits of an invalid design, a
-plank coming to stand on the ground), no plank cutting into another, no plank shrunk to nothing, no
-anchor moved off its wall.
+plank coming to stand on the ground), no plank cutting into another, no plank shrunk to
+nothing, no anchor moved off its wall.
 
 ``check_edit`` and ``check_edit_many`` (many edits' geometry measured together, for the
 range search) say why not, or None; ``design_problem`` is the part that needs no geometry.

@@ -119,11 +119,15 @@ class Margins:
 
     def _difference(self, measure) -> np.ndarray:
         """Central differences of ``measure(design) -> (k,) array`` over the free DOFs:
-        (k, n_free), per scaled unit."""
+        (k, n_free), per scaled unit; 0 where a measure is not finite on a side (an end that
+        no longer faces its face: that DOF gives it no usable rate)."""
         columns = []
         for dof in self.dofs:
             span, plus, minus = self._edited[dof]
-            columns.append((measure(plus) - measure(minus)) / span * self.editor.scale(dof))
+            with np.errstate(invalid="ignore"):
+                change = measure(plus) - measure(minus)
+            columns.append(np.where(np.isfinite(change), change, 0.0) / span
+                           * self.editor.scale(dof))
         if not columns:
             return np.zeros((len(measure(self.design)), 0))
         return np.column_stack(columns)
