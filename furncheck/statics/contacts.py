@@ -314,9 +314,8 @@ class _ActiveSet(_Outcomes):
         system, made once (its contacts' ``friction.contact_magnitudes`` once per model)."""
         kept = self.model.contact_spaces
         if "magnitudes" not in kept:
-            springs = np.broadcast_to(np.asarray(self.model.contact_springs, dtype=float),
-                                      (len(self.model.contacts),))
-            kept["magnitudes"] = contact_magnitudes(self.contact_map(), springs)
+            kept["magnitudes"] = contact_magnitudes(self.contact_map(),
+                                                    self.model.contact_springs_each)
         return balance_sizes(self.condensed.schur, self.ground_rhs, kept["magnitudes"])
 
     def contact_map(self) -> np.ndarray:

@@ -75,7 +75,7 @@ class _FrictionEnergy:
         self.schur = solver.condensed.schur
         self.rhs = solver.ground_rhs
         count = len(model.contacts)
-        self.k = np.broadcast_to(np.asarray(model.contact_springs, dtype=float), (count,))
+        self.k = model.contact_springs_each
         self.tie = np.zeros(count, dtype=bool) if model.contact_anchored is None \
             else np.asarray(model.contact_anchored, dtype=bool)
         self.caps = caps

@@ -125,6 +125,13 @@ class StaticsModel:
         springs[self.contact_anchored] = self.anchor_stiffness
         return springs
 
+    @cached_property
+    def contact_springs_each(self) -> np.ndarray:
+        """(nK,) N/m: ``contact_springs`` as one (read-only) entry per contact, scalar or
+        not (what the friction energy, ``newton``'s law and the round-off floors index)."""
+        return np.broadcast_to(np.asarray(self.contact_springs, dtype=float),
+                               (len(self.contacts),))
+
     def world_forces(self, forces: np.ndarray) -> np.ndarray:
         """(nK, 3) N: contact forces given in the contacts' frames, in the world frame."""
         if self.contact_frames is None:

@@ -68,10 +68,9 @@ def newton_equilibrium(solver: _ActiveSet, start: np.ndarray):
     as when the design slides, or none that it finds), when a Jacobian is singular, or
     when the displacements pass SLIDING_DISPLACEMENT."""
     model = solver.model
-    count = len(model.contacts)
     mapping = solver.contact_map()
     schur, rhs = solver.condensed.schur, solver.ground_rhs
-    springs = np.broadcast_to(np.asarray(model.contact_springs, dtype=float), (count,))
+    springs = model.contact_springs_each
     sizes = solver.balance_sizes
 
     def residual(x: np.ndarray):
