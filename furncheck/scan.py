@@ -28,7 +28,6 @@ from pathlib import Path, PurePath
 from typing import TYPE_CHECKING
 
 from furncheck import tolerances as tol
-from furncheck.detect import declares_design
 from furncheck.result import DesignReport
 
 if TYPE_CHECKING:       # the ignore rules are read where a folder is scanned
@@ -182,6 +181,7 @@ def _is_design(path: str) -> bool:
             data = stream.read(tol.MAX_FILE_BYTES + 1)
     except OSError:
         return True
+    from furncheck.detect import declares_design  # json and its patterns: scans only
     return declares_design(data, fmt)
 
 

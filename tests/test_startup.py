@@ -28,7 +28,7 @@ def loaded():
 
 RARE = ("furncheck.cli.suggest", "furncheck.cli.range", "furncheck.statics.feasibility",
         "furncheck.statics.newton", "furncheck.geometry.edits", "furncheck.design.write",
-        "furncheck.ignores", "tomllib")
+        "furncheck.ignores", "furncheck.detect", "tomllib")
 seen = {"import": [None, loaded()]}
 for label, args in [("stool rigid", ["designs/stool.yaml", "--model", "rigid"]),
                     ("stool elastic", ["designs/stool.yaml"]),
@@ -56,7 +56,8 @@ def test_validate_imports_only_the_scipy_a_design_needs():
     only); the stool not even numpy.ma (12 ms, which numpy 2's np.unique imports), nor
     furncheck's own modules that other commands or rarer cases need (the other commands,
     the feasibility programs and Newton's method, the edits' geometry, the design writer,
-    the gitignore rules) or tomllib (this repository's pyproject.toml has no
+    the gitignore rules, the test for design files that folder scans read: a named file
+    is checked whatever it holds) or tomllib (this repository's pyproject.toml has no
     [tool.furncheck] table, and says so without being parsed)."""
     output = subprocess.run([sys.executable, "-c", SCRIPT], capture_output=True, text=True,
                             check=True, cwd=ROOT).stdout
