@@ -411,6 +411,69 @@ def test_a_leg_cut_too_long_is_shortened_at_its_top(model, tmp_path):
     assert found.valid is not None and found.valid[0] <= 450.0 <= found.valid[1] < 470.0
 
 
+STOOL_LEG_SHORT = """\
+furncheck: 1
+name: stool-short-leg
+units: mm
+planks:
+  - {id: seat, size: [400, 300], center: [0, 0, 450.5], thickness: 25}
+  - {id: leg_l, size: [438, 300], center: [-170, 0, 219], rotation: [0, -90, 0]}
+  - {id: leg_r, size: [408, 300], center: [170, 0, 234], rotation: [0, -90, 0]}
+  - {id: rung, size: [328, 80], center: [0, 0, 150], rotation: [90, 0, 0]}
+loads:
+  - {plank: seat, mass: 80, at: [0, 0, 463]}
+"""
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_leg_drawn_30_mm_short_is_lengthened_to_the_floor(model, tmp_path):
+    """designs/stool-thick-seat.yaml with its right leg 30 mm short (408 mm, its foot
+    30 mm above the floor, past the 10 mm band of a near miss): the stool stands on leg_l
+    alone and topples (the seat's 80 kg acts 170 mm beside leg_l's 12 mm foot).  The
+    toppling margins, the forces of leg_l's contacts, have no rate along leg_r, which
+    carries nothing; the margin of leg_r's height above the floor, (0.5 - 30) mm / size,
+    does (``Margins.alternatives``).  Lengthened by 30 mm (the window is 30 +- 0.5 mm, the
+    tolerance), leg_r stands on the floor: "Lengthen leg_r by 30 mm", 438 mm long as
+    leg_l, its file valid; ``range`` of leg_r.length holds 438 mm, within the tolerance.
+    Before: an added support under the seat and no window."""
+    path = tmp_path / "stool.yaml"
+    path.write_text(STOOL_LEG_SHORT)
+    design = with_model(load_design(str(path)), model)
+    report = check_design(design)
+    assert {v.kind for v in report.violations} == {"lift-off"}
+    result = suggest_design(design)
+    first = result.suggestions[0]
+    assert first.dofs == ("leg_r.length",) and first.changes == (30.0,)
+    assert check_design(parse_design(first.text, "s.yaml", "yaml")).valid
+    text = CliRunner().invoke(main, ["suggest", str(path), "--model", model]).output
+    assert "1. Lengthen leg_r by 30 mm (valid for " in text
+    (found,) = RangeFinder(design).ranges(["leg_r.length"])
+    low, high = found.valid
+    assert 437.5 <= low < 438.0 < high <= 438.5
+
+
+def test_a_stretcher_between_the_legs_is_not_brought_down():
+    """bench-tips.yaml topples past leg_r; its stretcher stands on edge 300 mm above the
+    floor (within HOVER_REACH, half the bench's size), between the legs: on the floor it
+    would stand inside the support polygon, so it is no leg drawn short
+    (``Margins._widens``) and no alternative margins are made."""
+    from furncheck.dofs import all_dofs, structure
+    from furncheck.edit_check import standing_geometry
+    from furncheck.geometry import analyze
+    from furncheck.geometry.near import hovering_ends
+    from furncheck.suggest.edits import Editor
+    from furncheck.suggest.margins import Margins
+
+    design = catalog_design("bench-tips.yaml")
+    geometry = analyze(design)
+    report = check_design(design, geometry)
+    editor = Editor(design, geometry, structure(design, standing_geometry(geometry)), ())
+    stretcher = design.plank_index["stretcher"]
+    assert (stretcher, pytest.approx(0.3)) in hovering_ends(design, geometry, 0.6)
+    margins = Margins(design, geometry, report, editor, all_dofs(design))
+    assert margins.violated and margins.alternatives == []
+
+
 def test_locked_dofs_never_change():
     """--lock shelf.length: no suggestion uses it and no representative changes it (the
     widening remains); --lock leg_r.x likewise for the bench."""

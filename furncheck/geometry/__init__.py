@@ -18,6 +18,8 @@ The package, by job:
     edits     what decides whether an edit keeps the joints: interpenetrations, many
               edits checked at once (EditedTables) and the edits' continuous margins
               (EditMargins, edit_margins_many)
+    support   the support polygon on the floor: convex hull of the floor contacts and
+              how far a point lies outside it
 """
 
 from furncheck.geometry.analysis import (

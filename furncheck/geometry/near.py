@@ -90,12 +90,37 @@ def missed_ground(design: Design, contacts: list[Contact],
     slack, band = near_band(design)
     if band <= slack:
         return []
+    return [NearMiss((design.planks[i].id,), height)
+            for i, height in _standing_above(design, contacts, components, grounded, band,
+                                             only)]
+
+
+def hovering_ends(design: Design, geometry: Geometry, reach: float) -> list[tuple[int, float]]:
+    """(plank index, height m) of the planks of grounded groups that stand on an end above
+    the floor, farther than the tolerance and at most ``reach`` (m): a leg drawn short,
+    near miss or not (``suggest.margins`` offers to bring the lowest ones down to the
+    floor when the design topples)."""
+    slack, _ = near_band(design)
+    if reach <= slack:
+        return []
+    return _standing_above(design, geometry.contacts, geometry.components, geometry.grounded,
+                           reach)
+
+
+def _standing_above(design: Design, contacts: list[Contact],
+                    components: tuple[tuple[int, ...], ...], grounded: tuple[bool, ...],
+                    reach: float, only: list[int] | None = None) -> list[tuple[int, float]]:
+    """(plank index, height m), in plank order, of the planks of grounded groups (``only``:
+    among these) that touch the floor nowhere and stand on an end (one of their narrow
+    faces within JOINT_MAX_TILT_DEG of facing straight down), their lowest corner more
+    than the tolerance and at most ``reach`` above the floor."""
+    slack, _ = near_band(design)
     touching = {contact.plank for contact in contacts if contact.on is None}
     candidates = sorted(i for component, on_ground in zip(components, grounded)
                         if on_ground for i in component)
     if only is not None:
         candidates = sorted(set(candidates) & set(only))
-    missed = []
+    found = []
     for i in candidates:
         plank = design.planks[i]
         if plank.id in touching:
@@ -103,9 +128,9 @@ def missed_ground(design: Design, contacts: list[Contact],
         axes = plank.rotation_matrix
         standing = max(abs(axes[2, 0]), abs(axes[2, 1])) >= _COS_MAX_TILT
         height = float(plank.corners[:, 2].min())
-        if standing and slack < height <= band:
-            missed.append(NearMiss((plank.id,), height))
-    return missed
+        if standing and slack < height <= reach:
+            found.append((i, height))
+    return found
 
 
 def carried_groups(design: Design, geometry: Geometry) -> set[str]:

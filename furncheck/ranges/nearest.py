@@ -44,7 +44,7 @@ def predicted_steps(design: Design, geometry: Geometry, frame: Structure,
     when this DOF alone changes, and at which they meet their targets (``Candidate.enter``
     and ``aim``; the aim inf where unknown); DOFs with no such change are left out."""
     # suggest builds on ranges (its line search's geometric estimates): imported here
-    from furncheck.suggest.candidates import candidates
+    from furncheck.suggest.candidates import every_candidate
     from furncheck.suggest.edits import Editor
     from furncheck.suggest.margins import Margins
 
@@ -55,7 +55,7 @@ def predicted_steps(design: Design, geometry: Geometry, frame: Structure,
     editor = Editor(design, geometry, frame, locked)
     margins = Margins(design, geometry, report, editor, free)
     steps: dict[Dof, tuple[float, float]] = {}
-    for candidate in candidates(margins, 1):
+    for candidate in every_candidate(margins, 1):
         dof = margins.dofs[candidate.dofs[0]]
         along = float(candidate.direction[0] * editor.scale(dof))
         steps.setdefault(dof, (along * candidate.enter, along * candidate.aim))

@@ -40,6 +40,9 @@ RELEVANT_RATE = 1e-3
 """A DOF is relevant when its largest rate on a violated margin is at least this fraction
 of the largest rate of any DOF."""
 
+SAME_DIRECTION = 0.999
+"""Directions over the same DOFs whose cosine exceeds this are the same suggestion."""
+
 _CHUNK = 4096
 """Combinations evaluated per vectorized batch (bounds memory: rows x chunk x m)."""
 
@@ -103,6 +106,43 @@ def candidates(margins: Margins, max_dofs: int,
                                         len(kept) - before, *(int(c) for c in culled)))
     kept.sort(key=lambda c: (c.enter, len(c.dofs), c.dofs))
     return kept
+
+
+def every_candidate(margins: Margins, max_dofs: int,
+                    tally: list[DirectionTally] | None = None) -> list[Candidate]:
+    """``candidates`` of the margins and of each of their ``alternatives`` (other ways to
+    restore the design, e.g. a leg drawn short brought down to the floor), each direction
+    once (the margins' own where both have it), nearest first; ``tally`` counts the
+    alternatives' combinations with the margins' own of as many DOFs."""
+    found = candidates(margins, max_dofs, tally)
+    for rows in margins.alternatives:
+        counted: list[DirectionTally] | None = None if tally is None else []
+        more = candidates(margins.with_margins(rows), max_dofs, counted)
+        found += [c for c in more if not any(same_direction(c, f) for f in found)]
+        if tally is not None:
+            tally[:] = _added_tallies(tally, counted)
+    found.sort(key=lambda c: (c.enter, len(c.dofs), c.dofs))
+    return found
+
+
+def same_direction(a: Candidate, b: Candidate) -> bool:
+    """Whether two candidates are one direction (the same DOFs, parallel)."""
+    return a.dofs == b.dofs and float(a.direction @ b.direction) > SAME_DIRECTION
+
+
+def _added_tallies(first: list[DirectionTally],
+                   second: list[DirectionTally]) -> list[DirectionTally]:
+    """One ``DirectionTally`` per number of DOFs of both lists: their counts added, the
+    relevant DOFs the larger of the two."""
+    sizes = sorted({t.size for t in first} | {t.size for t in second})
+    out = []
+    for size in sizes:
+        both = [t for t in (*first, *second) if t.size == size]
+        out.append(DirectionTally(size, max(t.relevant for t in both),
+                                  *(sum(getattr(t, name) for t in both) for name in (
+                                      "possible", "evaluated", "kept", "facing_away",
+                                      "breaks_other", "too_far"))))
+    return out
 
 
 def unit_candidates(margins: Margins, units: list, max_dofs: int) -> list[Candidate]:

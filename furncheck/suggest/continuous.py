@@ -25,7 +25,12 @@ from furncheck.geometry import Geometry
 from furncheck.neighbourhood import suggestion_dofs
 from furncheck.result import DesignReport
 from furncheck.statics import StaticsModel
-from furncheck.suggest.candidates import Candidate, candidates, unit_candidates
+from furncheck.suggest.candidates import (
+    Candidate,
+    every_candidate,
+    same_direction,
+    unit_candidates,
+)
 from furncheck.suggest.edits import Editor, utilization_margin
 from furncheck.suggest.line_search import line_search
 from furncheck.suggest.margins import Margins
@@ -43,9 +48,6 @@ LINE_SEARCHES_PER_SUGGESTION = 3
 
 MAX_SYMMETRIC = 3
 """At most this many symmetric directions are line-searched (before the others)."""
-
-SAME_DIRECTION = 0.999
-"""Directions over the same DOFs whose cosine exceeds this are the same suggestion."""
 
 SYMMETRIC_REACH = 3.0
 """A symmetric direction is searched first when its predicted step is at most this many
@@ -93,14 +95,15 @@ class ContinuousSearch:
         """The kept directions of 1..max_dofs DOFs, nearest first (``candidates``), after
         at most MAX_SYMMETRIC symmetric ones within SYMMETRIC_REACH of the nearest."""
         self.tally.clear()
-        found = candidates(self.margins, max_dofs, self.tally)
+        found = every_candidate(self.margins, max_dofs, self.tally)
         if not self.planes:
             return found
         units = symmetric_units(self.margins.design, self.planes, self.margins.dofs)
         reach = SYMMETRIC_REACH * found[0].enter if found else np.inf
         symmetric = [c for c in unit_candidates(self.margins, units, max_dofs)
                      if c.enter <= reach][:MAX_SYMMETRIC]
-        return symmetric + [c for c in found if not any(_same(c, s) for s in symmetric)]
+        return symmetric + [c for c in found
+                            if not any(same_direction(c, s) for s in symmetric)]
 
     def run(self, directions: list[Candidate], wanted: int) -> list[Found]:
         """Line-search the directions in order until ``wanted`` have a valid interval (at
@@ -145,11 +148,6 @@ class ContinuousSearch:
             except (Blocked, OutOfReach):
                 continue
         return out
-
-
-def _same(a: Candidate, b: Candidate) -> bool:
-    """Whether two candidates are one direction (the same DOFs, parallel)."""
-    return a.dofs == b.dofs and float(a.direction @ b.direction) > SAME_DIRECTION
 
 
 def representative_step(low: float, high: float) -> float:

@@ -25,6 +25,7 @@ them (``candidates``).
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass
 
 import numpy as np
@@ -32,7 +33,8 @@ import numpy as np
 from furncheck.design.model import Design
 from furncheck.dofs import Blocked, Dof, OutOfReach, design_size
 from furncheck.geometry import Geometry, cut_ins, end_depth, end_gap
-from furncheck.geometry.near import carried_groups
+from furncheck.geometry.near import carried_groups, hovering_ends
+from furncheck.geometry.support import convex_hull, outside
 from furncheck.result import DesignReport
 from furncheck.sensitivity import Linearization, Sensitivity
 from furncheck.statics import StaticsModel, build_model, external_forces
@@ -50,6 +52,12 @@ shear rates (both are piecewise linear in the wrench)."""
 HOVER_BAND = 0.02
 """A hovering plank counts as one that should reach the floor when its lowest corner is
 within this fraction of the design's size above the component's lowest corner."""
+
+HOVER_REACH = 0.5
+"""A design that topples may be stood on a leg drawn short: planks standing on an end
+that hang at most this fraction of the design's size above the floor (as far as the
+candidates' search reaches, ``candidates.MAX_STEP``) are brought down to it
+(``Margins.alternatives``)."""
 
 
 @dataclass(frozen=True)
@@ -79,6 +87,10 @@ class Margins:
     dofs    : the free DOFs (not locked, able to move), in design order
     blocked : DOF name -> why it cannot be part of a suggestion
     margins : every margin; ``violated`` those below zero
+    alternatives : other margin sets that restore the design another way, each searched
+              for directions of its own (``with_margins``): for a design that topples
+              and has legs drawn short, the margins with the toppling cases' stability
+              margins replaced by those legs' heights above the floor (``_standing``)
     """
 
     def __init__(self, design: Design, geometry: Geometry, report: DesignReport,
@@ -93,6 +105,7 @@ class Margins:
         self.size = design_size(design)
         self.blocked: dict[str, str] = {}
         self._edited: dict[Dof, tuple[float, Design, Design]] = {}   # (step apart, +, -)
+        self.alternatives: list[list[Margin]] = []
         if geometry.violations:
             self.dofs = [dof for dof in dofs if self._movable(dof)]
             self.margins = self._geometric(report)
@@ -102,6 +115,12 @@ class Margins:
     @property
     def violated(self) -> list[Margin]:
         return [m for m in self.margins if m.value < 0.0]
+
+    def with_margins(self, margins: list[Margin]) -> Margins:
+        """These margins over the same DOFs (``alternatives``: what ``candidates`` reads)."""
+        other = copy.copy(self)
+        other.margins, other.alternatives = margins, []
+        return other
 
     # -- DOFs ------------------------------------------------------------------------------
     def _movable(self, dof: Dof) -> bool:
@@ -181,7 +200,54 @@ class Margins:
                 margins.extend(_durability(linear, sens, scales))
                 margins.extend(_anchors(linear, sens.contact_forces, scales))
                 margins.extend(_bending(linear, sens, scales))
+        toppled = {linear.case.name for linear in linears
+                   if linear.statics.stability == "lift-off"}
+        standing = self._standing() if toppled else []
+        if standing:
+            self.alternatives.append([m for m in margins if not (
+                m.restores == "stability" and m.case in toppled)] + standing)
         return margins
+
+    def _standing(self) -> list[Margin]:
+        """For a design that topples: the margins of its legs drawn short, the lowest of
+        the planks standing on an end above the floor in its grounded groups
+        (``geometry.near.hovering_ends``, within HOVER_REACH of the design's size) whose
+        foot would widen its support (``_widens``; those within HOVER_BAND of the lowest),
+        each ``(tolerance - height) / size``.  Standing
+        on the floor they widen its support, which the toppling margins, the forces of
+        the contacts it has, cannot tell: rates by differences of the geometry (as a
+        floating plank's, ``_geometric``), the full checks of the line search decide."""
+        design = self.design
+        scale = self.size * design.unit_scale
+        hovering = [(i, height) for i, height in hovering_ends(design, self.geometry,
+                                                               HOVER_REACH * scale)
+                    if self._widens(design.planks[i])]
+        if not hovering or not self.dofs:
+            return []
+        lowest = min(height for _, height in hovering)
+        planks = [i for i, height in hovering if height <= lowest + HOVER_BAND * scale]
+
+        def heights(edited: Design) -> np.ndarray:
+            return np.array([_height(i)(edited) for i in planks])
+
+        values = (design.tolerance - heights(design)) / scale
+        rates = -self._difference(heights) / scale
+        return [Margin("stability", design.planks[i].id, None, float(values[k]), rates[k],
+                       design.tolerance / scale) for k, i in enumerate(planks)]
+
+    def _widens(self, plank) -> bool:
+        """Whether the plank's foot, its corners within the tolerance of its lowest,
+        lies outside the support polygon of the design's floor contacts by more than the
+        tolerance (a stretcher on edge between the legs stands inside it: bringing it
+        down holds nothing that topples)."""
+        points = [c.point[:2] for c in self.geometry.contacts
+                  if c.wall is None and c.anchor is None and c.on is None]
+        if not points:
+            return False
+        hull = np.array(points, dtype=float)[convex_hull(points)]
+        corners = plank.corners
+        foot = corners[corners[:, 2] <= corners[:, 2].min() + self.design.tolerance, :2]
+        return any(outside(hull, point)[0] > self.design.tolerance for point in foot)
 
     def _sliding(self, linear: Linearization) -> list[Margin]:
         """``(mu W - H) / W0`` per grounded component: W the downward load on it, H the

@@ -47,6 +47,8 @@ import numpy as np
 from furncheck.design.model import Design, Plank
 from furncheck.geometry import Geometry, end_gap
 from furncheck.geometry.near import carried_groups
+from furncheck.geometry.support import convex_hull
+from furncheck.geometry.support import outside as outside_of
 from furncheck.result import CaseResult, DesignReport, Violation
 from furncheck.tolerances import GRAVITY
 
@@ -126,7 +128,7 @@ def _lift_off(design: Design, geometry: Geometry, where: str, case: CaseResult |
                     why="its loads lift it" if feet else "it has no ground contact")
     hull, owners = _hull([c.point[:2] for c in feet], [c.plank for c in feet])
     crossing = _floor_crossing(forces, points)
-    outside, nearest = _outside(hull, crossing)
+    outside, nearest = outside_of(hull, crossing)
     if outside <= 0.0:
         return Need("lift-off", where, case_name,
                     why="the loads' resultant meets the floor inside the support: it "
@@ -213,52 +215,10 @@ def _floor_crossing(forces: np.ndarray, points: np.ndarray) -> np.ndarray:
 
 
 def _hull(points: list, owners: list[str]) -> tuple[np.ndarray, list[str]]:
-    """The convex hull (h, 2) counter-clockwise (Andrew's monotone chain) of the contact
-    points and the plank of each hull point; one or two points for a design standing on a
-    point or a line."""
-    order = sorted(range(len(points)), key=lambda k: (round(float(points[k][0]), 12),
-                                                      round(float(points[k][1]), 12)))
-    unique: list[int] = []
-    for k in order:
-        if not unique or np.linalg.norm(points[k] - points[unique[-1]]) > 1e-9:
-            unique.append(k)
-
-    def cross(o, a, b) -> float:
-        return float((a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]))
-
-    def chain(indices: list[int]) -> list[int]:
-        kept: list[int] = []
-        for k in indices:
-            while len(kept) >= 2 and cross(points[kept[-2]], points[kept[-1]], points[k]) <= 0:
-                kept.pop()
-            kept.append(k)
-        return kept
-
-    if len(unique) <= 2:
-        chosen = unique
-    else:
-        lower, upper = chain(unique), chain(unique[::-1])
-        chosen = lower[:-1] + upper[:-1]
+    """The support polygon of the contact points (``geometry.support.convex_hull``) and
+    the plank of each of its points."""
+    chosen = convex_hull(points)
     return np.array([points[k] for k in chosen], dtype=float), [owners[k] for k in chosen]
-
-
-def _outside(hull: np.ndarray, point: np.ndarray) -> tuple[float, np.ndarray]:
-    """(distance, nearest point) of ``point`` from the convex polygon ``hull``: 0 and the
-    point itself when it lies inside."""
-    if len(hull) >= 3 and all(
-            (b[0] - a[0]) * (point[1] - a[1]) - (b[1] - a[1]) * (point[0] - a[0]) >= 0.0
-            for a, b in zip(hull, np.roll(hull, -1, axis=0))):
-        return 0.0, point
-    best, nearest = math.inf, hull[0]
-    for a, b in zip(hull, np.roll(hull, -1, axis=0)):
-        edge = b - a
-        length = float(edge @ edge)
-        t = 0.0 if length == 0.0 else min(max(float((point - a) @ edge) / length, 0.0), 1.0)
-        candidate = a + t * edge
-        distance = float(np.linalg.norm(point - candidate))
-        if distance < best:
-            best, nearest = distance, candidate
-    return best, nearest
 
 
 def _nearest_vertex(hull: np.ndarray, point: np.ndarray) -> int:
@@ -268,7 +228,7 @@ def _nearest_vertex(hull: np.ndarray, point: np.ndarray) -> int:
 def _inside_fraction(hull: np.ndarray, start: np.ndarray, end: np.ndarray) -> float | None:
     """The largest f in [0, 1] with start + f (end - start) inside the convex polygon, or
     None when ``start`` itself lies outside (the loads topple it without the push)."""
-    if len(hull) < 3 or _outside(hull, start)[0] > 0.0:
+    if len(hull) < 3 or outside_of(hull, start)[0] > 0.0:
         return None
     fraction = 1.0
     delta = end - start

@@ -32,6 +32,7 @@ from dataclasses import replace
 import numpy as np
 
 from furncheck.design.model import Design
+from furncheck.geometry.support import convex_hull, outside
 from furncheck.suggest.discrete.common import (
     Candidate,
     Fix,
@@ -102,7 +103,7 @@ def _tipping(search: Search, rule: str) -> tuple[np.ndarray, np.ndarray, float] 
     if len(points) < 3:
         search.not_applicable(rule, "the design stands on fewer than three floor points")
         return None
-    hull = _hull(points)
+    hull = points[convex_hull(points)]
     worst = None
     for case_name in dict.fromkeys(v.case for v in search.report.violations):
         case = next(c for c in design.load_cases if c.name == case_name)
@@ -140,39 +141,11 @@ def _pressure_centre(design: Design, case) -> np.ndarray | None:
                      (r[:, 1] @ f[:, 2] - r[:, 2] @ f[:, 1]) / down])
 
 
-def _hull(points: np.ndarray) -> np.ndarray:
-    """(h, 2): the convex hull of 2D points, counter-clockwise (monotone chain)."""
-    ordered = sorted(set(map(tuple, np.round(points, 12).tolist())))
-    if len(ordered) < 3:
-        return np.array(ordered)
-
-    def turn(o, a, b) -> float:
-        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
-
-    lower: list = []
-    for p in ordered:
-        while len(lower) >= 2 and turn(lower[-2], lower[-1], p) <= 0:
-            lower.pop()
-        lower.append(p)
-    upper: list = []
-    for p in reversed(ordered):
-        while len(upper) >= 2 and turn(upper[-2], upper[-1], p) <= 0:
-            upper.pop()
-        upper.append(p)
-    return np.array(lower[:-1] + upper[:-1])
-
-
 def _nearest_on_hull(hull: np.ndarray, point: np.ndarray) -> np.ndarray | None:
-    """The hull's boundary point nearest ``point`` when it lies outside; else None."""
-    edges = np.roll(hull, -1, axis=0) - hull
-    to_point = point - hull
-    cross = edges[:, 0] * to_point[:, 1] - edges[:, 1] * to_point[:, 0]
-    if len(hull) >= 3 and np.all(cross >= 0.0):
-        return None                                     # inside (counter-clockwise hull)
-    lengths = np.maximum((edges * edges).sum(axis=1), 1e-300)
-    t = np.clip((to_point * edges).sum(axis=1) / lengths, 0.0, 1.0)
-    nearest = hull + t[:, None] * edges
-    return nearest[int(np.argmin(np.linalg.norm(nearest - point, axis=1)))]
+    """The support polygon's boundary point nearest ``point`` when it lies outside; else
+    None (``geometry.support.outside``)."""
+    distance, nearest = outside(hull, point)
+    return None if distance == 0.0 else nearest
 
 
 def _support_candidates(search: Search, centre: np.ndarray, d: np.ndarray,

@@ -1,0 +1,63 @@
+"""The support polygon on the floor: the convex hull of a design's ground contacts seen from
+above, and how far a point lies outside it (a design topples where the line of action of
+its loads meets the floor outside; a leg drawn short widens it once it stands on the
+floor).  Plane points are (x, y) in metres; a hull is counter-clockwise, one or two
+points for a design standing on a point or a line."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+DUPLICATE = 1e-9
+"""m: points closer than this are one point of the hull."""
+
+
+def convex_hull(points) -> list[int]:
+    """The indices of the hull's points (Andrew's monotone chain), counter-clockwise from
+    the lowest x (then y); points within DUPLICATE of the one before them in that order
+    count once; one or two indices for points on a point or a line."""
+    points = [np.asarray(p, dtype=float) for p in points]
+    order = sorted(range(len(points)), key=lambda k: (round(float(points[k][0]), 12),
+                                                      round(float(points[k][1]), 12)))
+    unique: list[int] = []
+    for k in order:
+        if not unique or np.linalg.norm(points[k] - points[unique[-1]]) > DUPLICATE:
+            unique.append(k)
+
+    def cross(o, a, b) -> float:
+        return float((a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]))
+
+    def chain(indices: list[int]) -> list[int]:
+        kept: list[int] = []
+        for k in indices:
+            while len(kept) >= 2 and cross(points[kept[-2]], points[kept[-1]], points[k]) <= 0:
+                kept.pop()
+            kept.append(k)
+        return kept
+
+    if len(unique) <= 2:
+        return unique
+    lower, upper = chain(unique), chain(unique[::-1])
+    return lower[:-1] + upper[:-1]
+
+
+def outside(hull: np.ndarray, point: np.ndarray) -> tuple[float, np.ndarray]:
+    """(distance, nearest point) of ``point`` (2,) from the convex polygon ``hull`` (h, 2):
+    0 and the point itself when it lies inside a polygon of three or more points (on a
+    point or a line, the distance to it)."""
+    if len(hull) >= 3 and all(
+            (b[0] - a[0]) * (point[1] - a[1]) - (b[1] - a[1]) * (point[0] - a[0]) >= 0.0
+            for a, b in zip(hull, np.roll(hull, -1, axis=0))):
+        return 0.0, point
+    best, nearest = math.inf, hull[0]
+    for a, b in zip(hull, np.roll(hull, -1, axis=0)):
+        edge = b - a
+        length = float(edge @ edge)
+        t = 0.0 if length == 0.0 else min(max(float((point - a) @ edge) / length, 0.0), 1.0)
+        candidate = a + t * edge
+        distance = float(np.linalg.norm(point - candidate))
+        if distance < best:
+            best, nearest = distance, candidate
+    return best, nearest
