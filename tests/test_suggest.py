@@ -452,6 +452,37 @@ def test_a_leg_drawn_30_mm_short_is_lengthened_to_the_floor(model, tmp_path):
     assert 437.5 <= low < 438.0 < high <= 438.5
 
 
+FLOATING_L = """\
+furncheck: 1
+name: l-floating
+units: mm
+planks:
+  - {id: base, size: [600, 300], center: [0, 0, 56]}
+  - {id: post, size: [800, 300], center: [-294, 0, 462], rotation: [0, -90, 0]}
+loads:
+  - {plank: base, mass: 5}
+"""
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_floating_l_is_lowered_by_its_base_alone(model, tmp_path):
+    """An L (a 600 mm base, an 800 mm post standing on its end) drawn 50 mm above the
+    floor.  The post's foot, on the 12 mm base, is 62 mm up: within 2 % of the design's
+    size (16 mm) of the base's 50 mm, it was one more plank that had to reach the floor,
+    which no change can make both do (the base would sink 11.5 mm into it first), and
+    the L got no suggestion.  A plank standing on another of its group is carried by it
+    (``margins._standing_on_others``): "Lower base by 50 mm", the post with it."""
+    path = tmp_path / "l.yaml"
+    path.write_text(FLOATING_L)
+    design = with_model(load_design(str(path)), model)
+    result = suggest_design(design)
+    first = result.suggestions[0]
+    assert first.dofs == ("base.z",) and first.changes == (-50.0,)
+    assert check_design(parse_design(first.text, "s.yaml", "yaml")).valid
+    assert "1. Lower base by 50 mm (valid for " in \
+        CliRunner().invoke(main, ["suggest", str(path), "--model", model]).output
+
+
 def test_a_stretcher_between_the_legs_is_not_brought_down():
     """bench-tips.yaml topples past leg_r; its stretcher stands on edge 300 mm above the
     floor (within HOVER_REACH, half the bench's size), between the legs: on the floor it

@@ -272,8 +272,9 @@ class Margins:
     # -- geometry --------------------------------------------------------------------------
     def _geometric(self, report: DesignReport) -> list[Margin]:
         """Margins of the geometric violations: a listed joint's gap, a corner in the
-        ground, a hovering component (its lowest planks; not one that hangs on joints it
-        misses, ``near.carried_groups``: closing them carries it), and for a plank joined
+        ground, a hovering component (its lowest planks, but those whose foot stands on
+        another of them, ``_standing_on_others``; not one that hangs on joints it misses,
+        ``near.carried_groups``: closing them carries it), and for a plank joined
         to nothing the depth to which its end cuts into each face (``geometry.cut_ins``:
         resting on the face, within the tolerance, joins it)."""
         design, tolerance = self.design, self.design.tolerance
@@ -288,6 +289,9 @@ class Margins:
                 lows = {i: float(design.planks[design.plank_index[i]].corners[:, 2].min())
                         for i in ids}
                 lowest = min(lows.values())
+                for plank_id in _standing_on_others(design, self.geometry, lows, tolerance):
+                    del lows[plank_id]
+                ids = [i for i in ids if i in lows]
                 for plank_id in ids:
                     if lows[plank_id] <= lowest + HOVER_BAND * self.size * design.unit_scale:
                         measures.append((plank_id, _height(design.plank_index[plank_id])))
@@ -457,6 +461,26 @@ def _component_loads(design: Design, components: list[list[int]], case_name: str
     for load in case.loads:
         per_plank[design.plank_index[load.plank]] += load.force
     return np.array([per_plank[component].sum(axis=0) for component in components])
+
+
+def _standing_on_others(design: Design, geometry: Geometry, lows: dict[str, float],
+                        tolerance: float) -> list[str]:
+    """The planks of a group (``lows``: id -> its lowest corner's height, m) that stand on
+    another plank of the group: the edge plank of a joint with it, the joint in the lower
+    half of the plank's height, its lowest corner above the group's lowest by more than
+    the tolerance (a post standing on a 12 mm base is carried by the base: it need not
+    reach the floor too; a leg under a top is jointed at its upper end)."""
+    lowest = min(lows.values())
+    found = []
+    for joint in geometry.joints:
+        edge, face = joint.edge, joint.face
+        if edge not in lows or face not in lows or edge in found \
+                or lows[edge] <= lowest + tolerance:
+            continue
+        top = float(design.plank(edge).corners[:, 2].max())
+        if float(joint.point[2]) <= 0.5 * (lows[edge] + top):
+            found.append(edge)
+    return found
 
 
 def _depth(plank: int):
