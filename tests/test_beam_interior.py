@@ -128,3 +128,74 @@ def test_stacked_plank_results_are_each_models_own(name):
         alone = plank_results(m, case, q, holding)
         for field in ("sag", "span", "stress"):
             assert np.array_equal(getattr(result, field), getattr(alone, field)), field
+
+
+@pytest.mark.parametrize("name", ["cabinet-28", "bookshelf-18", "wall-shelf", "stool"])
+def test_plank_rates_read_at_the_design_own_points_are_the_full_reads(name, monkeypatch):
+    """The sensitivity reads a stepped design's planks only where the design's own largest
+    sag and stress lie (``plank_results_where``, then ``plank_results_at``): every DOF's
+    sag, span and stress rates (first load case, one-sided and central differences) are,
+    bit for bit, those of reading every sample of every element of every stepped design
+    (``plank_results_of``, put in its place here).  And for a large change (a DOF moved
+    2 mm, the displacements doubled), where the largest may lie at another sample, the
+    value read at the design's own point is never more than the full read's."""
+    from pathlib import Path
+
+    from furncheck.design import load_design
+    from furncheck.dofs import Blocked, OutOfReach, all_dofs, apply_dof, structure
+    from furncheck.geometry import analyze
+    from furncheck.sensitivity import Linearization
+    from furncheck.statics import build_model, derivatives, solve_load_case
+    from furncheck.statics.bending import (
+        plank_part,
+        plank_results_at,
+        plank_results_of,
+        plank_results_where,
+    )
+    from furncheck.statics.templated import built_on
+
+    design = load_design(str(Path(__file__).resolve().parents[1] / "designs" / f"{name}.yaml"))
+    geometry = analyze(design)
+    frame = structure(design, geometry)
+    case = design.load_cases[0]
+    dofs = all_dofs(design)
+
+    def rates(one_sided: bool) -> list[np.ndarray]:
+        sens = Linearization(design, case, geometry, frame, {},
+                             one_sided=one_sided).derivatives(dofs)
+        return [sens.plank_sags, sens.plank_spans, sens.plank_stresses]
+
+    def full_reads(stepped, q, dq, where):
+        return iter(plank_results_of([part for part, *_ in stepped],
+                                     [q + offset * dq[:, column] for _, column, offset
+                                      in stepped]))
+
+    at_points = [rates(True), rates(False)]
+    monkeypatch.setattr(derivatives, "_plank_results_batched", full_reads)
+    for read, full in zip(at_points, [rates(True), rates(False)]):
+        for a, b in zip(read, full):
+            assert np.array_equal(a, b)
+
+    model = build_model(design, geometry)
+    statics = solve_load_case(model, case)
+    base = plank_part(model, case, statics.holding)
+    _, where = plank_results_where(base, statics.displacements)
+    moved = 0
+    for dof in dofs:
+        try:
+            edited = apply_dof(design, frame, dof, 2.0)
+        except (Blocked, OutOfReach):
+            continue
+        edited_geometry = analyze(edited)
+        if edited_geometry.violations or len(edited_geometry.joints) != len(geometry.joints) \
+                or len(edited_geometry.contacts) != len(geometry.contacts):
+            continue
+        stepped = built_on(edited, edited_geometry, model)
+        part = plank_part(stepped, edited.load_cases[0], statics.holding,
+                          supports=(base.low, base.high))
+        q = 2.0 * statics.displacements
+        full = plank_results_of([part], [q])[0]
+        (at,) = plank_results_at([part], [q], where)
+        assert np.all(at.sag <= full.sag) and np.all(at.stress <= full.stress)
+        moved += 1
+    assert moved >= 3

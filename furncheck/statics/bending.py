@@ -116,12 +116,16 @@ class PlankPart(NamedTuple):
 
 
 def plank_part(model: StaticsModel, case: LoadCase, holding: np.ndarray | None = None,
-               planks: np.ndarray | None = None) -> PlankPart:
+               planks: np.ndarray | None = None,
+               supports: tuple[np.ndarray, np.ndarray] | None = None) -> PlankPart:
     """The ``PlankPart`` of a model and case: of all its planks, or cut down to the local
     ``planks`` (sorted; a cut keeps only their elements and nodes, renumbered, not the
-    model)."""
+    model).  ``supports``: the outermost supports (low, high) of all its planks, where
+    they are known (a stepped design's are its template's: the same nodes, ordered alike
+    along each plank, a hair apart), else found (``_outermost_supports``)."""
     layout = _layout(model)
-    low, high = _outermost_supports(model, layout, holding)
+    low, high = supports if supports is not None else \
+        _outermost_supports(model, layout, holding)
     part = PlankPart(model, layout, case_line_loads(model, case), low, high)
     return part if planks is None else _only(part, planks)
 
@@ -143,6 +147,197 @@ def plank_results_of(prepared: list[PlankPart],
                      displacements: list[np.ndarray]) -> list[PlankStatics]:
     """``plank_results_many`` of parts made beforehand (``plank_part``) at the node
     displacements (6 nN,) of each part's model."""
+    stack = _stacked(prepared, displacements)
+    model, layout, displacement, line_loads = stack.model, stack.layout, stack.displacement, \
+        stack.line_loads
+    w, slope = _transverse(displacement, layout.node_frame)
+    stress = _stress(model, layout, displacement, w, slope, line_loads)
+    s, deflection, sample_plank = _profile(model, layout, w, slope, line_loads)
+    sag, span = _sag(model, s, deflection, sample_plank, w, slope, stack.low, stack.high)[:2]
+    offsets = stack.plank_offsets
+    return [PlankStatics(sag[a:b], span[a:b], stress[a:b])
+            for a, b in zip(offsets[:-1], offsets[1:])]
+
+
+class PlankWhere(NamedTuple):
+    """Where a design's planks' largest sag and stress lie (``plank_results_where``): the
+    sample points whose value is within NEAR_LARGEST of the largest, as flat lists.  For
+    the sag, per point its local plank, measure (0 between the plank's outermost
+    supports, 1 beyond the low one, 2 beyond the high one) and sample (an index of
+    ``_profile``'s points: a node, or nN + j nE + e for the j-th interior point of element
+    e), for every measure the plank has; for the stress, per point its plank, element and
+    column (of ``_stress_along``'s).  A symmetric shelf's two halves, or an element's end
+    and the next one's start at one node, tie: both are kept, and a stepped design's
+    largest is the larger of them, as reading every point would find."""
+
+    sag_plank: np.ndarray
+    sag_measure: np.ndarray
+    sag_sample: np.ndarray
+    stress_plank: np.ndarray
+    stress_element: np.ndarray
+    stress_column: np.ndarray
+
+
+NEAR_LARGEST = 1e-3
+"""A sample point counts as one where a plank's largest sag (of its measure) or stress
+may lie in a stepped design when its value is within this fraction of the largest (a
+sensitivity's steps move them by about 1e-7 of themselves)."""
+
+
+def plank_results_where(part: PlankPart, q: np.ndarray) -> tuple[PlankStatics, PlankWhere]:
+    """``plank_results_of([part], [q])[0]`` and where its largest sag and stress lie
+    (``PlankWhere``)."""
+    stack = _stacked([part], [q])
+    model, layout, displacement, line_loads = stack.model, stack.layout, stack.displacement, \
+        stack.line_loads
+    w, slope = _transverse(displacement, layout.node_frame)
+    along = _stress_along(model, layout, displacement, w, slope, line_loads)
+    stress = _largest_stress(model, along)
+    plank = model.beams.plank
+    near = along >= ((1.0 - NEAR_LARGEST) * stress)[plank][:, None]
+    element, column = np.nonzero(near)
+    s, deflection, sample_plank = _profile(model, layout, w, slope, line_loads)
+    sag, span, measure, sample = _sag(model, s, deflection, sample_plank, w, slope,
+                                      stack.low, stack.high, where=True)
+    return PlankStatics(sag, span, stress), PlankWhere(
+        sample_plank[sample], measure, sample, plank[element], element, column)
+
+
+def plank_results_at(prepared: list[PlankPart], displacements: list[np.ndarray],
+                     where: PlankWhere) -> list[PlankStatics]:
+    """Each part's planks read at the sample points ``where`` alone (``plank_results_where``
+    of a part of a model with the same nodes, elements and supports: a stepped design of
+    a sensitivity): each plank's sag the largest of its measure's points, the measure
+    chosen as ``_sag`` chooses it, its span that measure's, its stress the largest of its
+    points, each point computed as ``plank_results_of`` computes it (entry by entry: the
+    same numbers).  Where every plank's largest lies among those points, as it does for a
+    small enough step, these are ``plank_results_of``'s numbers, at a fraction of its
+    cost."""
+    count = len(prepared)
+    n_planks = len(prepared[0].low)
+    n_nodes, n_elements = len(prepared[0].layout.node_frame), len(prepared[0].line_loads)
+    parts = np.arange(count)
+    sample, measure = where.sag_sample, where.sag_measure
+    inside = sample >= n_nodes
+    j, e = np.divmod(sample[inside] - n_nodes, n_elements)
+    kept = np.unique(np.concatenate([where.stress_element, e]))      # the elements read
+    model, layout, line_loads, displacement, low, high = _gathered(prepared, displacements,
+                                                                   kept)
+    beams = model.beams
+    w, slope = _transverse(displacement, layout.node_frame)
+
+    def rows(local: np.ndarray) -> np.ndarray:
+        """Each part's rows of the gathered elements for local elements ``local``."""
+        at = np.searchsorted(kept, local)
+        return (at[None, :] + len(kept) * parts[:, None]).ravel()
+
+    def per_part(values: np.ndarray, size: int) -> np.ndarray:
+        return (values[None, :] + size * parts[:, None]).ravel()
+
+    # the stress: the largest at each plank's points
+    columns = np.tile(where.stress_column, count)
+    along = _stress_along(model, layout, displacement, w, slope, line_loads,
+                          rows(where.stress_element), columns)
+    stress = np.zeros(count * n_planks)
+    np.maximum.at(stress, per_part(where.stress_plank, n_planks), along)
+    # the sag: each point's deviation from the line of its measure
+    plank = per_part(where.sag_plank, n_planks)
+    measure = np.tile(measure, count)
+    at_node = np.tile(~inside, count)
+    point_s = np.zeros(len(plank))
+    deflection = np.zeros((2, len(plank)))
+    nodes = per_part(sample[~inside], n_nodes)
+    point_s[at_node] = beams.node_s[nodes]
+    deflection[:, at_node] = w[:, nodes]
+    if inside.any():
+        xi = np.linspace(0.0, 1.0, tol.SAG_SAMPLES + 2)[1:-1][np.tile(j, count)]
+        chosen = rows(e)
+        interior = _interior(model, layout, w, slope, line_loads, xi[:, None], chosen)
+        deflection[:, ~at_node] = interior[:, :, 0]
+        point_s[~at_node] = beams.node_s[beams.nodes[chosen, 0]] + xi * beams.length[chosen]
+    low_p, high_p = low[plank], high[plank]
+    sa, sb = beams.node_s[low_p], beams.node_s[high_p]
+    chord = np.where(measure == 0, sb - sa, 1.0)
+    line = w[:, low_p] + ((point_s - sa) / chord) * (w[:, high_p] - w[:, low_p])
+    tangent_low = w[:, low_p] + (point_s - sa) * slope[:, low_p]
+    tangent_high = w[:, high_p] + (point_s - sb) * slope[:, high_p]
+    reference = np.where(measure == 0, line, np.where(measure == 1, tangent_low, tangent_high))
+    offset = deflection - reference
+    distance = np.sqrt(offset[0] * offset[0] + offset[1] * offset[1])
+    deviation = np.full((count * n_planks, 3), -1.0)
+    np.maximum.at(deviation, (plank, measure), distance)
+    sa, sb = beams.node_s[low], beams.node_s[high]
+    half = beams.plank_half
+    spans = np.column_stack([sb - sa, 2.0 * (sa + half), 2.0 * (half - sb)])
+    sag, span = _chosen_measure(deviation, spans)
+    return [PlankStatics(sag[k * n_planks:(k + 1) * n_planks],
+                         span[k * n_planks:(k + 1) * n_planks],
+                         stress[k * n_planks:(k + 1) * n_planks]) for k in range(count)]
+
+
+def _gathered(prepared: list[PlankPart], displacements: list[np.ndarray],
+              elements: np.ndarray) -> tuple:
+    """The parts' elements ``elements`` (local, the same in each part) and all their
+    nodes and planks, numbered one part after another: (a ``_Stacked`` model of those
+    elements, its ``_Layout``, their line loads, the nodes' displacements (nN, 6), the
+    planks' outermost supports low, high)."""
+    node_offsets = np.cumsum([0] + [part.model.n_nodes for part in prepared])
+    plank_offsets = np.cumsum([0] + [len(part.low) for part in prepared])
+
+    def cut(read) -> np.ndarray:
+        return np.concatenate([read(part)[elements] for part in prepared])
+
+    def whole(read, offsets=None) -> np.ndarray:
+        if offsets is None:
+            return np.concatenate([read(part) for part in prepared])
+        return np.concatenate([read(part) + offset for part, offset in zip(prepared, offsets)])
+
+    beams = Beams(plank=np.concatenate([part.model.beams.plank[elements] + offset
+                                        for part, offset in zip(prepared, plank_offsets)]),
+                  nodes=np.concatenate([part.model.beams.nodes[elements] + offset
+                                        for part, offset in zip(prepared, node_offsets)]),
+                  length=cut(lambda p: p.model.beams.length),
+                  frames=cut(lambda p: p.model.beams.frames),
+                  local_stiffness=cut(lambda p: p.model.beams.local_stiffness),
+                  width=cut(lambda p: p.model.beams.width),
+                  thickness=cut(lambda p: p.model.beams.thickness),
+                  elastic_modulus=cut(lambda p: p.model.beams.elastic_modulus),
+                  shear_modulus=cut(lambda p: p.model.beams.shear_modulus),
+                  node_s=whole(lambda p: p.model.beams.node_s),
+                  plank_half=whole(lambda p: p.model.beams.plank_half))
+    layout = _Layout(node_frame=whole(lambda p: p.layout.node_frame),
+                     inertia=cut(lambda p: p.layout.inertia), area=cut(lambda p: p.layout.area),
+                     bending=cut(lambda p: p.layout.bending),
+                     in_plane=cut(lambda p: p.layout.in_plane),
+                     joint_supports=np.zeros(0, dtype=int), measured=np.zeros(0, dtype=bool))
+    displacement = np.concatenate([
+        q.reshape(-1, 6) if part.nodes is None else q.reshape(-1, 6)[part.nodes]
+        for part, q in zip(prepared, displacements)])
+    model = _Stacked(beams, range(int(plank_offsets[-1])),
+                     whole(lambda p: p.model.node_plank, plank_offsets))
+    low, high = (np.where(ends >= 0, ends + node_offsets[:-1, None], -1).ravel()
+                 for ends in (np.array([part.low for part in prepared]),
+                              np.array([part.high for part in prepared])))
+    return model, layout, cut(lambda p: p.line_loads), displacement, low, high
+
+
+class _Stack(NamedTuple):
+    """Parts stacked into one model (``_stacked``): the ``_Stacked`` model and its
+    ``_Layout``, the nodes' displacements (nN, 6), line loads (nE, 3), outermost supports
+    (low, high) and each part's first plank (plank_offsets, one more at the end)."""
+
+    model: _Stacked
+    layout: _Layout
+    displacement: np.ndarray
+    line_loads: np.ndarray
+    low: np.ndarray
+    high: np.ndarray
+    plank_offsets: np.ndarray
+
+
+def _stacked(prepared: list[PlankPart], displacements: list[np.ndarray]) -> _Stack:
+    """The parts' elements, nodes and planks numbered one after another (each part's
+    after the previous ones'), with their displacements (6 nN,) each."""
     parts = []
     for part, q in zip(prepared, displacements):
         displacement = q.reshape(-1, 6)
@@ -182,16 +377,10 @@ def plank_results_of(prepared: list[PlankPart],
                      measured=stacked(lambda m, lay, *_: lay.measured))
     model = _Stacked(beams, range(int(plank_offsets[-1])),
                      stacked(lambda m, *_: m.node_plank, plank_offsets))
-    displacement = stacked(lambda m, lay, loads, d, *_: d)
-    line_loads = stacked(lambda m, lay, loads, *_: loads)
     low = np.concatenate([supports(part[4], n) for part, n in zip(parts, node_offsets)])
     high = np.concatenate([supports(part[5], n) for part, n in zip(parts, node_offsets)])
-    w, slope = _transverse(displacement, layout.node_frame)
-    stress = _stress(model, layout, displacement, w, slope, line_loads)
-    s, deflection, sample_plank = _profile(model, layout, w, slope, line_loads)
-    sag, span = _sag(model, s, deflection, sample_plank, w, slope, low, high)
-    return [PlankStatics(sag[a:b], span[a:b], stress[a:b])
-            for a, b in zip(plank_offsets[:-1], plank_offsets[1:])]
+    return _Stack(model, layout, stacked(lambda m, lay, loads, d, *_: d),
+                  stacked(lambda m, lay, loads, *_: loads), low, high, plank_offsets)
 
 
 def _only(part: PlankPart, planks: np.ndarray) -> PlankPart:
@@ -272,14 +461,34 @@ def _supports(model: StaticsModel) -> tuple[np.ndarray, np.ndarray]:
 
 def _stress(model: StaticsModel, layout: _Layout, displacement: np.ndarray, w: np.ndarray,
             slope: np.ndarray, line_loads: np.ndarray) -> np.ndarray:
-    """(nP,) Pa: each plank's largest |M_2| / (b t^2 / 6) + |M_3| / (t b^2 / 6) + |N| / (b t)
-    along its elements: at their ends, SAG_SAMPLES points inside and wherever either
+    """(nP,) Pa: each plank's largest stress along its elements (``_stress_along``)."""
+    return _largest_stress(model, _stress_along(model, layout, displacement, w, slope,
+                                                line_loads))
+
+
+def _largest_stress(model, along: np.ndarray) -> np.ndarray:
+    """(nP,) Pa: the largest of ``_stress_along`` (nE, m) per plank."""
+    stress = np.zeros(len(model.planks))
+    np.maximum.at(stress, model.beams.plank, along.max(axis=1))
+    return stress
+
+
+def _stress_along(model: StaticsModel, layout: _Layout, displacement: np.ndarray,
+                  w: np.ndarray, slope: np.ndarray, line_loads: np.ndarray,
+                  elements: np.ndarray | None = None,
+                  columns: np.ndarray | None = None) -> np.ndarray:
+    """(nE, m) Pa: |M_2| / (b t^2 / 6) + |M_3| / (t b^2 / 6) + |N| / (b t) along each
+    element (``_stress`` takes each plank's largest): at their ends, SAG_SAMPLES points
+    inside (columns 0 .. SAG_SAMPLES + 1) and, the last two columns, wherever either
     bending moment peaks inside (each moment is a parabola along an element under its own
     uniform load, M(s) = M_0 + V_0 s + q s^2 / 2, ``beams.element_end_moment``; the peak
     is its vertex, s = -V_0 / q).  The normal force N comes from
     the element end forces K_local T u - f_local (T u: each end's displacement and
     rotation in the element's axes, R^T u; f_local: the consistent loads of its own
-    uniform load ``line_loads`` (nE, 3) N/m), linear in between."""
+    uniform load ``line_loads`` (nE, 3) N/m), linear in between.  With ``elements`` and
+    ``columns`` (k,) each: only those entries, (k,) (each entry is computed alone: the
+    same number as in the whole table)."""
+    model, layout, line_loads = _cut_to(model, layout, line_loads, elements)
     beams = model.beams
     forces = element_end_forces(beams, displacement.ravel()) \
         - element_loads_local(beams, line_loads)
@@ -290,14 +499,35 @@ def _stress(model: StaticsModel, layout: _Layout, displacement: np.ndarray, w: n
     xi = np.concatenate([np.broadcast_to(np.linspace(0.0, 1.0, tol.SAG_SAMPLES + 2),
                                          (len(beams.plank), tol.SAG_SAMPLES + 2)),
                          np.clip(vertex, 0.0, 1.0).T], axis=1)          # (nE, m)
+    if columns is not None:
+        xi = xi[np.arange(len(xi)), columns][:, None]                   # (k, 1)
     moments = c0[:, :, None] + c1[:, :, None] * xi + c2[:, :, None] * xi * xi   # (2, nE, m)
     normal = (1.0 - xi) * -forces[:, :1] + xi * forces[:, 6:7]          # tension > 0
     along = (np.abs(moments[0]) / layout.in_plane[:, None]
              + np.abs(moments[1]) / layout.bending[:, None]
              + np.abs(normal) / layout.area[:, None])
-    stress = np.zeros(len(model.planks))
-    np.maximum.at(stress, beams.plank, along.max(axis=1))
-    return stress
+    return along if columns is None else along[:, 0]
+
+
+def _cut_to(model, layout: _Layout, line_loads: np.ndarray,
+            elements: np.ndarray | None) -> tuple:
+    """The model (its beams), layout and line loads of ``elements`` alone, in that order
+    (repeats allowed; the nodes and their arrays kept whole); all of them for None."""
+    if elements is None:
+        return model, layout, line_loads
+    beams = model.beams
+    cut = Beams(plank=beams.plank[elements], nodes=beams.nodes[elements],
+                length=beams.length[elements], frames=beams.frames[elements],
+                local_stiffness=beams.local_stiffness[elements], width=beams.width[elements],
+                thickness=beams.thickness[elements],
+                elastic_modulus=beams.elastic_modulus[elements],
+                shear_modulus=beams.shear_modulus[elements], node_s=beams.node_s,
+                plank_half=beams.plank_half)
+    cut_layout = _Layout(node_frame=layout.node_frame, inertia=layout.inertia[elements],
+                         area=layout.area[elements], bending=layout.bending[elements],
+                         in_plane=layout.in_plane[elements],
+                         joint_supports=layout.joint_supports, measured=layout.measured)
+    return _Stacked(cut, model.planks, model.node_plank), cut_layout, line_loads[elements]
 
 
 def _carrying_neighbours(model: StaticsModel) -> list[set[int]]:
@@ -442,9 +672,12 @@ def _plane_arguments(model: StaticsModel, layout: _Layout, w: np.ndarray, slope:
 
 
 def _interior(model: StaticsModel, layout: _Layout, w: np.ndarray, slope: np.ndarray,
-              line_loads: np.ndarray, xi: np.ndarray) -> np.ndarray:
+              line_loads: np.ndarray, xi: np.ndarray,
+              elements: np.ndarray | None = None) -> np.ndarray:
     """(2, nE, m): the deflection in both bending planes at the fractions ``xi`` (m,) of
-    each element (``element_interior``, ``_plane_arguments``)."""
+    each element (``element_interior``, ``_plane_arguments``); with ``elements`` (k,) of
+    those alone, and ``xi`` may be (k, 1), one fraction each."""
+    model, layout, line_loads = _cut_to(model, layout, line_loads, elements)
     return np.stack([element_interior(*_plane_arguments(model, layout, w, slope,
                                                         line_loads, j), xi)[0]
                      for j in (0, 1)])
@@ -487,14 +720,16 @@ def _outermost_supports(model: StaticsModel, layout: _Layout,
 
 def _sag(model: StaticsModel, s: np.ndarray, deflection: np.ndarray,
          sample_plank: np.ndarray, w: np.ndarray, slope: np.ndarray, low: np.ndarray,
-         high: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+         high: np.ndarray, where: bool = False) -> tuple:
     """(sag, span) (nP,) m of every plank (contract 3a) from its deflected axis (``s``,
     ``deflection``, ``sample_plank``: ``_profile``) and its outermost supports ``low``,
     ``high`` (``_outermost_supports``; ``w``, ``slope``: ``_transverse``): between them, the
     largest deviation from the straight line through them (span: their distance); beyond
     them, each overhang's largest deviation from the tangent at its support (span: twice
     the overhang); the one nearest its limit (the largest sag / span) is the plank's.  Held
-    at one point, only the overhangs count; with no support, (0, 0)."""
+    at one point, only the overhangs count; with no support, (0, 0).  With ``where``, also
+    the points within NEAR_LARGEST of each measure's largest, every measure the plank
+    has (0, 1, 2 as above), as flat lists: (sag, span, measures, points)."""
     beams = model.beams
     half = beams.plank_half
     supported = low >= 0
@@ -518,27 +753,42 @@ def _sag(model: StaticsModel, s: np.ndarray, deflection: np.ndarray,
     tangent_low = w_low + (s - s_low) * at_points(np.take(slope, low, axis=1))
     tangent_high = w_high + (s - s_high) * at_points(np.take(slope, high, axis=1))
 
+    near = []               # with ``where``: each measure's points near its largest
+
     def largest(points: np.ndarray, reference: np.ndarray) -> np.ndarray:
         """(nP,) each plank's largest |deflection - reference| over its sample points in
         ``points`` (nX,) bool; -1 for a plank with none there."""
         offset = deflection - reference        # |offset| by rows: np.linalg.norm's own
         distance = np.sqrt(offset[0] * offset[0] + offset[1] * offset[1])  # sum, ten times faster
+        values = np.where(points, distance, -1.0)
         result = np.full(len(half), -1.0)
-        np.maximum.at(result, sample_plank, np.where(points, distance, -1.0))
+        np.maximum.at(result, sample_plank, values)
+        if where:
+            near.append(np.flatnonzero(
+                points & (values >= (1.0 - NEAR_LARGEST) * result[sample_plank])))
         return result
 
     # (nP, 3): between the supports, beyond the low one, beyond the high one
     deviation = np.column_stack([largest(between, line), largest(beyond_low, tangent_low),
                                  largest(beyond_high, tangent_high)])
     spans = np.column_stack([sb - sa, 2.0 * (sa + half), 2.0 * (half - sb)])
+    sag, span = _chosen_measure(deviation, spans)
+    if not where:
+        return sag, span
+    measures = np.concatenate([np.full(len(points), k) for k, points in enumerate(near)])
+    return sag, span, measures, np.concatenate(near)
 
-    # the measure nearest its limit: the largest sag / span (0 for no span or a sag of
-    # round-off, SAG_ROUNDOFF; the first one on a tie), among those the plank has
+
+def _chosen_measure(deviation: np.ndarray, spans: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(sag, span) (nP,) of each plank's measure nearest its limit, from the largest
+    deviation and the span of each measure (nP, 3; deviation -1 for a measure the plank
+    does not have): the largest sag / span (0 for no span or a sag of round-off,
+    SAG_ROUNDOFF; the first one on a tie), among those it has; (0, 0) for none."""
     present = deviation >= 0.0
     ratio = np.where(present, 0.0, -np.inf)
     positive = present & (spans > 0.0) & (deviation > tol.SAG_ROUNDOFF)
     ratio[positive] = deviation[positive] / spans[positive]
-    rows, pick = np.arange(len(half)), np.argmax(ratio, axis=1)
+    rows, pick = np.arange(len(deviation)), np.argmax(ratio, axis=1)
     chosen = present[rows, pick]
     return (np.where(chosen, deviation[rows, pick], 0.0),
             np.where(chosen, spans[rows, pick], 0.0))

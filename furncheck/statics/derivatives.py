@@ -56,8 +56,8 @@ class AssemblyDifferences:
     planks' maps, when the model has them), ``lengths`` (D, nJ) of the joint lengths (m),
     per DOF unit; for the planks' rates (elastic model only), ``sides``: per side (column,
     weight, offset, the stepped model's ``bending.PlankPart``, its case), the state's
-    displacements ``q`` and holding contacts, and the local ``planks`` read (None: all;
-    ``n_planks`` in the model)."""
+    displacements ``q`` and holding contacts, the local ``planks`` read (None: all;
+    ``n_planks`` in the model) and the ``PlankPart`` of the model itself (``base``)."""
 
     residual: np.ndarray
     maps: np.ndarray
@@ -68,58 +68,59 @@ class AssemblyDifferences:
     holding: np.ndarray | None = None
     planks: np.ndarray | None = None
     n_planks: int = 0
+    base: object = None
 
     def plank_rates(self, dq: np.ndarray) -> tuple[np.ndarray, ...]:
         """(D, nP) each: d sag (m), d span (m), d stress (Pa) per DOF unit, from the
         stepped models at x + offset dx (dq: (6 nN, D), the displacement rates); (D, 0)
         each for rigid planks.  With ``planks`` only those local planks' rates are read
-        (the others' are 0)."""
+        (the others' are 0).
+
+        Each plank's sag and stress are read where the design's own are
+        (``bending.plank_results_where`` of ``base``, the model itself): at a step this
+        small the largest sag and stress of a stepped design lie at the same sample
+        points, so reading that point alone (``bending.plank_results_at``) gives the
+        numbers reading every point would, at a fraction of the cost."""
         n_dofs = self.residual.shape[1]
         if not self.sides:
             empty = np.zeros((n_dofs, 0))
             return empty, empty.copy(), empty.copy()
-        from furncheck.statics.bending import plank_results, plank_results_of
+        from furncheck.statics.bending import plank_results_where
 
         n_planks = self.n_planks
         read = slice(None) if self.planks is None else self.planks
         sag, span, stress = (np.zeros((n_dofs, n_planks)) for _ in range(3))
-        at_rest = {}                # (part's model, case) -> its results at q (offset 0)
+        at_rest, where = plank_results_where(self.base, self.q)
         stepped = [(part, column, offset)
                    for column, _, offset, part, _ in self.sides if offset != 0.0]
-        moved = _plank_results_batched(stepped, self.q, dq)
-        for column, weight, offset, part, case in self.sides:
-            if offset == 0.0:
-                key = (id(part.model), case.name)
-                if key not in at_rest:
-                    at_rest[key] = plank_results(part.model, case, self.q, self.holding) \
-                        if part.nodes is None else plank_results_of([part], [self.q])[0]
-                result = at_rest[key]
-            else:
-                result = next(moved)
+        moved = _plank_results_batched(stepped, self.q, dq, where)
+        for column, weight, offset, *_ in self.sides:
+            result = at_rest if offset == 0.0 else next(moved)
             sag[column, read] += weight * result.sag
             span[column, read] += weight * result.span
             stress[column, read] += weight * result.stress
         return sag, span, stress
 
 
-def _plank_results_batched(stepped: list, q: np.ndarray, dq: np.ndarray):
-    """The planks of each stepped (part, column, offset) at q + offset dq[:, column], in
-    order: ``bending.plank_results_of`` of at most PLANK_BATCH planks at a time (its
-    numbers are those of one call each, so the batches change nothing but the memory)."""
-    from furncheck.statics.bending import plank_results_of
+def _plank_results_batched(stepped: list, q: np.ndarray, dq: np.ndarray, where):
+    """The planks of each stepped (part, column, offset) at q + offset dq[:, column], read
+    at ``where`` (``bending.plank_results_at``), in order, at most PLANK_BATCH planks at a
+    time (its numbers are those of one call each, so the batches change nothing but the
+    memory)."""
+    from furncheck.statics.bending import plank_results_at
 
     batch: list = []
     displacements: list = []
     count = 0
     for part, column, offset in stepped:
         if batch and count + len(part.model.planks) > tol.PLANK_BATCH:
-            yield from plank_results_of(batch, displacements)
+            yield from plank_results_at(batch, displacements, where)
             batch, displacements, count = [], [], 0
         batch.append(part)
         displacements.append(q + offset * dq[:, column])
         count += len(part.model.planks)
     if batch:
-        yield from plank_results_of(batch, displacements)
+        yield from plank_results_at(batch, displacements, where)
 
 
 def assembly_steps(model: StaticsModel) -> tuple[float, float]:
@@ -159,7 +160,12 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
     if model.rest_maps is not None:
         out.rest_maps = np.zeros((n_dofs, *model.rest_maps.shape))
     geometry = model.geometry
-    unchanged = {}                  # case name -> b - A x of the model itself, its part
+    own_case = next(c for c in model.design.load_cases if c.name == case_name)
+    whole = plank_part(model, own_case, law.holding)
+    supports = (whole.low, whole.high)      # a stepped model's too (``plank_part``)
+    out.base = whole if planks is None else \
+        plank_part(model, own_case, law.holding, planks, supports)
+    unchanged = {}                  # case name -> b - A x of the model itself
     own = [side.design is model.design and _followed_as_is(geometry, side) for side in sides]
     built = _stepped_models(model, [side for side, itself in zip(sides, own) if not itself],
                             case_name, q, h, law)
@@ -170,12 +176,11 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
             # ``model`` (built on itself, a template gives the same model bit for bit)
             stepped, stepped_geometry = model, geometry
             if case.name not in unchanged:
-                unchanged[case.name] = (_residual(model, case, q, h, law),
-                                        plank_part(model, case, law.holding, planks))
-            residual, part = unchanged[case.name]
+                unchanged[case.name] = _residual(model, case, q, h, law)
+            residual, part = unchanged[case.name], out.base
         else:       # each stepped model is let go once its residual and part are made
             stepped, stepped_geometry, residual = next(built)
-            part = plank_part(stepped, case, law.holding, planks)
+            part = plank_part(stepped, case, law.holding, planks, supports)
         out.residual[:, side.column] += side.weight * residual
         out.maps[side.column] += side.weight * stepped.contact_maps
         if stepped.rest_maps is not None:
