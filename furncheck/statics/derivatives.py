@@ -26,6 +26,7 @@ from furncheck import tolerances as tol
 from furncheck.design.model import Design
 from furncheck.geometry import Contact, Joint
 from furncheck.statics.contact_law import ContactLaw
+from furncheck.statics.elements import elastic_forces_many
 from furncheck.statics.model import StaticsModel, block_sums, external_forces
 from furncheck.statics.offsets import point_maps
 from furncheck.tolerances import GRAVITY
@@ -245,8 +246,9 @@ def _residuals(models: list[StaticsModel], cases: list, q: np.ndarray, h: np.nda
                       (count, 1, 1))
     deviations = (np.concatenate([m.joint_rows for m in models]) @ columns).reshape(count, -1)
     bottom = deviations - compliance
-    return [np.concatenate([external_forces(m, c) - top[k], -bottom[k]])
-            for k, (m, c) in enumerate(zip(models, cases))]
+    loads = elastic_forces_many(models, cases) if first.beams is not None else \
+        [external_forces(m, c) for m, c in zip(models, cases)]
+    return [np.concatenate([loads[k] - top[k], -bottom[k]]) for k in range(count)]
 
 
 def _summed(index: np.ndarray, values: np.ndarray, n_nodes: int, count: int) -> np.ndarray:
