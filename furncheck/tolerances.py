@@ -103,6 +103,20 @@ such deviations tie and the first measure the plank has is taken: compared as th
 the round-off chose between its two overhangs, and the allowed sag read 0.35 or 1.04 mm
 as the design turned."""
 
+STEP_ROUNDOFF = 1e-9
+"""A change rounded to the shop's grid counts as within a suggestion's valid steps when
+its step is within this fraction of them: the round-off of the steps themselves (a leg
+drawn 30 mm short is valid lengthened by the least-squares aim, 0.064794816413834 scaled
+units, and 30 mm is the step 0.064794816414687; ``suggest.shop_round``)."""
+
+NEAR_LARGEST = 1e-3
+"""A force sensitivity reads a stepped design's planks at the sample points where the
+design's own largest sag (of each measure) and stress may lie: those within this fraction
+of the largest, of the plank's own or of the design's largest where that is more (a
+plank that does not bend keeps every point: its sag is round-off, and a step may bend it
+anywhere).  The steps move the points by about 1e-7 of themselves
+(``bending.plank_results_where``)."""
+
 NODE_MERGE = 1e-3
 """m: attachments closer than this along a plank's axis share a node (at their mean, each
 held by a rigid arm): a beam element shorter than a millimetre is far stiffer than anything

@@ -26,9 +26,9 @@ from furncheck.design.load import parse_design
 from furncheck.design.model import with_model
 from furncheck.design.write import design_text
 from furncheck.geometry import analyze
+from furncheck.geometry.support import pressure_centre
 from furncheck.suggest import suggest_design
 from furncheck.suggest.discrete import Search, discrete_fixes
-from furncheck.suggest.discrete.feet import _pressure_centre
 from furncheck.suggest.discrete.thicker import grown
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -228,7 +228,7 @@ def test_the_pressure_centre_of_the_tipping_bench():
     right leg's outer face at 306 mm."""
     design = load_design(str(CATALOG / "bench-tips.yaml"))
     masses = 80 + plank_mass(1200, 300) + 2 * plank_mass(438, 300) + plank_mass(588, 80)
-    centre = _pressure_centre(design, design.load_cases[0])
+    centre = pressure_centre(design, design.load_cases[0])
     assert centre[0] == pytest.approx(0.560 * 80 / masses)
     assert centre[1] == pytest.approx(0.0, abs=1e-12)
 

@@ -483,6 +483,66 @@ def test_a_floating_l_is_lowered_by_its_base_alone(model, tmp_path):
         CliRunner().invoke(main, ["suggest", str(path), "--model", model]).output
 
 
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_table_standing_on_one_leg_has_its_short_leg_lengthened(model):
+    """designs/table-pine-top.yaml with leg_r (a 500 mm wide panel) drawn 20 mm short:
+    the table rests on leg_l alone, a mechanism in the rigid model even held down at its
+    contacts (no case has a state to linearize, so no margin had a rate), toppling in the
+    elastic one.  Both now get "Lengthen leg_r by 20 mm" (the leg's height above the
+    floor is the margin either way: ``Margins._standing``), and ``range`` of
+    leg_r.length holds 720 mm within the 0.5 mm tolerance."""
+    text = (CATALOG / "table-pine-top.yaml").read_text().replace(
+        "{id: leg_r, size: [720, 500], center: [430, 0, 360]",
+        "{id: leg_r, size: [700, 500], center: [430, 0, 370]")
+    design = with_model(parse_design(text, "table.yaml", "yaml"), model)
+    assert {v.kind for v in check_design(design).violations} == {"lift-off"}
+    first = suggest_design(design).suggestions[0]
+    assert first.dofs == ("leg_r.length",) and first.changes == (20.0,)
+    assert check_design(parse_design(first.text, "s.yaml", "yaml")).valid
+    (found,) = RangeFinder(design).ranges(["leg_r.length"])
+    assert 719.5 <= found.valid[0] < 720.0 < found.valid[1] <= 720.5
+
+
+def test_a_leg_short_on_the_side_the_stool_does_not_tip_to_is_not_brought_down():
+    """A four-legged stool pushed over its +x edge (400 N at seat height; in the elastic
+    model its 18 mm seat also sags), its leg at (-x, -y) drawn 20 mm short: on the
+    floor that leg would widen the support on the
+    side away from where the loads' line of action meets the floor, which stays as far
+    outside, so it makes no alternative margins (``Margins._widens``: nearer by more
+    than the tolerance in some toppling case)."""
+    from furncheck.dofs import all_dofs, structure
+    from furncheck.edit_check import standing_geometry
+    from furncheck.geometry import analyze
+    from furncheck.suggest.edits import Editor
+    from furncheck.suggest.margins import Margins
+
+    design = parse_design("""\
+furncheck: 1
+name: stool4
+units: mm
+material: {thickness: 18}
+planks:
+  - {id: seat, size: [400, 400], center: [0, 0, 453]}
+  - {id: leg_pp, size: [444, 60], center: [180, 170, 222], rotation: [0, -90, 0]}
+  - {id: leg_mp, size: [444, 60], center: [-180, 170, 222], rotation: [0, -90, 0]}
+  - {id: leg_pm, size: [444, 60], center: [180, -170, 222], rotation: [0, -90, 0]}
+  - {id: leg_mm, size: [424, 60], center: [-180, -170, 232], rotation: [0, -90, 0]}
+loads:
+  - {plank: seat, mass: 60, at: [60, 60, 462]}
+load_cases:
+  push:
+    include: [default]
+    loads:
+      - {plank: seat, force: [400, 0, 0], at: [-200, 0, 453]}
+""", "stool4.yaml", "yaml")
+    geometry = analyze(design)
+    report = check_design(design, geometry)
+    assert ("lift-off", "push") in {(v.kind, v.case) for v in report.violations}
+    editor = Editor(design, geometry, structure(design, standing_geometry(geometry)), ())
+    margins = Margins(design, geometry, report, editor, all_dofs(design))
+    assert margins.violated and margins.alternatives == []
+
+
 def test_a_stretcher_between_the_legs_is_not_brought_down():
     """bench-tips.yaml topples past leg_r; its stretcher stands on edge 300 mm above the
     floor (within HOVER_REACH, half the bench's size), between the legs: on the floor it

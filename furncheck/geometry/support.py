@@ -1,14 +1,17 @@
 """The support polygon on the floor: the convex hull of a design's ground contacts seen from
-above, and how far a point lies outside it (a design topples where the line of action of
-its loads meets the floor outside; a leg drawn short widens it once it stands on the
-floor).  Plane points are (x, y) in metres; a hull is counter-clockwise, one or two
-points for a design standing on a point or a line."""
+above, how far a point lies outside it, and where the line of action of the design's
+loads meets the floor (a design topples where that point lies outside; a leg drawn short
+widens the polygon once it stands on the floor).  Plane points are (x, y) in metres; a
+hull is counter-clockwise, one or two points for a design standing on a point or a
+line."""
 
 from __future__ import annotations
 
 import math
 
 import numpy as np
+
+from furncheck.tolerances import GRAVITY
 
 DUPLICATE = 1e-9
 """m: points closer than this are one point of the hull."""
@@ -61,3 +64,28 @@ def outside(hull: np.ndarray, point: np.ndarray) -> tuple[float, np.ndarray]:
         if distance < best:
             best, nearest = distance, candidate
     return best, nearest
+
+
+def pressure_centre(design, case) -> np.ndarray | None:
+    """(2,) m: where the line of action of the planks' weights and the case's loads meets
+    the floor, the centre of pressure the ground would need for rigid planks:
+
+        c_x = sum(x_i F_zi - z_i F_xi) / sum(F_zi),   c_y = sum(y_i F_zi - z_i F_yi) / sum(F_zi)
+
+    over the forces F_i acting at r_i (the moments about the floor point c have no
+    horizontal part: friction acts in the floor's plane); None when they do not press
+    down."""
+    forces, points = [], []
+    for plank in design.planks:
+        forces.append((0.0, 0.0, -design.plank_mass(plank) * GRAVITY))
+        points.append(plank.center_array)
+    for load in case.loads:
+        forces.append(load.force)
+        points.append(design.plank(load.plank).center_array if load.point is None
+                      else np.asarray(load.point))
+    f, r = np.asarray(forces, dtype=float), np.asarray(points, dtype=float)
+    down = float(f[:, 2].sum())
+    if down >= 0.0:
+        return None
+    return np.array([(r[:, 0] @ f[:, 2] - r[:, 2] @ f[:, 0]) / down,
+                     (r[:, 1] @ f[:, 2] - r[:, 2] @ f[:, 1]) / down])

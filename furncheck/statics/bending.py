@@ -3,7 +3,10 @@
 ``plank_results`` reads, per plank, the largest deflection of its own bending (between
 nodes too, ``_profile``) from the line through its outermost carrying supports or, beyond
 them, from the tangent at the support (``_sag``), and the largest bending plus axial
-stress at its nodes.
+stress along it, at its elements' ends, points inside and the moments' peaks
+(``_stress_along``).  A sensitivity's stepped designs are read only at the points where
+the design's own largest sag and stress lie (``plank_results_where``,
+``plank_results_at``).
 
 Every step works on all nodes, elements and sample points of the model at once; the
 per-plank results are reductions over them (``np.maximum.at`` by plank).  What depends on
@@ -160,15 +163,17 @@ def plank_results_of(prepared: list[PlankPart],
 
 
 class PlankWhere(NamedTuple):
-    """Where a design's planks' largest sag and stress lie (``plank_results_where``): the
-    sample points whose value is within NEAR_LARGEST of the largest, as flat lists.  For
-    the sag, per point its local plank, measure (0 between the plank's outermost
-    supports, 1 beyond the low one, 2 beyond the high one) and sample (an index of
-    ``_profile``'s points: a node, or nN + j nE + e for the j-th interior point of element
-    e), for every measure the plank has; for the stress, per point its plank, element and
-    column (of ``_stress_along``'s).  A symmetric shelf's two halves, or an element's end
-    and the next one's start at one node, tie: both are kept, and a stepped design's
-    largest is the larger of them, as reading every point would find."""
+    """Where a design's planks' largest sag and stress may lie in a stepped design
+    (``plank_results_where``): the sample points whose value is within NEAR_LARGEST of the
+    largest (of the plank's own, or of the design's largest where that is more: a plank
+    that does not bend keeps all its points), as flat lists.  For the sag, per point its
+    local plank, measure (0 between the plank's outermost supports, 1 beyond the low one, 2
+    beyond the high one) and sample (an index of ``_profile``'s points: a node, or
+    nN + j nE + e for the j-th interior point of element e), for every measure the plank
+    has; for the stress, per point its plank, element and column (of
+    ``_stress_along``'s).  A symmetric shelf's two halves, or an element's end and the
+    next one's start at one node, tie: both are kept, and a stepped design's largest is
+    the larger of them, as reading every point would find."""
 
     sag_plank: np.ndarray
     sag_measure: np.ndarray
@@ -176,12 +181,6 @@ class PlankWhere(NamedTuple):
     stress_plank: np.ndarray
     stress_element: np.ndarray
     stress_column: np.ndarray
-
-
-NEAR_LARGEST = 1e-3
-"""A sample point counts as one where a plank's largest sag (of its measure) or stress
-may lie in a stepped design when its value is within this fraction of the largest (a
-sensitivity's steps move them by about 1e-7 of themselves)."""
 
 
 def plank_results_where(part: PlankPart, q: np.ndarray) -> tuple[PlankStatics, PlankWhere]:
@@ -194,8 +193,8 @@ def plank_results_where(part: PlankPart, q: np.ndarray) -> tuple[PlankStatics, P
     along = _stress_along(model, layout, displacement, w, slope, line_loads)
     stress = _largest_stress(model, along)
     plank = model.beams.plank
-    near = along >= ((1.0 - NEAR_LARGEST) * stress)[plank][:, None]
-    element, column = np.nonzero(near)
+    band = tol.NEAR_LARGEST * np.maximum(stress, stress.max(initial=0.0))
+    element, column = np.nonzero(along >= (stress - band)[plank][:, None])
     s, deflection, sample_plank = _profile(model, layout, w, slope, line_loads)
     sag, span, measure, sample = _sag(model, s, deflection, sample_plank, w, slope,
                                       stack.low, stack.high, where=True)
@@ -221,8 +220,9 @@ def plank_results_at(prepared: list[PlankPart], displacements: list[np.ndarray],
     inside = sample >= n_nodes
     j, e = np.divmod(sample[inside] - n_nodes, n_elements)
     kept = np.unique(np.concatenate([where.stress_element, e]))      # the elements read
-    model, layout, line_loads, displacement, low, high = _gathered(prepared, displacements,
-                                                                   kept)
+    stack = _stacked(prepared, displacements, kept)
+    model, layout, line_loads, displacement, low, high = stack.model, stack.layout, \
+        stack.line_loads, stack.displacement, stack.low, stack.high
     beams = model.beams
     w, slope = _transverse(displacement, layout.node_frame)
 
@@ -257,13 +257,11 @@ def plank_results_at(prepared: list[PlankPart], displacements: list[np.ndarray],
         point_s[~at_node] = beams.node_s[beams.nodes[chosen, 0]] + xi * beams.length[chosen]
     low_p, high_p = low[plank], high[plank]
     sa, sb = beams.node_s[low_p], beams.node_s[high_p]
-    chord = np.where(measure == 0, sb - sa, 1.0)
-    line = w[:, low_p] + ((point_s - sa) / chord) * (w[:, high_p] - w[:, low_p])
-    tangent_low = w[:, low_p] + (point_s - sa) * slope[:, low_p]
-    tangent_high = w[:, high_p] + (point_s - sb) * slope[:, high_p]
+    line, tangent_low, tangent_high = _reference_lines(
+        point_s, sa, sb, np.where(measure == 0, sb - sa, 1.0), w[:, low_p], w[:, high_p],
+        slope[:, low_p], slope[:, high_p])
     reference = np.where(measure == 0, line, np.where(measure == 1, tangent_low, tangent_high))
-    offset = deflection - reference
-    distance = np.sqrt(offset[0] * offset[0] + offset[1] * offset[1])
+    distance = _distance(deflection, reference)
     deviation = np.full((count * n_planks, 3), -1.0)
     np.maximum.at(deviation, (plank, measure), distance)
     sa, sb = beams.node_s[low], beams.node_s[high]
@@ -273,52 +271,6 @@ def plank_results_at(prepared: list[PlankPart], displacements: list[np.ndarray],
     return [PlankStatics(sag[k * n_planks:(k + 1) * n_planks],
                          span[k * n_planks:(k + 1) * n_planks],
                          stress[k * n_planks:(k + 1) * n_planks]) for k in range(count)]
-
-
-def _gathered(prepared: list[PlankPart], displacements: list[np.ndarray],
-              elements: np.ndarray) -> tuple:
-    """The parts' elements ``elements`` (local, the same in each part) and all their
-    nodes and planks, numbered one part after another: (a ``_Stacked`` model of those
-    elements, its ``_Layout``, their line loads, the nodes' displacements (nN, 6), the
-    planks' outermost supports low, high)."""
-    node_offsets = np.cumsum([0] + [part.model.n_nodes for part in prepared])
-    plank_offsets = np.cumsum([0] + [len(part.low) for part in prepared])
-
-    def cut(read) -> np.ndarray:
-        return np.concatenate([read(part)[elements] for part in prepared])
-
-    def whole(read, offsets=None) -> np.ndarray:
-        if offsets is None:
-            return np.concatenate([read(part) for part in prepared])
-        return np.concatenate([read(part) + offset for part, offset in zip(prepared, offsets)])
-
-    beams = Beams(plank=np.concatenate([part.model.beams.plank[elements] + offset
-                                        for part, offset in zip(prepared, plank_offsets)]),
-                  nodes=np.concatenate([part.model.beams.nodes[elements] + offset
-                                        for part, offset in zip(prepared, node_offsets)]),
-                  length=cut(lambda p: p.model.beams.length),
-                  frames=cut(lambda p: p.model.beams.frames),
-                  local_stiffness=cut(lambda p: p.model.beams.local_stiffness),
-                  width=cut(lambda p: p.model.beams.width),
-                  thickness=cut(lambda p: p.model.beams.thickness),
-                  elastic_modulus=cut(lambda p: p.model.beams.elastic_modulus),
-                  shear_modulus=cut(lambda p: p.model.beams.shear_modulus),
-                  node_s=whole(lambda p: p.model.beams.node_s),
-                  plank_half=whole(lambda p: p.model.beams.plank_half))
-    layout = _Layout(node_frame=whole(lambda p: p.layout.node_frame),
-                     inertia=cut(lambda p: p.layout.inertia), area=cut(lambda p: p.layout.area),
-                     bending=cut(lambda p: p.layout.bending),
-                     in_plane=cut(lambda p: p.layout.in_plane),
-                     joint_supports=np.zeros(0, dtype=int), measured=np.zeros(0, dtype=bool))
-    displacement = np.concatenate([
-        q.reshape(-1, 6) if part.nodes is None else q.reshape(-1, 6)[part.nodes]
-        for part, q in zip(prepared, displacements)])
-    model = _Stacked(beams, range(int(plank_offsets[-1])),
-                     whole(lambda p: p.model.node_plank, plank_offsets))
-    low, high = (np.where(ends >= 0, ends + node_offsets[:-1, None], -1).ravel()
-                 for ends in (np.array([part.low for part in prepared]),
-                              np.array([part.high for part in prepared])))
-    return model, layout, cut(lambda p: p.line_loads), displacement, low, high
 
 
 class _Stack(NamedTuple):
@@ -335,52 +287,67 @@ class _Stack(NamedTuple):
     plank_offsets: np.ndarray
 
 
-def _stacked(prepared: list[PlankPart], displacements: list[np.ndarray]) -> _Stack:
+_ELEMENT_FIELDS = ("length", "frames", "local_stiffness", "width", "thickness",
+                   "elastic_modulus", "shear_modulus")
+"""A ``Beams``' arrays of one entry per element, besides its planks and nodes."""
+
+_SECTION_FIELDS = ("inertia", "area", "bending", "in_plane")
+"""A ``_Layout``'s arrays of one entry per element."""
+
+
+def _stacked(prepared: list[PlankPart], displacements: list[np.ndarray],
+             elements: np.ndarray | None = None) -> _Stack:
     """The parts' elements, nodes and planks numbered one after another (each part's
-    after the previous ones'), with their displacements (6 nN,) each."""
-    parts = []
-    for part, q in zip(prepared, displacements):
-        displacement = q.reshape(-1, 6)
-        if part.nodes is not None:
-            displacement = displacement[part.nodes]
-        parts.append((part.model, part.layout, part.line_loads, displacement, part.low,
-                      part.high))
-    node_offsets = np.cumsum([0] + [part[0].n_nodes for part in parts])
-    plank_offsets = np.cumsum([0] + [len(part[0].planks) for part in parts])
+    after the previous ones'), with their displacements (6 nN,) each; with ``elements``
+    (local, the same in each part) only those elements of each part, all their nodes and
+    planks."""
+    node_offsets = np.cumsum([0] + [part.model.n_nodes for part in prepared])
+    plank_offsets = np.cumsum([0] + [len(part.low) for part in prepared])
+    chosen = slice(None) if elements is None else elements
 
-    def stacked(read, offsets=None) -> np.ndarray:
-        arrays = [read(*part) for part in parts]
+    def cut(read) -> np.ndarray:
+        return np.concatenate([read(part)[chosen] for part in prepared])
+
+    def whole(read, offsets=None) -> np.ndarray:
         if offsets is None:
-            return np.concatenate(arrays)
-        return np.concatenate([a + offset for a, offset in zip(arrays, offsets)])
+            return np.concatenate([read(part) for part in prepared])
+        return np.concatenate([read(part) + offset for part, offset in zip(prepared, offsets)])
 
-    def supports(values: np.ndarray, offset: int) -> np.ndarray:
-        return np.where(values >= 0, values + offset, -1)
-
-    beams = Beams(plank=stacked(lambda m, *_: m.beams.plank, plank_offsets),
-                  nodes=stacked(lambda m, *_: m.beams.nodes, node_offsets),
-                  length=stacked(lambda m, *_: m.beams.length),
-                  frames=stacked(lambda m, *_: m.beams.frames),
-                  local_stiffness=stacked(lambda m, *_: m.beams.local_stiffness),
-                  width=stacked(lambda m, *_: m.beams.width),
-                  thickness=stacked(lambda m, *_: m.beams.thickness),
-                  elastic_modulus=stacked(lambda m, *_: m.beams.elastic_modulus),
-                  shear_modulus=stacked(lambda m, *_: m.beams.shear_modulus),
-                  node_s=stacked(lambda m, *_: m.beams.node_s),
-                  plank_half=stacked(lambda m, *_: m.beams.plank_half))
-    layout = _Layout(node_frame=stacked(lambda m, lay, *_: lay.node_frame),
-                     inertia=stacked(lambda m, lay, *_: lay.inertia),
-                     area=stacked(lambda m, lay, *_: lay.area),
-                     bending=stacked(lambda m, lay, *_: lay.bending),
-                     in_plane=stacked(lambda m, lay, *_: lay.in_plane),
+    beams = Beams(plank=np.concatenate([part.model.beams.plank[chosen] + offset
+                                        for part, offset in zip(prepared, plank_offsets)]),
+                  nodes=np.concatenate([part.model.beams.nodes[chosen] + offset
+                                        for part, offset in zip(prepared, node_offsets)]),
+                  node_s=whole(lambda p: p.model.beams.node_s),
+                  plank_half=whole(lambda p: p.model.beams.plank_half),
+                  **{name: cut(lambda p, n=name: getattr(p.model.beams, n))
+                     for name in _ELEMENT_FIELDS})
+    layout = _Layout(node_frame=whole(lambda p: p.layout.node_frame),
                      joint_supports=np.zeros(0, dtype=int),
-                     measured=stacked(lambda m, lay, *_: lay.measured))
+                     measured=whole(lambda p: p.layout.measured),
+                     **{name: cut(lambda p, n=name: getattr(p.layout, n))
+                        for name in _SECTION_FIELDS})
+    displacement = np.concatenate([
+        q.reshape(-1, 6) if part.nodes is None else q.reshape(-1, 6)[part.nodes]
+        for part, q in zip(prepared, displacements)])
     model = _Stacked(beams, range(int(plank_offsets[-1])),
-                     stacked(lambda m, *_: m.node_plank, plank_offsets))
-    low = np.concatenate([supports(part[4], n) for part, n in zip(parts, node_offsets)])
-    high = np.concatenate([supports(part[5], n) for part, n in zip(parts, node_offsets)])
-    return _Stack(model, layout, stacked(lambda m, lay, loads, d, *_: d),
-                  stacked(lambda m, lay, loads, *_: loads), low, high, plank_offsets)
+                     whole(lambda p: p.model.node_plank, plank_offsets))
+    shift = np.repeat(node_offsets[:-1], np.diff(plank_offsets))
+    low, high = (np.where(ends >= 0, ends + shift, -1)
+                 for ends in (whole(lambda p: p.low), whole(lambda p: p.high)))
+    return _Stack(model, layout, displacement, cut(lambda p: p.line_loads), low, high,
+                  plank_offsets)
+
+
+def _element_cut(beams: Beams, layout: _Layout, elements: np.ndarray, **kept) -> tuple:
+    """(``Beams``, ``_Layout``) of ``elements`` alone, in that order: their per-element
+    arrays taken, the rest (plank, nodes, node_s, plank_half, node_frame, joint_supports,
+    measured) from ``kept``."""
+    beam_keys = ("plank", "nodes", "node_s", "plank_half")
+    cut_beams = Beams(**{key: kept[key] for key in beam_keys},
+                      **{name: getattr(beams, name)[elements] for name in _ELEMENT_FIELDS})
+    cut_layout = _Layout(**{key: value for key, value in kept.items() if key not in beam_keys},
+                         **{name: getattr(layout, name)[elements] for name in _SECTION_FIELDS})
+    return cut_beams, cut_layout
 
 
 def _only(part: PlankPart, planks: np.ndarray) -> PlankPart:
@@ -396,18 +363,11 @@ def _only(part: PlankPart, planks: np.ndarray) -> PlankPart:
     node_number[nodes] = np.arange(len(nodes))
     plank_number = np.full(len(model.planks), -1)
     plank_number[planks] = np.arange(len(planks))
-    cut = Beams(plank=plank_number[beams.plank[elements]],
-                nodes=node_number[beams.nodes[elements]], length=beams.length[elements],
-                frames=beams.frames[elements], local_stiffness=beams.local_stiffness[elements],
-                width=beams.width[elements], thickness=beams.thickness[elements],
-                elastic_modulus=beams.elastic_modulus[elements],
-                shear_modulus=beams.shear_modulus[elements], node_s=beams.node_s[nodes],
-                plank_half=beams.plank_half[planks])
-    cut_layout = _Layout(node_frame=layout.node_frame[nodes], inertia=layout.inertia[elements],
-                         area=layout.area[elements], bending=layout.bending[elements],
-                         in_plane=layout.in_plane[elements],
-                         joint_supports=np.zeros(0, dtype=int),
-                         measured=layout.measured[planks])
+    cut, cut_layout = _element_cut(
+        beams, layout, elements, plank=plank_number[beams.plank[elements]],
+        nodes=node_number[beams.nodes[elements]], node_s=beams.node_s[nodes],
+        plank_half=beams.plank_half[planks], node_frame=layout.node_frame[nodes],
+        joint_supports=np.zeros(0, dtype=int), measured=layout.measured[planks])
 
     def supports(values: np.ndarray) -> np.ndarray:
         mine = values[planks]
@@ -466,7 +426,7 @@ def _stress(model: StaticsModel, layout: _Layout, displacement: np.ndarray, w: n
                                                 line_loads))
 
 
-def _largest_stress(model, along: np.ndarray) -> np.ndarray:
+def _largest_stress(model: StaticsModel | _Stacked, along: np.ndarray) -> np.ndarray:
     """(nP,) Pa: the largest of ``_stress_along`` (nE, m) per plank."""
     stress = np.zeros(len(model.planks))
     np.maximum.at(stress, model.beams.plank, along.max(axis=1))
@@ -516,17 +476,10 @@ def _cut_to(model, layout: _Layout, line_loads: np.ndarray,
     if elements is None:
         return model, layout, line_loads
     beams = model.beams
-    cut = Beams(plank=beams.plank[elements], nodes=beams.nodes[elements],
-                length=beams.length[elements], frames=beams.frames[elements],
-                local_stiffness=beams.local_stiffness[elements], width=beams.width[elements],
-                thickness=beams.thickness[elements],
-                elastic_modulus=beams.elastic_modulus[elements],
-                shear_modulus=beams.shear_modulus[elements], node_s=beams.node_s,
-                plank_half=beams.plank_half)
-    cut_layout = _Layout(node_frame=layout.node_frame, inertia=layout.inertia[elements],
-                         area=layout.area[elements], bending=layout.bending[elements],
-                         in_plane=layout.in_plane[elements],
-                         joint_supports=layout.joint_supports, measured=layout.measured)
+    cut, cut_layout = _element_cut(
+        beams, layout, elements, plank=beams.plank[elements], nodes=beams.nodes[elements],
+        node_s=beams.node_s, plank_half=beams.plank_half, node_frame=layout.node_frame,
+        joint_supports=layout.joint_supports, measured=layout.measured)
     return _Stacked(cut, model.planks, model.node_plank), cut_layout, line_loads[elements]
 
 
@@ -728,8 +681,8 @@ def _sag(model: StaticsModel, s: np.ndarray, deflection: np.ndarray,
     them, each overhang's largest deviation from the tangent at its support (span: twice
     the overhang); the one nearest its limit (the largest sag / span) is the plank's.  Held
     at one point, only the overhangs count; with no support, (0, 0).  With ``where``, also
-    the points within NEAR_LARGEST of each measure's largest, every measure the plank
-    has (0, 1, 2 as above), as flat lists: (sag, span, measures, points)."""
+    the points near each measure's largest (``PlankWhere``), every measure the plank has
+    (0, 1, 2 as above), as flat lists: (sag, span, measures, points)."""
     beams = model.beams
     half = beams.plank_half
     supported = low >= 0
@@ -748,35 +701,44 @@ def _sag(model: StaticsModel, s: np.ndarray, deflection: np.ndarray,
     between = at_points(chord) & (s >= below) & (s <= above)
     beyond_low = at_points(supported) & (s < below)
     beyond_high = at_points(supported) & (s > above)
-    w_low, w_high = at_points(np.take(w, low, axis=1)), at_points(np.take(w, high, axis=1))
-    line = w_low + ((s - s_low) / at_points(np.where(chord, sb - sa, 1.0))) * (w_high - w_low)
-    tangent_low = w_low + (s - s_low) * at_points(np.take(slope, low, axis=1))
-    tangent_high = w_high + (s - s_high) * at_points(np.take(slope, high, axis=1))
-
-    near = []               # with ``where``: each measure's points near its largest
-
-    def largest(points: np.ndarray, reference: np.ndarray) -> np.ndarray:
-        """(nP,) each plank's largest |deflection - reference| over its sample points in
-        ``points`` (nX,) bool; -1 for a plank with none there."""
-        offset = deflection - reference        # |offset| by rows: np.linalg.norm's own
-        distance = np.sqrt(offset[0] * offset[0] + offset[1] * offset[1])  # sum, ten times faster
-        values = np.where(points, distance, -1.0)
-        result = np.full(len(half), -1.0)
-        np.maximum.at(result, sample_plank, values)
-        if where:
-            near.append(np.flatnonzero(
-                points & (values >= (1.0 - NEAR_LARGEST) * result[sample_plank])))
-        return result
-
-    # (nP, 3): between the supports, beyond the low one, beyond the high one
-    deviation = np.column_stack([largest(between, line), largest(beyond_low, tangent_low),
-                                 largest(beyond_high, tangent_high)])
+    references = _reference_lines(s, s_low, s_high, at_points(np.where(chord, sb - sa, 1.0)),
+                                  at_points(np.take(w, low, axis=1)),
+                                  at_points(np.take(w, high, axis=1)),
+                                  at_points(np.take(slope, low, axis=1)),
+                                  at_points(np.take(slope, high, axis=1)))
+    # (3, nX) each point's distance from the line of each measure, -1 where that measure
+    # does not read it: between the supports, beyond the low one, beyond the high one
+    distances = np.array([np.where(points, _distance(deflection, reference), -1.0)
+                          for points, reference in zip((between, beyond_low, beyond_high),
+                                                       references)])
+    deviation = np.full((len(half), 3), -1.0)                           # (nP, 3) largest
+    for k in range(3):
+        np.maximum.at(deviation[:, k], sample_plank, distances[k])
     spans = np.column_stack([sb - sa, 2.0 * (sa + half), 2.0 * (half - sb)])
     sag, span = _chosen_measure(deviation, spans)
     if not where:
         return sag, span
-    measures = np.concatenate([np.full(len(points), k) for k, points in enumerate(near)])
-    return sag, span, measures, np.concatenate(near)
+    band = tol.NEAR_LARGEST * np.maximum(deviation, deviation.max(initial=0.0))
+    measures, points = np.nonzero((distances >= 0.0)
+                                  & (distances >= (deviation - band)[sample_plank].T))
+    return sag, span, measures, points
+
+
+def _reference_lines(s, s_low, s_high, chord, w_low, w_high, slope_low, slope_high) -> tuple:
+    """(line, tangent_low, tangent_high), each (2, n): at the points along the axis ``s``
+    (n,), the straight line through the outermost supports (at ``s_low`` and ``s_high``,
+    their distance ``chord``, deflections ``w_low`` and ``w_high``) and the tangents at
+    either support (slopes ``slope_low``, ``slope_high``), from which the sag of each
+    measure is measured (``_sag``, ``plank_results_at``: one formula for both)."""
+    line = w_low + ((s - s_low) / chord) * (w_high - w_low)
+    return (line, w_low + (s - s_low) * slope_low, w_high + (s - s_high) * slope_high)
+
+
+def _distance(deflection: np.ndarray, reference: np.ndarray) -> np.ndarray:
+    """(n,) |deflection - reference| of (2, n) arrays, by rows (np.linalg.norm's own sum,
+    ten times faster)."""
+    offset = deflection - reference
+    return np.sqrt(offset[0] * offset[0] + offset[1] * offset[1])
 
 
 def _chosen_measure(deviation: np.ndarray, spans: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

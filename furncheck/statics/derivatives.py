@@ -11,14 +11,17 @@ of the contact maps and of the joint lengths; ``rates = A^-1 (their residual)`` 
   moved planks.
 * Elastic planks: the stepped design's model is built again on the same nodes
   (``elastic.build_elastic_model(..., template=model)``: every node at the new place of
-  what it serves) and b - A x evaluated whole; the planks' sag, span and stress at the
-  stepped state x + dx give their rates (``AssemblyDifferences.plank_rates``: the stepped
-  models read in stacked passes, ``bending.plank_results_of``).
+  what it serves) and b - A x evaluated whole (the stepped models' residuals and loads
+  made together, ``_residuals``); the planks' sag, span and stress at the stepped state
+  x + dx give their rates (``AssemblyDifferences.plank_rates``: each stepped model read
+  only at the points where the design's own largest sag and stress may lie, in stacked
+  passes, ``bending.plank_results_at``).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -30,6 +33,9 @@ from furncheck.statics.elements import elastic_forces_many
 from furncheck.statics.model import StaticsModel, block_sums, external_forces
 from furncheck.statics.offsets import point_maps
 from furncheck.tolerances import GRAVITY
+
+if TYPE_CHECKING:
+    from furncheck.statics.bending import PlankPart
 
 
 @dataclass(frozen=True)
@@ -69,7 +75,7 @@ class AssemblyDifferences:
     holding: np.ndarray | None = None
     planks: np.ndarray | None = None
     n_planks: int = 0
-    base: object = None
+    base: PlankPart | None = None
 
     def plank_rates(self, dq: np.ndarray) -> tuple[np.ndarray, ...]:
         """(D, nP) each: d sag (m), d span (m), d stress (Pa) per DOF unit, from the
@@ -77,11 +83,12 @@ class AssemblyDifferences:
         each for rigid planks.  With ``planks`` only those local planks' rates are read
         (the others' are 0).
 
-        Each plank's sag and stress are read where the design's own are
-        (``bending.plank_results_where`` of ``base``, the model itself): at a step this
-        small the largest sag and stress of a stepped design lie at the same sample
-        points, so reading that point alone (``bending.plank_results_at``) gives the
-        numbers reading every point would, at a fraction of the cost."""
+        Each stepped model's planks are read only at the points where the design's own
+        largest sag and stress may lie (``bending.plank_results_where`` of ``base``, the
+        model itself: those within NEAR_LARGEST of the largest, ties kept): at a step this
+        small a stepped design's largest lie among them, so reading them alone
+        (``bending.plank_results_at``) gives the numbers reading every point would, at a
+        fraction of the cost."""
         n_dofs = self.residual.shape[1]
         if not self.sides:
             empty = np.zeros((n_dofs, 0))

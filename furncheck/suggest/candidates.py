@@ -113,7 +113,8 @@ def every_candidate(margins: Margins, max_dofs: int,
     """``candidates`` of the margins and of each of their ``alternatives`` (other ways to
     restore the design, e.g. a leg drawn short brought down to the floor), each direction
     once (the margins' own where both have it), nearest first; ``tally`` counts the
-    alternatives' combinations with the margins' own of as many DOFs."""
+    alternatives' combinations with the margins' own of as many DOFs (a direction that
+    both sets keep is counted in each)."""
     found = candidates(margins, max_dofs, tally)
     for rows in margins.alternatives:
         counted: list[DirectionTally] | None = None if tally is None else []

@@ -34,7 +34,7 @@ from furncheck.design.model import Design
 from furncheck.dofs import Blocked, Dof, OutOfReach, design_size
 from furncheck.geometry import Geometry, cut_ins, end_depth, end_gap
 from furncheck.geometry.near import carried_groups, hovering_ends
-from furncheck.geometry.support import convex_hull, outside
+from furncheck.geometry.support import convex_hull, outside, pressure_centre
 from furncheck.result import DesignReport
 from furncheck.sensitivity import Linearization, Sensitivity
 from furncheck.statics import StaticsModel, build_model, external_forces
@@ -67,7 +67,8 @@ class Margin:
     restores : 'durability', 'stability', 'geometry', 'stiffness' (sag) or 'strength'
                (bending stress) (the contract's ``restores``)
     where    : joint 'a/b', plank id or component, for messages
-    case     : load case name, None for geometry
+    case     : load case name, None for geometry and for a leg drawn short (it restores
+               every case that topples: ``Margins._standing``)
     value    : dimensionless, >= 0 where the design passes
     rates    : (n_free,) d value / d DOF, scaled DOF units, in ``Margins.dofs`` order
     target   : the value a direction aims at for a violated margin
@@ -99,6 +100,7 @@ class Margins:
         """``model``, ``solved``: the design's statics model and its cases' statics by
         name (``check.check_design``), if the caller has them: not solved again."""
         self.design = design
+        self.report = report
         self._model, self._solved = model, solved or {}
         self.geometry = geometry
         self.editor = editor
@@ -166,9 +168,10 @@ class Margins:
                                              statics=self._solved.get(case.name)))
             except ValueError:
                 continue
-        if not linears:
-            self.dofs = []
-            return []
+        if not linears:             # every case a mechanism even held down
+            toppled = {v.case for v in self.report.violations if v.kind == "lift-off"}
+            self.dofs = [dof for dof in dofs if self._movable(dof)] if toppled else []
+            return self._standing(toppled) if self.dofs else []
         first = linears[0].derivatives(dofs)
         self.blocked.update(first.blocked)
         free = []
@@ -202,26 +205,27 @@ class Margins:
                 margins.extend(_bending(linear, sens, scales))
         toppled = {linear.case.name for linear in linears
                    if linear.statics.stability == "lift-off"}
-        standing = self._standing() if toppled else []
+        standing = self._standing(toppled) if toppled else []
         if standing:
             self.alternatives.append([m for m in margins if not (
                 m.restores == "stability" and m.case in toppled)] + standing)
         return margins
 
-    def _standing(self) -> list[Margin]:
-        """For a design that topples: the margins of its legs drawn short, the lowest of
-        the planks standing on an end above the floor in its grounded groups
-        (``geometry.near.hovering_ends``, within HOVER_REACH of the design's size) whose
-        foot would widen its support (``_widens``; those within HOVER_BAND of the lowest),
-        each ``(tolerance - height) / size``.  Standing
-        on the floor they widen its support, which the toppling margins, the forces of
-        the contacts it has, cannot tell: rates by differences of the geometry (as a
-        floating plank's, ``_geometric``), the full checks of the line search decide."""
+    def _standing(self, toppled: set[str]) -> list[Margin]:
+        """For a design that topples in the cases ``toppled``: the margins of its legs
+        drawn short, the lowest of the planks standing on an end above the floor in its
+        grounded groups (``geometry.near.hovering_ends``, within HOVER_REACH of the
+        design's size) whose foot on the floor would widen its support toward where it
+        tips (``_widens``; those within HOVER_BAND of the lowest), each
+        ``(tolerance - height) / size``, restoring stability in every toppling case
+        (``case`` None).  The toppling margins, the forces of the contacts the design has,
+        cannot tell that: rates by differences of the geometry (as a floating plank's,
+        ``_geometric``); the full checks of the line search decide."""
         design = self.design
         scale = self.size * design.unit_scale
         hovering = [(i, height) for i, height in hovering_ends(design, self.geometry,
                                                                HOVER_REACH * scale)
-                    if self._widens(design.planks[i])]
+                    if self._widens(design.planks[i], toppled)]
         if not hovering or not self.dofs:
             return []
         lowest = min(height for _, height in hovering)
@@ -235,19 +239,29 @@ class Margins:
         return [Margin("stability", design.planks[i].id, None, float(values[k]), rates[k],
                        design.tolerance / scale) for k, i in enumerate(planks)]
 
-    def _widens(self, plank) -> bool:
-        """Whether the plank's foot, its corners within the tolerance of its lowest,
-        lies outside the support polygon of the design's floor contacts by more than the
-        tolerance (a stretcher on edge between the legs stands inside it: bringing it
-        down holds nothing that topples)."""
+    def _widens(self, plank, toppled: set[str]) -> bool:
+        """Whether the plank's foot (its corners within the tolerance of its lowest),
+        standing on the floor, would bring the support polygon of the design's floor
+        contacts nearer, by more than the tolerance, to where the loads' line of action
+        meets the floor (``geometry.support.pressure_centre``) in some toppling case of
+        ``toppled``: a stretcher on edge between the legs, or a leg short on the side the
+        design does not tip to, holds nothing that topples."""
+        design = self.design
         points = [c.point[:2] for c in self.geometry.contacts
                   if c.wall is None and c.anchor is None and c.on is None]
         if not points:
             return False
-        hull = np.array(points, dtype=float)[convex_hull(points)]
         corners = plank.corners
-        foot = corners[corners[:, 2] <= corners[:, 2].min() + self.design.tolerance, :2]
-        return any(outside(hull, point)[0] > self.design.tolerance for point in foot)
+        foot = [p for p in corners[corners[:, 2] <= corners[:, 2].min() + design.tolerance,
+                                   :2]]
+        hull = np.array(points, dtype=float)[convex_hull(points)]
+        widened = np.array(points + foot, dtype=float)[convex_hull(points + foot)]
+        for case in design.load_cases:
+            centre = pressure_centre(design, case) if case.name in toppled else None
+            if centre is not None and \
+                    outside(widened, centre)[0] < outside(hull, centre)[0] - design.tolerance:
+                return True
+        return False
 
     def _sliding(self, linear: Linearization) -> list[Margin]:
         """``(mu W - H) / W0`` per grounded component: W the downward load on it, H the

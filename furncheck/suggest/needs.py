@@ -47,8 +47,7 @@ import numpy as np
 from furncheck.design.model import Design, Plank
 from furncheck.geometry import Geometry, end_gap
 from furncheck.geometry.near import carried_groups
-from furncheck.geometry.support import convex_hull
-from furncheck.geometry.support import outside as outside_of
+from furncheck.geometry.support import convex_hull, outside
 from furncheck.result import CaseResult, DesignReport, Violation
 from furncheck.tolerances import GRAVITY
 
@@ -128,20 +127,21 @@ def _lift_off(design: Design, geometry: Geometry, where: str, case: CaseResult |
                     why="its loads lift it" if feet else "it has no ground contact")
     hull, owners = _hull([c.point[:2] for c in feet], [c.plank for c in feet])
     crossing = _floor_crossing(forces, points)
-    outside, nearest = outside_of(hull, crossing)
-    if outside <= 0.0:
+    distance, nearest = outside(hull, crossing)
+    if distance <= 0.0:
         return Need("lift-off", where, case_name,
                     why="the loads' resultant meets the floor inside the support: it "
                         "tips where planks only rest on each other")
     scale = design.unit_scale
-    away = (crossing - nearest) / outside
+    away = (crossing - nearest) / distance
     arms = (nearest - hull) @ away
     far = int(np.argmax(arms))
     values = {"weight": weight, "point": tuple(float(v) / scale for v in crossing),
-              "outside": outside / scale, "edge_plank": owners[_nearest_vertex(hull, nearest)],
-              "wider": outside / scale, "ratio": 1.0 + outside / max(float(arms.max()), 1e-12)}
+              "outside": distance / scale,
+              "edge_plank": owners[_nearest_vertex(hull, nearest)],
+              "wider": distance / scale, "ratio": 1.0 + distance / max(float(arms.max()), 1e-12)}
     if arms[far] > 0.0:
-        values.update({"ballast": weight * outside / arms[far] / GRAVITY,
+        values.update({"ballast": weight * distance / arms[far] / GRAVITY,
                        "ballast_plank": owners[far], "ballast_arm": float(arms[far]) / scale})
     sideways = forces.copy()
     sideways[:, :2] = 0.0
@@ -228,7 +228,7 @@ def _nearest_vertex(hull: np.ndarray, point: np.ndarray) -> int:
 def _inside_fraction(hull: np.ndarray, start: np.ndarray, end: np.ndarray) -> float | None:
     """The largest f in [0, 1] with start + f (end - start) inside the convex polygon, or
     None when ``start`` itself lies outside (the loads topple it without the push)."""
-    if len(hull) < 3 or outside_of(hull, start)[0] > 0.0:
+    if len(hull) < 3 or outside(hull, start)[0] > 0.0:
         return None
     fraction = 1.0
     delta = end - start

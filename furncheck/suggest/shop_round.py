@@ -21,6 +21,8 @@ from __future__ import annotations
 
 import math
 
+from furncheck import tolerances as tol
+
 GRIDS = {"mm": (1.0, 0.5), "m": (0.001, 0.0005), "deg": (0.5, 0.1)}
 """Per unit of a DOF's change: the grids tried, coarse first (whole millimetres, the cut a
 maker marks with a rule; half degrees, the mark of a protractor)."""
@@ -28,11 +30,6 @@ maker marks with a rule; half degrees, the mark of a protractor)."""
 MOST_TRIED = 3
 """Most rounded changes validated before the exact ones are kept."""
 
-STEP_ROUNDOFF = 1e-9
-"""A rounded change counts as within the valid steps when its step is within this
-fraction of them: the round-off of the steps themselves (a leg drawn 30 mm short is
-valid lengthened by the least-squares aim, 0.064794816413834 scaled units, and 30 mm is
-the step 0.064794816414687)."""
 
 
 def rounded_changes(changes: tuple[float, ...], units: tuple[str, ...],
@@ -52,7 +49,7 @@ def rounded_changes(changes: tuple[float, ...], units: tuple[str, ...],
             if any(change != 0.0 and value == 0.0 for change, value in zip(changes, rounded)):
                 continue
             steps = [value / rate for value, rate in zip(rounded, rates) if rate != 0.0]
-            slack = STEP_ROUNDOFF * max(abs(low), abs(high))
+            slack = tol.STEP_ROUNDOFF * max(abs(low), abs(high))
             if not steps or not all(low - slack <= step <= high + slack for step in steps):
                 continue
             found.append((steps[0], rounded))

@@ -31,8 +31,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from furncheck.design.model import Design
-from furncheck.geometry.support import convex_hull, outside
+from furncheck.geometry.support import convex_hull, outside, pressure_centre
 from furncheck.suggest.discrete.common import (
     Candidate,
     Fix,
@@ -47,7 +46,6 @@ from furncheck.suggest.discrete.common import (
     with_planks,
 )
 from furncheck.suggest.discrete.supports import support_candidate
-from furncheck.tolerances import GRAVITY
 
 OUTRIGGER_REACH = (1.5, 2.5)
 """How far past the centre of pressure an outrigger reaches, as multiples of its
@@ -107,7 +105,7 @@ def _tipping(search: Search, rule: str) -> tuple[np.ndarray, np.ndarray, float] 
     worst = None
     for case_name in dict.fromkeys(v.case for v in search.report.violations):
         case = next(c for c in design.load_cases if c.name == case_name)
-        centre = _pressure_centre(design, case)
+        centre = pressure_centre(design, case)
         if centre is None:
             continue
         nearest = _nearest_on_hull(hull, centre)
@@ -120,25 +118,6 @@ def _tipping(search: Search, rule: str) -> tuple[np.ndarray, np.ndarray, float] 
         search.not_applicable(rule, "the loads' line of action meets the floor inside the "
                               "support polygon (a part lifts, not the whole)")
     return worst
-
-
-def _pressure_centre(design: Design, case) -> np.ndarray | None:
-    """(2,) m: where the loads' and weights' line of action meets the floor (module
-    docstring); None when they do not press down."""
-    forces, points = [], []
-    for plank in design.planks:
-        forces.append((0.0, 0.0, -design.plank_mass(plank) * GRAVITY))
-        points.append(plank.center_array)
-    for load in case.loads:
-        forces.append(load.force)
-        points.append(design.plank(load.plank).center_array if load.point is None
-                      else np.asarray(load.point))
-    f, r = np.asarray(forces, dtype=float), np.asarray(points, dtype=float)
-    down = float(f[:, 2].sum())
-    if down >= 0.0:
-        return None
-    return np.array([(r[:, 0] @ f[:, 2] - r[:, 2] @ f[:, 0]) / down,
-                     (r[:, 1] @ f[:, 2] - r[:, 2] @ f[:, 1]) / down])
 
 
 def _nearest_on_hull(hull: np.ndarray, point: np.ndarray) -> np.ndarray | None:
