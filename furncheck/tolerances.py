@@ -110,12 +110,16 @@ drawn 30 mm short is valid lengthened by the least-squares aim, 0.06479481641383
 units, and 30 mm is the step 0.064794816414687; ``suggest.shop_round``)."""
 
 NEAR_LARGEST = 1e-3
-"""A force sensitivity reads a stepped design's planks at the sample points where the
+"""A force sensitivity reads a stepped design's planks only at the sample points where the
 design's own largest sag (of each measure) and stress may lie: those within this fraction
-of the largest, of the plank's own or of the design's largest where that is more (a
-plank that does not bend keeps every point: its sag is round-off, and a step may bend it
-anywhere).  The steps move the points by about 1e-7 of themselves
-(``bending.plank_results_where``)."""
+of the plank's largest, or within NEAR_DESIGN of the design's largest where that is more
+(``bending.plank_results_where``).  Its steps move every point by about 1e-7 of the
+design's largest times the rate's leverage: within either band by far."""
+
+NEAR_DESIGN = 1e-4
+"""...of the design's largest sag or stress (``NEAR_LARGEST``): a plank that hardly bends,
+its largest sag round-off or nearly, keeps every point, since a step may bend it
+anywhere (a wall's middle side between two equal bays; a chair's back, turned)."""
 
 NODE_MERGE = 1e-3
 """m: attachments closer than this along a plank's axis share a node (at their mean, each

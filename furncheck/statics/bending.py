@@ -165,7 +165,7 @@ def plank_results_of(prepared: list[PlankPart],
 class PlankWhere(NamedTuple):
     """Where a design's planks' largest sag and stress may lie in a stepped design
     (``plank_results_where``): the sample points whose value is within NEAR_LARGEST of the
-    largest (of the plank's own, or of the design's largest where that is more: a plank
+    plank's largest, or NEAR_DESIGN of the design's largest where that is more (a plank
     that does not bend keeps all its points), as flat lists.  For the sag, per point its
     local plank, measure (0 between the plank's outermost supports, 1 beyond the low one, 2
     beyond the high one) and sample (an index of ``_profile``'s points: a node, or
@@ -193,7 +193,7 @@ def plank_results_where(part: PlankPart, q: np.ndarray) -> tuple[PlankStatics, P
     along = _stress_along(model, layout, displacement, w, slope, line_loads)
     stress = _largest_stress(model, along)
     plank = model.beams.plank
-    band = tol.NEAR_LARGEST * np.maximum(stress, stress.max(initial=0.0))
+    band = np.maximum(tol.NEAR_LARGEST * stress, tol.NEAR_DESIGN * stress.max(initial=0.0))
     element, column = np.nonzero(along >= (stress - band)[plank][:, None])
     s, deflection, sample_plank = _profile(model, layout, w, slope, line_loads)
     sag, span, measure, sample = _sag(model, s, deflection, sample_plank, w, slope,
@@ -718,7 +718,8 @@ def _sag(model: StaticsModel, s: np.ndarray, deflection: np.ndarray,
     sag, span = _chosen_measure(deviation, spans)
     if not where:
         return sag, span
-    band = tol.NEAR_LARGEST * np.maximum(deviation, deviation.max(initial=0.0))
+    band = np.maximum(tol.NEAR_LARGEST * deviation,
+                      tol.NEAR_DESIGN * deviation.max(initial=0.0))
     measures, points = np.nonzero((distances >= 0.0)
                                   & (distances >= (deviation - band)[sample_plank].T))
     return sag, span, measures, points
