@@ -293,7 +293,9 @@ def test_a_board_far_above_the_floor_is_lowered_onto_it(model, tmp_path):
     it found no suggestion, though the explanation said 93.5 to 94.5 mm would do.  Its
     aim (the step that closes the gap: 94 mm) is tried next, and the suggestion lowers
     the board by 94 mm; its file validates, and ``range`` of board.z (which looks where
-    ``suggest`` does) finds the window 5.5 .. 6.5 mm around the suggested z = 6 mm."""
+    ``suggest`` does) finds the window 5.5 .. 6.5 mm around the suggested z = 6 mm.  Both
+    close its ends to a fifth of the tolerance (0.1 mm: the window is twice the tolerance
+    wide), so the advice reads "valid for 93.5-94.5 mm", not "94 mm only"."""
     path = tmp_path / "board.yaml"
     path.write_text(BOARD_94_MM_UP)
     result = suggest_design(with_model(load_design(str(path)), model))
@@ -303,13 +305,12 @@ def test_a_board_far_above_the_floor_is_lowered_onto_it(model, tmp_path):
     written.write_text(lower.text)
     assert check_file(str(written)).valid
     text = CliRunner().invoke(main, ["suggest", str(path), "--model", model]).output
-    assert "1. Lower board by 94 mm (valid for 94 mm only, to the search's resolution)" \
-        in text
+    assert "1. Lower board by 94 mm (valid for 93.5-94.5 mm)" in text
     # range agrees: the window at the predicted change holds the suggested value; a
     # floating plank may come to stand on the ground in range's edits too
     (found,) = RangeFinder(with_model(load_design(str(path)), model)).ranges(["board.z"])
     assert found.valid is not None, found.reason
-    assert 5.5 <= found.valid[0] <= 100.0 - 94.0 <= found.valid[1] <= 6.5
+    assert 5.5 <= found.valid[0] <= 5.6 and 6.4 <= found.valid[1] <= 6.5
 
 
 def _window_margin(low: float, high: float, calls: list):
@@ -446,7 +447,7 @@ def test_a_leg_drawn_30_mm_short_is_lengthened_to_the_floor(model, tmp_path):
     assert first.dofs == ("leg_r.length",) and first.changes == (30.0,)
     assert check_design(parse_design(first.text, "s.yaml", "yaml")).valid
     text = CliRunner().invoke(main, ["suggest", str(path), "--model", model]).output
-    assert "1. Lengthen leg_r by 30 mm (valid for " in text
+    assert "1. Lengthen leg_r by 30 mm (valid for 29.5-30.5 mm)" in text
     (found,) = RangeFinder(design).ranges(["leg_r.length"])
     low, high = found.valid
     assert 437.5 <= low < 438.0 < high <= 438.5
@@ -471,7 +472,10 @@ def test_a_floating_l_is_lowered_by_its_base_alone(model, tmp_path):
     size (16 mm) of the base's 50 mm, it was one more plank that had to reach the floor,
     which no change can make both do (the base would sink 11.5 mm into it first), and
     the L got no suggestion.  A plank standing on another of its group is carried by it
-    (``margins._standing_on_others``): "Lower base by 50 mm", the post with it."""
+    (``margins._standing_on_others``): "Lower base by 50 mm", the post with it, valid for
+    49.5 to 50.5 mm (the tolerance either side); ``range`` of base.z finds that window,
+    its ends closed to a fifth of the tolerance (to 0.1 % of the design's size, 0.8 mm,
+    it read 6 .. 6 mm)."""
     path = tmp_path / "l.yaml"
     path.write_text(FLOATING_L)
     design = with_model(load_design(str(path)), model)
@@ -479,8 +483,10 @@ def test_a_floating_l_is_lowered_by_its_base_alone(model, tmp_path):
     first = result.suggestions[0]
     assert first.dofs == ("base.z",) and first.changes == (-50.0,)
     assert check_design(parse_design(first.text, "s.yaml", "yaml")).valid
-    assert "1. Lower base by 50 mm (valid for " in \
+    assert "1. Lower base by 50 mm (valid for 49.5-50.5 mm)" in \
         CliRunner().invoke(main, ["suggest", str(path), "--model", model]).output
+    (found,) = RangeFinder(design).ranges(["base.z"])
+    assert 5.5 <= found.valid[0] <= 5.6 and 6.4 <= found.valid[1] <= 6.5
 
 
 @pytest.mark.parametrize("model", ["rigid", "elastic"])

@@ -11,7 +11,8 @@ before that probe (as ``suggest`` does where its first probe fails outright; a r
 probe says only valid or not: a board 94 mm above the floor is valid lowered by 93.5 to
 94.5 mm, the predicted 93.5 mm is the window's near edge, and 1.05 times it is past the
 far one); a valid probe is widened to the interval around it, each end closed to the
-finer of the range's resolution and WINDOW_RESOLUTION of the step.  A DOF without a
+finest of the range's resolution, WINDOW_RESOLUTION of the step and, for a length found
+at the aim, WINDOW_TOLERANCE of the design's tolerance.  A DOF without a
 prediction, or whose probes all fail, is sampled outward from the value as before (1/64
 of the reach and doubling, both sides, the sensitivity's favoured side first).
 ``suggest`` and ``range`` see the same edits (the constraint structure of
@@ -33,7 +34,14 @@ search's first probe)."""
 WINDOW_RESOLUTION = 0.02
 """The ends of a window found at a predicted step are closed to at most this fraction of
 the step (a window of a few millimetres needs a finer bracket than the range's 0.1 % of
-the design's size)."""
+the design's size), and where the window was found at the aim (a geometric repair), for
+a length, to at most WINDOW_TOLERANCE of the design's tolerance."""
+
+WINDOW_TOLERANCE = 0.2
+"""...of the design's tolerance: a geometric repair's window is twice the tolerance wide
+(a board 94 mm up stands on the floor lowered by 93.5 to 94.5 mm), so its ends are found
+to a tenth of its width (an L lowered 49.5 to 50.5 mm read 50 .. 50 mm, its ends closed
+to 0.8 mm, 0.1 % of its size)."""
 
 
 def predicted_steps(design: Design, geometry: Geometry, frame: Structure,
@@ -97,6 +105,9 @@ def _predicted_window(finder, dof: Dof, predicted: tuple[float, float], limit: f
     invalid = [0.0]
     for step in steps:
         if (yield from finder._valid_at(dof, sign * step)):
+            if step == sign * aim and not dof.is_rotation:   # a geometric repair's window
+                design = finder.design
+                fine = min(fine, WINDOW_TOLERANCE * design.tolerance / design.unit_scale)
             below = max(s for s in invalid if s < step)
             inner = yield from finder._bisect(dof, sign, step, below, fine)
             outer = yield from finder._expand(dof, sign, step, limit, fine)

@@ -65,6 +65,11 @@ INTERPOLATION_GUARD = 0.1
 MIN_RESOLUTION = 1e-4
 """No end is closed finer than this (scaled units)."""
 
+WINDOW_TOLERANCE = 0.2
+"""The ends of the window around a valid aim (a geometric repair, ``_first_valid``) are
+closed to this fraction of the design's tolerance in every length DOF, if that is finer
+than LOWER_RESOLUTION and UPPER_RESOLUTION: the window is twice the tolerance wide."""
+
 
 @dataclass(frozen=True)
 class Interval:
@@ -94,10 +99,13 @@ def line_search(editor: Editor, dofs: tuple[Dof, ...], candidate: Candidate,
             candidate.enter * PROBE_BELOW < first[0]:
         guess = (candidate.enter * PROBE_BELOW, margin(candidate.enter * PROBE_BELOW))
         below, first = (below, guess) if guess[1] >= 0.0 else (guess, first)
+    if beyond:                  # the aim's window: the probe past it closes the bracket
+        fine = _tolerance_step(editor, dofs, direction)
+        low = _boundary(margin, first, below, min(LOWER_RESOLUTION, fine / first[0]))
+        resolution = min(max(UPPER_RESOLUTION * low[0], MIN_RESOLUTION), fine)
+        return Interval(low[0], _boundary(margin, first, beyond[0], resolution)[0])
     low = _boundary(margin, first, below, LOWER_RESOLUTION)
     resolution = max(UPPER_RESOLUTION * low[0], MIN_RESOLUTION)
-    if beyond:                  # the aim's window: the probe past it closes the bracket
-        return Interval(low[0], _boundary(margin, first, beyond[0], resolution)[0])
     reach = _geometric_reach(editor, dofs, direction, low[0], max(first[0], low[0] + resolution))
     high, limited = _upper_end(margin, first, reach, resolution)
     return Interval(low[0], high, limited)
@@ -138,6 +146,21 @@ def _first_valid(margin, predicted: float, start: float, aim: float = math.inf):
             growth = min(max(crossing * FIRST_PROBE / step, GROWTH[0]), GROWTH[2])
         previous, step = (step, value), min(step * growth, MAX_STEP)
     return None
+
+
+def _tolerance_step(editor: Editor, dofs: tuple[Dof, ...], direction: np.ndarray) -> float:
+    """The step (scaled units) along ``direction`` in which no length DOF changes by more
+    than WINDOW_TOLERANCE of the design's tolerance (inf for a direction of turns alone):
+    the resolution of a geometric repair's window, twice the tolerance wide (an L drawn
+    50 mm up stands on the floor lowered by 49.5 to 50.5 mm; closed to 2 % of the step,
+    its ends read "50 mm only")."""
+    design = editor.design
+    per_step = [abs(change) for dof, change in zip(dofs, editor.changes(dofs, direction, 1.0))
+                if not dof.is_rotation and change != 0.0]
+    if not per_step:
+        return math.inf
+    return max(WINDOW_TOLERANCE * design.tolerance / design.unit_scale / max(per_step),
+               MIN_RESOLUTION)
 
 
 def _geometric_reach(editor: Editor, dofs: tuple[Dof, ...], direction: np.ndarray,
