@@ -91,7 +91,8 @@ class Margins:
     alternatives : other margin sets that restore the design another way, each searched
               for directions of its own (``with_margins``): for a design that topples
               and has legs drawn short, the margins with the toppling cases' stability
-              margins replaced by those legs' heights above the floor (``_standing``)
+              margins replaced by those legs' heights above the floor (``_short_legs``,
+              ``_standing``)
     """
 
     def __init__(self, design: Design, geometry: Geometry, report: DesignReport,
@@ -169,9 +170,10 @@ class Margins:
             except ValueError:
                 continue
         if not linears:             # every case a mechanism even held down
-            toppled = {v.case for v in self.report.violations if v.kind == "lift-off"}
-            self.dofs = [dof for dof in dofs if self._movable(dof)] if toppled else []
-            return self._standing(toppled) if self.dofs else []
+            legs = self._short_legs({v.case for v in self.report.violations
+                                     if v.kind == "lift-off"})
+            self.dofs = [dof for dof in dofs if self._movable(dof)] if legs else []
+            return self._standing(legs)
         first = linears[0].derivatives(dofs)
         self.blocked.update(first.blocked)
         free = []
@@ -205,39 +207,49 @@ class Margins:
                 margins.extend(_bending(linear, sens, scales))
         toppled = {linear.case.name for linear in linears
                    if linear.statics.stability == "lift-off"}
-        standing = self._standing(toppled) if toppled else []
+        standing = self._standing(self._short_legs(toppled))
         if standing:
             self.alternatives.append([m for m in margins if not (
                 m.restores == "stability" and m.case in toppled)] + standing)
         return margins
 
-    def _standing(self, toppled: set[str]) -> list[Margin]:
-        """For a design that topples in the cases ``toppled``: the margins of its legs
-        drawn short, the lowest of the planks standing on an end above the floor in its
-        grounded groups (``geometry.near.hovering_ends``, within HOVER_REACH of the
-        design's size) whose foot on the floor would widen its support toward where it
-        tips (``_widens``; those within HOVER_BAND of the lowest), each
-        ``(tolerance - height) / size``, restoring stability in every toppling case
-        (``case`` None).  The toppling margins, the forces of the contacts the design has,
-        cannot tell that: rates by differences of the geometry (as a floating plank's,
-        ``_geometric``); the full checks of the line search decide."""
+    def _short_legs(self, toppled: set[str]) -> list[int]:
+        """For a design that topples in the cases ``toppled``: its legs drawn short, the
+        lowest (within HOVER_BAND of the design's size of each other) of the planks of its
+        grounded groups standing on an end above the floor (``geometry.near.
+        hovering_ends``, within HOVER_REACH of its size) whose foot on the floor would
+        widen its support toward where it tips (``_widens``); their indices."""
+        if not toppled:
+            return []
         design = self.design
         scale = self.size * design.unit_scale
         hovering = [(i, height) for i, height in hovering_ends(design, self.geometry,
                                                                HOVER_REACH * scale)
                     if self._widens(design.planks[i], toppled)]
-        if not hovering or not self.dofs:
+        if not hovering:
             return []
         lowest = min(height for _, height in hovering)
-        planks = [i for i, height in hovering if height <= lowest + HOVER_BAND * scale]
+        return [i for i, height in hovering if height <= lowest + HOVER_BAND * scale]
+
+    def _standing(self, legs: list[int]) -> list[Margin]:
+        """The margins of the legs drawn short ``legs`` (``_short_legs``): each one's
+        ``(tolerance - height) / size``, restoring stability in every toppling case
+        (``case`` None).  The toppling margins, the forces of the contacts the design has,
+        cannot tell that a leg that touches nothing helps: rates by differences of the
+        geometry (as a floating plank's, ``_geometric``); the full checks of the line
+        search decide."""
+        if not legs or not self.dofs:
+            return []
+        design = self.design
+        scale = self.size * design.unit_scale
 
         def heights(edited: Design) -> np.ndarray:
-            return np.array([_height(i)(edited) for i in planks])
+            return np.array([_height(i)(edited) for i in legs])
 
         values = (design.tolerance - heights(design)) / scale
         rates = -self._difference(heights) / scale
         return [Margin("stability", design.planks[i].id, None, float(values[k]), rates[k],
-                       design.tolerance / scale) for k, i in enumerate(planks)]
+                       design.tolerance / scale) for k, i in enumerate(legs)]
 
     def _widens(self, plank, toppled: set[str]) -> bool:
         """Whether the plank's foot (its corners within the tolerance of its lowest),
