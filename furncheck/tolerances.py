@@ -103,6 +103,13 @@ such deviations tie and the first measure the plank has is taken: compared as th
 the round-off chose between its two overhangs, and the allowed sag read 0.35 or 1.04 mm
 as the design turned."""
 
+WINDOW_TOLERANCE = 0.2
+"""A geometric repair's window (a gap closed to within the tolerance either side: a board
+94 mm up stands on the floor lowered by 93.5 to 94.5 mm), found at the least-squares
+step, has its ends closed to this fraction of the design's tolerance in every length DOF
+(``suggest.line_search``, ``ranges.nearest``): to 2 % of the step or 0.1 % of the
+design's size, an L lowered 49.5 to 50.5 mm read "50 mm only" and 6 .. 6 mm."""
+
 STEP_ROUNDOFF = 1e-9
 """A change rounded to the shop's grid counts as within a suggestion's valid steps when
 its step is within this fraction of them: the round-off of the steps themselves (a leg

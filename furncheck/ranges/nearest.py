@@ -22,6 +22,7 @@ its DOF.
 
 from __future__ import annotations
 
+from furncheck import tolerances as tol
 from furncheck.check import check_design
 from furncheck.design.model import Design
 from furncheck.dofs import Dof, Structure
@@ -36,12 +37,6 @@ WINDOW_RESOLUTION = 0.02
 the step (a window of a few millimetres needs a finer bracket than the range's 0.1 % of
 the design's size), and where the window was found at the aim (a geometric repair), for
 a length, to at most WINDOW_TOLERANCE of the design's tolerance."""
-
-WINDOW_TOLERANCE = 0.2
-"""...of the design's tolerance: a geometric repair's window is twice the tolerance wide
-(a board 94 mm up stands on the floor lowered by 93.5 to 94.5 mm), so its ends are found
-to a tenth of its width (an L lowered 49.5 to 50.5 mm read 50 .. 50 mm, its ends closed
-to 0.8 mm, 0.1 % of its size)."""
 
 
 def predicted_steps(design: Design, geometry: Geometry, frame: Structure,
@@ -107,7 +102,7 @@ def _predicted_window(finder, dof: Dof, predicted: tuple[float, float], limit: f
         if (yield from finder._valid_at(dof, sign * step)):
             if step == sign * aim and not dof.is_rotation:   # a geometric repair's window
                 design = finder.design
-                fine = min(fine, WINDOW_TOLERANCE * design.tolerance / design.unit_scale)
+                fine = min(fine, tol.WINDOW_TOLERANCE * design.tolerance / design.unit_scale)
             below = max(s for s in invalid if s < step)
             inner = yield from finder._bisect(dof, sign, step, below, fine)
             outer = yield from finder._expand(dof, sign, step, limit, fine)

@@ -7,6 +7,9 @@ margins, probes go outward until one is valid; then
 
 * the lower end (the smallest change that works) is closed to LOWER_RESOLUTION of itself
   (at least MIN_RESOLUTION), against the invalid probe below it (or the design itself);
+  a geometric repair's window found at the aim (``_first_valid``), twice the tolerance
+  wide, has both ends closed to WINDOW_TOLERANCE of the tolerance in every length DOF
+  where that is finer;
 * the upper end is searched to where validity really ends, not to a multiple of the lower
   end: the step where the edit's geometry stops being the design's (a plank's size
   reaching zero, an end face leaving the face it is nailed to, two planks meeting) is
@@ -28,6 +31,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from furncheck import tolerances as tol
 from furncheck.dofs import Blocked, Dof, OutOfReach
 from furncheck.geometry import EditMargins
 from furncheck.ranges.estimates import _first_flip
@@ -65,10 +69,6 @@ INTERPOLATION_GUARD = 0.1
 MIN_RESOLUTION = 1e-4
 """No end is closed finer than this (scaled units)."""
 
-WINDOW_TOLERANCE = 0.2
-"""The ends of the window around a valid aim (a geometric repair, ``_first_valid``) are
-closed to this fraction of the design's tolerance in every length DOF, if that is finer
-than LOWER_RESOLUTION and UPPER_RESOLUTION: the window is twice the tolerance wide."""
 
 
 @dataclass(frozen=True)
@@ -159,7 +159,7 @@ def _tolerance_step(editor: Editor, dofs: tuple[Dof, ...], direction: np.ndarray
                 if not dof.is_rotation and change != 0.0]
     if not per_step:
         return math.inf
-    return max(WINDOW_TOLERANCE * design.tolerance / design.unit_scale / max(per_step),
+    return max(tol.WINDOW_TOLERANCE * design.tolerance / design.unit_scale / max(per_step),
                MIN_RESOLUTION)
 
 
