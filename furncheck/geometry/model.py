@@ -76,6 +76,12 @@ class Contact:
     frame: np.ndarray | None = None
 
     @property
+    def on_floor(self) -> bool:
+        """Whether it is a plank's corner on the floor: not a wall's contact, an anchor's
+        tie or a resting joint's corner."""
+        return self.wall is None and self.anchor is None and self.on is None
+
+    @property
     def face_above(self) -> bool:
         """For a resting joint's corner: whether the face plank (``on``) lies on top of
         the edge plank (``plank``), its face looking down onto it; False otherwise."""

@@ -259,8 +259,7 @@ class Margins:
         ``toppled``: a stretcher on edge between the legs, or a leg short on the side the
         design does not tip to, holds nothing that topples."""
         design = self.design
-        points = [c.point[:2] for c in self.geometry.contacts
-                  if c.wall is None and c.anchor is None and c.on is None]
+        points = [c.point[:2] for c in self.geometry.contacts if c.on_floor]
         if not points:
             return False
         corners = plank.corners

@@ -119,8 +119,8 @@ def _lift_off(design: Design, geometry: Geometry, where: str, case: CaseResult |
         return Need("lift-off", where, case_name, why="it leans on walls or is anchored")
     forces, points = _group_loads(design, geometry, where, case_name)
     group = _group(design, geometry, where)
-    feet = [c for c in geometry.contacts if c.wall is None and c.anchor is None
-            and c.on is None and design.plank_index[c.plank] in group]
+    feet = [c for c in geometry.contacts
+            if c.on_floor and design.plank_index[c.plank] in group]
     weight = float(-forces[:, 2].sum())
     if weight <= 0.0 or not feet:
         return Need("lift-off", where, case_name,

@@ -298,8 +298,7 @@ def parallel(a: Plank, b: Plank) -> bool:
 
 def legs(design: Design, geometry: Geometry) -> list[str]:
     """The upright planks standing on the floor (a ground contact), in plank order."""
-    on_floor = {c.plank for c in geometry.contacts if c.wall is None and c.on is None
-                and c.anchor is None}
+    on_floor = {c.plank for c in geometry.contacts if c.on_floor}
     return [p.id for p in design.planks if p.id in on_floor and upright(p)]
 
 

@@ -96,8 +96,7 @@ def _tipping(search: Search, rule: str) -> tuple[np.ndarray, np.ndarray, float] 
     if design.walls or design.anchors:
         search.not_applicable(rule, "the design stands by a wall (a wall anchor is tried)")
         return None
-    points = np.array([c.point[:2] for c in search.geometry.contacts
-                       if c.wall is None and c.anchor is None and c.on is None])
+    points = np.array([c.point[:2] for c in search.geometry.contacts if c.on_floor])
     if len(points) < 3:
         search.not_applicable(rule, "the design stands on fewer than three floor points")
         return None
@@ -160,8 +159,7 @@ def _outrigger_candidates(search: Search, centre: np.ndarray, d: np.ndarray,
     design, geometry = search.design, search.geometry
     direction = np.array([d[0], d[1], 0.0])
     thickness = design.material.thickness
-    contacts = [c for c in geometry.contacts if c.wall is None and c.anchor is None
-                and c.on is None]
+    contacts = [c for c in geometry.contacts if c.on_floor]
     edge = max(float(c.point @ direction) for c in contacts)
     at_edge = {c.plank for c in contacts if float(c.point @ direction) >= edge - thickness}
     floor_point = np.array([centre[0], centre[1], 0.0])
