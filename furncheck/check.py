@@ -83,17 +83,21 @@ def refuse_too_big(design: Design, model: StaticsModel | None = None,
 
 
 def is_valid(design: Design, geometry: Geometry | None = None,
-             starts: tuple[np.ndarray | None, ...] | None = None) -> bool:
+             starts: tuple[CaseStatics | None, ...] | None = None,
+             solved: dict[int, CaseStatics] | None = None) -> bool:
     """Whether the design is valid: ``check_design(...).valid``, stopping at the first
     load case with a violation (for searches that only need the verdict).  ``starts``:
-    per load case, the contacts expected to hold (``holding_states`` of a design this
-    one is a small edit of; see ``solve_case``)."""
+    per load case, the case solved on a design this one is a small edit of
+    (``case_statics``), where its contact iterations start (``solve_case``'s ``near``);
+    ``solved``: a dict that gets each case solved by its index."""
     geometry = geometry or analyze(design)
     if geometry.violations:
         return False
     model = build_model(design, geometry)
     for k, case in enumerate(design.load_cases):
         statics = solve_load_case(model, case, None if starts is None else starts[k])
+        if solved is not None:
+            solved[k] = statics
         if not case_holds(design, geometry, model, statics):
             return False
     return True
@@ -111,8 +115,9 @@ class Margin(NamedTuple):
 
 
 def margin_of(design: Design, geometry: Geometry,
-              starts: tuple[np.ndarray | None, ...] | None = None,
-              model: StaticsModel | None = None, first: int | None = None) -> Margin:
+              starts: tuple[CaseStatics | None, ...] | None = None,
+              model: StaticsModel | None = None, first: int | None = None,
+              solved: dict[int, CaseStatics] | None = None) -> Margin:
     """The design's ``Margin``: the margin is the smallest 1 - utilization of any joint,
     anchor (and, elastic model, any plank's sag or stress) in any load case, -inf if a
     case is not stable; the utilization (``validity.joint_utilization``) is per joint of
@@ -125,7 +130,8 @@ def margin_of(design: Design, geometry: Geometry,
     its verdict and a margin to interpolate: that case is solved first and the cases stop
     at the first that fails (a failing case cannot be made good by another), the margin
     and utilization then being those of the cases solved (at least the design's).  A
-    valid design's cases are all solved, its ``Margin`` the same as without ``first``."""
+    valid design's cases are all solved, its ``Margin`` the same as without ``first``.
+    ``starts`` and ``solved`` as for ``is_valid``."""
     model = model or build_model(design, geometry)
     order = list(range(len(design.load_cases)))
     if first is not None:
@@ -138,6 +144,8 @@ def margin_of(design: Design, geometry: Geometry,
     for k in order:
         statics = solve_load_case(model, design.load_cases[k],
                                   None if starts is None else starts[k])
+        if solved is not None:
+            solved[k] = statics
         if statics.stability != "stable":
             stable, limiting = False, k
             break
@@ -171,13 +179,12 @@ def margin_of(design: Design, geometry: Geometry,
     return Margin(valid, 1.0 - worst, utilization, limiting)
 
 
-def holding_states(design: Design, geometry: Geometry, model: StaticsModel | None = None
-                   ) -> tuple[np.ndarray | None, ...]:
-    """Per load case, which ground contacts hold (None for a case without a stable
-    equilibrium): the ``starts`` of ``is_valid`` for edits of this design (``model``: its
-    statics model, if the caller already has it)."""
+def case_statics(design: Design, geometry: Geometry, model: StaticsModel | None = None
+                 ) -> tuple[CaseStatics, ...]:
+    """Each load case solved: the ``starts`` of ``is_valid`` and ``margin_of`` for edits
+    of this design (``model``: its statics model, if the caller already has it)."""
     model = model or build_model(design, geometry)
-    return tuple(solve_load_case(model, case).holding for case in design.load_cases)
+    return tuple(solve_load_cases(model, design.load_cases))
 
 
 def load_checked(path: str) -> Design:

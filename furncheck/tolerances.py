@@ -120,7 +120,7 @@ NEAR_LARGEST = 1e-3
 """A force sensitivity reads a stepped design's planks only at the sample points where the
 design's own largest sag (of each measure) and stress may lie: those within this fraction
 of the plank's largest, or within NEAR_DESIGN of the design's largest where that is more
-(``bending.plank_results_where``).  Its steps move every point by about 1e-7 of the
+(``bending_points.plank_results_where``).  Its steps move every point by about 1e-7 of the
 design's largest times the rate's leverage: within either band by far."""
 
 NEAR_DESIGN = 1e-4

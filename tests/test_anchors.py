@@ -233,19 +233,22 @@ def test_an_edit_that_moves_an_anchor_off_its_wall_is_no_design():
 @pytest.mark.parametrize("model", ["rigid", "elastic"])
 def test_a_warm_start_keeps_a_pulling_anchor_holding(model):
     """The side anchored at the top, pushed back towards the wall with 3 N: its anchor
-    pulls or pushes, it never lifts; started from the solved case's holding contacts (as
-    range and suggest start edits) the result is the cold one."""
-    from furncheck.check import holding_states
+    pulls or pushes, it never lifts; started from the solved case's holding contacts, or
+    from the solved case itself (as range and suggest start edits), the result is the cold
+    one."""
+    from furncheck.check import case_statics
     from furncheck.statics import build_model, external_forces, solve_case
 
     design = _parse(_side(model, True, -3.0))
     geometry = analyze(design)
     model_ = build_model(design, geometry)
-    (start,) = holding_states(design, geometry)
-    assert start[model_.contact_anchored].all()
+    (solved,) = case_statics(design, geometry)
+    assert solved.holding[model_.contact_anchored].all()
     f = external_forces(model_, design.load_cases[0])
-    cold, warm = solve_case(model_, f), solve_case(model_, f, start)
-    assert np.abs(cold.contact_forces - warm.contact_forces).max() <= 1e-9 * np.abs(f).sum()
+    cold = solve_case(model_, f)
+    for warm in (solve_case(model_, f, solved.holding), solve_case(model_, f, near=solved)):
+        assert np.abs(cold.contact_forces - warm.contact_forces).max() \
+            <= 1e-9 * np.abs(f).sum()
 
 
 def _catalog_bookcase(push: float | None = None, anchored: bool = True) -> dict:

@@ -177,12 +177,8 @@ def test_plank_rates_read_at_the_design_own_points_are_the_full_reads(name, monk
     from furncheck.geometry import analyze
     from furncheck.sensitivity import Linearization
     from furncheck.statics import build_model, derivatives, solve_load_case
-    from furncheck.statics.bending import (
-        plank_part,
-        plank_results_at,
-        plank_results_of,
-        plank_results_where,
-    )
+    from furncheck.statics.bending import plank_part, plank_results_of
+    from furncheck.statics.bending_points import plank_results_at, plank_results_where
     from furncheck.statics.templated import built_on
 
     design = _design_for_rates(name, tmp_path)

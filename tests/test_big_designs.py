@@ -89,7 +89,7 @@ def _carriers_by_definition(n, pairs, grounded):
 def test_carriers_match_the_definition(graph):
     """The one-search answer equals the one-search-per-plank definition on random joint
     graphs: repeated joints, planks on nothing, several grounded planks, cycles."""
-    from furncheck.statics.bending import carriers
+    from furncheck.statics.carrying import carriers
 
     n, pairs, grounded = graph
     assert carriers(n, pairs, grounded) == _carriers_by_definition(n, pairs, grounded)
@@ -100,7 +100,7 @@ def test_carriers_of_a_shelf_and_a_hanging_lip():
     under the shelf only: the sides carry the shelf and the shelf braces each side (it
     still reaches the other side's floor), the lip carries nothing and the shelf is the
     lip's only carrier."""
-    from furncheck.statics.bending import carriers
+    from furncheck.statics.carrying import carriers
 
     assert carriers(4, [(0, 2), (1, 2), (2, 3)], {0, 1}) == [{2}, {2}, {0, 1}, {2}]
 

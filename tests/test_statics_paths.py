@@ -18,6 +18,9 @@
     geometric violation are skipped, with their kinds as the reason.
 (d) A contact state's condensed matrix is factored once (Cholesky, LU when it is not
     positive definite) and solved as a plain LU solve would.
+(e) ``solve_case(model, f, near=...)`` starts the friction phase of an edit where the
+    design's case settled (``statics.LineStarts``, for range's and suggest's probes): the
+    same verdict, forces within the iterations' tolerances, fewer Newton steps.
 """
 
 from __future__ import annotations
@@ -28,7 +31,7 @@ import numpy as np
 import pytest
 
 from furncheck import tolerances
-from furncheck.check import check_design, holding_states, margin_of
+from furncheck.check import case_statics, check_design, margin_of
 from furncheck.design import load_design
 from furncheck.geometry import analyze
 from furncheck.statics import build_model, external_forces, solve_case
@@ -81,7 +84,7 @@ def test_a_warm_start_finds_the_same_equilibrium(path):
     design = load_design(str(path))
     geometry = analyze(design)
     cold = _solutions(design, geometry)
-    held = holding_states(design, geometry)
+    held = tuple(statics.holding for statics in case_statics(design, geometry))
     close = 10 * tolerances.FORCE_REL_TOL
     _assert_same(cold, _solutions(design, geometry, held), close)
     lifted = tuple(None if h is None else np.zeros_like(h) for h in held)
@@ -156,3 +159,106 @@ def test_a_contact_state_is_factored_once_and_solves_its_matrix(name):
         expected, found = np.linalg.solve(matrix, rhs), system.solve(rhs)
         assert _accurate(matrix, found, rhs) and _accurate(matrix, expected, rhs)
         assert np.abs(found - expected).max() <= 1e-8 * np.abs(expected).max()
+
+
+NEAR_DESIGNS = ("cabinet-28.yaml", "bookshelf-20.yaml", "table.yaml")
+"""Catalog designs whose cases go through the friction phase (in the elastic model)."""
+
+NEAR_CLOSE = 1e-7
+"""Forces of a case solved from a near start and from its own, apart by at most this of
+the loads' weight: both stop once the friction caps agree with mu N to a force tolerance
+(FORCE_REL_TOL of the loads), and where many corners slip the equilibrium moves with
+their caps (the elastic cabinet's 'lean' case, its cap raised 0.5 mm: 56 force tolerances
+apart, the most among every fifth DOF of every catalog design edited by 0.5 and -2 mm)."""
+
+
+def _edits(design, geometry, count=6, steps=(0.5, -2.0)):
+    """Some edits of ``design``: every DOF of a few spread over its DOFs, changed by each
+    step (mm, or degrees), that keep a geometry without violations."""
+    from furncheck.dofs import Blocked, OutOfReach, all_dofs, apply_dof, structure
+    from furncheck.edit_check import standing_geometry
+
+    frame = structure(design, standing_geometry(geometry))
+    dofs = all_dofs(design)
+    for dof in dofs[::max(1, len(dofs) // count)]:
+        for step in steps:
+            try:
+                edited = apply_dof(design, frame, dof, step)
+            except (Blocked, OutOfReach):
+                continue
+            edited_geometry = analyze(edited)
+            if not edited_geometry.violations:
+                yield step, edited, edited_geometry
+
+
+def _friction_steps(monkeypatch) -> list[int]:
+    """A counter of the friction phase's Newton steps (each factors its Hessian once)."""
+    from furncheck.statics import friction
+
+    count = [0]
+    factored = friction._FrictionEnergy._factored_hessian
+
+    def counted(self, x):
+        count[0] += 1
+        return factored(self, x)
+
+    monkeypatch.setattr(friction._FrictionEnergy, "_factored_hessian", counted)
+    return count
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+@pytest.mark.parametrize("name", NEAR_DESIGNS)
+def test_a_near_start_finds_the_same_equilibrium(name, model, monkeypatch):
+    """(e) An edit's cases solved from the design's cases (``solve_case``'s ``near``: the
+    friction phase starts from their caps and grounded displacements, as range and
+    suggest probes start) reach the verdict and, within NEAR_CLOSE of the loads' weight,
+    the forces of a solve from the edit's own normal phase; in the elastic model in at
+    most two thirds of the friction phase's Newton steps (cabinet 258 against 715,
+    bookshelf 49 / 136, table 53 / 90)."""
+    from furncheck.design.model import with_model
+
+    steps = _friction_steps(monkeypatch)
+    design = with_model(load_design(str(CATALOG[0].parent / name)), model)
+    geometry = analyze(design)
+    near = case_statics(design, geometry)
+    cold_steps = near_steps = 0
+    for _, edited, edited_geometry in _edits(design, geometry):
+        edited_model = build_model(edited, edited_geometry)
+        for k, case in enumerate(edited.load_cases):
+            f = external_forces(edited_model, case)
+            steps[0] = 0
+            cold = solve_case(edited_model, f)
+            cold_steps, steps[0] = cold_steps + steps[0], 0
+            warm = solve_case(edited_model, f, near=near[k])
+            near_steps += steps[0]
+            weight = max(float(np.abs(f).sum()), 1e-12)
+            _assert_same([(cold.stability, cold.joint_wrenches, cold.contact_forces, weight)],
+                         [(warm.stability, warm.joint_wrenches, warm.contact_forces, weight)],
+                         NEAR_CLOSE)
+    if model == "elastic":
+        assert cold_steps > 0
+        assert 3 * near_steps <= 2 * cold_steps, (near_steps, cold_steps)
+
+
+def test_line_starts_take_the_nearest_step_on_its_side():
+    """``LineStarts.near``: per case, the nearest step checked on the same side of the
+    design (the first of equally near ones), the design's own case where it is as near
+    or nearer, and nothing from a step whose case did not settle."""
+    from furncheck.statics import CaseStatics, LineStarts
+
+    def settled(tag: float) -> CaseStatics:
+        return CaseStatics("stable", None, np.full((1, 3), tag), holding=np.ones(1, bool),
+                           ground=np.full(6, tag))
+
+    line = LineStarts((settled(0.0), settled(0.0)))
+    line.keep(4.0, {0: settled(4.0), 1: CaseStatics("sliding", None, None)})
+    line.keep(-1.0, {0: settled(-1.0), 1: settled(-1.0)})
+    line.keep(3.0, {0: settled(3.0)})
+    tags = lambda step: [float(s.ground[0]) for s in line.near(step)]   # noqa: E731
+    assert tags(3.6) == [4.0, 0.0]      # case 1 did not settle at 4: the design's
+    assert tags(3.5) == [4.0, 0.0]      # 4 and 3 equally near: the first kept
+    assert tags(2.0) == [3.0, 0.0]
+    assert tags(1.5) == [0.0, 0.0]      # the design as near as 3: the design
+    assert tags(0.4) == [0.0, 0.0]      # -1 is on the other side of the design
+    assert tags(-0.6) == [-1.0, -1.0]
+    assert line.near(2.0)[0].joint_wrenches is None     # kept slim

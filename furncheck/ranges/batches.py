@@ -14,7 +14,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from furncheck.check import holding_states, is_valid, margin_of, refuse_too_big
+from furncheck.check import case_statics, is_valid, margin_of, refuse_too_big
 from furncheck.design.model import Design
 from furncheck.dofs import (
     Blocked,
@@ -29,7 +29,7 @@ from furncheck.dofs import (
 from furncheck.edit_check import check_edit_many, standing_geometry
 from furncheck.geometry import EditMargins, Geometry, analyze, edit_margins_many
 from furncheck.ranges.estimates import _Probe
-from furncheck.statics import build_model
+from furncheck.statics import LineStarts, build_model
 
 SEARCHES_IN_FLIGHT = 64
 """Most searches (sides of DOFs) advanced together: their evaluations are batched, their
@@ -57,11 +57,14 @@ class _Margins(NamedTuple):
 class _Statics(NamedTuple):
     """Evaluation request: the full check of an edited design that keeps the joints and
     contacts, ``check.margin_of`` (with ``first``: that load case solved first, the
-    cases stopping at the first that fails) if ``margin`` else ``check.is_valid``."""
+    cases stopping at the first that fails) if ``margin`` else ``check.is_valid``; the
+    design is ``dof`` changed by ``step``."""
 
     design: Design
     geometry: Geometry
     margin: bool
+    dof: Dof
+    step: float
     first: int | None = None
 
 
@@ -77,7 +80,8 @@ class Evaluator:
         self.locked = tuple(parse_dof(design, name) for name in locked)
         self.model = build_model(design, self.geometry)     # shared by the design's own
         refuse_too_big(design, self.model)                  # checks
-        self.starts = holding_states(design, self.geometry, self.model)
+        self.starts = case_statics(design, self.geometry, self.model)
+        self._lines: dict[Dof, LineStarts] = {}     # where each DOF's edits start solving
         self._kept: dict[Dof, dict[float, tuple]] = {}
         self._edits: dict[Dof, dict[float, Design]] = {}
         self.evaluations = 0
@@ -107,6 +111,7 @@ class Evaluator:
             if not active[dof]:
                 self._edits.pop(dof, None)
                 self._kept.pop(dof, None)
+                self._lines.pop(dof, None)
 
         def advance(key: tuple[int, float], answer: tuple) -> None:
             value, error = answer
@@ -142,7 +147,9 @@ class Evaluator:
     def _answer(self, requests: list) -> list[tuple[object, Exception | None]]:
         """(value, error) per request: ``_Kept`` checks all at once
         (``edit_check.check_edit_many``), ``_Margins`` all at once (``geometry.edit_margins_many``),
-        then ``_Statics`` one by one."""
+        then ``_Statics`` one by one, each load case's contact iterations starting where
+        the case settled in the DOF's nearest edit checked so far, or in the design
+        (``statics.LineStarts``)."""
         answers: list = [None] * len(requests)
         kept = [k for k, request in enumerate(requests) if isinstance(request, _Kept)]
         for k, answer in zip(kept, self._kept_many([requests[k] for k in kept])):
@@ -156,12 +163,17 @@ class Evaluator:
                 answers[k] = (values, None)
         for k, request in enumerate(requests):
             if isinstance(request, _Statics):
+                if request.dof not in self._lines:
+                    self._lines[request.dof] = LineStarts(self.starts)
+                line = self._lines[request.dof]
+                starts, solved = line.near(request.step), {}
                 if request.margin:
-                    answers[k] = (margin_of(request.design, request.geometry, self.starts,
-                                            first=request.first), None)
+                    answers[k] = (margin_of(request.design, request.geometry, starts,
+                                            first=request.first, solved=solved), None)
                 else:
-                    answers[k] = (is_valid(request.design, request.geometry, self.starts),
-                                  None)
+                    answers[k] = (is_valid(request.design, request.geometry, starts,
+                                           solved=solved), None)
+                line.keep(request.step, solved)
         return answers
 
     def _kept_many(self, requests: list[_Kept]) -> list[tuple[object, Exception | None]]:
@@ -209,7 +221,7 @@ class Evaluator:
             return False
         if not full:
             return True
-        return (yield _Statics(edited, geometry, False))
+        return (yield _Statics(edited, geometry, False, dof, step))
 
     def _probe(self, dof: Dof, sign: float, step: float, first: int | None = None):
         """The full check of one step (>= 0) in direction ``sign``, with the design's
@@ -218,7 +230,8 @@ class Evaluator:
         edited, geometry = yield _Kept(dof, sign * step)
         if geometry is None:
             return _Probe(step, False, -np.inf, None, None)
-        valid, margin, utilization, case = yield _Statics(edited, geometry, True, first)
+        valid, margin, utilization, case = yield _Statics(edited, geometry, True, dof,
+                                                          sign * step, first)
         return _Probe(step, valid, margin, utilization, geometry, case)
 
     def _edited(self, dof: Dof, step: float) -> Design:

@@ -42,7 +42,11 @@ The package, by job:
     elastic      the elastic model (contract section 3a): the StaticsModel of beams with
                  nodes where joints, contacts and loads act, stiff contacts, loads along
                  the beams
-    bending      a solved elastic case's planks: sag and stress (plank_results)
+    bending      a solved elastic case's planks: sag and stress (plank_results);
+                 bending_points reads a stepped design's planks where the design's sag
+                 and stress peak; carrying, what carries each plank (where its sag is
+                 measured from)
+    starts       where the contact iterations of a search's edits start (LineStarts)
     derivatives  eq. 6's right-hand sides for both models
 
 ``solve_load_case`` (``solve_load_cases`` for all of a design's cases) is what the layers
@@ -53,19 +57,19 @@ and, in the elastic model, its planks' sag and stress, whichever model built the
 
 from dataclasses import replace
 
-import numpy as np
-
 from furncheck.design.model import LoadCase
 from furncheck.statics.anchored import anchor_springs, solve_system, system_matrix
 from furncheck.statics.contacts import LIFT, STICK, solve_case
 from furncheck.statics.model import CaseStatics, StaticsModel, build_model, external_forces
+from furncheck.statics.starts import LineStarts
 
 
 def solve_load_case(model: StaticsModel, case: LoadCase,
-                    start: np.ndarray | None = None) -> CaseStatics:
+                    near: CaseStatics | None = None) -> CaseStatics:
     """``solve_case`` of the case's loads, with the planks' sag and stress in the elastic
-    model (from the displacements of the forces it reports)."""
-    statics = solve_case(model, external_forces(model, case), start)
+    model (from the displacements of the forces it reports).  ``near``: the same case
+    solved on a design of which this one is a small edit, where it starts (``solve_case``)."""
+    statics = solve_case(model, external_forces(model, case), near=near)
     if model.beams is None or statics.displacements is None:
         return statics
     from furncheck.statics.bending import plank_results
@@ -99,5 +103,6 @@ def solve_load_cases(model: StaticsModel, cases: list[LoadCase]) -> list[CaseSta
 
 
 __all__ = ["LIFT", "STICK", "CaseStatics", "StaticsModel", "anchor_springs", "build_model",
-           "external_forces", "solve_case", "solve_load_case", "solve_load_cases",
+           "LineStarts", "external_forces", "solve_case", "solve_load_case",
+           "solve_load_cases",
            "solve_system", "system_matrix"]

@@ -5,8 +5,7 @@ nodes too, ``_profile``) from the line through its outermost carrying supports o
 them, from the tangent at the support (``_sag``), and the largest bending plus axial
 stress along it, at its elements' ends, points inside and the moments' peaks
 (``_stress_along``).  A sensitivity's stepped designs are read only at the points where
-the design's own largest sag and stress lie (``plank_results_where``,
-``plank_results_at``).
+the design's own largest sag and stress lie (``bending_points``).
 
 Every step works on all nodes, elements and sample points of the model at once; the
 per-plank results are reductions over them (``np.maximum.at`` by plank).  What depends on
@@ -16,7 +15,6 @@ is read once per model (``_layout``, kept in ``model.plank_cache``).
 
 from __future__ import annotations
 
-import bisect
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -30,6 +28,7 @@ from furncheck.statics.beams import (
     element_interior,
     section_properties,
 )
+from furncheck.statics.carrying import outermost_supports, plank_supports
 from furncheck.statics.elements import (
     Beams,
     case_line_loads,
@@ -62,7 +61,7 @@ class _Layout:
     inertia    : (nE, 2) m^4, I_3 and I_2 of each element: bending along e2 and along e3
     area       : (nE,) m^2, b t
     bending, in_plane : (nE,) m^3, the section moduli b t^2 / 6 and t b^2 / 6
-    joint_supports : (nS,) nodes where a joint carries its plank (``_carrying_neighbours``)
+    joint_supports : (nS,) nodes where a joint carries its plank (``carrying``)
     measured   : (nP,) bool, the planks whose sag is read (not lying on the floor)
     """
 
@@ -85,7 +84,7 @@ def plank_results(model: StaticsModel, case: LoadCase, q: np.ndarray,
     w, slope = _transverse(displacement, layout.node_frame)
     stress = _stress(model, layout, displacement, w, slope, line_loads)
     s, deflection, sample_plank = _profile(model, layout, w, slope, line_loads)
-    low, high = _outermost_supports(model, layout, holding)
+    low, high = outermost_supports(model, holding)
     sag, span = _sag(model, s, deflection, sample_plank, w, slope, low, high)
     return PlankStatics(sag, span, stress)
 
@@ -125,10 +124,9 @@ def plank_part(model: StaticsModel, case: LoadCase, holding: np.ndarray | None =
     ``planks`` (sorted; a cut keeps only their elements and nodes, renumbered, not the
     model).  ``supports``: the outermost supports (low, high) of all its planks, where
     they are known (a stepped design's are its template's: the same nodes, ordered alike
-    along each plank, a hair apart), else found (``_outermost_supports``)."""
+    along each plank, a hair apart), else found (``carrying.outermost_supports``)."""
     layout = _layout(model)
-    low, high = supports if supports is not None else \
-        _outermost_supports(model, layout, holding)
+    low, high = supports if supports is not None else outermost_supports(model, holding)
     part = PlankPart(model, layout, case_line_loads(model, case), low, high)
     return part if planks is None else _only(part, planks)
 
@@ -160,117 +158,6 @@ def plank_results_of(prepared: list[PlankPart],
     offsets = stack.plank_offsets
     return [PlankStatics(sag[a:b], span[a:b], stress[a:b])
             for a, b in zip(offsets[:-1], offsets[1:])]
-
-
-class PlankWhere(NamedTuple):
-    """Where a design's planks' largest sag and stress may lie in a stepped design
-    (``plank_results_where``): the sample points whose value is within NEAR_LARGEST of the
-    plank's largest, or NEAR_DESIGN of the design's largest where that is more (a plank
-    that does not bend keeps all its points), as flat lists.  For the sag, per point its
-    local plank, measure (0 between the plank's outermost supports, 1 beyond the low one, 2
-    beyond the high one) and sample (an index of ``_profile``'s points: a node, or
-    nN + j nE + e for the j-th interior point of element e), for every measure the plank
-    has; for the stress, per point its plank, element and column (of
-    ``_stress_along``'s).  A symmetric shelf's two halves, or an element's end and the
-    next one's start at one node, tie: both are kept, and a stepped design's largest is
-    the larger of them, as reading every point would find."""
-
-    sag_plank: np.ndarray
-    sag_measure: np.ndarray
-    sag_sample: np.ndarray
-    stress_plank: np.ndarray
-    stress_element: np.ndarray
-    stress_column: np.ndarray
-
-
-def plank_results_where(part: PlankPart, q: np.ndarray) -> tuple[PlankStatics, PlankWhere]:
-    """``plank_results_of([part], [q])[0]`` and where its largest sag and stress lie
-    (``PlankWhere``)."""
-    stack = _stacked([part], [q])
-    model, layout, displacement, line_loads = stack.model, stack.layout, stack.displacement, \
-        stack.line_loads
-    w, slope = _transverse(displacement, layout.node_frame)
-    along = _stress_along(model, layout, displacement, w, slope, line_loads)
-    stress = _largest_stress(model, along)
-    plank = model.beams.plank
-    band = np.maximum(tol.NEAR_LARGEST * stress, tol.NEAR_DESIGN * stress.max(initial=0.0))
-    element, column = np.nonzero(along >= (stress - band)[plank][:, None])
-    s, deflection, sample_plank = _profile(model, layout, w, slope, line_loads)
-    sag, span, measure, sample = _sag(model, s, deflection, sample_plank, w, slope,
-                                      stack.low, stack.high, where=True)
-    return PlankStatics(sag, span, stress), PlankWhere(
-        sample_plank[sample], measure, sample, plank[element], element, column)
-
-
-def plank_results_at(prepared: list[PlankPart], displacements: list[np.ndarray],
-                     where: PlankWhere) -> list[PlankStatics]:
-    """Each part's planks read at the sample points ``where`` alone (``plank_results_where``
-    of a part of a model with the same nodes, elements and supports: a stepped design of
-    a sensitivity): each plank's sag the largest of its measure's points, the measure
-    chosen as ``_sag`` chooses it, its span that measure's, its stress the largest of its
-    points, each point computed as ``plank_results_of`` computes it (entry by entry: the
-    same numbers).  Where every plank's largest lies among those points, as it does for a
-    small enough step, these are ``plank_results_of``'s numbers, at a fraction of its
-    cost."""
-    count = len(prepared)
-    n_planks = len(prepared[0].low)
-    n_nodes, n_elements = len(prepared[0].layout.node_frame), len(prepared[0].line_loads)
-    parts = np.arange(count)
-    sample, measure = where.sag_sample, where.sag_measure
-    inside = sample >= n_nodes
-    j, e = np.divmod(sample[inside] - n_nodes, n_elements)
-    kept = np.unique(np.concatenate([where.stress_element, e]))      # the elements read
-    stack = _stacked(prepared, displacements, kept)
-    model, layout, line_loads, displacement, low, high = stack.model, stack.layout, \
-        stack.line_loads, stack.displacement, stack.low, stack.high
-    beams = model.beams
-    w, slope = _transverse(displacement, layout.node_frame)
-
-    def rows(local: np.ndarray) -> np.ndarray:
-        """Each part's rows of the gathered elements for local elements ``local``."""
-        at = np.searchsorted(kept, local)
-        return (at[None, :] + len(kept) * parts[:, None]).ravel()
-
-    def per_part(values: np.ndarray, size: int) -> np.ndarray:
-        return (values[None, :] + size * parts[:, None]).ravel()
-
-    # the stress: the largest at each plank's points
-    columns = np.tile(where.stress_column, count)
-    along = _stress_along(model, layout, displacement, w, slope, line_loads,
-                          rows(where.stress_element), columns)
-    stress = np.zeros(count * n_planks)
-    np.maximum.at(stress, per_part(where.stress_plank, n_planks), along)
-    # the sag: each point's deviation from the line of its measure
-    plank = per_part(where.sag_plank, n_planks)
-    measure = np.tile(measure, count)
-    at_node = np.tile(~inside, count)
-    point_s = np.zeros(len(plank))
-    deflection = np.zeros((2, len(plank)))
-    nodes = per_part(sample[~inside], n_nodes)
-    point_s[at_node] = beams.node_s[nodes]
-    deflection[:, at_node] = w[:, nodes]
-    if inside.any():
-        xi = np.linspace(0.0, 1.0, tol.SAG_SAMPLES + 2)[1:-1][np.tile(j, count)]
-        chosen = rows(e)
-        interior = _interior(model, layout, w, slope, line_loads, xi[:, None], chosen)
-        deflection[:, ~at_node] = interior[:, :, 0]
-        point_s[~at_node] = beams.node_s[beams.nodes[chosen, 0]] + xi * beams.length[chosen]
-    low_p, high_p = low[plank], high[plank]
-    sa, sb = beams.node_s[low_p], beams.node_s[high_p]
-    line, tangent_low, tangent_high = _reference_lines(
-        point_s, sa, sb, np.where(measure == 0, sb - sa, 1.0), w[:, low_p], w[:, high_p],
-        slope[:, low_p], slope[:, high_p])
-    reference = np.where(measure == 0, line, np.where(measure == 1, tangent_low, tangent_high))
-    distance = _distance(deflection, reference)
-    deviation = np.full((count * n_planks, 3), -1.0)
-    np.maximum.at(deviation, (plank, measure), distance)
-    sa, sb = beams.node_s[low], beams.node_s[high]
-    half = beams.plank_half
-    spans = np.column_stack([sb - sa, 2.0 * (sa + half), 2.0 * (half - sb)])
-    sag, span = _chosen_measure(deviation, spans)
-    return [PlankStatics(sag[k * n_planks:(k + 1) * n_planks],
-                         span[k * n_planks:(k + 1) * n_planks],
-                         stress[k * n_planks:(k + 1) * n_planks]) for k in range(count)]
 
 
 class _Stack(NamedTuple):
@@ -386,7 +273,7 @@ def _layout(model: StaticsModel) -> _Layout:
     beams = model.beams
     frames = beams.plank_frames
     section = section_properties(beams.width, beams.thickness)
-    joint_supports, measured = _supports(model)
+    joint_supports, measured = plank_supports(model)
     layout = _Layout(node_frame=frames[model.node_plank],
                      inertia=np.column_stack([section["I3"], section["I2"]]),
                      area=section["A"],
@@ -395,28 +282,6 @@ def _layout(model: StaticsModel) -> _Layout:
                      joint_supports=joint_supports, measured=measured)
     model.plank_cache["layout"] = layout
     return layout
-
-
-def _supports(model: StaticsModel) -> tuple[np.ndarray, np.ndarray]:
-    """(the nodes where a joint carries its plank (``_carrying_neighbours``), whether each
-    plank's sag is read (not lying on the floor, ``_lying_on_floor``)): which planks are
-    jointed and which contacts stand decide them, so they are kept per model and shared
-    by the models built on it (``templated.TOPOLOGY_CACHE``)."""
-    cached = model.plank_cache.get("supports")
-    if cached is not None:
-        return cached
-    carried_by = _carrying_neighbours(model)
-    joint_supports = []
-    for nodes in model.joint_nodes:
-        a, b = (int(model.node_plank[node]) for node in nodes)
-        for node, plank, other in ((nodes[0], a, b), (nodes[1], b, a)):
-            if other in carried_by[plank]:
-                joint_supports.append(int(node))
-    measured = np.ones(len(model.planks), dtype=bool)
-    measured[sorted(_lying_on_floor(model))] = False
-    supports = np.array(joint_supports, dtype=int), measured
-    model.plank_cache["supports"] = supports
-    return supports
 
 
 def _stress(model: StaticsModel, layout: _Layout, displacement: np.ndarray, w: np.ndarray,
@@ -481,97 +346,6 @@ def _cut_to(model, layout: _Layout, line_loads: np.ndarray,
         node_s=beams.node_s, plank_half=beams.plank_half, node_frame=layout.node_frame,
         joint_supports=layout.joint_supports, measured=layout.measured)
     return _Stacked(cut, model.planks, model.node_plank), cut_layout, line_loads[elements]
-
-
-def _carrying_neighbours(model: StaticsModel) -> list[set[int]]:
-    """Per local plank P, the planks jointed to it that carry it: those that still reach a
-    plank on the ground when P is taken away (a shelf's sides carry it, and it braces
-    them; a lip nailed under a shelf's tip, or a shelf hanging on a post, reaches the
-    ground only through the plank it hangs on and carries nothing).  Kept per model."""
-    cached = model.plank_cache.get("carrying")
-    if cached is not None:
-        return cached
-    pairs = model.node_plank[model.joint_nodes].reshape(-1, 2).tolist()
-    carrying = carriers(len(model.planks), pairs, {int(k) for k in model.contact_plank})
-    model.plank_cache["carrying"] = carrying
-    return carrying
-
-
-def carriers(n: int, pairs: list, grounded: set[int]) -> list[set[int]]:
-    """Per plank P of n, its neighbours (``pairs``: jointed planks (a, b)) that still reach
-    a plank of ``grounded`` other than P when P is taken away.
-
-    That is reaching the ground node, joined to every grounded plank, in the graph without
-    P, which one depth-first search from the ground node answers for every P at once
-    (the articulation-point search, linear in planks and joints): a neighbour found before
-    P is its ancestor and reaches the ground above P; one found after P lies in the subtree
-    of a child c of P, which is cut off when nothing in it reaches above P (low[c] >=
-    disc[P]).  A plank whose part stands on nothing has no carrier."""
-    neighbours: list[set[int]] = [set() for _ in range(n)]
-    for a, b in pairs:
-        neighbours[a].add(b)
-        neighbours[b].add(a)
-    root = n
-    adjacency = [sorted(others) for others in neighbours] + [sorted(grounded)]
-    for k in grounded:
-        adjacency[k].append(root)
-    disc, low = [-1] * (n + 1), [0] * (n + 1)
-    parent, size = [-1] * (n + 1), [1] * (n + 1)
-    children: list[list[int]] = [[] for _ in range(n + 1)]
-    disc[root], time = 0, 1
-    stack = [(root, iter(adjacency[root]))]
-    while stack:
-        v, rest = stack[-1]
-        for w in rest:
-            if disc[w] < 0:
-                parent[w] = v
-                children[v].append(w)
-                disc[w] = low[w] = time
-                time += 1
-                stack.append((w, iter(adjacency[w])))
-                break
-            low[v] = min(low[v], disc[w])
-        else:
-            stack.pop()
-            if stack:
-                up = parent[v]
-                low[up] = min(low[up], low[v])
-                size[up] += size[v]
-    carrying: list[set[int]] = []
-    for removed in range(n):
-        found: set[int] = set()
-        if disc[removed] >= 0:
-            below = children[removed]                   # in order of discovery
-            starts = [disc[c] for c in below]
-            for other in neighbours[removed]:
-                if disc[other] < disc[removed]:
-                    found.add(other)
-                    continue
-                child = below[bisect.bisect_right(starts, disc[other]) - 1]
-                if low[child] < disc[removed]:
-                    found.add(other)
-        carrying.append(found)
-    return carrying
-
-
-def _lying_on_floor(model: StaticsModel) -> set[int]:
-    """Local planks lying on the floor (or flat against a wall) on a broad face (all four
-    corners of that face are contacts with that support): it holds them along their whole
-    face, not at the corners the contacts stand for, so they are given no sag."""
-    cached = model.plank_cache.get("lying")
-    if cached is not None:
-        return cached
-    corners: dict[tuple, set[int]] = {}
-    for row, c in enumerate(model.contacts):
-        contact = model.geometry.contacts[c]
-        if contact.on is not None:      # a resting joint's corners are not the plank's
-            continue
-        corners.setdefault((int(model.contact_plank[row]), contact.wall),
-                           set()).add(contact.corner)
-    lying = {k for (k, *_), found in corners.items()
-             if {0, 1, 2, 3} <= found or {4, 5, 6, 7} <= found}
-    model.plank_cache["lying"] = lying
-    return lying
 
 
 def _transverse(displacement: np.ndarray,
@@ -646,43 +420,18 @@ def _moment_lines(model: StaticsModel, layout: _Layout, w: np.ndarray, slope: np
             np.stack([part[4] for part in parts]))
 
 
-def _outermost_supports(model: StaticsModel, layout: _Layout,
-                        holding: np.ndarray | None) -> tuple[np.ndarray, np.ndarray]:
-    """(low, high) per local plank (nP,) int: its carrying support nearest its -e1 end and
-    nearest its +e1 end (nodes where a joint carries it, ``_carrying_neighbours``, a
-    holding contact stands, or it lies on top of a holding resting joint), -1 for a plank
-    with none or lying on the floor."""
-    beams = model.beams
-    carrying = np.ones(len(model.contacts), dtype=bool) if holding is None \
-        else np.asarray(holding, dtype=bool)
-    rows = np.flatnonzero(carrying)
-    nodes = model.contact_node[rows]
-    if model.rest_node is not None:     # a resting joint carries the plank lying on top
-        nodes = np.where(model.rest_face_above[rows], model.rest_node[rows], nodes)
-    supports = np.concatenate([layout.joint_supports, nodes])
-    plank = model.node_plank[supports]
-    order = np.lexsort((beams.node_s[supports], plank))      # by plank, then along it
-    supports, plank = supports[order], plank[order]
-    first = np.flatnonzero(np.diff(plank, prepend=-1) != 0)            # of each plank's run
-    last = np.flatnonzero(np.diff(plank, append=len(model.planks)) != 0)
-    low, high = np.full(len(model.planks), -1), np.full(len(model.planks), -1)
-    low[plank[first]], high[plank[last]] = supports[first], supports[last]
-    low[~layout.measured] = high[~layout.measured] = -1
-    return low, high
-
-
 def _sag(model: StaticsModel, s: np.ndarray, deflection: np.ndarray,
          sample_plank: np.ndarray, w: np.ndarray, slope: np.ndarray, low: np.ndarray,
          high: np.ndarray, where: bool = False) -> tuple:
     """(sag, span) (nP,) m of every plank (contract 3a) from its deflected axis (``s``,
     ``deflection``, ``sample_plank``: ``_profile``) and its outermost supports ``low``,
-    ``high`` (``_outermost_supports``; ``w``, ``slope``: ``_transverse``): between them, the
+    ``high`` (``carrying.outermost_supports``; ``w``, ``slope``: ``_transverse``): between them, the
     largest deviation from the straight line through them (span: their distance); beyond
     them, each overhang's largest deviation from the tangent at its support (span: twice
     the overhang); the one nearest its limit (the largest sag / span) is the plank's.  Held
     at one point, only the overhangs count; with no support, (0, 0).  With ``where``, also
-    the points near each measure's largest (``PlankWhere``), every measure the plank has
-    (0, 1, 2 as above), as flat lists: (sag, span, measures, points)."""
+    the points near each measure's largest (``bending_points.PlankWhere``), every measure
+    the plank has (0, 1, 2 as above), as flat lists: (sag, span, measures, points)."""
     beams = model.beams
     half = beams.plank_half
     supported = low >= 0
@@ -730,7 +479,8 @@ def _reference_lines(s, s_low, s_high, chord, w_low, w_high, slope_low, slope_hi
     (n,), the straight line through the outermost supports (at ``s_low`` and ``s_high``,
     their distance ``chord``, deflections ``w_low`` and ``w_high``) and the tangents at
     either support (slopes ``slope_low``, ``slope_high``), from which the sag of each
-    measure is measured (``_sag``, ``plank_results_at``: one formula for both)."""
+    measure is measured (``_sag``, ``bending_points.plank_results_at``: one formula for
+    both)."""
     line = w_low + ((s - s_low) / chord) * (w_high - w_low)
     return (line, w_low + (s - s_low) * slope_low, w_high + (s - s_high) * slope_high)
 

@@ -15,7 +15,7 @@ of the contact maps and of the joint lengths; ``rates = A^-1 (their residual)`` 
   made together, ``_residuals``); the planks' sag, span and stress at the stepped state
   x + dx give their rates (``AssemblyDifferences.plank_rates``: each stepped model read
   only at the points where the design's own largest sag and stress may lie, in stacked
-  passes, ``bending.plank_results_at``).
+  passes, ``bending_points.plank_results_at``).
 """
 
 from __future__ import annotations
@@ -84,16 +84,16 @@ class AssemblyDifferences:
         (the others' are 0).
 
         Each stepped model's planks are read only at the points where the design's own
-        largest sag and stress may lie (``bending.plank_results_where`` of ``base``, the
+        largest sag and stress may lie (``bending_points.plank_results_where`` of ``base``, the
         model itself: those within NEAR_LARGEST of the largest, ties kept): at a step this
         small a stepped design's largest lie among them, so reading them alone
-        (``bending.plank_results_at``) gives the numbers reading every point would, at a
+        (``bending_points.plank_results_at``) gives the numbers reading every point would, at a
         fraction of the cost."""
         n_dofs = self.residual.shape[1]
         if not self.sides:
             empty = np.zeros((n_dofs, 0))
             return empty, empty.copy(), empty.copy()
-        from furncheck.statics.bending import plank_results_where
+        from furncheck.statics.bending_points import plank_results_where
 
         n_planks = self.n_planks
         read = slice(None) if self.planks is None else self.planks
@@ -112,10 +112,10 @@ class AssemblyDifferences:
 
 def _plank_results_batched(stepped: list, q: np.ndarray, dq: np.ndarray, where):
     """The planks of each stepped (part, column, offset) at q + offset dq[:, column], read
-    at ``where`` (``bending.plank_results_at``), in order, at most PLANK_BATCH planks at a
+    at ``where`` (``bending_points.plank_results_at``), in order, at most PLANK_BATCH planks at a
     time (its numbers are those of one call each, so the batches change nothing but the
     memory)."""
-    from furncheck.statics.bending import plank_results_at
+    from furncheck.statics.bending_points import plank_results_at
 
     batch: list = []
     displacements: list = []

@@ -44,7 +44,8 @@ class _Outcomes:
     def stable(self, solution: _Solution, status: np.ndarray) -> CaseStatics:
         return CaseStatics("stable", _wrenches(solution.h), solution.contact_forces,
                            state=np.concatenate([solution.q, solution.h]),
-                           holding=status != LIFT, displacements=solution.q)
+                           holding=status != LIFT, displacements=solution.q,
+                           ground=solution.ground)
 
     def sliding(self, solution: _Solution) -> CaseStatics:
         """Report a case that slides, with the forces it would need if friction were endless."""

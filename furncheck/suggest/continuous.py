@@ -76,7 +76,10 @@ class ContinuousSearch:
         name (``check.check_design``), if the caller has them."""
         self.report = report
         frame = structure(design, standing_geometry(geometry))
-        self.editor = Editor(design, geometry, frame, locked)
+        starts = None if solved is None or any(case.name not in solved
+                                               for case in design.load_cases) \
+            else tuple(solved[case.name] for case in design.load_cases)
+        self.editor = Editor(design, geometry, frame, locked, starts)
         unlocked = [dof for dof in all_dofs(design) if dof not in locked]
         near = suggestion_dofs(design, geometry, report.violations, unlocked)
         self.far = len(unlocked) - len(near)        # left out of a big design's search

@@ -30,7 +30,7 @@ from furncheck.dofs import (
 from furncheck.edit_check import design_problem
 from furncheck.geometry import Geometry, analyze, cut_in_pairs, interpenetrations
 from furncheck.result import DesignReport
-from furncheck.statics import build_model, solve_load_case
+from furncheck.statics import CaseStatics, LineStarts, build_model, solve_load_case
 from furncheck.validity import case_margin
 
 MARGIN_EPS = 1e-12
@@ -52,8 +52,13 @@ class Editor:
     and ``margin_at`` say whether a moved design may be suggested."""
 
     def __init__(self, design: Design, geometry: Geometry, frame: Structure,
-                 locked: tuple[Dof, ...] = ()):
+                 locked: tuple[Dof, ...] = (), starts: tuple[CaseStatics, ...] | None = None):
+        """``starts``: the design's load cases solved (``check.case_statics``), where the
+        contact iterations of the moved designs start (``margin_at``), if the caller
+        has them."""
         self.design = design
+        self.starts = starts
+        self._line: tuple[tuple, LineStarts] | None = None   # the last direction's
         self.geometry = geometry
         self.frame = frame
         self.locked = locked
@@ -128,7 +133,9 @@ class Editor:
         interpolate; every other failure (a step that
         cannot be made, a geometric problem, a case that topples or slides) is -inf.
         The same verdict as ``utilization_margin(check_design(...))``, without building
-        the report."""
+        the report; each case's contact iterations start where the case settled in the
+        nearest step along the direction checked so far, or in the design itself
+        (``statics.LineStarts``, from ``starts``: the same equilibrium, sooner)."""
         try:
             edited = self.moved(dofs, self.changes(dofs, direction, step))
         except (Blocked, OutOfReach):
@@ -137,14 +144,29 @@ class Editor:
         if geometry is None:
             return -math.inf
         model = build_model(edited, geometry)
+        line = self._line_starts(dofs, direction)
+        starts = None if line is None else line.near(step)
+        solved: dict = {}
         worst, holds = 1.0, True
-        for case in edited.load_cases:
-            margin, case_ok = case_margin(edited, geometry, model,
-                                          solve_load_case(model, case))
-            if margin == -math.inf:
-                return -math.inf
+        for k, case in enumerate(edited.load_cases):
+            solved[k] = solve_load_case(model, case, None if starts is None else starts[k])
+            margin, case_ok = case_margin(edited, geometry, model, solved[k])
             worst, holds = min(worst, margin), holds and case_ok
-        return signed_margin(worst, holds)
+            if margin == -math.inf:
+                break
+        if line is not None:
+            line.keep(step, solved)
+        return -math.inf if worst == -math.inf else signed_margin(worst, holds)
+
+    def _line_starts(self, dofs: tuple[Dof, ...], direction: np.ndarray) -> LineStarts | None:
+        """The ``LineStarts`` of the direction (the last one asked for: a line search
+        probes one direction at a time), None without the design's own ``starts``."""
+        if self.starts is None:
+            return None
+        key = (dofs, direction.tobytes())
+        if self._line is None or self._line[0] != key:
+            self._line = (key, LineStarts(self.starts))
+        return self._line[1]
 
 
 _UTILIZATION_KINDS = frozenset({"non-durable", "sagging", "overstressed"})
