@@ -58,12 +58,11 @@ class _Statics(NamedTuple):
     """Evaluation request: the full check of an edited design that keeps the joints and
     contacts, ``check.margin_of`` (with ``first``: that load case solved first, the
     cases stopping at the first that fails) if ``margin`` else ``check.is_valid``; the
-    design is ``dof`` changed by ``step``."""
+    design is the searched DOF changed by ``step``."""
 
     design: Design
     geometry: Geometry
     margin: bool
-    dof: Dof
     step: float
     first: int | None = None
 
@@ -81,7 +80,7 @@ class Evaluator:
         self.model = build_model(design, self.geometry)     # shared by the design's own
         refuse_too_big(design, self.model)                  # checks
         self.starts = case_statics(design, self.geometry, self.model)
-        self._lines: dict[Dof, LineStarts] = {}     # where each DOF's edits start solving
+        self._lines: dict[Generator, LineStarts] = {}   # where each search's edits start
         self._kept: dict[Dof, dict[float, tuple]] = {}
         self._edits: dict[Dof, dict[float, Design]] = {}
         self.evaluations = 0
@@ -106,12 +105,12 @@ class Evaluator:
 
         def ended(key: tuple[int, float], result: object) -> None:
             found[key] = result
+            self._lines.pop(searches[key], None)
             dof = dofs[key[0]]
             active[dof] -= 1
             if not active[dof]:
                 self._edits.pop(dof, None)
                 self._kept.pop(dof, None)
-                self._lines.pop(dof, None)
 
         def advance(key: tuple[int, float], answer: tuple) -> None:
             value, error = answer
@@ -136,7 +135,8 @@ class Evaluator:
             while queued and len(waiting) < SEARCHES_IN_FLIGHT:
                 advance(queued.pop(), (None, None))
             batch, waiting = waiting, {}
-            for key, answer in zip(batch, self._answer(list(batch.values()))):
+            answers = self._answer(list(batch.values()), [searches[key] for key in batch])
+            for key, answer in zip(batch, answers):
                 advance(key, answer)
         return found
 
@@ -144,12 +144,15 @@ class Evaluator:
         """Run one search (a generator of evaluations) of ``dof`` to its end: its result."""
         return self._run({(0, 0.0): search}, [dof])[(0, 0.0)]
 
-    def _answer(self, requests: list) -> list[tuple[object, Exception | None]]:
+    def _answer(self, requests: list, asking: list[Generator]
+                ) -> list[tuple[object, Exception | None]]:
         """(value, error) per request: ``_Kept`` checks all at once
         (``edit_check.check_edit_many``), ``_Margins`` all at once (``geometry.edit_margins_many``),
         then ``_Statics`` one by one, each load case's contact iterations starting where
-        the case settled in the DOF's nearest edit checked so far, or in the design
-        (``statics.LineStarts``)."""
+        the case settled in the nearest edit that the search asking (``asking``, per
+        request) has checked so far, or in the design (``statics.LineStarts``, one per
+        search: its starts depend on its own probes alone, whatever else the batch holds,
+        and a DOF named twice is searched twice alike)."""
         answers: list = [None] * len(requests)
         kept = [k for k, request in enumerate(requests) if isinstance(request, _Kept)]
         for k, answer in zip(kept, self._kept_many([requests[k] for k in kept])):
@@ -163,9 +166,9 @@ class Evaluator:
                 answers[k] = (values, None)
         for k, request in enumerate(requests):
             if isinstance(request, _Statics):
-                if request.dof not in self._lines:
-                    self._lines[request.dof] = LineStarts(self.starts)
-                line = self._lines[request.dof]
+                if asking[k] not in self._lines:
+                    self._lines[asking[k]] = LineStarts(self.starts)
+                line = self._lines[asking[k]]
                 starts, solved = line.near(request.step), {}
                 if request.margin:
                     answers[k] = (margin_of(request.design, request.geometry, starts,
@@ -221,7 +224,7 @@ class Evaluator:
             return False
         if not full:
             return True
-        return (yield _Statics(edited, geometry, False, dof, step))
+        return (yield _Statics(edited, geometry, False, step))
 
     def _probe(self, dof: Dof, sign: float, step: float, first: int | None = None):
         """The full check of one step (>= 0) in direction ``sign``, with the design's
@@ -230,7 +233,7 @@ class Evaluator:
         edited, geometry = yield _Kept(dof, sign * step)
         if geometry is None:
             return _Probe(step, False, -np.inf, None, None)
-        valid, margin, utilization, case = yield _Statics(edited, geometry, True, dof,
+        valid, margin, utilization, case = yield _Statics(edited, geometry, True,
                                                           sign * step, first)
         return _Probe(step, valid, margin, utilization, geometry, case)
 

@@ -9,8 +9,8 @@ the design's own largest sag and stress lie (``bending_points``).
 
 Every step works on all nodes, elements and sample points of the model at once; the
 per-plank results are reductions over them (``np.maximum.at`` by plank).  What depends on
-the model alone (the beam axes at each node, the sections, the joints that carry a plank)
-is read once per model (``_layout``, kept in ``model.plank_cache``).
+the model alone (the beam axes at each node, the sections; the joints that carry a plank,
+``carrying``) is read once per model (``_layout``, kept in ``model.plank_cache``).
 """
 
 from __future__ import annotations
@@ -28,7 +28,7 @@ from furncheck.statics.beams import (
     element_interior,
     section_properties,
 )
-from furncheck.statics.carrying import outermost_supports, plank_supports
+from furncheck.statics.carrying import outermost_supports
 from furncheck.statics.elements import (
     Beams,
     case_line_loads,
@@ -61,8 +61,6 @@ class _Layout:
     inertia    : (nE, 2) m^4, I_3 and I_2 of each element: bending along e2 and along e3
     area       : (nE,) m^2, b t
     bending, in_plane : (nE,) m^3, the section moduli b t^2 / 6 and t b^2 / 6
-    joint_supports : (nS,) nodes where a joint carries its plank (``carrying``)
-    measured   : (nP,) bool, the planks whose sag is read (not lying on the floor)
     """
 
     node_frame: np.ndarray
@@ -70,8 +68,6 @@ class _Layout:
     area: np.ndarray
     bending: np.ndarray
     in_plane: np.ndarray
-    joint_supports: np.ndarray
-    measured: np.ndarray
 
 
 def plank_results(model: StaticsModel, case: LoadCase, q: np.ndarray,
@@ -209,8 +205,6 @@ def _stacked(prepared: list[PlankPart], displacements: list[np.ndarray],
                   **{name: cut(lambda p, n=name: getattr(p.model.beams, n))
                      for name in _ELEMENT_FIELDS})
     layout = _Layout(node_frame=whole(lambda p: p.layout.node_frame),
-                     joint_supports=np.zeros(0, dtype=int),
-                     measured=whole(lambda p: p.layout.measured),
                      **{name: cut(lambda p, n=name: getattr(p.layout, n))
                         for name in _SECTION_FIELDS})
     displacement = np.concatenate([
@@ -227,8 +221,8 @@ def _stacked(prepared: list[PlankPart], displacements: list[np.ndarray],
 
 def _element_cut(beams: Beams, layout: _Layout, elements: np.ndarray, **kept) -> tuple:
     """(``Beams``, ``_Layout``) of ``elements`` alone, in that order: their per-element
-    arrays taken, the rest (plank, nodes, node_s, plank_half, node_frame, joint_supports,
-    measured) from ``kept``."""
+    arrays taken, the rest (plank, nodes, node_s, plank_half, node_frame) from
+    ``kept``."""
     beam_keys = ("plank", "nodes", "node_s", "plank_half")
     cut_beams = Beams(**{key: kept[key] for key in beam_keys},
                       **{name: getattr(beams, name)[elements] for name in _ELEMENT_FIELDS})
@@ -253,8 +247,7 @@ def _only(part: PlankPart, planks: np.ndarray) -> PlankPart:
     cut, cut_layout = _element_cut(
         beams, layout, elements, plank=plank_number[beams.plank[elements]],
         nodes=node_number[beams.nodes[elements]], node_s=beams.node_s[nodes],
-        plank_half=beams.plank_half[planks], node_frame=layout.node_frame[nodes],
-        joint_supports=np.zeros(0, dtype=int), measured=layout.measured[planks])
+        plank_half=beams.plank_half[planks], node_frame=layout.node_frame[nodes])
 
     def supports(values: np.ndarray) -> np.ndarray:
         mine = values[planks]
@@ -273,13 +266,11 @@ def _layout(model: StaticsModel) -> _Layout:
     beams = model.beams
     frames = beams.plank_frames
     section = section_properties(beams.width, beams.thickness)
-    joint_supports, measured = plank_supports(model)
     layout = _Layout(node_frame=frames[model.node_plank],
                      inertia=np.column_stack([section["I3"], section["I2"]]),
                      area=section["A"],
                      bending=beams.width * beams.thickness ** 2 / 6.0,
-                     in_plane=beams.thickness * beams.width ** 2 / 6.0,
-                     joint_supports=joint_supports, measured=measured)
+                     in_plane=beams.thickness * beams.width ** 2 / 6.0)
     model.plank_cache["layout"] = layout
     return layout
 
@@ -343,8 +334,7 @@ def _cut_to(model, layout: _Layout, line_loads: np.ndarray,
     beams = model.beams
     cut, cut_layout = _element_cut(
         beams, layout, elements, plank=beams.plank[elements], nodes=beams.nodes[elements],
-        node_s=beams.node_s, plank_half=beams.plank_half, node_frame=layout.node_frame,
-        joint_supports=layout.joint_supports, measured=layout.measured)
+        node_s=beams.node_s, plank_half=beams.plank_half, node_frame=layout.node_frame)
     return _Stacked(cut, model.planks, model.node_plank), cut_layout, line_loads[elements]
 
 

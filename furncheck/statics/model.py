@@ -353,8 +353,8 @@ class CaseStatics:
     state: np.ndarray | None = None     # the solution [q; h] of a stable case
     holding: np.ndarray | None = None   # (nK,) bool: contacts on the ground (not lifted)
     displacements: np.ndarray | None = None   # (6 nN,) q of the forces shown, if any
-    ground: np.ndarray | None = None    # the grounded nodes' q (x_g) where a contact state
-                                        # or the friction phase settled
+    ground: np.ndarray | None = None    # the grounded nodes' q (x_g) of a stable case found
+                                        # by the contact iterations (not the programs')
     planks: object = None      # elastic.PlankStatics: sag, span, stress (elastic model)
 
 
