@@ -93,6 +93,29 @@ def test_a_leg_wider_than_the_seat_it_holds_is_implausible():
     assert score_of(STOOL, slight).implausible == ()
 
 
+def test_a_leg_moved_off_the_seat_it_holds_is_implausible():
+    """The stool's leg_l (its 300 mm wide end nailed under the seat, 300 mm deep along y)
+    moved 90 mm along y: its end spans -60 .. 240 mm against the seat's -150 .. 150, so
+    90 mm of it, 30 %, hangs past the seat's edge (over HANG_SHARE, a quarter); moved
+    60 mm, 20 %, it does not count."""
+    leg = "{id: leg_l, size: [438, 300], center: [-170, 0, 219]"
+    moved = STOOL.replace(leg, "{id: leg_l, size: [438, 300], center: [-170, 90, 219]")
+    less = STOOL.replace(leg, "{id: leg_l, size: [438, 300], center: [-170, 60, 219]")
+    assert score_of(STOOL, moved).implausible == (
+        "leg_l hangs 30 % of its end past the edge of seat, which it is nailed to",)
+    assert score_of(STOOL, less).implausible == ()
+
+
+def test_an_end_that_already_hung_past_may_move():
+    """leg_l drawn with 150 mm of its end (50 %) past the seat's edge, moved 50 mm further
+    (67 %): the maker drew it hanging (a shelf's back edge on a narrow back slat), so
+    nothing implausible is added."""
+    leg = "{id: leg_l, size: [438, 300], center: [-170, 0, 219]"
+    drawn = STOOL.replace(leg, "{id: leg_l, size: [438, 300], center: [-170, 150, 219]")
+    further = STOOL.replace(leg, "{id: leg_l, size: [438, 300], center: [-170, 200, 219]")
+    assert score_of(drawn, further).implausible == ()
+
+
 def test_the_ranking_key_is_lexicographic():
     """Plausible before implausible, then the symmetry kept, then the smaller cost."""
     cheap_odd = ShopScore(("leg_l is wider than seat, which it is nailed to",), 0, 0.1, 1)

@@ -10,6 +10,10 @@ section 4.
          design: out/suggestion-01.yaml
       ...
 
+A suggestion whose proportions a maker would not build (``suggest.score``) says why it is
+ranked lower ('ranked lower: slat_12 hangs 64 % of its end past the edge of cap, which it
+is nailed to').
+
 The sentence of a continuous suggestion is ``shop_words``', its cut list ``cutlist``'s.
 """
 
@@ -86,7 +90,8 @@ def render_text(result: SuggestionReport, original: Design,
                      f"Restores {restores}.")
         for line in (*cut_list_lines(suggestion.edits, original),
                      *load_move_lines(suggestion.loads_moved, original),
-                     *load_spread_lines(suggestion.loads_spread, original)):
+                     *load_spread_lines(suggestion.loads_spread, original),
+                     *_implausible_lines(suggestion)):
             lines.append(f"{INDENT}   {line}")
         files = written.get(suggestion.rank)
         if files is not None and files.design_file:
@@ -161,6 +166,15 @@ def _suggestion_dict(suggestion: Suggestion, original: Design,
         "meshes": list(files.meshes),
         "plots": list(files.plots),
     }
+
+
+def _implausible_lines(suggestion: Suggestion) -> list[str]:
+    """Why the shop's score ranks the suggestion after plausible ones
+    (``suggest.score``: proportions a maker would not build), one line each."""
+    score = suggestion.score
+    if score is None:
+        return []
+    return [f"ranked lower: {reason}" for reason in score.implausible]
 
 
 def _score_json(suggestion: Suggestion) -> dict[str, Any] | None:

@@ -6,7 +6,9 @@ design, and ranked by ``ShopScore.key`` (smaller first), lexicographically:
 1. ``implausible``: proportions a maker would not build, that the input did not have
    already -- a plank too big to cut from one stock board (``tolerances.STOCK_BOARD``,
    2440 x 1220 mm MDF), a plank whose end is nailed to another plank's face and that is
-   wider there than that plank (a 594 mm leg under a 350 mm seat), or a level plank
+   wider there than that plank (a 594 mm leg under a 350 mm seat) or hangs past that
+   face's edge by more than HANG_SHARE of its end (a cabinet's back slat moved 76 mm
+   along the cap it hangs from, most of it past the cabinet's side), or a level plank
    (seat, top, shelf) that overhangs its supports by more than OVERHANG_SHARE of its
    length at one end (legs moved 267 mm in under a 900 mm bench seat: whoever sits at
    its end tips it, whatever the load cases say);
@@ -57,7 +59,16 @@ bench seat's overhang is commonly kept to a quarter or a third of its length).""
 
 OVERHANG_GROWTH = 0.05
 """... and only when the suggestion adds at least this share to the input's overhang (a
-leg thickened 10 mm inward under a top at 32.9 % is no new overhang)."""
+leg thickened 10 mm inward under a top at 32.9 % is no new overhang); the same for an end
+hanging past the face it is nailed to (HANG_SHARE)."""
+
+HANG_SHARE = 0.25
+"""A plank's end nailed to another plank's face may reach past that face's edge by at
+most this share of the end's width before a suggestion reads as implausible, where the
+input's did not: the nails then sit at the face's edge, and the part beyond sticks out
+of the piece (a shelf a few millimetres proud of its sides is trimmed flush; a slat
+three quarters past the cap it hangs from is not what the maker drew).  An end that
+already reached past (a shelf's back edge on a narrow back slat) is left to the others."""
 
 
 @dataclass(frozen=True)
@@ -102,6 +113,11 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
             continue
         if _overhangs(edited, joint) and not _overhangs(original, joint):
             reasons.append(f"{joint.edge} is wider than {joint.face}, which it is nailed to")
+            continue
+        before, after = _hanging(original, joint), _hanging(edited, joint)
+        if before <= HANG_SHARE < after and after - before >= OVERHANG_GROWTH:
+            reasons.append(f"{joint.edge} hangs {round(100 * after)} % of its end past the "
+                           f"edge of {joint.face}, which it is nailed to")
     supports = _supports(geometry)
     for plank_id in _level_planks(original, supports, changed):
         before = _overhang_share(original, plank_id, supports[plank_id])
@@ -184,6 +200,23 @@ def _relative(edit: PlankEdit, size: float) -> float:
 def _fits_board(plank: Plank) -> bool:
     long_side, short_side = sorted((plank.length, plank.width), reverse=True)
     return long_side <= STOCK_BOARD[0] and short_side <= STOCK_BOARD[1]
+
+
+def _hanging(design: Design, joint) -> float:
+    """The share of the joint's edge plank's end (its narrow face on the face plank, along
+    that face's long side) that lies beyond the face plank's outline, along that side."""
+    edge, face = design.plank(joint.edge), design.plank(joint.face)
+    axis, sign = joint.edge_face
+    across = 1 - axis                               # the end face's long side
+    direction = edge.rotation_matrix[:, across]
+    width = (edge.length, edge.width)[across]
+    end = edge.center_array + sign * 0.5 * (edge.length, edge.width)[axis] \
+        * edge.rotation_matrix[:, axis]
+    middle = float((end - face.center_array) @ direction)
+    reach = 0.5 * float(np.abs(face.rotation_matrix[:, :2].T @ direction) @
+                        np.array([face.length, face.width]))
+    beyond = max(middle + 0.5 * width - reach, 0.0) + max(-reach - (middle - 0.5 * width), 0.0)
+    return min(beyond, width) / width if width > 0.0 else 0.0
 
 
 def _overhangs(design: Design, joint) -> bool:
