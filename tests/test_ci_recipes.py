@@ -194,7 +194,7 @@ def test_suggest_and_range_read_standard_input_too():
         assert plain.exit_code == 0 and plain.stdout.startswith("<stdin>")
         broken = run_input("furncheck: 1\nplanks: [\n", command, "-")
         assert broken.exit_code == 2 and len(broken.output.splitlines()) == 1
-        assert broken.output.startswith("furncheck: <stdin>:3: YAML syntax error")
+        assert broken.output.startswith("furncheck: <stdin>:2: YAML syntax error")
     for command in ("validate", "suggest", "range"):        # a forgotten '-'
         named = run_input(text, command, str(path), "--stdin-filename", "x.yaml")
         assert named.exit_code == 2 and named.output == (

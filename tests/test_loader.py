@@ -180,6 +180,18 @@ def test_yaml_syntax_error_has_line():
     assert "flow sequence" in error.message
 
 
+def test_a_bracket_never_closed_names_the_line_it_opens_on():
+    """The parser runs into the end of the file (line 6 of a 5-line file, or 4 of 3):
+    the error names the line where the unclosed mapping, sequence or quote began, one of
+    the file's, and says that the file ended."""
+    flow = ("furncheck: 1\nname: x\nplanks:\n  - {id: a, size: [100, 100], center: [0, 0, 6]}"
+            "\n  - {id: b, size: [100, 100], center: [0, 0, 6]\n")
+    error = expect(flow, "", 5, "did not find expected ',' or '}'")
+    assert error.message.endswith("at the end of the file")
+    quoted = 'furncheck: 1\nname: "abc\nplanks: []\n'
+    assert expect(quoted, "", 2, "quoted scalar").message.endswith("at the end of the file")
+
+
 def test_json_syntax_error_has_line():
     text = json.dumps(base_dict(), indent=2).replace('"seat"', "seat", 1)
     error = error_of(text, "json", "bench.json")

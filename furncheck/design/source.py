@@ -266,7 +266,12 @@ def _tag_error(tag: str, path: str, line: int, source: str) -> DesignError:
 
 
 def _yaml_syntax_error(error: yaml.YAMLError, text: str, source: str) -> DesignError:
-    mark = getattr(error, "problem_mark", None) or getattr(error, "context_mark", None)
+    """The parser's error as one line at the line it names: where the problem is, or,
+    when the parser ran into the end of the file (a bracket or quote never closed), the
+    line where what it was reading began (its context), so that the line shown is one
+    of the file's, with 'at the end of the file' said."""
+    problem_mark = getattr(error, "problem_mark", None)
+    context_mark = getattr(error, "context_mark", None)
     problem = getattr(error, "problem", None)
     if problem is None and hasattr(error, "reason"):          # yaml.reader.ReaderError
         line = text.count("\n", 0, max(0, error.position)) + 1
@@ -275,8 +280,14 @@ def _yaml_syntax_error(error: yaml.YAMLError, text: str, source: str) -> DesignE
     message = problem or "cannot be read"
     if context:
         message = f"{message} ({context})"
-    return DesignError(source, "", mark.line + 1 if mark else None,
-                       _one_line(f"YAML syntax error: {message}"))
+    mark = problem_mark or context_mark
+    if problem_mark is not None and problem_mark.index >= len(text.rstrip()):
+        message = f"{message}, at the end of the file"
+        mark = context_mark or problem_mark
+    line = None
+    if mark is not None:            # never past the file's last line
+        line = min(mark.line + 1, max(text.rstrip().count("\n") + 1, 1))
+    return DesignError(source, "", line, _one_line(f"YAML syntax error: {message}"))
 
 
 # --- step 2b: JSON text -> tree -----------------------------------------------------------------
