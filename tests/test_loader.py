@@ -190,6 +190,17 @@ def test_a_bracket_never_closed_names_the_line_it_opens_on():
     assert error.message.endswith("at the end of the file")
     quoted = 'furncheck: 1\nname: "abc\nplanks: []\n'
     assert expect(quoted, "", 2, "quoted scalar").message.endswith("at the end of the file")
+    # lines broken by CR alone count as YAML counts them
+    expect(flow.replace("\n", "\r"), "", 5, "did not find expected ',' or '}'")
+    # where the parser gives no line before the end (a sequence left open after a comma),
+    # the file's last line
+    sequence = ("furncheck: 1\nplanks: [\n  {id: a, size: [100, 100], center: [0, 0, 6]},\n"
+                "  {id: b, size: [100, 100], center: [0, 0, 6]},\n")
+    assert expect(sequence, "", 4, "expected node content").message.endswith(
+        "at the end of the file")
+    # a problem inside the file keeps its own line
+    tab = "furncheck: 1\nname: x\nplanks:\n  - {id: a, size: [100, 100], center: [0, 0, 6]}\n\t\n"
+    assert not expect(tab, "", 5, "cannot start any token").message.endswith("file")
 
 
 def test_json_syntax_error_has_line():

@@ -109,11 +109,59 @@ def test_a_leg_moved_off_the_seat_it_holds_is_implausible():
 def test_an_end_that_already_hung_past_may_move():
     """leg_l drawn with 150 mm of its end (50 %) past the seat's edge, moved 50 mm further
     (67 %): the maker drew it hanging (a shelf's back edge on a narrow back slat), so
-    nothing implausible is added."""
+    nothing implausible is added.  (The stool without its rung, whose end the moved leg
+    would leave.)"""
     leg = "{id: leg_l, size: [438, 300], center: [-170, 0, 219]"
-    drawn = STOOL.replace(leg, "{id: leg_l, size: [438, 300], center: [-170, 150, 219]")
-    further = STOOL.replace(leg, "{id: leg_l, size: [438, 300], center: [-170, 200, 219]")
+    bare = "\n".join(line for line in STOOL.splitlines() if "id: rung" not in line)
+    drawn = bare.replace(leg, "{id: leg_l, size: [438, 300], center: [-170, 150, 219]")
+    further = bare.replace(leg, "{id: leg_l, size: [438, 300], center: [-170, 200, 219]")
     assert score_of(drawn, further).implausible == ()
+
+
+TWO_BOARDS = """
+furncheck: 1
+name: two boards
+units: mm
+planks:
+  - {{id: top_l, size: [500, 600], center: [-250, 0, 706]}}
+  - {{id: top_r, size: [500, 600], center: [250, 0, 706]}}
+  - {{id: leg, size: [700, 300], center: [{x}, 0, 350], rotation: [0, -90, 90]}}
+"""
+
+
+def test_an_end_under_the_seam_of_two_boards_is_covered_by_both():
+    """A 300 mm wide leg, turned 90 degrees about z so that its end's long side runs
+    along x, under a top of two 500 mm boards meeting at x = 0, moved from x = -100 to
+    0: half its end under each board, none of it in the air (each board alone would
+    leave half of it hanging)."""
+    before = TWO_BOARDS.format(x=-100)
+    after = TWO_BOARDS.format(x=0)
+    assert score_of(before, after).implausible == ()
+
+
+ONE_TOP = """
+furncheck: 1
+name: one top
+units: mm
+planks:
+  - {{id: top, size: [1000, 600], center: [0, 0, 706]}}
+  - {{id: leg, size: [700, 300], center: [{x}, {y}, 350], rotation: [0, -90, 45]}}
+"""
+
+
+def test_an_end_turned_in_the_face_plane_is_clipped_to_the_outline():
+    """The leg turned 45 degrees about z: its 300 mm end runs along (-0.707, 0.707) from
+    its centre.  Centred at (-420, 220) under a 1000 x 600 top (edges at x = -500 and
+    y = 300), it leaves the top after 80 / 0.707 = 113 mm of its 150 mm half: 37 mm,
+    12 %, hangs past the corner.  Centred at (-450, 250): after 50 / 0.707 = 70.7 mm,
+    79.3 mm hang, 26 % (over a quarter): implausible.  (The top's outline projected on
+    the end's direction, 1131 mm wide, would have covered both.)"""
+    base = ONE_TOP.format(x=0, y=0)
+    near = ONE_TOP.format(x=-420, y=220)
+    past = ONE_TOP.format(x=-450, y=250)
+    assert score_of(base, near).implausible == ()
+    assert score_of(base, past).implausible == (
+        "leg hangs 26 % of its end past the edge of top, which it is nailed to",)
 
 
 def test_the_ranking_key_is_lexicographic():

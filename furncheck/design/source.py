@@ -268,8 +268,9 @@ def _tag_error(tag: str, path: str, line: int, source: str) -> DesignError:
 def _yaml_syntax_error(error: yaml.YAMLError, text: str, source: str) -> DesignError:
     """The parser's error as one line at the line it names: where the problem is, or,
     when the parser ran into the end of the file (a bracket or quote never closed), the
-    line where what it was reading began (its context), so that the line shown is one
-    of the file's, with 'at the end of the file' said."""
+    line where what it was reading began (its context, where that lies before the end),
+    else the file's last line, with 'at the end of the file' said: a line of the file,
+    not the one past its last."""
     problem_mark = getattr(error, "problem_mark", None)
     context_mark = getattr(error, "context_mark", None)
     problem = getattr(error, "problem", None)
@@ -281,13 +282,22 @@ def _yaml_syntax_error(error: yaml.YAMLError, text: str, source: str) -> DesignE
     if context:
         message = f"{message} ({context})"
     mark = problem_mark or context_mark
-    if problem_mark is not None and problem_mark.index >= len(text.rstrip()):
+    line = None if mark is None else mark.line + 1
+    if problem_mark is not None and problem_mark.index >= len(text):
         message = f"{message}, at the end of the file"
-        mark = context_mark or problem_mark
-    line = None
-    if mark is not None:            # never past the file's last line
-        line = min(mark.line + 1, max(text.rstrip().count("\n") + 1, 1))
+        if context_mark is not None and context_mark.index < len(text):
+            line = context_mark.line + 1
+        else:                       # the last line, counted as the parser counts breaks
+            line = min(line, max(_line_count(text), 1))
     return DesignError(source, "", line, _one_line(f"YAML syntax error: {message}"))
+
+
+def _line_count(text: str) -> int:
+    """The lines of ``text`` as YAML counts them: broken by CR LF, CR, LF, NEL, LS or PS
+    (a last line without a break counts too)."""
+    breaks = text.replace("\r\n", "\n")
+    count = sum(breaks.count(c) for c in "\r\n\x85\u2028\u2029")
+    return count + (0 if breaks.endswith(tuple("\r\n\x85\u2028\u2029")) else 1)
 
 
 # --- step 2b: JSON text -> tree -----------------------------------------------------------------

@@ -11,8 +11,8 @@ section 4.
       ...
 
 A suggestion whose proportions a maker would not build (``suggest.score``) says why it is
-ranked lower ('ranked lower: slat_12 hangs 64 % of its end past the edge of cap, which it
-is nailed to').
+ranked after the others ('implausible proportion: slat_12 hangs 64 % of its end past the
+edge of cap, which it is nailed to').
 
 The sentence of a continuous suggestion is ``shop_words``', its cut list ``cutlist``'s.
 """
@@ -174,7 +174,7 @@ def _implausible_lines(suggestion: Suggestion) -> list[str]:
     score = suggestion.score
     if score is None:
         return []
-    return [f"ranked lower: {reason}" for reason in score.implausible]
+    return [f"implausible proportion: {reason}" for reason in score.implausible]
 
 
 def _score_json(suggestion: Suggestion) -> dict[str, Any] | None:

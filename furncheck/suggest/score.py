@@ -6,9 +6,10 @@ design, and ranked by ``ShopScore.key`` (smaller first), lexicographically:
 1. ``implausible``: proportions a maker would not build, that the input did not have
    already -- a plank too big to cut from one stock board (``tolerances.STOCK_BOARD``,
    2440 x 1220 mm MDF), a plank whose end is nailed to another plank's face and that is
-   wider there than that plank (a 594 mm leg under a 350 mm seat) or hangs past that
-   face's edge by more than HANG_SHARE of its end (a cabinet's back slat moved 76 mm
-   along the cap it hangs from, most of it past the cabinet's side), or a level plank
+   wider there than that plank (a 594 mm leg under a 350 mm seat) or, moved or
+   widened, hangs past the faces it is nailed to by more than HANG_SHARE of its end (a
+   cabinet's back slat moved 76 mm along the cap it hangs from, most of it past the
+   cabinet's side), or a level plank
    (seat, top, shelf) that overhangs its supports by more than OVERHANG_SHARE of its
    length at one end (legs moved 267 mm in under a 900 mm bench seat: whoever sits at
    its end tips it, whatever the load cases say);
@@ -114,9 +115,10 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
         if _overhangs(edited, joint) and not _overhangs(original, joint):
             reasons.append(f"{joint.edge} is wider than {joint.face}, which it is nailed to")
             continue
-        before, after = _hanging(original, joint), _hanging(edited, joint)
+        before = _hanging(original, joint, geometry.joints)
+        after = _hanging(edited, joint, geometry.joints)
         if before <= HANG_SHARE < after and after - before >= OVERHANG_GROWTH:
-            reasons.append(f"{joint.edge} hangs {round(100 * after)} % of its end past the "
+            reasons.append(f"{joint.edge} hangs {_percent(after)} % of its end past the "
                            f"edge of {joint.face}, which it is nailed to")
     supports = _supports(geometry)
     for plank_id in _level_planks(original, supports, changed):
@@ -202,21 +204,59 @@ def _fits_board(plank: Plank) -> bool:
     return long_side <= STOCK_BOARD[0] and short_side <= STOCK_BOARD[1]
 
 
-def _hanging(design: Design, joint) -> float:
-    """The share of the joint's edge plank's end (its narrow face on the face plank, along
-    that face's long side) that lies beyond the face plank's outline, along that side."""
-    edge, face = design.plank(joint.edge), design.plank(joint.face)
+def _hanging(design: Design, joint, joints) -> float:
+    """The share of the joint's edge plank's end (its narrow face on the face plank, a
+    segment along that face's long side) that no face plank it is nailed to by that end
+    covers (``joints``: the design's joints, the ones of the same end counted together,
+    so that an end under the seam of two boards is covered by both): the segment is
+    clipped to each face plank's outline in the face's own axes."""
+    edge = design.plank(joint.edge)
     axis, sign = joint.edge_face
     across = 1 - axis                               # the end face's long side
     direction = edge.rotation_matrix[:, across]
     width = (edge.length, edge.width)[across]
+    if width <= 0.0:
+        return 0.0
     end = edge.center_array + sign * 0.5 * (edge.length, edge.width)[axis] \
         * edge.rotation_matrix[:, axis]
-    middle = float((end - face.center_array) @ direction)
-    reach = 0.5 * float(np.abs(face.rotation_matrix[:, :2].T @ direction) @
-                        np.array([face.length, face.width]))
-    beyond = max(middle + 0.5 * width - reach, 0.0) + max(-reach - (middle - 0.5 * width), 0.0)
-    return min(beyond, width) / width if width > 0.0 else 0.0
+    covered = []
+    for other in joints:
+        if other.edge != joint.edge or tuple(other.edge_face) != (axis, sign) \
+                or other.face not in design.plank_index:
+            continue
+        low, high = _clipped(end, direction, 0.5 * width, design.plank(other.face))
+        if low < high:
+            covered.append((low, high))
+    reach, length = -0.5 * width, 0.0
+    for low, high in sorted(covered):         # the union of the covered pieces
+        low = max(low, reach)
+        if high > low:
+            length, reach = length + high - low, high
+    return max(width - length, 0.0) / width
+
+
+def _percent(share: float) -> int:
+    """A share over HANG_SHARE in whole per cent, never rounded down to the threshold."""
+    return max(round(100 * share), math.floor(100 * HANG_SHARE) + 1)
+
+
+def _clipped(end: np.ndarray, direction: np.ndarray, half: float,
+             face: Plank) -> tuple[float, float]:
+    """(low, high): the part of the segment end + s direction, |s| <= half, that lies
+    within the face plank's outline (|offset . e_a| <= its half size along each in-plane
+    axis e_a); low >= high where none does."""
+    low, high = -half, half
+    offset = end - face.center_array
+    for a, size in ((0, face.length), (1, face.width)):
+        axis = face.rotation_matrix[:, a]
+        start, slope, bound = float(offset @ axis), float(direction @ axis), 0.5 * size
+        if abs(slope) <= 1e-12:
+            if abs(start) > bound:
+                return 0.0, 0.0
+            continue
+        first, second = sorted(((-bound - start) / slope, (bound - start) / slope))
+        low, high = max(low, first), min(high, second)
+    return low, high
 
 
 def _overhangs(design: Design, joint) -> bool:
