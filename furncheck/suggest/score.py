@@ -224,7 +224,8 @@ def _hanging(design: Design, joint, joints) -> float:
         if other.edge != joint.edge or tuple(other.edge_face) != (axis, sign) \
                 or other.face not in design.plank_index:
             continue
-        low, high = _clipped(end, direction, 0.5 * width, design.plank(other.face))
+        low, high = _clipped(end, direction, 0.5 * width, design.plank(other.face),
+                             design.tolerance)
         if low < high:
             covered.append((low, high))
     reach, length = -0.5 * width, 0.0
@@ -240,16 +241,18 @@ def _percent(share: float) -> int:
     return max(round(100 * share), math.floor(100 * HANG_SHARE) + 1)
 
 
-def _clipped(end: np.ndarray, direction: np.ndarray, half: float,
-             face: Plank) -> tuple[float, float]:
+def _clipped(end: np.ndarray, direction: np.ndarray, half: float, face: Plank,
+             slack: float) -> tuple[float, float]:
     """(low, high): the part of the segment end + s direction, |s| <= half, that lies
-    within the face plank's outline (|offset . e_a| <= its half size along each in-plane
-    axis e_a); low >= high where none does."""
+    within the face plank's outline widened by ``slack`` (the design's tolerance: an end
+    flush with the face's edge is on it) (|offset . e_a| <= its half size along each
+    in-plane axis e_a); low >= high where none does."""
     low, high = -half, half
     offset = end - face.center_array
     for a, size in ((0, face.length), (1, face.width)):
         axis = face.rotation_matrix[:, a]
-        start, slope, bound = float(offset @ axis), float(direction @ axis), 0.5 * size
+        start, slope = float(offset @ axis), float(direction @ axis)
+        bound = 0.5 * size + slack
         if abs(slope) <= 1e-12:
             if abs(start) > bound:
                 return 0.0, 0.0
