@@ -151,17 +151,18 @@ planks:
 
 def test_an_end_turned_in_the_face_plane_is_clipped_to_the_outline():
     """The leg turned 45 degrees about z: its 300 mm end runs along (-0.707, 0.707) from
-    its centre.  Centred at (-420, 220) under a 1000 x 600 top (edges at x = -500 and
-    y = 300), it leaves the top after 80 / 0.707 = 113 mm of its 150 mm half: 37 mm,
-    12 %, hangs past the corner.  Centred at (-450, 250): after 50 / 0.707 = 70.7 mm,
-    79.3 mm hang, 26 % (over a quarter): implausible.  (The top's outline projected on
-    the end's direction, 1131 mm wide, would have covered both.)"""
+    its centre, under a 1000 x 600 top (edges at x = +-500, y = +-300).  Centred at
+    (440, 100), it reaches x = 500 after 60 / 0.707 = 84.9 mm toward -s: 65.1 mm, 22 %,
+    hangs past; centred at (470, 150), after 42.4 mm: 107.6 mm, 36 % (over a quarter),
+    implausible (less the design's 0.5 mm tolerance: 35.6 %).  The top's outline
+    projected on the end's direction (its 1131 mm shadow, centred where the top is)
+    covers both ends whole: it would have read 0."""
     base = ONE_TOP.format(x=0, y=0)
-    near = ONE_TOP.format(x=-420, y=220)
-    past = ONE_TOP.format(x=-450, y=250)
+    near = ONE_TOP.format(x=440, y=100)
+    past = ONE_TOP.format(x=470, y=150)
     assert score_of(base, near).implausible == ()
     assert score_of(base, past).implausible == (
-        "leg hangs 26 % of its end past the edge of top, which it is nailed to",)
+        "leg hangs 36 % of its end past the edge of top, which it is nailed to",)
 
 
 def test_the_ranking_key_is_lexicographic():
