@@ -108,6 +108,9 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
         if (before is None or plank.id in changed) and not _fits_board(plank) and \
                 (before is None or _fits_board(original.planks[before])):
             reasons.append(f"{plank.id} is larger than a stock board")
+    faces: dict[tuple, list[str]] = {}          # per end (plank, edge_face): what holds it
+    for joint in geometry.joints:
+        faces.setdefault((joint.edge, tuple(joint.edge_face)), []).append(joint.face)
     for joint in geometry.joints:
         if joint.edge not in edited.plank_index or joint.face not in edited.plank_index \
                 or not {joint.edge, joint.face} & changed:
@@ -115,8 +118,8 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
         if _overhangs(edited, joint) and not _overhangs(original, joint):
             reasons.append(f"{joint.edge} is wider than {joint.face}, which it is nailed to")
             continue
-        before = _hanging(original, joint, geometry.joints)
-        after = _hanging(edited, joint, geometry.joints)
+        held_by = faces[(joint.edge, tuple(joint.edge_face))]
+        before, after = _hanging(original, joint, held_by), _hanging(edited, joint, held_by)
         if before <= HANG_SHARE < after and after - before >= OVERHANG_GROWTH:
             reasons.append(f"{joint.edge} hangs {_percent(after)} % of its end past the "
                            f"edge of {joint.face}, which it is nailed to")
@@ -204,27 +207,31 @@ def _fits_board(plank: Plank) -> bool:
     return long_side <= STOCK_BOARD[0] and short_side <= STOCK_BOARD[1]
 
 
-def _hanging(design: Design, joint, joints) -> float:
+def _end_side(edge: Plank, joint) -> tuple[np.ndarray, float]:
+    """(unit vector, length) of the long side of the edge plank's end that the joint
+    nails to its face plank (the end face's other side is the plank's thickness)."""
+    across = 1 - joint.edge_face[0]
+    return edge.rotation_matrix[:, across], (edge.length, edge.width)[across]
+
+
+def _hanging(design: Design, joint, faces: list[str]) -> float:
     """The share of the joint's edge plank's end (its narrow face on the face plank, a
-    segment along that face's long side) that no face plank it is nailed to by that end
-    covers (``joints``: the design's joints, the ones of the same end counted together,
-    so that an end under the seam of two boards is covered by both): the segment is
-    clipped to each face plank's outline in the face's own axes."""
+    segment along that face's long side) that none of ``faces`` covers (the face planks
+    that end is nailed to, counted together: an end under the seam of two boards is
+    covered by both): the segment is clipped to each face plank's outline in the face's
+    own axes."""
     edge = design.plank(joint.edge)
     axis, sign = joint.edge_face
-    across = 1 - axis                               # the end face's long side
-    direction = edge.rotation_matrix[:, across]
-    width = (edge.length, edge.width)[across]
+    direction, width = _end_side(edge, joint)
     if width <= 0.0:
         return 0.0
     end = edge.center_array + sign * 0.5 * (edge.length, edge.width)[axis] \
         * edge.rotation_matrix[:, axis]
     covered = []
-    for other in joints:
-        if other.edge != joint.edge or tuple(other.edge_face) != (axis, sign) \
-                or other.face not in design.plank_index:
+    for face in faces:
+        if face not in design.plank_index:
             continue
-        low, high = _clipped(end, direction, 0.5 * width, design.plank(other.face),
+        low, high = _clipped(end, direction, 0.5 * width, design.plank(face),
                              design.tolerance)
         if low < high:
             covered.append((low, high))
@@ -265,11 +272,8 @@ def _clipped(end: np.ndarray, direction: np.ndarray, half: float, face: Plank,
 def _overhangs(design: Design, joint) -> bool:
     """Whether the joint's edge plank is wider, along its end face, than its face plank
     reaches in that direction (beyond the tolerance)."""
-    edge = design.plank(joint.edge)
     face = design.plank(joint.face)
-    across = 1 - joint.edge_face[0]                 # the end face's long side
-    direction = edge.rotation_matrix[:, across]
-    width = (edge.length, edge.width)[across]
+    direction, width = _end_side(design.plank(joint.edge), joint)
     reach = float(np.abs(face.rotation_matrix[:, :2].T @ direction) @
                   np.array([face.length, face.width]))
     return width > reach + design.tolerance
