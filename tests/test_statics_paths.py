@@ -268,15 +268,21 @@ def test_line_starts_take_the_nearest_step_on_its_side():
 
 
 def test_a_near_start_that_finds_no_minimum_falls_back_to_its_own(monkeypatch):
-    """(e) bookcase-pins (elastic), its shelf turned 8.639 degrees about x, solved from the
-    same design turned 8.574 degrees (the range search of ``shelf.rx`` probes the two in
-    turn): in its 'push' case the friction phase finds no minimum from the near start
-    (the capped energy falls without bound along a sliding motion: Phi of
-    ``friction._FrictionEnergy``), then settles from the case's own normal phase, to the
-    verdict and forces of a cold solve.  Without the fallback that probe's forces came
-    from the linear programs (``solve_case``: the admissible forces nearest the elastic
-    solution), not from the contact law, and the range of ``shelf.rx`` ended at 8.7733
-    degrees instead of 8.71875."""
+    """(e) A near start from which the friction phase finds no minimum: the iterations
+    start again from the case's own normal phase, to the verdict and forces of a cold
+    solve, and the near start is not tried again.  bookcase-pins (elastic), its shelf
+    turned 4 degrees about x (a probe of the range of ``shelf.rx``; some corners slip, so
+    a friction phase runs), 'push' case (20 N at the top), solved from a near case whose
+    contacts carry no normal force: its caps mu N are 0, and without friction nothing holds the push, so the capped energy
+    falls without bound along the sliding motion (Phi of ``friction._FrictionEnergy``).
+    The range search meets such near starts on its own (probes of this DOF near 8.6
+    degrees, where the pins' verdicts flip within hundredths of a degree), but which probe does
+    depends on the last bits of the sums there; a near case without friction fails for
+    a reason that does not.  Without the fallback the probe's forces came from the linear
+    programs (``solve_case``: the admissible forces nearest the elastic solution), not
+    from the contact law."""
+    from dataclasses import replace
+
     from furncheck.design.model import with_model
     from furncheck.dofs import apply_dof, parse_dof, structure
     from furncheck.edit_check import standing_geometry
@@ -285,10 +291,7 @@ def test_a_near_start_that_finds_no_minimum_falls_back_to_its_own(monkeypatch):
     design = with_model(load_design(str(CATALOG[0].parent / "bookcase-pins.yaml")),
                         "elastic")
     frame = structure(design, standing_geometry(analyze(design)))
-    turn = parse_dof(design, "shelf.rx")
-    before = apply_dof(design, frame, turn, 8.5736941584924)
-    near = case_statics(before, analyze(before))
-    probe = apply_dof(design, frame, turn, 8.638984924371735)
+    probe = apply_dof(design, frame, parse_dof(design, "shelf.rx"), 4.0)
     model = build_model(probe, analyze(probe))
     (push,) = [k for k, case in enumerate(probe.load_cases) if case.name == "push"]
     f = external_forces(model, probe.load_cases[push])
@@ -302,12 +305,12 @@ def test_a_near_start_that_finds_no_minimum_falls_back_to_its_own(monkeypatch):
 
     monkeypatch.setattr(contacts._ActiveSet, "_settle", recorded)
     cold = solve_case(model, f)
-    assert settled == [True]
+    assert cold.stability == "stable" and settled == [True]
+    frictionless = replace(cold, contact_forces=np.zeros_like(cold.contact_forces))
     settled.clear()
-    warm = solve_case(model, f, near=near[push])
+    warm = solve_case(model, f, near=frictionless)
     assert settled == [False, True]         # no minimum from the near start; its own
     weight = float(np.abs(f).sum())
     _assert_same([(cold.stability, cold.joint_wrenches, cold.contact_forces, weight)],
                  [(warm.stability, warm.joint_wrenches, warm.contact_forces, weight)],
                  NEAR_CLOSE)
-    assert warm.stability == "stable"

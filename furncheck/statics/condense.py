@@ -17,9 +17,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.statics.elements import assemble_beams_dense, element_entries
+from furncheck.statics.elements import beam_entries_placed, element_entries
 from furncheck.statics.lapack import cholesky, cholesky_solve
-from furncheck.statics.model import _SIX, StaticsModel, block_sums
+from furncheck.statics.model import _SIX, StaticsModel
 
 if TYPE_CHECKING:
     import scipy.sparse as sp
@@ -149,18 +149,21 @@ def _condense_planks(model: StaticsModel, ground: np.ndarray,
     pairs = np.swapaxes(blocks, 2, 3)[:, :, None] @ weighted[:, None]   # (nJ, 2, 2, 6, 6)
     n_nodes = model.n_nodes
     # K is assembled with the nodes reordered, the others first and the grounded ones
-    # last, so that its parts are slices rather than gathered rows and columns
+    # last, so that its parts are slices rather than gathered rows and columns; each
+    # entry sums its joints' terms in the joints' order
     inner = _others(n, ground)
     grounded = ground[::6] // 6
     order = np.concatenate([inner[::6] // 6, grounded])
     position = np.empty(n_nodes, dtype=int)
     position[order] = np.arange(n_nodes)
-    placed = position[nodes]
-    per_pair = block_sums((placed[:, :, None] * n_nodes + placed[:, None, :]).ravel(),
-                          pairs.reshape(-1, 36), n_nodes * n_nodes)
-    K = per_pair.reshape(n_nodes, n_nodes, 6, 6).transpose(0, 2, 1, 3).reshape(n, n)
+    first = 6 * position[nodes]                                         # (nJ, 2)
+    rows = first[:, :, None, None, None] + _SIX[None, None, None, :, None]
+    cols = first[:, None, :, None, None] + _SIX[None, None, None, None, :]
+    index, values = (rows * n + cols).ravel(), pairs.ravel()
     if model.beams is not None:
-        K += assemble_beams_dense(model.beams, position)
+        beam_index, beam_values = beam_entries_placed(model.beams, position)
+        index, values = np.concatenate([index, beam_index]), np.concatenate([values, beam_values])
+    K = np.bincount(index, weights=values, minlength=n * n).reshape(n, n)
     ni = len(inner)
     coupling = K[:ni, ni:]
     reduced = np.zeros((ni, len(ground)))
@@ -171,11 +174,12 @@ def _condense_planks(model: StaticsModel, ground: np.ndarray,
         if factor is None:
             return None
         probe = coupling.sum(axis=1) if len(ground) else np.ones(len(inner))
-        rhs = probe if np.any(probe) else np.ones(len(inner))
-        if not _accurate(K_ii, cholesky_solve(factor, rhs), rhs):
+        if not np.any(probe):
+            probe = np.ones(len(inner))
+        solved = cholesky_solve(factor, np.column_stack([coupling, probe]))
+        if not _accurate(K_ii, solved[:, -1], probe):
             return None
-        if len(ground):
-            reduced = cholesky_solve(factor, coupling)
+        reduced = solved[:, :-1]
     schur = K[ni:, ni:] - coupling.T @ reduced
     return _PlankCondensation(ground, inner, coupling, reduced, schur, contact_block,
                               plank_offsets, n + m, factor=factor, model=weakref.proxy(model))

@@ -128,19 +128,17 @@ def assemble_beams(beams: Beams, n_nodes: int) -> sp.csr_matrix:
     return sp.csr_matrix((world.ravel(), (rows.ravel(), cols.ravel())), shape=(n, n))
 
 
-def assemble_beams_dense(beams: Beams, position: np.ndarray) -> np.ndarray:
-    """K_b as ``assemble_beams`` gives it, dense, with node k's rows and columns at block
-    ``position[k]`` (a permutation of the nodes), for designs small enough for dense
-    matrices.  An entry sums the terms of at most two elements (the two that meet at a
-    node, on its diagonal block), and a sum of two terms does not depend on their order,
-    so the matrix is the sparse one's to the last bit."""
+def beam_entries_placed(beams: Beams, position: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """K_b's terms for a dense matrix with node k's rows and columns at block
+    ``position[k]`` (a permutation of the nodes): each term's flat index in that (6 nN,
+    6 nN) matrix and its value, element by element (``np.bincount`` of them is K_b; with
+    other terms before them, each entry sums those first, then its elements' in order)."""
     world, rows, cols = element_entries(beams)
     n_dof = 6 * len(position)
     block = 6 * np.asarray(position)
-    rows = (block[rows // 6] + rows % 6).ravel()
-    cols = (block[cols // 6] + cols % 6).ravel()
-    return block_sums(rows * n_dof + cols, world.reshape(-1, 1), n_dof * n_dof) \
-        .reshape(n_dof, n_dof)
+    rows = block[rows // 6] + rows % 6
+    cols = block[cols // 6] + cols % 6
+    return (rows * n_dof + cols).ravel(), world.ravel()
 
 
 def element_entries(beams: Beams) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
