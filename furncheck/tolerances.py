@@ -208,6 +208,12 @@ where the caps balance the push and the out-of-balance force is small however fa
 slides: 5 cm, then metres, and the minimization gave up where a minimum lay 0.5 mm from
 its start (``tests/test_invariants.py``, the l-shelf at the edge of sliding)."""
 
+RATE_ROUNDOFF = 1e-9
+"""A linearized margin's rate is taken as zero (round-off of a rate that is zero by
+symmetry) where it changes the margin by less than this fraction of the margin's size (at
+least 1) over the DOF's whole search reach; margins as low as each other to this fraction
+are tied (``ranges.finder.RangeFinder._favoured_sign``)."""
+
 LINE_SEARCH_ITERATIONS = 30
 """Most iterations of a Newton step's line search between two breakpoints of the slope
 along the step, and most doublings of the step beyond the full step (each an O(contacts)

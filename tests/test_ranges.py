@@ -24,6 +24,7 @@ import json
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 import range_designs as rd
 from click.testing import CliRunner
@@ -185,6 +186,29 @@ def test_ranges_do_not_depend_on_the_length_unit(name, model, names):
         assert mm.valid is not None, mm
         for a, b in zip(mm.valid, m.valid):
             assert abs(a - b * factor) <= step, (mm, m)
+
+
+@pytest.mark.parametrize("offset", [(0.0, 0.0, 0.0), (1.2345, -0.0777, 0.0),
+                                    (0.0003, 0.0001, 0.0)])
+def test_a_symmetric_turns_nearest_window_does_not_depend_on_where_the_design_stands(offset):
+    """bookcase-sagging's middle shelf sags (invalid); turned about x by 80.07 to 90
+    degrees either way it stands on edge and holds: two windows as near as each other,
+    mirror images (the shelf is symmetric about its long axis, so every margin's rate in
+    its turn is zero, computed as round-off of 1e-17 to 1e-16).  The nearest window is
+    the one on the + side wherever the design stands (moved by ``offset`` m): the side
+    searched first no longer follows the sign of the round-off, which moving the design
+    by a metre, or a tenth of a millimetre, flipped."""
+    from dataclasses import replace
+
+    design = with_model(load_design(str(DESIGNS / "bookcase-sagging.yaml")), "elastic")
+    shift = np.array(offset)
+    moved = replace(design, planks=tuple(replace(p, center=tuple(np.add(p.center, shift)))
+                                         for p in design.planks))
+    turn = parse_dof(moved, "middle.rx")
+    assert RangeFinder(moved)._favoured_sign(turn) == 1.0
+    (found,) = dof_ranges(moved, ["middle.rx"])
+    assert found.valid[0] == pytest.approx(80.07, abs=0.01)
+    assert found.valid[1] == pytest.approx(90.0)
 
 
 # --- b. table top sliding over central legs: tipping -------------------------------------------

@@ -10,6 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from furncheck import tolerances as tol
 from furncheck.check import check_design, margin_of
 from furncheck.design.model import Design
 from furncheck.dofs import (
@@ -321,13 +322,24 @@ class RangeFinder(ReachSearch):
         return self._predictions[dof]
 
     def _favoured_sign(self, dof: Dof) -> float:
-        """+1 if increasing the DOF improves the worst margin (linearly), else -1."""
-        pairs = [(rate, current) for linear, sens in self._sensitivities(dof)
+        """+1 if increasing the DOF improves the worst margin (linearly), -1 if it worsens
+        it; +1 where the worst margins do not decide: no margin, rates that are round-off
+        (they change the margin by less than RATE_ROUNDOFF of its size, at least 1, over
+        the DOF's whole reach: a mirror-symmetric turn, whose true rates are zero), or
+        worst margins as low as each other (to RATE_ROUNDOFF) whose rates disagree (a
+        mirror pair's).  The nearest valid window's search looks on this side first, so
+        where both sides hold windows as near as each other, the side searched first does
+        not depend on the last bits of the sums."""
+        pairs = [(float(rate), float(current)) for linear, sens in self._sensitivities(dof)
                  for rate, current in _margins(linear, sens)]
         if not pairs:
             return 1.0
-        rate, _ = min(pairs, key=lambda pair: pair[1])
-        return 1.0 if rate >= 0 else -1.0
+        least = min(current for _, current in pairs)
+        reach, _ = self._scales(dof)
+        signs = {1.0 if rate > 0.0 else -1.0 for rate, current in pairs
+                 if current - least <= tol.RATE_ROUNDOFF * max(1.0, abs(least))
+                 and abs(rate) * reach > tol.RATE_ROUNDOFF * max(1.0, abs(current))}
+        return signs.pop() if len(signs) == 1 else 1.0
 
     def _scales(self, dof: Dof) -> tuple[float, float]:
         if dof.is_rotation:
