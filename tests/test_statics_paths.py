@@ -273,14 +273,14 @@ def test_a_near_start_that_finds_no_minimum_falls_back_to_its_own(monkeypatch):
     solve, and the near start is not tried again.  bookcase-pins (elastic), its shelf
     turned 4 degrees about x (a probe of the range of ``shelf.rx``; some corners slip, so
     a friction phase runs), 'push' case (20 N at the top), solved from a near case whose
-    contacts carry no normal force: its caps mu N are 0, and without friction nothing holds the push, so the capped energy
-    falls without bound along the sliding motion (Phi of ``friction._FrictionEnergy``).
-    The range search meets such near starts on its own (probes of this DOF near 8.6
-    degrees, where the pins' verdicts flip within hundredths of a degree), but which probe does
-    depends on the last bits of the sums there; a near case without friction fails for
-    a reason that does not.  Without the fallback the probe's forces came from the linear
-    programs (``solve_case``: the admissible forces nearest the elastic solution), not
-    from the contact law."""
+    contacts carry no normal force: its caps mu N are 0, and without friction nothing
+    holds the push, so the capped energy falls without bound along the sliding motion
+    (Phi of ``friction._FrictionEnergy``).  The range search meets such near starts on
+    its own (probes of this DOF near 8.6 degrees), but at probes where the last bits of
+    the sums decide whether the iterations settle from the near start; a near case
+    without friction fails for a reason that does not depend on them.  Without the
+    fallback the probe's forces came from the linear programs (``solve_case``: the
+    admissible forces nearest the elastic solution), not from the contact law."""
     from dataclasses import replace
 
     from furncheck.design.model import with_model

@@ -50,12 +50,14 @@ def _plank_nodes(k: int, half: float, attachments: list[tuple[float, tuple]]) ->
     """The nodes of local plank k, a beam of half length ``half``, in order along it, each
     as its origin: k and the attachment keys it serves (``attachments``: (s, key),
     s the attachment's position along the axis; those within NODE_MERGE of each other, or
-    a tenth of a grid step on a short plank, share a node at their mean), with the ends
+    a tenth of a grid step on a short plank, share a node at their mean; the distance is
+    compared with NODE_MERGE_ROUNDOFF to spare, so that attachments exactly a millimetre
+    apart share one whatever the last bits of their positions), with the ends
     ('end', k, -1 / 1) and the centre ('centre', k), or ('grid', k, fraction) for the grid
     of BEAM_SEGMENTS where no node is within a quarter of its step (fraction 0 .. 1 from
     the -e1 end).  Consecutive nodes are at least the merge distance apart."""
     step = 2.0 * half / tol.BEAM_SEGMENTS
-    merge = min(tol.NODE_MERGE, 0.1 * step)
+    merge = min(tol.NODE_MERGE, 0.1 * step) + tol.NODE_MERGE_ROUNDOFF
     marks = [(-half, ("end", k, -1)), (0.0, ("centre", k)), (half, ("end", k, 1))]
     required = sorted(((min(max(s, -half), half), key) for s, key in [*attachments, *marks]),
                       key=lambda item: item[0])
