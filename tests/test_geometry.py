@@ -165,6 +165,29 @@ def test_plank_joined_to_nothing_is_disconnected():
     assert [(v.kind, v.where) for v in report.violations] == [("disconnected", "lamp")]
 
 
+@pytest.mark.parametrize("degrees", [0.5, 0.8, 1.2])
+def test_a_turned_listed_joint_reports_how_deep_its_corner_sinks(degrees):
+    """bookshelf-gap's 597 mm shelf (centre x = -1.5 mm, 250 mm deep) turned about z by
+    ``degrees``: one corner of its left end sinks into side_l's face at x = -300 by
+    298.5 cos(a) + 125 sin(a) + 1.5 - 300 (1.079 mm at 0.5 degrees), beyond the 0.5 mm
+    tolerance, and the listed joint reads so.  The side's end face, whose plane the
+    shelf's lower face runs through (both at z = 450), lay 450 mm "inside" it and, the
+    flusher of the two, was reported: "interpenetrate by 450 mm"."""
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parent.parent / "designs" / "bookshelf-gap.yaml") \
+        .read_text()
+    text = text.replace("{id: shelf, size: [597, 250], center: [-1.5, 0, 456]}",
+                        f"{{id: shelf, size: [597, 250], center: [-1.5, 0, 456], "
+                        f"rotation: [0, 0, {degrees}]}}")
+    a = np.radians(degrees)
+    depth = 298.5 * np.cos(a) + 125.0 * np.sin(a) + 1.5 - 300.0
+    (found,) = [v for v in analyze(design(text)).violations if v.where == "side_l/shelf"]
+    assert found.message.startswith("planks interpenetrate by ")
+    reported = float(found.message.split(" by ")[1].split(" mm")[0])
+    assert reported == pytest.approx(depth, abs=1e-3)
+
+
 def test_balanced_on_an_edge_is_reported_in_words_not_numbers():
     """A lone plank standing on one long edge (two collinear ground corners) cannot be held
     even bolted down: the case reads lift-off (never "mechanism") and has no forces."""
