@@ -135,11 +135,14 @@ else and would only cost the solve digits."""
 
 NODE_MERGE_ROUNDOFF = 1e-9
 """m: the round-off spared when attachments' distance along a plank is compared with
-NODE_MERGE: designs drawn in whole millimetres put attachments exactly 1 mm apart, and
-positions computed from turned planks are off by 1e-16 m either way (bookcase-pins with
-its shelf turned by 8.6 to 8.8 degrees, a pin's bearing corners 1 mm from its joint: the
-pin's stress read 23 or 0.003 N/mm^2 from one hundredth of a degree to the next, as they
-shared a node or not)."""
+NODE_MERGE (and wherever two nodes' distance is, ``statics.bending``, ``_crosswise`` of
+``statics.elastic``): designs drawn in whole millimetres put attachments exactly 1 mm
+apart, and positions computed from turned planks are off by up to 1e-14 m either way
+(bookcase-pins with its shelf turned by 8.6 to 8.8 degrees, a pin's bearing corners 1 mm
++- 7e-15 m from its joint: the pin's stress read 23 or 0.003 N/mm^2 from one hundredth of
+a degree to the next, as they shared a node or not).  Attachments drawn 1 mm and a
+nanometre apart still get a node each: the rule has an edge, now where no drawing puts
+one."""
 
 CONTACT_ITERATIONS = 60
 """Most active-set / friction-anchor iterations per load case."""

@@ -105,29 +105,34 @@ def test_short_planks_get_elements_of_positive_length(size):
     assert check_design(design).valid
 
 
-@pytest.mark.parametrize("gap", [0.001, 0.001 * (1.0 + 4e-16), 0.001 * (1.0 - 4e-16),
-                                 (-0.005) - (-0.006)])
+@pytest.mark.parametrize("gap", [0.001, float(np.nextafter(0.001, 1.0)),
+                                 float(np.nextafter(0.001, 0.0)), 0.001 + 6.7e-15])
 def test_attachments_a_millimetre_apart_share_a_node_whatever_their_last_bits(gap):
-    """Two attachments NODE_MERGE (1 mm) apart along a 12 mm plank (one grid step: the
-    merge distance is min(1 mm, 1.2 mm)) share one node at their mean, with the distance
-    written exactly, a unit of the last place above or below it, or as the difference of
-    two positions; the end they sit beside keeps its own node only when farther."""
+    """Two attachments NODE_MERGE (1 mm) apart along a 12 mm plank, inside it (one grid
+    step: the merge distance is min(1 mm, 1.2 mm)), share one node, with the distance
+    exactly 1 mm, one unit of the last place above or below it, or 1 mm + 6.7e-15 m (the
+    largest error of the tilted bookcase-pins' positions, below); two 1.01 mm apart
+    do not."""
     from furncheck.statics.elastic import _plank_nodes
 
-    nodes = _plank_nodes(0, 0.006, [(-0.006, ("joint", 0)), (-0.006 + gap, ("contact", 1))])
-    keys = [set(node[1:]) for node in nodes]
-    shared = [k for k in keys if ("joint", 0) in k]
-    assert len(shared) == 1 and ("contact", 1) in shared[0]
+    def shared(distance: float) -> bool:
+        nodes = _plank_nodes(0, 0.006, [(-0.004, ("joint", 0)),
+                                        (-0.004 + distance, ("contact", 1))])
+        (holding,) = [set(node[1:]) for node in nodes if ("joint", 0) in node[1:]]
+        return ("contact", 1) in holding
+
+    assert shared(gap)
+    assert not shared(0.00101)
 
 
 def test_a_tilted_shelfs_pins_do_not_flip_from_one_hundredth_of_a_degree_to_the_next():
     """bookcase-pins with its shelf turned 8.69 to 8.72 degrees about x (the edit's
-    structure has shortened pin_lb, which the shelf's back edge now bears on, to 0.9
-    mm, so that its beam runs along its 12 mm width): two of the shelf's bearing corners
-    lie exactly 1 mm from the pin's joint along that beam.  Its verdict and the pin's stress are
-    the same at each angle: before, the two shared a node or not as the last bits of the
-    turned positions fell, and the pin read 23 N/mm^2 (overstressed) and 0.003 N/mm^2
-    (valid) by turns."""
+    structure has shortened pin_lb, which the shelf's back edge now bears on, to 0.88 to
+    0.94 mm, so that its beam runs along its 12 mm width): two of the shelf's bearing
+    corners lie 1 mm from the pin's joint along that beam, to 7e-15 m.  Its verdict and
+    the pin's stress are the same at each angle: before, the two shared a node or not as
+    the last bits of the turned positions fell, and the pin read 23 N/mm^2 (overstressed)
+    and 0.003 N/mm^2 (valid) by turns."""
     from pathlib import Path
 
     from furncheck.design import load_design

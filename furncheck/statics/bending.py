@@ -426,7 +426,7 @@ def _sag(model: StaticsModel, s: np.ndarray, deflection: np.ndarray,
     half = beams.plank_half
     supported = low >= 0
     sa, sb = beams.node_s[low], beams.node_s[high]          # read only where supported
-    chord = supported & (sb - sa > tol.NODE_MERGE)
+    chord = supported & (sb - sa > tol.NODE_MERGE + tol.NODE_MERGE_ROUNDOFF)
     reach = 1e-9 + 1e-9 * half                  # a point at a support counts as between
 
     # per sample point, its plank's supports: which part of the plank it lies in and the

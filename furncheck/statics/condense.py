@@ -150,7 +150,9 @@ def _condense_planks(model: StaticsModel, ground: np.ndarray,
     n_nodes = model.n_nodes
     # K is assembled with the nodes reordered, the others first and the grounded ones
     # last, so that its parts are slices rather than gathered rows and columns; each
-    # entry sums its joints' terms in the joints' order
+    # entry sums its joints' terms in the joints' order, then its elements' (the joints'
+    # sum alone is as before; where elements meet a joint the last bits may differ from
+    # adding the elements' own sum to it)
     inner = _others(n, ground)
     grounded = ground[::6] // 6
     order = np.concatenate([inner[::6] // 6, grounded])
@@ -163,7 +165,8 @@ def _condense_planks(model: StaticsModel, ground: np.ndarray,
     if model.beams is not None:
         beam_index, beam_values = beam_entries_placed(model.beams, position)
         index, values = np.concatenate([index, beam_index]), np.concatenate([values, beam_values])
-    K = np.bincount(index, weights=values, minlength=n * n).reshape(n, n)
+    K = np.bincount(index, weights=values, minlength=n * n) \
+        .astype(float, copy=False).reshape(n, n)     # (no terms at all: integer zeros)
     ni = len(inner)
     coupling = K[:ni, ni:]
     reduced = np.zeros((ni, len(ground)))

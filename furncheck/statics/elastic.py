@@ -55,7 +55,9 @@ def _plank_nodes(k: int, half: float, attachments: list[tuple[float, tuple]]) ->
     apart share one whatever the last bits of their positions), with the ends
     ('end', k, -1 / 1) and the centre ('centre', k), or ('grid', k, fraction) for the grid
     of BEAM_SEGMENTS where no node is within a quarter of its step (fraction 0 .. 1 from
-    the -e1 end).  Consecutive nodes are at least the merge distance apart."""
+    the -e1 end).  Consecutive nodes are apart (a node's mean lies within its group, and
+    each group starts past the last one's attachments), though they may be nearer than
+    the merge distance where a group's attachments spread over it."""
     step = 2.0 * half / tol.BEAM_SEGMENTS
     merge = min(tol.NODE_MERGE, 0.1 * step) + tol.NODE_MERGE_ROUNDOFF
     marks = [(-half, ("end", k, -1)), (0.0, ("centre", k)), (half, ("end", k, 1))]
@@ -97,7 +99,7 @@ def _crosswise(design: Design, geometry: Geometry, planks: list[Plank], joints: 
             continue
         local = plank.to_local(np.array(points[plank.id]))
         spread = local.max(axis=0) - local.min(axis=0)
-        out.append(bool(spread[1] > spread[0] + tol.NODE_MERGE))
+        out.append(bool(spread[1] > spread[0] + tol.NODE_MERGE + tol.NODE_MERGE_ROUNDOFF))
     return tuple(out)
 
 
