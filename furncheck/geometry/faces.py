@@ -76,10 +76,9 @@ def _best_touches(planks: tuple[Plank, ...], pairs: np.ndarray, slack: float, ke
                   faces: _Faces | None = None, one_way: bool = False) -> dict:
     """For each plank pair (i, j) (indices into ``planks``, whose face tables ``faces`` are
     when given), the best narrow-face-on-broad-face contact either way round (``one_way``:
-    only i's narrow faces on j's broad faces): contacts within the slack beat deeper
-    ones, shallower deeper ones beat deeper ones, then the flushest, then the largest
-    (``_rank``).  ``keep_deep`` keeps faces sunk deeper
-    than the slack (to report interpenetration).  A contact's gap
+    only i's narrow faces on j's broad faces), by ``_rank``: contacts within the slack
+    first, then the least sunk, then the flushest, then the largest.  ``keep_deep``
+    keeps faces sunk deeper than the slack (to report interpenetration).  A contact's gap
     is that of the part of the narrow face over the broad face (``_region_gaps``), not of
     its nearest corner anywhere: a long edge turned away from a narrow face touches its
     plane beyond it, and counted as touching, but only where the planks' bounding boxes
@@ -116,7 +115,7 @@ def _best_touches(planks: tuple[Plank, ...], pairs: np.ndarray, slack: float, ke
     return best
 
 
-def _rank(touch, slack: float) -> tuple:
+def _rank(touch: _Touch, slack: float) -> tuple:
     """How good a contact is, best highest (``_best_touches``): within the slack first,
     then, of contacts sunk deeper, the shallowest (a shelf turned half a degree sinks one
     end corner 1.1 mm into its side, while the side's end face lies 450 mm "inside" the

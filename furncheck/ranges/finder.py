@@ -327,9 +327,10 @@ class RangeFinder(ReachSearch):
         (they change the margin by less than RATE_ROUNDOFF of its size, at least 1, over
         the DOF's whole reach: a mirror-symmetric turn, whose true rates are zero), or
         worst margins as low as each other (to RATE_ROUNDOFF) whose rates disagree (a
-        mirror pair's).  The nearest valid window's search looks on this side first, so
-        where both sides hold windows as near as each other, the side searched first does
-        not depend on the last bits of the sums."""
+        mirror pair's; the two joints of a shelf turned in the gap between its sides).
+        The nearest valid window's search looks on this side first, so where both sides
+        hold windows as near as each other, the side searched first does not depend on
+        the last bits of the sums."""
         pairs = [(float(rate), float(current)) for linear, sens in self._sensitivities(dof)
                  for rate, current in _margins(linear, sens)]
         if not pairs:
