@@ -39,6 +39,12 @@ the design's size), and where the window was found at the aim (a geometric repai
 a length, to at most WINDOW_TOLERANCE of the design's tolerance."""
 
 
+def window_resolution(design: Design) -> float:
+    """The length (the file's unit) to which a geometric repair's window is closed in a
+    length DOF: WINDOW_TOLERANCE of the design's tolerance (``suggest.line_search`` too)."""
+    return tol.WINDOW_TOLERANCE * design.tolerance / design.unit_scale
+
+
 def predicted_steps(design: Design, geometry: Geometry, frame: Structure,
                     locked: tuple[Dof, ...], dofs: list[Dof]
                     ) -> dict[Dof, tuple[float, float]]:
@@ -101,8 +107,7 @@ def _predicted_window(finder, dof: Dof, predicted: tuple[float, float], limit: f
     for step in steps:
         if (yield from finder._valid_at(dof, sign * step)):
             if step == sign * aim and not dof.is_rotation:   # a geometric repair's window
-                design = finder.design
-                fine = min(fine, tol.WINDOW_TOLERANCE * design.tolerance / design.unit_scale)
+                fine = min(fine, window_resolution(finder.design))
             below = max(s for s in invalid if s < step)
             inner = yield from finder._bisect(dof, sign, step, below, fine)
             outer = yield from finder._expand(dof, sign, step, limit, fine)

@@ -31,10 +31,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from furncheck import tolerances as tol
 from furncheck.dofs import Blocked, Dof, OutOfReach
 from furncheck.geometry import EditMargins
 from furncheck.ranges.estimates import _first_flip
+from furncheck.ranges.nearest import window_resolution
 from furncheck.suggest.candidates import MAX_STEP, Candidate
 from furncheck.suggest.edits import Editor
 
@@ -68,7 +68,6 @@ INTERPOLATION_GUARD = 0.1
 
 MIN_RESOLUTION = 1e-4
 """No end is closed finer than this (scaled units)."""
-
 
 
 @dataclass(frozen=True)
@@ -154,13 +153,11 @@ def _tolerance_step(editor: Editor, dofs: tuple[Dof, ...], direction: np.ndarray
     the resolution of a geometric repair's window, twice the tolerance wide (an L drawn
     50 mm up stands on the floor lowered by 49.5 to 50.5 mm; closed to 2 % of the step,
     its ends read "50 mm only")."""
-    design = editor.design
     per_step = [abs(change) for dof, change in zip(dofs, editor.changes(dofs, direction, 1.0))
                 if not dof.is_rotation and change != 0.0]
     if not per_step:
         return math.inf
-    return max(tol.WINDOW_TOLERANCE * design.tolerance / design.unit_scale / max(per_step),
-               MIN_RESOLUTION)
+    return max(window_resolution(editor.design) / max(per_step), MIN_RESOLUTION)
 
 
 def _geometric_reach(editor: Editor, dofs: tuple[Dof, ...], direction: np.ndarray,

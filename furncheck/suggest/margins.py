@@ -267,8 +267,8 @@ class Margins:
                                    :2]]
         hull = np.array(points, dtype=float)[convex_hull(points)]
         widened = np.array(points + foot, dtype=float)[convex_hull(points + foot)]
-        for case in design.load_cases:
-            centre = pressure_centre(design, case) if case.name in toppled else None
+        for case in (case for case in design.load_cases if case.name in toppled):
+            centre = pressure_centre(design, case)
             if centre is not None and \
                     outside(widened, centre)[0] < outside(hull, centre)[0] - design.tolerance:
                 return True

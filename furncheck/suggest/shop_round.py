@@ -31,7 +31,6 @@ MOST_TRIED = 3
 """Most rounded changes validated before the exact ones are kept."""
 
 
-
 def rounded_changes(changes: tuple[float, ...], units: tuple[str, ...],
                     rates: tuple[float, ...], low: float, high: float
                     ) -> list[tuple[float, tuple[float, ...]]]:
