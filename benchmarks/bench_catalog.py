@@ -49,9 +49,9 @@ spec = importlib.util.spec_from_file_location(
 cli = importlib.util.module_from_spec(spec)
 sys.modules["furncheck.cli"] = cli
 spec.loader.exec_module(cli)
-from furncheck.cli.main import main
+from furncheck.cli import main as command
 sys.argv[0] = "furncheck"
-main()
+getattr(command, "run", command.main)()   # the console script's entry (older trees: main)
 """
 
 

@@ -1,6 +1,6 @@
 """``python -m furncheck``: the ``furncheck`` command."""
 
-from furncheck.cli.main import main
+from furncheck.cli.main import run
 
 if __name__ == "__main__":
-    main(prog_name="furncheck")
+    run()

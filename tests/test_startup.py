@@ -74,3 +74,30 @@ def test_validate_imports_only_the_scipy_a_design_needs():
     assert code == 1 and "scipy.optimize" in table
     assert not any(m.split(".")[0] in ("trimesh", "matplotlib", "pathspec", "dask",
                                        "distributed") for m in cabinet + table)
+
+
+def test_the_console_script_is_main_freezing_what_survives_it(monkeypatch):
+    """``furncheck`` and ``python -m furncheck`` run ``cli.main.run``: ``main`` with its
+    exit code, then every live object frozen (``gc.freeze``) so that the interpreter's
+    last collection on exit skips them; ``main`` alone, as the tests call it, freezes
+    nothing.  The installed script names ``run``."""
+    import gc
+    import tomllib
+
+    from click.testing import CliRunner
+
+    from furncheck.cli.main import main, run
+
+    frozen = []
+    monkeypatch.setattr(gc, "freeze", lambda: frozen.append(True))
+    monkeypatch.setattr(sys, "argv", ["furncheck", "validate", str(ROOT / "designs/stool.yaml"),
+                                      "--no-cache", "--format", "json"])
+    try:
+        run()
+    except SystemExit as exit_:
+        code = exit_.code
+    assert code == 1 and frozen == [True]          # the stool sags: invalid
+    assert CliRunner().invoke(main, ["--version"]).exit_code == 0 and frozen == [True]
+    scripts = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["scripts"]
+    assert scripts == {"furncheck": "furncheck.cli.main:run"}
+    assert "run()" in (ROOT / "furncheck/__main__.py").read_text()
