@@ -15,7 +15,7 @@ With ``--jobs 2`` the DOFs are searched in two worker processes.  Like the comma
 
 from __future__ import annotations
 
-import sys
+import argparse
 import time
 from pathlib import Path
 
@@ -49,8 +49,10 @@ def main(paths: list[str], jobs: int = 1) -> None:
 
 
 if __name__ == "__main__":
-    arguments = sys.argv[1:]
-    workers = 1
-    if arguments[:1] == ["--jobs"]:
-        workers, arguments = int(arguments[1]), arguments[2:]
-    main(arguments or [str(CATALOG / name) for name in DEFAULT], workers)
+    parser = argparse.ArgumentParser(description=__doc__.split("\n", 1)[0])
+    parser.add_argument("designs", nargs="*", metavar="DESIGN",
+                        help="design files (default: " + ", ".join(DEFAULT) + ")")
+    parser.add_argument("--jobs", type=int, default=1,
+                        help="worker processes that search the DOFs (default 1)")
+    options = parser.parse_args()
+    main(options.designs or [str(CATALOG / name) for name in DEFAULT], options.jobs)

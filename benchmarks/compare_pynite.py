@@ -62,9 +62,12 @@ import yaml
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from Pynite import FEModel3D  # noqa: E402
-from Pynite.Member3D import Member3D  # noqa: E402
-from Pynite.PhysMember import PhysMember  # noqa: E402
+try:
+    from Pynite import FEModel3D
+    from Pynite.Member3D import Member3D
+    from Pynite.PhysMember import PhysMember
+except ImportError:
+    raise SystemExit("compare_pynite.py needs PyNite: pip install -e '.[compare]'") from None
 
 from furncheck.check import check_design  # noqa: E402
 from furncheck.design import parse_design  # noqa: E402

@@ -776,3 +776,19 @@ def test_written_files_drop_the_round_off_of_zero():
     text = design_text(replace(design, planks=(plank,)), "yaml")
     assert "center: [0.0, 0.25, 456.0]" in text and "rotation: [90.0, 0.0, 0.0]" in text
     assert "e-" not in text
+
+
+def test_with_model_refuses_an_unknown_model():
+    """The library's ``with_model`` takes the two models and None (as the design is); any
+    other name is refused there rather than carried into a statics that reads it as one of
+    the two."""
+    from furncheck.design.load import parse_design
+    from furncheck.design.model import with_model
+
+    design = parse_design("furncheck: 1\nplanks:\n- {id: a, size: [400, 300], "
+                          "center: [0, 0, 6]}\n", "a.yaml", "yaml")
+    assert with_model(design, None) is design
+    assert with_model(design, "rigid").model == "rigid"
+    assert with_model(design, "elastic") is design
+    with pytest.raises(ValueError, match="unknown statics model 'steel'"):
+        with_model(design, "steel")

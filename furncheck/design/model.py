@@ -326,5 +326,8 @@ class Design:
 
 def with_model(design: Design, model: str | None) -> Design:
     """The design in ``model`` ('elastic' or 'rigid'; the command line's ``--model``), or
-    as it is when None."""
+    as it is when None.  Any other name is a ValueError (the file's ``model`` key and
+    ``--model`` are checked where they are read; this guards the library's callers)."""
+    if model is not None and model not in tol.MODELS:
+        raise ValueError(f"unknown statics model {model!r} (one of {', '.join(tol.MODELS)})")
     return design if model is None or model == design.model else replace(design, model=model)
