@@ -28,6 +28,7 @@ from functools import cached_property
 
 import numpy as np
 
+from furncheck import tolerances as tol
 from furncheck.design.model import Design, Load, LoadCase, Plank, Vec3
 from furncheck.errors import DofError
 from furncheck.geometry import Geometry
@@ -424,6 +425,12 @@ def _turned(plank: Plank, turn: np.ndarray, pivot: np.ndarray) -> Plank:
 
 
 def _with_size(plank: Plank, axis: int, size: float, center: Vec3) -> Plank:
+    """``plank`` with its length (axis 0) or width (1) made ``size`` (m) and its centre
+    ``center``.  A size below the smallest a design file may give (MIN_LENGTH) is no
+    plank: OutOfReach (a plank that follows a turned or moved neighbour can be shortened
+    through nothing to a negative length otherwise)."""
+    if size < tol.MIN_LENGTH:
+        raise OutOfReach(f"{plank.id}'s {('length', 'width')[axis]} would shrink to nothing")
     if axis == 0:
         return _same_turn(plank, float(size), plank.width, center)
     return _same_turn(plank, plank.length, float(size), center)

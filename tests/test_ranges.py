@@ -34,6 +34,7 @@ from furncheck.cli.main import main
 from furncheck.design import load_design
 from furncheck.design.model import with_model
 from furncheck.dofs import (
+    Blocked,
     OutOfReach,
     all_dofs,
     apply_dof,
@@ -581,3 +582,50 @@ def test_cli_runs_on_every_catalog_design(path):
     assert [e["dof"] for e in entries] == [f"{first}.x", f"{first}.length"]
     for entry in entries:
         assert entry["valid"] is not None or entry.get("reason")
+
+
+def test_an_edit_never_shrinks_a_plank_through_nothing():
+    """``apply_dof`` refuses (OutOfReach) an edit that leaves a plank shorter or narrower
+    than MIN_LENGTH, the least a design file may give, whether it is the DOF's own plank
+    or a neighbour that follows it.
+
+    bookcase-pins' shelf (18 mm, centre z = 509) turned by a about x: its lower face lies
+    at z = 509 + y tan a - 9 / cos a over world y, and its back pins (20 mm tall, tops at
+    z = 500, 8 mm thick in y around y = -120) follow it at their lowest corner, y = -124:
+    L(a) = 20 - 124 tan a - 9 (1 / cos a - 1) mm, 0.248 mm at 9 degrees, below zero at
+    9.5.  The cantilever's 300 mm shelf shortened by 299 mm keeps 1 mm, by 300 mm none."""
+    from furncheck import tolerances as tol
+
+    pins = load_design(str(DESIGNS / "bookcase-pins.yaml"))
+    frame = structure(pins, analyze(pins))
+    turn = parse_dof(pins, "shelf.rx")
+    a = math.radians(9.0)
+    turned = {p.id: p for p in apply_dof(pins, frame, turn, 9.0).planks}
+    expected = 20.0 - 124.0 * math.tan(a) - 9.0 * (1.0 / math.cos(a) - 1.0)
+    assert 1000 * turned["pin_lb"].length == pytest.approx(expected, abs=1e-6)
+    assert 1000 * turned["pin_rb"].length == pytest.approx(expected, abs=1e-6)
+    for degrees in (9.5, -9.5, 30.0):
+        with pytest.raises(OutOfReach, match=r"pin_[lr][bf]'s length would shrink to nothing"):
+            apply_dof(pins, frame, turn, degrees)
+
+    shelf = load_design(str(DESIGNS / "shelf-cantilever.yaml"))
+    frame = structure(shelf, analyze(shelf))
+    length = parse_dof(shelf, "shelf.length")
+    kept = apply_dof(shelf, frame, length, -299.0)
+    assert next(p for p in kept.planks if p.id == "shelf").length == pytest.approx(1e-3)
+    with pytest.raises(OutOfReach, match="shelf's length would shrink to nothing"):
+        apply_dof(shelf, frame, length, -300.0)
+
+    # any edit of the catalog's DOFs, however large: refused, or every plank a plank
+    rng = np.random.default_rng(5)
+    for name in ("bookcase-pins.yaml", "cabinet-28.yaml", "chair-tilted.yaml",
+                 "table-pine-top.yaml"):
+        design = load_design(str(DESIGNS / name))
+        frame = structure(design, analyze(design))
+        for dof in all_dofs(design):
+            for step in rng.uniform(-1, 1, 3) * (60.0 if dof.is_rotation else 900.0):
+                try:
+                    edited = apply_dof(design, frame, dof, float(step))
+                except (Blocked, OutOfReach):
+                    continue
+                assert min(min(p.length, p.width) for p in edited.planks) >= tol.MIN_LENGTH

@@ -808,11 +808,14 @@ def test_a_ledge_gets_a_leg_down_to_the_floor(model):
 def test_a_plank_shrunk_through_zero_is_not_kept():
     """The 28-plank Table-1 cabinet's desk leaf has its 3 nails listed, so narrowing it
     only lightens it; 800 mm narrower it would be 400 mm of negative width, a mirrored box
-    of negative mass that holds.  The editor refuses it (``keeps`` None, margin -inf), so
-    no suggestion writes a plank of negative size."""
+    of negative mass that holds.  The edit cannot be made (``apply_dof``: OutOfReach, a
+    plank below MIN_LENGTH), so its margin is -inf and no suggestion writes a plank of
+    negative size; the editor's ``keeps`` refuses such a plank too where one is made
+    otherwise."""
     import sys
+    from dataclasses import replace
 
-    from furncheck.dofs import structure
+    from furncheck.dofs import OutOfReach, structure
     from furncheck.edit_check import standing_geometry
     from furncheck.geometry import analyze
     from furncheck.suggest.edits import Editor
@@ -824,9 +827,12 @@ def test_a_plank_shrunk_through_zero_is_not_kept():
     geometry = analyze(design)
     editor = Editor(design, geometry, structure(design, standing_geometry(geometry)))
     width = parse_dof(design, "desk_leaf.width")
-    shrunk = editor.moved((width,), (-800.0,))
-    assert shrunk.plank("desk_leaf").width < 0
-    assert editor.keeps(shrunk) is None
+    with pytest.raises(OutOfReach, match="desk_leaf's width would shrink to nothing"):
+        editor.moved((width,), (-800.0,))
+    leaf = design.plank("desk_leaf")
+    mirrored = replace(design, planks=tuple(replace(p, width=-0.4) if p is leaf else p
+                                            for p in design.planks))
+    assert editor.keeps(mirrored) is None
     assert editor.margin_at((width,), np.array([1.0]), -800.0 / editor.scale(width)) == -np.inf
     result = suggest_design(design)
     assert all(p.length > 0 and p.width > 0 for s in result.suggestions for p in s.design.planks)
