@@ -92,6 +92,33 @@ def test_sliding_need_is_the_threshold_of_the_checks():
         assert ("sliding" in kinds(check_design(grippier), "shove")) is slides, factor
 
 
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_frictionless_design_pushed_needs_friction_not_weight(model, tmp_path):
+    """``friction: 0`` (the schema allows it): no weight holds a push, so the need names
+    only the friction, mu >= H / W.  table-slides with mu = 0, case 'shove': H = 110 N,
+    W = 124.03 N (above), mu >= 0.887.  ``suggest`` explains it (exit 0, no internal
+    error), and its pictures draw the friction cone as the N axis (``--out``)."""
+    design = load_design(str(CATALOG / "table-slides.yaml"))
+    design = with_model(replace(design, material=replace(design.material, friction=0.0)),
+                        model)
+    geometry = analyze(design)
+    report = check_design(design, geometry)
+    need = need_of(design, geometry, report, "sliding")
+    weight = TABLE_MASS * G
+    assert need.case == "shove" and need.values["holds"] == 0.0
+    assert "extra_mass" not in need.values
+    assert need.values["friction_needed"] == pytest.approx(110.0 / weight, rel=1e-6)
+    text = (CATALOG / "table-slides.yaml").read_text()
+    path = tmp_path / "frictionless.yaml"
+    path.write_text(text.replace("units: mm\n", "units: mm\nmaterial: {friction: 0}\n"))
+    result = CliRunner().invoke(main, ["suggest", str(path), "--model", model,
+                                       "--out", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    assert "meets no friction (mu = 0): no weight holds it; friction mu >= 0.887" \
+        in result.output
+    assert (tmp_path / "out" / "index.html").exists()
+
+
 # -- lift-off ----------------------------------------------------------------------------
 @pytest.mark.parametrize("model", ["rigid", "elastic"])
 def test_tipping_bench_needs_a_wider_base_or_ballast(model):

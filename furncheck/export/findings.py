@@ -125,11 +125,12 @@ def tangential(contact: ContactResult) -> float:
 
 def friction_demand(contact: ContactResult, friction: float) -> float:
     """Friction needed over what the contact can give, |T| / (mu N); inf for a contact
-    that would have to pull (N < 0), 0 for one carrying nothing."""
+    that would have to pull (N < 0) or that meets no friction (mu = 0) and is pushed
+    across, 0 for one carrying nothing."""
     normal = contact.pressing
     if normal < 0.0:
         return math.inf
-    if normal == 0.0:
+    if normal == 0.0 or friction <= 0.0:
         return 0.0 if tangential(contact) == 0.0 else math.inf
     return tangential(contact) / (friction * normal)
 

@@ -191,15 +191,17 @@ def _draw_contacts(figure, slot, picture: Picture, before: DesignReport,
     old = _worst_contacts(before, friction)
     new = _worst_contacts(after, friction)
     points = [_cone_point(c) for c, _ in [*old.values(), *new.values()]]
-    span = max([1.0] + [abs(x) for x, _ in points] + [y / friction for _, y in points])
+    span = max([1.0] + [abs(x) for x, _ in points]
+               + [y / friction for _, y in points if friction > 0.0])
     left = min([-0.08 * span] + [1.08 * x for x, _ in points])
     right, top = 1.08 * span, max([friction * span] + [1.08 * y for _, y in points])
     bottom, ceiling = -0.03 * top, 1.05 * top
     axes = _sheet(figure, slot, (left, right), (bottom, ceiling), "contacts")
     cone = min(friction * right, ceiling)
-    _area(axes, [(0.0, 0.0), (right, 0.0), (right, cone), (cone / friction, cone)],
+    edge = cone / friction if friction > 0.0 else right     # mu = 0: the N axis alone
+    _area(axes, [(0.0, 0.0), (right, 0.0), (right, cone), (edge, cone)],
           REGION_COLOR, REGION_ALPHA)
-    _line(axes, [0.0, cone / friction], [0.0, cone], REGION_COLOR, 1.0)
+    _line(axes, [0.0, edge], [0.0, cone], REGION_COLOR, 1.0)
     _area(axes, [(left, bottom), (0.0, bottom), (0.0, ceiling), (left, ceiling)],
           LIFT_COLOR, 0.07)
     _line(axes, [0.0, 0.0], [bottom, ceiling], "0.6", 0.8)

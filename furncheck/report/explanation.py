@@ -47,6 +47,9 @@ def need_text(need: Need, units: str) -> str:
 
 
 def _sliding(v: dict, units: str) -> str:
+    if "extra_mass" not in v:       # mu = 0
+        return (f"the push of {_n(v['push'])} N meets no friction (mu = 0): no weight "
+                f"holds it; friction mu >= {_n(v['friction_needed'])} would (or no push)")
     return (f"the push of {_n(v['push'])} N exceeds mu W = {_n(v['friction'])} x "
             f"{_n(v['weight'])} N = {_n(v['holds'])} N; {_n(v['extra_mass'])} kg more weight "
             f"on it, or friction mu >= {_n(v['friction_needed'])}, would hold it (or a push "

@@ -6,7 +6,7 @@ and planks as they are:
 * sliding: friction holds while the sideways load H on a grounded group of planks stays
   within mu W, W the downward load it stands with (its planks' weight and the loads on
   them).  Needed: W >= H / mu (``extra_mass`` = (H / mu - W) / g more on it) or
-  mu >= H / W (``friction_needed``).
+  mu >= H / W (``friction_needed``); with mu = 0 no weight does (no ``extra_mass``).
 * lift-off: the resultant of the group's weight and loads meets the floor at p; the
   support polygon is the convex hull of its ground contacts.  p lies ``outside`` = d
   beyond its nearest edge, so the overturning moment about that edge is V d (V the
@@ -106,6 +106,10 @@ def _sliding(design: Design, geometry: Geometry, where: str, case: CaseResult | 
     mu = design.material.friction
     if weight <= 0.0:
         return Need("sliding", where, case_name, why="its loads lift it")
+    if mu <= 0.0:           # no weight holds a push without friction
+        return Need("sliding", where, case_name, values={
+            "push": push, "weight": weight, "friction": mu, "holds": 0.0,
+            "friction_needed": push / weight})
     needed = push / mu
     return Need("sliding", where, case_name, values={
         "push": push, "weight": weight, "friction": mu, "holds": mu * weight,
