@@ -110,6 +110,11 @@ step, has its ends closed to this fraction of the design's tolerance in every le
 (``suggest.line_search``, ``ranges.nearest``): to 2 % of the step or 0.1 % of the
 design's size, an L lowered 49.5 to 50.5 mm read "50 mm only" and 6 .. 6 mm."""
 
+WINDOW_FLOOR = 1e-6
+"""m: no window is closed finer than this, whatever the tolerance: with ``tolerance: 0``
+a repair's window is a point (a board lowered onto the floor exactly), and a bracket
+closed to zero halves for ever once its midpoint rounds to an end."""
+
 STEP_ROUNDOFF = 1e-9
 """A change rounded to the shop's grid counts as within a suggestion's valid steps when
 its step is within this fraction of them: the round-off of the steps themselves (a leg

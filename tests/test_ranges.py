@@ -629,3 +629,24 @@ def test_an_edit_never_shrinks_a_plank_through_nothing():
                 except (Blocked, OutOfReach):
                     continue
                 assert min(min(p.length, p.width) for p in edited.planks) >= tol.MIN_LENGTH
+
+
+def test_a_window_with_no_tolerance_is_closed(tmp_path):
+    """With ``tolerance: 0`` a geometric repair's window is a point: the 600 x 300 x 12
+    board drawn 100 mm up stands on the floor lowered by exactly 94 mm (centre z = 6).
+    The window is closed to WINDOW_FLOOR (1 um), not halved for ever once its midpoint
+    rounds to an end (the search hung): 6 .. 6 mm, within a micrometre.  Run as a
+    process with a time limit, so that a hang fails instead of stalling the suite."""
+    import subprocess
+    import sys
+
+    path = tmp_path / "board.yaml"
+    path.write_text("furncheck: 1\ntolerance: 0\n"
+                    "planks: [{id: board, size: [600, 300], center: [0, 0, 100]}]\n")
+    done = subprocess.run([sys.executable, "-m", "furncheck", "range", str(path), "board.z",
+                           "--jobs", "1", "--format", "json"],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    low, high = json.loads(done.stdout)["ranges"][0]["valid"]
+    assert low == pytest.approx(6.0, abs=1e-3) and high == pytest.approx(6.0, abs=1e-3)
+    assert low <= high

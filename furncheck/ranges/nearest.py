@@ -41,8 +41,9 @@ a length, to at most WINDOW_TOLERANCE of the design's tolerance."""
 
 def window_resolution(design: Design) -> float:
     """The length (the file's unit) to which a geometric repair's window is closed in a
-    length DOF: WINDOW_TOLERANCE of the design's tolerance (``suggest.line_search`` too)."""
-    return tol.WINDOW_TOLERANCE * design.tolerance / design.unit_scale
+    length DOF: WINDOW_TOLERANCE of the design's tolerance, at least WINDOW_FLOOR
+    (``suggest.line_search`` too)."""
+    return max(tol.WINDOW_TOLERANCE * design.tolerance, tol.WINDOW_FLOOR) / design.unit_scale
 
 
 def predicted_steps(design: Design, geometry: Geometry, frame: Structure,

@@ -234,9 +234,12 @@ class ReachSearch(Evaluator):
     def _bisect(self, dof: Dof, sign: float, good: float, bad: float,
                 resolution: float, full: bool = True) -> float:
         """Close a bracket of a valid step ``good`` and an invalid step ``bad`` (either may
-        be the larger) to ``resolution``; returns the valid end."""
+        be the larger) to ``resolution``, or until no float lies between them; returns
+        the valid end."""
         while abs(bad - good) > resolution:
             middle = 0.5 * (good + bad)
+            if middle == good or middle == bad:     # adjacent floats: closed
+                break
             if (yield from self._valid_at(dof, sign * middle, full)):
                 good = middle
             else:
