@@ -101,6 +101,49 @@ def test_catalog_view_names_count_repeated_names() -> None:
     assert view_names(reports) == ["t-view.png", "t-2-view.png", None]
 
 
+def test_view_names_are_file_names_inside_the_folder_and_distinct() -> None:
+    """A design's name is made a file name (``folders.file_stem``): a path separator or
+    space becomes '_', leading dots go; a name taken by an earlier design ('a-2' after two
+    designs named 'a') gets the next free number."""
+    from furncheck.export.catalog import view_names
+    from furncheck.export.folders import file_stem
+    from furncheck.result import DesignReport
+
+    names = ["../../pwned", "/tmp/abs", "sub/x", "a", "a", "a-2", "Bücher regal", "..."]
+    reports = [DesignReport(f"{k}.yaml", name, True) for k, name in enumerate(names)]
+    assert view_names(reports) == [
+        "_.._pwned-view.png", "_tmp_abs-view.png", "sub_x-view.png", "a-view.png",
+        "a-2-view.png", "a-2-2-view.png", "Bücher_regal-view.png", "design-view.png"]
+    assert file_stem("stool-thick-seat") == "stool-thick-seat"    # plain names as they are
+
+
+def test_files_named_from_a_design_stay_in_their_folder(tmp_path: Path) -> None:
+    """bench-tips renamed '../escape' writes its view and meshes inside the folders given
+    (``validate --views``, ``suggest --out``), not beside them; renamed 'suggestion-01',
+    its own files in the ``--out`` folder are 'design-suggestion-01.*', apart from
+    suggestion 1's."""
+    pytest.importorskip("matplotlib")
+    text = Path(TIPS).read_text()
+    assert "\nname: bench-tips\n" in text
+    for name, stem, own in (("../escape", "_escape", "_escape"),
+                            ("suggestion-01", "suggestion-01", "design-suggestion-01")):
+        path = tmp_path / f"{own}.yaml"
+        path.write_text(text.replace("\nname: bench-tips\n", f"\nname: '{name}'\n"))
+        views = tmp_path / own / "views" / "deep"
+        result = CliRunner().invoke(main, ["validate", str(path), "--model", "rigid",
+                                           "--views", str(views)])
+        assert result.exit_code == 1, result.output
+        assert [p.name for p in views.iterdir()] == [f"{stem}-view.png"]
+        out = tmp_path / own / "out" / "deep"
+        result = CliRunner().invoke(main, ["suggest", str(path), "--model", "rigid", "--out",
+                                           str(out), "--max-suggestions", "1", "--no-plots"])
+        assert result.exit_code == 0, result.output
+        assert sorted(p.name for p in out.iterdir()) == sorted(
+            [f"{own}.glb", f"{own}.obj", f"{own}.mtl", "index.html", "suggestion-01.yaml",
+             "suggestion-01.glb", "suggestion-01.obj", "suggestion-01.mtl"])
+        assert sorted(p.name for p in (tmp_path / own).iterdir()) == ["out", "views"]
+
+
 def test_pictures_drawn_in_workers_are_those_drawn_here(tmp_path: Path, monkeypatch) -> None:
     """With several suggestions the pictures are drawn in forked worker processes; with
     one core, here.  Both write the same files, byte for byte."""

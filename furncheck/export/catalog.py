@@ -2,9 +2,11 @@
 
 Each design that could be read gets ``DIR/<name>-view.png`` (``views.design_view_png``:
 coloured by utilization, the loads of its governing case, failing joints and contacts,
-the deflected shape in the elastic model); a second design of the same name gets
-``<name>-2-view.png``, and so on, in the order of the report.  The views are drawn in
-worker processes, one per core (``suggestions.draw_in_parallel``).
+the deflected shape in the elastic model; ``<name>`` the design's name made a file name,
+``folders.file_stem``); a second design of the same name gets ``<name>-2-view.png``, the
+next free number where that is taken (by a design named ``<name>-2``), in the order of
+the report.  The views are drawn in worker processes, one per core
+(``suggestions.draw_in_parallel``).
 """
 
 from __future__ import annotations
@@ -16,17 +18,23 @@ from furncheck.result import DesignReport
 
 
 def view_names(reports: list[DesignReport] | tuple[DesignReport, ...]) -> list[str | None]:
-    """Per report, the file name of its view (None for a design that could not be read)."""
-    seen: dict[str, int] = {}
+    """Per report, the file name of its view (None for a design that could not be read),
+    no two the same."""
+    from furncheck.export.folders import file_stem
+
+    taken: set[str] = set()
     names: list[str | None] = []
     for report in reports:
         if report.valid is None:
             names.append(None)
             continue
-        seen[report.name] = seen.get(report.name, 0) + 1
-        count = seen[report.name]
-        names.append(f"{report.name}-view.png" if count == 1
-                     else f"{report.name}-{count}-view.png")
+        stem, count = file_stem(report.name), 1
+        name = f"{stem}-view.png"
+        while name in taken:
+            count += 1
+            name = f"{stem}-{count}-view.png"
+        taken.add(name)
+        names.append(name)
     return names
 
 

@@ -5,8 +5,13 @@ from __future__ import annotations
 
 import importlib.util
 import os
+import re
 
 from furncheck.export.errors import ExportUnavailable
+
+_UNSAFE = re.compile(r"[^\w.+-]+")
+"""Runs of characters that a file name made from a design's name does not keep: all but
+letters, digits, '_', '.', '+' and '-' (a path separator, a space, a colon)."""
 
 
 def pictures_missing() -> ExportUnavailable | None:
@@ -27,3 +32,12 @@ def prepare_out_dir(out_dir: str) -> str | None:
     if not os.access(out_dir, os.W_OK):
         return "permission denied"
     return None
+
+
+def file_stem(name: str) -> str:
+    """A design's ``name`` as the stem of the files written for it into an output folder:
+    each run of other characters than letters, digits, '_', '.', '+' and '-' (a '/', a
+    space) made one '_', leading dots dropped (no hidden file, no '..'), 'design' for
+    what is left empty.  So every file stays inside the folder whatever the name says
+    ('../../x' writes '_.._x-view.png' there, '/tmp/x' '_tmp_x-view.png')."""
+    return _UNSAFE.sub("_", name).lstrip(".") or "design"

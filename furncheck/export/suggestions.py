@@ -6,9 +6,11 @@ force-space plot and its before/after view.
     DIR/suggestion-01.yaml  .glb  .obj  .mtl  -forces.png  -view.png        suggestion 1
     DIR/index.html        the report page (``write_page``: the design, every suggestion)
 
-``<name>`` is the design's name.  The folder is the run's: before writing, the files an
-earlier run of the same design wrote there are removed (only names this run would write:
-a stale suggestion-04.yaml does not stay beside a new 01-03), and nothing else is touched.
+``<name>`` is the design's name made a file name (``folders.file_stem``: nothing outside
+DIR), ``design-<name>`` where it would read as a suggestion's.  The folder is the run's:
+before writing, the files an earlier run of the same design wrote there are removed (only
+names this run would write: a stale suggestion-04.yaml does not stay beside a new 01-03),
+and nothing else is touched.
 When the folder holds another design's suggestion-NN.yaml (its ``name`` says whose it
 is), this run names its suggestion files after its design, ``<name>-suggestion-01.yaml``
 and so on, so several designs can share a folder.  Pictures (PNG) need matplotlib (the
@@ -33,7 +35,7 @@ from typing import TYPE_CHECKING
 from furncheck.design.model import Design
 from furncheck.export.errors import ExportUnavailable
 from furncheck.export.findings import changed_planks
-from furncheck.export.folders import pictures_missing, prepare_out_dir
+from furncheck.export.folders import file_stem, pictures_missing, prepare_out_dir
 from furncheck.export.meshes import write_meshes
 
 if TYPE_CHECKING:
@@ -64,14 +66,21 @@ class Written:
     plots: tuple[str, ...] = ()
 
 
+def design_stem(name: str) -> str:
+    """The stem of the files of design ``name`` itself (module docstring)."""
+    stem = file_stem(name)
+    return f"design-{stem}" if SUGGESTION_FILE.match(f"{stem}.yaml") else stem
+
+
 def suggestion_prefix(out_dir: str, name: str) -> str:
     """'' when the plain names suggestion-NN.* are free for design ``name`` in
-    ``out_dir`` (no other design's suggestion-NN.yaml there), else '<name>-'."""
+    ``out_dir`` (no other design's suggestion-NN.yaml there), else '<name>-' (its
+    ``design_stem``)."""
     for entry in _entries(out_dir):
         match = SUGGESTION_FILE.match(entry)
         if match and not match["prefix"] and entry.endswith(".yaml") \
                 and _owner(Path(out_dir) / entry) != f"{name}-suggestion-{match['rank']}":
-            return f"{name}-"
+            return f"{design_stem(name)}-"
     return ""
 
 
@@ -79,12 +88,13 @@ def stale_files(out_dir: str, name: str, prefix: str) -> list[str]:
     """The files of earlier runs of design ``name`` in ``out_dir`` (sorted names): its
     own view and meshes, its '<name>-suggestion-NN' files, and, when this run uses the
     plain names (``prefix`` ''), the plain suggestion-NN files."""
+    stem = design_stem(name)
     stale = []
     for entry in _entries(out_dir):
         match = SUGGESTION_FILE.match(entry)
-        if match and match["prefix"] in {f"{name}-", prefix}:
+        if match and match["prefix"] in {f"{stem}-", prefix}:
             stale.append(entry)
-        elif any(entry == f"{name}{suffix}" for suffix in DESIGN_SUFFIXES):
+        elif any(entry == f"{stem}{suffix}" for suffix in DESIGN_SUFFIXES):
             stale.append(entry)
     return stale
 
@@ -104,7 +114,7 @@ def write_files(result: SuggestionReport, out_dir: str, design: Design,
     for entry in stale_files(out_dir, design.name, prefix):
         os.remove(Path(out_dir) / entry)
 
-    own = Path(out_dir) / design.name
+    own = Path(out_dir) / design_stem(design.name)
     written = {0: Written(None, tuple(write_meshes(design, own, result.report)))}
     jobs = []
     for suggestion in result.suggestions:
