@@ -83,15 +83,20 @@ def _crosswise(design: Design, geometry: Geometry, planks: list[Plank], joints: 
                contacts: list[int]) -> tuple[bool, ...]:
     """Per plank, whether its beam runs along its local y: its longer side (contract 3a);
     a square plank (sides within the design's tolerance) along the side over which what
-    holds it (its joints' and contacts' points) is spread the most, so that describing it
-    turned by 90 degrees changes nothing."""
+    holds it (its joints' and contacts' points) is spread the most, and where that ties
+    (by NODE_MERGE), across its joint lines (summed |line . axis| x length over its
+    joints: a square shelf nailed by one edge spans away from that edge), so that
+    describing it turned by 90 degrees changes nothing; the local x where both tie."""
     points: dict[str, list] = {p.id: [] for p in planks}
+    lines: dict[str, list] = {p.id: [] for p in planks}
     for j in joints:
         joint = geometry.joints[j]
         for plank_id in joint.planks:
             points[plank_id].append(joint.point)
+            lines[plank_id].append(joint.length * joint.frame[:, 1])
     for c in contacts:
         points[geometry.contacts[c].plank].append(geometry.contacts[c].point)
+    margin = tol.NODE_MERGE + tol.NODE_MERGE_ROUNDOFF
     out = []
     for plank in planks:
         if abs(plank.length - plank.width) > design.tolerance or not points[plank.id]:
@@ -99,7 +104,13 @@ def _crosswise(design: Design, geometry: Geometry, planks: list[Plank], joints: 
             continue
         local = plank.to_local(np.array(points[plank.id]))
         spread = local.max(axis=0) - local.min(axis=0)
-        out.append(bool(spread[1] > spread[0] + tol.NODE_MERGE + tol.NODE_MERGE_ROUNDOFF))
+        if abs(spread[1] - spread[0]) > margin:
+            out.append(bool(spread[1] > spread[0]))
+            continue
+        along = np.abs(np.array(lines[plank.id]).reshape(-1, 3) @ plank.rotation_matrix[:, :2])
+        across_x, across_y = along.sum(axis=0)      # joint lines along x hold a span along y
+        out.append(bool(across_x > across_y + margin) if abs(across_x - across_y) > margin
+                   else along_width(plank))
     return tuple(out)
 
 
