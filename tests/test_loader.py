@@ -218,11 +218,11 @@ def test_several_yaml_documents():
                                        ("just text\n", 'text "just text"'),
                                        ("~\n", "nothing (null)")])
 def test_top_level_not_a_mapping(text, got):
-    expect(text, "", None, f"the top level must be a mapping, got {got}")
+    expect(text, "", 1, f"the top level must be a mapping, got {got}")
 
 
 def test_top_level_json_list():
-    expect("[1, 2]", "", None, "the top level must be a mapping, got a list", "json")
+    expect("[1, 2]", "", 1, "the top level must be a mapping, got a list", "json")
 
 
 # --- YAML specifics ---------------------------------------------------------------------------
@@ -349,8 +349,17 @@ def test_missing_required_key():
 
 
 def test_missing_planks_and_version():
-    expect("furncheck: 1\nname: x\n", "planks", None, 'missing required key "planks"')
-    expect(replace("furncheck: 1\n", ""), "furncheck", None, 'missing required key "furncheck"')
+    """A missing top-level key is reported at the line where the design begins (its first
+    key, after any comments)."""
+    expect("furncheck: 1\nname: x\n", "planks", 1, 'missing required key "planks"')
+    expect("# a shelf\n\nfurncheck: 1\nname: x\n", "planks", 3,
+           'missing required key "planks"')
+    expect('{"furncheck": 1, "name": "x"}', "planks", 1, 'missing required key "planks"',
+           "json")
+    text = replace("furncheck: 1\n", "")
+    first = next(n for n, line in enumerate(text.splitlines(), 1)
+                 if line.strip() and not line.startswith("#"))
+    expect(text, "furncheck", first, 'missing required key "furncheck"')
 
 
 @pytest.mark.parametrize("value, fragment", [("2", "unsupported format version 2"),

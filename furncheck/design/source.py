@@ -195,6 +195,7 @@ def _build_yaml_tree(loader, source: str) -> tuple[Any, dict[str, int]]:
         parent = stack[-1] if stack else None
         if parent is None:
             path = ""
+            lines[path] = line          # the whole design: where a missing key is missed
         elif parent.key_lines is None:                  # a list's next item
             path = f"{parent.path}[{len(parent.value)}]"
             lines[path] = line

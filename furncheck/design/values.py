@@ -59,7 +59,11 @@ class _Doc:
         return None
 
     def fail(self, key: str, message: str) -> NoReturn:
-        raise DesignError(self.source, key, self.line_of(key), message)
+        """Raise the DesignError of ``key``, at its line, else its closest recorded
+        parent's, else the line where the design begins (a top-level key missing)."""
+        line = self.line_of(key)
+        raise DesignError(self.source, key, self.lines.get("") if line is None else line,
+                          message)
 
     def number(self, node: Any, key: str) -> float:
         """A finite number (booleans and quoted text are not numbers)."""
