@@ -110,6 +110,10 @@ step, has its ends closed to this fraction of the design's tolerance in every le
 (``suggest.line_search``, ``ranges.nearest``): to 2 % of the step or 0.1 % of the
 design's size, an L lowered 49.5 to 50.5 mm read "50 mm only" and 6 .. 6 mm."""
 
+DOF_PARALLEL_EPS = 1e-9
+"""A DOF edit takes a direction as lying in a plane below this cosine, and a shift below
+this fraction of its step as none (``dofs``: an end along its support cannot follow it)."""
+
 WINDOW_FLOOR = 1e-6
 """m: no window is closed finer than this, whatever the tolerance: with ``tolerance: 0``
 a repair's window is a point (a board lowered onto the floor exactly), and a bracket

@@ -96,8 +96,8 @@ def test_sliding_need_is_the_threshold_of_the_checks():
 def test_a_frictionless_design_pushed_needs_friction_not_weight(model, tmp_path):
     """``friction: 0`` (the schema allows it): no weight holds a push, so the need names
     only the friction, mu >= H / W.  table-slides with mu = 0, case 'shove': H = 110 N,
-    W = 124.03 N (above), mu >= 0.887.  ``suggest`` explains it (exit 0, no internal
-    error), and its pictures draw the friction cone as the N axis (``--out``)."""
+    W = 124.03 N (above), mu >= 0.887; ``suggest`` explains it (exit 0, no internal
+    error)."""
     design = load_design(str(CATALOG / "table-slides.yaml"))
     design = with_model(replace(design, material=replace(design.material, friction=0.0)),
                         model)
@@ -108,15 +108,44 @@ def test_a_frictionless_design_pushed_needs_friction_not_weight(model, tmp_path)
     assert need.case == "shove" and need.values["holds"] == 0.0
     assert "extra_mass" not in need.values
     assert need.values["friction_needed"] == pytest.approx(110.0 / weight, rel=1e-6)
-    text = (CATALOG / "table-slides.yaml").read_text()
     path = tmp_path / "frictionless.yaml"
-    path.write_text(text.replace("units: mm\n", "units: mm\nmaterial: {friction: 0}\n"))
-    result = CliRunner().invoke(main, ["suggest", str(path), "--model", model,
-                                       "--out", str(tmp_path / "out")])
+    path.write_text(frictionless(CATALOG / "table-slides.yaml"))
+    result = CliRunner().invoke(main, ["suggest", str(path), "--model", model])
     assert result.exit_code == 0, result.output
     assert "meets no friction (mu = 0): no weight holds it; friction mu >= 0.887" \
         in result.output
-    assert (tmp_path / "out" / "index.html").exists()
+
+
+def frictionless(path: Path) -> str:
+    text = path.read_text()
+    assert "\nunits: mm\n" in text and "\nmaterial:" not in text
+    return text.replace("\nunits: mm\n", "\nunits: mm\nmaterial: {friction: 0}\n")
+
+
+def test_a_frictionless_designs_pictures_are_drawn(tmp_path):
+    """With mu = 0 the force-space plot's friction cone is the N axis and a contact pushed
+    across uses all of it: shelf-cantilever-overloaded (rigid) gets a suggestion whose
+    plot ``suggest --out`` draws; a board lying on the floor with no push (every |T| = 0)
+    draws a contacts panel of some height all the same."""
+    pytest.importorskip("matplotlib")
+    from furncheck.export.plots import force_space_png
+
+    path = tmp_path / "frictionless.yaml"
+    path.write_text(frictionless(CATALOG / "shelf-cantilever-overloaded.yaml"))
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["suggest", str(path), "--model", "rigid",
+                                       "--max-suggestions", "1", "--out", str(out)])
+    assert result.exit_code == 0, result.output
+    assert (out / "suggestion-01-forces.png").stat().st_size > 0
+    board = check_design(with_model(load_design(str(_board(tmp_path))), "rigid"))
+    assert force_space_png(board, board, 0.0).startswith(b"\x89PNG")
+
+
+def _board(tmp_path: Path) -> Path:
+    path = tmp_path / "board.yaml"
+    path.write_text("furncheck: 1\nmaterial: {friction: 0}\n"
+                    "planks: [{id: board, size: [600, 300], center: [0, 0, 6]}]\n")
+    return path
 
 
 # -- lift-off ----------------------------------------------------------------------------

@@ -103,18 +103,23 @@ def test_catalog_view_names_count_repeated_names() -> None:
 
 def test_view_names_are_file_names_inside_the_folder_and_distinct() -> None:
     """A design's name is made a file name (``folders.file_stem``): a path separator or
-    space becomes '_', leading dots go; a name taken by an earlier design ('a-2' after two
-    designs named 'a') gets the next free number."""
+    space becomes '_', leading dots go, a Windows device name gets 'design-' before it, a
+    long name is cut; a name taken by an earlier design ('a-2' after two designs named
+    'a', 'A' after 'a' on a folder that ignores case) gets the next free number."""
     from furncheck.export.catalog import view_names
     from furncheck.export.folders import file_stem
     from furncheck.result import DesignReport
 
-    names = ["../../pwned", "/tmp/abs", "sub/x", "a", "a", "a-2", "Bücher regal", "..."]
+    names = ["../../pwned", "/tmp/abs", "sub/x", "a", "a", "a-2", "Bücher regal", "...",
+             "A", "con", "Nul.txt"]
     reports = [DesignReport(f"{k}.yaml", name, True) for k, name in enumerate(names)]
     assert view_names(reports) == [
         "_.._pwned-view.png", "_tmp_abs-view.png", "sub_x-view.png", "a-view.png",
-        "a-2-view.png", "a-2-2-view.png", "Bücher_regal-view.png", "design-view.png"]
+        "a-2-view.png", "a-2-2-view.png", "Bücher_regal-view.png", "design-view.png",
+        "A-3-view.png", "design-con-view.png", "design-Nul.txt-view.png"]
     assert file_stem("stool-thick-seat") == "stool-thick-seat"    # plain names as they are
+    long = file_stem("é" * 200)                 # 400 bytes: cut, told apart by its hash
+    assert len(long.encode()) <= 120 and long != file_stem("é" * 199 + "e")
 
 
 def test_files_named_from_a_design_stay_in_their_folder(tmp_path: Path) -> None:

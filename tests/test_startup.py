@@ -100,4 +100,6 @@ def test_the_console_script_is_main_freezing_what_survives_it(monkeypatch):
     assert CliRunner().invoke(main, ["--version"]).exit_code == 0 and frozen == [True]
     scripts = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["scripts"]
     assert scripts == {"furncheck": "furncheck.cli.main:run"}
-    assert "run()" in (ROOT / "furncheck/__main__.py").read_text()
+    import furncheck.__main__ as module_main
+
+    assert module_main.run is run

@@ -60,7 +60,8 @@ class _Doc:
 
     def fail(self, key: str, message: str) -> NoReturn:
         """Raise the DesignError of ``key``, at its line, else its closest recorded
-        parent's, else the line where the design begins (a top-level key missing)."""
+        parent's, else the line where the design begins (a missing top-level key, a top
+        level that is no mapping)."""
         line = self.line_of(key)
         raise DesignError(self.source, key, self.lines.get("") if line is None else line,
                           message)

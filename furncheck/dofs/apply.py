@@ -8,11 +8,11 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from furncheck import tolerances as tol
 from furncheck.design.model import Design, Load, LoadCase, Plank, Vec3
 from furncheck.dofs.frame import Structure
 from furncheck.dofs.names import AXIS, Blocked, Dof, OutOfReach
 from furncheck.dofs.plank_edits import (
-    PARALLEL_EPS,
     axis_offset,
     axis_rotation,
     dot,
@@ -40,7 +40,9 @@ from furncheck.dofs.plank_edits import (
 
 def apply_dof(design: Design, frame: Structure, dof: Dof, step: float) -> Design:
     """The design with ``dof`` changed by ``step`` (file unit or degrees) and its
-    neighbours adjusted (module docstring).  Raises Blocked if the DOF cannot move."""
+    neighbours adjusted (module docstring).  Raises Blocked if the DOF cannot move,
+    OutOfReach if this step cannot be made (a plank would shrink to nothing, an end would
+    lie along its support)."""
     before = {p.id: p for p in design.planks}
     planks = dict(before)
     plank = planks[dof.plank]
@@ -101,7 +103,7 @@ def carried_point(point: Vec3, before: Plank, after: Plank) -> Vec3:
 def _translate(frame: Structure, planks: dict[str, Plank], plank: Plank, axis: int,
                amount: float) -> None:
     # moving along world axis ``axis``: the component of a normal n along it is n[axis]
-    held = [end for end in frame.ends[plank.id] if abs(end.normal_xyz[axis]) > PARALLEL_EPS]
+    held = [end for end in frame.ends[plank.id] if abs(end.normal_xyz[axis]) > tol.DOF_PARALLEL_EPS]
     if len(held) > 1:
         names = " and ".join(sorted({end.support for end in held}))
         raise Blocked(f"both ends jointed ({names}): moving {plank.id} along "
@@ -109,13 +111,13 @@ def _translate(frame: Structure, planks: dict[str, Plank], plank: Plank, axis: i
     if held:
         raise Blocked(end_reason(plank.id, held[0], "moving it along " + "xyz"[axis]))
     for normal in frame.lies_flat.get(plank.id, ()):
-        if abs(normal[axis]) > PARALLEL_EPS:      # off the face it lies on, or into it
+        if abs(normal[axis]) > tol.DOF_PARALLEL_EPS:      # off the face it lies on, or into it
             raise Blocked(f"{plank.id} lies {flat_on(normal)}")
     offset = axis_offset(axis, amount)
     planks[plank.id] = moved(plank, offset)
     for edge_id, end in frame.attached[plank.id]:
         shift = amount * end.normal_xyz[axis]              # face moves along its normal
-        if abs(shift) <= PARALLEL_EPS * max(abs(amount), 1.0):
+        if abs(shift) <= tol.DOF_PARALLEL_EPS * max(abs(amount), 1.0):
             continue
         edge = planks[edge_id]
         if edge_id in frame.free:
@@ -128,7 +130,7 @@ def _rotate(frame: Structure, planks: dict[str, Plank], plank: Plank, axis: int,
             angle: float, design_planks: tuple[Plank, ...]) -> None:
     turn = axis_rotation(axis, angle)
     for normal in frame.lies_flat.get(plank.id, ()):
-        if abs(normal[axis]) < 1.0 - PARALLEL_EPS:    # a turn that tips it off that face
+        if abs(normal[axis]) < 1.0 - tol.DOF_PARALLEL_EPS:    # a turn that tips it off that face
             raise Blocked(f"{plank.id} lies {flat_on(normal)}")
     start = _turn_start(frame, planks, plank, design_planks)
     rotated = turned(plank, turn, plank.center_array)
@@ -144,7 +146,7 @@ def _rotate(frame: Structure, planks: dict[str, Plank], plank: Plank, axis: int,
         point, normal = support_plane(rotated, end)
         height_after = end_height(edge, end, point, normal)
         along = dot(end_direction(edge, end), normal)
-        if abs(along) <= PARALLEL_EPS:
+        if abs(along) <= tol.DOF_PARALLEL_EPS:
             raise OutOfReach(f"{edge_id} would lie along the turned face of {plank.id}")
         planks[edge_id] = resized(edge, end.axis, end.sign, (height_before - height_after)
                                    / along)

@@ -67,7 +67,7 @@ class Structure:
 
     @cached_property
     def turn_starts(self) -> dict[str, TurnStart]:
-        """plank id -> the angle-independent part of its last turn (``apply.turn_start``): a
+        """plank id -> the angle-independent part of its last turn (``apply._turn_start``): a
         cache, filled by ``apply_dof``."""
         return {}
 

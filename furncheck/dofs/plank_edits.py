@@ -14,9 +14,6 @@ from furncheck.design.model import Plank, Vec3
 from furncheck.dofs.frame import End
 from furncheck.dofs.names import OutOfReach
 
-PARALLEL_EPS = 1e-9
-"""Below this a direction counts as lying in a plane (a cosine), or a shift as none."""
-
 
 def dot(a: Vec3, b: Vec3) -> float:
     """a . b, summed left to right as numpy's dot of two 3-vectors (and R^T n) does."""
@@ -88,7 +85,7 @@ def reseat_end(rotated: Plank, plank_id: str, end: End, point: Vec3, normal: Vec
     the supporting plane (point, normal) as it was before the rotation (``before``)."""
     after = end_height(rotated, end, point, normal)
     along = dot(end_direction(rotated, end), normal)
-    if abs(along) <= PARALLEL_EPS:
+    if abs(along) <= tol.DOF_PARALLEL_EPS:
         raise OutOfReach(f"{plank_id}'s end would lie along its support")
     return resized(rotated, end.axis, end.sign, (before - after) / along)
 

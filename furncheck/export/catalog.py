@@ -19,7 +19,7 @@ from furncheck.result import DesignReport
 
 def view_names(reports: list[DesignReport] | tuple[DesignReport, ...]) -> list[str | None]:
     """Per report, the file name of its view (None for a design that could not be read),
-    no two the same."""
+    no two the same, not even but for case (a folder may ignore it)."""
     from furncheck.export.folders import file_stem
 
     taken: set[str] = set()
@@ -30,10 +30,10 @@ def view_names(reports: list[DesignReport] | tuple[DesignReport, ...]) -> list[s
             continue
         stem, count = file_stem(report.name), 1
         name = f"{stem}-view.png"
-        while name in taken:
+        while name.casefold() in taken:
             count += 1
             name = f"{stem}-{count}-view.png"
-        taken.add(name)
+        taken.add(name.casefold())
         names.append(name)
     return names
 

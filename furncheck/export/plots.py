@@ -60,6 +60,9 @@ LABELLED_CONTACTS = 3
 SLIP_SLACK = 1e-6
 """Relative slack of the friction cone's edge in the drawing: the friction phase leaves a
 slipping contact's |T| at mu N to about solver precision."""
+MIN_CONE_SLOPE = 0.1
+"""The contacts panel is at least this slope of its width tall (the cone's mu is, unless
+there is no friction at all: mu = 0 would leave it no height)."""
 FIGURE_SIZE = (12.0, 5.4)      # inches
 PANELS = ((0.06, 0.11, 0.40, 0.64), (0.56, 0.11, 0.40, 0.64))
 """(left, bottom, width, height) of the joints and the contacts panel, figure fractions."""
@@ -194,7 +197,8 @@ def _draw_contacts(figure, slot, picture: Picture, before: DesignReport,
     span = max([1.0] + [abs(x) for x, _ in points]
                + [y / friction for _, y in points if friction > 0.0])
     left = min([-0.08 * span] + [1.08 * x for x, _ in points])
-    right, top = 1.08 * span, max([friction * span] + [1.08 * y for _, y in points])
+    right, top = 1.08 * span, max([max(friction, MIN_CONE_SLOPE) * span]
+                                  + [1.08 * y for _, y in points])
     bottom, ceiling = -0.03 * top, 1.05 * top
     axes = _sheet(figure, slot, (left, right), (bottom, ceiling), "contacts")
     cone = min(friction * right, ceiling)
@@ -277,8 +281,11 @@ def _budget(report: DesignReport, friction: float) -> tuple[str, str]:
             continue
         forces = np.array([c.force for c in ground], dtype=float)
         normal = float(forces[:, 2].sum())
-        used = math.inf if normal <= 0.0 else \
-            float(np.linalg.norm(forces[:, :2].sum(axis=0))) / (friction * normal)
+        pushed = float(np.linalg.norm(forces[:, :2].sum(axis=0)))
+        if normal > 0.0 and friction > 0.0:
+            used = pushed / (friction * normal)
+        else:               # lifted off, or no friction (mu = 0): all of it, if any is used
+            used = 0.0 if normal > 0.0 and pushed == 0.0 else math.inf
         if worst is None or used > worst:
             worst, name = used, case.name
     if worst is None:

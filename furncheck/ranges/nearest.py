@@ -109,6 +109,8 @@ def _predicted_window(finder, dof: Dof, predicted: tuple[float, float], limit: f
         if (yield from finder._valid_at(dof, sign * step)):
             if step == sign * aim and not dof.is_rotation:   # a geometric repair's window
                 fine = min(fine, window_resolution(finder.design))
+            if not dof.is_rotation:     # a tiny predicted step: still no finer than this
+                fine = max(fine, tol.WINDOW_FLOOR / finder.design.unit_scale)
             below = max(s for s in invalid if s < step)
             inner = yield from finder._bisect(dof, sign, step, below, fine)
             outer = yield from finder._expand(dof, sign, step, limit, fine)

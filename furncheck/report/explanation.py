@@ -47,7 +47,7 @@ def need_text(need: Need, units: str) -> str:
 
 
 def _sliding(v: dict, units: str) -> str:
-    if "extra_mass" not in v:       # mu = 0
+    if v["friction"] <= 0.0:        # no weight holds a push without friction
         return (f"the push of {_n(v['push'])} N meets no friction (mu = 0): no weight "
                 f"holds it; friction mu >= {_n(v['friction_needed'])} would (or no push)")
     return (f"the push of {_n(v['push'])} N exceeds mu W = {_n(v['friction'])} x "

@@ -83,10 +83,12 @@ def _crosswise(design: Design, geometry: Geometry, planks: list[Plank], joints: 
                contacts: list[int]) -> tuple[bool, ...]:
     """Per plank, whether its beam runs along its local y: its longer side (contract 3a);
     a square plank (sides within the design's tolerance) along the side over which what
-    holds it (its joints' and contacts' points) is spread the most, and where that ties
-    (by NODE_MERGE), across its joint lines (summed |line . axis| x length over its
-    joints: a square shelf nailed by one edge spans away from that edge), so that
-    describing it turned by 90 degrees changes nothing; the local x where both tie."""
+    holds it (its joints' and contacts' points) is spread the most, where that ties (by
+    NODE_MERGE) across its joint lines (summed |line . axis| x length over its joints: a
+    square shelf nailed by one edge spans away from that edge), and where that ties too
+    along the side its loads lie farthest out on (every case's point loads: a square
+    board on its corners loaded off its centre), so that describing it turned by 90
+    degrees changes nothing; the local x where all of these tie."""
     points: dict[str, list] = {p.id: [] for p in planks}
     lines: dict[str, list] = {p.id: [] for p in planks}
     for j in joints:
@@ -109,7 +111,14 @@ def _crosswise(design: Design, geometry: Geometry, planks: list[Plank], joints: 
             continue
         along = np.abs(np.array(lines[plank.id]).reshape(-1, 3) @ plank.rotation_matrix[:, :2])
         across_x, across_y = along.sum(axis=0)      # joint lines along x hold a span along y
-        out.append(bool(across_x > across_y + margin) if abs(across_x - across_y) > margin
+        if abs(across_x - across_y) > margin:
+            out.append(bool(across_x > across_y))
+            continue
+        loaded = [load.point for case in design.load_cases for load in case.loads
+                  if load.plank == plank.id and load.point is not None and not load.spread]
+        reach = np.abs(plank.to_local(np.array(loaded))[:, :2]).max(axis=0) if loaded \
+            else np.zeros(2)
+        out.append(bool(reach[1] > reach[0]) if abs(reach[1] - reach[0]) > margin
                    else along_width(plank))
     return tuple(out)
 

@@ -90,9 +90,16 @@ def violation_needs(design: Design, geometry: Geometry, report: DesignReport) ->
             continue
         found = [estimate(design, geometry, where, cases.get(v.case), v.case)
                  for v in violations]
-        worst = max(found, key=lambda need: need.values.get("ratio", 0.0))
+        worst = max(found, key=_severity)
         needs.append(Need(kind, where, worst.case, names, worst.values, worst.why))
     return tuple(needs)
+
+
+def _severity(need: Need) -> float:
+    """How far a need is from holding, to pick the worst of a violation's cases: its
+    ``ratio``; a frictionless slide (no ratio: mu = 0) by the friction it needs."""
+    values = need.values
+    return values.get("ratio", values.get("friction_needed", 0.0))
 
 
 # -- stability ---------------------------------------------------------------------------
