@@ -44,9 +44,10 @@ def rotation_matrices(rotations: Sequence[Vec3]) -> np.ndarray:
     return factors[2] @ factors[1] @ factors[0]
 
 
-_CORNER_SIGNS = np.array([[sx, sy, sz] for sz in (-1, 1) for sy in (-1, 1) for sx in (-1, 1)],
-                         dtype=float)
-"""(8, 3) the local sign pattern of ``Plank.corners``."""
+CORNER_SIGNS = np.array([[sx, sy, sz] for sz in (-1, 1) for sy in (-1, 1) for sx in (-1, 1)],
+                        dtype=float)
+"""(8, 3) the local sign pattern of ``Plank.corners`` (corner c: bit 0 x, bit 1 y, bit 2
+z; ``dofs.frame`` reads which ends a plank's touching corners share from it)."""
 
 
 def tabulate_planks(planks: Sequence[Plank]) -> None:
@@ -60,7 +61,7 @@ def tabulate_planks(planks: Sequence[Plank]) -> None:
     rotations = rotation_matrices([plank.rotation for plank in todo])
     centers = np.array([plank.center for plank in todo], dtype=float)
     halves = 0.5 * np.array([(p.length, p.width, p.thickness) for p in todo])
-    corners = centers[:, None, :] + (_CORNER_SIGNS * halves[:, None, :]) \
+    corners = centers[:, None, :] + (CORNER_SIGNS * halves[:, None, :]) \
         @ np.transpose(rotations, (0, 2, 1))
     for k, plank in enumerate(todo):
         cache = plank.__dict__              # what cached_property fills in, filled here
@@ -152,7 +153,7 @@ class Plank:
     def corners(self) -> np.ndarray:
         """(8, 3) float, m: world positions of the box corners (sign pattern of local axes
         in the order ---, +--, -+-, ++-, --+, +-+, -++, +++)."""
-        return self.center_array + (_CORNER_SIGNS * self.half_extents) @ self.rotation_matrix.T
+        return self.center_array + (CORNER_SIGNS * self.half_extents) @ self.rotation_matrix.T
 
     def to_local(self, points: np.ndarray) -> np.ndarray:
         """World points (n, 3) -> plank-local coordinates (n, 3)."""

@@ -10,16 +10,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from furncheck.design.model import Design, Vec3
+from furncheck.design.model import CORNER_SIGNS, Design, Vec3
 from furncheck.geometry import Geometry
 
 if TYPE_CHECKING:
     from furncheck.dofs.apply import TurnStart
-
-CORNER_SIGNS = np.array([[1 if c & 1 else -1, 1 if c & 2 else -1, 1 if c & 4 else -1]
-                         for c in range(8)])
-"""(8, 3) local sign pattern of each corner of ``Plank.corners``."""
-
 
 @dataclass(frozen=True)
 class End:

@@ -41,9 +41,9 @@ a length, to at most WINDOW_TOLERANCE of the design's tolerance."""
 
 def window_resolution(design: Design) -> float:
     """The length (the file's unit) to which a geometric repair's window is closed in a
-    length DOF: WINDOW_TOLERANCE of the design's tolerance, at least WINDOW_FLOOR
-    (``suggest.line_search`` too)."""
-    return max(tol.WINDOW_TOLERANCE * design.tolerance, tol.WINDOW_FLOOR) / design.unit_scale
+    length DOF: WINDOW_TOLERANCE of the design's tolerance (``suggest.line_search`` too;
+    each floors it: WINDOW_FLOOR here in ``_predicted_window``, MIN_RESOLUTION there)."""
+    return tol.WINDOW_TOLERANCE * design.tolerance / design.unit_scale
 
 
 def predicted_steps(design: Design, geometry: Geometry, frame: Structure,
@@ -109,7 +109,7 @@ def _predicted_window(finder, dof: Dof, predicted: tuple[float, float], limit: f
         if (yield from finder._valid_at(dof, sign * step)):
             if step == sign * aim and not dof.is_rotation:   # a geometric repair's window
                 fine = min(fine, window_resolution(finder.design))
-            if not dof.is_rotation:     # a tiny predicted step: still no finer than this
+            if not dof.is_rotation:     # no finer than this (tolerance 0, a tiny step)
                 fine = max(fine, tol.WINDOW_FLOOR / finder.design.unit_scale)
             below = max(s for s in invalid if s < step)
             inner = yield from finder._bisect(dof, sign, step, below, fine)
