@@ -220,6 +220,33 @@ loads:
     assert shelf.center[2] - shelf.thickness / 2 == pytest.approx(0.364)
 
 
+def test_a_shelf_deeper_than_it_is_wide_gets_a_rail_between_its_sides():
+    """A 300 x 400 shelf between two sides 300 mm apart (its ends, the 400 mm sides, nailed
+    to them), 20 kg near its front edge: its beam runs along its longer side, the 400 mm
+    depth (contract 3a), which no plank holds at both ends; the sides hold it across
+    that. The stiffening rail spans between the sides (300 mm, the gap between their
+    inner faces at x = -150 .. 150), where the rule used to say 'not held at both ends'."""
+    text = """\
+furncheck: 1
+name: deep-shelf
+units: mm
+planks:
+  - {id: side_l, size: [600, 400], center: [-156, 0, 300], rotation: [0, -90, 0]}
+  - {id: side_r, size: [600, 400], center: [156, 0, 300], rotation: [0, -90, 0]}
+  - {id: shelf, size: [300, 400], center: [0, 0, 300]}
+  - {id: top, size: [324, 400], center: [0, 0, 606]}
+loads:
+  - {plank: shelf, mass: 20, at: [0, 150, 306]}
+"""
+    design = parsed(text, "elastic")
+    assert [v.kind for v in check_design(design).violations] == ["sagging"]
+    rails = [fix for fix in fixes(design) if fix.rule == "rail"]
+    assert rails and fix_valid(rails[0])
+    rail = rails[0].adds[0]
+    assert rail.length == pytest.approx(0.300)
+    assert abs(rail.rotation_matrix[0, 0]) == pytest.approx(1.0)      # along x, side to side
+
+
 # --- toppling ----------------------------------------------------------------------------------
 
 def test_the_pressure_centre_of_the_tipping_bench():

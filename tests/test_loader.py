@@ -299,6 +299,15 @@ def test_nested_too_deeply():
            "nested too deeply")
 
 
+@pytest.mark.parametrize("depth", [40, 900])
+def test_json_nested_too_deeply_has_key_and_line(depth):
+    """A JSON design nested past MAX_NESTING is refused as a YAML one is, at the key path
+    and line where the limit is passed (Python's json reads such a file, and the schema
+    then named an unknown key with no line)."""
+    text = '{"furncheck": 1,\n "x":\n' + "[" * depth + "]" * depth + "}"
+    expect(text, "x" + "[0]" * 31, 3, "nested too deeply", "json")
+
+
 def test_quoted_number_is_text():
     text = replace("size: [400, 300]", 'size: ["400", 300]')
     expect(text, "planks[0].size[0]", 5, 'expected a number, got text "400"')

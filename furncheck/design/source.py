@@ -329,7 +329,7 @@ def _read_json(text: str, source: str) -> Any:
     import json  # for JSON designs only: YAML is the common case
 
     try:
-        return json.loads(text, object_pairs_hook=_json_object, parse_constant=_json_constant,
+        tree = json.loads(text, object_pairs_hook=_json_object, parse_constant=_json_constant,
                           parse_int=float, parse_float=float)
     except _DuplicateKey as duplicate:
         raise _json_duplicate_error(text, source, duplicate.key) from None
@@ -337,9 +337,36 @@ def _read_json(text: str, source: str) -> Any:
         raise DesignError(source, "", error.lineno,
                           f"JSON syntax error: {error.msg} (column {error.colno})") from None
     except RecursionError:
-        raise DesignError(source, "", None, "nested too deeply") from None
+        raise _json_nesting_error(text, source) from None
     except ValueError as error:
         raise DesignError(source, "", None, _one_line(f"JSON syntax error: {error}")) from None
+    if _depth(tree) > tol.MAX_NESTING:
+        raise _json_nesting_error(text, source)
+    return tree
+
+
+def _depth(tree: Any) -> int:
+    """How deep mappings and lists nest in ``tree`` (a scalar: 0)."""
+    deepest, level = 0, [(tree, 1)]
+    while level:
+        node, depth = level.pop()
+        children = node.values() if isinstance(node, dict) else node \
+            if isinstance(node, list) else None
+        if children is not None:
+            deepest = max(deepest, depth)
+            level.extend((child, depth + 1) for child in children)
+    return deepest
+
+
+def _json_nesting_error(text: str, source: str) -> DesignError:
+    """A JSON design nested deeper than MAX_NESTING refused as a YAML one is: at the
+    path and line where the limit is passed, found by reading the text as YAML."""
+    try:
+        _read_yaml(text, source)
+    except DesignError as error:
+        if error.message == "nested too deeply":
+            return error
+    return DesignError(source, "", None, "nested too deeply")
 
 
 def _json_duplicate_error(text: str, source: str, key: str) -> DesignError:

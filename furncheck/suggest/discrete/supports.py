@@ -159,8 +159,9 @@ def _place(design: Design, where: str) -> str:
 def _stiffeners(search: Search, i: str, neighbours: list[str],
                 reaches: Callable[[set], bool]) -> Iterator[Candidate]:
     """Rails on edge under one long edge of the level plank i (a shelf's front lip), or
-    under its middle, between the two parallel planks that hold i's ends, nailed to i and
-    to both: the woodworker's fix for a sagging shelf.  (A lip at one edge carries that
+    under its middle, between the two parallel planks that hold i's ends (the ends of its
+    beam, else, on a shelf deeper than it is wide, its other two), nailed to i and to
+    both: the woodworker's fix for a sagging shelf.  (A lip at one edge carries that
     edge; the beam model's shelf, whose section does not bend across its width, then
     twists about its axis: where that is too much, the rail under the middle does it.)
     STIFFENER_DEPTHS deep, the shallowest first.  None (and the reason recorded) when i
@@ -171,18 +172,21 @@ def _stiffeners(search: Search, i: str, neighbours: list[str],
     if not level(shelf):
         search.not_applicable(STIFFENER, f"{i} is not level", i)
         return
-    from furncheck.statics.beams import beam_frame, beam_length_width
+    from furncheck.statics.beams import along_width, beam_frame, beam_length_width
 
-    frame = beam_frame(shelf)
-    axis = frame[:, 0]
-    ends = []
-    for k in neighbours:
-        other = design.plank(k)
-        if abs(float(other.rotation_matrix[:, 2] @ axis)) >= PARALLEL_COS:
-            ends.append((float((other.center_array - shelf.center_array) @ axis), other))
-    below = [e for e in ends if e[0] < 0]
-    above = [e for e in ends if e[0] > 0]
-    if not below or not above:
+    for crosswise in (along_width(shelf), not along_width(shelf)):
+        frame = beam_frame(shelf, crosswise)        # its beam's axis first, then across it
+        axis = frame[:, 0]
+        ends = []
+        for k in neighbours:
+            other = design.plank(k)
+            if abs(float(other.rotation_matrix[:, 2] @ axis)) >= PARALLEL_COS:
+                ends.append((float((other.center_array - shelf.center_array) @ axis), other))
+        below = [e for e in ends if e[0] < 0]
+        above = [e for e in ends if e[0] > 0]
+        if below and above:
+            break
+    else:
         search.not_applicable(STIFFENER, f"{i} is not held at both ends by parallel planks",
                               i)
         return
@@ -194,7 +198,7 @@ def _stiffeners(search: Search, i: str, neighbours: list[str],
     start = s_low + low.half_extents[2]
     stop = s_high - high.half_extents[2]
     thickness = design.material.thickness
-    length, width = beam_length_width(shelf)
+    length, width = beam_length_width(shelf, crosswise)
     down = -frame[:, 2] if frame[2, 2] > 0 else frame[:, 2]
     name = new_id(design, "rail")
     nailed = (i, low.id, high.id)
