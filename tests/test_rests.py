@@ -193,6 +193,34 @@ def test_a_block_standing_on_a_board_slides_on_it_at_mu_times_its_weight(model):
 
 
 @pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_block_tipping_on_its_resting_joint_is_named_with_the_pull_it_needs(model):
+    """A 400 x 300 x 60 mm block stands loose on its 60 x 300 end on a board lying on the
+    floor, pushed along x at its top, 400 mm above the board: it tips about its end's edge,
+    30 mm from its centre line, once P h > W a (it slides only at mu W, far beyond):
+    W = 750 x 0.4 x 0.3 x 0.06 x 9.81 = 52.97 N, P_tip = W x 30 / 400 = 3.973 N.  At
+    P = 4.10 N it lifts off: held down, the corners along the far edge would have to pull
+    (P h - W a) / 60 mm = (1640 - 1589.2) / 60 = 0.846 N.  The message names the resting
+    joint, which presses as a whole (W) but tips about an edge, not the ground."""
+    weight = DENSITY * 0.4 * 0.3 * 0.06 * G
+    tipping = weight * 30.0 / 400.0
+    for push, expected in ((0.97 * tipping, "stable"), (4.10, "lift-off")):
+        doc = {"furncheck": 1, "name": "block", "model": model,
+               "material": {"thickness": 12, "friction": MU},
+               "planks": [{"id": "base", "size": [600, 400], "center": [0, 0, 6]},
+                          {"id": "block", "size": [400, 300], "center": [0, 0, 212],
+                           "rotation": [0, -90, 0], "thickness": 60}],
+               "joints": [{"planks": ["block", "base"], "type": "rests"}],
+               "loads": [{"plank": "block", "force": [push, 0, 0], "at": [-30, 0, 412]}]}
+        report = check_design(parse_design(yaml.safe_dump(doc), "block.yaml", "yaml"))
+        assert report.cases[0].stability == expected, push
+        if expected == "lift-off":
+            message = report.violations[0].message
+            assert "block lifts off base" in message and "support polygon" not in message
+            pull = float(re.search(r"would have to pull ([\d.]+) N", message).group(1))
+            assert pull == pytest.approx((push * 400.0 - weight * 30.0) / 60.0, rel=0.01)
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
 def test_the_force_sensitivity_of_a_resting_top_matches_finite_differences(model):
     """``sensitivity`` on the loose top (pushed with 10 N, below its 13.9 N): for every
     DOF that keeps the contacts, their holding set and the top on its sides, the joint

@@ -112,6 +112,29 @@ def test_the_wall_takes_what_the_equilibrium_needs():
     assert all(c.point[0] == pytest.approx(0.0, abs=1e-9) for c in top)
 
 
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_board_pressed_flat_on_a_wall_needs_its_weight_in_friction(model):
+    """A 300 x 200 x 12 mm board flat against the wall y = 0, clear of the floor, pressed
+    onto it by P at its centre: it holds iff mu P >= W, W = 750 x 0.3 x 0.2 x 0.012 x 9.81
+    = 5.297 N.  At P = 10.2 N (mu P = 5.1 N) it slides, and the message gives the wall's
+    need as W against mu P in both models (the elastic board's corners also pull against
+    each other along the wall, and those forces cancel: they once read 95.7 N)."""
+    weight = 750.0 * 0.3 * 0.2 * 0.012 * 9.81
+    for push, expected in ((11.0, "stable"), (10.2, "sliding")):
+        doc = {"furncheck": 1, "name": "pressed", "model": model,
+               "material": {"thickness": 12, "friction": MU},
+               "walls": [{"point": [0, 0, 0], "normal": [0, 1, 0]}],
+               "planks": [{"id": "board", "size": [300, 200], "center": [0, 6, 1000],
+                           "rotation": [90, 0, 0]}],
+               "loads": [{"plank": "board", "force": [0, -push, 0], "at": [0, 12, 1000]}]}
+        report = check_design(_design(doc))
+        assert report.cases[0].stability == expected, push
+        if expected == "sliding":
+            message = report.violations[0].message
+            assert f"the wall must hold {weight:.4g} N along its face" in message
+            assert f"friction gives at most {MU * push:.3g} N" in message
+
+
 @pytest.mark.parametrize("turn, shift", [(30.0, (100.0, -250.0)), (-135.0, (0.0, 40.0))])
 def test_turning_and_moving_design_and_wall_together_changes_nothing(turn, shift):
     """A rigid motion about the vertical of the design with its wall: the same verdict and

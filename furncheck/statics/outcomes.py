@@ -57,19 +57,14 @@ class _Outcomes:
             if resting:                             # what the resting joints must hold
                 needed, capacity = self._rests_friction(forces, over)
             else:                                   # the ground's and walls' corners
-                own = np.ones(len(forces), dtype=bool)
-                if model.rest_node is not None:
-                    own[model.rest_rows] = False
-                needed = float(np.hypot(forces[own, 0], forces[own, 1]).sum())
-                capacity = self.mu * float(np.maximum(forces[own, 2], 0.0).sum())
-            walls = any(model.geometry.contacts[c].wall is not None for c in model.contacts)
+                surface, needed, capacity = self._surface_friction(forces)
             if resting:
                 what = (f"{resting}: a resting joint must pass on {plain_number(needed)} N "
                         f"along its faces, its friction gives at most {plain_number(capacity)} N")
             else:
-                what = (f"the {'ground and walls' if walls else 'ground'} must hold "
-                        f"{plain_number(needed)} N along their faces, friction gives at most "
-                        f"{plain_number(capacity)} N")
+                faces = "their faces" if surface.endswith("walls") else "its face"
+                what = (f"{surface} must hold {plain_number(needed)} N along {faces}, "
+                        f"friction gives at most {plain_number(capacity)} N")
             detail = (f"no equilibrium within the friction cones (mu = "
                       f"{plain_number(self.mu, 6)}): {what}")
             return CaseStatics("sliding", _wrenches(solution.h), forces,
@@ -109,10 +104,9 @@ class _Outcomes:
         if self.anchored is not None:
             pulling &= ~self.anchored
         resting, pulled = "", -float(bolted.contact_forces[pulling, 2].sum())
-        if self.model.rest_node is not None:    # a resting joint lifts where its corners'
-            forces = bolted.contact_forces      # forces add up to a pull
-            lifting = {rest for rest, total in self._rest_totals(forces).items()
-                       if total[2] < -self.force_tol}
+        if self.model.rest_node is not None:    # the resting joints that lift or tip
+            forces = bolted.contact_forces
+            lifting = self._lifting_rests(forces)
             corners = np.zeros(len(forces), dtype=bool)
             for k in self.model.rest_rows:
                 corners[k] = self.model.geometry.contacts[self.model.contacts[k]].rest \
@@ -120,9 +114,7 @@ class _Outcomes:
             resting = self._rests_phrase(corners, "lifts off")
             ground = pulling.copy()
             ground[self.model.rest_rows] = False
-            pulled = -float(forces[ground, 2].sum()) - sum(
-                float(total[2]) for rest, total in self._rest_totals(forces).items()
-                if rest in lifting)
+            pulled = -float(forces[ground, 2].sum()) + sum(lifting.values())
             pulling = ground | corners          # the planks named: those that lift
         if stability == "lift-off" and resting:
             detail = (f"no equilibrium with the {self._supports()} only pushing: {resting} "
@@ -228,6 +220,62 @@ class _Outcomes:
             totals[rest] = totals.get(rest, np.zeros(3)) + forces[k]
         return totals
 
+    def _surface_friction(self, forces: np.ndarray) -> tuple[str, float, float]:
+        """('the ground', 'the wall' or 'wall N', N, N): the support surface that needs
+        the most friction for what it gives, with the sideways force its corners must hold
+        (their forces summed: what they pull against each other along the face, as an
+        elastic board's corners do, cancels) and the friction mu N they give; where every
+        surface's sum is within its friction (a twist, or corners that slide against each
+        other), the sum of every corner's sideways force instead."""
+        model = self.model
+        rows: dict[int | None, list[int]] = {}
+        for k, c in enumerate(model.contacts):
+            contact = model.geometry.contacts[c]
+            if contact.rest is None and (self.anchored is None or not self.anchored[k]):
+                rows.setdefault(contact.wall, []).append(k)
+        worst = None
+        for wall, ks in sorted(rows.items(), key=lambda item: -1 if item[0] is None
+                               else item[0]):
+            needed = float(np.hypot(*forces[ks, :2].sum(axis=0)))
+            capacity = self.mu * float(np.maximum(forces[ks, 2], 0.0).sum())
+            if worst is None or needed - capacity > worst[1] - worst[2]:
+                name = "the ground" if wall is None else \
+                    "the wall" if len(model.design.walls) == 1 else f"wall {wall}"
+                worst = (name, needed, capacity)
+        if worst is not None and worst[1] - worst[2] > self.force_tol:
+            return worst
+        own = [k for ks in rows.values() for k in ks]    # each nets out: its corners' sum
+        walls = any(model.geometry.contacts[c].wall is not None for c in model.contacts)
+        return ("the ground and walls" if walls else "the ground",
+                float(np.hypot(forces[own, 0], forces[own, 1]).sum()),
+                self.mu * float(np.maximum(forces[own, 2], 0.0).sum()))
+
+    def _lifting_rests(self, forces: np.ndarray) -> dict[int, float]:
+        """The resting joints that cannot pass on their corners' forces (nK, 3) by pushing
+        alone, each with the pull it would need (N): one whose corners' forces add up to
+        a pull (that sum), and one that presses as a whole but whose centre of pressure
+        lies outside the polygon of its corners, so that it tips about an edge (the
+        pull of its corners that pull: a loose block pushed over on its base)."""
+        model, found = self.model, {}
+        rows: dict[int, list[int]] = {}
+        for k in model.rest_rows:
+            rows.setdefault(model.geometry.contacts[model.contacts[k]].rest, []).append(k)
+        for rest, ks in rows.items():
+            normal = forces[ks, 2]
+            total = float(normal.sum())
+            if total < -self.force_tol:
+                found[rest] = -total
+                continue
+            pulls = -float(np.minimum(normal, 0.0).sum())
+            if pulls <= self.force_tol:
+                continue
+            frame = model.contact_frames[ks[0]]
+            flat = model.contact_points[ks] @ frame[:2].T           # in the rest's plane
+            centre = normal @ flat / total
+            if not _inside_hull(centre, flat, model.design.tolerance):
+                found[rest] = pulls
+        return found
+
     def _rests_friction(self, forces: np.ndarray, over: np.ndarray) -> tuple[float, float]:
         """(N, N) of the resting joint that needs the most friction for what it gives
         (among those with a corner in ``over``): the sideways force it must pass on, its
@@ -294,6 +342,28 @@ def _on_one_line(points: np.ndarray) -> bool:
         return True
     spread = np.linalg.svd(points - points.mean(axis=0), compute_uv=False)
     return bool(spread[1] <= tol.MECHANISM_RCOND * max(spread[0], 1e-300))
+
+
+def _inside_hull(point: np.ndarray, corners: np.ndarray, slack: float) -> bool:
+    """Whether the 2-D ``point`` lies within ``slack`` of the convex polygon of
+    ``corners`` (k, 2; a resting joint's, the corners of a rectangle), or of the segment
+    they span where they lie on one line."""
+    centroid = corners.mean(axis=0)
+    ring = corners[np.argsort(np.arctan2(corners[:, 1] - centroid[1],
+                                         corners[:, 0] - centroid[0]))]  # anticlockwise
+    edges = np.roll(ring, -1, axis=0) - ring
+    lengths = np.hypot(edges[:, 0], edges[:, 1])
+    twice_area = float((ring[:, 0] * np.roll(ring[:, 1], -1)
+                        - np.roll(ring[:, 0], -1) * ring[:, 1]).sum())
+    if len(ring) >= 3 and lengths.min() > 0.0 and \
+            twice_area > tol.MECHANISM_RCOND * float(lengths.max()) ** 2:
+        offset = point - ring
+        inward = (edges[:, 0] * offset[:, 1] - edges[:, 1] * offset[:, 0]) / lengths
+        return bool(inward.min() >= -slack)
+    far = corners[np.argmax(np.hypot(*(corners - corners[0]).T))]
+    along = far - corners[0]
+    t = float(np.clip((point - corners[0]) @ along / max(float(along @ along), 1e-300), 0, 1))
+    return bool(np.hypot(*(point - corners[0] - t * along)) <= slack)
 
 
 def _wrenches(h: np.ndarray) -> np.ndarray:
