@@ -60,13 +60,30 @@ def write_chunks(chunks: Iterable[str], output: str | None) -> None:
     from furncheck.files import replacing
 
     if output is None or output == "-":
-        _write_blocks(chunks, lambda text: click.echo(text, nl=False), "standard output")
+        _write_blocks(chunks, _echo, "standard output")
         return
     try:
         with replacing(output, durable=True) as stream:
-            _write_blocks(chunks, lambda text: stream.write(text.encode("utf-8")), output)
+            _write_blocks(chunks, lambda text: stream.write(_utf8(text)), output)
     except OSError as error:
         fail(f"cannot write the report to {output}: {error.strerror or error}")
+
+
+def _utf8(text: str) -> bytes:
+    """``text`` in UTF-8; a file name that is not UTF-8 (its bytes held as surrogates, as
+    Python reads such names) written with its odd characters escaped ('\\udcff'), as the
+    JSON report writes them, so that every report stays valid UTF-8."""
+    return text.encode("utf-8", "backslashreplace")
+
+
+def _echo(text: str) -> None:
+    """``text`` to standard output; what its encoding cannot take (a file name's bytes
+    that are not UTF-8, as in ``_utf8``) escaped."""
+    try:
+        click.echo(text, nl=False)
+    except UnicodeEncodeError:
+        encoding = getattr(sys.stdout, "encoding", None) or "utf-8"
+        click.echo(text.encode(encoding, "backslashreplace").decode(encoding), nl=False)
 
 
 def _write_blocks(chunks: Iterable[str], write, where: str) -> None:
@@ -122,9 +139,18 @@ STDIN_FILENAME_OPTION = click.option(
 
 def stdin_document(name: str | None) -> tuple[bytes, str, str]:
     """Standard input's bytes, the name reports give them (``name``, else STDIN_NAME) and
-    their format: by the name's extension, else JSON when the text starts with '{'."""
-    data = sys.stdin.buffer.read()
+    their format: by the name's extension, else JSON when the text starts with '{'.
+    Raises DesignError when standard input is closed or cannot be read."""
+    from furncheck.errors import DesignError
+
     source = name or STDIN_NAME
+    if sys.stdin is None:                   # started with standard input closed (<&-)
+        raise DesignError(source, "", None, "cannot read standard input: it is closed")
+    try:
+        data = sys.stdin.buffer.read()
+    except (OSError, ValueError) as error:  # a bad descriptor, or a closed stream
+        raise DesignError(source, "", None, "cannot read standard input: "
+                          f"{getattr(error, 'strerror', None) or error}") from None
     suffix = os.path.splitext(source)[1].lower()
     fmt = {".json": "json", ".yaml": "yaml", ".yml": "yaml"}.get(suffix)
     if fmt is None:

@@ -216,9 +216,13 @@ def _is_terminal(stream) -> bool:
 def _check_stdin(name: str | None, model: str | None, cache) -> DesignReport:
     """The report of the design on standard input (cached like a file's)."""
     from furncheck.check import check_data
+    from furncheck.errors import DesignError
     from furncheck.scan import error_report
 
-    data, source, fmt = stdin_document(name)
+    try:
+        data, source, fmt = stdin_document(name)
+    except DesignError as error:            # closed: the other files are still checked
+        return error_report(error.file, str(error))
     key = cache.key(source, data) if cache is not None else None
     report = cache.get(key, source) if cache is not None else None
     if report is None:

@@ -114,8 +114,9 @@ def _from_cache(cache: ResultCache, path: str, key: str, kind: str, fmt: str
     damaged (the path is then checked again)."""
     if kind == "piece":
         fields = cache.get_piece(key, fmt)
-        if fields is not None:
-            return Entry(*fields)
+        if fields is not None and any(fields[0] is v for v in (True, False, None)) \
+                and type(fields[1]) is bool and reporter(fmt).is_piece(fields[2]):
+            return Entry(*fields)           # (one of another shape: made again below)
     report = cache.get(key, path)
     if report is None:
         return None
@@ -213,6 +214,8 @@ def entries_in_workers(paths: list[str], fmt: str, jobs: int, model: str | None 
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
 
+    from furncheck.workers import quiet_worker
+
     workers = max(1, min(jobs, len(paths)))
     size = max(1, math.ceil(len(paths) / (workers * TASKS_PER_WORKER)))
     if average > 0.0:
@@ -225,7 +228,8 @@ def entries_in_workers(paths: list[str], fmt: str, jobs: int, model: str | None 
         context = None
     gc.freeze()     # the workers leave this process's objects alone (no copied pages)
     try:
-        pool = ProcessPoolExecutor(max_workers=workers, mp_context=context)
+        pool = ProcessPoolExecutor(max_workers=workers, mp_context=context,
+                                   initializer=quiet_worker)
     except (OSError, NotImplementedError, ImportError):  # no multiprocessing here
         gc.unfreeze()
         yield from (entry_of(path, fmt, model, cache, key) for path, key in items)

@@ -220,10 +220,16 @@ class ResultCache:
                            _MARKER + bytes.fromhex(key) + fmt.encode() + b"\0", fields)
 
     def _write(self, target: str, header: bytes, data: Any) -> bool:
+        """Write an entry: never through a symlink (a cache restored from an archive may
+        hold one, at an entry or at its folder): such an entry is not stored."""
         try:
             payload = marshal.dumps(data)
-            os.makedirs(os.path.dirname(target), exist_ok=True)
-            write_atomically(target, header + _crc(payload) + payload)
+            folder = os.path.dirname(target)
+            os.makedirs(folder, exist_ok=True)
+            if os.path.realpath(folder) != os.path.join(
+                    os.path.realpath(self.directory), *Path(folder).parts[-2:]):
+                return False                    # a folder of the layout is a link
+            write_atomically(target, header + _crc(payload) + payload, follow_links=False)
         except (OSError, ValueError) as error:   # ValueError: marshal of an odd value
             self.unwritable = f"{self.directory}: {getattr(error, 'strerror', None) or error}"
             return False
@@ -233,8 +239,8 @@ class ResultCache:
 def _read_entry(path: str, header: bytes) -> Any:
     """The data of the entry at ``path``, or None when it is missing, does not start with
     ``header``, fails its CRC or does not unmarshal."""
-    try:
-        with open(path, "rb") as stream:
+    try:                                    # never through a symlink (``_write``)
+        with open(os.open(path, os.O_RDONLY | _NO_FOLLOW), "rb") as stream:
             entry = stream.read()
     except OSError:
         return None
@@ -248,6 +254,7 @@ def _read_entry(path: str, header: bytes) -> Any:
 
 
 _MARKER = b"furncheck-result\0"
+_NO_FOLLOW = getattr(os, "O_NOFOLLOW", 0)
 
 
 def _crc(payload: bytes) -> bytes:

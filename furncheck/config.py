@@ -149,7 +149,8 @@ def _config(path: str, table: dict) -> Config:
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
         raise fail("jobs", "a whole number of at least 1")
     cache_dir = table.get("cache-dir")
-    if cache_dir is not None and (not isinstance(cache_dir, str) or not cache_dir):
+    if cache_dir is not None and (not isinstance(cache_dir, str) or not cache_dir
+                                  or "\0" in cache_dir):
         raise fail("cache-dir", "a folder")
     folder = os.path.dirname(os.path.abspath(path))
     return Config(

@@ -16,16 +16,21 @@ from typing import BinaryIO
 
 TEMP_SUFFIX = ".tmp"
 """Suffix of the temporary files (``.NAME.XXXXXXXX.tmp`` beside the target)."""
+TEMP_NAME_ROOM = 255 - len(".." + "XXXXXXXX" + TEMP_SUFFIX)
+"""Bytes of the target's name that fit in a temporary file's name (255 bytes, the usual
+limit of a file name); a longer one makes it ``.furncheck.XXXXXXXX.tmp``."""
 
 
-def write_atomically(path: str, data: bytes, *, durable: bool = False) -> None:
+def write_atomically(path: str, data: bytes, *, durable: bool = False,
+                     follow_links: bool = True) -> None:
     """Replace the file at ``path`` by ``data`` in one step (see ``replacing``)."""
-    with replacing(path, durable=durable) as stream:
+    with replacing(path, durable=durable, follow_links=follow_links) as stream:
         stream.write(data)
 
 
 @contextlib.contextmanager
-def replacing(path: str, *, durable: bool = False) -> Iterator[BinaryIO]:
+def replacing(path: str, *, durable: bool = False,
+              follow_links: bool = True) -> Iterator[BinaryIO]:
     """A binary stream whose bytes replace the file at ``path`` in one step when the
     ``with`` block ends without an exception.
 
@@ -35,18 +40,22 @@ def replacing(path: str, *, durable: bool = False) -> Iterator[BinaryIO]:
     the block (also KeyboardInterrupt) or an OSError leaves ``path`` untouched and no
     temporary file behind.  A symlink at ``path`` stays: the file it points to is
     replaced.  A special file (``/dev/stdout``, a pipe) cannot be replaced: it is written
-    directly.
+    directly.  Without ``follow_links`` (the result cache, whose entries are never links
+    nor special files: one planted there must not send a write elsewhere) whatever is at
+    ``path`` is replaced.
     """
-    path = os.path.realpath(path)
-    if os.path.exists(path) and not os.path.isfile(path):
-        with open(path, "wb") as stream:
-            yield stream
+    if follow_links and os.path.exists(path) and not os.path.isfile(path):
+        with open(path, "wb") as stream:    # (tested before resolving: /dev/stdout on a
+            yield stream                    # pipe resolves to no file at all)
         return
+    if follow_links:
+        path = os.path.realpath(path)
     import tempfile  # here: only -o FILE and the cache write files
 
-    folder = os.path.dirname(path)
-    handle, temporary = tempfile.mkstemp(dir=folder, prefix=f".{os.path.basename(path)}.",
-                                         suffix=TEMP_SUFFIX)
+    folder, name = os.path.split(path)
+    if len(os.fsencode(name)) > TEMP_NAME_ROOM:         # '.NAME.XXXXXXXX.tmp' too long
+        name = "furncheck"
+    handle, temporary = tempfile.mkstemp(dir=folder, prefix=f".{name}.", suffix=TEMP_SUFFIX)
     try:
         with os.fdopen(handle, "wb") as stream:
             yield stream

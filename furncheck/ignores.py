@@ -21,15 +21,38 @@ not resolved through symlinks (git does not follow symlinks either).
 from __future__ import annotations
 
 import os
+import re
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 from furncheck.config import GIT_DIR
 
-if TYPE_CHECKING:       # imported where patterns are read: a file named alone needs none
-    import pathspec
-
 GITIGNORE = ".gitignore"
+
+
+@dataclass(frozen=True)
+class Rule:
+    """One gitignore pattern: ``pattern`` (pathspec's, compiled from the line, a
+    folder-only line without its trailing slash), ``ignores`` (False for a ``!`` line),
+    ``folders_only`` (the line ended in '/')."""
+
+    pattern: object
+    ignores: bool
+    folders_only: bool
+
+    def matches(self, relative: str, is_dir: bool) -> bool:
+        """Whether the pattern names the path ``relative`` ('/'-separated, below the base
+        folder) itself, as git matches it while it walks the tree: not through a folder
+        above it (pathspec's patterns also match everything inside a folder they name,
+        which git reaches only by leaving that folder out, and which must not re-include
+        what a ``!folder/`` line's folder holds)."""
+        if self.folders_only and not is_dir:
+            return False
+        found = self.pattern.regex.search(relative)
+        return found is not None and found.groupdict().get(_FOLDER_GROUP) is None
+
+
+_FOLDER_GROUP = "ps_d"
+"""The group of a pathspec pattern's regex that matches a folder above the path."""
 
 
 @dataclass(frozen=True)
@@ -40,17 +63,19 @@ class PatternFile:
     """
 
     base: str
-    spec: pathspec.GitIgnoreSpec
+    rules: tuple[Rule, ...]
     source: str
 
     def verdict(self, path: str, is_dir: bool) -> bool | None:
         """True: ``path`` (absolute) is ignored, False: re-included by a ``!`` pattern,
-        None: no pattern matches it (or it is not below ``base``)."""
+        None: no pattern matches it (or it is not below ``base``); the last pattern that
+        matches decides."""
         relative = os.path.relpath(path, self.base)
         if relative == os.curdir or relative.split(os.sep)[0] == os.pardir:
             return None
-        relative = relative.replace(os.sep, "/") + ("/" if is_dir else "")
-        return self.spec.check_file(relative).include
+        relative = relative.replace(os.sep, "/")
+        return next((rule.ignores for rule in reversed(self.rules)
+                     if rule.matches(relative, is_dir)), None)
 
     def opened_at(self, folder: str) -> PatternFile:
         """These patterns for a scan of ``folder`` (absolute), named on the command line:
@@ -61,29 +86,42 @@ class PatternFile:
         if relative == os.curdir or relative.split(os.sep)[0] == os.pardir:
             return self
         parts = relative.split(os.sep)
-        prefixes = ["/".join(parts[:count]) + "/" for count in range(1, len(parts) + 1)]
-        kept = [pattern for pattern in self.spec.patterns
-                if not (pattern.include and any(pattern.match_file(prefix)
-                                                for prefix in prefixes))]
-        if len(kept) == len(self.spec.patterns):
-            return self
-        import pathspec
-
-        return PatternFile(self.base, pathspec.GitIgnoreSpec(kept), self.source)
+        prefixes = ["/".join(parts[:count]) for count in range(1, len(parts) + 1)]
+        kept = tuple(rule for rule in self.rules
+                     if not (rule.ignores and any(rule.matches(prefix, True)
+                                                  for prefix in prefixes)))
+        return self if len(kept) == len(self.rules) else PatternFile(self.base, kept,
+                                                                     self.source)
 
 
 def patterns(lines: list[str] | tuple[str, ...], base: str, source: str) -> PatternFile:
-    """Gitignore ``lines`` anchored at folder ``base``."""
+    """Gitignore ``lines`` anchored at folder ``base``; a line that is not a valid pattern
+    (an unclosed or reversed bracket, a lone '!' or '\\') matches nothing, as in git."""
     import pathspec
 
-    return PatternFile(os.path.abspath(base), pathspec.GitIgnoreSpec.from_lines(lines), source)
+    rules = []
+    for line in lines:
+        text = _TRAILING_SPACES.sub("", line)
+        folders_only = text.endswith("/")
+        try:
+            spec = pathspec.GitIgnoreSpec.from_lines([text[:-1] if folders_only else text])
+        except (ValueError, re.error):  # pathspec's GitIgnorePatternError is a ValueError
+            continue
+        rules.extend(Rule(pattern, bool(pattern.include), folders_only)
+                     for pattern in spec.patterns if pattern.include is not None)
+    return PatternFile(os.path.abspath(base), tuple(rules), source)
+
+
+_TRAILING_SPACES = re.compile(r"(?<!\\) +$")
+"""A line's trailing spaces, which git drops unless the first is escaped ('\\ ')."""
 
 
 def read_pattern_file(path: str, base: str) -> PatternFile | None:
     """The patterns of the gitignore file at ``path`` (anchored at ``base``), or None when
-    there is no readable file there."""
+    there is no readable file there (a byte-order mark at its start is dropped, as git
+    drops it)."""
     try:
-        with open(path, encoding="utf-8", errors="replace") as stream:
+        with open(path, encoding="utf-8-sig", errors="replace") as stream:
             lines = stream.read().splitlines()
     except OSError:
         return None

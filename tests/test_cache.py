@@ -132,6 +132,61 @@ def test_a_damaged_entry_is_ignored_and_written_again(checked_paths, tmp_path, d
     assert piece.read_bytes() == good_piece
 
 
+@pytest.mark.parametrize("fmt", ["json", "junit", "sarif"])
+@pytest.mark.parametrize("payload", [(True, False, None), (1, False, "x"),
+                                     (True, False, ("x", (1, 2))), (True, 0, "x")])
+def test_a_well_sealed_piece_of_another_shape_is_made_again(checked_paths, tmp_path, fmt,
+                                                            payload):
+    """A piece whose header and CRC are right but whose payload is not what its format's
+    ``piece`` makes (a restored cache of another version, a planted file) is made again
+    from the stored result, the output as before; it ended the batch with an internal
+    error."""
+    import marshal
+    import zlib
+
+    (valid,) = write(tmp_path, "valid.yaml")
+    cache = tmp_path / "cache"
+    first = run("validate", valid, "--cache-dir", str(cache), "--format", fmt)
+    (piece,) = pieces(cache)
+    key = piece.parent.name + piece.stem                # entries are at KEY[:2]/KEY[2:]
+    header = cache_module._MARKER + bytes.fromhex(key) + fmt.encode() + b"\0"
+    body = marshal.dumps(payload)
+    piece.write_bytes(header + zlib.crc32(body).to_bytes(4, "big") + body)
+    again = run("validate", valid, "--cache-dir", str(cache), "--format", fmt)
+    assert again.stdout == first.stdout and again.exit_code == first.exit_code == 0
+    assert checked_paths == [valid]                     # from the result, not checked
+
+
+def test_a_symlink_in_the_cache_is_neither_read_nor_written_through(checked_paths, tmp_path):
+    """An entry that is a symlink (a cache restored from an archive may hold one) is not
+    followed: the file it points to stays as it was (it was overwritten with the entry:
+    a write outside the cache folder), the design is checked, the link replaced by the
+    entry.  A folder of the layout that is a link gets no entries at all."""
+    (valid,) = write(tmp_path, "valid.yaml")
+    cache = tmp_path / "cache"
+    first = run("validate", valid, "--cache-dir", str(cache), "--format", "json")
+    (entry,), (piece,) = entries(cache), pieces(cache)
+    outside = tmp_path / "outside"
+    outside.write_bytes(entry.read_bytes())             # a well-formed entry, elsewhere
+    entry.unlink()
+    piece.unlink()
+    entry.symlink_to(outside)
+    again = run("validate", valid, "--cache-dir", str(cache), "--format", "json")
+    assert again.stdout == first.stdout and checked_paths == [valid, valid]  # not read
+    assert not entry.is_symlink() and entry.read_bytes() == outside.read_bytes()
+    outside.write_bytes(b"mine")
+    for path in entries(cache) + pieces(cache):
+        path.unlink()
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    folder = entry.parent
+    folder.rmdir()
+    folder.symlink_to(elsewhere)
+    third = run("validate", valid, "--cache-dir", str(cache), "--format", "json")
+    assert third.stdout == first.stdout and checked_paths == [valid] * 3
+    assert list(elsewhere.iterdir()) == [] and outside.read_bytes() == b"mine"
+
+
 def test_a_piece_is_reused_as_it_is_and_other_formats_use_the_result(checked_paths,
                                                                       tmp_path, monkeypatch):
     """A second run in one format reads the stored piece (the result is not even decoded);

@@ -161,6 +161,23 @@ def test_output_keeps_the_files_permissions_and_symlinks(checked_paths, tmp_path
     assert report.stat().st_mode & 0o777 == 0o640
 
 
+def test_output_to_dev_stdout_on_a_pipe_and_to_a_long_name(tmp_path):
+    """-o /dev/stdout with stdout a pipe writes the report there (it resolved to no file
+    at all: 'No such file or directory', exit 2); -o with a 250-byte name works, its
+    temporary file named short (it was '.NAME.XXXXXXXX.tmp', past the 255-byte limit)."""
+    stool = str(ROOT / "designs" / "stool.yaml")
+    args = [sys.executable, "-m", "furncheck", "validate", stool, "--model", "rigid",
+            "--no-cache", "-o"]
+    piped = subprocess.run([*args, "/dev/stdout"], capture_output=True, text=True)
+    assert piped.returncode == 0, piped.stderr
+    assert piped.stdout.startswith(f"{stool}: valid")
+    long = tmp_path / ("r" * 246 + ".txt")
+    named = subprocess.run([*args, str(long)], capture_output=True, text=True)
+    assert named.returncode == 0, named.stderr
+    assert long.read_text().startswith(f"{stool}: valid")
+    assert [path.name for path in tmp_path.iterdir()] == [long.name]
+
+
 # --- standard input, python -m furncheck --------------------------------------------------
 
 def test_a_design_on_standard_input(tmp_path):
@@ -200,6 +217,27 @@ def test_suggest_and_range_read_standard_input_too():
         assert named.exit_code == 2 and named.output == (
             "furncheck: --stdin-filename names the design read from '-' (standard input), "
             "and no '-' was given\n")
+
+
+def test_a_closed_standard_input_is_an_error_of_its_design_alone():
+    """Started with standard input closed ('<&-'), '-' is an error entry of its own and
+    the other files are still checked (``validate``: the stool's report follows, exit 2);
+    ``suggest -`` and ``range -`` say so in one line, exit 2.  It was 'internal error:
+    AttributeError' with no report at all."""
+    stool = str(ROOT / "designs" / "stool.yaml")
+    for args, lines in ((["validate", "-", stool, "--model", "rigid", "--no-cache"], None),
+                        (["suggest", "-"], 1), (["range", "-"], 1)):
+        result = subprocess.run([sys.executable, "-m", "furncheck", *args],
+                                capture_output=True, text=True, preexec_fn=lambda: os.close(0))
+        assert result.returncode == 2, result.stderr
+        assert "Traceback" not in result.stderr and "internal error" not in result.stderr
+        if lines is None:
+            assert result.stdout.startswith(
+                "<stdin>: error: cannot read standard input: it is closed\n"
+                f"{stool}: valid"), result.stdout
+        else:
+            assert result.stderr == \
+                "furncheck: <stdin>: cannot read standard input: it is closed\n"
 
 
 def run_input(text: str, *args: str):

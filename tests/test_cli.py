@@ -203,6 +203,21 @@ def test_worker_pool_matches_sequential(calls, tmp_path):
     assert [entry.valid for entry in parallel] == [True] * 9 + [False]
 
 
+def test_workers_leave_ctrl_c_to_the_parent(tmp_path, monkeypatch):
+    """Every pool's workers ignore SIGINT (``workers.quiet_worker``): Ctrl-C reaches the
+    whole process group, and a worker that took it printed a traceback from inside
+    multiprocessing after the parent's 'Aborted!'.  The checking workers report the
+    handler they run with."""
+    import signal
+
+    monkeypatch.setattr(batch, "entry_of", lambda path, *args: batch.Entry(
+        True, False, str(signal.getsignal(signal.SIGINT))))
+    paths = write(tmp_path, *[f"valid{i}.yaml" for i in range(6)])
+    pieces = {entry.piece for entry in batch.entries_in_workers(paths, "json", 2)}
+    assert pieces == {str(signal.SIG_IGN)}
+    assert signal.getsignal(signal.SIGINT) is not signal.SIG_IGN     # here: untouched
+
+
 def test_a_small_catalog_is_checked_in_one_process(calls, tmp_path):
     """Checking the fake's designs takes microseconds: no worker is started, every file
     is checked here."""

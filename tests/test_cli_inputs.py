@@ -215,3 +215,34 @@ def test_a_design_too_big_in_json_is_a_json_error_document(monkeypatch, command)
     assert result.exit_code == 2
     document = json.loads(result.stdout)
     assert document["design"] == path and "too big" in document["error"]
+
+
+@pytest.mark.parametrize("fmt", ["text", "json", "junit", "github", "sarif"])
+def test_a_file_name_that_is_not_utf8_is_reported_in_every_format(tmp_path: Path,
+                                                                  fmt: str) -> None:
+    """A design file named with a byte that is not UTF-8 (b'bad\\xffname.yaml', which
+    Python reads as a surrogate; its content is not a design) is reported on stdout and
+    with -o, the report valid UTF-8 with the odd byte escaped ('\\udcff'; in a SARIF URI
+    '%FF'; JUnit's XML writer puts U+FFFD); it ended in 'internal error while writing the
+    report' with nothing written."""
+    import os
+    import xml.etree.ElementTree as ElementTree
+
+    folder = tmp_path / "enc"
+    folder.mkdir()
+    try:
+        (folder / os.fsdecode(b"bad\xffname.yaml")).write_text("furncheck: 1\nplanks: 3\n")
+    except (OSError, UnicodeEncodeError):
+        pytest.skip("this file system takes UTF-8 names only")
+    out = tmp_path / f"report.{fmt}"
+    for args in (["validate", str(folder), "--format", fmt, "--no-cache"],
+                 ["validate", str(folder), "--format", fmt, "--no-cache", "-o", str(out)]):
+        result = CliRunner().invoke(main, args)
+        assert result.exit_code == 2, result.output
+        text = (out.read_bytes() if "-o" in args else result.stdout_bytes).decode("utf-8")
+        if fmt in ("json", "sarif"):
+            json.loads(text)
+        elif fmt == "junit":
+            ElementTree.fromstring(text.encode("utf-8"))
+        escaped = {"sarif": "bad%FFname.yaml", "junit": "bad\ufffdname.yaml"}
+        assert escaped.get(fmt, "bad\\udcffname.yaml") in text

@@ -60,6 +60,7 @@ def test_the_search_stops_at_the_repository_top(tmp_path):
     ('model = "steel"', "model: expected one of elastic, rigid"),
     ('cache = "no"', "cache: expected true or false"),
     ("exclude = [1]", "exclude: expected a list of gitignore patterns"),
+    ('cache-dir = "a\\u0000b"', "cache-dir: expected a folder, got 'a\\x00b'"),
     ("furncheck = 1", "unknown key 'furncheck'"),
 ])
 def test_bad_options_are_one_line_naming_the_file_and_key(checked_paths, tmp_path, monkeypatch,

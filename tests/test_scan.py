@@ -111,6 +111,43 @@ def test_the_gitignore_rules_agree_with_git(tmp_path):
     assert found(tmp_path) == expected
 
 
+@pytest.mark.skipif(shutil.which("git") is None, reason="git is not installed")
+@pytest.mark.parametrize("files", [
+    {".gitignore": "*\n!*/\n!*.yaml\n", "top.yaml": DESIGN, "designs/a.yaml": DESIGN,
+     "designs/sub/b.yaml": DESIGN, "designs/notes.txt": "x"},
+    {".gitignore": "*.yaml\n", "a/.gitignore": "!a/\n", "a/a/a.yaml": DESIGN,
+     "a/b.json": '{"furncheck": 1}'},
+    {".gitignore": "\ufeffbom.yaml\n!\n\\\nbad[.yaml\n  \nspace.yaml   \n",
+     "bom.yaml": DESIGN, "space.yaml": DESIGN, "z.yaml": DESIGN, "bad[.yaml": DESIGN},
+], ids=["whitelist", "negated-folder", "odd-lines"])
+def test_folder_patterns_match_the_folder_itself_as_in_git(tmp_path, files):
+    """Git matches each path while it walks the tree: a pattern names a folder itself, not
+    what is in it.  The whitelist idiom ('*', '!*/', '!*.yaml') keeps every YAML file in
+    every folder (pathspec's matching of '!*/' left every folder out: the designs in them
+    went unchecked, exit 0); '!a/' re-includes the folder a/a but not the '*.yaml' files
+    in it.  A byte-order mark before the first pattern is dropped, a lone '!' or '\\'
+    matches nothing (it ended the scan with an internal error), and trailing spaces are
+    dropped: git's own list decides."""
+    tree(tmp_path, files)
+    subprocess.run(["git", "init", "-q", str(tmp_path)], check=True)
+    listed = subprocess.run(["git", "ls-files", "--others", "--exclude-standard"],
+                            cwd=tmp_path, capture_output=True, text=True, check=True).stdout
+    expected = sorted((name for name in listed.splitlines()
+                       if name.endswith((".yaml", ".yml", ".json"))),
+                      key=lambda name: name.split("/"))
+    assert found(tmp_path) == expected
+
+
+def test_a_pattern_that_does_not_compile_matches_nothing(tmp_path):
+    """A reversed range ('[z-a].yaml', which Python's re refuses) in a .gitignore or an
+    exclude is left out, where it ended the scan with an internal error (git reads it as
+    the range's first character alone, so it leaves z.yaml out: a pattern nobody means)."""
+    tree(tmp_path, {".gitignore": "[z-a].yaml\nb.yaml\n", "a.yaml": DESIGN,
+                    "b.yaml": DESIGN, "z.yaml": DESIGN})
+    excludes = (patterns(["[z-a]", "!"], str(tmp_path), "--exclude"),)
+    assert found(tmp_path, excludes=excludes) == ["a.yaml", "z.yaml"]
+
+
 def test_a_named_folder_is_scanned_even_when_ignored(tmp_path):
     """.gitignore ignores 'build/'; naming build/ on the command line scans it (as a named
     file is always checked), and the rules still apply inside it ('*.skip.yaml')."""

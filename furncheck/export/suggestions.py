@@ -37,6 +37,7 @@ from furncheck.export.errors import ExportUnavailable
 from furncheck.export.findings import changed_planks
 from furncheck.export.folders import file_stem, pictures_missing, prepare_out_dir
 from furncheck.export.meshes import write_meshes
+from furncheck.workers import quiet_worker
 
 if TYPE_CHECKING:
     from furncheck.suggest import SuggestionReport
@@ -156,8 +157,8 @@ def draw_in_parallel(jobs: list[Callable[[], tuple[str, ...]]]) -> list[tuple[st
     global _JOBS
     _JOBS = jobs
     try:
-        with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) \
-                as pool:
+        with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"),
+                                 initializer=quiet_worker) as pool:
             return list(pool.map(_run_job, range(len(jobs))))
     except BrokenProcessPool:            # a worker died: draw here instead
         return [job() for job in jobs]

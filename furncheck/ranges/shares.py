@@ -16,6 +16,7 @@ from concurrent.futures.process import BrokenProcessPool
 from typing import TYPE_CHECKING
 
 from furncheck.dofs import DOF_KINDS, Dof
+from furncheck.workers import quiet_worker
 
 if TYPE_CHECKING:
     from furncheck.ranges.finder import DofRange, RangeFinder
@@ -87,8 +88,8 @@ def ranges_in_workers(finder: RangeFinder, tasks: list[list[Dof]],
     # (measured: a tenth of the cabinet's work in the workers).
     gc.freeze()
     try:
-        with ProcessPoolExecutor(max_workers=min(jobs, len(tasks)),
-                                 mp_context=context) as pool:
+        with ProcessPoolExecutor(max_workers=min(jobs, len(tasks)), mp_context=context,
+                                 initializer=quiet_worker) as pool:
             done = list(pool.map(_ranges_of, tasks))
     except (OSError, BrokenProcessPool):
         return None

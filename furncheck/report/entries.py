@@ -30,6 +30,12 @@ class Entry(NamedTuple):
         return cls(report.valid, report.error is not None, piece)
 
 
+def is_text(value: Any) -> bool:
+    """Whether ``value`` has the shape of a text piece (``is_piece`` of the formats whose
+    pieces are text: a cached piece is checked before it is used)."""
+    return type(value) is str
+
+
 class Summary:
     """The batch's counts, kept while its entries are written (``BatchReport.summary``
     and ``return_code`` for a batch that is never held whole)."""

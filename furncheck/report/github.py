@@ -15,7 +15,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator
 
 from furncheck.report.common import INPUT_ERROR, describe_violation, input_error
-from furncheck.report.entries import Entry, Summary
+from furncheck.report.entries import Entry, Summary, is_text
 from furncheck.report.text import summary_line
 from furncheck.result import BatchReport, DesignReport
 
@@ -24,6 +24,9 @@ def render(batch: BatchReport) -> str:
     """One workflow command per line, ending with the summary notice."""
     return "".join(document(Entry.of(report, piece(report)) for report in batch.reports))
 
+
+is_piece = is_text
+"""Whether a value is shaped as ``piece`` returns it (a cached piece is checked)."""
 
 def piece(report: DesignReport) -> str:
     """The design's commands (``design_commands``), each ending with a newline; '' for a

@@ -22,7 +22,7 @@ from collections.abc import Iterable, Iterator, Sequence
 from json.encoder import encode_basestring_ascii as _string
 from typing import Any
 
-from furncheck.report.entries import Entry, Summary
+from furncheck.report.entries import Entry, Summary, is_text
 from furncheck.report.numbers import json_ready, real_text
 from furncheck.result import (
     AnchorResult,
@@ -55,6 +55,9 @@ def document(entries: Iterable[Entry]) -> Iterator[str]:
         + _object([(key, str(count)) for key, count in summary.as_dict().items()], _STEP) \
         + "\n}\n"
 
+
+is_piece = is_text
+"""Whether a value is shaped as ``piece`` returns it (a cached piece is checked)."""
 
 def piece(report: DesignReport) -> str:
     """The design's entry, indented as an item of the document's "reports" list (no line

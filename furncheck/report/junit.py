@@ -21,6 +21,7 @@ import functools
 import re
 import xml.etree.ElementTree as ET
 from collections.abc import Iterable, Iterator
+from typing import Any
 
 from furncheck.report.common import INPUT_ERROR, case_violations, describe_violation, plural
 from furncheck.report.entries import Entry
@@ -53,6 +54,13 @@ def piece(report: DesignReport) -> tuple[str, tuple[int, int, int]]:
     ET.indent(suite, level=1)
     counts = tuple(int(suite.get(key, "0")) for key in _TOTALS)
     return "  " + ET.tostring(suite, encoding="unicode"), counts
+
+
+def is_piece(value: Any) -> bool:
+    """Whether ``value`` is shaped as ``piece`` returns it (a cached piece is checked)."""
+    return type(value) is tuple and len(value) == 2 and type(value[0]) is str \
+        and type(value[1]) is tuple and len(value[1]) == 3 \
+        and all(type(count) is int for count in value[1])
 
 
 def document(entries: Iterable[Entry]) -> Iterator[str]:

@@ -11,6 +11,7 @@ absolute ones become ``file://`` URIs.
 from __future__ import annotations
 
 import json
+import os
 from collections.abc import Iterable, Iterator
 from pathlib import PurePath
 from typing import Any
@@ -49,6 +50,15 @@ def piece(report: DesignReport) -> tuple[str, tuple[tuple[str, int | None, str],
     return report.design, tuple(_findings(report))
 
 
+def is_piece(value: Any) -> bool:
+    """Whether ``value`` is shaped as ``piece`` returns it (a cached piece is checked)."""
+    return type(value) is tuple and len(value) == 2 and type(value[0]) is str \
+        and type(value[1]) is tuple and all(
+            type(finding) is tuple and len(finding) == 3 and type(finding[0]) is str
+            and (finding[1] is None or type(finding[1]) is int) and type(finding[2]) is str
+            for finding in value[1])
+
+
 def document(entries: Iterable[Entry]) -> Iterator[str]:
     """The log of ``entries``' findings.  The rules come before the results (and a rule
     unknown to this version is added when it is first met), so the log is written when
@@ -77,11 +87,12 @@ def document(entries: Iterable[Entry]) -> Iterator[str]:
 
 
 def artifact_uri(path: str) -> str:
-    """A URI reference for a design path: relative stays relative, absolute -> file://."""
+    """A URI reference for a design path: relative stays relative, absolute -> file://;
+    its bytes percent-encoded (a name that is not UTF-8 too: 'bad%FFname.yaml')."""
     pure = PurePath(path)
     if pure.is_absolute():
         return pure.as_uri()
-    return quote(pure.as_posix(), safe="/")
+    return quote(os.fsencode(pure.as_posix()), safe="/")
 
 
 def _findings(report: DesignReport) -> list[tuple[str, int | None, str]]:

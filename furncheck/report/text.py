@@ -25,7 +25,7 @@ from furncheck.report.common import (
     worst_joint,
     worst_plank,
 )
-from furncheck.report.entries import Entry, Summary
+from furncheck.report.entries import Entry, Summary, is_text
 from furncheck.report.numbers import format_number, format_percent
 from furncheck.result import BatchReport, CaseResult, DesignReport, LoadResult
 
@@ -39,6 +39,9 @@ def render(batch: BatchReport) -> str:
     """One block per design in input order, then the summary line."""
     return "".join(document(Entry.of(report, piece(report)) for report in batch.reports))
 
+
+is_piece = is_text
+"""Whether a value is shaped as ``piece`` returns it (a cached piece is checked)."""
 
 def piece(report: DesignReport) -> str:
     """The design's block: ``design_lines``, each ending with a newline."""
