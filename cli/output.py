@@ -35,11 +35,14 @@ def output_problem(output: str) -> str | None:
 
 def check_output(output: str | None, what: str = "the report") -> None:
     """Fail early if ``-o output`` (or another file: ``what`` names it) cannot be written
-    ('-' and None mean stdout)."""
+    ('-' and None mean stdout: closed (``>&-``), the report would be lost without a word
+    and the exit code say all went well)."""
     if output is not None and output != "-":
         problem = output_problem(output)
         if problem:
             fail(f"cannot write {what} to {output}: {problem}")
+    elif sys.stdout is None:
+        fail(f"cannot write {what} to standard output: it is closed")
 
 
 def write_output(document: str, output: str | None) -> None:

@@ -12,8 +12,9 @@ and are not designs.  ``declares_design`` decides that for the file's bytes:
   document's top-level mapping has a ``furncheck`` key, read event by event (nothing is
   constructed, values are skipped);
 - a file that does not parse: a top-level ``furncheck`` key written at the start of a line
-  (YAML) or a ``"furncheck":`` key (JSON): a design with a syntax error is still a design,
-  and its report says what is wrong.
+  (YAML; in a ``.json`` file too: a design written in YAML but named .json) or a
+  ``"furncheck":`` key (JSON): a design with a syntax error is still a design, and its
+  report says what is wrong.
 """
 
 from __future__ import annotations
@@ -46,8 +47,8 @@ def declares_design(data: bytes, fmt: str) -> bool:
             return True
         return _yaml_top_level_has_key(text)
     except (UnicodeDecodeError, ValueError, yaml.YAMLError, RecursionError):
-        pattern = _JSON_KEY if fmt == "json" else _YAML_KEY_LINE
-        return pattern.search(data) is not None
+        return _YAML_KEY_LINE.search(data) is not None or \
+            (fmt == "json" and _JSON_KEY.search(data) is not None)
 
 
 def _yaml_top_level_has_key(text: str) -> bool:

@@ -68,6 +68,9 @@ def collect(paths: tuple[str, ...] | list[str], options: ScanOptions = ScanOptio
     for given in paths:
         if given == STDIN:
             files = [STDIN]
+        elif not given:                 # '' (an unset variable in a CI script)
+            collected.sources.append(error_report("''", "'': an empty path names no file"))
+            continue
         elif os.path.isdir(given):
             files = _scan_folder(given, options, collected)
         elif options.skip_non_designs and not _is_design(given):

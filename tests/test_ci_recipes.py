@@ -240,6 +240,24 @@ def test_a_closed_standard_input_is_an_error_of_its_design_alone():
                 "furncheck: <stdin>: cannot read standard input: it is closed\n"
 
 
+def test_a_closed_standard_output_and_an_empty_path_are_errors():
+    """Started with standard output closed ('>&-'), each command says so and exits 2 (the
+    report was lost without a word and validate exited 0).  An empty path (an unset
+    variable in a script) is an error entry named '' (it read ': error: : no such
+    file')."""
+    stool = str(ROOT / "designs" / "stool.yaml")
+    for args in (["validate", stool, "--no-cache"], ["suggest", stool],
+                 ["range", stool, "seat.z"]):
+        result = subprocess.run([sys.executable, "-m", "furncheck", *args], text=True,
+                                stderr=subprocess.PIPE, preexec_fn=lambda: os.close(1))
+        assert result.returncode == 2
+        assert result.stderr == \
+            "furncheck: cannot write the report to standard output: it is closed\n"
+    empty = run("validate", "", stool, "--model", "rigid", "--no-cache")
+    assert empty.exit_code == 2
+    assert empty.stdout.startswith(f"'': error: an empty path names no file\n{stool}: valid")
+
+
 def run_input(text: str, *args: str):
     from click.testing import CliRunner
 

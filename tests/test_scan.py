@@ -230,7 +230,9 @@ def test_yaml_and_json_files_without_a_furncheck_key_are_skipped_and_counted(che
     ('{"a": {"furncheck": 1}}', "json", False),
     ('["furncheck"]', "json", False),
     ('{"furncheck": 1,', "json", True),                   # broken JSON with the key
-    ("{furncheck: 1}", "json", False),                    # broken JSON, no JSON key
+    ('{"name": "furncheck",', "json", False),             # broken JSON, no key
+    ("{furncheck: 1}", "json", True),                     # YAML in a .json file: a design
+    ("furncheck: 1\nplanks: []\n", "json", True),          # (with a JSON syntax error)
 ])
 def test_declares_design(text, fmt, expected):
     assert declares_design(text.encode(), fmt) is expected
