@@ -246,3 +246,16 @@ def test_a_file_name_that_is_not_utf8_is_reported_in_every_format(tmp_path: Path
             ElementTree.fromstring(text.encode("utf-8"))
         escaped = {"sarif": "bad%FFname.yaml", "junit": "bad\ufffdname.yaml"}
         assert escaped.get(fmt, "bad\\udcffname.yaml") in text
+
+
+def test_a_file_name_with_a_line_break_keeps_its_one_verdict_line(tmp_path: Path) -> None:
+    """The text report escapes what is not printable in a file's path ('two\\x0alines'):
+    a name with a line break split the design's verdict line in two."""
+    path = tmp_path / "two\nlines.yaml"
+    path.write_text(GOOD)
+    result = CliRunner().invoke(main, ["validate", str(path), "--model", "rigid",
+                                       "--no-cache"])
+    assert result.exit_code == 0, result.output
+    first, summary = result.output.splitlines()[0], result.output.splitlines()[-1]
+    assert first.startswith(f"{tmp_path}/two\\x0alines.yaml: valid")
+    assert summary == "1 design: 1 valid, 0 invalid, 0 errors"

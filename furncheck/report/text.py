@@ -43,6 +43,17 @@ def render(batch: BatchReport) -> str:
 is_piece = is_text
 """Whether a value is shaped as ``piece`` returns it (a cached piece is checked)."""
 
+
+def shown(path: str) -> str:
+    """A file's path as a report line shows it: what is not printable (a line break in a
+    file name, a byte that is not UTF-8) escaped, so that each design keeps its one
+    verdict line."""
+    if path.isprintable():
+        return path
+    return "".join(c if c.isprintable() else f"\\x{ord(c):02x}" if ord(c) < 0x100
+                   else f"\\u{ord(c):04x}" for c in path)
+
+
 def piece(report: DesignReport) -> str:
     """The design's block: ``design_lines``, each ending with a newline."""
     return "\n".join(design_lines(report)) + "\n"
@@ -61,11 +72,12 @@ def design_lines(report: DesignReport) -> list[str]:
     if report.error is not None or report.valid is None:
         line, message = input_error(report)
         where = f"line {line}: " if line is not None else ""
-        return [f"{report.design}: error: {where}{message}"]
+        return [f"{shown(report.design)}: error: {where}{message}"]
     if report.valid:
-        lines = [f"{report.design}: valid ({_worst_joint_phrase(report)})"]
+        lines = [f"{shown(report.design)}: valid ({_worst_joint_phrase(report)})"]
     else:
-        lines = [f"{report.design}: INVALID, {plural(len(report.violations), 'violation')}"]
+        lines = [f"{shown(report.design)}: INVALID, "
+                 f"{plural(len(report.violations), 'violation')}"]
     for violation in report.violations:
         at_line = f" (line {violation.line})" if violation.line is not None else ""
         lines.append(f"{INDENT}{violation.kind}: {describe_violation(violation)}{at_line}")
