@@ -239,7 +239,7 @@ class ResultCache:
 def _read_entry(path: str, header: bytes) -> Any:
     """The data of the entry at ``path``, or None when it is missing, does not start with
     ``header``, fails its CRC or does not unmarshal."""
-    try:                                    # never through a symlink (``_write``)
+    try:                                    # an entry that is a link is not read
         with open(os.open(path, os.O_RDONLY | _NO_FOLLOW), "rb") as stream:
             entry = stream.read()
     except OSError:

@@ -62,7 +62,7 @@ def replacing(path: str, *, durable: bool = False,
             if durable:
                 stream.flush()
                 os.fsync(stream.fileno())
-        os.chmod(temporary, _mode_for(path))
+        os.chmod(temporary, _mode_for(path, follow_links))
         os.replace(temporary, path)
     except BaseException:   # also KeyboardInterrupt: never leave the temporary file
         try:
@@ -72,11 +72,14 @@ def replacing(path: str, *, durable: bool = False,
         raise
 
 
-def _mode_for(path: str) -> int:
-    """Permission bits for the new file: the old file's, else 0o666 less the umask."""
-    try:
-        return os.stat(path).st_mode & 0o7777
-    except OSError:
-        umask = os.umask(0)
-        os.umask(umask)
-        return 0o666 & ~umask
+def _mode_for(path: str, follow_links: bool = True) -> int:
+    """Permission bits for the new file: the old file's, else (and without
+    ``follow_links``: not those of what a link there points to) 0o666 less the umask."""
+    if follow_links:
+        try:
+            return os.stat(path).st_mode & 0o7777
+        except OSError:
+            pass
+    umask = os.umask(0)
+    os.umask(umask)
+    return 0o666 & ~umask

@@ -13,8 +13,13 @@ matches folders only, ``**`` any number of folders, ``!`` re-includes.
   one of them matches is left out whatever the ``.gitignore`` files say.
 
 A folder that is left out is not entered, so nothing below it can be re-included (git
-behaves the same).  A folder named on the command line is searched even if a pattern
-leaves it out; the other patterns apply inside it.  Paths are compared as absolute paths,
+behaves the same).  A pattern names a path itself, as git matches paths while it walks
+the tree: ``!build/`` re-includes the folder, not the files in it that another pattern
+ignores.  A folder named on the command line is searched even if the patterns leave it
+out (one that names it or everything in it, ``build/``, ``build/**``, ``*``, unless a
+later ``!`` line re-includes it); the other patterns apply inside it.  A line that is not
+a valid pattern (a lone ``!`` or ``\\``, a reversed range ``[z-a]``, which git reads as
+its first character) matches nothing.  Paths are compared as absolute paths,
 not resolved through symlinks (git does not follow symlinks either).
 """
 
@@ -50,6 +55,12 @@ class Rule:
         found = self.pattern.regex.search(relative)
         return found is not None and found.groupdict().get(_FOLDER_GROUP) is None
 
+    def covers(self, folder: str) -> bool:
+        """Whether the pattern names the folder ``folder`` (relative, as in ``matches``)
+        or everything in it (``build/**``, ``*``)."""
+        return self.matches(folder, True) or (
+            not self.folders_only and self.pattern.regex.search(folder + "/") is not None)
+
 
 _FOLDER_GROUP = "ps_d"
 """The group of a pathspec pattern's regex that matches a folder above the path."""
@@ -70,38 +81,52 @@ class PatternFile:
         """True: ``path`` (absolute) is ignored, False: re-included by a ``!`` pattern,
         None: no pattern matches it (or it is not below ``base``); the last pattern that
         matches decides."""
-        relative = os.path.relpath(path, self.base)
-        if relative == os.curdir or relative.split(os.sep)[0] == os.pardir:
+        relative = self._relative(path)
+        if relative is None:
             return None
-        relative = relative.replace(os.sep, "/")
         return next((rule.ignores for rule in reversed(self.rules)
                      if rule.matches(relative, is_dir)), None)
 
-    def opened_at(self, folder: str) -> PatternFile:
-        """These patterns for a scan of ``folder`` (absolute), named on the command line:
-        without the patterns that leave out ``folder`` itself or a folder between ``base``
-        and it (they would leave out everything in it: a named folder is searched, as a
-        named file is checked)."""
-        relative = os.path.relpath(folder, self.base)
-        if relative == os.curdir or relative.split(os.sep)[0] == os.pardir:
-            return self
-        parts = relative.split(os.sep)
-        prefixes = ["/".join(parts[:count]) for count in range(1, len(parts) + 1)]
+    def leaves_out(self, folder: str) -> bool | None:
+        """Whether these patterns leave out the folder ``folder`` (absolute) as a whole,
+        for a scan named there: the last pattern that names it or everything in it
+        (``Rule.covers``) decides; None when none does (or it is not below ``base``)."""
+        relative = self._relative(folder)
+        if relative is None:
+            return None
+        return next((rule.ignores for rule in reversed(self.rules) if rule.covers(relative)),
+                    None)
+
+    def opened_at(self, folders: list[str]) -> PatternFile:
+        """These patterns for a scan of a folder named on the command line, ``folders``
+        (absolute) being it and the folders above it that are left out (``leaves_out``
+        of the rules together): without the ignoring patterns that name one of them or
+        everything in it (a named folder is searched, as a named file is checked), the
+        others kept (``!*/`` re-including every folder, ``*`` still leaves out the
+        files it does not re-include)."""
+        relatives = [r for r in map(self._relative, folders) if r is not None]
         kept = tuple(rule for rule in self.rules
-                     if not (rule.ignores and any(rule.matches(prefix, True)
-                                                  for prefix in prefixes)))
+                     if not (rule.ignores and any(rule.covers(r) for r in relatives)))
         return self if len(kept) == len(self.rules) else PatternFile(self.base, kept,
                                                                      self.source)
+
+    def _relative(self, path: str) -> str | None:
+        """``path`` (absolute) relative to ``base``, '/'-separated; None for ``base``
+        itself or a path outside it."""
+        relative = os.path.relpath(path, self.base)
+        if relative == os.curdir or relative.split(os.sep)[0] == os.pardir:
+            return None
+        return relative.replace(os.sep, "/")
 
 
 def patterns(lines: list[str] | tuple[str, ...], base: str, source: str) -> PatternFile:
     """Gitignore ``lines`` anchored at folder ``base``; a line that is not a valid pattern
-    (an unclosed or reversed bracket, a lone '!' or '\\') matches nothing, as in git."""
+    (a lone '!' or '\\', a reversed range) matches nothing (module docstring)."""
     import pathspec
 
     rules = []
     for line in lines:
-        text = _TRAILING_SPACES.sub("", line)
+        text = _without_trailing_spaces(line)
         folders_only = text.endswith("/")
         try:
             spec = pathspec.GitIgnoreSpec.from_lines([text[:-1] if folders_only else text])
@@ -112,8 +137,13 @@ def patterns(lines: list[str] | tuple[str, ...], base: str, source: str) -> Patt
     return PatternFile(os.path.abspath(base), tuple(rules), source)
 
 
-_TRAILING_SPACES = re.compile(r"(?<!\\) +$")
-"""A line's trailing spaces, which git drops unless the first is escaped ('\\ ')."""
+def _without_trailing_spaces(line: str) -> str:
+    """``line`` without its trailing spaces, as git drops them: all of them, but for the
+    first one where it is escaped by an odd number of backslashes before it ('a\\ ')."""
+    stripped = line.rstrip(" ")
+    if stripped != line and (len(stripped) - len(stripped.rstrip("\\"))) % 2 == 1:
+        stripped += " "
+    return stripped
 
 
 def read_pattern_file(path: str, base: str) -> PatternFile | None:
@@ -145,6 +175,16 @@ class IgnoreRules:
                 return verdict
         return False
 
+    def leaves_out(self, folder: str) -> bool:
+        """Whether the folder ``folder`` (absolute) is left out as a whole (an exclude,
+        else the deepest gitignore file that decides, as ``ignored``; ``PatternFile.
+        leaves_out``)."""
+        if any(rule.leaves_out(folder) for rule in self.excludes):
+            return True
+        return next((verdict for verdict in (rule.leaves_out(folder)
+                                             for rule in reversed(self.gitignores))
+                     if verdict is not None), False)
+
     def entering(self, folder: str) -> IgnoreRules:
         """The rules inside ``folder`` (absolute): these plus its own ``.gitignore``."""
         own = read_pattern_file(os.path.join(folder, GITIGNORE), folder)
@@ -169,8 +209,9 @@ def repository_root(folder: str) -> str | None:
 def rules_above(folder: str, excludes: tuple[PatternFile, ...] = ()) -> IgnoreRules:
     """The rules in force when a scan starts at ``folder`` (absolute): the gitignore files
     of the folders above it up to the top of its repository (and ``.git/info/exclude``),
-    not yet ``folder``'s own (none outside a repository), and ``excludes``; all without
-    the patterns that would leave out ``folder`` itself (``PatternFile.opened_at``)."""
+    not yet ``folder``'s own (none outside a repository), and ``excludes``; where they
+    leave out ``folder`` or a folder above it, without the patterns that do
+    (``PatternFile.opened_at``)."""
     root = repository_root(folder)
     gitignores: list[PatternFile] = []
     if root is not None:
@@ -185,5 +226,12 @@ def rules_above(folder: str, excludes: tuple[PatternFile, ...] = ()) -> IgnoreRu
             if own is not None:
                 gitignores.append(own)
             current = os.path.join(current, part)
-    return IgnoreRules(tuple(rule.opened_at(folder) for rule in gitignores),
-                       tuple(rule.opened_at(folder) for rule in excludes))
+    rules = IgnoreRules(tuple(gitignores), excludes)
+    ancestors = [folder]
+    while os.path.dirname(ancestors[-1]) != ancestors[-1]:
+        ancestors.append(os.path.dirname(ancestors[-1]))
+    left_out = [path for path in ancestors if rules.leaves_out(path)]
+    if not left_out:
+        return rules
+    return IgnoreRules(tuple(rule.opened_at(left_out) for rule in gitignores),
+                       tuple(rule.opened_at(left_out) for rule in excludes))

@@ -69,7 +69,7 @@ def collect(paths: tuple[str, ...] | list[str], options: ScanOptions = ScanOptio
         if given == STDIN:
             files = [STDIN]
         elif not given:                 # '' (an unset variable in a CI script)
-            collected.sources.append(error_report("''", "'': an empty path names no file"))
+            collected.sources.append(error_report("", "an empty path names no file"))
             continue
         elif os.path.isdir(given):
             files = _scan_folder(given, options, collected)

@@ -191,9 +191,11 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
             final = sag * (1.0 + material.creep)
             line = design.line_of(f"planks[{model.planks[k]}]")
             if final > allowed * (1.0 + tol.CAPACITY_REL_TOL):
+                overhang = statics.planks.overhang is not None and \
+                    bool(statics.planks.overhang[k])
                 violations.append(Violation("sagging", plank.id, case.name, _sag_message(
                     design, material, sag, allowed, statics.planks.span[k],
-                    _upright(plank, model.beams.crosswise[k])), line))
+                    _upright(plank, model.beams.crosswise[k]), overhang), line))
             if stress > strength * (1.0 + tol.CAPACITY_REL_TOL):
                 violations.append(Violation("overstressed", plank.id, case.name,
                                             _stress_message(design, stress, strength), line))
@@ -296,15 +298,22 @@ def _upright(plank, crosswise: bool) -> bool:
 
 
 def _sag_message(design: Design, material: Material, sag: float, allowed: float,
-                 span: float, upright: bool = False) -> str:
+                 span: float, upright: bool = False, overhang: bool = False) -> str:
     """The ``sagging`` violation's words; an upright plank's (a leg, a side: ``_upright``)
-    say it bows sideways, as a woodworker would, with the same numbers."""
+    say it bows sideways, as a woodworker would, with the same numbers; an overhang's
+    (a cantilever's free end) name the overhang, whose span is twice it (contract 3a)."""
     unit, scale = design.units, design.unit_scale
     creep = material.creep
-    bends = (f"bows {plain_number(sag / scale, 3)} {unit} sideways between supports "
-             f"{plain_number(span / scale)} {unit} apart, " if upright else
-             f"sags {plain_number(sag / scale, 3)} {unit} over a "
-             f"{plain_number(span / scale)} {unit} span, ")
+    shown = f"{plain_number(sag / scale, 3)} {unit}"
+    if overhang:
+        bends = (f"{'bows' if upright else 'sags'} {shown}{' sideways' if upright else ''} "
+                 f"at the free end of its {plain_number(0.5 * span / scale)} {unit} overhang "
+                 f"(a span of {plain_number(span / scale)} {unit}), ")
+    elif upright:
+        bends = (f"bows {shown} sideways between supports {plain_number(span / scale)} "
+                 f"{unit} apart, ")
+    else:
+        bends = f"sags {shown} over a {plain_number(span / scale)} {unit} span, "
     return (bends +
             f"{plain_number(sag * (1 + creep) / scale, 3)} {unit} with creep "
             f"(x {plain_number(1 + creep, 6)}); allowed {plain_number(allowed / scale, 3)} "

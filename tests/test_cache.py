@@ -161,19 +161,23 @@ def test_a_symlink_in_the_cache_is_neither_read_nor_written_through(checked_path
     """An entry that is a symlink (a cache restored from an archive may hold one) is not
     followed: the file it points to stays as it was (it was overwritten with the entry:
     a write outside the cache folder), the design is checked, the link replaced by the
-    entry.  A folder of the layout that is a link gets no entries at all."""
+    entry, with the usual mode (not the target's).  A folder of the layout that is a
+    link gets no entries at all."""
     (valid,) = write(tmp_path, "valid.yaml")
     cache = tmp_path / "cache"
     first = run("validate", valid, "--cache-dir", str(cache), "--format", "json")
     (entry,), (piece,) = entries(cache), pieces(cache)
     outside = tmp_path / "outside"
     outside.write_bytes(entry.read_bytes())             # a well-formed entry, elsewhere
+    outside.chmod(0o4777)                               # setuid, writable by all
+    mode = entry.stat().st_mode & 0o7777
     entry.unlink()
     piece.unlink()
     entry.symlink_to(outside)
     again = run("validate", valid, "--cache-dir", str(cache), "--format", "json")
     assert again.stdout == first.stdout and checked_paths == [valid, valid]  # not read
     assert not entry.is_symlink() and entry.read_bytes() == outside.read_bytes()
+    assert entry.stat().st_mode & 0o7777 == mode        # not the link target's mode
     outside.write_bytes(b"mine")
     for path in entries(cache) + pieces(cache):
         path.unlink()

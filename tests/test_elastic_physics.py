@@ -16,6 +16,8 @@ calculation leaves out a small effect, the docstring says how large it is at mos
 
 from __future__ import annotations
 
+import re
+
 import elastic_designs as ed
 import numpy as np
 import physics_designs as pd
@@ -586,3 +588,25 @@ def test_an_upright_plank_bows_sideways_and_a_level_one_sags():
     assert words["leg_pp"].startswith("bows ")
     assert "sideways between supports 700 mm apart" in words["leg_pp"]
     assert words["leg_pp"].endswith("(span / 400)")
+
+
+def test_an_overhang_says_so_with_its_length_and_its_span_of_twice_it():
+    """A cantilever's sag is measured from the tangent at its support, over a span of
+    twice the overhang (contract 3a); the message names the overhang: the overloaded
+    shelf's 400 mm overhang ('a span of 800 mm', which read 'over a 800 mm span' for a
+    400 mm shelf) and its post's 800 mm above the base ('bows ... sideways at the free
+    end', which read 'between supports 1600 mm apart' for an 800 mm post).  The header's
+    hand sags: 31 mm (shelf), 106 mm (post)."""
+    from pathlib import Path
+
+    from furncheck.check import check_file
+
+    path = Path(__file__).resolve().parents[1] / "designs" / "shelf-cantilever-overloaded.yaml"
+    report = check_file(str(path), "elastic")
+    words = {v.where: v.message for v in report.violations if v.kind == "sagging"}
+    shelf = re.match(r"sags ([\d.]+) mm at the free end of its 400 mm overhang "
+                     r"\(a span of 800 mm\), ", words["shelf"])
+    post = re.match(r"bows ([\d.]+) mm sideways at the free end of its 800 mm overhang "
+                    r"\(a span of 1600 mm\), ", words["post"])
+    assert shelf and float(shelf.group(1)) == pytest.approx(31.0, rel=0.02)
+    assert post and float(post.group(1)) == pytest.approx(106.0, rel=0.02)

@@ -138,6 +138,30 @@ def test_folder_patterns_match_the_folder_itself_as_in_git(tmp_path, files):
     assert found(tmp_path) == expected
 
 
+@pytest.mark.skipif(shutil.which("git") is None, reason="git is not installed")
+def test_a_named_folder_keeps_the_patterns_that_do_not_leave_it_out(tmp_path):
+    """Scanning a folder below a whitelist .gitignore ('*', '!*/', '!*.yaml'), as CI
+    recipes name designs/: '!*/' re-includes the folder, so '*' still leaves out its
+    JSON files, as git's list of that folder says (dropping every pattern that matched
+    the folder let them in); a folder that 'build/**' or '*' does leave out is searched
+    whole when named (the other patterns apply: '*.skip.yaml')."""
+    tree(tmp_path, {".gitignore": "*\n!*/\n!*.yaml\n", "x/a.yaml": DESIGN,
+                    "x/d.json": '{"furncheck": 1}', "x/y/b.yaml": DESIGN,
+                    "x/y/e.json": '{"furncheck": 1}'})
+    subprocess.run(["git", "init", "-q", str(tmp_path)], check=True)
+    for folder in ("x", "x/y"):
+        listed = subprocess.run(["git", "ls-files", "--others", "--exclude-standard", "--",
+                                 folder], cwd=tmp_path, capture_output=True, text=True,
+                                check=True).stdout.split()
+        assert [f"{folder}/{name}" for name in found(tmp_path / folder)] == listed
+        assert not any(name.endswith(".json") for name in listed)
+    for patterns_text in ("build/**\n*.skip.yaml\n", "*\n!*.yaml\n*.skip.yaml\n"):
+        (tmp_path / ".gitignore").write_text(patterns_text)
+        tree(tmp_path, {"build/a.yaml": DESIGN, "build/s/b.yaml": DESIGN,
+                        "build/c.skip.yaml": DESIGN})
+        assert found(tmp_path / "build") == ["a.yaml", "s/b.yaml"], patterns_text
+
+
 def test_a_pattern_that_does_not_compile_matches_nothing(tmp_path):
     """A reversed range ('[z-a].yaml', which Python's re refuses) in a .gitignore or an
     exclude is left out, where it ended the scan with an internal error (git reads it as

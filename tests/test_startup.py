@@ -103,3 +103,21 @@ def test_the_console_script_is_main_freezing_what_survives_it(monkeypatch):
     import furncheck.__main__ as module_main
 
     assert module_main.run is run
+
+
+def test_every_package_is_installed():
+    """pyproject.toml lists the packages a (non-editable) install copies: every folder of
+    furncheck/ and cli/ holding an __init__.py is there, under its import name.
+    (furncheck/dofs/, a package since it was split from dofs.py, was missing: a normal
+    install's suggest and range ended in 'No module named furncheck.dofs'; the editable
+    install of the tests and the Quick start did not show it.)"""
+    import tomllib
+
+    setuptools = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]
+    folders = {name: ROOT / path for name, path in setuptools["package-dir"].items()}
+    found = set()
+    for top in ("furncheck", "furncheck.cli"):
+        for init in sorted(folders[top].rglob("__init__.py")):
+            parts = init.parent.relative_to(folders[top]).parts
+            found.add(".".join((top, *parts)))
+    assert found == set(setuptools["packages"])

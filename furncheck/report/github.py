@@ -28,6 +28,7 @@ def render(batch: BatchReport) -> str:
 is_piece = is_text
 """Whether a value is shaped as ``piece`` returns it (a cached piece is checked)."""
 
+
 def piece(report: DesignReport) -> str:
     """The design's commands (``design_commands``), each ending with a newline; '' for a
     valid design."""

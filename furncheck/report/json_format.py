@@ -59,6 +59,7 @@ def document(entries: Iterable[Entry]) -> Iterator[str]:
 is_piece = is_text
 """Whether a value is shaped as ``piece`` returns it (a cached piece is checked)."""
 
+
 def piece(report: DesignReport) -> str:
     """The design's entry, indented as an item of the document's "reports" list (no line
     end after it): ``json.dumps`` of its ``report_dict``, to the byte."""

@@ -47,9 +47,9 @@ is_piece = is_text
 def shown(path: str) -> str:
     """A file's path as a report line shows it: what is not printable (a line break in a
     file name, a byte that is not UTF-8) escaped, so that each design keeps its one
-    verdict line."""
+    verdict line; an empty path (an unset variable in a script) as ''."""
     if path.isprintable():
-        return path
+        return path or "''"
     return "".join(c if c.isprintable() else f"\\x{ord(c):02x}" if ord(c) < 0x100
                    else f"\\u{ord(c):04x}" for c in path)
 

@@ -46,11 +46,14 @@ class PlankStatics:
     span   : (nP,) m, between its outermost supports (twice the overhang of a cantilever);
              0 when it has no support to measure from
     stress : (nP,) Pa, the largest |M_2| / (b t^2 / 6) + |M_3| / (t b^2 / 6) + |N| / (b t)
+    overhang : (nP,) bool, whether the sag is an overhang's (its span twice the overhang),
+             for the messages; None where it was not read (the sensitivity's steps)
     """
 
     sag: np.ndarray
     span: np.ndarray
     stress: np.ndarray
+    overhang: np.ndarray | None = None
 
 
 @dataclass(frozen=True, eq=False)    # holds arrays: no == by value
@@ -81,8 +84,8 @@ def plank_results(model: StaticsModel, case: LoadCase, q: np.ndarray,
     stress = _stress(model, layout, displacement, w, slope, line_loads)
     s, deflection, sample_plank = _profile(model, layout, w, slope, line_loads)
     low, high = outermost_supports(model, holding)
-    sag, span = _sag(model, s, deflection, sample_plank, w, slope, low, high)
-    return PlankStatics(sag, span, stress)
+    sag, span, overhang = _sag(model, s, deflection, sample_plank, w, slope, low, high)
+    return PlankStatics(sag, span, stress, overhang)
 
 
 @dataclass(frozen=True, eq=False)    # holds arrays: no == by value
@@ -150,9 +153,10 @@ def plank_results_of(prepared: list[PlankPart],
     w, slope = _transverse(displacement, layout.node_frame)
     stress = _stress(model, layout, displacement, w, slope, line_loads)
     s, deflection, sample_plank = _profile(model, layout, w, slope, line_loads)
-    sag, span = _sag(model, s, deflection, sample_plank, w, slope, stack.low, stack.high)[:2]
+    sag, span, overhang = _sag(model, s, deflection, sample_plank, w, slope, stack.low,
+                               stack.high)
     offsets = stack.plank_offsets
-    return [PlankStatics(sag[a:b], span[a:b], stress[a:b])
+    return [PlankStatics(sag[a:b], span[a:b], stress[a:b], overhang[a:b])
             for a, b in zip(offsets[:-1], offsets[1:])]
 
 
@@ -454,9 +458,9 @@ def _sag(model: StaticsModel, s: np.ndarray, deflection: np.ndarray,
     for k in range(3):
         np.maximum.at(deviation[:, k], sample_plank, distances[k])
     spans = np.column_stack([sb - sa, 2.0 * (sa + half), 2.0 * (half - sb)])
-    sag, span = _chosen_measure(deviation, spans)
+    sag, span, overhang = _chosen_measure(deviation, spans)
     if not where:
-        return sag, span
+        return sag, span, overhang
     band = np.maximum(tol.NEAR_LARGEST * deviation,
                       tol.NEAR_DESIGN * deviation.max(initial=0.0))
     measures, points = np.nonzero((distances >= 0.0)
@@ -482,11 +486,12 @@ def _distance(deflection: np.ndarray, reference: np.ndarray) -> np.ndarray:
     return np.sqrt(offset[0] * offset[0] + offset[1] * offset[1])
 
 
-def _chosen_measure(deviation: np.ndarray, spans: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(sag, span) (nP,) of each plank's measure nearest its limit, from the largest
-    deviation and the span of each measure (nP, 3; deviation -1 for a measure the plank
-    does not have): the largest sag / span (0 for no span or a sag of round-off,
-    SAG_ROUNDOFF; the first one on a tie), among those it has; (0, 0) for none."""
+def _chosen_measure(deviation: np.ndarray, spans: np.ndarray) -> tuple[np.ndarray, ...]:
+    """(sag, span, overhang) (nP,) of each plank's measure nearest its limit, from the
+    largest deviation and the span of each measure (nP, 3; deviation -1 for a measure the
+    plank does not have): the largest sag / span (0 for no span or a sag of round-off,
+    SAG_ROUNDOFF; the first one on a tie), among those it has; (0, 0) for none; overhang
+    where the measure is one beyond a support."""
     present = deviation >= 0.0
     ratio = np.where(present, 0.0, -np.inf)
     positive = present & (spans > 0.0) & (deviation > tol.SAG_ROUNDOFF)
@@ -494,4 +499,4 @@ def _chosen_measure(deviation: np.ndarray, spans: np.ndarray) -> tuple[np.ndarra
     rows, pick = np.arange(len(deviation)), np.argmax(ratio, axis=1)
     chosen = present[rows, pick]
     return (np.where(chosen, deviation[rows, pick], 0.0),
-            np.where(chosen, spans[rows, pick], 0.0))
+            np.where(chosen, spans[rows, pick], 0.0), chosen & (pick > 0))

@@ -133,7 +133,7 @@ def plank_results_at(prepared: list[PlankPart], displacements: list[np.ndarray],
     sa, sb = beams.node_s[low], beams.node_s[high]
     half = beams.plank_half
     spans = np.column_stack([sb - sa, 2.0 * (sa + half), 2.0 * (half - sb)])
-    sag, span = _chosen_measure(deviation, spans)
+    sag, span, _ = _chosen_measure(deviation, spans)
     return [PlankStatics(sag[k * n_planks:(k + 1) * n_planks],
                          span[k * n_planks:(k + 1) * n_planks],
                          stress[k * n_planks:(k + 1) * n_planks]) for k in range(count)]

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from furncheck import tolerances as tol
+from furncheck.geometry.support import convex_hull, outside
 from furncheck.plain import plain_number
 from furncheck.statics.model import CaseStatics
 
@@ -223,23 +224,24 @@ class _Outcomes:
     def _surface_friction(self, forces: np.ndarray) -> tuple[str, float, float]:
         """('the ground', 'the wall' or 'wall N', N, N): the support surface that needs
         the most friction for what it gives, with the sideways force its corners must hold
-        (their forces summed: what they pull against each other along the face, as an
-        elastic board's corners do, cancels) and the friction mu N they give; where every
-        surface's sum is within its friction (a twist, or corners that slide against each
-        other), the sum of every corner's sideways force instead."""
+        (their forces summed, each grounded component's apart: what they pull against
+        each other along the face, as an elastic board's corners do, cancels) and the
+        friction mu N they give; where every such sum is within its friction (a twist, or
+        corners that slide against each other), the sum of every corner's sideways force
+        instead."""
         model = self.model
-        rows: dict[int | None, list[int]] = {}
+        rows: dict[tuple[int, int], list[int]] = {}     # (surface, component) -> corners
         for k, c in enumerate(model.contacts):
             contact = model.geometry.contacts[c]
             if contact.rest is None and (self.anchored is None or not self.anchored[k]):
-                rows.setdefault(contact.wall, []).append(k)
+                surface = -1 if contact.wall is None else contact.wall
+                rows.setdefault((surface, int(model.contact_component[k])), []).append(k)
         worst = None
-        for wall, ks in sorted(rows.items(), key=lambda item: -1 if item[0] is None
-                               else item[0]):
+        for (wall, _), ks in sorted(rows.items()):
             needed = float(np.hypot(*forces[ks, :2].sum(axis=0)))
             capacity = self.mu * float(np.maximum(forces[ks, 2], 0.0).sum())
             if worst is None or needed - capacity > worst[1] - worst[2]:
-                name = "the ground" if wall is None else \
+                name = "the ground" if wall < 0 else \
                     "the wall" if len(model.design.walls) == 1 else f"wall {wall}"
                 worst = (name, needed, capacity)
         if worst is not None and worst[1] - worst[2] > self.force_tol:
@@ -269,10 +271,14 @@ class _Outcomes:
             pulls = -float(np.minimum(normal, 0.0).sum())
             if pulls <= self.force_tol:
                 continue
+            if total <= self.force_tol:         # a couple alone: no centre of pressure
+                found[rest] = pulls
+                continue
             frame = model.contact_frames[ks[0]]
             flat = model.contact_points[ks] @ frame[:2].T           # in the rest's plane
             centre = normal @ flat / total
-            if not _inside_hull(centre, flat, model.design.tolerance):
+            hull = flat[convex_hull(flat)]
+            if outside(hull, centre)[0] > model.design.tolerance:     # it tips
                 found[rest] = pulls
         return found
 
@@ -342,28 +348,6 @@ def _on_one_line(points: np.ndarray) -> bool:
         return True
     spread = np.linalg.svd(points - points.mean(axis=0), compute_uv=False)
     return bool(spread[1] <= tol.MECHANISM_RCOND * max(spread[0], 1e-300))
-
-
-def _inside_hull(point: np.ndarray, corners: np.ndarray, slack: float) -> bool:
-    """Whether the 2-D ``point`` lies within ``slack`` of the convex polygon of
-    ``corners`` (k, 2; a resting joint's, the corners of a rectangle), or of the segment
-    they span where they lie on one line."""
-    centroid = corners.mean(axis=0)
-    ring = corners[np.argsort(np.arctan2(corners[:, 1] - centroid[1],
-                                         corners[:, 0] - centroid[0]))]  # anticlockwise
-    edges = np.roll(ring, -1, axis=0) - ring
-    lengths = np.hypot(edges[:, 0], edges[:, 1])
-    twice_area = float((ring[:, 0] * np.roll(ring[:, 1], -1)
-                        - np.roll(ring[:, 0], -1) * ring[:, 1]).sum())
-    if len(ring) >= 3 and lengths.min() > 0.0 and \
-            twice_area > tol.MECHANISM_RCOND * float(lengths.max()) ** 2:
-        offset = point - ring
-        inward = (edges[:, 0] * offset[:, 1] - edges[:, 1] * offset[:, 0]) / lengths
-        return bool(inward.min() >= -slack)
-    far = corners[np.argmax(np.hypot(*(corners - corners[0]).T))]
-    along = far - corners[0]
-    t = float(np.clip((point - corners[0]) @ along / max(float(along @ along), 1e-300), 0, 1))
-    return bool(np.hypot(*(point - corners[0] - t * along)) <= slack)
 
 
 def _wrenches(h: np.ndarray) -> np.ndarray:
