@@ -38,6 +38,18 @@ def found(folder: Path, **options) -> list[str]:
     return [Path(path).relative_to(folder).as_posix() for path in scan.files]
 
 
+def git_listed(root: Path, *paths: str) -> list[str]:
+    """The YAML and JSON files under ``root`` (or its ``paths``) that git does not ignore
+    (``git ls-files --others --exclude-standard``, after ``git init``), in scan order."""
+    subprocess.run(["git", "init", "-q", str(root)], check=True)
+    listed = subprocess.run(["git", "ls-files", "--others", "--exclude-standard", "--",
+                             *paths], cwd=root, capture_output=True, text=True,
+                            check=True).stdout
+    return sorted((name for name in listed.splitlines()
+                   if name.endswith((".yaml", ".yml", ".json"))),
+                  key=lambda name: name.split("/"))
+
+
 # --- .gitignore ---------------------------------------------------------------------------
 
 def test_gitignore_files_in_the_tree_apply_below_their_folder(tmp_path):
@@ -101,12 +113,7 @@ def test_the_gitignore_rules_agree_with_git(tmp_path):
         "t.tmp.yaml": DESIGN, "docs/p/q/gen-2.yaml": DESIGN, "docs/keep/gen-1.yaml": DESIGN,
         "docs/gen-3.yaml": DESIGN, "docs/plain.yml": DESIGN, "top.yaml": DESIGN,
     })
-    subprocess.run(["git", "init", "-q", str(tmp_path)], check=True)
-    listed = subprocess.run(["git", "ls-files", "--others", "--exclude-standard"],
-                            cwd=tmp_path, capture_output=True, text=True, check=True).stdout
-    expected = sorted((name for name in listed.split()
-                       if name.endswith((".yaml", ".yml", ".json"))),
-                      key=lambda name: name.split("/"))
+    expected = git_listed(tmp_path)
     assert "a/b/y.yaml" in expected and "a/x.yaml" not in expected  # the tree is not trivial
     assert found(tmp_path) == expected
 
@@ -129,13 +136,7 @@ def test_folder_patterns_match_the_folder_itself_as_in_git(tmp_path, files):
     matches nothing (it ended the scan with an internal error), and trailing spaces are
     dropped: git's own list decides."""
     tree(tmp_path, files)
-    subprocess.run(["git", "init", "-q", str(tmp_path)], check=True)
-    listed = subprocess.run(["git", "ls-files", "--others", "--exclude-standard"],
-                            cwd=tmp_path, capture_output=True, text=True, check=True).stdout
-    expected = sorted((name for name in listed.splitlines()
-                       if name.endswith((".yaml", ".yml", ".json"))),
-                      key=lambda name: name.split("/"))
-    assert found(tmp_path) == expected
+    assert found(tmp_path) == git_listed(tmp_path)
 
 
 @pytest.mark.skipif(shutil.which("git") is None, reason="git is not installed")
@@ -148,11 +149,8 @@ def test_a_named_folder_keeps_the_patterns_that_do_not_leave_it_out(tmp_path):
     tree(tmp_path, {".gitignore": "*\n!*/\n!*.yaml\n", "x/a.yaml": DESIGN,
                     "x/d.json": '{"furncheck": 1}', "x/y/b.yaml": DESIGN,
                     "x/y/e.json": '{"furncheck": 1}'})
-    subprocess.run(["git", "init", "-q", str(tmp_path)], check=True)
     for folder in ("x", "x/y"):
-        listed = subprocess.run(["git", "ls-files", "--others", "--exclude-standard", "--",
-                                 folder], cwd=tmp_path, capture_output=True, text=True,
-                                check=True).stdout.split()
+        listed = git_listed(tmp_path, folder)
         assert [f"{folder}/{name}" for name in found(tmp_path / folder)] == listed
         assert not any(name.endswith(".json") for name in listed)
     for patterns_text in ("build/**\n*.skip.yaml\n", "*\n!*.yaml\n*.skip.yaml\n"):
