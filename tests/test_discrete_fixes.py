@@ -491,3 +491,52 @@ def test_a_tables_legs_are_thickened_alike():
     assert set(boards) == {"leg_pp", "leg_mp", "leg_pm", "leg_mm"}
     assert len(set(boards.values())) == 1 and boards["leg_pp"] > 12.0
     assert thicker.score.broken == 0
+
+
+# --- more nails ------------------------------------------------------------------------------
+
+WALL_SHELF = """\
+furncheck: 1
+name: wall-shelf-few-nails
+material: {thickness: 18}
+walls:
+  - {point: [0, 0, 0], normal: [0, 1, 0]}
+planks:
+  - {id: back, size: [600, 200], center: [0, 9, 1400], rotation: [90, 0, 0]}
+  - {id: shelf, size: [600, 250], center: [0, 143, 1400]}
+joints:
+  - {planks: [back, shelf], nails: 4}
+anchors:
+  - {plank: back, at: [-200, 0, 1470], wall: 0, capacity: 400}
+  - {plank: back, at: [200, 0, 1470], wall: 0, capacity: 400}
+loads:
+  - {plank: shelf, mass: 25, spread: true}
+"""
+
+
+def test_a_listed_joint_with_too_few_nails_gets_the_nails_it_needs(tmp_path):
+    """A 600 x 250 x 18 shelf nailed by its back edge to a back board with the file's 4
+    nails (the spacing rule would give its 600 mm 30), 25 kg of books spread on it
+    (rigid model).  Its weight and the books, W = 245.25 + 19.87 N, act at the shelf's
+    middle, 125 mm from the board: M = 265.1 N x 0.125 m = 33.1 N m, and the pull per
+    nail is 2 M / (t n) = 3683 N / n: 921 N with 4 nails (over 700 N), 614 N with 6.
+    The first fix is 'Drive 6 nails' (it changes no plank: the cheapest), listed as a
+    joint change in text and JSON, and its file validates."""
+    design = parsed(WALL_SHELF, "rigid")
+    report = check_design(design)
+    (pull,) = [j.pull for j in report.cases[0].joints]
+    assert pull == pytest.approx(2 * 265.12 * 0.125 / (0.018 * 4), rel=0.01)
+    result = suggest_design(design)
+    first = result.suggestions[0]
+    assert first.rule == "nails" and written_valid(first)
+    assert first.advice == "Drive 6 nails into back/shelf (now 4), about 100 mm apart."
+    assert "- planks: [back, shelf]\n  nails: 6\n" in first.text
+    path = tmp_path / "shelf.yaml"
+    path.write_text(WALL_SHELF)
+    text = CliRunner().invoke(main, ["suggest", str(path), "--model", "rigid"]).output
+    assert "changes 1 joint:\n       back/shelf: nails 4 -> 6\n" in text
+    document = json.loads(CliRunner().invoke(main, ["suggest", str(path), "--model", "rigid",
+                                                    "--format", "json"]).output)
+    assert document["suggestions"][0]["nails"] == [
+        {"joint": "back/shelf", "before": 4, "after": 6}]
+    assert document["suggestions"][0]["edits"] == []

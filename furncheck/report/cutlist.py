@@ -16,7 +16,7 @@ from typing import Any
 from furncheck.design.model import Design
 from furncheck.report.common import plural
 from furncheck.report.numbers import format_number
-from furncheck.suggest.cutlist import ANGLE_FIELDS, LoadMove, LoadSpread, PlankEdit
+from furncheck.suggest.cutlist import ANGLE_FIELDS, LoadMove, LoadSpread, NailChange, PlankEdit
 
 MATERIAL_UNITS = {"density": "kg/m^3", "elastic_modulus": "N/mm^2",
                   "shear_modulus": "N/mm^2", "bending_strength": "N/mm^2", "creep": "",
@@ -32,6 +32,21 @@ def cut_list_lines(edits: tuple[PlankEdit, ...], design: Design) -> list[str]:
     for edit in edits:
         lines.append(f"  {edit.plank}: {_edit_text(edit, design)}")
     return lines
+
+
+def nail_lines(changes: tuple[NailChange, ...]) -> list[str]:
+    """'changes N joints:' and one line per joint (unindented): 'back/shelf: nails 4 -> 6'."""
+    if not changes:
+        return []
+    return [f"changes {plural(len(changes), 'joint')}:",
+            *(f"  {change.joint}: nails {change.before} -> {change.after}"
+              for change in changes)]
+
+
+def nails_json(changes: tuple[NailChange, ...]) -> list[dict[str, Any]]:
+    """The JSON ``nails`` list: {"joint", "before", "after"} per changed joint."""
+    return [{"joint": change.joint, "before": change.before, "after": change.after}
+            for change in changes]
 
 
 def load_move_lines(moves: tuple[LoadMove, ...], design: Design) -> list[str]:

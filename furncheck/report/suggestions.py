@@ -33,12 +33,15 @@ from furncheck.report.cutlist import (
     load_moves_json,
     load_spread_lines,
     load_spreads_json,
+    nail_lines,
+    nails_json,
 )
 from furncheck.report.explanation import explanation_dict, explanation_lines
 from furncheck.report.numbers import format_number, json_ready
 from furncheck.report.shop_words import change_sentence, continuous_advice
 from furncheck.report.text import INDENT, design_lines
 from furncheck.suggest import Suggestion, SuggestionReport
+from furncheck.suggest.cutlist import nail_changes
 
 ADVICE_DIGITS = 3
 """Significant digits of the amounts in the advice (the JSON keeps REPORT digits)."""
@@ -89,6 +92,7 @@ def render_text(result: SuggestionReport, original: Design,
         lines.append(f"{INDENT}{suggestion.rank}. {advice(suggestion, original)} "
                      f"Restores {restores}.")
         for line in (*cut_list_lines(suggestion.edits, original),
+                     *nail_lines(nail_changes(original, suggestion.design)),
                      *load_move_lines(suggestion.loads_moved, original),
                      *load_spread_lines(suggestion.loads_spread, original),
                      *_implausible_lines(suggestion)):
@@ -146,6 +150,9 @@ def _suggestion_dict(suggestion: Suggestion, original: Design,
         added = suggestion.design.anchors[len(original.anchors):]
         if added:           # a wall anchor: the fixings, as a design file lists them
             entry["anchors"] = [anchor_entry(anchor, original) for anchor in added]
+        nails = nail_changes(original, suggestion.design)
+        if nails:           # more nails in a listed joint
+            entry["nails"] = nails_json(nails)
         return entry
     return {
         "rank": suggestion.rank,

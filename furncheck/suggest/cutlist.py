@@ -115,6 +115,27 @@ def plank_edits(before: Design, after: Design) -> tuple[PlankEdit, ...]:
 
 
 @dataclass(frozen=True)
+class NailChange:
+    """A listed joint whose nail count a suggestion changes (``discrete.nails``)."""
+
+    joint: str
+    before: int
+    after: int
+
+
+def nail_changes(before: Design, after: Design) -> tuple[NailChange, ...]:
+    """The listed joints of ``before`` whose explicit nail count ``after`` changes,
+    matched by their planks, in ``before``'s order ('a/b' as the file lists them)."""
+    if before.joints is None or after.joints is None:
+        return ()
+    counts = {frozenset(spec.planks): spec.nails for spec in after.joints}
+    return tuple(NailChange("/".join(spec.planks), spec.nails, counts[frozenset(spec.planks)])
+                 for spec in before.joints
+                 if spec.nails is not None and counts.get(frozenset(spec.planks))
+                 not in (None, spec.nails))
+
+
+@dataclass(frozen=True)
 class LoadMove:
     """A load at a point that a suggestion carries along with its plank (a load keeps its
     place along a plank that is moved, turned or resized: the person at the seat's end

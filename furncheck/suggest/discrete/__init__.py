@@ -12,6 +12,7 @@ section 6.5 and the shop's standard fixes), each checked in full like every sugg
     thicker    a thicker plank for one that sags, breaks or whose nails pull out; also
                finishes another rule's candidate that fails only by bending
     reconnect  a near miss closed by lengthening or shortening the plank that misses
+    nails      more nails in a listed joint that takes them
 
 ``discrete_fixes`` runs the rules in order (``RULES``).  Each is tried only where the
 report's violations are of the kinds it repairs, or some are and the others bend planks
@@ -30,6 +31,7 @@ from furncheck.result import DesignReport
 from furncheck.suggest.discrete.anchors import wall_anchors
 from furncheck.suggest.discrete.common import Fix, Search
 from furncheck.suggest.discrete.feet import outriggers, overhang_supports
+from furncheck.suggest.discrete.nails import more_nails
 from furncheck.suggest.discrete.racking import aprons, back_panels, braces, stretchers
 from furncheck.suggest.discrete.reconnect import RECONNECT, reconnect_near_misses
 from furncheck.suggest.discrete.supports import _reach, support_planks
@@ -40,10 +42,11 @@ __all__ = ["RULES", "Fix", "Search", "_reach", "discrete_fixes", "spares_no_boar
            "support_planks"]
 
 RULES = (support_planks, overhang_supports, outriggers, wall_anchors, aprons, stretchers,
-         back_panels, braces, thicker_planks)
+         back_panels, braces, thicker_planks, more_nails)
 """The rules for a design that stands as drawn, in the order their fixes are listed: the
 paper's support first, then added parts by how little they change the piece, then a
-thicker board (a change of material)."""
+thicker board (a change of material), then more nails in a listed joint that takes
+them (which changes no part)."""
 
 
 def spares_no_board(thickened: dict, alone: dict) -> bool:

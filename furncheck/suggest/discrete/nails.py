@@ -1,0 +1,89 @@
+"""More nails: the shop's first fix for a listed joint whose nails pull out or shear off
+while the file gives it fewer nails than its length takes.
+
+A listed joint's ``nails`` overrides the spacing rule (contract section 2: otherwise
+max(1, floor(L / nail_spacing)) along its length L).  For every failing joint with such
+a count, the force per nail goes with 1 / n for the same joint forces (``suggest.needs``:
+the explanation's own estimate), so it needs about ceil(n x the worst case's pull or
+shear over its capacity) nails; a joint takes at most the spacing rule's count (nails no
+closer than ``nail_spacing``).  The candidates, each checked in full (and finished with
+thicker boards where it fails by bending alone, ``Search.first_valid``): every such joint
+with the nails it needs (at most what it takes), then, if that is not valid, every one
+with all it takes.  A
+joint already at that many, or counted by the spacing rule, gets no more here (a longer
+joint or a thicker edge plank does that: the continuous search and ``thicker``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+from furncheck.suggest.discrete.common import Candidate, Fix, Search, amount, names
+
+MORE_NAILS = "more nails"
+"""The rule's name in ``tried.Trial`` values."""
+
+
+def more_nails(search: Search) -> Fix | None:
+    """The design with its failing listed joints given more nails, when that is valid;
+    else None (and why, in the trials)."""
+    if not search.repairs(MORE_NAILS, ("non-durable",)):
+        return None
+    design, geometry = search.design, search.geometry
+    failing = {v.where for v in search.report.violations if v.kind == "non-durable"}
+    joints = [joint for joint in geometry.joints if joint.name in failing]
+    room = {}
+    for joint in joints:
+        spec = _listed(design, joint)
+        most = max(1, math.floor(joint.length / design.material.nail_spacing + 1e-9))
+        if spec is None or spec.nails is None:
+            search.not_applicable(MORE_NAILS, "its nails are counted by the spacing rule "
+                                  "already", joint.name)
+        elif most <= spec.nails:
+            search.not_applicable(MORE_NAILS, f"its {amount(joint.length / design.unit_scale)}"
+                                  f" {design.units} take {most} nails at most", joint.name)
+        else:
+            room[joint.name] = (joint, spec, most)
+    if not room:
+        return None
+    needed = {name: min(most, max(spec.nails + 1, _needed(search, name, spec.nails)))
+              for name, (_, spec, most) in room.items()}
+    fix = search.first_valid([_candidate(search, room, needed)])
+    full = {name: most for name, (_, _, most) in room.items()}
+    if fix is None and full != needed:      # (each on its own: the fewer nails first)
+        fix = search.first_valid([_candidate(search, room, full)])
+    return fix
+
+
+def _listed(design, joint):
+    """The ``JointSpec`` of a listed joint (``Joint.key`` 'joints[k]'), else None."""
+    if not joint.key or design.joints is None:
+        return None
+    return design.joints[int(joint.key.split("[", 1)[1].rstrip("]"))]
+
+
+def _needed(search: Search, name: str, nails: int) -> int:
+    """The nails joint ``name`` needs by the worst case's pull or shear per nail over its
+    capacity (``suggest.needs``' estimate)."""
+    ratio = max((max(result.pull / result.pull_capacity, result.shear / result.shear_capacity)
+                 for case in search.report.cases for result in case.joints
+                 if "/".join(result.planks) == name), default=1.0)
+    return int(math.ceil(nails * ratio - 1e-9))
+
+
+def _candidate(search: Search, room: dict, count: dict[str, int]) -> Candidate:
+    """The design with each joint of ``room`` given ``count`` nails, and its advice."""
+    design = search.design
+    specs = list(design.joints)
+    parts = []
+    for name, (joint, spec, _) in room.items():
+        index = specs.index(spec)
+        specs[index] = replace(spec, nails=count[name])
+        apart = amount(joint.length / count[name] / design.unit_scale)
+        parts.append(f"{count[name]} nails into {name} (now {spec.nails}), about {apart} "
+                     f"{design.units} apart")
+    advice = f"Drive {names(parts)}."
+    return Candidate("nails", replace(design, joints=tuple(specs)), advice,
+                     trial_rule=MORE_NAILS, target=names(list(room)),
+                     place=", ".join(f"{count[name]} nails into {name}" for name in room))
