@@ -491,6 +491,42 @@ def test_a_tables_legs_are_thickened_alike():
     assert set(boards) == {"leg_pp", "leg_mp", "leg_pm", "leg_mm"}
     assert len(set(boards.values())) == 1 and boards["leg_pp"] > 12.0
     assert thicker.score.broken == 0
+    top = design.plank("top")
+    edge = top.center[0] + top.length / 2                       # the top's end, x = 500
+    for name in ("leg_pp", "leg_pm"):                           # grown inward: the outer
+        leg = thicker.design.plank(name)                        # face flush with the top's
+        assert leg.center[0] + leg.thickness / 2 == pytest.approx(          # end, as it was
+            design.plank(name).center[0] + design.plank(name).thickness / 2)
+        assert leg.center[0] + leg.thickness / 2 <= edge + 1e-9
+
+
+def test_an_added_part_that_needs_a_thicker_board_is_said_as_cut():
+    """A 500 x 500 side table on four 45 mm legs nailed by their ends, racked by an 80 N
+    bump (elastic model): the support panel under the top works once it is a 22 mm board.
+    The advice gives the part as it is cut, 'support-1 (582 x 500 x 22 mm)', where it read
+    'Add support-1 (582 x 500 mm) ..., and make support-1 22 mm thick'."""
+    text = """\
+furncheck: 1
+name: side-table-rack
+material: {thickness: 18}
+planks:
+  - {id: top, size: [500, 500], center: [0, 0, 591]}
+  - {id: leg_pp, size: [582, 45], center: [241, 227.5, 291], rotation: [0, -90, 0]}
+  - {id: leg_mp, size: [582, 45], center: [-241, 227.5, 291], rotation: [0, -90, 0]}
+  - {id: leg_pm, size: [582, 45], center: [241, -227.5, 291], rotation: [0, -90, 0]}
+  - {id: leg_mm, size: [582, 45], center: [-241, -227.5, 291], rotation: [0, -90, 0]}
+loads:
+  - {plank: top, mass: 25}
+load_cases:
+  bump:
+    include: [default]
+    loads:
+      - {plank: top, force: [80, 0, 0], at: [-250, 0, 600]}
+"""
+    support = next(fix for fix in fixes(parsed(text, "elastic")) if fix.rule == "support")
+    assert support.advice.startswith("Add support-1 (582 x 500 x 22 mm) under top, ")
+    assert "make support-1" not in support.advice
+    assert support.design.plank("support-1").thickness == pytest.approx(0.022)
 
 
 # --- more nails ------------------------------------------------------------------------------

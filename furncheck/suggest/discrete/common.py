@@ -186,7 +186,16 @@ class Search:
             return None
         _, candidate, (design, report, thickened) = best
         self._record(candidate, FOUND, thickening=True)
-        advice = f"{candidate.advice[:-1]}, and {thickness_phrase(thickened, self.design)}."
+        advice = candidate.advice
+        for plank_id, (_, new) in thickened.items():    # a part it adds: said as it is cut
+            if plank_id not in self.design.plank_index:
+                size = size_of(design.plank(plank_id), self.design)
+                advice = advice.replace(
+                    f"{plank_id} ({size})", f"{plank_id} ({size[:-len(self.design.units) - 1]}"
+                    f" x {amount(new / self.design.unit_scale)} {self.design.units})", 1)
+        existing = {p: v for p, v in thickened.items() if p in self.design.plank_index}
+        if existing:
+            advice = f"{advice[:-1]}, and {thickness_phrase(existing, self.design)}."
         return Fix(candidate.rule, advice, design, report, candidate.adds, candidate.between,
                    thickened={p: new for p, (_, new) in thickened.items()})
 

@@ -21,7 +21,8 @@ nailed or rests, or that lies on the floor or a wall stays where it is (a shelf 
 brackets grows upward, a post with a shelf nailed to its front grows backward); with
 neither face held a level plank (a shelf between two sides) grows downward, its top face
 and what stands on it where they were (a shelf flush with the sides' tops stays flush),
-any other equally both ways; with both held it cannot grow.  Load and
+any other toward the planks its ends are nailed to (a table's leg grows inward), else
+equally both ways; with both held it cannot grow.  Load and
 anchor points on a face that moves move with it.
 
 The rule (``thicker_planks``) thickens every failing plank and the edge planks of the
@@ -334,7 +335,10 @@ def _free_side(design: Design, geometry: Geometry, plank: Plank, grow: float,
     z; the first whose new corners stay out of the floor and of the faces its ends rest
     on (a splayed leg, its ends cut square to it, cannot grow either way without
     cutting in), trying a level plank's downward side first (its top face stays: module
-    docstring); None if none does.  ``planks``: the planks as grown so far."""
+    docstring) and another's side toward the planks its ends are nailed to first (a
+    table's leg grows inward, its outer face still flush with the top's edge: both ways
+    it stuck out past the edge by half the growth); None if none does.  ``planks``: the
+    planks as grown so far."""
     planes = [(np.array([0.0, 0.0, 1.0]), 0.0)]
     for joint in geometry.joints:
         if joint.edge == plank.id:
@@ -344,9 +348,14 @@ def _free_side(design: Design, geometry: Geometry, plank: Plank, grow: float,
     slack = design.tolerance + tol.ON_PLANK_EPS
     axis = plank.rotation_matrix[:, 2]
     order = (0, 1, -1)
+    inward = sum(float((planks[joint.face].center_array - plank.center_array) @ axis)
+                 for joint in geometry.joints if joint.edge == plank.id)
     if level(plank):
         down = -1 if axis[2] > 0.0 else 1
         order = (down, 0, -down)
+    elif abs(inward) > slack:
+        side = 1 if inward > 0.0 else -1
+        order = (side, 0, -side)
     for side in order:
         moved = replace(plank, thickness=plank.thickness + grow, center=tuple(
             float(v) for v in plank.center_array + axis * side * 0.5 * grow))
