@@ -836,3 +836,38 @@ def test_a_plank_shrunk_through_zero_is_not_kept():
     assert editor.margin_at((width,), np.array([1.0]), -800.0 / editor.scale(width)) == -np.inf
     result = suggest_design(design)
     assert all(p.length > 0 and p.width > 0 for s in result.suggestions for p in s.design.planks)
+
+
+GARDEN_BENCH = """\
+furncheck: 1
+name: garden-bench-tips
+material: {thickness: 18}
+planks:
+  - {id: seat, size: [1400, 320], center: [0, 0, 441]}
+  - {id: leg_l, size: [432, 320], center: [-350, 0, 216], rotation: [0, -90, 0]}
+  - {id: leg_r, size: [432, 320], center: [350, 0, 216], rotation: [0, -90, 0]}
+  - {id: stretcher, size: [682, 90], center: [0, 0, 300], rotation: [90, 0, 0]}
+loads:
+  - {plank: seat, mass: 90, at: [680, 0, 450]}
+"""
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_leg_moved_toward_the_load_before_it_leaves_the_seat_is_suggested(model):
+    """A 1400 mm bench seat on two legs at x = +-350, 90 kg sat at its right end (x =
+    680): it tips over leg_r.  Moving leg_r out stands it once the loads' line of action
+    (with the seat's and legs' weights, at x = 608 mm: the explanation's hand statics)
+    falls inside its foot, about 600 to 640 mm (the elastic legs bend), and leg_r leaves
+    the seat's end 700 - 9 = 691 mm (plus the tolerance) out: a window of about 60 mm,
+    past which every probe topples or loses the joint.  The linearized prediction lies
+    beyond the seat's end, so the probes from it found nothing ('no valid step'); the
+    probe before the edit's geometric reach finds the window, and ``range`` of leg_r.x
+    holds the suggested move."""
+    design = with_model(parse_design(GARDEN_BENCH, "bench.yaml", "yaml"), model)
+    moved = [s for s in suggest_design(design).suggestions if s.dofs == ("leg_r.x",)]
+    assert moved, [s.dofs for s in suggest_design(design).suggestions]
+    x = 350.0 + moved[0].changes[0]
+    assert 600.0 < x < 700.0
+    (found,) = RangeFinder(design).ranges(["leg_r.x"])
+    assert found.valid[0] <= x <= found.valid[1]
+    assert check_design(parse_design(moved[0].text, "s.yaml", "yaml")).valid

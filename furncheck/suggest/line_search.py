@@ -69,6 +69,12 @@ INTERPOLATION_GUARD = 0.1
 MIN_RESOLUTION = 1e-4
 """No end is closed finer than this (scaled units)."""
 
+REACH_PROBE = 0.97
+"""Where the probes from the predicted step find nothing and that step lay past the
+edit's geometric reach (the step where it stops keeping the geometry of a design that
+stands as drawn: a leg moved off the end of the seat it holds), one more probe at this
+fraction of the reach (``_before_reach``): a valid window can only lie before it."""
+
 
 @dataclass(frozen=True)
 class Interval:
@@ -91,6 +97,8 @@ def line_search(editor: Editor, dofs: tuple[Dof, ...], candidate: Candidate,
         return editor.margin_at(dofs, direction, step)
 
     found = _first_valid(margin, candidate.enter, start, candidate.aim)
+    if found is None and not editor.geometry.violations:
+        found = _before_reach(editor, dofs, direction, margin, candidate.enter, start)
     if found is None:
         return None
     below, first, *beyond = found
@@ -147,6 +155,21 @@ def _first_valid(margin, predicted: float, start: float, aim: float = math.inf):
     return None
 
 
+def _before_reach(editor: Editor, dofs: tuple[Dof, ...], direction: np.ndarray, margin,
+                  predicted: float, start: float):
+    """``_first_valid``'s result from a probe at REACH_PROBE of the edit's geometric reach
+    (``_flip``, what the design has lost), where that lies before the first probe, or
+    None: a design that topples has margin -inf until the window, so probes past the
+    reach (a leg moved off the end of the seat it holds) cannot find it."""
+    first = min(predicted * FIRST_PROBE, MAX_STEP)
+    reach = _flip(editor, dofs, direction, 0.0, first, kept_only=True)
+    if reach is None or reach >= first:
+        return None
+    step = REACH_PROBE * reach
+    value = margin(step)
+    return ((0.0, start), (step, value)) if value >= 0.0 else None
+
+
 def _tolerance_step(editor: Editor, dofs: tuple[Dof, ...], direction: np.ndarray) -> float:
     """The step (scaled units) along ``direction`` in which no length DOF changes by more
     than WINDOW_TOLERANCE of the design's tolerance (inf for a direction of turns alone):
@@ -165,7 +188,19 @@ def _geometric_reach(editor: Editor, dofs: tuple[Dof, ...], direction: np.ndarra
     """The step at which the edit along ``direction`` is predicted to stop keeping the
     design's geometry, from the edit's geometric margins at two valid steps ``low`` and
     ``step`` (linear in the step for moves and size changes; None for a direction that
-    turns a plank, or when the edits cannot be made or nothing flips before MAX_STEP)."""
+    turns a plank, or when the edits cannot be made or nothing flips before MAX_STEP),
+    when that lies beyond ``step``."""
+    reach = _flip(editor, dofs, direction, low, step)
+    return reach if reach is not None and step < reach else None
+
+
+def _flip(editor: Editor, dofs: tuple[Dof, ...], direction: np.ndarray, low: float,
+          step: float, kept_only: bool = False) -> float | None:
+    """``_geometric_reach`` from the margins at ``low`` and ``step``, wherever it lies
+    after ``low`` (None for a turn, an edit that cannot be made, or no flip before
+    MAX_STEP); ``kept_only``: where what the design has is lost (a joint's end leaving its
+    face, a size reaching zero), not where planks come to meet (a short leg reaching the
+    floor: a window of its own)."""
     if any(dof.is_rotation for dof in dofs) or step <= low:
         return None
     try:
@@ -180,9 +215,10 @@ def _geometric_reach(editor: Editor, dofs: tuple[Dof, ...], direction: np.ndarra
     margins = EditMargins(design, editor.geometry, changed, 0.0, ())
     (required, forbidden), (required_at, forbidden_at) = margins(at_low), margins(at_step)
     kept = required > 0.0           # a criterion the valid edit already passes otherwise
-    reach = _first_flip((required[kept], forbidden), (required_at[kept], forbidden_at),
-                        low, step, MAX_STEP)
-    return reach if step < reach < MAX_STEP else None
+    groups = slice(0, 0) if kept_only else slice(None)
+    reach = _first_flip((required[kept], forbidden[groups]),
+                        (required_at[kept], forbidden_at[groups]), low, step, MAX_STEP)
+    return reach if low < reach < MAX_STEP else None
 
 
 def _upper_end(margin, good: tuple[float, float], reach: float | None,
