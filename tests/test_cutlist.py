@@ -54,6 +54,32 @@ def test_a_changed_plank_lists_only_its_changed_fields():
         "top": ("change", {"length": (400.0, 450.0), "x": (0.0, 25.0)})}
 
 
+def test_a_turn_that_changes_several_angles_is_said_as_one_turn():
+    """The post stood up by ry = 90 degrees, tilted 1.5 degrees about world x: the file's
+    angles change by far more than that (near ry = 90 the three angles trade places), so
+    the cut list line says the turn it is, 1.5 degrees about x, after them; a change of
+    one angle alone is its own turn and gets no note."""
+    import numpy as np
+
+    from furncheck.design.model import rotation_matrix
+    from furncheck.dofs import euler_degrees
+    from furncheck.report.cutlist import cut_list_lines
+
+    tilt = np.radians(1.5)
+    about_x = np.array([[1, 0, 0], [0, np.cos(tilt), -np.sin(tilt)],
+                        [0, np.sin(tilt), np.cos(tilt)]])
+    angles = [round(float(v), 9) for v in euler_degrees(about_x @ rotation_matrix((0, 90, 0)),
+                                                         (0.0, 90.0, 0.0))]
+    before = design(TWO_PLANKS)
+    after = design(TWO_PLANKS.replace("rotation: [0, 90, 0]", f"rotation: {angles}"))
+    (line,) = cut_list_lines(plank_edits(before, after), before)[1:]
+    assert sum(f" {name} " in line for name in ("rx", "ry", "rz")) >= 2, line
+    assert line.endswith(" (a turn of 1.5 degrees about x)"), line
+    one = design(TWO_PLANKS.replace("rotation: [0, 90, 0]", "rotation: [0, 88.5, 0]"))
+    (line,) = cut_list_lines(plank_edits(before, one), before)[1:]
+    assert line == "  post: ry 90 -> 88.5 degrees", line
+
+
 def test_an_added_plank_lists_every_field_and_a_removed_one_too():
     """A support added: every field with no 'before'; the post taken away: every field
     with no 'after' (its rotation 90 degrees about y as written)."""

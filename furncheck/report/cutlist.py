@@ -11,12 +11,18 @@ report's six significant digits.
 
 from __future__ import annotations
 
+import math
 from typing import Any
+
+import numpy as np
 
 from furncheck.design.model import Design
 from furncheck.report.common import plural
 from furncheck.report.numbers import format_number
 from furncheck.suggest.cutlist import ANGLE_FIELDS, LoadMove, LoadSpread, NailChange, PlankEdit
+
+AXIS_SLACK = 1.0
+"""Degrees: a turn's axis this close to a world axis is named by it (``_turn``)."""
 
 MATERIAL_UNITS = {"density": "kg/m^3", "elastic_modulus": "N/mm^2",
                   "shear_modulus": "N/mm^2", "bending_strength": "N/mm^2", "creep": "",
@@ -113,8 +119,36 @@ def _edit_text(edit: PlankEdit, design: Design) -> str:
         return text
     if edit.action == "remove":
         return "taken away"
-    return ", ".join(f"{_label(f.field)} {_from_to(f.before, f.after)}"
+    text = ", ".join(f"{_label(f.field)} {_from_to(f.before, f.after)}"
                      f"{_unit_of(f.field, design)}" for f in edit.fields)
+    if sum(name in values for name in ANGLE_FIELDS) > 1:     # several angles, one turn
+        text += f" ({_turn(edit, design)})"
+    return text
+
+
+def _turn(edit: PlankEdit, design: Design) -> str:
+    """The change of a plank's angles as the one turn it is, 'a turn of 1.5 degrees about
+    x' (about a world axis where the turn's axis lies within AXIS_SLACK of one, else
+    about the axis (x, y, z)): the file's three angles can change by much more than the
+    plank turns (a leg stood upright by ry = -90 and tilted 1.5 degrees reads rx 0 -> 90,
+    ry -90 -> -88.5, rz 0 -> -90)."""
+    from furncheck.design.model import rotation_matrix
+
+    old = design.plank(edit.plank).rotation
+    new = [f.after if f is not None else value
+           for f, value in zip((edit.field(name) for name in ANGLE_FIELDS), old)]
+    turn = rotation_matrix(new) @ rotation_matrix(old).T
+    angle = math.degrees(math.acos(min(max((float(np.trace(turn)) - 1.0) / 2.0, -1.0), 1.0)))
+    axis = np.array([turn[2, 1] - turn[1, 2], turn[0, 2] - turn[2, 0], turn[1, 0] - turn[0, 1]])
+    if np.linalg.norm(axis) < 1e-12:
+        return f"a turn of {_number(angle)} degrees"
+    axis /= np.linalg.norm(axis)
+    named = int(np.argmax(np.abs(axis)))
+    if abs(axis[named]) >= math.cos(math.radians(AXIS_SLACK)):
+        sign = "" if axis[named] > 0.0 else "-"
+        return f"a turn of {_number(angle)} degrees about {sign}{'xyz'[named]}"
+    shown = ", ".join(format_number(float(v), 2) for v in axis)
+    return f"a turn of {_number(angle)} degrees about ({shown})"
 
 
 def _from_to(before: float, after: float) -> str:
