@@ -240,3 +240,37 @@ def test_a_chair_seat_across_its_depth_and_an_overhang_already_there():
                                 "{id: shelf, size: [400, 300], center: [56, 0, 600]}")
     assert longer != cantilever
     assert not [r for r in score_of(cantilever, longer).implausible if "overhangs" in r]
+
+
+SEAT = """
+furncheck: 1
+name: seat
+units: mm
+planks:
+  - {{id: seat, size: [400, 300], center: [0, 0, {z}]}}
+  - {{id: leg_l, size: [{h}, 300], center: [-194, 0, {c}], rotation: [0, -90, 0]}}
+  - {{id: leg_r, size: [{h}, 300], center: [194, 0, {c}], rotation: [0, -90, 0]}}
+loads:
+  - {{plank: seat, mass: 80}}
+"""
+
+
+def seat_at(top: float) -> str:
+    """SEAT with its top face ``top`` mm above the floor (12 mm seat on two legs)."""
+    height = top - 12.0
+    return SEAT.format(z=top - 6.0, h=height, c=height / 2)
+
+
+@pytest.mark.parametrize("lowered, flagged", [(100.0, False), (200.0, True)])
+def test_a_loaded_seat_raised_or_lowered_by_over_a_third_is_implausible(lowered, flagged):
+    """A seat 450 mm above the floor on two legs, 80 kg on it, lowered with its legs by
+    100 mm (to 350 mm: 22 %) is still a seat; by 200 mm (to 250 mm: 44 %, more than
+    HEIGHT_SHARE = 1/3) it is another piece, and reads as implausible however valid (a
+    chair's seat lowered from 450 to 80 mm stood, and ranked with the rest)."""
+    from furncheck.suggest.score import HEIGHT_SHARE
+
+    assert HEIGHT_SHARE == pytest.approx(1 / 3)
+    score = score_of(seat_at(450.0), seat_at(450.0 - lowered))
+    reasons = [r for r in score.implausible if "above the floor" in r]
+    assert reasons == ([f"seat ends {round(450 - lowered)} mm above the floor (it was "
+                        f"450 mm: another piece)"] if flagged else [])

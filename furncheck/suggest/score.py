@@ -12,7 +12,9 @@ design, and ranked by ``ShopScore.key`` (smaller first), lexicographically:
    cabinet's side), or a level plank
    (seat, top, shelf) that overhangs its supports by more than OVERHANG_SHARE of its
    length at one end (legs moved 267 mm in under a 900 mm bench seat: whoever sits at
-   its end tips it, whatever the load cases say);
+   its end tips it, whatever the load cases say), or a level plank that carries a load
+   raised or lowered by more than HEIGHT_SHARE of its height (a chair's seat lowered to
+   80 mm: another piece);
 2. ``broken``: mirror relations the edit breaks (``symmetry.broken_pairs``: a pair of
    mirror planks no longer mirrored, or a plank on the mirror plane no longer symmetric)
    -- on a symmetric design a symmetric fix comes first where one works;
@@ -62,6 +64,12 @@ OVERHANG_GROWTH = 0.05
 """... and only when the suggestion adds at least this share to the input's overhang (a
 leg thickened 10 mm inward under a top at 32.9 % is no new overhang); the same for an end
 hanging past the face it is nailed to (HANG_SHARE)."""
+
+HEIGHT_SHARE = 1.0 / 3.0
+"""A level plank that carries a load (a seat, a top, a shelf) may rise or sink by at most
+this share of its height above the floor before a suggestion reads as implausible: a
+chair whose seat is lowered from 450 to 80 mm, or a 600 mm side table cut down to 320 mm,
+stands, but it is another piece."""
 
 HANG_SHARE = 0.25
 """A plank's end nailed to another plank's face may reach past that face's edge by at
@@ -132,7 +140,21 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
         if before[0] <= OVERHANG_SHARE < after[0] and after[0] - before[0] >= OVERHANG_GROWTH:
             reasons.append(f"{plank_id} overhangs its supports by {round(100 * after[0])} % "
                            f"of its {after[1]}")
+    for plank_id in _loaded_level_planks(original) & changed:
+        before = float(original.plank(plank_id).corners[:, 2].max())
+        after = float(edited.plank(plank_id).corners[:, 2].max())
+        if before > 0.0 and abs(after - before) > HEIGHT_SHARE * before:
+            scale, unit = original.unit_scale, original.units
+            reasons.append(f"{plank_id} ends {round(after / scale)} {unit} above the floor "
+                           f"(it was {round(before / scale)} {unit}: another piece)")
     return tuple(reasons)
+
+
+def _loaded_level_planks(design: Design) -> set[str]:
+    """The level planks that carry a load in some case (a seat, a top, a shelf: what
+    the piece is for stands or sits on them)."""
+    loaded = {load.plank for case in design.load_cases for load in case.loads}
+    return {plank.id for plank in design.planks if plank.id in loaded and level(plank)}
 
 
 def _supports(geometry: Geometry) -> dict[str, list[tuple[str, bool]]]:
