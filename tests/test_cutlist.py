@@ -78,6 +78,13 @@ def test_a_turn_that_changes_several_angles_is_said_as_one_turn():
     one = design(TWO_PLANKS.replace("rotation: [0, 90, 0]", "rotation: [0, 88.5, 0]"))
     (line,) = cut_list_lines(plank_edits(before, one), before)[1:]
     assert line == "  post: ry 90 -> 88.5 degrees", line
+    same = design(TWO_PLANKS.replace("rotation: [0, 90, 0]", "rotation: [30, 90, 30]"))
+    (line,) = cut_list_lines(plank_edits(before, same), before)[1:]
+    assert line.endswith(" (the same turn, its angles written otherwise)"), line
+    half = design(TWO_PLANKS.replace("center: [0, 0, 506]}", "center: [0, 0, 506], "
+                                     "rotation: [180, 0, 180]}"))
+    (line,) = cut_list_lines(plank_edits(before, half), before)[1:]
+    assert line.endswith(" (a turn of 180 degrees about y)"), line
 
 
 def test_an_added_plank_lists_every_field_and_a_removed_one_too():

@@ -527,6 +527,7 @@ load_cases:
     assert support.advice.startswith("Add support-1 (582 x 500 x 22 mm) under top, ")
     assert "make support-1" not in support.advice
     assert support.design.plank("support-1").thickness == pytest.approx(0.022)
+    assert support.adds == (support.design.plank("support-1"),)   # JSON adds: as cut
 
 
 # --- more nails ------------------------------------------------------------------------------

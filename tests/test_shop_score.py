@@ -274,3 +274,20 @@ def test_a_loaded_seat_raised_or_lowered_by_over_a_third_is_implausible(lowered,
     reasons = [r for r in score.implausible if "above the floor" in r]
     assert reasons == ([f"seat ends {round(450 - lowered)} mm above the floor (it was "
                         f"450 mm: another piece)"] if flagged else [])
+
+
+def test_a_loaded_board_on_the_floor_may_grow_thicker():
+    """A board lying on the floor with a load on it, thickened upward from 12 to 22 mm:
+    its top rises from 12 to 22 mm, which is no other piece (the height rule reads only
+    the highest loaded level planks clear of the floor)."""
+    board = """
+furncheck: 1
+name: board
+units: mm
+planks:
+  - {{id: base, size: [1600, 300], center: [0, 0, {z}], thickness: {t}}}
+loads:
+  - {{plank: base, mass: 200, spread: true}}
+"""
+    score = score_of(board.format(z=6, t=12), board.format(z=11, t=22))
+    assert not score.implausible

@@ -24,6 +24,10 @@ from furncheck.suggest.cutlist import ANGLE_FIELDS, LoadMove, LoadSpread, NailCh
 AXIS_SLACK = 1.0
 """Degrees: a turn's axis this close to a world axis is named by it (``_turn``)."""
 
+SAME_TURN = 1e-6
+"""Degrees: angles that change by less than this as a turn are the same turn written
+otherwise (near ry = 90 the file's angles trade places; 360 added to one)."""
+
 MATERIAL_UNITS = {"density": "kg/m^3", "elastic_modulus": "N/mm^2",
                   "shear_modulus": "N/mm^2", "bending_strength": "N/mm^2", "creep": "",
                   "sag_limit": ""}
@@ -139,15 +143,18 @@ def _turn(edit: PlankEdit, design: Design) -> str:
            for f, value in zip((edit.field(name) for name in ANGLE_FIELDS), old)]
     turn = rotation_matrix(new) @ rotation_matrix(old).T
     angle = math.degrees(math.acos(min(max((float(np.trace(turn)) - 1.0) / 2.0, -1.0), 1.0)))
+    if angle < SAME_TURN:
+        return "the same turn, its angles written otherwise"
     axis = np.array([turn[2, 1] - turn[1, 2], turn[0, 2] - turn[2, 0], turn[1, 0] - turn[0, 1]])
-    if np.linalg.norm(axis) < 1e-12:
-        return f"a turn of {_number(angle)} degrees"
+    if np.linalg.norm(axis) < 1e-6:     # a half turn: the axis is R + I's largest column
+        half = turn + np.eye(3)
+        axis = half[:, int(np.argmax(np.linalg.norm(half, axis=0)))]
     axis /= np.linalg.norm(axis)
     named = int(np.argmax(np.abs(axis)))
     if abs(axis[named]) >= math.cos(math.radians(AXIS_SLACK)):
-        sign = "" if axis[named] > 0.0 else "-"
+        sign = "" if axis[named] > 0.0 or angle > 179.999 else "-"
         return f"a turn of {_number(angle)} degrees about {sign}{'xyz'[named]}"
-    shown = ", ".join(format_number(float(v), 2) for v in axis)
+    shown = ", ".join(f"{round(float(v), 2) + 0.0:g}" for v in axis)
     return f"a turn of {_number(angle)} degrees about ({shown})"
 
 

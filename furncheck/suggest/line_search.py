@@ -198,9 +198,10 @@ def _flip(editor: Editor, dofs: tuple[Dof, ...], direction: np.ndarray, low: flo
           step: float, kept_only: bool = False) -> float | None:
     """``_geometric_reach`` from the margins at ``low`` and ``step``, wherever it lies
     after ``low`` (None for a turn, an edit that cannot be made, or no flip before
-    MAX_STEP); ``kept_only``: where what the design has is lost (a joint's end leaving its
-    face, a size reaching zero), not where planks come to meet (a short leg reaching the
-    floor: a window of its own)."""
+    MAX_STEP); ``kept_only``: where a criterion the design passes stops passing (a joint's
+    end leaving its face, a size reaching zero, a corner reaching the floor), the
+    forbidden groups left out (planks coming to meet or cut into each other: the full
+    check sees those)."""
     if any(dof.is_rotation for dof in dofs) or step <= low:
         return None
     try:

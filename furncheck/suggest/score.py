@@ -12,9 +12,9 @@ design, and ranked by ``ShopScore.key`` (smaller first), lexicographically:
    cabinet's side), or a level plank
    (seat, top, shelf) that overhangs its supports by more than OVERHANG_SHARE of its
    length at one end (legs moved 267 mm in under a 900 mm bench seat: whoever sits at
-   its end tips it, whatever the load cases say), or a level plank that carries a load
-   raised or lowered by more than HEIGHT_SHARE of its height (a chair's seat lowered to
-   80 mm: another piece);
+   its end tips it, whatever the load cases say), or the highest loaded level plank (a
+   seat, a top) raised or lowered by more than HEIGHT_SHARE of its height (a chair's seat
+   lowered to 80 mm: another piece);
 2. ``broken``: mirror relations the edit breaks (``symmetry.broken_pairs``: a pair of
    mirror planks no longer mirrored, or a plank on the mirror plane no longer symmetric)
    -- on a symmetric design a symmetric fix comes first where one works;
@@ -44,9 +44,9 @@ from furncheck.suggest.cutlist import (
     SIZE_FIELDS,
     PlankEdit,
 )
-from furncheck.suggest.discrete.common import level
+from furncheck.suggest.discrete.common import amount, level
 from furncheck.suggest.symmetry import MirrorPlane, broken_pairs
-from furncheck.tolerances import STOCK_BOARD
+from furncheck.tolerances import ON_PLANK_EPS, STOCK_BOARD
 
 PLANK_COST = 0.05
 """Cost of each plank touched, on top of its relative change (twenty planks touched cost
@@ -66,10 +66,10 @@ leg thickened 10 mm inward under a top at 32.9 % is no new overhang); the same f
 hanging past the face it is nailed to (HANG_SHARE)."""
 
 HEIGHT_SHARE = 1.0 / 3.0
-"""A level plank that carries a load (a seat, a top, a shelf) may rise or sink by at most
-this share of its height above the floor before a suggestion reads as implausible: a
-chair whose seat is lowered from 450 to 80 mm, or a 600 mm side table cut down to 320 mm,
-stands, but it is another piece."""
+"""The highest level plank that carries a load (a seat, a table's top: ``_working_heights``)
+may rise or sink by at most this share of its height above the floor before a suggestion
+reads as implausible: a chair whose seat is lowered from 450 to 80 mm, or a 600 mm side
+table cut down to 320 mm, stands, but it is another piece."""
 
 HANG_SHARE = 0.25
 """A plank's end nailed to another plank's face may reach past that face's edge by at
@@ -140,21 +140,32 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
         if before[0] <= OVERHANG_SHARE < after[0] and after[0] - before[0] >= OVERHANG_GROWTH:
             reasons.append(f"{plank_id} overhangs its supports by {round(100 * after[0])} % "
                            f"of its {after[1]}")
-    for plank_id in _loaded_level_planks(original) & changed:
+    for plank_id in _working_heights(original):
+        if plank_id not in changed:
+            continue
         before = float(original.plank(plank_id).corners[:, 2].max())
         after = float(edited.plank(plank_id).corners[:, 2].max())
-        if before > 0.0 and abs(after - before) > HEIGHT_SHARE * before:
+        if abs(after - before) > HEIGHT_SHARE * before:
             scale, unit = original.unit_scale, original.units
-            reasons.append(f"{plank_id} ends {round(after / scale)} {unit} above the floor "
-                           f"(it was {round(before / scale)} {unit}: another piece)")
+            reasons.append(f"{plank_id} ends {amount(after / scale)} {unit} above the floor "
+                           f"(it was {amount(before / scale)} {unit}: another piece)")
     return tuple(reasons)
 
 
-def _loaded_level_planks(design: Design) -> set[str]:
-    """The level planks that carry a load in some case (a seat, a top, a shelf: what
-    the piece is for stands or sits on them)."""
+def _working_heights(design: Design) -> list[str]:
+    """The planks whose height is the piece's (in plank order): the highest level planks
+    that carry a load in some case (a seat, a table's top: what it is for stands or sits
+    on them; a bookcase's lower shelves may move), clear of the floor (a board lying on
+    it is thickened upward, not raised)."""
     loaded = {load.plank for case in design.load_cases for load in case.loads}
-    return {plank.id for plank in design.planks if plank.id in loaded and level(plank)}
+    slack = design.tolerance + ON_PLANK_EPS
+    levels = [plank for plank in design.planks if level(plank)]
+    if not levels:
+        return []
+    top = max(float(plank.corners[:, 2].max()) for plank in levels)
+    return [plank.id for plank in levels if plank.id in loaded
+            and float(plank.corners[:, 2].max()) >= top - slack
+            and float(plank.corners[:, 2].min()) > slack]
 
 
 def _supports(geometry: Geometry) -> dict[str, list[tuple[str, bool]]]:

@@ -187,16 +187,19 @@ class Search:
         _, candidate, (design, report, thickened) = best
         self._record(candidate, FOUND, thickening=True)
         advice = candidate.advice
-        for plank_id, (_, new) in thickened.items():    # a part it adds: said as it is cut
-            if plank_id not in self.design.plank_index:
-                size = size_of(design.plank(plank_id), self.design)
+        adds = tuple(design.plank(plank.id) for plank in candidate.adds)   # as finished
+        for old, plank in zip(candidate.adds, adds):    # a part it adds: said as it is cut
+            if plank.id in thickened:
+                size = size_of(plank, self.design)
                 advice = advice.replace(
-                    f"{plank_id} ({size})", f"{plank_id} ({size[:-len(self.design.units) - 1]}"
-                    f" x {amount(new / self.design.unit_scale)} {self.design.units})", 1)
+                    f"{plank.id} ({size})", f"{plank.id} ({size[:-len(self.design.units) - 1]}"
+                    f" x {amount(plank.thickness / self.design.unit_scale)} "
+                    f"{self.design.units})", 1).replace(
+                    point_of(old.center, self.design), point_of(plank.center, self.design), 1)
         existing = {p: v for p, v in thickened.items() if p in self.design.plank_index}
         if existing:
             advice = f"{advice[:-1]}, and {thickness_phrase(existing, self.design)}."
-        return Fix(candidate.rule, advice, design, report, candidate.adds, candidate.between,
+        return Fix(candidate.rule, advice, design, report, adds, candidate.between,
                    thickened={p: new for p, (_, new) in thickened.items()})
 
     def _record(self, candidate: Candidate, outcome: str, reason: str = "",

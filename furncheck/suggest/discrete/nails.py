@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
+from furncheck.geometry.analysis import nail_count
 from furncheck.suggest.discrete.common import Candidate, Fix, Search, amount, names
 
 MORE_NAILS = "more nails"
@@ -33,10 +34,13 @@ def more_nails(search: Search) -> Fix | None:
     design, geometry = search.design, search.geometry
     failing = {v.where for v in search.report.violations if v.kind == "non-durable"}
     joints = [joint for joint in geometry.joints if joint.name in failing]
+    if not joints:
+        search.not_applicable(MORE_NAILS, "what fails holds by wall anchors, not nails")
+        return None
     room = {}
     for joint in joints:
         spec = _listed(design, joint)
-        most = max(1, math.floor(joint.length / design.material.nail_spacing + 1e-9))
+        most = nail_count(joint.length, design.material.nail_spacing)
         if spec is None or spec.nails is None:
             search.not_applicable(MORE_NAILS, "its nails are counted by the spacing rule "
                                   "already", joint.name)
@@ -78,8 +82,7 @@ def _candidate(search: Search, room: dict, count: dict[str, int]) -> Candidate:
     specs = list(design.joints)
     parts = []
     for name, (joint, spec, _) in room.items():
-        index = specs.index(spec)
-        specs[index] = replace(spec, nails=count[name])
+        specs[int(joint.key.split("[", 1)[1].rstrip("]"))] = replace(spec, nails=count[name])
         apart = amount(joint.length / count[name] / design.unit_scale)
         parts.append(f"{count[name]} nails into {name} (now {spec.nails}), about {apart} "
                      f"{design.units} apart")
