@@ -577,3 +577,34 @@ def test_a_listed_joint_with_too_few_nails_gets_the_nails_it_needs(tmp_path):
     assert document["suggestions"][0]["nails"] == [
         {"joint": "back/shelf", "before": 4, "after": 6}]
     assert document["suggestions"][0]["edits"] == []
+
+
+def test_more_fixings_beside_the_ones_a_design_has_say_so():
+    """A wall cabinet hung on two 150 N fixings that pull out: the anchor rule adds two
+    fixings, and its advice says they are two more, beside the two the design has (a
+    maker read 'Screw back to the wall at ... with fixings' as the same two moved)."""
+    text = """\
+furncheck: 1
+name: wall-cabinet-plugs
+material: {thickness: 18}
+walls:
+  - {point: [0, 0, 0], normal: [0, 1, 0]}
+planks:
+  - {id: back, size: [600, 400], center: [0, 9, 1600], rotation: [90, 0, 0]}
+  - {id: side_l, size: [400, 250], center: [-291, 143, 1600], rotation: [0, -90, 0]}
+  - {id: side_r, size: [400, 250], center: [291, 143, 1600], rotation: [0, -90, 0]}
+  - {id: bottom, size: [564, 250], center: [0, 143, 1409]}
+  - {id: shelf, size: [564, 250], center: [0, 143, 1600]}
+  - {id: top, size: [564, 250], center: [0, 143, 1791]}
+anchors:
+  - {plank: back, at: [-200, 0, 1750], wall: 0, capacity: 150}
+  - {plank: back, at: [200, 0, 1750], wall: 0, capacity: 150}
+loads:
+  - {plank: bottom, mass: 20, spread: true}
+  - {plank: shelf, mass: 15, spread: true}
+"""
+    design = parsed(text, "rigid")
+    assert {v.kind for v in check_design(design).violations} == {"non-durable"}
+    anchor = next(fix for fix in fixes(design) if fix.rule == "anchor")
+    assert " with 2 more fixings rated 196 N (beside the 2 it has); " in anchor.advice
+    assert len(anchor.design.anchors) == 4 and fix_valid(anchor)

@@ -94,9 +94,12 @@ def _candidates(search: Search) -> Iterator[Candidate]:
                         for p in points)
         where = names([point_of(p, design) for p in points])
         wall_name = "the wall" if len(design.walls) == 1 else f"wall {wall}"
-        advice = (f"Screw {plank_id} to {wall_name} at {where} with "
-                  f"{'a fixing' if len(points) == 1 else 'fixings'} rated "
-                  f"{plain_number(tol.ANCHOR_CAPACITY, 3)} N.")
+        more = bool(design.anchors)             # beside the fixings the design has
+        fixings = (("another fixing" if more else "a fixing") if len(points) == 1
+                   else f"{len(points)} more fixings" if more else "fixings")
+        advice = (f"Screw {plank_id} to {wall_name} at {where} with {fixings} rated "
+                  f"{plain_number(tol.ANCHOR_CAPACITY, 3)} N"
+                  + (f" (beside the {len(design.anchors)} it has)." if more else "."))
         yield Candidate("anchor", replace(design, anchors=(*design.anchors, *anchors)),
                         advice, between=(plank_id,), trial_rule=ANCHOR,
                         place=f"{plank_id} to {wall_name} at {where}",
