@@ -296,15 +296,17 @@ def test_a_pushed_stand_gets_an_outrigger():
     5 kg on top and a 40 N push at 606 mm: W = 5 + 1.112 + 2 x 1.62 = 9.352 kg = 91.74 N,
     so the pressure centre is at x = 0.606 x 40 / 91.74 = 264.2 mm, 58.2 mm past leg_r's
     outer face: it topples.  The top has no overhang to put a leg under; an outrigger on
-    leg_r's outer face reaching 1.5 x 58.2 = 87.3 mm (as high as it is long) holds it."""
+    leg_r's outer face reaching 1.5 x 58.2 = 87.3 mm, cut at the next whole millimetre,
+    88 mm (as high as it is long), holds it."""
     design = parsed(STAND, "rigid")
     assert [v.kind for v in check_design(design).violations] == ["lift-off"]
     outrigger = by_rule(suggest_design(design), "outrigger")
     assert outrigger is not None
     (foot,) = outrigger.adds
-    reach = 1.5 * (0.606 * 40 / (9.352 * G) - 0.206)
-    assert foot.length == pytest.approx(reach, rel=1e-3)
-    assert foot.width == pytest.approx(reach, rel=1e-3)
+    reach = math.ceil(1000 * 1.5 * (0.606 * 40 / (9.352 * G) - 0.206)) / 1000
+    assert reach == pytest.approx(0.088)
+    assert foot.length == pytest.approx(reach, rel=1e-9)
+    assert foot.width == pytest.approx(reach, rel=1e-9)
     assert foot.center[0] == pytest.approx(0.206 + reach / 2, rel=1e-3)
     assert written_valid(outrigger)
 

@@ -26,6 +26,7 @@ leaning on a wall gets a wall anchor instead, ``anchors``).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator
 from dataclasses import replace
 
@@ -50,6 +51,10 @@ from furncheck.suggest.discrete.supports import support_candidate
 OUTRIGGER_REACH = (1.5, 2.5)
 """How far past the centre of pressure an outrigger reaches, as multiples of its
 distance from the leg's face: the shortest that works is suggested."""
+
+SHOP_STEP = 1e-3
+"""m: an outrigger's reach is cut up to a whole millimetre (a foot 39.6 mm long is cut
+at 40: reaching further out only holds better)."""
 
 OUTRIGGER_CLEARANCE = 2.0
 """An outrigger stays this many plank thicknesses below its leg's top (clear of the plank
@@ -181,8 +186,9 @@ def _outrigger_candidates(search: Search, centre: np.ndarray, d: np.ndarray,
         across = axes[:, 1 - up]
         bottom = float(leg.corners[:, 2].min())
         tall = float(leg.corners[:, 2].max()) - bottom
-        for factor in OUTRIGGER_REACH:
-            length = factor * gap / float(outward @ direction)
+        for factor in OUTRIGGER_REACH:          # a whole millimetre longer at most
+            length = math.ceil(factor * gap / float(outward @ direction) / SHOP_STEP - 1e-9) \
+                * SHOP_STEP
             height = min(max(length, 4.0 * thickness), tall - OUTRIGGER_CLEARANCE * thickness)
             centre_3d = leg.center_array + outward * (leg.half_extents[2] + 0.5 * length)
             centre_3d[2] = bottom + 0.5 * height
