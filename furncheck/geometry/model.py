@@ -48,6 +48,17 @@ class Joint:
     def name(self) -> str:
         return f"{self.planks[0]}/{self.planks[1]}"
 
+    @property
+    def listed(self) -> int | None:
+        """Its index in ``Design.joints`` ('joints[2]' -> 2), None when auto-detected."""
+        return int(self.key.split("[", 1)[1].rstrip("]")) if self.key else None
+
+
+def nails_listed(design, joint: Joint) -> bool:
+    """Whether the joint's nail count is given in the file (not from its length)."""
+    return joint.listed is not None and design.joints is not None \
+        and design.joints[joint.listed].nails is not None
+
 
 @dataclass(frozen=True)
 class Contact:

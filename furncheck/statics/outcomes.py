@@ -109,9 +109,8 @@ class _Outcomes:
             forces = bolted.contact_forces
             lifting = self._lifting_rests(forces)
             corners = np.zeros(len(forces), dtype=bool)
-            for k in self.model.rest_rows:
-                corners[k] = self.model.geometry.contacts[self.model.contacts[k]].rest \
-                    in lifting
+            for rest, rows in self._rest_corners().items():
+                corners[rows] = rest in lifting
             resting = self._rests_phrase(corners, "lifts off")
             ground = pulling.copy()
             ground[self.model.rest_rows] = False
@@ -212,13 +211,22 @@ class _Outcomes:
             return "supports"
         return "ground" if self.model.contact_frames is None else "ground and walls"
 
-    def _rest_totals(self, forces: np.ndarray) -> dict[int, np.ndarray]:
-        """Per resting joint (its index in ``Design.joints``), its corners' forces (nK, 3)
-        summed: what the corners push against each other cancels."""
-        model, totals = self.model, {}
+    def _rest_corners(self) -> dict[int, list[int]]:
+        """Per resting joint (its index in ``Design.joints``), its corners' contact rows."""
+        model, corners = self.model, {}
         for k in model.rest_rows:
-            rest = model.geometry.contacts[model.contacts[k]].rest
-            totals[rest] = totals.get(rest, np.zeros(3)) + forces[k]
+            corners.setdefault(model.geometry.contacts[model.contacts[k]].rest, []).append(k)
+        return corners
+
+    def _rest_totals(self, forces: np.ndarray) -> dict[int, np.ndarray]:
+        """Per resting joint, its corners' forces (nK, 3) summed (one after the other):
+        what the corners push against each other cancels."""
+        totals = {}
+        for rest, rows in self._rest_corners().items():
+            total = np.zeros(3)
+            for k in rows:
+                total = total + forces[k]
+            totals[rest] = total
         return totals
 
     def _surface_friction(self, forces: np.ndarray) -> tuple[str, float, float]:
@@ -259,10 +267,7 @@ class _Outcomes:
         lies outside the polygon of its corners, so that it tips about an edge (the
         pull of its corners that pull: a loose block pushed over on its base)."""
         model, found = self.model, {}
-        rows: dict[int, list[int]] = {}
-        for k in model.rest_rows:
-            rows.setdefault(model.geometry.contacts[model.contacts[k]].rest, []).append(k)
-        for rest, ks in rows.items():
+        for rest, ks in self._rest_corners().items():
             normal = forces[ks, 2]
             total = float(normal.sum())
             if total < -self.force_tol:

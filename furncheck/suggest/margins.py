@@ -33,6 +33,7 @@ import numpy as np
 from furncheck.design.model import Design
 from furncheck.dofs import Blocked, Dof, OutOfReach, design_size
 from furncheck.geometry import Geometry, cut_ins, end_depth, end_gap
+from furncheck.geometry.model import nails_listed
 from furncheck.geometry.near import carried_groups, hovering_ends
 from furncheck.geometry.support import convex_hull, outside, pressure_centre
 from furncheck.result import DesignReport
@@ -364,7 +365,7 @@ def _durability(linear: Linearization, sens: Sensitivity,
     p, s = nail_pull_shear(joints * n, stepped.reshape(-1, 6))
     pull_rates = (p.reshape(n, -1) - pull) / NAIL_FORCE_STEP                       # (n, nJ)
     shear_rates = (s.reshape(n, -1) - shear) / NAIL_FORCE_STEP
-    counted = np.array([0.0 if _nails_listed(design, joint) else 1.0 / joint.length
+    counted = np.array([0.0 if nails_listed(design, joint) else 1.0 / joint.length
                         for joint in joints])
     relative = sens.joint_lengths * counted                                        # dL / L
     pull_rates = ((pull_rates - pull * relative) * scales[:, None]).T              # (nJ, n)
@@ -402,14 +403,6 @@ def _bending(linear: Linearization, sens: Sensitivity, scales: np.ndarray) -> li
                               1.0 - float(planks.stress[k]) / strength,
                               -sens.plank_stresses[:, k] * scales / strength, 0.0))
     return margins
-
-
-def _nails_listed(design: Design, joint) -> bool:
-    """Whether the joint's nail count is given in the file (not from its length)."""
-    if not joint.key or design.joints is None:
-        return False
-    index = int(joint.key.split("[", 1)[1].rstrip("]"))
-    return design.joints[index].nails is not None
 
 
 def _toppling(linear: Linearization, force_rates: np.ndarray,

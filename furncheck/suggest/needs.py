@@ -46,6 +46,7 @@ import numpy as np
 
 from furncheck.design.model import Design, Plank
 from furncheck.geometry import Geometry, end_gap
+from furncheck.geometry.model import nails_listed
 from furncheck.geometry.near import carried_groups
 from furncheck.geometry.support import convex_hull, outside
 from furncheck.result import CaseResult, DesignReport, Violation
@@ -266,7 +267,7 @@ def _non_durable(design: Design, geometry: Geometry, where: str, case: CaseResul
     values = {"pull": result.pull, "pull_capacity": result.pull_capacity,
               "shear": result.shear, "shear_capacity": result.shear_capacity,
               "nails": result.nails, "nails_needed": nails, "ratio": ratio}
-    if not _nails_listed(design, joint):
+    if not nails_listed(design, joint):
         spacing = design.material.nail_spacing
         values.update({"spacing": spacing / design.unit_scale,
                        "length": joint.length / design.unit_scale,
@@ -286,12 +287,6 @@ def _anchor(design: Design, where: str, case: CaseResult | None,
         "force": result.size, "capacity": result.capacity,
         "rating_needed": result.size * design.safety_factor,
         "ratio": result.size / result.capacity})
-
-
-def _nails_listed(design: Design, joint) -> bool:
-    if not joint.key or design.joints is None:
-        return False
-    return design.joints[int(joint.key.split("[", 1)[1].rstrip("]"))].nails is not None
 
 
 # -- bending (elastic model) -------------------------------------------------------------

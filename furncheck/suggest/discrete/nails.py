@@ -3,9 +3,9 @@ while the file gives it fewer nails than its length takes.
 
 A listed joint's ``nails`` overrides the spacing rule (contract section 2: otherwise
 max(1, floor(L / nail_spacing)) along its length L).  For every failing joint with such
-a count, the force per nail goes with 1 / n for the same joint forces (``suggest.needs``:
-the explanation's own estimate), so it needs about ceil(n x the worst case's pull or
-shear over its capacity) nails; a joint takes at most the spacing rule's count (nails no
+a count, the force per nail goes with 1 / n for the same joint forces, so it needs about
+ceil(n x the worst case's pull or shear over its capacity) nails (the explanation's own
+estimate, ``suggest.needs``); a joint takes at most the spacing rule's count (nails no
 closer than ``nail_spacing``).  The candidates, each checked in full (and finished with
 thicker boards where it fails by bending alone, ``Search.first_valid``): every such joint
 with the nails it needs (at most what it takes), then, if that is not valid, every one
@@ -16,11 +16,11 @@ joint or a thicker edge plank does that: the continuous search and ``thicker``).
 
 from __future__ import annotations
 
-import math
 from dataclasses import replace
 
 from furncheck.geometry.analysis import nail_count
 from furncheck.suggest.discrete.common import Candidate, Fix, Search, amount, names
+from furncheck.suggest.needs import violation_needs
 
 MORE_NAILS = "more nails"
 """The rule's name in ``tried.Trial`` values."""
@@ -39,7 +39,7 @@ def more_nails(search: Search) -> Fix | None:
         return None
     room = {}
     for joint in joints:
-        spec = _listed(design, joint)
+        spec = None if joint.listed is None else design.joints[joint.listed]
         most = nail_count(joint.length, design.material.nail_spacing)
         if spec is None or spec.nails is None:
             search.not_applicable(MORE_NAILS, "its nails are counted by the spacing rule "
@@ -51,7 +51,10 @@ def more_nails(search: Search) -> Fix | None:
             room[joint.name] = (joint, spec, most)
     if not room:
         return None
-    needed = {name: min(most, max(spec.nails + 1, _needed(search, name, spec.nails)))
+    estimates = {need.where: need.values.get("nails_needed", 0)
+                 for need in violation_needs(design, geometry, search.report)
+                 if need.kind == "non-durable"}
+    needed = {name: min(most, max(spec.nails + 1, estimates.get(name, 0)))
               for name, (_, spec, most) in room.items()}
     fix = search.first_valid([_candidate(search, room, needed)])
     full = {name: most for name, (_, _, most) in room.items()}
@@ -60,29 +63,13 @@ def more_nails(search: Search) -> Fix | None:
     return fix
 
 
-def _listed(design, joint):
-    """The ``JointSpec`` of a listed joint (``Joint.key`` 'joints[k]'), else None."""
-    if not joint.key or design.joints is None:
-        return None
-    return design.joints[int(joint.key.split("[", 1)[1].rstrip("]"))]
-
-
-def _needed(search: Search, name: str, nails: int) -> int:
-    """The nails joint ``name`` needs by the worst case's pull or shear per nail over its
-    capacity (``suggest.needs``' estimate)."""
-    ratio = max((max(result.pull / result.pull_capacity, result.shear / result.shear_capacity)
-                 for case in search.report.cases for result in case.joints
-                 if "/".join(result.planks) == name), default=1.0)
-    return int(math.ceil(nails * ratio - 1e-9))
-
-
 def _candidate(search: Search, room: dict, count: dict[str, int]) -> Candidate:
     """The design with each joint of ``room`` given ``count`` nails, and its advice."""
     design = search.design
     specs = list(design.joints)
     parts = []
     for name, (joint, spec, _) in room.items():
-        specs[int(joint.key.split("[", 1)[1].rstrip("]"))] = replace(spec, nails=count[name])
+        specs[joint.listed] = replace(spec, nails=count[name])
         apart = amount(joint.length / count[name] / design.unit_scale)
         parts.append(f"{count[name]} nails into {name} (now {spec.nails}), about {apart} "
                      f"{design.units} apart")
