@@ -55,6 +55,30 @@ def plain_number(value: float, digits: int = MESSAGE_SIGNIFICANT_DIGITS) -> str:
     return format(rounded, ",f") if len(whole) >= GROUP_FROM_DIGITS else text
 
 
+COMPARED_MAX_DIGITS = 8
+"""``plain_compared`` shows at most this many significant digits."""
+
+
+def distinguishing_digits(value: float, limit: float,
+                          digits: int = MESSAGE_SIGNIFICANT_DIGITS) -> int:
+    """The significant digits, from ``digits`` up to ``COMPARED_MAX_DIGITS``, at which
+    ``plain_number`` writes two different numbers differently: a sag of 1.2075 mm against
+    1.205 mm allowed needs 4 (``1.208`` against ``1.205``; with 3 both read ``1.21``)."""
+    value, limit = float(value), float(limit)
+    while (value != limit and digits < COMPARED_MAX_DIGITS
+           and plain_number(value, digits) == plain_number(limit, digits)):
+        digits += 1
+    return digits
+
+
+def plain_compared(value: float, limit: float,
+                   digits: int = MESSAGE_SIGNIFICANT_DIGITS) -> tuple[str, str]:
+    """``value`` and the ``limit`` it is compared with, each ``plain_number`` with the
+    ``distinguishing_digits`` of the two: ``('1.208', '1.205')``, ``('754.7', '700')``."""
+    digits = distinguishing_digits(value, limit, digits)
+    return plain_number(value, digits), plain_number(limit, digits)
+
+
 def plain_length(value_m: float, scale: float, unit: str,
                  digits: int = MESSAGE_SIGNIFICANT_DIGITS) -> str:
     """A length given in metres, in the design's unit (``scale`` m per unit): ``'4 mm'``."""

@@ -23,7 +23,7 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.design.model import Design, LoadCase, Material
 from furncheck.geometry import Geometry, Joint
-from furncheck.plain import plain_number
+from furncheck.plain import distinguishing_digits, plain_compared, plain_number
 from furncheck.result import (
     AnchorResult,
     CaseResult,
@@ -304,7 +304,8 @@ def _sag_message(design: Design, material: Material, sag: float, allowed: float,
     (a cantilever's free end) name the overhang, whose span is twice it (contract 3a)."""
     unit, scale = design.units, design.unit_scale
     creep = material.creep
-    shown = f"{plain_number(sag / scale, 3)} {unit}"
+    digits = distinguishing_digits(sag * (1 + creep) / scale, allowed / scale, 3)
+    shown = f"{plain_number(sag / scale, digits)} {unit}"
     if overhang:
         bends = (f"{'bows' if upright else 'sags'} {shown}{' sideways' if upright else ''} "
                  f"at the free end of its {plain_number(0.5 * span / scale)} {unit} overhang "
@@ -315,16 +316,17 @@ def _sag_message(design: Design, material: Material, sag: float, allowed: float,
     else:
         bends = f"sags {shown} over a {plain_number(span / scale)} {unit} span, "
     return (bends +
-            f"{plain_number(sag * (1 + creep) / scale, 3)} {unit} with creep "
-            f"(x {plain_number(1 + creep, 6)}); allowed {plain_number(allowed / scale, 3)} "
+            f"{plain_number(sag * (1 + creep) / scale, digits)} {unit} with creep "
+            f"(x {plain_number(1 + creep, 6)}); allowed {plain_number(allowed / scale, digits)} "
             f"{unit} (span / {plain_number(material.sag_limit, 6)})")
 
 
 def _stress_message(design: Design, stress: float, strength: float) -> str:
     factor = ("" if design.safety_factor == 1.0
               else f" (strength / safety factor {plain_number(design.safety_factor, 6)})")
-    return (f"bending stress {plain_number(stress / 1e6, 3)} N/mm^2 exceeds its strength "
-            f"{plain_number(strength / 1e6, 3)} N/mm^2{factor}")
+    stress_shown, strength_shown = plain_compared(stress / 1e6, strength / 1e6, 3)
+    return (f"bending stress {stress_shown} N/mm^2 exceeds its strength "
+            f"{strength_shown} N/mm^2{factor}")
 
 
 def case_holds(design: Design, geometry: Geometry, model: StaticsModel,
@@ -380,11 +382,11 @@ def _durability_message(nails: NailForces, design: Design) -> str:
     factor = ("" if design.safety_factor == 1.0
               else f" (capacity / safety factor {plain_number(design.safety_factor, 6)})")
     if nails.pull > nails.pull_capacity:
-        parts.append(f"pull {plain_number(nails.pull)} N per nail exceeds "
-                     f"{plain_number(nails.pull_capacity)} N")
+        parts.append("pull {} N per nail exceeds {} N".format(
+            *plain_compared(nails.pull, nails.pull_capacity)))
     if nails.shear > nails.shear_capacity:
-        parts.append(f"shear {plain_number(nails.shear)} N per nail exceeds "
-                     f"{plain_number(nails.shear_capacity)} N")
+        parts.append("shear {} N per nail exceeds {} N".format(
+            *plain_compared(nails.shear, nails.shear_capacity)))
     return "; ".join(parts) + factor
 
 

@@ -4,7 +4,13 @@ import math
 
 import pytest
 
-from furncheck.plain import GROUP_FROM_DIGITS, plain_length, plain_number
+from furncheck.plain import (
+    GROUP_FROM_DIGITS,
+    distinguishing_digits,
+    plain_compared,
+    plain_length,
+    plain_number,
+)
 from furncheck.report.numbers import format_number, format_percent
 
 
@@ -71,3 +77,62 @@ def test_sizes_beyond_the_plain_range_use_an_exponent():
     assert plain_number(1.23456e20, 6) == "1.23456e+20"
     assert plain_number(-3e-12) == "-3e-12"
     assert plain_number(1.5e-9) == "0.0000000015"
+
+
+@pytest.mark.parametrize(("value", "limit", "digits", "shown"), [
+    (1.2075, 1.205, 3, ("1.208", "1.205")),     # 1.21 against 1.21 at three digits
+    (754.7, 700.0, 4, ("754.7", "700")),        # different already: as plain_number
+    (700.04, 700.0, 4, ("700.04", "700")),
+    (1.0 + 1e-12, 1.0, 4, ("1", "1")),          # beyond the digits shown: left alike
+    (5.0, 5.0, 3, ("5", "5")),
+])
+def test_compared_numbers_read_differently_when_they_differ(value, limit, digits, shown):
+    """A value and the limit it is compared with get the fewest digits (from ``digits``)
+    at which they read differently, so a message never says '1.21 mm ... allowed 1.21
+    mm' for a sag over its allowance; equal numbers, or numbers closer than
+    COMPARED_MAX_DIGITS show, keep ``digits``' reading."""
+    assert plain_compared(value, limit, digits) == shown
+    assert distinguishing_digits(value, limit, digits) >= digits
+
+
+SIDE_TABLE = """\
+furncheck: 1
+name: side-table
+material: {thickness: 18}
+planks:
+  - {id: top, size: [500, 500], center: [0, 0, 591]}
+  - {id: leg_pp, size: [582, 45], center: [241, 227.5, 291], rotation: [0, -90, 0]}
+  - {id: leg_mp, size: [582, 45], center: [-241, 227.5, 291], rotation: [0, -90, 0]}
+  - {id: leg_pm, size: [582, 45], center: [241, -227.5, 291], rotation: [0, -90, 0]}
+  - {id: leg_mm, size: [582, 45], center: [-241, -227.5, 291], rotation: [0, -90, 0]}
+loads:
+  - {plank: top, mass: 25}
+"""
+
+
+def test_a_sag_just_over_its_allowance_reads_over_it(tmp_path):
+    """The side table's top sags w/(1 + creep) just past span / 400 (1.2075 against
+    1.205 mm): the violation and the explanation show both with the digits that tell them
+    apart, and the thickness the explanation estimates (t (ratio)^(1/3)) above 18 mm."""
+    import re
+
+    from furncheck.check import check_file
+    from furncheck.design.load import load_design
+    from furncheck.report.explanation import need_text
+    from furncheck.suggest import suggest_design
+
+    path = tmp_path / "side-table.yaml"
+    path.write_text(SIDE_TABLE)
+    (violation,) = check_file(path).violations
+    crept, allowed = re.search(r"([\d.]+) mm with creep .*allowed ([\d.]+) mm",
+                               violation.message).groups()
+    assert plain_number(float(crept), 3) == plain_number(float(allowed), 3)   # the case
+    assert float(crept) > float(allowed)
+    explanation = suggest_design(load_design(path)).explanation
+    (need,) = explanation.needs
+    text = need_text(need, "mm")
+    crept, allowed = re.search(r"sags ([\d.]+) mm with creep .* against ([\d.]+) mm",
+                               text).groups()
+    assert float(crept) > float(allowed)
+    ratio, needed = re.search(r"\(([\d.]+)\)\^\(1/3\) = ([\d.]+) mm", text).groups()
+    assert float(ratio) > 1.0 and float(needed) > 18.0

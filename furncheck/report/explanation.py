@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from furncheck.plain import distinguishing_digits
 from furncheck.report.common import plural
 from furncheck.report.numbers import format_number
 from furncheck.suggest.candidates import MAX_STEP
@@ -28,10 +29,18 @@ SHOWN = 8
 """Line searches and discrete trials listed in the text; the rest are counted."""
 
 
-def _n(value: float) -> str:
-    """DIGITS significant digits, whole units at least (1250, not 1.25e+03)."""
+def _n(value: float, digits: int = DIGITS) -> str:
+    """``digits`` significant digits, whole units at least (1250, not 1.25e+03)."""
     whole = len(str(int(abs(round(value)))))
-    return format_number(value, max(DIGITS, whole))
+    return format_number(value, max(digits, whole))
+
+
+def _digits(value: float, limit: float) -> int:
+    """Significant digits with which ``_n`` shows a value and the limit it is compared
+    with differently (``plain.distinguishing_digits``): 1.208 against 1.205, not 1.21
+    against 1.21."""
+    whole = len(str(int(abs(round(max(abs(value), abs(limit)))))))
+    return distinguishing_digits(value, limit, max(DIGITS, whole))
 
 
 # -- what it would take ------------------------------------------------------------------
@@ -50,10 +59,12 @@ def _sliding(v: dict, units: str) -> str:
     if v["friction"] <= 0.0:        # no weight holds a push without friction
         return (f"the push of {_n(v['push'])} N meets no friction (mu = 0): no weight "
                 f"holds it; friction mu >= {_n(v['friction_needed'])} would (or no push)")
-    return (f"the push of {_n(v['push'])} N exceeds mu W = {_n(v['friction'])} x "
-            f"{_n(v['weight'])} N = {_n(v['holds'])} N; {_n(v['extra_mass'])} kg more weight "
+    digits = _digits(v["push"], v["holds"])
+    push, holds = _n(v["push"], digits), _n(v["holds"], digits)
+    return (f"the push of {push} N exceeds mu W = {_n(v['friction'])} x "
+            f"{_n(v['weight'])} N = {holds} N; {_n(v['extra_mass'])} kg more weight "
             f"on it, or friction mu >= {_n(v['friction_needed'])}, would hold it (or a push "
-            f"of at most {_n(v['holds'])} N)")
+            f"of at most {holds} N)")
 
 
 def _lift_off(v: dict, units: str) -> str:
@@ -79,8 +90,10 @@ def _non_durable(v: dict, units: str) -> str:
                 f"an anchor rated for at least {_n(v['rating_needed'])} N would hold it")
     pulls = v["pull"] / v["pull_capacity"] >= v["shear"] / v["shear_capacity"]
     force, capacity = ("pull", "pull_capacity") if pulls else ("shear", "shear_capacity")
-    text = (f"{force} {_n(v[force])} N per nail against {_n(v[capacity])} N "
-            f"(x {_n(v['ratio'])}); the force per nail goes with 1 / n for the same joint "
+    digits = _digits(v[force], v[capacity])
+    ratio = _n(v["ratio"], _digits(v["ratio"], 1.0))
+    text = (f"{force} {_n(v[force], digits)} N per nail against {_n(v[capacity], digits)} N "
+            f"(x {ratio}); the force per nail goes with 1 / n for the same joint "
             f"forces, so {v['nails_needed']} nails instead of {v['nails']} would hold it")
     if "length_needed" in v:
         text += (f": a joint {_n(v['length_needed'])} {units} long at {_n(v['spacing'])} "
@@ -90,18 +103,24 @@ def _non_durable(v: dict, units: str) -> str:
 
 def _bent(v: dict, units: str) -> str:
     t = "t" if v["dimension"] == "thickness" else "w"
-    size, needed = f"{_n(v['size'])} {units}", f"{_n(v['size_needed'])} {units}"
+    grown = _digits(v["size"], v["size_needed"])
+    size, needed = f"{_n(v['size'], grown)} {units}", f"{_n(v['size_needed'], grown)} {units}"
     word = "thick" if v["dimension"] == "thickness" else "deep (on edge)"
+    ratio = _n(v["ratio"], _digits(v["ratio"], 1.0))
     if "sag" in v:
-        now = f"sags {_n(v['sag'] * (1 + v['creep']))} {units} with creep " \
-              f"({_n(v['sag'])} {units} x {_n(1 + v['creep'])}) against " \
-              f"{_n(v['sag_allowed'])} {units} allowed"
+        crept = v["sag"] * (1 + v["creep"])
+        digits = _digits(crept, v["sag_allowed"])
+        now = f"sags {_n(crept, digits)} {units} with creep " \
+              f"({_n(v['sag'], digits)} {units} x {_n(1 + v['creep'])}) against " \
+              f"{_n(v['sag_allowed'], digits)} {units} allowed"
         law = f"sag goes with 1 / {t}^3 for the same load (I = b {t}^3 / 12)"
-        formula = f"{size} x ({_n(v['ratio'])})^(1/3)"
+        formula = f"{size} x ({ratio})^(1/3)"
     else:
-        now = f"bending stress {_n(v['stress'])} N/mm^2 against {_n(v['strength'])} N/mm^2"
+        digits = _digits(v["stress"], v["strength"])
+        now = f"bending stress {_n(v['stress'], digits)} N/mm^2 against " \
+              f"{_n(v['strength'], digits)} N/mm^2"
         law = f"stress goes with 1 / {t}^2 for the same load (S = b {t}^2 / 6)"
-        formula = f"{size} x ({_n(v['ratio'])})^(1/2)"
+        formula = f"{size} x ({ratio})^(1/2)"
     if "sag" in v:
         return (f"{now}; {law}, so at least {t} = {formula} = {needed} {word} is needed (a "
                 f"lower bound: its own weight grows with {t}, and nailed ends hold a stiffer "

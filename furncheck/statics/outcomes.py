@@ -16,7 +16,7 @@ import numpy as np
 
 from furncheck import tolerances as tol
 from furncheck.geometry.support import convex_hull, outside
-from furncheck.plain import plain_number
+from furncheck.plain import plain_compared, plain_number
 from furncheck.statics.model import CaseStatics
 
 if TYPE_CHECKING:   # the programs are imported where a case needs them
@@ -59,13 +59,14 @@ class _Outcomes:
                 needed, capacity = self._rests_friction(forces, over)
             else:                                   # the ground's and walls' corners
                 surface, needed, capacity = self._surface_friction(forces)
+            needs, gives = plain_compared(needed, capacity)
             if resting:
-                what = (f"{resting}: a resting joint must pass on {plain_number(needed)} N "
-                        f"along its faces, its friction gives at most {plain_number(capacity)} N")
+                what = (f"{resting}: a resting joint must pass on {needs} N along its faces, "
+                        f"its friction gives at most {gives} N")
             else:
                 faces = "their faces" if surface.endswith("walls") else "its face"
-                what = (f"{surface} must hold {plain_number(needed)} N along {faces}, "
-                        f"friction gives at most {plain_number(capacity)} N")
+                what = f"{surface} must hold {needs} N along {faces}, friction gives at most " \
+                       f"{gives} N"
             detail = (f"no equilibrium within the friction cones (mu = "
                       f"{plain_number(self.mu, 6)}): {what}")
             return CaseStatics("sliding", _wrenches(solution.h), forces,
@@ -79,9 +80,10 @@ class _Outcomes:
                                / max(float(forces[:, 2].sum()), 1e-300)))
         significant = twist > 0.05 * sideways * radius + self.force_tol
         twist_text = f" and a {plain_number(twist, 3)} N m twist" if significant else ""
+        needs, gives = plain_compared(sideways, capacity)
         detail = (f"no equilibrium within the friction cones (mu = {plain_number(self.mu, 6)}): "
-                  f"the ground must resist {plain_number(sideways)} N sideways{twist_text}, "
-                  f"friction gives at most {plain_number(capacity)} N")
+                  f"the ground must resist {needs} N sideways{twist_text}, "
+                  f"friction gives at most {gives} N")
         if sideways > capacity + self.force_tol:    # it slides as a whole: all its feet
             over = forces[:, 2] > self.force_tol
         return CaseStatics("sliding", _wrenches(solution.h), forces, self._plank_ids(over),
