@@ -48,7 +48,7 @@ def _combined_dofs(value: int) -> int:
 @click.option("--out", "out_dir", metavar="DIR", default=None,
               help="Write each suggestion there: suggestion-NN.yaml (a complete design "
                    "file), coloured .glb and .obj/.mtl meshes, a force-space plot and a "
-                   "before/after view (pictures need the export extra); and the design's "
+                   "before/after view; and the design's "
                    "own view and meshes.  Files of an earlier run of the design there are "
                    "replaced; beside another design's, files are named after the design.")
 @click.option("--no-plots", "no_plots", is_flag=True, default=False,

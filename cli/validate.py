@@ -49,8 +49,7 @@ the report does not go to that terminal too."""
               help="Processes checking designs; a catalog that takes less than about "
                    "0.2 s is checked in one.  [default: all cores]")
 @click.option("--views", "views_dir", metavar="DIR", default=None,
-              help="Also write a view of each design there, DIR/<name>-view.png (needs "
-                   "the export extra).")
+              help="Also write a view of each design there, DIR/<name>-view.png.")
 @click.option("--html", "html_file", metavar="FILE", default=None,
               help="Also write a report page of the whole run there: a sortable, "
                    "filterable table of the designs (verdict, worst utilization, "

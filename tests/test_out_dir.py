@@ -166,8 +166,8 @@ def test_pictures_drawn_in_workers_are_those_drawn_here(tmp_path: Path, monkeypa
 
 def test_validate_views_without_matplotlib_is_a_usage_error(tmp_path: Path,
                                                             monkeypatch) -> None:
-    """--views asks for pictures: without the export extra, one line and exit 2 before
-    any design is checked."""
+    """--views asks for pictures: where matplotlib cannot be imported, one line and exit 2
+    before any design is checked."""
     import importlib.util
 
     real = importlib.util.find_spec
@@ -175,5 +175,6 @@ def test_validate_views_without_matplotlib_is_a_usage_error(tmp_path: Path,
                         lambda name, *args: None if name == "matplotlib" else real(name, *args))
     result = CliRunner().invoke(main, ["validate", TIPS, "--views", str(tmp_path / "v")])
     assert result.exit_code == 2
-    assert result.output.strip() == ("furncheck: cannot write views: pictures need the "
-                                     "export extra: pip install 'furncheck[export]'")
+    assert result.output.strip() == ("furncheck: cannot write views: pictures need "
+                                     "matplotlib, which cannot be imported: pip install "
+                                     "matplotlib")

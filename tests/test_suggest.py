@@ -762,7 +762,7 @@ def test_representative_is_valid_in_every_case():
 
 
 def test_cli_out_without_the_export_extra_still_writes_design_files(tmp_path, monkeypatch):
-    """Without matplotlib (the export extra), --out writes the design files and meshes,
+    """Where matplotlib cannot be imported, --out writes the design files and meshes,
     says on stderr that pictures were skipped, and exits 0."""
     import importlib.util
 

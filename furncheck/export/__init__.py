@@ -11,10 +11,10 @@
     plots        the force space of a change (PNG, matplotlib)
     suggestions  the files of ``suggest --out``; catalog: ``validate --views``
     folders      the checks before any work: output folder usable, matplotlib there
-    errors       ExportUnavailable: the ``export`` extra (matplotlib) is not installed
+    errors       ExportUnavailable: matplotlib cannot be imported
 
 matplotlib is imported only inside the functions that draw, so importing this package
-stays cheap and works without the extra; drawing without it raises ``ExportUnavailable``.
+stays cheap and works without it; drawing without it raises ``ExportUnavailable``.
 """
 
 from furncheck.export.errors import ExportUnavailable

@@ -1,19 +1,20 @@
-"""The one error of the export package: its optional dependencies are missing.
+"""The one error of the export package: matplotlib cannot be imported.
 
-matplotlib is the ``export`` extra of the package; ``validate`` and ``range`` never need
-it, so it is imported only inside the functions that draw, and its absence is reported
-as a typed error that the CLI turns into one line.  (Meshes are written with numpy.)
+matplotlib is a dependency of the package, but ``validate`` and ``range`` never need it,
+so it is imported only inside the functions that draw; where it is missing all the same
+(an environment installed without dependencies, a broken install) that is reported as a
+typed error that the CLI turns into one line.  (Meshes are written with numpy.)
 """
 
 from __future__ import annotations
 
 from furncheck.errors import FurncheckError
 
-EXPORT_HINT = "pictures need the export extra: pip install 'furncheck[export]'"
+EXPORT_HINT = "pictures need matplotlib, which cannot be imported: pip install matplotlib"
 
 
 class ExportUnavailable(FurncheckError):
-    """matplotlib is not installed.
+    """matplotlib cannot be imported.
 
     module : the module whose import failed ('matplotlib')
     """

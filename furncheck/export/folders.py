@@ -21,7 +21,7 @@ well inside the 255 bytes a file name may have."""
 
 
 def pictures_missing() -> ExportUnavailable | None:
-    """Why pictures cannot be drawn here (matplotlib is not installed), or None."""
+    """Why pictures cannot be drawn here (matplotlib cannot be imported), or None."""
     if importlib.util.find_spec("matplotlib") is None:
         return ExportUnavailable("matplotlib")
     return None

@@ -13,8 +13,8 @@ names this run would write: a stale suggestion-04.yaml does not stay beside a ne
 and nothing else is touched.
 When the folder holds another design's suggestion-NN.yaml (its ``name`` says whose it
 is), this run names its suggestion files after its design, ``<name>-suggestion-01.yaml``
-and so on, so several designs can share a folder.  Pictures (PNG) need matplotlib (the
-``export`` extra) and can be left out (``pictures=False``); meshes and design files need
+and so on, so several designs can share a folder.  Pictures (PNG) need matplotlib (imported
+only to draw) and can be left out (``pictures=False``); meshes and design files need
 nothing beyond numpy.  Pictures take most of the time: with several suggestions they are
 drawn in worker processes, one per core (``draw_in_parallel``).
 """

@@ -232,7 +232,7 @@ def _model_viewer(glb: bytes | None, label: str) -> str:
 @dataclass(frozen=True)
 class PageDesign:
     """A design shown on a suggestion page: its report, the design, its GLB model (None
-    without the export extra) and pictures (file names relative to the page)."""
+    where matplotlib cannot be imported) and pictures (file names relative to the page)."""
 
     report: DesignReport
     design: Design
