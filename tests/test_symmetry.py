@@ -80,6 +80,28 @@ def test_broken_pairs_counts_what_an_edit_unmirrors():
     assert broken_pairs(design, planes) == 0
 
 
+def test_an_added_plank_without_a_mirror_image_breaks_the_symmetry():
+    """Planks an edit adds count too: one support under the seat's end (x = 120) breaks
+    the stool's symmetry, a pair of them at x = -120 and +120 does not, nor one on the
+    mirror plane (x = 0); planks of the input are never counted as added."""
+    design = stool()
+    planes = mirror_planes(design)
+    original = frozenset(design.plank_index)
+    text = (CATALOG / "stool.yaml").read_text()
+
+    def with_supports(*xs: float):
+        added = "".join(f"  - {{id: support-{k}, size: [300, 80], center: [{x}, 0, 150], "
+                        f"rotation: [0, -90, 0]}}\n" for k, x in enumerate(xs))
+        return parse_design(text.replace("planks:\n", "planks:\n" + added, 1), "s.yaml",
+                            "yaml")
+
+    assert broken_pairs(with_supports(120), planes, original) == 1
+    assert broken_pairs(with_supports(120), planes) == 0           # no input planks given
+    assert broken_pairs(with_supports(-120, 120), planes, original) == 0
+    assert broken_pairs(with_supports(0), planes, original) == 0
+    assert broken_pairs(design, planes, original) == 0
+
+
 # --- the catalog: a symmetric fix among the first three where one works --------------------
 
 def corners_of(document: dict) -> dict[str, np.ndarray]:

@@ -16,7 +16,8 @@ design, and ranked by ``ShopScore.key`` (smaller first), lexicographically:
    seat, a top) raised or lowered by more than HEIGHT_SHARE of its height (a chair's seat
    lowered to 80 mm: another piece);
 2. ``broken``: mirror relations the edit breaks (``symmetry.broken_pairs``: a pair of
-   mirror planks no longer mirrored, or a plank on the mirror plane no longer symmetric)
+   mirror planks no longer mirrored, a plank on the mirror plane no longer symmetric, or
+   an added plank without a mirror image among the added ones)
    -- on a symmetric design a symmetric fix comes first where one works;
 3. ``cost``: the sum over the planks touched of each one's largest *relative* change --
    a size change over the size it had, a move over the design's size (its largest
@@ -99,8 +100,8 @@ def shop_score(original: Design, geometry: Geometry, planes: tuple[MirrorPlane, 
     ``geometry`` is the original's, ``planes`` its mirror planes."""
     size = design_size(original)
     cost = sum(_relative(edit, size) for edit in edits) + PLANK_COST * len(edits)
-    return ShopScore(implausible(original, geometry, edited), broken_pairs(edited, planes),
-                     cost, len(edits))
+    broken = broken_pairs(edited, planes, frozenset(original.plank_index))
+    return ShopScore(implausible(original, geometry, edited), broken, cost, len(edits))
 
 
 def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[str, ...]:

@@ -69,11 +69,16 @@ def mirror_planes(design: Design) -> tuple[MirrorPlane, ...]:
     return tuple(planes)
 
 
-def broken_pairs(design: Design, planes: tuple[MirrorPlane, ...]) -> int:
+def broken_pairs(design: Design, planes: tuple[MirrorPlane, ...],
+                 original: frozenset[str] = frozenset()) -> int:
     """How many of the planes' mirror relations (pairs, and planks that were their own
-    image) ``design`` no longer has about the same planes: 0 for a symmetric edit."""
+    image) ``design`` no longer has about the same planes, plus the planks it adds (those
+    not in ``original``, the input's plank ids) that have no image about a plane among
+    the added planks and are not their own: 0 for a symmetric edit (a support at one end
+    of a symmetric bench breaks its symmetry as much as moving one of its legs)."""
     slack = MIRROR_TOLERANCE_FACTOR * design.tolerance
     broken = 0
+    added = [plank for plank in design.planks if original and plank.id not in original]
     for plane in planes:
         for a, b in plane.partner.items():
             if a > b or a not in design.plank_index or b not in design.plank_index:
@@ -81,6 +86,8 @@ def broken_pairs(design: Design, planes: tuple[MirrorPlane, ...]) -> int:
             if not _mirrored(design.plank(a), design.plank(b), plane.axis, plane.offset,
                              slack):
                 broken += 1
+        broken += sum(not any(_mirrored(plank, other, plane.axis, plane.offset, slack)
+                              for other in added) for plank in added)
     return broken
 
 
