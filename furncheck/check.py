@@ -188,11 +188,12 @@ def case_statics(design: Design, geometry: Geometry, model: StaticsModel | None 
 
 
 def load_checked(path: str) -> Design:
-    """``load_design`` and what the file's own drawing must satisfy besides its schema:
-    every resting joint's planks touch (``geometry.resting_apart``); DesignError else."""
+    """``load_design``: the design of a file, its schema checked (a resting joint whose
+    planks do not touch is no input error but a ``disconnected`` violation, as any
+    listed joint's: contract section 2)."""
     from furncheck.design import load_design
 
-    return _drawing_checked(load_design(path))
+    return load_design(path)
 
 
 def load_data(data: bytes, source: str, fmt: str) -> Design:
@@ -200,16 +201,7 @@ def load_data(data: bytes, source: str, fmt: str) -> Design:
     file read by another process): ``source`` names it, ``fmt`` is 'yaml' or 'json'."""
     from furncheck.design.load import parse_design_bytes
 
-    return _drawing_checked(parse_design_bytes(data, source, fmt))
-
-
-def _drawing_checked(design: Design) -> Design:
-    from furncheck.geometry.analysis import resting_apart
-
-    problem = resting_apart(design)
-    if problem is not None:
-        raise problem
-    return design
+    return parse_design_bytes(data, source, fmt)
 
 
 def check_file(path: str, model: str | None = None) -> DesignReport:

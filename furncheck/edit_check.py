@@ -131,7 +131,10 @@ def _edit_problem(original: Geometry, geometry: Geometry,
     held_after = {_support(c) for c in geometry.contacts if c.anchor is None}
     changed = sorted((held_before ^ held_after)
                      - {(plank, None, None) for plank, *_ in held_after
-                        if (plank,) in closing or stand},
+                        if (plank,) in closing or stand}
+                     - {(plank, None, on) for plank, _, on in held_after    # a listed
+                        if on is not None and frozenset((plank, on)) in listed},  # rest,
+                     # apart as drawn, that the edit closes
                      key=lambda key: (key[0], -1 if key[1] is None else key[1], key[2] or ""))
     if changed:
         plank, wall, on = changed[0]

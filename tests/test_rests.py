@@ -132,8 +132,6 @@ def test_a_resting_joint_has_no_nails_and_does_not_join_the_groups():
     ({"planks": ["top", "side_l"], "type": "glued"}, "joints[2].type: unknown joint type"),
     ({"planks": ["top", "side_l"], "type": "rests", "nails": 4},
      "joints[2].nails: a joint of type rests has no nails"),
-    ({"planks": ["top", "bottom"], "type": "rests"},
-     "joints[2]: top does not rest on bottom"),
 ])
 def test_bad_resting_joints_give_one_line_and_exit_2(tmp_path, joint, message):
     doc = copy.deepcopy(FRAME) | {"loads": [{"plank": "top", "mass": 5}]}
@@ -144,6 +142,37 @@ def test_bad_resting_joints_give_one_line_and_exit_2(tmp_path, joint, message):
         result = CliRunner().invoke(main, command)
         assert result.exit_code == 2, (command, result.output)
         assert message in result.output and "Traceback" not in result.output
+
+
+def test_a_resting_joint_whose_planks_do_not_touch_is_disconnected(tmp_path):
+    """Contract section 2: a listed joint whose planks do not touch within the tolerance
+    is disconnected -- a resting one too (it was an input error, exit 2): the design is
+    invalid (exit 1), with the gap, and suggest and range run on it (exit 0)."""
+    doc = copy.deepcopy(FRAME) | {"loads": [{"plank": "top", "mass": 5}]}
+    doc["joints"][2] = {"planks": ["top", "bottom"], "type": "rests"}
+    path = tmp_path / "apart.yaml"
+    path.write_text(yaml.safe_dump(doc, sort_keys=False))
+    result = CliRunner().invoke(main, ["validate", str(path), "--format", "json"])
+    assert result.exit_code == 1, result.output
+    (report,) = json.loads(result.output)["reports"]
+    (apart,) = [v for v in report["violations"] if v["where"] == "top/bottom"]
+    assert apart["kind"] == "disconnected" and "do not touch" in apart["message"]
+    for command in (["range", str(path), "top.z"], ["suggest", str(path)]):
+        result = CliRunner().invoke(main, command)
+        assert result.exit_code == 0, (command, result.output)
+
+
+def test_a_plank_lying_flat_on_another_is_named_so():
+    """Two boards lying face to face form no joint (a joint is an end on a face): the
+    disconnected message says so, not that their corners are 70 mm apart."""
+    design = parse_design(
+        "furncheck: 1\nplanks:\n"
+        "  - {id: bottom, size: [400, 300], center: [0, 0, 6]}\n"
+        "  - {id: top, size: [300, 200], center: [0, 0, 18]}\n"
+        "joints:\n  - {planks: [top, bottom], type: rests}\n", "stack.yaml", "yaml")
+    (apart,) = [v for v in analyze(design).violations if v.kind == "disconnected"]
+    assert apart.where == "top/bottom"
+    assert apart.message.startswith("top lies flat on bottom, face to face")
 
 
 def test_resting_joints_round_trip_through_a_written_file(tmp_path):

@@ -14,7 +14,6 @@ import numpy as np
 
 from furncheck import tolerances as tol
 from furncheck.design.model import Design, Plank, tabulate_planks
-from furncheck.errors import DesignError
 from furncheck.geometry.boxes import meeting_pairs
 from furncheck.geometry.faces import (
     _best_touches,
@@ -276,29 +275,6 @@ def _listed_joints(design: Design,
     return joints, rests
 
 
-def resting_apart(design: Design) -> DesignError | None:
-    """The input error of a resting joint (``type: rests``) whose planks do not touch
-    within the tolerance, or cut into each other: a file that says a plank rests on
-    another must draw it there (contract section 1); None if every one touches."""
-    slack = design.tolerance + _GEOMETRY_EPS
-    for index, spec in enumerate(design.joints or ()):
-        if not spec.rests:
-            continue
-        i, j = (design.plank_index[p] for p in spec.planks)
-        touch = _best_touches(design.planks, np.array([[i, j]]), slack,
-                              keep_deep=True).get((i, j))
-        key = f"joints[{index}]"
-        if touch is None:
-            return DesignError(design.source, key, design.line_of(key),
-                               f"{spec.planks[0]} does not rest on {spec.planks[1]}: "
-                               + _apart_message(design, i, j))
-        if touch.gap < -slack:
-            return DesignError(design.source, key, design.line_of(key),
-                               f"{spec.planks[0]} and {spec.planks[1]} cut "
-                               f"{_fmt_len(-touch.gap, design)} into each other")
-    return None
-
-
 def _rest_followed(design: Design, contact: Contact) -> Contact:
     """A resting joint's corner on an edited design: its touching region measured again
     (the old corner where the planks no longer touch)."""
@@ -356,10 +332,35 @@ def _apart_message(design: Design, i: int, j: int) -> str:
                 f"{_fmt_len(touch.gap, design)} from the face of {touch.face.id} "
                 f"(tolerance {_fmt_len(design.tolerance, design)})")
     a, b = design.planks[i], design.planks[j]
+    flat = _lying_on(design, a, b) or _lying_on(design, b, a)
+    if flat is not None:
+        return (f"{flat[0]} lies flat on {flat[1]}, face to face: a joint is an end (a "
+                f"narrow face) of one plank on a face of the other; faces lying on each "
+                f"other are not modelled (stand the upper one on its edge, or leave the "
+                f"joint out)")
     diff = a.corners[:, None, :] - b.corners[None, :, :]
     gap = float(np.sqrt((diff ** 2).sum(axis=2)).min())
     return (f"planks do not touch: no end face of one lies on a face of the other "
             f"(closest corners {_fmt_len(gap, design)} apart)")
+
+
+def _lying_on(design: Design, upper, lower) -> tuple[str, str] | None:
+    """(upper id, lower id) when ``upper``'s broad face lies on ``lower``'s (parallel
+    faces within the tolerance of each other, their outlines overlapping), else None."""
+    normal = lower.rotation_matrix[:, 2]
+    if abs(float(upper.rotation_matrix[:, 2] @ normal)) < 1.0 - 1e-6:
+        return None
+    lower_top = float(normal @ lower.center_array) + 0.5 * lower.thickness
+    lower_bottom = lower_top - lower.thickness
+    heights = upper.corners @ normal
+    near_top = abs(float(heights.min()) - lower_top) <= design.tolerance
+    near_bottom = abs(float(heights.max()) - lower_bottom) <= design.tolerance
+    if not (near_top or near_bottom):
+        return None
+    local = (upper.corners - lower.center_array) @ lower.rotation_matrix[:, :2]
+    half = 0.5 * np.array([lower.length, lower.width])
+    overlaps = (local.min(axis=0) < half) & (local.max(axis=0) > -half)
+    return (upper.id, lower.id) if bool(overlaps.all()) else None
 
 
 # --- ground, components -----------------------------------------------------------------------
