@@ -47,6 +47,16 @@ NAIL_COUNT_EPS = 1e-6
 MIN_JOINT_AREA_FRACTION = 1e-6
 """A touching region smaller than this fraction of the edge face's area is no joint."""
 
+MIN_BEARING_SHARE = 0.5
+"""A nail joint's touching region must be at least this share of the edge plank's
+thickness wide across the joint line (its area over its length): nails are driven along
+the middle of that band, so a narrower one puts them within a quarter of the thickness of
+the face plank's edge, where they split out or miss (EN 1995-1-1 8.3.1.2 asks 5 d to 10 d
+of edge distance for a nail, 10 to 20 mm for a 2 mm one: this is a floor, not that
+spacing rule).  A shelf whose end covers 0.5 mm of its side is no joint but a near miss
+(``disconnected``, with the bearing it has); resting joints, with no nails, keep any
+touch."""
+
 NEAR_MISS_FACTOR = 20.0
 """Near misses (contract section 2): where an auto joint or a ground contact would be, a
 gap or an overlap of more than the design's tolerance but at most this many times it (10

@@ -7,7 +7,8 @@ whose forces are only the admissible ones closest to an unsettled iterate); the 
 behind it (Newton's method on the whole contact law, the programs) run here on purpose.
 
 The design is the catalog's 28-plank cabinet in the elastic model with its left side
-turned by 1.7 degrees (a step of the ``range`` search met it): its 'lean' case cycles.
+turned by 1.7 degrees (a step of the ``range`` search met it, before the bearing rule
+made its rail_a joint a sliver): its 'lean' case cycles.
 A table whose top is left on two corners by the lifts shows the normal phase following
 the top down onto a third instead of giving up (``_ActiveSet._seat_toppling``).
 """
@@ -20,6 +21,7 @@ import numpy as np
 import pytest
 import yaml
 
+from furncheck import tolerances as tol
 from furncheck.design import parse_design
 from furncheck.geometry import analyze
 from furncheck.statics import build_model, external_forces, solve_case
@@ -35,7 +37,12 @@ def _tilted_cabinet():
     side.update(size=[988.989351072, 385.401019364], center=[-594.0, -7.30271217233, 500.0],
                 rotation=[-90.0, -88.297980757284, 90.0])
     design = parse_design(yaml.safe_dump(tree, sort_keys=False), "tilted.yaml", "yaml")
-    geometry = analyze(design)
+    with pytest.MonkeyPatch.context() as patch:
+        # turned so, the side holds rail_a's end on a 0.1 mm band, which is no nail joint
+        # since the bearing rule (``tolerances.MIN_BEARING_SHARE``); the statics tested
+        # here take the joint as it was found, the rule off for its geometry alone
+        patch.setattr(tol, "MIN_BEARING_SHARE", 0.0)
+        geometry = analyze(design)
     assert not geometry.violations
     return design, build_model(design, geometry)
 

@@ -532,6 +532,27 @@ load_cases:
     assert support.adds == (support.design.plank("support-1"),)   # JSON adds: as cut
 
 
+def test_an_added_panel_covers_the_edge_of_a_plank_the_fix_makes_thicker():
+    """designs/bench.yaml (elastic): a back panel over the edges of the seat and legs holds
+    it once the seat is a 36 mm board; the seat, whose underside holds the legs' ends,
+    grows upward (444 + 6 -> top face 474 mm), so the panel, drawn up to the 12 mm seat's
+    top face (450 mm), is lengthened to 474 mm: it still covers the whole edge, which now
+    bears on it over its 36 mm (a panel left at 450 would cover 12 mm of it, less than
+    the half a nail joint needs, and the fix was dropped).  The advice gives the panel
+    as cut."""
+    design = with_model(load_design(str(CATALOG / "bench.yaml")), "elastic")
+    panel = next(fix for fix in fixes(design) if fix.rule == "back panel")
+    back = panel.design.plank("back-1")
+    seat = panel.design.plank("seat")
+    assert seat.thickness == pytest.approx(0.036)
+    top_of_seat = seat.center[2] + 0.5 * seat.thickness
+    assert top_of_seat == pytest.approx(0.474)
+    assert back.center[2] + 0.5 * back.width == pytest.approx(top_of_seat, abs=1e-9)
+    assert back.center[2] - 0.5 * back.width == pytest.approx(0.0, abs=1e-9)
+    assert panel.advice.startswith("Add back panel back-1 (1200 x 474 x 25 mm) ")
+    assert check_design(panel.design).valid
+
+
 # --- more nails ------------------------------------------------------------------------------
 
 WALL_SHELF = """\

@@ -325,7 +325,8 @@ def test_edit_margins_of_many_edits_are_each_edits_own():
 def test_edit_margins_are_linear_in_a_translation_and_vanish_where_the_checks_flip():
     """A shelf (12 thick, mid-plane z = 300) between two 600 mm sides, moved along z by s:
     its end faces span z 294 + s .. 306 + s on the sides' faces (z 0..600), so the overlap
-    margin of both joints is 600 - (294 + s) mm and reaches 0 at s = 306; its lowest
+    margin of both joints, less the bearing its nails need (MIN_BEARING_SHARE x 12 = 6
+    mm), is 600 - (294 + s) - 6 mm and reaches 0 at s = 300; its lowest
     corner (294 + s) comes within the tolerance 0.5 mm of the ground at s = -293.5.  Every
     margin is linear in s (a translation), and check_edit agrees on both sides of both
     flips."""
@@ -352,10 +353,10 @@ def test_edit_margins_are_linear_in_a_translation_and_vanish_where_the_checks_fl
                            atol=1e-12)
     rate = (up - required) / 100.0
     falling = rate < 0
-    assert (required[falling] / -rate[falling]).min() == pytest.approx(306.0, abs=1e-3)
+    assert (required[falling] / -rate[falling]).min() == pytest.approx(300.0, abs=1e-3)
     rising = rate > 0
     assert (required[rising] / rate[rising]).min() == pytest.approx(293.5, abs=1e-3)
-    for step, kept in ((305.9, True), (306.1, False), (-293.4, True), (-293.6, False)):
+    for step, kept in ((299.9, True), (300.1, False), (-293.4, True), (-293.6, False)):
         assert (check_edit(geometry, apply_dof(bay, frame, dof, step), bay)[0] is None) == kept
 
 

@@ -38,6 +38,7 @@ import yaml
 from hypothesis import HealthCheck, Phase, example, given, settings
 from hypothesis import strategies as st
 
+from furncheck import tolerances as tol
 from furncheck.check import check_design
 from furncheck.design import parse_design
 from furncheck.design.model import with_model
@@ -283,11 +284,14 @@ def _askew_wall_shelf() -> dict:
 
 
 @pytest.mark.parametrize("phi", [5.0, 37.0, -123.4])
-def test_rigid_motion_of_a_wall_shelf_the_programs_hold(phi):
+def test_rigid_motion_of_a_wall_shelf_the_programs_hold(phi, monkeypatch):
     """(a) where the friction programs give the forces, with walls: the pyramids of a wall's
     contacts are turned in its own frame (``feasibility._headings``).  Turned with the
     world's heading instead, they turned against the wall with the design, and this
-    shelf's nail joint force moved by 0.3 % (242.46 N to 241.76 N at 5 degrees)."""
+    shelf's nail joint force moved by 0.3 % (242.46 N to 241.76 N at 5 degrees).  (Turned
+    so, the shelf lies on 4.95 mm of cleat_l's 18 mm edge, too narrow for nails by the
+    bearing rule; the rule is off here, the statics of the joint as found are tested.)"""
+    monkeypatch.setattr(tol, "MIN_BEARING_SHARE", 0.0)
     design = _askew_wall_shelf()
     report = check(design, model="elastic")
     assert report.cases[0].stability == "stable"
@@ -464,7 +468,6 @@ def test_past_sliding_is_the_length_past_sliding_displacement(ground, past):
     """``past_sliding`` says what ``displacement_size(x) > SLIDING_DISPLACEMENT`` (10 m)
     says, through each of its shortcuts, and a displacement that is not a number is past
     it (as the largest component's test took it)."""
-    from furncheck import tolerances as tol
     from furncheck.statics.friction import past_sliding
 
     assert tol.SLIDING_DISPLACEMENT == 10.0
@@ -586,7 +589,6 @@ def test_balance_floors_count_the_contact_springs_round_off():
     diag(1, 1) N/m and b = 0: loose = max(tol, 1e-13 x 1 x 4.5 + CONTACT_ROUNDOFF x
     6.0081e10), tight = max(tol, min(loose, 1e-14 x 3)): the contact springs' round-off
     only in the loose floor (where a Newton step stalls)."""
-    from furncheck import tolerances as tol
     from furncheck.statics.friction import balance_floors, balance_sizes, contact_magnitudes
 
     mapping = np.array([[1.0, 0.0], [0.0, 0.0], [0.0, 2.0],

@@ -353,3 +353,61 @@ def test_an_end_cutting_into_a_face_is_said_as_such():
                    and v.kind == "disconnected")
     assert message.endswith("its end cuts 15 mm into the face of side_l and of side_r: "
                             "shorten or move it to rest on those faces")
+
+
+# --- bearing: an end that covers a sliver of the face is no nail joint -------------------------
+
+BENCH = """\
+furncheck: 1
+name: kids-bench
+material: {thickness: 18}
+planks:
+  - {id: seat, size: [SEAT, 280], center: [0, 0, 321]}
+  - {id: end_l, size: [312, 280], center: [-250, 0, 156], rotation: [0, -90, 0]}
+  - {id: end_r, size: [312, 280], center: [250, 0, 156], rotation: [0, -90, 0]}
+loads:
+  - {plank: seat, mass: 35, at: [0, 0, 330]}
+"""
+
+
+@pytest.mark.parametrize(("seat", "bears"), [(483.0, False), (499.9, False), (500.1, True),
+                                             (536.0, True)])
+def test_a_nail_joint_needs_half_the_edge_planks_thickness_to_bear_on(seat, bears):
+    """The end panels (18 mm, x = -259..-241 and 241..259) carry a seat of length L
+    centred at x = 0: its ends at +-L/2 cover L/2 - 241 mm of each panel's 18 mm top end.
+    A nail joint needs half of it, 9 mm (MIN_BEARING_SHARE): L = 483 (0.5 mm) and 499.9
+    (8.95 mm) form no joint and are reported with the band they have; L = 500.1 and 536
+    (the whole end) are joints."""
+    assert tol.MIN_BEARING_SHARE == 0.5
+    geometry = analyze(parsed(BENCH.replace("SEAT", str(seat))))
+    joined = {(j.face, j.edge) for j in geometry.joints}
+    slivers = [v for v in geometry.violations if v.kind == "disconnected" and "/" in v.where]
+    if bears:
+        assert joined == {("seat", "end_l"), ("seat", "end_r")} and not slivers
+        return
+    assert not joined
+    band = seat / 2 - 241
+    assert [v.where for v in slivers] == ["seat/end_l", "seat/end_r"]
+    for violation in slivers:
+        assert violation.message == (
+            f"the end of {violation.where[5:]} bears on only {band:.3g} mm of the face of "
+            f"seat across its 18 mm thickness: no joint forms (nails need at least 9 mm, "
+            f"half the thickness)")
+
+
+def test_a_listed_joint_on_a_sliver_is_disconnected_and_a_resting_one_holds():
+    """The same 483 mm seat with its joints listed: nailed, each is disconnected with its
+    0.5 mm band (and the seat, held by nothing, floats); listed as resting joints (no
+    nails), they hold the seat as drawn."""
+    text = BENCH.replace("SEAT", "483")
+    nailed = parsed(text + "joints:\n  - [seat, end_l]\n  - [seat, end_r]\n")
+    assert [(v.kind, v.where, v.message.split(":")[0]) for v in analyze(nailed).violations] \
+        == [("disconnected", "seat/end_l", "the end of end_l bears on only 0.5 mm of the "
+                                           "face of seat across its 18 mm thickness"),
+            ("disconnected", "seat/end_r", "the end of end_r bears on only 0.5 mm of the "
+                                           "face of seat across its 18 mm thickness"),
+            ("floating", "seat", "1 plank touches the ground nowhere (lowest corner 312 mm "
+                                 "above it)")]
+    resting = parsed(text + "joints:\n  - {planks: [seat, end_l], type: rests}\n"
+                            "  - {planks: [seat, end_r], type: rests}\n")
+    assert not analyze(resting).violations

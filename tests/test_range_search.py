@@ -11,6 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from furncheck import tolerances as tol
 from furncheck.design import load_design
 from furncheck.dofs import parse_dof
 from furncheck.ranges import RangeFinder
@@ -133,7 +134,7 @@ def _turn_for_kick_joint_length(length_mm: float) -> float:
     return math.degrees(0.5 * (low + high))
 
 
-def test_drop_step_is_where_the_joint_loses_its_nail():
+def test_drop_step_is_where_the_joint_loses_its_nail(monkeypatch):
     """Turning the cabinet's right side about x shortens its joint with the kick board.
     side_r stands at x = 588..600 mm (y -200..200, z 0..1000, centre (y, z) = (0, 500));
     the kick's end face lies on its inner face x = 588, at y -200..-188 (the kick's 12 mm)
@@ -146,7 +147,11 @@ def test_drop_step_is_where_the_joint_loses_its_nail():
     Probes at L = 70 mm (3 nails) and L = 30 mm (1 nail), turns from L(theta) by
     bisection, bracket the loss of the nail that takes the joint below 2 nails, at
     L = 40 mm: the step found from the joint's followed length lies within a tenth of
-    the resolution (0.1 degree) of that turn, and the nail count changes there."""
+    the resolution (0.1 degree) of that turn, and the nail count changes there.  (The
+    band of the kick's end that the turned side still covers narrows with the joint, a
+    sliver at these turns: the bearing rule, ``tolerances.MIN_BEARING_SHARE``, which
+    would drop the joint first, is off here, so the nail count's own step is tested.)"""
+    monkeypatch.setattr(tol, "MIN_BEARING_SHARE", 0.0)
     design = load_design(str(DESIGNS / "cabinet-28.yaml"))
     finder = RangeFinder(design)
     dof = parse_dof(design, "side_r.rx")

@@ -201,10 +201,11 @@ def bench_stance_needed() -> float:
     return 1000.0 * high
 
 
-BENCH_STANCE_REACH = 600.0 - 294.0
+BENCH_STANCE_REACH = 600.0 - 294.0 - 0.5 * 12.0
 """bench-tips: the farthest leg_r may move out (mm) and keep its joint with the seat: its
-top end face spans x = 294 + d .. 306 + d and the seat ends at x = 600, so the face leaves
-the seat at d = 306 mm (beyond, the joint is lost and the suggestion may not be offered)."""
+top end face spans x = 294 + d .. 306 + d and the seat ends at x = 600, so the seat covers
+600 - (294 + d) of the leg's 12 mm; a nail joint needs half of it (MIN_BEARING_SHARE),
+so d = 300 mm (beyond, the joint is lost and the suggestion may not be offered)."""
 
 
 def test_tipping_bench_is_given_a_wider_stance(results):
@@ -633,8 +634,8 @@ def test_cli_text_reads_like_advice():
     are the rigid model's).  bench-tips: leg_r moves by the smallest change plus half of it
     again, at most the middle of its valid interval (README), which runs from the stance
     that stands it (``bench_stance_needed``, about 220 mm) to where its joint would be
-    lost (``BENCH_STANCE_REACH``, 306 mm): 1.5 x 220 = 330 mm is past the middle, so about
-    (220 + 306) / 2 = 263 mm, each to the line search's resolution (so 3 %).  Its cut list
+    lost (``BENCH_STANCE_REACH``, 300 mm): 1.5 x 220 = 330 mm is past the middle, so about
+    (220 + 300) / 2 = 260 mm, each to the line search's resolution (so 3 %).  Its cut list
     names the stretcher, which lengthens by the same amount (its end follows leg_r)."""
     result = run("suggest", str(CATALOG / "shelf-cantilever-overloaded.yaml"), "--model",
                  "rigid")

@@ -16,6 +16,7 @@ from furncheck import tolerances as tol
 from furncheck.design.model import Design, Plank, tabulate_planks
 from furncheck.geometry.boxes import meeting_pairs
 from furncheck.geometry.faces import (
+    _bears,
     _best_touches,
     _bounding_boxes,
     _face_tables,
@@ -31,7 +32,13 @@ from furncheck.geometry.model import (
     corner_contacts,
     support_point,
 )
-from furncheck.geometry.near import near_band, near_miss_violation, near_misses
+from furncheck.geometry.near import (
+    near_band,
+    near_miss_violation,
+    near_misses,
+    sliver,
+    sliver_message,
+)
 from furncheck.plain import plain_length, plain_number
 from furncheck.result import Violation
 
@@ -250,7 +257,7 @@ def _listed_joints(design: Design,
     specs = design.joints or ()
     pairs = np.array([[design.plank_index[a], design.plank_index[b]] for a, b in
                       (spec.planks for spec in specs)], dtype=int).reshape(-1, 2)
-    best = _best_touches(design.planks, pairs, slack, keep_deep=True)
+    best = _best_touches(design.planks, pairs, slack, keep_deep=True, bearing=0.0)
     joints, rests = [], []
     for index, (spec, (i, j)) in enumerate(zip(specs, pairs)):
         key = f"joints[{index}]"
@@ -269,6 +276,10 @@ def _listed_joints(design: Design,
             continue
         if spec.rests:
             rests.extend(rest_contacts(touch, index))
+            continue
+        if not _bears(touch):       # a band too narrow for nails (resting joints need none)
+            violations.append(Violation("disconnected", name, None,
+                                        sliver_message(design, sliver(touch)), line))
             continue
         nails = spec.nails or nail_count(touch.length, design.material.nail_spacing)
         joints.append(_joint_from_touch(touch, spec.planks, nails, key))

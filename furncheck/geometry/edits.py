@@ -24,6 +24,7 @@ from furncheck.geometry.analysis import (
     nail_count,
 )
 from furncheck.geometry.faces import (
+    _bears,
     _best_touches,
     _bounding_boxes,
     _box_depths,
@@ -135,13 +136,14 @@ class EditedTables:
         fresh = {k: _fresh_pairs(self.changed[k], self.lo[self.index[k]],
                                  self.hi[self.index[k]], band) for k in which}
         rows = [self.index[k][fresh[k]] for k in which]
-        best = _best_touches(self.planks, np.concatenate(rows), band, False, self.faces)
+        best = _best_touches(self.planks, np.concatenate(rows), band, False, self.faces,
+                             bearing=0.0)
         missing = set()
         for k in which:
             index = self.index[k]
             for i, j in fresh[k].tolist():
                 touch = best.get((int(index[i]), int(index[j])))
-                if touch is not None and abs(touch.gap) > slack and \
+                if touch is not None and (abs(touch.gap) > slack or not _bears(touch)) and \
                         (i, j) not in structure.joint_of:
                     missing.add(k)
                     break
@@ -426,6 +428,11 @@ def _combo_margins(faces: _Faces, rot: np.ndarray, half: np.ndarray,
         overlap[:, 2 + k] = radius - _least(projected)
         overlap[:, 6 + k] = _most(projected) + radius
     overlap -= _GEOMETRY_EPS
+    # across the joint line (the normal of the projection's side along it, corners 0-1),
+    # a joint needs a band of MIN_BEARING_SHARE of the edge plank's thickness, not a hair
+    needed = tol.MIN_BEARING_SHARE * 2.0 * half[edge, 2]
+    overlap[:, 2] -= needed
+    overlap[:, 6] -= needed
     for k, mask in enumerate(unusable):
         overlap[mask, 2 + k] = overlap[mask, 6 + k] = 1.0
     lo, hi = boxes

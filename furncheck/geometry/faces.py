@@ -73,12 +73,15 @@ def _face_tables(planks: tuple[Plank, ...]) -> _Faces:
 
 
 def _best_touches(planks: tuple[Plank, ...], pairs: np.ndarray, slack: float, keep_deep: bool,
-                  faces: _Faces | None = None, one_way: bool = False) -> dict:
+                  faces: _Faces | None = None, one_way: bool = False,
+                  bearing: float | None = None) -> dict:
     """For each plank pair (i, j) (indices into ``planks``, whose face tables ``faces`` are
     when given), the best narrow-face-on-broad-face contact either way round (``one_way``:
     only i's narrow faces on j's broad faces), by ``_rank``: contacts within the slack
     first, then the least sunk, then the flushest, then the largest.  ``keep_deep``
-    keeps faces sunk deeper than the slack (to report interpenetration).  A contact's gap
+    keeps faces sunk deeper than the slack (to report interpenetration).  ``bearing``:
+    a region narrower across the joint line than this share of the edge plank's thickness
+    is no contact (None: ``tolerances.MIN_BEARING_SHARE``; 0 keeps every one).  A contact's gap
     is that of the part of the narrow face over the broad face (``_region_gaps``), not of
     its nearest corner anywhere: a long edge turned away from a narrow face touches its
     plane beyond it, and counted as touching, but only where the planks' bounding boxes
@@ -103,7 +106,8 @@ def _best_touches(planks: tuple[Plank, ...], pairs: np.ndarray, slack: float, ke
     chosen = np.argwhere(candidates)
     p, f, g = chosen[:, 0], chosen[:, 1], chosen[:, 2]
     touches = _touch_regions(planks, faces, edge[p], face[p], f, g, gap[p, f, g],
-                             alignment[p, f, g])
+                             alignment[p, f, g],
+                             tol.MIN_BEARING_SHARE if bearing is None else bearing)
     keys = [(i, j) for i, j in pairs.tolist()]
     for p_k, touch in zip(chosen[:, 0].tolist(), touches):
         if touch is None or touch.gap > slack or (not keep_deep and touch.gap < -slack):
@@ -127,13 +131,14 @@ def _rank(touch: _Touch, slack: float) -> tuple:
 
 def _touch_regions(planks, faces: _Faces, edge: np.ndarray, face: np.ndarray,
                    f: np.ndarray, g: np.ndarray, gap: np.ndarray,
-                   alignment: np.ndarray) -> list[_Touch | None]:
+                   alignment: np.ndarray, bearing: float = 0.0) -> list[_Touch | None]:
     """For candidate contacts c (edge plank edge[c]'s narrow face f[c] on face plank
     face[c]'s broad face g[c], indices into ``planks`` and ``faces``; ``gap``: the least
     height of the narrow face's corners over the broad face's plane): clip the narrow
     face's projection to the broad face (in the face plank's local x-y) and measure the
     touching region, its gap the least height over the region (``_region_gaps``); None
-    where it is empty."""
+    where it is empty, or narrower across the joint line (area / length) than ``bearing``
+    times the edge plank's thickness."""
     if len(edge) == 0:
         return []
     rot_f, half_f = faces.rotations[face], faces.halves[face]            # (C, 3, 3), (C, 3)
@@ -170,9 +175,13 @@ def _touch_regions(planks, faces: _Faces, edge: np.ndarray, face: np.ndarray,
     centroids = np.array([(0.0, 0.0) if region is None else region[1:3] for region in regions])
     points = face_center + rot_f[:, :, 0] * centroids[:, :1] + rot_f[:, :, 1] * centroids[:, 1:]
     touches: list[_Touch | None] = []
+    needed = (bearing * 2.0 * half_e[:, 2] - _BEARING_EPS).tolist() if bearing > 0.0 \
+        else [-np.inf] * len(regions)
     for c, (region, face_c, edge_c, f_c, g_c, alignment_c) in enumerate(zip(
             regions, face.tolist(), edge.tolist(), f.tolist(), g.tolist(),
             alignment.tolist())):
+        if region is not None and region[0] < needed[c] * region[3]:
+            region = None                       # a sliver: no room for nails
         touches.append(None if region is None else _Touch(
             planks[face_c], planks[edge_c], points[c], region[3], frames[c], region[4],
             alignment_c, region[0], edge_face=(f_c // 2, 1 - 2 * (f_c % 2)),
@@ -211,6 +220,19 @@ def _region_gaps(xs: np.ndarray, ys: np.ndarray, count: np.ndarray, slope: np.nd
     inside = np.all((np.abs(local[:, :, 0]) <= half[:, :1])
                     & (np.abs(local[:, :, 1]) <= half[:, 1:2]), axis=1)
     return np.where(inside, gap, heights.min(axis=1))
+
+
+def _bears(touch: _Touch) -> bool:
+    """Whether a touching region is wide enough across its joint line for nails: its
+    area over its length at least ``tolerances.MIN_BEARING_SHARE`` of the edge plank's
+    thickness."""
+    return touch.area >= (tol.MIN_BEARING_SHARE * touch.edge.thickness
+                          - _BEARING_EPS) * touch.length
+
+
+_BEARING_EPS = 1e-9
+"""m of round-off allowed in the bearing test (a region exactly half the thickness wide
+bears)."""
 
 
 CLIP_AT_ONCE = 128

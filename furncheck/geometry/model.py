@@ -142,10 +142,14 @@ class NearMiss:
                (plank,) of a missed ground contact
     distance : m, the gap between the end face and the face (or the floor), > 0; for a
                joint < 0 when the end face cuts into the face (an overlap)
+    bearing  : m, for a joint whose end face lies on the face (within the tolerance) but
+               over a band too narrow for nails (``tolerances.MIN_BEARING_SHARE``): that
+               band's width across the joint line; None otherwise
     """
 
     planks: tuple[str, ...]
     distance: float
+    bearing: float | None = None
 
     @property
     def name(self) -> str:

@@ -32,7 +32,7 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.design.model import Design
 from furncheck.geometry.boxes import meeting_pairs
-from furncheck.geometry.faces import _best_touches, _bounding_boxes
+from furncheck.geometry.faces import _bears, _best_touches, _bounding_boxes
 from furncheck.geometry.model import (
     _COS_MAX_TILT,
     _GEOMETRY_EPS,
@@ -73,13 +73,22 @@ def missed_joints(design: Design, joints: list[Joint]) -> list[NearMiss]:
                         + max(index[joint.face], index[joint.edge]) for joint in joints],
                        dtype=int)
     pairs = pairs[~np.isin(pairs[:, 0] * n + pairs[:, 1], jointed)]
-    best = _best_touches(design.planks, pairs, band, keep_deep=False)
+    best = _best_touches(design.planks, pairs, band, keep_deep=False, bearing=0.0)
     missed = []
     for i, j in pairs.tolist():
         touch = best.get((i, j))
         if touch is not None and abs(touch.gap) > slack:
             missed.append(NearMiss((touch.face.id, touch.edge.id), float(touch.gap)))
+        elif touch is not None and not _bears(touch):
+            missed.append(sliver(touch))
     return missed
+
+
+def sliver(touch) -> NearMiss:
+    """The near miss of an end face that lies on a face over a band too narrow for nails
+    (``faces._bears``)."""
+    return NearMiss((touch.face.id, touch.edge.id), float(touch.gap),
+                    float(touch.area / max(touch.length, 1e-12)))
 
 
 def missed_ground(design: Design, contacts: list[Contact],
@@ -174,6 +183,9 @@ def near_miss_violation(design: Design, miss: NearMiss) -> Violation:
             f"that the rest of the design stands on (a ground contact needs {allowed} or "
             f"less, the tolerance)", design.line_of(f"planks[{design.plank_index[plank]}]"))
     face, edge = miss.planks
+    if miss.bearing is not None:
+        return Violation("disconnected", miss.name, None, sliver_message(design, miss),
+                         design.line_of(f"planks[{design.plank_index[edge]}]"))
     if miss.distance > 0:
         what = (f"{length(miss.distance)} gap between the end of {edge} and the face of "
                 f"{face}: no joint forms (a joint needs {allowed} or less, the tolerance)")
@@ -182,3 +194,17 @@ def near_miss_violation(design: Design, miss: NearMiss) -> Violation:
                 f"{face}: no joint forms (a joint allows {allowed} at most, the tolerance)")
     return Violation("disconnected", miss.name, None, what,
                      design.line_of(f"planks[{design.plank_index[edge]}]"))
+
+
+def sliver_message(design: Design, miss: NearMiss) -> str:
+    """Why an end face lying on a face forms no nail joint: the band it bears on is too
+    narrow (``tolerances.MIN_BEARING_SHARE``)."""
+    face, edge = miss.planks
+    thickness = design.plank(edge).thickness
+
+    def length(value_m: float) -> str:
+        return plain_length(value_m, design.unit_scale, design.units, 3)
+
+    return (f"the end of {edge} bears on only {length(miss.bearing)} of the face of {face} "
+            f"across its {length(thickness)} thickness: no joint forms (nails need at "
+            f"least {length(tol.MIN_BEARING_SHARE * thickness)}, half the thickness)")

@@ -70,10 +70,10 @@ MIN_RESOLUTION = 1e-4
 """No end is closed finer than this (scaled units)."""
 
 REACH_PROBE = 0.97
-"""Where the probes from the predicted step find nothing and that step lay past the
-edit's geometric reach (the step where it stops keeping the geometry of a design that
-stands as drawn: a leg moved off the end of the seat it holds), one more probe at this
-fraction of the reach (``_before_reach``): a valid window can only lie before it."""
+"""Where the probes from the predicted step find nothing, one more probe at this fraction
+of the edit's geometric reach (the step where it stops keeping the geometry of a design
+that stands as drawn: a leg moved off the end of the seat it holds; ``_before_reach``):
+a valid window can only lie before it, and the probes may have stepped over it."""
 
 
 @dataclass(frozen=True)
@@ -96,9 +96,11 @@ def line_search(editor: Editor, dofs: tuple[Dof, ...], candidate: Candidate,
     def margin(step: float) -> float:
         return editor.margin_at(dofs, direction, step)
 
-    found = _first_valid(margin, candidate.enter, start, candidate.aim)
+    probed: list[tuple[float, float]] = []
+    found = _first_valid(margin, candidate.enter, start, candidate.aim, probed)
     if found is None and not editor.geometry.violations:
-        found = _before_reach(editor, dofs, direction, margin, candidate.enter, start)
+        found = _before_reach(editor, dofs, direction, margin, candidate.enter, start,
+                              all(value == -math.inf for _, value in probed))
     if found is None:
         return None
     below, first, *beyond = found
@@ -118,7 +120,8 @@ def line_search(editor: Editor, dofs: tuple[Dof, ...], candidate: Candidate,
     return Interval(low[0], high, limited)
 
 
-def _first_valid(margin, predicted: float, start: float, aim: float = math.inf):
+def _first_valid(margin, predicted: float, start: float, aim: float = math.inf,
+                 probed: list | None = None):
     """Probe outward from the predicted step until a valid step: ((step, margin) of the
     last invalid one, or (0, start); (step, margin) of the valid one), or None when
     MAX_PROBES or MAX_STEP are used up, or the joints' margin stops growing (the linear
@@ -132,11 +135,14 @@ def _first_valid(margin, predicted: float, start: float, aim: float = math.inf):
     FIRST_PROBE's overshoot of the prediction (its near edge) steps over, and every probe
     further out cuts the plank into the floor.  A valid aim comes back with that first
     probe as a third item, (step, margin): invalid, beyond the valid one (``line_search``
-    brackets the upper end with it)."""
+    brackets the upper end with it).  ``probed``: a list to which every (step, margin)
+    probed is added."""
     previous = (0.0, start)
     step = min(predicted * FIRST_PROBE, MAX_STEP)
+    probed = [] if probed is None else probed
     for probe in range(MAX_PROBES):
         value = margin(step)
+        probed.append((step, value))
         if value >= 0.0:
             return previous, (step, value)
         if probe == 0 and value == -math.inf and predicted <= aim < step:
@@ -156,14 +162,19 @@ def _first_valid(margin, predicted: float, start: float, aim: float = math.inf):
 
 
 def _before_reach(editor: Editor, dofs: tuple[Dof, ...], direction: np.ndarray, margin,
-                  predicted: float, start: float):
+                  predicted: float, start: float, toppling: bool = False):
     """``_first_valid``'s result from a probe at REACH_PROBE of the edit's geometric reach
-    (``_flip``, what the design has lost), where that lies before the first probe, or
-    None: a design that topples has margin -inf until the window, so probes past the
-    reach (a leg moved off the end of the seat it holds) cannot find it."""
+    (``_flip``, what the design has lost), or None: a design that topples has margin
+    -inf until the window, so probes past the reach (a leg moved off the end of the seat
+    it holds) cannot find it.  Probed where the first probe already lay past the reach,
+    or where every probe (``toppling``) read -inf, whose growth may have stepped over the
+    window (a bench's legs moved apart, tipping at each probe below the window, 214 to
+    300 mm, then off the seat's ends past it); not where the margins were finite, whose
+    secant aims at the window (a cantilever shelf that sags, shortened: the probe at the
+    reach would offer a shelf cut to a 9 mm stub)."""
     first = min(predicted * FIRST_PROBE, MAX_STEP)
     reach = _flip(editor, dofs, direction, 0.0, first, kept_only=True)
-    if reach is None or reach >= first:
+    if reach is None or (reach >= first and not toppling):
         return None
     step = REACH_PROBE * reach
     value = margin(step)

@@ -188,14 +188,17 @@ class Search:
         self._record(candidate, FOUND, thickening=True)
         advice = candidate.advice
         adds = tuple(design.plank(plank.id) for plank in candidate.adds)   # as finished
+        units = self.design.units
         for old, plank in zip(candidate.adds, adds):    # a part it adds: said as it is cut
+            if plank == old:
+                continue            # (thickened, or lengthened to cover a thickened edge)
+            size = size_of(plank, self.design)
             if plank.id in thickened:
-                size = size_of(plank, self.design)
-                advice = advice.replace(
-                    f"{plank.id} ({size})", f"{plank.id} ({size[:-len(self.design.units) - 1]}"
-                    f" x {amount(plank.thickness / self.design.unit_scale)} "
-                    f"{self.design.units})", 1).replace(
-                    point_of(old.center, self.design), point_of(plank.center, self.design), 1)
+                size = f"{size[:-len(units) - 1]} x " \
+                       f"{amount(plank.thickness / self.design.unit_scale)} {units}"
+            advice = advice.replace(
+                f"{plank.id} ({size_of(old, self.design)})", f"{plank.id} ({size})", 1).replace(
+                point_of(old.center, self.design), point_of(plank.center, self.design), 1)
         existing = {p: v for p, v in thickened.items() if p in self.design.plank_index}
         if existing:
             advice = f"{advice[:-1]}, and {thickness_phrase(existing, self.design)}."

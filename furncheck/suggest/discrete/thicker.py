@@ -166,7 +166,8 @@ def _grown_whole(search: Search, design: Design, geometry: Geometry,
     """(the design with those planks ``grown``, its geometry), or None and the reason in
     ``why`` when a plank held on both faces cannot grow, a locked DOF would change, or the
     thicker planks would cut into others or change the joints."""
-    edited = grown(design, geometry, thicknesses)
+    added = frozenset(design.plank_index) - frozenset(search.design.plank_index)
+    edited = grown(design, geometry, thicknesses, added)
     if edited is None or not search.keeps_locks(edited):
         why[:] = ["a plank held on both faces cannot grow, or a locked DOF would change"
                   if edited is None else "it would change a locked DOF"]
@@ -263,12 +264,15 @@ def _stock(thickness: float, above: bool = False) -> float | None:
                  if stock > least or (not above and stock == least)), None)
 
 
-def grown(design: Design, geometry: Geometry, thicknesses: dict[str, float]) -> Design | None:
+def grown(design: Design, geometry: Geometry, thicknesses: dict[str, float],
+          stretchable: frozenset[str] = frozenset()) -> Design | None:
     """The design with the planks of ``thicknesses`` (id -> m) that thick, each grown away
     from its held faces (module docstring); a plank held on both faces grows toward the
     side where only planks nailed to it alone rest (a chair's back on its seat), which
-    move with that face; load and anchor points on a moved face move with it.  None when
-    a plank cannot grow."""
+    move with that face; load and anchor points on a moved face move with it.  A plank of
+    ``stretchable`` (one the same fix adds) on whose face a grown plank's edge is nailed
+    is lengthened with it, so that it still covers that edge (a back panel over a seat
+    made thicker).  None when a plank cannot grow."""
     held = _held_sides(design, geometry)
     resting = _resting(geometry)
     planks = {p.id: p for p in design.planks}
@@ -301,6 +305,10 @@ def grown(design: Design, geometry: Geometry, thicknesses: dict[str, float]) -> 
         planks[plank_id] = replace(plank, thickness=float(thickness),
                                    center=tuple(float(v) for v in centre))
         moves.setdefault(plank_id, []).append(_face_shift(plank, axis, side, grow, design))
+        for joint in geometry.joints:
+            if joint.edge == plank_id and joint.face in stretchable:
+                planks[joint.face] = _covering(planks[joint.face], planks[plank_id],
+                                               axis * side)
     if not moves:
         return None
 
@@ -314,6 +322,23 @@ def grown(design: Design, geometry: Geometry, thicknesses: dict[str, float]) -> 
     anchors = tuple(replace(a, point=moved(a.plank, a.point)) for a in design.anchors)
     return replace(design, planks=tuple(planks[p.id] for p in design.planks),
                    load_cases=cases, anchors=anchors)
+
+
+def _covering(face: Plank, edge: Plank, way: np.ndarray) -> Plank:
+    """``face`` lengthened along its in-plane axis nearest ``way`` (the way ``edge`` grew,
+    a unit vector), its far end moved, until it reaches ``edge``'s grown face there."""
+    axes = face.rotation_matrix
+    axis = int(np.argmax(np.abs(axes[:, :2].T @ way)))
+    along = axes[:, axis] * (1.0 if float(axes[:, axis] @ way) > 0.0 else -1.0)
+    sizes = [face.length, face.width]
+    reach = float(edge.center_array @ way) + 0.5 * edge.thickness
+    end = float(face.center_array @ way) + 0.5 * sizes[axis] * float(along @ way)
+    short = (reach - end) / max(float(along @ way), 1e-12)
+    if short <= 0.0:
+        return face
+    sizes[axis] += short
+    return replace(face, length=sizes[0], width=sizes[1], center=tuple(
+        float(v) for v in face.center_array + along * 0.5 * short))
 
 
 def _neighbours(geometry: Geometry, plank_id: str) -> list[str]:
