@@ -553,6 +553,54 @@ def test_an_added_panel_covers_the_edge_of_a_plank_the_fix_makes_thicker():
     assert check_design(panel.design).valid
 
 
+DESK = """\
+furncheck: 1
+name: desk-keyboard
+material: {thickness: 18}
+planks:
+  - {id: top,      size: [1200, 600], center: [0, 0, 741]}
+  - {id: side_l,   size: [732, 600],  center: [-591, 0, 366], rotation: [0, -90, 0]}
+  - {id: side_r,   size: [732, 600],  center: [591, 0, 366],  rotation: [0, -90, 0]}
+  - {id: modesty,  size: [1164, 400], center: [0, 291, 532],  rotation: [90, 0, 0]}
+  - {id: hanger_l, size: [100, 300],  center: [-300, -150, 682], rotation: [0, -90, 0]}
+  - {id: hanger_r, size: [100, 300],  center: [300, -150, 682],  rotation: [0, -90, 0]}
+  - {id: tray,     size: [582, 300],  center: [0, -150, 641]}
+joints:
+  - [top, side_l]
+  - [top, side_r]
+  - [side_l, modesty]
+  - [side_r, modesty]
+  - [top, modesty]
+  - {planks: [top, hanger_l], nails: 2}
+  - {planks: [top, hanger_r], nails: 2}
+  - [hanger_l, tray]
+  - [hanger_r, tray]
+loads:
+  - {plank: top, mass: 15, spread: true}
+load_cases:
+  lean:
+    include: [default]
+    loads:
+      - {plank: tray, mass: 25, at: [0, -295, 650]}
+"""
+
+
+def test_a_fix_left_out_for_the_thicker_boards_alone_is_not_counted_found():
+    """A desk whose top and keyboard tray sag (elastic): a support between top and tray
+    works only with the boards the thicker-board fix needs anyway, so it is left out
+    (``spares_no_board``); its trial says so instead of 'found' (a woodworker read
+    'support plank: 1 found' over a list without it)."""
+    design = parsed(DESK, "elastic")
+    geometry = analyze(design)
+    trials: list = []
+    found = discrete_fixes(design, geometry, check_design(design, geometry), trials=trials)
+    assert [fix.rule for fix in found] == ["thicker"]
+    support = [t for t in trials if t.rule == "support plank" and t.plank == "support-1"]
+    assert support and all(t.outcome != "found" for t in support)
+    assert any("needs every board the thicker board fix alone needs" in t.reason
+               for t in support)
+
+
 # --- more nails ------------------------------------------------------------------------------
 
 WALL_SHELF = """\

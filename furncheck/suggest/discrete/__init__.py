@@ -24,6 +24,8 @@ its first valid candidate.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from furncheck.design.model import Design
 from furncheck.dofs import Dof
 from furncheck.geometry import Geometry
@@ -36,7 +38,7 @@ from furncheck.suggest.discrete.racking import aprons, back_panels, braces, stre
 from furncheck.suggest.discrete.reconnect import RECONNECT, reconnect_near_misses
 from furncheck.suggest.discrete.supports import _reach, support_planks
 from furncheck.suggest.discrete.thicker import thicker_planks
-from furncheck.suggest.tried import Trial
+from furncheck.suggest.tried import FAILED, FOUND, Trial
 
 __all__ = ["RULES", "Fix", "Search", "_reach", "discrete_fixes", "spares_no_board",
            "support_planks"]
@@ -58,6 +60,17 @@ def spares_no_board(thickened: dict, alone: dict) -> bool:
                                    for plank, new in alone.items())
 
 
+def _dropped(trials: list[Trial], fix: Fix) -> None:
+    """The found trial of ``fix``, which spares no board of the thicker rule's fix alone,
+    told as failed for that reason (the explanation must not count it found)."""
+    added = {plank.id for plank in fix.adds}
+    for k, trial in enumerate(trials):
+        if trial.outcome == FOUND and trial.plank and set(trial.plank.split(" and ")) <= added:
+            trials[k] = replace(trial, outcome=FAILED, reason=(
+                "valid with thicker boards, but it needs every board the thicker board "
+                "fix alone needs, and adds a part: left out"))
+
+
 def discrete_fixes(design: Design, geometry: Geometry, report: DesignReport,
                    covered: bool = False, locked: tuple[Dof, ...] = (),
                    trials: list[Trial] | None = None) -> list[Fix]:
@@ -77,6 +90,9 @@ def discrete_fixes(design: Design, geometry: Geometry, report: DesignReport,
     found = [fix for fix in found if fix is not None]
     alone = next((fix.thickened for fix in found if fix.rule == "thicker"), None)
     if alone:
+        for fix in found:
+            if fix.rule != "thicker" and spares_no_board(fix.thickened, alone):
+                _dropped(search.trials, fix)
         found = [fix for fix in found if fix.rule == "thicker" or not spares_no_board(
             fix.thickened, alone)]
     restores = search.restores
