@@ -73,3 +73,26 @@ def test_the_search_limit_is_said():
     assert advise(stool, {"seat.z": 30.0}, limited=True) == (
         "Raise seat by 30 mm (valid for 27-36 mm; the search stopped there, at half the "
         "design's size).")
+
+
+def test_an_interval_that_is_the_search_limit_alone_is_not_a_lone_value():
+    """Valid from the step found to the search limit, which round alike: 'valid at 30 mm,
+    where the search stopped', not 'valid for 30 mm only, to the search's resolution;
+    the search stopped there' (a woodworker read the two as contradicting)."""
+    stool = with_model(load_design(str(CATALOG / "stool.yaml")), "rigid")
+    assert advise(stool, {"seat.z": 30.0}, interval=(1.0, 1.0001), limited=True) == (
+        "Raise seat by 30 mm (valid at 30 mm, where the search stopped, at half the "
+        "design's size).")
+    assert advise(stool, {"seat.z": 30.0}, interval=(1.0, 1.0001)) == \
+        "Raise seat by 30 mm (valid for 30 mm only, to the search's resolution)."
+
+
+def test_a_mirror_pair_tilted_along_its_plane_names_where_the_tops_go():
+    """The stool's legs (mirrored about x = 0, their length along +z) both tilted 5
+    degrees about x: R_x(5) turns +z toward -y, so their tops move along -y, the same
+    way, neither apart nor together across the plane; with no plank that way the advice
+    names the axis ('their tops toward leg_l and leg_r'-like where planks lie there)."""
+    stool = with_model(load_design(str(CATALOG / "stool.yaml")), "rigid")
+    assert advise(stool, {"leg_l.rx": 5.0, "leg_r.rx": 5.0}) == \
+        "Tilt leg_l and leg_r by 5 degrees each, their tops along -y (valid for 4.5-6 " \
+        "degrees each)."

@@ -40,6 +40,11 @@ VERTICAL_COSINE = 0.7
 """A plank's axis (or the way its end moves) counts as vertical when its cosine with the
 world z axis exceeds this (45 degrees)."""
 
+TOPS_KEPT = 0.05
+"""A mirror pair's tilt whose tops move across the mirror plane by at most this share of
+how far they move is a tilt along the plane (both tops the same way), not apart or
+together."""
+
 PAIR_MATCH = 1e-6
 """Two DOF changes are one symmetric change when they agree to this relative amount."""
 
@@ -59,12 +64,16 @@ def continuous_advice(dofs: tuple[str, ...], changes: tuple[float, ...],
     each = " each" if first_each else ""
     first = " of the first change" if count > 1 else ""
     near, far = _amount(low * lead), _amount(high * lead)
-    valid = f"valid for {near}-{far} {unit}{each}{first}" if near != far else \
-        f"valid for {near} {unit}{each}{first} only, to the search's resolution"
-    if limited:
-        limit = SEARCH_LIMITS["deg" if units[0] == "deg" else "length"] if len(dofs) == 1 \
-            else "its step limit"
-        valid += f"; the search stopped there, at {limit}"
+    limit = (SEARCH_LIMITS["deg" if units[0] == "deg" else "length"] if len(dofs) == 1
+             else "its step limit") if limited else ""
+    if near != far:
+        valid = f"valid for {near}-{far} {unit}{each}{first}"
+        if limited:
+            valid += f"; the search stopped there, at {limit}"
+    elif limited:       # valid from there on, as far as the search went: not a lone value
+        valid = f"valid at {near} {unit}{each}{first}, where the search stopped, at {limit}"
+    else:
+        valid = f"valid for {near} {unit}{each}{first} only, to the search's resolution"
     return f"{sentence[0].upper()}{sentence[1:]} ({valid})."
 
 
@@ -143,8 +152,19 @@ def _pair_phrase(design: Design, edited: Design, plane: MirrorPlane, first: str,
     top_after = _top(edited, a)
     if top_before is None or top_after is None:
         return f"tilt {both} by {amount}, mirrored"
-    apart = abs(top_after[plane.axis] - plane.offset) > abs(top_before[plane.axis] - plane.offset)
-    return f"tilt {both} by {amount}, their tops {'apart' if apart else 'together'}"
+    before = abs(top_before[plane.axis] - plane.offset)
+    after = abs(top_after[plane.axis] - plane.offset)
+    if abs(after - before) <= TOPS_KEPT * float(np.linalg.norm(top_after - top_before)):
+        effects = [_tilt_effect(design, edited, p) for p in (a, b)]   # along the plane:
+        if not all(e.startswith("its top toward ") for e in effects):  # both one way
+            way = top_after - top_before
+            axis = int(np.argmax(np.abs(way[:2])))
+            return f"tilt {both} by {amount}, their tops along " \
+                   f"{'+' if way[axis] > 0 else '-'}{'xy'[axis]}"
+        ahead = [e.removeprefix("its top toward ") for e in effects]
+        towards = ahead[0] if ahead[0] == ahead[1] else f"{ahead[0]} and {ahead[1]}"
+        return f"tilt {both} by {amount}, their tops toward {towards}"
+    return f"tilt {both} by {amount}, their tops {'apart' if after > before else 'together'}"
 
 
 def _phrase(design: Design, edited: Design, held: dict, plank: str, subject: str,
