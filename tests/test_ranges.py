@@ -31,7 +31,7 @@ from click.testing import CliRunner
 
 from furncheck.check import check_design
 from furncheck.cli.main import main
-from furncheck.design import load_design
+from furncheck.design import load_design, parse_design
 from furncheck.design.model import with_model
 from furncheck.dofs import (
     Blocked,
@@ -651,3 +651,28 @@ def test_a_window_with_no_tolerance_is_closed(tmp_path):
     low, high = json.loads(done.stdout)["ranges"][0]["valid"]
     assert low == pytest.approx(6.0, abs=1e-3) and high == pytest.approx(6.0, abs=1e-3)
     assert low <= high
+
+
+def test_an_end_at_the_search_limit_says_so(tmp_path):
+    """A loose 400 x 300 board on the floor is valid wherever it slides: its x range ends
+    at the search limit, the design's size (400 mm) either way, valid there and not
+    searched beyond; the text says so and the JSON marks both ends ``limited``.  Its
+    length, valid down to where it nearly vanishes and up to the limit, is limited above
+    only; a DOF stopped by the geometry (the shelf of the bay) has no mark."""
+    import json
+
+    from furncheck.report.ranges import render_json, render_text
+
+    board = parse_design("furncheck: 1\nplanks:\n  - {id: board, size: [400, 300], "
+                         "center: [0, 0, 6]}\n", "board.yaml", "yaml")
+    x, length = (one_range(board, name) for name in ("board.x", "board.length"))
+    assert x.valid == pytest.approx((-400.0, 400.0)) and x.limited == (True, True)
+    assert length.valid[1] == pytest.approx(800.0) and length.limited == (False, True)
+    text = render_text("board.yaml", [x, length])
+    assert "valid as far as searched: 400 mm either way" in text
+    assert "valid as far as searched: 400 mm up" in text
+    entries = json.loads(render_json("board.yaml", [x, length]))["ranges"]
+    assert [entry["limited"] for entry in entries] == [[True, True], [False, True]]
+    shelf = one_range(rd.parse(rd.bay()), "shelf.z")
+    assert shelf.limited == (False, False)
+    assert "limited" not in json.loads(render_json("bay.yaml", [shelf]))["ranges"][0]

@@ -67,6 +67,9 @@ class DofRange:
     valid: tuple[float, float] | None
     unit: str
     reason: str | None = None
+    limited: tuple[bool, bool] = (False, False)   # (low, high) end is the search limit,
+    limit: float = 0.0                            # this far from the value: valid there,
+                                                  # nothing beyond it was searched
 
 
 class RangeFinder(ReachSearch):
@@ -158,7 +161,10 @@ class RangeFinder(ReachSearch):
             if blocked:
                 out.append(DofRange(dof.name, value, None, unit, blocked[0].reason))
             elif self.valid_now:
-                out.append(DofRange(dof.name, value, (value - ends[0], value + ends[1]), unit))
+                limit = self._scales(dof)[0]
+                out.append(DofRange(dof.name, value, (value - ends[0], value + ends[1]), unit,
+                                    limited=(ends[0] >= limit, ends[1] >= limit),
+                                    limit=limit))
             else:
                 out.append(ends[0])
         return out

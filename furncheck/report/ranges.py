@@ -9,7 +9,10 @@ from furncheck.report.numbers import format_number, json_ready
 
 
 def render_json(design: str, ranges: list[DofRange]) -> str:
-    """``{"design": ..., "ranges": [{"dof", "value", "valid", "unit"[, "reason"]}]}``."""
+    """``{"design": ..., "ranges": [{"dof", "value", "valid", "unit"[, "reason"][,
+    "limited"]}]}``; ``limited`` ([low, high], only where one is true): that end is the
+    search's limit, valid itself, nothing beyond it searched (contract section 4's
+    ``valid`` is the interval within which the design stays valid: so far as searched)."""
     entries = []
     for item in ranges:
         entry = {"dof": item.dof, "value": item.value,
@@ -17,6 +20,8 @@ def render_json(design: str, ranges: list[DofRange]) -> str:
                  "unit": item.unit}
         if item.reason:
             entry["reason"] = item.reason
+        if any(item.limited):
+            entry["limited"] = list(item.limited)
         entries.append(entry)
     return json.dumps(json_ready({"design": design, "ranges": entries}), indent=2,
                       allow_nan=False) + "\n"
@@ -30,10 +35,20 @@ def render_text(design: str, ranges: list[DofRange]) -> str:
         interval = "-" if item.valid is None else \
             f"{format_number(item.valid[0], 5)} .. {format_number(item.valid[1], 5)}"
         rows.append((item.dof, format_number(item.value, 5), interval, item.unit,
-                     item.reason or ""))
+                     item.reason or _limited(item)))
     widths = [max(len(row[i]) for row in rows) for i in range(4)]
     lines = [f"{design}:"]
     for dof, value, interval, unit, reason in rows:
         lines.append(f"  {dof:<{widths[0]}}  {value:>{widths[1]}}  {interval:<{widths[2]}}  "
                      f"{unit:<{widths[3]}}  {reason}".rstrip())
     return "\n".join(lines) + "\n"
+
+
+def _limited(item: DofRange) -> str:
+    """Words for an interval that ends at the search's limit ('' when neither does)."""
+    if not any(item.limited):
+        return ""
+    reach = f"{format_number(item.limit, 5)} {item.unit}"
+    if all(item.limited):
+        return f"valid as far as searched: {reach} either way"
+    return f"valid as far as searched: {reach} {'down' if item.limited[0] else 'up'}"
