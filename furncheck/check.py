@@ -41,13 +41,16 @@ def check_design(design: Design, geometry: Geometry | None = None,
     A design that does not stand as drawn (a group of planks reaching the ground nowhere,
     or a joint or ground contact missed narrowly: ``Geometry.stands``) gets its geometric
     violations only: its statics are not solved, and each case lists its loads but no
-    joints, contacts or planks, and reads neither durable nor stable (nothing was shown to
+    joints, contacts or planks (an empty ``planks`` in the elastic model, whose cases
+    have the key), and reads neither durable nor stable (nothing was shown to
     hold; no toppling of a stool whose leg is 4 mm short either)."""
     geometry = geometry or analyze(design)
     violations = list(geometry.violations)
     if not geometry.stands:
+        planks = () if design.model == "elastic" else None     # the key, empty
         cases = tuple(CaseResult(case.name, durable=False, stable=False, joints=(), contacts=(),
-                                 stability=NOT_SOLVED, loads=case_loads(design, case))
+                                 stability=NOT_SOLVED, planks=planks,
+                                 loads=case_loads(design, case))
                       for case in design.load_cases)
         return DesignReport(design=design.source, name=design.name, valid=False,
                             violations=tuple(violations), cases=cases, units=design.units)

@@ -204,7 +204,16 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
     if not stable:
         kind = "sliding" if statics.stability == "sliding" else "lift-off"
         where = ",".join(statics.culprits) or ",".join(design.planks[i].id for i in model.planks)
-        violations.append(Violation(kind, where, case.name, statics.detail,
+        detail = statics.detail
+        failing = [j for j in joints if not j.durable]
+        if kind == "lift-off" and failing:      # no violation of their own: told here
+            worst = max(failing, key=lambda j: j.utilization)
+            more = f" and {len(failing) - 1} more joint{'s' if len(failing) > 2 else ''}" \
+                if len(failing) > 1 else ""
+            held = "so held" if "held down" in detail else "held down"
+            detail += (f"; {held}, joint {'/'.join(worst.planks)}{more} would fail too "
+                       f"({_durability_message(_nails_of(worst), design)})")
+        violations.append(Violation(kind, where, case.name, detail,
                                     design.line_of(_case_key(design, case))))
     durable = all(j.durable for j in joints) \
         and all(a.utilization <= 1.0 + tol.CAPACITY_REL_TOL for a in anchors)
@@ -375,6 +384,10 @@ def joint_utilization(design: Design, geometry: Geometry, model: StaticsModel,
     shear_cap = design.material.nail_shear / design.safety_factor
     return (np.maximum(pulls / pull_cap, shears / shear_cap),
             within_capacity(pulls, shears, pull_cap, shear_cap))
+
+
+def _nails_of(joint: JointResult) -> NailForces:
+    return NailForces(joint.pull, joint.shear, joint.pull_capacity, joint.shear_capacity)
 
 
 def _durability_message(nails: NailForces, design: Design) -> str:

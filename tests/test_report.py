@@ -307,3 +307,26 @@ def test_sarif_log():
 def test_sarif_uris():
     assert artifact_uri("designs/my shelf.yaml") == "designs/my%20shelf.yaml"
     assert artifact_uri("/abs/x.yaml") == "file:///abs/x.yaml"
+
+
+def test_a_toppling_case_names_the_joint_that_would_fail_held_down():
+    """designs/bench-tips.yaml (elastic) topples; bolted down, its seat/leg_r joint pulls
+    past capacity (its case reads durable: false) but raises no non-durable violation of
+    its own (the toppling comes first): the lift-off message names it, with the pull of
+    the case's worst failing joint, so a fix of the toppling alone is not taken for
+    enough."""
+    from pathlib import Path
+
+    from furncheck.check import check_file
+    from furncheck.plain import plain_number
+
+    report = check_file(str(Path(__file__).resolve().parents[1] / "designs" /
+                            "bench-tips.yaml"))
+    (violation,) = report.violations
+    (case,) = report.cases
+    failing = [j for j in case.joints if not j.durable]
+    assert violation.kind == "lift-off" and failing and not case.durable
+    worst = max(failing, key=lambda j: j.utilization)
+    assert violation.message.endswith(
+        f"; so held, joint {'/'.join(worst.planks)} would fail too (pull "
+        f"{plain_number(worst.pull)} N per nail exceeds {plain_number(worst.pull_capacity)} N)")
