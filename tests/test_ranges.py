@@ -676,3 +676,30 @@ def test_an_end_at_the_search_limit_says_so(tmp_path):
     shelf = one_range(rd.parse(rd.bay()), "shelf.z")
     assert shelf.limited == (False, False)
     assert "limited" not in json.loads(render_json("bay.yaml", [shelf]))["ranges"][0]
+
+
+def test_a_turn_the_files_angle_does_not_follow_gives_the_files_rotation():
+    """The stool's leg_l is drawn with rotation [0, -90, 0] (R = Ry(-90)).  Turned about
+    world z by t it is Rz(t) Ry(-90): rotation [0, -90, t], its own angle alone, so no
+    note.  Turned about world x by t it is Rx(t) Ry(-90), which the file's angles
+    (R = Rz Ry Rx) write with all three changed: the range gives the file's rotation at
+    both ends, each the matrix Rx(end) Ry(-90) (a maker typing the interval into the
+    file's rx would spin the leg about its own axis instead)."""
+    import json
+
+    from furncheck.design.model import rotation_matrix
+    from furncheck.report.ranges import render_json, render_text
+
+    stool = with_model(load_design(str(DESIGNS / "stool.yaml")), "rigid")
+    turn_z, turn_x = (one_range(stool, name) for name in ("leg_l.rz", "leg_l.rx"))
+    assert turn_z.rotations is None
+    assert turn_x.rotations is not None
+    for end, angles in zip(turn_x.valid, turn_x.rotations):
+        t = np.radians(end)
+        about_x = np.array([[1, 0, 0], [0, np.cos(t), -np.sin(t)], [0, np.sin(t), np.cos(t)]])
+        assert np.allclose(rotation_matrix(angles), about_x @ rotation_matrix((0, -90, 0)),
+                           atol=1e-9)
+    assert "a turn about world x: the file's rotation [" in render_text("s", [turn_x])
+    entry = json.loads(render_json("s", [turn_x, turn_z]))["ranges"]
+    assert np.allclose(entry[0]["rotations"], turn_x.rotations, atol=1e-4)   # JSON rounds
+    assert "rotations" not in entry[1]

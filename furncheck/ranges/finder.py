@@ -5,6 +5,7 @@ See the package's docstring for the two stages of a side's search.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Generator
 from dataclasses import dataclass
 
@@ -18,6 +19,7 @@ from furncheck.dofs import (
     Dof,
     OutOfReach,
     all_dofs,
+    apply_dof,
     design_size,
     dof_value,
     parse_dof,
@@ -54,6 +56,9 @@ INSIDE_BRACKET = 0.05
 DROP_RESOLUTION = 0.1
 """The step at which a joint loses a nail is found to this fraction of the resolution."""
 
+ROTATION_MATCH = 1e-6
+"""Degrees within which a turn's file angles count as its own angle changed alone."""
+
 DROP_STEPS = 6
 """Most geometry evaluations finding the step at which a joint loses a nail."""
 
@@ -70,6 +75,11 @@ class DofRange:
     limited: tuple[bool, bool] = (False, False)   # (low, high) end is the search limit,
     limit: float = 0.0                            # this far from the value: valid there,
                                                   # nothing beyond it was searched
+    rotations: tuple[tuple[float, ...], tuple[float, ...]] | None = None
+    """For a turn (rx, ry, rz: about a world axis through the plank's centre) that the
+    file's own angle of that name does not follow alone (a leg drawn with ry = -90 turned
+    about x changes all three of its angles): the file's ``rotation`` at the interval's
+    low and high ends, so that no one types the interval into that one angle."""
 
 
 class RangeFinder(ReachSearch):
@@ -164,10 +174,29 @@ class RangeFinder(ReachSearch):
                 limit = self._scales(dof)[0]
                 out.append(DofRange(dof.name, value, (value - ends[0], value + ends[1]), unit,
                                     limited=(ends[0] >= limit, ends[1] >= limit),
-                                    limit=limit))
+                                    limit=limit,
+                                    rotations=self._file_rotations(dof, (-ends[0], ends[1]))))
             else:
                 out.append(ends[0])
         return out
+
+    def _file_rotations(self, dof: Dof, steps: tuple[float, float]):
+        """``DofRange.rotations`` of a turn by ``steps`` (degrees) either way, or None
+        (not a turn, or one that changes the file's angle of its name alone, by the
+        step)."""
+        if not dof.is_rotation:
+            return None
+        before = self.design.plank(dof.plank).rotation
+        axis = "xyz".index(dof.kind[1])
+        try:
+            after = [apply_dof(self.design, self.frame, dof, step).plank(dof.plank).rotation
+                     for step in steps]
+        except (Blocked, OutOfReach):
+            return None
+        alone = all(math.isclose(angles[k], before[k] + (step if k == axis else 0.0),
+                                 abs_tol=ROTATION_MATCH)
+                    for angles, step in zip(after, steps) for k in range(3))
+        return None if alone else (tuple(after[0]), tuple(after[1]))
 
     # -- searches ------------------------------------------------------------------------------
     def _side(self, dof: Dof, sign: float, limit: float, resolution: float) -> float:

@@ -10,9 +10,11 @@ from furncheck.report.numbers import format_number, json_ready
 
 def render_json(design: str, ranges: list[DofRange]) -> str:
     """``{"design": ..., "ranges": [{"dof", "value", "valid", "unit"[, "reason"][,
-    "limited"]}]}``; ``limited`` ([low, high], only where one is true): that end is the
-    search's limit, valid itself, nothing beyond it searched (contract section 4's
-    ``valid`` is the interval within which the design stays valid: so far as searched)."""
+    "limited"][, "rotations"]}]}``; ``limited`` ([low, high], only where one is true):
+    that end is the search's limit, valid itself, nothing beyond it searched (contract
+    section 4's ``valid`` is the interval within which the design stays valid: so far as
+    searched); ``rotations``: for a turn the file's angle of its name does not follow
+    alone, the file's rotation at the low and high ends (``DofRange.rotations``)."""
     entries = []
     for item in ranges:
         entry = {"dof": item.dof, "value": item.value,
@@ -22,6 +24,8 @@ def render_json(design: str, ranges: list[DofRange]) -> str:
             entry["reason"] = item.reason
         if any(item.limited):
             entry["limited"] = list(item.limited)
+        if item.rotations is not None:
+            entry["rotations"] = [list(item.rotations[0]), list(item.rotations[1])]
         entries.append(entry)
     return json.dumps(json_ready({"design": design, "ranges": entries}), indent=2,
                       allow_nan=False) + "\n"
@@ -35,7 +39,8 @@ def render_text(design: str, ranges: list[DofRange]) -> str:
         interval = "-" if item.valid is None else \
             f"{format_number(item.valid[0], 5)} .. {format_number(item.valid[1], 5)}"
         rows.append((item.dof, format_number(item.value, 5), interval, item.unit,
-                     item.reason or _limited(item)))
+                     "; ".join(note for note in (item.reason or _limited(item),
+                                                 _rotations(item)) if note)))
     widths = [max(len(row[i]) for row in rows) for i in range(4)]
     lines = [f"{design}:"]
     for dof, value, interval, unit, reason in rows:
@@ -52,3 +57,12 @@ def _limited(item: DofRange) -> str:
     if all(item.limited):
         return f"valid as far as searched: {reach} either way"
     return f"valid as far as searched: {reach} {'down' if item.limited[0] else 'up'}"
+
+
+def _rotations(item: DofRange) -> str:
+    """The file's rotation at a turn's ends, where its own angle does not follow alone."""
+    if item.rotations is None:
+        return ""
+    low, high = ("[" + ", ".join(format_number(v, 5) for v in angles) + "]"
+                 for angles in item.rotations)
+    return f"a turn about world {item.dof[-1]}: the file's rotation {low} .. {high}"
