@@ -572,7 +572,7 @@ def test_json_design_equals_yaml_design():
     from_yaml = parse_design(BASE, "bench.yaml", "yaml")
     from_json = parse_design(json_text(base_dict()), "bench.json", "json")
     assert replace_fields(from_json, source="bench.yaml") == from_yaml
-    assert from_json.lines == {}
+    assert from_json.lines["planks[0]"] == 5        # its "{", looked up from the JSON text
 
 
 def test_json_duplicate_key_has_line():
@@ -810,3 +810,32 @@ def test_with_model_refuses_an_unknown_model():
     assert with_model(design, "elastic") is design
     with pytest.raises(ValueError, match="unknown statics model 'steel'"):
         with_model(design, "steel")
+
+
+def test_a_json_designs_violations_carry_their_lines(tmp_path):
+    """A JSON design's violations get the lines of their key paths, as a YAML design's do
+    (looked up only when a line is asked for: ``source.JsonLines``), so its GitHub
+    annotations and SARIF regions point into the file; the design pickles with them."""
+    import json
+    import pickle
+
+    from furncheck.check import check_file
+
+    document = {"furncheck": 1, "planks": [
+        {"id": "base", "size": [400, 400], "center": [0, 0, 6]},
+        {"id": "post", "size": [800, 400], "center": [-150, 0, 412],
+         "rotation": [0, -90, 0]},
+        {"id": "shelf", "size": [300, 300], "center": [6, 0, 600]}],
+        "loads": [{"plank": "shelf", "mass": 40, "at": [100, 0, 606]}]}
+    path = tmp_path / "shelf.json"
+    path.write_text(json.dumps(document, indent=2))
+    report = check_file(str(path), model="rigid")
+    assert report.violations
+    lines = path.read_text().splitlines()
+    for violation in report.violations:
+        assert violation.line is not None
+        plank = violation.where.split("/")[-1].split(",")[0]
+        assert f'"id": "{plank}"' in "\n".join(lines[violation.line - 2:violation.line + 1])
+    design = load_design(str(path))
+    assert pickle.loads(pickle.dumps(design)).line_of("planks[2]") == \
+        design.line_of("planks[2]") is not None

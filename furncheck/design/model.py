@@ -266,7 +266,8 @@ class Design:
     model       : 'elastic' (planks bend, contract section 3a) or 'rigid' (the paper's)
     walls       : vertical planes the design may lean on (contract section 2)
     anchors     : ties of planks to walls (contract section 2)
-    lines       : key path -> 1-based line in the source file (YAML), for annotations
+    lines       : key path -> 1-based line in the source file, for annotations (a JSON
+                  file's looked up when first asked for: ``source.JsonLines``)
     """
 
     name: str

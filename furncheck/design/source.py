@@ -20,6 +20,7 @@ import codecs
 import os
 import re
 import stat
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any, NamedTuple
 
@@ -387,6 +388,39 @@ def _json_lines(text: str, source: str) -> dict[str, int]:
         return _read_yaml(text, source)[1]
     except (DesignError, yaml.YAMLError, ValueError, RecursionError):
         return {}
+
+
+class JsonLines(Mapping):
+    """Key path -> line of a JSON design, looked up the first time a line is asked for
+    (a violation's, for annotations; ``_json_lines``): a design that holds costs nothing."""
+
+    __slots__ = ("_text", "_source", "_found")
+
+    def __init__(self, text: str, source: str):
+        self._text, self._source, self._found = text, source, None
+
+    def _lines(self) -> dict[str, int]:
+        if self._found is None:
+            self._found = _json_lines(self._text, self._source)
+            self._text = ""
+        return self._found
+
+    def __getitem__(self, key: str) -> int:
+        return self._lines()[key]
+
+    def __contains__(self, key: object) -> bool:
+        return key in self._lines()
+
+    def __iter__(self):
+        return iter(self._lines())
+
+    def __len__(self) -> int:
+        return len(self._lines())
+
+    def __eq__(self, other: object) -> bool:    # the same object: no lookup (edits share it)
+        return self is other or (isinstance(other, Mapping) and dict(self) == dict(other))
+
+    __hash__ = None
 
 
 # --- messages: shared with the schema in load.py ------------------------------------------------

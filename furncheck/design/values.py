@@ -9,12 +9,21 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any, NoReturn
 
 from furncheck import tolerances as tol
 from furncheck.design.model import Plank
-from furncheck.design.source import _PATH_SAFE_KEY, _child, _json_lines, _one_line, _quote, _Scalar
+from furncheck.design.source import (
+    _PATH_SAFE_KEY,
+    JsonLines,
+    _child,
+    _json_lines,
+    _one_line,
+    _quote,
+    _Scalar,
+)
 from furncheck.errors import DesignError
 from furncheck.plain import plain_number
 
@@ -44,9 +53,12 @@ class _Doc:
             self._lines = _json_lines(self.source_text, self.source)
         return self._lines
 
-    def design_lines(self) -> dict[str, int]:
-        """The lines a ``Design`` keeps: YAML's (JSON's are only looked up for errors)."""
-        return self._lines if self.fmt == "yaml" and self._lines is not None else {}
+    def design_lines(self) -> Mapping[str, int]:
+        """The lines a ``Design`` keeps: YAML's; a JSON text's, looked up when first asked
+        for (``source.JsonLines``: a violation's line)."""
+        if self._lines is not None:
+            return self._lines
+        return JsonLines(self.source_text, self.source) if self.fmt == "json" else {}
 
     def line_of(self, key: str) -> int | None:
         """Line of ``key``, else of its closest recorded parent."""
