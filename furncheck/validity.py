@@ -34,7 +34,7 @@ from furncheck.result import (
     Violation,
 )
 from furncheck.statics import CaseStatics, StaticsModel
-from furncheck.statics.beams import beam_frame, nail_row_spread
+from furncheck.statics.beams import beam_frame, beam_length_width, nail_row_spread
 
 
 @dataclass(frozen=True)
@@ -193,9 +193,11 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
             if final > allowed * (1.0 + tol.CAPACITY_REL_TOL):
                 overhang = statics.planks.overhang is not None and \
                     bool(statics.planks.overhang[k])
+                crosswise = model.beams.crosswise[k]
                 violations.append(Violation("sagging", plank.id, case.name, _sag_message(
                     design, material, sag, allowed, statics.planks.span[k],
-                    _upright(plank, model.beams.crosswise[k]), overhang), line))
+                    _upright(plank, crosswise), overhang)
+                    + (_held_along(geometry, plank, crosswise) if overhang else ""), line))
             if stress > strength * (1.0 + tol.CAPACITY_REL_TOL):
                 violations.append(Violation("overstressed", plank.id, case.name,
                                             _stress_message(design, stress, strength), line))
@@ -328,6 +330,29 @@ def _sag_message(design: Design, material: Material, sag: float, allowed: float,
             f"{plain_number(sag * (1 + creep) / scale, digits)} {unit} with creep "
             f"(x {plain_number(1 + creep, 6)}); allowed {plain_number(allowed / scale, digits)} "
             f"{unit} (span / {plain_number(material.sag_limit, 6)})")
+
+
+ALONG_COSINE = 0.9
+"""A joint line within about 25 degrees of a plank's beam axis runs along it."""
+
+ALONG_SHARE = 0.5
+"""... and a joint along at least this share of the beam's length holds it along it."""
+
+
+def _held_along(geometry: Geometry, plank, crosswise: bool) -> str:
+    """A note for the overhang's sag of a plank nailed along its beam (its longer side: a
+    runner, a cleat, a shelf nailed by its back edge), which the one-beam model holds at
+    the joint's middle only, its halves overhangs (README, "Elastic planks"): what it
+    reads is an overstatement.  '' for any other plank."""
+    axis = beam_frame(plank, crosswise)[:, 0]
+    length = beam_length_width(plank, crosswise)[0]
+    for joint in geometry.joints:
+        if plank.id in joint.planks and joint.length >= ALONG_SHARE * length and \
+                abs(float(joint.frame[:, 1] @ axis)) >= ALONG_COSINE:
+            other = joint.face if joint.edge == plank.id else joint.edge
+            return (f" (it is nailed along its length to {other}, which the model holds "
+                    f"at the joint's middle only: this overstates its sag)")
+    return ""
 
 
 def _stress_message(design: Design, stress: float, strength: float) -> str:
