@@ -317,8 +317,9 @@ def test_a_bookcase_by_a_wall_gets_anchored(model):
     (its header: it topples at 70.3 N).  The top is the highest plank near the wall (its
     back edge 15 mm in front of it): two fixings on its back edge, a quarter of its
     564 mm from each end (x = -+141 mm), at its mid-thickness (z = 1791 mm), rated 196 N
-    each.  The header's hand estimate for the catalog's anchors (x = -+200): about 111 N
-    each of push, up to 139 N with the weight they share: within 196 N."""
+    each, the 15 mm to the wall packed.  The header's hand estimate for the catalog's
+    anchors (x = -+200): about 111 N each of push, up to 139 N with the weight they
+    share: within 196 N."""
     text = re.sub(r"anchors:\n(  - .*\n)+", "", (CATALOG / "bookcase-anchored.yaml").read_text())
     design = parsed(text, model)
     assert [v.kind for v in check_design(design).violations] == ["lift-off"]
@@ -329,8 +330,8 @@ def test_a_bookcase_by_a_wall_gets_anchored(model):
     worst = max(a.size for case in anchor.report.cases for a in case.anchors)
     assert 100.0 < worst < tol.ANCHOR_CAPACITY
     assert anchor.advice.startswith("Screw top to the wall at (-141, 15, 1791) mm and "
-                                    "(141, 15, 1791) mm with fixings rated 196 N; each takes "
-                                    "at most ")
+                                    "(141, 15, 1791) mm with fixings rated 196 N, packing "
+                                    "the 15 mm gap to the wall; each takes at most ")
     assert fix_valid(anchor)
 
 
@@ -677,5 +678,6 @@ loads:
     design = parsed(text, "rigid")
     assert {v.kind for v in check_design(design).violations} == {"non-durable"}
     anchor = next(fix for fix in fixes(design) if fix.rule == "anchor")
-    assert " with 2 more fixings rated 196 N (beside the 2 it has); " in anchor.advice
+    assert " with 2 more fixings rated 196 N (beside the 2 it has), packing the 18 mm gap " \
+           "to the wall; " in anchor.advice
     assert len(anchor.design.anchors) == 4 and fix_valid(anchor)

@@ -22,7 +22,7 @@ from dataclasses import replace
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.design.model import Anchor
+from furncheck.design.model import Anchor, Design
 from furncheck.plain import plain_number
 from furncheck.suggest.discrete.common import (
     Candidate,
@@ -93,17 +93,28 @@ def _candidates(search: Search) -> Iterator[Candidate]:
                                float(design.walls[wall].distance(np.asarray(p))))
                         for p in points)
         where = names([point_of(p, design) for p in points])
-        wall_name = "the wall" if len(design.walls) == 1 else f"wall {wall}"
+        wall_name = "the wall" if len(design.walls) == 1 else wall_words(design, wall)
         more = bool(design.anchors)             # beside the fixings the design has
         fixings = (("another fixing" if more else "a fixing") if len(points) == 1
                    else f"{len(points)} more fixings" if more else "fixings")
+        gap = max(anchor.gap for anchor in anchors)
+        packed = f", packing the {amount(gap / design.unit_scale)} {design.units} gap to " \
+                 f"the wall" if gap > design.tolerance else ""
+        beside = f" (beside the {len(design.anchors)} it has)" if more else ""
         advice = (f"Screw {plank_id} to {wall_name} at {where} with {fixings} rated "
-                  f"{plain_number(tol.ANCHOR_CAPACITY, 3)} N"
-                  + (f" (beside the {len(design.anchors)} it has)." if more else "."))
+                  f"{plain_number(tol.ANCHOR_CAPACITY, 3)} N{beside}{packed}.")
         yield Candidate("anchor", replace(design, anchors=(*design.anchors, *anchors)),
                         advice, between=(plank_id,), trial_rule=ANCHOR,
                         place=f"{plank_id} to {wall_name} at {where}",
                         plank=f"{len(points)} {'fixing' if len(points) == 1 else 'fixings'}")
+
+
+def wall_words(design: Design, wall: int) -> str:
+    """'wall 0 (the one facing +x)': a design's wall by its index in ``walls`` and the
+    way its face looks (its normal's largest component), for a maker who has several."""
+    normal = np.asarray(design.walls[wall].normal, dtype=float)
+    axis = int(np.argmax(np.abs(normal)))
+    return f"wall {wall} (the one facing {'+' if normal[axis] > 0 else '-'}{'xyz'[axis]})"
 
 
 def _anchor_points(plank, near: np.ndarray, thickness: float) -> list[np.ndarray]:
