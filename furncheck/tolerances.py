@@ -57,6 +57,10 @@ spacing rule).  A shelf whose end covers 0.5 mm of its side is no joint but a ne
 (``disconnected``, with the bearing it has); resting joints, with no nails, keep any
 touch."""
 
+BEARING_EPS = 1e-9
+"""m of round-off allowed in the bearing test (a region exactly MIN_BEARING_SHARE of the
+thickness wide bears), and the least joint length a band's width is measured over."""
+
 NEAR_MISS_FACTOR = 20.0
 """Near misses (contract section 2): where an auto joint or a ground contact would be, a
 gap or an overlap of more than the design's tolerance but at most this many times it (10

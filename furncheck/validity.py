@@ -174,8 +174,8 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
                     and statics.stability in ("stable", "sliding"):
                 violations.append(Violation(
                     "non-durable", f"anchors[{contact.anchor}]", case.name,
-                    f"anchor of {contact.plank} to wall {contact.wall} holds "
-                    f"{plain_number(held.size)} N, more than its {plain_number(held.capacity)} N"
+                    "anchor of {} to wall {} holds {} N, more than its {} N".format(
+                        contact.plank, contact.wall, *plain_compared(held.size, held.capacity))
                     + _factor_note(design), design.line_of(f"anchors[{contact.anchor}]")))
     planks = None
     if statics.planks is not None:

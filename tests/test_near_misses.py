@@ -413,3 +413,76 @@ def test_a_listed_joint_on_a_sliver_is_disconnected_and_a_resting_one_holds():
     resting = parsed(text + "joints:\n  - {planks: [seat, end_l], type: rests}\n"
                             "  - {planks: [seat, end_r], type: rests}\n")
     assert not analyze(resting).violations
+
+
+def test_a_sliver_is_reported_with_no_near_miss_band_too():
+    """tolerance: 0 leaves no near-miss band, yet a sliver lies on the face within the
+    tolerance: it is reported as with the default tolerance, for detected joints as for
+    listed ones (it used to vanish: the seat read as a cantilever off one panel)."""
+    text = BENCH.replace("SEAT", "483").replace("material:", "tolerance: 0\nmaterial:")
+    detected = [v.where for v in analyze(parsed(text)).violations if v.kind == "disconnected"]
+    listed = [v.where for v in analyze(parsed(
+        text + "joints:\n  - [seat, end_l]\n  - [seat, end_r]\n")).violations
+        if v.kind == "disconnected"]
+    assert detected == listed == ["seat/end_l", "seat/end_r"]
+
+
+@pytest.mark.parametrize(("phi", "dx", "dy"), [(33.0, 0.8, -1.7), (-123.4, 0.0, 2.5)])
+def test_the_bearing_rule_is_the_same_wherever_the_design_stands(phi, dx, dy):
+    """The bearing rule measures the band across the joint line, not along world axes:
+    the benches of ``test_a_nail_joint_needs_half_...`` turned by phi about z and moved
+    keep their joints (500.1 mm seat) and their slivers, with the same band (483 mm)."""
+    import physics_designs as pd
+    import yaml
+
+    for seat, joined in ((483.0, 0), (500.1, 2)):
+        tree = pd.rigid_motion(yaml.safe_load(BENCH.replace("SEAT", str(seat))), phi,
+                               dx * 1000.0, dy * 1000.0)
+        geometry = analyze(parsed(yaml.safe_dump(tree, sort_keys=False)))
+        assert len(geometry.joints) == joined
+        bands = sorted(round(m.bearing * 1000.0, 6) for m in geometry.near_misses
+                       if m.bearing is not None)
+        assert bands == ([0.5, 0.5] if joined == 0 else [])
+
+
+def test_a_sliver_is_repaired_by_the_face_plank_reaching_over_the_ends():
+    """The 483 mm seat over 0.5 mm of each 18 mm end: the explanation says what the
+    joints need (9 mm; 8.5 to 17.5 mm more of it), and the reconnect rule lengthens the
+    seat over both ends, 17.5 mm each (flush with their outer faces), which validates."""
+    from furncheck.report.explanation import need_text
+    from furncheck.suggest import suggest_design
+
+    result = suggest_design(parsed(BENCH.replace("SEAT", "483")))
+    texts = [need_text(need, "mm") for need in result.explanation.needs]
+    assert ("disconnected seat/end_l: the end bears on 0.5 mm of its 18 mm "
+                        "thickness, where nails need 9 mm: the face plank reaching 8.5 to "
+                        "17.5 mm further over it (or the planks moved that much together) "
+                        "would join them") in texts
+    (fix,) = [s for s in result.suggestions if s.rule == "reconnect"]
+    assert fix.advice.startswith("Lengthen seat by 35 mm (17.5 mm at the end over end_l "
+                                 "and 17.5 mm at the end over end_r)")
+    assert fix.design.plank("seat").length == pytest.approx(0.518)
+    assert check_design(fix.design).valid
+
+
+def test_a_resting_joints_corners_follow_an_edit_as_analyze_finds_them():
+    """A seat resting on two end panels over 0.5 mm bands (resting joints keep any touch)
+    moved 10 mm along y: the followed corners of its resting joints (the sensitivity's
+    path) are the ones a fresh analysis finds, not the old ones kept (the followed touch
+    used to drop the sliver)."""
+    from dataclasses import replace
+
+    import numpy as np
+
+    from furncheck.geometry.analysis import follow
+
+    design = parsed(BENCH.replace("SEAT", "483") + "joints:\n  - {planks: [seat, end_l], "
+                    "type: rests}\n  - {planks: [seat, end_r], type: rests}\n")
+    geometry = analyze(design)
+    edited = replace(design, planks=tuple(
+        replace(p, center=(p.center[0], p.center[1] + 0.01, p.center[2])) if p.id == "seat"
+        else p for p in design.planks))
+    followed, fresh = follow(geometry, edited), analyze(edited)
+    resting = [(a.point, b.point) for a, b in zip(followed.contacts, fresh.contacts) if a.on]
+    assert len(resting) == 8
+    assert all(np.allclose(a, b, atol=1e-12) for a, b in resting)

@@ -79,20 +79,21 @@ def test_sizes_beyond_the_plain_range_use_an_exponent():
     assert plain_number(1.5e-9) == "0.0000000015"
 
 
-@pytest.mark.parametrize(("value", "limit", "digits", "shown"), [
-    (1.2075, 1.205, 3, ("1.208", "1.205")),     # 1.21 against 1.21 at three digits
-    (754.7, 700.0, 4, ("754.7", "700")),        # different already: as plain_number
-    (700.04, 700.0, 4, ("700.04", "700")),
-    (1.0 + 1e-12, 1.0, 4, ("1", "1")),          # beyond the digits shown: left alike
-    (5.0, 5.0, 3, ("5", "5")),
+@pytest.mark.parametrize(("value", "limit", "digits", "shown", "used"), [
+    (1.2075, 1.205, 3, ("1.208", "1.205"), 4),     # 1.21 against 1.21 at three digits
+    (754.7, 700.0, 4, ("754.7", "700"), 4),        # different already: as plain_number
+    (700.04, 700.0, 4, ("700.04", "700"), 5),
+    (1.0 + 1e-12, 1.0, 4, ("1", "1"), 8),          # beyond the most shown: left alike
+    (5.0, 5.0, 3, ("5", "5"), 3),
 ])
-def test_compared_numbers_read_differently_when_they_differ(value, limit, digits, shown):
+def test_compared_numbers_read_differently_when_they_differ(value, limit, digits, shown,
+                                                            used):
     """A value and the limit it is compared with get the fewest digits (from ``digits``)
     at which they read differently, so a message never says '1.21 mm ... allowed 1.21
-    mm' for a sag over its allowance; equal numbers, or numbers closer than
-    COMPARED_MAX_DIGITS show, keep ``digits``' reading."""
+    mm' for a sag over its allowance; equal numbers keep ``digits``, numbers closer than
+    COMPARED_MAX_DIGITS (8) tell apart read alike at 8."""
     assert plain_compared(value, limit, digits) == shown
-    assert distinguishing_digits(value, limit, digits) >= digits
+    assert distinguishing_digits(value, limit, digits) == used
 
 
 SIDE_TABLE = """\

@@ -26,6 +26,7 @@ from furncheck.geometry.analysis import (
     analyze,
     cut_in_pairs,
     cut_ins,
+    end_bearing,
     end_depth,
     end_gap,
     follow,
@@ -47,5 +48,5 @@ def __getattr__(name: str):
 
 
 __all__ = ["Contact", "EditMargins", "EditedTables", "Geometry", "Joint", "NearMiss", "analyze",
-           "cut_in_pairs", "cut_ins", "edit_margins_many", "end_depth", "end_gap", "follow",
-           "follow_many", "interpenetrations", "nail_count"]
+           "cut_in_pairs", "cut_ins", "edit_margins_many", "end_bearing", "end_depth",
+           "end_gap", "follow", "follow_many", "interpenetrations", "nail_count"]

@@ -16,6 +16,7 @@ from furncheck import tolerances as tol
 from furncheck.design.model import Design, Plank, tabulate_planks
 from furncheck.geometry.boxes import meeting_pairs
 from furncheck.geometry.faces import (
+    _bearing,
     _bears,
     _best_touches,
     _bounding_boxes,
@@ -292,7 +293,7 @@ def _rest_followed(design: Design, contact: Contact) -> Contact:
     index = design.plank_index
     i, j = index[contact.plank], index[contact.on]
     touch = _best_touches(design.planks, np.array([[min(i, j), max(i, j)]]), slack=np.inf,
-                          keep_deep=True).get((min(i, j), max(i, j)))
+                          keep_deep=True, bearing=0.0).get((min(i, j), max(i, j)))
     if touch is None or touch.edge.id != contact.plank:
         return contact
     return rest_contacts(touch, contact.rest)[contact.corner]
@@ -318,6 +319,16 @@ def _joint_from_touch(touch: _Touch, planks: tuple[str, str], nails: int, key: s
                  face_side=touch.face_side, key=key)
 
 
+def end_bearing(design: Design, i: int, j: int) -> tuple[float, float] | None:
+    """(the band's width m, the edge plank's thickness m) where an end face of one of
+    planks i, j lies on the other's face within the tolerance but over a band too narrow
+    for nails (``faces._bears``); None otherwise."""
+    touch = _nearest_touch(design, i, j)
+    if touch is None or _bears(touch) or abs(touch.gap) > design.tolerance + _GEOMETRY_EPS:
+        return None
+    return _bearing(touch), touch.edge.thickness
+
+
 def end_gap(design: Design, i: int, j: int, signed: bool = False) -> float | None:
     """How far (m) the end face of one of planks i, j is from the broad face of the other
     that it faces (its gap, or its depth when it cuts in; with ``signed``, a depth is
@@ -331,7 +342,7 @@ def end_gap(design: Design, i: int, j: int, signed: bool = False) -> float | Non
 
 def _nearest_touch(design: Design, i: int, j: int) -> _Touch | None:
     return _best_touches(design.planks, np.array([[i, j]]), slack=np.inf,
-                         keep_deep=False).get((i, j))
+                         keep_deep=False, bearing=0.0).get((i, j))
 
 
 def _apart_message(design: Design, i: int, j: int) -> str:
@@ -486,7 +497,8 @@ def cut_ins(design: Design, index: int) -> list[tuple[float, int]]:
     if not others:
         return []
     pairs = np.array([[index, j] for j in others])
-    touches = _best_touches(design.planks, pairs, slack=np.inf, keep_deep=True, one_way=True)
+    touches = _best_touches(design.planks, pairs, slack=np.inf, keep_deep=True, one_way=True,
+                            bearing=0.0)
     _, band = near_band(design)
     deep = sorted((float(touch.gap), touch.face.id) for touch in touches.values()
                   if touch.gap < -band)
@@ -508,7 +520,7 @@ def end_depth(design: Design, face: int, edge: int) -> float | None:
     that it faces, above it (> 0) or sunk into it (< 0), however deep; None when no end
     of it faces that face."""
     touch = _best_touches(design.planks, np.array([[edge, face]]), slack=np.inf,
-                          keep_deep=True, one_way=True).get((edge, face))
+                          keep_deep=True, one_way=True, bearing=0.0).get((edge, face))
     return None if touch is None else float(touch.gap)
 
 

@@ -131,8 +131,9 @@ class EditedTables:
         otherwise: their end faces measured against every face within the near-miss band,
         all edits at once.  (Such an edit is analyzed in full, which reports them.)"""
         slack, band = near_band(self.design)
-        if not structure.usable or band <= slack or not which:
+        if not structure.usable or not which:
             return set()
+        band = max(band, slack)     # (no band: slivers within the tolerance all the same)
         fresh = {k: _fresh_pairs(self.changed[k], self.lo[self.index[k]],
                                  self.hi[self.index[k]], band) for k in which}
         rows = [self.index[k][fresh[k]] for k in which]

@@ -175,7 +175,7 @@ def _touch_regions(planks, faces: _Faces, edge: np.ndarray, face: np.ndarray,
     centroids = np.array([(0.0, 0.0) if region is None else region[1:3] for region in regions])
     points = face_center + rot_f[:, :, 0] * centroids[:, :1] + rot_f[:, :, 1] * centroids[:, 1:]
     touches: list[_Touch | None] = []
-    needed = (bearing * 2.0 * half_e[:, 2] - _BEARING_EPS).tolist() if bearing > 0.0 \
+    needed = (bearing * 2.0 * half_e[:, 2] - tol.BEARING_EPS).tolist() if bearing > 0.0 \
         else [-np.inf] * len(regions)
     for c, (region, face_c, edge_c, f_c, g_c, alignment_c) in enumerate(zip(
             regions, face.tolist(), edge.tolist(), f.tolist(), g.tolist(),
@@ -222,17 +222,17 @@ def _region_gaps(xs: np.ndarray, ys: np.ndarray, count: np.ndarray, slope: np.nd
     return np.where(inside, gap, heights.min(axis=1))
 
 
+def _bearing(touch: _Touch) -> float:
+    """m: how wide a touching region is across its joint line (its area over its length)."""
+    return touch.area / max(touch.length, tol.BEARING_EPS)
+
+
 def _bears(touch: _Touch) -> bool:
-    """Whether a touching region is wide enough across its joint line for nails: its
-    area over its length at least ``tolerances.MIN_BEARING_SHARE`` of the edge plank's
-    thickness."""
+    """Whether a touching region is wide enough across its joint line for nails
+    (``_bearing``): at least ``tolerances.MIN_BEARING_SHARE`` of the edge plank's
+    thickness, to ``tolerances.BEARING_EPS``."""
     return touch.area >= (tol.MIN_BEARING_SHARE * touch.edge.thickness
-                          - _BEARING_EPS) * touch.length
-
-
-_BEARING_EPS = 1e-9
-"""m of round-off allowed in the bearing test (a region exactly half the thickness wide
-bears)."""
+                          - tol.BEARING_EPS) * touch.length
 
 
 CLIP_AT_ONCE = 128

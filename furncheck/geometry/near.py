@@ -32,7 +32,7 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.design.model import Design
 from furncheck.geometry.boxes import meeting_pairs
-from furncheck.geometry.faces import _bears, _best_touches, _bounding_boxes
+from furncheck.geometry.faces import _bearing, _bears, _best_touches, _bounding_boxes, _Touch
 from furncheck.geometry.model import (
     _COS_MAX_TILT,
     _GEOMETRY_EPS,
@@ -41,7 +41,7 @@ from furncheck.geometry.model import (
     Joint,
     NearMiss,
 )
-from furncheck.plain import plain_length
+from furncheck.plain import plain_compared, plain_length, plain_number
 from furncheck.result import Violation
 
 
@@ -65,8 +65,9 @@ def missed_joints(design: Design, joints: list[Joint]) -> list[NearMiss]:
     """Plank pairs without a joint whose end face and face are a near miss (module doc);
     none when the design lists its joints."""
     slack, band = near_band(design)
-    if design.joints is not None or band <= slack or len(design.planks) < 2:
+    if design.joints is not None or len(design.planks) < 2:
         return []
+    band = max(band, slack)       # (with no band, a sliver within the tolerance all the same)
     pairs = meeting_pairs(*_bounding_boxes(design.planks), band)
     index, n = design.plank_index, len(design.planks)
     jointed = np.array([min(index[joint.face], index[joint.edge]) * n
@@ -84,11 +85,10 @@ def missed_joints(design: Design, joints: list[Joint]) -> list[NearMiss]:
     return missed
 
 
-def sliver(touch) -> NearMiss:
+def sliver(touch: _Touch) -> NearMiss:
     """The near miss of an end face that lies on a face over a band too narrow for nails
     (``faces._bears``)."""
-    return NearMiss((touch.face.id, touch.edge.id), float(touch.gap),
-                    float(touch.area / max(touch.length, 1e-12)))
+    return NearMiss((touch.face.id, touch.edge.id), float(touch.gap), _bearing(touch))
 
 
 def missed_ground(design: Design, contacts: list[Contact],
@@ -201,10 +201,11 @@ def sliver_message(design: Design, miss: NearMiss) -> str:
     narrow (``tolerances.MIN_BEARING_SHARE``)."""
     face, edge = miss.planks
     thickness = design.plank(edge).thickness
-
-    def length(value_m: float) -> str:
-        return plain_length(value_m, design.unit_scale, design.units, 3)
-
-    return (f"the end of {edge} bears on only {length(miss.bearing)} of the face of {face} "
-            f"across its {length(thickness)} thickness: no joint forms (nails need at "
-            f"least {length(tol.MIN_BEARING_SHARE * thickness)}, half the thickness)")
+    needed = tol.MIN_BEARING_SHARE * thickness
+    scale, unit = design.unit_scale, design.units
+    has, needs = plain_compared(miss.bearing / scale, needed / scale, 3)
+    share = "half" if tol.MIN_BEARING_SHARE == 0.5 else \
+        f"{plain_number(100.0 * tol.MIN_BEARING_SHARE, 3)} % of"
+    return (f"the end of {edge} bears on only {has} {unit} of the face of {face} across its "
+            f"{plain_length(thickness, scale, unit, 3)} thickness: no joint forms (nails need "
+            f"at least {needs} {unit}, {share} the thickness)")

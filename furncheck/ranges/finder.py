@@ -13,7 +13,7 @@ import numpy as np
 
 from furncheck import tolerances as tol
 from furncheck.check import check_design, margin_of
-from furncheck.design.model import Design
+from furncheck.design.model import Design, rotation_matrix
 from furncheck.dofs import (
     Blocked,
     Dof,
@@ -57,7 +57,8 @@ DROP_RESOLUTION = 0.1
 """The step at which a joint loses a nail is found to this fraction of the resolution."""
 
 ROTATION_MATCH = 1e-6
-"""Degrees within which a turn's file angles count as its own angle changed alone."""
+"""Degrees within which a turn counts as its file angle's alone (entries of the two
+rotation matrices within this many radians' worth)."""
 
 DROP_STEPS = 6
 """Most geometry evaluations finding the step at which a joint loses a nail."""
@@ -182,8 +183,8 @@ class RangeFinder(ReachSearch):
 
     def _file_rotations(self, dof: Dof, steps: tuple[float, float]):
         """``DofRange.rotations`` of a turn by ``steps`` (degrees) either way, or None
-        (not a turn, or one that changes the file's angle of its name alone, by the
-        step)."""
+        (not a turn, or one that the file's angle of its name alone, changed by the
+        step, writes: the same matrix, whatever triple the edit reads it back as)."""
         if not dof.is_rotation:
             return None
         before = self.design.plank(dof.plank).rotation
@@ -193,9 +194,9 @@ class RangeFinder(ReachSearch):
                      for step in steps]
         except (Blocked, OutOfReach):
             return None
-        alone = all(math.isclose(angles[k], before[k] + (step if k == axis else 0.0),
-                                 abs_tol=ROTATION_MATCH)
-                    for angles, step in zip(after, steps) for k in range(3))
+        alone = all(np.allclose(rotation_matrix(angles), rotation_matrix(tuple(
+            before[k] + (step if k == axis else 0.0) for k in range(3))),
+            atol=math.radians(ROTATION_MATCH)) for angles, step in zip(after, steps))
         return None if alone else (tuple(after[0]), tuple(after[1]))
 
     # -- searches ------------------------------------------------------------------------------

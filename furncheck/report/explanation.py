@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from furncheck.plain import distinguishing_digits
+from furncheck.plain import distinguishing_digits, plain_number
 from furncheck.report.common import plural
 from furncheck.report.numbers import format_number
 from furncheck.suggest.candidates import MAX_STEP
@@ -30,8 +30,12 @@ SHOWN = 8
 
 
 def _n(value: float, digits: int = DIGITS) -> str:
-    """``digits`` significant digits, whole units at least (1250, not 1.25e+03)."""
+    """``digits`` significant digits, whole units at least (1250, not 1.25e+03); more than
+    DIGITS (``_digits``: a value told from its limit) as ``plain_number`` writes them,
+    without the report's rounding to 6 decimals first (a metre design's sag)."""
     whole = len(str(int(abs(round(value)))))
+    if digits > DIGITS:
+        return plain_number(value, max(digits, whole))
     return format_number(value, max(digits, whole))
 
 
@@ -131,6 +135,12 @@ def _bent(v: dict, units: str) -> str:
 
 def _geometric(kind: str):
     def sentence(v: dict, units: str) -> str:
+        if "bearing" in v:
+            return (f"the end bears on {_n(v['bearing'])} {units} of its "
+                    f"{_n(v['thickness'])} {units} thickness, where nails need "
+                    f"{_n(v['bearing_needed'])} {units}: the face plank reaching "
+                    f"{_n(v['change_min'])} to {_n(v['change_max'])} {units} further over it "
+                    f"(or the planks moved that much together) would join them")
         if v.get("carried"):
             return f"{_n(v['distance'])} {units} above the floor, it hangs on joints it " \
                    "misses: closing those carries it, nothing to lower"

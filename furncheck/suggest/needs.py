@@ -45,12 +45,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from furncheck.design.model import Design, Plank
-from furncheck.geometry import Geometry, end_gap
+from furncheck.geometry import Geometry, end_bearing, end_gap
 from furncheck.geometry.model import nails_listed
 from furncheck.geometry.near import carried_groups
 from furncheck.geometry.support import convex_hull, outside
 from furncheck.result import CaseResult, DesignReport, Violation
-from furncheck.tolerances import GRAVITY
+from furncheck.tolerances import GRAVITY, MIN_BEARING_SHARE
 
 LEVEL_COS = 0.95
 """A plank's length axis counts as horizontal, and a face normal as horizontal, when
@@ -336,6 +336,14 @@ def _geometric(design: Design, geometry: Geometry, where: str, case: CaseResult 
         if "/" not in where:
             return Need(kind, where, None, why="joined to nothing")
         a, b = (design.plank_index[p] for p in where.split("/", 1))
+        sliver = end_bearing(design, a, b)
+        if sliver is not None:                  # on the face, over too narrow a band
+            band, thickness = sliver
+            needed = MIN_BEARING_SHARE * thickness
+            return Need(kind, where, None, values={
+                "bearing": band / scale, "thickness": thickness / scale,
+                "bearing_needed": needed / scale, "change_min": (needed - band) / scale,
+                "change_max": (thickness - band) / scale})
         gap = end_gap(design, a, b, signed=True)
         if gap is None:
             return Need(kind, where, None, why="neither plank's end faces the other")

@@ -60,12 +60,18 @@ def spares_no_board(thickened: dict, alone: dict) -> bool:
                                    for plank, new in alone.items())
 
 
-def _dropped(trials: list[Trial], fix: Fix) -> None:
-    """The found trial of ``fix``, which spares no board of the thicker rule's fix alone,
-    told as failed for that reason (the explanation must not count it found)."""
-    added = {plank.id for plank in fix.adds}
-    for k, trial in enumerate(trials):
-        if trial.outcome == FOUND and trial.plank and set(trial.plank.split(" and ")) <= added:
+def _not_covered(search: Search) -> None:
+    """The reconnect rule where the continuous search closed the gaps: no fix."""
+    search.not_applicable(RECONNECT, "the continuous search closes the gaps")
+
+
+def _dropped(trials: list[Trial], tried: range) -> None:
+    """The found trial among ``tried`` (the trials of the rule whose fix spares no board
+    of the thicker rule's fix alone) told as failed for that reason (the explanation must
+    not count it found)."""
+    for k in tried:
+        trial = trials[k]
+        if trial.outcome == FOUND:
             trials[k] = replace(trial, outcome=FAILED, reason=(
                 "valid with thicker boards, but it needs every board the thicker board "
                 "fix alone needs, and adds a part: left out"))
@@ -82,17 +88,21 @@ def discrete_fixes(design: Design, geometry: Geometry, report: DesignReport,
     changes a DOF of ``locked``.  Every rule's trials (each candidate, or why the rule
     does not apply) are appended to ``trials`` (``tried.Trial``)."""
     search = Search(design, geometry, report, locked, [] if trials is None else trials)
-    found = [rule(search) for rule in RULES]
-    if covered and geometry.violations:
-        search.not_applicable(RECONNECT, "the continuous search closes the gaps")
-    else:
-        found.append(reconnect_near_misses(search))
-    found = [fix for fix in found if fix is not None]
+    reconnect = (_not_covered if covered and geometry.violations
+                 else reconnect_near_misses)
+    found, tried_by = [], []            # each rule's fix, and the trials it appended
+    for rule in (*RULES, reconnect):
+        start = len(search.trials)
+        found.append(rule(search))
+        tried_by.append(range(start, len(search.trials)))
+    kept = [(fix, tried) for fix, tried in zip(found, tried_by, strict=True)
+            if fix is not None]
+    found = [fix for fix, _ in kept]
     alone = next((fix.thickened for fix in found if fix.rule == "thicker"), None)
     if alone:
-        for fix in found:
+        for fix, tried in kept:
             if fix.rule != "thicker" and spares_no_board(fix.thickened, alone):
-                _dropped(search.trials, fix)
+                _dropped(search.trials, tried)
         found = [fix for fix in found if fix.rule == "thicker" or not spares_no_board(
             fix.thickened, alone)]
     restores = search.restores

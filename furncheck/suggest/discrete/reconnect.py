@@ -70,7 +70,15 @@ def _closed(search: Search) -> tuple[Design, dict, tuple] | None:
     handled: set[tuple[str, str]] = set()
     joints = []
     for miss in geometry.near_misses:
-        if len(miss.planks) == 2:
+        if len(miss.planks) == 2 and miss.bearing is not None:   # a sliver: the face plank
+            face, edge = miss.planks                              # covers the whole end
+            axis, sign = _side_toward(design.plank(face), design.plank(edge))
+            moves.setdefault(face, []).append((axis, sign,
+                                               design.plank(edge).thickness - miss.bearing,
+                                               f"at the end over {edge}"))
+            handled.add(("disconnected", miss.name))
+            joints.append((face, edge))
+        elif len(miss.planks) == 2:
             face, edge = miss.planks
             axis, sign = _end_toward(design.plank(edge), design.plank(face))
             moves.setdefault(edge, []).append((axis, sign, miss.distance,
@@ -91,7 +99,7 @@ def _closed(search: Search) -> tuple[Design, dict, tuple] | None:
         if violation.kind == "disconnected" and "/" in violation.where:
             a, b = (design.plank_index[p] for p in violation.where.split("/", 1))
             touch = _best_touches(design.planks, np.array([[a, b]]), slack=np.inf,
-                                  keep_deep=False).get((a, b))
+                                  keep_deep=False, bearing=0.0).get((a, b))
             if touch is None or not slack < abs(float(touch.gap)) <= band:
                 return None
             face, edge = touch.face.id, touch.edge.id
@@ -161,6 +169,15 @@ def _end_toward(edge: Plank, face: Plank) -> tuple[int, int]:
             if best is None or facing < best[0]:
                 best = (facing, axis, sign)
     return best[1], best[2]
+
+
+def _side_toward(face: Plank, edge: Plank) -> tuple[int, int]:
+    """(local axis, sign) of the face plank's end (or long side) nearest the edge plank:
+    the in-plane axis along which the edge plank's centre lies farthest from its own."""
+    offset = edge.center_array - face.center_array
+    along = [float(face.rotation_matrix[:, axis] @ offset) for axis in (0, 1)]
+    axis = int(np.argmax(np.abs(along) / np.array([face.length, face.width])))
+    return axis, 1 if along[axis] > 0 else -1
 
 
 def _extended(plank: Plank, changes: list[tuple[int, int, float, str]]) -> Plank:
