@@ -47,7 +47,7 @@ def check_design(design: Design, geometry: Geometry | None = None,
     geometry = geometry or analyze(design)
     violations = list(geometry.violations)
     if not geometry.stands:
-        planks = () if design.model == "elastic" else None     # the key, empty
+        planks = () if design.elastic else None     # the key, empty
         cases = tuple(CaseResult(case.name, durable=False, stable=False, joints=(), contacts=(),
                                  stability=NOT_SOLVED, planks=planks,
                                  loads=case_loads(design, case))

@@ -300,6 +300,12 @@ class Design:
         """kg: the plank's density x its volume."""
         return self.material_of(plank).density * plank.volume
 
+    @property
+    def elastic(self) -> bool:
+        """Whether its planks bend (``model: elastic``, contract section 3a): the one test
+        of the model's name."""
+        return self.model == "elastic"
+
     def material_of(self, plank: Plank) -> Material:
         """The plank's material: the design's, with the plank's own values
         (``Plank.material``) in their place.  (Its thickness is ``plank.thickness``; the

@@ -362,7 +362,7 @@ def build_model(design: Design, geometry: Geometry) -> StaticsModel:
     """The statics model of the grounded components in the design's model (``design.model``:
     the one place where the model is chosen): rigid planks (paper section 5.1) or elastic
     beams (``statics.elastic``, contract section 3a)."""
-    if design.model == "elastic":
+    if design.elastic:
         from furncheck.statics.elastic import build_elastic_model
 
         return build_elastic_model(design, geometry)

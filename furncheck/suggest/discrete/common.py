@@ -95,7 +95,7 @@ class Search:
 
     @property
     def elastic(self) -> bool:
-        return self.design.model == "elastic"
+        return self.design.elastic
 
     @property
     def neighbours(self) -> dict[str, list[str]]:
