@@ -17,6 +17,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from shop_designs import SIDE_TABLE_RACK
 
 from furncheck import tolerances as tol
 from furncheck.check import check_design
@@ -508,25 +509,8 @@ def test_an_added_part_that_needs_a_thicker_board_is_said_as_cut():
     bump (elastic model): the support panel under the top works once it is a 22 mm board.
     The advice gives the part as it is cut, 'support-1 (582 x 500 x 22 mm)', where it read
     'Add support-1 (582 x 500 mm) ..., and make support-1 22 mm thick'."""
-    text = """\
-furncheck: 1
-name: side-table-rack
-material: {thickness: 18}
-planks:
-  - {id: top, size: [500, 500], center: [0, 0, 591]}
-  - {id: leg_pp, size: [582, 45], center: [241, 227.5, 291], rotation: [0, -90, 0]}
-  - {id: leg_mp, size: [582, 45], center: [-241, 227.5, 291], rotation: [0, -90, 0]}
-  - {id: leg_pm, size: [582, 45], center: [241, -227.5, 291], rotation: [0, -90, 0]}
-  - {id: leg_mm, size: [582, 45], center: [-241, -227.5, 291], rotation: [0, -90, 0]}
-loads:
-  - {plank: top, mass: 25}
-load_cases:
-  bump:
-    include: [default]
-    loads:
-      - {plank: top, force: [80, 0, 0], at: [-250, 0, 600]}
-"""
-    support = next(fix for fix in fixes(parsed(text, "elastic")) if fix.rule == "support")
+    support = next(fix for fix in fixes(parsed(SIDE_TABLE_RACK, "elastic"))
+                   if fix.rule == "support")
     assert support.advice.startswith("Add support-1 (582 x 500 x 22 mm) under top, ")
     assert "make support-1" not in support.advice
     assert support.design.plank("support-1").thickness == pytest.approx(0.022)
