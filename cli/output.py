@@ -14,8 +14,10 @@ from furncheck import tolerances as tol
 
 
 def fail(message: str) -> NoReturn:
-    """One line on stderr, exit code 2 (bad input or usage)."""
-    click.echo(f"furncheck: {message}", err=True)
+    """One line on stderr per problem (a design file's problems, one per line of
+    ``message``), exit code 2 (bad input or usage)."""
+    for problem in message.split("\n"):
+        click.echo(f"furncheck: {problem}", err=True)
     raise click.exceptions.Exit(exitcodes.BAD_INPUT)
 
 
@@ -194,7 +196,10 @@ def fail_as(path: str, message: str, fmt: str, output: str | None) -> NoReturn:
     if fmt == "json":
         import json
 
-        document = {"design": path, "error": message}
+        problems = message.split("\n")
+        document = {"design": path, "error": problems[0]}
+        if len(problems) > 1:                   # as validate's entry: every problem too
+            document["errors"] = problems
         write_output(json.dumps(document, indent=2) + "\n", output)
     fail(message)
 

@@ -25,11 +25,16 @@ class DesignError(FurncheckError):
         self.key = key
         self.line = line
         self.message = message
+        self.more: tuple[DesignError, ...] = ()     # the file's other problems, in order
         super().__init__(self.one_line())
 
     def one_line(self) -> str:
         where = self.file if self.line is None else f"{self.file}:{self.line}"
         return f"{where}: {self.key}: {self.message}" if self.key else f"{where}: {self.message}"
+
+    def __str__(self) -> str:
+        """One line per problem (contract section 4): this one, then ``more``."""
+        return "\n".join(problem.one_line() for problem in (self, *self.more))
 
 
 class DesignTooBig(DesignError):

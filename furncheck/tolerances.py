@@ -61,6 +61,10 @@ BEARING_EPS = 1e-9
 """m of round-off allowed in the bearing test (a region exactly MIN_BEARING_SHARE of the
 thickness wide bears), and the least joint length a band's width is measured over."""
 
+MAX_INPUT_PROBLEMS = 20
+"""At most this many problems of one design file are reported (one line each); a file
+that gets more is far from a design."""
+
 NEAR_MISS_FACTOR = 20.0
 """Near misses (contract section 2): where an auto joint or a ground contact would be, a
 gap or an overlap of more than the design's tolerance but at most this many times it (10

@@ -15,7 +15,10 @@ from dataclasses import replace as replace_fields
 import numpy as np
 import pytest
 import yaml
+from click.testing import CliRunner
 
+from furncheck import tolerances as tol
+from furncheck.cli.main import main
 from furncheck.design import (
     Design,
     JointSpec,
@@ -839,3 +842,72 @@ def test_a_json_designs_violations_carry_their_lines(tmp_path):
     design = load_design(str(path))
     assert pickle.loads(pickle.dumps(design)).line_of("planks[2]") == \
         design.line_of("planks[2]") is not None
+
+
+# --- every problem of a file, one line each -----------------------------------------------------
+
+THREE_PROBLEMS = """\
+furncheck: 1
+colour: red
+planks:
+  - {id: board, size: [400, 300, 12], center: [0, 0, 6]}
+loads:
+  - {plank: nope, mass: 1}
+"""
+
+
+def test_every_problem_of_a_file_is_reported_one_line_each(tmp_path):
+    """Contract section 4, 'one line per problem': an unknown top-level key (line 2), a
+    plank's size of three numbers (line 4) and a load on a plank that does not exist
+    (line 6) are all reported, in the file's order, each with its line and key path;
+    the text report gives a line each, the JSON entry its first as ``error`` and all as
+    ``errors``, GitHub an annotation each; exit 2."""
+    with pytest.raises(DesignError) as info:
+        parse_design(THREE_PROBLEMS, "three.yaml", "yaml")
+    problems = (info.value, *info.value.more)
+    assert [(p.line, p.key) for p in problems] == [(2, "colour"), (4, "planks[0].size"),
+                                                     (6, "loads[0].plank")]
+    assert str(info.value).split("\n") == [p.one_line() for p in problems]
+    path = tmp_path / "three.yaml"
+    path.write_text(THREE_PROBLEMS)
+    text = CliRunner().invoke(main, ["validate", str(path)])
+    assert text.exit_code == 2
+    assert [line.split(": error: ")[1][:7] for line in text.output.splitlines()[:3]] == \
+        ["line 2:", "line 4:", "line 6:"]
+    document = json.loads(CliRunner().invoke(main, ["validate", str(path), "--format",
+                                                    "json"]).output)
+    (entry,) = document["reports"]
+    assert entry["error"] == entry["errors"][0] and len(entry["errors"]) == 3
+    github = CliRunner().invoke(main, ["validate", str(path), "--format", "github"]).output
+    assert [line.split(",")[1] for line in github.splitlines() if line.startswith("::error")] \
+        == ["line=2", "line=4", "line=6"]
+
+
+@pytest.mark.parametrize(("plank", "why"), [
+    ("{id: seat one, size: [400, 300], center: [0, 0, 6]}", 'invalid plank id "seat one"'),
+    ("{id: seat, size: [400], center: [0, 0, 6]}", "expected 2 numbers, got 1"),
+])
+def test_what_names_a_plank_that_could_not_be_read_is_left_unchecked(plank, why):
+    """A plank whose entry fails is one problem: the load on it is not reported as a load
+    on an unknown plank too (a plank whose id could not be read may be any name)."""
+    text = f"furncheck: 1\nplanks:\n  - {plank}\nloads:\n  - {{plank: seat, mass: 5}}\n"
+    with pytest.raises(DesignError) as info:
+        parse_design(text, "one.yaml", "yaml")
+    assert why in info.value.message and info.value.more == ()
+
+
+def test_a_misspelt_required_key_is_one_problem():
+    """'centre' for 'center': the unknown key (with its 'did you mean') is the problem; the
+    missing 'center' it stands for is not reported again."""
+    with pytest.raises(DesignError) as info:
+        parse_design("furncheck: 1\nplanks:\n  - {id: a, size: [400, 300], "
+                     "centre: [0, 0, 6]}\n", "typo.yaml", "yaml")
+    assert 'did you mean "center"' in info.value.message and info.value.more == ()
+
+
+def test_the_problems_reported_are_capped():
+    """Thirty planks with a bad size each: MAX_INPUT_PROBLEMS (20) lines, not thirty."""
+    planks = "".join(f"  - {{id: p{k}, size: [1], center: [0, 0, {k}]}}\n" for k in range(30))
+    with pytest.raises(DesignError) as info:
+        parse_design(f"furncheck: 1\nplanks:\n{planks}", "many.yaml", "yaml")
+    assert 1 + len(info.value.more) == tol.MAX_INPUT_PROBLEMS == 20

@@ -16,6 +16,7 @@ import yaml
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from furncheck import tolerances as tol
 from furncheck.design import Design, design_to_document, load_design, parse_design
 from furncheck.errors import DesignError
 
@@ -113,9 +114,11 @@ def parse_or_design_error(text: str, fmt: str, source: str = "fuzz.yaml") -> Des
     try:
         design = parse_design(text, source, fmt)
     except DesignError as error:
-        line = str(error)
-        assert "\n" not in line and "\r" not in line, line
-        assert line.startswith(source)
+        lines = str(error).split("\n")        # one line per problem of the file
+        assert len(lines) == 1 + len(error.more) <= tol.MAX_INPUT_PROBLEMS, lines
+        for line, problem in zip(lines, (error, *error.more)):
+            assert "\r" not in line and line == problem.one_line(), line
+            assert line.startswith(source)
         return None
     assert isinstance(design, Design)
     return design

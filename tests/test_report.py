@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 
 from furncheck import __version__
 from furncheck.report import REPORTERS, render
-from furncheck.report.common import input_error
+from furncheck.report.common import input_errors
 from furncheck.report.github import escape_data, escape_property
 from furncheck.report.numbers import format_number, format_percent, json_ready, round_significant
 from furncheck.report.sarif import artifact_uri
@@ -218,11 +218,11 @@ def test_text_case_line_stays_one_line_for_many_loads():
 
 
 def test_input_error_splits_file_and_line():
-    assert input_error(BROKEN) == (3, "planks[0].size: expected [length, width]")
+    assert input_errors(BROKEN) == [(3, "planks[0].size: expected [length, width]")]
     other = DesignReport("a.yaml", "a", None, error="a.yaml: not a mapping")
-    assert input_error(other) == (None, "not a mapping")
+    assert input_errors(other) == [(None, "not a mapping")]
     internal = DesignReport("a.yaml", "a", None, error="internal error: boom")
-    assert input_error(internal) == (None, "internal error: boom")
+    assert input_errors(internal) == [(None, "internal error: boom")]
 
 
 # --- junit ----------------------------------------------------------------------------------

@@ -42,6 +42,8 @@ from furncheck.design.source import (
     _too_large,
 )
 from furncheck.design.values import (
+    _IDENTIFIER,
+    UNNAMED,
     _describe,
     _Doc,
     _identifier,
@@ -131,35 +133,66 @@ def _read_bytes(path: str) -> bytes:
 # --- step 3: tree -> Design ---------------------------------------------------------------------
 
 def _design(doc: _Doc, tree: Any) -> Design:
+    """The Design of a document; its parts read under ``_Doc.collect`` where they do not
+    depend on each other, so that one run reports every problem: the top level's own
+    keys and values, each plank, the walls, then (what names planks) the joints, anchors
+    and load cases, a part that names a plank which could not be read left unchecked."""
+    try:
+        return _read_design(doc, tree)
+    except DesignError as error:            # one that stops the reading: after the others
+        if error not in doc.problems:
+            doc.problems.extend((error, *error.more))
+        doc.raise_problems()
+        raise
+
+
+def _read_design(doc: _Doc, tree: Any) -> Design:
     top = _top_level(doc, tree)
     units = _units(doc, top)
-    tolerance = (_quantity(doc, top["tolerance"], "tolerance", 0.0, tol.MAX_LENGTH,
-                           units.scale, units.name)
-                 if "tolerance" in top else tol.DEFAULT_TOLERANCE)
-    material = design_material(doc, top, units)
+    tolerance = doc.collect(_tolerance, doc, top, units, default=tol.DEFAULT_TOLERANCE)
+    material = doc.collect(design_material, doc, top, units, default=Material())
+    name = doc.collect(_name, doc, top, default="design")
+    model = doc.collect(_model, doc, top, default=tol.DEFAULT_MODEL)
+    safety_factor = doc.collect(_safety_factor, doc, top, default=tol.DEFAULT_SAFETY_FACTOR)
     planks = _planks(doc, top["planks"], material, units)
     by_id = {plank.id: plank for plank in planks}
-    safety_factor = (_quantity(doc, top["safety_factor"], "safety_factor",
-                               tol.MIN_SAFETY_FACTOR, tol.MAX_SAFETY_FACTOR, positive=True)
-                     if "safety_factor" in top else tol.DEFAULT_SAFETY_FACTOR)
-    walls = read_walls(doc, top["walls"], units) if "walls" in top else ()
+    walls = doc.collect(read_walls, doc, top["walls"], units, default=None) \
+        if "walls" in top else ()
+    joints = doc.collect(_joints, doc, top["joints"], by_id) if "joints" in top else None
+    anchors = doc.collect(read_anchors, doc, top["anchors"], by_id, walls, units, tolerance,
+                          default=()) if "anchors" in top and walls is not None else ()
+    cases = doc.collect(load_cases, doc, top, by_id, units, tolerance)
+    doc.raise_problems()
     return Design(
-        name=_name(doc, top),
+        name=name,
         planks=planks,
-        load_cases=load_cases(doc, top, by_id, units, tolerance),
+        load_cases=cases,
         material=material,
-        joints=_joints(doc, top["joints"], by_id) if "joints" in top else None,
+        joints=joints,
         safety_factor=safety_factor,
         tolerance=tolerance,
         units=units.name,
         unit_scale=units.scale,
         source=doc.source,
-        model=_model(doc, top),
+        model=model,
         walls=walls,
-        anchors=(read_anchors(doc, top["anchors"], by_id, walls, units, tolerance)
-                 if "anchors" in top else ()),
+        anchors=anchors,
         lines=doc.design_lines(),
     )
+
+
+def _tolerance(doc: _Doc, top: dict, units: _Units) -> float:
+    if "tolerance" not in top:
+        return tol.DEFAULT_TOLERANCE
+    return _quantity(doc, top["tolerance"], "tolerance", 0.0, tol.MAX_LENGTH, units.scale,
+                     units.name)
+
+
+def _safety_factor(doc: _Doc, top: dict) -> float:
+    if "safety_factor" not in top:
+        return tol.DEFAULT_SAFETY_FACTOR
+    return _quantity(doc, top["safety_factor"], "safety_factor", tol.MIN_SAFETY_FACTOR,
+                     tol.MAX_SAFETY_FACTOR, positive=True)
 
 
 def _top_level(doc: _Doc, tree: Any) -> dict:
@@ -177,7 +210,7 @@ def _top_level(doc: _Doc, tree: Any) -> dict:
         doc.fail("furncheck", f"unsupported format version {plain_number(version, 6)}; this "
                               "furncheck reads "
                               "version 1")
-    return doc.mapping(tree, "", TOP_KEYS, required=("planks",))
+    return doc.mapping(tree, "", TOP_KEYS, required=("planks",), keep_going=True)
 
 
 def _name(doc: _Doc, top: dict) -> str:
@@ -213,17 +246,26 @@ def _planks(doc: _Doc, node: Any, material: Material, units: _Units) -> tuple[Pl
     planks = []
     for index, item in enumerate(items):
         key = f"planks[{index}]"
-        plank = _plank(doc, item, key, material, units)
+        plank = doc.collect(_plank, doc, item, key, material, units)
+        if plank is None:               # its problem kept: what names it is left unchecked
+            named = _resolved(item.get("id")) if isinstance(item, dict) else None
+            if isinstance(named, str) and _IDENTIFIER.fullmatch(named):
+                doc.unread_planks.add(named)
+            else:                       # which names are its is not known: none are checked
+                doc.unread_planks.add(UNNAMED)
+            continue
         if plank.id in first_index:
-            doc.fail(f"{key}.id", f"duplicate plank id {_quote(plank.id)} "
-                                  f"(planks[{first_index[plank.id]}] and {key})")
+            doc.problems.append(doc.error(f"{key}.id", f"duplicate plank id {_quote(plank.id)} "
+                                          f"(planks[{first_index[plank.id]}] and {key})"))
+            continue
         first_index[plank.id] = index
         planks.append(plank)
     return tuple(planks)
 
 
 def _plank(doc: _Doc, node: Any, key: str, material: Material, units: _Units) -> Plank:
-    fields = doc.mapping(node, key, PLANK_KEYS, required=("id", "size", "center"))
+    fields = doc.mapping(node, key, PLANK_KEYS, required=("id", "size", "center"),
+                         keep_going=True)
     plank_id = _identifier(doc, fields["id"], f"{key}.id", "plank id")
     length, width = _vector(doc, fields["size"], f"{key}.size", 2, tol.MIN_LENGTH,
                             tol.MAX_LENGTH, units.scale, units.name, positive=True)

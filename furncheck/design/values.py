@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import Any, NoReturn
+from typing import Any, NoReturn, TypeVar
 
 from furncheck import tolerances as tol
 from furncheck.design.model import Plank
@@ -35,16 +35,52 @@ _DECIMAL = re.compile(r"[-+]?(?:[0-9][0-9_]*(?:\.[0-9_]*)?|\.[0-9][0-9_]*)(?:[eE
 _JSON_CONSTANTS = {"nan": "NaN", "inf": "Infinity", "-inf": "-Infinity"}
 _NON_FINITE = re.compile(r"[-+]?\.(?:inf|Inf|INF|nan|NaN|NAN)")
 _IDENTIFIER = _PATH_SAFE_KEY   # plank ids and case names: what a key path shows bare
+T = TypeVar("T")
+
+UNNAMED = ""
+"""In ``_Doc.unread_planks``: a plank whose entry failed before a valid id was read (any
+plank name may be its)."""
+
+
+class _Skipped(Exception):
+    """A part of the document that names a plank which itself could not be read: left
+    unchecked (its problem would only repeat that plank's), not a problem of its own."""
+
 
 class _Doc:
     """The document being checked: raises ``DesignError`` with key path and line, and reads
-    typed values (numbers, text, mappings, lists) from tree nodes."""
+    typed values (numbers, text, mappings, lists) from tree nodes.
+
+    Parts that do not depend on each other are read under ``collect``: a part's problem is
+    kept and the reading goes on, so that a file's problems are all reported at once (one
+    line each, contract section 4), up to ``tolerances.MAX_INPUT_PROBLEMS``;
+    ``raise_problems`` raises the first with the others as its ``more``."""
 
     def __init__(self, source: str, fmt: str, text: str, lines: dict[str, int] | None):
         self.source = source
         self.fmt = fmt
         self.source_text = text
         self._lines = lines
+        self.problems: list[DesignError] = []
+        self.unread_planks: set[str] = set()    # ids of planks whose entries failed
+
+    def collect(self, read: Callable[..., T], *args: Any, default: Any = None) -> T | Any:
+        """``read(*args)``, or ``default`` with its problems kept (``raise_problems``)."""
+        try:
+            return read(*args)
+        except DesignError as error:
+            self.problems.extend((error, *error.more))
+        except _Skipped:
+            pass
+        return default
+
+    def raise_problems(self) -> None:
+        """Raise the first problem kept, the others (up to MAX_INPUT_PROBLEMS) as its
+        ``more``; nothing when there is none."""
+        if self.problems:
+            first, *rest = self.problems[:tol.MAX_INPUT_PROBLEMS]
+            first.more = tuple(rest)
+            raise first
 
     @property
     def lines(self) -> dict[str, int]:
@@ -74,9 +110,13 @@ class _Doc:
         """Raise the DesignError of ``key``, at its line, else its closest recorded
         parent's, else the line where the design begins (a missing top-level key, a top
         level that is no mapping)."""
+        raise self.error(key, message)
+
+    def error(self, key: str, message: str) -> DesignError:
+        """``fail``'s DesignError, not raised."""
         line = self.line_of(key)
-        raise DesignError(self.source, key, self.lines.get("") if line is None else line,
-                          message)
+        return DesignError(self.source, key, self.lines.get("") if line is None else line,
+                           message)
 
     def number(self, node: Any, key: str) -> float:
         """A finite number (booleans and quoted text are not numbers)."""
@@ -109,17 +149,29 @@ class _Doc:
         return node
 
     def mapping(self, node: Any, key: str, allowed: tuple[str, ...] | None = None,
-                required: tuple[str, ...] = ()) -> dict:
-        """A mapping whose keys are all ``allowed`` (any when None) and hold ``required``."""
+                required: tuple[str, ...] = (), keep_going: bool = False) -> dict:
+        """A mapping whose keys are all ``allowed`` (any when None) and hold ``required``;
+        every unknown and missing key is a problem, raised together (the first, the rest
+        its ``more``).  ``keep_going``: unknown keys are kept as problems of the document
+        (``collect``) and the mapping's known keys returned, to be read on."""
         if not isinstance(node, dict):
             self.fail(key, f"expected a mapping, got {_describe(node)}")
-        if allowed is not None:
-            for name in node:
-                if name not in allowed:
-                    self.fail(_child(key, name), _unknown_key_message(name, allowed))
-        for name in required:
-            if name not in node:
-                self.fail(_child(key, name), f"missing required key {_quote(name)}")
+        unknown = [name for name in node if allowed is not None and name not in allowed]
+        problems = [self.error(_child(key, name), _unknown_key_message(name, allowed))
+                    for name in unknown]
+        meant = {_closest(name, allowed) for name in unknown}   # a typo is one problem:
+        missing = [self.error(_child(key, name), f"missing required key {_quote(name)}")
+                   for name in required if name not in node and name not in meant]
+        if unknown and not missing and any(name not in node for name in required):
+            keep_going = False              # the key it lacks is misspelt: read no further
+        if keep_going and not missing:
+            self.problems.extend(problems)
+            return {name: value for name, value in node.items()
+                    if allowed is None or name in allowed} if problems else node
+        problems += missing
+        if problems:
+            problems[0].more = tuple(problems[1:])
+            raise problems[0]
         return node
 
 
@@ -170,12 +222,18 @@ def _unknown_key_message(name: str, allowed: tuple[str, ...]) -> str:
 
 
 def _did_you_mean(name: str, choices) -> str:
-    """`` (did you mean "x"?)`` with the closest of ``choices``, or '' (difflib is imported
-    for the message only: a file without mistakes never needs it)."""
+    """`` (did you mean "x"?)`` with the closest of ``choices``, or ''."""
+    close = _closest(name, choices)
+    return f" (did you mean {_quote(close)}?)" if close is not None else ""
+
+
+def _closest(name: str, choices) -> str | None:
+    """The closest of ``choices`` to a misspelt ``name``, or None (difflib is imported for
+    the messages only: a file without mistakes never needs it)."""
     import difflib
 
     close = difflib.get_close_matches(name, list(choices), n=1)
-    return f" (did you mean {_quote(close[0])}?)" if close else ""
+    return close[0] if close else None
 
 
 # --- quantities: SI values from the file's units -----------------------------------------------
@@ -241,5 +299,7 @@ def _plank_ref(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank]) -> Plank
     """The plank that ``node`` names."""
     name = doc.text(node, key)
     if name not in by_id:
+        if name in doc.unread_planks or UNNAMED in doc.unread_planks:
+            raise _Skipped(name)
         doc.fail(key, f"unknown plank {_quote(name)}{_did_you_mean(name, by_id)}")
     return by_id[name]

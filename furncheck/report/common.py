@@ -13,16 +13,22 @@ INPUT_ERROR = "input-error"
 _LINE_PREFIX = re.compile(r"(\d+): ?")
 
 
-def input_error(report: DesignReport) -> tuple[int | None, str]:
-    """(line, message) of an errored report, without the file name the message repeats.
+def input_errors(report: DesignReport) -> list[tuple[int | None, str]]:
+    """(line, message) of each problem of an errored report (one per line of its error:
+    a file's problems are all reported, contract section 4), without the file name the
+    message repeats.
 
-    ``check_file`` writes a ``DesignError`` as ``file:line: key: message`` (contract
-    section 4).  The file is already in every report line, so the leading ``file:`` is
+    ``check_file`` writes a ``DesignError`` as ``file:line: key: message``, one line per
+    problem.  The file is already in every report line, so the leading ``file:`` is
     dropped and the line number split off; any other message is returned whole.
     """
     message = report.error if report.error is not None else "no verdict"
-    prefix = f"{report.design}:"
-    if not report.design or not message.startswith(prefix):
+    return [_input_error(report.design, line) for line in message.split("\n")]
+
+
+def _input_error(design: str, message: str) -> tuple[int | None, str]:
+    prefix = f"{design}:"
+    if not design or not message.startswith(prefix):
         return None, message
     rest = message[len(prefix):]
     match = _LINE_PREFIX.match(rest)

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
 
-from furncheck.report.common import INPUT_ERROR, describe_violation, input_error
+from furncheck.report.common import INPUT_ERROR, describe_violation, input_errors
 from furncheck.report.entries import Entry, Summary, is_text
 from furncheck.report.text import summary_line
 from furncheck.result import BatchReport, DesignReport
@@ -46,8 +46,8 @@ def document(entries: Iterable[Entry]) -> Iterator[str]:
 def design_commands(report: DesignReport) -> list[str]:
     """The ``::error`` lines of one design (none when it is valid)."""
     if report.error is not None or report.valid is None:
-        line, message = input_error(report)
-        return [command("error", _properties(report.design, line, INPUT_ERROR), message)]
+        return [command("error", _properties(report.design, line, INPUT_ERROR), message)
+                for line, message in input_errors(report)]
     return [
         command("error", _properties(report.design, v.line, v.kind), describe_violation(v))
         for v in report.violations

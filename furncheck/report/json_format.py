@@ -67,9 +67,14 @@ def piece(report: DesignReport) -> str:
 
 
 def report_dict(report: DesignReport) -> dict[str, Any]:
-    """One design's entry; an errored input has ``error`` and no ``valid``."""
+    """One design's entry; an errored input has ``error`` (its first problem) and no
+    ``valid``, and ``errors`` (every problem, one line each) where it has several."""
     if report.error is not None:
-        return {"design": report.design, "name": report.name, "error": report.error}
+        problems = report.error.split("\n")
+        entry = {"design": report.design, "name": report.name, "error": problems[0]}
+        if len(problems) > 1:
+            entry["errors"] = problems
+        return entry
     return {
         "design": report.design,
         "name": report.name,
@@ -205,8 +210,12 @@ def _value(value: Any) -> str:
 
 def _report_text(report: DesignReport, indent: str) -> str:
     if report.error is not None:
-        return _object([("design", _string(report.design)), ("name", _string(report.name)),
-                        ("error", _string(report.error))], indent)
+        problems = report.error.split("\n")
+        pairs = [("design", _string(report.design)), ("name", _string(report.name)),
+                 ("error", _string(problems[0]))]
+        if len(problems) > 1:
+            pairs.append(("errors", _array([_string(p) for p in problems], indent + _STEP)))
+        return _object(pairs, indent)
     inner = indent + _STEP
     return _object([
         ("design", _string(report.design)),

@@ -89,7 +89,8 @@ def design_suite(report: DesignReport) -> ET.Element:
     if report.error is not None or report.valid is None:
         case = _testcase(report, LOAD_TESTCASE)
         error = report.error if report.error is not None else "no verdict"
-        ET.SubElement(case, "error", type=INPUT_ERROR, message=_clean(error)).text = _clean(error)
+        ET.SubElement(case, "error", type=INPUT_ERROR,   # the first problem; all in the text
+                      message=_clean(error.split("\n")[0])).text = _clean(error)
         suite.append(case)
     else:
         failing = {case.name: case_violations(report, case.name) for case in report.cases}

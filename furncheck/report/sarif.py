@@ -18,7 +18,7 @@ from typing import Any
 from urllib.parse import quote
 
 from furncheck import __version__
-from furncheck.report.common import INPUT_ERROR, describe_violation, input_error
+from furncheck.report.common import INPUT_ERROR, describe_violation, input_errors
 from furncheck.report.entries import Entry
 from furncheck.result import VIOLATION_KINDS, BatchReport, DesignReport
 
@@ -98,8 +98,7 @@ def artifact_uri(path: str) -> str:
 def _findings(report: DesignReport) -> list[tuple[str, int | None, str]]:
     """(rule id, line, message) of every problem of one design."""
     if report.error is not None or report.valid is None:
-        line, message = input_error(report)
-        return [(INPUT_ERROR, line, message)]
+        return [(INPUT_ERROR, line, message) for line, message in input_errors(report)]
     return [(v.kind, v.line, describe_violation(v)) for v in report.violations]
 
 

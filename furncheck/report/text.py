@@ -20,7 +20,7 @@ from collections.abc import Iterable, Iterator, Mapping
 
 from furncheck.report.common import (
     describe_violation,
-    input_error,
+    input_errors,
     plural,
     worst_joint,
     worst_plank,
@@ -70,9 +70,9 @@ def document(entries: Iterable[Entry]) -> Iterator[str]:
 def design_lines(report: DesignReport) -> list[str]:
     """The verdict line of one design and, when invalid, one indented line per violation."""
     if report.error is not None or report.valid is None:
-        line, message = input_error(report)
-        where = f"line {line}: " if line is not None else ""
-        return [f"{shown(report.design)}: error: {where}{message}"]
+        return [f"{shown(report.design)}: error: "
+                f"{f'line {line}: ' if line is not None else ''}{message}"
+                for line, message in input_errors(report)]
     if report.valid:
         lines = [f"{shown(report.design)}: valid ({_worst_joint_phrase(report)})"]
     else:
