@@ -13,10 +13,10 @@ from furncheck import exitcodes
 from furncheck import tolerances as tol
 
 
-def fail(message: str) -> NoReturn:
-    """One line on stderr per problem (a design file's problems, one per line of
-    ``message``), exit code 2 (bad input or usage)."""
-    for problem in message.split("\n"):
+def fail(message: str | list[str]) -> NoReturn:
+    """One line on stderr (per problem, for a design file's list of them), exit code 2
+    (bad input or usage)."""
+    for problem in [message] if isinstance(message, str) else message:
         click.echo(f"furncheck: {problem}", err=True)
     raise click.exceptions.Exit(exitcodes.BAD_INPUT)
 
@@ -185,10 +185,10 @@ def load_or_fail(path: str, model: str | None = None, stdin_name: str | None = N
         loaded = load_data(*stdin_document(stdin_name)) if path == STDIN else load_checked(path)
         return with_model(loaded, model)
     except DesignError as error:
-        fail_as(error.file or path, str(error), fmt, output)
+        fail_as(error.file or path, error.lines(), fmt, output)
 
 
-def fail_as(path: str, message: str, fmt: str, output: str | None) -> NoReturn:
+def fail_as(path: str, message: str | list[str], fmt: str, output: str | None) -> NoReturn:
     """``fail(message)``, after writing with ``fmt`` 'json' the report (to ``output``, or
     stdout) as a document of its own, ``{"design": path, "error": message}`` (the design
     and error of ``validate``'s entry for a file it cannot check), for the tools that
@@ -196,7 +196,7 @@ def fail_as(path: str, message: str, fmt: str, output: str | None) -> NoReturn:
     if fmt == "json":
         import json
 
-        problems = message.split("\n")
+        problems = [message] if isinstance(message, str) else message
         document = {"design": path, "error": problems[0]}
         if len(problems) > 1:                   # as validate's entry: every problem too
             document["errors"] = problems

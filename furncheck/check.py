@@ -214,7 +214,7 @@ def check_file(path: str, model: str | None = None) -> DesignReport:
     try:
         return _check_loaded(load_checked(path), model)
     except DesignError as error:        # unreadable, ill-formed or too big
-        return DesignReport(design=path, name=Path(path).stem, valid=None, error=str(error))
+        return _problems(path, error)
 
 
 def check_data(data: bytes, source: str, fmt: str, model: str | None = None) -> DesignReport:
@@ -224,8 +224,14 @@ def check_data(data: bytes, source: str, fmt: str, model: str | None = None) -> 
     try:
         return _check_loaded(load_data(data, source, fmt), model)
     except DesignError as error:
-        return DesignReport(design=source, name=Path(source).stem, valid=None,
-                            error=str(error))
+        return _problems(source, error)
+
+
+def _problems(path: str, error: DesignError) -> DesignReport:
+    """The report of a file that cannot be checked: its problems, a line each."""
+    first, *more = error.lines()
+    return DesignReport(design=path, name=Path(path).stem, valid=None, error=first,
+                        more_errors=tuple(more))
 
 
 def _check_loaded(design: Design, model: str | None) -> DesignReport:

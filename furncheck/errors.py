@@ -32,9 +32,10 @@ class DesignError(FurncheckError):
         where = self.file if self.line is None else f"{self.file}:{self.line}"
         return f"{where}: {self.key}: {self.message}" if self.key else f"{where}: {self.message}"
 
-    def __str__(self) -> str:
-        """One line per problem (contract section 4): this one, then ``more``."""
-        return "\n".join(problem.one_line() for problem in (self, *self.more))
+    def lines(self) -> list[str]:
+        """One line per problem of the file (contract section 4): this one, then
+        ``more`` (``str(error)`` is this one's line alone)."""
+        return [problem.one_line() for problem in (self, *self.more)]
 
 
 class DesignTooBig(DesignError):

@@ -169,6 +169,12 @@ class DesignReport:
     cases: tuple[CaseResult, ...] = ()
     error: str | None = None
     units: str = "mm"
+    more_errors: tuple[str, ...] = ()     # the file's other problems, a line each
+
+    @property
+    def errors(self) -> tuple[str, ...]:
+        """Every problem of an errored report, a line each (``error`` first)."""
+        return () if self.error is None else (self.error, *self.more_errors)
 
 
 @dataclass(frozen=True)

@@ -189,7 +189,7 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
                 continue
             material = design.material_of(plank)
             final = sag * (1.0 + material.creep)
-            line = design.line_of(f"planks[{model.planks[k]}]")
+            key = f"planks[{model.planks[k]}]"      # its line looked up only for a violation
             if final > allowed * (1.0 + tol.CAPACITY_REL_TOL):
                 overhang = statics.planks.overhang is not None and \
                     bool(statics.planks.overhang[k])
@@ -197,10 +197,12 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
                 violations.append(Violation("sagging", plank.id, case.name, _sag_message(
                     design, material, sag, allowed, statics.planks.span[k],
                     _upright(plank, crosswise), overhang)
-                    + (_held_along(geometry, plank, crosswise) if overhang else ""), line))
+                    + (_held_along(geometry, plank, crosswise) if overhang else ""),
+                    design.line_of(key)))
             if stress > strength * (1.0 + tol.CAPACITY_REL_TOL):
                 violations.append(Violation("overstressed", plank.id, case.name,
-                                            _stress_message(design, stress, strength), line))
+                                            _stress_message(design, stress, strength),
+                                            design.line_of(key)))
         planks = tuple(planks)
     stable = statics.stability == "stable"
     if not stable:

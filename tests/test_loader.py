@@ -867,7 +867,8 @@ def test_every_problem_of_a_file_is_reported_one_line_each(tmp_path):
     problems = (info.value, *info.value.more)
     assert [(p.line, p.key) for p in problems] == [(2, "colour"), (4, "planks[0].size"),
                                                      (6, "loads[0].plank")]
-    assert str(info.value).split("\n") == [p.one_line() for p in problems]
+    assert info.value.lines() == [p.one_line() for p in problems]
+    assert str(info.value) == problems[0].one_line()
     path = tmp_path / "three.yaml"
     path.write_text(THREE_PROBLEMS)
     text = CliRunner().invoke(main, ["validate", str(path)])
@@ -906,8 +907,86 @@ def test_a_misspelt_required_key_is_one_problem():
 
 
 def test_the_problems_reported_are_capped():
-    """Thirty planks with a bad size each: MAX_INPUT_PROBLEMS (20) lines, not thirty."""
+    """Thirty planks with a bad size each: the reading stops at MAX_INPUT_PROBLEMS (20),
+    reported, and a last line says so, not thirty."""
     planks = "".join(f"  - {{id: p{k}, size: [1], center: [0, 0, {k}]}}\n" for k in range(30))
     with pytest.raises(DesignError) as info:
         parse_design(f"furncheck: 1\nplanks:\n{planks}", "many.yaml", "yaml")
-    assert 1 + len(info.value.more) == tol.MAX_INPUT_PROBLEMS == 20
+    lines = info.value.lines()
+    assert len(lines) == tol.MAX_INPUT_PROBLEMS + 1 == 21
+    assert lines[-1] == "many.yaml: more problems may follow: the reading stopped after 20"
+    assert lines[19].startswith("many.yaml:22: planks[19].size")
+
+
+SEVERAL_SECTIONS = """\
+furncheck: 1
+planks:
+  - {id: seat, size: [1200, 300], center: [0, 0, 444]}
+  - {id: leg_l, size: [438, -300], center: [-520, 0, 219], rotation: [0, -90, 0]}
+  - {id: leg_r, size: [438, 300], center: [520, 0, 219], rotation: [0, -90, 0]}
+joints:
+  - [seat, leg_l]
+  - [seat, legr]
+  - [seat, seat]
+loads:
+  - {plank: leg_l, mass: 5}
+  - {plank: seat, mass: -1}
+load_cases:
+  sit: [{plank: sate, mass: 1}]
+colour: red
+"""
+
+
+def test_each_item_of_a_section_is_checked_and_problems_come_in_line_order():
+    """Problems in several sections, each joint and load on its own, sorted by line (the
+    unknown top-level key on the last line comes last though it is read first); the joint
+    and the load on leg_l, whose entry failed, are left unchecked, not reported as being
+    on an unknown plank."""
+    with pytest.raises(DesignError) as info:
+        parse_design(SEVERAL_SECTIONS, "several.yaml", "yaml")
+    assert [(p.line, p.key) for p in (info.value, *info.value.more)] == [
+        (4, "planks[1].size[1]"), (8, "joints[1][1]"), (9, "joints[2]"),
+        (12, "loads[1].mass"), (14, "load_cases.sit[0].plank"), (15, "colour")]
+
+
+@pytest.mark.parametrize("wrong", ["material: {thickness: 18, colour: red}",
+                                   "material: {thickness: 18, density: abc}",
+                                   "tolerence: 2", "tolerance: 2 mm"])
+def test_a_default_standing_for_a_value_leaves_what_uses_it_unchecked(wrong):
+    """An 18 mm seat whose load and anchor sit on its top face (z = 458): where the file's
+    material or tolerance could not be read, the defaults (12 mm, 0.5 mm) would put them
+    off the plank; they are left unchecked, the one problem reported alone."""
+    text = f"""\
+furncheck: 1
+{wrong}
+planks:
+  - {{id: seat, size: [1200, 300], center: [0, 0, 449], thickness: 18}}
+  - {{id: leg_l, size: [440, 300], center: [-520, 0, 220], rotation: [0, -90, 0]}}
+loads:
+  - {{plank: seat, mass: 80, at: [0, 0, 458]}}
+walls:
+  - {{point: [0, 150, 0], normal: [0, -1, 0]}}
+anchors:
+  - {{plank: seat, at: [0, 150, 458], wall: 0, capacity: 100}}
+""".replace(", thickness: 18}", "}") if "material" in wrong else f"""\
+furncheck: 1
+{wrong}
+planks:
+  - {{id: seat, size: [1200, 300], center: [0, 0, 450]}}
+loads:
+  - {{plank: seat, mass: 80, at: [0, 0, 457.5]}}
+"""
+    with pytest.raises(DesignError) as info:
+        parse_design(text, "default.yaml", "yaml")
+    assert info.value.line == 2 and info.value.more == ()
+
+
+def test_a_path_with_a_newline_keeps_its_error_whole(tmp_path):
+    """A file's problems are kept as a list, not joined into one text: a file whose name
+    holds a line break gets its whole error line in JSON."""
+    path = tmp_path / "new\nline.yaml"
+    path.write_text("furncheck: 1\nplanks: []\n")
+    result = CliRunner().invoke(main, ["validate", str(path), "--format", "json"])
+    (entry,) = json.loads(result.output)["reports"]
+    assert entry["error"] == f"{path}:2: planks: a design needs at least one plank"
+    assert "errors" not in entry

@@ -114,8 +114,8 @@ def parse_or_design_error(text: str, fmt: str, source: str = "fuzz.yaml") -> Des
     try:
         design = parse_design(text, source, fmt)
     except DesignError as error:
-        lines = str(error).split("\n")        # one line per problem of the file
-        assert len(lines) == 1 + len(error.more) <= tol.MAX_INPUT_PROBLEMS, lines
+        lines = error.lines()                  # one line per problem of the file
+        assert len(lines) == 1 + len(error.more) <= tol.MAX_INPUT_PROBLEMS + 1, lines
         for line, problem in zip(lines, (error, *error.more)):
             assert "\r" not in line and line == problem.one_line(), line
             assert line.startswith(source)

@@ -486,3 +486,46 @@ def test_a_resting_joints_corners_follow_an_edit_as_analyze_finds_them():
     resting = [(a.point, b.point) for a, b in zip(followed.contacts, fresh.contacts) if a.on]
     assert len(resting) == 8
     assert all(np.allclose(a, b, atol=1e-12) for a, b in resting)
+
+
+def test_two_slivers_under_one_end_move_that_end_once():
+    """A 983 mm top over four 18 mm legs at x = +-500 (each reaching 491.5 .. 509): each
+    leg's end bears on 0.5 mm.  Two legs under each end: the top reaches 17.5 mm further
+    at each end, once (1018 mm long), not once per leg; the advice names both legs."""
+    from furncheck.suggest import suggest_design
+
+    legs = "".join(f"  - {{id: {name}, size: [712, 100], center: [{x}, {y}, 356], "
+                   f"rotation: [0, -90, 0]}}\n"
+                   for name, x, y in (("l1", -500, -200), ("l2", -500, 200),
+                                      ("r1", 500, -200), ("r2", 500, 200)))
+    design = parsed("furncheck: 1\nmodel: rigid\nmaterial: {thickness: 18}\nplanks:\n"
+                    "  - {id: top, size: [983, 600], center: [0, 0, 721]}\n" + legs
+                    + "loads:\n  - {plank: top, mass: 20}\n")
+    (fix,) = [s for s in suggest_design(design).suggestions if s.rule == "reconnect"]
+    assert fix.advice.startswith("Lengthen top by 35 mm (17.5 mm at the end over l1 and l2 "
+                                 "and 17.5 mm at the end over r1 and r2)")
+    assert fix.design.plank("top").length == pytest.approx(1.018)
+
+
+def test_a_sliver_along_a_long_side_widens_the_plank_over_it():
+    """A leg turned so its 18 mm end lies across the seat's long side (its end's band
+    runs along x, 8 mm of it under the seat): the seat is widened over it, by 10 mm, the
+    rest of the leg's thickness (its centre beyond the seat's end along x does not make
+    it a lengthening)."""
+    from furncheck.suggest import suggest_design
+
+    design = parsed("""\
+furncheck: 1
+model: rigid
+material: {thickness: 18}
+planks:
+  - {id: seat, size: [1200, 300], center: [0, 0, 721]}
+  - {id: leg_l, size: [712, 300], center: [-591, 0, 356], rotation: [0, -90, 0]}
+  - {id: leg_r, size: [712, 100], center: [591, -90, 356], rotation: [0, -90, 0]}
+  - {id: odd, size: [712, 100], center: [610, 151, 356], rotation: [0, -90, -90]}
+loads:
+  - {plank: seat, mass: 20}
+""")
+    (fix,) = [s for s in suggest_design(design).suggestions if s.rule == "reconnect"]
+    assert fix.advice.startswith("Widen seat by 10 mm at the side over odd")
+    assert fix.design.plank("seat").width == pytest.approx(0.310)

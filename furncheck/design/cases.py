@@ -78,7 +78,10 @@ def load_cases(doc: _Doc, top: dict, by_id: dict[str, Plank], units: _Units,
             if name == DEFAULT_CASE and "loads" in top:
                 doc.fail(key, 'case "default" is already given by "loads"; rename this case '
                               'or move its loads there')
-            written.append(_written_case(doc, name, node, key, by_id, units, tolerance))
+            case = doc.collect(_written_case, doc, name, node, key, by_id, units, tolerance)
+            if case is None:            # its problems kept: what includes it is unchecked
+                return None
+            written.append(case)
     if not written:
         return (LoadCase(DEFAULT_CASE),)
     by_name = {case.name: case for case in written}
@@ -204,8 +207,9 @@ def _resolved_case(case: _WrittenCase, by_name: dict[str, _WrittenCase]) -> Load
 def _loads(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank], units: _Units,
            tolerance: float) -> tuple[Load, ...]:
     items = doc.sequence(node, key)
-    return tuple(_load(doc, item, f"{key}[{i}]", by_id, units, tolerance)
-                 for i, item in enumerate(items))
+    loads = [doc.collect(_load, doc, item, f"{key}[{i}]", by_id, units, tolerance)
+             for i, item in enumerate(items)]           # each on its own (``_Doc.collect``)
+    return tuple(load for load in loads if load is not None)
 
 
 def _load(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank], units: _Units,

@@ -43,7 +43,7 @@ from furncheck.design.source import (
 )
 from furncheck.design.values import (
     _IDENTIFIER,
-    UNNAMED,
+    _closest,
     _describe,
     _Doc,
     _identifier,
@@ -65,6 +65,9 @@ UNIT_SCALES = {"mm": 0.001, "m": 1.0}
 
 TOP_KEYS = ("furncheck", "name", "units", "model", "material", "planks", "joints", "loads",
             "load_cases", "safety_factor", "tolerance", "walls", "anchors")
+SHAPING_KEYS = ("units", "material", "tolerance", "safety_factor", "walls", "planks")
+"""Top-level keys whose value the checks of loads, joints and anchors use: a misspelt one
+leaves its default, and what names planks is then left unchecked (``_Doc.unsure``)."""
 PLANK_KEYS = ("id", "size", "center", "rotation", "thickness", "material")
 JOINT_KEYS = ("planks", "nails", "type")
 JOINT_TYPES = ("nailed", "rests")
@@ -148,12 +151,17 @@ def _design(doc: _Doc, tree: Any) -> Design:
 
 def _read_design(doc: _Doc, tree: Any) -> Design:
     top = _top_level(doc, tree)
+    if any(_closest(key, TOP_KEYS) in SHAPING_KEYS for key in tree if key not in TOP_KEYS):
+        doc.unsure()                # a misspelt tolerance, material, ...: its default stands
     units = _units(doc, top)
+    before = len(doc.problems)
     tolerance = doc.collect(_tolerance, doc, top, units, default=tol.DEFAULT_TOLERANCE)
     material = doc.collect(design_material, doc, top, units, default=Material())
+    safety_factor = doc.collect(_safety_factor, doc, top, default=tol.DEFAULT_SAFETY_FACTOR)
+    if len(doc.problems) > before:
+        doc.unsure()                # what the planks' checks use is a default, not the file's
     name = doc.collect(_name, doc, top, default="design")
     model = doc.collect(_model, doc, top, default=tol.DEFAULT_MODEL)
-    safety_factor = doc.collect(_safety_factor, doc, top, default=tol.DEFAULT_SAFETY_FACTOR)
     planks = _planks(doc, top["planks"], material, units)
     by_id = {plank.id: plank for plank in planks}
     walls = doc.collect(read_walls, doc, top["walls"], units, default=None) \
@@ -246,21 +254,23 @@ def _planks(doc: _Doc, node: Any, material: Material, units: _Units) -> tuple[Pl
     planks = []
     for index, item in enumerate(items):
         key = f"planks[{index}]"
+        before = len(doc.problems)
         plank = doc.collect(_plank, doc, item, key, material, units)
-        if plank is None:               # its problem kept: what names it is left unchecked
-            named = _resolved(item.get("id")) if isinstance(item, dict) else None
-            if isinstance(named, str) and _IDENTIFIER.fullmatch(named):
-                doc.unread_planks.add(named)
+        if plank is None or len(doc.problems) > before:     # its problems kept (an unknown
+            named = _resolved(item.get("id")) if isinstance(item, dict) else None   # key
+            if isinstance(named, str) and _IDENTIFIER.fullmatch(named):     # too: a field
+                doc.unsure(named)       # misspelt), what names it is left unchecked
             else:                       # which names are its is not known: none are checked
-                doc.unread_planks.add(UNNAMED)
+                doc.unsure()
             continue
         if plank.id in first_index:
             doc.problems.append(doc.error(f"{key}.id", f"duplicate plank id {_quote(plank.id)} "
                                           f"(planks[{first_index[plank.id]}] and {key})"))
+            doc.unsure(plank.id)        # which of them a load means is not known
             continue
         first_index[plank.id] = index
         planks.append(plank)
-    return tuple(planks)
+    return tuple(plank for plank in planks if plank.id not in doc.unread_planks)
 
 
 def _plank(doc: _Doc, node: Any, key: str, material: Material, units: _Units) -> Plank:
@@ -292,7 +302,8 @@ def _plank(doc: _Doc, node: Any, key: str, material: Material, units: _Units) ->
 # --- joints -------------------------------------------------------------------------------------
 
 def _joints(doc: _Doc, node: Any, by_id: dict[str, Plank]) -> tuple[JointSpec, ...] | None:
-    """None for ``auto`` (detected from geometry), else the listed joints."""
+    """None for ``auto`` (detected from geometry), else the listed joints (each read on
+    its own: ``_Doc.collect``)."""
     if isinstance(_resolved(node), str) and doc.text(node, "joints") == "auto":
         return None
     if not isinstance(node, list):
@@ -301,11 +312,14 @@ def _joints(doc: _Doc, node: Any, by_id: dict[str, Plank]) -> tuple[JointSpec, .
     joints = []
     for index, item in enumerate(node):
         key = f"joints[{index}]"
-        joint = _joint(doc, item, key, by_id)
+        joint = doc.collect(_joint, doc, item, key, by_id)
+        if joint is None:
+            continue
         pair = frozenset(joint.planks)
         if pair in first_index:
-            doc.fail(key, f"joint {'/'.join(joint.planks)} is listed twice "
-                          f"(joints[{first_index[pair]}] and {key})")
+            doc.problems.append(doc.error(key, f"joint {'/'.join(joint.planks)} is listed "
+                                               f"twice (joints[{first_index[pair]}] and {key})"))
+            continue
         first_index[pair] = index
         joints.append(joint)
     return tuple(joints)

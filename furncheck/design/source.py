@@ -400,10 +400,10 @@ class JsonLines(Mapping):
         self._text, self._source, self._found = text, source, None
 
     def _lines(self) -> dict[str, int]:
-        if self._found is None:
-            self._found = _json_lines(self._text, self._source)
-            self._text = ""
-        return self._found
+        found = self._found         # (threads may both look them up: the same lines)
+        if found is None:
+            found = self._found = _json_lines(self._text, self._source)
+        return found
 
     def __getitem__(self, key: str) -> int:
         return self._lines()[key]

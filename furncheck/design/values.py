@@ -38,8 +38,9 @@ _IDENTIFIER = _PATH_SAFE_KEY   # plank ids and case names: what a key path shows
 T = TypeVar("T")
 
 UNNAMED = ""
-"""In ``_Doc.unread_planks``: a plank whose entry failed before a valid id was read (any
-plank name may be its)."""
+"""In ``_Doc.unread_planks``: every plank name (a plank whose entry failed before a valid
+id was read, which may be any; or a default standing for a value the checks of all planks
+use: ``_Doc.unsure``)."""
 
 
 class _Skipped(Exception):
@@ -65,22 +66,37 @@ class _Doc:
         self.unread_planks: set[str] = set()    # ids of planks whose entries failed
 
     def collect(self, read: Callable[..., T], *args: Any, default: Any = None) -> T | Any:
-        """``read(*args)``, or ``default`` with its problems kept (``raise_problems``)."""
+        """``read(*args)``, or ``default`` with its problems kept (``raise_problems``);
+        the reading stops once MAX_INPUT_PROBLEMS are kept."""
         try:
             return read(*args)
         except DesignError as error:
             self.problems.extend((error, *error.more))
+            if len(self.problems) >= tol.MAX_INPUT_PROBLEMS:
+                self.raise_problems()
         except _Skipped:
             pass
         return default
 
     def raise_problems(self) -> None:
-        """Raise the first problem kept, the others (up to MAX_INPUT_PROBLEMS) as its
-        ``more``; nothing when there is none."""
-        if self.problems:
-            first, *rest = self.problems[:tol.MAX_INPUT_PROBLEMS]
-            first.more = tuple(rest)
-            raise first
+        """Raise the problems kept, by line (the file's order), the first with the others
+        as its ``more``; past MAX_INPUT_PROBLEMS a last line says the reading stopped;
+        nothing when there is none."""
+        if not self.problems:
+            return
+        kept = sorted(self.problems[:tol.MAX_INPUT_PROBLEMS],
+                      key=lambda problem: -1 if problem.line is None else problem.line)
+        if len(self.problems) >= tol.MAX_INPUT_PROBLEMS:
+            kept.append(DesignError(self.source, "", None, f"more problems may follow: the "
+                                    f"reading stopped after {tol.MAX_INPUT_PROBLEMS}"))
+        first, *rest = kept
+        first.more = tuple(rest)
+        raise first
+
+    def unsure(self, planks: str = UNNAMED) -> None:
+        """What names ``planks`` (a plank's id; by default every plank) is left unchecked:
+        a part the checks of those names depend on could not be read as written."""
+        self.unread_planks.add(planks)
 
     @property
     def lines(self) -> dict[str, int]:
@@ -157,9 +173,11 @@ class _Doc:
         if not isinstance(node, dict):
             self.fail(key, f"expected a mapping, got {_describe(node)}")
         unknown = [name for name in node if allowed is not None and name not in allowed]
-        problems = [self.error(_child(key, name), _unknown_key_message(name, allowed))
+        meant = {name: _closest(name, allowed) for name in unknown}
+        problems = [self.error(_child(key, name), _unknown_key_message(name, allowed,
+                                                                        meant[name]))
                     for name in unknown]
-        meant = {_closest(name, allowed) for name in unknown}   # a typo is one problem:
+        meant = set(meant.values())                             # a typo is one problem:
         missing = [self.error(_child(key, name), f"missing required key {_quote(name)}")
                    for name in required if name not in node and name not in meant]
         if unknown and not missing and any(name not in node for name in required):
@@ -216,9 +234,11 @@ def _describe(node: Any) -> str:
     return f"text {_quote(value)}"
 
 
-def _unknown_key_message(name: str, allowed: tuple[str, ...]) -> str:
-    return f"unknown key {_quote(name)}{_did_you_mean(name, allowed)}; allowed keys: " \
-           f"{', '.join(allowed)}"
+def _unknown_key_message(name: str, allowed: tuple[str, ...], close: Any = ...) -> str:
+    """``close``: the closest allowed key or None, when the caller has it (``_closest``)."""
+    close = _closest(name, allowed) if close is ... else close
+    meant = f" (did you mean {_quote(close)}?)" if close is not None else ""
+    return f"unknown key {_quote(name)}{meant}; allowed keys: {', '.join(allowed)}"
 
 
 def _did_you_mean(name: str, choices) -> str:
@@ -298,8 +318,8 @@ def _identifier(doc: _Doc, node: Any, key: str, what: str) -> str:
 def _plank_ref(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank]) -> Plank:
     """The plank that ``node`` names."""
     name = doc.text(node, key)
+    if name in doc.unread_planks or UNNAMED in doc.unread_planks:
+        raise _Skipped(name)            # (``_Doc.unsure``: not read as the file means it)
     if name not in by_id:
-        if name in doc.unread_planks or UNNAMED in doc.unread_planks:
-            raise _Skipped(name)
         doc.fail(key, f"unknown plank {_quote(name)}{_did_you_mean(name, by_id)}")
     return by_id[name]

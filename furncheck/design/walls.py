@@ -22,28 +22,32 @@ WALL_KEYS = ("point", "normal")
 ANCHOR_KEYS = ("plank", "at", "wall", "capacity")
 
 
-def walls(doc: _Doc, node: Any, units: _Units) -> tuple[Wall, ...]:
+def walls(doc: _Doc, node: Any, units: _Units) -> tuple[Wall, ...] | None:
     """``[{point, normal}, ...]``: vertical planes, the normal horizontal (its z within
-    WALL_NORMAL_TILT of zero, then made exactly horizontal) and made a unit vector."""
-    found = []
-    for index, item in enumerate(doc.sequence(node, "walls")):
-        key = f"walls[{index}]"
-        fields = doc.mapping(item, key, WALL_KEYS, required=WALL_KEYS)
-        point = _point(doc, fields["point"], f"{key}.point", units)
-        normal = np.array(_vector(doc, fields["normal"], f"{key}.normal", 3,
-                                  -tol.MAX_COORDINATE, tol.MAX_COORDINATE))
-        size = float(np.linalg.norm(normal))
-        if size == 0.0:
-            doc.fail(f"{key}.normal", "zero-length normal: give the direction from the wall "
-                                      "into the room, e.g. [0, 1, 0]")
-        if abs(normal[2]) > tol.WALL_NORMAL_TILT * size:
-            shown = ", ".join(plain_number(c, 6) for c in normal)
-            doc.fail(f"{key}.normal", "a wall is vertical: its normal must be horizontal "
-                                      f"(z = 0), got ({shown})")
-        normal[2] = 0.0
-        normal /= float(np.linalg.norm(normal))
-        found.append(Wall(point, (float(normal[0]), float(normal[1]), 0.0)))
-    return tuple(found)
+    WALL_NORMAL_TILT of zero, then made exactly horizontal) and made a unit vector; None
+    when one of them could not be read (its problems kept: ``_Doc.collect``)."""
+    read = [doc.collect(_wall, doc, item, f"walls[{index}]", units)  # each on its own
+            for index, item in enumerate(doc.sequence(node, "walls"))]
+    return None if None in read else tuple(read)    # (a wall missing: anchors unchecked)
+
+
+def _wall(doc: _Doc, item: Any, key: str, units: _Units) -> Wall:
+    """One wall of ``walls``."""
+    fields = doc.mapping(item, key, WALL_KEYS, required=WALL_KEYS)
+    point = _point(doc, fields["point"], f"{key}.point", units)
+    normal = np.array(_vector(doc, fields["normal"], f"{key}.normal", 3,
+                              -tol.MAX_COORDINATE, tol.MAX_COORDINATE))
+    size = float(np.linalg.norm(normal))
+    if size == 0.0:
+        doc.fail(f"{key}.normal", "zero-length normal: give the direction from the wall "
+                                  "into the room, e.g. [0, 1, 0]")
+    if abs(normal[2]) > tol.WALL_NORMAL_TILT * size:
+        shown = ", ".join(plain_number(c, 6) for c in normal)
+        doc.fail(f"{key}.normal", "a wall is vertical: its normal must be horizontal "
+                                  f"(z = 0), got ({shown})")
+    normal[2] = 0.0
+    normal /= float(np.linalg.norm(normal))
+    return Wall(point, (float(normal[0]), float(normal[1]), 0.0))
 
 
 def anchors(doc: _Doc, node: Any, by_id: dict[str, Plank], walls_found: tuple[Wall, ...],
@@ -51,23 +55,28 @@ def anchors(doc: _Doc, node: Any, by_id: dict[str, Plank], walls_found: tuple[Wa
     """``[{plank, at, wall, capacity}, ...]``: ``at`` a world point on the plank (within
     ``tolerance``) and not behind its wall, ``wall`` an index into ``walls``, ``capacity``
     N > 0."""
-    found = []
-    for index, item in enumerate(doc.sequence(node, "anchors")):
-        key = f"anchors[{index}]"
-        fields = doc.mapping(item, key, ANCHOR_KEYS, required=ANCHOR_KEYS)
-        plank = _plank_ref(doc, fields["plank"], f"{key}.plank", by_id)
-        point = _point_on_plank(doc, fields["at"], f"{key}.at", plank, units, tolerance)
-        wall = doc.number(fields["wall"], f"{key}.wall")
-        if not wall.is_integer() or not 0 <= wall < len(walls_found):
-            have = (f"the design has walls 0 to {len(walls_found) - 1}" if walls_found
-                    else "the design has no walls: add one under walls")
-            doc.fail(f"{key}.wall", f"no wall {plain_number(wall, 6)} ({have})")
-        wall = int(wall)
-        behind = -float(walls_found[wall].distance(np.asarray(point)))
-        if behind > tolerance + tol.ON_PLANK_EPS:
-            doc.fail(f"{key}.at", f"the point is {plain_number(behind / units.scale)} "
-                                  f"{units.name} behind wall {wall}")
-        capacity = _quantity(doc, fields["capacity"], f"{key}.capacity", 0.0, tol.MAX_FORCE,
-                             unit="N", positive=True)
-        found.append(Anchor(plank.id, point, wall, capacity, -behind))
-    return tuple(found)
+    read = [doc.collect(_anchor, doc, item, f"anchors[{index}]", by_id, walls_found, units,
+                        tolerance)                       # each on its own
+            for index, item in enumerate(doc.sequence(node, "anchors"))]
+    return tuple(anchor for anchor in read if anchor is not None)
+
+
+def _anchor(doc: _Doc, item: Any, key: str, by_id: dict[str, Plank],
+            walls_found: tuple[Wall, ...], units: _Units, tolerance: float) -> Anchor:
+    """One anchor of ``anchors``."""
+    fields = doc.mapping(item, key, ANCHOR_KEYS, required=ANCHOR_KEYS)
+    plank = _plank_ref(doc, fields["plank"], f"{key}.plank", by_id)
+    point = _point_on_plank(doc, fields["at"], f"{key}.at", plank, units, tolerance)
+    wall = doc.number(fields["wall"], f"{key}.wall")
+    if not wall.is_integer() or not 0 <= wall < len(walls_found):
+        have = (f"the design has walls 0 to {len(walls_found) - 1}" if walls_found
+                else "the design has no walls: add one under walls")
+        doc.fail(f"{key}.wall", f"no wall {plain_number(wall, 6)} ({have})")
+    wall = int(wall)
+    behind = -float(walls_found[wall].distance(np.asarray(point)))
+    if behind > tolerance + tol.ON_PLANK_EPS:
+        doc.fail(f"{key}.at", f"the point is {plain_number(behind / units.scale)} "
+                              f"{units.name} behind wall {wall}")
+    capacity = _quantity(doc, fields["capacity"], f"{key}.capacity", 0.0, tol.MAX_FORCE,
+                         unit="N", positive=True)
+    return Anchor(plank.id, point, wall, capacity, -behind)

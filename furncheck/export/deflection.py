@@ -53,7 +53,7 @@ def deflected_shape(design: Design, case_name: str) -> Deflection | None:
     from furncheck.statics.model import build_model, external_forces
 
     case = next((case for case in design.load_cases if case.name == case_name), None)
-    if design.model != "elastic" or case is None:
+    if not design.elastic or case is None:
         return None
     geometry = analyze(design)
     if not geometry.stands:

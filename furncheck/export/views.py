@@ -232,7 +232,7 @@ def _draw_panel(sheet: Sheet, picture: Picture, panel: Panel,
     if panel.deflection is not None and panel.deflection.largest > 0.0:
         notes.append(_draw_deflection(sheet, panel.deflection, factor, design.units,
                                       LineCollection))
-    elif design.model == "rigid":
+    elif not design.elastic:
         notes.append("rigid planks: no deflection drawn")
     elif case is not None and case.stability not in ("stable", NOT_SOLVED):
         notes.append("no deflection drawn: the case has no equilibrium")

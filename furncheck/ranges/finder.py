@@ -196,7 +196,7 @@ class RangeFinder(ReachSearch):
             return None
         alone = all(np.allclose(rotation_matrix(angles), rotation_matrix(tuple(
             before[k] + (step if k == axis else 0.0) for k in range(3))),
-            atol=math.radians(ROTATION_MATCH)) for angles, step in zip(after, steps))
+            rtol=0.0, atol=math.radians(ROTATION_MATCH)) for angles, step in zip(after, steps))
         return None if alone else (tuple(after[0]), tuple(after[1]))
 
     # -- searches ------------------------------------------------------------------------------

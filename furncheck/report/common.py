@@ -22,8 +22,7 @@ def input_errors(report: DesignReport) -> list[tuple[int | None, str]]:
     problem.  The file is already in every report line, so the leading ``file:`` is
     dropped and the line number split off; any other message is returned whole.
     """
-    message = report.error if report.error is not None else "no verdict"
-    return [_input_error(report.design, line) for line in message.split("\n")]
+    return [_input_error(report.design, line) for line in (report.errors or ("no verdict",))]
 
 
 def _input_error(design: str, message: str) -> tuple[int | None, str]:

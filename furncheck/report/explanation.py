@@ -136,9 +136,10 @@ def _bent(v: dict, units: str) -> str:
 def _geometric(kind: str):
     def sentence(v: dict, units: str) -> str:
         if "bearing" in v:
-            return (f"the end bears on {_n(v['bearing'])} {units} of its "
+            digits = _digits(v["bearing"], v["bearing_needed"])
+            return (f"the end bears on {_n(v['bearing'], digits)} {units} of its "
                     f"{_n(v['thickness'])} {units} thickness, where nails need "
-                    f"{_n(v['bearing_needed'])} {units}: the face plank reaching "
+                    f"{_n(v['bearing_needed'], digits)} {units}: the face plank reaching "
                     f"{_n(v['change_min'])} to {_n(v['change_max'])} {units} further over it "
                     f"(or the planks moved that much together) would join them")
         if v.get("carried"):

@@ -70,10 +70,9 @@ def report_dict(report: DesignReport) -> dict[str, Any]:
     """One design's entry; an errored input has ``error`` (its first problem) and no
     ``valid``, and ``errors`` (every problem, one line each) where it has several."""
     if report.error is not None:
-        problems = report.error.split("\n")
-        entry = {"design": report.design, "name": report.name, "error": problems[0]}
-        if len(problems) > 1:
-            entry["errors"] = problems
+        entry = {"design": report.design, "name": report.name, "error": report.error}
+        if report.more_errors:
+            entry["errors"] = list(report.errors)
         return entry
     return {
         "design": report.design,
@@ -210,11 +209,11 @@ def _value(value: Any) -> str:
 
 def _report_text(report: DesignReport, indent: str) -> str:
     if report.error is not None:
-        problems = report.error.split("\n")
         pairs = [("design", _string(report.design)), ("name", _string(report.name)),
-                 ("error", _string(problems[0]))]
-        if len(problems) > 1:
-            pairs.append(("errors", _array([_string(p) for p in problems], indent + _STEP)))
+                 ("error", _string(report.error))]
+        if report.more_errors:
+            pairs.append(("errors", _array([_string(p) for p in report.errors],
+                                           indent + _STEP)))
         return _object(pairs, indent)
     inner = indent + _STEP
     return _object([

@@ -88,9 +88,9 @@ def design_suite(report: DesignReport) -> ET.Element:
     suite = ET.Element("testsuite", name=_clean(report.design))
     if report.error is not None or report.valid is None:
         case = _testcase(report, LOAD_TESTCASE)
-        error = report.error if report.error is not None else "no verdict"
+        errors = report.errors or ("no verdict",)
         ET.SubElement(case, "error", type=INPUT_ERROR,   # the first problem; all in the text
-                      message=_clean(error.split("\n")[0])).text = _clean(error)
+                      message=_clean(errors[0])).text = _clean("\n".join(errors))
         suite.append(case)
     else:
         failing = {case.name: case_violations(report, case.name) for case in report.cases}

@@ -172,7 +172,7 @@ def _details(number: int, entry: CatalogEntry, used: dict[str, float] | None) ->
     parts = [f'<h2 id="d{number}">{escape(report.name)} <span class="{verdict}">'
              f"{verdict}</span></h2>", f'<p class="small">{escape(report.design)}</p>']
     if report.error is not None:
-        parts.append("".join(f"<p>{escape(problem)}</p>" for problem in report.error.split("\n")))
+        parts.append("".join(f"<p>{escape(problem)}</p>" for problem in report.errors))
         return "\n".join(parts)
     if entry.design is not None:
         parts.append(design_svg(entry.design, used, 420, 300, title=report.name,

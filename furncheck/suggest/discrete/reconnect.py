@@ -60,7 +60,8 @@ RECONNECT = "reconnect"
 
 
 def _closed(search: Search) -> tuple[Design, dict, tuple] | None:
-    """(the closed design, {plank: [(amount m, where), ...]}, the joints it adds) or
+    """(the closed design, {plank: [(amount m, where, local axis), ...]}, the joints it
+    adds) or
     None when some geometric violation is not a near miss within the band."""
     design, geometry = search.design, search.geometry
     if not geometry.violations:
@@ -73,9 +74,8 @@ def _closed(search: Search) -> tuple[Design, dict, tuple] | None:
         if len(miss.planks) == 2 and miss.bearing is not None:   # a sliver: the face plank
             face, edge = miss.planks                              # covers the whole end
             axis, sign = _side_toward(design.plank(face), design.plank(edge))
-            moves.setdefault(face, []).append((axis, sign,
-                                               design.plank(edge).thickness - miss.bearing,
-                                               f"at the end over {edge}"))
+            _reach_over(moves.setdefault(face, []), axis, sign,
+                        design.plank(edge).thickness - miss.bearing, edge)
             handled.add(("disconnected", miss.name))
             joints.append((face, edge))
         elif len(miss.planks) == 2:
@@ -138,7 +138,7 @@ def _closed(search: Search) -> tuple[Design, dict, tuple] | None:
     anchors = tuple(replace(a, point=carried_point(a.point, before[a.plank], after[a.plank]))
                     if a.plank in moves else a for a in design.anchors)
     edited = replace(design, planks=planks, load_cases=cases, anchors=anchors)
-    ends = {plank: [(amount_m, where) for _, _, amount_m, where in changes]
+    ends = {plank: [(amount_m, where, axis) for axis, _, amount_m, where in changes]
             for plank, changes in moves.items()}
     return edited, ends, tuple(joints)
 
@@ -172,12 +172,24 @@ def _end_toward(edge: Plank, face: Plank) -> tuple[int, int]:
 
 
 def _side_toward(face: Plank, edge: Plank) -> tuple[int, int]:
-    """(local axis, sign) of the face plank's end (or long side) nearest the edge plank:
-    the in-plane axis along which the edge plank's centre lies farthest from its own."""
-    offset = edge.center_array - face.center_array
-    along = [float(face.rotation_matrix[:, axis] @ offset) for axis in (0, 1)]
-    axis = int(np.argmax(np.abs(along) / np.array([face.length, face.width])))
-    return axis, 1 if along[axis] > 0 else -1
+    """(local axis, sign) of the face plank's side that a sliver of the edge plank's end
+    lies under: across the band, the face's in-plane axis nearest the edge plank's
+    thickness normal, on the side of the edge plank's centre."""
+    across = edge.rotation_matrix[:, 2]
+    axis = int(np.argmax([abs(float(face.rotation_matrix[:, k] @ across)) for k in (0, 1)]))
+    offset = float(face.rotation_matrix[:, axis] @ (edge.center_array - face.center_array))
+    return axis, 1 if offset > 0 else -1
+
+
+def _reach_over(moves: list, axis: int, sign: int, amount_m: float, edge: str) -> None:
+    """The face plank's end (axis, sign) moved out by ``amount_m`` to cover ``edge``'s end:
+    the larger move where another edge plank's sliver already moves that end (two legs
+    under one end of a top), both named."""
+    for k, (a, s, other, where) in enumerate(moves):
+        if (a, s) == (axis, sign):
+            moves[k] = (a, s, max(other, amount_m), f"{where} and {edge}")
+            return
+    moves.append((axis, sign, amount_m, f"at the {'end' if axis == 0 else 'side'} over {edge}"))
 
 
 def _extended(plank: Plank, changes: list[tuple[int, int, float, str]]) -> Plank:
@@ -197,13 +209,15 @@ def _advice(design: Design, ends: dict) -> str:
     scale, unit = design.unit_scale, design.units
     phrases = []
     for plank, changes in ends.items():
-        total = sum(a for a, _ in changes)
-        verb = "lengthen" if total >= 0 else "shorten"
+        total = sum(a for a, _, _ in changes)
+        across = all(axis == 1 for _, _, axis in changes)   # its width (a sliver's side)
+        verb = ("widen" if total >= 0 else "narrow") if across else \
+            ("lengthen" if total >= 0 else "shorten")
         size = f"{amount(abs(total) / scale)} {unit}"
         if len(changes) == 1:
             phrases.append(f"{verb} {plank} by {size} {changes[0][1]}")
             continue
-        detail = names([f"{amount(abs(a) / scale)} {unit} {where}" for a, where in changes])
+        detail = names([f"{amount(abs(a) / scale)} {unit} {where}" for a, where, _ in changes])
         phrases.append(f"{verb} {plank} by {size} ({detail})")
     sentence = names(phrases)
     return f"{sentence[0].upper()}{sentence[1:]}."
