@@ -184,6 +184,8 @@ class _Doc:
             keep_going = False              # the key it lacks is misspelt: read no further
         if keep_going and not missing:
             self.problems.extend(problems)
+            if len(self.problems) >= tol.MAX_INPUT_PROBLEMS:
+                self.raise_problems()
             return {name: value for name, value in node.items()
                     if allowed is None or name in allowed} if problems else node
         problems += missing
