@@ -5,6 +5,10 @@ SIDE_TABLE_RACK  a 500 x 500 top, 18 mm, on four 45 mm legs nailed by their ends
                  apron), 25 kg on the top; case 'bump' adds an 80 N push at its edge,
                  which racks it.  In the elastic model the top sags 0.805 mm over its
                  482 mm span, 1.2075 mm with creep against 1.205 mm allowed.
+WALL_SHELF       a 600 x 250 shelf, 18 mm, nailed by its back edge (4 nails listed) to
+                 a back board screwed to the wall (two 400 N fixings), 25 kg of books
+                 spread on it: its nails pull out, and its one beam, held at the
+                 joint's middle, reads a sag it does not have.
 """
 
 SIDE_TABLE_RACK = """\
@@ -24,4 +28,23 @@ load_cases:
     include: [default]
     loads:
       - {plank: top, force: [80, 0, 0], at: [-250, 0, 600]}
+"""
+
+
+WALL_SHELF = """\
+furncheck: 1
+name: wall-shelf-few-nails
+material: {thickness: 18}
+walls:
+  - {point: [0, 0, 0], normal: [0, 1, 0]}
+planks:
+  - {id: back, size: [600, 200], center: [0, 9, 1400], rotation: [90, 0, 0]}
+  - {id: shelf, size: [600, 250], center: [0, 143, 1400]}
+joints:
+  - {planks: [back, shelf], nails: 4}
+anchors:
+  - {plank: back, at: [-200, 0, 1470], wall: 0, capacity: 400}
+  - {plank: back, at: [200, 0, 1470], wall: 0, capacity: 400}
+loads:
+  - {plank: shelf, mass: 25, spread: true}
 """

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from shop_designs import SIDE_TABLE_RACK
+from shop_designs import SIDE_TABLE_RACK, WALL_SHELF
 
 from furncheck import tolerances as tol
 from furncheck.check import check_design
@@ -588,23 +588,6 @@ def test_a_fix_left_out_for_the_thicker_boards_alone_is_not_counted_found():
 
 # --- more nails ------------------------------------------------------------------------------
 
-WALL_SHELF = """\
-furncheck: 1
-name: wall-shelf-few-nails
-material: {thickness: 18}
-walls:
-  - {point: [0, 0, 0], normal: [0, 1, 0]}
-planks:
-  - {id: back, size: [600, 200], center: [0, 9, 1400], rotation: [90, 0, 0]}
-  - {id: shelf, size: [600, 250], center: [0, 143, 1400]}
-joints:
-  - {planks: [back, shelf], nails: 4}
-anchors:
-  - {plank: back, at: [-200, 0, 1470], wall: 0, capacity: 400}
-  - {plank: back, at: [200, 0, 1470], wall: 0, capacity: 400}
-loads:
-  - {plank: shelf, mass: 25, spread: true}
-"""
 
 
 def test_a_listed_joint_with_too_few_nails_gets_the_nails_it_needs(tmp_path):

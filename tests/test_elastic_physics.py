@@ -23,6 +23,7 @@ import elastic_designs as ed
 import numpy as np
 import physics_designs as pd
 import pytest
+from shop_designs import WALL_SHELF
 
 from furncheck.check import check_design
 from furncheck.design import parse_design
@@ -613,25 +614,11 @@ def test_an_overhang_says_so_with_its_length_and_its_span_of_twice_it():
     assert post and float(post.group(1)) == pytest.approx(106.0, rel=0.02)
 
 
-RUNNER = """\
-furncheck: 1
-name: runner
-material: {thickness: 18}
-walls:
-  - {point: [0, 0, 0], normal: [0, 1, 0]}
-planks:
-  - {id: back, size: [600, 200], center: [0, 9, 1400], rotation: [90, 0, 0]}
-  - {id: shelf, size: [600, 250], center: [0, 143, 1400]}
-anchors:
-  - {plank: back, at: [-200, 0, 1470], wall: 0, capacity: 2000}
-  - {plank: back, at: [200, 0, 1470], wall: 0, capacity: 2000}
-loads:
-  - {plank: shelf, mass: 25, spread: true}
-"""
 
 
 def test_a_plank_nailed_along_its_length_is_told_overstated():
-    """A 600 x 250 shelf nailed by its 600 mm back edge to a back board: the one beam per
+    """A 600 x 250 shelf nailed by its 600 mm back edge to a back board (``shop_designs``
+    WALL_SHELF): the one beam per
     plank (along its longer side) is held at the joint's middle, its halves 300 mm
     overhangs, and reads a sag it does not have (README, "Elastic planks"); the sagging
     message says so.  The same shelf turned to be nailed by its 250 mm ends between two
@@ -639,7 +626,7 @@ def test_a_plank_nailed_along_its_length_is_told_overstated():
     from furncheck.check import check_design
     from furncheck.design import load_design, parse_design
 
-    report = check_design(parse_design(RUNNER, "runner.yaml", "yaml"))
+    report = check_design(parse_design(WALL_SHELF, "wall-shelf.yaml", "yaml"))
     sagging = [v for v in report.violations if v.kind == "sagging" and v.where == "shelf"]
     assert sagging and all(v.message.endswith(
         "(it is nailed along its length to back, which the model holds at the joint's "
