@@ -366,11 +366,15 @@ def _apart_message(design: Design, i: int, j: int) -> str:
             f"(closest corners {_fmt_len(gap, design)} apart)")
 
 
+FACE_TO_FACE_COSINE = 1.0 - 1e-6
+"""Two planks whose face normals' cosine is at least this lie face to face (messages)."""
+
+
 def _lying_on(design: Design, upper, lower) -> tuple[str, str] | None:
     """(upper id, lower id) when ``upper``'s broad face lies on ``lower``'s (parallel
     faces within the tolerance of each other, their outlines overlapping), else None."""
     normal = lower.rotation_matrix[:, 2]
-    if abs(float(upper.rotation_matrix[:, 2] @ normal)) < 1.0 - 1e-6:
+    if abs(float(upper.rotation_matrix[:, 2] @ normal)) < FACE_TO_FACE_COSINE:
         return None
     lower_top = float(normal @ lower.center_array) + 0.5 * lower.thickness
     lower_bottom = lower_top - lower.thickness
