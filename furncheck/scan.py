@@ -188,8 +188,6 @@ def _is_design(path: str) -> bool:
     return declares_design(data, fmt)
 
 
-def error_report(path: str, message: str, more: tuple[str, ...] = ()) -> DesignReport:
-    """The report of a source that could not be checked (``more``: its other problems, a
-    line each)."""
-    return DesignReport(design=path, name=Path(path).stem or path, valid=None, error=message,
-                        more_errors=more)
+def error_report(path: str, message: str) -> DesignReport:
+    """The report of a source that could not be checked."""
+    return DesignReport(design=path, name=Path(path).stem or path, valid=None, error=message)

@@ -175,17 +175,15 @@ def _touch_regions(planks, faces: _Faces, edge: np.ndarray, face: np.ndarray,
     centroids = np.array([(0.0, 0.0) if region is None else region[1:3] for region in regions])
     points = face_center + rot_f[:, :, 0] * centroids[:, :1] + rot_f[:, :, 1] * centroids[:, 1:]
     touches: list[_Touch | None] = []
-    needed = (bearing * 2.0 * half_e[:, 2] - tol.BEARING_EPS).tolist() if bearing > 0.0 \
-        else [-np.inf] * len(regions)
     for c, (region, face_c, edge_c, f_c, g_c, alignment_c) in enumerate(zip(
             regions, face.tolist(), edge.tolist(), f.tolist(), g.tolist(),
             alignment.tolist())):
-        if region is not None and region[0] < needed[c] * region[3]:
-            region = None                       # a sliver: no room for nails
-        touches.append(None if region is None else _Touch(
+        touch = None if region is None else _Touch(
             planks[face_c], planks[edge_c], points[c], region[3], frames[c], region[4],
             alignment_c, region[0], edge_face=(f_c // 2, 1 - 2 * (f_c % 2)),
-            face_side=1 - 2 * g_c))
+            face_side=1 - 2 * g_c)
+        touches.append(None if touch is None or (bearing > 0.0 and not _bears(touch, bearing))
+                       else touch)          # a sliver: no room for nails
     return touches
 
 
@@ -227,12 +225,12 @@ def _bearing(touch: _Touch) -> float:
     return touch.area / max(touch.length, tol.BEARING_EPS)
 
 
-def _bears(touch: _Touch) -> bool:
+def _bears(touch: _Touch, share: float | None = None) -> bool:
     """Whether a touching region is wide enough across its joint line for nails
-    (``_bearing``): at least ``tolerances.MIN_BEARING_SHARE`` of the edge plank's
-    thickness, to ``tolerances.BEARING_EPS``."""
-    return touch.area >= (tol.MIN_BEARING_SHARE * touch.edge.thickness
-                          - tol.BEARING_EPS) * touch.length
+    (``_bearing``): at least ``share`` (None: ``tolerances.MIN_BEARING_SHARE``) of the
+    edge plank's thickness, to ``tolerances.BEARING_EPS``."""
+    share = tol.MIN_BEARING_SHARE if share is None else share
+    return touch.area >= (share * touch.edge.thickness - tol.BEARING_EPS) * touch.length
 
 
 CLIP_AT_ONCE = 128

@@ -155,13 +155,12 @@ def _pair_phrase(design: Design, edited: Design, plane: MirrorPlane, first: str,
     before = abs(top_before[plane.axis] - plane.offset)
     after = abs(top_after[plane.axis] - plane.offset)
     if abs(after - before) <= TOPS_KEPT * float(np.linalg.norm(top_after - top_before)):
-        effects = [_tilt_effect(design, edited, p) for p in (a, b)]   # along the plane:
-        if not all(e.startswith("its top toward ") for e in effects):  # both one way
+        ahead = [_top_ahead(design, edited, p) for p in (a, b)]   # along the plane:
+        if None in ahead:                                           # both one way
             way = top_after - top_before
             axis = int(np.argmax(np.abs(way[:2])))
             return f"tilt {both} by {amount}, their tops along " \
                    f"{'+' if way[axis] > 0 else '-'}{'xy'[axis]}"
-        ahead = [e.removeprefix("its top toward ") for e in effects]
         towards = ahead[0] if ahead[0] == ahead[1] else f"{ahead[0]} and {ahead[1]}"
         return f"tilt {both} by {amount}, their tops toward {towards}"
     return f"tilt {both} by {amount}, their tops {'apart' if after > before else 'together'}"
@@ -251,21 +250,28 @@ def _top(design: Design, plank_id: str) -> np.ndarray | None:
     return plank.center_array + end
 
 
+def _top_ahead(design: Design, edited: Design, plank_id: str) -> str | None:
+    """The plank toward which an upright plank's top moves in ``edited`` (``_toward``),
+    or None (it lies flat, its top stays, or no plank is that way)."""
+    if abs(float(design.plank(plank_id).rotation_matrix[2, 0])) <= VERTICAL_COSINE:
+        return None
+    before, after = _top(design, plank_id), _top(edited, plank_id)
+    if before is None or after is None:
+        return None
+    way = after - before
+    way[2] = 0.0
+    if float(np.linalg.norm(way)) <= 1e-12:
+        return None
+    return _toward(design, plank_id, way / float(np.linalg.norm(way)))
+
+
 def _tilt_effect(design: Design, edited: Design, plank_id: str) -> str:
     """What a tilt does, for the phrase: where an upright plank's top goes ('its top toward
     leg_l'), or which end of a lying one rises."""
     plank = design.plank(plank_id)
     length_axis = plank.rotation_matrix[:, 0]
     if abs(float(length_axis[2])) > VERTICAL_COSINE:
-        before, after = _top(design, plank_id), _top(edited, plank_id)
-        if before is None or after is None:
-            return ""
-        way = after - before
-        way[2] = 0.0
-        if float(np.linalg.norm(way)) <= 1e-12:
-            return ""
-        way /= float(np.linalg.norm(way))
-        ahead = _toward(design, plank_id, way)
+        ahead = _top_ahead(design, edited, plank_id)
         return f"its top toward {ahead}" if ahead else ""
     if plank_id not in edited.plank_index:
         return ""
