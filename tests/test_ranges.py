@@ -198,7 +198,9 @@ def test_a_symmetric_turns_nearest_window_does_not_depend_on_where_the_design_st
     its turn is zero, computed as round-off of 1e-17 to 1e-16).  The nearest window is
     the one on the + side wherever the design stands (moved by ``offset`` m): the side
     searched first no longer follows the sign of the round-off, which moving the design
-    by a metre, or a tenth of a millimetre, flipped."""
+    by a metre, or a tenth of a millimetre, flipped.  Its far end is the search's limit
+    for a turn, 90 degrees, so the window is marked valid as far as searched up (the
+    marks a valid design's interval gets)."""
     from dataclasses import replace
 
     design = with_model(load_design(str(DESIGNS / "bookcase-sagging.yaml")), "elastic")
@@ -210,6 +212,7 @@ def test_a_symmetric_turns_nearest_window_does_not_depend_on_where_the_design_st
     (found,) = dof_ranges(moved, ["middle.rx"])
     assert found.valid[0] == pytest.approx(80.07, abs=0.01)
     assert found.valid[1] == pytest.approx(90.0)
+    assert found.limited == (False, True)
 
 
 # --- b. table top sliding over central legs: tipping -------------------------------------------

@@ -314,9 +314,12 @@ class RangeFinder(ReachSearch):
             return DofRange(dof.name, value, None, unit,
                             f"no valid value within {plain_number(limit, 6)} {unit} either way")
         (inner, outer), reason = found
-        ends = sorted((value + inner, value + outer))
-        return DofRange(dof.name, value, (ends[0], ends[1]), unit,
-                        f"the current value is invalid; this is the {reason}")
+        steps = sorted((inner, outer))
+        far = abs(outer) >= limit        # its outer end is the search limit
+        return DofRange(dof.name, value, (value + steps[0], value + steps[1]), unit,
+                        f"the current value is invalid; this is the {reason}",
+                        limited=(far and outer < 0.0, far and outer > 0.0), limit=limit,
+                        rotations=self._file_rotations(dof, (steps[0], steps[1])))
 
     # -- predictions from the sensitivity ------------------------------------------------------
     def _linearizations(self) -> list[Linearization]:

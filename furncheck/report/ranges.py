@@ -39,7 +39,7 @@ def render_text(design: str, ranges: list[DofRange]) -> str:
         interval = "-" if item.valid is None else \
             f"{format_number(item.valid[0], 5)} .. {format_number(item.valid[1], 5)}"
         rows.append((item.dof, format_number(item.value, 5), interval, item.unit,
-                     "; ".join(note for note in (item.reason or _limited(item),
+                     "; ".join(note for note in (item.reason, _limited(item),
                                                  _rotations(item)) if note)))
     widths = [max(len(row[i]) for row in rows) for i in range(4)]
     lines = [f"{design}:"]
