@@ -323,3 +323,34 @@ def test_the_report_shows_the_cut_list_in_text_and_json(tmp_path):
                     assert (value is None) == (expected_value is None)
                     if value is not None:
                         assert value == pytest.approx(expected_value, rel=1e-5, abs=1e-9)
+
+
+def test_an_anchored_plank_moved_lists_its_wall_fixings():
+    """The wall shelf's back board (hung on two fixings at z = 1470 mm) raised 50 mm by its
+    DOF: the fixings ride with it (README "Anchors"), so the suggestion must say that they
+    go in 50 mm higher, in text and JSON, each from -> to in the file's unit; a fixing
+    that stays where it is (the shelf moved instead) is not listed."""
+    from furncheck.design.write import design_text
+    from furncheck.dofs import apply_dof, parse_dof, structure
+    from furncheck.geometry import analyze
+    from furncheck.report.cutlist import anchor_move_lines, anchor_moves_json
+    from furncheck.suggest.cutlist import anchor_moves
+    from shop_designs import WALL_SHELF
+
+    before = parse_design(WALL_SHELF, "wall.yaml", "yaml")
+    frame = structure(before, analyze(before))
+    raised = apply_dof(before, frame, parse_dof(before, "back.z"), 50.0)
+    after = parse_design(design_text(raised, "yaml"), "after.yaml", "yaml")  # its file
+    moves = anchor_moves(before, after)
+    assert [(m.anchor, m.plank, m.wall, m.before, m.after) for m in moves] == [
+        (0, "back", 0, (-200.0, 0.0, 1470.0), (-200.0, 0.0, 1520.0)),
+        (1, "back", 0, (200.0, 0.0, 1470.0), (200.0, 0.0, 1520.0))]
+    assert anchor_move_lines(moves, before) == [
+        "moves 2 wall fixings with their planks:",
+        "  anchors[0] on back (wall 0): at (-200, 0, 1470) -> (-200, 0, 1520) mm",
+        "  anchors[1] on back (wall 0): at (200, 0, 1470) -> (200, 0, 1520) mm"]
+    assert anchor_moves_json(moves)[0] == {"anchor": 0, "plank": "back", "wall": 0,
+                                           "from": [-200.0, 0.0, 1470.0],
+                                           "to": [-200.0, 0.0, 1520.0]}
+    shelf_moved = apply_dof(before, frame, parse_dof(before, "shelf.x"), 20.0)
+    assert anchor_moves(before, shelf_moved) == ()

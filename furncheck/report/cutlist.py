@@ -19,7 +19,14 @@ import numpy as np
 from furncheck.design.model import Design
 from furncheck.report.common import plural
 from furncheck.report.numbers import format_number
-from furncheck.suggest.cutlist import ANGLE_FIELDS, LoadMove, LoadSpread, NailChange, PlankEdit
+from furncheck.suggest.cutlist import (
+    ANGLE_FIELDS,
+    AnchorMove,
+    LoadMove,
+    LoadSpread,
+    NailChange,
+    PlankEdit,
+)
 
 AXIS_SLACK = 1.0
 """Degrees: a turn's axis this close to a world axis is named by it (``_turn``)."""
@@ -72,6 +79,27 @@ def load_move_lines(moves: tuple[LoadMove, ...], design: Design) -> list[str]:
         lines.append(f"  {move.load} on {move.plank} (case '{move.case}'): at ({start}) -> "
                      f"({end}) {design.units}")
     return lines
+
+
+def anchor_move_lines(moves: tuple[AnchorMove, ...], design: Design) -> list[str]:
+    """'moves N wall fixings with their planks:' and one line per fixing (unindented):
+    'anchors[0] on back (wall 0): at (-350, 0, 1620) -> (-350, 0, 1792.5) mm'."""
+    if not moves:
+        return []
+    planks = "its plank" if len(moves) == 1 else "their planks"
+    lines = [f"moves {plural(len(moves), 'wall fixing')} with {planks}:"]
+    for move in moves:
+        start = ", ".join(_number(v) for v in move.before)
+        end = ", ".join(_number(v) for v in move.after)
+        lines.append(f"  anchors[{move.anchor}] on {move.plank} (wall {move.wall}): at "
+                     f"({start}) -> ({end}) {design.units}")
+    return lines
+
+
+def anchor_moves_json(moves: tuple[AnchorMove, ...]) -> list[dict[str, Any]]:
+    """``[{"anchor", "plank", "wall", "from": [x, y, z], "to": [x, y, z]}]``."""
+    return [{"anchor": move.anchor, "plank": move.plank, "wall": move.wall,
+             "from": list(move.before), "to": list(move.after)} for move in moves]
 
 
 def load_spread_lines(spreads: tuple[LoadSpread, ...], design: Design) -> list[str]:

@@ -27,6 +27,8 @@ from furncheck.design.write import anchor_entry, plank_entry
 from furncheck.export.suggestions import Written
 from furncheck.report.common import plural
 from furncheck.report.cutlist import (
+    anchor_move_lines,
+    anchor_moves_json,
     cut_list_lines,
     edits_json,
     load_move_lines,
@@ -95,6 +97,7 @@ def render_text(result: SuggestionReport, original: Design,
                      *nail_lines(nail_changes(original, suggestion.design)),
                      *load_move_lines(suggestion.loads_moved, original),
                      *load_spread_lines(suggestion.loads_spread, original),
+                     *anchor_move_lines(suggestion.anchors_moved, original),
                      *_implausible_lines(suggestion)):
             lines.append(f"{INDENT}   {line}")
         files = written.get(suggestion.rank)
@@ -142,6 +145,7 @@ def _suggestion_dict(suggestion: Suggestion, original: Design,
             "edits": edits_json(suggestion.edits),
             "loads_moved": load_moves_json(suggestion.loads_moved),
             "loads_spread": load_spreads_json(suggestion.loads_spread),
+            "anchors_moved": anchor_moves_json(suggestion.anchors_moved),
             "score": _score_json(suggestion),
             "design_file": files.design_file,
             "meshes": list(files.meshes),
@@ -168,6 +172,7 @@ def _suggestion_dict(suggestion: Suggestion, original: Design,
         "edits": edits_json(suggestion.edits),
         "loads_moved": load_moves_json(suggestion.loads_moved),
         "loads_spread": load_spreads_json(suggestion.loads_spread),
+        "anchors_moved": anchor_moves_json(suggestion.anchors_moved),
         "score": _score_json(suggestion),
         "design_file": files.design_file,
         "meshes": list(files.meshes),

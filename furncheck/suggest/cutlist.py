@@ -177,6 +177,35 @@ def load_moves(before: Design, after: Design) -> tuple[LoadMove, ...]:
 
 
 @dataclass(frozen=True)
+class AnchorMove:
+    """A wall fixing of the input that a suggestion carries along with its plank (an
+    anchor keeps its place on its plank when the plank is moved, turned or resized:
+    README "Anchors"), so that the maker drills for it where the fix needs it: its place
+    in the file's ``anchors`` list (from 0, as ``anchors[n]`` names it), its plank and
+    wall, and its point before and after (file length unit)."""
+
+    anchor: int
+    plank: str
+    wall: int
+    before: tuple[float, float, float]
+    after: tuple[float, float, float]
+
+
+def anchor_moves(before: Design, after: Design) -> tuple[AnchorMove, ...]:
+    """Every anchor of ``before`` whose point ``after`` moves by more than CUT_LIST_EPS,
+    in the file's order (anchors that ``after`` adds are the wall-anchor rule's own,
+    listed with its suggestion)."""
+    scale = before.unit_scale
+    moves = []
+    for index, (old, new) in enumerate(zip(before.anchors, after.anchors)):
+        start = tuple(in_unit(v, scale) for v in old.point)
+        end = tuple(in_unit(v, scale) for v in new.point)
+        if any(_differs(a, b) for a, b in zip(start, end)):
+            moves.append(AnchorMove(index, old.plank, old.wall, start, end))
+    return tuple(moves)
+
+
+@dataclass(frozen=True)
 class LoadSpread:
     """A load spread along its plank (``spread: true``: books on a shelf) on a plank that
     a suggestion lengthens or widens (or shortens, narrows): the same load then spreads

@@ -23,7 +23,7 @@ from furncheck.geometry import analyze
 from furncheck.statics import build_model
 from furncheck.suggest.closures import finished_closures
 from furncheck.suggest.continuous import LINE_SEARCHES_PER_SUGGESTION, ContinuousSearch
-from furncheck.suggest.cutlist import load_moves, load_spreads, plank_edits
+from furncheck.suggest.cutlist import anchor_moves, load_moves, load_spreads, plank_edits
 from furncheck.suggest.discrete import Search, discrete_fixes
 from furncheck.suggest.explain import explain
 from furncheck.suggest.score import shop_score
@@ -111,7 +111,8 @@ def _ranked(design: Design, geometry, planes, suggestions: list[Suggestion],
         score = shop_score(design, geometry, planes, suggestion.design, edits)
         scored.append(replace(suggestion, edits=edits, score=score,
                               loads_moved=load_moves(design, suggestion.design),
-                              loads_spread=load_spreads(design, suggestion.design)))
+                              loads_spread=load_spreads(design, suggestion.design),
+                              anchors_moved=anchor_moves(design, suggestion.design)))
     scored.sort(key=lambda s: (s.score.key(), s.step if s.step is not None else 0.0,
                                s.rank))
     scored = _distinct_builds(scored)

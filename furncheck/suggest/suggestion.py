@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 
 from furncheck.design.model import Design, Plank
 from furncheck.result import DesignReport
-from furncheck.suggest.cutlist import LoadMove, LoadSpread, PlankEdit
+from furncheck.suggest.cutlist import AnchorMove, LoadMove, LoadSpread, PlankEdit
 from furncheck.suggest.explain import Explanation
 from furncheck.suggest.score import ShopScore
 
@@ -34,6 +34,8 @@ class Suggestion:
     loads_moved : the loads at a point it carries along with their planks
                 (``cutlist.load_moves``)
     loads_spread : the spread loads whose planks it resizes (``cutlist.load_spreads``)
+    anchors_moved : the input's wall fixings it carries along with their planks
+                (``cutlist.anchor_moves``)
     score     : the shop's score it is ranked by (``score.ShopScore``)
     """
 
@@ -58,6 +60,7 @@ class Suggestion:
     score: ShopScore | None = None
     loads_moved: tuple[LoadMove, ...] = ()
     loads_spread: tuple[LoadSpread, ...] = ()
+    anchors_moved: tuple[AnchorMove, ...] = ()
 
 
 @dataclass(frozen=True)
