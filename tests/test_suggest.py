@@ -672,9 +672,9 @@ def test_cli_json_follows_the_contract_and_is_deterministic(tmp_path):
     assert list(document) == ["design", "valid", "violations", "suggestions", "explanation"]
     assert document["valid"] is False and document["violations"][0]["kind"] == "lift-off"
     entry = document["suggestions"][0]
-    assert list(entry)[:14] == ["rank", "kind", "restores", "dofs", "direction", "range",
+    assert list(entry)[:15] == ["rank", "kind", "restores", "dofs", "direction", "range",
                                "step", "changes", "advice", "limited", "edits",
-                               "loads_moved", "loads_spread", "score"]
+                               "loads_moved", "loads_spread", "anchors_moved", "score"]
     assert entry["kind"] == "continuous" and entry["restores"] == ["stability"]
     assert entry["design_file"] is None and entry["meshes"] == []
 
@@ -696,8 +696,8 @@ def test_cli_json_of_a_discrete_suggestion():
     assert discrete
     entry = discrete[0]
     assert list(entry) == ["rank", "kind", "rule", "restores", "adds", "between", "advice",
-                           "edits", "loads_moved", "loads_spread", "score", "design_file",
-                           "meshes", "plots"]
+                           "edits", "loads_moved", "loads_spread", "anchors_moved", "score",
+                           "design_file", "meshes", "plots"]
     assert entry["rule"] == "support"
     (support,) = entry["adds"]
     assert list(support) == ["id", "size", "center", "rotation"]

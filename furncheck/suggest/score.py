@@ -12,7 +12,9 @@ design, and ranked by ``ShopScore.key`` (smaller first), lexicographically:
    cabinet's side), or a level plank
    (seat, top, shelf) that overhangs its supports by more than OVERHANG_SHARE of its
    length at one end (legs moved 267 mm in under a 900 mm bench seat: whoever sits at
-   its end tips it, whatever the load cases say), or the highest loaded level plank (a
+   its end tips it, whatever the load cases say; an input's overhang past that share may
+   not grow either), or a loaded plank cut by more than SHRINK_SHARE of its length or
+   width (a top cut to a strip under its pot), or the highest loaded level plank (a
    seat, a top) raised or lowered by more than HEIGHT_SHARE of its height (a chair's seat
    lowered to 80 mm: another piece);
 2. ``broken``: mirror relations the edit breaks (``symmetry.broken_pairs``: a pair of
@@ -71,6 +73,14 @@ HEIGHT_SHARE = 1.0 / 3.0
 may rise or sink by at most this share of its height above the floor before a suggestion
 reads as implausible: a chair whose seat is lowered from 450 to 80 mm, or a 600 mm side
 table cut down to 320 mm, stands, but it is another piece."""
+
+SHRINK_SHARE = 0.5
+"""A plank that a load case loads (a pot on a plant stand's top, books on a shelf) may
+lose at most this share of its length or width before a suggestion reads as implausible:
+a 400 mm top cut down to a 16 mm strip under its 25 kg pot, or a 1000 mm shelf cut to 304
+mm under the same 35 kg of books, holds in the model, but the maker drew a top and a
+shelf (an overloaded 400 mm cantilever shelf shortened to 220 mm is still a shelf).  The
+loads ride with the plank (README "suggest")."""
 
 HANG_SHARE = 0.25
 """A plank's end nailed to another plank's face may reach past that face's edge by at
@@ -138,9 +148,20 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
         after = _overhang_share(edited, plank_id, supports[plank_id])
         if before is None or after is None:
             continue
-        if before[0] <= OVERHANG_SHARE < after[0] and after[0] - before[0] >= OVERHANG_GROWTH:
+        if after[0] > OVERHANG_SHARE and after[0] - before[0] >= OVERHANG_GROWTH:
+            was = f" (it was {round(100 * before[0])} %)" if before[0] > OVERHANG_SHARE else ""
             reasons.append(f"{plank_id} overhangs its supports by {round(100 * after[0])} % "
-                           f"of its {after[1]}")
+                           f"of its {after[1]}{was}")
+    loaded = {load.plank for case in original.load_cases for load in case.loads}
+    for plank_id in sorted(loaded & changed, key=original.plank_index.get):
+        before_plank, after_plank = original.plank(plank_id), edited.plank(plank_id)
+        for name, old_size, new_size in (("length", before_plank.length, after_plank.length),
+                                         ("width", before_plank.width, after_plank.width)):
+            if new_size < (1.0 - SHRINK_SHARE) * old_size:
+                scale, unit = original.unit_scale, original.units
+                reasons.append(f"{plank_id} is cut to {amount(new_size / scale)} {unit} of "
+                               f"its {amount(old_size / scale)} {unit} {name} under its "
+                               "load")
     for plank_id in _working_heights(original):
         if plank_id not in changed:
             continue
