@@ -296,3 +296,54 @@ def test_the_force_sensitivity_of_a_resting_top_matches_finite_differences(model
         assert np.abs(analytic - central).max() <= allowed, dof.name
         compared += 1
     assert compared >= 5
+
+
+LOOSE_TOP_ON_LEGS = """
+furncheck: 1
+name: loose-top-on-legs
+planks:
+  - {id: top, size: [400, 300], center: [0, 0, 450.5], thickness: 25}
+  - {id: leg_l, size: [438, 60], center: [-170, 0, 219], rotation: [0, -90, 0]}
+  - {id: leg_r, size: [438, 60], center: [170, 0, 219], rotation: [0, -90, 0]}
+joints:
+  - {planks: [top, leg_l], type: rests}
+  - {planks: [top, leg_r], type: rests}
+loads:
+  - {plank: top, mass: 80, at: [0, 0, 463]}
+  - {plank: leg_l, force: [48, 0, 0], at: [-170, 0, 219]}
+  - {plank: leg_r, force: [-48, 0, 0], at: [170, 0, 219]}
+"""
+
+
+def test_a_leg_under_a_loose_top_bows_between_its_foot_and_the_top():
+    """A 25 mm top lying loose (type: rests) on two 438 x 60 x 12 mm legs, 80 kg on it, the
+    legs squeezed inward at mid-height by P = 48 N each.  The top presses each leg's end
+    and holds it there by friction: it reaches the floor through the other leg, so it
+    carries this one as a nailed top does (contract 3a: sag from the line through the
+    two outermost supports that carry the plank), and the leg is a beam pinned at its foot
+    and at the top, L = 438 mm, not a cantilever from its foot.  Both ends bear on the
+    leg's inner corner line, e = t / 2 = 6 mm off its axis, under N = (80 g + the top's
+    weight) / 2 = (784.8 + 22.07) / 2 = 403.4 N: equal end moments N e, bowing it outward
+    by N e L^2 / 8EI = 2.239 mm against P's P L^3 / 48EI = 3.242 mm inward (EI = E b t^3 /
+    12 = 3000 x 60 x 12^3 / 12 N mm^2), plus P's shear deflection P L / (4 kappa G A) =
+    0.011 mm: 1.014 mm, allowed L / 400 = 1.095 mm, and with creep (x 1.5) 1.52 mm:
+    sagging.  (Read as a cantilever, the tip's deviation from the foot's tangent, it
+    was 0.733 mm against 2 L / 400 = 2.19 mm: valid.)"""
+    design = parse_design(LOOSE_TOP_ON_LEGS, "loose.yaml", "yaml")
+    material = design.material
+    b, t, length = 0.060, 0.012, 0.438
+    ei = material.elastic_modulus * b * t ** 3 / 12
+    top_weight = material.density * 0.4 * 0.3 * 0.025 * G
+    axial = (80 * G + top_weight) / 2
+    shear = 48 * length / (4 * (5 / 6) * material.shear_modulus * b * t)
+    hand = abs(48 * length ** 3 / (48 * ei) - axial * (t / 2) * length ** 2 / (8 * ei)) + shear
+    assert hand == pytest.approx(1.014e-3, abs=2e-6)
+    report = check_design(design)
+    (case,) = report.cases
+    legs = [p for p in case.planks if p.id.startswith("leg")]
+    for leg in legs:
+        assert leg.sag == pytest.approx(hand * 1000, rel=0.02)
+        assert leg.sag_allowed == pytest.approx(438 / 400)
+    assert sorted(v.where for v in report.violations if v.kind == "sagging") == [
+        "leg_l", "leg_r"]
+    assert all("between supports 438 mm apart" in v.message for v in report.violations)

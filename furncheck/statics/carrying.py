@@ -19,9 +19,10 @@ import numpy as np
 from furncheck.statics.model import StaticsModel
 
 
-def plank_supports(model: StaticsModel) -> tuple[np.ndarray, np.ndarray]:
+def plank_supports(model: StaticsModel) -> tuple:
     """(the nodes where a joint carries its plank (``carrying_neighbours``), whether each
-    plank's sag is read (not lying on the floor, ``lying_on_floor``)): which planks are
+    plank's sag is read (not lying on the floor, ``lying_on_floor``), where resting joints
+    carry either plank (``resting_supports``)): which planks are
     jointed and which contacts stand decide them, so they are kept per model and shared
     by the models built on it (``templated.TOPOLOGY_CACHE``)."""
     cached = model.plank_cache.get("supports")
@@ -36,26 +37,56 @@ def plank_supports(model: StaticsModel) -> tuple[np.ndarray, np.ndarray]:
                 joint_supports.append(int(node))
     measured = np.ones(len(model.planks), dtype=bool)
     measured[sorted(lying_on_floor(model))] = False
-    supports = np.array(joint_supports, dtype=int), measured
+    supports = np.array(joint_supports, dtype=int), measured, resting_supports(model)
     model.plank_cache["supports"] = supports
     return supports
+
+
+def resting_supports(model: StaticsModel) -> tuple[np.ndarray, np.ndarray]:
+    """Per contact (nK,) bool: (a resting corner's own plank is carried there by the plank
+    it rests against, that plank is carried there by the corner's plank); False for the
+    ground's and walls' contacts.  The rule of nailed joints (``carrying_neighbours``),
+    with the resting joints as edges and only the ground and walls as ground: a top lying
+    loose on four legs is carried by each (each reaches the floor without the top), and
+    carries each (it reaches the floor through the other three), so a leg's sag is
+    measured from the line through its foot and the top it presses, as a nailed leg's is;
+    a board lying on a shelf is carried by the shelf and carries nothing; a top on one
+    post does not carry the post (without the post it reaches nothing)."""
+    count = len(model.contacts)
+    corner_carried, face_carried = np.zeros(count, dtype=bool), np.zeros(count, dtype=bool)
+    rows = model.rest_rows
+    if not len(rows):
+        return corner_carried, face_carried
+    corner_plank = model.contact_plank[rows]
+    face_plank = model.node_plank[model.rest_node[rows]]
+    on_ground = np.ones(count, dtype=bool)
+    on_ground[rows] = False
+    pairs = model.node_plank[model.joint_nodes].reshape(-1, 2).tolist() \
+        + np.column_stack([corner_plank, face_plank]).tolist()
+    carried_by = carriers(len(model.planks), pairs,
+                          {int(k) for k in model.contact_plank[on_ground]})
+    corner_carried[rows] = [int(b) in carried_by[int(a)] for a, b in zip(corner_plank, face_plank)]
+    face_carried[rows] = [int(a) in carried_by[int(b)] for a, b in zip(corner_plank, face_plank)]
+    return corner_carried, face_carried
 
 
 def outermost_supports(model: StaticsModel, holding: np.ndarray | None
                        ) -> tuple[np.ndarray, np.ndarray]:
     """(low, high) per local plank (nP,) int: its carrying support nearest its -e1 end and
     nearest its +e1 end (nodes where a joint carries it, ``carrying_neighbours``, a
-    holding contact stands, or it lies on top of a holding resting joint), -1 for a plank
-    with none or lying on the floor."""
+    holding contact stands, or a holding resting joint carries it, ``resting_supports``),
+    -1 for a plank with none or lying on the floor."""
     beams = model.beams
-    joint_supports, measured = plank_supports(model)
+    joint_supports, measured, (corner_carried, face_carried) = plank_supports(model)
     carrying = np.ones(len(model.contacts), dtype=bool) if holding is None \
         else np.asarray(holding, dtype=bool)
-    rows = np.flatnonzero(carrying)
-    nodes = model.contact_node[rows]
-    if model.rest_node is not None:     # a resting joint carries the plank lying on top
-        nodes = np.where(model.rest_face_above[rows], model.rest_node[rows], nodes)
-    supports = np.concatenate([joint_supports, nodes])
+    on_ground = carrying.copy()
+    on_ground[model.rest_rows] = False
+    nodes = [model.contact_node[on_ground]]
+    if len(model.rest_rows):            # a resting joint: either plank, where carried
+        nodes += [model.contact_node[carrying & corner_carried],
+                  model.rest_node[carrying & face_carried]]
+    supports = np.concatenate([joint_supports, *nodes])
     plank = model.node_plank[supports]
     order = np.lexsort((beams.node_s[supports], plank))      # by plank, then along it
     supports, plank = supports[order], plank[order]
