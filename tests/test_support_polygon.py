@@ -39,3 +39,41 @@ def test_outside_distances_are_those_to_the_nearest_edge_or_corner():
     line = np.array([(0.0, 0.0), (1.0, 0.0)])
     assert outside(line, np.array([0.5, 0.2]))[0] == pytest.approx(0.2)
     assert outside(line, np.array([0.5, 0.0]))[0] == 0.0
+
+
+SAWHORSE = """
+furncheck: 1
+name: sawhorse
+planks:
+  - {id: beam, size: [1000, 90], center: [0, 0, 706]}
+  - {id: leg_l, size: [700, 400], center: [-400, 0, 350], rotation: [0, -90, 0]}
+  - {id: leg_r, size: [700, 400], center: [400, 0, 350], rotation: [0, -90, 0]}
+loads:
+  - {plank: beam, mass: 20, at: [0, 0, 712]}
+  - {plank: beam, force: [0, 73.3697, 0], at: [0, 0, 712]}
+"""
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_toppling_design_names_the_least_pull_that_holds_it(model):
+    """A sawhorse (a 1000 x 90 x 12 mm beam on two 700 x 400 legs standing on their 12 mm
+    edges at x = +-400 mm, so its feet span y = +-200 mm) with 20 kg on the beam, pushed
+    along +y with P = 73.3697 N at 712 mm, 3 % past its tipping push.  V = 20 g + the
+    beam's 7.946 N + the legs' 2 x 24.72 N = 253.59 N; about the feet's +y edge the push
+    turns it over with P h = 52.239 N m against V x 200 mm = 50.718 N m, so a pull at the
+    feet's far edge, a = 400 mm away, holds it with (P h - V b) / a = 3.804 N: what the
+    message names, in both models.  (The elastic model's bolted corners pull 901.9 N in
+    all: each 12 mm foot carries its leg's bending as a pair of opposite forces.)"""
+    from furncheck.check import check_design
+    from furncheck.design import parse_design
+    from furncheck.design.model import with_model
+
+    design = with_model(parse_design(SAWHORSE, "sawhorse.yaml", "yaml"), model)
+    g, density = 9.81, 750.0
+    weight = 20 * g + density * 1.0 * 0.09 * 0.012 * g + 2 * density * 0.7 * 0.4 * 0.012 * g
+    least = (73.3697 * 0.712 - weight * 0.200) / 0.400
+    assert least == pytest.approx(3.804, abs=1e-3)
+    (violation,) = check_design(design).violations
+    assert violation.kind == "lift-off"
+    assert "held down at leg_l and leg_r, the supports farthest from the edge it tips over, the " \
+           f"ground would have to pull {least:.4g} N" in violation.message

@@ -123,11 +123,15 @@ class _Outcomes:
                       f"(held down, the {self._supports()} would have to pull "
                       f"{plain_number(pulled)} N)")
         elif stability == "lift-off":
+            least = self._hold_down()
+            held = f"held down, the {self._supports()} would have to pull " \
+                f"{plain_number(pulled)} N" if least is None else \
+                f"held down at {least[1]}, the " \
+                f"{'supports' if ' and ' in least[1] else 'support'} farthest from the " \
+                f"edge it tips over, the ground would have to pull {plain_number(least[0])} N"
             detail = (f"no equilibrium with the {self._supports()} only pushing: the load's "
                       "line of action "
-                      "falls outside the support polygon, the design topples "
-                      f"(held down, the {self._supports()} would have to pull "
-                      f"{plain_number(pulled)} N)")
+                      f"falls outside the support polygon, the design topples ({held})")
         else:
             detail = (f"no equilibrium within the friction cones "
                       f"(mu = {plain_number(self.mu, 6)}); forces shown as if the design were "
@@ -205,6 +209,44 @@ class _Outcomes:
         return CaseStatics("stable", _wrenches(solution.h), contact_forces.copy(),
                            holding=self._pressing(contact_forces),
                            displacements=solution.q)
+
+    def _hold_down(self) -> tuple[float, str] | None:
+        """(N, planks): the least pull that would hold a toppling design down, and the
+        planks of the ground contacts it would act at ('leg_l and leg_r' where several lie
+        equally far, to NODE_MERGE), by statics alone: the loads'
+        resultant (weights included), V down, meets the floor d outside the support
+        polygon, so it tips about the polygon's nearest edge, and a pull at the contact
+        farthest from that edge, a away from it, holds it at V d / a (what ballast there
+        would have to weigh, ``suggest.needs``; the rigid model's bolted corners give the
+        same where one foot lifts whole).  The bolted solve's pulls are no measure of it
+        in the elastic model: a narrow foot's corners carry its plank's bending as a pair
+        of large opposite forces (a sawhorse 3 % past its tipping push: 901.9 N bolted,
+        3.804 N needed).  None where this does not apply (walls, anchors or resting
+        joints; several grounded parts; contacts on a line; the resultant inside)."""
+        model = self.model
+        if model.contact_frames is not None or model.rest_node is not None \
+                or model.contact_anchored is not None or len(model.components) != 1:
+            return None
+        loads = self.f.reshape(-1, 6)
+        force = loads[:, :3].sum(axis=0)
+        moment = (np.cross(model.node_points, loads[:, :3]) + loads[:, 3:]).sum(axis=0)
+        if not force[2] < 0.0:
+            return None
+        crossing = np.array([-moment[1] / force[2], moment[0] / force[2]])
+        points = model.contact_points[:, :2]
+        chosen = convex_hull(points)
+        hull = points[chosen]
+        distance, nearest = outside(hull, crossing)
+        if distance <= 0.0:
+            return None
+        arms = (nearest - hull) @ ((crossing - nearest) / distance)
+        reach = float(arms.max())
+        if not reach > 0.0:
+            return None
+        far = np.asarray(chosen)[arms >= reach - tol.NODE_MERGE]   # ties: all of them
+        planks = set(model.contact_plank[far].tolist())
+        names = [model.design.planks[model.planks[k]].id for k in sorted(planks)]
+        return -float(force[2]) * distance / reach, " and ".join(names)
 
     def _supports(self) -> str:
         """What the contacts stand on, for messages: 'ground', 'ground and walls', or
