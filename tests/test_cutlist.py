@@ -330,12 +330,13 @@ def test_an_anchored_plank_moved_lists_its_wall_fixings():
     DOF: the fixings ride with it (README "Anchors"), so the suggestion must say that they
     go in 50 mm higher, in text and JSON, each from -> to in the file's unit; a fixing
     that stays where it is (the shelf moved instead) is not listed."""
+    from shop_designs import WALL_SHELF
+
     from furncheck.design.write import design_text
     from furncheck.dofs import apply_dof, parse_dof, structure
     from furncheck.geometry import analyze
     from furncheck.report.cutlist import anchor_move_lines, anchor_moves_json
     from furncheck.suggest.cutlist import anchor_moves
-    from shop_designs import WALL_SHELF
 
     before = parse_design(WALL_SHELF, "wall.yaml", "yaml")
     frame = structure(before, analyze(before))

@@ -648,3 +648,20 @@ loads:
     assert " with 2 more fixings rated 196 N (beside the 2 it has), packing the 18 mm gap " \
            "to the wall; " in anchor.advice
     assert len(anchor.design.anchors) == 4 and fix_valid(anchor)
+
+
+def test_rails_under_a_plank_near_the_floor_fit_the_gap():
+    """Rails are tried 4, 6 and 8 board thicknesses deep (72, 108 and 144 mm of 18 mm
+    stock); under a bookcase's bottom whose underside is 60 mm above the floor none of
+    them fits (each would cut into the floor and could only fail its check), so the gap
+    itself is tried, a 60 mm rail standing on the floor.  Under a shelf 100 mm up, 72 mm
+    fits and 100 mm is tried after it; 30 mm up (less than two thicknesses) no rail is;
+    high up, the three depths as they are."""
+    from furncheck.suggest.discrete.supports import stiffener_depths
+
+    t, slack = 0.018, 0.0005
+    assert stiffener_depths(t, 0.060, slack) == pytest.approx([0.060])
+    assert stiffener_depths(t, 0.100, slack) == pytest.approx([0.072, 0.100])
+    assert stiffener_depths(t, 0.030, slack) == []
+    assert stiffener_depths(t, 0.500, slack) == pytest.approx([0.072, 0.108, 0.144])
+    assert stiffener_depths(t, 0.1442, slack) == pytest.approx([0.072, 0.108, 0.144])

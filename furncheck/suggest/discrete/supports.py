@@ -62,7 +62,26 @@ _PLACE_WORDS = {"far": "at the far side", "middle": "in the middle"}
 
 STIFFENER_DEPTHS = (4.0, 6.0, 8.0)
 """Depths of a stiffening rail tried under a bent plank, in plank thicknesses (48, 72 and
-96 mm for 12 mm stock): the shallowest that works is suggested."""
+96 mm for 12 mm stock): the shallowest that works is suggested.  Under a plank nearer the
+floor than a depth, that depth is not tried (its rail would cut into the floor); the
+plank's height above the floor is tried instead, a rail standing on the floor, where it
+is at least MIN_STIFFENER_DEPTH deep."""
+
+MIN_STIFFENER_DEPTH = 2.0
+"""The shallowest rail tried, in plank thicknesses: a rail that fits under a plank near
+the floor (a bookcase's raised bottom) only this deep or less is no rail."""
+
+
+def stiffener_depths(thickness: float, clearance: float, tolerance: float) -> list[float]:
+    """m: the depths of the rails tried under a plank whose underside is ``clearance`` above
+    the floor (STIFFENER_DEPTHS, those that fit within the tolerance, then the clearance
+    itself where a deeper one did not fit and it is at least MIN_STIFFENER_DEPTH deep)."""
+    depths = [depth * thickness for depth in STIFFENER_DEPTHS]
+    fitting = [depth for depth in depths if depth <= clearance + tolerance]
+    if len(fitting) < len(depths) and clearance >= MIN_STIFFENER_DEPTH * thickness \
+            and not any(abs(depth - clearance) <= tolerance for depth in fitting):
+        fitting.append(clearance)
+    return fitting
 
 
 def support_planks(search: Search) -> Fix | None:
@@ -164,7 +183,7 @@ def _stiffeners(search: Search, i: str, neighbours: list[str],
     both: the woodworker's fix for a sagging shelf.  (A lip at one edge carries that
     edge; the beam model's shelf, whose section does not bend across its width, then
     twists about its axis: where that is too much, the rail under the middle does it.)
-    STIFFENER_DEPTHS deep, the shallowest first.  None (and the reason recorded) when i
+    ``stiffener_depths`` deep, the shallowest first.  None (and the reason recorded) when i
     is not level, is not held at both ends by parallel planks, or a rail would not reach
     every failing place (``reaches``, see ``_reach``)."""
     design = search.design
@@ -202,8 +221,12 @@ def _stiffeners(search: Search, i: str, neighbours: list[str],
     down = -frame[:, 2] if frame[2, 2] > 0 else frame[:, 2]
     name = new_id(design, "rail")
     nailed = (i, low.id, high.id)
-    for depth in STIFFENER_DEPTHS:
-        rail_depth = depth * thickness
+    clearance = float(shelf.corners[:, 2].min())
+    depths = stiffener_depths(thickness, clearance, design.tolerance)
+    if not depths:
+        search.not_applicable(STIFFENER, f"{i} is too near the floor for a rail under it", i)
+        return
+    for rail_depth in depths:
         for side, edge, where in ((-1.0, 1.0, "under one long edge"),
                                   (1.0, 1.0, "under the other long edge"),
                                   (1.0, 0.0, "under the middle")):
