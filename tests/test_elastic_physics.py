@@ -616,13 +616,32 @@ def test_an_overhang_says_so_with_its_length_and_its_span_of_twice_it():
 
 
 
+COAT_RACK = """
+furncheck: 1
+name: coat-rack
+material: {thickness: 18}
+walls:
+  - {point: [0, 0, 0], normal: [0, 1, 0]}
+planks:
+  - {id: back, size: [900, 150], center: [0, 9, 1600], rotation: [90, 0, 0]}
+  - {id: shelf, size: [900, 250], center: [0, 125, 1684]}
+anchors:
+  - {plank: back, at: [-350, 0, 1620], wall: 0, capacity: 400}
+  - {plank: back, at: [350, 0, 1620], wall: 0, capacity: 400}
+loads:
+  - {plank: back, mass: 20, at: [0, 18, 1560]}
+  - {plank: shelf, mass: 8, spread: true}
+"""
+
+
 def test_a_plank_nailed_along_its_length_is_told_overstated():
     """A 600 x 250 shelf nailed by its 600 mm back edge to a back board (``shop_designs``
     WALL_SHELF): the one beam per
     plank (along its longer side) is held at the joint's middle, its halves 300 mm
     overhangs, and reads a sag it does not have (README, "Elastic planks"); the sagging
-    message says so.  The same shelf turned to be nailed by its 250 mm ends between two
-    sides spans the way it does in the shop: no such note."""
+    message says so; so does it where the shelf's back corners bear on the wall and it
+    reads a span between them.  The same shelf turned to be nailed by its 250 mm ends
+    between two sides spans the way it does in the shop: no such note."""
     from furncheck.check import check_design
     from furncheck.design import load_design, parse_design
 
@@ -636,3 +655,11 @@ def test_a_plank_nailed_along_its_length_is_told_overstated():
                                            / "bookcase-sagging.yaml")))
     spans = [v for v in between.violations if v.kind == "sagging"]
     assert spans and not any("nailed along" in v.message for v in spans)
+    # the shelf's back corners on the wall as well (a coat rack's hat shelf, 900 x 250 x
+    # 18, nailed down onto its back board's top edge, the board hung on two fixings, 8 kg
+    # on the shelf): it reads a span between them, held at the joint's middle in
+    # between, which overstates its sag as much
+    report = check_design(parse_design(COAT_RACK, "coat-rack.yaml", "yaml"))
+    sagging = [v for v in report.violations if v.kind == "sagging" and v.where == "shelf"]
+    assert sagging and all("over a 900 mm span" in v.message and v.message.endswith(
+        "this overstates its sag)") for v in sagging)
