@@ -13,6 +13,7 @@ from pathlib import Path
 import pytest
 
 from furncheck.design.load import parse_design
+from furncheck.design.model import with_model
 from furncheck.geometry import analyze
 from furncheck.suggest.cutlist import plank_edits
 from furncheck.suggest.score import ShopScore, shop_score
@@ -32,9 +33,11 @@ planks:
 """
 
 
-def score_of(before_text: str, after_text: str) -> ShopScore:
+def score_of(before_text: str, after_text: str, model: str | None = None) -> ShopScore:
     before = parse_design(before_text, "a.yaml", "yaml")
     after = parse_design(after_text, "b.yaml", "yaml")
+    if model is not None:
+        before, after = with_model(before, model), with_model(after, model)
     return shop_score(before, analyze(before), mirror_planes(before), after,
                       plank_edits(before, after))
 
@@ -85,11 +88,14 @@ def test_a_plank_already_too_long_may_change():
 def test_a_leg_wider_than_the_seat_it_holds_is_implausible():
     """The stool's leg_l widened from 300 mm to 594 mm under the seat, 300 mm wide along
     y (the leg's end face runs along y): 594 > 300 + 0.5 mm.  Widened to 300.4 mm it is
-    still within the tolerance."""
+    still within the tolerance.  (At 594 mm its width also passes its 438 mm length, so
+    the elastic model's beam would run across it: the second reason.)"""
     wide = STOOL.replace("{id: leg_l, size: [438, 300]", "{id: leg_l, size: [438, 594]")
     slight = STOOL.replace("{id: leg_l, size: [438, 300]", "{id: leg_l, size: [438, 300.4]")
-    assert score_of(STOOL, wide).implausible == ("leg_l is wider than seat, which it is "
-                                                 "nailed to",)
+    assert score_of(STOOL, wide).implausible == (
+        "leg_l is wider than seat, which it is nailed to",
+        "leg_l is 438 x 594 mm now, its longer side the other way: the elastic model turns "
+        "its beam with it (one beam along the longer side), so the fix may be the model's")
     assert score_of(STOOL, slight).implausible == ()
 
 
@@ -172,6 +178,23 @@ def test_an_end_turned_in_the_face_plane_is_clipped_to_the_outline():
     assert hanging(near) == ()
     assert hanging(past) == (
         "leg hangs 36 % of its end past the edge of top, which it is nailed to",)
+
+
+def test_a_plank_resized_past_square_is_implausible_in_the_elastic_model():
+    """The stool's 400 x 300 mm seat widened to 420 mm: its longer side is now its width,
+    and the elastic model's one beam per plank (contract 3a: along the longer side) turns
+    with it, so whatever the edit repairs may be the turn's doing; the rigid model has no
+    beam, and a seat widened to 390 mm (still longer than wide) is no turn."""
+    seat = "{id: seat, size: [400, 300]"
+    wider = STOOL.replace(seat, "{id: seat, size: [400, 420]")
+    still = STOOL.replace(seat, "{id: seat, size: [400, 390]")
+    reason = ("seat is 400 x 420 mm now, its longer side the other way: the elastic model "
+              "turns its beam with it (one beam along the longer side), so the fix may be "
+              "the model's")
+    assert reason in score_of(STOOL, wider).implausible
+    assert not any("longer side" in r for r in score_of(STOOL, still).implausible)
+    rigid = score_of(STOOL, wider, model="rigid").implausible
+    assert not any("longer side" in r for r in rigid)
 
 
 def test_the_ranking_key_is_lexicographic():

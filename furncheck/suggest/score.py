@@ -14,7 +14,10 @@ design, and ranked by ``ShopScore.key`` (smaller first), lexicographically:
    length at one end (legs moved 267 mm in under a 900 mm bench seat: whoever sits at
    its end tips it, whatever the load cases say; an input's overhang past that share may
    not grow either), or a loaded plank cut by more than SHRINK_SHARE of its length or
-   width (a top cut to a strip under its pot), or the highest loaded level plank (a
+   width (a top cut to a strip under its pot), or (elastic model) a plank resized past
+   square, whose one beam then runs the other way (contract 3a: along the longer side; a
+   stool's seat widened past its length bends the other way, and holds by that alone),
+   or the highest loaded level plank (a
    seat, a top) raised or lowered by more than HEIGHT_SHARE of its height (a chair's seat
    lowered to 80 mm: another piece);
 2. ``broken``: mirror relations the edit breaks (``symmetry.broken_pairs``: a pair of
@@ -152,6 +155,16 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
             was = f" (it was {round(100 * before[0])} %)" if before[0] > OVERHANG_SHARE else ""
             reasons.append(f"{plank_id} overhangs its supports by {round(100 * after[0])} % "
                            f"of its {after[1]}{was}")
+    for plank_id in sorted(changed, key=original.plank_index.get) if edited.elastic else ():
+        before_plank, after_plank = original.plank(plank_id), edited.plank(plank_id)
+        before = before_plank.length - before_plank.width
+        after = after_plank.length - after_plank.width
+        if before * after < 0.0 and min(abs(before), abs(after)) > original.tolerance:
+            scale, unit = original.unit_scale, original.units
+            reasons.append(f"{plank_id} is {amount(after_plank.length / scale)} x "
+                           f"{amount(after_plank.width / scale)} {unit} now, its longer side "
+                           "the other way: the elastic model turns its beam with it (one "
+                           "beam along the longer side), so the fix may be the model's")
     loaded = {load.plank for case in original.load_cases for load in case.loads}
     for plank_id in sorted(loaded & changed, key=original.plank_index.get):
         before_plank, after_plank = original.plank(plank_id), edited.plank(plank_id)
