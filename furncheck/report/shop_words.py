@@ -91,7 +91,12 @@ def _changes_sentence(dofs: tuple[str, ...], changes: tuple[float, ...],
     """(the phrases joined by 'and', whether the first is a mirror pair's ('each'), how
     many phrases)."""
     planes = mirror_planes(original)
-    held = structure(original, standing_geometry(analyze(original))).ends
+    geometry = analyze(original)
+    held = structure(original, standing_geometry(geometry)).ends
+    nailed: dict[str, set[str]] = {}
+    for joint in geometry.joints:
+        for plank, other in (joint.planks, joint.planks[::-1]):
+            nailed.setdefault(plank, set()).add(other)
     phrases, first_each = [], False
     done: set[int] = set()
     for k, name in enumerate(dofs):
@@ -109,7 +114,8 @@ def _changes_sentence(dofs: tuple[str, ...], changes: tuple[float, ...],
         previous = dofs[k - 1].rpartition(".")[0] if k else None
         subject = "it" if previous == plank and k - 1 not in done else plank
         phrases.append(_phrase(original, edited, held, plank, subject,
-                               name.rpartition(".")[2], changes[k], units[k]))
+                               name.rpartition(".")[2], changes[k], units[k],
+                               nailed.get(plank, set())))
     return " and ".join(phrases), first_each, len(phrases)
 
 
@@ -167,12 +173,13 @@ def _pair_phrase(design: Design, edited: Design, plane: MirrorPlane, first: str,
 
 
 def _phrase(design: Design, edited: Design, held: dict, plank: str, subject: str,
-            kind: str, change: float, unit: str) -> str:
+            kind: str, change: float, unit: str, nailed: set[str] = frozenset()) -> str:
     amount = f"{_amount(abs(change))} {_unit(unit)}"
     if kind == "z":
         return f"{'raise' if change > 0 else 'lower'} {subject} by {amount}"
     if kind in ("x", "y"):
-        return f"move {subject} {amount} {_where(design, plank, 'xy'.index(kind), change)}"
+        return (f"move {subject} {amount} "
+                f"{_where(design, plank, 'xy'.index(kind), change, nailed)}")
     if kind in ("length", "width"):
         moved = _moved_end(design, held, plank, 0 if kind == "length" else 1)
         if moved is not None and moved[2] > VERTICAL_COSINE:
@@ -191,10 +198,11 @@ def _size_verb(kind: str, change: float) -> str:
     return "widen" if change > 0 else "narrow"
 
 
-def _where(design: Design, plank: str, axis: int, change: float) -> str:
+def _where(design: Design, plank: str, axis: int, change: float,
+           nailed: set[str] = frozenset()) -> str:
     sign = 1.0 if change > 0 else -1.0
-    ahead = _toward(design, plank, _unit_vector(axis, sign))
-    behind = _toward(design, plank, _unit_vector(axis, -sign))
+    ahead = _toward(design, plank, _unit_vector(axis, sign), nailed)
+    behind = _toward(design, plank, _unit_vector(axis, -sign), nailed)
     if ahead:
         return f"toward {ahead}"
     if behind:
@@ -208,10 +216,13 @@ def _unit_vector(axis: int, sign: float) -> np.ndarray:
     return vector
 
 
-def _toward(design: Design, plank_id: str, way: np.ndarray) -> str | None:
+def _toward(design: Design, plank_id: str, way: np.ndarray,
+            nailed: set[str] = frozenset()) -> str | None:
     """The plank ahead of a move of ``plank_id`` the (unit, world) ``way``: among the others
     whose centre lies within 60 degrees of it, a parallel one (the other leg of a pair)
-    before the rest, then the nearest."""
+    before the rest, then one it is not ``nailed`` to (a splayed leg moved in under its
+    seat goes toward the leg opposite, not 'toward seat', which it hangs from), then the
+    nearest."""
     moved = design.plank(plank_id)
     normal = moved.rotation_matrix[:, 2]
     best, best_key = None, None
@@ -222,7 +233,7 @@ def _toward(design: Design, plank_id: str, way: np.ndarray) -> str | None:
                 float(offset @ way) < TOWARD_COSINE * distance:
             continue
         parallel = abs(float(plank.rotation_matrix[:, 2] @ normal)) > PARALLEL_COSINE
-        key = (not parallel, distance)
+        key = (not parallel, plank.id in nailed, distance)
         if best_key is None or key < best_key:
             best, best_key = plank.id, key
     return best
