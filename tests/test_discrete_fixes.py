@@ -665,3 +665,69 @@ def test_rails_under_a_plank_near_the_floor_fit_the_gap():
     assert stiffener_depths(t, 0.030, slack) == []
     assert stiffener_depths(t, 0.500, slack) == pytest.approx([0.072, 0.108, 0.144])
     assert stiffener_depths(t, 0.1442, slack) == pytest.approx([0.072, 0.108, 0.144])
+
+
+HAT_RACK = """
+furncheck: 1
+name: hat-rack
+model: rigid
+material: {thickness: 18}
+walls:
+  - {point: [0, 0, 0], normal: [0, 1, 0]}
+planks:
+  - {id: back, size: [900, 150], center: [0, 9, 1600], rotation: [90, 0, 0]}
+  - {id: shelf, size: [900, 250], center: [0, 125, 1684]}
+anchors:
+  - {plank: back, at: [-350, 0, 1620], wall: 0, capacity: 120}
+  - {plank: back, at: [350, 0, {right}], wall: 0, capacity: 120}
+loads:
+  - {plank: back, mass: 5, at: [-300, 18, 1560]}
+  - {plank: back, mass: 5, at: [-100, 18, 1560]}
+  - {plank: back, mass: 5, at: [100, 18, 1560]}
+  - {plank: back, mass: 5, at: [300, 18, 1560]}
+  - {plank: shelf, mass: 8, spread: true}
+"""
+
+
+def test_wall_fixings_over_their_rating_get_stronger_ones():
+    """A coat rack's back board hung on two plugs rated 120 N, 700 mm apart; they hold
+    147.1 N each (its weight and the coats' lever about the board's foot on the wall), so
+    both fail.  An anchor's force does not depend on its rating, so fixings rated the next
+    50 N above it, 150 N, hold it: one discrete fix, valid, saying so in words, in the
+    text's lines and in JSON ``ratings``."""
+    from furncheck.suggest import suggest_design
+
+    design = parse_design(HAT_RACK.replace("{right}", "1620"), "rack.yaml", "yaml")
+    report = check_design(design)
+    forces = {v.where: float(re.search(r"holds ([\d.]+) N", v.message).group(1))
+              for v in report.violations}
+    assert set(forces) == {"anchors[0]", "anchors[1]"}
+    rating = 50 * math.ceil(max(forces.values()) / 50)
+    assert rating == 150
+    result = suggest_design(design)
+    (fix,) = [s for s in result.suggestions if s.rule == "fixings"]
+    assert fix.advice == ("Use wall fixings for anchors[0] and anchors[1] rated at least "
+                          "150 N (now 120 N).")
+    assert fix.report.valid and [a.capacity for a in fix.design.anchors] == [150.0, 150.0]
+    out = CliRunner().invoke(main, ["suggest", "-", "--format", "json"],
+                             input=HAT_RACK.replace("{right}", "1620"))
+    (entry,) = [e for e in json.loads(out.output)["suggestions"] if e["rule"] == "fixings"]
+    assert entry["ratings"] == [{"anchor": 0, "before": 120.0, "after": 150.0},
+                                {"anchor": 1, "before": 120.0, "after": 150.0}]
+
+
+def test_each_fixing_is_told_its_own_force():
+    """Two fixings on the same board and wall, one 60 mm lower: they hold different forces,
+    and the explanation of what each needs reads its own (it read the first fixing's for
+    both: 595 N for a fixing holding 620 N)."""
+    from furncheck.suggest.needs import violation_needs
+
+    design = parse_design(HAT_RACK.replace("{right}", "1560"), "rack.yaml", "yaml")
+    report = check_design(design)
+    held = {v.where: float(re.search(r"holds ([\d.]+) N", v.message).group(1))
+            for v in report.violations if v.where.startswith("anchors[")}
+    assert len(held) == 2 and abs(held["anchors[0]"] - held["anchors[1]"]) > 1.0
+    needs = {n.where: n.values["force"] for n in violation_needs(design, analyze(design), report)
+             if n.where in held}
+    for where, force in held.items():
+        assert needs[where] == pytest.approx(force, abs=0.05)

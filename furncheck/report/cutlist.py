@@ -26,6 +26,7 @@ from furncheck.suggest.cutlist import (
     LoadSpread,
     NailChange,
     PlankEdit,
+    RatingChange,
 )
 
 AXIS_SLACK = 1.0
@@ -63,6 +64,22 @@ def nail_lines(changes: tuple[NailChange, ...]) -> list[str]:
 def nails_json(changes: tuple[NailChange, ...]) -> list[dict[str, Any]]:
     """The JSON ``nails`` list: {"joint", "before", "after"} per changed joint."""
     return [{"joint": change.joint, "before": change.before, "after": change.after}
+            for change in changes]
+
+
+def rating_lines(changes: tuple[RatingChange, ...]) -> list[str]:
+    """'changes N wall fixings:' and one line per fixing (unindented): 'anchors[0]: rated
+    120 -> 150 N'."""
+    if not changes:
+        return []
+    return [f"changes {plural(len(changes), 'wall fixing')}:",
+            *(f"  anchors[{change.anchor}]: rated {_number(change.before)} -> "
+              f"{_number(change.after)} N" for change in changes)]
+
+
+def ratings_json(changes: tuple[RatingChange, ...]) -> list[dict[str, Any]]:
+    """The JSON ``ratings`` list: {"anchor", "before", "after"} (N) per changed fixing."""
+    return [{"anchor": change.anchor, "before": change.before, "after": change.after}
             for change in changes]
 
 

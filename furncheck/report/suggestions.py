@@ -37,13 +37,15 @@ from furncheck.report.cutlist import (
     load_spreads_json,
     nail_lines,
     nails_json,
+    rating_lines,
+    ratings_json,
 )
 from furncheck.report.explanation import explanation_dict, explanation_lines
 from furncheck.report.numbers import format_number, json_ready
 from furncheck.report.shop_words import change_sentence, continuous_advice
 from furncheck.report.text import INDENT, design_lines
 from furncheck.suggest import Suggestion, SuggestionReport
-from furncheck.suggest.cutlist import nail_changes
+from furncheck.suggest.cutlist import nail_changes, rating_changes
 
 ADVICE_DIGITS = 3
 """Significant digits of the amounts in the advice (the JSON keeps REPORT digits)."""
@@ -95,6 +97,7 @@ def render_text(result: SuggestionReport, original: Design,
                      f"Restores {restores}.")
         for line in (*cut_list_lines(suggestion.edits, original),
                      *nail_lines(nail_changes(original, suggestion.design)),
+                     *rating_lines(rating_changes(original, suggestion.design)),
                      *load_move_lines(suggestion.loads_moved, original),
                      *load_spread_lines(suggestion.loads_spread, original),
                      *anchor_move_lines(suggestion.anchors_moved, original),
@@ -157,6 +160,9 @@ def _suggestion_dict(suggestion: Suggestion, original: Design,
         nails = nail_changes(original, suggestion.design)
         if nails:           # more nails in a listed joint
             entry["nails"] = nails_json(nails)
+        ratings = rating_changes(original, suggestion.design)
+        if ratings:         # stronger wall fixings
+            entry["ratings"] = ratings_json(ratings)
         return entry
     return {
         "rank": suggestion.rank,

@@ -136,6 +136,23 @@ def nail_changes(before: Design, after: Design) -> tuple[NailChange, ...]:
 
 
 @dataclass(frozen=True)
+class RatingChange:
+    """A wall fixing of the input whose rating a suggestion changes (``discrete.fixings``):
+    its place in the file's ``anchors`` list and its capacity before and after (N)."""
+
+    anchor: int
+    before: float
+    after: float
+
+
+def rating_changes(before: Design, after: Design) -> tuple[RatingChange, ...]:
+    """The anchors of ``before`` whose ``capacity`` ``after`` changes, in the file's order."""
+    return tuple(RatingChange(index, old.capacity, new.capacity)
+                 for index, (old, new) in enumerate(zip(before.anchors, after.anchors))
+                 if old.capacity != new.capacity)
+
+
+@dataclass(frozen=True)
 class LoadMove:
     """A load at a point that a suggestion carries along with its plank (a load keeps its
     place along a plank that is moved, turned or resized: the person at the seat's end

@@ -23,7 +23,8 @@ class Suggestion:
     changes   : each DOF's change at ``step``, its own unit (file length unit or degrees)
     adds      : planks added (discrete); ``between`` the planks a support joins
     rule      : the discrete rule that made it ('support', 'rail', 'apron', 'stretcher',
-                'back panel', 'brace', 'outrigger', 'anchor', 'thicker', 'reconnect', 'nails');
+                'back panel', 'brace', 'outrigger', 'anchor', 'thicker', 'reconnect', 'nails',
+                'fixings');
                 ``advice`` its sentence
     restores  : the kinds of violation it removes ('durability', 'stability', 'geometry',
                 'stiffness' for sag, 'strength' for bending stress)
