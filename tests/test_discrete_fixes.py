@@ -731,3 +731,46 @@ def test_each_fixing_is_told_its_own_force():
              if n.where in held}
     for where, force in held.items():
         assert needs[where] == pytest.approx(force, abs=0.05)
+
+
+TILE_BENCH = """
+furncheck: 1
+name: tile-bench
+model: rigid
+material: {thickness: 18, density: 600, friction: 0.15}
+planks:
+  - {id: seat, size: [1000, 300], center: [0, 0, 441]}
+  - {id: end_l, size: [432, 300], center: [-441, 0, 216], rotation: [0, -90, 0]}
+  - {id: end_r, size: [432, 300], center: [441, 0, 216], rotation: [0, -90, 0]}
+  - {id: rail, size: [864, 80], center: [0, 0, 300], rotation: [90, 0, 0]}
+loads:
+  - {plank: seat, mass: 70, at: [-300, 0, 450]}
+  - {plank: seat, force: [150, 0, 0], at: [-500, 0, 441]}
+"""
+
+
+def test_a_bench_sliding_on_tiles_gets_non_slip_pads():
+    """A bench (18 mm boards at 600 kg/m^3) on tiles, mu = 0.15, with 70 kg on it, shoved
+    with H = 150 N.  W = 70 g + its boards' 600 x 0.018 x (1 x 0.3 + 2 x 0.432 x 0.3 +
+    0.864 x 0.08) g = 686.7 + 66.7 N = 753.4 N, so mu W = 113 N < 150 N: it slides, and
+    holds with mu' >= H / W = 0.199, asked of the pads rounded up to 0.2.  The fix changes
+    no plank, says so (text and JSON ``friction``), and validates.  With a wall it does
+    not apply (the design's one friction is also the wall's)."""
+    from furncheck.suggest import suggest_design
+
+    weight = 70 * 9.81 + 600 * 0.018 * (1.0 * 0.3 + 2 * 0.432 * 0.3 + 0.864 * 0.08) * 9.81
+    assert 150 / weight == pytest.approx(0.199, abs=5e-4)
+    design = parse_design(TILE_BENCH, "bench.yaml", "yaml")
+    assert [v.kind for v in check_design(design).violations] == ["sliding"]
+    (fix,) = [s for s in suggest_design(design).suggestions if s.rule == "pads"]
+    assert fix.advice == ("Fit non-slip pads under its feet that give a friction of at least "
+                          "0.2 on this floor (now 0.15; check the pads on the floor itself).")
+    assert fix.report.valid and fix.design.material.friction == pytest.approx(0.2)
+    assert fix.edits == ()
+    out = CliRunner().invoke(main, ["suggest", "-", "--format", "json"], input=TILE_BENCH)
+    (entry,) = [e for e in json.loads(out.output)["suggestions"] if e["rule"] == "pads"]
+    assert entry["friction"] == [0.15, 0.2]
+    walled = TILE_BENCH.replace("planks:", "walls:\n  - {point: [0, -400, 0], "
+                                "normal: [0, 1, 0]}\nplanks:", 1)
+    assert not [s for s in suggest_design(parse_design(walled, "b.yaml", "yaml")).suggestions
+                if s.rule == "pads"]

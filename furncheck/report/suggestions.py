@@ -25,6 +25,7 @@ from typing import Any
 from furncheck.design.model import Design
 from furncheck.design.write import anchor_entry, plank_entry
 from furncheck.export.suggestions import Written
+from furncheck.plain import plain_number
 from furncheck.report.common import plural
 from furncheck.report.cutlist import (
     anchor_move_lines,
@@ -45,7 +46,7 @@ from furncheck.report.numbers import format_number, json_ready
 from furncheck.report.shop_words import change_sentence, continuous_advice
 from furncheck.report.text import INDENT, design_lines
 from furncheck.suggest import Suggestion, SuggestionReport
-from furncheck.suggest.cutlist import nail_changes, rating_changes
+from furncheck.suggest.cutlist import friction_change, nail_changes, rating_changes
 
 ADVICE_DIGITS = 3
 """Significant digits of the amounts in the advice (the JSON keeps REPORT digits)."""
@@ -98,6 +99,7 @@ def render_text(result: SuggestionReport, original: Design,
         for line in (*cut_list_lines(suggestion.edits, original),
                      *nail_lines(nail_changes(original, suggestion.design)),
                      *rating_lines(rating_changes(original, suggestion.design)),
+                     *_friction_lines(friction_change(original, suggestion.design)),
                      *load_move_lines(suggestion.loads_moved, original),
                      *load_spread_lines(suggestion.loads_spread, original),
                      *anchor_move_lines(suggestion.anchors_moved, original),
@@ -163,6 +165,9 @@ def _suggestion_dict(suggestion: Suggestion, original: Design,
         ratings = rating_changes(original, suggestion.design)
         if ratings:         # stronger wall fixings
             entry["ratings"] = ratings_json(ratings)
+        friction = friction_change(original, suggestion.design)
+        if friction is not None:    # non-slip pads
+            entry["friction"] = list(friction)
         return entry
     return {
         "rank": suggestion.rank,
@@ -184,6 +189,14 @@ def _suggestion_dict(suggestion: Suggestion, original: Design,
         "meshes": list(files.meshes),
         "plots": list(files.plots),
     }
+
+
+def _friction_lines(change: tuple[float, float] | None) -> list[str]:
+    """'changes the friction on the floor: 0.15 -> 0.2' for non-slip pads."""
+    if change is None:
+        return []
+    return [f"changes the friction on the floor: {plain_number(change[0], 6)} -> "
+            f"{plain_number(change[1], 6)}"]
 
 
 def _implausible_lines(suggestion: Suggestion) -> list[str]:

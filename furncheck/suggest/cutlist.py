@@ -152,6 +152,13 @@ def rating_changes(before: Design, after: Design) -> tuple[RatingChange, ...]:
                  if old.capacity != new.capacity)
 
 
+def friction_change(before: Design, after: Design) -> tuple[float, float] | None:
+    """(before, after): the design's friction where ``after`` changes it (non-slip pads,
+    ``discrete.pads``), else None."""
+    old, new = before.material.friction, after.material.friction
+    return None if old == new else (old, new)
+
+
 @dataclass(frozen=True)
 class LoadMove:
     """A load at a point that a suggestion carries along with its plank (a load keeps its

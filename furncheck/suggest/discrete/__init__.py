@@ -14,6 +14,7 @@ section 6.5 and the shop's standard fixes), each checked in full like every sugg
     reconnect  a near miss closed by lengthening or shortening the plank that misses
     nails      more nails in a listed joint that takes them
     fixings    wall fixings rated for what they hold
+    pads       non-slip pads under the feet of a piece that slides
 
 ``discrete_fixes`` runs the rules in order (``RULES``).  Each is tried only where the
 report's violations are of the kinds it repairs, or some are and the others bend planks
@@ -36,6 +37,7 @@ from furncheck.suggest.discrete.common import Fix, Search
 from furncheck.suggest.discrete.feet import outriggers, overhang_supports
 from furncheck.suggest.discrete.fixings import stronger_fixings
 from furncheck.suggest.discrete.nails import more_nails
+from furncheck.suggest.discrete.pads import non_slip_pads
 from furncheck.suggest.discrete.racking import aprons, back_panels, braces, stretchers
 from furncheck.suggest.discrete.reconnect import RECONNECT, reconnect_near_misses
 from furncheck.suggest.discrete.supports import _reach, support_planks
@@ -46,11 +48,12 @@ __all__ = ["RULES", "Fix", "Search", "_reach", "discrete_fixes", "spares_no_boar
            "support_planks"]
 
 RULES = (support_planks, overhang_supports, outriggers, wall_anchors, aprons, stretchers,
-         back_panels, braces, thicker_planks, more_nails, stronger_fixings)
+         back_panels, braces, thicker_planks, more_nails, stronger_fixings, non_slip_pads)
 """The rules for a design that stands as drawn, in the order their fixes are listed: the
 paper's support first, then added parts by how little they change the piece, then a
 thicker board (a change of material), then more nails in a listed joint that takes
-them and wall fixings rated for what they hold (which change no part)."""
+them, wall fixings rated for what they hold and non-slip pads under the feet (which
+change no part)."""
 
 
 def spares_no_board(thickened: dict, alone: dict) -> bool:

@@ -54,7 +54,8 @@ class Fix:
     """A discrete fix whose design is valid.
 
     rule     : the rule that made it ('support', 'rail', 'apron', 'stretcher', 'back panel',
-               'brace', 'outrigger', 'anchor', 'thicker', 'reconnect', 'nails', 'fixings')
+               'brace', 'outrigger', 'anchor', 'thicker', 'reconnect', 'nails', 'fixings',
+               'pads')
     advice   : the sentence a maker acts on (``Add ...``, ``Make ... thick``), ending in '.'
     design   : the design with the fix; ``report`` its validation (valid)
     adds     : planks added; ``between`` the planks a support joins ((P_i, P_j or 'the
