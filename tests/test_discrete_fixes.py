@@ -320,7 +320,8 @@ def test_a_bookcase_by_a_wall_gets_anchored(model):
     564 mm from each end (x = -+141 mm), at its mid-thickness (z = 1791 mm), rated 196 N
     each, the 15 mm to the wall packed.  The header's hand estimate for the catalog's
     anchors (x = -+200): about 111 N each of push, up to 139 N with the weight they
-    share: within 196 N."""
+    share: within 196 N.  It shows the wall an edge, not its face, so the fixings go
+    through angle brackets, as the advice says."""
     text = re.sub(r"anchors:\n(  - .*\n)+", "", (CATALOG / "bookcase-anchored.yaml").read_text())
     design = parsed(text, model)
     assert [v.kind for v in check_design(design).violations] == ["lift-off"]
@@ -331,8 +332,9 @@ def test_a_bookcase_by_a_wall_gets_anchored(model):
     worst = max(a.size for case in anchor.report.cases for a in case.anchors)
     assert 100.0 < worst < tol.ANCHOR_CAPACITY
     assert anchor.advice.startswith("Screw top to the wall at (-141, 15, 1791) mm and "
-                                    "(141, 15, 1791) mm with fixings rated 196 N, packing "
-                                    "the 15 mm gap to the wall; each takes at most ")
+                                    "(141, 15, 1791) mm with fixings rated 196 N through "
+                                    "angle brackets at its edge, packing the 15 mm gap to "
+                                    "the wall; each takes at most ")
     assert fix_valid(anchor)
 
 
@@ -774,3 +776,19 @@ def test_a_bench_sliding_on_tiles_gets_non_slip_pads():
                                 "normal: [0, 1, 0]}\nplanks:", 1)
     assert not [s for s in suggest_design(parse_design(walled, "b.yaml", "yaml")).suggestions
                 if s.rule == "pads"]
+
+
+def test_a_board_lying_on_the_wall_is_screwed_through_its_face_first():
+    """The coat rack (rigid: its two 120 N plugs hold 147.1 N each): its back board lies
+    face to the wall and its hat shelf shows the wall its 18 mm back edge, higher up.  A
+    maker screws the board (through its face: nothing else needed), not the shelf's edge,
+    so the wall-anchor rule tries the board first: two more fixings on it, a quarter of
+    its 900 mm from each end (x = -+225 mm), at its middle height (z = 1600 mm)."""
+    from furncheck.suggest import suggest_design
+
+    design = parse_design(HAT_RACK.replace("{right}", "1620"), "rack.yaml", "yaml")
+    (fix,) = [s for s in suggest_design(design).suggestions if s.rule == "anchor"]
+    assert fix.advice.startswith("Screw back to the wall at (-225, 0, 1600) mm and (225, 0, "
+                                 "1600) mm with 2 more fixings rated 196 N (beside the 2 it "
+                                 "has)")
+    assert "bracket" not in fix.advice and fix.report.valid

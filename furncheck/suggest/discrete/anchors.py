@@ -3,8 +3,10 @@
 
 A bookcase that a child's pull tips over is anchored to the wall behind it at the top:
 the fixing holds the top back, the floor takes the rest.  Where the design has walls,
-the plank to anchor is the one standing highest within WALL_ANCHOR_REACH in front of a
-wall (a top, a back rail, a tall side); the anchors go on its face or edge nearest the
+the plank to anchor is one within WALL_ANCHOR_REACH in front of a wall: one lying face
+to the wall first (a back board, a cleat: screwed through its face), then one showing
+the wall an edge (a top, a tall side: screwed through angle brackets, as the advice
+says), the highest first of each; the anchors go on its face or edge nearest the
 wall, at its middle, or two at a quarter of its length from each end when it is longer
 than ANCHOR_PAIR_FROM plank thicknesses (one near the top of an upright face).  Each is
 rated ``tolerances.ANCHOR_CAPACITY`` N (one plasterboard fixing's safe load; the advice
@@ -25,6 +27,7 @@ from furncheck import tolerances as tol
 from furncheck.design.model import Anchor, Design
 from furncheck.plain import plain_number
 from furncheck.suggest.discrete.common import (
+    PARALLEL_COS,
     Candidate,
     Fix,
     Search,
@@ -80,12 +83,14 @@ def _candidates(search: Search) -> Iterator[Candidate]:
             if nearest < -slack or nearest > reach:
                 continue
             near = plank.corners[distances <= nearest + slack]
-            found.append((-float(near[:, 2].mean()), design.plank_index[plank.id], plank.id,
-                          w, near))
+            facing = abs(float(plank.rotation_matrix[:, 2] @ np.asarray(wall.normal)))
+            edge = facing < PARALLEL_COS    # its broad face is not the one at the wall
+            found.append((edge, -float(near[:, 2].mean()), design.plank_index[plank.id],
+                          plank.id, w, near))
     if not found:
         search.failed(ANCHOR, f"no plank stands within "
                       f"{amount(reach / design.unit_scale)} {design.units} of a wall")
-    for _, _, plank_id, wall, near in sorted(found, key=lambda f: f[:2])[:PLANKS_TRIED]:
+    for edge, _, _, plank_id, wall, near in sorted(found, key=lambda f: f[:3])[:PLANKS_TRIED]:
         plank = design.plank(plank_id)
         points = _anchor_points(plank, near, design.material.thickness)
         anchors = tuple(Anchor(plank_id, tuple(float(v) for v in p), wall,
@@ -101,8 +106,9 @@ def _candidates(search: Search) -> Iterator[Candidate]:
         packed = f", packing the {amount(gap / design.unit_scale)} {design.units} gap to " \
                  f"the wall" if gap > design.tolerance else ""
         beside = f" (beside the {len(design.anchors)} it has)" if more else ""
+        bracket = " through angle brackets at its edge" if edge else ""
         advice = (f"Screw {plank_id} to {wall_name} at {where} with {fixings} rated "
-                  f"{plain_number(tol.ANCHOR_CAPACITY, 3)} N{beside}{packed}.")
+                  f"{plain_number(tol.ANCHOR_CAPACITY, 3)} N{bracket}{beside}{packed}.")
         yield Candidate("anchor", replace(design, anchors=(*design.anchors, *anchors)),
                         advice, between=(plank_id,), trial_rule=ANCHOR,
                         place=f"{plank_id} to {wall_name} at {where}",
