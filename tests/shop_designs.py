@@ -9,6 +9,12 @@ WALL_SHELF       a 600 x 250 shelf, 18 mm, nailed by its back edge (4 nails list
                  a back board screwed to the wall (two 400 N fixings), 25 kg of books
                  spread on it: its nails pull out, and its one beam, held at the
                  joint's middle, reads a sag it does not have.
+COAT_RACK        a 900 x 150 back board, 18 mm, flat on the wall, hung on two plugs
+                 rated 120 N (the right one at z = {right}: 1620 as drawn, level with
+                 the left), four 5 kg coats on it and a 900 x 250 hat shelf nailed onto
+                 its top edge with 8 kg spread on it: in the rigid model the plugs hold
+                 147.1 N each; in the elastic one the shelf's back corners bear on the
+                 wall and it reads a span between them.
 """
 
 SIDE_TABLE_RACK = """\
@@ -47,4 +53,24 @@ anchors:
   - {plank: back, at: [200, 0, 1470], wall: 0, capacity: 400}
 loads:
   - {plank: shelf, mass: 25, spread: true}
+"""
+
+COAT_RACK = """\
+furncheck: 1
+name: coat-rack
+material: {{thickness: 18}}
+walls:
+  - {{point: [0, 0, 0], normal: [0, 1, 0]}}
+planks:
+  - {{id: back, size: [900, 150], center: [0, 9, 1600], rotation: [90, 0, 0]}}
+  - {{id: shelf, size: [900, 250], center: [0, 125, 1684]}}
+anchors:
+  - {{plank: back, at: [-350, 0, 1620], wall: 0, capacity: 120}}
+  - {{plank: back, at: [350, 0, {right}], wall: 0, capacity: 120}}
+loads:
+  - {{plank: back, mass: 5, at: [-300, 18, 1560]}}
+  - {{plank: back, mass: 5, at: [-100, 18, 1560]}}
+  - {{plank: back, mass: 5, at: [100, 18, 1560]}}
+  - {{plank: back, mass: 5, at: [300, 18, 1560]}}
+  - {{plank: shelf, mass: 8, spread: true}}
 """

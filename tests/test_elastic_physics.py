@@ -23,7 +23,7 @@ import elastic_designs as ed
 import numpy as np
 import physics_designs as pd
 import pytest
-from shop_designs import WALL_SHELF
+from shop_designs import COAT_RACK, WALL_SHELF
 
 from furncheck.check import check_design
 from furncheck.design import parse_design
@@ -616,24 +616,6 @@ def test_an_overhang_says_so_with_its_length_and_its_span_of_twice_it():
 
 
 
-COAT_RACK = """
-furncheck: 1
-name: coat-rack
-material: {thickness: 18}
-walls:
-  - {point: [0, 0, 0], normal: [0, 1, 0]}
-planks:
-  - {id: back, size: [900, 150], center: [0, 9, 1600], rotation: [90, 0, 0]}
-  - {id: shelf, size: [900, 250], center: [0, 125, 1684]}
-anchors:
-  - {plank: back, at: [-350, 0, 1620], wall: 0, capacity: 400}
-  - {plank: back, at: [350, 0, 1620], wall: 0, capacity: 400}
-loads:
-  - {plank: back, mass: 20, at: [0, 18, 1560]}
-  - {plank: shelf, mass: 8, spread: true}
-"""
-
-
 def test_a_plank_nailed_along_its_length_is_told_overstated():
     """A 600 x 250 shelf nailed by its 600 mm back edge to a back board (``shop_designs``
     WALL_SHELF): the one beam per
@@ -655,11 +637,10 @@ def test_a_plank_nailed_along_its_length_is_told_overstated():
                                            / "bookcase-sagging.yaml")))
     spans = [v for v in between.violations if v.kind == "sagging"]
     assert spans and not any("nailed along" in v.message for v in spans)
-    # the shelf's back corners on the wall as well (a coat rack's hat shelf, 900 x 250 x
-    # 18, nailed down onto its back board's top edge, the board hung on two fixings, 8 kg
-    # on the shelf): it reads a span between them, held at the joint's middle in
-    # between, which overstates its sag as much
-    report = check_design(parse_design(COAT_RACK, "coat-rack.yaml", "yaml"))
+    # the shelf's back corners on the wall as well (``shop_designs.COAT_RACK``'s hat shelf,
+    # 900 x 250 x 18, nailed onto its back board's top edge): it reads a span between
+    # them, held at the joint's middle in between, which overstates its sag as much
+    report = check_design(parse_design(COAT_RACK.format(right=1620), "rack.yaml", "yaml"))
     sagging = [v for v in report.violations if v.kind == "sagging" and v.where == "shelf"]
     assert sagging and all("over a 900 mm span" in v.message and v.message.endswith(
         "this overstates its sag)") for v in sagging)

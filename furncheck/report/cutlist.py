@@ -86,37 +86,30 @@ def ratings_json(changes: tuple[RatingChange, ...]) -> list[dict[str, Any]]:
 def load_move_lines(moves: tuple[LoadMove, ...], design: Design) -> list[str]:
     """'moves N loads with their planks:' and one line per load (unindented): '80 kg on
     seat (case 'default'): at (560, 0, 450) -> (303.3, 0, 450) mm'."""
-    if not moves:
-        return []
-    planks = "its plank" if len(moves) == 1 else "their planks"
-    lines = [f"moves {plural(len(moves), 'load')} with {planks}:"]
-    for move in moves:
-        start = ", ".join(_number(v) for v in move.before)
-        end = ", ".join(_number(v) for v in move.after)
-        lines.append(f"  {move.load} on {move.plank} (case '{move.case}'): at ({start}) -> "
-                     f"({end}) {design.units}")
-    return lines
+    return _moved_lines("load", moves, design,
+                        lambda move: f"{move.load} on {move.plank} (case '{move.case}')")
 
 
 def anchor_move_lines(moves: tuple[AnchorMove, ...], design: Design) -> list[str]:
     """'moves N wall fixings with their planks:' and one line per fixing (unindented):
     'anchors[0] on back (wall 0): at (-350, 0, 1620) -> (-350, 0, 1792.5) mm'."""
+    return _moved_lines("wall fixing", moves, design,
+                        lambda move: f"anchors[{move.anchor}] on {move.plank} "
+                                     f"(wall {move.wall})")
+
+
+def _moved_lines(what: str, moves: tuple, design: Design, label) -> list[str]:
+    """'moves N <what>s with their planks:' and one line per move, ``label(move)``: at
+    (before) -> (after) in the file's unit."""
     if not moves:
         return []
     planks = "its plank" if len(moves) == 1 else "their planks"
-    lines = [f"moves {plural(len(moves), 'wall fixing')} with {planks}:"]
+    lines = [f"moves {plural(len(moves), what)} with {planks}:"]
     for move in moves:
         start = ", ".join(_number(v) for v in move.before)
         end = ", ".join(_number(v) for v in move.after)
-        lines.append(f"  anchors[{move.anchor}] on {move.plank} (wall {move.wall}): at "
-                     f"({start}) -> ({end}) {design.units}")
+        lines.append(f"  {label(move)}: at ({start}) -> ({end}) {design.units}")
     return lines
-
-
-def anchor_moves_json(moves: tuple[AnchorMove, ...]) -> list[dict[str, Any]]:
-    """``[{"anchor", "plank", "wall", "from": [x, y, z], "to": [x, y, z]}]``."""
-    return [{"anchor": move.anchor, "plank": move.plank, "wall": move.wall,
-             "from": list(move.before), "to": list(move.after)} for move in moves]
 
 
 def load_spread_lines(spreads: tuple[LoadSpread, ...], design: Design) -> list[str]:
@@ -143,6 +136,12 @@ def load_spreads_json(spreads: tuple[LoadSpread, ...]) -> list[dict[str, Any]]:
 def load_moves_json(moves: tuple[LoadMove, ...]) -> list[dict[str, Any]]:
     """``[{"case", "plank", "load", "from": [x, y, z], "to": [x, y, z]}]``."""
     return [{"case": move.case, "plank": move.plank, "load": move.load,
+             "from": list(move.before), "to": list(move.after)} for move in moves]
+
+
+def anchor_moves_json(moves: tuple[AnchorMove, ...]) -> list[dict[str, Any]]:
+    """``[{"anchor", "plank", "wall", "from": [x, y, z], "to": [x, y, z]}]``."""
+    return [{"anchor": move.anchor, "plank": move.plank, "wall": move.wall,
              "from": list(move.before), "to": list(move.after)} for move in moves]
 
 
