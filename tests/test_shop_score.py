@@ -94,8 +94,8 @@ def test_a_leg_wider_than_the_seat_it_holds_is_implausible():
     slight = STOOL.replace("{id: leg_l, size: [438, 300]", "{id: leg_l, size: [438, 300.4]")
     assert score_of(STOOL, wide).implausible == (
         "leg_l is wider than seat, which it is nailed to",
-        "leg_l is 438 x 594 mm now, its longer side the other way: the elastic model turns "
-        "its beam with it (one beam along the longer side), so the fix may be the model's")
+        "leg_l is 438 x 594 mm now, the longer side the other way: the elastic model "
+        "turns the beam with it (one beam along the longer side), so the fix may be the model's")
     assert score_of(STOOL, slight).implausible == ()
 
 
@@ -188,8 +188,8 @@ def test_a_plank_resized_past_square_is_implausible_in_the_elastic_model():
     seat = "{id: seat, size: [400, 300]"
     wider = STOOL.replace(seat, "{id: seat, size: [400, 420]")
     still = STOOL.replace(seat, "{id: seat, size: [400, 390]")
-    reason = ("seat is 400 x 420 mm now, its longer side the other way: the elastic model "
-              "turns its beam with it (one beam along the longer side), so the fix may be "
+    reason = ("seat is 400 x 420 mm now, the longer side the other way: the elastic model "
+              "turns the beam with it (one beam along the longer side), so the fix may be "
               "the model's")
     assert reason in score_of(STOOL, wider).implausible
     assert not any("longer side" in r for r in score_of(STOOL, still).implausible)
@@ -323,3 +323,28 @@ loads:
 """
     score = score_of(board.format(z=6, t=12), board.format(z=11, t=22))
     assert not score.implausible
+
+
+def test_planks_alike_are_named_together():
+    """A shelf unit's two shelves (582 x 300 mm, books on each) both cut to 199 mm by the
+    sides moving in: one reason naming both, not one per shelf (a bookshelf of ten such
+    shelves read twenty lines), and one for their turned beams."""
+    unit = """
+furncheck: 1
+name: two shelves
+planks:
+  - {id: side_l, size: [900, 300], center: [-297, 0, 450], rotation: [0, -90, 0]}
+  - {id: side_r, size: [900, 300], center: [297, 0, 450], rotation: [0, -90, 0]}
+  - {id: shelf_a, size: [582, 300], center: [0, 0, 300]}
+  - {id: shelf_b, size: [582, 300], center: [0, 0, 600]}
+loads:
+  - {plank: shelf_a, mass: 10, spread: true}
+  - {plank: shelf_b, mass: 10, spread: true}
+"""
+    narrow = unit.replace("[-297,", "[-105.5,").replace("[297,", "[105.5,") \
+        .replace("[582, 300]", "[199, 300]")
+    assert score_of(unit, narrow).implausible == (
+        "shelf_a and shelf_b are 199 x 300 mm now, the longer side the other way: the "
+        "elastic model turns the beam with it (one beam along the longer side), so the fix "
+        "may be the model's",
+        "shelf_a and shelf_b are cut to 199 mm of their 582 mm length under their loads")

@@ -50,7 +50,7 @@ from furncheck.suggest.cutlist import (
     SIZE_FIELDS,
     PlankEdit,
 )
-from furncheck.suggest.discrete.common import amount, level
+from furncheck.suggest.discrete.common import amount, level, names
 from furncheck.suggest.symmetry import MirrorPlane, broken_pairs
 from furncheck.tolerances import ON_PLANK_EPS, STOCK_BOARD
 
@@ -155,33 +155,40 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
             was = f" (it was {round(100 * before[0])} %)" if before[0] > OVERHANG_SHARE else ""
             reasons.append(f"{plank_id} overhangs its supports by {round(100 * after[0])} % "
                            f"of its {after[1]}{was}")
+    scale, unit = original.unit_scale, original.units
+    turned: dict[tuple, list[str]] = {}         # planks alike, named together
     for plank_id in sorted(changed, key=original.plank_index.get) if edited.elastic else ():
         before_plank, after_plank = original.plank(plank_id), edited.plank(plank_id)
         before = before_plank.length - before_plank.width
         after = after_plank.length - after_plank.width
         if before * after < 0.0 and min(abs(before), abs(after)) > original.tolerance:
-            scale, unit = original.unit_scale, original.units
-            reasons.append(f"{plank_id} is {amount(after_plank.length / scale)} x "
-                           f"{amount(after_plank.width / scale)} {unit} now, its longer side "
-                           "the other way: the elastic model turns its beam with it (one "
-                           "beam along the longer side), so the fix may be the model's")
+            size = (amount(after_plank.length / scale), amount(after_plank.width / scale))
+            turned.setdefault(size, []).append(plank_id)
+    for (length, width), planks in turned.items():
+        reasons.append(f"{names(planks)} {'is' if len(planks) == 1 else 'are'} {length} x "
+                       f"{width} {unit} now, the longer side the other way: the elastic "
+                       "model turns the beam with it (one beam along the longer side), so "
+                       "the fix may be the model's")
     loaded = {load.plank for case in original.load_cases for load in case.loads}
+    cut: dict[tuple, list[str]] = {}
     for plank_id in sorted(loaded & changed, key=original.plank_index.get):
         before_plank, after_plank = original.plank(plank_id), edited.plank(plank_id)
         for name, old_size, new_size in (("length", before_plank.length, after_plank.length),
                                          ("width", before_plank.width, after_plank.width)):
             if new_size < (1.0 - SHRINK_SHARE) * old_size:
-                scale, unit = original.unit_scale, original.units
-                reasons.append(f"{plank_id} is cut to {amount(new_size / scale)} {unit} of "
-                               f"its {amount(old_size / scale)} {unit} {name} under its "
-                               "load")
+                key = (amount(new_size / scale), amount(old_size / scale), name)
+                cut.setdefault(key, []).append(plank_id)
+    for (new_size, old_size, name), planks in cut.items():
+        several = len(planks) > 1
+        reasons.append(f"{names(planks)} {'are' if several else 'is'} cut to {new_size} "
+                       f"{unit} of {'their' if several else 'its'} {old_size} {unit} {name} "
+                       f"under {'their loads' if several else 'its load'}")
     for plank_id in _working_heights(original):
         if plank_id not in changed:
             continue
         before = float(original.plank(plank_id).corners[:, 2].max())
         after = float(edited.plank(plank_id).corners[:, 2].max())
         if abs(after - before) > HEIGHT_SHARE * before:
-            scale, unit = original.unit_scale, original.units
             reasons.append(f"{plank_id} ends {amount(after / scale)} {unit} above the floor "
                            f"(it was {amount(before / scale)} {unit}: another piece)")
     return tuple(reasons)
