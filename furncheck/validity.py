@@ -197,7 +197,7 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
                 violations.append(Violation("sagging", plank.id, case.name, _sag_message(
                     design, material, sag, allowed, statics.planks.span[k],
                     _upright(plank, crosswise), overhang)
-                    + _held_along(geometry, plank, crosswise),
+                    + (_held_along(geometry, plank, crosswise) if overhang else ""),
                     design.line_of(key)))
             if stress > strength * (1.0 + tol.CAPACITY_REL_TOL):
                 violations.append(Violation("overstressed", plank.id, case.name,
@@ -342,11 +342,10 @@ ALONG_SHARE = 0.5
 
 
 def _held_along(geometry: Geometry, plank, crosswise: bool) -> str:
-    """A note for the sag of a plank nailed along its beam (its longer side: a runner, a
-    cleat, a shelf nailed by its back edge), which the one-beam model holds at the
-    joint's middle only, its halves overhangs or spans from there to its other supports
-    (a shelf's back corners on the wall: README, "Elastic planks"): what it reads is an
-    overstatement.  '' for any other plank."""
+    """A note for the overhang's sag of a plank nailed along its beam (its longer side: a
+    runner, a cleat, a shelf nailed by its back edge), which the one-beam model holds at
+    the joint's middle only, its halves overhangs (README, "Elastic planks"): what it
+    reads is an overstatement.  '' for any other plank."""
     axis = beam_frame(plank, crosswise)[:, 0]
     length = beam_length_width(plank, crosswise)[0]
     for joint in geometry.joints:
