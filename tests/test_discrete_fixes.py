@@ -781,3 +781,44 @@ def test_a_board_lying_on_the_wall_is_screwed_through_its_face_first():
                                  "1600) mm with 2 more fixings rated 196 N (beside the 2 it "
                                  "has)")
     assert "bracket" not in fix.advice and fix.report.valid
+
+
+SPLAYED_STOOL = """
+furncheck: 1
+name: splayed-stool
+model: rigid
+material: {thickness: 18, density: 600, friction: 0.15}
+planks:
+  - {id: seat, size: [360, 300], center: [0, 0, 441.0094]}
+  - {id: leg_pp, size: [435.5, 80], center: [178.9486, 100, 216.0047], rotation: [0, -100, 0]}
+  - {id: leg_pm, size: [435.5, 80], center: [178.9486, -100, 216.0047], rotation: [0, -100, 0]}
+  - {id: leg_mp, size: [435.5, 80], center: [-178.9486, 100, 216.0047], rotation: [0, -80, 0]}
+  - {id: leg_mm, size: [435.5, 80], center: [-178.9486, -100, 216.0047], rotation: [0, -80, 0]}
+joints:
+  - {planks: [seat, leg_pp], nails: 1}
+  - {planks: [seat, leg_pm], nails: 1}
+  - {planks: [seat, leg_mp], nails: 1}
+  - {planks: [seat, leg_mm], nails: 1}
+loads:
+  - {plank: seat, mass: 90, at: [0, 0, 450.0094]}
+"""
+
+
+def test_a_symmetric_stool_is_nailed_symmetrically():
+    """A splayed stool, each leg held by one nail, 90 kg on its seat: the legs spread and
+    the nails of all four seat/leg joints pull out.  Add a sideways push at the seat's -x
+    edge and only two of them fail; either way the more-nails fix gives all four the same
+    count, as a maker nails a symmetric piece (a push the other way fails the other two),
+    said once for the four."""
+    plain = parse_design(SPLAYED_STOOL, "stool.yaml", "yaml")
+    pushed = parse_design(SPLAYED_STOOL + "  - {plank: seat, force: [80, 0, 0], at: [-180, 0, "
+                          "441.0094]}\n", "stool.yaml", "yaml")
+    for design in (plain, pushed):
+        failing = {v.where for v in check_design(design).violations}
+        (fix,) = [f for f in fixes(design) if f.rule == "nails"]
+        counts = {spec.planks[1]: spec.nails for spec in fix.design.joints}
+        assert len(set(counts.values())) == 1 and counts["leg_pp"] > 1, (failing, counts)
+        assert fix.advice.startswith(f"Drive {counts['leg_pp']} nails into each of "
+                                     "seat/leg_pp, seat/leg_pm, seat/leg_mp and seat/leg_mm "
+                                     "(now 1)")
+        assert fix_valid(fix)

@@ -8,8 +8,9 @@ ceil(n x the worst case's pull or shear over its capacity) nails (the explanatio
 estimate, ``suggest.needs``); a joint takes at most the spacing rule's count (nails no
 closer than ``nail_spacing``).  The candidates, each checked in full (and finished with
 thicker boards where it fails by bending alone, ``Search.first_valid``): every such joint
-with the nails it needs (at most what it takes), then, if that is not valid, every one
-with all it takes.  A
+with the nails it needs (at most what it takes), its mirror images (a symmetric piece is
+nailed symmetrically) with as many, then, if that is not valid, every one with all it
+takes.  A
 joint already at that many, or counted by the spacing rule, gets no more here (a longer
 joint or a thicker edge plank does that: the continuous search and ``thicker``).
 """
@@ -33,7 +34,8 @@ def more_nails(search: Search) -> Fix | None:
         return None
     design, geometry = search.design, search.geometry
     failing = {v.where for v in search.report.violations if v.kind == "non-durable"}
-    joints = [joint for joint in geometry.joints if joint.name in failing]
+    orbits = _mirror_orbits(design, geometry, failing)
+    joints = [joint for joint in geometry.joints if joint.name in orbits]
     if not joints:
         search.not_applicable(MORE_NAILS, "what fails holds by wall anchors, not nails")
         return None
@@ -56,6 +58,9 @@ def more_nails(search: Search) -> Fix | None:
                  if need.kind == "non-durable"}
     needed = {name: min(most, max(spec.nails + 1, estimates.get(name, 0)))
               for name, (_, spec, most) in room.items()}
+    for name in needed:             # a mirror image as many as its own failing joint
+        needed[name] = min(room[name][2], max(needed.get(other, 0)
+                                              for other in orbits[name]))
     fix = search.first_valid([_candidate(search, room, needed)])
     full = {name: most for name, (_, _, most) in room.items()}
     if fix is None and full != needed:      # (each on its own: the fewer nails first)
@@ -63,16 +68,44 @@ def more_nails(search: Search) -> Fix | None:
     return fix
 
 
+def _mirror_orbits(design, geometry, failing: set[str]) -> dict[str, set[str]]:
+    """The failing joints and their mirror images (``symmetry.mirror_planes``: a stool's
+    four seat/leg joints, two of which a push fails), each to the joints of its orbit:
+    a maker nails a symmetric piece symmetrically, and a wriggle the other way fails the
+    other two."""
+    from furncheck.suggest.symmetry import mirror_planes
+
+    by_planks = {frozenset(joint.planks): joint.name for joint in geometry.joints}
+    planks_of = {joint.name: joint.planks for joint in geometry.joints}
+    orbits: dict[str, set[str]] = {}
+    planes = mirror_planes(design)
+    for start in sorted(name for name in failing if name in planks_of):
+        orbit, frontier = {start}, [start]
+        while frontier:
+            name = frontier.pop()
+            for plane in planes:
+                image = by_planks.get(frozenset(plane.partner.get(p, "") for p in
+                                                planks_of[name]))
+                if image is not None and image not in orbit:
+                    orbit.add(image)
+                    frontier.append(image)
+        for name in orbit:
+            orbits.setdefault(name, set()).update(orbit)
+    return orbits
+
+
 def _candidate(search: Search, room: dict, count: dict[str, int]) -> Candidate:
     """The design with each joint of ``room`` given ``count`` nails, and its advice."""
     design = search.design
     specs = list(design.joints)
-    parts = []
+    alike: dict[tuple, list[str]] = {}      # joints given the same, said once
     for name, (joint, spec, _) in room.items():
         specs[joint.listed] = replace(spec, nails=count[name])
         apart = amount(joint.length / count[name] / design.unit_scale)
-        parts.append(f"{count[name]} nails into {name} (now {spec.nails}), about {apart} "
-                     f"{design.units} apart")
+        alike.setdefault((count[name], spec.nails, apart), []).append(name)
+    parts = [f"{nails} nails into {'each of ' if len(which) > 1 else ''}{names(which)} "
+             f"(now {old}), about {apart} {design.units} apart"
+             for (nails, old, apart), which in alike.items()]
     advice = f"Drive {names(parts)}."
     return Candidate("nails", replace(design, joints=tuple(specs)), advice,
                      trial_rule=MORE_NAILS, target=names(list(room)),
