@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from furncheck.geometry.support import convex_hull, outside
+from furncheck.geometry.support import convex_hull, hold_down_ratios, outside
 
 
 def test_hull_of_a_square_with_inner_and_repeated_points():
@@ -75,5 +75,23 @@ def test_a_toppling_design_names_the_least_pull_that_holds_it(model):
     assert least == pytest.approx(3.804, abs=1e-3)
     (violation,) = check_design(design).violations
     assert violation.kind == "lift-off"
-    assert "held down at leg_l and leg_r, the supports farthest from the edge it tips over, the " \
-           f"ground would have to pull {least:.4g} N" in violation.message
+    assert f"held down at leg_l or leg_r, the ground would have to pull at least " \
+           f"{least:.4g} N there" in violation.message
+
+
+def test_the_least_hold_down_beyond_an_edge_and_beyond_a_corner():
+    """Unit square, the loads' resultant V meeting the floor at c.  Beyond the edge x = 1
+    (c = (1.5, 0.5), d = 0.5): a pull at a point of the far edge, a = 1 inside, holds it
+    with V d / a = 0.5 V; at the near edge's points no pull does.  Beyond the corner (1, 1)
+    (c = (1.5, 1.2)): a pull P at (0, 0) must hold it about both edges by the corner,
+    x = 1 (V 0.5 = P 1) and y = 1 (V 0.2 = P 1): 0.5 V, where the one line through the
+    corner normal to c's offset from it read 0.415 V (d = 0.539, a = 1.299), too little;
+    at the other points none holds (the segment to them never crosses back over x = 1
+    or y = 1).  On a line, no ratio."""
+    square = np.array([(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)])
+    edge = hold_down_ratios(square, np.array([1.5, 0.5]))
+    assert edge[0] == pytest.approx(0.5) and edge[3] == pytest.approx(0.5)
+    assert np.isinf(edge[1]) and np.isinf(edge[2])
+    corner = hold_down_ratios(square, np.array([1.5, 1.2]))
+    assert corner[0] == pytest.approx(0.5) and np.isinf(corner[1:]).all()
+    assert hold_down_ratios(square[:2], np.array([0.5, 0.5])) is None

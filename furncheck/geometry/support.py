@@ -66,6 +66,38 @@ def outside(hull: np.ndarray, point: np.ndarray) -> tuple[float, np.ndarray]:
     return best, nearest
 
 
+def hold_down_ratios(hull: np.ndarray, point: np.ndarray) -> np.ndarray | None:
+    """(h,): for a design whose loads' resultant V meets the floor at ``point`` outside the
+    convex polygon ``hull`` (h >= 3 points, counter-clockwise), the least pull at each hull
+    point that holds it down, over V (None on a point or a line).
+
+    A pull P at hull point q moves the resultant's floor point to c + t (q - c), t = P / (V +
+    P); it holds once that point is inside, from the t where the segment from c to q
+    enters the polygon (the largest of its entries into each edge's inner half-plane), so
+    P / V = t / (1 - t).  Where c lies beyond one edge, d from it, and q lies a inside it,
+    that is d / a (W d / a); beyond a corner it is more than one edge's d / a (each edge
+    next to the corner must hold)."""
+    if len(hull) < 3:
+        return None
+    ratios = np.full(len(hull), np.inf)
+    starts, edges = hull, np.roll(hull, -1, axis=0) - hull
+
+    def side(p: np.ndarray) -> np.ndarray:     # >= 0 inside each edge's half-plane
+        return edges[:, 0] * (p[1] - starts[:, 1]) - edges[:, 1] * (p[0] - starts[:, 0])
+
+    here = side(point)
+    for k, target in enumerate(hull):
+        there = side(target)
+        entering = here < 0.0
+        if np.any(entering & (there <= here)):     # never enters that half-plane
+            continue
+        t = float(np.max(-here[entering] / (there[entering] - here[entering]),
+                         initial=0.0))
+        if t < 1.0:
+            ratios[k] = t / (1.0 - t)
+    return ratios
+
+
 def pressure_centre(design, case) -> np.ndarray | None:
     """(2,) m: where the line of action of the planks' weights and the case's loads meets
     the floor, the centre of pressure the ground would need for rigid planks:

@@ -77,11 +77,15 @@ def _lift_off(v: dict, units: str) -> str:
             f"({_n(x)}, {_n(y)}) {units}, {_n(v['outside'])} {units} outside the support "
             f"beyond {v['edge_plank']}; a base reaching {_n(v['wider'])} {units} further "
             f"that way (a foot or outrigger, or the supports set wider) would hold it")
-    if "ballast" in v:
+    if "ballast_arm" in v:
         text += (f", or {_n(v['ballast'])} kg of ballast over {v['ballast_plank']} "
                  f"({_n(v['ballast_arm'])} {units} inside the tipping edge: W d / a = "
                  f"{_n(v['weight'])} N x {_n(v['outside'])} {units} / "
                  f"{_n(v['ballast_arm'])} {units} = {_n(v['ballast'] * GRAVITY)} N)")
+    elif "ballast" in v:
+        text += (f", or {_n(v['ballast'])} kg of ballast over {v['ballast_plank']} "
+                 f"({_n(v['ballast'] * GRAVITY)} N: the resultant passes a corner of the "
+                 "support, so both edges beside it must hold)")
     if "push_max" in v:
         text += (f", or a sideways push of at most {_n(v['push_max'])} N (now "
                  f"{_n(v['push'])} N)")

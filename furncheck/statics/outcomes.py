@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.geometry.support import convex_hull, outside
+from furncheck.geometry.support import convex_hull, hold_down_ratios, outside
 from furncheck.plain import plain_compared, plain_number
 from furncheck.statics.model import CaseStatics
 
@@ -31,6 +31,9 @@ _LINE_DETAIL = ("all its ground contacts lie on one line: it can at best balance
                 "edge, and the least push about it tips the design over")
 _LINE_SLIDING = ("no equilibrium within the friction cones, and its ground contacts lie on "
                  "one line: no forces to show")
+HOLD_TIE = 1e-9
+"""Hull points whose hold-down is within this share of the least (round-off) are named
+with it: a sawhorse's two far feet."""
 _MECHANISM_DETAIL = ("held down at all its contacts it would still move (a mechanism): no "
                      "forces to show")
 
@@ -126,9 +129,8 @@ class _Outcomes:
             least = self._hold_down()
             held = f"held down, the {self._supports()} would have to pull " \
                 f"{plain_number(pulled)} N" if least is None else \
-                f"held down at {least[1]}, the " \
-                f"{'supports' if ' and ' in least[1] else 'support'} farthest from the " \
-                f"edge it tips over, the ground would have to pull {plain_number(least[0])} N"
+                f"held down at {least[1]}, the ground would have to pull at least " \
+                f"{plain_number(least[0])} N there"
             detail = (f"no equilibrium with the {self._supports()} only pushing: the load's "
                       "line of action "
                       f"falls outside the support polygon, the design topples ({held})")
@@ -211,18 +213,18 @@ class _Outcomes:
                            displacements=solution.q)
 
     def _hold_down(self) -> tuple[float, str] | None:
-        """(N, planks): the least pull that would hold a toppling design down, and the
-        planks of the ground contacts it would act at ('leg_l and leg_r' where several lie
-        equally far, to NODE_MERGE), by statics alone: the loads'
-        resultant (weights included), V down, meets the floor d outside the support
-        polygon, so it tips about the polygon's nearest edge, and a pull at the contact
-        farthest from that edge, a away from it, holds it at V d / a (what ballast there
-        would have to weigh, ``suggest.needs``; the rigid model's bolted corners give the
-        same where one foot lifts whole).  The bolted solve's pulls are no measure of it
-        in the elastic model: a narrow foot's corners carry its plank's bending as a pair
-        of large opposite forces (a sawhorse 3 % past its tipping push: 901.9 N bolted,
-        3.804 N needed).  None where this does not apply (walls, anchors or resting
-        joints; several grounded parts; contacts on a line; the resultant inside)."""
+        """(N, planks): the least pull at one ground contact that would hold a toppling
+        design down, and the planks of the contacts where it is least ('leg_l or leg_r'
+        where several tie: at either), by statics alone: the loads' resultant (weights included), V
+        down, meets the floor outside the support polygon, and a pull P at hull point q
+        holds it once the resultant of both meets the floor inside
+        (``geometry.support.hold_down_ratios``: V d / a where it lies d beyond one edge and
+        q a inside it; more beyond a corner), what ballast there would have to weigh
+        (``suggest.needs``).  The bolted solve's pulls are no measure of it in the elastic
+        model: a narrow foot's corners carry its plank's bending as a pair of large
+        opposite forces (a sawhorse 3 % past its tipping push: 901.9 N bolted, 3.804 N
+        needed).  None where this does not apply (walls, anchors or resting joints;
+        several grounded parts; contacts on a line; the resultant inside)."""
         model = self.model
         if model.contact_frames is not None or model.rest_node is not None \
                 or model.contact_anchored is not None or len(model.components) != 1:
@@ -234,19 +236,16 @@ class _Outcomes:
             return None
         crossing = np.array([-moment[1] / force[2], moment[0] / force[2]])
         points = model.contact_points[:, :2]
-        chosen = convex_hull(points)
-        hull = points[chosen]
-        distance, nearest = outside(hull, crossing)
-        if distance <= 0.0:
+        chosen = np.asarray(convex_hull(points))
+        ratios = hold_down_ratios(points[chosen], crossing)
+        if ratios is None or outside(points[chosen], crossing)[0] <= 0.0 \
+                or not np.isfinite(ratios.min()):
             return None
-        arms = (nearest - hull) @ ((crossing - nearest) / distance)
-        reach = float(arms.max())
-        if not reach > 0.0:
-            return None
-        far = np.asarray(chosen)[arms >= reach - tol.NODE_MERGE]   # ties: all of them
+        least = float(ratios.min())
+        far = chosen[ratios <= least * (1.0 + HOLD_TIE) + HOLD_TIE]    # ties: all of them
         planks = set(model.contact_plank[far].tolist())
         names = [model.design.planks[model.planks[k]].id for k in sorted(planks)]
-        return -float(force[2]) * distance / reach, " and ".join(names)
+        return -float(force[2]) * least, " or ".join(names)
 
     def _supports(self) -> str:
         """What the contacts stand on, for messages: 'ground', 'ground and walls', or

@@ -11,7 +11,9 @@ and planks as they are:
   support polygon is the convex hull of its ground contacts.  p lies ``outside`` = d
   beyond its nearest edge, so the overturning moment about that edge is V d (V the
   downward resultant).  Needed: a base reaching d further that way (``wider``), or
-  ballast at the support point farthest from the edge, at arm a: V d / a (``ballast``);
+  ballast at the support point where the least of it holds (``geometry.support.
+  hold_down_ratios``): V d / a at the point farthest from the edge, at arm a, where p
+  lies beyond one edge, more beyond a corner (``ballast``);
   with sideways loads, the largest fraction of them that keeps p inside (``push_max``).
 * non-durable joint: the pull and shear per nail are the joint's forces shared by its n
   nails (``validity.nail_pull_shear``: every term goes with 1 / n for the same wrench),
@@ -48,7 +50,7 @@ from furncheck.design.model import Design, Plank
 from furncheck.geometry import Geometry, end_bearing, end_gap
 from furncheck.geometry.model import nails_listed
 from furncheck.geometry.near import carried_groups
-from furncheck.geometry.support import convex_hull, outside
+from furncheck.geometry.support import convex_hull, hold_down_ratios, outside
 from furncheck.result import CaseResult, DesignReport, Violation
 from furncheck.tolerances import GRAVITY, MIN_BEARING_SHARE
 
@@ -147,14 +149,18 @@ def _lift_off(design: Design, geometry: Geometry, where: str, case: CaseResult |
     scale = design.unit_scale
     away = (crossing - nearest) / distance
     arms = (nearest - hull) @ away
-    far = int(np.argmax(arms))
     values = {"weight": weight, "point": tuple(float(v) / scale for v in crossing),
               "outside": distance / scale,
               "edge_plank": owners[_nearest_vertex(hull, nearest)],
               "wider": distance / scale, "ratio": 1.0 + distance / max(float(arms.max()), 1e-12)}
-    if arms[far] > 0.0:
-        values.update({"ballast": weight * distance / arms[far] / GRAVITY,
-                       "ballast_plank": owners[far], "ballast_arm": float(arms[far]) / scale})
+    ratios = hold_down_ratios(hull, crossing)
+    if ratios is not None and np.isfinite(ratios.min()):
+        far = int(np.argmin(ratios))
+        values.update({"ballast": weight * float(ratios[far]) / GRAVITY,
+                       "ballast_plank": owners[far]})
+        if arms[far] > 0.0 and math.isclose(float(ratios[far]), distance / float(arms[far]),
+                                            rel_tol=1e-9):     # beyond an edge: W d / a
+            values["ballast_arm"] = float(arms[far]) / scale
     sideways = forces.copy()
     sideways[:, :2] = 0.0
     push = float(np.hypot(*forces[:, :2].sum(axis=0)))
