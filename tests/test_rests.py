@@ -347,3 +347,41 @@ def test_a_leg_under_a_loose_top_bows_between_its_foot_and_the_top():
     assert sorted(v.where for v in report.violations if v.kind == "sagging") == [
         "leg_l", "leg_r"]
     assert all("between supports 438 mm apart" in v.message for v in report.violations)
+
+
+BRACKET_SHELF = """
+furncheck: 1
+name: bracket-shelf
+planks:
+  - {id: side_l, size: [800, 300], center: [-306, 0, 400], rotation: [0, -90, 0]}
+  - {id: side_r, size: [800, 300], center: [306, 0, 400], rotation: [0, -90, 0]}
+  - {id: top, size: [624, 300], center: [0, 0, 806]}
+  - {id: bottom, size: [600, 300], center: [0, 0, 60]}
+  - {id: arm_f, size: [250, 40], center: [-175, 120, 480], rotation: [90, 0, 0]}
+  - {id: arm_b, size: [250, 40], center: [-175, -120, 480], rotation: [90, 0, 0]}
+  - {id: board, size: [250, 300], center: [-175, 0, 506]}
+joints:
+  - [top, side_l]
+  - [top, side_r]
+  - [side_l, bottom]
+  - [side_r, bottom]
+  - [side_l, arm_f]
+  - [side_l, arm_b]
+  - {planks: [board, arm_f], type: rests}
+  - {planks: [board, arm_b], type: rests}
+loads:
+  - {plank: board, mass: 15, spread: true}
+"""
+
+
+def test_an_arm_under_a_loose_board_stays_a_cantilever():
+    """Two 250 x 40 mm arms nailed by their ends to a side, a board lying loose on them
+    with 15 kg: the board presses each arm down along its bending and holds nothing (the
+    arms hold it), so each arm's sag is its free end's deflection from its nail's tangent
+    (contract 3a), not the small bow between the nail and the board (0.17 mm), unlike a
+    leg whose end bears on a loose top."""
+    report = check_design(parse_design(BRACKET_SHELF, "bracket.yaml", "yaml"))
+    arms = {v.where: v.message for v in report.violations if v.kind == "sagging"
+            and v.where.startswith("arm")}
+    assert set(arms) == {"arm_f", "arm_b"}
+    assert all("at the free end of its 250 mm overhang" in m for m in arms.values())

@@ -42,31 +42,51 @@ def plank_supports(model: StaticsModel) -> tuple:
     return supports
 
 
+END_ON_COSINE = 0.7
+"""A resting corner's plank bears on the other plank end on (a leg under a loose top) when
+its beam axis lies within 45 degrees of that plank's face normal."""
+
+
 def resting_supports(model: StaticsModel) -> tuple[np.ndarray, np.ndarray]:
-    """Per contact (nK,) bool: (a resting corner's own plank is carried there by the plank
-    it rests against, that plank is carried there by the corner's plank); False for the
-    ground's and walls' contacts.  The rule of nailed joints (``carrying_neighbours``),
-    with the resting joints as edges and only the ground and walls as ground: a top lying
-    loose on four legs is carried by each (each reaches the floor without the top), and
-    carries each (it reaches the floor through the other three), so a leg's sag is
-    measured from the line through its foot and the top it presses, as a nailed leg's is;
-    a board lying on a shelf is carried by the shelf and carries nothing; a top on one
-    post does not carry the post (without the post it reaches nothing)."""
+    """Per contact (nK,) bool: (a resting corner's own plank is carried there, the plank
+    it rests against is carried there); False for the ground's and walls' contacts.
+
+    Of the two planks of a resting joint, the one lying on top is carried (the other
+    pushes it up).  The one below is carried too where its end bears on the one above
+    (its beam axis along that plank's normal, END_ON_COSINE) and the one above reaches
+    the ground without it (the rule of nailed joints, ``carrying_neighbours``, with the
+    resting joints as edges and only the ground and walls as ground): a top lying loose
+    on four legs holds each leg's end by friction, as a nailed top does, so a leg's sag is
+    measured from the line through its foot and the top (a leg bowed by a squeeze reads
+    1.01 mm between them, not 0.733 mm as a cantilever from its foot).  A board lying on
+    a bracket's arm or a pin pushes it down along its bending, and holds nothing: the arm
+    stays a cantilever from its nail."""
     count = len(model.contacts)
     corner_carried, face_carried = np.zeros(count, dtype=bool), np.zeros(count, dtype=bool)
     rows = model.rest_rows
     if not len(rows):
         return corner_carried, face_carried
+    above = model.rest_face_above[rows]
+    face_carried[rows] = above
+    corner_carried[rows] = ~above
     corner_plank = model.contact_plank[rows]
     face_plank = model.node_plank[model.rest_node[rows]]
+    corner_plank = model.contact_plank[rows]
+    face_plank = model.node_plank[model.rest_node[rows]]
+    frames = model.beams.plank_frames
+    axes = frames[corner_plank][:, :, 0]                                # corner's beam
+    normals = frames[face_plank][:, :, 2]                               # face's normal
+    end_on = above & (np.abs(np.einsum("ij,ij->i", axes, normals)) >= END_ON_COSINE)
+    if not end_on.any():
+        return corner_carried, face_carried
     on_ground = np.ones(count, dtype=bool)
     on_ground[rows] = False
     pairs = model.node_plank[model.joint_nodes].reshape(-1, 2).tolist() \
         + np.column_stack([corner_plank, face_plank]).tolist()
     carried_by = carriers(len(model.planks), pairs,
                           {int(k) for k in model.contact_plank[on_ground]})
-    corner_carried[rows] = [int(b) in carried_by[int(a)] for a, b in zip(corner_plank, face_plank)]
-    face_carried[rows] = [int(a) in carried_by[int(b)] for a, b in zip(corner_plank, face_plank)]
+    corner_carried[rows[end_on]] = [int(b) in carried_by[int(a)] for a, b in
+                                    zip(corner_plank[end_on], face_plank[end_on])]
     return corner_carried, face_carried
 
 
