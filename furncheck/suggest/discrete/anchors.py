@@ -6,7 +6,7 @@ the fixing holds the top back, the floor takes the rest.  Where the design has w
 the plank to anchor is one within WALL_ANCHOR_REACH in front of a wall: one lying face
 to the wall first (a back board, a cleat: screwed through its face), then one showing
 the wall an edge (a top, a tall side: screwed through angle brackets, as the advice
-says), the highest first of each; the anchors go on its face or edge nearest the
+says), the highest of each kind; the anchors go on its face or edge nearest the
 wall, at its middle, or two at a quarter of its length from each end when it is longer
 than ANCHOR_PAIR_FROM plank thicknesses (one near the top of an upright face).  Each is
 rated ``tolerances.ANCHOR_CAPACITY`` N (one plasterboard fixing's safe load; the advice
@@ -44,8 +44,6 @@ ANCHOR = "wall anchor"
 UPRIGHT_COS = 0.7
 """A near face whose long side is within 45 degrees of vertical counts as upright."""
 
-PLANKS_TRIED = 2
-"""Planks tried for anchoring, highest first."""
 
 ANCHOR_PAIR_FROM = 20.0
 """A plank at least this many plank thicknesses long (240 mm of 12 mm stock) gets two
@@ -90,7 +88,10 @@ def _candidates(search: Search) -> Iterator[Candidate]:
     if not found:
         search.failed(ANCHOR, f"no plank stands within "
                       f"{amount(reach / design.unit_scale)} {design.units} of a wall")
-    for edge, _, _, plank_id, wall, near in sorted(found, key=lambda f: f[:3])[:PLANKS_TRIED]:
+    ranked = sorted(found, key=lambda f: f[:3])
+    tried = [next(f for f in ranked if f[0] == edge) for edge in (False, True)
+             if any(f[0] == edge for f in ranked)]         # the highest of each kind
+    for edge, _, _, plank_id, wall, near in tried:
         plank = design.plank(plank_id)
         points = _anchor_points(plank, near, design.material.thickness)
         anchors = tuple(Anchor(plank_id, tuple(float(v) for v in p), wall,
@@ -104,7 +105,8 @@ def _candidates(search: Search) -> Iterator[Candidate]:
                    else f"{len(points)} more fixings" if more else "fixings")
         gap = max(anchor.gap for anchor in anchors)
         packed = f", packing the {amount(gap / design.unit_scale)} {design.units} gap to " \
-                 f"the wall" if gap > design.tolerance else ""
+                 f"the wall" if gap > design.tolerance and not edge else ""  # (a bracket
+        # bridges it)
         beside = f" (beside the {len(design.anchors)} it has)" if more else ""
         bracket = " through angle brackets at its edge" if edge else ""
         advice = (f"Screw {plank_id} to {wall_name} at {where} with {fixings} rated "
