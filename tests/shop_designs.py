@@ -15,6 +15,9 @@ COAT_RACK        a 900 x 150 back board, 18 mm, flat on the wall, hung on two pl
                  its top edge with 8 kg spread on it: in the rigid model the plugs hold
                  147.1 N each; in the elastic one the shelf's back corners bear on the
                  wall and it reads a span between them.
+TILE_BENCH       a 1000 mm bench of 18 mm boards at 600 kg/m^3 on tiles (mu 0.15), 70 kg
+                 on it, shoved with 150 N: it slides (mu W = 113 N); non-slip pads with
+                 mu 0.2 hold it.
 """
 
 SIDE_TABLE_RACK = """\
@@ -73,4 +76,19 @@ loads:
   - {{plank: back, mass: 5, at: [100, 18, 1560]}}
   - {{plank: back, mass: 5, at: [300, 18, 1560]}}
   - {{plank: shelf, mass: 8, spread: true}}
+"""
+
+TILE_BENCH = """\
+furncheck: 1
+name: tile-bench
+model: rigid
+material: {thickness: 18, density: 600, friction: 0.15}
+planks:
+  - {id: seat, size: [1000, 300], center: [0, 0, 441]}
+  - {id: end_l, size: [432, 300], center: [-441, 0, 216], rotation: [0, -90, 0]}
+  - {id: end_r, size: [432, 300], center: [441, 0, 216], rotation: [0, -90, 0]}
+  - {id: rail, size: [864, 80], center: [0, 0, 300], rotation: [90, 0, 0]}
+loads:
+  - {plank: seat, mass: 70, at: [-300, 0, 450]}
+  - {plank: seat, force: [150, 0, 0], at: [-500, 0, 441]}
 """

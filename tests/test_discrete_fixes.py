@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from shop_designs import COAT_RACK, SIDE_TABLE_RACK, WALL_SHELF
+from shop_designs import COAT_RACK, SIDE_TABLE_RACK, TILE_BENCH, WALL_SHELF
 
 from furncheck import tolerances as tol
 from furncheck.check import check_design
@@ -731,21 +731,6 @@ def test_each_fixing_is_told_its_own_force():
     for where, force in held.items():
         assert needs[where] == pytest.approx(force, abs=0.05)
 
-
-TILE_BENCH = """
-furncheck: 1
-name: tile-bench
-model: rigid
-material: {thickness: 18, density: 600, friction: 0.15}
-planks:
-  - {id: seat, size: [1000, 300], center: [0, 0, 441]}
-  - {id: end_l, size: [432, 300], center: [-441, 0, 216], rotation: [0, -90, 0]}
-  - {id: end_r, size: [432, 300], center: [441, 0, 216], rotation: [0, -90, 0]}
-  - {id: rail, size: [864, 80], center: [0, 0, 300], rotation: [90, 0, 0]}
-loads:
-  - {plank: seat, mass: 70, at: [-300, 0, 450]}
-  - {plank: seat, force: [150, 0, 0], at: [-500, 0, 441]}
-"""
 
 
 def test_a_bench_sliding_on_tiles_gets_non_slip_pads():

@@ -449,6 +449,21 @@ def test_plot_of_a_case_without_forces(tipping_change) -> None:
     assert texts.index("no joint forces") < texts.index("no contact forces (no equilibrium)")
 
 
+def test_plot_of_non_slip_pads_reads_each_report_by_its_own_friction() -> None:
+    """A bench sliding on tiles (mu 0.15) and the same with non-slip pads (mu 0.2): the
+    contacts panel judges the after report by 0.2 (its heading says 'mu 0.15 -> 0.2'),
+    so the friction it uses reads less of its budget than before."""
+    from shop_designs import TILE_BENCH
+
+    before = parse_design(TILE_BENCH, "bench.yaml", "yaml")
+    after = dataclasses.replace(before, material=dataclasses.replace(before.material,
+                                                                     friction=0.2))
+    texts = force_space_picture(check_design(before), check_design(after), 0.15,
+                                "suggestion 1: pads", 0.2).texts
+    heading = next(t for t in texts if t.startswith("contacts: shaded"))
+    assert "mu 0.15 -> 0.2;" in heading
+
+
 def test_plot_needs_load_cases() -> None:
     unreadable = DesignReport(design="broken.yaml", name="broken", valid=None, error="line 1")
     with pytest.raises(ValueError, match="no load case results"):

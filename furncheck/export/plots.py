@@ -98,17 +98,18 @@ def plot_force_space(before: DesignReport, after: DesignReport, path: Path,
 
 
 def force_space_png(before: DesignReport, after: DesignReport,
-                    friction: float = tol.DEFAULT_FRICTION, change: str | None = None
-                    ) -> bytes:
+                    friction: float = tol.DEFAULT_FRICTION, change: str | None = None,
+                    after_friction: float | None = None) -> bytes:
     """PNG bytes of ``force_space_picture``; the same reports give the same bytes."""
-    return force_space_picture(before, after, friction, change).png()
+    return force_space_picture(before, after, friction, change, after_friction).png()
 
 
 def force_space_picture(before: DesignReport, after: DesignReport,
-                        friction: float = tol.DEFAULT_FRICTION, change: str | None = None
-                        ) -> Picture:
+                        friction: float = tol.DEFAULT_FRICTION, change: str | None = None,
+                        after_friction: float | None = None) -> Picture:
     """The force space of ``before`` and ``after`` (reports of a design and of its changed
-    version; ``friction``: the design's mu; ``change``: what changed, for the heading):
+    version; ``friction``: the design's mu, ``after_friction`` the changed version's where
+    it differs (non-slip pads); ``change``: what changed, for the heading):
     joints left, contacts right, drawn on an Agg canvas, with its labels.  ValueError
     when neither report has a load case (an unreadable design)."""
     try:
@@ -126,7 +127,8 @@ def force_space_picture(before: DesignReport, after: DesignReport,
     slots = [(left * width, bottom * height, wide * width, high * height)
              for left, bottom, wide, high in PANELS]
     _draw_joints(figure, slots[0], picture, before, after)
-    _draw_contacts(figure, slots[1], picture, before, after, friction)
+    _draw_contacts(figure, slots[1], picture, before, after, friction,
+                   friction if after_friction is None else after_friction)
     name = before.name or after.name
     heading = textwrap.wrap(f"{name}: {change}" if change else name, HEADING_CHARACTERS)
     picture.labels.insert(0, Label(8, height - 8, "\n".join(heading), FONT + 3, va="top",
@@ -189,9 +191,10 @@ def _ratio(joint: JointResult) -> tuple[float, float]:
 # --- contacts ---------------------------------------------------------------------------
 
 def _draw_contacts(figure, slot, picture: Picture, before: DesignReport,
-                   after: DesignReport, friction: float) -> None:
-    """Contacts in (N, |T|) space, the friction cone shaded."""
-    old = _worst_contacts(before, friction)
+                   after: DesignReport, before_friction: float, friction: float) -> None:
+    """Contacts in (N, |T|) space, the friction cone of ``after`` (mu ``friction``) shaded,
+    before's (``before_friction``) drawn as a line where it differs."""
+    old = _worst_contacts(before, before_friction)
     new = _worst_contacts(after, friction)
     points = [_cone_point(c) for c, _ in [*old.values(), *new.values()]]
     span = max([1.0] + [abs(x) for x, _ in points]
@@ -206,6 +209,9 @@ def _draw_contacts(figure, slot, picture: Picture, before: DesignReport,
     _area(axes, [(0.0, 0.0), (right, 0.0), (right, cone), (edge, cone)],
           REGION_COLOR, REGION_ALPHA)
     _line(axes, [0.0, edge], [0.0, cone], REGION_COLOR, 1.0)
+    if before_friction != friction and before_friction > 0.0:      # the cone it had
+        was = min(before_friction * right, ceiling)
+        _line(axes, [0.0, was / before_friction], [0.0, was], "0.5", 0.8)
     _area(axes, [(left, bottom), (0.0, bottom), (0.0, ceiling), (left, ceiling)],
           LIFT_COLOR, 0.07)
     _line(axes, [0.0, 0.0], [bottom, ceiling], "0.6", 0.8)
@@ -215,11 +221,13 @@ def _draw_contacts(figure, slot, picture: Picture, before: DesignReport,
     _markers(axes, [_cone_point(c) for c, _ in new.values()],
              [case not in unstable or _holds(c, friction) for c, case in new.values()],
              before=False)
-    budget = _budget_change(before, after, friction)
+    budget = _budget_change(before, after, before_friction, friction)
+    mu = plain_number(friction) if before_friction == friction else \
+        f"{plain_number(before_friction)} -> {plain_number(friction)}"
     _frame(axes, picture, (left, right), (bottom, ceiling),
            "normal force N, newtons (< 0: it would pull: lifts)",
            "friction force |T|, newtons",
-           f"contacts: shaded |T| <= mu N, mu {plain_number(friction)}; friction used {budget}")
+           f"contacts: shaded |T| <= mu N, mu {mu}; friction used {budget}")
     _labels(axes, picture, old, new, LABELLED_CONTACTS,
             lambda item: _demand_order(item[0], friction), lambda item: _cone_point(item[0]),
             lambda item: f"{item[0].plank} {_contact_state(item[0], friction)} "
@@ -264,9 +272,10 @@ def _contact_state(contact: ContactResult, friction: float) -> str:
     return f"{plain_number(100 * friction_demand(contact, friction), 3)} % of mu N"
 
 
-def _budget_change(before: DesignReport, after: DesignReport, friction: float) -> str:
+def _budget_change(before: DesignReport, after: DesignReport, before_friction: float,
+                   friction: float) -> str:
     """'41.2 % -> 23 % ('shove')', or with each case named when they differ."""
-    old, new = _budget(before, friction), _budget(after, friction)
+    old, new = _budget(before, before_friction), _budget(after, friction)
     if old[1] == new[1]:
         return f"{old[0]} -> {new[0]}" + (f" ('{new[1]}')" if new[1] else "")
     return " -> ".join(f"{value} ('{name}')" if name else value for value, name in (old, new))

@@ -180,7 +180,8 @@ def _pictures(design: Design, result: SuggestionReport, suggestion, marks: dict[
     forces = Path(f"{stem}-forces.png")
     change = f"suggestion {suggestion.rank}" + (f": {title}" if title else "")
     forces.write_bytes(force_space_png(result.report, suggestion.report,
-                                       design.material.friction, change))
+                                       design.material.friction, change,
+                                       suggestion.design.material.friction))
     view = Path(f"{stem}-view.png")
     view.write_bytes(suggestion_view_png(design, result.report, suggestion.design,
                                          suggestion.report, heading, marks, before))
