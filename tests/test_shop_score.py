@@ -348,3 +348,28 @@ loads:
         "elastic model turns the beam with it (one beam along the longer side), so the fix "
         "may be the model's",
         "shelf_a and shelf_b are cut to 199 mm of their 582 mm length under their loads")
+
+
+def test_a_loaded_top_cut_to_a_strip_is_implausible_a_pushed_leg_narrowed_is_not():
+    """A plant stand's 400 mm top with a 25 kg pot, cut to 160 mm (less than half its
+    length, SHRINK_SHARE): implausible; to 220 mm: not.  A leg that a push loads, narrowed
+    to less than half, is judged by the other rules alone (it is not what the load stands
+    on, and its unloaded mirror leg would not be flagged either)."""
+    stand = """
+furncheck: 1
+name: stand
+planks:
+  - {id: base, size: [300, 300], center: [0, 0, 6]}
+  - {id: post, size: [782, 200], center: [0, 0, 403], rotation: [0, -90, 0]}
+  - {id: top, size: [400, 400], center: [0, 0, 800]}
+loads:
+  - {plank: top, mass: 25, at: [0, 0, 806]}
+  - {plank: post, force: [10, 0, 0], at: [0, 0, 400]}
+"""
+    cut = stand.replace("{id: top, size: [400, 400]", "{id: top, size: [160, 400]")
+    fine = stand.replace("{id: top, size: [400, 400]", "{id: top, size: [220, 400]")
+    thin = stand.replace("{id: post, size: [782, 200]", "{id: post, size: [782, 80]")
+    assert "top is cut to 160 mm of its 400 mm length under its load" in \
+        score_of(stand, cut).implausible
+    assert not any("cut to" in r for r in score_of(stand, fine).implausible)
+    assert not any("cut to" in r for r in score_of(stand, thin).implausible)

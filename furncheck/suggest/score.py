@@ -13,7 +13,7 @@ design, and ranked by ``ShopScore.key`` (smaller first), lexicographically:
    (seat, top, shelf) that overhangs its supports by more than OVERHANG_SHARE of its
    length at one end (legs moved 267 mm in under a 900 mm bench seat: whoever sits at
    its end tips it, whatever the load cases say; an input's overhang past that share may
-   not grow either), or a loaded plank cut by more than SHRINK_SHARE of its length or
+   not grow either), or a loaded level plank cut by more than SHRINK_SHARE of its length or
    width (a top cut to a strip under its pot), or (elastic model) a plank resized past
    square, whose one beam then runs the other way (contract 3a: along the longer side; a
    stool's seat widened past its length bends the other way, and holds by that alone),
@@ -78,7 +78,7 @@ reads as implausible: a chair whose seat is lowered from 450 to 80 mm, or a 600 
 table cut down to 320 mm, stands, but it is another piece."""
 
 SHRINK_SHARE = 0.5
-"""A plank that a load case loads (a pot on a plant stand's top, books on a shelf) may
+"""A level plank that a load case loads (a pot on a plant stand's top, books on a shelf) may
 lose at most this share of its length or width before a suggestion reads as implausible:
 a 400 mm top cut down to a 16 mm strip under its 25 kg pot, or a 1000 mm shelf cut to 304
 mm under the same 35 kg of books, holds in the model, but the maker drew a top and a
@@ -169,7 +169,8 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
                        f"{width} {unit} now, the longer side the other way: the elastic "
                        "model turns the beam with it (one beam along the longer side), so "
                        "the fix may be the model's")
-    loaded = {load.plank for case in original.load_cases for load in case.loads}
+    loaded = {load.plank for case in original.load_cases for load in case.loads
+              if level(original.plank(load.plank))}    # what the loads stand on
     cut: dict[tuple, list[str]] = {}
     for plank_id in sorted(loaded & changed, key=original.plank_index.get):
         before_plank, after_plank = original.plank(plank_id), edited.plank(plank_id)
