@@ -332,6 +332,25 @@ def test_suggest_out_writes_the_folders_page(tmp_path):
     assert not _RESOURCE.search(page)
 
 
+def test_the_page_lists_what_a_fix_changes_besides_planks(tmp_path):
+    """Non-slip pads change no plank: the page's cut list says what they change, the
+    floor's friction, from -> to, as the text and JSON do."""
+    from click.testing import CliRunner
+    from shop_designs import TILE_BENCH
+
+    from furncheck.cli.main import main
+
+    design = tmp_path / "tile-bench.yaml"
+    design.write_text(TILE_BENCH, encoding="utf-8")
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["suggest", str(design), "--out", str(out),
+                                       "--no-plots"])
+    assert result.exit_code == 0, result.output
+    page = (out / "index.html").read_text(encoding="utf-8")
+    assert "<tr><td>the floor</td><td>change</td><td>friction</td><td>0.15</td>" \
+           "<td>0.2</td></tr>" in page
+
+
 def test_validate_html_writes_one_page_for_the_run(tmp_path):
     """``validate --html FILE`` keeps the run's report and exit code and writes one page
     with a row per design (an unreadable one included, marked 'error')."""

@@ -270,7 +270,7 @@ def suggestion_page(document: dict[str, Any], original: PageDesign,
                      f"<p>Restores {escape(' and '.join(entry.get('restores', [])))}."
                      + (f" Design file: <code>{escape(str(entry['design_file']))}</code>"
                         if entry.get("design_file") else "") + "</p>")
-        parts.append(_edits_table(entry.get("edits")))
+        parts.append(_edits_table(entry.get("edits"), _other_changes(entry)))
         if shown is not None:
             views = [design_svg(shown.design, plank_utilizations(shown.report, shown.design),
                                 420, 300, marks=changed_planks(original.design, shown.design),
@@ -286,15 +286,30 @@ def suggestion_page(document: dict[str, Any], original: PageDesign,
     return _page(f"furncheck: {report.name}", "\n".join(parts), viewer=viewer)
 
 
-def _edits_table(edits: list[dict[str, Any]] | None) -> str:
+def _other_changes(entry: dict[str, Any]) -> list[tuple[str, str, str, Any, Any]]:
+    """Rows of what a suggestion changes besides planks (the suggest JSON's ``nails``,
+    ``ratings``, ``friction`` and ``anchors_moved``): (what, edit, field, from, to)."""
+    rows = [(str(n["joint"]), "change", "nails", n["before"], n["after"])
+            for n in entry.get("nails") or ()]
+    rows += [(f"anchors[{r['anchor']}]", "change", "rating, N", r["before"], r["after"])
+             for r in entry.get("ratings") or ()]
+    if entry.get("friction"):
+        rows.append(("the floor", "change", "friction", *entry["friction"]))
+    rows += [(f"anchors[{m['anchor']}]", "move", "at", m["from"], m["to"])
+             for m in entry.get("anchors_moved") or ()]
+    return rows
+
+
+def _edits_table(edits: list[dict[str, Any]] | None,
+                 others: list[tuple[str, str, str, Any, Any]] = ()) -> str:
     """A cut list of the suggestion's ``edits`` (the suggest JSON's: plank, edit 'change',
     'add' or 'remove', and per field [from, to] in the file's units): a row per changed
     field, one row per added plank (its size, centre and turn, as the text report words
-    it)."""
-    if not edits:
+    it); then ``others`` (``_other_changes``), a row each."""
+    if not edits and not others:
         return ""
     rows = []
-    for edit in edits:
+    for edit in edits or ():
         plank, kind = escape(str(edit.get("plank", ""))), escape(str(edit.get("edit", "")))
         fields = edit.get("fields") or {}
         if edit.get("edit") == "add":
@@ -307,6 +322,10 @@ def _edits_table(edits: list[dict[str, Any]] | None) -> str:
             rows.append(f"<tr><td>{plank}</td><td>{kind}</td><td>{escape(str(field))}</td>"
                         f"<td>{escape(_shown(before))}</td>"
                         f"<td>{escape(_shown(after))}</td></tr>")
+    for what, kind, field, before, after in others:
+        rows.append(f"<tr><td>{escape(what)}</td><td>{escape(kind)}</td>"
+                    f"<td>{escape(field)}</td><td>{escape(_shown(before))}</td>"
+                    f"<td>{escape(_shown(after))}</td></tr>")
     return ("<table><thead><tr><th>plank</th><th>edit</th><th>what</th><th>from</th>"
             "<th>to</th></tr></thead><tbody>" + "".join(rows) + "</tbody></table>")
 
