@@ -18,6 +18,9 @@ COAT_RACK        a 900 x 150 back board, 18 mm, flat on the wall, hung on two pl
 TILE_BENCH       a 1000 mm bench of 18 mm boards at 600 kg/m^3 on tiles (mu 0.15), 70 kg
                  on it, shoved with 150 N: it slides (mu W = 113 N); non-slip pads with
                  mu 0.2 hold it.
+SPLAYED_STOOL    a 360 x 300 seat on four legs splayed 10 degrees, each nailed by one
+                 nail, 90 kg on the seat (rigid model): the legs spread and all four
+                 nails pull out.
 """
 
 SIDE_TABLE_RACK = """\
@@ -91,4 +94,24 @@ planks:
 loads:
   - {plank: seat, mass: 70, at: [-300, 0, 450]}
   - {plank: seat, force: [150, 0, 0], at: [-500, 0, 441]}
+"""
+
+SPLAYED_STOOL = """\
+furncheck: 1
+name: splayed-stool
+model: rigid
+material: {thickness: 18, density: 600, friction: 0.15}
+planks:
+  - {id: seat, size: [360, 300], center: [0, 0, 441.0094]}
+  - {id: leg_pp, size: [435.5, 80], center: [178.9486, 100, 216.0047], rotation: [0, -100, 0]}
+  - {id: leg_pm, size: [435.5, 80], center: [178.9486, -100, 216.0047], rotation: [0, -100, 0]}
+  - {id: leg_mp, size: [435.5, 80], center: [-178.9486, 100, 216.0047], rotation: [0, -80, 0]}
+  - {id: leg_mm, size: [435.5, 80], center: [-178.9486, -100, 216.0047], rotation: [0, -80, 0]}
+joints:
+  - {planks: [seat, leg_pp], nails: 1}
+  - {planks: [seat, leg_pm], nails: 1}
+  - {planks: [seat, leg_mp], nails: 1}
+  - {planks: [seat, leg_mm], nails: 1}
+loads:
+  - {plank: seat, mass: 90, at: [0, 0, 450.0094]}
 """

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
-from shop_designs import COAT_RACK, SIDE_TABLE_RACK, TILE_BENCH, WALL_SHELF
+from shop_designs import COAT_RACK, SIDE_TABLE_RACK, SPLAYED_STOOL, TILE_BENCH, WALL_SHELF
 
 from furncheck import tolerances as tol
 from furncheck.check import check_design
@@ -775,26 +775,6 @@ def test_a_board_lying_on_the_wall_is_screwed_through_its_face_first():
                                  "has)")
     assert "bracket" not in fix.advice and fix.report.valid
 
-
-SPLAYED_STOOL = """
-furncheck: 1
-name: splayed-stool
-model: rigid
-material: {thickness: 18, density: 600, friction: 0.15}
-planks:
-  - {id: seat, size: [360, 300], center: [0, 0, 441.0094]}
-  - {id: leg_pp, size: [435.5, 80], center: [178.9486, 100, 216.0047], rotation: [0, -100, 0]}
-  - {id: leg_pm, size: [435.5, 80], center: [178.9486, -100, 216.0047], rotation: [0, -100, 0]}
-  - {id: leg_mp, size: [435.5, 80], center: [-178.9486, 100, 216.0047], rotation: [0, -80, 0]}
-  - {id: leg_mm, size: [435.5, 80], center: [-178.9486, -100, 216.0047], rotation: [0, -80, 0]}
-joints:
-  - {planks: [seat, leg_pp], nails: 1}
-  - {planks: [seat, leg_pm], nails: 1}
-  - {planks: [seat, leg_mp], nails: 1}
-  - {planks: [seat, leg_mm], nails: 1}
-loads:
-  - {plank: seat, mass: 90, at: [0, 0, 450.0094]}
-"""
 
 
 def test_a_symmetric_stool_is_nailed_symmetrically():

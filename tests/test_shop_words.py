@@ -98,18 +98,6 @@ def test_a_mirror_pair_tilted_along_its_plane_names_where_the_tops_go():
         "degrees each)."
 
 
-SPLAYED = """
-furncheck: 1
-name: splayed-stool
-material: {thickness: 18}
-planks:
-  - {id: seat, size: [360, 300], center: [0, 0, 441.0094]}
-  - {id: leg_pp, size: [435.5, 80], center: [178.9486, 100, 216.0047], rotation: [0, -100, 0]}
-  - {id: leg_pm, size: [435.5, 80], center: [178.9486, -100, 216.0047], rotation: [0, -100, 0]}
-  - {id: leg_mp, size: [435.5, 80], center: [-178.9486, 100, 216.0047], rotation: [0, -80, 0]}
-  - {id: leg_mm, size: [435.5, 80], center: [-178.9486, -100, 216.0047], rotation: [0, -80, 0]}
-"""
-
 
 def test_a_leg_moved_in_under_its_seat_goes_toward_the_leg_opposite():
     """A splayed leg (its top nailed under the seat's edge) moved 50 mm along -x: the seat's
@@ -117,8 +105,10 @@ def test_a_leg_moved_in_under_its_seat_goes_toward_the_leg_opposite():
     leg opposite (straight ahead), but the leg hangs from the seat, so 'toward seat' says
     nothing: the move goes toward leg_mm (the legs are not parallel, each splayed 10
     degrees the other way)."""
+    from shop_designs import SPLAYED_STOOL
+
     from furncheck.design.load import parse_design
 
-    stool = parse_design(SPLAYED, "splayed.yaml", "yaml")
+    stool = parse_design(SPLAYED_STOOL, "splayed.yaml", "yaml")
     assert advise(stool, {"leg_pm.x": -50.0}) == \
         "Move leg_pm 50 mm toward leg_mm (valid for 45-60 mm)."
