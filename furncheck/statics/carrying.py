@@ -71,8 +71,6 @@ def resting_supports(model: StaticsModel) -> tuple[np.ndarray, np.ndarray]:
     corner_carried[rows] = ~above
     corner_plank = model.contact_plank[rows]
     face_plank = model.node_plank[model.rest_node[rows]]
-    corner_plank = model.contact_plank[rows]
-    face_plank = model.node_plank[model.rest_node[rows]]
     frames = model.beams.plank_frames
     axes = frames[corner_plank][:, :, 0]                                # corner's beam
     normals = frames[face_plank][:, :, 2]                               # face's normal

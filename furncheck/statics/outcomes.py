@@ -31,11 +31,11 @@ _LINE_DETAIL = ("all its ground contacts lie on one line: it can at best balance
                 "edge, and the least push about it tips the design over")
 _LINE_SLIDING = ("no equilibrium within the friction cones, and its ground contacts lie on "
                  "one line: no forces to show")
+_MECHANISM_DETAIL = ("held down at all its contacts it would still move (a mechanism): no "
+                     "forces to show")
 HOLD_TIE = 1e-9
 """Hull points whose hold-down is within this share of the least (round-off) are named
 with it: a sawhorse's two far feet."""
-_MECHANISM_DETAIL = ("held down at all its contacts it would still move (a mechanism): no "
-                     "forces to show")
 
 
 class _Outcomes:
@@ -215,9 +215,9 @@ class _Outcomes:
     def _hold_down(self) -> tuple[float, str] | None:
         """(N, planks): the least pull at one ground contact that would hold a toppling
         design down, and the planks of the contacts where it is least ('leg_l or leg_r'
-        where several tie: at either), by statics alone: the loads' resultant (weights included), V
-        down, meets the floor outside the support polygon, and a pull P at hull point q
-        holds it once the resultant of both meets the floor inside
+        where several tie: at either), by statics alone: the loads' resultant (weights
+        included), V down, meets the floor outside the support polygon, and a pull P at
+        hull point q holds it once the resultant of both meets the floor inside
         (``geometry.support.hold_down_ratios``: V d / a where it lies d beyond one edge and
         q a inside it; more beyond a corner), what ballast there would have to weigh
         (``suggest.needs``).  The bolted solve's pulls are no measure of it in the elastic
