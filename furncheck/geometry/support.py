@@ -98,6 +98,13 @@ def hold_down_ratios(hull: np.ndarray, point: np.ndarray) -> np.ndarray | None:
     return ratios
 
 
+def floor_point(force: np.ndarray, moment: np.ndarray) -> np.ndarray:
+    """(2,) m: where the line of action of a resultant ``force`` (3,) N (F_z < 0) with
+    ``moment`` (3,) N m about the origin meets the floor, the point p with no horizontal
+    moment about it (the floor's forces act in its plane): p = (-M_y / F_z, M_x / F_z)."""
+    return np.array([-moment[1] / force[2], moment[0] / force[2]])
+
+
 def pressure_centre(design, case) -> np.ndarray | None:
     """(2,) m: where the line of action of the planks' weights and the case's loads meets
     the floor, the centre of pressure the ground would need for rigid planks:
@@ -116,8 +123,7 @@ def pressure_centre(design, case) -> np.ndarray | None:
         points.append(design.plank(load.plank).center_array if load.point is None
                       else np.asarray(load.point))
     f, r = np.asarray(forces, dtype=float), np.asarray(points, dtype=float)
-    down = float(f[:, 2].sum())
-    if down >= 0.0:
+    total = f.sum(axis=0)
+    if total[2] >= 0.0:
         return None
-    return np.array([(r[:, 0] @ f[:, 2] - r[:, 2] @ f[:, 0]) / down,
-                     (r[:, 1] @ f[:, 2] - r[:, 2] @ f[:, 1]) / down])
+    return floor_point(total, np.cross(r, f).sum(axis=0))

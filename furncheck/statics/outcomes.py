@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.geometry.support import convex_hull, hold_down_ratios, outside
+from furncheck.geometry.support import convex_hull, floor_point, hold_down_ratios, outside
 from furncheck.plain import plain_compared, plain_number
 from furncheck.statics.model import CaseStatics
 
@@ -234,7 +234,7 @@ class _Outcomes:
         moment = (np.cross(model.node_points, loads[:, :3]) + loads[:, 3:]).sum(axis=0)
         if not force[2] < 0.0:
             return None
-        crossing = np.array([-moment[1] / force[2], moment[0] / force[2]])
+        crossing = floor_point(force, moment)
         points = model.contact_points[:, :2]
         chosen = np.asarray(convex_hull(points))
         ratios = hold_down_ratios(points[chosen], crossing)

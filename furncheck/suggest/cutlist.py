@@ -188,10 +188,10 @@ def load_moves(before: Design, after: Design) -> tuple[LoadMove, ...]:
         for old, new in zip(case.loads, other.loads):
             if old.point is None or new.point is None or old.plank != new.plank:
                 continue
-            start = tuple(in_unit(v, scale) for v in old.point)
-            end = tuple(in_unit(v, scale) for v in new.point)
-            if not any(_differs(a, b) for a, b in zip(start, end)):
+            moved = _point_move(old.point, new.point, scale)
+            if moved is None:
                 continue
+            start, end = moved
             what = plain_load(old.mass, old.force)
             key = (old.plank, what, start, end)
             if key not in seen:
@@ -222,10 +222,9 @@ def anchor_moves(before: Design, after: Design) -> tuple[AnchorMove, ...]:
     scale = before.unit_scale
     moves = []
     for index, (old, new) in enumerate(zip(before.anchors, after.anchors)):
-        start = tuple(in_unit(v, scale) for v in old.point)
-        end = tuple(in_unit(v, scale) for v in new.point)
-        if any(_differs(a, b) for a, b in zip(start, end)):
-            moves.append(AnchorMove(index, old.plank, old.wall, start, end))
+        moved = _point_move(old.point, new.point, scale)
+        if moved is not None:
+            moves.append(AnchorMove(index, old.plank, old.wall, *moved))
     return tuple(moves)
 
 
@@ -281,6 +280,14 @@ def _ordered(old: dict[str, float], new: dict[str, float]) -> list[str]:
     names += [f"material.{key}" for key in PLANK_MATERIAL_KEYS
               if f"material.{key}" in old or f"material.{key}" in new]
     return names
+
+
+def _point_move(old, new, scale: float) -> tuple[tuple, tuple] | None:
+    """(before, after) of a point (m) in the file's unit, where it moves by more than
+    CUT_LIST_EPS along some axis; None where it stays."""
+    start = tuple(in_unit(v, scale) for v in old)
+    end = tuple(in_unit(v, scale) for v in new)
+    return (start, end) if any(_differs(a, b) for a, b in zip(start, end)) else None
 
 
 def _differs(old: float | None, new: float | None) -> bool:

@@ -50,7 +50,7 @@ from furncheck.design.model import Design, Plank
 from furncheck.geometry import Geometry, end_bearing, end_gap
 from furncheck.geometry.model import nails_listed
 from furncheck.geometry.near import carried_groups
-from furncheck.geometry.support import convex_hull, hold_down_ratios, outside
+from furncheck.geometry.support import convex_hull, floor_point, hold_down_ratios, outside
 from furncheck.result import CaseResult, DesignReport, Violation
 from furncheck.tolerances import GRAVITY, MIN_BEARING_SHARE
 
@@ -227,9 +227,7 @@ def _group_loads(design: Design, geometry: Geometry, where: str,
 def _floor_crossing(forces: np.ndarray, points: np.ndarray) -> np.ndarray:
     """(2,) m: where the loads' resultant line meets the floor (z = 0): the point p with
     p x F = M, F the resultant and M the loads' moment about the origin (F_z < 0)."""
-    total = forces.sum(axis=0)
-    moment = np.cross(points, forces).sum(axis=0)
-    return np.array([-moment[1] / total[2], moment[0] / total[2]])
+    return floor_point(forces.sum(axis=0), np.cross(points, forces).sum(axis=0))
 
 
 def _hull(points: list, owners: list[str]) -> tuple[np.ndarray, list[str]]:
