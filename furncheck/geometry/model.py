@@ -172,6 +172,16 @@ class Geometry:
     violations: tuple[Violation, ...]
     near_misses: tuple[NearMiss, ...] = ()
 
+    def jointed(self) -> dict[str, list[str]]:
+        """Plank id -> the planks jointed to it, in joint order (planks without joints
+        left out)."""
+        found: dict[str, list[str]] = {}
+        for joint in self.joints:
+            a, b = joint.planks
+            found.setdefault(a, []).append(b)
+            found.setdefault(b, []).append(a)
+        return found
+
     @property
     def stands(self) -> bool:
         """Whether the design stands as it is drawn: every group of planks reaches the

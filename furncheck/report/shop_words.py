@@ -93,10 +93,7 @@ def _changes_sentence(dofs: tuple[str, ...], changes: tuple[float, ...],
     planes = mirror_planes(original)
     geometry = analyze(original)
     held = structure(original, standing_geometry(geometry)).ends
-    nailed: dict[str, set[str]] = {}
-    for joint in geometry.joints:
-        for plank, other in (joint.planks, joint.planks[::-1]):
-            nailed.setdefault(plank, set()).add(other)
+    nailed = geometry.jointed()
     phrases, first_each = [], False
     done: set[int] = set()
     for k, name in enumerate(dofs):
@@ -115,7 +112,7 @@ def _changes_sentence(dofs: tuple[str, ...], changes: tuple[float, ...],
         subject = "it" if previous == plank and k - 1 not in done else plank
         phrases.append(_phrase(original, edited, held, plank, subject,
                                name.rpartition(".")[2], changes[k], units[k],
-                               nailed.get(plank, set())))
+                               set(nailed.get(plank, ()))))
     return " and ".join(phrases), first_each, len(phrases)
 
 

@@ -103,10 +103,7 @@ class Search:
         """plank id -> the planks jointed to it, in joint order."""
         if self._neighbours is None:
             found: dict[str, list[str]] = {p.id: [] for p in self.design.planks}
-            for joint in self.geometry.joints:
-                a, b = joint.planks
-                found[a].append(b)
-                found[b].append(a)
+            found.update(self.geometry.jointed())
             self._neighbours = found
         return self._neighbours
 

@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
+from furncheck.plain import plain_number
 from furncheck.suggest.discrete.common import Candidate, Fix, Search, names
 from furncheck.suggest.needs import violation_needs
 
@@ -65,14 +66,12 @@ def _candidate(search: Search, ratings: dict[str, float]) -> Candidate:
         index = _index(where)
         by_rating.setdefault((rating, anchors[index].capacity), []).append(where)
         anchors[index] = replace(anchors[index], capacity=rating)
-    parts = [f"{names(which)} rated at least {_newtons(rating)} N (now {_newtons(old)} N)"
+    parts = [f"{names(which)} rated at least {plain_number(rating, 6)} N (now "
+             f"{plain_number(old, 6)} N)"
              for (rating, old), which in by_rating.items()]
     advice = f"Use wall fixings for {names(parts)}."
     return Candidate("fixings", replace(design, anchors=tuple(anchors)), advice,
                      trial_rule=STRONGER_FIXINGS, target=names(list(ratings)),
-                     place=", ".join(f"{where} rated {_newtons(r)} N"
+                     place=", ".join(f"{where} rated {plain_number(r, 6)} N"
                                      for where, r in ratings.items()))
 
-
-def _newtons(value: float) -> str:
-    return f"{value:.0f}" if value == round(value) else f"{value:.4g}"

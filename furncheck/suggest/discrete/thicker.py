@@ -275,6 +275,7 @@ def grown(design: Design, geometry: Geometry, thicknesses: dict[str, float],
     made thicker).  None when a plank cannot grow."""
     held = _held_sides(design, geometry)
     resting = _resting(geometry)
+    jointed = geometry.jointed()
     planks = {p.id: p for p in design.planks}
     moves: dict[str, list] = {}                    # plank id -> how its points move
     for plank_id, thickness in thicknesses.items():
@@ -286,7 +287,7 @@ def grown(design: Design, geometry: Geometry, thicknesses: dict[str, float],
         sides = held.get(plank_id, set())
         if len(sides) == 2:
             side = next((s for s in (1, -1) if all(
-                len(set(_neighbours(geometry, leaf))) == 1
+                len(set(jointed.get(leaf, ()))) == 1
                 for leaf in resting.get((plank_id, s), ()))), None)
             if side is None:
                 return None
@@ -339,11 +340,6 @@ def _covering(face: Plank, edge: Plank, way: np.ndarray) -> Plank:
     sizes[axis] += short
     return replace(face, length=sizes[0], width=sizes[1], center=tuple(
         float(v) for v in face.center_array + along * 0.5 * short))
-
-
-def _neighbours(geometry: Geometry, plank_id: str) -> list[str]:
-    return [other for joint in geometry.joints if plank_id in joint.planks
-            for other in joint.planks if other != plank_id]
 
 
 def _resting(geometry: Geometry) -> dict[tuple[str, int], list[str]]:
