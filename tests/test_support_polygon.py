@@ -79,6 +79,54 @@ def test_a_toppling_design_names_the_least_pull_that_holds_it(model):
            f"{least:.4g} N there" in violation.message
 
 
+LOOSE_TOP = """
+furncheck: 1
+name: loose-top
+planks:
+  - {id: side_l, size: [400, 300], center: [-294, 0, 200], rotation: [0, -90, 0]}
+  - {id: side_r, size: [400, 300], center: [294, 0, 200], rotation: [0, -90, 0]}
+  - {id: bottom, size: [576, 300], center: [0, 0, 50]}
+  - {id: top, size: [600, 300], center: [0, 0, 406]}
+joints:
+  - [side_l, bottom]
+  - [side_r, bottom]
+  - {planks: [top, side_l], type: rests}
+  - {planks: [top, side_r], type: rests}
+loads:
+  - {plank: top, mass: 15}
+  - {plank: top, force: [0, 78, 0], at: [0, 150, 406]}
+"""
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_frame_under_a_loose_top_topples_as_a_whole(model):
+    """A frame (two 400 x 300 sides nailed to a bottom) under a loose 600 x 300 top (type:
+    rests) with 15 kg on it, pushed along +y at the top's front edge, 406 mm up, with
+    78 N.  V = 15 g + the planks' 5.3352 kg g = 199.49 N; about the feet's +y edge
+    (y = 150 mm) the push turns it over with F h = 31.668 N m against V x 150 mm =
+    29.92 N m, so the whole unit topples and a pull at the feet's far edge, a = 300 mm
+    away, holds it with (F h - V b) / a = 5.816 N.  The top does not lift off its sides
+    (the push acts 6 mm above its bearing, against its 15 kg): the message names the
+    whole unit's toppling and that pull, in both models; the elastic model's bolted
+    resting corners pulled 956 N in all, and the message used to name the top lifting
+    off its sides with that."""
+    from furncheck.check import check_design
+    from furncheck.design import parse_design
+    from furncheck.design.model import with_model
+
+    design = with_model(parse_design(LOOSE_TOP, "loose-top.yaml", "yaml"), model)
+    g, density, t = 9.81, 750.0, 0.012
+    planks = density * t * (2 * 0.4 * 0.3 + 0.576 * 0.3 + 0.6 * 0.3)
+    weight = (15 + planks) * g
+    least = (78 * 0.406 - weight * 0.150) / 0.300
+    assert least == pytest.approx(5.816, abs=1e-3)
+    lift = [v for v in check_design(design).violations if v.kind == "lift-off"]
+    assert len(lift) == 1
+    assert "lifts off" not in lift[0].message
+    assert f"the design topples (held down at side_l or side_r, the ground would have to " \
+           f"pull at least {least:.4g} N there)" in lift[0].message
+
+
 def test_the_least_hold_down_beyond_an_edge_and_beyond_a_corner():
     """Unit square, the loads' resultant V meeting the floor at c.  Beyond the edge x = 1
     (c = (1.5, 0.5), d = 0.5): a pull at a point of the far edge, a = 1 inside, holds it

@@ -109,24 +109,23 @@ class _Outcomes:
         pulling = bolted.contact_forces[:, 2] < -self.force_tol
         if self.anchored is not None:
             pulling &= ~self.anchored
+        least = self._hold_down() if stability == "lift-off" else None
+        pulling[self.model.rest_rows] = False   # the ground's pulls; resting corners below
         resting, pulled = "", -float(bolted.contact_forces[pulling, 2].sum())
-        if self.model.rest_node is not None:    # the resting joints that lift or tip
+        if self.model.rest_node is not None and least is None:  # resting joints that open
             forces = bolted.contact_forces
             lifting = self._lifting_rests(forces)
             corners = np.zeros(len(forces), dtype=bool)
             for rest, rows in self._rest_corners().items():
                 corners[rows] = rest in lifting
             resting = self._rests_phrase(corners, "lifts off")
-            ground = pulling.copy()
-            ground[self.model.rest_rows] = False
-            pulled = -float(forces[ground, 2].sum()) + sum(lifting.values())
-            pulling = ground | corners          # the planks named: those that lift
+            pulled = -float(forces[pulling, 2].sum()) + sum(lifting.values())
+            pulling = pulling | corners         # the planks named: those that lift
         if stability == "lift-off" and resting:
             detail = (f"no equilibrium with the {self._supports()} only pushing: {resting} "
                       f"(held down, the {self._supports()} would have to pull "
                       f"{plain_number(pulled)} N)")
         elif stability == "lift-off":
-            least = self._hold_down()
             held = f"held down, the {self._supports()} would have to pull " \
                 f"{plain_number(pulled)} N" if least is None else \
                 f"held down at {least[1]}, the ground would have to pull at least " \
@@ -223,11 +222,18 @@ class _Outcomes:
         (``suggest.needs``).  The bolted solve's pulls are no measure of it in the elastic
         model: a narrow foot's corners carry its plank's bending as a pair of large
         opposite forces (a sawhorse 3 % past its tipping push: 901.9 N bolted, 3.804 N
-        needed).  None where this does not apply (walls, anchors or resting joints;
-        several grounded parts; contacts on a line; the resultant inside)."""
+        needed; a frame under a loose top, pushed over: 956.3 N at the top's resting
+        corners bolted, 5.82 N needed at its front feet).  Resting joints count as part of
+        the body: the whole design cannot stand once the resultant of all its loads meets
+        the floor outside its ground contacts, whatever its resting joints do.  None where
+        this does not apply (walls or anchors; grounded parts that no resting joint joins
+        into one; contacts on a line; the resultant inside)."""
         model = self.model
-        if model.contact_frames is not None or model.rest_node is not None \
-                or model.contact_anchored is not None or len(model.components) != 1:
+        if model.contact_anchored is not None or not self._one_body():
+            return None
+        ground = np.ones(len(model.contacts), dtype=bool)
+        ground[model.rest_rows] = False
+        if any(model.geometry.contacts[c].wall is not None for c in model.contacts):
             return None
         loads = self.f.reshape(-1, 6)
         force = loads[:, :3].sum(axis=0)
@@ -235,17 +241,33 @@ class _Outcomes:
         if not force[2] < 0.0:
             return None
         crossing = floor_point(force, moment)
-        points = model.contact_points[:, :2]
+        rows = np.flatnonzero(ground)
+        points = model.contact_points[rows, :2]
         chosen = np.asarray(convex_hull(points))
         ratios = hold_down_ratios(points[chosen], crossing)
         if ratios is None or outside(points[chosen], crossing)[0] <= 0.0 \
                 or not np.isfinite(ratios.min()):
             return None
         least = float(ratios.min())
-        far = chosen[ratios <= least * (1.0 + HOLD_TIE) + HOLD_TIE]    # ties: all of them
+        far = rows[chosen[ratios <= least * (1.0 + HOLD_TIE) + HOLD_TIE]]   # ties: all
         planks = set(model.contact_plank[far].tolist())
         names = [model.design.planks[model.planks[k]].id for k in sorted(planks)]
         return -float(force[2]) * least, " or ".join(names)
+
+    def _one_body(self) -> bool:
+        """Whether the grounded components, joined where one rests on another, are one."""
+        model = self.model
+        group = list(range(len(model.components)))
+
+        def root(c: int) -> int:
+            while group[c] != c:
+                c = group[c]
+            return c
+
+        for k in model.rest_rows:
+            a, b = root(int(model.contact_component[k])), root(int(model.rest_component[k]))
+            group[a] = b
+        return len({root(c) for c in range(len(group))}) == 1
 
     def _supports(self) -> str:
         """What the contacts stand on, for messages: 'ground', 'ground and walls', or
