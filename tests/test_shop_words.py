@@ -67,6 +67,24 @@ def test_a_shorter_back_rest_is_its_top_lowered():
     assert advise(chair, {"back.length": 20.0}).startswith("Raise the top of back by 20 mm")
 
 
+def test_a_board_hung_from_its_top_edge_grows_at_its_bottom():
+    """The coat rack's back board (900 x 150, flat on the wall, its width along z) has the
+    hat shelf nailed onto its top edge: a wider board keeps that edge and reaches further
+    down, 'lower the bottom of back', not 'widen back'; a narrower one raises its
+    bottom.  A leg nailed under a seat is still shortened ('raise the bottom of leg_m'
+    would not be a maker's words)."""
+    from shop_designs import COAT_RACK
+
+    from furncheck.design import parse_design
+
+    rack = with_model(parse_design(COAT_RACK.format(right=1620), "coat-rack.yaml", "yaml"),
+                      "rigid")
+    assert advise(rack, {"back.width": 50.0}).startswith("Lower the bottom of back by 50 mm")
+    assert advise(rack, {"back.width": -30.0}).startswith("Raise the bottom of back by 30 mm")
+    bench = with_model(load_design(str(CATALOG / "bench-long-leg.yaml")), "rigid")
+    assert advise(bench, {"leg_m.length": -2.0}).startswith("Shorten leg_m by 2 mm")
+
+
 def test_the_search_limit_is_said():
     """An interval whose upper end is the search limit says where the search stopped."""
     stool = with_model(load_design(str(CATALOG / "stool.yaml")), "rigid")

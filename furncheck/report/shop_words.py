@@ -181,6 +181,10 @@ def _phrase(design: Design, edited: Design, held: dict, plank: str, subject: str
         moved = _moved_end(design, held, plank, 0 if kind == "length" else 1)
         if moved is not None and moved[2] > VERTICAL_COSINE:
             return f"{'raise' if change > 0 else 'lower'} the top of {subject} by {amount}"
+        if kind == "width" and moved is not None and moved[2] < -VERTICAL_COSINE:
+            # a board hung by its top edge (a batten, an apron): its bottom edge moves; a
+            # leg whose foot moves is still lengthened or shortened
+            return f"{'lower' if change > 0 else 'raise'} the bottom of {subject} by {amount}"
         return f"{_size_verb(kind, change)} {subject} by {amount}"
     if kind == "rz":
         turn = "counterclockwise" if change > 0 else "clockwise"
