@@ -6,6 +6,7 @@ from __future__ import annotations
 import gc
 import importlib
 import os
+import signal
 
 import click
 
@@ -29,6 +30,31 @@ class _OneLine(click.ClickException):
 
     def show(self, file=None) -> None:
         click.echo(self.message, err=True)
+
+
+class _Terminated(BaseException):
+    """Raised by the console script's SIGTERM handler (``run``) wherever the run is: it
+    unwinds as Ctrl-C does (an ``-o`` file's temporary copy removed, worker pools shut
+    down), not caught by the library's ``except Exception``."""
+
+
+class _Interrupted(click.ClickException):
+    """A run stopped by SIGINT or SIGTERM: one line on stderr, exit code 128 + the
+    signal's number (``exitcodes.signalled``: 130, 143), which no finished run gives, so
+    that a CI step that lets exit 1 (invalid designs) pass does not take an incomplete
+    report for a finished one (click's own 'Aborted!' exits 1)."""
+
+    def __init__(self, number: int):
+        super().__init__(f"furncheck: interrupted ({signal.Signals(number).name}); the "
+                         "report is incomplete")
+        self.exit_code = exitcodes.signalled(number)
+
+    def show(self, file=None) -> None:
+        click.echo(self.message, err=True)
+
+
+def _terminate(number: int, frame) -> None:
+    raise _Terminated(number)
 
 
 def _one_line(error: click.UsageError) -> click.UsageError | _OneLine:
@@ -69,8 +95,12 @@ class _Commands(click.Group):
             return super().invoke(ctx)
         except click.UsageError as error:
             raise _one_line(error) from None
+        except KeyboardInterrupt:
+            raise _Interrupted(signal.SIGINT) from None
+        except _Terminated:
+            raise _Interrupted(signal.SIGTERM) from None
         except (click.exceptions.ClickException, click.exceptions.Exit, click.Abort,
-                KeyboardInterrupt, SystemExit, EOFError, BrokenPipeError):
+                SystemExit, EOFError, BrokenPipeError):
             raise                       # click's own handling (EOF: 'Aborted!'; a closed pipe)
         except OSError as error:        # the machine's, not a bug: a full disk, a pipe
             if os.environ.get(DEBUG_VARIABLE):
@@ -95,7 +125,7 @@ def main() -> None:
     design valid; range: valid interval of each design DOF.
     Exit codes: 0 all designs valid (or done), 1 some design invalid (validate), 2
     unreadable, ill-formed or too big input, a usage error, or a Dask cluster
-    (--scheduler) that cannot be used.
+    (--scheduler) that cannot be used; 130 or 143 interrupted (SIGINT, SIGTERM).
     """
 
 
@@ -108,8 +138,10 @@ def run() -> None:
     140 ms check of the stool (``benchmarks/bench_catalog.py``).  Files and streams are
     closed or flushed before this, and atexit handlers (worker pools, temporary folders,
     a Dask client) still run; what it skips is finalizing garbage cycles, which Python
-    does not promise at exit either.  ``main`` called in a process that goes on (the
+    does not promise at exit either.  SIGTERM (a CI's cancel) stops the run as Ctrl-C
+    does (``_Interrupted``: exit 143).  ``main`` called in a process that goes on (the
     tests' CliRunner) does none of this."""
+    signal.signal(signal.SIGTERM, _terminate)
     try:
         main(prog_name="furncheck")
     finally:

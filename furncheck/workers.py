@@ -10,5 +10,7 @@ def quiet_worker() -> None:
     to the whole process group; a worker that took it printed a KeyboardInterrupt
     traceback from inside ``multiprocessing`` after the parent's own one-line 'Aborted!'.
     Ignoring it, each worker ends with its current task when the parent shuts the pool
-    down."""
+    down.  SIGTERM ends a worker at once, as by default (a forked worker would otherwise
+    inherit the command line's handler, which unwinds the parent's run)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)

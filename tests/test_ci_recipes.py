@@ -139,12 +139,68 @@ def test_an_interrupted_report_leaves_the_old_file(checked_paths, tmp_path, monk
     monkeypatch.setattr(files_module.os, "fdopen",
                         lambda *args, **kwargs: _Interrupted(real_fdopen(*args, **kwargs)))
     result = run("validate", valid, bad, "--format", "json", "-o", str(report))
-    assert result.exit_code != 0
+    assert result.exit_code == 130          # 128 + SIGINT: no finished run exits so
+    assert "furncheck: interrupted (SIGINT); the report is incomplete" in result.output
     assert report.read_text() == "old report\n"
     assert sorted(path.name for path in out.iterdir()) == ["report.json"]
     monkeypatch.undo()
     run("validate", valid, bad, "--format", "json", "-o", str(report), "--no-cache")
     assert json.loads(report.read_text())["summary"]["designs"] == 2
+
+
+STOPPED_RUN = """
+import sys, time
+from pathlib import Path
+import furncheck.batch as batch
+from furncheck.cli.main import run
+
+marker = Path(sys.argv.pop(1))
+
+def slow(*args, **kwargs):      # the run is under way: the parent may signal it now
+    marker.write_text("checking")
+    time.sleep(60)
+
+batch.entry_of = slow
+sys.argv[0] = "furncheck"
+run()
+"""
+
+
+@pytest.mark.parametrize("name, code", [("SIGTERM", 143), ("SIGINT", 130)])
+def test_a_signalled_run_exits_with_its_own_code(tmp_path, name, code):
+    """The console script stopped by SIGTERM (a CI's cancel or timeout) or SIGINT while
+    it checks: one line on stderr, exit 128 + the signal's number (143, 130: no finished
+    run exits so, where 1 means 'some design invalid'), the -o file as it was and no
+    temporary copy left beside it (SIGTERM used to kill the process on the spot, leaving
+    '.report.json.XXXX.tmp')."""
+    import signal
+    import time
+
+    valid, bad = write(tmp_path / "designs", "valid.yaml", "bad.yaml")
+    out = tmp_path / "out"
+    out.mkdir()
+    report = out / "report.json"
+    report.write_text("old report\n")
+    marker = tmp_path / "marker"
+    process = subprocess.Popen(
+        [sys.executable, "-c", STOPPED_RUN, str(marker), "validate", valid, bad,
+         "--no-cache", "--jobs", "1", "--format", "json", "-o", str(report)],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 60
+        while not marker.exists() and process.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert marker.exists(), process.communicate()
+        process.send_signal(getattr(signal, name))
+        _, stderr = process.communicate(timeout=60)
+    finally:
+        if process.poll() is None:
+            process.kill()
+    assert process.returncode == code
+    assert stderr.strip().splitlines() == [
+        f"furncheck: interrupted ({name}); the report is incomplete"]
+    assert report.read_text() == "old report\n"
+    assert sorted(path.name for path in out.iterdir()) == ["report.json"]
 
 
 def test_output_keeps_the_files_permissions_and_symlinks(checked_paths, tmp_path):

@@ -206,15 +206,20 @@ def test_worker_pool_matches_sequential(calls, tmp_path):
 def test_workers_leave_ctrl_c_to_the_parent(tmp_path, monkeypatch):
     """Every pool's workers ignore SIGINT (``workers.quiet_worker``): Ctrl-C reaches the
     whole process group, and a worker that took it printed a traceback from inside
-    multiprocessing after the parent's 'Aborted!'.  The checking workers report the
-    handler they run with."""
+    multiprocessing after the parent's 'Aborted!'.  SIGTERM ends a worker as by default
+    (a forked worker would inherit the console script's handler).  The checking workers
+    report the handlers they run with."""
     import signal
 
     monkeypatch.setattr(batch, "entry_of", lambda path, *args: batch.Entry(
-        True, False, str(signal.getsignal(signal.SIGINT))))
+        True, False, str((signal.getsignal(signal.SIGINT), signal.getsignal(signal.SIGTERM)))))
     paths = write(tmp_path, *[f"valid{i}.yaml" for i in range(6)])
-    pieces = {entry.piece for entry in batch.entries_in_workers(paths, "json", 2)}
-    assert pieces == {str(signal.SIG_IGN)}
+    handler = signal.signal(signal.SIGTERM, lambda *args: None)    # as the console script
+    try:
+        pieces = {entry.piece for entry in batch.entries_in_workers(paths, "json", 2)}
+    finally:
+        signal.signal(signal.SIGTERM, handler)
+    assert pieces == {str((signal.SIG_IGN, signal.SIG_DFL))}
     assert signal.getsignal(signal.SIGINT) is not signal.SIG_IGN     # here: untouched
 
 

@@ -105,6 +105,17 @@ def test_missing_file(tmp_path):
     assert (info.value.key, info.value.line) == ("", None)
 
 
+def test_broken_symbolic_link(tmp_path):
+    """A link whose target is gone is named as such, not as a missing file (the link is
+    there, in the folder scanned)."""
+    path = tmp_path / "shelf.yaml"
+    path.symlink_to(tmp_path / "gone.yaml")
+    with pytest.raises(DesignError) as info:
+        load_design(str(path))
+    assert checked(info.value, str(path)).message == \
+        f"broken symbolic link (to {tmp_path / 'gone.yaml'}, which does not exist)"
+
+
 def test_directory(tmp_path):
     folder = tmp_path / "shelf.yaml"
     folder.mkdir()

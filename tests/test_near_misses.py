@@ -357,6 +357,35 @@ def test_an_end_cutting_into_a_face_is_said_as_such():
                             "shorten or move it to rest on those faces")
 
 
+def test_a_cut_in_is_looked_for_among_the_overlapping_neighbours_only(monkeypatch):
+    """The 830 mm shelf's ends cut 15 mm into both sides; forty boards lie on the floor
+    far from the carcass, each joined to nothing.  Each plank joined to nothing measures
+    only the neighbours whose boxes overlap its own (``cut_ins``): the shelf its two
+    sides, the boards none, where every plank against every other (42 x 43 pairs) made a
+    design of thousands of loose boards take minutes.  The message is as before."""
+    from furncheck.geometry import analysis
+
+    boards = "".join(f"  - {{id: board{k}, size: [300, 200], center: [{2000 + 400 * k}, 0, "
+                     f"9]}}\n" for k in range(40))
+    text = shelf_between_sides(830).replace("loads:\n", boards + "loads:\n")
+    measured = []
+    real = analysis._best_touches
+
+    def counting(planks, pairs, *args, **kwargs):
+        if kwargs.get("one_way"):
+            measured.extend(tuple(pair) for pair in pairs.tolist())
+        return real(planks, pairs, *args, **kwargs)
+
+    monkeypatch.setattr(analysis, "_best_touches", counting)
+    geometry = analyze(parsed(text))
+    loose = [v.where for v in geometry.violations if v.kind == "disconnected"]
+    assert loose == ["mid"] + [f"board{k}" for k in range(40)]
+    assert sorted(measured) == [(3, 0), (3, 1)]          # mid against side_l and side_r
+    message = next(v.message for v in geometry.violations if v.where == "mid")
+    assert message.endswith("its end cuts 15 mm into the face of side_l and of side_r: "
+                            "shorten or move it to rest on those faces")
+
+
 # --- bearing: an end that covers a sliver of the face is no nail joint -------------------------
 
 BENCH = """\

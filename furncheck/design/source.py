@@ -58,6 +58,10 @@ def _check_regular_file(path: str) -> None:
     try:
         info = os.stat(path)
     except FileNotFoundError:
+        if os.path.islink(path):        # the link is there; what it names is not
+            raise DesignError(path, "", None, "broken symbolic link (to "
+                                              f"{os.readlink(path)}, which does not exist)"
+                              ) from None
         raise DesignError(path, "", None, "no such file") from None
     except OSError as error:
         raise DesignError(path, "", None, f"cannot read file: {error.strerror}") from None
