@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import os
-
 import click
 
 from furncheck.cli.output import (
@@ -32,8 +30,9 @@ from furncheck.cli.output import (
 @click.option("-o", "--output", metavar="FILE", default=None,
               help="Write the report to FILE instead of standard output.")
 @click.option("-j", "--jobs", type=click.IntRange(min=1), default=None,
-              help="Worker processes for many DOFs (default: all cores); the output is the "
-                   "same.")
+              help="Worker processes for many DOFs, at most the CPUs this run may use (its "
+                   "affinity, a container's CPU quota); the output is the same.  [default: "
+                   "all usable CPUs]")
 @MODEL_OPTION
 @SCHEDULER_OPTION
 @STDIN_FILENAME_OPTION
@@ -51,6 +50,7 @@ def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str
     from furncheck.errors import ClusterError, DesignTooBig
     from furncheck.ranges import RangeFinder
     from furncheck.report.ranges import render_json, render_text
+    from furncheck.workers import local_jobs
 
     config = config_or_fail((design,))
     model = model or config.model
@@ -61,8 +61,9 @@ def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str
     client = client_or_fail(scheduler)
     try:
         finder = RangeFinder(loaded, tuple(locks))
-        ranges = finder.ranges(list(dofs) or None, jobs or config.jobs or os.cpu_count() or 1,
-                               client)
+        jobs = jobs or config.jobs
+        ranges = finder.ranges(list(dofs) or None,
+                               local_jobs(jobs) if client is None else jobs or 1, client)
     except ClusterError as error:
         fail(str(error))
     except DesignTooBig as error:

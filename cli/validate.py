@@ -46,8 +46,9 @@ the report does not go to that terminal too."""
               help="Write the report to FILE instead of standard output ('-': stdout); "
                    "the old FILE stays whole until the new report replaces it.")
 @click.option("-j", "--jobs", type=click.IntRange(min=1), default=None,
-              help="Processes checking designs; a catalog that takes less than about "
-                   "0.2 s is checked in one.  [default: all cores]")
+              help="Processes checking designs, at most the CPUs this run may use (its "
+                   "affinity, a container's CPU quota); a catalog that takes less than "
+                   "about 0.2 s is checked in one.  [default: all usable CPUs]")
 @click.option("--views", "views_dir", metavar="DIR", default=None,
               help="Also write a view of each design there, DIR/<name>-view.png.")
 @click.option("--html", "html_file", metavar="FILE", default=None,
@@ -94,7 +95,7 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
     check_stdin_name(stdin_filename, paths)
     fmt = fmt or config.format or "text"
     model = model or config.model
-    jobs = jobs or config.jobs or os.cpu_count() or 1
+    jobs = jobs or config.jobs      # None: all usable CPUs (``workers.local_jobs``)
     check_output(output)
     if html_file is not None:
         check_output(html_file, "the report page")

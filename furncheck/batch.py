@@ -32,6 +32,7 @@ from furncheck.report import reporter
 from furncheck.report.entries import Entry
 from furncheck.result import DesignReport
 from furncheck.scan import error_report
+from furncheck.workers import local_jobs
 
 if TYPE_CHECKING:
     from furncheck.cache import ResultCache
@@ -50,12 +51,13 @@ TASKS_PER_WORKER = 4
 """At least this many tasks per worker, so that uneven designs still balance."""
 
 
-def entries(sources: Sequence[str | DesignReport], fmt: str, jobs: int,
+def entries(sources: Sequence[str | DesignReport], fmt: str, jobs: int | None,
             model: str | None = None, cache: ResultCache | None = None,
             progress: Progress | None = None, client=None) -> Iterator[Entry]:
     """The entries of format ``fmt`` of ``sources`` (a path to check, or a report already
     made, such as an unreadable folder's), in order, as they are done; the paths checked in
-    up to ``jobs`` processes (see the module docstring).
+    up to ``jobs`` processes, at most the CPUs this run may use (``workers.local_jobs``;
+    None: all of them; see the module docstring).
 
     With a ``cache`` (``furncheck.cache``): a path whose piece in ``fmt`` is stored gets
     it back as it is; one whose result is stored gets its piece made from it (and stored);
@@ -74,7 +76,7 @@ def entries(sources: Sequence[str | DesignReport], fmt: str, jobs: int,
 
             checked = cluster_entries(client, to_check, fmt, model, cache)
         else:
-            checked = _checked(to_check, fmt, jobs, model, cache)
+            checked = _checked(to_check, fmt, local_jobs(jobs), model, cache)
         if shown is not None:
             checked = _advancing(checked, shown)
         path_index = 0

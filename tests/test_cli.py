@@ -223,6 +223,55 @@ def test_workers_leave_ctrl_c_to_the_parent(tmp_path, monkeypatch):
     assert signal.getsignal(signal.SIGINT) is not signal.SIG_IGN     # here: untouched
 
 
+def test_the_workers_are_at_most_the_usable_cpus(tmp_path, monkeypatch):
+    """``workers.usable_cpus``: the CPUs of the process's affinity, at most a container's
+    quota rounded up (cgroup v2 'cpu.max': '150000 100000' is 1.5 CPUs, so 2; 'max' is
+    none; else cgroup v1's quota and period files, -1 none); ``local_jobs`` caps --jobs
+    at it and defaults to it."""
+    from furncheck import workers
+
+    v2, v1_quota, v1_period = (tmp_path / "cpu.max", tmp_path / "quota", tmp_path / "period")
+    monkeypatch.setattr(workers, "CGROUP_FILES", (str(v2), (str(v1_quota), str(v1_period))))
+    monkeypatch.setattr(workers.os, "sched_getaffinity", lambda pid: {0, 1, 2, 3, 4, 5})
+    assert workers.usable_cpus() == 6                       # no cgroup files: affinity
+    v2.write_text("150000 100000\n")
+    assert workers.usable_cpus() == 2
+    assert (workers.local_jobs(None), workers.local_jobs(40), workers.local_jobs(1)) == (2, 2, 1)
+    v2.write_text("max 100000\n")
+    assert workers.usable_cpus() == 6
+    v2.unlink()
+    v1_quota.write_text("300000\n")
+    v1_period.write_text("100000\n")
+    assert workers.usable_cpus() == 3
+    v1_quota.write_text("-1\n")
+    assert workers.usable_cpus() == 6
+    monkeypatch.setattr(workers.os, "sched_getaffinity", lambda pid: {3})
+    assert workers.local_jobs(40) == 1
+
+
+def test_jobs_beyond_the_usable_cpus_start_no_more_workers(tmp_path, monkeypatch):
+    """--jobs 40 where 2 CPUs may be used: the pool is made of 2 workers (40 on 2 CPUs
+    were slower than 2), and the entries are the same."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    from furncheck import workers
+
+    made = []
+
+    class Recorded(ProcessPoolExecutor):
+        def __init__(self, max_workers=None, **kwargs):
+            made.append(max_workers)
+            super().__init__(max_workers=max_workers, **kwargs)
+
+    monkeypatch.setattr(workers, "usable_cpus", lambda: 2)
+    monkeypatch.setattr("concurrent.futures.ProcessPoolExecutor", Recorded)
+    monkeypatch.setattr(batch, "PARALLEL_AFTER", 0.0)
+    monkeypatch.setattr(batch, "entry_of", lambda path, *args: batch.Entry(True, False, path))
+    paths = write(tmp_path, *[f"valid{i}.yaml" for i in range(12)])
+    pieces = [entry.piece for entry in batch.entries(paths, "json", 40)]
+    assert pieces == paths and made == [2]
+
+
 def test_a_small_catalog_is_checked_in_one_process(calls, tmp_path):
     """Checking the fake's designs takes microseconds: no worker is started, every file
     is checked here."""

@@ -37,7 +37,7 @@ from furncheck.export.errors import ExportUnavailable
 from furncheck.export.findings import changed_planks
 from furncheck.export.folders import file_stem, pictures_missing, prepare_out_dir
 from furncheck.export.meshes import write_meshes
-from furncheck.workers import quiet_worker
+from furncheck.workers import quiet_worker, usable_cpus
 
 if TYPE_CHECKING:
     from furncheck.suggest import SuggestionReport
@@ -147,11 +147,12 @@ _JOBS: list[Callable[[], tuple[str, ...]]] = []
 
 def draw_in_parallel(jobs: list[Callable[[], tuple[str, ...]]]) -> list[tuple[str, ...]]:
     """Run the jobs (each draws and writes pictures, returning their paths) and return
-    their results in order: in worker processes forked from this one, one per core (the
+    their results in order: in worker processes forked from this one, one per usable CPU
+    (``workers.usable_cpus``; the
     jobs need not be pickled: the workers inherit them), or here, one after the other,
     with one core, one job, or no fork on this system.  A job's OSError reaches the
     caller either way."""
-    workers = min(len(jobs), os.cpu_count() or 1)
+    workers = min(len(jobs), usable_cpus())
     if workers < 2 or "fork" not in multiprocessing.get_all_start_methods():
         return [job() for job in jobs]
     global _JOBS
