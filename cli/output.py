@@ -22,12 +22,18 @@ def fail(message: str | list[str]) -> NoReturn:
 
 
 def output_problem(output: str) -> str | None:
-    """Why ``-o output`` cannot be written, found before any work is done, or None."""
+    """Why ``-o output`` cannot be written, found before any work is done, or None.  A
+    missing folder on its path is made (as ``--views`` makes its folder, and pytest's
+    ``--junitxml`` its report's): a CI job writes to a fresh 'reports/' folder."""
     if os.path.isdir(output):
         return "it is a directory"
     parent = os.path.dirname(os.path.abspath(output))
     if not os.path.isdir(parent):
-        return f"no such directory {os.path.dirname(output) or parent}"
+        try:
+            os.makedirs(parent, exist_ok=True)
+        except OSError as error:
+            return f"cannot make the folder {os.path.dirname(output) or parent} " \
+                f"({error.strerror or error})"
     if os.path.exists(output) and not os.access(output, os.W_OK):
         return "permission denied"
     if not os.path.exists(output) and not os.access(parent, os.W_OK):
@@ -45,6 +51,18 @@ def check_output(output: str | None, what: str = "the report") -> None:
             fail(f"cannot write {what} to {output}: {problem}")
     elif sys.stdout is None:
         fail(f"cannot write {what} to standard output: it is closed")
+
+
+def check_not_an_input(output: str | None, inputs, what: str = "the report") -> None:
+    """Fail (one line, exit 2) when ``-o output`` is one of the design files to check
+    (``inputs``: their paths; '-' and None are stdout): the report would replace the
+    design, an easy slip in a script that builds its argument list."""
+    if output is None or output == STDIN or not os.path.exists(output):
+        return
+    for path in inputs:
+        if isinstance(path, str) and path != STDIN and os.path.exists(path) \
+                and os.path.samefile(path, output):
+            fail(f"cannot write {what} to {output}: it is one of the designs to check")
 
 
 def write_output(document: str, output: str | None) -> None:

@@ -8,6 +8,7 @@ from furncheck.cli.output import (
     MODEL_OPTION,
     SCHEDULER_OPTION,
     STDIN_FILENAME_OPTION,
+    check_not_an_input,
     check_output,
     client_or_fail,
     config_or_fail,
@@ -55,6 +56,7 @@ def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str
     config = config_or_fail((design,))
     model = model or config.model
     check_output(output)
+    check_not_an_input(output, (design,))
     loaded = load_or_fail(design, model, stdin_filename, fmt, output)
     design = loaded.source          # the path as given, or the name of standard input
     dofs_or_fail(design, loaded, (*dofs, *locks), fmt, output)

@@ -9,6 +9,7 @@ import click
 from furncheck.cli.output import (
     MODEL_OPTION,
     STDIN_FILENAME_OPTION,
+    check_not_an_input,
     check_output,
     config_or_fail,
     dofs_or_fail,
@@ -92,6 +93,7 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
     config = config_or_fail((design,))
     model = model or config.model
     check_output(output)
+    check_not_an_input(output, (design,))
     loaded = load_or_fail(design, model, stdin_filename, fmt, output)
     design = loaded.source          # the path as given, or the name of standard input
     locked = dofs_or_fail(design, loaded, locks, fmt, output)

@@ -21,6 +21,7 @@ from furncheck.cli.output import (
     SCHEDULER_OPTION,
     STDIN,
     STDIN_FILENAME_OPTION,
+    check_not_an_input,
     check_output,
     check_stdin_name,
     client_or_fail,
@@ -110,6 +111,9 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
             if rule is not None),
         skip_non_designs=bool(skip_non_designs or config.skip_non_designs))
     collected = collect(paths, scan_options)
+    check_not_an_input(output, collected.sources)
+    if html_file is not None:
+        check_not_an_input(html_file, collected.sources, "the report page")
     if collected.skipped:
         click.echo(f"furncheck: skipped {collected.skipped} "
                    f"file{'s' if collected.skipped != 1 else ''} without a top-level "

@@ -203,6 +203,40 @@ def test_a_signalled_run_exits_with_its_own_code(tmp_path, name, code):
     assert sorted(path.name for path in out.iterdir()) == ["report.json"]
 
 
+def test_a_report_never_replaces_a_design_it_checks(tmp_path):
+    """-o naming one of the designs (given, found in a folder, or through a symbolic
+    link) is refused with one line and exit 2, the design untouched, for validate (and
+    its --html page), suggest and range; the report used to replace the design."""
+    valid, bad = write(tmp_path / "designs", "valid.yaml", "bad.yaml")
+    link = tmp_path / "link.yaml"
+    link.symlink_to(valid)
+    before = Path(valid).read_text()
+    for args in (("validate", bad, valid, "-o", valid),
+                 ("validate", str(tmp_path / "designs"), "-o", str(link)),
+                 ("validate", valid, "--html", valid),
+                 ("suggest", valid, "-o", valid),
+                 ("range", valid, "-o", str(link))):
+        result = run(*args, "--no-cache") if args[0] == "validate" else run(*args)
+        assert result.exit_code == 2, args
+        assert result.output.strip().endswith("it is one of the designs to check"), args
+        assert Path(valid).read_text() == before
+
+
+def test_a_missing_report_folder_is_made(checked_paths, tmp_path):
+    """-o reports/ci/x.json where reports/ does not exist yet: the folders are made (as
+    --views makes its own); below a file, one line and exit 2."""
+    (valid,) = write(tmp_path / "designs", "valid.yaml")
+    report = tmp_path / "reports" / "ci" / "x.json"
+    result = run("validate", valid, "--no-cache", "--format", "json", "-o", str(report))
+    assert result.exit_code == 0
+    assert json.loads(report.read_text())["summary"]["designs"] == 1
+    blocked = tmp_path / "designs" / "valid.yaml" / "x.json"
+    result = run("validate", valid, "--no-cache", "-o", str(blocked))
+    assert result.exit_code == 2
+    assert result.output.startswith(f"furncheck: cannot write the report to {blocked}: "
+                                    "cannot make the folder")
+
+
 def test_output_keeps_the_files_permissions_and_symlinks(checked_paths, tmp_path):
     """-o over an existing file keeps its permission bits; -o through a symlink replaces
     the file it points to and leaves the link."""

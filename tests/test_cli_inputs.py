@@ -246,6 +246,16 @@ def test_a_file_name_that_is_not_utf8_is_reported_in_every_format(tmp_path: Path
             ElementTree.fromstring(text.encode("utf-8"))
         escaped = {"sarif": "bad%FFname.yaml", "junit": "bad\ufffdname.yaml"}
         assert escaped.get(fmt, "bad\\udcffname.yaml") in text
+    # the console script's own stdout, in the C locale (Python's UTF-8 mode writes a
+    # name's odd bytes back raw where a format does not escape them: github did)
+    import subprocess
+    import sys
+
+    written = subprocess.run([sys.executable, "-m", "furncheck", "validate", str(folder),
+                              "--format", fmt, "--no-cache"], capture_output=True,
+                             env={**os.environ, "LC_ALL": "C"}).stdout
+    assert b"\xff" not in written
+    assert escaped.get(fmt, "bad\\udcffname.yaml") in written.decode("utf-8")
 
 
 def test_a_file_name_with_a_line_break_keeps_its_one_verdict_line(tmp_path: Path) -> None:

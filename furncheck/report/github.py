@@ -55,10 +55,14 @@ def design_commands(report: DesignReport) -> list[str]:
 
 
 def command(name: str, properties: dict[str, str], message: str) -> str:
-    """``::name key=value,...::message`` with GitHub's escaping applied."""
+    """``::name key=value,...::message`` with GitHub's escaping applied, in UTF-8: a file
+    name's bytes that are not UTF-8 (held as surrogates, as Python reads such names) are
+    written escaped ('bad\\udcffname.yaml', as the text report shows them), not raw."""
     props = ",".join(f"{key}={escape_property(value)}" for key, value in properties.items())
     head = f"{name} {props}" if props else name
-    return f"::{head}::{escape_data(message)}"
+    line = f"::{head}::{escape_data(message)}"
+    return line if line.isascii() else \
+        line.encode("utf-8", "backslashreplace").decode("utf-8")
 
 
 def escape_data(text: str) -> str:
