@@ -162,8 +162,10 @@ def test_output_file_gets_exactly_the_report(calls, tmp_path, fmt):
                               f"written to {out}\n")     # the CI log still gets the count
 
 
-@pytest.mark.parametrize("target", ["missing-dir/report.json", "."])
+@pytest.mark.parametrize("target", ["valid.yaml/report.json", "."])
 def test_unwritable_output_is_one_line_and_exit_2(calls, tmp_path, target):
+    """-o below a file (its folder cannot be made: a missing folder is made) or naming a
+    folder: one line, exit 2, before any design is checked."""
     (valid,) = write(tmp_path, "valid.yaml")
     result = run("validate", valid, "-o", str(tmp_path / target))
     assert result.exit_code == 2
