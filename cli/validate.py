@@ -120,7 +120,10 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
                    f"'furncheck' key (not designs)", err=True)
     cache = None
     if use_cache if use_cache is not None else config.cache is not False:
-        cache = open_cache(cache_dir or config.cache_dir, model)
+        from furncheck.cache import ENV_DIRECTORY
+
+        cache = open_cache(cache_dir or os.environ.get(ENV_DIRECTORY) or config.cache_dir,
+                           model)
     sources = [_check_stdin(stdin_filename, model, cache) if source == STDIN else source
                for source in collected.sources]
     summary = Summary()
@@ -193,10 +196,14 @@ def _check_views_dir(views_dir: str) -> None:
 
 def open_cache(directory: str | None, model: str | None):
     """The result cache in ``directory`` (default: the user cache directory) for runs in
-    ``model``, its writability found out (``ResultCache.probe``)."""
+    ``model``, its writability found out (``ResultCache.probe``).  ``validate`` picks the
+    directory from --cache-dir, else $FURNCHECK_CACHE_DIR, else ``cache-dir`` of
+    [tool.furncheck]: a CI job's variable wins over the repository's file, as the
+    command line does."""
     from furncheck.cache import ResultCache, default_directory
 
-    cache = ResultCache(directory or default_directory(), {"model": model})
+    cache = ResultCache(os.path.expanduser(directory) if directory else default_directory(),
+                        {"model": model})
     cache.probe()
     return cache
 

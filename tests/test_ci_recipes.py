@@ -450,3 +450,25 @@ def test_the_readme_recipes_are_yaml_whose_commands_furncheck_accepts(checked_pa
     assert json.loads(Path(upload[0]["with"]["sarif_file"]).read_text())["version"] == "2.1.0"
     assert Path(gitlab["furncheck"]["artifacts"]["reports"]["junit"]).read_text().startswith(
         "<?xml")
+
+
+def test_the_readme_recipes_keep_the_cache_whatever_the_verdict():
+    """A job that finds an invalid design fails (exit 1), and both platforms save their
+    caches only from jobs that succeed unless told otherwise (actions/cache's post step,
+    GitLab's 'when: on_success'): the GitHub recipe restores and saves in steps of their
+    own, the save run on failure too, with the restore's path and key; the GitLab one
+    says 'when: always'.  Each caches the folder its FURNCHECK_CACHE_DIR names."""
+    _, github, gitlab = (yaml.safe_load(block) for block in readme_ci_blocks())
+    job = github["jobs"]["furncheck"]
+    steps = {step["uses"].split("@")[0]: step for step in job["steps"] if "uses" in step}
+    restore, save = steps["actions/cache/restore"], steps["actions/cache/save"]
+    assert "actions/cache" not in steps
+    assert "failure()" in save["if"]
+    assert save["with"]["path"] == restore["with"]["path"] and \
+        save["with"]["key"] == restore["with"]["key"]
+    assert job["env"]["FURNCHECK_CACHE_DIR"].endswith("/" + restore["with"]["path"])
+    assert job["steps"].index(save) == len(job["steps"]) - 1      # after every check
+    cache = gitlab["furncheck"]["cache"]
+    assert cache["when"] == "always"
+    assert gitlab["furncheck"]["variables"]["FURNCHECK_CACHE_DIR"].endswith(
+        "/" + cache["paths"][0].rstrip("/"))

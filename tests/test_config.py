@@ -134,9 +134,10 @@ def test_jobs_come_from_the_config_unless_given(checked_paths, tmp_path, monkeyp
     assert used == [3, 2]
 
 
-def test_cache_settings_come_from_the_config(checked_paths, tmp_path):
+def test_cache_settings_come_from_the_config(checked_paths, tmp_path, monkeypatch):
     """cache-dir is relative to the pyproject's folder; cache = false turns it off, and
     --cache on the command line turns it on again."""
+    monkeypatch.delenv("FURNCHECK_CACHE_DIR")
     path = pyproject(tmp_path, 'cache-dir = "results-cache"')
     (design,) = write(tmp_path, "valid.yaml")
     run("validate", design)
@@ -174,3 +175,22 @@ def test_suggest_and_range_read_the_model_too(stool):
               for model, flags in (("config", ()), ("rigid", ("--model", "rigid")),
                                    ("elastic", ("--model", "elastic")))}
     assert ranges["config"] == ranges["rigid"] != ranges["elastic"]
+
+
+def test_the_cache_folder_is_the_command_lines_then_the_variables_then_the_configs(
+        checked_paths, tmp_path, monkeypatch):
+    """--cache-dir, else $FURNCHECK_CACHE_DIR (a CI job's variable), else cache-dir of
+    [tool.furncheck]: the variable used to lose to the repository's file, so a CI recipe
+    that sets it and saves that folder saved an empty one."""
+    pyproject(tmp_path, 'cache-dir = "from-config"')
+    (design,) = write(tmp_path, "valid.yaml")
+    monkeypatch.setenv("FURNCHECK_CACHE_DIR", str(tmp_path / "from-variable"))
+    run("validate", design)
+    assert list((tmp_path / "from-variable").rglob("*")) and \
+        not (tmp_path / "from-config").exists()
+    run("validate", design, "--cache-dir", str(tmp_path / "from-option"))
+    assert list((tmp_path / "from-option").rglob("*")) and \
+        not (tmp_path / "from-config").exists()
+    monkeypatch.delenv("FURNCHECK_CACHE_DIR")
+    run("validate", design)
+    assert list((tmp_path / "from-config").rglob("*"))
