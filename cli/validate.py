@@ -65,6 +65,10 @@ the report does not go to that terminal too."""
 @click.option("--skip-non-designs", is_flag=True, default=None,
               help="Leave out named files without a top-level 'furncheck' key too, as "
                    "directory scans do (for hooks that pass every changed file).")
+@click.option("--force-exclude", is_flag=True, default=None,
+              help="Leave out named files that an exclude pattern matches too (--exclude, "
+                   "'exclude' of [tool.furncheck]), as directory scans do (for hooks that "
+                   "pass every changed file).")
 @click.option("--cache/--no-cache", "use_cache", default=None,
               help="Reuse the results of unchanged designs.  [default: --cache]")
 @click.option("--cache-dir", metavar="DIR", default=None,
@@ -74,7 +78,7 @@ the report does not go to that terminal too."""
 def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: int | None,
              views_dir: str | None, html_file: str | None, model: str | None,
              scheduler: str | None, excludes: tuple[str, ...],
-             skip_non_designs: bool | None,
+             skip_non_designs: bool | None, force_exclude: bool | None,
              use_cache: bool | None, cache_dir: str | None,
              stdin_filename: str | None) -> None:
     """Check the designs in PATH... (files, '-' for standard input, or directories
@@ -102,14 +106,18 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
         check_output(html_file, "the report page")
     if views_dir is not None:
         _check_views_dir(views_dir)
-    if excludes or config.exclude:
-        from furncheck.ignores import patterns
+    caching = use_cache if use_cache is not None else config.cache is not False
+    cache_folder = None
+    if caching:
+        from furncheck.cache import ENV_DIRECTORY, default_directory
+
+        chosen = cache_dir or os.environ.get(ENV_DIRECTORY) or config.cache_dir
+        cache_folder = os.path.expanduser(chosen) if chosen else default_directory()
     scan_options = ScanOptions(
-        excludes=tuple(rule for rule in (
-            patterns(excludes, os.curdir, "--exclude") if excludes else None,
-            patterns(config.exclude, config.folder, config.path) if config.exclude else None)
-            if rule is not None),
-        skip_non_designs=bool(skip_non_designs or config.skip_non_designs))
+        excludes=_exclude_patterns(excludes, config),
+        skip_non_designs=bool(skip_non_designs or config.skip_non_designs),
+        force_exclude=bool(force_exclude or config.force_exclude),
+        unscanned=() if cache_folder is None else (os.path.abspath(cache_folder),))
     collected = collect(paths, scan_options)
     check_not_an_input(output, collected.sources)
     if html_file is not None:
@@ -118,12 +126,7 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
         click.echo(f"furncheck: skipped {collected.skipped} "
                    f"file{'s' if collected.skipped != 1 else ''} without a top-level "
                    f"'furncheck' key (not designs)", err=True)
-    cache = None
-    if use_cache if use_cache is not None else config.cache is not False:
-        from furncheck.cache import ENV_DIRECTORY
-
-        cache = open_cache(cache_dir or os.environ.get(ENV_DIRECTORY) or config.cache_dir,
-                           model)
+    cache = None if cache_folder is None else open_cache(cache_folder, model)
     sources = [_check_stdin(stdin_filename, model, cache) if source == STDIN else source
                for source in collected.sources]
     summary = Summary()
@@ -194,16 +197,33 @@ def _check_views_dir(views_dir: str) -> None:
         fail(f"cannot write views: {missing}")
 
 
-def open_cache(directory: str | None, model: str | None):
-    """The result cache in ``directory`` (default: the user cache directory) for runs in
-    ``model``, its writability found out (``ResultCache.probe``).  ``validate`` picks the
-    directory from --cache-dir, else $FURNCHECK_CACHE_DIR, else ``cache-dir`` of
-    [tool.furncheck]: a CI job's variable wins over the repository's file, as the
-    command line does."""
-    from furncheck.cache import ResultCache, default_directory
+def _exclude_patterns(excludes: tuple[str, ...], config) -> tuple:
+    """The exclude patterns of --exclude (anchored at the current folder) and of the
+    config's ``exclude`` (at its folder); one that is no valid pattern is one line and
+    exit 2 (``ignores.PatternError``)."""
+    if not excludes and not config.exclude:
+        return ()
+    from furncheck.ignores import PatternError, patterns
 
-    cache = ResultCache(os.path.expanduser(directory) if directory else default_directory(),
-                        {"model": model})
+    try:
+        return tuple(rule for rule in (
+            patterns(excludes, os.curdir, "--exclude", excludes=True) if excludes else None,
+            patterns(config.exclude, config.folder, f"{config.path}: [tool.furncheck] exclude",
+                     excludes=True) if config.exclude else None)
+            if rule is not None)
+    except PatternError as error:
+        fail(str(error))
+
+
+def open_cache(directory: str, model: str | None):
+    """The result cache in ``directory`` for runs in ``model``, its writability found out
+    (``ResultCache.probe``).  ``validate`` picks the directory from --cache-dir, else
+    $FURNCHECK_CACHE_DIR, else ``cache-dir`` of [tool.furncheck], else the user cache
+    directory: a CI job's variable wins over the repository's file, as the command line
+    does."""
+    from furncheck.cache import ResultCache
+
+    cache = ResultCache(directory, {"model": model})
     cache.probe()
     return cache
 

@@ -14,6 +14,7 @@ line wins over every key; ``exclude`` patterns add to ``--exclude`` ones.
     cache = false                       # --no-cache
     cache-dir = ".furncheck-cache"      # --cache-dir, relative to this file's folder
     skip-non-designs = true             # --skip-non-designs
+    force-exclude = true                # --force-exclude
 
 An unknown key or a value of the wrong type is an error (``ConfigError``, one line naming
 the file and the key), as in design files: a typo must not be silently ignored.
@@ -62,6 +63,7 @@ class Config:
     cache: bool | None = None
     cache_dir: str | None = None
     skip_non_designs: bool | None = None
+    force_exclude: bool | None = None
 
 
 def load_config(paths: tuple[str, ...] | list[str] = ()) -> Config:
@@ -115,7 +117,8 @@ def _furncheck_table(path: str) -> dict | None:
     return table
 
 
-_KEYS = ("cache", "cache-dir", "exclude", "format", "jobs", "model", "skip-non-designs")
+_KEYS = ("cache", "cache-dir", "exclude", "force-exclude", "format", "jobs", "model",
+         "skip-non-designs")
 
 
 def _config(path: str, table: dict) -> Config:
@@ -158,4 +161,4 @@ def _config(path: str, table: dict) -> Config:
         jobs=jobs, model=choice("model", tol.MODELS), cache=flag("cache"),
         cache_dir=None if cache_dir is None else os.path.join(folder,
                                                               os.path.expanduser(cache_dir)),
-        skip_non_designs=flag("skip-non-designs"))
+        skip_non_designs=flag("skip-non-designs"), force_exclude=flag("force-exclude"))

@@ -119,19 +119,40 @@ class PatternFile:
         return relative.replace(os.sep, "/")
 
 
-def patterns(lines: list[str] | tuple[str, ...], base: str, source: str) -> PatternFile:
+class PatternError(ValueError):
+    """An exclude pattern (``--exclude``, ``exclude`` of [tool.furncheck]) that is not a
+    valid gitignore pattern: said in one line, where a ``.gitignore`` line like it would
+    match nothing, as in git."""
+
+
+def patterns(lines: list[str] | tuple[str, ...], base: str, source: str,
+             excludes: bool = False) -> PatternFile:
     """Gitignore ``lines`` anchored at folder ``base``; a line that is not a valid pattern
-    (a lone '!' or '\\', a reversed range) matches nothing (module docstring)."""
+    (a lone '!' or '\\', a reversed range) matches nothing (module docstring).
+
+    ``excludes``: the lines are exclude patterns typed by a user (``--exclude``, the
+    config's ``exclude``), not a ``.gitignore`` file's: a leading './' is dropped
+    ('./designs/drafts' is 'designs/drafts', anchored at ``base``: git would read it
+    literally and match nothing), and a line that is not a valid pattern raises
+    ``PatternError`` instead of matching nothing unseen."""
     import pathspec
 
     rules = []
     for line in lines:
         text = _without_trailing_spaces(line)
+        if excludes:
+            while text.startswith("./") and len(text) > 2:
+                text = text[2:].lstrip("/") or "/"
         folders_only = text.endswith("/")
         try:
             spec = pathspec.GitIgnoreSpec.from_lines([text[:-1] if folders_only else text])
         except (ValueError, re.error):  # pathspec's GitIgnorePatternError is a ValueError
+            if excludes:
+                raise PatternError(f"{source}: {line!r} is not a valid gitignore pattern"
+                                   ) from None
             continue
+        if excludes and not any(pattern.include is not None for pattern in spec.patterns):
+            raise PatternError(f"{source}: {line!r} is not a pattern (it matches nothing)")
         rules.extend(Rule(pattern, bool(pattern.include), folders_only)
                      for pattern in spec.patterns if pattern.include is not None)
     return PatternFile(os.path.abspath(base), tuple(rules), source)

@@ -44,20 +44,31 @@ STDIN = "-"
 class ScanOptions:
     """How PATHs become files.  ``excludes``: exclude patterns, each anchored at its own
     folder; ``skip_non_designs``: also leave out named files without a top-level
-    ``furncheck`` key."""
+    ``furncheck`` key; ``force_exclude``: also leave out named files that an exclude
+    pattern matches (a pre-commit hook, handed the changed files one by one, then skips
+    what a CI run of the folder would); ``unscanned``: folders (absolute) a scan never
+    enters besides (the result cache's, when it lies inside a scanned tree: its entries
+    are no designs, and counting them made a warm run's stderr differ from a cold
+    one's)."""
 
     excludes: tuple[PatternFile, ...] = ()
     skip_non_designs: bool = False
+    force_exclude: bool = False
+    unscanned: tuple[str, ...] = ()
 
 
 @dataclass
 class Collected:
     """The sources to check in order: a path, ``STDIN``, or a finished error report (a
-    folder that cannot be read or holds no design); ``skipped``: YAML/JSON files left out
-    because they are no designs."""
+    folder that cannot be read or holds no design); ``skipped``: how many YAML/JSON files
+    were left out because they are no designs (each once, however many scans met it)."""
 
     sources: list[str | DesignReport] = field(default_factory=list)
-    skipped: int = 0
+    skipped_files: set[str] = field(default_factory=set)
+
+    @property
+    def skipped(self) -> int:
+        return len(self.skipped_files)
 
 
 def collect(paths: tuple[str, ...] | list[str], options: ScanOptions = ScanOptions()
@@ -73,27 +84,49 @@ def collect(paths: tuple[str, ...] | list[str], options: ScanOptions = ScanOptio
             continue
         elif os.path.isdir(given):
             files = _scan_folder(given, options, collected)
+        elif options.force_exclude and _excluded(given, options):
+            files = []
         elif options.skip_non_designs and not _is_design(given):
-            collected.skipped += 1
+            collected.skipped_files.add(_identity(given))
             files = []
         else:
             files = [given]
         for file in files:
-            key = file if file == STDIN else os.path.normcase(os.path.realpath(file))
+            key = file if file == STDIN else _identity(file)
             if key not in seen:
                 seen.add(key)
                 collected.sources.append(file)
     return collected
 
 
+def _identity(path: str) -> str:
+    """What tells two paths of one file apart from two files: its real path."""
+    return os.path.normcase(os.path.realpath(path))
+
+
+def _excluded(path: str, options: ScanOptions) -> bool:
+    """Whether an exclude pattern matches the named file ``path`` or a folder it lies in
+    (``force_exclude``: a scan would not have entered that folder)."""
+    from furncheck.ignores import IgnoreRules
+
+    rules = IgnoreRules(excludes=options.excludes)
+    current, is_dir = os.path.abspath(path), False
+    while not rules.ignored(current, is_dir):
+        parent = os.path.dirname(current)
+        if parent == current:
+            return False
+        current, is_dir = parent, True
+    return True
+
+
 def _scan_folder(folder: str, options: ScanOptions, collected: Collected) -> list[str]:
     """The design files under ``folder``, sorted; its unreadable folders and 'no design
     files' become error reports in ``collected``."""
-    found = find_design_files(folder, options.excludes)
+    found = find_design_files(folder, options.excludes, options.unscanned)
     collected.sources.extend(
         error_report(path, f"{path}: cannot read this directory: {why}")
         for path, why in found.unreadable)
-    collected.skipped += found.skipped
+    collected.skipped_files.update(map(_identity, found.skipped))
     if not found.files and not found.unreadable:
         collected.sources.append(error_report(
             folder, f"{folder}: no design files (.yaml, .yml or .json with a top-level "
@@ -104,20 +137,28 @@ def _scan_folder(folder: str, options: ScanOptions, collected: Collected) -> lis
 @dataclass
 class FolderScan:
     """What ``find_design_files`` found: design files (sorted by path), [(unreadable
-    folder, reason)], and how many YAML/JSON files were no designs."""
+    folder, reason)], and the YAML/JSON files that were no designs."""
 
     files: list[str] = field(default_factory=list)
     unreadable: list[tuple[str, str]] = field(default_factory=list)
-    skipped: int = 0
+    skipped: list[str] = field(default_factory=list)
 
 
-def find_design_files(folder: str, excludes: tuple[PatternFile, ...] = ()) -> FolderScan:
+def find_design_files(folder: str, excludes: tuple[PatternFile, ...] = (),
+                      unscanned: tuple[str, ...] = ()) -> FolderScan:
     """The design files below ``folder`` (paths are ``folder`` joined with the relative
-    path, normalized), by the rules of the module docstring."""
+    path, normalized), by the rules of the module docstring; the folders ``unscanned``
+    (absolute) are not entered."""
     from furncheck.ignores import rules_above
 
     scan = FolderScan()
     visited: set[tuple[int, int]] = set()
+    for path in unscanned:          # as if met before: never entered
+        try:
+            identity = os.stat(path)
+        except OSError:
+            continue
+        visited.add((identity.st_dev, identity.st_ino))
     candidates: list[str] = []
     top = os.path.normpath(folder)
     direct = [(top, rules_above(os.path.abspath(top), excludes))]
@@ -155,7 +196,7 @@ def find_design_files(folder: str, excludes: tuple[PatternFile, ...] = ()) -> Fo
         if _is_design(path):
             scan.files.append(path)
         else:
-            scan.skipped += 1
+            scan.skipped.append(path)
     scan.files.sort(key=lambda path: PurePath(path).parts)
     scan.unreadable.sort()
     return scan

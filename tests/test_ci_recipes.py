@@ -39,6 +39,9 @@ def test_the_hook_definition_is_complete():
     hook = hook_definition()
     assert hook["id"] == "furncheck" and hook["language"] == "python"
     assert hook["entry"].split()[:2] == ["furncheck", "validate"]
+    # the changed files that are no designs, or that [tool.furncheck] excludes, are left
+    # out, as a CI run of the folder leaves them out
+    assert {"--skip-non-designs", "--force-exclude"} <= set(hook["entry"].split()[2:])
     assert set(hook["types_or"]) == {"yaml", "json"}
 
 

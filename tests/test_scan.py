@@ -209,6 +209,51 @@ def test_exclude_on_the_command_line_is_relative_to_the_current_folder(checked_p
     assert result.exit_code == 0
 
 
+def test_an_exclude_is_typed_as_a_path_and_checked(checked_paths, tmp_path, monkeypatch):
+    """--exclude ./sub/x.yaml is sub/x.yaml (a leading './' is how paths are typed; git
+    would read it literally and match nothing); a pattern that is none ('[', a reversed
+    range), on the command line or in [tool.furncheck], is one line and exit 2 instead of
+    excluding nothing unseen."""
+    tree(tmp_path, {"sub/x.yaml": DESIGN, "y.yaml": DESIGN})
+    monkeypatch.chdir(tmp_path)
+    result = run("validate", ".", "--exclude", "./sub/x.yaml")
+    assert [Path(path).as_posix() for path in checked_paths] == ["y.yaml"]
+    assert result.exit_code == 0
+    for pattern in ("[", "[z-a]"):
+        result = run("validate", ".", "--exclude", pattern)
+        assert result.exit_code == 2
+        assert result.output.startswith(f"furncheck: --exclude: {pattern!r} is not ")
+    (tmp_path / "pyproject.toml").write_text('[tool.furncheck]\nexclude = ["[z-a]"]\n')
+    result = run("validate", ".")
+    assert result.exit_code == 2 and "[tool.furncheck] exclude: '[z-a]' is not" in result.output
+
+
+def test_force_exclude_leaves_out_named_files_as_a_scan_would(checked_paths, tmp_path,
+                                                             monkeypatch):
+    """With exclude = ["drafts"] in [tool.furncheck], a scan of designs/ leaves out
+    designs/drafts/; a hook that names designs/drafts/t.yaml checks it (a named file is
+    always checked) unless --force-exclude (the hook's own option) or force-exclude = true
+    says to leave it out too; an empty run is then 0 designs, exit 0."""
+    tree(tmp_path, {"designs/drafts/t.yaml": DESIGN, "designs/ok.yaml": DESIGN})
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "pyproject.toml").write_text('[tool.furncheck]\nexclude = ["drafts"]\n')
+    run("validate", "designs")
+    assert [Path(path).as_posix() for path in checked_paths] == ["designs/ok.yaml"]
+    checked_paths.clear()
+    named = ("designs/drafts/t.yaml", "designs/ok.yaml")
+    run("validate", *named, "--no-cache")
+    assert checked_paths == list(named)
+    checked_paths.clear()
+    run("validate", *named, "--force-exclude", "--no-cache")
+    assert checked_paths == ["designs/ok.yaml"]
+    checked_paths.clear()
+    (tmp_path / "pyproject.toml").write_text(
+        '[tool.furncheck]\nexclude = ["drafts"]\nforce-exclude = true\n')
+    result = run("validate", "designs/drafts/t.yaml")
+    assert checked_paths == [] and result.exit_code == 0
+    assert "0 designs" in result.output
+
+
 # --- files that are no designs ------------------------------------------------------------
 
 def test_yaml_and_json_files_without_a_furncheck_key_are_skipped_and_counted(checked_paths,
@@ -258,6 +303,25 @@ def test_yaml_and_json_files_without_a_furncheck_key_are_skipped_and_counted(che
 ])
 def test_declares_design(text, fmt, expected):
     assert declares_design(text.encode(), fmt) is expected
+
+
+def test_a_file_that_is_no_design_is_counted_once(checked_paths, tmp_path):
+    """A folder named twice, or named and one of its files named with --skip-non-designs,
+    skips its package.json once (it was counted once per scan); a result cache inside the
+    scanned folder is not scanned, so a warm run says what a cold one says (its entries
+    were counted as files without a furncheck key from the second run on)."""
+    tree(tmp_path, {"d/package.json": '{"name": "x"}', "d/a.yaml": DESIGN})
+    folder = str(tmp_path / "d")
+    for args in ((folder, folder), (folder, folder + "/."),
+                 (folder, folder + "/package.json", "--skip-non-designs")):
+        result = run("validate", *args, "--no-cache")
+        assert "skipped 1 file without" in result.stderr, args
+    cache = str(tmp_path / "d" / "results-cache")
+    cold = run("validate", folder, "--cache-dir", cache)
+    warm = run("validate", folder, "--cache-dir", cache)
+    assert list(Path(cache).rglob("*.*"))
+    assert cold.stderr == warm.stderr and "skipped 1 file without" in warm.stderr
+    assert cold.stdout == warm.stdout
 
 
 def test_a_named_file_is_always_checked(checked_paths, tmp_path):
