@@ -66,10 +66,14 @@ def connect(address: str):
     except ImportError:
         raise ClusterError("--scheduler needs Dask: pip install 'furncheck[dask]'") from None
     try:        # a malformed address refused before a client exists (none left to close)
-        resolve_address(address)
+        resolved = resolve_address(address)
     except (OSError, ValueError) as error:
         raise ClusterError(f"not a Dask scheduler address: {address} "
                            f"({_first_line(error)})") from None
+    port = _port(resolved)
+    if port is not None and not 0 < port < 65536:     # else a connection waits and fails
+        raise ClusterError(f"not a Dask scheduler address: {address} (port {port} is not "
+                           f"between 1 and 65535)")
     client = _opened(Client, address)
     try:
         client.wait_for_workers(1, timeout=WORKER_SECONDS)
@@ -114,9 +118,27 @@ def _opened(client_class, address: str):
                            f"within {CONNECT_SECONDS} s (is it a Dask scheduler?)")
     if isinstance(outcome[0], BaseException):
         error = outcome[0]
+        if not isinstance(error, (OSError, TimeoutError)):  # it answered, not as Dask does
+            raise ClusterError(f"cannot reach the Dask scheduler at {address}: what "
+                               f"answered there is no Dask scheduler (its reply could not "
+                               f"be read: {type(error).__name__})")
         raise ClusterError(f"cannot reach the Dask scheduler at {address}: "
                            f"{type(error).__name__}: {_first_line(error)}")
     return outcome[0]
+
+
+def _port(address: str) -> int | None:
+    """The port of a resolved TCP-like Dask address ('tcp://host:port'), None for another
+    kind (an in-process 'inproc://' one) or none given."""
+    from distributed.comm.addressing import parse_address, parse_host_port
+
+    scheme, location = parse_address(address)
+    if scheme not in ("tcp", "tls", "ws", "wss"):
+        return None
+    try:
+        return parse_host_port(location)[1]
+    except ValueError:
+        return None
 
 
 def _worker_fingerprint() -> str:

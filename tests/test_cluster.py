@@ -101,6 +101,8 @@ def test_workers_running_other_code_are_refused(scheduler, monkeypatch):
 @pytest.mark.parametrize(("address", "words"), [
     ("nonsense-address", "not a Dask scheduler address: nonsense-address"),
     ("foo://1.2.3.4:5", "unknown address scheme"),
+    ("tcp://127.0.0.1:99999", "not a Dask scheduler address: tcp://127.0.0.1:99999 (port "
+                              "99999 is not between 1 and 65535)"),
 ])
 def test_a_bad_address_is_one_line_and_exit_2(address, words):
     result = CliRunner().invoke(cli, ["range", str(DESIGNS / "stool.yaml"),
@@ -201,6 +203,44 @@ def test_a_server_that_never_answers_is_one_line_and_exit_2(monkeypatch):
     assert result.stderr == (f"furncheck: cannot reach the Dask scheduler at "
                              f"tcp://127.0.0.1:{port}: no answer within 1 s (is it a Dask "
                              f"scheduler?)\n")
+
+
+def test_a_server_that_answers_as_no_dask_scheduler_is_one_line_and_exit_2(monkeypatch):
+    """Something at the address answers, but not as Dask does (an SSH banner and bytes
+    that Dask reads as a frame length of exbibytes): one line saying so, where it said
+    'MemoryError: Unable to allocate 2.82 EiB'."""
+    import socket
+    import threading
+
+    import furncheck.cluster as cluster
+
+    monkeypatch.setattr(cluster, "CONNECT_SECONDS", 2)
+    monkeypatch.setattr(cluster, "CONNECT_GRACE", 1)
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen()
+    port = server.getsockname()[1]
+
+    def banner() -> None:
+        while True:
+            try:
+                connection, _ = server.accept()
+            except OSError:
+                return
+            with connection:
+                connection.sendall(b"SSH-2.0-OpenSSH_9.6\r\n" + b"\xff" * 64)
+
+    threading.Thread(target=banner, daemon=True).start()
+    try:
+        result = CliRunner().invoke(cli, ["validate", str(DESIGNS / "stool.yaml"),
+                                          "--scheduler", f"tcp://127.0.0.1:{port}"])
+    finally:
+        server.close()
+    assert result.exit_code == 2
+    assert result.stderr.count("\n") == 1
+    assert result.stderr.startswith(f"furncheck: cannot reach the Dask scheduler at "
+                                    f"tcp://127.0.0.1:{port}: ")
+    assert "Unable to allocate" not in result.stderr
 
 
 def test_a_scheduler_without_workers_is_one_line_and_exit_2(monkeypatch):
