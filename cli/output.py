@@ -130,6 +130,35 @@ def _write(write, text: str, where: str) -> None:
         fail(f"cannot write the report to {where}: {error.strerror or error}")
 
 
+class WholeNumber(click.ParamType):
+    """A whole number from ``least`` to ``most`` (None: no limit), said in words where it
+    is not one ('expected a whole number of at least 1, got 'abc''), where click says
+    "'abc' is not a valid integer range" or "0 is not in the range x>=1"."""
+
+    name = "integer"
+
+    def __init__(self, least: int, most: int | None = None):
+        self.least, self.most = least, most
+
+    def convert(self, value, param, ctx) -> int:
+        if isinstance(value, int) and not isinstance(value, bool):
+            number = value
+        else:
+            try:
+                number = int(str(value).strip(), 10)
+            except ValueError:
+                number = None
+        if number is None or number < self.least or \
+                (self.most is not None and number > self.most):
+            self.fail(f"expected {self.wanted()}, got {value!r}", param, ctx)
+        return number
+
+    def wanted(self) -> str:
+        if self.most is None:
+            return f"a whole number of at least {self.least}"
+        return f"a whole number from {self.least} to {self.most}"
+
+
 MODEL_OPTION = click.option(
     "--model", type=click.Choice(list(tol.MODELS)), default=None,
     help="Statics model, over the files' own 'model': elastic (planks bend: contract 3a) "

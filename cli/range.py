@@ -8,6 +8,7 @@ from furncheck.cli.output import (
     MODEL_OPTION,
     SCHEDULER_OPTION,
     STDIN_FILENAME_OPTION,
+    WholeNumber,
     check_not_an_input,
     check_output,
     client_or_fail,
@@ -30,7 +31,7 @@ from furncheck.cli.output import (
                    "(repeatable), e.g. --lock seat.z.")
 @click.option("-o", "--output", metavar="FILE", default=None,
               help="Write the report to FILE instead of standard output.")
-@click.option("-j", "--jobs", type=click.IntRange(min=1), default=None,
+@click.option("-j", "--jobs", type=WholeNumber(1), default=None,
               help="Worker processes for many DOFs, at most the CPUs this run may use (its "
                    "affinity, a container's CPU quota); the output is the same.  [default: "
                    "all usable CPUs]")

@@ -9,6 +9,7 @@ import click
 from furncheck.cli.output import (
     MODEL_OPTION,
     STDIN_FILENAME_OPTION,
+    WholeNumber,
     check_not_an_input,
     check_output,
     config_or_fail,
@@ -41,7 +42,7 @@ def _combined_dofs(value: int) -> int:
               help=f"Most DOFs changed together by one suggestion, 1 to {MAX_COMBINED_DOFS} "
                    f"(their combinations grow as C(n, M): 5 takes minutes on a large "
                    f"design).")
-@click.option("--max-suggestions", "max_suggestions", type=click.IntRange(1, 100),
+@click.option("--max-suggestions", "max_suggestions", type=WholeNumber(1, 100),
               default=8, show_default=True, help="Most suggestions listed.")
 @click.option("--lock", "locks", metavar="DOF", multiple=True,
               help="A DOF that must not change, not even to keep joints together "

@@ -21,6 +21,7 @@ from furncheck.cli.output import (
     SCHEDULER_OPTION,
     STDIN,
     STDIN_FILENAME_OPTION,
+    WholeNumber,
     check_not_an_input,
     check_output,
     check_stdin_name,
@@ -46,7 +47,7 @@ the report does not go to that terminal too."""
 @click.option("-o", "--output", metavar="FILE", default=None,
               help="Write the report to FILE instead of standard output ('-': stdout); "
                    "the old FILE stays whole until the new report replaces it.")
-@click.option("-j", "--jobs", type=click.IntRange(min=1), default=None,
+@click.option("-j", "--jobs", type=WholeNumber(1), default=None,
               help="Processes checking designs, at most the CPUs this run may use (its "
                    "affinity, a container's CPU quota); a catalog that takes less than "
                    "about 0.2 s is checked in one.  [default: all usable CPUs]")

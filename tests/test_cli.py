@@ -84,6 +84,18 @@ def test_bad_options_are_usage_errors(calls, tmp_path, args):
     assert result.exit_code == 2 and "Traceback" not in result.output
 
 
+@pytest.mark.parametrize("value", ["abc", "0", "1.5", ""])
+def test_a_bad_job_count_is_said_in_words(calls, tmp_path, value):
+    """--jobs that is no whole number of at least 1: one line in words, exit 2, where
+    click said "'abc' is not a valid integer range" or "0 is not in the range x>=1"."""
+    (path,) = write(tmp_path, "valid.yaml")
+    result = run("validate", path, "--jobs", value)
+    assert result.exit_code == 2 and calls == []
+    assert result.output == (f"furncheck validate: invalid value for '-j' / '--jobs': "
+                             f"expected a whole number of at least 1, got {value!r} (see "
+                             f"'furncheck validate --help')\n")
+
+
 def test_exit_codes(calls, tmp_path):
     valid, bad = write(tmp_path, "valid.yaml", "bad.yaml")
     assert run("validate", valid).exit_code == 0

@@ -189,9 +189,14 @@ def test_utf8_byte_order_mark_is_fine(tmp_path):
 
 
 def test_yaml_syntax_error_has_line():
+    """A '[' left open on line 6: the parser stumbles on line 7's item, but the line
+    named (and so a GitHub annotation's) is the one with the mistake, and the message says
+    what it is; the parser's own words stay in it."""
     text = replace("    center: [0, 0, 406]", "    center: [0, 0, 406")
-    error = expect(text, "", 7, "YAML syntax error")
-    assert "flow sequence" in error.message
+    expect(text, "", 6, "YAML syntax error: the '[' opened on this line is not closed (did "
+                        "not find expected ',' or ']', found on line 7)")
+    mapping = replace("  - {plank: seat, mass: 10}", "  - {plank: seat, mass: 10\n  - x: 1")
+    expect(mapping, "", 16, "the '{' opened on this line is not closed")
 
 
 def test_a_bracket_never_closed_names_the_line_it_opens_on():
@@ -332,10 +337,24 @@ def test_boolean_is_not_a_number():
     expect(text, "planks[0].size[0]", 5, "expected a number, got a boolean (yes)")
 
 
-@pytest.mark.parametrize("value", [".nan", ".inf", "-.Inf", "1e999"])
+@pytest.mark.parametrize("value", [".nan", ".inf", "-.Inf"])
 def test_non_finite_number(value):
     text = replace("center: [0, 0, 406]", f"center: [0, {value}, 406]")
-    expect(text, "planks[0].center[1]", 6, "not a finite number")
+    expect(text, "planks[0].center[1]", 6, f"not a finite number ({value})")
+
+
+@pytest.mark.parametrize(("value", "shown"), [
+    ("1e999", "1e999"),
+    ("1" + "0" * 340, "1000000000...0000, 341 digits"),
+])
+def test_a_number_beyond_the_floats_is_out_of_range_and_shown_short(value, shown):
+    """A number written in digits that no float holds (1e999, or 341 digits) is out of
+    range, not 'not a finite number' (it is finite as written), and a long one is shown
+    cut: the message used to carry all 341 digits."""
+    text = replace("center: [0, 0, 406]", f"center: [0, {value}, 406]")
+    error = expect(text, "planks[0].center[1]", 6, f"out of range ({shown}: beyond the "
+                                                    "largest number, about 1.8e308)")
+    assert len(error.message) < 120
 
 
 def test_plain_exponent_notation_is_a_number():

@@ -271,6 +271,11 @@ def _tag_error(tag: str, path: str, line: int, source: str) -> DesignError:
     return DesignError(source, path, line, f"unsupported YAML tag {_quote(shown)}")
 
 
+_FLOW_CONTEXTS = {"while parsing a flow mapping": "{",
+                  "while parsing a flow sequence": "["}
+"""PyYAML's contexts of a bracket left open -> the bracket."""
+
+
 def _yaml_syntax_error(error: yaml.YAMLError, text: str, source: str) -> DesignError:
     """The parser's error as one line at the line it names: where the problem is, or,
     when the parser ran into the end of the file (a bracket or quote never closed), the
@@ -289,6 +294,15 @@ def _yaml_syntax_error(error: yaml.YAMLError, text: str, source: str) -> DesignE
         message = f"{message} ({context})"
     mark = problem_mark or context_mark
     line = None if mark is None else mark.line + 1
+    if context in _FLOW_CONTEXTS and problem_mark is not None and context_mark is not None \
+            and context_mark.line < problem_mark.line \
+            and problem_mark.index < len(text):
+        # a bracket left open: the parser stumbles on the next line's item, but the
+        # mistake is on the line where the bracket was opened
+        bracket = _FLOW_CONTEXTS[context]
+        message = (f"the {bracket!r} opened on this line is not closed ({problem}, found "
+                   f"on line {problem_mark.line + 1})")
+        line = context_mark.line + 1
     if problem_mark is not None and problem_mark.index >= len(text):
         message = f"{message}, at the end of the file"
         if context_mark is not None and context_mark.index < len(text):

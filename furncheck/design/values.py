@@ -141,6 +141,9 @@ class _Doc:
             self.fail(key, f"expected a number, got {_describe(node)}")
         if not math.isfinite(value):
             written = node.text if isinstance(node, _Scalar) else _JSON_CONSTANTS[str(value)]
+            if isinstance(node, _Scalar) and _DECIMAL.fullmatch(written):
+                self.fail(key, f"out of range ({_long_number(written)}: beyond the largest "
+                               f"number, about 1.8e308)")
             self.fail(key, f"not a finite number ({_one_line(written)})")
         return value
 
@@ -193,6 +196,19 @@ class _Doc:
             problems[0].more = tuple(problems[1:])
             raise problems[0]
         return node
+
+
+NUMBER_SHOWN = 24
+"""A number written with more characters than this is shown cut ('1000000000...0000, 341
+digits') in a message: a line for the user, not the whole of it."""
+
+
+def _long_number(text: str) -> str:
+    """``text``, a number as written, for a message (``NUMBER_SHOWN``)."""
+    if len(text) <= NUMBER_SHOWN:
+        return text
+    digits = sum(c.isdigit() for c in text)
+    return f"{text[:10]}...{text[-4:]}, {digits} digits"
 
 
 def _resolved(node: Any) -> Any:
