@@ -32,7 +32,7 @@ from furncheck.report import reporter
 from furncheck.report.entries import Entry
 from furncheck.result import DesignReport
 from furncheck.scan import error_report
-from furncheck.workers import local_jobs
+from furncheck.workers import local_jobs, stop_pool
 
 if TYPE_CHECKING:
     from furncheck.cache import ResultCache
@@ -248,8 +248,11 @@ def entries_in_workers(paths: list[str], fmt: str, jobs: int, model: str | None 
             for path in paths[given:]:
                 yield entry_of_report(error_report(path, reason), fmt)
         finished = True
-    finally:        # left early (the reader stopped): the tasks not started are dropped
-        pool.shutdown(wait=finished, cancel_futures=not finished)
+    finally:        # left early (the reader stopped, or a signal): nothing more is waited for
+        if finished:
+            pool.shutdown(wait=True)
+        else:
+            stop_pool(pool)
         gc.unfreeze()
 
 

@@ -3,6 +3,7 @@ every worker of furncheck's pools does first (``quiet_worker``)."""
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import signal
@@ -65,3 +66,33 @@ def quiet_worker() -> None:
     inherit the command line's handler, which unwinds the parent's run)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
+def stop_pool(pool) -> None:
+    """Shut a process pool down without waiting for its workers' tasks under way: the run
+    was interrupted (or its reader stopped), their results would be thrown away, and
+    waiting held an interrupted command for seconds (the interpreter's exit joins a
+    pool's workers).  Its workers are terminated (``concurrent.futures`` has no public
+    way before Python 3.14: its process table is read)."""
+    for process in list((getattr(pool, "_processes", None) or {}).values()):
+        try:
+            process.terminate()
+        except (OSError, ValueError, AttributeError):
+            pass
+    pool.shutdown(wait=False, cancel_futures=True)
+
+
+@contextlib.contextmanager
+def process_pool(**options):
+    """A ``ProcessPoolExecutor(**options)`` for a ``with`` block: shut down waiting for its
+    tasks when the block ends, without waiting (``stop_pool``) when it is left by an
+    exception (a signal: the command stops at once)."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    pool = ProcessPoolExecutor(**options)
+    try:
+        yield pool
+    except BaseException:
+        stop_pool(pool)
+        raise
+    pool.shutdown(wait=True)

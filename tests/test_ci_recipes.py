@@ -152,14 +152,19 @@ def test_an_interrupted_report_leaves_the_old_file(checked_paths, tmp_path, monk
 
 
 STOPPED_RUN = """
-import sys, time
+import os, sys, time
 from pathlib import Path
 import furncheck.batch as batch
 from furncheck.cli.main import run
 
 marker = Path(sys.argv.pop(1))
+parent = os.getpid()
+in_workers = "--jobs" in sys.argv and sys.argv[sys.argv.index("--jobs") + 1] != "1"
+batch.PARALLEL_AFTER = 0.0
 
-def slow(*args, **kwargs):      # the run is under way: the parent may signal it now
+def slow(path, *args, **kwargs):    # under way: the parent may be signalled now
+    if in_workers and os.getpid() == parent:
+        return batch.Entry(True, False, path)       # the first design, checked here
     marker.write_text("checking")
     time.sleep(60)
 
@@ -169,25 +174,29 @@ run()
 """
 
 
+@pytest.mark.parametrize("jobs", ["1", "2"])
 @pytest.mark.parametrize("name, code", [("SIGTERM", 143), ("SIGINT", 130)])
-def test_a_signalled_run_exits_with_its_own_code(tmp_path, name, code):
+def test_a_signalled_run_exits_with_its_own_code(tmp_path, name, code, jobs):
     """The console script stopped by SIGTERM (a CI's cancel or timeout) or SIGINT while
-    it checks: one line on stderr, exit 128 + the signal's number (143, 130: no finished
-    run exits so, where 1 means 'some design invalid'), the -o file as it was and no
-    temporary copy left beside it (SIGTERM used to kill the process on the spot, leaving
-    '.report.json.XXXX.tmp')."""
+    it checks, here or in its worker pool (--jobs 2, the workers busy for a minute): one
+    line on stderr, exit 128 + the signal's number (143, 130: no finished run exits so,
+    where 1 means 'some design invalid'), at once (the busy workers are stopped, not
+    waited for: an interrupted run with a pool took seconds to exit, and a second signal
+    in that time hung it), the -o file as it was and no temporary copy left beside it
+    (SIGTERM used to kill the process on the spot, leaving '.report.json.XXXX.tmp')."""
     import signal
     import time
 
-    valid, bad = write(tmp_path / "designs", "valid.yaml", "bad.yaml")
+    valid, bad, *more = write(tmp_path / "designs", "valid.yaml", "bad.yaml",
+                              *[f"valid{k}.yaml" for k in range(4)])
     out = tmp_path / "out"
     out.mkdir()
     report = out / "report.json"
     report.write_text("old report\n")
     marker = tmp_path / "marker"
     process = subprocess.Popen(
-        [sys.executable, "-c", STOPPED_RUN, str(marker), "validate", valid, bad,
-         "--no-cache", "--jobs", "1", "--format", "json", "-o", str(report)],
+        [sys.executable, "-c", STOPPED_RUN, str(marker), "validate", valid, bad, *more,
+         "--no-cache", "--jobs", jobs, "--format", "json", "-o", str(report)],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         deadline = time.monotonic() + 60
@@ -195,7 +204,7 @@ def test_a_signalled_run_exits_with_its_own_code(tmp_path, name, code):
             time.sleep(0.05)
         assert marker.exists(), process.communicate()
         process.send_signal(getattr(signal, name))
-        _, stderr = process.communicate(timeout=60)
+        _, stderr = process.communicate(timeout=30)     # not the workers' minute
     finally:
         if process.poll() is None:
             process.kill()
@@ -204,6 +213,28 @@ def test_a_signalled_run_exits_with_its_own_code(tmp_path, name, code):
         f"furncheck: interrupted ({name}); the report is incomplete"]
     assert report.read_text() == "old report\n"
     assert sorted(path.name for path in out.iterdir()) == ["report.json"]
+
+
+def test_after_the_first_signal_the_next_ends_the_run_at_once(monkeypatch):
+    """The console script's handler (``cli.main._stop``) stops the run on the first SIGINT
+    or SIGTERM and leaves both to their default action from then on: a CI's SIGTERM
+    7.5 s after its SIGINT ends the process instead of raising again inside its
+    unwinding (which hung it).  An inherited 'ignore' of SIGINT (a shell's trap) does not
+    keep Ctrl-C from stopping it either: the handler is installed whatever was there."""
+    import signal
+
+    from furncheck.cli import main as cli_main
+
+    monkeypatch.setattr(signal, "signal", lambda number, handler: set_to.append(
+        (number, handler)))
+    set_to: list = []
+    with pytest.raises(KeyboardInterrupt):
+        cli_main._stop(signal.SIGINT, None)
+    assert set_to == [(signal.SIGINT, signal.SIG_DFL), (signal.SIGTERM, signal.SIG_DFL)]
+    set_to.clear()
+    with pytest.raises(cli_main._Terminated):
+        cli_main._stop(signal.SIGTERM, None)
+    assert set_to == [(signal.SIGINT, signal.SIG_DFL), (signal.SIGTERM, signal.SIG_DFL)]
 
 
 def test_a_report_never_replaces_a_design_it_checks(tmp_path):

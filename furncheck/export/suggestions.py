@@ -25,7 +25,6 @@ import multiprocessing
 import os
 import re
 from collections.abc import Callable
-from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, replace
 from functools import partial
@@ -37,7 +36,7 @@ from furncheck.export.errors import ExportUnavailable
 from furncheck.export.findings import changed_planks
 from furncheck.export.folders import file_stem, pictures_missing, prepare_out_dir
 from furncheck.export.meshes import write_meshes
-from furncheck.workers import quiet_worker, usable_cpus
+from furncheck.workers import process_pool, quiet_worker, usable_cpus
 
 if TYPE_CHECKING:
     from furncheck.suggest import SuggestionReport
@@ -158,8 +157,8 @@ def draw_in_parallel(jobs: list[Callable[[], tuple[str, ...]]]) -> list[tuple[st
     global _JOBS
     _JOBS = jobs
     try:
-        with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"),
-                                 initializer=quiet_worker) as pool:
+        with process_pool(max_workers=workers, mp_context=multiprocessing.get_context("fork"),
+                          initializer=quiet_worker) as pool:
             return list(pool.map(_run_job, range(len(jobs))))
     except BrokenProcessPool:            # a worker died: draw here instead
         return [job() for job in jobs]

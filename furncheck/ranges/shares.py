@@ -11,12 +11,11 @@ from __future__ import annotations
 import gc
 import multiprocessing
 import time
-from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from typing import TYPE_CHECKING
 
 from furncheck.dofs import DOF_KINDS, Dof
-from furncheck.workers import quiet_worker
+from furncheck.workers import process_pool, quiet_worker
 
 if TYPE_CHECKING:
     from furncheck.ranges.finder import DofRange, RangeFinder
@@ -88,8 +87,8 @@ def ranges_in_workers(finder: RangeFinder, tasks: list[list[Dof]],
     # (measured: a tenth of the cabinet's work in the workers).
     gc.freeze()
     try:
-        with ProcessPoolExecutor(max_workers=min(jobs, len(tasks)), mp_context=context,
-                                 initializer=quiet_worker) as pool:
+        with process_pool(max_workers=min(jobs, len(tasks)), mp_context=context,
+                          initializer=quiet_worker) as pool:
             done = list(pool.map(_ranges_of, tasks))
     except (OSError, BrokenProcessPool):
         return None
