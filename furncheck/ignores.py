@@ -131,18 +131,22 @@ def patterns(lines: list[str] | tuple[str, ...], base: str, source: str,
     (a lone '!' or '\\', a reversed range) matches nothing (module docstring).
 
     ``excludes``: the lines are exclude patterns typed by a user (``--exclude``, the
-    config's ``exclude``), not a ``.gitignore`` file's: a leading './' is dropped
-    ('./designs/drafts' is 'designs/drafts', anchored at ``base``: git would read it
-    literally and match nothing), and a line that is not a valid pattern raises
-    ``PatternError`` instead of matching nothing unseen."""
+    config's ``exclude``), not a ``.gitignore`` file's: a path typed from the base folder
+    with a leading './' is that path anchored there ('./x.yaml' is '/x.yaml', x.yaml in
+    the base folder alone; './designs/drafts' is '/designs/drafts': git would read
+    either literally and match nothing), and a line that is not a valid pattern (a lone
+    '!' or '/', a reversed range, an unclosed '[') raises ``PatternError`` instead of
+    matching nothing unseen; a blank line or a '#' comment is passed over, as in a
+    ``.gitignore``."""
     import pathspec
 
     rules = []
     for line in lines:
         text = _without_trailing_spaces(line)
-        if excludes:
-            while text.startswith("./") and len(text) > 2:
-                text = text[2:].lstrip("/") or "/"
+        if excludes and (not text.strip() or text.startswith("#")):
+            continue
+        if excludes and text.startswith("./"):
+            text = "/" + text[2:].lstrip("/")
         folders_only = text.endswith("/")
         try:
             spec = pathspec.GitIgnoreSpec.from_lines([text[:-1] if folders_only else text])
@@ -152,7 +156,8 @@ def patterns(lines: list[str] | tuple[str, ...], base: str, source: str,
                                    ) from None
             continue
         if excludes and not any(pattern.include is not None for pattern in spec.patterns):
-            raise PatternError(f"{source}: {line!r} is not a pattern (it matches nothing)")
+            raise PatternError(f"{source}: {line!r} is not a valid gitignore pattern (it "
+                               "matches nothing)")
         rules.extend(Rule(pattern, bool(pattern.include), folders_only)
                      for pattern in spec.patterns if pattern.include is not None)
     return PatternFile(os.path.abspath(base), tuple(rules), source)

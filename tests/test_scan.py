@@ -210,22 +210,33 @@ def test_exclude_on_the_command_line_is_relative_to_the_current_folder(checked_p
 
 
 def test_an_exclude_is_typed_as_a_path_and_checked(checked_paths, tmp_path, monkeypatch):
-    """--exclude ./sub/x.yaml is sub/x.yaml (a leading './' is how paths are typed; git
-    would read it literally and match nothing); a pattern that is none ('[', a reversed
-    range), on the command line or in [tool.furncheck], is one line and exit 2 instead of
-    excluding nothing unseen."""
-    tree(tmp_path, {"sub/x.yaml": DESIGN, "y.yaml": DESIGN})
+    """--exclude ./sub/x.yaml is sub/x.yaml and ./y.yaml is y.yaml in the current folder
+    alone, not sub/y.yaml (a leading './' is how paths are typed; git would read it
+    literally and match nothing); a pattern that is none ('[', a reversed range, a lone
+    '!' or '/', './'), on the command line or in [tool.furncheck], is one line and exit 2
+    instead of excluding nothing unseen; a blank entry or a '#' comment in the config is
+    passed over, as in a .gitignore."""
+    tree(tmp_path, {"sub/x.yaml": DESIGN, "sub/y.yaml": DESIGN, "y.yaml": DESIGN})
     monkeypatch.chdir(tmp_path)
-    result = run("validate", ".", "--exclude", "./sub/x.yaml")
-    assert [Path(path).as_posix() for path in checked_paths] == ["y.yaml"]
+    result = run("validate", ".", "--exclude", "./sub/x.yaml", "--no-cache")
+    assert [Path(path).as_posix() for path in checked_paths] == ["sub/y.yaml", "y.yaml"]
     assert result.exit_code == 0
-    for pattern in ("[", "[z-a]"):
+    checked_paths.clear()
+    run("validate", ".", "--exclude", "./y.yaml", "--no-cache")
+    assert [Path(path).as_posix() for path in checked_paths] == ["sub/x.yaml", "sub/y.yaml"]
+    for pattern in ("[", "[z-a]", "!", "/", "./"):
         result = run("validate", ".", "--exclude", pattern)
         assert result.exit_code == 2
-        assert result.output.startswith(f"furncheck: --exclude: {pattern!r} is not ")
+        assert result.output.startswith(
+            f"furncheck: --exclude: {pattern!r} is not a valid gitignore pattern")
     (tmp_path / "pyproject.toml").write_text('[tool.furncheck]\nexclude = ["[z-a]"]\n')
     result = run("validate", ".")
     assert result.exit_code == 2 and "[tool.furncheck] exclude: '[z-a]' is not" in result.output
+    (tmp_path / "pyproject.toml").write_text(
+        '[tool.furncheck]\nexclude = ["", "#wip", "sub"]\n')
+    checked_paths.clear()
+    assert run("validate", ".", "--no-cache").exit_code == 0
+    assert [Path(path).as_posix() for path in checked_paths] == ["y.yaml"]
 
 
 def test_force_exclude_leaves_out_named_files_as_a_scan_would(checked_paths, tmp_path,
