@@ -197,6 +197,14 @@ def test_yaml_syntax_error_has_line():
                         "not find expected ',' or ']', found on line 7)")
     mapping = replace("  - {plank: seat, mass: 10}", "  - {plank: seat, mass: 10\n  - x: 1")
     expect(mapping, "", 16, "the '{' opened on this line is not closed")
+    # a bracket closed further on, a comma missing inside it: the parser's own line (where
+    # the next item starts) and words, not 'not closed' (quotes and comments with
+    # brackets in them do not count)
+    comma = ("furncheck: 1\nname: 'a [b'\nplanks: [\n  {id: a, size: [1, 1], center: [0, 0, 6]}"
+             "  # {\n  {id: b, size: [1, 1], center: [0, 0, 6]}\n]\n")
+    error = expect(comma, "", 5, "did not find expected ',' or ']' (while parsing a flow "
+                                 "sequence)")
+    assert "not closed" not in error.message
 
 
 def test_a_bracket_never_closed_names_the_line_it_opens_on():

@@ -276,6 +276,41 @@ _FLOW_CONTEXTS = {"while parsing a flow mapping": "{",
 """PyYAML's contexts of a bracket left open -> the bracket."""
 
 
+def _closed(text: str, start: int, bracket: str) -> bool:
+    """Whether the ``bracket`` ('{' or '[') at ``text[start]`` is closed further on: its
+    match found counting brackets of both kinds, outside quoted text and comments (a
+    '#' after a space or at a line's start)."""
+    closing = {"{": "}", "[": "]"}
+    stack: list[str] = []
+    quote = None
+    k = start
+    while k < len(text):
+        c = text[k]
+        if quote is not None:
+            if c == "\\" and quote == '"':
+                k += 1
+            elif c == quote:
+                if quote == "'" and text[k + 1:k + 2] == "'":
+                    k += 1                              # '' inside single quotes
+                else:
+                    quote = None
+        elif c in "'\"":
+            quote = c
+        elif c == "#" and (k == 0 or text[k - 1] in " \t\n\r"):
+            end = text.find("\n", k)
+            k = len(text) if end < 0 else end
+            continue
+        elif c in closing:
+            stack.append(closing[c])
+        elif c in "}]":
+            if not stack or stack.pop() != c:
+                return False
+            if not stack:
+                return True
+        k += 1
+    return False
+
+
 def _yaml_syntax_error(error: yaml.YAMLError, text: str, source: str) -> DesignError:
     """The parser's error as one line at the line it names: where the problem is, or,
     when the parser ran into the end of the file (a bracket or quote never closed), the
@@ -296,9 +331,11 @@ def _yaml_syntax_error(error: yaml.YAMLError, text: str, source: str) -> DesignE
     line = None if mark is None else mark.line + 1
     if context in _FLOW_CONTEXTS and problem_mark is not None and context_mark is not None \
             and context_mark.line < problem_mark.line \
-            and problem_mark.index < len(text):
+            and problem_mark.index < len(text) \
+            and not _closed(text, context_mark.index, _FLOW_CONTEXTS[context]):
         # a bracket left open: the parser stumbles on the next line's item, but the
-        # mistake is on the line where the bracket was opened
+        # mistake is on the line where the bracket was opened (one closed further on
+        # is missing a comma where the parser stopped: its line stays)
         bracket = _FLOW_CONTEXTS[context]
         message = (f"the {bracket!r} opened on this line is not closed ({problem}, found "
                    f"on line {problem_mark.line + 1})")
