@@ -118,7 +118,8 @@ def _opened(client_class, address: str):
                            f"within {CONNECT_SECONDS} s (is it a Dask scheduler?)")
     if isinstance(outcome[0], BaseException):
         error = outcome[0]
-        if not isinstance(error, (OSError, TimeoutError)):  # it answered, not as Dask does
+        if isinstance(error, (MemoryError, OverflowError)):
+            # it answered, but with what Dask reads as a frame of exbibytes: no scheduler
             raise ClusterError(f"cannot reach the Dask scheduler at {address}: what "
                                f"answered there is no Dask scheduler (its reply could not "
                                f"be read: {type(error).__name__})")
