@@ -107,18 +107,12 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
         check_output(html_file, "the report page")
     if views_dir is not None:
         _check_views_dir(views_dir)
-    caching = use_cache if use_cache is not None else config.cache is not False
-    cache_folder = None
-    if caching:
-        from furncheck.cache import ENV_DIRECTORY, default_directory
-
-        chosen = cache_dir or os.environ.get(ENV_DIRECTORY) or config.cache_dir
-        cache_folder = os.path.expanduser(chosen) if chosen else default_directory()
+    cache_folder = _cache_folder(cache_dir, config)
     scan_options = ScanOptions(
         excludes=_exclude_patterns(excludes, config),
         skip_non_designs=bool(skip_non_designs or config.skip_non_designs),
         force_exclude=bool(force_exclude or config.force_exclude),
-        unscanned=() if cache_folder is None else (os.path.abspath(cache_folder),))
+        unscanned=(os.path.abspath(cache_folder),))     # with --no-cache too: no designs
     collected = collect(paths, scan_options)
     check_not_an_input(output, collected.sources)
     if html_file is not None:
@@ -127,7 +121,8 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
         click.echo(f"furncheck: skipped {collected.skipped} "
                    f"file{'s' if collected.skipped != 1 else ''} without a top-level "
                    f"'furncheck' key (not designs)", err=True)
-    cache = None if cache_folder is None else open_cache(cache_folder, model)
+    caching = use_cache if use_cache is not None else config.cache is not False
+    cache = open_cache(cache_folder, model) if caching else None
     sources = [_check_stdin(stdin_filename, model, cache) if source == STDIN else source
                for source in collected.sources]
     summary = Summary()
@@ -216,12 +211,19 @@ def _exclude_patterns(excludes: tuple[str, ...], config) -> tuple:
         fail(str(error))
 
 
+def _cache_folder(option: str | None, config) -> str:
+    """The result cache's folder: --cache-dir, else $FURNCHECK_CACHE_DIR, else
+    ``cache-dir`` of [tool.furncheck], else the user cache directory (a CI job's variable
+    wins over the repository's file, as the command line does); '~' expanded in each."""
+    from furncheck.cache import ENV_DIRECTORY, default_directory
+
+    chosen = option or os.environ.get(ENV_DIRECTORY) or config.cache_dir
+    return os.path.expanduser(chosen) if chosen else default_directory()
+
+
 def open_cache(directory: str, model: str | None):
-    """The result cache in ``directory`` for runs in ``model``, its writability found out
-    (``ResultCache.probe``).  ``validate`` picks the directory from --cache-dir, else
-    $FURNCHECK_CACHE_DIR, else ``cache-dir`` of [tool.furncheck], else the user cache
-    directory: a CI job's variable wins over the repository's file, as the command line
-    does."""
+    """The result cache in ``directory`` (``_cache_folder``) for runs in ``model``, its
+    writability found out (``ResultCache.probe``)."""
     from furncheck.cache import ResultCache
 
     cache = ResultCache(directory, {"model": model})

@@ -153,12 +153,18 @@ def find_design_files(folder: str, excludes: tuple[PatternFile, ...] = (),
 
     scan = FolderScan()
     visited: set[tuple[int, int]] = set()
-    for path in unscanned:          # as if met before: never entered
+    try:
+        own = os.stat(folder)
+        own = (own.st_dev, own.st_ino)
+    except OSError:
+        own = None
+    for path in unscanned:          # as if met before: never entered (unless scanned itself)
         try:
             identity = os.stat(path)
         except OSError:
             continue
-        visited.add((identity.st_dev, identity.st_ino))
+        if (identity.st_dev, identity.st_ino) != own:
+            visited.add((identity.st_dev, identity.st_ino))
     candidates: list[str] = []
     top = os.path.normpath(folder)
     direct = [(top, rules_above(os.path.abspath(top), excludes))]

@@ -330,9 +330,14 @@ def test_a_file_that_is_no_design_is_counted_once(checked_paths, tmp_path):
     cache = str(tmp_path / "d" / "results-cache")
     cold = run("validate", folder, "--cache-dir", cache)
     warm = run("validate", folder, "--cache-dir", cache)
+    uncached = run("validate", folder, "--cache-dir", cache, "--no-cache")
     assert list(Path(cache).rglob("*.*"))
-    assert cold.stderr == warm.stderr and "skipped 1 file without" in warm.stderr
-    assert cold.stdout == warm.stdout
+    assert cold.stderr == warm.stderr == uncached.stderr
+    assert "skipped 1 file without" in warm.stderr
+    assert cold.stdout == warm.stdout == uncached.stdout
+    # the cache's folder named as the folder to scan is scanned (it holds no design)
+    named = run("validate", cache, "--cache-dir", cache)
+    assert "no design files" in named.output
 
 
 def test_a_named_file_is_always_checked(checked_paths, tmp_path):
