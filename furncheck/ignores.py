@@ -238,20 +238,7 @@ def rules_above(folder: str, excludes: tuple[PatternFile, ...] = ()) -> IgnoreRu
     not yet ``folder``'s own (none outside a repository), and ``excludes``; where they
     leave out ``folder`` or a folder above it, without the patterns that do
     (``PatternFile.opened_at``)."""
-    root = repository_root(folder)
-    gitignores: list[PatternFile] = []
-    if root is not None:
-        info = read_pattern_file(os.path.join(root, GIT_DIR, "info", "exclude"), root)
-        if info is not None:
-            gitignores.append(info)
-        relative = os.path.relpath(folder, root)
-        parts = [] if relative == os.curdir else relative.split(os.sep)
-        current = root
-        for part in parts:
-            own = read_pattern_file(os.path.join(current, GITIGNORE), current)
-            if own is not None:
-                gitignores.append(own)
-            current = os.path.join(current, part)
+    gitignores = _gitignores_above(folder)
     rules = IgnoreRules(tuple(gitignores), excludes)
     ancestors = [folder]
     while os.path.dirname(ancestors[-1]) != ancestors[-1]:
@@ -261,3 +248,46 @@ def rules_above(folder: str, excludes: tuple[PatternFile, ...] = ()) -> IgnoreRu
         return rules
     return IgnoreRules(tuple(rule.opened_at(left_out) for rule in gitignores),
                        tuple(rule.opened_at(left_out) for rule in excludes))
+
+
+def _gitignores_above(folder: str) -> list[PatternFile]:
+    """The gitignore files of the folders above ``folder`` (absolute) up to the top of its
+    repository, outermost first, and ``.git/info/exclude``; none outside a repository."""
+    root = repository_root(folder)
+    gitignores: list[PatternFile] = []
+    if root is None:
+        return gitignores
+    info = read_pattern_file(os.path.join(root, GIT_DIR, "info", "exclude"), root)
+    if info is not None:
+        gitignores.append(info)
+    relative = os.path.relpath(folder, root)
+    parts = [] if relative == os.curdir else relative.split(os.sep)
+    current = root
+    for part in parts:
+        own = read_pattern_file(os.path.join(current, GITIGNORE), current)
+        if own is not None:
+            gitignores.append(own)
+        current = os.path.join(current, part)
+    return gitignores
+
+
+def left_out_by_a_scan(path: str, excludes: tuple[PatternFile, ...] = ()) -> bool:
+    """Whether a scan of the repository (or of the current folder, outside one) would
+    leave out the file ``path``: a hidden name on its way there, or a ``.gitignore`` or
+    an exclude pattern that ignores it or a folder it lies in (``--force-exclude``: a
+    hook handed the changed files checks what CI's scan checks)."""
+    absolute = os.path.abspath(path)
+    folder = os.path.dirname(absolute)
+    top = repository_root(folder) or os.path.abspath(os.curdir)
+    relative = os.path.relpath(absolute, top)
+    if not relative.startswith(os.pardir) and any(
+            part.startswith(".") for part in relative.split(os.sep)):
+        return True
+    rules = IgnoreRules(tuple(_gitignores_above(folder)), excludes).entering(folder)
+    current, is_dir = absolute, False
+    while not rules.ignored(current, is_dir):
+        parent = os.path.dirname(current)
+        if parent == current:
+            return False
+        current, is_dir = parent, True
+    return True

@@ -44,9 +44,10 @@ STDIN = "-"
 class ScanOptions:
     """How PATHs become files.  ``excludes``: exclude patterns, each anchored at its own
     folder; ``skip_non_designs``: also leave out named files without a top-level
-    ``furncheck`` key; ``force_exclude``: also leave out named files that an exclude
-    pattern matches (a pre-commit hook, handed the changed files one by one, then skips
-    what a CI run of the folder would); ``unscanned``: folders (absolute) a scan never
+    ``furncheck`` key; ``force_exclude``: also leave out named files that a scan would
+    leave out (a hidden name, a .gitignore or an exclude pattern: a pre-commit hook,
+    handed the changed files one by one, then skips what a CI run of the folder would);
+    ``unscanned``: folders (absolute) a scan never
     enters besides (the result cache's, when it lies inside a scanned tree: its entries
     are no designs, and counting them made a warm run's stderr differ from a cold
     one's)."""
@@ -105,18 +106,11 @@ def _identity(path: str) -> str:
 
 
 def _excluded(path: str, options: ScanOptions) -> bool:
-    """Whether an exclude pattern matches the named file ``path`` or a folder it lies in
-    (``force_exclude``: a scan would not have entered that folder)."""
-    from furncheck.ignores import IgnoreRules
+    """Whether a scan would have left out the named file ``path`` (``force_exclude``:
+    ``ignores.left_out_by_a_scan``)."""
+    from furncheck.ignores import left_out_by_a_scan
 
-    rules = IgnoreRules(excludes=options.excludes)
-    current, is_dir = os.path.abspath(path), False
-    while not rules.ignored(current, is_dir):
-        parent = os.path.dirname(current)
-        if parent == current:
-            return False
-        current, is_dir = parent, True
-    return True
+    return left_out_by_a_scan(path, options.excludes)
 
 
 def _scan_folder(folder: str, options: ScanOptions, collected: Collected) -> list[str]:

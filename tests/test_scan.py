@@ -244,7 +244,8 @@ def test_force_exclude_leaves_out_named_files_as_a_scan_would(checked_paths, tmp
     """With exclude = ["drafts"] in [tool.furncheck], a scan of designs/ leaves out
     designs/drafts/; a hook that names designs/drafts/t.yaml checks it (a named file is
     always checked) unless --force-exclude (the hook's own option) or force-exclude = true
-    says to leave it out too; an empty run is then 0 designs, exit 0."""
+    says to leave it out too; an empty run is then 0 designs, exit 0.  So are named files
+    in hidden folders and git-ignored ones, as a scan leaves them out."""
     tree(tmp_path, {"designs/drafts/t.yaml": DESIGN, "designs/ok.yaml": DESIGN})
     monkeypatch.chdir(tmp_path)
     (tmp_path / "pyproject.toml").write_text('[tool.furncheck]\nexclude = ["drafts"]\n')
@@ -263,6 +264,11 @@ def test_force_exclude_leaves_out_named_files_as_a_scan_would(checked_paths, tmp
     result = run("validate", "designs/drafts/t.yaml")
     assert checked_paths == [] and result.exit_code == 0
     assert "0 designs" in result.output
+    # what a scan leaves out besides: a hidden folder's file, a git-ignored one
+    tree(tmp_path, {".git/HEAD": "", ".gitignore": "old/\n", ".wip/h.yaml": DESIGN,
+                    "designs/old/o.yaml": DESIGN})
+    run("validate", ".wip/h.yaml", "designs/old/o.yaml", "designs/ok.yaml", "--no-cache")
+    assert checked_paths == ["designs/ok.yaml"]
 
 
 # --- files that are no designs ------------------------------------------------------------
