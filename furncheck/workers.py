@@ -8,10 +8,13 @@ import math
 import os
 import signal
 
-CGROUP_FILES = ("/sys/fs/cgroup/cpu.max",
-                ("/sys/fs/cgroup/cpu/cpu.cfs_quota_us", "/sys/fs/cgroup/cpu/cpu.cfs_period_us"))
-"""Where a container's CPU quota is read: cgroup v2's ``cpu.max`` ('QUOTA PERIOD' or
-'max PERIOD'), else cgroup v1's quota and period files (quota -1: none)."""
+CGROUP_ROOT = "/sys/fs/cgroup"
+"""Where the cgroup file systems are mounted: cgroup v2's ``cpu.max`` ('QUOTA PERIOD' or
+'max PERIOD') in this process's own cgroup folder and each folder above it, else cgroup
+v1's ``cpu/cpu.cfs_quota_us`` and ``cpu/cpu.cfs_period_us`` (quota -1: none)."""
+
+CGROUP_SELF = "/proc/self/cgroup"
+"""This process's cgroups: the v2 line '0::/path' names its folder below CGROUP_ROOT."""
 
 
 def usable_cpus() -> int:
@@ -29,24 +32,56 @@ def usable_cpus() -> int:
 
 
 def _cgroup_quota() -> int | None:
-    """The container's CPU quota in whole CPUs (rounded up), None without one."""
-    v2, (v1_quota, v1_period) = CGROUP_FILES
+    """The container's CPU quota in whole CPUs (rounded up), None without one: the least
+    of the cgroup v2 limits on this process's cgroup and those above it (a job's limit
+    may sit on a parent), else cgroup v1's."""
+    quotas = [q for q in map(_quota_of_cpu_max, _cpu_max_files()) if q is not None]
+    if quotas:
+        return min(quotas)
+    v1 = os.path.join(CGROUP_ROOT, "cpu")
+    return _quota(_read(os.path.join(v1, "cpu.cfs_quota_us")),
+                  _read(os.path.join(v1, "cpu.cfs_period_us")))
+
+
+def _cpu_max_files() -> list[str]:
+    """cgroup v2's ``cpu.max`` of this process's cgroup and of every cgroup above it."""
+    own = ""
+    for line in (_read(CGROUP_SELF) or "").splitlines():
+        if line.startswith("0::"):
+            own = line[3:].strip()
+    folder = os.path.normpath(os.path.join(CGROUP_ROOT, own.lstrip("/")))
+    files = []
+    while True:
+        files.append(os.path.join(folder, "cpu.max"))
+        if os.path.normpath(folder) == os.path.normpath(CGROUP_ROOT) or \
+                os.path.dirname(folder) == folder:
+            return files
+        folder = os.path.dirname(folder)
+
+
+def _quota_of_cpu_max(path: str) -> int | None:
+    fields = (_read(path) or "").split()
+    return _quota(*fields[:2]) if len(fields) >= 2 else None
+
+
+def _quota(quota: str | None, period: str | None) -> int | None:
+    """ceil(quota / period) CPUs, None where there is no limit ('max', -1, 0, missing or
+    not a number)."""
     try:
-        with open(v2, encoding="ascii") as stream:
-            quota, period = stream.read().split()[:2]
-        if quota == "max":
-            return None
-        return math.ceil(int(quota) / int(period))
-    except (OSError, ValueError):
-        pass
-    try:
-        with open(v1_quota, encoding="ascii") as stream:
-            quota = int(stream.read())
-        with open(v1_period, encoding="ascii") as stream:
-            period = int(stream.read())
-    except (OSError, ValueError):
+        quota_us, period_us = int(quota), int(period)
+    except (TypeError, ValueError):
         return None
-    return math.ceil(quota / period) if quota > 0 and period > 0 else None
+    if quota_us <= 0 or period_us <= 0:
+        return None
+    return math.ceil(quota_us / period_us)
+
+
+def _read(path: str) -> str | None:
+    try:
+        with open(path, encoding="ascii", errors="replace") as stream:
+            return stream.read()
+    except OSError:
+        return None
 
 
 def local_jobs(jobs: int | None) -> int:

@@ -239,27 +239,37 @@ def test_workers_leave_ctrl_c_to_the_parent(tmp_path, monkeypatch):
 
 def test_the_workers_are_at_most_the_usable_cpus(tmp_path, monkeypatch):
     """``workers.usable_cpus``: the CPUs of the process's affinity, at most a container's
-    quota rounded up (cgroup v2 'cpu.max': '150000 100000' is 1.5 CPUs, so 2; 'max' is
-    none; else cgroup v1's quota and period files, -1 none); ``local_jobs`` caps --jobs
-    at it and defaults to it."""
+    quota rounded up: the least cgroup v2 'cpu.max' of the process's own cgroup (named in
+    /proc/self/cgroup) and those above it ('150000 100000' is 1.5 CPUs, so 2; 'max', a
+    zero period or a negative quota is none), else cgroup v1's quota and period (-1:
+    none); ``local_jobs`` caps --jobs at it and defaults to it."""
     from furncheck import workers
 
-    v2, v1_quota, v1_period = (tmp_path / "cpu.max", tmp_path / "quota", tmp_path / "period")
-    monkeypatch.setattr(workers, "CGROUP_FILES", (str(v2), (str(v1_quota), str(v1_period))))
-    monkeypatch.setattr(workers.os, "sched_getaffinity", lambda pid: {0, 1, 2, 3, 4, 5})
+    root, own = tmp_path / "cgroup", tmp_path / "cgroup" / "ci.slice" / "job-7"
+    own.mkdir(parents=True)
+    self_file = tmp_path / "self"
+    self_file.write_text("0::/ci.slice/job-7\n")
+    monkeypatch.setattr(workers, "CGROUP_ROOT", str(root))
+    monkeypatch.setattr(workers, "CGROUP_SELF", str(self_file))
+    monkeypatch.setattr(workers.os, "sched_getaffinity", lambda pid: {0, 1, 2, 3, 4, 5},
+                        raising=False)
     assert workers.usable_cpus() == 6                       # no cgroup files: affinity
-    v2.write_text("150000 100000\n")
+    (root / "ci.slice" / "cpu.max").write_text("150000 100000\n")    # on a parent
     assert workers.usable_cpus() == 2
     assert (workers.local_jobs(None), workers.local_jobs(40), workers.local_jobs(1)) == (2, 2, 1)
-    v2.write_text("max 100000\n")
-    assert workers.usable_cpus() == 6
-    v2.unlink()
-    v1_quota.write_text("300000\n")
-    v1_period.write_text("100000\n")
+    (own / "cpu.max").write_text("100000 100000\n")                 # and on its own
+    assert workers.usable_cpus() == 1
+    for text in ("max 100000", "5 0", "-5 100000", "junk"):
+        (own / "cpu.max").write_text(text + "\n")
+        (root / "ci.slice" / "cpu.max").write_text(text + "\n")
+        assert workers.usable_cpus() == 6, text
+    (root / "cpu").mkdir()
+    (root / "cpu" / "cpu.cfs_quota_us").write_text("300000\n")
+    (root / "cpu" / "cpu.cfs_period_us").write_text("100000\n")
     assert workers.usable_cpus() == 3
-    v1_quota.write_text("-1\n")
+    (root / "cpu" / "cpu.cfs_quota_us").write_text("-1\n")
     assert workers.usable_cpus() == 6
-    monkeypatch.setattr(workers.os, "sched_getaffinity", lambda pid: {3})
+    monkeypatch.setattr(workers.os, "sched_getaffinity", lambda pid: {3}, raising=False)
     assert workers.local_jobs(40) == 1
 
 
