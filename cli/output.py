@@ -23,22 +23,33 @@ def fail(message: str | list[str]) -> NoReturn:
 
 def output_problem(output: str) -> str | None:
     """Why ``-o output`` cannot be written, found before any work is done, or None.  A
-    missing folder on its path is made (as ``--views`` makes its folder, and pytest's
-    ``--junitxml`` its report's): a CI job writes to a fresh 'reports/' folder."""
-    if os.path.isdir(output):
-        return "it is a directory"
+    missing folder on its path is no problem: it is made when the report is written
+    (``make_folder``; as ``--views`` makes its folder, and pytest's ``--junitxml`` its
+    report's: a CI job writes to a fresh 'reports/' folder), not before, so a run that
+    fails leaves none behind."""
+    if output.endswith(("/", os.sep)) or os.path.isdir(output):
+        return "it is a directory" if os.path.isdir(output) else "it names a folder"
     parent = os.path.dirname(os.path.abspath(output))
-    if not os.path.isdir(parent):
-        try:
-            os.makedirs(parent, exist_ok=True)
-        except OSError as error:
-            return f"cannot make the folder {os.path.dirname(output) or parent} " \
-                f"({error.strerror or error})"
+    existing = parent
+    while not os.path.exists(existing):
+        existing = os.path.dirname(existing)
+    if not os.path.isdir(existing):
+        return f"{existing} is a file, not a folder"
+    if existing != parent:
+        return None if os.access(existing, os.W_OK) else \
+            f"cannot make the folder {os.path.dirname(output)} (permission denied)"
     if os.path.exists(output) and not os.access(output, os.W_OK):
         return "permission denied"
     if not os.path.exists(output) and not os.access(parent, os.W_OK):
         return "permission denied"
     return None
+
+
+def make_folder(path: str) -> None:
+    """Make the missing folders on ``path``'s way (a file to write; OSError as raised)."""
+    parent = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(parent):
+        os.makedirs(parent, exist_ok=True)
 
 
 def check_output(output: str | None, what: str = "the report") -> None:
@@ -86,6 +97,7 @@ def write_chunks(chunks: Iterable[str], output: str | None) -> None:
         _write_blocks(chunks, _echo, "standard output")
         return
     try:
+        make_folder(output)
         with replacing(output, durable=True) as stream:
             _write_blocks(chunks, lambda text: stream.write(_utf8(text)), output)
     except OSError as error:

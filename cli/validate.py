@@ -28,6 +28,7 @@ from furncheck.cli.output import (
     client_or_fail,
     config_or_fail,
     fail,
+    make_folder,
     stdin_document,
     write_chunks,
 )
@@ -176,6 +177,7 @@ def _pictures(sources: list, model: str | None, views_dir: str | None,
             fail(f"cannot write views to {views_dir}: {error.strerror or error}")
     if html_file is not None:
         try:
+            make_folder(html_file)
             write_catalog_page(reports, html_file)
         except OSError as error:
             fail(f"cannot write the report page {html_file}: {error.strerror or error}")

@@ -257,18 +257,27 @@ def test_a_report_never_replaces_a_design_it_checks(tmp_path):
 
 
 def test_a_missing_report_folder_is_made(checked_paths, tmp_path):
-    """-o reports/ci/x.json where reports/ does not exist yet: the folders are made (as
-    --views makes its own); below a file, one line and exit 2."""
+    """-o reports/ci/x.json where reports/ does not exist yet: the folders are made when
+    the report is written (as --views makes its own), none by a run refused before it
+    writes; below a file, or -o naming a folder ('out/'), one line and exit 2."""
     (valid,) = write(tmp_path / "designs", "valid.yaml")
     report = tmp_path / "reports" / "ci" / "x.json"
     result = run("validate", valid, "--no-cache", "--format", "json", "-o", str(report))
     assert result.exit_code == 0
     assert json.loads(report.read_text())["summary"]["designs"] == 1
+    refused = tmp_path / "other" / "x.json"
+    assert run("validate", valid, "--exclude", "[", "-o", str(refused)).exit_code == 2
+    assert not (tmp_path / "other").exists()
     blocked = tmp_path / "designs" / "valid.yaml" / "x.json"
     result = run("validate", valid, "--no-cache", "-o", str(blocked))
     assert result.exit_code == 2
-    assert result.output.startswith(f"furncheck: cannot write the report to {blocked}: "
-                                    "cannot make the folder")
+    assert result.output == (f"furncheck: cannot write the report to {blocked}: "
+                             f"{tmp_path / 'designs' / 'valid.yaml'} is a file, not a "
+                             "folder\n")
+    folder = str(tmp_path / "new") + os.sep
+    result = run("validate", valid, "--no-cache", "-o", folder)
+    assert result.exit_code == 2 and result.output.endswith("it names a folder\n")
+    assert not (tmp_path / "new").exists()
 
 
 def test_output_keeps_the_files_permissions_and_symlinks(checked_paths, tmp_path):
