@@ -107,13 +107,18 @@ def test_missing_file(tmp_path):
 
 def test_broken_symbolic_link(tmp_path):
     """A link whose target is gone is named as such, not as a missing file (the link is
-    there, in the folder scanned)."""
+    there, in the folder scanned), with where it leads: through a chain of links, the
+    path that is missing at its end, not the link in the middle (which exists)."""
+    gone = tmp_path.resolve() / "gone.yaml"
+    middle = tmp_path / "middle.yaml"
+    middle.symlink_to(gone)
     path = tmp_path / "shelf.yaml"
-    path.symlink_to(tmp_path / "gone.yaml")
-    with pytest.raises(DesignError) as info:
-        load_design(str(path))
-    assert checked(info.value, str(path)).message == \
-        f"broken symbolic link (to {tmp_path / 'gone.yaml'}, which does not exist)"
+    path.symlink_to(middle)
+    for link in (middle, path):
+        with pytest.raises(DesignError) as info:
+            load_design(str(link))
+        assert checked(info.value, str(link)).message == \
+            f"broken symbolic link (it leads to {gone}, which does not exist)"
 
 
 def test_directory(tmp_path):
@@ -354,15 +359,23 @@ def test_non_finite_number(value):
 @pytest.mark.parametrize(("value", "shown"), [
     ("1e999", "1e999"),
     ("1" + "0" * 340, "1000000000...0000, 341 digits"),
+    ("1" + "0" * 340 + "e5", "1000000000...00e5, 341 digits"),
 ])
 def test_a_number_beyond_the_floats_is_out_of_range_and_shown_short(value, shown):
     """A number written in digits that no float holds (1e999, or 341 digits) is out of
     range, not 'not a finite number' (it is finite as written), and a long one is shown
     cut: the message used to carry all 341 digits."""
     text = replace("center: [0, 0, 406]", f"center: [0, {value}, 406]")
-    error = expect(text, "planks[0].center[1]", 6, f"out of range ({shown}: beyond the "
-                                                    "largest number, about 1.8e308)")
+    error = expect(text, "planks[0].center[1]", 6, f"out of range ({shown}: beyond "
+                                                    "+-1.8e308, the largest a number can be)")
     assert len(error.message) < 120
+    # in a JSON design too (where it read 'not a finite number (Infinity)'), negative too
+    sign = "-" if len(value) < 10 else ""
+    document = json.dumps(base_dict()).replace('"mass": 10', f'"mass": {sign}{value}')
+    error = error_of(document, "json", "bench.json")
+    assert error.key == "loads[0].mass"
+    assert error.message == (f"out of range ({sign}{shown}: beyond +-1.8e308, the largest a "
+                             f"number can be)")
 
 
 def test_plain_exponent_notation_is_a_number():

@@ -17,6 +17,7 @@ in ``furncheck.design.load``, which also uses the message helpers at the end of 
 from __future__ import annotations
 
 import codecs
+import math
 import os
 import re
 import stat
@@ -58,10 +59,10 @@ def _check_regular_file(path: str) -> None:
     try:
         info = os.stat(path)
     except FileNotFoundError:
-        if os.path.islink(path):        # the link is there; what it names is not
-            raise DesignError(path, "", None, "broken symbolic link (to "
-                                              f"{os.readlink(path)}, which does not exist)"
-                              ) from None
+        if os.path.islink(path):        # the link is there; where it leads is not
+            raise DesignError(path, "", None, "broken symbolic link (it leads to "
+                                              f"{os.path.realpath(path)}, which does not "
+                                              "exist)") from None
         raise DesignError(path, "", None, "no such file") from None
     except OSError as error:
         raise DesignError(path, "", None, f"cannot read file: {error.strerror}") from None
@@ -380,13 +381,20 @@ def _json_constant(name: str) -> float:
     return float(name.replace("Infinity", "inf"))
 
 
+def _json_number(text: str) -> float | _Scalar:
+    """A JSON number as a float; one no float holds (1e400, 400 digits) kept as written,
+    as a YAML scalar, so that its message can show it ('out of range (1e400: ...)')."""
+    value = float(text)
+    return value if math.isfinite(value) else _Scalar(text, True)
+
+
 def _read_json(text: str, source: str) -> Any:
     """Tree of dicts, lists, str, float (every number), bool and None."""
     import json  # for JSON designs only: YAML is the common case
 
     try:
         tree = json.loads(text, object_pairs_hook=_json_object, parse_constant=_json_constant,
-                          parse_int=float, parse_float=float)
+                          parse_int=_json_number, parse_float=_json_number)
     except _DuplicateKey as duplicate:
         raise _json_duplicate_error(text, source, duplicate.key) from None
     except json.JSONDecodeError as error:

@@ -142,8 +142,8 @@ class _Doc:
         if not math.isfinite(value):
             written = node.text if isinstance(node, _Scalar) else _JSON_CONSTANTS[str(value)]
             if isinstance(node, _Scalar) and _DECIMAL.fullmatch(written):
-                self.fail(key, f"out of range ({_long_number(written)}: beyond the largest "
-                               f"number, about 1.8e308)")
+                self.fail(key, f"out of range ({_long_number(written)}: beyond "
+                               f"+-1.8e308, the largest a number can be)")
             self.fail(key, f"not a finite number ({_one_line(written)})")
         return value
 
@@ -207,7 +207,8 @@ def _long_number(text: str) -> str:
     """``text``, a number as written, for a message (``NUMBER_SHOWN``)."""
     if len(text) <= NUMBER_SHOWN:
         return text
-    digits = sum(c.isdigit() for c in text)
+    mantissa = text.lower().split("e")[0]
+    digits = sum(c.isdigit() for c in mantissa)
     return f"{text[:10]}...{text[-4:]}, {digits} digits"
 
 
