@@ -155,11 +155,9 @@ class WholeNumber(click.ParamType):
     def convert(self, value, param, ctx) -> int:
         if isinstance(value, int) and not isinstance(value, bool):
             number = value
-        else:
-            try:
-                number = int(str(value).strip(), 10)
-            except ValueError:
-                number = None
+        else:       # digits alone: not '1_0', '٣' or '+ 2', which int() would take
+            text = str(value).strip()
+            number = int(text) if text.isascii() and text.isdigit() else None
         if number is None or number < self.least or \
                 (self.most is not None and number > self.most):
             self.fail(f"expected {self.wanted()}, got {value!r}", param, ctx)

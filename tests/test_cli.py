@@ -84,7 +84,7 @@ def test_bad_options_are_usage_errors(calls, tmp_path, args):
     assert result.exit_code == 2 and "Traceback" not in result.output
 
 
-@pytest.mark.parametrize("value", ["abc", "0", "1.5", ""])
+@pytest.mark.parametrize("value", ["abc", "0", "1.5", "", "1_0", "-2"])
 def test_a_bad_job_count_is_said_in_words(calls, tmp_path, value):
     """--jobs that is no whole number of at least 1: one line in words, exit 2, where
     click said "'abc' is not a valid integer range" or "0 is not in the range x>=1"."""
