@@ -7,6 +7,7 @@ import gc
 import importlib
 import os
 import signal
+from types import FrameType
 
 import click
 
@@ -53,7 +54,7 @@ class _Interrupted(click.ClickException):
         click.echo(self.message, err=True)
 
 
-def _stop(number: int, frame) -> None:
+def _stop(number: int, frame: FrameType | None) -> None:
     """The console script's handler of SIGINT and SIGTERM: the first one unwinds the run
     (``_Interrupted``); from then on both are left to their default action, so that a
     second one (a CI's SIGTERM 7.5 s after its SIGINT) ends the process at once, never

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import os
 import sys
+from typing import TYPE_CHECKING
 
 import click
 
@@ -34,6 +35,9 @@ from furncheck.cli.output import (
 )
 from furncheck.report import FORMAT_MODULES
 from furncheck.result import DesignReport
+
+if TYPE_CHECKING:
+    from furncheck.config import Config
 
 PROGRESS_MIN_FILES = 50
 """A progress bar is shown on a terminal's stderr from this many files to check on, when
@@ -195,7 +199,7 @@ def _check_views_dir(views_dir: str) -> None:
         fail(f"cannot write views: {missing}")
 
 
-def _exclude_patterns(excludes: tuple[str, ...], config) -> tuple:
+def _exclude_patterns(excludes: tuple[str, ...], config: Config) -> tuple:
     """The exclude patterns of --exclude (anchored at the current folder) and of the
     config's ``exclude`` (at its folder); one that is no valid pattern is one line and
     exit 2 (``ignores.PatternError``)."""
@@ -213,7 +217,7 @@ def _exclude_patterns(excludes: tuple[str, ...], config) -> tuple:
         fail(str(error))
 
 
-def _cache_folder(option: str | None, config) -> str:
+def _cache_folder(option: str | None, config: Config) -> str:
     """The result cache's folder: --cache-dir, else $FURNCHECK_CACHE_DIR, else
     ``cache-dir`` of [tool.furncheck], else the user cache directory (a CI job's variable
     wins over the repository's file, as the command line does); '~' expanded in each."""
