@@ -108,7 +108,12 @@ def stop_pool(pool) -> None:
     was interrupted (or its reader stopped), their results would be thrown away, and
     waiting held an interrupted command for seconds (the interpreter's exit joins a
     pool's workers).  Its workers are terminated (``concurrent.futures`` has no public
-    way before Python 3.14: its process table is read)."""
+    way before Python 3.14: its process table is read).  The run is over: what the pool's
+    own threads raise as its workers go (a pipe to a terminated worker, seen on a loaded
+    machine) is not printed over the command's one line."""
+    import threading
+
+    threading.excepthook = _quiet
     for process in list((getattr(pool, "_processes", None) or {}).values()):
         try:
             process.terminate()
@@ -131,3 +136,7 @@ def process_pool(**options):
         stop_pool(pool)
         raise
     pool.shutdown(wait=True)
+
+
+def _quiet(arguments) -> None:
+    """A ``threading.excepthook`` that prints nothing (``stop_pool``)."""
