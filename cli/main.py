@@ -98,6 +98,10 @@ class _Commands(click.Group):
             return super().make_context(*args, **kwargs)
         except click.UsageError as error:
             raise _one_line(error) from None
+        except KeyboardInterrupt:       # while the options are read: said as in a run
+            raise _Interrupted(signal.SIGINT) from None
+        except _Terminated:
+            raise _Interrupted(signal.SIGTERM) from None
 
     def invoke(self, ctx: click.Context):
         try:

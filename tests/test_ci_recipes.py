@@ -237,6 +237,27 @@ def test_after_the_first_signal_the_next_ends_the_run_at_once(monkeypatch):
     assert set_to == [(signal.SIGINT, signal.SIG_DFL), (signal.SIGTERM, signal.SIG_DFL)]
 
 
+@pytest.mark.parametrize("raised, code", [("KeyboardInterrupt", 130), ("_Terminated", 143)])
+def test_a_signal_while_the_options_are_read_is_said_alike(monkeypatch, raised, code):
+    """A signal that arrives while the command line is parsed (before the command runs)
+    exits the same way as one during the run, not click's 'Aborted!' (exit 1) or a
+    traceback."""
+    import click
+
+    from furncheck.cli import main as cli_main
+
+    error = KeyboardInterrupt() if raised == "KeyboardInterrupt" else \
+        cli_main._Terminated(15)
+
+    def interrupted(*args, **kwargs):
+        raise error
+
+    monkeypatch.setattr(click.Group, "parse_args", interrupted)
+    result = run("validate", "x.yaml")
+    assert result.exit_code == code
+    assert result.output.strip().startswith("furncheck: interrupted (SIG")
+
+
 def test_a_report_never_replaces_a_design_it_checks(tmp_path):
     """-o naming one of the designs (given, found in a folder, or through a symbolic
     link) is refused with one line and exit 2, the design untouched, for validate (and
