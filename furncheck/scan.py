@@ -47,10 +47,9 @@ class ScanOptions:
     ``furncheck`` key; ``force_exclude``: also leave out named files that a scan would
     leave out (a hidden name, a .gitignore or an exclude pattern: a pre-commit hook,
     handed the changed files one by one, then skips what a CI run of the folder would);
-    ``unscanned``: folders (absolute) a scan never
-    enters besides (the result cache's, when it lies inside a scanned tree: its entries
-    are no designs, and counting them made a warm run's stderr differ from a cold
-    one's)."""
+    ``unscanned``: folders (absolute) a scan never enters besides (the result cache's,
+    when it lies inside a scanned tree: its entries are no designs, and counting them
+    made a warm run's stderr differ from a cold one's)."""
 
     excludes: tuple[PatternFile, ...] = ()
     skip_non_designs: bool = False
