@@ -126,6 +126,10 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
         click.echo(f"furncheck: skipped {collected.skipped} "
                    f"file{'s' if collected.skipped != 1 else ''} without a top-level "
                    f"'furncheck' key (not designs)", err=True)
+    if collected.force_excluded:
+        count = collected.force_excluded
+        click.echo(f"furncheck: left out {count} named file{'s' if count != 1 else ''} "
+                   f"that a scan would leave out (--force-exclude)", err=True)
     caching = use_cache if use_cache is not None else config.cache is not False
     cache = open_cache(cache_folder, model) if caching else None
     sources = [_check_stdin(stdin_filename, model, cache) if source == STDIN else source

@@ -65,6 +65,7 @@ class Collected:
 
     sources: list[str | DesignReport] = field(default_factory=list)
     skipped_files: set[str] = field(default_factory=set)
+    force_excluded: int = 0         # named files left out (``force_exclude``)
 
     @property
     def skipped(self) -> int:
@@ -85,6 +86,7 @@ def collect(paths: tuple[str, ...] | list[str], options: ScanOptions = ScanOptio
         elif os.path.isdir(given):
             files = _scan_folder(given, options, collected)
         elif options.force_exclude and _excluded(given, options):
+            collected.force_excluded += 1
             files = []
         elif options.skip_non_designs and not _is_design(given):
             collected.skipped_files.add(_identity(given))
@@ -121,9 +123,11 @@ def _scan_folder(folder: str, options: ScanOptions, collected: Collected) -> lis
         for path, why in found.unreadable)
     collected.skipped_files.update(map(_identity, found.skipped))
     if not found.files and not found.unreadable:
+        left_out = "" if not found.ignored else \
+            f" ({found.ignored} left out by .gitignore or exclude patterns)"
         collected.sources.append(error_report(
             folder, f"{folder}: no design files (.yaml, .yml or .json with a top-level "
-                    f"'furncheck' key) in this directory"))
+                    f"'furncheck' key) in this directory{left_out}"))
     return found.files
 
 
@@ -135,6 +139,7 @@ class FolderScan:
     files: list[str] = field(default_factory=list)
     unreadable: list[tuple[str, str]] = field(default_factory=list)
     skipped: list[str] = field(default_factory=list)
+    ignored: int = 0        # YAML/JSON files and folders an ignore or exclude pattern left out
 
 
 def find_design_files(folder: str, excludes: tuple[PatternFile, ...] = (),
@@ -184,6 +189,8 @@ def find_design_files(folder: str, excludes: tuple[PatternFile, ...] = (),
             path = os.path.normpath(os.path.join(current, entry.name))
             is_dir = _is_folder(entry)
             if rules.ignored(os.path.abspath(path), is_dir):
+                if is_dir or os.path.splitext(entry.name)[1].lower() in DESIGN_SUFFIXES:
+                    scan.ignored += 1
                 continue
             if is_dir:
                 (links if via_link or entry.is_symlink() else subfolders).append((path, rules))

@@ -264,6 +264,13 @@ def test_force_exclude_leaves_out_named_files_as_a_scan_would(checked_paths, tmp
     result = run("validate", "designs/drafts/t.yaml")
     assert checked_paths == [] and result.exit_code == 0
     assert "0 designs" in result.output
+    assert result.stderr == ("furncheck: left out 1 named file that a scan would leave out "
+                             "(--force-exclude)\n")
+    # a folder whose designs the patterns all leave out says so
+    result = run("validate", "designs", "--exclude", "*.yaml", "--no-cache")
+    assert result.exit_code == 2
+    assert "no design files (.yaml, .yml or .json with a top-level 'furncheck' key) in " \
+           "this directory (2 left out by .gitignore or exclude patterns)" in result.output
     # what a scan leaves out besides: a hidden folder's file, a git-ignored one
     tree(tmp_path, {".git/HEAD": "", ".gitignore": "old/\n", ".wip/h.yaml": DESIGN,
                     "designs/old/o.yaml": DESIGN})
