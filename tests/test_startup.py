@@ -30,6 +30,9 @@ RARE = ("furncheck.cli.suggest", "furncheck.cli.range", "furncheck.statics.feasi
         "furncheck.statics.newton", "furncheck.geometry.edits", "furncheck.design.write",
         "furncheck.ignores", "furncheck.detect", "tomllib")
 seen = {"import": [None, loaded()]}
+with contextlib.redirect_stdout(io.StringIO()):
+    main(["validate", "designs/stool.yaml", "--no-cache"], standalone_mode=False)
+seen["no cache"] = "furncheck.cache" in sys.modules
 for label, args in [("stool rigid", ["designs/stool.yaml", "--model", "rigid"]),
                     ("stool elastic", ["designs/stool.yaml"]),
                     ("cabinet elastic", ["designs/cabinet-28.yaml"]),
@@ -58,11 +61,14 @@ def test_validate_imports_only_the_scipy_a_design_needs():
     the feasibility programs and Newton's method, the edits' geometry, the design writer,
     the gitignore rules, the test for design files that folder scans read: a named file
     is checked whatever it holds) or tomllib (this repository's pyproject.toml has no
-    [tool.furncheck] table, and says so without being parsed)."""
+    [tool.furncheck] table, and says so without being parsed); with --no-cache, not the
+    result cache either (a run that neither caches nor scans a folder needs no cache
+    folder: some 8 ms of a cold start)."""
     output = subprocess.run([sys.executable, "-c", SCRIPT], capture_output=True, text=True,
                             check=True, cwd=ROOT).stdout
     seen = json.loads(output.splitlines()[-1])
     assert seen["import"] == [None, []]
+    assert seen["no cache"] is False        # a named file, no cache: its folder not looked up
     assert seen["stool rigid"] == [0, ["scipy.linalg._flapack"]]
     assert seen["stool elastic"] == [1, ["scipy.linalg._flapack"]]
     assert seen["lapack"] == "file"
