@@ -122,7 +122,8 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
         excludes=_exclude_patterns(excludes, config),
         skip_non_designs=bool(skip_non_designs or config.skip_non_designs),
         force_exclude=bool(force_exclude or config.force_exclude),
-        unscanned=() if cache_folder is None else (os.path.abspath(cache_folder),))
+        unscanned=() if cache_folder is None else (os.path.abspath(cache_folder),),
+        stdin_name=stdin_filename)
     collected = collect(paths, scan_options)
     check_not_an_input(output, collected.sources)
     if html_file is not None:

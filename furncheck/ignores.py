@@ -271,11 +271,15 @@ def _gitignores_above(folder: str) -> list[PatternFile]:
     return gitignores
 
 
-def left_out_by_a_scan(path: str, excludes: tuple[PatternFile, ...] = ()) -> bool:
+def left_out_by_a_scan(path: str, excludes: tuple[PatternFile, ...] = (),
+                       read: dict[str, IgnoreRules] | None = None) -> bool:
     """Whether a scan of the repository (or of the current folder, outside one) would
     leave out the file ``path``: a hidden name on its way there, or a ``.gitignore`` or
     an exclude pattern that ignores it or a folder it lies in (``--force-exclude``: a
-    hook handed the changed files checks what CI's scan checks)."""
+    hook handed the changed files checks what CI's scan checks).  ``read``: the rules
+    inside each folder met so far (with the same ``excludes``), kept there for the next
+    file: a hook hands over hundreds of files of one folder, whose gitignore files are
+    then read once."""
     absolute = os.path.abspath(path)
     folder = os.path.dirname(absolute)
     top = repository_root(folder) or os.path.abspath(os.curdir)
@@ -283,7 +287,11 @@ def left_out_by_a_scan(path: str, excludes: tuple[PatternFile, ...] = ()) -> boo
     if not relative.startswith(os.pardir) and any(
             part.startswith(".") for part in relative.split(os.sep)):
         return True
-    rules = IgnoreRules(tuple(_gitignores_above(folder)), excludes).entering(folder)
+    if read is None:
+        read = {}
+    if folder not in read:
+        read[folder] = IgnoreRules(tuple(_gitignores_above(folder)), excludes).entering(folder)
+    rules = read[folder]
     current, is_dir = absolute, False
     while not rules.ignored(current, is_dir):
         parent = os.path.dirname(current)

@@ -49,12 +49,15 @@ class ScanOptions:
     handed the changed files one by one, then skips what a CI run of the folder would);
     ``unscanned``: folders (absolute) a scan never enters besides (the result cache's,
     when it lies inside a scanned tree: its entries are no designs, and counting them
-    made a warm run's stderr differ from a cold one's)."""
+    made a warm run's stderr differ from a cold one's); ``stdin_name``: the path a design
+    on standard input stands for (``--stdin-filename``: ``force_exclude`` leaves it out
+    as it would leave out that file, without reading standard input)."""
 
     excludes: tuple[PatternFile, ...] = ()
     skip_non_designs: bool = False
     force_exclude: bool = False
     unscanned: tuple[str, ...] = ()
+    stdin_name: str | None = None
 
 
 @dataclass
@@ -77,15 +80,20 @@ def collect(paths: tuple[str, ...] | list[str], options: ScanOptions = ScanOptio
     """The sources of ``paths`` (see the module docstring)."""
     collected = Collected()
     seen: set[str] = set()
+    rules: dict[str, object] = {}       # per folder: its gitignores read once for all
     for given in paths:
         if given == STDIN:
             files = [STDIN]
+            if options.force_exclude and options.stdin_name \
+                    and _excluded(options.stdin_name, options, rules):
+                collected.force_excluded += 1
+                files = []
         elif not given:                 # '' (an unset variable in a CI script)
             collected.sources.append(error_report("", "an empty path names no file"))
             continue
         elif os.path.isdir(given):
             files = _scan_folder(given, options, collected)
-        elif options.force_exclude and _excluded(given, options):
+        elif options.force_exclude and _excluded(given, options, rules):
             collected.force_excluded += 1
             files = []
         elif options.skip_non_designs and not _is_design(given):
@@ -106,12 +114,12 @@ def _identity(path: str) -> str:
     return os.path.normcase(os.path.realpath(path))
 
 
-def _excluded(path: str, options: ScanOptions) -> bool:
+def _excluded(path: str, options: ScanOptions, rules: dict) -> bool:
     """Whether a scan would have left out the named file ``path`` (``force_exclude``:
-    ``ignores.left_out_by_a_scan``)."""
+    ``ignores.left_out_by_a_scan``; ``rules``: its rules of the folders met so far)."""
     from furncheck.ignores import left_out_by_a_scan
 
-    return left_out_by_a_scan(path, options.excludes)
+    return left_out_by_a_scan(path, options.excludes, rules)
 
 
 def _scan_folder(folder: str, options: ScanOptions, collected: Collected) -> list[str]:

@@ -278,6 +278,49 @@ def test_force_exclude_leaves_out_named_files_as_a_scan_would(checked_paths, tmp
     assert checked_paths == ["designs/ok.yaml"]
 
 
+def test_force_exclude_leaves_out_standard_input_by_its_stdin_filename(tmp_path, monkeypatch):
+    """A hook that pipes a changed file to '-' and names it with --stdin-filename gets the
+    file's own verdict from --force-exclude: left out (0 designs, exit 0, standard input
+    not even read) where a scan would leave that file out, checked where it would not."""
+    from click.testing import CliRunner
+
+    from furncheck.cli.main import main
+
+    tree(tmp_path, {"designs/drafts/t.yaml": DESIGN, "designs/ok.yaml": DESIGN})
+    monkeypatch.chdir(tmp_path)
+
+    def piped(name: str):
+        return CliRunner().invoke(main, ["validate", "-", "--stdin-filename", name,
+                                         "--force-exclude", "--exclude", "drafts",
+                                         "--no-cache"], input=DESIGN)
+
+    left_out = piped("designs/drafts/t.yaml")
+    assert left_out.exit_code == 0 and "0 designs" in left_out.output
+    assert "left out 1 named file" in left_out.stderr
+    checked = piped("designs/ok.yaml")
+    assert "1 design:" in checked.output and "left out" not in checked.stderr
+
+
+def test_force_exclude_reads_each_folders_gitignores_once(tmp_path, monkeypatch):
+    """Two hundred named files of one folder inside a repository: --force-exclude reads
+    the .gitignore files above that folder once, not once per file."""
+    import furncheck.ignores as ignores
+
+    tree(tmp_path, {".git/HEAD": "", ".gitignore": "old/\n", "designs/.gitignore": "x\n"})
+    for i in range(200):
+        (tmp_path / "designs" / f"d{i:03}.yaml").write_text(DESIGN)
+    monkeypatch.chdir(tmp_path)
+    reads = []
+    real = ignores.read_pattern_file
+    monkeypatch.setattr(ignores, "read_pattern_file",
+                        lambda path, *rest: reads.append(path) or real(path, *rest))
+    named = sorted(str(p.relative_to(tmp_path)) for p in (tmp_path / "designs").iterdir()
+                   if p.suffix == ".yaml")
+    collected = collect(named, ScanOptions(force_exclude=True))
+    assert len(collected.sources) == 200
+    assert len(reads) == len(set(reads)) <= 3     # info/exclude, ./.gitignore, designs/
+
+
 # --- files that are no designs ------------------------------------------------------------
 
 def test_yaml_and_json_files_without_a_furncheck_key_are_skipped_and_counted(checked_paths,
