@@ -15,6 +15,7 @@ import re
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 from click.testing import CliRunner
 from shop_designs import COAT_RACK, SIDE_TABLE_RACK, SPLAYED_STOOL, TILE_BENCH, WALL_SHELF
@@ -310,6 +311,45 @@ def test_a_pushed_stand_gets_an_outrigger():
     assert foot.width == pytest.approx(reach, rel=1e-9)
     assert foot.center[0] == pytest.approx(0.206 + reach / 2, rel=1e-3)
     assert written_valid(outrigger)
+
+
+LADDER = """\
+furncheck: 1
+name: ladder-shelf
+material: {thickness: 18}
+walls:
+  - {point: [0, 0, 0], normal: [0, 1, 0]}
+planks:
+  - {id: rail_l, size: [1600, 300], center: [-300, 351.944, 811.564], rotation: [-90, -75, -90]}
+  - {id: rail_r, size: [1600, 300], center: [300, 351.944, 811.564], rotation: [-90, -75, -90]}
+  - {id: shelf_1, size: [582, 200], center: [0, 489, 300], thickness: 25}
+  - {id: shelf_2, size: [582, 200], center: [0, 382, 700]}
+  - {id: shelf_3, size: [582, 200], center: [0, 275, 1100]}
+loads:
+  - {plank: shelf_1, mass: 40, spread: true}
+"""
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_symmetric_leaning_shelf_gets_both_rails_screwed_at_the_wall(model):
+    """A ladder shelf (a woodworker's trial): two 1600 mm rails leaning 15 degrees, their
+    top back edges on the wall (y = 0; the rails' corners lie 0.11 um behind it, as
+    drawn to three decimals), 40 kg on the bottom shelf, 489 mm out, past the rails'
+    feet (414 mm): it tips away from the wall.  A maker screws both rails, not one: the
+    fixings go on rail_l and on its mirror image rail_r (the mirror plane x = 0), at
+    mirrored points x = -+300 mm, on the wall's plane itself (y = 0, not -0.00011), and
+    the written design validates."""
+    design = parsed(LADDER, model)
+    assert {v.kind for v in check_design(design).violations} & {"lift-off", "sliding"}
+    anchor = next(f for f in fixes(design) if f.rule == "anchor")
+    assert [a.plank for a in anchor.design.anchors] == ["rail_l", "rail_r"]
+    left, right = (np.asarray(a.point) for a in anchor.design.anchors)
+    assert left[0] == pytest.approx(-0.3) and right[0] == pytest.approx(0.3)
+    assert left[1] == 0.0 and right[1] == 0.0
+    assert left[2] == pytest.approx(right[2], abs=1e-12)
+    assert anchor.advice.startswith("Screw rail_l and rail_r to the wall at (-300, 0, ")
+    assert "through angle brackets at their edges" in anchor.advice
+    assert fix_valid(anchor)
 
 
 @pytest.mark.parametrize("model", ["rigid", "elastic"])

@@ -24,7 +24,7 @@ from dataclasses import replace
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.design.model import Anchor, Design
+from furncheck.design.model import Anchor, Design, Wall
 from furncheck.plain import plain_number
 from furncheck.suggest.discrete.common import (
     PARALLEL_COS,
@@ -35,6 +35,7 @@ from furncheck.suggest.discrete.common import (
     names,
     point_of,
 )
+from furncheck.suggest.symmetry import mirror_planes
 
 REPAIRED = ("lift-off", "sliding", "non-durable")
 
@@ -58,7 +59,13 @@ def wall_anchors(search: Search) -> Fix | None:
         return None
     if not search.repairs(ANCHOR, REPAIRED):
         return None
-    fix = search.first_valid(_candidates(search))
+    pairs = list(_candidates(search))
+    symmetric = [both for both, _ in pairs if both is not None]
+    # a maker fixes a symmetric piece symmetrically: a plank with its mirror images first,
+    # finished with thicker boards as the plank alone would be
+    fix = search.first_valid(symmetric) if symmetric else None
+    if fix is None:
+        fix = search.first_valid(alone for _, alone in pairs)
     if fix is None:
         return None
     added = [np.asarray(a.point) / design.unit_scale
@@ -69,7 +76,9 @@ def wall_anchors(search: Search) -> Fix | None:
     return replace(fix, advice=advice)
 
 
-def _candidates(search: Search) -> Iterator[Candidate]:
+def _candidates(search: Search) -> Iterator[tuple[Candidate | None, Candidate]]:
+    """Per plank to anchor (the highest of each kind): anchors on it and its mirror
+    images (None where it has none by the same wall), and anchors on it alone."""
     design = search.design
     slack = design.tolerance + tol.ON_PLANK_EPS
     reach = tol.WALL_ANCHOR_REACH
@@ -91,30 +100,81 @@ def _candidates(search: Search) -> Iterator[Candidate]:
     ranked = sorted(found, key=lambda f: f[:3])
     tried = [next(f for f in ranked if f[0] == edge) for edge in (False, True)
              if any(f[0] == edge for f in ranked)]         # the highest of each kind
+    planes = mirror_planes(design)
     for edge, _, _, plank_id, wall, near in tried:
-        plank = design.plank(plank_id)
-        points = _anchor_points(plank, near, design.material.thickness)
-        anchors = tuple(Anchor(plank_id, tuple(float(v) for v in p), wall,
-                               tol.ANCHOR_CAPACITY,
-                               float(design.walls[wall].distance(np.asarray(p))))
-                        for p in points)
-        where = names([point_of(p, design) for p in points])
-        wall_name = "the wall" if len(design.walls) == 1 else wall_words(design, wall)
-        more = bool(design.anchors)             # beside the fixings the design has
-        fixings = (("another fixing" if more else "a fixing") if len(points) == 1
-                   else f"{len(points)} more fixings" if more else "fixings")
-        gap = max(anchor.gap for anchor in anchors)
-        packed = f", packing the {amount(gap / design.unit_scale)} {design.units} gap to " \
-                 f"the wall" if gap > design.tolerance and not edge else ""  # (a bracket
-        # bridges it)
-        beside = f" (beside the {len(design.anchors)} it has)" if more else ""
-        bracket = " through angle brackets at its edge" if edge else ""
-        advice = (f"Screw {plank_id} to {wall_name} at {where} with {fixings} rated "
-                  f"{plain_number(tol.ANCHOR_CAPACITY, 3)} N{bracket}{beside}{packed}.")
-        yield Candidate("anchor", replace(design, anchors=(*design.anchors, *anchors)),
-                        advice, between=(plank_id,), trial_rule=ANCHOR,
-                        place=f"{plank_id} to {wall_name} at {where}",
-                        plank=f"{len(points)} {'fixing' if len(points) == 1 else 'fixings'}")
+        points = _anchor_points(design.plank(plank_id), near, design.material.thickness)
+        points = [_onto_wall(p, design.walls[wall], slack) for p in points]
+        fixed = [(plank_id, points)]
+        images = _mirror_images(design, planes, plank_id, points, wall)
+        yield (_candidate(search, fixed + images, wall, edge) if images else None,
+               _candidate(search, fixed, wall, edge))
+
+
+def _candidate(search: Search, fixed: list[tuple[str, list[np.ndarray]]], wall: int,
+               edge: bool) -> Candidate:
+    """The design with anchors at each (plank, its points) of ``fixed`` into ``wall`` and
+    its advice (``edge``: the planks show the wall an edge, screwed through brackets)."""
+    design = search.design
+    anchors = tuple(Anchor(plank_id, tuple(float(v) for v in p), wall, tol.ANCHOR_CAPACITY,
+                           float(design.walls[wall].distance(np.asarray(p))))
+                    for plank_id, points in fixed for p in points)
+    planks = [plank_id for plank_id, _ in fixed]
+    count = len(anchors)
+    where = names([point_of(np.asarray(a.point), design) for a in anchors])
+    wall_name = "the wall" if len(design.walls) == 1 else wall_words(design, wall)
+    more = bool(design.anchors)             # beside the fixings the design has
+    fixings = (("another fixing" if more else "a fixing") if count == 1
+               else f"{count} more fixings" if more else "fixings")
+    gap = max(anchor.gap for anchor in anchors)
+    packed = f", packing the {amount(gap / design.unit_scale)} {design.units} gap to " \
+             f"the wall" if gap > design.tolerance and not edge else ""  # (a bracket
+    # bridges it)
+    beside = f" (beside the {len(design.anchors)} it has)" if more else ""
+    bracket = "" if not edge else " through angle brackets at its edge" if len(planks) == 1 \
+        else " through angle brackets at their edges"
+    advice = (f"Screw {names(planks)} to {wall_name} at {where} with {fixings} rated "
+              f"{plain_number(tol.ANCHOR_CAPACITY, 3)} N{bracket}{beside}{packed}.")
+    return Candidate("anchor", replace(design, anchors=(*design.anchors, *anchors)),
+                     advice, between=tuple(planks), trial_rule=ANCHOR,
+                     place=f"{names(planks)} to {wall_name} at {where}",
+                     plank=f"{count} {'fixing' if count == 1 else 'fixings'}")
+
+
+def _onto_wall(point: np.ndarray, wall: Wall, slack: float) -> np.ndarray:
+    """``point`` moved onto the wall's plane where it lies within ``slack`` of it (a
+    corner drawn a round-off into or off the wall: the fixing is at the wall, and the
+    advice should not read y = -0.00011), else as it is (a gap to pack)."""
+    distance = float(wall.distance(point))
+    return point - distance * np.asarray(wall.normal) if abs(distance) <= slack else point
+
+
+def _mirror_images(design: Design, planes, plank_id: str, points: list[np.ndarray],
+                   wall: int) -> list[tuple[str, list[np.ndarray]]]:
+    """The mirror images of ``plank_id`` (``symmetry.mirror_planes``, every plane and
+    their combinations: the four legs of a table) with the mirrored anchor points,
+    where those lie as far from ``wall`` as the originals (a mirror plane along the wall;
+    one across it would put them off the wall)."""
+    reach = {plank_id: [np.asarray(p, dtype=float) for p in points]}
+    frontier = [plank_id]
+    slack = design.tolerance + tol.ON_PLANK_EPS
+    distances = design.walls[wall].distance(np.asarray(points))
+    while frontier:
+        current = frontier.pop()
+        for plane in planes:
+            image = plane.partner.get(current)
+            if image is None or image in reach:
+                continue
+            mirrored = [p.copy() for p in reach[current]]
+            for p in mirrored:
+                p[plane.axis] = 2.0 * plane.offset - p[plane.axis]
+            if np.abs(design.walls[wall].distance(np.asarray(mirrored))
+                      - distances).max() > slack:
+                continue
+            reach[image] = [_onto_wall(_on(design.plank(image), p), design.walls[wall],
+                                       slack) for p in mirrored]
+            frontier.append(image)
+    return [(image, reach[image]) for image in sorted(reach, key=design.plank_index.get)
+            if image != plank_id]
 
 
 def wall_words(design: Design, wall: int) -> str:
@@ -143,3 +203,13 @@ def _anchor_points(plank, near: np.ndarray, thickness: float) -> list[np.ndarray
     if abs(float(along[2])) >= UPRIGHT_COS:
         return [middle + along * 0.375 * length]
     return [middle - along * 0.25 * length, middle + along * 0.25 * length]
+
+
+def _on(plank, point: np.ndarray) -> np.ndarray:
+    """``point`` moved onto ``plank``'s box where it lies outside (a mirror image matches
+    its plank within a few tolerances; an anchor must lie on its plank within one)."""
+    local = plank.to_local(point)
+    if np.all(np.abs(local) <= plank.half_extents):
+        return point
+    local = np.clip(local, -plank.half_extents, plank.half_extents)
+    return plank.center_array + plank.rotation_matrix @ local
