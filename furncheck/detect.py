@@ -14,13 +14,18 @@ and are not designs.  ``declares_design`` decides that for the file's bytes:
 - a file that does not parse: a top-level ``furncheck`` key written at the start of a line
   (YAML; in a ``.json`` file too: a design written in YAML but named .json) or a
   ``"furncheck":`` key (JSON): a design with a syntax error is still a design, and its
-  report says what is wrong.
+  report says what is wrong;
+- a file too large to be checked (``declares_design_at_large``): the same key patterns,
+  looked for in the whole file a block at a time: a design, however large, whose key
+  comes last is still a design, and its report says it is too large (exit code 2) where
+  a scan that read only its first blocks passed it over as no design.
 """
 
 from __future__ import annotations
 
 import json
 import re
+from typing import BinaryIO
 
 import yaml
 
@@ -31,6 +36,9 @@ _YAML_KEY_LINE = re.compile(rb"""^(?:\{\s*)?["']?furncheck["']?\s*:""", re.MULTI
 _YAML_FIRST_KEY = re.compile(rb"""(?:\xef\xbb\xbf)?(?:[ \t]*(?:#[^\n]*)?\r?\n|---[ \t]*\r?\n)*"""
                              rb"""furncheck[ \t]*:(?:[ \t]|\r?\n)""")
 _JSON_KEY = re.compile(rb'"furncheck"\s*:')
+
+SNIFF_BLOCK = 1 << 20
+"""Bytes read at a time where a file too large to check is searched for its key."""
 
 
 def declares_design(data: bytes, fmt: str) -> bool:
@@ -49,6 +57,26 @@ def declares_design(data: bytes, fmt: str) -> bool:
     except (UnicodeDecodeError, ValueError, yaml.YAMLError, RecursionError):
         return _YAML_KEY_LINE.search(data) is not None or \
             (fmt == "json" and _JSON_KEY.search(data) is not None)
+
+
+def declares_design_at_large(stream: BinaryIO, fmt: str) -> bool:
+    """``declares_design`` for a file too large to read whole (``stream``: open for
+    binary reading at its start): whether a ``furncheck`` key of either form (a YAML key
+    at the start of a line; in JSON also a ``"furncheck":`` key) appears anywhere, read
+    SNIFF_BLOCK bytes at a time (each block read after the last bytes of the one before,
+    so a key across two blocks is found)."""
+    tail = b""
+    overlap = 64
+    while True:
+        block = stream.read(SNIFF_BLOCK)
+        if not block:
+            return False
+        data = tail + block
+        if KEY.encode() in data and (
+                _YAML_KEY_LINE.search(data) is not None
+                or (fmt == "json" and _JSON_KEY.search(data) is not None)):
+            return True
+        tail = b"x" + data[-overlap:]    # (a line start only after a newline in it)
 
 
 def _yaml_top_level_has_key(text: str) -> bool:

@@ -236,6 +236,10 @@ def _is_design(path: str) -> bool:
         if not stat.S_ISREG(info.st_mode):
             return True
         with open(path, "rb") as stream:
+            if info.st_size > tol.MAX_FILE_BYTES:   # too large to check: its report
+                from furncheck.detect import declares_design_at_large  # says so
+
+                return declares_design_at_large(stream, fmt)
             data = stream.read(tol.MAX_FILE_BYTES + 1)
     except OSError:
         return True

@@ -8,6 +8,7 @@ idea of ignored files is the reference for the .gitignore rules.
 
 from __future__ import annotations
 
+import io
 import os
 import shutil
 import subprocess
@@ -319,6 +320,41 @@ def test_force_exclude_reads_each_folders_gitignores_once(tmp_path, monkeypatch)
     collected = collect(named, ScanOptions(force_exclude=True))
     assert len(collected.sources) == 200
     assert len(reads) == len(set(reads)) <= 3     # info/exclude, ./.gitignore, designs/
+
+
+def test_a_design_too_large_to_check_is_found_wherever_its_key_stands(tmp_path, monkeypatch):
+    """Files over the 5 MB limit (MAX_FILE_BYTES): a JSON design whose "furncheck" key
+    comes last, after 6 MB of planks, and a YAML one whose key line follows 6 MB of
+    comments, are designs (their reports say they are too large: exit 2), in a scan and
+    with --skip-non-designs, not files without the key that a scan skips (exit 0); a
+    large JSON file that only mentions furncheck in a value, and one without the word,
+    are no designs."""
+    import furncheck.detect as detect
+    from furncheck import tolerances as tol
+
+    filler = "x" * (tol.MAX_FILE_BYTES + 1024 * 1024)
+    monkeypatch.setattr(detect, "SNIFF_BLOCK", 1 << 16)     # many blocks, keys across them
+    tree(tmp_path, {
+        "big/late.json": '{"planks": ["' + filler + '"], "furncheck": 1}',
+        "big/late.yaml": "# " + filler + "\nfurncheck: 1\n",
+        "big/mention.json": '{"note": "' + filler + ' furncheck"}',
+        "big/plain.json": '{"note": "' + filler + '"}',
+    })
+    monkeypatch.chdir(tmp_path)
+    result = run("validate", "big", "--no-cache")
+    assert result.exit_code == 2
+    assert "big/late.json: error: file too large" in result.output
+    assert "big/late.yaml: error: file too large" in result.output
+    assert "2 designs: 0 valid, 0 invalid, 2 errors" in result.output
+    assert "skipped 2 files without a top-level 'furncheck' key" in result.stderr
+    named = run("validate", "big/late.json", "big/plain.json", "--skip-non-designs",
+                "--no-cache")
+    assert named.exit_code == 2 and "1 design: 0 valid, 0 invalid, 1 error" in named.output
+    for offset in range(0, 80, 7):      # a key across two blocks is still found
+        data = b"y" * ((1 << 16) - offset) + b'\n"furncheck": 1'
+        assert detect.declares_design_at_large(io.BytesIO(data), "json")
+        assert not detect.declares_design_at_large(io.BytesIO(data.replace(b"\n", b"z")
+                                                              .replace(b'"', b"")), "yaml")
 
 
 # --- files that are no designs ------------------------------------------------------------
