@@ -65,6 +65,39 @@ class Rule:
 _FOLDER_GROUP = "ps_d"
 """The group of a pathspec pattern's regex that matches a folder above the path."""
 
+_NAMED = "\x00"
+"""What a folder named on the command line reads as in the paths below it, for a pattern
+that leaves that folder out (``OpenedRule``): a name no pattern means."""
+
+
+@dataclass(frozen=True)
+class OpenedRule(Rule):
+    """A pattern that leaves out a folder named on the command line (or a folder above
+    it), for the scan of that folder: the named ``folders`` (relative, deepest first)
+    are searched, but inside them the pattern still names what it names on its own
+    (``out*`` leaves out ``out/output-tmp`` of a named ``out``; ``build/**`` nothing of a
+    named ``build``: it named the folder's contents through the folder's own name)."""
+
+    folders: tuple[str, ...] = ()
+
+    def _inside(self, relative: str) -> str | None:
+        """``relative`` with the named folder it lies in read as _NAMED; None for a named
+        folder itself."""
+        for folder in self.folders:
+            if relative == folder:
+                return None
+            if relative.startswith(folder + "/"):
+                return _NAMED + relative[len(folder):]
+        return relative
+
+    def matches(self, relative: str, is_dir: bool) -> bool:
+        inside = self._inside(relative)
+        return inside is not None and super().matches(inside, is_dir)
+
+    def covers(self, folder: str) -> bool:
+        inside = self._inside(folder)
+        return inside is not None and super().covers(inside)
+
 
 @dataclass(frozen=True)
 class PatternFile:
@@ -100,15 +133,17 @@ class PatternFile:
     def opened_at(self, folders: list[str]) -> PatternFile:
         """These patterns for a scan of a folder named on the command line, ``folders``
         (absolute) being it and the folders above it that are left out (``leaves_out``
-        of the rules together): without the ignoring patterns that name one of them or
-        everything in it (a named folder is searched, as a named file is checked), the
-        others kept (``!*/`` re-including every folder, ``*`` still leaves out the
-        files it does not re-include)."""
-        relatives = [r for r in map(self._relative, folders) if r is not None]
-        kept = tuple(rule for rule in self.rules
-                     if not (rule.ignores and any(rule.covers(r) for r in relatives)))
-        return self if len(kept) == len(self.rules) else PatternFile(self.base, kept,
-                                                                     self.source)
+        of the rules together): an ignoring pattern that names one of them or everything
+        in it no longer leaves them out (a named folder is searched, as a named file is
+        checked), but still leaves out what it names below them on its own
+        (``OpenedRule``); the others as they are."""
+        relatives = sorted((r for r in map(self._relative, folders) if r is not None),
+                           key=len, reverse=True)
+        opened = tuple(OpenedRule(rule.pattern, rule.ignores, rule.folders_only,
+                                  tuple(relatives))
+                       if rule.ignores and any(rule.covers(r) for r in relatives) else rule
+                       for rule in self.rules)
+        return self if opened == self.rules else PatternFile(self.base, opened, self.source)
 
     def _relative(self, path: str) -> str | None:
         """``path`` (absolute) relative to ``base``, '/'-separated; None for ``base``

@@ -146,7 +146,9 @@ def test_a_named_folder_keeps_the_patterns_that_do_not_leave_it_out(tmp_path):
     recipes name designs/: '!*/' re-includes the folder, so '*' still leaves out its
     JSON files, as git's list of that folder says (dropping every pattern that matched
     the folder let them in); a folder that 'build/**' or '*' does leave out is searched
-    whole when named (the other patterns apply: '*.skip.yaml')."""
+    when named, 'build/**' then leaving out nothing in it (it named the contents through
+    the folder's own name), '*' still what it names on its own (the subfolder s/, which
+    '!*.yaml' does not re-include); the other patterns apply ('*.skip.yaml')."""
     tree(tmp_path, {".gitignore": "*\n!*/\n!*.yaml\n", "x/a.yaml": DESIGN,
                     "x/d.json": '{"furncheck": 1}', "x/y/b.yaml": DESIGN,
                     "x/y/e.json": '{"furncheck": 1}'})
@@ -154,11 +156,12 @@ def test_a_named_folder_keeps_the_patterns_that_do_not_leave_it_out(tmp_path):
         listed = git_listed(tmp_path, folder)
         assert [f"{folder}/{name}" for name in found(tmp_path / folder)] == listed
         assert not any(name.endswith(".json") for name in listed)
-    for patterns_text in ("build/**\n*.skip.yaml\n", "*\n!*.yaml\n*.skip.yaml\n"):
+    for patterns_text, expected in (("build/**\n*.skip.yaml\n", ["a.yaml", "s/b.yaml"]),
+                                    ("*\n!*.yaml\n*.skip.yaml\n", ["a.yaml"])):
         (tmp_path / ".gitignore").write_text(patterns_text)
         tree(tmp_path, {"build/a.yaml": DESIGN, "build/s/b.yaml": DESIGN,
                         "build/c.skip.yaml": DESIGN})
-        assert found(tmp_path / "build") == ["a.yaml", "s/b.yaml"], patterns_text
+        assert found(tmp_path / "build") == expected, patterns_text
 
 
 def test_a_pattern_that_does_not_compile_matches_nothing(tmp_path):
@@ -177,6 +180,24 @@ def test_a_named_folder_is_scanned_even_when_ignored(tmp_path):
     tree(tmp_path, {".git/HEAD": "", ".gitignore": "build/\n*.skip.yaml\n",
                     "build/a.yaml": DESIGN, "build/b.skip.yaml": DESIGN})
     assert found(tmp_path / "build") == ["a.yaml"]
+
+
+def test_a_pattern_that_leaves_out_a_named_folder_still_applies_inside_it(tmp_path):
+    """A CI engineer's cases: with 'out*' in .gitignore, naming out/ searches it, and
+    'out*' still leaves out out/output-tmp/ (it names that folder on its own), as a
+    --force-exclude of a file in it says too; --exclude 'd*' with designs/ named leaves
+    out designs/drafts/; --exclude '*' --exclude '!stool.yaml' keeps stool.yaml alone."""
+    tree(tmp_path, {".git/HEAD": "", ".gitignore": "out*\n", "out/good/a.yaml": DESIGN,
+                    "out/output-tmp/stale.yaml": DESIGN, "designs/drafts/t.yaml": DESIGN,
+                    "designs/stool.yaml": DESIGN, "designs/table.yaml": DESIGN})
+    assert found(tmp_path / "out") == ["good/a.yaml"]
+    stale = str(tmp_path / "out" / "output-tmp" / "stale.yaml")
+    assert collect([stale], ScanOptions(force_exclude=True)).sources == []
+    base = str(tmp_path)
+    assert found(tmp_path / "designs", excludes=(patterns(["d*"], base, "--exclude"),)) \
+        == ["stool.yaml", "table.yaml"]
+    only = (patterns(["*", "!stool.yaml"], base, "--exclude"),)
+    assert found(tmp_path / "designs", excludes=only) == ["stool.yaml"]
 
 
 # --- --exclude, hidden paths --------------------------------------------------------------
