@@ -247,11 +247,20 @@ class IgnoreRules:
                      if verdict is not None), False)
 
     def entering(self, folder: str) -> IgnoreRules:
-        """The rules inside ``folder`` (absolute): these plus its own ``.gitignore``."""
+        """The rules inside ``folder`` (absolute): these plus its own ``.gitignore``; at
+        the top of a repository (a nested one, a submodule) the gitignore files above it
+        are another repository's and stop applying, as in git (its ``.git/info/exclude``
+        applies instead; the excludes stay)."""
+        gitignores = self.gitignores
+        if os.path.exists(os.path.join(folder, GIT_DIR)):
+            info = read_pattern_file(os.path.join(folder, GIT_DIR, "info", "exclude"),
+                                     folder)
+            gitignores = () if info is None else (info,)
         own = read_pattern_file(os.path.join(folder, GITIGNORE), folder)
-        if own is None:
-            return self
-        return IgnoreRules(self.gitignores + (own,), self.excludes)
+        if own is not None:
+            gitignores += (own,)
+        return self if gitignores is self.gitignores else IgnoreRules(gitignores,
+                                                                      self.excludes)
 
 
 def repository_root(folder: str) -> str | None:

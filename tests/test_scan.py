@@ -182,6 +182,20 @@ def test_a_named_folder_is_scanned_even_when_ignored(tmp_path):
     assert found(tmp_path / "build") == ["a.yaml"]
 
 
+def test_a_nested_repository_keeps_its_own_ignore_rules(tmp_path):
+    """An outer repository ignoring '*.yaml' holds sub/, a repository of its own with a
+    design and a .git/info/exclude that leaves out 'draft.yaml': as in git, the outer
+    .gitignore stops at sub/'s top, so a scan of the outer folder and one of sub/ (and
+    --force-exclude of the file) agree: sub/a.yaml is checked, sub/draft.yaml is not."""
+    tree(tmp_path, {".git/HEAD": "", ".gitignore": "*.yaml\n", "top.yaml": DESIGN,
+                    "sub/.git/HEAD": "", "sub/.git/info/exclude": "draft.yaml\n",
+                    "sub/a.yaml": DESIGN, "sub/draft.yaml": DESIGN})
+    assert found(tmp_path) == ["sub/a.yaml"]
+    assert found(tmp_path / "sub") == ["a.yaml"]
+    named = [str(tmp_path / "sub" / name) for name in ("a.yaml", "draft.yaml")]
+    assert collect(named, ScanOptions(force_exclude=True)).sources == named[:1]
+
+
 def test_a_pattern_that_leaves_out_a_named_folder_still_applies_inside_it(tmp_path):
     """A CI engineer's cases: with 'out*' in .gitignore, naming out/ searches it, and
     'out*' still leaves out out/output-tmp/ (it names that folder on its own), as a
