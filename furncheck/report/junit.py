@@ -124,7 +124,12 @@ def _add_failure(testcase: ET.Element, violations: list[Violation]) -> None:
 
 
 def _clean(text: str) -> str:
-    """``text`` without the characters XML 1.0 cannot hold (control characters)."""
+    """``text`` without the characters XML 1.0 cannot hold: a file name's bytes that are
+    not UTF-8 (held as surrogates, as Python reads such names) written escaped
+    ('bad\\udcffname.yaml', as every other report shows them: two such names stay two),
+    control characters replaced."""
+    if not text.isascii():
+        text = text.encode("utf-8", "backslashreplace").decode("utf-8")
     return _xml_invalid().sub("\ufffd", text)
 
 
