@@ -212,6 +212,21 @@ def test_yaml_syntax_error_has_line():
     assert "not closed" not in error.message
 
 
+def test_lines_are_counted_as_an_editor_counts_them_where_yaml_breaks_more():
+    """YAML (1.1, as PyYAML reads it) breaks lines at NEL (U+0085), LS (U+2028) and PS
+    (U+2029) too; an editor, grep and a GitHub annotation do not.  A NEL inside a quoted
+    name on line 2: the size on line 4 is named on line 4 (it read 5); an LS in a comment
+    on line 2 makes what follows it YAML content, a syntax error named on line 2 (it read
+    3), whose message says which character the parser broke the line at."""
+    nel = ('furncheck: 1\nname: "a\x85b"\nplanks:\n'
+           '  - {id: a, size: [400, 300, 12], center: [0, 0, 6]}\n')
+    expect(nel, "planks[0].size", 4, "expected 2 numbers")
+    separator = ("furncheck: 1\n# \u2028 ls\nplanks:\n"
+                 "  - {id: a, size: [400, 300], center: [0, 0, 6]}\n")
+    error = expect(separator, "", 2, "YAML syntax error")
+    assert error.message.endswith("the file holds U+2028, which YAML reads as a line break")
+
+
 def test_a_bracket_never_closed_names_the_line_it_opens_on():
     """The parser runs into the end of the file (line 6 of a 5-line file, or 4 of 3):
     the error names the line where the unclosed mapping, sequence or quote began, one of

@@ -140,7 +140,7 @@ def _read_yaml(text: str, source: str) -> tuple[Any, dict[str, int]]:
     loader = None
     try:
         loader = _Loader(text)           # the pure-Python reader checks characters here
-        return _build_yaml_tree(loader, source)
+        return _build_yaml_tree(loader, source, _editor_lines(text))
     except yaml.YAMLError as error:
         raise _yaml_syntax_error(error, text, source) from None
     finally:
@@ -161,11 +161,13 @@ def _kind_of(event_class: type) -> int:
     return next((_KINDS[base] for base in event_class.__mro__ if base in _KINDS), _OTHER)
 
 
-def _build_yaml_tree(loader, source: str) -> tuple[Any, dict[str, int]]:
+def _build_yaml_tree(loader, source: str, editor_line=None) -> tuple[Any, dict[str, int]]:
     """The tree and lines of the loader's events, in one loop (it runs for every event of
     every design file; a function call and a few type tests per event took a quarter of
     reading the catalog's designs): a node's key path is made once, when its slot is
-    known (a list's next item, or the key just read), and recorded with its line."""
+    known (a list's next item, or the key just read), and recorded with its line (the
+    parser's, or ``editor_line`` of its index where YAML breaks lines that an editor
+    does not: ``_editor_lines``)."""
     lines: dict[str, int] = {}
     stack: list[_Frame] = []
     root: Any = _NO_DOCUMENT
@@ -193,11 +195,14 @@ def _build_yaml_tree(loader, source: str) -> tuple[Any, dict[str, int]]:
             if kind == _DOCUMENT:
                 documents += 1
                 if documents > 1:
-                    raise DesignError(source, "", event.start_mark.line + 1,
+                    raise DesignError(source, "", event.start_mark.line + 1
+                                      if editor_line is None
+                                      else editor_line(event.start_mark.index),
                                       "several YAML documents (the second starts here); "
                                       "put one design in each file")
             continue
-        line = event.start_mark.line + 1
+        line = event.start_mark.line + 1 if editor_line is None \
+            else editor_line(event.start_mark.index)
         parent = stack[-1] if stack else None
         if parent is None:
             path = ""
@@ -328,8 +333,13 @@ def _yaml_syntax_error(error: yaml.YAMLError, text: str, source: str) -> DesignE
     message = problem or "cannot be read"
     if context:
         message = f"{message} ({context})"
+    editor_line = _editor_lines(text)
+
+    def line_of(mark) -> int:
+        return mark.line + 1 if editor_line is None else editor_line(mark.index)
+
     mark = problem_mark or context_mark
-    line = None if mark is None else mark.line + 1
+    line = None if mark is None else line_of(mark)
     if context in _FLOW_CONTEXTS and problem_mark is not None and context_mark is not None \
             and context_mark.line < problem_mark.line \
             and problem_mark.index < len(text) \
@@ -339,15 +349,38 @@ def _yaml_syntax_error(error: yaml.YAMLError, text: str, source: str) -> DesignE
         # is missing a comma where the parser stopped: its line stays)
         bracket = _FLOW_CONTEXTS[context]
         message = (f"the {bracket!r} opened on this line is not closed ({problem}, found "
-                   f"on line {problem_mark.line + 1})")
-        line = context_mark.line + 1
+                   f"on line {line_of(problem_mark)})")
+        line = line_of(context_mark)
     if problem_mark is not None and problem_mark.index >= len(text):
         message = f"{message}, at the end of the file"
         if context_mark is not None and context_mark.index < len(text):
-            line = context_mark.line + 1
+            line = line_of(context_mark)
         else:                       # the last line, counted as the parser counts breaks
-            line = min(line, max(_line_count(text), 1))
+            line = min(line, max(_line_count(text) if editor_line is None
+                                 else editor_line(len(text) - 1), 1))
+    if editor_line is not None:     # the break the parser saw may be the mistake
+        shown = ", ".join(f"U+{ord(c):04X}" for c in _YAML_ONLY_BREAKS if c in text)
+        message = f"{message}; the file holds {shown}, which YAML reads as a line break"
     return DesignError(source, "", line, _one_line(f"YAML syntax error: {message}"))
+
+
+_YAML_ONLY_BREAKS = "\x85\u2028\u2029"
+"""Characters YAML (1.1, as PyYAML reads it) breaks lines at and editors do not: NEL, LS
+and PS."""
+
+
+def _editor_lines(text: str):
+    """None where YAML breaks the lines of ``text`` where an editor does (LF, CR LF, CR:
+    the parser's line numbers are the file's); else index -> 1-based line as an editor
+    counts it, so that a message (and a CI annotation) lands on the line a maker sees (a
+    NEL inside a quoted name moved every later line's number by one)."""
+    if not any(c in text for c in _YAML_ONLY_BREAKS):
+        return None
+    import bisect
+    import re
+
+    starts = [0] + [found.end() for found in re.finditer(r"\r\n|\r|\n", text)]
+    return lambda index: bisect.bisect_right(starts, index)
 
 
 def _line_count(text: str) -> int:
