@@ -191,8 +191,13 @@ class ResultCache:
             os.makedirs(folder, exist_ok=True)
             if not os.access(folder, os.W_OK | os.X_OK):
                 raise PermissionError(13, "Permission denied")
+            link = _a_link_in(self.directory, folder)
         except OSError as error:
             self.unwritable = f"{self.directory}: {error.strerror or error}"
+            return
+        if link is not None:
+            self.unwritable = (f"{self.directory}: {link} is a symbolic link (nothing is "
+                               f"written through one)")
 
     def store(self, path: str, key: str | None, report: DesignReport) -> bool:
         """``put`` the report of the file ``path`` under ``key`` (its ``key_of`` before it
@@ -225,15 +230,29 @@ class ResultCache:
         try:
             payload = marshal.dumps(data)
             folder = os.path.dirname(target)
-            os.makedirs(folder, exist_ok=True)
-            if os.path.realpath(folder) != os.path.join(
-                    os.path.realpath(self.directory), *Path(folder).parts[-2:]):
+            layout = os.path.join(os.path.realpath(self.directory), LAYOUT)
+            if os.path.realpath(os.path.dirname(folder)) != layout:
+                return False                    # the layout's folder is a link: make
+            os.makedirs(folder, exist_ok=True)  # nothing through it
+            if os.path.realpath(folder) != os.path.join(layout, os.path.basename(folder)):
                 return False                    # a folder of the layout is a link
             write_atomically(target, header + _crc(payload) + payload, follow_links=False)
         except (OSError, ValueError) as error:   # ValueError: marshal of an odd value
             self.unwritable = f"{self.directory}: {getattr(error, 'strerror', None) or error}"
             return False
         return True
+
+
+def _a_link_in(directory: str, layout: str) -> str | None:
+    """The first symbolic link of the cache's layout: its folder, or one of the folders
+    in it (relative to ``directory``), or None (a cache restored from an archive may hold
+    one; entries are never written through it, and the run says so once)."""
+    if os.path.islink(layout):
+        return os.path.relpath(layout, directory)
+    with os.scandir(layout) as entries:
+        return next((os.path.relpath(entry.path, directory)
+                     for entry in sorted(entries, key=lambda e: e.name)
+                     if entry.is_symlink()), None)
 
 
 def _read_entry(path: str, header: bytes) -> Any:

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import multiprocessing
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -189,6 +190,20 @@ def test_a_symlink_in_the_cache_is_neither_read_nor_written_through(checked_path
     third = run("validate", valid, "--cache-dir", str(cache), "--format", "json")
     assert third.stdout == first.stdout and checked_paths == [valid] * 3
     assert list(elsewhere.iterdir()) == [] and outside.read_bytes() == b"mine"
+    assert third.stderr.count("results not cached") == 1 and "is a symbolic link" in \
+        third.stderr
+    # the layout's own folder a link (a CI engineer's case): no shard folder is made
+    # through it, and the run says once that nothing was cached
+    folder.unlink()
+    layout = folder.parent
+    for path in layout.iterdir():
+        shutil.rmtree(path)
+    layout.rmdir()
+    layout.symlink_to(elsewhere)
+    fourth = run("validate", valid, "--cache-dir", str(cache), "--format", "json")
+    assert fourth.stdout == first.stdout and list(elsewhere.iterdir()) == []
+    assert fourth.stderr == (f"furncheck: results not cached: {cache}: {layout.name} is a "
+                             f"symbolic link (nothing is written through one)\n")
 
 
 def test_a_piece_is_reused_as_it_is_and_other_formats_use_the_result(checked_paths,
