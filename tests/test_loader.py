@@ -346,11 +346,12 @@ def test_nested_too_deeply():
            "nested too deeply")
 
 
-@pytest.mark.parametrize("depth", [40, 900])
+@pytest.mark.parametrize("depth", [40, 900, 30000])
 def test_json_nested_too_deeply_has_key_and_line(depth):
     """A JSON design nested past MAX_NESTING is refused as a YAML one is, at the key path
     and line where the limit is passed (Python's json reads such a file, and the schema
-    then named an unknown key with no line)."""
+    then named an unknown key with no line; nested 30,000 deep, past the YAML parser's
+    own limit, it was 'nested too deeply' with neither)."""
     text = '{"furncheck": 1,\n "x":\n' + "[" * depth + "]" * depth + "}"
     expect(text, "x" + "[0]" * 31, 3, "nested too deeply", "json")
 

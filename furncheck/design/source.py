@@ -457,9 +457,23 @@ def _depth(tree: Any) -> int:
 
 def _json_nesting_error(text: str, source: str) -> DesignError:
     """A JSON design nested deeper than MAX_NESTING refused as a YAML one is: at the
-    path and line where the limit is passed, found by reading the text as YAML."""
+    path and line where the limit is passed, found by reading the text as YAML up to
+    just past that point (read whole, a JSON nested a thousand deep met the YAML
+    parser's own limit first, and its message had no line)."""
+    import re
+
+    depth, cut = 0, len(text)
+    for token in re.finditer(r'"(?:\\.|[^"\\])*"|[\[\]{}]', text):
+        bracket = token.group()
+        if bracket in "[{":
+            depth += 1
+            if depth > tol.MAX_NESTING + 1:
+                cut = token.end()
+                break
+        elif bracket in "]}":
+            depth -= 1
     try:
-        _read_yaml(text, source)
+        _read_yaml(text[:cut], source)
     except DesignError as error:
         if error.message == "nested too deeply":
             return error
