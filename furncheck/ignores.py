@@ -212,7 +212,7 @@ def read_pattern_file(path: str, base: str) -> PatternFile | None:
     there is no readable file there (a byte-order mark at its start is dropped, as git
     drops it)."""
     try:
-        with open(path, encoding="utf-8-sig", errors="replace") as stream:
+        with open(path, encoding="utf-8-sig", errors="surrogateescape") as stream:
             lines = stream.read().splitlines()
     except OSError:
         return None

@@ -164,6 +164,19 @@ def test_a_named_folder_keeps_the_patterns_that_do_not_leave_it_out(tmp_path):
         assert found(tmp_path / "build") == expected, patterns_text
 
 
+def test_a_gitignore_pattern_with_bytes_that_are_not_utf8_matches_its_file(tmp_path):
+    """A .gitignore line b'caf\\xe9.yaml' (Latin-1, as git compares bytes) leaves out the
+    file of that name, as git does (the bytes were replaced by U+FFFD, which matched no
+    name)."""
+    name = os.fsdecode(b"caf\xe9.yaml")
+    try:
+        tree(tmp_path, {".git/HEAD": "", name: DESIGN, "a.yaml": DESIGN})
+    except (OSError, UnicodeEncodeError):
+        pytest.skip("this file system takes UTF-8 names only")
+    (tmp_path / ".gitignore").write_bytes(b"caf\xe9.yaml\n")
+    assert found(tmp_path) == ["a.yaml"]
+
+
 def test_a_pattern_that_does_not_compile_matches_nothing(tmp_path):
     """A reversed range ('[z-a].yaml', which Python's re refuses) in a .gitignore or an
     exclude is left out, where it ended the scan with an internal error (git reads it as
