@@ -194,9 +194,11 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
                 overhang = statics.planks.overhang is not None and \
                     bool(statics.planks.overhang[k])
                 crosswise = model.beams.crosswise[k]
+                sideways = _upright(plank, crosswise) or (
+                    statics.planks.sideways is not None and bool(statics.planks.sideways[k]))
                 violations.append(Violation("sagging", plank.id, case.name, _sag_message(
-                    design, material, sag, allowed, statics.planks.span[k],
-                    _upright(plank, crosswise), overhang)
+                    design, material, sag, allowed, statics.planks.span[k], sideways,
+                    overhang)
                     + (_held_along(geometry, plank, crosswise) if overhang else ""),
                     design.line_of(key)))
             if stress > strength * (1.0 + tol.CAPACITY_REL_TOL):
@@ -313,7 +315,9 @@ def _upright(plank, crosswise: bool) -> bool:
 def _sag_message(design: Design, material: Material, sag: float, allowed: float,
                  span: float, upright: bool = False, overhang: bool = False) -> str:
     """The ``sagging`` violation's words; an upright plank's (a leg, a side: ``_upright``)
-    say it bows sideways, as a woodworker would, with the same numbers; an overhang's
+    and one bent across rather than down (a rail pushed sideways: ``PlankStatics.
+    sideways``) say it bows sideways, as a woodworker would, with the same numbers; an
+    overhang's
     (a cantilever's free end) name the overhang, whose span is twice it (contract 3a)."""
     unit, scale = design.units, design.unit_scale
     creep = material.creep

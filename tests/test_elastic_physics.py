@@ -592,6 +592,37 @@ def test_an_upright_plank_bows_sideways_and_a_level_one_sags():
     assert words["leg_pp"].endswith("(span / 400)")
 
 
+TRESTLE = """\
+furncheck: 1
+name: trestle
+material: {thickness: 18}
+planks:
+  - {id: end_l, size: [700, 400], center: [-491, 0, 350], rotation: [0, -90, 0]}
+  - {id: end_r, size: [700, 400], center: [491, 0, 350], rotation: [0, -90, 0]}
+  - {id: rail, size: [964, 150], center: [0, 0, 625], rotation: [90, 0, 0]}
+  - {id: stretcher, size: [964, 100], center: [0, 0, 150], rotation: [90, 0, 0]}
+loads:
+  - {plank: stretcher, force: [0, 60, 0], at: [0, 0, 120]}
+"""
+
+
+def test_a_level_rail_pushed_sideways_bows_sideways():
+    """A woodworker's trestle: its stretcher (964 x 100 x 18 mm, on edge between the two
+    ends) pushed sideways with 60 N at its middle bends about its weak axis,
+    E t^3 b / 12 = 3000 x 18^3 x 100 / 12 = 1.458e8 N mm^2: between P L^3 / 192 E I =
+    1.92 mm (fixed ends) and P L^3 / 48 E I = 7.68 mm (pinned), more than 964 / 400.
+    Nothing sags there: the message says it 'bows ... sideways between supports 964 mm
+    apart' (it said 'sags'), with the same numbers and check; the top rail, level and
+    bent down by its own weight only, is no violation."""
+    design = parse_design(TRESTLE, "trestle.yaml", "yaml")
+    words = {v.where: v.message for v in check_design(design).violations
+             if v.kind == "sagging"}
+    bowed = re.match(r"bows ([\d.]+) mm sideways between supports 964 mm apart, ",
+                     words["stretcher"])
+    assert bowed and 1.92 < float(bowed.group(1)) < 7.68
+    assert set(words) == {"stretcher"}
+
+
 def test_an_overhang_says_so_with_its_length_and_its_span_of_twice_it():
     """A cantilever's sag is measured from the tangent at its support, over a span of
     twice the overhang (contract 3a); the message names the overhang: the overloaded

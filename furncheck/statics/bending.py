@@ -48,12 +48,16 @@ class PlankStatics:
     stress : (nP,) Pa, the largest |M_2| / (b t^2 / 6) + |M_3| / (t b^2 / 6) + |N| / (b t)
     overhang : (nP,) bool, whether the sag is an overhang's (its span twice the overhang),
              for the messages; None where it was not read (the sensitivity's steps)
+    sideways : (nP,) bool, whether the sag's deflection points more across than up or
+             down (a rail bent by a push, not sagging under weight), for the messages;
+             None where it was not read
     """
 
     sag: np.ndarray
     span: np.ndarray
     stress: np.ndarray
     overhang: np.ndarray | None = None
+    sideways: np.ndarray | None = None
 
 
 @dataclass(frozen=True, eq=False)    # holds arrays: no == by value
@@ -84,8 +88,9 @@ def plank_results(model: StaticsModel, case: LoadCase, q: np.ndarray,
     stress = _stress(model, layout, displacement, w, slope, line_loads)
     s, deflection, sample_plank = _profile(model, layout, w, slope, line_loads)
     low, high = outermost_supports(model, holding)
-    sag, span, overhang = _sag(model, s, deflection, sample_plank, w, slope, low, high)
-    return PlankStatics(sag, span, stress, overhang)
+    sag, span, overhang, sideways = _sag(model, s, deflection, sample_plank, w, slope, low,
+                                         high, node_frame=layout.node_frame)
+    return PlankStatics(sag, span, stress, overhang, sideways)
 
 
 @dataclass(frozen=True, eq=False)    # holds arrays: no == by value
@@ -153,10 +158,10 @@ def plank_results_of(prepared: list[PlankPart],
     w, slope = _transverse(displacement, layout.node_frame)
     stress = _stress(model, layout, displacement, w, slope, line_loads)
     s, deflection, sample_plank = _profile(model, layout, w, slope, line_loads)
-    sag, span, overhang = _sag(model, s, deflection, sample_plank, w, slope, stack.low,
-                               stack.high)
+    sag, span, overhang, sideways = _sag(model, s, deflection, sample_plank, w, slope,
+                                         stack.low, stack.high, node_frame=layout.node_frame)
     offsets = stack.plank_offsets
-    return [PlankStatics(sag[a:b], span[a:b], stress[a:b], overhang[a:b])
+    return [PlankStatics(sag[a:b], span[a:b], stress[a:b], overhang[a:b], sideways[a:b])
             for a, b in zip(offsets[:-1], offsets[1:])]
 
 
@@ -416,7 +421,8 @@ def _moment_lines(model: StaticsModel, layout: _Layout, w: np.ndarray, slope: np
 
 def _sag(model: StaticsModel, s: np.ndarray, deflection: np.ndarray,
          sample_plank: np.ndarray, w: np.ndarray, slope: np.ndarray, low: np.ndarray,
-         high: np.ndarray, where: bool = False) -> tuple:
+         high: np.ndarray, where: bool = False, node_frame: np.ndarray | None = None
+         ) -> tuple:
     """(sag, span) (nP,) m of every plank (contract 3a) from its deflected axis (``s``,
     ``deflection``, ``sample_plank``: ``_profile``) and its outermost supports ``low``,
     ``high`` (``carrying.outermost_supports``; ``w``, ``slope``: ``_transverse``): between them, the
@@ -425,7 +431,9 @@ def _sag(model: StaticsModel, s: np.ndarray, deflection: np.ndarray,
     the overhang); the one nearest its limit (the largest sag / span) is the plank's.  Held
     at one point, only the overhangs count; with no support, (0, 0).  With ``where``, also
     the points near each measure's largest (``bending_points.PlankWhere``), every measure
-    the plank has (0, 1, 2 as above), as flat lists: (sag, span, measures, points)."""
+    the plank has (0, 1, 2 as above), as flat lists: (sag, span, measures, points).  With
+    ``node_frame`` (the nodes' beam axes, ``_Layout``), also whether each plank's largest
+    deviation points sideways (``_sideways``): (sag, span, overhang, sideways)."""
     beams = model.beams
     half = beams.plank_half
     supported = low >= 0
@@ -459,6 +467,9 @@ def _sag(model: StaticsModel, s: np.ndarray, deflection: np.ndarray,
         np.maximum.at(deviation[:, k], sample_plank, distances[k])
     spans = np.column_stack([sb - sa, 2.0 * (sa + half), 2.0 * (half - sb)])
     sag, span, overhang = _chosen_measure(deviation, spans)
+    if node_frame is not None:
+        return sag, span, overhang, _sideways(model, node_frame, deflection, references,
+                                              distances, sample_plank, deviation, spans)
     if not where:
         return sag, span, overhang
     band = np.maximum(tol.NEAR_LARGEST * deviation,
@@ -486,17 +497,54 @@ def _distance(deflection: np.ndarray, reference: np.ndarray) -> np.ndarray:
     return np.sqrt(offset[0] * offset[0] + offset[1] * offset[1])
 
 
+def _sideways(model, node_frame: np.ndarray, deflection: np.ndarray, references: tuple,
+              distances: np.ndarray, sample_plank: np.ndarray, deviation: np.ndarray,
+              spans: np.ndarray) -> np.ndarray:
+    """(nP,) bool: whether each plank's sag, the largest deviation of its chosen measure
+    (``_chosen_measure``), points more across than up or down (its world vertical part
+    below cos 45 degrees of it): a rail or a stretcher bent by a sideways push, which a
+    woodworker does not call a sag.  (The sample points are ``_profile``'s: the nodes,
+    then each element's interior points, sample by sample; an interior point's axes are
+    its element's first node's.)"""
+    _, pick = _measure_picked(deviation, spans)
+    count = len(deviation)
+    if not count or not sample_plank.size:
+        return np.zeros(count, dtype=bool)
+    beams = model.beams
+    points = np.arange(sample_plank.size)
+    value = distances[pick[sample_plank], points]
+    order = np.lexsort((value, sample_plank))          # each plank's largest last
+    last = order[np.flatnonzero(np.diff(sample_plank[order], append=-1) != 0)]
+    offsets = np.stack(references)[pick[sample_plank[last]], :, last]        # (m, 2)
+    offsets = deflection[:, last].T - offsets
+    node_count = len(node_frame)
+    sample_node = np.where(last < node_count, last,
+                           beams.nodes[(last - node_count) % len(beams.length), 0])
+    vertical = np.einsum("mj,mj->m", offsets, node_frame[sample_node, 2, 1:])
+    size = np.hypot(offsets[:, 0], offsets[:, 1])
+    sideways = np.zeros(count, dtype=bool)
+    sideways[sample_plank[last]] = np.abs(vertical) < np.sqrt(0.5) * size
+    return sideways
+
+
+def _measure_picked(deviation: np.ndarray, spans: np.ndarray) -> tuple[np.ndarray, ...]:
+    """(present, pick): which measures each plank has, and the one nearest its limit
+    (``_chosen_measure``)."""
+    present = deviation >= 0.0
+    ratio = np.where(present, 0.0, -np.inf)
+    positive = present & (spans > 0.0) & (deviation > tol.SAG_ROUNDOFF)
+    ratio[positive] = deviation[positive] / spans[positive]
+    return present, np.argmax(ratio, axis=1)
+
+
 def _chosen_measure(deviation: np.ndarray, spans: np.ndarray) -> tuple[np.ndarray, ...]:
     """(sag, span, overhang) (nP,) of each plank's measure nearest its limit, from the
     largest deviation and the span of each measure (nP, 3; deviation -1 for a measure the
     plank does not have): the largest sag / span (0 for no span or a sag of round-off,
     SAG_ROUNDOFF; the first one on a tie), among those it has; (0, 0) for none; overhang
     where the measure is one beyond a support."""
-    present = deviation >= 0.0
-    ratio = np.where(present, 0.0, -np.inf)
-    positive = present & (spans > 0.0) & (deviation > tol.SAG_ROUNDOFF)
-    ratio[positive] = deviation[positive] / spans[positive]
-    rows, pick = np.arange(len(deviation)), np.argmax(ratio, axis=1)
+    present, pick = _measure_picked(deviation, spans)
+    rows = np.arange(len(deviation))
     chosen = present[rows, pick]
     return (np.where(chosen, deviation[rows, pick], 0.0),
             np.where(chosen, spans[rows, pick], 0.0), chosen & (pick > 0))
