@@ -130,3 +130,30 @@ def test_a_leg_moved_in_under_its_seat_goes_toward_the_leg_opposite():
     stool = parse_design(SPLAYED_STOOL, "splayed.yaml", "yaml")
     assert advise(stool, {"leg_pm.x": -50.0}) == \
         "Move leg_pm 50 mm toward leg_mm (valid for 45-60 mm)."
+
+
+BENCH_WITH_BACK = """\
+furncheck: 1
+name: hall-bench
+material: {thickness: 18}
+planks:
+  - {id: side_l, size: [450, 350], center: [-491, 0, 225], rotation: [0, -90, 0]}
+  - {id: side_r, size: [450, 350], center: [491, 0, 225], rotation: [0, -90, 0]}
+  - {id: seat, size: [1000, 350], center: [0, 0, 459]}
+  - {id: back, size: [1000, 400], center: [0, -166, 668], rotation: [90, 0, 0]}
+"""
+
+
+def test_a_back_rest_on_edge_tilted_says_where_its_top_edge_goes():
+    """A bench's back rest stands on edge on the seat's rear (length along x, width up,
+    at y = -166 mm behind the seat's middle): turned about x, its length stays level, so
+    'which end rises' says nothing; its top edge moves, toward the seat (-5.5 degrees
+    about x: the top edge, above the axis, goes to +y) or away from it (nothing is
+    there: no phrase), as a woodworker's trial asked."""
+    from furncheck.design import parse_design
+
+    bench = with_model(parse_design(BENCH_WITH_BACK, "bench.yaml", "yaml"), "rigid")
+    assert advise(bench, {"back.rx": -5.5}, interval=(1.0, 2.0)) == \
+        "Tilt back 5.5 degrees about x, its top edge toward seat (valid for 5.5-11 degrees)."
+    assert advise(bench, {"back.rx": 5.5}, interval=(1.0, 2.0)) == \
+        "Tilt back 5.5 degrees about x (valid for 5.5-11 degrees)."

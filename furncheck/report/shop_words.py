@@ -250,24 +250,26 @@ def _moved_end(design: Design, held: dict, plank_id: str, axis: int) -> np.ndarr
     return -ends[0].sign * design.plank(plank_id).rotation_matrix[:, axis]
 
 
-def _top(design: Design, plank_id: str) -> np.ndarray | None:
-    """The centre of the plank's higher end along its length (None if it lies flat)."""
+def _top(design: Design, plank_id: str, side: int = 0) -> np.ndarray | None:
+    """The centre of the plank's higher end along its length (``side`` 1: the middle of
+    its higher long edge, along its width; None if that way lies flat)."""
     if plank_id not in design.plank_index:
         return None
     plank = design.plank(plank_id)
-    axis = plank.rotation_matrix[:, 0]
+    axis = plank.rotation_matrix[:, side]
     if abs(float(axis[2])) < 1e-9:
         return None
-    end = 0.5 * plank.length * (axis if axis[2] > 0 else -axis)
+    end = 0.5 * (plank.width if side else plank.length) * (axis if axis[2] > 0 else -axis)
     return plank.center_array + end
 
 
-def _top_ahead(design: Design, edited: Design, plank_id: str) -> str | None:
-    """The plank toward which an upright plank's top moves in ``edited`` (``_toward``),
-    or None (it lies flat, its top stays, or no plank is that way)."""
-    if abs(float(design.plank(plank_id).rotation_matrix[2, 0])) <= VERTICAL_COSINE:
+def _top_ahead(design: Design, edited: Design, plank_id: str, side: int = 0) -> str | None:
+    """The plank toward which an upright plank's top (``side`` 1: a plank on edge, its top
+    edge) moves in ``edited`` (``_toward``), or None (it lies flat, its top stays, or no
+    plank is that way)."""
+    if abs(float(design.plank(plank_id).rotation_matrix[2, side])) <= VERTICAL_COSINE:
         return None
-    before, after = _top(design, plank_id), _top(edited, plank_id)
+    before, after = _top(design, plank_id, side), _top(edited, plank_id, side)
     if before is None or after is None:
         return None
     way = after - before
@@ -279,7 +281,8 @@ def _top_ahead(design: Design, edited: Design, plank_id: str) -> str | None:
 
 def _tilt_effect(design: Design, edited: Design, plank_id: str) -> str:
     """What a tilt does, for the phrase: where an upright plank's top goes ('its top toward
-    leg_l'), or which end of a lying one rises."""
+    leg_l'), where the top edge of one on edge goes as it turns about its length (a back
+    rest: 'its top edge toward seat'), or which end of a lying one rises."""
     plank = design.plank(plank_id)
     length_axis = plank.rotation_matrix[:, 0]
     if abs(float(length_axis[2])) > VERTICAL_COSINE:
@@ -287,6 +290,10 @@ def _tilt_effect(design: Design, edited: Design, plank_id: str) -> str:
         return f"its top toward {ahead}" if ahead else ""
     if plank_id not in edited.plank_index:
         return ""
+    if abs(float(plank.rotation_matrix[2, 1])) > VERTICAL_COSINE:    # on edge (a back rest)
+        ahead = _top_ahead(design, edited, plank_id, side=1)
+        if ahead:
+            return f"its top edge toward {ahead}"
     turned = edited.plank(plank_id).rotation_matrix[:, 0]
     rising = turned[2] - length_axis[2]
     if abs(float(rising)) <= 1e-12:
