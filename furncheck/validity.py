@@ -195,7 +195,7 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
                     bool(statics.planks.overhang[k])
                 crosswise = model.beams.crosswise[k]
                 sideways = _upright(plank, crosswise) or (
-                    statics.planks.sideways is not None and bool(statics.planks.sideways[k]))
+                    statics.planks.sideways is not None and statics.planks.sideways(k))
                 violations.append(Violation("sagging", plank.id, case.name, _sag_message(
                     design, material, sag, allowed, statics.planks.span[k], sideways,
                     overhang)

@@ -15,6 +15,7 @@ the model alone (the beam axes at each node, the sections; the joints that carry
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import NamedTuple
 
@@ -48,16 +49,16 @@ class PlankStatics:
     stress : (nP,) Pa, the largest |M_2| / (b t^2 / 6) + |M_3| / (t b^2 / 6) + |N| / (b t)
     overhang : (nP,) bool, whether the sag is an overhang's (its span twice the overhang),
              for the messages; None where it was not read (the sensitivity's steps)
-    sideways : (nP,) bool, whether the sag's deflection points more across than up or
-             down (a rail bent by a push, not sagging under weight), for the messages;
-             None where it was not read
+    sideways : plank index -> bool, whether the sag's deflection points more across than
+             up or down (a rail bent by a push, not sagging under weight), for the
+             messages; None where it cannot be read
     """
 
     sag: np.ndarray
     span: np.ndarray
     stress: np.ndarray
     overhang: np.ndarray | None = None
-    sideways: np.ndarray | None = None
+    sideways: Callable[[int], bool] | None = None
 
 
 @dataclass(frozen=True, eq=False)    # holds arrays: no == by value
@@ -161,7 +162,8 @@ def plank_results_of(prepared: list[PlankPart],
     sag, span, overhang, sideways = _sag(model, s, deflection, sample_plank, w, slope,
                                          stack.low, stack.high, node_frame=layout.node_frame)
     offsets = stack.plank_offsets
-    return [PlankStatics(sag[a:b], span[a:b], stress[a:b], overhang[a:b], sideways[a:b])
+    return [PlankStatics(sag[a:b], span[a:b], stress[a:b], overhang[a:b],
+                         lambda k, a=a: sideways(a + k))
             for a, b in zip(offsets[:-1], offsets[1:])]
 
 
@@ -499,31 +501,29 @@ def _distance(deflection: np.ndarray, reference: np.ndarray) -> np.ndarray:
 
 def _sideways(model, node_frame: np.ndarray, deflection: np.ndarray, references: tuple,
               distances: np.ndarray, sample_plank: np.ndarray, deviation: np.ndarray,
-              spans: np.ndarray) -> np.ndarray:
-    """(nP,) bool: whether each plank's sag, the largest deviation of its chosen measure
-    (``_chosen_measure``), points more across than up or down (its world vertical part
-    below cos 45 degrees of it): a rail or a stretcher bent by a sideways push, which a
-    woodworker does not call a sag.  (The sample points are ``_profile``'s: the nodes,
-    then each element's interior points, sample by sample; an interior point's axes are
-    its element's first node's.)"""
-    _, pick = _measure_picked(deviation, spans)
-    count = len(deviation)
-    if not count or not sample_plank.size:
-        return np.zeros(count, dtype=bool)
+              spans: np.ndarray):
+    """A function of a plank (its index here) telling whether its sag, the largest
+    deviation of its chosen measure (``_chosen_measure``), points more across than up or
+    down (its world vertical part below cos 45 degrees of it): a rail or a stretcher bent
+    by a sideways push, which a woodworker does not call a sag.  Read only for a plank
+    the messages name (a sagging one: reading every plank's cost 1 to 4 % of a check).
+    (The sample points are ``_profile``'s: the nodes, then each element's interior
+    points, sample by sample; an interior point's axes are its element's first node's.)"""
     beams = model.beams
-    points = np.arange(sample_plank.size)
-    value = distances[pick[sample_plank], points]
-    order = np.lexsort((value, sample_plank))          # each plank's largest last
-    last = order[np.flatnonzero(np.diff(sample_plank[order], append=-1) != 0)]
-    offsets = np.stack(references)[pick[sample_plank[last]], :, last]        # (m, 2)
-    offsets = deflection[:, last].T - offsets
-    node_count = len(node_frame)
-    sample_node = np.where(last < node_count, last,
-                           beams.nodes[(last - node_count) % len(beams.length), 0])
-    vertical = np.einsum("mj,mj->m", offsets, node_frame[sample_node, 2, 1:])
-    size = np.hypot(offsets[:, 0], offsets[:, 1])
-    sideways = np.zeros(count, dtype=bool)
-    sideways[sample_plank[last]] = np.abs(vertical) < np.sqrt(0.5) * size
+
+    def sideways(plank: int) -> bool:
+        _, pick = _measure_picked(deviation[plank:plank + 1], spans[plank:plank + 1])
+        measure = int(pick[0])
+        points = np.flatnonzero(sample_plank == plank)
+        if not points.size or deviation[plank, measure] < 0.0:
+            return False
+        point = int(points[np.argmax(distances[measure, points])])
+        offset = deflection[:, point] - references[measure][:, point]
+        node = point if point < len(node_frame) else \
+            int(beams.nodes[(point - len(node_frame)) % len(beams.length), 0])
+        vertical = float(offset @ node_frame[node, 2, 1:])
+        return abs(vertical) < np.sqrt(0.5) * float(np.hypot(*offset))
+
     return sideways
 
 
