@@ -74,7 +74,7 @@ the report does not go to that terminal too."""
 @click.option("--force-exclude", is_flag=True, default=None,
               help="Leave out named files that an exclude pattern matches too (--exclude, "
                    "'exclude' of [tool.furncheck]), as directory scans do (for hooks that "
-                   "pass every changed file).")
+                   "pass every changed file; '-' by its --stdin-filename).")
 @click.option("--cache/--no-cache", "use_cache", default=None,
               help="Reuse the results of unchanged designs.  [default: --cache]")
 @click.option("--cache-dir", metavar="DIR", default=None,

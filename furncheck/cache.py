@@ -191,13 +191,12 @@ class ResultCache:
             os.makedirs(folder, exist_ok=True)
             if not os.access(folder, os.W_OK | os.X_OK):
                 raise PermissionError(13, "Permission denied")
-            link = _a_link_in(self.directory, folder)
         except OSError as error:
             self.unwritable = f"{self.directory}: {error.strerror or error}"
             return
-        if link is not None:
-            self.unwritable = (f"{self.directory}: {link} is a symbolic link (nothing is "
-                               f"written through one)")
+        if os.path.islink(folder):     # (restored from an archive): no entry can be
+            self.unwritable = (f"{self.directory}: {LAYOUT} is a symbolic link (nothing "
+                               f"is written through one)")     # stored, and the run says so
 
     def store(self, path: str, key: str | None, report: DesignReport) -> bool:
         """``put`` the report of the file ``path`` under ``key`` (its ``key_of`` before it
@@ -241,18 +240,6 @@ class ResultCache:
             self.unwritable = f"{self.directory}: {getattr(error, 'strerror', None) or error}"
             return False
         return True
-
-
-def _a_link_in(directory: str, layout: str) -> str | None:
-    """The first symbolic link of the cache's layout: its folder, or one of the folders
-    in it (relative to ``directory``), or None (a cache restored from an archive may hold
-    one; entries are never written through it, and the run says so once)."""
-    if os.path.islink(layout):
-        return os.path.relpath(layout, directory)
-    with os.scandir(layout) as entries:
-        return next((os.path.relpath(entry.path, directory)
-                     for entry in sorted(entries, key=lambda e: e.name)
-                     if entry.is_symlink()), None)
 
 
 def _read_entry(path: str, header: bytes) -> Any:

@@ -16,7 +16,7 @@ and are not designs.  ``declares_design`` decides that for the file's bytes:
   ``"furncheck":`` key (JSON): a design with a syntax error is still a design, and its
   report says what is wrong;
 - a file too large to be checked (``declares_design_at_large``): the same key patterns,
-  looked for in the whole file a block at a time: a design, however large, whose key
+  looked for in its first SNIFF_LIMIT bytes a block at a time: a design, however large, whose key
   comes last is still a design, and its report says it is too large (exit code 2) where
   a scan that read only its first blocks passed it over as no design.
 """
@@ -40,6 +40,11 @@ _JSON_KEY = re.compile(rb'"furncheck"\s*:')
 SNIFF_BLOCK = 1 << 20
 """Bytes read at a time where a file too large to check is searched for its key."""
 
+SNIFF_LIMIT = 20 * (1 << 20)
+"""Bytes of a file too large to check searched for its key, at most: a design's key
+stands in its first 20 MB (a 5 MB design is already refused), and a data file of hundreds
+of MB in a scanned tree is not read to its end on every run."""
+
 
 def declares_design(data: bytes, fmt: str) -> bool:
     """Whether ``data`` (a file's bytes; ``fmt`` 'yaml' or 'json') has a top-level
@@ -62,12 +67,12 @@ def declares_design(data: bytes, fmt: str) -> bool:
 def declares_design_at_large(stream: BinaryIO, fmt: str) -> bool:
     """``declares_design`` for a file too large to read whole (``stream``: open for
     binary reading at its start): whether a ``furncheck`` key of either form (a YAML key
-    at the start of a line; in JSON also a ``"furncheck":`` key) appears anywhere, read
+    at the start of a line; in JSON also a ``"furncheck":`` key) appears, read
     SNIFF_BLOCK bytes at a time (each block read after the last bytes of the one before,
-    so a key across two blocks is found)."""
+    so a key across two blocks is found), in its first SNIFF_LIMIT bytes."""
     tail = b""
     overlap = 64
-    while True:
+    for _ in range(max(1, SNIFF_LIMIT // SNIFF_BLOCK)):
         block = stream.read(SNIFF_BLOCK)
         if not block:
             return False
@@ -77,6 +82,7 @@ def declares_design_at_large(stream: BinaryIO, fmt: str) -> bool:
                 or (fmt == "json" and _JSON_KEY.search(data) is not None)):
             return True
         tail = b"x" + data[-overlap:]    # (a line start only after a newline in it)
+    return False
 
 
 def _yaml_top_level_has_key(text: str) -> bool:

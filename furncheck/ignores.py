@@ -17,7 +17,11 @@ behaves the same).  A pattern names a path itself, as git matches paths while it
 the tree: ``!build/`` re-includes the folder, not the files in it that another pattern
 ignores.  A folder named on the command line is searched even if the patterns leave it
 out (one that names it or everything in it, ``build/``, ``build/**``, ``*``, unless a
-later ``!`` line re-includes it); the other patterns apply inside it.  A line that is not
+later ``!`` line re-includes it); inside it every pattern applies, such a one with the
+named folder read as a name it does not match (``OpenedRule``: ``build/**`` then leaves
+out nothing there, ``*`` and ``out*`` still what they name on their own).  A nested
+repository or a submodule has its own rules, as in git (``IgnoreRules.entering``).  A
+line that is not
 a valid pattern (a lone ``!`` or ``\\``, a reversed range ``[z-a]``, which git reads as
 its first character) matches nothing.  Paths are compared as absolute paths,
 not resolved through symlinks (git does not follow symlinks either).
@@ -81,13 +85,15 @@ class OpenedRule(Rule):
     folders: tuple[str, ...] = ()
 
     def _inside(self, relative: str) -> str | None:
-        """``relative`` with the named folder it lies in read as _NAMED; None for a named
-        folder itself."""
+        """``relative`` with the last name of the named folder it lies in read as _NAMED
+        (the folders above it keep theirs: ``logs/**/tmp`` still names ``tmp`` folders
+        deeper in a named ``logs/tmp``); None for a named folder itself."""
         for folder in self.folders:
             if relative == folder:
                 return None
             if relative.startswith(folder + "/"):
-                return _NAMED + relative[len(folder):]
+                parent = folder.rpartition("/")[0]
+                return (f"{parent}/" if parent else "") + _NAMED + relative[len(folder):]
         return relative
 
     def matches(self, relative: str, is_dir: bool) -> bool:
@@ -253,8 +259,7 @@ class IgnoreRules:
         applies instead; the excludes stay)."""
         gitignores = self.gitignores
         if os.path.exists(os.path.join(folder, GIT_DIR)):
-            info = read_pattern_file(os.path.join(folder, GIT_DIR, "info", "exclude"),
-                                     folder)
+            info = read_pattern_file(_info_exclude(folder), folder)
             gitignores = () if info is None else (info,)
         own = read_pattern_file(os.path.join(folder, GITIGNORE), folder)
         if own is not None:
@@ -276,12 +281,36 @@ def repository_root(folder: str) -> str | None:
         current = parent
 
 
+def _info_exclude(root: str) -> str:
+    """The ``info/exclude`` file of the repository whose top is ``root``: in its ``.git``
+    folder, or where a ``.git`` file points (``gitdir: ...``: a submodule's folder in its
+    parent's ``.git/modules``, a worktree's, whose ``commondir`` names the folder holding
+    it)."""
+    git = os.path.join(root, GIT_DIR)
+    if os.path.isfile(git):
+        try:
+            with open(git, encoding="utf-8", errors="surrogateescape") as stream:
+                pointer = stream.readline().strip()
+        except OSError:
+            pointer = ""
+        if pointer.startswith("gitdir:"):
+            git = os.path.join(root, pointer[len("gitdir:"):].strip())
+            try:
+                with open(os.path.join(git, "commondir"), encoding="utf-8",
+                          errors="surrogateescape") as stream:
+                    git = os.path.join(git, stream.readline().strip())
+            except OSError:
+                pass
+    return os.path.join(git, "info", "exclude")
+
+
 def rules_above(folder: str, excludes: tuple[PatternFile, ...] = ()) -> IgnoreRules:
     """The rules in force when a scan starts at ``folder`` (absolute): the gitignore files
     of the folders above it up to the top of its repository (and ``.git/info/exclude``),
     not yet ``folder``'s own (none outside a repository), and ``excludes``; where they
-    leave out ``folder`` or a folder above it, without the patterns that do
-    (``PatternFile.opened_at``)."""
+    leave out ``folder`` or a folder above it, the patterns that do opened there
+    (``PatternFile.opened_at``: they no longer leave those folders out, and apply below
+    them as to any folder)."""
     gitignores = _gitignores_above(folder)
     rules = IgnoreRules(tuple(gitignores), excludes)
     ancestors = [folder]
@@ -301,7 +330,7 @@ def _gitignores_above(folder: str) -> list[PatternFile]:
     gitignores: list[PatternFile] = []
     if root is None:
         return gitignores
-    info = read_pattern_file(os.path.join(root, GIT_DIR, "info", "exclude"), root)
+    info = read_pattern_file(_info_exclude(root), root)
     if info is not None:
         gitignores.append(info)
     relative = os.path.relpath(folder, root)

@@ -80,7 +80,7 @@ def collect(paths: tuple[str, ...] | list[str], options: ScanOptions = ScanOptio
     """The sources of ``paths`` (see the module docstring)."""
     collected = Collected()
     seen: set[str] = set()
-    rules: dict[str, object] = {}       # per folder: its gitignores read once for all
+    rules: dict[str, IgnoreRules] = {}  # per folder: its gitignores read once for all
     for given in paths:
         if given == STDIN:
             files = [STDIN]
@@ -114,7 +114,7 @@ def _identity(path: str) -> str:
     return os.path.normcase(os.path.realpath(path))
 
 
-def _excluded(path: str, options: ScanOptions, rules: dict) -> bool:
+def _excluded(path: str, options: ScanOptions, rules: dict[str, IgnoreRules]) -> bool:
     """Whether a scan would have left out the named file ``path`` (``force_exclude``:
     ``ignores.left_out_by_a_scan``; ``rules``: its rules of the folders met so far)."""
     from furncheck.ignores import left_out_by_a_scan

@@ -121,6 +121,12 @@ such deviations tie and the first measure the plank has is taken: compared as th
 the round-off chose between its two overhangs, and the allowed sag read 0.35 or 1.04 mm
 as the design turned."""
 
+UPRIGHT_SINE = 0.5 ** 0.5
+"""Above 45 degrees: a beam whose axis rises more than this sine from level is upright
+(``validity._upright``: a leg or a side bows, it does not sag), and a sag whose deflection
+has a vertical part below it of its size points sideways (``bending._sideways``: a rail
+pushed sideways)."""
+
 WINDOW_TOLERANCE = 0.2
 """A geometric repair's window (a gap closed to within the tolerance either side: a board
 94 mm up stands on the floor lowered by 93.5 to 94.5 mm), found at the least-squares

@@ -301,15 +301,11 @@ def plank_limits(design: Design, model: StaticsModel) -> tuple[np.ndarray, ...]:
     return cached
 
 
-UPRIGHT_SINE = 0.5 ** 0.5
-"""A beam whose axis rises more than 45 degrees from level is upright (``_upright``)."""
-
-
 def _upright(plank, crosswise: bool) -> bool:
     """Whether the plank's beam (``crosswise``: along its local y, as the elastic model
     laid it, ``StaticsModel.beams``) stands more upright than level: its bending is then
     a bow sideways (a leg, a side), not a sag."""
-    return abs(float(beam_frame(plank, crosswise)[2, 0])) > UPRIGHT_SINE
+    return abs(float(beam_frame(plank, crosswise)[2, 0])) > tol.UPRIGHT_SINE
 
 
 def _sag_message(design: Design, material: Material, sag: float, allowed: float,

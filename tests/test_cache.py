@@ -190,8 +190,6 @@ def test_a_symlink_in_the_cache_is_neither_read_nor_written_through(checked_path
     third = run("validate", valid, "--cache-dir", str(cache), "--format", "json")
     assert third.stdout == first.stdout and checked_paths == [valid] * 3
     assert list(elsewhere.iterdir()) == [] and outside.read_bytes() == b"mine"
-    assert third.stderr.count("results not cached") == 1 and "is a symbolic link" in \
-        third.stderr
     # the layout's own folder a link (a CI engineer's case): no shard folder is made
     # through it, and the run says once that nothing was cached
     folder.unlink()

@@ -224,7 +224,13 @@ def test_lines_are_counted_as_an_editor_counts_them_where_yaml_breaks_more():
     separator = ("furncheck: 1\n# \u2028 ls\nplanks:\n"
                  "  - {id: a, size: [400, 300], center: [0, 0, 6]}\n")
     error = expect(separator, "", 2, "YAML syntax error")
-    assert error.message.endswith("the file holds U+2028, which YAML reads as a line break")
+    assert error.message.endswith("line 2 holds U+2028, which YAML reads as a line break")
+    # a NEL in a name, a bracket left open two lines further on: the bracket's line, and
+    # no word of the NEL, which has nothing to do with it
+    elsewhere = ('furncheck: 1\nname: "a\x85b"\nplanks:\n'
+                 '  - {id: a, size: [400, 300], center: [0, 0, 6]\n  - {id: b}\n')
+    error = expect(elsewhere, "", 4, "the '{' opened on this line is not closed")
+    assert "U+0085" not in error.message and "found on line 5" in error.message
 
 
 def test_a_bracket_never_closed_names_the_line_it_opens_on():

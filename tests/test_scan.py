@@ -197,7 +197,8 @@ def test_a_named_folder_is_scanned_even_when_ignored(tmp_path):
 
 def test_a_nested_repository_keeps_its_own_ignore_rules(tmp_path):
     """An outer repository ignoring '*.yaml' holds sub/, a repository of its own with a
-    design and a .git/info/exclude that leaves out 'draft.yaml': as in git, the outer
+    design and a .git/info/exclude that leaves out 'draft.yaml' (and lib/, a submodule,
+    whose exclude file lies where its .git file points): as in git, the outer
     .gitignore stops at sub/'s top, so a scan of the outer folder and one of sub/ (and
     --force-exclude of the file) agree: sub/a.yaml is checked, sub/draft.yaml is not."""
     tree(tmp_path, {".git/HEAD": "", ".gitignore": "*.yaml\n", "top.yaml": DESIGN,
@@ -207,13 +208,22 @@ def test_a_nested_repository_keeps_its_own_ignore_rules(tmp_path):
     assert found(tmp_path / "sub") == ["a.yaml"]
     named = [str(tmp_path / "sub" / name) for name in ("a.yaml", "draft.yaml")]
     assert collect(named, ScanOptions(force_exclude=True)).sources == named[:1]
+    # a submodule: its .git is a file pointing into the parent's .git/modules, where its
+    # info/exclude lies
+    tree(tmp_path, {"lib/.git": "gitdir: ../.git/modules/lib\n",
+                    ".git/modules/lib/info/exclude": "secret.yaml\n",
+                    "lib/a.yaml": DESIGN, "lib/secret.yaml": DESIGN})
+    assert found(tmp_path / "lib") == ["a.yaml"]
+    assert "lib/secret.yaml" not in found(tmp_path)
 
 
 def test_a_pattern_that_leaves_out_a_named_folder_still_applies_inside_it(tmp_path):
     """A CI engineer's cases: with 'out*' in .gitignore, naming out/ searches it, and
     'out*' still leaves out out/output-tmp/ (it names that folder on its own), as a
     --force-exclude of a file in it says too; --exclude 'd*' with designs/ named leaves
-    out designs/drafts/; --exclude '*' --exclude '!stool.yaml' keeps stool.yaml alone."""
+    out designs/drafts/; --exclude '*' --exclude '!stool.yaml' keeps stool.yaml alone;
+    'logs/**/tmp' with logs/tmp/ named leaves out logs/tmp/a/tmp/ (as git check-ignore
+    does)."""
     tree(tmp_path, {".git/HEAD": "", ".gitignore": "out*\n", "out/good/a.yaml": DESIGN,
                     "out/output-tmp/stale.yaml": DESIGN, "designs/drafts/t.yaml": DESIGN,
                     "designs/stool.yaml": DESIGN, "designs/table.yaml": DESIGN})
@@ -225,6 +235,10 @@ def test_a_pattern_that_leaves_out_a_named_folder_still_applies_inside_it(tmp_pa
         == ["stool.yaml", "table.yaml"]
     only = (patterns(["*", "!stool.yaml"], base, "--exclude"),)
     assert found(tmp_path / "designs", excludes=only) == ["stool.yaml"]
+    # an anchored '**' pattern naming the folder still names folders deeper in it
+    tree(tmp_path, {".gitignore": "logs/**/tmp\n", "logs/tmp/y.yaml": DESIGN,
+                    "logs/tmp/a/tmp/x.yaml": DESIGN})
+    assert found(tmp_path / "logs" / "tmp") == ["y.yaml"]
 
 
 # --- --exclude, hidden paths --------------------------------------------------------------
@@ -338,12 +352,22 @@ def test_force_exclude_leaves_out_standard_input_by_its_stdin_filename(tmp_path,
     tree(tmp_path, {"designs/drafts/t.yaml": DESIGN, "designs/ok.yaml": DESIGN})
     monkeypatch.chdir(tmp_path)
 
-    def piped(name: str):
+    class Unread(io.BytesIO):
+        """Standard input that fails the test if it is read."""
+
+        def read(self, *args):
+            if args and args[0] == 0:       # (click's probe for a binary stream)
+                return b""
+            raise AssertionError("standard input was read")
+
+        read1 = readline = read
+
+    def piped(name: str, stdin=None):
         return CliRunner().invoke(main, ["validate", "-", "--stdin-filename", name,
                                          "--force-exclude", "--exclude", "drafts",
-                                         "--no-cache"], input=DESIGN)
+                                         "--no-cache"], input=stdin or DESIGN)
 
-    left_out = piped("designs/drafts/t.yaml")
+    left_out = piped("designs/drafts/t.yaml", Unread(DESIGN.encode()))
     assert left_out.exit_code == 0 and "0 designs" in left_out.output
     assert "left out 1 named file" in left_out.stderr
     checked = piped("designs/ok.yaml")
@@ -403,6 +427,15 @@ def test_a_design_too_large_to_check_is_found_wherever_its_key_stands(tmp_path, 
         assert detect.declares_design_at_large(io.BytesIO(data), "json")
         assert not detect.declares_design_at_large(io.BytesIO(data.replace(b"\n", b"z")
                                                               .replace(b'"', b"")), "yaml")
+    # a block read after the last 64 bytes of the one before, which start with the key
+    # in the middle of a line: no line starts there
+    mid_line = b"y" * ((1 << 16) - 64) + b"furncheck: 1" + b"z" * 100
+    assert not detect.declares_design_at_large(io.BytesIO(mid_line), "yaml")
+    # beyond SNIFF_LIMIT nothing is read: a data file of hundreds of MB costs no more
+    monkeypatch.setattr(detect, "SNIFF_LIMIT", 4 << 16)
+    late = b"y" * (5 << 16) + b"\nfurncheck: 1\n"
+    assert not detect.declares_design_at_large(io.BytesIO(late), "yaml")
+    assert detect.declares_design_at_large(io.BytesIO(late[-(3 << 16):]), "yaml")
 
 
 # --- files that are no designs ------------------------------------------------------------

@@ -147,9 +147,9 @@ planks:
 def test_a_back_rest_on_edge_tilted_says_where_its_top_edge_goes():
     """A bench's back rest stands on edge on the seat's rear (length along x, width up,
     at y = -166 mm behind the seat's middle): turned about x, its length stays level, so
-    'which end rises' says nothing; its top edge moves, toward the seat (-5.5 degrees
-    about x: the top edge, above the axis, goes to +y) or away from it (nothing is
-    there: no phrase), as a woodworker's trial asked."""
+    'which end rises' says nothing (turned about y, it does); its top edge moves, toward
+    the seat (-5.5 degrees about x: the top edge, above the axis, goes to +y) or away
+    from it (nothing is there: no phrase), as a woodworker's trial asked."""
     from furncheck.design import parse_design
 
     bench = with_model(parse_design(BENCH_WITH_BACK, "bench.yaml", "yaml"), "rigid")
@@ -157,3 +157,6 @@ def test_a_back_rest_on_edge_tilted_says_where_its_top_edge_goes():
         "Tilt back 5.5 degrees about x, its top edge toward seat (valid for 5.5-11 degrees)."
     assert advise(bench, {"back.rx": 5.5}, interval=(1.0, 2.0)) == \
         "Tilt back 5.5 degrees about x (valid for 5.5-11 degrees)."
+    # turned about y its length rises at one end: that end is what the advice names
+    assert advise(bench, {"back.ry": 4.0}, interval=(1.0, 2.0)) == \
+        "Tilt back 4 degrees about y, raising its end toward side_l (valid for 4-8 degrees)."

@@ -341,7 +341,7 @@ def _yaml_syntax_error(error: yaml.YAMLError, text: str, source: str) -> DesignE
     mark = problem_mark or context_mark
     line = None if mark is None else line_of(mark)
     if context in _FLOW_CONTEXTS and problem_mark is not None and context_mark is not None \
-            and context_mark.line < problem_mark.line \
+            and line_of(context_mark) < line_of(problem_mark) \
             and problem_mark.index < len(text) \
             and not _closed(text, context_mark.index, _FLOW_CONTEXTS[context]):
         # a bracket left open: the parser stumbles on the next line's item, but the
@@ -358,9 +358,15 @@ def _yaml_syntax_error(error: yaml.YAMLError, text: str, source: str) -> DesignE
         else:                       # the last line, counted as the parser counts breaks
             line = min(line, max(_line_count(text) if editor_line is None
                                  else editor_line(len(text) - 1), 1))
-    if editor_line is not None:     # the break the parser saw may be the mistake
-        shown = ", ".join(f"U+{ord(c):04X}" for c in _YAML_ONLY_BREAKS if c in text)
-        message = f"{message}; the file holds {shown}, which YAML reads as a line break"
+    marks = [m.index for m in (context_mark, problem_mark) if m is not None]
+    if editor_line is not None and marks:   # a break the parser saw on the lines it read
+        start = text.rfind("\n", 0, min(marks)) + 1      # up to the error may be the
+        end = text.find("\n", max(marks))                # mistake: said where it is
+        near = text[start:len(text) if end < 0 else end]
+        shown = ", ".join(f"U+{ord(c):04X}" for c in _YAML_ONLY_BREAKS if c in near)
+        if shown:
+            message = f"{message}; line {line_of(problem_mark or context_mark)} holds " \
+                      f"{shown}, which YAML reads as a line break"
     return DesignError(source, "", line, _one_line(f"YAML syntax error: {message}"))
 
 
@@ -377,7 +383,6 @@ def _editor_lines(text: str):
     if not any(c in text for c in _YAML_ONLY_BREAKS):
         return None
     import bisect
-    import re
 
     starts = [0] + [found.end() for found in re.finditer(r"\r\n|\r|\n", text)]
     return lambda index: bisect.bisect_right(starts, index)
@@ -460,8 +465,6 @@ def _json_nesting_error(text: str, source: str) -> DesignError:
     path and line where the limit is passed, found by reading the text as YAML up to
     just past that point (read whole, a JSON nested a thousand deep met the YAML
     parser's own limit first, and its message had no line)."""
-    import re
-
     depth, cut = 0, len(text)
     for token in re.finditer(r'"(?:\\.|[^"\\])*"|[\[\]{}]', text):
         bracket = token.group()

@@ -290,13 +290,12 @@ def _tilt_effect(design: Design, edited: Design, plank_id: str) -> str:
         return f"its top toward {ahead}" if ahead else ""
     if plank_id not in edited.plank_index:
         return ""
-    if abs(float(plank.rotation_matrix[2, 1])) > VERTICAL_COSINE:    # on edge (a back rest)
-        ahead = _top_ahead(design, edited, plank_id, side=1)
-        if ahead:
-            return f"its top edge toward {ahead}"
     turned = edited.plank(plank_id).rotation_matrix[:, 0]
     rising = turned[2] - length_axis[2]
-    if abs(float(rising)) <= 1e-12:
+    if abs(float(rising)) <= 1e-12:     # turned about its level length: on edge (a back
+        if abs(float(plank.rotation_matrix[2, 1])) > VERTICAL_COSINE:       # rest), its
+            ahead = _top_ahead(design, edited, plank_id, side=1)           # top edge moves
+            return f"its top edge toward {ahead}" if ahead else ""
         return ""
     end = length_axis if rising > 0 else -length_axis
     ahead = _toward(design, plank_id, end / float(np.linalg.norm(end)))

@@ -522,7 +522,7 @@ def _sideways(model, node_frame: np.ndarray, deflection: np.ndarray, references:
         node = point if point < len(node_frame) else \
             int(beams.nodes[(point - len(node_frame)) % len(beams.length), 0])
         vertical = float(offset @ node_frame[node, 2, 1:])
-        return abs(vertical) < np.sqrt(0.5) * float(np.hypot(*offset))
+        return abs(vertical) < tol.UPRIGHT_SINE * float(np.hypot(*offset))
 
     return sideways
 

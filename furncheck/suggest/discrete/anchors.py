@@ -59,13 +59,11 @@ def wall_anchors(search: Search) -> Fix | None:
         return None
     if not search.repairs(ANCHOR, REPAIRED):
         return None
-    pairs = list(_candidates(search))
-    symmetric = [both for both, _ in pairs if both is not None]
-    # a maker fixes a symmetric piece symmetrically: a plank with its mirror images first,
-    # finished with thicker boards as the plank alone would be
-    fix = search.first_valid(symmetric) if symmetric else None
-    if fix is None:
-        fix = search.first_valid(alone for _, alone in pairs)
+    # a maker fixes a symmetric piece symmetrically: each plank with its mirror images
+    # just before it alone, in the rule's order of planks (``Candidate.preferred``: of
+    # the two finished with as much thicker board, the symmetric one)
+    fix = search.first_valid(candidate for pair in _candidates(search) for candidate in pair
+                             if candidate is not None)
     if fix is None:
         return None
     added = [np.asarray(a.point) / design.unit_scale
@@ -106,8 +104,8 @@ def _candidates(search: Search) -> Iterator[tuple[Candidate | None, Candidate]]:
         points = [_onto_wall(p, design.walls[wall], slack) for p in points]
         fixed = [(plank_id, points)]
         images = _mirror_images(design, planes, plank_id, points, wall)
-        yield (_candidate(search, fixed + images, wall, edge) if images else None,
-               _candidate(search, fixed, wall, edge))
+        yield (replace(_candidate(search, fixed + images, wall, edge), preferred=True)
+               if images else None, _candidate(search, fixed, wall, edge))
 
 
 def _candidate(search: Search, fixed: list[tuple[str, list[np.ndarray]]], wall: int,

@@ -172,7 +172,8 @@ class Search:
                              "design with it valid", thickening=True)
                 continue
             added = _added_board(edited, finished[2])
-            if best is not None and added >= best[0]:
+            if best is not None and (added > best[0] or (
+                    added == best[0] and not candidate.preferred > best[1].preferred)):
                 self._record(candidate, FAILED, "valid, but it adds more board than "
                              f"{best[1].place}", thickening=True)
                 continue
@@ -267,6 +268,9 @@ class Candidate:
     place      : where it goes, in words, for the Trial's reason ('between shelf and base
                  at the far side')
     plank      : the plank (or fixing) it adds, as the advice names it
+    preferred  : of candidates that thicker boards finish with as much board, a preferred
+                 one is kept over one that is not (the anchors on a plank and its mirror
+                 images over those on the plank alone); else the later one is
     """
 
     rule: str
@@ -279,6 +283,7 @@ class Candidate:
     target: str = ""
     place: str = ""
     plank: str = ""
+    preferred: bool = False
 
 
 # --- geometry a woodworker reads off a design ---------------------------------------------
