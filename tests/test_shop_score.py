@@ -373,3 +373,28 @@ loads:
         score_of(stand, cut).implausible
     assert not any("cut to" in r for r in score_of(stand, fine).implausible)
     assert not any("cut to" in r for r in score_of(stand, thin).implausible)
+
+
+@pytest.mark.parametrize("tilt, flagged", [(4.0, False), (10.5, True)])
+def test_a_loaded_top_tilted_out_of_level_is_implausible(tilt, flagged):
+    """A woodworker's wall desk: its top, loaded, turned 10.5 degrees about y (what
+    stands on it slides off: implausible, beyond TILT_LIMIT = 5 degrees); by 4 degrees,
+    about what a chair's seat slopes back, it is not.  The slope is the angle between
+    its broad face and level."""
+    from furncheck.suggest.score import TILT_LIMIT
+
+    assert TILT_LIMIT == 5.0
+    desk = """
+furncheck: 1
+name: desk
+planks:
+  - {{id: side_l, size: [700, 500], center: [-394, 0, 350], rotation: [0, -90, 0]}}
+  - {{id: side_r, size: [700, 500], center: [394, 0, 350], rotation: [0, -90, 0]}}
+  - {{id: top, size: [800, 500], center: [0, 0, 706], rotation: [0, {tilt}, 0]}}
+loads:
+  - {{plank: top, mass: 10, spread: true}}
+"""
+    reasons = [r for r in score_of(desk.format(tilt=0), desk.format(tilt=tilt)).implausible
+               if "slope" in r]
+    assert reasons == ([f"top slopes {tilt:g} degrees under its load: what stands on it "
+                        f"slides off"] if flagged else [])

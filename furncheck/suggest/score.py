@@ -14,7 +14,8 @@ design, and ranked by ``ShopScore.key`` (smaller first), lexicographically:
    length at one end (legs moved 267 mm in under a 900 mm bench seat: whoever sits at
    its end tips it, whatever the load cases say; an input's overhang past that share may
    not grow either), or a loaded level plank cut by more than SHRINK_SHARE of its length or
-   width (a top cut to a strip under its pot), or (elastic model) a plank resized past
+   width (a top cut to a strip under its pot) or turned out of level by more than
+   TILT_LIMIT degrees (a desk's top sloping 10.5 degrees), or (elastic model) a plank resized past
    square, whose one beam then runs the other way (contract 3a: along the longer side; a
    stool's seat widened past its length bends the other way, and holds by that alone),
    or the highest loaded level plank (a
@@ -84,6 +85,12 @@ a 400 mm top cut down to a 16 mm strip under its 25 kg pot, or a 1000 mm shelf c
 mm under the same 35 kg of books, holds in the model, but the maker drew a top and a
 shelf (an overloaded 400 mm cantilever shelf shortened to 220 mm is still a shelf).  The
 loads ride with the plank (README "suggest")."""
+
+TILT_LIMIT = 5.0
+"""Degrees: a level plank that a load case loads (a desk's top, a shelf, a seat) may be
+turned out of level by at most this before a suggestion reads as implausible: what stands
+on a top sloping 10 degrees slides off it, whatever the load cases say (a chair's seat
+is commonly sloped back by 3 to 5 degrees)."""
 
 HANG_SHARE = 0.25
 """A plank's end nailed to another plank's face may reach past that face's edge by at
@@ -179,6 +186,16 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
             if new_size < (1.0 - SHRINK_SHARE) * old_size:
                 key = (amount(new_size / scale), amount(old_size / scale), name)
                 cut.setdefault(key, []).append(plank_id)
+    sloped: dict[str, list[str]] = {}
+    for plank_id in sorted(loaded & changed, key=original.plank_index.get):
+        slope = _slope(edited.plank(plank_id))
+        if slope > TILT_LIMIT and slope > _slope(original.plank(plank_id)) + 1e-9:
+            sloped.setdefault(amount(slope), []).append(plank_id)
+    for slope, planks in sloped.items():
+        several = len(planks) > 1
+        reasons.append(f"{names(planks)} {'slope' if several else 'slopes'} {slope} degrees "
+                       f"under {'their loads' if several else 'its load'}: what stands on "
+                       f"{'them' if several else 'it'} slides off")
     for (new_size, old_size, name), planks in cut.items():
         several = len(planks) > 1
         reasons.append(f"{names(planks)} {'are' if several else 'is'} cut to {new_size} "
@@ -193,6 +210,11 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
             reasons.append(f"{plank_id} ends {amount(after / scale)} {unit} above the floor "
                            f"(it was {amount(before / scale)} {unit}: another piece)")
     return tuple(reasons)
+
+
+def _slope(plank: Plank) -> float:
+    """Degrees between the plank's broad face and level."""
+    return math.degrees(math.acos(min(1.0, abs(float(plank.rotation_matrix[2, 2])))))
 
 
 def _working_heights(design: Design) -> list[str]:
