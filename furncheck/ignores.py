@@ -252,13 +252,16 @@ class IgnoreRules:
                                              for rule in reversed(self.gitignores))
                      if verdict is not None), False)
 
-    def entering(self, folder: str) -> IgnoreRules:
+    def entering(self, folder: str, top: bool | None = None) -> IgnoreRules:
         """The rules inside ``folder`` (absolute): these plus its own ``.gitignore``; at
         the top of a repository (a nested one, a submodule) the gitignore files above it
         are another repository's and stop applying, as in git (its ``.git/info/exclude``
-        applies instead; the excludes stay)."""
+        applies instead; the excludes stay).  ``top``: whether ``folder`` holds ``.git``,
+        where the caller's listing of it says (else looked up)."""
         gitignores = self.gitignores
-        if os.path.exists(os.path.join(folder, GIT_DIR)):
+        if top is None:
+            top = os.path.exists(os.path.join(folder, GIT_DIR))
+        if top:
             info = read_pattern_file(_info_exclude(folder), folder)
             gitignores = () if info is None else (info,)
         own = read_pattern_file(os.path.join(folder, GITIGNORE), folder)

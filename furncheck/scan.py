@@ -28,6 +28,7 @@ from pathlib import Path, PurePath
 from typing import TYPE_CHECKING
 
 from furncheck import tolerances as tol
+from furncheck.config import GIT_DIR
 from furncheck.result import DesignReport
 
 if TYPE_CHECKING:       # the ignore rules are read where a folder is scanned
@@ -188,7 +189,8 @@ def find_design_files(folder: str, excludes: tuple[PatternFile, ...] = (),
         except OSError as error:
             scan.unreadable.append((current, error.strerror or str(error)))
             continue
-        rules = rules.entering(os.path.abspath(current))
+        rules = rules.entering(os.path.abspath(current),
+                               any(entry.name == GIT_DIR for entry in listing))
         subfolders: list[tuple[str, IgnoreRules]] = []
         links: list[tuple[str, IgnoreRules]] = []
         for entry in listing:
