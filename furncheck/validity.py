@@ -308,6 +308,12 @@ def _upright(plank, crosswise: bool) -> bool:
     return abs(float(beam_frame(plank, crosswise)[2, 0])) > tol.UPRIGHT_SINE
 
 
+def bows_sideways(violation: Violation) -> bool:
+    """Whether a ``sagging`` violation's plank bows sideways (``_sag_message``: a leg, a
+    side, or a level plank bent across rather than down), not sags under its load."""
+    return violation.kind == "sagging" and violation.message.startswith("bows ")
+
+
 def _sag_message(design: Design, material: Material, sag: float, allowed: float,
                  span: float, upright: bool = False, overhang: bool = False) -> str:
     """The ``sagging`` violation's words; an upright plank's (a leg, a side: ``_upright``)

@@ -304,6 +304,35 @@ def test_plank_on_edge_bends_across_its_width():
     assert _bending_depth(design.plank("leg_l")) == ("thickness", pytest.approx(0.012))
 
 
+def test_an_end_panel_bowed_sideways_needs_a_thicker_panel_not_a_deeper_one():
+    """A woodworker's coffee table: 400 x 550 mm end panels on edge (their 550 mm level),
+    a 9 mm top between them, 75 kg sat on it: the top's sag spreads the ends, which bow
+    4.08 mm sideways, across their 12 mm thickness (6.12 mm with creep against 550 / 400
+    = 1.38 mm).  Sag goes with 1 / t^3: t' = 12 x (6.12 / 1.38)^(1/3) = 19.7 mm thick,
+    not a panel 658 mm deep (the rail rule's reading of a plank on edge, for vertical
+    loads)."""
+    from furncheck.design import parse_design
+
+    text = """
+furncheck: 1
+name: coffee-table-thin
+planks:
+  - {id: top, size: [1100, 550], center: [0, 0, 404.5], thickness: 9}
+  - {id: end_l, size: [400, 550], center: [-544, 0, 200], rotation: [0, -90, 0]}
+  - {id: end_r, size: [400, 550], center: [544, 0, 200], rotation: [0, -90, 0]}
+loads:
+  - {plank: top, mass: 75, at: [0, 0, 409]}
+"""
+    design = parse_design(text, "coffee.yaml", "yaml")
+    geometry = analyze(design)
+    report = check_design(design, geometry)
+    need = need_of(design, geometry, report, "sagging", "end_l")
+    assert need.values["dimension"] == "thickness" and need.values["size"] == 12.0
+    ratio = need.values["sag"] * 1.5 / need.values["sag_allowed"]
+    assert need.values["size_needed"] == pytest.approx(12 * ratio ** (1 / 3), rel=1e-9)
+    assert 15.0 < need.values["size_needed"] < 25.0
+
+
 def _thickened(design, plank_id: str, thickness_mm: float):
     """The design with one plank that thick (about its middle plane)."""
     planks = tuple(replace(p, thickness=thickness_mm * design.unit_scale)

@@ -53,6 +53,7 @@ from furncheck.geometry.near import carried_groups
 from furncheck.geometry.support import convex_hull, floor_point, hold_down_ratios, outside
 from furncheck.result import CaseResult, DesignReport, Violation
 from furncheck.tolerances import GRAVITY, MIN_BEARING_SHARE
+from furncheck.validity import bows_sideways
 
 LEVEL_COS = 0.95
 """A plank's length axis counts as horizontal, and a face normal as horizontal, when
@@ -92,6 +93,9 @@ def violation_needs(design: Design, geometry: Geometry, report: DesignReport) ->
             needs.append(Need(kind, where, None, names, {}, "no hand estimate"))
             continue
         found = [estimate(design, geometry, where, cases.get(v.case), v.case)
+                 if kind != "sagging" else
+                 _bent(design, geometry, where, cases.get(v.case), v.case, sagging=True,
+                       across=bows_sideways(v))
                  for v in violations]
         worst = max(found, key=_severity)
         needs.append(Need(kind, where, worst.case, names, worst.values, worst.why))
@@ -297,14 +301,14 @@ def _anchor(design: Design, where: str, case: CaseResult | None,
 
 # -- bending (elastic model) -------------------------------------------------------------
 def _bent(design: Design, geometry: Geometry, where: str, case: CaseResult | None,
-          case_name: str | None, sagging: bool) -> Need:
+          case_name: str | None, sagging: bool, across: bool = False) -> Need:
     kind = "sagging" if sagging else "overstressed"
     result = next((p for p in case.planks or () if p.id == where), None) \
         if case is not None else None
     if result is None:
         return Need(kind, where, case_name, why="no plank result")
     plank = design.plank(where)
-    dimension, size = _bending_depth(plank)
+    dimension, size = _bending_depth(plank, across)
     if sagging:
         creep = design.material_of(plank).creep
         ratio = result.sag * (1.0 + creep) / result.sag_allowed
@@ -320,15 +324,16 @@ def _bent(design: Design, geometry: Geometry, where: str, case: CaseResult | Non
     return Need(kind, where, case_name, values=values)
 
 
-def _bending_depth(plank: Plank) -> tuple[str, float]:
+def _bending_depth(plank: Plank, across: bool = False) -> tuple[str, float]:
     """('thickness', t) for a plank that bends across its thickness; ('width', w) for a
     plank on edge with its length level (a rail or apron under vertical loads), which
-    bends across its width."""
+    bends across its width, unless it bows ``across`` (sideways: a coffee table's end
+    panel splayed by its top, a rail pushed sideways), across its thickness."""
     rotation = plank.rotation_matrix
     length_axis = rotation[:, 0] if plank.length >= plank.width else rotation[:, 1]
     level = abs(float(length_axis[2])) < 1.0 - LEVEL_COS
     on_edge = abs(float(rotation[2, 2])) < 1.0 - LEVEL_COS
-    if level and on_edge:
+    if level and on_edge and not across:
         return "width", min(plank.length, plank.width)
     return "thickness", plank.thickness
 
