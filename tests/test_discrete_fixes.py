@@ -457,7 +457,8 @@ def test_discrete_search_stops_at_the_first_valid_candidate(monkeypatch):
 def test_an_anchor_suggestion_lists_its_fixings_in_json(tmp_path):
     """``--format json`` of the free bookcase (rigid): the anchor suggestion's
     ``anchors`` are the fixings as a design file lists them: on top, at (-+141, 15, 1791)
-    mm (see ``test_a_bookcase_by_a_wall_gets_anchored``), wall 0, 196 N."""
+    mm (see ``test_a_bookcase_by_a_wall_gets_anchored``), wall 0, 196 N; the text lists
+    them under the suggestion ('adds 2 wall fixings:', where it listed none)."""
     path = tmp_path / "bookcase-free.yaml"
     path.write_text(re.sub(r"anchors:\n(  - .*\n)+", "",
                            (CATALOG / "bookcase-anchored.yaml").read_text()))
@@ -469,6 +470,11 @@ def test_an_anchor_suggestion_lists_its_fixings_in_json(tmp_path):
     assert [a["at"] for a in entry["anchors"]] == [pytest.approx([-141, 15, 1791]),
                                                    pytest.approx([141, 15, 1791])]
     assert all(a["wall"] == 0 and a["capacity"] == 196.0 for a in entry["anchors"])
+    # the text's cut list says so too, as it says what the other rules change
+    text = CliRunner().invoke(main, ["suggest", str(path), "--model", "rigid"]).output
+    assert "adds 2 wall fixings:\n" \
+           "       anchors[0] on top (wall 0): at (-141, 15, 1791) mm, rated 196 N\n" \
+           "       anchors[1] on top (wall 0): at (141, 15, 1791) mm, rated 196 N\n" in text
 
 
 def test_locked_dofs_hold_for_the_fixes_too():

@@ -77,6 +77,21 @@ def rating_lines(changes: tuple[RatingChange, ...]) -> list[str]:
               f"{_number(change.after)} N" for change in changes)]
 
 
+def added_anchor_lines(original: Design, edited: Design) -> list[str]:
+    """'adds N wall fixings:' and one line per fixing a suggestion adds (the wall-anchor
+    rule's; unindented), as its file lists them: 'anchors[0] on rail_l (wall 0): at
+    (-300, 0, 1545.5) mm, rated 196 N'."""
+    added = edited.anchors[len(original.anchors):]
+    if not added:
+        return []
+    lines = [f"adds {plural(len(added), 'wall fixing')}:"]
+    for index, anchor in enumerate(added, start=len(original.anchors)):
+        point = ", ".join(_number(v / original.unit_scale) for v in anchor.point)
+        lines.append(f"  anchors[{index}] on {anchor.plank} (wall {anchor.wall}): at "
+                     f"({point}) {original.units}, rated {_number(anchor.capacity)} N")
+    return lines
+
+
 def ratings_json(changes: tuple[RatingChange, ...]) -> list[dict[str, Any]]:
     """The JSON ``ratings`` list: {"anchor", "before", "after"} (N) per changed fixing."""
     return [{"anchor": change.anchor, "before": change.before, "after": change.after}

@@ -287,10 +287,15 @@ def suggestion_page(document: dict[str, Any], original: PageDesign,
 
 
 def _other_changes(entry: dict[str, Any]) -> list[tuple[str, str, str, Any, Any]]:
-    """Rows of what a suggestion changes besides planks (the suggest JSON's ``nails``,
-    ``ratings``, ``friction`` and ``anchors_moved``): (what, edit, field, from, to)."""
-    rows = [(str(n["joint"]), "change", "nails", n["before"], n["after"])
-            for n in entry.get("nails") or ()]
+    """Rows of what a suggestion changes besides planks (the suggest JSON's ``anchors``
+    that it adds, ``nails``, ``ratings``, ``friction`` and ``anchors_moved``): (what,
+    edit, field, from, to)."""
+    rows = [(f"fixing on {a['plank']} (wall {a['wall']})", "add", "at", None, a["at"])
+            for a in entry.get("anchors") or ()]
+    rows += [(f"fixing on {a['plank']} (wall {a['wall']})", "add", "rating, N", None,
+              a["capacity"]) for a in entry.get("anchors") or ()]
+    rows += [(str(n["joint"]), "change", "nails", n["before"], n["after"])
+             for n in entry.get("nails") or ()]
     rows += [(f"anchors[{r['anchor']}]", "change", "rating, N", r["before"], r["after"])
              for r in entry.get("ratings") or ()]
     if entry.get("friction"):

@@ -28,6 +28,7 @@ from furncheck.export.suggestions import Written
 from furncheck.plain import plain_number
 from furncheck.report.common import plural
 from furncheck.report.cutlist import (
+    added_anchor_lines,
     anchor_move_lines,
     anchor_moves_json,
     cut_list_lines,
@@ -98,6 +99,7 @@ def render_text(result: SuggestionReport, original: Design,
                      f"Restores {restores}.")
         for line in (*cut_list_lines(suggestion.edits, original),
                      *nail_lines(nail_changes(original, suggestion.design)),
+                     *added_anchor_lines(original, suggestion.design),
                      *rating_lines(rating_changes(original, suggestion.design)),
                      *_friction_lines(friction_change(original, suggestion.design)),
                      *load_move_lines(suggestion.loads_moved, original),
