@@ -5,6 +5,7 @@ standing on the floor), parallel and facing planks, level planks, new plank name
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable
 from dataclasses import dataclass, field, replace
 
@@ -139,8 +140,9 @@ class Search:
     def first_valid(self, candidates: Iterable[Candidate]) -> Fix | None:
         """The Fix of the first candidate that is valid (``verdict``), trying at most
         MAX_CANDIDATES of them; when none is, but some failed only by planks that bend
-        too much (elastic model), the last FINISHED of those (the rules list their
-        smallest parts first) with those planks thickened (``thicker.finish``): of the
+        too much (elastic model), the FINISHED of those whose planks bend least past
+        their limits (``_nearest``; on a tie the later, as the rules list their smallest
+        parts first) with those planks thickened (``thicker.finish``): of the
         ones that are then valid, the one that adds the least board (``_added_board``);
         else None.  Every candidate checked is recorded in ``trials`` (``tried.Trial``:
         found, or failed and why)."""
@@ -165,7 +167,7 @@ class Search:
         from furncheck.suggest.discrete.thicker import finish, thickness_phrase
 
         best = None
-        for candidate, edited, after, report in reversed(bent[-FINISHED:]):
+        for candidate, edited, after, report in reversed(_nearest(bent)):
             finished = finish(self, edited, after, report)
             if finished is None:
                 self._record(candidate, FAILED, "no thicker boards (up to 44 mm) make the "
@@ -284,6 +286,20 @@ class Candidate:
     place: str = ""
     plank: str = ""
     preferred: bool = False
+
+
+def _nearest(bent: list[tuple]) -> list[tuple]:
+    """The FINISHED (candidate, design, geometry, report) of ``bent`` that the least
+    thicker board may finish: the smallest worst utilization of a plank in the report,
+    in their order (a long bench's middle leg, its seat then sagging 2.7 times its
+    allowance, before deep rails that leave it at 8 times: the rule lists the supports
+    first and the rails last, and the last three alone were finished)."""
+    def worst(report) -> float:
+        return max((plank.utilization for case in report.cases for plank in case.planks or ()),
+                   default=math.inf)
+
+    kept = sorted(range(len(bent)), key=lambda k: (worst(bent[k][3]), -k))[:FINISHED]
+    return [bent[k] for k in sorted(kept)]
 
 
 # --- geometry a woodworker reads off a design ---------------------------------------------
