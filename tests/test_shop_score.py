@@ -398,3 +398,34 @@ loads:
                if "slope" in r]
     assert reasons == ([f"top slopes {tilt:g} degrees under its load: what stands on it "
                         f"slides off"] if flagged else [])
+
+
+def test_a_push_carried_down_with_its_plank_is_implausible():
+    """A woodworker's narrow bookcase: a child's 50 N pull at the top (1800 mm up).
+    Lowering the top by 261 mm carries the pull down with it (loads ride with their
+    plank), and the case then holds only because the lever shrank: 50 N x 1.539 m against
+    the 1.8 m the child still reaches on the sides' tops.  Beyond PUSH_DROP_SHARE (10 %)
+    of its height that reads as implausible; a 100 mm drop (5.6 %) does not, nor does a
+    mass (a load that stands where it is put) carried down."""
+    from furncheck.suggest.score import PUSH_DROP_SHARE
+
+    assert PUSH_DROP_SHARE == 0.1
+    unit = """
+furncheck: 1
+name: bookcase
+material: {{thickness: 18}}
+planks:
+  - {{id: side_l, size: [1800, 250], center: [-191, 0, 900], rotation: [0, -90, 0]}}
+  - {{id: side_r, size: [1800, 250], center: [191, 0, 900], rotation: [0, -90, 0]}}
+  - {{id: top, size: [364, 250], center: [0, 0, {z}]}}
+loads:
+  - {{plank: top, force: [0, 50, 0], at: [0, 125, {at}]}}
+  - {{plank: top, mass: 5, at: [0, 0, {at}]}}
+"""
+    before = unit.format(z=1791, at=1800)
+    low = score_of(before, unit.format(z=1530, at=1539)).implausible
+    assert [r for r in low if "push" in r] == [
+        "the 50 N push on top moves 261 mm lower with it (case 'default'): it may hold only "
+        "because the push moved"]
+    assert not [r for r in score_of(before, unit.format(z=1691, at=1700)).implausible
+                if "push" in r]

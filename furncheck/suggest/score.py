@@ -20,7 +20,8 @@ design, and ranked by ``ShopScore.key`` (smaller first), lexicographically:
    stool's seat widened past its length bends the other way, and holds by that alone),
    or the highest loaded level plank (a
    seat, a top) raised or lowered by more than HEIGHT_SHARE of its height (a chair's seat
-   lowered to 80 mm: another piece);
+   lowered to 80 mm: another piece), or a push carried down with its plank by more than
+   PUSH_DROP_SHARE of its height (a bookcase's top lowered under a child's pull);
 2. ``broken``: mirror relations the edit breaks (``symmetry.broken_pairs``: a pair of
    mirror planks no longer mirrored, a plank on the mirror plane no longer symmetric, or
    an added plank without a mirror image among the added ones)
@@ -45,6 +46,7 @@ import numpy as np
 from furncheck.design.model import Design, Plank
 from furncheck.dofs import design_size
 from furncheck.geometry import Geometry
+from furncheck.plain import plain_load
 from furncheck.suggest.cutlist import (
     ANGLE_FIELDS,
     POSITION_FIELDS,
@@ -91,6 +93,13 @@ TILT_LIMIT = 5.0
 turned out of level by at most this before a suggestion reads as implausible: what stands
 on a top sloping 10 degrees slides off it, whatever the load cases say (a chair's seat
 is commonly sloped back by 3 to 5 degrees)."""
+
+PUSH_DROP_SHARE = 0.1
+"""A push (a load with a force and no mass: a child's pull, a shove) that a suggestion
+carries down with its plank by more than this share of its height above the floor reads
+as implausible: a push acts where hands reach, and a fix that lowers the plank it acts on
+may hold only because the push moved (a bookcase's top lowered 261 mm under a child's
+pull at 1800 mm, its sides still 1800 mm tall: the child pulls at their tops)."""
 
 HANG_SHARE = 0.25
 """A plank's end nailed to another plank's face may reach past that face's edge by at
@@ -201,6 +210,26 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
         reasons.append(f"{names(planks)} {'are' if several else 'is'} cut to {new_size} "
                        f"{unit} of {'their' if several else 'its'} {old_size} {unit} {name} "
                        f"under {'their loads' if several else 'its load'}")
+    lowered: dict[tuple, list[str]] = {}
+    edited_cases = {case.name: case for case in edited.load_cases}
+    for case in original.load_cases:
+        other = edited_cases.get(case.name)
+        if other is None or len(other.loads) != len(case.loads):
+            continue
+        for old, new in zip(case.loads, other.loads):
+            if old.mass is not None or old.point is None or new.point is None \
+                    or math.hypot(old.force[0], old.force[1]) <= abs(old.force[2]):
+                continue
+            drop = old.point[2] - new.point[2]
+            if drop > PUSH_DROP_SHARE * old.point[2]:
+                key = (plain_load(old.mass, old.force), old.plank, amount(drop / scale))
+                lowered.setdefault(key, [])
+                if case.name not in lowered[key]:
+                    lowered[key].append(case.name)
+    for (what, plank_id, drop), cases in lowered.items():
+        reasons.append(f"the {what} push on {plank_id} moves {drop} {unit} lower with it "
+                       f"(case {', '.join(repr(c) for c in cases)}): it may hold only "
+                       f"because the push moved")
     for plank_id in _working_heights(original):
         if plank_id not in changed:
             continue
