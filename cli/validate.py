@@ -110,8 +110,7 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
     check_output(output)
     if html_file is not None:
         check_output(html_file, "the report page")
-    if views_dir is not None:
-        _check_views_dir(views_dir)
+    views_missing = _check_views_dir(views_dir) if views_dir is not None else None
     caching = use_cache if use_cache is not None else config.cache is not False
     scanning = any(path != STDIN and os.path.isdir(path) for path in paths)
     # the cache's folder: where results go, and a folder no scan enters (with --no-cache
@@ -162,6 +161,9 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
                    f"{output}", err=True)
     if cache is not None and cache.unwritable:
         click.echo(f"furncheck: results not cached: {cache.unwritable}", err=True)
+    if views_missing is not None:       # the report and exit code are validate's
+        click.echo(f"furncheck: views not written: {views_missing}", err=True)
+        views_dir = None
     if views_dir is not None or html_file is not None:
         _pictures(sources, model, views_dir, html_file, cache)
     click.get_current_context().exit(summary.return_code)
@@ -184,10 +186,14 @@ def _pictures(sources: list, model: str | None, views_dir: str | None,
     reports = [source if isinstance(source, DesignReport) else report_of(source)
                for source in sources]
     if views_dir is not None:
+        from furncheck.export import ExportUnavailable
+
         try:
             write_catalog_views(reports, views_dir, model)
         except OSError as error:
             fail(f"cannot write views to {views_dir}: {error.strerror or error}")
+        except ExportUnavailable as error:      # matplotlib failed in a worker
+            click.echo(f"furncheck: views not written: {error}", err=True)
     if html_file is not None:
         try:
             make_folder(html_file)
@@ -196,16 +202,16 @@ def _pictures(sources: list, model: str | None, views_dir: str | None,
             fail(f"cannot write the report page {html_file}: {error.strerror or error}")
 
 
-def _check_views_dir(views_dir: str) -> None:
-    """Fail before any work when ``--views DIR`` cannot be written or drawn."""
+def _check_views_dir(views_dir: str):
+    """Fail before any work when ``--views DIR`` cannot be written; why the views cannot
+    be drawn (matplotlib cannot be imported: the designs are still checked and reported,
+    a note says so), or None."""
     from furncheck.export.folders import pictures_missing, prepare_out_dir
 
     problem = prepare_out_dir(views_dir)
     if problem:
         fail(f"cannot write views to {views_dir}: {problem}")
-    missing = pictures_missing()
-    if missing is not None:
-        fail(f"cannot write views: {missing}")
+    return pictures_missing()
 
 
 def _exclude_patterns(excludes: tuple[str, ...], config: Config) -> tuple:

@@ -19,6 +19,7 @@ from __future__ import annotations
 import json
 import math
 import re
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -762,14 +763,25 @@ def test_representative_is_valid_in_every_case():
     assert report.valid and {c.name for c in report.cases} == {"default", "shove"}
 
 
-def test_cli_out_without_the_export_extra_still_writes_design_files(tmp_path, monkeypatch):
-    """Where matplotlib cannot be imported, --out writes the design files and meshes,
-    says on stderr that pictures were skipped, and exits 0."""
+@pytest.mark.parametrize("broken", [False, True])
+def test_cli_out_without_the_export_extra_still_writes_design_files(tmp_path, monkeypatch,
+                                                                    broken):
+    """Where matplotlib cannot be imported (not installed, or installed and failing on
+    import: that was an internal error, exit 2, nothing on stdout), --out writes the
+    design files and meshes, says on stderr that pictures were skipped, and exits 0."""
     import importlib.util
 
-    real = importlib.util.find_spec
-    monkeypatch.setattr(importlib.util, "find_spec",
-                        lambda name, *args: None if name == "matplotlib" else real(name, *args))
+    if broken:
+        (tmp_path / "fake" / "matplotlib").mkdir(parents=True)
+        (tmp_path / "fake" / "matplotlib" / "__init__.py").write_text(
+            "raise ImportError('broken here')\n")
+        monkeypatch.syspath_prepend(str(tmp_path / "fake"))
+        monkeypatch.delitem(sys.modules, "matplotlib", raising=False)
+    else:
+        real = importlib.util.find_spec
+        monkeypatch.setattr(importlib.util, "find_spec",
+                            lambda name, *args: None if name == "matplotlib"
+                            else real(name, *args))
     out = tmp_path / "out"
     result = CliRunner().invoke(main, ["suggest", str(CATALOG / "bench-long-leg.yaml"),
                                        "--out", str(out), "--model", "rigid"])

@@ -21,8 +21,13 @@ well inside the 255 bytes a file name may have."""
 
 
 def pictures_missing() -> ExportUnavailable | None:
-    """Why pictures cannot be drawn here (matplotlib cannot be imported), or None."""
+    """Why pictures cannot be drawn here (matplotlib cannot be imported: not installed,
+    or installed but broken), or None.  (Imported here, by a run that is about to draw.)"""
     if importlib.util.find_spec("matplotlib") is None:
+        return ExportUnavailable("matplotlib")
+    try:
+        import matplotlib  # noqa: F401
+    except Exception:       # a broken install fails in many ways: ImportError, OSError...
         return ExportUnavailable("matplotlib")
     return None
 
