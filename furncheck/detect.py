@@ -42,7 +42,7 @@ SNIFF_BLOCK = 1 << 20
 
 SNIFF_LIMIT = 20 * (1 << 20)
 """Bytes of a file too large to check searched for its key, at most: a design's key
-stands in its first 20 MB (a 5 MB design is already refused), and a data file of hundreds
+stands in its first 20 MiB (one over 5 MiB is already refused), and a data file of hundreds
 of MB in a scanned tree is not read to its end on every run."""
 
 

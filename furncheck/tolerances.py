@@ -435,7 +435,7 @@ round-off such as 2e-14 mm or 1e-16 N is written as 0."""
 
 # --- design files: input limits and range guards (loader; SI unless the name says) ------
 MAX_FILE_BYTES = 5 * 1024 * 1024
-"""Largest design file read (5 MB); a catalog's furniture is a few kB."""
+"""Largest design file read (5 MiB, 5,242,880 bytes); a catalog's furniture is a few kB."""
 MAX_NESTING = 32
 """Deepest nesting of mappings and lists in a design file (a valid one needs 5)."""
 MIN_LENGTH = 1e-5                # m: smallest plank size, thickness, nail spacing

@@ -183,7 +183,7 @@ def test_too_large(tmp_path):
     path = tmp_path / "bench.yaml"
     with open(path, "wb") as handle:
         handle.truncate(5 * 2**20 + 1)          # sparse: no 5 MB written
-    with pytest.raises(DesignError, match=r"file too large \(5\.0 MB; the limit is 5 MB\)"):
+    with pytest.raises(DesignError, match=r"file too large \(5\.0 MiB; the limit is 5 MiB\)"):
         load_design(str(path))
 
 

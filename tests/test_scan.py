@@ -395,7 +395,7 @@ def test_force_exclude_reads_each_folders_gitignores_once(tmp_path, monkeypatch)
 
 
 def test_a_design_too_large_to_check_is_found_wherever_its_key_stands(tmp_path, monkeypatch):
-    """Files over the 5 MB limit (MAX_FILE_BYTES): a JSON design whose "furncheck" key
+    """Files over the 5 MiB limit (MAX_FILE_BYTES): a JSON design whose "furncheck" key
     comes last, after 6 MB of planks, and a YAML one whose key line follows 6 MB of
     comments, are designs (their reports say they are too large: exit 2), in a scan and
     with --skip-non-designs, not files without the key that a scan skips (exit 0); a

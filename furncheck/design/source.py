@@ -77,8 +77,8 @@ def _check_regular_file(path: str) -> None:
 def _too_large(source: str, size: int) -> DesignError:
     limit_mb = tol.MAX_FILE_BYTES / 2**20
     return DesignError(source, "", None,
-                       f"file too large ({size / 2**20:.1f} MB; the limit is "
-                       f"{plain_number(limit_mb, 6)} MB)")
+                       f"file too large ({size / 2**20:.1f} MiB; the limit is "
+                       f"{plain_number(limit_mb, 6)} MiB)")
 
 
 def _decode(data: bytes, path: str) -> str:
