@@ -405,8 +405,9 @@ def test_a_push_carried_down_with_its_plank_is_implausible():
     Lowering the top by 261 mm carries the pull down with it (loads ride with their
     plank), and the case then holds only because the lever shrank: 50 N x 1.539 m against
     the 1.8 m the child still reaches on the sides' tops.  Beyond PUSH_DROP_SHARE (10 %)
-    of its height that reads as implausible; a 100 mm drop (5.6 %) does not, nor does a
-    mass (a load that stands where it is put) carried down."""
+    of its height below the piece's top that reads as implausible; a 100 mm drop (5.6 %)
+    does not, nor does a mass (a load that stands where it is put) carried down, nor the
+    pull on a top that stays the highest part of a piece cut down whole."""
     from furncheck.suggest.score import PUSH_DROP_SHARE
 
     assert PUSH_DROP_SHARE == 0.1
@@ -429,3 +430,29 @@ loads:
         "because the push moved"]
     assert not [r for r in score_of(before, unit.format(z=1691, at=1700)).implausible
                 if "push" in r]
+    # the whole piece cut down, the top still its highest part: the pull goes down with
+    # it, as a sitter with a lowered seat (a stool's push on its seat)
+    lower = unit.replace("[1800, 250], center: [-191, 0, 900]", "[1539, 250], center: "
+                         "[-191, 0, 769.5]").replace("[1800, 250], center: [191, 0, 900]",
+                                                     "[1539, 250], center: [191, 0, 769.5]")
+    assert not [r for r in score_of(before, lower.format(z=1530, at=1539)).implausible
+                if "push" in r]
+
+
+def test_an_upright_plank_turned_in_plan_is_implausible():
+    """A stool's leg turned 8.5 degrees about the vertical (out of square with the seat,
+    a woodworker's trial: a brace holds the same push square) reads as implausible,
+    beyond TURN_LIMIT = 5 degrees; tilted 4 degrees in its own plane, or across it, it is
+    not turned in plan; a level seat turned in plan is left to the other rules."""
+    from furncheck.suggest.score import TURN_LIMIT
+
+    assert TURN_LIMIT == 5.0
+    turned = STOOL.replace("rotation: [0, -90, 0]}", "rotation: [0, -90, 8.5]}", 1)
+    assert turned != STOOL
+    reasons = score_of(STOOL, turned).implausible
+    assert [r for r in reasons if "in plan" in r] == [
+        "leg_l is turned 8.5 degrees in plan, out of square with the piece"]
+    tilted = STOOL.replace("rotation: [0, -90, 0]}", "rotation: [0, -86, 0]}", 1)
+    across = STOOL.replace("rotation: [0, -90, 0]}", "rotation: [4, -90, 0]}", 1)
+    for edited in (tilted, across):
+        assert not [r for r in score_of(STOOL, edited).implausible if "in plan" in r]

@@ -20,8 +20,10 @@ design, and ranked by ``ShopScore.key`` (smaller first), lexicographically:
    stool's seat widened past its length bends the other way, and holds by that alone),
    or the highest loaded level plank (a
    seat, a top) raised or lowered by more than HEIGHT_SHARE of its height (a chair's seat
-   lowered to 80 mm: another piece), or a push carried down with its plank by more than
-   PUSH_DROP_SHARE of its height (a bookcase's top lowered under a child's pull);
+   lowered to 80 mm: another piece), or a push at the top carried down with its plank
+   below the rest of the piece by more than PUSH_DROP_SHARE of its height (a bookcase's
+   top lowered under a child's pull, its sides as tall as before), or an
+   upright plank turned in plan by more than TURN_LIMIT degrees (a leg out of square);
 2. ``broken``: mirror relations the edit breaks (``symmetry.broken_pairs``: a pair of
    mirror planks no longer mirrored, a plank on the mirror plane no longer symmetric, or
    an added plank without a mirror image among the added ones)
@@ -94,12 +96,21 @@ turned out of level by at most this before a suggestion reads as implausible: wh
 on a top sloping 10 degrees slides off it, whatever the load cases say (a chair's seat
 is commonly sloped back by 3 to 5 degrees)."""
 
+TURN_LIMIT = 5.0
+"""Degrees: an upright plank (a leg, a side, a back rest) may be turned about the vertical,
+out of square with the piece, by at most this before a suggestion reads as implausible
+(a stool's leg turned 8.5 degrees in plan to hold a push, where a brace does it
+square)."""
+
 PUSH_DROP_SHARE = 0.1
-"""A push (a load with a force and no mass: a child's pull, a shove) that a suggestion
-carries down with its plank by more than this share of its height above the floor reads
-as implausible: a push acts where hands reach, and a fix that lowers the plank it acts on
-may hold only because the push moved (a bookcase's top lowered 261 mm under a child's
-pull at 1800 mm, its sides still 1800 mm tall: the child pulls at their tops)."""
+"""A push (a load with a force and no mass: a child's pull, a shove) at the top of the
+piece (within this share of its height) that a suggestion carries down with its plank by
+more than this share, below what then stands highest, reads as implausible: a push at the
+top acts where hands reach, and a fix that lowers the plank it acts on under the rest may
+hold only because the push moved (a bookcase's top lowered 261 mm under a child's pull at
+1800 mm, its sides still 1800 mm tall: the child pulls at their tops).  A seat or a back
+rest lowered whole, still the highest part, takes its push down with it, as the sitter
+goes."""
 
 HANG_SHARE = 0.25
 """A plank's end nailed to another plank's face may reach past that face's edge by at
@@ -210,7 +221,18 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
         reasons.append(f"{names(planks)} {'are' if several else 'is'} cut to {new_size} "
                        f"{unit} of {'their' if several else 'its'} {old_size} {unit} {name} "
                        f"under {'their loads' if several else 'its load'}")
+    turned_in_plan: dict[str, list[str]] = {}
+    for plank_id in sorted(changed, key=original.plank_index.get):
+        turn = _plan_turn(original.plank(plank_id), edited.plank(plank_id))
+        if turn > TURN_LIMIT:
+            turned_in_plan.setdefault(amount(turn), []).append(plank_id)
+    for turn, planks in turned_in_plan.items():
+        several = len(planks) > 1
+        reasons.append(f"{names(planks)} {'are' if several else 'is'} turned {turn} degrees "
+                       f"in plan, out of square with the piece")
     lowered: dict[tuple, list[str]] = {}
+    top_before = max(float(p.corners[:, 2].max()) for p in original.planks)
+    top_after = max(float(p.corners[:, 2].max()) for p in edited.planks)
     edited_cases = {case.name: case for case in edited.load_cases}
     for case in original.load_cases:
         other = edited_cases.get(case.name)
@@ -220,8 +242,9 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
             if old.mass is not None or old.point is None or new.point is None \
                     or math.hypot(old.force[0], old.force[1]) <= abs(old.force[2]):
                 continue
-            drop = old.point[2] - new.point[2]
-            if drop > PUSH_DROP_SHARE * old.point[2]:
+            drop, share = old.point[2] - new.point[2], PUSH_DROP_SHARE * old.point[2]
+            if top_before - old.point[2] <= share < drop \
+                    and top_after - new.point[2] > share:
                 key = (plain_load(old.mass, old.force), old.plank, amount(drop / scale))
                 lowered.setdefault(key, [])
                 if case.name not in lowered[key]:
@@ -239,6 +262,19 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
             reasons.append(f"{plank_id} ends {amount(after / scale)} {unit} above the floor "
                            f"(it was {amount(before / scale)} {unit}: another piece)")
     return tuple(reasons)
+
+
+def _plan_turn(before: Plank, after: Plank) -> float:
+    """Degrees an upright plank (its broad face within 45 degrees of vertical) is turned
+    about the vertical: between the horizontal parts of its face normal before and after
+    (a tilt in its own plane or across it leaves their direction alone); 0 for a plank
+    that lies more level than that."""
+    old, new = before.rotation_matrix[:, 2], after.rotation_matrix[:, 2]
+    if abs(float(old[2])) > math.sqrt(0.5) or abs(float(new[2])) > math.sqrt(0.5):
+        return 0.0
+    a, b = old[:2] / np.linalg.norm(old[:2]), new[:2] / np.linalg.norm(new[:2])
+    cosine = abs(float(a @ b))          # a face turned 180 degrees is the same face plane
+    return math.degrees(math.acos(min(1.0, cosine)))
 
 
 def _slope(plank: Plank) -> float:
