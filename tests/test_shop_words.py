@@ -160,3 +160,13 @@ def test_a_back_rest_on_edge_tilted_says_where_its_top_edge_goes():
     # turned about y its length rises at one end: that end is what the advice names
     assert advise(bench, {"back.ry": 4.0}, interval=(1.0, 2.0)) == \
         "Tilt back 4 degrees about y, raising its end toward side_l (valid for 4-8 degrees)."
+
+
+def test_a_mirror_pair_hung_by_their_top_edges_grows_at_their_bottoms():
+    """The wall shelf's two cleats (a mirror pair about x = 0) carry the shelf on their
+    top edges: widened together, they keep those edges and reach further down, 'lower
+    the bottom of cleat_l and cleat_r ... each' (the pair's words were 'widen', as if both
+    edges moved; the same rule a single board has)."""
+    shelf = with_model(load_design(str(CATALOG / "wall-shelf.yaml")), "rigid")
+    assert advise(shelf, {"cleat_l.width": 230.0, "cleat_r.width": 230.0}) == \
+        "Lower the bottom of cleat_l and cleat_r by 230 mm each (valid for 207-276 mm each)."

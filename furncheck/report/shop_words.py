@@ -103,8 +103,15 @@ def _changes_sentence(dofs: tuple[str, ...], changes: tuple[float, ...],
         if pair is not None:
             j, plane = pair
             done.add(j)
-            phrases.append(_pair_phrase(original, edited, plane, name, dofs[j], changes[k],
-                                        units[k]))
+            kind = name.rpartition(".")[2]
+            if kind in ("length", "width"):     # a size: which end moves, as for one
+                plank = name.rpartition(".")[0]
+                phrases.append(_phrase(original, edited, held, plank,
+                                       f"{plank} and {dofs[j].rpartition('.')[0]}", kind,
+                                       changes[k], units[k]) + " each")
+            else:
+                phrases.append(_pair_phrase(original, edited, plane, name, dofs[j],
+                                            changes[k], units[k]))
             first_each = first_each or k == 0
             continue
         plank = name.rpartition(".")[0]
@@ -147,8 +154,6 @@ def _pair_phrase(design: Design, edited: Design, plane: MirrorPlane, first: str,
         if kind == "z":
             return f"{'raise' if change > 0 else 'lower'} {both} by {amount}"
         return f"move {both} {amount} {_where(design, a, axis, change)}"
-    if kind in ("length", "width"):
-        return f"{_size_verb(kind, change)} {both} by {amount}"
     if kind == "rz":
         return f"turn {both} by {amount} about the vertical, mirrored"
     top_before = _top(design, a)
