@@ -83,6 +83,7 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
     from furncheck.check import refuse_too_big
     from furncheck.errors import DesignTooBig
     from furncheck.export.suggestions import (
+        ExportUnavailable,
         pictures_missing,
         prepare_out_dir,
         write_files,
@@ -115,7 +116,11 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
             pictures = False
         titles = {s.rank: advice(s, loaded) for s in result.suggestions}
         try:
-            written = write_files(result, out_dir, loaded, pictures, titles)
+            try:
+                written = write_files(result, out_dir, loaded, pictures, titles)
+            except ExportUnavailable as missing:    # (raised before any file is written)
+                click.echo(f"furncheck: pictures not written: {missing}", err=True)
+                written = write_files(result, out_dir, loaded, False, titles)
         except OSError as error:
             fail(f"cannot write suggestions to {out_dir}: {error.strerror or error}")
         try:

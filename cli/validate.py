@@ -38,6 +38,7 @@ from furncheck.result import DesignReport
 
 if TYPE_CHECKING:
     from furncheck.config import Config
+    from furncheck.export import ExportUnavailable
 
 PROGRESS_MIN_FILES = 50
 """A progress bar is shown on a terminal's stderr from this many files to check on, when
@@ -202,7 +203,7 @@ def _pictures(sources: list, model: str | None, views_dir: str | None,
             fail(f"cannot write the report page {html_file}: {error.strerror or error}")
 
 
-def _check_views_dir(views_dir: str):
+def _check_views_dir(views_dir: str) -> ExportUnavailable | None:
     """Fail before any work when ``--views DIR`` cannot be written; why the views cannot
     be drawn (matplotlib cannot be imported: the designs are still checked and reported,
     a note says so), or None."""

@@ -189,8 +189,9 @@ def find_design_files(folder: str, excludes: tuple[PatternFile, ...] = (),
         except OSError as error:
             scan.unreadable.append((current, error.strerror or str(error)))
             continue
-        rules = rules.entering(os.path.abspath(current),
-                               any(entry.name == GIT_DIR for entry in listing))
+        rules = rules.entering(os.path.abspath(current),       # (a .git link to nothing
+                               any(entry.name == GIT_DIR and _exists(entry)  # is none)
+                                   for entry in listing))
         subfolders: list[tuple[str, IgnoreRules]] = []
         links: list[tuple[str, IgnoreRules]] = []
         for entry in listing:
@@ -222,6 +223,15 @@ def _is_folder(entry: os.DirEntry) -> bool:
     """A folder, or a symlink to one (followed); False for a broken link."""
     try:
         return entry.is_dir(follow_symlinks=True)
+    except OSError:
+        return False
+
+
+def _exists(entry: os.DirEntry) -> bool:
+    """Whether a folder entry is a file or a folder, following a symlink (a broken link
+    is neither, as ``os.path.exists`` says)."""
+    try:
+        return entry.is_dir() or entry.is_file()
     except OSError:
         return False
 

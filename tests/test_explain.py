@@ -328,6 +328,7 @@ loads:
     report = check_design(design, geometry)
     need = need_of(design, geometry, report, "sagging", "end_l")
     assert need.values["dimension"] == "thickness" and need.values["size"] == 12.0
+    assert need.values["sideways"] is True      # its words: 'bows ... sideways'
     ratio = need.values["sag"] * 1.5 / need.values["sag_allowed"]
     assert need.values["size_needed"] == pytest.approx(12 * ratio ** (1 / 3), rel=1e-9)
     assert 15.0 < need.values["size_needed"] < 25.0

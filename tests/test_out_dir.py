@@ -164,7 +164,7 @@ def test_pictures_drawn_in_workers_are_those_drawn_here(tmp_path: Path, monkeypa
             (tmp_path / "serial" / name).read_bytes(), name
 
 
-@pytest.mark.parametrize("broken", [False, True])
+@pytest.mark.parametrize("broken", [None, "top", "deep"])
 def test_validate_views_without_matplotlib_reports_and_says_so(tmp_path: Path, monkeypatch,
                                                                broken: bool) -> None:
     """--views where matplotlib cannot be imported (not installed, or installed but
@@ -175,12 +175,17 @@ def test_validate_views_without_matplotlib_reports_and_says_so(tmp_path: Path, m
     import importlib.util
     import sys
 
-    if broken:
-        (tmp_path / "fake" / "matplotlib").mkdir(parents=True)
-        (tmp_path / "fake" / "matplotlib" / "__init__.py").write_text(
-            "raise ImportError('broken here')\n")
+    if broken:      # installed, but failing on import: at its top, or in a module
+        fake = tmp_path / "fake" / "matplotlib"     # drawing needs (a shared library)
+        (fake / "backends").mkdir(parents=True)
+        (fake / "__init__.py").write_text(
+            "raise ImportError('broken here')\n" if broken == "top" else "")
+        (fake / "backends" / "__init__.py").write_text("")
+        (fake / "backends" / "backend_agg.py").write_text(
+            "raise OSError('libfreetype.so.6: cannot open shared object file')\n")
         monkeypatch.syspath_prepend(str(tmp_path / "fake"))
-        monkeypatch.delitem(sys.modules, "matplotlib", raising=False)
+        for name in [m for m in sys.modules if m == "matplotlib" or m.startswith("matplotlib.")]:
+            monkeypatch.delitem(sys.modules, name)
     else:
         real = importlib.util.find_spec
         monkeypatch.setattr(importlib.util, "find_spec",

@@ -763,7 +763,7 @@ def test_representative_is_valid_in_every_case():
     assert report.valid and {c.name for c in report.cases} == {"default", "shove"}
 
 
-@pytest.mark.parametrize("broken", [False, True])
+@pytest.mark.parametrize("broken", [None, "top", "deep"])
 def test_cli_out_without_the_export_extra_still_writes_design_files(tmp_path, monkeypatch,
                                                                     broken):
     """Where matplotlib cannot be imported (not installed, or installed and failing on
@@ -771,12 +771,17 @@ def test_cli_out_without_the_export_extra_still_writes_design_files(tmp_path, mo
     design files and meshes, says on stderr that pictures were skipped, and exits 0."""
     import importlib.util
 
-    if broken:
-        (tmp_path / "fake" / "matplotlib").mkdir(parents=True)
-        (tmp_path / "fake" / "matplotlib" / "__init__.py").write_text(
-            "raise ImportError('broken here')\n")
+    if broken:      # installed, but failing on import: at its top, or in a module
+        fake = tmp_path / "fake" / "matplotlib"     # drawing needs (a shared library)
+        (fake / "backends").mkdir(parents=True)
+        (fake / "__init__.py").write_text(
+            "raise ImportError('broken here')\n" if broken == "top" else "")
+        (fake / "backends" / "__init__.py").write_text("")
+        (fake / "backends" / "backend_agg.py").write_text(
+            "raise OSError('libfreetype.so.6: cannot open shared object file')\n")
         monkeypatch.syspath_prepend(str(tmp_path / "fake"))
-        monkeypatch.delitem(sys.modules, "matplotlib", raising=False)
+        for name in [m for m in sys.modules if m == "matplotlib" or m.startswith("matplotlib.")]:
+            monkeypatch.delitem(sys.modules, name)
     else:
         real = importlib.util.find_spec
         monkeypatch.setattr(importlib.util, "find_spec",

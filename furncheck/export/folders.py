@@ -22,13 +22,18 @@ well inside the 255 bytes a file name may have."""
 
 def pictures_missing() -> ExportUnavailable | None:
     """Why pictures cannot be drawn here (matplotlib cannot be imported: not installed,
-    or installed but broken), or None.  (Imported here, by a run that is about to draw.)"""
+    or installed but broken, at its top or in the modules drawing uses), or None.  (What
+    drawing needs is imported here, by a run that is about to draw.)"""
     if importlib.util.find_spec("matplotlib") is None:
         return ExportUnavailable("matplotlib")
+    from furncheck.export.views import view_figure_modules
+
     try:
-        import matplotlib  # noqa: F401
-    except Exception:       # a broken install fails in many ways: ImportError, OSError...
-        return ExportUnavailable("matplotlib")
+        view_figure_modules()
+    except ExportUnavailable as missing:
+        return missing
+    except Exception:       # a broken install fails in many ways: a missing shared
+        return ExportUnavailable("matplotlib")      # library (OSError), a bad build...
     return None
 
 

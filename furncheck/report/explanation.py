@@ -118,7 +118,9 @@ def _bent(v: dict, units: str) -> str:
     if "sag" in v:
         crept = v["sag"] * (1 + v["creep"])
         digits = _digits(crept, v["sag_allowed"])
-        now = f"sags {_n(crept, digits)} {units} with creep " \
+        bends = f"bows {_n(crept, digits)} {units} sideways" if v.get("sideways") else \
+            f"sags {_n(crept, digits)} {units}"
+        now = f"{bends} with creep " \
               f"({_n(v['sag'], digits)} {units} x {_n(1 + v['creep'])}) against " \
               f"{_n(v['sag_allowed'], digits)} {units} allowed"
         law = f"sag goes with 1 / {t}^3 for the same load (I = b {t}^3 / 12)"

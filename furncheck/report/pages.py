@@ -270,7 +270,8 @@ def suggestion_page(document: dict[str, Any], original: PageDesign,
                      f"<p>Restores {escape(' and '.join(entry.get('restores', [])))}."
                      + (f" Design file: <code>{escape(str(entry['design_file']))}</code>"
                         if entry.get("design_file") else "") + "</p>")
-        parts.append(_edits_table(entry.get("edits"), _other_changes(entry)))
+        parts.append(_edits_table(entry.get("edits"),
+                                  _other_changes(entry, len(original.design.anchors))))
         if shown is not None:
             views = [design_svg(shown.design, plank_utilizations(shown.report, shown.design),
                                 420, 300, marks=changed_planks(original.design, shown.design),
@@ -286,14 +287,16 @@ def suggestion_page(document: dict[str, Any], original: PageDesign,
     return _page(f"furncheck: {report.name}", "\n".join(parts), viewer=viewer)
 
 
-def _other_changes(entry: dict[str, Any]) -> list[tuple[str, str, str, Any, Any]]:
+def _other_changes(entry: dict[str, Any], anchors: int = 0
+                   ) -> list[tuple[str, str, str, Any, Any]]:
     """Rows of what a suggestion changes besides planks (the suggest JSON's ``anchors``
-    that it adds, ``nails``, ``ratings``, ``friction`` and ``anchors_moved``): (what,
-    edit, field, from, to)."""
-    rows = [(f"fixing on {a['plank']} (wall {a['wall']})", "add", "at", None, a["at"])
-            for a in entry.get("anchors") or ()]
-    rows += [(f"fixing on {a['plank']} (wall {a['wall']})", "add", "rating, N", None,
-              a["capacity"]) for a in entry.get("anchors") or ()]
+    that it adds, numbered after the design's own ``anchors``, ``nails``, ``ratings``,
+    ``friction`` and ``anchors_moved``): (what, edit, field, from, to)."""
+    rows = []
+    for index, added in enumerate(entry.get("anchors") or (), start=anchors):
+        what = f"anchors[{index}] on {added['plank']} (wall {added['wall']})"
+        rows += [(what, "add", "at", None, added["at"]),
+                 (what, "add", "rating, N", None, added["capacity"])]
     rows += [(str(n["joint"]), "change", "nails", n["before"], n["after"])
              for n in entry.get("nails") or ()]
     rows += [(f"anchors[{r['anchor']}]", "change", "rating, N", r["before"], r["after"])

@@ -105,10 +105,13 @@ def _changes_sentence(dofs: tuple[str, ...], changes: tuple[float, ...],
             done.add(j)
             kind = name.rpartition(".")[2]
             if kind in ("length", "width"):     # a size: which end moves, as for one
-                plank = name.rpartition(".")[0]
-                phrases.append(_phrase(original, edited, held, plank,
-                                       f"{plank} and {dofs[j].rpartition('.')[0]}", kind,
-                                       changes[k], units[k]) + " each")
+                plank, image = name.rpartition(".")[0], dofs[j].rpartition(".")[0]
+                words = [_phrase(original, edited, held, p, "{}", kind, changes[k], units[k])
+                         for p in (plank, image)]
+                if words[0] == words[1]:        # the same end of each (mirrored)
+                    phrases.append(words[0].format(f"{plank} and {image}") + " each")
+                else:                           # held otherwise: each its own words
+                    phrases.append(f"{words[0].format(plank)} and {words[1].format(image)}")
             else:
                 phrases.append(_pair_phrase(original, edited, plane, name, dofs[j],
                                             changes[k], units[k]))

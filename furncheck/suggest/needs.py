@@ -314,6 +314,8 @@ def _bent(design: Design, geometry: Geometry, where: str, case: CaseResult | Non
         ratio = result.sag * (1.0 + creep) / result.sag_allowed
         values = {"sag": result.sag, "creep": creep, "sag_allowed": result.sag_allowed,
                   "ratio": ratio, "exponent": 3}
+        if across:                  # it bows sideways: the words say so
+            values["sideways"] = True
     else:
         ratio = result.stress / result.strength
         values = {"stress": result.stress, "strength": result.strength, "ratio": ratio,

@@ -55,7 +55,7 @@ from furncheck.suggest.cutlist import (
     SIZE_FIELDS,
     PlankEdit,
 )
-from furncheck.suggest.discrete.common import amount, level, names
+from furncheck.suggest.discrete.common import amount, level, names, upright
 from furncheck.suggest.symmetry import MirrorPlane, broken_pairs
 from furncheck.tolerances import ON_PLANK_EPS, STOCK_BOARD
 
@@ -206,53 +206,14 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
             if new_size < (1.0 - SHRINK_SHARE) * old_size:
                 key = (amount(new_size / scale), amount(old_size / scale), name)
                 cut.setdefault(key, []).append(plank_id)
-    sloped: dict[str, list[str]] = {}
-    for plank_id in sorted(loaded & changed, key=original.plank_index.get):
-        slope = _slope(edited.plank(plank_id))
-        if slope > TILT_LIMIT and slope > _slope(original.plank(plank_id)) + 1e-9:
-            sloped.setdefault(amount(slope), []).append(plank_id)
-    for slope, planks in sloped.items():
-        several = len(planks) > 1
-        reasons.append(f"{names(planks)} {'slope' if several else 'slopes'} {slope} degrees "
-                       f"under {'their loads' if several else 'its load'}: what stands on "
-                       f"{'them' if several else 'it'} slides off")
     for (new_size, old_size, name), planks in cut.items():
         several = len(planks) > 1
         reasons.append(f"{names(planks)} {'are' if several else 'is'} cut to {new_size} "
                        f"{unit} of {'their' if several else 'its'} {old_size} {unit} {name} "
                        f"under {'their loads' if several else 'its load'}")
-    turned_in_plan: dict[str, list[str]] = {}
-    for plank_id in sorted(changed, key=original.plank_index.get):
-        turn = _plan_turn(original.plank(plank_id), edited.plank(plank_id))
-        if turn > TURN_LIMIT:
-            turned_in_plan.setdefault(amount(turn), []).append(plank_id)
-    for turn, planks in turned_in_plan.items():
-        several = len(planks) > 1
-        reasons.append(f"{names(planks)} {'are' if several else 'is'} turned {turn} degrees "
-                       f"in plan, out of square with the piece")
-    lowered: dict[tuple, list[str]] = {}
-    top_before = max(float(p.corners[:, 2].max()) for p in original.planks)
-    top_after = max(float(p.corners[:, 2].max()) for p in edited.planks)
-    edited_cases = {case.name: case for case in edited.load_cases}
-    for case in original.load_cases:
-        other = edited_cases.get(case.name)
-        if other is None or len(other.loads) != len(case.loads):
-            continue
-        for old, new in zip(case.loads, other.loads):
-            if old.mass is not None or old.point is None or new.point is None \
-                    or math.hypot(old.force[0], old.force[1]) <= abs(old.force[2]):
-                continue
-            drop, share = old.point[2] - new.point[2], PUSH_DROP_SHARE * old.point[2]
-            if top_before - old.point[2] <= share < drop \
-                    and top_after - new.point[2] > share:
-                key = (plain_load(old.mass, old.force), old.plank, amount(drop / scale))
-                lowered.setdefault(key, [])
-                if case.name not in lowered[key]:
-                    lowered[key].append(case.name)
-    for (what, plank_id, drop), cases in lowered.items():
-        reasons.append(f"the {what} push on {plank_id} moves {drop} {unit} lower with it "
-                       f"(case {', '.join(repr(c) for c in cases)}): it may hold only "
-                       f"because the push moved")
+    reasons += _sloped(original, edited, loaded & changed)
+    reasons += _turned_in_plan(original, edited, changed)
+    reasons += _pushes_lowered(original, edited)
     for plank_id in _working_heights(original):
         if plank_id not in changed:
             continue
@@ -264,14 +225,78 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
     return tuple(reasons)
 
 
+def _sloped(original: Design, edited: Design, planks: set[str]) -> list[str]:
+    """TILT_LIMIT: the loaded level ``planks`` that the edit turns from within TILT_LIMIT
+    of level to beyond it (a plank drawn sloping more, a drafting table's top, may turn
+    further), planks alike named together."""
+    sloped: dict[str, list[str]] = {}
+    for plank_id in sorted(planks, key=original.plank_index.get):
+        slope = _slope(edited.plank(plank_id))
+        if slope > TILT_LIMIT >= _slope(original.plank(plank_id)):
+            sloped.setdefault(amount(slope), []).append(plank_id)
+    reasons = []
+    for slope, ids in sloped.items():
+        several = len(ids) > 1
+        reasons.append(f"{names(ids)} {'slope' if several else 'slopes'} {slope} degrees "
+                       f"under {'their loads' if several else 'its load'}: what stands on "
+                       f"{'them' if several else 'it'} slides off")
+    return reasons
+
+
+def _turned_in_plan(original: Design, edited: Design, changed: set[str]) -> list[str]:
+    """TURN_LIMIT: the upright planks (``discrete.common.upright``: a leg, a side, a back
+    rest standing square) among ``changed`` turned about the vertical past it."""
+    turned: dict[str, list[str]] = {}
+    for plank_id in sorted(changed, key=original.plank_index.get):
+        before = original.plank(plank_id)
+        if not upright(before):
+            continue
+        turn = _plan_turn(before, edited.plank(plank_id))
+        if turn > TURN_LIMIT:
+            turned.setdefault(amount(turn), []).append(plank_id)
+    return [f"{names(ids)} {'are' if len(ids) > 1 else 'is'} turned {turn} degrees in plan, "
+            f"out of square with the piece" for turn, ids in turned.items()]
+
+
+def _pushes_lowered(original: Design, edited: Design) -> list[str]:
+    """PUSH_DROP_SHARE: the pushes (a force, mostly sideways, no mass) at the top of the
+    piece that the edit carries down with their planks below what then stands highest
+    (a push without ``at`` acts at its plank's centre, as the statics applies it)."""
+    lowered: dict[tuple, list[str]] = {}
+    top_before = max(float(p.corners[:, 2].max()) for p in original.planks)
+    top_after = max(float(p.corners[:, 2].max()) for p in edited.planks)
+    edited_cases = {case.name: case for case in edited.load_cases}
+    for case in original.load_cases:
+        other = edited_cases.get(case.name)
+        if other is None or len(other.loads) != len(case.loads):
+            continue        # (no edit changes a case's loads but by moving them)
+        for old, new in zip(case.loads, other.loads):
+            if old.mass is not None or old.plank not in edited.plank_index \
+                    or math.hypot(old.force[0], old.force[1]) <= abs(old.force[2]):
+                continue
+            height = old.point[2] if old.point is not None else \
+                original.plank(old.plank).center[2]
+            now = new.point[2] if new.point is not None else \
+                edited.plank(new.plank).center[2]
+            drop, share = height - now, PUSH_DROP_SHARE * height
+            if top_before - height <= share < drop and top_after - now > share:
+                key = (plain_load(old.mass, old.force), old.plank,
+                       amount(drop / original.unit_scale))
+                lowered.setdefault(key, [])
+                if case.name not in lowered[key]:
+                    lowered[key].append(case.name)
+    return [f"the {what} push on {plank_id} moves {drop} {original.units} lower with it "
+            f"(case {', '.join(repr(c) for c in cases)}): it may hold only because the push "
+            f"moved" for (what, plank_id, drop), cases in lowered.items()]
+
+
 def _plan_turn(before: Plank, after: Plank) -> float:
-    """Degrees an upright plank (its broad face within 45 degrees of vertical) is turned
-    about the vertical: between the horizontal parts of its face normal before and after
-    (a tilt in its own plane or across it leaves their direction alone); 0 for a plank
-    that lies more level than that."""
+    """Degrees a plank standing square (its face normal level) is turned about the
+    vertical: between the horizontal parts of its face normal before and after (a tilt
+    in its own plane or across it leaves their direction alone)."""
     old, new = before.rotation_matrix[:, 2], after.rotation_matrix[:, 2]
-    if abs(float(old[2])) > math.sqrt(0.5) or abs(float(new[2])) > math.sqrt(0.5):
-        return 0.0
+    if not np.linalg.norm(new[:2]):
+        return 0.0          # turned to lie flat: the other rules judge it
     a, b = old[:2] / np.linalg.norm(old[:2]), new[:2] / np.linalg.norm(new[:2])
     cosine = abs(float(a @ b))          # a face turned 180 degrees is the same face plane
     return math.degrees(math.acos(min(1.0, cosine)))
