@@ -1,6 +1,7 @@
 """Shared test set-up: every test gets its own result cache directory; the fake checker;
 ``suggest`` on the invalid catalog designs, computed once per session and only for the
-(design, model) pairs a test asks for.
+(design, model) pairs a test asks for; ``without_matplotlib`` for the tests of a machine
+that cannot draw.
 
 ``furncheck validate`` caches results in the user cache directory by default; a test that
 runs it must neither write to the developer's cache nor be served a result that another
@@ -70,3 +71,28 @@ def catalog_suggestions():
         return cache[(name, model)]
 
     return get
+
+
+def without_matplotlib(how: str | None, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Make matplotlib unusable for the rest of a test: ``how`` None, not installed
+    (``find_spec`` finds nothing); 'top', installed but failing at its own import; 'deep',
+    failing in a module drawing imports (``backends.backend_agg``: a missing shared
+    library, as a broken install fails)."""
+    import importlib.util
+
+    if how is None:
+        real = importlib.util.find_spec
+        monkeypatch.setattr(importlib.util, "find_spec",
+                            lambda name, *args: None if name == "matplotlib"
+                            else real(name, *args))
+        return
+    fake = tmp_path / "fake" / "matplotlib"
+    (fake / "backends").mkdir(parents=True)
+    (fake / "__init__.py").write_text("raise ImportError('broken here')\n" if how == "top"
+                                      else "")
+    (fake / "backends" / "__init__.py").write_text("")
+    (fake / "backends" / "backend_agg.py").write_text(
+        "raise OSError('libfreetype.so.6: cannot open shared object file')\n")
+    monkeypatch.syspath_prepend(str(tmp_path / "fake"))
+    for name in [m for m in sys.modules if m == "matplotlib" or m.startswith("matplotlib.")]:
+        monkeypatch.delitem(sys.modules, name)

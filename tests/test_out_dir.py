@@ -172,25 +172,9 @@ def test_validate_views_without_matplotlib_reports_and_says_so(tmp_path: Path, m
     validate's own exit code (1: bench-tips topples), and one line on stderr says the
     views were not written, as suggest --out says of its pictures (it was exit 2 and no
     report; a broken install was an internal error)."""
-    import importlib.util
-    import sys
+    from conftest import without_matplotlib
 
-    if broken:      # installed, but failing on import: at its top, or in a module
-        fake = tmp_path / "fake" / "matplotlib"     # drawing needs (a shared library)
-        (fake / "backends").mkdir(parents=True)
-        (fake / "__init__.py").write_text(
-            "raise ImportError('broken here')\n" if broken == "top" else "")
-        (fake / "backends" / "__init__.py").write_text("")
-        (fake / "backends" / "backend_agg.py").write_text(
-            "raise OSError('libfreetype.so.6: cannot open shared object file')\n")
-        monkeypatch.syspath_prepend(str(tmp_path / "fake"))
-        for name in [m for m in sys.modules if m == "matplotlib" or m.startswith("matplotlib.")]:
-            monkeypatch.delitem(sys.modules, name)
-    else:
-        real = importlib.util.find_spec
-        monkeypatch.setattr(importlib.util, "find_spec",
-                            lambda name, *args: None if name == "matplotlib"
-                            else real(name, *args))
+    without_matplotlib(broken, tmp_path, monkeypatch)
     result = CliRunner().invoke(main, ["validate", TIPS, "--views", str(tmp_path / "v"),
                                        "--no-cache"])
     assert result.exit_code == 1

@@ -19,7 +19,6 @@ from __future__ import annotations
 import json
 import math
 import re
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -769,24 +768,9 @@ def test_cli_out_without_the_export_extra_still_writes_design_files(tmp_path, mo
     """Where matplotlib cannot be imported (not installed, or installed and failing on
     import: that was an internal error, exit 2, nothing on stdout), --out writes the
     design files and meshes, says on stderr that pictures were skipped, and exits 0."""
-    import importlib.util
+    from conftest import without_matplotlib
 
-    if broken:      # installed, but failing on import: at its top, or in a module
-        fake = tmp_path / "fake" / "matplotlib"     # drawing needs (a shared library)
-        (fake / "backends").mkdir(parents=True)
-        (fake / "__init__.py").write_text(
-            "raise ImportError('broken here')\n" if broken == "top" else "")
-        (fake / "backends" / "__init__.py").write_text("")
-        (fake / "backends" / "backend_agg.py").write_text(
-            "raise OSError('libfreetype.so.6: cannot open shared object file')\n")
-        monkeypatch.syspath_prepend(str(tmp_path / "fake"))
-        for name in [m for m in sys.modules if m == "matplotlib" or m.startswith("matplotlib.")]:
-            monkeypatch.delitem(sys.modules, name)
-    else:
-        real = importlib.util.find_spec
-        monkeypatch.setattr(importlib.util, "find_spec",
-                            lambda name, *args: None if name == "matplotlib"
-                            else real(name, *args))
+    without_matplotlib(broken, tmp_path, monkeypatch)
     out = tmp_path / "out"
     result = CliRunner().invoke(main, ["suggest", str(CATALOG / "bench-long-leg.yaml"),
                                        "--out", str(out), "--model", "rigid"])
