@@ -172,8 +172,11 @@ class RangeFinder(ReachSearch):
             if blocked:
                 out.append(DofRange(dof.name, value, None, unit, blocked[0].reason))
             elif self.valid_now:
-                limit = self._scales(dof)[0]
-                out.append(DofRange(dof.name, value, (value - ends[0], value + ends[1]), unit,
+                limit, resolution = self._scales(dof)
+                low = value - ends[0]
+                floor = dof.kind in ("length", "width") and low <= resolution
+                out.append(DofRange(dof.name, value, (low, value + ends[1]), unit,
+                                    floor_reason(dof, low, resolution, unit) if floor else None,
                                     limited=(ends[0] >= limit, ends[1] >= limit),
                                     limit=limit,
                                     rotations=self._file_rotations(dof, (-ends[0], ends[1]))))
@@ -385,6 +388,15 @@ class RangeFinder(ReachSearch):
         if dof.is_rotation:
             return 90.0 * SEARCH_LIMIT, 100.0 * RANGE_RESOLUTION
         return self.size * SEARCH_LIMIT, self.size * RANGE_RESOLUTION
+
+
+def floor_reason(dof: Dof, low: float, resolution: float, unit: str) -> str:
+    """Why a size's interval ends within a resolution of nothing: no smaller plank is
+    searched (the step beyond would be no plank at all), so that end is not one past
+    which the design is invalid (a shelf cut to 0.3 mm still holds: nothing rests on
+    it)."""
+    return (f"{dof.kind} {plain_number(low, 5)} {unit} is the least searched: one step "
+            f"of {plain_number(resolution, 5)} {unit} less leaves no plank")
 
 
 def dof_ranges(design: Design, names: list[str] | None = None,
