@@ -64,8 +64,9 @@ def write_catalog_views(reports: list[DesignReport] | tuple[DesignReport, ...], 
 
 def _write_view(design, report: DesignReport, path: Path) -> tuple[str]:
     from furncheck.export.views import design_view_png
+    from furncheck.files import write_atomically
 
-    path.write_bytes(design_view_png(design, report))
+    write_atomically(str(path), design_view_png(design, report))
     return (str(path),)
 
 

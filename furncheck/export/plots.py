@@ -49,6 +49,7 @@ from furncheck.export.findings import (
     tangential,
 )
 from furncheck.export.labels import Label, Picture, Sheet
+from furncheck.files import write_atomically
 from furncheck.plain import plain_number
 from furncheck.result import ContactResult, DesignReport, JointResult
 
@@ -93,7 +94,7 @@ def plot_force_space(before: DesignReport, after: DesignReport, path: Path,
                      ) -> str:
     """Write ``force_space_png`` to ``path``; return the path as a string."""
     data = force_space_png(before, after, friction, change)
-    Path(path).write_bytes(data)
+    write_atomically(str(path), data)
     return str(path)
 
 

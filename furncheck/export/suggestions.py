@@ -36,6 +36,7 @@ from furncheck.export.errors import ExportUnavailable
 from furncheck.export.findings import changed_planks
 from furncheck.export.folders import file_stem, pictures_missing, prepare_out_dir
 from furncheck.export.meshes import write_meshes
+from furncheck.files import write_atomically
 from furncheck.workers import process_pool, quiet_worker, usable_cpus
 
 if TYPE_CHECKING:
@@ -120,7 +121,7 @@ def write_files(result: SuggestionReport, out_dir: str, design: Design,
     for suggestion in result.suggestions:
         stem = Path(out_dir) / f"{prefix}suggestion-{suggestion.rank:02d}"
         design_file = f"{stem}.yaml"
-        Path(design_file).write_text(suggestion.text, encoding="utf-8")
+        write_atomically(design_file, suggestion.text.encode("utf-8"))
         marks = changed_planks(design, suggestion.design)
         meshes = tuple(write_meshes(suggestion.design, stem, suggestion.report, marks))
         written[suggestion.rank] = Written(design_file, meshes)
@@ -132,7 +133,7 @@ def write_files(result: SuggestionReport, out_dir: str, design: Design,
 
     before = design_panel(design, result.report)       # its deflection solved once
     view = Path(f"{own}-view.png")
-    view.write_bytes(view_png([before]))               # (and every import made, once)
+    write_atomically(str(view), view_png([before]))   # (and every import made, once)
     written[0] = Written(None, written[0].meshes, (str(view),))
     for suggestion, plots in zip(result.suggestions,
                                  draw_in_parallel([partial(job, before) for job in jobs])):
@@ -179,11 +180,11 @@ def _pictures(design: Design, result: SuggestionReport, suggestion, marks: dict[
     heading = f"{design.name}, suggestion {suggestion.rank}" + (f": {title}" if title else "")
     forces = Path(f"{stem}-forces.png")
     change = f"suggestion {suggestion.rank}" + (f": {title}" if title else "")
-    forces.write_bytes(force_space_png(result.report, suggestion.report,
+    write_atomically(str(forces), force_space_png(result.report, suggestion.report,
                                        design.material.friction, change,
                                        suggestion.design.material.friction))
     view = Path(f"{stem}-view.png")
-    view.write_bytes(suggestion_view_png(design, result.report, suggestion.design,
+    write_atomically(str(view), suggestion_view_png(design, result.report, suggestion.design,
                                          suggestion.report, heading, marks, before))
     return str(forces), str(view)
 
@@ -226,5 +227,5 @@ def write_page(out_dir: str, design: Design, result: SuggestionReport,
                            {s.rank: shown(s.rank, s.report, s.design)
                             for s in result.suggestions})
     path = Path(out_dir) / f"{suggestion_prefix(out_dir, design.name)}index.html"
-    path.write_text(page, encoding="utf-8")
+    write_atomically(str(path), page.encode("utf-8"))
     return str(path)
