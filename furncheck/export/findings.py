@@ -73,11 +73,23 @@ def utilization_of(report: DesignReport, plank_ids: tuple[str, ...]
         for anchor in case.anchors:
             raise_to(anchor.plank, anchor.utilization)
     for violation in report.violations:
-        if violation.kind in ("non-durable", "sagging", "overstressed"):
+        if violation.kind in UTILIZED:
             continue            # counted through their utilization above
         for plank_id in violation.where.replace("/", ",").split(","):
             raise_to(plank_id, 1.5)
     return used
+
+
+UTILIZED = ("non-durable", "sagging", "overstressed")
+"""Violation kinds whose planks' utilization is a number of a report; the others
+(toppling, sliding, a design that does not stand as drawn) are drawn at the scale's
+failing end."""
+
+
+def kinds_without_utilization(report: DesignReport) -> set[str]:
+    """The report's violation kinds that no utilization measures (``UTILIZED``: lift-off,
+    sliding, disconnected ...), which a page names where it would show a percentage."""
+    return {v.kind for v in report.violations if v.kind not in UTILIZED}
 
 
 def case_severity(case: CaseResult) -> float:

@@ -19,7 +19,12 @@ from typing import Any
 
 from furncheck.design.model import Design
 from furncheck.export.colours import UTILIZATION_STOPS, utilization_rgb
-from furncheck.export.findings import DURABILITY_COUNTS, changed_planks, governing_case
+from furncheck.export.findings import (
+    DURABILITY_COUNTS,
+    changed_planks,
+    governing_case,
+    kinds_without_utilization,
+)
 from furncheck.report.numbers import format_number, format_percent
 from furncheck.report.svg import design_svg, plank_utilizations
 from furncheck.result import BatchReport, DesignReport
@@ -142,12 +147,17 @@ def catalog_page(entries: list[CatalogEntry], title: str = "furncheck catalog") 
         violations = report.error or (
             f"{count} violation{'s' if count != 1 else ''}: {', '.join(kinds)}" if kinds
             else "")
+        # a design that topples, slides or does not stand as drawn is drawn at the scale's
+        # failing end: the column says why rather than a percentage no report holds
+        failed = sorted(kinds_without_utilization(report))
+        shown = "" if worst is None else \
+            ", ".join(failed) if failed else format_percent(worst)
         rows.append(
             f'<tr data-verdict="{verdict}"><td><a href="#d{number}">{escape(report.design)}'
             f'</a><br><span class="small">{escape(report.name)}</span></td>'
             f'<td class="{verdict}">{verdict}</td>'
             f'<td class="num" data-value="{-1 if worst is None else round(worst, 6)}">'
-            f'{"" if worst is None else format_percent(worst)}{_bar(worst)}</td>'
+            f'{escape(shown)}{_bar(worst)}</td>'
             f'<td data-value="{count}">{escape(violations)}</td><td>{thumbnail}</td></tr>')
         details.append(_details(number, entry, used))
     body = (f"<h1>{escape(title)}</h1>\n<p>{summary['designs']} designs: "
