@@ -176,12 +176,14 @@ def test_catalog_page_lists_every_design_and_fetches_nothing():
 
 def test_suggestion_page_embeds_models_and_edits(tmp_path):
     """The page shows the input and each suggestion, their GLB models inline as data:
-    URIs with the viewer script inlined, and no reference to the network."""
+    URIs with the viewer script inlined, and no reference to the network; a suggestion's
+    implausible proportions as the text report words them."""
     entry = _entry("bench-tips.yaml")
     glb = b"glTF-bytes"
     document = {"design": entry.report.design, "valid": False, "suggestions": [
         {"rank": 1, "kind": "continuous", "restores": ["stability"], "dofs": ["leg_r.x"],
          "advice": "Move leg_r 255 mm away from leg_l.", "design_file": "s-01.yaml",
+         "score": {"implausible": ["leg_r hangs 64 % of its end past the edge of seat"]},
          "edits": [{"plank": "leg_r", "edit": "change", "fields": {"x": [300.0, 555.0]}},
                    {"plank": "foot-1", "edit": "add", "fields": {
                        "length": [None, 400.0], "width": [None, 72.0],
@@ -193,6 +195,7 @@ def test_suggestion_page_embeds_models_and_edits(tmp_path):
     assert page.count("data:model/gltf-binary;base64,") == 2
     assert "customElements" in page.split("<body>")[0]       # the viewer, inlined
     assert "Move leg_r 255 mm away from leg_l." in page
+    assert "implausible proportion: leg_r hangs 64 % of its end past the edge of seat" in page
     assert "<td>leg_r</td><td>change</td><td>x</td><td>300</td><td>555</td>" in page
     assert ("<td>foot-1</td><td>add</td><td>new plank</td><td></td><td>400 x 72 x 12, "
             "centred at (555, 0, 6), turned (0, 0, 90) degrees</td>") in page

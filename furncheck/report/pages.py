@@ -280,6 +280,8 @@ def suggestion_page(document: dict[str, Any], original: PageDesign,
                      f"<p>Restores {escape(' and '.join(entry.get('restores', [])))}."
                      + (f" Design file: <code>{escape(str(entry['design_file']))}</code>"
                         if entry.get("design_file") else "") + "</p>")
+        for reason in (entry.get("score") or {}).get("implausible") or ():
+            parts.append(f'<p class="small">implausible proportion: {escape(reason)}</p>')
         parts.append(_edits_table(entry.get("edits"),
                                   _other_changes(entry, len(original.design.anchors))))
         if shown is not None:
