@@ -77,6 +77,10 @@ def test_a_toppling_design_names_the_least_pull_that_holds_it(model):
     assert violation.kind == "lift-off"
     assert f"held down at leg_l or leg_r, the ground would have to pull at least " \
            f"{least:.4g} N there" in violation.message
+    # what falls outside is the line of action of the weight and the loads together (a
+    # designer read 'the load's' of a load inside the polygon)
+    assert "the line of action of its weight and loads together falls outside the " \
+           "support polygon" in violation.message
 
 
 LOOSE_TOP = """

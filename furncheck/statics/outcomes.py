@@ -130,9 +130,9 @@ class _Outcomes:
                 f"{plain_number(pulled)} N" if least is None else \
                 f"held down at {least[1]}, the ground would have to pull at least " \
                 f"{plain_number(least[0])} N there"
-            detail = (f"no equilibrium with the {self._supports()} only pushing: the load's "
-                      "line of action "
-                      f"falls outside the support polygon, the design topples ({held})")
+            detail = (f"no equilibrium with the {self._supports()} only pushing: the line of "
+                      "action of its weight and loads together falls outside the support "
+                      f"polygon, the design topples ({held})")
         else:
             detail = (f"no equilibrium within the friction cones "
                       f"(mu = {plain_number(self.mu, 6)}); forces shown as if the design were "
