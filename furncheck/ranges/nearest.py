@@ -80,7 +80,7 @@ def nearest_window(finder, dof: Dof, limit: float, resolution: float,
     if predicted is not None:
         window = yield from _predicted_window(finder, dof, predicted, limit, resolution)
         if window is not None:
-            return window, "valid interval at the change its margins' rates predict"
+            return window, "valid interval where the sensitivities point (where suggest looks)"
     samples = [limit * 2.0 ** -k for k in range(6, -1, -1)]
     order = (1.0, -1.0) if finder._favoured_sign(dof) > 0 else (-1.0, 1.0)
     for previous, step in zip([0.0] + samples, samples):
