@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import gc
 import importlib
 import os
@@ -66,6 +67,18 @@ def _stop(number: int, frame: FrameType | None) -> None:
     raise _Terminated(number)
 
 
+@contextlib.contextmanager
+def _said_when_stopped():
+    """A run stopped by Ctrl-C or SIGTERM (``_stop``) where it was: ``_Interrupted``, one
+    line and exit 128 + the signal's number."""
+    try:
+        yield
+    except KeyboardInterrupt:
+        raise _Interrupted(signal.SIGINT) from None
+    except _Terminated:
+        raise _Interrupted(signal.SIGTERM) from None
+
+
 def _one_line(error: click.UsageError) -> click.UsageError | _OneLine:
     """``error`` as one line: the command, click's message and where help is, e.g.
     "furncheck validate: no such option '--bogus'. Did you mean '--jobs'? (see 'furncheck
@@ -95,23 +108,17 @@ class _Commands(click.Group):
 
     def make_context(self, *args, **kwargs):
         try:
-            return super().make_context(*args, **kwargs)
+            with _said_when_stopped():  # while the options are read: said as in a run
+                return super().make_context(*args, **kwargs)
         except click.UsageError as error:
             raise _one_line(error) from None
-        except KeyboardInterrupt:       # while the options are read: said as in a run
-            raise _Interrupted(signal.SIGINT) from None
-        except _Terminated:
-            raise _Interrupted(signal.SIGTERM) from None
 
     def invoke(self, ctx: click.Context):
         try:
-            return super().invoke(ctx)
+            with _said_when_stopped():
+                return super().invoke(ctx)
         except click.UsageError as error:
             raise _one_line(error) from None
-        except KeyboardInterrupt:
-            raise _Interrupted(signal.SIGINT) from None
-        except _Terminated:
-            raise _Interrupted(signal.SIGTERM) from None
         except (click.exceptions.ClickException, click.exceptions.Exit, click.Abort,
                 SystemExit, EOFError, BrokenPipeError):
             raise                       # click's own handling (EOF: 'Aborted!'; a closed pipe)
