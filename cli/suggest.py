@@ -84,7 +84,6 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
     from furncheck.errors import DesignTooBig
     from furncheck.export.suggestions import (
         ExportUnavailable,
-        pictures_missing,
         prepare_out_dir,
         write_files,
         write_page,
@@ -110,15 +109,12 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
     result = suggest_design(loaded, max_dofs, max_suggestions, locked)
     written = {}
     if out_dir is not None:
-        pictures = not no_plots
-        if pictures and (missing := pictures_missing()) is not None:
-            click.echo(f"furncheck: pictures not written: {missing}", err=True)
-            pictures = False
         titles = {s.rank: advice(s, loaded) for s in result.suggestions}
         try:
             try:
-                written = write_files(result, out_dir, loaded, pictures, titles)
-            except ExportUnavailable as missing:    # (raised before any file is written)
+                written = write_files(result, out_dir, loaded, not no_plots, titles)
+            except ExportUnavailable as missing:    # (``pictures_missing``: raised before
+                # any file is written) the files without their pictures, and a note
                 click.echo(f"furncheck: pictures not written: {missing}", err=True)
                 written = write_files(result, out_dir, loaded, False, titles)
         except OSError as error:

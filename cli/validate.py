@@ -38,7 +38,6 @@ from furncheck.result import DesignReport
 
 if TYPE_CHECKING:
     from furncheck.config import Config
-    from furncheck.export import ExportUnavailable
 
 PROGRESS_MIN_FILES = 50
 """A progress bar is shown on a terminal's stderr from this many files to check on, when
@@ -111,7 +110,8 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
     check_output(output)
     if html_file is not None:
         check_output(html_file, "the report page")
-    views_missing = _check_views_dir(views_dir) if views_dir is not None else None
+    if views_dir is not None:
+        _check_views_dir(views_dir)
     caching = use_cache if use_cache is not None else config.cache is not False
     scanning = any(path != STDIN and os.path.isdir(path) for path in paths)
     # the cache's folder: where results go, and a folder no scan enters (with --no-cache
@@ -162,8 +162,7 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
                    f"{output}", err=True)
     if cache is not None and cache.unwritable:
         click.echo(f"furncheck: results not cached: {cache.unwritable}", err=True)
-    if views_missing is not None:       # the report and exit code are validate's
-        click.echo(f"furncheck: views not written: {views_missing}", err=True)
+    if views_dir is not None and _views_missing():  # the report and exit code are validate's
         views_dir = None
     if views_dir is not None or html_file is not None:
         _pictures(sources, model, views_dir, html_file, cache)
@@ -187,14 +186,10 @@ def _pictures(sources: list, model: str | None, views_dir: str | None,
     reports = [source if isinstance(source, DesignReport) else report_of(source)
                for source in sources]
     if views_dir is not None:
-        from furncheck.export import ExportUnavailable
-
         try:
             write_catalog_views(reports, views_dir, model)
         except OSError as error:
             fail(f"cannot write views to {views_dir}: {error.strerror or error}")
-        except ExportUnavailable as error:      # matplotlib failed in a worker
-            click.echo(f"furncheck: views not written: {error}", err=True)
     if html_file is not None:
         try:
             make_folder(html_file)
@@ -203,16 +198,25 @@ def _pictures(sources: list, model: str | None, views_dir: str | None,
             fail(f"cannot write the report page {html_file}: {error.strerror or error}")
 
 
-def _check_views_dir(views_dir: str) -> ExportUnavailable | None:
-    """Fail before any work when ``--views DIR`` cannot be written; why the views cannot
-    be drawn (matplotlib cannot be imported: the designs are still checked and reported,
-    a note says so), or None."""
-    from furncheck.export.folders import pictures_missing, prepare_out_dir
+def _check_views_dir(views_dir: str) -> None:
+    """Fail before any work when ``--views DIR`` cannot be written."""
+    from furncheck.export.folders import prepare_out_dir
 
     problem = prepare_out_dir(views_dir)
     if problem:
         fail(f"cannot write views to {views_dir}: {problem}")
-    return pictures_missing()
+
+
+def _views_missing() -> bool:
+    """Whether views cannot be drawn here (``export.folders.pictures_missing``:
+    matplotlib cannot be imported, not installed or broken), said on stderr: the designs
+    are checked and reported all the same."""
+    from furncheck.export.folders import pictures_missing
+
+    missing = pictures_missing()
+    if missing is not None:
+        click.echo(f"furncheck: views not written: {missing}", err=True)
+    return missing is not None
 
 
 def _exclude_patterns(excludes: tuple[str, ...], config: Config) -> tuple:
