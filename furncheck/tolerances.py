@@ -116,7 +116,7 @@ moments): the sampled largest deviation of a span's deflection is within 1 - cos
 SAG_ROUNDOFF = 1e-12
 """m: a plank's deviation from its supports' line or tangent this small is round-off (a
 plank that does not bend: a magazine rack's end panel held by its slats at one node
-deviates 1e-16 to 1e-13 m).  Choosing the measure nearest its limit (``bending._sag``),
+deviates 1e-16 to 1e-13 m).  Choosing the measure nearest its limit (``sag.plank_sags``),
 such deviations tie and the first measure the plank has is taken: compared as they came,
 the round-off chose between its two overhangs, and the allowed sag read 0.35 or 1.04 mm
 as the design turned."""
@@ -124,7 +124,7 @@ as the design turned."""
 UPRIGHT_SINE = 0.5 ** 0.5
 """Above 45 degrees: a beam whose axis rises more than this sine from level is upright
 (``validity._upright``: a leg or a side bows, it does not sag), and a sag whose deflection
-has a vertical part below it of its size points sideways (``bending._sideways``: a rail
+has a vertical part below it of its size points sideways (``sag._sideways``: a rail
 pushed sideways)."""
 
 WINDOW_TOLERANCE = 0.2

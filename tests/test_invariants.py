@@ -506,7 +506,7 @@ def _magazine_rack_with_a_hanging_end() -> dict:
 
 
 def test_rigid_motion_of_a_magazine_rack_whose_end_does_not_bend():
-    """(a) the planks' sag (``statics.bending._sag``): end_r, held at one node, deviates
+    """(a) the planks' sag (``statics.sag.plank_sags``): end_r, held at one node, deviates
     in the 'default' case from the tangent there by round-off only (1e-16 to 1e-13 m) at
     both ends, and the larger sag / span of its two overhangs (spans 2 x 70.17 and 2 x
     208.06 mm) chose its measure: its allowed sag read 1.04 mm as written and 0.35 mm

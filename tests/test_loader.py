@@ -890,7 +890,7 @@ def test_with_model_refuses_an_unknown_model():
 
 def test_a_json_designs_violations_carry_their_lines(tmp_path):
     """A JSON design's violations get the lines of their key paths, as a YAML design's do
-    (looked up only when a line is asked for: ``source.JsonLines``), so its GitHub
+    (looked up only when a line is asked for: ``json_source.JsonLines``), so its GitHub
     annotations and SARIF regions point into the file; the design pickles with them."""
     import json
     import pickle

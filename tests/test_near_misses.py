@@ -363,20 +363,20 @@ def test_a_cut_in_is_looked_for_among_the_overlapping_neighbours_only(monkeypatc
     only the neighbours whose boxes overlap its own (``cut_ins``): the shelf its two
     sides, the boards none, where every plank against every other (42 x 43 pairs) made a
     design of thousands of loose boards take minutes.  The message is as before."""
-    from furncheck.geometry import analysis
+    from furncheck.geometry import fit
 
     boards = "".join(f"  - {{id: board{k}, size: [300, 200], center: [{2000 + 400 * k}, 0, "
                      f"9]}}\n" for k in range(40))
     text = shelf_between_sides(830).replace("loads:\n", boards + "loads:\n")
     measured = []
-    real = analysis._best_touches
+    real = fit._best_touches
 
     def counting(planks, pairs, *args, **kwargs):
         if kwargs.get("one_way"):
             measured.extend(tuple(pair) for pair in pairs.tolist())
         return real(planks, pairs, *args, **kwargs)
 
-    monkeypatch.setattr(analysis, "_best_touches", counting)
+    monkeypatch.setattr(fit, "_best_touches", counting)
     geometry = analyze(parsed(text))
     loose = [v.where for v in geometry.violations if v.kind == "disconnected"]
     assert loose == ["mid"] + [f"board{k}" for k in range(40)]

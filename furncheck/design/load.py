@@ -27,6 +27,7 @@ from typing import Any
 
 from furncheck import tolerances as tol
 from furncheck.design.cases import load_cases
+from furncheck.design.json_source import _read_json
 from furncheck.design.materials import design_material, plank_material
 from furncheck.design.model import Design, JointSpec, Material, Plank
 from furncheck.design.source import (
@@ -37,7 +38,6 @@ from furncheck.design.source import (
     _decode,
     _format_of,
     _quote,
-    _read_json,
     _read_yaml,
     _too_large,
 )

@@ -267,7 +267,7 @@ class Design:
     walls       : vertical planes the design may lean on (contract section 2)
     anchors     : ties of planks to walls (contract section 2)
     lines       : key path -> 1-based line in the source file, for annotations (a JSON
-                  file's looked up when first asked for: ``source.JsonLines``)
+                  file's looked up when first asked for: ``json_source.JsonLines``)
     """
 
     name: str

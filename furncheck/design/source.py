@@ -2,13 +2,11 @@
 
 1. bytes -> text: the file must exist, be a regular file of at most ``MAX_FILE_BYTES``, hold
    no NUL bytes and be UTF-8 (a byte-order mark is dropped); ``load`` opens and reads it;
-2. text -> a plain tree of dicts, lists and scalars (``_read_yaml`` / ``_read_json``).  YAML
-   is read event by event, never constructed: aliases are refused before anything is
-   expanded, duplicate keys are refused, and the line of every key path is recorded.  A
-   YAML scalar stays a ``_Scalar`` (its text and whether it was quoted) until the schema
-   knows whether a number or a text belongs there.  JSON duplicate keys are refused too,
-   every JSON number is a float, and the lines of a JSON text's key paths are looked up
-   only on demand (``_json_lines``, reading the text as YAML).
+2. text -> a plain tree of dicts, lists and scalars (``_read_yaml``; JSON's is
+   ``json_source._read_json``).  YAML is read event by event, never constructed: aliases
+   are refused before anything is expanded, duplicate keys are refused, and the line of
+   every key path is recorded.  A YAML scalar stays a ``_Scalar`` (its text and whether it
+   was quoted) until the schema knows whether a number or a text belongs there.
 
 Every problem raises ``DesignError(file, key path, line, message)``.  Step 3, the schema, is
 in ``furncheck.design.load``, which also uses the message helpers at the end of this module.
@@ -17,11 +15,9 @@ in ``furncheck.design.load``, which also uses the message helpers at the end of 
 from __future__ import annotations
 
 import codecs
-import math
 import os
 import re
 import stat
-from collections.abc import Mapping
 from pathlib import Path
 from typing import Any, NamedTuple
 
@@ -394,146 +390,6 @@ def _line_count(text: str) -> int:
     breaks = text.replace("\r\n", "\n")
     count = sum(breaks.count(c) for c in "\r\n\x85\u2028\u2029")
     return count + (0 if breaks.endswith(tuple("\r\n\x85\u2028\u2029")) else 1)
-
-
-# --- step 2b: JSON text -> tree -----------------------------------------------------------------
-
-class _DuplicateKey(Exception):
-    def __init__(self, key: str):
-        super().__init__(key)
-        self.key = key
-
-
-def _json_object(pairs: list[tuple[str, Any]]) -> dict:
-    mapping: dict = {}
-    for key, value in pairs:
-        if key in mapping:
-            raise _DuplicateKey(key)
-        mapping[key] = value
-    return mapping
-
-
-def _json_constant(name: str) -> float:
-    """NaN / Infinity / -Infinity become floats that every number check refuses as 'not a
-    finite number', naming their key path."""
-    return float(name.replace("Infinity", "inf"))
-
-
-def _json_number(text: str) -> float | _Scalar:
-    """A JSON number as a float; one no float holds (1e400, 400 digits) kept as written,
-    as a YAML scalar, so that its message can show it ('out of range (1e400: ...)')."""
-    value = float(text)
-    return value if math.isfinite(value) else _Scalar(text, True)
-
-
-def _read_json(text: str, source: str) -> Any:
-    """Tree of dicts, lists, str, float (every number), bool and None."""
-    import json  # for JSON designs only: YAML is the common case
-
-    try:
-        tree = json.loads(text, object_pairs_hook=_json_object, parse_constant=_json_constant,
-                          parse_int=_json_number, parse_float=_json_number)
-    except _DuplicateKey as duplicate:
-        raise _json_duplicate_error(text, source, duplicate.key) from None
-    except json.JSONDecodeError as error:
-        raise DesignError(source, "", error.lineno,
-                          f"JSON syntax error: {error.msg} (column {error.colno})") from None
-    except RecursionError:
-        raise _json_nesting_error(text, source) from None
-    except ValueError as error:
-        raise DesignError(source, "", None, _one_line(f"JSON syntax error: {error}")) from None
-    if _depth(tree) > tol.MAX_NESTING:
-        raise _json_nesting_error(text, source)
-    return tree
-
-
-def _depth(tree: Any) -> int:
-    """How deep mappings and lists nest in ``tree`` (a scalar: 0)."""
-    deepest, level = 0, [(tree, 1)]
-    while level:
-        node, depth = level.pop()
-        children = node.values() if isinstance(node, dict) else node \
-            if isinstance(node, list) else None
-        if children is not None:
-            deepest = max(deepest, depth)
-            level.extend((child, depth + 1) for child in children)
-    return deepest
-
-
-def _json_nesting_error(text: str, source: str) -> DesignError:
-    """A JSON design nested deeper than MAX_NESTING refused as a YAML one is: at the
-    path and line where the limit is passed, found by reading the text as YAML up to
-    just past that point (read whole, a JSON nested a thousand deep met the YAML
-    parser's own limit first, and its message had no line)."""
-    depth, cut = 0, len(text)
-    for token in re.finditer(r'"(?:\\.|[^"\\])*"|[\[\]{}]', text):
-        bracket = token.group()
-        if bracket in "[{":
-            depth += 1
-            if depth > tol.MAX_NESTING + 1:
-                cut = token.end()
-                break
-        elif bracket in "]}":
-            depth -= 1
-    try:
-        _read_yaml(text[:cut], source)
-    except DesignError as error:
-        if error.message == "nested too deeply":
-            return error
-    return DesignError(source, "", None, "nested too deeply")
-
-
-def _json_duplicate_error(text: str, source: str, key: str) -> DesignError:
-    """The duplicate key's path and line, found by reading the JSON text as YAML."""
-    try:
-        _read_yaml(text, source)
-    except DesignError as error:
-        if error.message.startswith("duplicate key"):
-            return error
-    except (yaml.YAMLError, ValueError, RecursionError):
-        pass
-    return DesignError(source, "", None, f"duplicate key {_quote(key)}")
-
-
-def _json_lines(text: str, source: str) -> dict[str, int]:
-    """Best effort: key path -> line of a JSON text, read as YAML; {} when that fails."""
-    try:
-        return _read_yaml(text, source)[1]
-    except (DesignError, yaml.YAMLError, ValueError, RecursionError):
-        return {}
-
-
-class JsonLines(Mapping):
-    """Key path -> line of a JSON design, looked up the first time a line is asked for
-    (a violation's, for annotations; ``_json_lines``): a design that holds costs nothing."""
-
-    __slots__ = ("_text", "_source", "_found")
-
-    def __init__(self, text: str, source: str):
-        self._text, self._source, self._found = text, source, None
-
-    def _lines(self) -> dict[str, int]:
-        found = self._found         # (threads may both look them up: the same lines)
-        if found is None:
-            found = self._found = _json_lines(self._text, self._source)
-        return found
-
-    def __getitem__(self, key: str) -> int:
-        return self._lines()[key]
-
-    def __contains__(self, key: object) -> bool:
-        return key in self._lines()
-
-    def __iter__(self):
-        return iter(self._lines())
-
-    def __len__(self) -> int:
-        return len(self._lines())
-
-    def __eq__(self, other: object) -> bool:    # the same object: no lookup (edits share it)
-        return self is other or (isinstance(other, Mapping) and dict(self) == dict(other))
-
-    __hash__ = None
 
 
 # --- messages: shared with the schema in load.py ------------------------------------------------

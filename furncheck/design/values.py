@@ -14,16 +14,9 @@ from dataclasses import dataclass
 from typing import Any, NoReturn, TypeVar
 
 from furncheck import tolerances as tol
+from furncheck.design.json_source import JsonLines, _json_lines
 from furncheck.design.model import Plank
-from furncheck.design.source import (
-    _PATH_SAFE_KEY,
-    JsonLines,
-    _child,
-    _json_lines,
-    _one_line,
-    _quote,
-    _Scalar,
-)
+from furncheck.design.source import _PATH_SAFE_KEY, _child, _one_line, _quote, _Scalar
 from furncheck.errors import DesignError
 from furncheck.plain import plain_number
 
@@ -107,7 +100,7 @@ class _Doc:
 
     def design_lines(self) -> Mapping[str, int]:
         """The lines a ``Design`` keeps: YAML's; a JSON text's, looked up when first asked
-        for (``source.JsonLines``: a violation's line)."""
+        for (``json_source.JsonLines``: a violation's line)."""
         if self._lines is not None:
             return self._lines
         return JsonLines(self.source_text, self.source) if self.fmt == "json" else {}

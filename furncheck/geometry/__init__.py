@@ -15,6 +15,8 @@ The package, by job:
               bounding boxes and box overlaps
     analysis  analyze (joints detected or checked, ground contacts, components,
               violations), follow / follow_many (a structure's joints on edited designs)
+    fit       how two planks fail to meet: gaps, depths, narrow bearings and cut-ins, and
+              the phrases of the messages that say so
     edits     what decides whether an edit keeps the joints: interpenetrations, many
               edits checked at once (EditedTables) and the edits' continuous margins
               (EditMargins, edit_margins_many)
@@ -22,17 +24,8 @@ The package, by job:
               how far a point lies outside it
 """
 
-from furncheck.geometry.analysis import (
-    analyze,
-    cut_in_pairs,
-    cut_ins,
-    end_bearing,
-    end_depth,
-    end_gap,
-    follow,
-    follow_many,
-    nail_count,
-)
+from furncheck.geometry.analysis import analyze, follow, follow_many, nail_count
+from furncheck.geometry.fit import cut_in_pairs, cut_ins, end_bearing, end_depth, end_gap
 from furncheck.geometry.model import Contact, Geometry, Joint, NearMiss
 
 _EDITS = ("EditMargins", "EditedTables", "edit_margins_many", "interpenetrations")

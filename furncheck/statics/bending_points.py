@@ -15,17 +15,14 @@ from furncheck import tolerances as tol
 from furncheck.statics.bending import (
     PlankPart,
     PlankStatics,
-    _chosen_measure,
-    _distance,
     _interior,
     _largest_stress,
     _profile,
-    _reference_lines,
-    _sag,
     _stacked,
     _stress_along,
     _transverse,
 )
+from furncheck.statics.sag import chosen_measure, deviation_size, plank_sags, reference_lines
 
 
 class PlankWhere(NamedTuple):
@@ -62,7 +59,7 @@ def plank_results_where(part: PlankPart, q: np.ndarray) -> tuple[PlankStatics, P
     band = np.maximum(tol.NEAR_LARGEST * stress, tol.NEAR_DESIGN * stress.max(initial=0.0))
     element, column = np.nonzero(along >= (stress - band)[plank][:, None])
     s, deflection, sample_plank = _profile(model, layout, w, slope, line_loads)
-    sag, span, measure, sample = _sag(model, s, deflection, sample_plank, w, slope,
+    sag, span, measure, sample = plank_sags(model, s, deflection, sample_plank, w, slope,
                                       stack.low, stack.high, where=True)
     return PlankStatics(sag, span, stress), PlankWhere(
         sample_plank[sample], measure, sample, plank[element], element, column)
@@ -73,7 +70,7 @@ def plank_results_at(prepared: list[PlankPart], displacements: list[np.ndarray],
     """Each part's planks read at the sample points ``where`` alone (``plank_results_where``
     of a part of a model with the same nodes, elements and supports: a stepped design of
     a sensitivity): each plank's sag the largest of its measure's points, the measure
-    chosen as ``_sag`` chooses it, its span that measure's, its stress the largest of its
+    chosen as ``plank_sags`` chooses it, its span that measure's, its stress the largest of its
     points, each point computed as ``plank_results_of`` computes it (entry by entry: the
     same numbers).  Where every plank's largest lies among those points, as it does for a
     small enough step, these are ``plank_results_of``'s numbers, at a fraction of its
@@ -123,17 +120,17 @@ def plank_results_at(prepared: list[PlankPart], displacements: list[np.ndarray],
         point_s[~at_node] = beams.node_s[beams.nodes[chosen, 0]] + xi * beams.length[chosen]
     low_p, high_p = low[plank], high[plank]
     sa, sb = beams.node_s[low_p], beams.node_s[high_p]
-    line, tangent_low, tangent_high = _reference_lines(
+    line, tangent_low, tangent_high = reference_lines(
         point_s, sa, sb, np.where(measure == 0, sb - sa, 1.0), w[:, low_p], w[:, high_p],
         slope[:, low_p], slope[:, high_p])
     reference = np.where(measure == 0, line, np.where(measure == 1, tangent_low, tangent_high))
-    distance = _distance(deflection, reference)
+    distance = deviation_size(deflection, reference)
     deviation = np.full((count * n_planks, 3), -1.0)
     np.maximum.at(deviation, (plank, measure), distance)
     sa, sb = beams.node_s[low], beams.node_s[high]
     half = beams.plank_half
     spans = np.column_stack([sb - sa, 2.0 * (sa + half), 2.0 * (half - sb)])
-    sag, span, _ = _chosen_measure(deviation, spans)
+    sag, span, _ = chosen_measure(deviation, spans)
     return [PlankStatics(sag[k * n_planks:(k + 1) * n_planks],
                          span[k * n_planks:(k + 1) * n_planks],
                          stress[k * n_planks:(k + 1) * n_planks]) for k in range(count)]
