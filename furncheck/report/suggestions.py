@@ -149,14 +149,7 @@ def _suggestion_dict(suggestion: Suggestion, original: Design,
             "adds": [plank_entry(plank, original) for plank in suggestion.adds],
             "between": list(suggestion.between),
             "advice": advice(suggestion, original),
-            "edits": edits_json(suggestion.edits),
-            "loads_moved": load_moves_json(suggestion.loads_moved),
-            "loads_spread": load_spreads_json(suggestion.loads_spread),
-            "anchors_moved": anchor_moves_json(suggestion.anchors_moved),
-            "score": _score_json(suggestion),
-            "design_file": files.design_file,
-            "meshes": list(files.meshes),
-            "plots": list(files.plots),
+            **_changes_and_files(suggestion, files),
         }
         added = suggestion.design.anchors[len(original.anchors):]
         if added:           # a wall anchor: the fixings, as a design file lists them
@@ -182,6 +175,15 @@ def _suggestion_dict(suggestion: Suggestion, original: Design,
         "changes": dict(zip(suggestion.dofs, suggestion.changes)),
         "advice": advice(suggestion, original),
         "limited": suggestion.limited,
+        **_changes_and_files(suggestion, files),
+    }
+
+
+def _changes_and_files(suggestion: Suggestion, files: Written) -> dict[str, Any]:
+    """The entries that close every suggestion's JSON, continuous or discrete, in the
+    contract's order: what it changes (its cut list, the loads and fixings it carries
+    along), its score and the files written for it."""
+    return {
         "edits": edits_json(suggestion.edits),
         "loads_moved": load_moves_json(suggestion.loads_moved),
         "loads_spread": load_spreads_json(suggestion.loads_spread),
