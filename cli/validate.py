@@ -78,8 +78,9 @@ the report does not go to that terminal too."""
 @click.option("--cache/--no-cache", "use_cache", default=None,
               help="Reuse the results of unchanged designs.  [default: --cache]")
 @click.option("--cache-dir", metavar="DIR", default=None,
-              help="Where results are cached.  [default: $FURNCHECK_CACHE_DIR, else the "
-                   "user cache directory, e.g. ~/.cache/furncheck]")
+              help="Where results are cached.  [default: $FURNCHECK_CACHE_DIR, else "
+                   "'cache-dir' of [tool.furncheck], else the user cache directory, e.g. "
+                   "~/.cache/furncheck]")
 @STDIN_FILENAME_OPTION
 def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: int | None,
              views_dir: str | None, html_file: str | None, model: str | None,
