@@ -94,6 +94,11 @@ def test_a_loose_top_slides_at_mu_times_its_weight(model):
 
 @pytest.mark.parametrize("model", ["rigid", "elastic"])
 def test_a_top_loaded_on_its_overhang_lifts_off_its_far_support(model):
+    """Beyond the tipping load (module docstring) the message names the least pull that
+    would hold the top down, by statics in the plane of its rests, the same in both
+    models: at the far corners (the left side's outer edge, x = -300 mm, a = 600 mm from
+    the tipping edge), Q = (P (x_p - x_e) - W_top (x_e - x_c)) / a.  (The elastic model's
+    bolted solve puts its corners' couples there instead, thousands of newtons.)"""
     top = {"id": "top", "size": [900, 300], "center": [150, 0, 709]}
     threshold = _top_weight(900.0) * (300.0 - 150.0) / (590.0 - 300.0)
     assert threshold == pytest.approx(18.50, abs=0.01)
@@ -104,6 +109,11 @@ def test_a_top_loaded_on_its_overhang_lifts_off_its_far_support(model):
         if expected == "lift-off":
             (violation,) = report.violations
             assert violation.kind == "lift-off" and "top lifts off side_l" in violation.message
+            hold = (factor * threshold * (590.0 - 300.0)
+                    - _top_weight(900.0) * (300.0 - 150.0)) / 600.0
+            pull = re.search(r"held down at side_l, its rests would have to pull at least "
+                             r"([\d.]+) N there", violation.message)
+            assert float(pull.group(1)) == pytest.approx(hold, rel=0.005)
 
 
 def test_resting_contacts_are_reported_with_the_plank_that_presses(tmp_path):
@@ -245,7 +255,8 @@ def test_a_block_tipping_on_its_resting_joint_is_named_with_the_pull_it_needs(mo
         if expected == "lift-off":
             message = report.violations[0].message
             assert "block lifts off base" in message and "support polygon" not in message
-            pull = float(re.search(r"would have to pull ([\d.]+) N", message).group(1))
+            pull = float(re.search(r"held down at base, its rests would have to pull at "
+                                   r"least ([\d.]+) N there", message).group(1))
             assert pull == pytest.approx((push * 400.0 - weight * 30.0) / 60.0, rel=0.01)
 
 

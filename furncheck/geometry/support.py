@@ -3,11 +3,13 @@ above, how far a point lies outside it, and where the line of action of the desi
 loads meets the floor (a design topples where that point lies outside; a leg drawn short
 widens the polygon once it stands on the floor).  Plane points are (x, y) in metres; a
 hull is counter-clockwise, one or two points for a design standing on a point or a
-line."""
+line.  ``tipping_on_plane`` does the same for a part on supports that push it one way
+(a loose top on its frame's edges)."""
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -127,3 +129,55 @@ def pressure_centre(design, case) -> np.ndarray | None:
     if total[2] >= 0.0:
         return None
     return floor_point(total, np.cross(r, f).sum(axis=0))
+
+
+PARALLEL_PUSH = 1.0 - 1e-9
+"""Supports push a part the same way when the cosine of their push directions is at least
+this (a loose top on two frames' edges, a shelf on four pins)."""
+
+
+@dataclass(frozen=True, eq=False)    # holds arrays: no == by value
+class Tipping:
+    """A part pressed onto supports that all push it one way (the floor: up; a loose top's
+    frame: up through its resting corners), seen in their plane, as ``tipping_on_plane``
+    finds it: the part's load pressing it onto them (``load``, N), where the line of
+    action of its loads meets that plane (``crossing`` (3,) m, world), the support polygon
+    there (``hull``: indices of the supports on it, counter-clockwise), how far outside
+    it the crossing lies (``outside``, m, 0 inside) and its nearest support
+    (``nearest``, an index of the supports), and per hull point the least pull there
+    that holds the part down, over ``load`` (``ratios``, ``hold_down_ratios``; None on
+    a point or a line)."""
+
+    load: float
+    crossing: np.ndarray
+    hull: np.ndarray
+    outside: float
+    nearest: int
+    ratios: np.ndarray | None
+
+
+def tipping_on_plane(force: np.ndarray, moment: np.ndarray, supports: np.ndarray,
+                     push: np.ndarray) -> Tipping | None:
+    """``Tipping`` of a part whose loads add up to ``force`` (3,) N with ``moment`` (3,)
+    N m about the world origin, on ``supports`` (k, 3) m that lie in one plane and push
+    it along the unit vector ``push`` (the floor's up, z): the floor's own statics
+    (``floor_point``, ``convex_hull``, ``hold_down_ratios``) in a frame whose third axis
+    is ``push`` and whose origin is the first support.  None where the loads do not press
+    the part onto them."""
+    push = np.asarray(push, dtype=float)
+    first = np.array([1.0, 0.0, 0.0]) if abs(push[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    e1 = first - (first @ push) * push
+    e1 /= np.linalg.norm(e1)
+    frame = np.array([e1, np.cross(push, e1), push])      # rows: e1, e2, push (right-handed)
+    origin = supports[0]
+    local_force = frame @ force
+    if not local_force[2] < 0.0:
+        return None
+    local_moment = frame @ (moment - np.cross(origin, force))
+    crossing = floor_point(local_force, local_moment)
+    flat = (supports - origin) @ frame[:2].T
+    chosen = np.asarray(convex_hull(flat), dtype=int)
+    distance, nearest_point = outside(flat[chosen], crossing)
+    nearest = int(chosen[np.argmin(np.linalg.norm(flat[chosen] - nearest_point, axis=1))])
+    return Tipping(float(-local_force[2]), origin + crossing @ frame[:2], chosen,
+                   float(distance), nearest, hold_down_ratios(flat[chosen], crossing))

@@ -15,7 +15,14 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.geometry.support import convex_hull, floor_point, hold_down_ratios, outside
+from furncheck.geometry.support import (
+    PARALLEL_PUSH,
+    convex_hull,
+    floor_point,
+    hold_down_ratios,
+    outside,
+    tipping_on_plane,
+)
 from furncheck.plain import plain_compared, plain_number
 from furncheck.statics.model import CaseStatics
 
@@ -121,10 +128,14 @@ class _Outcomes:
             resting = self._rests_phrase(corners, "lifts off")
             pulled = -float(forces[pulling, 2].sum()) + sum(lifting.values())
             pulling = pulling | corners         # the planks named: those that lift
+            least = self._rest_hold_down(lifting)
         if stability == "lift-off" and resting:
+            held = f"held down, the {self._supports()} would have to pull " \
+                f"{plain_number(pulled)} N" if least is None else \
+                f"held down at {least[1]}, its rests would have to pull at least " \
+                f"{plain_number(least[0])} N there"
             detail = (f"no equilibrium with the {self._supports()} only pushing: {resting} "
-                      f"(held down, the {self._supports()} would have to pull "
-                      f"{plain_number(pulled)} N)")
+                      f"({held})")
         elif stability == "lift-off":
             held = f"held down, the {self._supports()} would have to pull " \
                 f"{plain_number(pulled)} N" if least is None else \
@@ -253,6 +264,52 @@ class _Outcomes:
         planks = set(model.contact_plank[far].tolist())
         names = [model.design.planks[model.planks[k]].id for k in sorted(planks)]
         return -float(force[2]) * least, " or ".join(names)
+
+    def _rest_hold_down(self, lifting: dict[int, float]) -> tuple[float, str] | None:
+        """(N, planks): for resting joints that open (``lifting``) under one loose part (a
+        grounded component that stands on resting joints alone and carries none: a loose
+        top on its frame, a shelf on pins), the least pull at one of its resting corners
+        that would hold it down, and the planks it rests on there ('end_l or end_r' where
+        several tie), by the statics of ``_hold_down`` in the plane of its rests
+        (``geometry.support.tipping_on_plane``): its loads' resultant meets that plane
+        outside the polygon of its resting corners.  The bolted solve's pulls are no
+        measure of it in the elastic model (a loose desk top tipped by a sitter at its
+        front edge: 15,400 N of its resting corners' couples bolted, 28.8 N needed).  None
+        where this does not apply: the rests of several parts open, the part has ground,
+        wall or anchor contacts, something rests on it, its rests push it different ways,
+        or its resultant meets their plane inside."""
+        model = self.model
+        if not lifting or model.contact_anchored is not None:
+            return None
+        face_above, contacts = model.rest_face_above, model.geometry.contacts
+        upper = np.where(face_above, model.rest_component, model.contact_component)
+        lower = np.where(face_above, model.contact_component, model.rest_component)
+        opening = [k for k in model.rest_rows if contacts[model.contacts[k]].rest in lifting]
+        if len({int(upper[k]) for k in opening}) != 1:
+            return None
+        part = int(upper[opening[0]])
+        rests = model.rest_rows[upper[model.rest_rows] == part]
+        on_surfaces = (model.contact_component == part) & (model.rest_component < 0)
+        if on_surfaces.any() or (lower[model.rest_rows] == part).any():
+            return None
+        normals = np.array([contacts[model.contacts[k]].frame[2] for k in rests])
+        pushes = np.where(face_above[rests, None], -normals, normals)
+        if not np.all(pushes @ pushes[0] >= PARALLEL_PUSH):
+            return None
+        nodes = np.isin(model.node_plank, model.components[part])
+        loads = self.f.reshape(-1, 6)[nodes]
+        force = loads[:, :3].sum(axis=0)
+        moment = (np.cross(model.node_points[nodes], loads[:, :3]) + loads[:, 3:]).sum(axis=0)
+        tipping = tipping_on_plane(force, moment, model.contact_points[rests], pushes[0])
+        if tipping is None or tipping.outside <= 0.0 or tipping.ratios is None \
+                or not np.isfinite(tipping.ratios.min()):
+            return None
+        least = float(tipping.ratios.min())
+        far = rests[tipping.hull[tipping.ratios <= least * (1.0 + HOLD_TIE) + HOLD_TIE]]
+        under = np.where(face_above[far], model.contact_plank[far],
+                         [model.node_plank[model.rest_node[k]] for k in far])
+        names = [model.design.planks[model.planks[k]].id for k in sorted(set(under.tolist()))]
+        return tipping.load * least, " or ".join(names)
 
     def _one_body(self) -> bool:
         """Whether the grounded components, joined where one rests on another, are one."""
