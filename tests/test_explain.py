@@ -469,3 +469,108 @@ def test_material_defaults_used_in_the_hand_numbers():
     """The tests' constants are the catalog's: 750 kg/m^3, mu 0.5, 700 N per nail."""
     material = Material()
     assert (material.density, material.friction, material.nail_pull) == (MDF, 0.5, 700.0)
+
+
+# -- a loose part on its rests ---------------------------------------------------------------
+def loose_top_desk(model: str, load: Load):
+    """Two 700 x 600 x 18 mm ends standing on the floor 1364 mm apart (outer faces at
+    x = +-700), a 150 mm stretcher nailed between them, and a 1400 x 800 x 18 mm top lying
+    loose on the ends' top edges (``type: rests``, 600 mm deep: y from -300 to 300 mm),
+    with ``load`` on the top: the woodworker's desk of session 18."""
+    from furncheck.design import parse_design
+
+    text = f"""\
+furncheck: 1
+name: desk-loose-top
+model: {model}
+material: {{thickness: 18}}
+planks:
+  - {{id: end_l, size: [700, 600], center: [-691, 0, 350], rotation: [0, -90, 0]}}
+  - {{id: end_r, size: [700, 600], center: [691, 0, 350], rotation: [0, -90, 0]}}
+  - {{id: stretcher, size: [1364, 150], center: [0, 291, 400], rotation: [90, 0, 0]}}
+  - {{id: top, size: [1400, 800], center: [0, 0, 709]}}
+joints:
+  - [end_l, stretcher]
+  - [end_r, stretcher]
+  - {{planks: [top, end_l], type: rests}}
+  - {{planks: [top, end_r], type: rests}}
+"""
+    design = parse_design(text, "desk.yaml", "yaml")
+    return replace(design, load_cases=(replace(design.load_cases[0], loads=(load,)),))
+
+
+TOP_WEIGHT = MDF * 1.4 * 0.8 * 0.018 * G            # 148.33 N
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_loose_top_tipped_off_its_rests_needs_its_hold_down(model):
+    """70 kg (686.7 N) at the top's front edge, y = -390 mm, 90 mm beyond its rests'
+    front edge (y = -300): the whole desk stands (its ends' feet reach as far as the
+    rests, and the ends and stretcher weigh with it), but the top tips about that edge.
+    The top's resultant V = 686.7 + 148.33 = 835.0 N meets the plane of its rests at
+    y = -686.7 x 390 / 835.0 = -320.7 mm, d = 20.7 mm beyond the front edge; a pull at the
+    back corners (a = 600 mm) holds it from V d / a = (686.7 x 90 - 148.33 x 300) / 600 =
+    28.84 N, as ballast 2.94 kg.  Nailing the rests down (30 nails each, the 600 mm joint
+    at 20 mm) repairs it: ``suggest``'s 'nail down' fix, where the elastic top also sags
+    past its allowance and no board up to the thicker rule's limit saves it."""
+    design = loose_top_desk(model, Load.of_mass("top", 70.0, (0.0, -0.39, 0.718)))
+    geometry = analyze(design)
+    report = check_design(design, geometry)
+    assert "lift-off" in kinds(report)
+    need = need_of(design, geometry, report, "lift-off")
+    load = 70.0 * G
+    hold = (load * 90.0 - TOP_WEIGHT * 300.0) / 600.0
+    assert need.values["part"] == "top" and need.values["on"] == "end_l,end_r"
+    assert need.values["weight"] == pytest.approx(load + TOP_WEIGHT, rel=1e-6)
+    assert need.values["point"][1] == pytest.approx(-load * 390.0 / (load + TOP_WEIGHT),
+                                                    rel=1e-6)
+    assert need.values["outside"] == pytest.approx(load * 390.0 / (load + TOP_WEIGHT)
+                                                   - 300.0, rel=1e-6)
+    assert need.values["hold"] == pytest.approx(hold, rel=1e-6)
+    assert need.values["hold_arm"] == pytest.approx(600.0)
+    assert need.values["ballast"] == pytest.approx(hold / G, rel=1e-6)
+    message = next(v.message for v in report.violations if v.kind == "lift-off")
+    assert f"its rests would have to pull at least {hold:.4g} N there" in message
+    if model == "rigid":
+        from furncheck.report.cutlist import nail_lines, nails_json
+        from furncheck.suggest.cutlist import nail_changes
+
+        first = suggest_design(design).suggestions[0]
+        assert first.advice == ("Nail top down onto end_l and end_r, 30 nails into each (its "
+                                "resting joints made nail joints).")
+        assert check_design(first.design).valid
+        assert "rests" not in first.text and "- [top, end_l]" in first.text
+        changes = nail_changes(design, first.design)
+        assert nail_lines(changes) == ["changes 2 joints:",
+                                       "  top/end_l: resting -> nailed, 30 nails",
+                                       "  top/end_r: resting -> nailed, 30 nails"]
+        assert nails_json(changes) == [
+            {"joint": "top/end_l", "before": 0, "after": 30, "resting": True},
+            {"joint": "top/end_r", "before": 0, "after": 30, "resting": True}]
+
+
+def test_a_loose_top_pushed_off_its_rests_needs_friction_there():
+    """160 N along x at the top's own height with 15 kg on it: the floor holds the whole
+    desk (mu W of ends, stretcher, top and load, far more), but the top slides on its
+    rests once the push passes mu N, N = 148.33 + 147.15 = 295.5 N what presses it onto
+    them: 147.7 N < 160 N.  Needed: 160 / 0.5 - 295.5 = 24.5 N more on the top, 2.50 kg,
+    or mu >= 160 / 295.5 = 0.541 (with 2 % of N more than that mass it holds, with 2 %
+    less it slides); never a negative mass for the whole desk, whose floor holds."""
+    design = loose_top_desk("rigid", Load("top", (160.0, 0.0, 0.0), (-0.7, 0.0, 0.709)))
+    cases = design.load_cases
+    design = replace(design, load_cases=(replace(cases[0], loads=(
+        *cases[0].loads, Load.of_mass("top", 15.0, (0.0, 0.1, 0.718)))),))
+    geometry = analyze(design)
+    report = check_design(design, geometry)
+    assert "sliding" in kinds(report)
+    need = need_of(design, geometry, report, "sliding")
+    pressing = TOP_WEIGHT + 15.0 * G
+    assert need.values["part"] == "top"
+    assert need.values["push"] == pytest.approx(160.0, rel=1e-9)
+    assert need.values["weight"] == pytest.approx(pressing, rel=1e-6)
+    assert need.values["extra_mass"] == pytest.approx((160.0 / 0.5 - pressing) / G, rel=1e-6)
+    assert need.values["friction_needed"] == pytest.approx(160.0 / pressing, rel=1e-6)
+    for margin, slides in ((0.02, False), (-0.02, True)):      # of N: the threshold
+        heavier = with_case_load(design, "default", Load.of_mass(
+            "top", need.values["extra_mass"] + margin * pressing / G, (0.0, 0.0, 0.718)))
+        assert ("sliding" in kinds(check_design(heavier))) is slides, margin

@@ -713,3 +713,49 @@ def test_a_turn_the_files_angle_does_not_follow_gives_the_files_rotation():
     entry = json.loads(render_json("s", [turn_x, turn_z]))["ranges"]
     assert np.allclose(entry[0]["rotations"], turn_x.rotations, atol=1e-4)   # JSON rounds
     assert "rotations" not in entry[1]
+
+
+HEADBOARD = """\
+furncheck: 1
+name: headboard-leaning
+model: rigid
+walls:
+  - {point: [0, 0, 0], normal: [0, 1, 0]}
+planks:
+  - {id: leg_l, size: [1100, 100], center: [-756, 144.7469, 550.3267], rotation: [90, -80, -90]}
+  - {id: leg_r, size: [1100, 100], center: [756, 144.7469, 550.3267], rotation: [90, -80, -90]}
+  - {id: panel, size: [1500, 500], center: [0, 101.3348, 796.5286], rotation: [100, 0, 0]}
+loads:
+  - {plank: panel, force: [0, -250, 0]}
+load_cases:
+  grab-top:
+    - {plank: panel, force: [0, 10, 0]}
+"""
+
+
+def test_a_narrow_window_between_two_doublings_is_found():
+    """A headboard leaning on a wall (a woodworker's, session 18): its panel, nailed to
+    two leaning legs, is pushed 250 N into the wall and pulled 10 N off it.  Drawn at
+    z = 796.5 mm the pull tips it; lowered past about 628 mm the push slides its feet: the
+    valid window, about 55 mm wide, lies 113 to 168 mm below, between two of the outward
+    samples a doubling would take (95 and 190 mm of the 1524 mm reach), which read 'no
+    valid value within 1524 mm'.  Sampled at sqrt(2) steps it is found, and it is the
+    range that a start inside it (650 mm) gives, to 2 resolutions; inside valid, one
+    resolution beyond each end not."""
+    design = parse_design(HEADBOARD, "headboard.yaml", "yaml")
+    assert not check_design(design).valid
+    found = one_range(design, "panel.z")
+    frame, dof = structure(design, analyze(design)), parse_dof(design, "panel.z")
+    inside = apply_dof(design, frame, dof, 650.0 - 796.5286)
+    assert check_design(inside).valid
+    reference = one_range(inside, "panel.z")
+    resolution = length_resolution(1524.0)
+    assert found.valid is not None and reference.valid is not None, found
+    for a, b in zip(found.valid, reference.valid):
+        assert abs(a - b) <= 2 * resolution, (found, reference)
+    low, high = found.valid
+    assert 100.0 < 796.5286 - high < 796.5286 - low < 190.0
+    for value, valid in ((0.5 * (low + high), True), (low - resolution, False),
+                         (high + resolution, False)):
+        assert check_design(apply_dof(design, frame, dof, value - 796.5286)).valid is valid, \
+            value

@@ -143,8 +143,9 @@ class Tipping:
     finds it: the part's load pressing it onto them (``load``, N), where the line of
     action of its loads meets that plane (``crossing`` (3,) m, world), the support polygon
     there (``hull``: indices of the supports on it, counter-clockwise), how far outside
-    it the crossing lies (``outside``, m, 0 inside) and its nearest support
-    (``nearest``, an index of the supports), and per hull point the least pull there
+    it the crossing lies (``outside``, m, 0 inside), the polygon's point nearest it
+    (``nearest_point`` (3,) m, world) and the support nearest that (``nearest``, an index
+    of the supports), and per hull point the least pull there
     that holds the part down, over ``load`` (``ratios``, ``hold_down_ratios``; None on
     a point or a line)."""
 
@@ -152,6 +153,7 @@ class Tipping:
     crossing: np.ndarray
     hull: np.ndarray
     outside: float
+    nearest_point: np.ndarray
     nearest: int
     ratios: np.ndarray | None
 
@@ -180,4 +182,5 @@ def tipping_on_plane(force: np.ndarray, moment: np.ndarray, supports: np.ndarray
     distance, nearest_point = outside(flat[chosen], crossing)
     nearest = int(chosen[np.argmin(np.linalg.norm(flat[chosen] - nearest_point, axis=1))])
     return Tipping(float(-local_force[2]), origin + crossing @ frame[:2], chosen,
-                   float(distance), nearest, hold_down_ratios(flat[chosen], crossing))
+                   float(distance), origin + nearest_point @ frame[:2], nearest,
+                   hold_down_ratios(flat[chosen], crossing))

@@ -33,7 +33,12 @@ from furncheck.ranges.estimates import (
     _nail_drops,
     _Probe,
 )
-from furncheck.ranges.nearest import nearest_window, predicted_steps
+from furncheck.ranges.nearest import (
+    OUTWARD_SAMPLES,
+    nearest_window,
+    outward_samples,
+    predicted_steps,
+)
 from furncheck.ranges.reach import ReachSearch
 from furncheck.sensitivity import Linearization, Sensitivity
 
@@ -314,8 +319,12 @@ class RangeFinder(ReachSearch):
         valid interval nearest the current value (``nearest.nearest_window``)."""
         found = yield from nearest_window(self, dof, limit, resolution, predicted)
         if found is None:
+            first = outward_samples(limit)[0]
             return DofRange(dof.name, value, None, unit,
-                            f"no valid value within {plain_number(limit, 6)} {unit} either way")
+                            f"no valid value found within {plain_number(limit, 6)} {unit} "
+                            f"either way ({OUTWARD_SAMPLES} probes each way, from "
+                            f"{plain_number(first, 4)} {unit} out, each 1.41 times the one "
+                            "before)")
         (inner, outer), reason = found
         steps = sorted((inner, outer))
         far = abs(outer) >= limit        # its outer end is the search limit

@@ -13,8 +13,10 @@ probe says only valid or not: a board 94 mm above the floor is valid lowered by 
 far one); a valid probe is widened to the interval around it, each end closed to the
 finest of the range's resolution, WINDOW_RESOLUTION of the step and, for a length found
 at the aim, WINDOW_TOLERANCE of the design's tolerance.  A DOF without a
-prediction, or whose probes all fail, is sampled outward from the value as before (1/64
-of the reach and doubling, both sides, the sensitivity's favoured side first).
+prediction, or whose probes all fail, is sampled outward from the value as before (from 1/64
+of the reach out, each probe sqrt(2) times the last, both sides, the sensitivity's favoured
+side first); where none is valid, the range says how it was sampled, since a window
+narrower than the gap between two probes can lie between them.
 ``suggest`` and ``range`` see the same edits (the constraint structure of
 ``edit_check.standing_geometry``), so a one-DOF suggestion's change lies in the range of
 its DOF.
@@ -27,6 +29,11 @@ from furncheck.check import check_design
 from furncheck.design.model import Design
 from furncheck.dofs import Dof, Structure
 from furncheck.geometry import Geometry
+
+OUTWARD_SAMPLES = 13
+"""Where the window is sampled outward from the value, the probes each way: from 1/64 of
+the reach out to the reach, each sqrt(2) times the one before (doubling, 7 probes, stepped
+over a 52 mm window between 95 and 190 mm of a headboard's 1524 mm reach)."""
 
 PREDICTED_PROBES = (1.05, 0.85, 1.5, 2.25, 3.4)
 """Multiples of the predicted step probed, in order (the first as ``suggest``'s line
@@ -72,6 +79,11 @@ def predicted_steps(design: Design, geometry: Geometry, frame: Structure,
     return steps
 
 
+def outward_samples(limit: float) -> list[float]:
+    """The steps at which the window is sampled outward, each way (OUTWARD_SAMPLES)."""
+    return [limit * 2.0 ** (-k / 2) for k in range(OUTWARD_SAMPLES - 1, -1, -1)]
+
+
 def nearest_window(finder, dof: Dof, limit: float, resolution: float,
                    predicted: tuple[float, float] | None):
     """Search (a generator of ``finder``'s evaluations, ``ranges.RangeFinder``) of the
@@ -81,7 +93,7 @@ def nearest_window(finder, dof: Dof, limit: float, resolution: float,
         window = yield from _predicted_window(finder, dof, predicted, limit, resolution)
         if window is not None:
             return window, "valid interval where the sensitivities point (where suggest looks)"
-    samples = [limit * 2.0 ** -k for k in range(6, -1, -1)]
+    samples = outward_samples(limit)
     order = (1.0, -1.0) if finder._favoured_sign(dof) > 0 else (-1.0, 1.0)
     for previous, step in zip([0.0] + samples, samples):
         for sign in order:

@@ -57,14 +57,16 @@ def nail_lines(changes: tuple[NailChange, ...]) -> list[str]:
     if not changes:
         return []
     return [f"changes {plural(len(changes), 'joint')}:",
-            *(f"  {change.joint}: nails {change.before} -> {change.after}"
-              for change in changes)]
+            *(f"  {change.joint}: resting -> nailed, {plural(change.after, 'nail')}"
+              if change.resting else f"  {change.joint}: nails {change.before} -> "
+              f"{change.after}" for change in changes)]
 
 
 def nails_json(changes: tuple[NailChange, ...]) -> list[dict[str, Any]]:
-    """The JSON ``nails`` list: {"joint", "before", "after"} per changed joint."""
-    return [{"joint": change.joint, "before": change.before, "after": change.after}
-            for change in changes]
+    """The JSON ``nails`` list: {"joint", "before", "after"} per changed joint, and
+    ``"resting": true`` for a resting joint nailed (before: 0)."""
+    return [{"joint": change.joint, "before": change.before, "after": change.after,
+             **({"resting": True} if change.resting else {})} for change in changes]
 
 
 def rating_lines(changes: tuple[RatingChange, ...]) -> list[str]:

@@ -65,6 +65,14 @@ def _sliding(v: dict, units: str) -> str:
                 f"holds it; friction mu >= {_n(v['friction_needed'])} would (or no push)")
     digits = _digits(v["push"], v["holds"])
     push, holds = _n(v["push"], digits), _n(v["holds"], digits)
+    if "part" in v:                 # a loose part on its rests, the floor holding
+        more = f"{_n(v['extra_mass'])} kg more weight on {v['part']}, or " \
+            if "extra_mass" in v else ""
+        return (f"{v['part']} resting on {_and(v['on'])}: the push of {push} N along its "
+                f"rests exceeds mu N = {_n(v['friction'])} x {_n(v['weight'])} N = {holds} N "
+                f"(N: what presses it onto them); {more}friction mu >= "
+                f"{_n(v['friction_needed'])}, or fixing it to them, would hold it (or a push "
+                f"of at most {holds} N)")
     return (f"the push of {push} N exceeds mu W = {_n(v['friction'])} x "
             f"{_n(v['weight'])} N = {holds} N; {_n(v['extra_mass'])} kg more weight "
             f"on it, or friction mu >= {_n(v['friction_needed'])}, would hold it (or a push "
@@ -72,6 +80,8 @@ def _sliding(v: dict, units: str) -> str:
 
 
 def _lift_off(v: dict, units: str) -> str:
+    if "part" in v:
+        return _lift_off_part(v, units)
     x, y = v["point"]
     text = (f"the resultant of its weight and loads, {_n(v['weight'])} N, meets the floor at "
             f"({_n(x)}, {_n(y)}) {units}, {_n(v['outside'])} {units} outside the support "
@@ -90,6 +100,30 @@ def _lift_off(v: dict, units: str) -> str:
         text += (f", or a sideways push of at most {_n(v['push_max'])} N (now "
                  f"{_n(v['push'])} N)")
     return text
+
+
+def _lift_off_part(v: dict, units: str) -> str:
+    """A loose part that tips off its rests while the whole stands (``needs.
+    _lift_off_part``)."""
+    point = ", ".join(_n(c) for c in v["point"])
+    text = (f"{v['part']} resting on {_and(v['on'])}: the resultant of its weight and loads, "
+            f"{_n(v['weight'])} N, meets the plane of its rests at ({point}) {units}, "
+            f"{_n(v['outside'])} {units} outside them beyond {v['edge_plank']}; fixing it "
+            f"down (nails or screws taking at least {_n(v['hold'])} N of pull at its rests "
+            f"on {v['hold_plank']}")
+    if "hold_arm" in v:
+        text += (f": W d / a = {_n(v['weight'])} N x {_n(v['outside'])} {units} / "
+                 f"{_n(v['hold_arm'])} {units}")
+    text += ")"
+    if "ballast" in v:
+        text += f", or {_n(v['ballast'])} kg of ballast on it over {v['hold_plank']}"
+    return text + ", would hold it"
+
+
+def _and(names: str) -> str:
+    """'a', 'a and b', 'a, b and c' of comma-joined plank ids."""
+    items = names.split(",")
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
 
 
 def _non_durable(v: dict, units: str) -> str:

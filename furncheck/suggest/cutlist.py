@@ -116,23 +116,41 @@ def plank_edits(before: Design, after: Design) -> tuple[PlankEdit, ...]:
 
 @dataclass(frozen=True)
 class NailChange:
-    """A listed joint whose nail count a suggestion changes (``discrete.nails``)."""
+    """A listed joint whose nail count a suggestion changes (``discrete.nails``), or a
+    resting joint it nails (``discrete.nail_down``: ``resting``, from 0 nails to the
+    count its length takes)."""
 
     joint: str
     before: int
     after: int
+    resting: bool = False
 
 
 def nail_changes(before: Design, after: Design) -> tuple[NailChange, ...]:
-    """The listed joints of ``before`` whose explicit nail count ``after`` changes,
+    """The listed joints of ``before`` whose explicit nail count ``after`` changes, and
+    its resting joints that ``after`` nails (their nails as its geometry counts them),
     matched by their planks, in ``before``'s order ('a/b' as the file lists them)."""
     if before.joints is None or after.joints is None:
         return ()
-    counts = {frozenset(spec.planks): spec.nails for spec in after.joints}
-    return tuple(NailChange("/".join(spec.planks), spec.nails, counts[frozenset(spec.planks)])
-                 for spec in before.joints
-                 if spec.nails is not None and counts.get(frozenset(spec.planks))
-                 not in (None, spec.nails))
+    specs = {frozenset(spec.planks): spec for spec in after.joints}
+    nailed = [spec for spec in before.joints if spec.rests
+              and (other := specs.get(frozenset(spec.planks))) is not None and not other.rests]
+    counted = {}
+    if nailed:
+        from furncheck.geometry import analyze
+
+        counted = {frozenset(joint.planks): joint.nails for joint in analyze(after).joints}
+    changes = []
+    for spec in before.joints:
+        other = specs.get(frozenset(spec.planks))
+        if other is None:
+            continue
+        if spec in nailed:
+            changes.append(NailChange("/".join(spec.planks), 0,
+                                      counted.get(frozenset(spec.planks), 0), resting=True))
+        elif spec.nails is not None and other.nails not in (None, spec.nails):
+            changes.append(NailChange("/".join(spec.planks), spec.nails, other.nails))
+    return tuple(changes)
 
 
 @dataclass(frozen=True)

@@ -50,7 +50,15 @@ from furncheck.design.model import Design, Plank
 from furncheck.geometry import Geometry, end_bearing, end_gap
 from furncheck.geometry.model import nails_listed
 from furncheck.geometry.near import carried_groups
-from furncheck.geometry.support import convex_hull, floor_point, hold_down_ratios, outside
+from furncheck.geometry.support import (
+    PARALLEL_PUSH,
+    convex_hull,
+    floor_point,
+    hold_down_ratios,
+    outside,
+    tipping_on_plane,
+)
+from furncheck.plain import plain_number
 from furncheck.result import CaseResult, DesignReport, Violation
 from furncheck.tolerances import GRAVITY, MIN_BEARING_SHARE
 from furncheck.validity import bows_sideways
@@ -124,11 +132,44 @@ def _sliding(design: Design, geometry: Geometry, where: str, case: CaseResult | 
         return Need("sliding", where, case_name, values={
             "push": push, "weight": weight, "friction": mu, "holds": 0.0,
             "friction_needed": push / weight})
+    if push <= mu * weight:         # the floor holds it all: what slides rests on others
+        return _sliding_part(design, geometry, where, case_name, push, mu * weight)
     needed = push / mu
     return Need("sliding", where, case_name, values={
         "push": push, "weight": weight, "friction": mu, "holds": mu * weight,
         "extra_mass": (needed - weight) / GRAVITY, "friction_needed": push / weight,
         "ratio": push / (mu * weight)})
+
+
+def _sliding_part(design: Design, geometry: Geometry, where: str, case_name: str | None,
+                  push: float, holds: float) -> Need:
+    """The sliding need of the loose part of ``where``'s group that friction on its rests
+    holds least (``_loose_parts``: a top on its frame), where the floor holds the whole
+    group (its ``push`` N within the ``holds`` N that friction gives there): the push along
+    its rests' faces against mu N, N what presses it onto them (``part``: its planks,
+    ``on``: the planks it rests on; ``extra_mass`` only where its rests are level, so that
+    a mass on it presses them by its weight)."""
+    mu = design.material.friction
+    worst = None
+    for part in _loose_parts(design, geometry, _group(design, geometry, where)):
+        forces, _ = _part_loads(design, case_name, part.planks)
+        total = forces.sum(axis=0)
+        pressing = float(-(total @ part.push))
+        along = float(np.linalg.norm(total + pressing * part.push))
+        if pressing > 0.0 and (worst is None or along / pressing > worst[0]):
+            worst = (along / pressing, part, along, pressing)
+    if worst is None or worst[0] <= mu:
+        return Need("sliding", where, case_name,
+                    why=f"the floor holds its push of {plain_number(push)} N (friction "
+                        f"gives up to {plain_number(holds)} N there), and no part resting "
+                        "on others slides by statics alone")
+    _, part, along, pressing = worst
+    values = {"push": along, "weight": pressing, "friction": mu, "holds": mu * pressing,
+              "friction_needed": along / pressing, "ratio": along / (mu * pressing),
+              "part": part.names(design), "on": part.under_names(design)}
+    if part.push[2] >= LEVEL_COS:
+        values["extra_mass"] = (along / mu - pressing) / (GRAVITY * float(part.push[2]))
+    return Need("sliding", where, case_name, values=values)
 
 
 def _lift_off(design: Design, geometry: Geometry, where: str, case: CaseResult | None,
@@ -147,9 +188,7 @@ def _lift_off(design: Design, geometry: Geometry, where: str, case: CaseResult |
     crossing = _floor_crossing(forces, points)
     distance, nearest = outside(hull, crossing)
     if distance <= 0.0:
-        return Need("lift-off", where, case_name,
-                    why="the loads' resultant meets the floor inside the support: it "
-                        "tips where planks only rest on each other")
+        return _lift_off_part(design, geometry, where, case_name)
     scale = design.unit_scale
     away = (crossing - nearest) / distance
     arms = (nearest - hull) @ away
@@ -174,6 +213,122 @@ def _lift_off(design: Design, geometry: Geometry, where: str, case: CaseResult |
         if fraction is not None:
             values.update({"push": push, "push_max": fraction * push})
     return Need("lift-off", where, case_name, values=values)
+
+
+def _lift_off_part(design: Design, geometry: Geometry, where: str,
+                   case_name: str | None) -> Need:
+    """The lift-off need of the loose part of ``where``'s group that tips furthest off its
+    rests (``_loose_parts``), where the whole group stands (its loads' resultant meets the
+    floor inside its support): by ``tipping_on_plane``, where its loads' resultant meets
+    the plane of its rests (``point``, 3 coordinates), how far outside the polygon of its
+    resting corners (``outside``) and beyond which plank under it (``edge_plank``), and the
+    least pull at one resting corner that would hold it down (``hold`` N, at a corner on
+    ``hold_plank``; ``hold_arm`` where it lies beyond one edge: V d / a), as ballast on
+    it there where its rests are level (``ballast`` kg)."""
+    scale, worst = design.unit_scale, None
+    for part in _loose_parts(design, geometry, _group(design, geometry, where)):
+        forces, points = _part_loads(design, case_name, part.planks)
+        tipping = tipping_on_plane(forces.sum(axis=0), np.cross(points, forces).sum(axis=0),
+                                   part.points, part.push)
+        if tipping is None or tipping.outside <= 0.0 or tipping.ratios is None \
+                or not np.isfinite(tipping.ratios.min()):
+            continue
+        if worst is None or tipping.outside > worst[1].outside:
+            worst = (part, tipping)
+    if worst is None:
+        return Need("lift-off", where, case_name,
+                    why="the loads' resultant meets the floor inside the support, and no "
+                        "part resting on others tips by statics alone")
+    part, tipping = worst
+    far = int(tipping.hull[int(np.argmin(tipping.ratios))])
+    least = float(tipping.ratios.min())
+    away = (tipping.crossing - tipping.nearest_point) / tipping.outside
+    arm = float((tipping.nearest_point - part.points[far]) @ away)
+    values = {"part": part.names(design), "on": part.under_names(design),
+              "weight": tipping.load,
+              "point": tuple(float(v) / scale for v in tipping.crossing),
+              "outside": tipping.outside / scale,
+              "edge_plank": part.under[tipping.nearest],
+              "hold": tipping.load * least, "hold_plank": part.under[far],
+              "ratio": 1.0 + tipping.outside / max(arm, 1e-12)}
+    if arm > 0.0 and math.isclose(least, tipping.outside / arm, rel_tol=1e-9):
+        values["hold_arm"] = arm / scale      # beyond one edge: V d / a
+    if part.push[2] >= LEVEL_COS:
+        values["ballast"] = tipping.load * least / (GRAVITY * float(part.push[2]))
+    return Need("lift-off", where, case_name, values=values)
+
+
+@dataclass(frozen=True, eq=False)    # holds arrays: no == by value
+class _LoosePart:
+    """A jointed group of planks that stands on resting joints alone, all pushing it one
+    way (``_loose_parts``): its planks (indices), its resting corners' points (k, 3) m,
+    the way they push it (``push``, a unit vector) and the plank under each corner."""
+
+    planks: frozenset[int]
+    points: np.ndarray
+    push: np.ndarray
+    under: tuple[str, ...]
+
+    def names(self, design: Design) -> str:
+        return ",".join(design.planks[i].id for i in sorted(self.planks))
+
+    def under_names(self, design: Design) -> str:
+        return ",".join(sorted(set(self.under), key=design.plank_index.__getitem__))
+
+
+def _loose_parts(design: Design, geometry: Geometry, group: set[int]) -> list[_LoosePart]:
+    """The jointed groups (``Geometry.components``) of ``group`` that stand on resting
+    joints alone: no ground, wall or anchor contact, nothing resting on them, and every
+    resting corner under them pushing them the same way (a loose top on its frame's
+    edges, a shelf on pins)."""
+    index, parts = design.plank_index, []
+    anchored = {index[a.plank] for a in design.anchors}
+    for component in geometry.components:
+        planks = frozenset(component)
+        if not planks <= group or planks & anchored:
+            continue
+        corners, pushes, under, carries = [], [], [], False
+        for contact in geometry.contacts:
+            if contact.on is None:
+                if index[contact.plank] in planks:
+                    corners = []
+                    break
+                continue
+            upper, lower = (contact.on, contact.plank) if contact.face_above \
+                else (contact.plank, contact.on)
+            if index[lower] in planks and index[upper] not in planks:
+                carries = True
+            if index[upper] in planks and index[lower] not in planks:
+                normal = np.asarray(contact.frame[2], dtype=float)
+                corners.append(contact.point)
+                pushes.append(-normal if contact.face_above else normal)
+                under.append(lower)
+        if not corners or carries:
+            continue
+        pushes = np.array(pushes)
+        if np.all(pushes @ pushes[0] >= PARALLEL_PUSH):
+            parts.append(_LoosePart(planks, np.array(corners, dtype=float), pushes[0],
+                                    tuple(under)))
+    return parts
+
+
+def _part_loads(design: Design, case_name: str | None,
+                planks: frozenset[int]) -> tuple[np.ndarray, np.ndarray]:
+    """(forces (k, 3) N, points (k, 3) m): the weight of each of ``planks`` at its centre
+    and every load of the case on them (a spread load at its plank's centre, where its
+    resultant acts)."""
+    forces, points = [], []
+    for i in sorted(planks):
+        plank = design.planks[i]
+        forces.append((0.0, 0.0, -design.plank_mass(plank) * GRAVITY))
+        points.append(plank.center_array)
+    case = next((c for c in design.load_cases if c.name == case_name), None)
+    for load in case.loads if case is not None else ():
+        if design.plank_index[load.plank] in planks:
+            forces.append(load.force)
+            points.append(design.plank(load.plank).center_array if load.point is None
+                          else load.point)
+    return np.array(forces, dtype=float), np.array(points, dtype=float)
 
 
 def _on_walls(design: Design, geometry: Geometry, where: str) -> bool:
@@ -211,21 +366,8 @@ def _group(design: Design, geometry: Geometry, where: str) -> set[int]:
 def _group_loads(design: Design, geometry: Geometry, where: str,
                  case_name: str | None) -> tuple[np.ndarray, np.ndarray]:
     """(forces (k, 3) N, points (k, 3) m): the weight of each plank of the group at its
-    centre and every load of the case on its planks (a spread load at the plank's
-    centre, where its resultant acts)."""
-    group = _group(design, geometry, where)
-    forces, points = [], []
-    for i in sorted(group):
-        plank = design.planks[i]
-        forces.append((0.0, 0.0, -design.plank_mass(plank) * GRAVITY))
-        points.append(plank.center_array)
-    case = next((c for c in design.load_cases if c.name == case_name), None)
-    for load in case.loads if case is not None else ():
-        plank = design.plank(load.plank)
-        if design.plank_index[load.plank] in group:
-            forces.append(load.force)
-            points.append(plank.center_array if load.point is None else load.point)
-    return np.array(forces, dtype=float), np.array(points, dtype=float)
+    centre and every load of the case on its planks (``_part_loads``)."""
+    return _part_loads(design, case_name, frozenset(_group(design, geometry, where)))
 
 
 def _floor_crossing(forces: np.ndarray, points: np.ndarray) -> np.ndarray:

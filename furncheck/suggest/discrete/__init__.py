@@ -13,6 +13,8 @@ section 6.5 and the shop's standard fixes), each checked in full like every sugg
                finishes another rule's candidate that fails only by bending
     reconnect  a near miss closed by lengthening or shortening the plank that misses
     nails      more nails in a listed joint that takes them
+    nail_down  a loose part (type: rests) that lifts off or slides, nailed to what it
+               lies on
     fixings    wall fixings rated for what they hold
     pads       non-slip pads under the feet of a piece that slides
 
@@ -36,6 +38,7 @@ from furncheck.suggest.discrete.anchors import wall_anchors
 from furncheck.suggest.discrete.common import Fix, Search
 from furncheck.suggest.discrete.feet import outriggers, overhang_supports
 from furncheck.suggest.discrete.fixings import stronger_fixings
+from furncheck.suggest.discrete.nail_down import nail_down
 from furncheck.suggest.discrete.nails import more_nails
 from furncheck.suggest.discrete.pads import non_slip_pads
 from furncheck.suggest.discrete.racking import aprons, back_panels, braces, stretchers
@@ -48,12 +51,13 @@ __all__ = ["RULES", "Fix", "Search", "_reach", "discrete_fixes", "spares_no_boar
            "support_planks"]
 
 RULES = (support_planks, overhang_supports, outriggers, wall_anchors, aprons, stretchers,
-         back_panels, braces, thicker_planks, more_nails, stronger_fixings, non_slip_pads)
+         back_panels, braces, thicker_planks, more_nails, nail_down, stronger_fixings,
+         non_slip_pads)
 """The rules for a design that stands as drawn, in the order their fixes are listed: the
 paper's support first, then added parts by how little they change the piece, then a
 thicker board (a change of material), then more nails in a listed joint that takes
-them, wall fixings rated for what they hold and non-slip pads under the feet (which
-change no part)."""
+them, a loose part nailed down, wall fixings rated for what they hold and non-slip pads
+under the feet (which change no part)."""
 
 
 def spares_no_board(thickened: dict, alone: dict) -> bool:

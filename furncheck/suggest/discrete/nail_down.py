@@ -1,0 +1,87 @@
+"""Nailing a loose part down: the shop's fix for a top, shelf or block that lies on its
+supports without nails (``type: rests``, contract section 2) and lifts off them or slides
+on them.
+
+A resting joint holds only by pressing and by friction; the same touching region nailed
+is a nail joint (an end face of one plank on the face of the other), with the nails its
+length takes by the spacing rule.  The candidate nails every resting joint that a lift-off
+or sliding violation names (both of its planks among the violation's), and those of the
+same loose part with them (a top on two frames is nailed to both), and is checked in full:
+the nails must hold what the rests could not (a top tipped by a sitter at its front edge
+pulls its back nails).  A shelf on pins is nailed to them the same way: whether the pins
+take nails (or the shelf a screw into them) is the maker's to judge.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+from furncheck.geometry import analyze
+from furncheck.suggest.discrete.common import Candidate, Fix, Search, names
+
+NAIL_DOWN = "nail down"
+"""The rule's name in ``tried.Trial`` values."""
+
+
+def nail_down(search: Search) -> Fix | None:
+    """The design with the failing resting joints nailed, when that is valid; else None
+    (and why, in the trials)."""
+    if not search.repairs(NAIL_DOWN, ("lift-off", "sliding")):
+        return None
+    design, geometry = search.design, search.geometry
+    specs = list(design.joints or ())
+    named = [set(v.where.split(",")) for v in search.report.violations
+             if v.kind in ("lift-off", "sliding")]
+    failing = {k for k, spec in enumerate(specs) if spec.rests
+               and any(set(spec.planks) <= planks for planks in named)}
+    if not failing:
+        search.not_applicable(NAIL_DOWN, "no resting joint fails: what lifts or slides "
+                                         "stands on the floor" if any(
+                                             spec.rests for spec in specs)
+                              else "it has no resting joints")
+        return None
+    loose = {_loose_plank(geometry, k) for k in failing}
+    failing |= {k for k, spec in enumerate(specs) if spec.rests
+                and _loose_plank(geometry, k) in loose}
+    for k in failing:
+        specs[k] = replace(specs[k], rests=False)
+    nailed = replace(design, joints=tuple(specs))
+    found = {frozenset(joint.planks): joint.nails for joint in analyze(nailed).joints}
+    counts = {k: found.get(frozenset(specs[k].planks), 0) for k in failing}
+    joints = [f"{specs[k].planks[0]}/{specs[k].planks[1]}" for k in sorted(failing)]
+    onto = [_onto(geometry, k) for k in sorted(failing)]
+    each = sorted({counts[k] for k in failing})
+    nails = (f"{each[0]} nail{'s' if each[0] != 1 else ''} into "
+             f"{'each' if len(onto) > 1 else 'it'}" if len(each) == 1 else
+             names([f"{counts[k]} into {_onto(geometry, k)}" for k in sorted(failing)]))
+    plural = "s" if len(failing) > 1 else ""
+    advice = (f"Nail {names(sorted(loose))} down onto {names(onto)}, {nails} (its resting "
+              f"joint{plural} made nail joint{plural}).")
+    candidate = Candidate("nails", nailed, advice,
+                          new_joints=tuple(specs[k].planks for k in sorted(failing)),
+                          trial_rule=NAIL_DOWN, target=names(joints),
+                          place=f"{len(failing)} resting joints nailed")
+    return search.first_valid([candidate])
+
+
+def _corners(geometry, joint: int) -> list:
+    return [c for c in geometry.contacts if c.rest == joint]
+
+
+def _loose_plank(geometry, joint: int) -> str:
+    """The plank that lies on the other at resting joint ``joint`` (the face plank when
+    its face looks down onto the edge plank)."""
+    corners = _corners(geometry, joint)
+    if not corners:
+        return ""
+    corner = corners[0]
+    return corner.on if corner.face_above else corner.plank
+
+
+def _onto(geometry, joint: int) -> str:
+    """The plank the loose one lies on at resting joint ``joint``."""
+    corners = _corners(geometry, joint)
+    if not corners:
+        return ""
+    corner = corners[0]
+    return corner.plank if corner.face_above else corner.on
