@@ -379,10 +379,15 @@ def test_catalog_range_is_valid_inside_and_invalid_beyond(design_name, model, do
     value = dof_value(design, dof)
     assert found.value == value
     low, high = found.valid
-    if valid_now:       # no reason but a size's end where the plank runs out
-        assert low <= value <= high and (found.reason is None or (
-            low <= finder.size * RANGE_RESOLUTION
-            and found.reason.endswith("less leaves no plank")))
+    if valid_now:       # no reason but a size's end where the plank runs out, or the
+        # square passed (an elastic plank's beam turns there: ``finder.turn_reasons``)
+        reasons = [] if found.reason is None else found.reason.split("; ")
+        for reason in reasons:
+            assert (reason.endswith("less leaves no plank")
+                    and low <= finder.size * RANGE_RESOLUTION) \
+                or (reason.startswith("past ") and "is square and then turned" in reason), \
+                reason
+        assert low <= value <= high
     else:
         assert not low <= value <= high and "invalid" in found.reason
     assert low < high, "a degenerate interval leaves nothing to test inside"
@@ -759,3 +764,21 @@ def test_a_narrow_window_between_two_doublings_is_found():
                          (high + resolution, False)):
         assert check_design(apply_dof(design, frame, dof, value - 796.5286)).valid is valid, \
             value
+
+
+def test_a_size_range_past_the_square_says_the_beam_turns():
+    """Contract 3a lays an elastic plank's one beam along its longer side, so a seat
+    widened past its length bends the other way (the stool's 400 x 300 seat sags as a
+    beam across its legs; at 401 mm wide it spans its 400 mm length the other way).  The
+    stool's seat.width window, 400.7 mm on (its 300 mm seat sags in the elastic model),
+    lies past the square: the row says so.  The rigid model has no beams: its seat.width
+    range, 60.2 to 750 mm, passes the square with no such note, nor has its seat.length
+    (340 to 492 mm of a 300 mm width, one side of it)."""
+    stool = load_design(str(DESIGNS / "stool.yaml"))
+    found = one_range(stool, "seat.width")
+    assert found.valid is not None and found.valid[0] > 400.0
+    assert "past 400 mm (its length) seat is square and then turned" in found.reason
+    rigid_stool = rigid(stool)
+    for name in ("seat.width", "seat.length"):
+        reason = one_range(rigid_stool, name).reason or ""
+        assert "square" not in reason, (name, reason)

@@ -178,10 +178,12 @@ class RangeFinder(ReachSearch):
                 out.append(DofRange(dof.name, value, None, unit, blocked[0].reason))
             elif self.valid_now:
                 limit, resolution = self._scales(dof)
-                low = value - ends[0]
+                low, high = value - ends[0], value + ends[1]
                 floor = dof.kind in ("length", "width") and low <= resolution
-                out.append(DofRange(dof.name, value, (low, value + ends[1]), unit,
-                                    floor_reason(dof, low, resolution, unit) if floor else None,
+                reasons = [floor_reason(dof, low, resolution, unit)] if floor else []
+                reasons += turn_reasons(self.design, dof, value, low, high, unit)
+                out.append(DofRange(dof.name, value, (low, high), unit,
+                                    "; ".join(reasons) or None,
                                     limited=(ends[0] >= limit, ends[1] >= limit),
                                     limit=limit,
                                     rotations=self._file_rotations(dof, (-ends[0], ends[1]))))
@@ -328,8 +330,11 @@ class RangeFinder(ReachSearch):
         (inner, outer), reason = found
         steps = sorted((inner, outer))
         far = abs(outer) >= limit        # its outer end is the search limit
+        turned = turn_reasons(self.design, dof, value, value + steps[0], value + steps[1],
+                              unit)
         return DofRange(dof.name, value, (value + steps[0], value + steps[1]), unit,
-                        f"the current value is invalid; this is the {reason}",
+                        "; ".join([f"the current value is invalid; this is the {reason}",
+                                   *turned]),
                         limited=(far and outer < 0.0, far and outer > 0.0), limit=limit,
                         rotations=self._file_rotations(dof, (steps[0], steps[1])))
 
@@ -397,6 +402,28 @@ class RangeFinder(ReachSearch):
         if dof.is_rotation:
             return 90.0 * SEARCH_LIMIT, 100.0 * RANGE_RESOLUTION
         return self.size * SEARCH_LIMIT, self.size * RANGE_RESOLUTION
+
+
+def turn_reasons(design: Design, dof: Dof, value: float, low: float, high: float,
+                 unit: str) -> list[str]:
+    """For a length or width of a plank in the elastic model whose interval, or the way to
+    it from the current ``value``, passes the plank's other side (beyond the design's
+    tolerance): that past it the longer side is
+    the other one, and the model lays the plank's one beam along it (contract 3a), so that
+    a sag judged across the plank there may be the model's, not the shop's (a shelf
+    widened past its length spans the other way, from its front edge to its back); else
+    nothing."""
+    if not design.elastic or dof.kind not in ("length", "width"):
+        return []
+    plank = design.plank(dof.plank)
+    other = (plank.width if dof.kind == "length" else plank.length) / design.unit_scale
+    margin = design.tolerance / design.unit_scale
+    if not min(low, value) + margin < other < max(high, value) - margin:
+        return []
+    side = "length" if dof.kind == "width" else "width"
+    return [f"past {plain_number(other, 6)} {unit} (its {side}) {dof.plank} is square and "
+            "then turned: the elastic model lays its one beam along the longer side, so "
+            "values beyond are judged spanning the other way"]
 
 
 def floor_reason(dof: Dof, low: float, resolution: float, unit: str) -> str:
