@@ -33,6 +33,7 @@ Two hand checks, in both models:
 from __future__ import annotations
 
 import json
+import re
 
 import numpy as np
 import pytest
@@ -107,7 +108,8 @@ def test_a_cleat_shelfs_anchors_pull_by_the_moments_about_the_cleats_foot(model,
 
 
 def test_an_anchor_beyond_its_capacity_is_non_durable(tmp_path):
-    """At 40 kg the two anchors at 70 mm pull about 2 x 640 N: over a 500 N capacity."""
+    """At 40 kg the two anchors at 70 mm pull about 2 x 640 N: over a 500 N capacity.  Each
+    message names the parts of its anchor's force, as a fixer reads them."""
     doc = _cleat_shelf("rigid", load_kg=40.0, capacity=500.0)
     path = tmp_path / "shelf.yaml"
     path.write_text(yaml.safe_dump(doc, sort_keys=False))
@@ -120,6 +122,18 @@ def test_an_anchor_beyond_its_capacity_is_non_durable(tmp_path):
     assert [a["plank"] for a in anchors] == ["cleat", "cleat"]
     assert all(a["utilization"] > 1.0 and a["wall"] == 0 for a in anchors)
     assert report["cases"][0]["durable"] is False
+    # the message says what the force is made of: the wall's normal is +y, so the pull out
+    # of it is -F_y, what holds the cleat up F_z, the shear along the wall |F_x|
+    for violation, anchor in zip(sorted(report["violations"], key=lambda v: v["where"]),
+                                 anchors):
+        fx, fy, fz = anchor["force"]
+        parts = re.search(r"\(a pull of ([\d.,]+) N out of the wall, ([\d.,]+) N holding it "
+                          r"up(?:, ([\d.,]+) N along the wall)?\)", violation["message"])
+        assert parts is not None, violation["message"]
+        assert float(parts.group(1).replace(",", "")) == pytest.approx(-fy, rel=1e-3)
+        assert float(parts.group(2).replace(",", "")) == pytest.approx(fz, rel=1e-3)
+        along = float(parts.group(3).replace(",", "")) if parts.group(3) else 0.0
+        assert along == pytest.approx(abs(fx), rel=1e-3, abs=0.5)
 
 
 def _side(model: str, anchored: bool, push: float) -> dict:
