@@ -574,3 +574,36 @@ def test_a_loose_top_pushed_off_its_rests_needs_friction_there():
         heavier = with_case_load(design, "default", Load.of_mass(
             "top", need.values["extra_mass"] + margin * pressing / G, (0.0, 0.0, 0.718)))
         assert ("sliding" in kinds(check_design(heavier))) is slides, margin
+
+
+def test_a_tipping_edge_made_by_two_planks_names_both():
+    """A child's step (a woodworker's, session 18): two 800 x 300 sides 312 mm apart, a
+    step and a handle, pulled 15 N forward (+y) at the handle, 790 mm up, with no one on
+    it.  Its planks weigh 750 x 0.012 x (2 x 0.8 x 0.3 + 0.3 x 0.28 + 0.3 x 0.06) x 9.81
+    = 51.38 N, the handle's 1.589 N at y = -144 mm; the push moves the resultant's floor
+    point by 15 x 790 / 51.38 = 230.6 mm: y = -4.45 + 230.6 = 226.2 mm, 76.2 mm beyond the
+    feet's front edge (y = 150), which runs from side_l's foot to side_r's: the step tips
+    over both, and the need says 'beyond side_l and side_r', not one of them."""
+    from furncheck.design import parse_design
+
+    design = parse_design("""\
+furncheck: 1
+name: kids-step
+model: rigid
+planks:
+  - {id: side_l, size: [800, 300], center: [-156, 0, 400], rotation: [0, -90, 0]}
+  - {id: side_r, size: [800, 300], center: [156, 0, 400], rotation: [0, -90, 0]}
+  - {id: step, size: [300, 280], center: [0, 0, 256]}
+  - {id: handle, size: [300, 60], center: [0, -144, 770], rotation: [90, 0, 0]}
+loads:
+  - {plank: handle, force: [0, 15, 0], at: [0, -138, 790]}
+""", "step.yaml", "yaml")
+    geometry = analyze(design)
+    report = check_design(design, geometry)
+    need = need_of(design, geometry, report, "lift-off")
+    weight = MDF * 0.012 * (2 * 0.8 * 0.3 + 0.3 * 0.28 + 0.3 * 0.06) * G
+    y = (-144.0 * MDF * 0.012 * 0.3 * 0.06 * G + 15.0 * 790.0) / weight
+    assert need.values["weight"] == pytest.approx(weight, rel=1e-6)
+    assert need.values["point"][1] == pytest.approx(y, rel=1e-6)
+    assert need.values["outside"] == pytest.approx(y - 150.0, rel=1e-6)
+    assert need.values["edge_plank"] == "side_l and side_r"

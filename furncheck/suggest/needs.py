@@ -194,7 +194,7 @@ def _lift_off(design: Design, geometry: Geometry, where: str, case: CaseResult |
     arms = (nearest - hull) @ away
     values = {"weight": weight, "point": tuple(float(v) / scale for v in crossing),
               "outside": distance / scale,
-              "edge_plank": owners[_nearest_vertex(hull, nearest)],
+              "edge_plank": _edge_planks(hull, owners, nearest),
               "wider": distance / scale, "ratio": 1.0 + distance / max(float(arms.max()), 1e-12)}
     ratios = hold_down_ratios(hull, crossing)
     if ratios is not None and np.isfinite(ratios.min()):
@@ -248,7 +248,9 @@ def _lift_off_part(design: Design, geometry: Geometry, where: str,
               "weight": tipping.load,
               "point": tuple(float(v) / scale for v in tipping.crossing),
               "outside": tipping.outside / scale,
-              "edge_plank": part.under[tipping.nearest],
+              "edge_plank": _edge_planks(part.points[tipping.hull],
+                                         [part.under[k] for k in tipping.hull],
+                                         tipping.nearest_point),
               "hold": tipping.load * least, "hold_plank": part.under[far],
               "ratio": 1.0 + tipping.outside / max(arm, 1e-12)}
     if arm > 0.0 and math.isclose(least, tipping.outside / arm, rel_tol=1e-9):
@@ -383,8 +385,27 @@ def _hull(points: list, owners: list[str]) -> tuple[np.ndarray, list[str]]:
     return np.array([points[k] for k in chosen], dtype=float), [owners[k] for k in chosen]
 
 
-def _nearest_vertex(hull: np.ndarray, point: np.ndarray) -> int:
-    return int(np.argmin(np.linalg.norm(hull - point, axis=1)))
+def _edge_planks(hull: np.ndarray, owners: list[str], point: np.ndarray) -> str:
+    """The planks of the support polygon's edge (or corner) nearest ``point`` (on the
+    polygon ``hull``, each vertex's plank in ``owners``): 'leg_r' at a corner or along
+    one plank's edge, 'side_l and side_r' along an edge from one plank to another (a
+    step's front edge, which both sides' feet make)."""
+    distances = np.linalg.norm(hull - point, axis=1)
+    vertex = int(np.argmin(distances))
+    scale = max(float(np.abs(hull).max(initial=0.0)), 1.0)
+    if distances[vertex] <= 1e-9 * scale or len(hull) < 2:
+        return owners[vertex]
+    best, pair = np.inf, (vertex, vertex)
+    for k in range(len(hull)):
+        a, b = hull[k], hull[(k + 1) % len(hull)]
+        edge = b - a
+        length = float(edge @ edge)
+        t = 0.0 if length == 0.0 else min(max(float((point - a) @ edge) / length, 0.0), 1.0)
+        distance = float(np.linalg.norm(point - (a + t * edge)))
+        if distance < best:
+            best, pair = distance, (k, (k + 1) % len(hull))
+    first, second = owners[pair[0]], owners[pair[1]]
+    return first if first == second else " and ".join(sorted((first, second)))
 
 
 def _inside_fraction(hull: np.ndarray, start: np.ndarray, end: np.ndarray) -> float | None:
