@@ -335,3 +335,30 @@ def test_cli_start_up_imports_nothing_heavy():
     output = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                             check=True, cwd=ROOT).stdout
     assert output.strip() == "[]"
+
+
+def test_a_closed_pipe_at_exit_is_not_printed_anything_else_is(capsys, monkeypatch):
+    """``cli.main._quiet_closed_pipe``, the console script's ``sys.unraisablehook`` at
+    exit: a closed file descriptor raised where nothing can catch it (CPython 3.11's
+    process pools waking their manager threads at exit) prints nothing; any other
+    unraisable exception is printed as Python prints it."""
+    import errno
+    import gc
+    import sys
+
+    from furncheck.cli.main import _quiet_closed_pipe
+
+    class Raising:
+        def __init__(self, error):
+            self.error = error
+
+        def __del__(self):
+            raise self.error
+
+    monkeypatch.setattr(sys, "unraisablehook", _quiet_closed_pipe)
+    Raising(OSError(errno.EBADF, "Bad file descriptor"))
+    gc.collect()
+    assert capsys.readouterr().err == ""
+    Raising(ValueError("something else"))
+    gc.collect()
+    assert "ValueError: something else" in capsys.readouterr().err
