@@ -50,11 +50,12 @@ def test_a_mirror_pair_moves_apart_or_closer_together():
 def test_a_tilt_says_where_the_top_goes_and_quotes_magnitudes():
     """leg_r turned -7.55 degrees about y: its top (local x = world +z) turns toward -x,
     toward leg_l; the amount and the interval (5.04-10.1 degrees: 0.667 and 1.333 of the
-    step) are magnitudes, no minus sign."""
+    step) are magnitudes, no minus sign.  The leg stands on the floor and under the seat,
+    so a maker cuts its ends at the tilt's angle to sit flat, and the advice says so."""
     stool = with_model(load_design(str(CATALOG / "stool.yaml")), "rigid")
     text = advise(stool, {"leg_r.ry": -7.55}, interval=(5.04 / 7.55, 10.1 / 7.55))
-    assert text == ("Tilt leg_r 7.55 degrees about y, its top toward leg_l "
-                    "(valid for 5.04-10.1 degrees).")
+    assert text == ("Tilt leg_r 7.55 degrees about y, its top toward leg_l, its ends cut at "
+                    "7.55 degrees to sit flat (valid for 5.04-10.1 degrees).")
 
 
 def test_a_shorter_back_rest_is_its_top_lowered():
@@ -112,8 +113,8 @@ def test_a_mirror_pair_tilted_along_its_plane_names_where_the_tops_go():
     names the axis ('their tops toward leg_l and leg_r'-like where planks lie there)."""
     stool = with_model(load_design(str(CATALOG / "stool.yaml")), "rigid")
     assert advise(stool, {"leg_l.rx": 5.0, "leg_r.rx": 5.0}) == \
-        "Tilt leg_l and leg_r by 5 degrees each, their tops along -y (valid for 4.5-6 " \
-        "degrees each)."
+        "Tilt leg_l and leg_r by 5 degrees each, their tops along -y, their ends cut at 5 " \
+        "degrees to sit flat (valid for 4.5-6 degrees each)."
 
 
 

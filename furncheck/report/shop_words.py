@@ -2,14 +2,17 @@
 
     Move leg_l and leg_r apart by 258 mm each (valid for 214-302 mm each).
     Lower the top of back by 79.8 mm (valid for 60-120 mm).
-    Tilt leg_r 7.55 degrees about y, its top toward leg_l (valid for 5.04-10.1 degrees).
+    Tilt leg_r 7.55 degrees about y, its top toward leg_l, its ends cut at 7.55 degrees to
+    sit flat (valid for 5.04-10.1 degrees).
 
 A mirror pair changed symmetrically (``suggest.symmetry``) is one phrase: apart or closer
 for a move across the mirror plane, raise or lower, lengthen or shorten, tilt with their
 tops apart or together.  A size change that moves a plank's top edge reads as raising or
 lowering that edge (narrowing a chair's back lowers the back rest).  Every amount is a
 magnitude; the verb says which way, and the interval is of that same magnitude, so the
-sign of a change and of its interval never disagree.  Where the upper end is where the
+sign of a change and of its interval never disagree.  A plank that stands on its ends,
+tilted, has them cut at the tilt's angle (``_bevelled``): a square end would sit on one
+edge.  Where the upper end is where the
 search stopped rather than an invalid step, the sentence says so.
 """
 
@@ -48,7 +51,7 @@ together."""
 PAIR_MATCH = 1e-6
 """Two DOF changes are one symmetric change when they agree to this relative amount."""
 
-SEARCH_LIMITS = {"length": "half the design's size", "deg": "29 degrees (0.5 rad)"}
+SEARCH_LIMITS = {"length": "half the design's size", "deg": "28.6 degrees (0.5 rad)"}
 """Where the line search stops (``suggest.candidates.MAX_STEP``), in words."""
 
 
@@ -113,16 +116,24 @@ def _changes_sentence(dofs: tuple[str, ...], changes: tuple[float, ...],
                 else:                           # held otherwise: each its own words
                     phrases.append(f"{words[0].format(plank)} and {words[1].format(image)}")
             else:
-                phrases.append(_pair_phrase(original, edited, plane, name, dofs[j],
-                                            changes[k], units[k]))
+                phrase = _pair_phrase(original, edited, plane, name, dofs[j], changes[k],
+                                      units[k])
+                if kind in ("rx", "ry") and _bevelled(original, held,
+                                                      name.rpartition(".")[0]):
+                    phrase += f", their ends cut at {_amount(abs(changes[k]))} degrees to " \
+                              "sit flat"
+                phrases.append(phrase)
             first_each = first_each or k == 0
             continue
         plank = name.rpartition(".")[0]
         previous = dofs[k - 1].rpartition(".")[0] if k else None
         subject = "it" if previous == plank and k - 1 not in done else plank
-        phrases.append(_phrase(original, edited, held, plank, subject,
-                               name.rpartition(".")[2], changes[k], units[k],
-                               set(nailed.get(plank, ()))))
+        kind = name.rpartition(".")[2]
+        phrase = _phrase(original, edited, held, plank, subject, kind, changes[k], units[k],
+                         set(nailed.get(plank, ())))
+        if kind in ("rx", "ry") and _bevelled(original, held, plank):
+            phrase += f", its ends cut at {_amount(abs(changes[k]))} degrees to sit flat"
+        phrases.append(phrase)
     return " and ".join(phrases), first_each, len(phrases)
 
 
@@ -199,6 +210,17 @@ def _phrase(design: Design, edited: Design, held: dict, plank: str, subject: str
         return f"turn {subject} {amount} {turn} (seen from above)"
     how = _tilt_effect(design, edited, plank)
     return f"tilt {subject} {amount} about {kind[1]}" + (f", {how}" if how else "")
+
+
+def _bevelled(design: Design, held: dict, plank_id: str) -> bool:
+    """Whether tilting the plank out of upright needs its ends cut at the tilt's angle: it
+    stands (its length within 45 degrees of vertical) and an end along its length sits on
+    the floor or on another plank's face (``held``), which a square end, tilted, would
+    touch along one edge only."""
+    if plank_id not in design.plank_index:
+        return False
+    upright = abs(float(design.plank(plank_id).rotation_matrix[2, 0])) > VERTICAL_COSINE
+    return upright and any(end.axis == 0 for end in held.get(plank_id, ()))
 
 
 def _size_verb(kind: str, change: float) -> str:
