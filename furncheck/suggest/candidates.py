@@ -30,7 +30,7 @@ from furncheck.suggest.tried import DirectionTally
 
 MAX_STEP = 0.5
 """Furthest step searched along a direction, scaled units: half the design's size for
-lengths, 0.5 rad (29 degrees) for rotations."""
+lengths, 0.5 rad (28.6 degrees) for rotations."""
 
 MAX_RELEVANT_DOFS = 48
 """Combinations are formed from at most this many DOFs, those whose rates move the

@@ -18,7 +18,7 @@ class Suggestion:
     dofs      : DOF names; ``direction`` (unit, scaled units) over them (continuous)
     range     : (low, high) valid steps along the direction, scaled units, or None: both
                 ends valid, a step one resolution beyond each invalid -- or, ``limited``,
-                ``high`` is where the search stopped (half the design's size, 29 degrees)
+                ``high`` is where the search stopped (half the design's size, 28.6 degrees)
     step      : the representative step (the smallest change plus a reserve), or None
     changes   : each DOF's change at ``step``, its own unit (file length unit or degrees)
     adds      : planks added (discrete); ``between`` the planks a support joins
