@@ -52,6 +52,7 @@ dependency of furncheck.
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -173,6 +174,28 @@ def bookcase_design() -> dict:
             "loads": books,
             "load_cases": {"push": books + [{"plank": "side_l", "force": [30, 0, 0],
                                              "at": [-312, 0, 1150]}]}}
+
+
+def chair_design() -> dict:
+    """A chair-like frame with a plank out of the world's axes: two 900 x 420 sides
+    standing on the floor 462 mm apart, a 450 x 380 seat nailed between them by its ends
+    and a 450 x 300 back rest between them raked back 10 degrees (turned 80 degrees about
+    x), its joint lines tilted with it; 60 kg on the seat, then that and 100 N pushing the
+    back rest backwards at its centre (a structural engineer's cross-check, session 18:
+    each member's section turned to the plank's width, where a test of PyNite's default
+    local y against the width had laid the back rest's section 10 degrees off)."""
+    planks = [{"id": "side_l", "size": [900, 420], "center": [-231, 0, 450],
+               "rotation": list(UPRIGHT)},
+              {"id": "side_r", "size": [900, 420], "center": [231, 0, 450],
+               "rotation": list(UPRIGHT)},
+              {"id": "seat", "size": [450, 380], "center": [0, -10, 450]},
+              {"id": "back", "size": [450, 300], "center": [0, 150, 700],
+               "rotation": [80, 0, 0]}]
+    seat = [{"plank": "seat", "mass": 60, "at": [0, -10, 456]}]
+    return {"furncheck": 1, "name": "chair", "model": "elastic", "planks": planks,
+            "loads": seat,
+            "load_cases": {"push": seat + [{"plank": "back", "force": [0, 100, 0],
+                                            "at": [0, 144.091139, 701.041889]}]}}
 
 
 def two_bay_design() -> dict:
@@ -300,12 +323,12 @@ class PyniteFrame:
         self.model.add_member(name, i, j, material, f"S{self.count}")
         member = self.model.members[name]
         member.__class__ = WholeMember
-        local_y = member.T()[1, :3]
-        if axis_a is None or abs(local_y @ axis_a) > 0.5:
-            Iy, Iz = I_a, I_b
-        else:
-            Iy, Iz = I_b, I_a
-        member.section.Iy, member.section.Iz = Iy, Iz
+        if axis_a is not None:      # turn the member about its axis: local y along axis_a
+            x, y = member.T()[0, :3], member.T()[1, :3]
+            member.rotation = math.degrees(math.atan2(float(np.cross(x, y) @ axis_a),
+                                                      float(y @ axis_a)))
+            assert abs(abs(float(member.T()[1, :3] @ axis_a)) - 1.0) < 1e-9
+        member.section.Iy, member.section.Iz = I_a, I_b
         return name
 
     def _add_beam(self, plank) -> None:
@@ -510,7 +533,7 @@ def main() -> None:
     print("| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |")
     all_notes = []
     worst = 0.0
-    for design in (table_design(), bookcase_design(), two_bay_design()):
+    for design in (table_design(), bookcase_design(), two_bay_design(), chair_design()):
         rows, notes = compare(design, timoshenko, args.bilateral)
         all_notes += notes
         for name, case, joint, f1, f2, m1, m2, df, dm in rows:
