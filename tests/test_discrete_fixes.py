@@ -872,3 +872,19 @@ def test_a_symmetric_stool_is_nailed_symmetrically():
                                      "seat/leg_pp, seat/leg_pm, seat/leg_mp and seat/leg_mm "
                                      "(now 1)")
         assert fix_valid(fix)
+
+
+def test_a_board_of_two_glued_sheets_says_so():
+    """The thicker rule's 36 and 44 mm boards are two 18 or 22 mm sheets glued face to
+    face (``tolerances.STOCK_THICKNESSES``): no one sells 36 mm MDF, and the advice says
+    how to make it (a woodworker read 'Make top 36 mm' as a board to buy); a stock board
+    gets no such note."""
+    from furncheck.suggest.discrete.thicker import thickness_phrase
+
+    design = load_design(str(ROOT / "designs" / "shelf-cantilever-overloaded.yaml"))
+    assert thickness_phrase({"post": (0.012, 0.044), "shelf": (0.012, 0.036)}, design,
+                            capital=True) == (
+        "Make post 44 mm thick (now 12 mm; two 22 mm sheets glued face to face) and shelf "
+        "36 mm (now 12 mm; two 18 mm sheets glued face to face)")
+    assert thickness_phrase({"shelf": (0.012, 0.018)}, design) == \
+        "make shelf 18 mm thick (now 12 mm)"

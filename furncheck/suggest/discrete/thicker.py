@@ -34,6 +34,7 @@ the job).
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 
 import numpy as np
@@ -98,14 +99,33 @@ def finish(search: Search, edited: Design, geometry: Geometry,
 
 
 def thickness_phrase(thickened: dict, design: Design, capital: bool = False) -> str:
-    """'make shelf 18 mm thick (now 12 mm) and post 36 mm (now 12 mm)' (a plank that
-    ``design`` does not have, one a fix adds, without 'now')."""
+    """'make shelf 18 mm thick (now 12 mm) and post 36 mm (now 12 mm; two 18 mm sheets
+    glued face to face)' (a plank that ``design`` does not have, one a fix adds, without
+    'now'; a board of two sheets, ``GLUED``, says so)."""
     scale, unit = design.unit_scale, design.units
-    parts = [f"{plank} {amount(new / scale)} {unit}" + (" thick" if k == 0 else "")
-             + (f" (now {amount(old / scale)} {unit})" if plank in design.plank_index else "")
-             for k, (plank, (old, new)) in enumerate(thickened.items())]
+    parts = []
+    for k, (plank, (old, new)) in enumerate(thickened.items()):
+        notes = [f"now {amount(old / scale)} {unit}"] if plank in design.plank_index else []
+        notes += _glued(new, design)
+        parts.append(f"{plank} {amount(new / scale)} {unit}" + (" thick" if k == 0 else "")
+                     + (f" ({'; '.join(notes)})" if notes else ""))
     verb = "Make" if capital else "make"
     return f"{verb} {names(parts)}"
+
+
+GLUED = {0.036: 0.018, 0.044: 0.022}
+"""m: the boards of STOCK_THICKNESSES made of two sheets glued face to face, and the
+sheet each is made of."""
+
+
+def _glued(thickness: float, design: Design) -> list[str]:
+    """['two 18 mm sheets glued face to face'] for a board of GLUED, else []."""
+    sheet = next((sheet for board, sheet in GLUED.items()
+                  if math.isclose(thickness, board, rel_tol=tol.STOCK_MATCH)), None)
+    if sheet is None:
+        return []
+    return [f"two {amount(sheet / design.unit_scale)} {design.units} sheets glued face to "
+            "face"]
 
 
 def _thickened(search: Search, design: Design, geometry: Geometry, report: DesignReport,
