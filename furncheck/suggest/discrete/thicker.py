@@ -101,12 +101,14 @@ def finish(search: Search, edited: Design, geometry: Geometry,
 def thickness_phrase(thickened: dict, design: Design, capital: bool = False) -> str:
     """'make shelf 18 mm thick (now 12 mm) and post 36 mm (now 12 mm; two 18 mm sheets
     glued face to face)' (a plank that ``design`` does not have, one a fix adds, without
-    'now'; a board of two sheets, ``GLUED``, says so)."""
+    'now'; a board of two sheets, ``GLUED``, says so, at its first plank)."""
     scale, unit = design.unit_scale, design.units
-    parts = []
+    parts, said = [], set()
     for k, (plank, (old, new)) in enumerate(thickened.items()):
         notes = [f"now {amount(old / scale)} {unit}"] if plank in design.plank_index else []
-        notes += _glued(new, design)
+        if new not in said:                 # a glued board's make-up, said once
+            notes += _glued(new, design)
+            said.add(new)
         parts.append(f"{plank} {amount(new / scale)} {unit}" + (" thick" if k == 0 else "")
                      + (f" ({'; '.join(notes)})" if notes else ""))
     verb = "Make" if capital else "make"
