@@ -495,3 +495,17 @@ static load in tension, 20 kg (Gripit red, data sheet GR0049 UK, 2018; the catal
 WALL_ANCHOR_REACH = 0.05
 """m: a plank whose nearest corner stands at most this far in front of a wall can be
 anchored to it (a bracket or a packing piece bridges the gap)."""
+
+PUSH_ANGLE = 1.0
+"""Degrees: a loose part's resting corners push it one way (``geometry.loose``) when each
+one's push lies within this of their mean (a board under a block tilted by a hundredth of
+a degree, well within the tolerance, is still one support plane)."""
+
+HOLD_TIE = 1e-9
+"""Hull points whose hold-down is within this share of the least (round-off) are named
+with it: a sawhorse's two far feet, a loose top's two back corners."""
+
+ANCHOR_PART = 0.01
+"""Share of an anchor's force below which its message leaves a part of it out (its pull
+out of the wall, what it holds up, its shear along the wall)."""
+

@@ -173,11 +173,12 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
             if held.utilization > 1.0 + tol.CAPACITY_REL_TOL \
                     and statics.stability in ("stable", "sliding"):
                 size, capacity = plain_compared(held.size, held.capacity)
+                parts = _anchor_parts(design, contact.wall, force)
                 violations.append(Violation(
                     "non-durable", f"anchors[{contact.anchor}]", case.name,
-                    f"anchor of {contact.plank} to wall {contact.wall} holds {size} N "
-                    f"({_anchor_parts(design, contact.wall, force)}), more than its "
-                    f"{capacity} N" + _factor_note(design),
+                    f"anchor of {contact.plank} to wall {contact.wall} holds {size} N"
+                    + (f" ({parts})" if parts else "") + f", more than its {capacity} N"
+                    + _factor_note(design),
                     design.line_of(f"anchors[{contact.anchor}]")))
     planks = None
     if statics.planks is not None:
@@ -248,9 +249,10 @@ def _anchor_held(design: Design, index: int, force: list[float]) -> AnchorResult
 def _anchor_parts(design: Design, wall: int, force: list[float]) -> str:
     """What an anchor's force (the wall's on its plank, N, world) is made of, in a
     fixer's words: its pull out of the wall (or push into it), what it holds up (or down)
-    and its shear along the wall, the parts of ANCHOR_PART or more ('a pull of 91.99 N out
-    of the wall, 136.4 N holding it up, 162.4 N along the wall'): a large part along the
-    wall comes from the planks' bending between fixings, not from a load."""
+    and its shear along the wall, the parts of at least ANCHOR_PART of the whole ('a pull of
+    91.99 N out of the wall, 136.4 N holding it up, 162.4 N along the wall'; '' for none):
+    a large part along the wall comes from the planks' bending between fixings, not from a
+    load."""
     normal = np.asarray(design.walls[wall].normal, dtype=float)
     force = np.asarray(force, dtype=float)
     out = float(-(force @ normal))          # > 0: the wall pulls the plank in
@@ -258,19 +260,16 @@ def _anchor_parts(design: Design, wall: int, force: list[float]) -> str:
     along = force - (force @ normal) * normal
     along[2] = 0.0
     sideways = float(np.linalg.norm(along))
+    least = tol.ANCHOR_PART * float(np.linalg.norm(force))
     parts = []
-    if abs(out) >= ANCHOR_PART:
+    if abs(out) >= least and abs(out) > 0.0:
         parts.append(f"a {'pull' if out > 0 else 'push'} of {plain_number(abs(out))} N "
                      f"{'out of' if out > 0 else 'into'} the wall")
-    if abs(up) >= ANCHOR_PART:
+    if abs(up) >= least and abs(up) > 0.0:
         parts.append(f"{plain_number(abs(up))} N holding it {'up' if up > 0 else 'down'}")
-    if sideways >= ANCHOR_PART:
+    if sideways >= least and sideways > 0.0:
         parts.append(f"{plain_number(sideways)} N along the wall")
     return ", ".join(parts)
-
-
-ANCHOR_PART = 0.5
-"""N: the least part of an anchor's force that its message names."""
 
 
 def anchor_utilization(design: Design, geometry: Geometry, model: StaticsModel,

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from furncheck import tolerances as tol
 from furncheck.tolerances import GRAVITY
 
 DUPLICATE = 1e-9
@@ -131,11 +132,6 @@ def pressure_centre(design, case) -> np.ndarray | None:
     return floor_point(total, np.cross(r, f).sum(axis=0))
 
 
-PARALLEL_PUSH = 1.0 - 1e-9
-"""Supports push a part the same way when the cosine of their push directions is at least
-this (a loose top on two frames' edges, a shelf on four pins)."""
-
-
 @dataclass(frozen=True, eq=False)    # holds arrays: no == by value
 class Tipping:
     """A part pressed onto supports that all push it one way (the floor: up; a loose top's
@@ -143,19 +139,28 @@ class Tipping:
     finds it: the part's load pressing it onto them (``load``, N), where the line of
     action of its loads meets that plane (``crossing`` (3,) m, world), the support polygon
     there (``hull``: indices of the supports on it, counter-clockwise), how far outside
-    it the crossing lies (``outside``, m, 0 inside), the polygon's point nearest it
-    (``nearest_point`` (3,) m, world) and the support nearest that (``nearest``, an index
-    of the supports), and per hull point the least pull there
-    that holds the part down, over ``load`` (``ratios``, ``hold_down_ratios``; None on
-    a point or a line)."""
+    it the crossing lies (``outside``, m, 0 inside) and the polygon's point nearest it
+    (``nearest_point`` (3,) m, world), and per hull point the least pull there that holds
+    the part down, over ``load`` (``ratios``, ``hold_down_ratios``; None on a point or a
+    line)."""
 
     load: float
     crossing: np.ndarray
     hull: np.ndarray
     outside: float
     nearest_point: np.ndarray
-    nearest: int
     ratios: np.ndarray | None
+
+    def least_pull(self) -> tuple[float, np.ndarray] | None:
+        """(N, supports): the least pull at one support that holds the part down, and the
+        supports (indices) where it is that least, to HOLD_TIE (a sawhorse's two far
+        feet, a loose top's two back corners); None where it stands (the crossing inside)
+        or no single pull holds it (a point or a line of supports)."""
+        if self.outside <= 0.0 or self.ratios is None or not np.isfinite(self.ratios.min()):
+            return None
+        least = float(self.ratios.min())
+        tied = self.ratios <= least * (1.0 + tol.HOLD_TIE) + tol.HOLD_TIE
+        return self.load * least, self.hull[tied]
 
 
 def tipping_on_plane(force: np.ndarray, moment: np.ndarray, supports: np.ndarray,
@@ -180,7 +185,6 @@ def tipping_on_plane(force: np.ndarray, moment: np.ndarray, supports: np.ndarray
     flat = (supports - origin) @ frame[:2].T
     chosen = np.asarray(convex_hull(flat), dtype=int)
     distance, nearest_point = outside(flat[chosen], crossing)
-    nearest = int(chosen[np.argmin(np.linalg.norm(flat[chosen] - nearest_point, axis=1))])
     return Tipping(float(-local_force[2]), origin + crossing @ frame[:2], chosen,
-                   float(distance), origin + nearest_point @ frame[:2], nearest,
+                   float(distance), origin + nearest_point @ frame[:2],
                    hold_down_ratios(flat[chosen], crossing))

@@ -103,8 +103,12 @@ def _lift_off(v: dict, units: str) -> str:
 
 
 def _lift_off_part(v: dict, units: str) -> str:
-    """A loose part that tips off its rests while the whole stands (``needs.
+    """A loose part that tips off its rests, or that its loads lift (``needs.
     _lift_off_part``)."""
+    if "lifted" in v:
+        return (f"{v['part']} resting on {_and(v['on'])}: its loads lift it off its rests "
+                f"with {_n(v['lifted'])} N; fixing it down (nails or screws taking at least "
+                f"that pull) would hold it")
     point = ", ".join(_n(c) for c in v["point"])
     text = (f"{v['part']} resting on {_and(v['on'])}: the resultant of its weight and loads, "
             f"{_n(v['weight'])} N, meets the plane of its rests at ({point}) {units}, "

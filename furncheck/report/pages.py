@@ -303,14 +303,15 @@ def _other_changes(entry: dict[str, Any], anchors: int = 0
                    ) -> list[tuple[str, str, str, Any, Any]]:
     """Rows of what a suggestion changes besides planks (the suggest JSON's ``anchors``
     that it adds, numbered after the design's own ``anchors``, ``nails``, ``ratings``,
-    ``friction`` and ``anchors_moved``): (what, edit, field, from, to)."""
+    ``friction`` and ``anchors_moved``): (what, edit, field, from, to); a resting joint
+    nailed reads from 'resting'."""
     rows = []
     for index, added in enumerate(entry.get("anchors") or (), start=anchors):
         what = f"anchors[{index}] on {added['plank']} (wall {added['wall']})"
         rows += [(what, "add", "at", None, added["at"]),
                  (what, "add", "rating, N", None, added["capacity"])]
-    rows += [(str(n["joint"]), "change", "nails", n["before"], n["after"])
-             for n in entry.get("nails") or ()]
+    rows += [(str(n["joint"]), "change", "nails", "resting" if n.get("resting")
+              else n["before"], n["after"]) for n in entry.get("nails") or ()]
     rows += [(f"anchors[{r['anchor']}]", "change", "rating, N", r["before"], r["after"])
              for r in entry.get("ratings") or ()]
     if entry.get("friction"):

@@ -10,9 +10,9 @@ for a move across the mirror plane, raise or lower, lengthen or shorten, tilt wi
 tops apart or together.  A size change that moves a plank's top edge reads as raising or
 lowering that edge (narrowing a chair's back lowers the back rest).  Every amount is a
 magnitude; the verb says which way, and the interval is of that same magnitude, so the
-sign of a change and of its interval never disagree.  A plank that stands on its ends,
-tilted, has them cut at the tilt's angle (``_bevelled``): a square end would sit on one
-edge.  Where the upper end is where the
+sign of a change and of its interval never disagree.  A plank whose ends sit square on
+the floor or on faces, tilted, has them cut at the angle it then makes with them
+(``_bevel``): a square end would sit on one edge.  Where the upper end is where the
 search stopped rather than an invalid step, the sentence says so.
 """
 
@@ -118,10 +118,8 @@ def _changes_sentence(dofs: tuple[str, ...], changes: tuple[float, ...],
             else:
                 phrase = _pair_phrase(original, edited, plane, name, dofs[j], changes[k],
                                       units[k])
-                if kind in ("rx", "ry") and _bevelled(original, held,
-                                                      name.rpartition(".")[0]):
-                    phrase += f", their ends cut at {_amount(abs(changes[k]))} degrees to " \
-                              "sit flat"
+                if kind in ("rx", "ry"):
+                    phrase += _bevel(original, edited, held, name.rpartition(".")[0], "their")
                 phrases.append(phrase)
             first_each = first_each or k == 0
             continue
@@ -131,8 +129,8 @@ def _changes_sentence(dofs: tuple[str, ...], changes: tuple[float, ...],
         kind = name.rpartition(".")[2]
         phrase = _phrase(original, edited, held, plank, subject, kind, changes[k], units[k],
                          set(nailed.get(plank, ())))
-        if kind in ("rx", "ry") and _bevelled(original, held, plank):
-            phrase += f", its ends cut at {_amount(abs(changes[k]))} degrees to sit flat"
+        if kind in ("rx", "ry"):
+            phrase += _bevel(original, edited, held, plank, "its")
         phrases.append(phrase)
     return " and ".join(phrases), first_each, len(phrases)
 
@@ -212,15 +210,46 @@ def _phrase(design: Design, edited: Design, held: dict, plank: str, subject: str
     return f"tilt {subject} {amount} about {kind[1]}" + (f", {how}" if how else "")
 
 
-def _bevelled(design: Design, held: dict, plank_id: str) -> bool:
-    """Whether tilting the plank out of upright needs its ends cut at the tilt's angle: it
-    stands (its length within 45 degrees of vertical) and an end along its length sits on
-    the floor or on another plank's face (``held``), which a square end, tilted, would
-    touch along one edge only."""
-    if plank_id not in design.plank_index:
-        return False
-    upright = abs(float(design.plank(plank_id).rotation_matrix[2, 0])) > VERTICAL_COSINE
-    return upright and any(end.axis == 0 for end in held.get(plank_id, ()))
+def _bevel(design: Design, edited: Design, held: dict, plank_id: str, whose: str) -> str:
+    """', its ends cut at 6.5 degrees to sit flat' for a plank whose ends along its length
+    sit square on the floor or on other planks' faces (``held``) and that the edit tilts
+    off them by BEVEL_ANGLE or more: a square end, tilted, would touch along one edge only
+    (the angle between its length and the normal of what it sits on, in ``edited``; 'its
+    foot ... and its top ...' where they differ, 'its end on top' where one end sits);
+    '' otherwise, also for a plank whose ends were not square to what they sit on."""
+    if plank_id not in design.plank_index or plank_id not in edited.plank_index:
+        return ""
+    ends = [end for end in held.get(plank_id, ()) if end.axis == 0]
+    if not ends:
+        return ""
+    before = design.plank(plank_id).rotation_matrix[:, 0]
+    after = edited.plank(plank_id).rotation_matrix[:, 0]
+    angles = []
+    for end in ends:
+        normal = end.normal if end.on is None or end.on not in edited.plank_index else \
+            edited.plank(end.on).rotation_matrix[:, 2]
+        if _angle(before, end.normal) >= BEVEL_ANGLE:       # not square to it now
+            return ""
+        angles.append(_angle(after, normal))
+    if max(angles) < BEVEL_ANGLE:
+        return ""
+    if len(ends) == 1:
+        return f", {whose} end on {ends[0].support} cut at {_amount(angles[0])} degrees to " \
+               "sit flat"
+    if max(angles) - min(angles) < BEVEL_ANGLE:
+        return f", {whose} ends cut at {_amount(max(angles))} degrees to sit flat"
+    said = [f"on {end.support} at {_amount(angle)}" for end, angle in zip(ends, angles)]
+    return f", {whose} ends cut to sit flat ({', '.join(said)} degrees)"
+
+
+def _angle(axis: np.ndarray, normal: np.ndarray) -> float:
+    """Degrees between a plank's length ``axis`` and the line of a face's ``normal``."""
+    cosine = min(abs(float(axis @ normal)) / float(np.linalg.norm(normal)), 1.0)
+    return math.degrees(math.acos(cosine))
+
+
+BEVEL_ANGLE = 0.5
+"""Degrees: an end within this of square to what it sits on needs no cut (``_bevel``)."""
 
 
 def _size_verb(kind: str, change: float) -> str:

@@ -15,14 +15,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.geometry.support import (
-    PARALLEL_PUSH,
-    convex_hull,
-    floor_point,
-    hold_down_ratios,
-    outside,
-    tipping_on_plane,
-)
+from furncheck.geometry.loose import loose_parts
+from furncheck.geometry.support import convex_hull, outside, tipping_on_plane
 from furncheck.plain import plain_compared, plain_number
 from furncheck.statics.model import CaseStatics
 
@@ -40,9 +34,6 @@ _LINE_SLIDING = ("no equilibrium within the friction cones, and its ground conta
                  "one line: no forces to show")
 _MECHANISM_DETAIL = ("held down at all its contacts it would still move (a mechanism): no "
                      "forces to show")
-HOLD_TIE = 1e-9
-"""Hull points whose hold-down is within this share of the least (round-off) are named
-with it: a sawhorse's two far feet."""
 
 
 class _Outcomes:
@@ -119,6 +110,7 @@ class _Outcomes:
         least = self._hold_down() if stability == "lift-off" else None
         pulling[self.model.rest_rows] = False   # the ground's pulls; resting corners below
         resting, pulled = "", -float(bolted.contact_forces[pulling, 2].sum())
+        rests_held = None
         if self.model.rest_node is not None and least is None:  # resting joints that open
             forces = bolted.contact_forces
             lifting = self._lifting_rests(forces)
@@ -128,12 +120,10 @@ class _Outcomes:
             resting = self._rests_phrase(corners, "lifts off")
             pulled = -float(forces[pulling, 2].sum()) + sum(lifting.values())
             pulling = pulling | corners         # the planks named: those that lift
-            least = self._rest_hold_down(lifting)
+            rests_held = self._rest_hold_down(lifting)
         if stability == "lift-off" and resting:
-            held = f"held down, the {self._supports()} would have to pull " \
-                f"{plain_number(pulled)} N" if least is None else \
-                f"held down at {least[1]}, its rests would have to pull at least " \
-                f"{plain_number(least[0])} N there"
+            held = rests_held or f"held down, the {self._supports()} would have to pull " \
+                f"{plain_number(pulled)} N"
             detail = (f"no equilibrium with the {self._supports()} only pushing: {resting} "
                       f"({held})")
         elif stability == "lift-off":
@@ -228,88 +218,78 @@ class _Outcomes:
         where several tie: at either), by statics alone: the loads' resultant (weights
         included), V down, meets the floor outside the support polygon, and a pull P at
         hull point q holds it once the resultant of both meets the floor inside
-        (``geometry.support.hold_down_ratios``: V d / a where it lies d beyond one edge and
-        q a inside it; more beyond a corner), what ballast there would have to weigh
-        (``suggest.needs``).  The bolted solve's pulls are no measure of it in the elastic
-        model: a narrow foot's corners carry its plank's bending as a pair of large
-        opposite forces (a sawhorse 3 % past its tipping push: 901.9 N bolted, 3.804 N
-        needed; a frame under a loose top, pushed over: 956.3 N at the top's resting
-        corners bolted, 5.82 N needed at its front feet).  Resting joints count as part of
-        the body: the whole design cannot stand once the resultant of all its loads meets
-        the floor outside its ground contacts, whatever its resting joints do.  None where
-        this does not apply (walls or anchors; grounded parts that no resting joint joins
-        into one; contacts on a line; the resultant inside)."""
+        (``geometry.support.tipping_on_plane``, ``hold_down_ratios``: V d / a where it
+        lies d beyond one edge and q a inside it; more beyond a corner), what ballast
+        there would have to weigh (``suggest.needs``).  The bolted solve's pulls are no
+        measure of it in the elastic model: a narrow foot's corners carry its plank's
+        bending as a pair of large opposite forces (a sawhorse 3 % past its tipping push:
+        901.9 N bolted, 3.804 N needed; a frame under a loose top, pushed over: 956.3 N at
+        the top's resting corners bolted, 5.82 N needed at its front feet).  Resting
+        joints count as part of the body: the whole design cannot stand once the
+        resultant of all its loads meets the floor outside its ground contacts, whatever
+        its resting joints do.  None where this does not apply (walls or anchors; grounded
+        parts that no resting joint joins into one; contacts on a line; the resultant
+        inside)."""
         model = self.model
         if model.contact_anchored is not None or not self._one_body():
             return None
-        ground = np.ones(len(model.contacts), dtype=bool)
-        ground[model.rest_rows] = False
         if any(model.geometry.contacts[c].wall is not None for c in model.contacts):
             return None
+        rows = np.ones(len(model.contacts), dtype=bool)
+        rows[model.rest_rows] = False
+        rows = np.flatnonzero(rows)
         loads = self.f.reshape(-1, 6)
-        force = loads[:, :3].sum(axis=0)
-        moment = (np.cross(model.node_points, loads[:, :3]) + loads[:, 3:]).sum(axis=0)
-        if not force[2] < 0.0:
+        held = _held(tipping_on_plane(*_resultant(model.node_points, loads),
+                                      model.contact_points[rows], np.array([0.0, 0.0, 1.0])))
+        if held is None:
             return None
-        crossing = floor_point(force, moment)
-        rows = np.flatnonzero(ground)
-        points = model.contact_points[rows, :2]
-        chosen = np.asarray(convex_hull(points))
-        ratios = hold_down_ratios(points[chosen], crossing)
-        if ratios is None or outside(points[chosen], crossing)[0] <= 0.0 \
-                or not np.isfinite(ratios.min()):
-            return None
-        least = float(ratios.min())
-        far = rows[chosen[ratios <= least * (1.0 + HOLD_TIE) + HOLD_TIE]]   # ties: all
-        planks = set(model.contact_plank[far].tolist())
-        names = [model.design.planks[model.planks[k]].id for k in sorted(planks)]
-        return -float(force[2]) * least, " or ".join(names)
+        pull, tied = held
+        planks = sorted(set(model.contact_plank[rows[tied]].tolist()))
+        return pull, " or ".join(model.design.planks[model.planks[k]].id for k in planks)
 
-    def _rest_hold_down(self, lifting: dict[int, float]) -> tuple[float, str] | None:
-        """(N, planks): for resting joints that open (``lifting``) under one loose part (a
-        grounded component that stands on resting joints alone and carries none: a loose
-        top on its frame, a shelf on pins), the least pull at one of its resting corners
-        that would hold it down, and the planks it rests on there ('end_l or end_r' where
-        several tie), by the statics of ``_hold_down`` in the plane of its rests
-        (``geometry.support.tipping_on_plane``): its loads' resultant meets that plane
-        outside the polygon of its resting corners.  The bolted solve's pulls are no
-        measure of it in the elastic model (a loose desk top tipped by a sitter at its
-        front edge: 15,400 N of its resting corners' couples bolted, 28.8 N needed).  None
-        where this does not apply: the rests of several parts open, the part has ground,
-        wall or anchor contacts, something rests on it, its rests push it different ways,
-        or its resultant meets their plane inside."""
-        model = self.model
-        if not lifting or model.contact_anchored is not None:
+    def _rest_hold_down(self, lifting: dict[int, float]) -> str | None:
+        """The hold-down's words ('held down at end_l or end_r, its rests would have to
+        pull at least 28.84 N there') for resting joints that open (``lifting``): the
+        least pull that would hold each loose part they carry down (``geometry.loose``: a
+        top on its frame, a shelf on pins, with what rests on it), at one of its resting
+        corners, by the statics of ``_hold_down`` in the plane of its rests
+        (``geometry.support.tipping_on_plane``), and where (the planks under the corners
+        where it is least: 'end_l or end_r'; several parts each with its own pull, and
+        their sum); a part whose loads lift it off its rests needs their upward part.
+        The bolted solve's pulls are no measure of it in the elastic model (a loose desk
+        top tipped by a sitter at its front edge: 15,400 N of its resting corners'
+        couples bolted, 28.8 N needed).  None where a part the opening joints carry is
+        not loose by ``geometry.loose`` (it carries what stands elsewhere, its rests push
+        it different ways) or stands."""
+        model, design = self.model, self.model.design
+        parts = [part for part in loose_parts(design, model.geometry)
+                 if part.rests & set(lifting)]
+        if not parts or not set(lifting) <= {r for part in parts for r in part.rests}:
             return None
-        face_above, contacts = model.rest_face_above, model.geometry.contacts
-        upper = np.where(face_above, model.rest_component, model.contact_component)
-        lower = np.where(face_above, model.contact_component, model.rest_component)
-        opening = [k for k in model.rest_rows if contacts[model.contacts[k]].rest in lifting]
-        if len({int(upper[k]) for k in opening}) != 1:
-            return None
-        part = int(upper[opening[0]])
-        rests = model.rest_rows[upper[model.rest_rows] == part]
-        on_surfaces = (model.contact_component == part) & (model.rest_component < 0)
-        if on_surfaces.any() or (lower[model.rest_rows] == part).any():
-            return None
-        normals = np.array([contacts[model.contacts[k]].frame[2] for k in rests])
-        pushes = np.where(face_above[rests, None], -normals, normals)
-        if not np.all(pushes @ pushes[0] >= PARALLEL_PUSH):
-            return None
-        nodes = np.isin(model.node_plank, model.components[part])
-        loads = self.f.reshape(-1, 6)[nodes]
-        force = loads[:, :3].sum(axis=0)
-        moment = (np.cross(model.node_points[nodes], loads[:, :3]) + loads[:, 3:]).sum(axis=0)
-        tipping = tipping_on_plane(force, moment, model.contact_points[rests], pushes[0])
-        if tipping is None or tipping.outside <= 0.0 or tipping.ratios is None \
-                or not np.isfinite(tipping.ratios.min()):
-            return None
-        least = float(tipping.ratios.min())
-        far = rests[tipping.hull[tipping.ratios <= least * (1.0 + HOLD_TIE) + HOLD_TIE]]
-        under = np.where(face_above[far], model.contact_plank[far],
-                         [model.node_plank[model.rest_node[k]] for k in far])
-        names = [model.design.planks[model.planks[k]].id for k in sorted(set(under.tolist()))]
-        return tipping.load * least, " or ".join(names)
+        design_of_node = np.asarray(model.planks)[model.node_plank]
+        loads = self.f.reshape(-1, 6)
+        pulls, places = [], []
+        for part in parts:
+            nodes = np.isin(design_of_node, list(part.planks))
+            force, moment = _resultant(model.node_points[nodes], loads[nodes])
+            lifted = float(force @ part.push)
+            if lifted > 0.0:                    # its loads lift it: at least that
+                pulls.append(lifted)
+                places.append(part.under_names(design).replace(",", " and "))
+                continue
+            held = _held(tipping_on_plane(force, moment, part.points, part.push))
+            if held is None:
+                return None
+            pulls.append(held[0])
+            places.append(" or ".join(sorted({part.under[k] for k in held[1]},
+                                             key=design.plank_index.__getitem__)))
+        if len(parts) == 1:
+            return (f"held down at {places[0]}, its rests would have to pull at least "
+                    f"{plain_number(pulls[0])} N there")
+        each = " and ".join(f"{part.names(design)} at {place} ({plain_number(pull)} N)"
+                            for part, place, pull in zip(parts, places, pulls))
+        return (f"held down, {each}, their rests would have to pull at least "
+                f"{plain_number(sum(pulls))} N in all")
 
     def _one_body(self) -> bool:
         """Whether the grounded components, joined where one rests on another, are one."""
@@ -479,3 +459,16 @@ def _on_one_line(points: np.ndarray) -> bool:
 
 def _wrenches(h: np.ndarray) -> np.ndarray:
     return h.reshape(-1, 6).copy()
+
+
+def _resultant(points: np.ndarray, loads: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(force, moment about the world origin) of node loads (k, 6) at ``points`` (k, 3)."""
+    force = loads[:, :3].sum(axis=0)
+    moment = (np.cross(points, loads[:, :3]) + loads[:, 3:]).sum(axis=0)
+    return force, moment
+
+
+def _held(tipping) -> tuple[float, np.ndarray] | None:
+    """``Tipping.least_pull`` where there is a tipping (None where the loads do not press
+    the part onto its supports)."""
+    return None if tipping is None else tipping.least_pull()

@@ -46,12 +46,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from furncheck import tolerances as tol
 from furncheck.design.model import Design, Plank
 from furncheck.geometry import Geometry, end_bearing, end_gap
+from furncheck.geometry.loose import LoosePart, loose_parts
 from furncheck.geometry.model import nails_listed
 from furncheck.geometry.near import carried_groups
 from furncheck.geometry.support import (
-    PARALLEL_PUSH,
     convex_hull,
     floor_point,
     hold_down_ratios,
@@ -120,6 +121,9 @@ def _severity(need: Need) -> float:
 # -- stability ---------------------------------------------------------------------------
 def _sliding(design: Design, geometry: Geometry, where: str, case: CaseResult | None,
              case_name: str | None) -> Need:
+    part = _sliding_part(design, geometry, where, case_name)
+    if part is not None:
+        return part
     if _on_walls(design, geometry, where):
         return Need("sliding", where, case_name, why="it leans on walls or is anchored")
     forces, _ = _group_loads(design, geometry, where, case_name)
@@ -132,8 +136,12 @@ def _sliding(design: Design, geometry: Geometry, where: str, case: CaseResult | 
         return Need("sliding", where, case_name, values={
             "push": push, "weight": weight, "friction": mu, "holds": 0.0,
             "friction_needed": push / weight})
-    if push <= mu * weight:         # the floor holds it all: what slides rests on others
-        return _sliding_part(design, geometry, where, case_name, push, mu * weight)
+    if push <= mu * weight:         # within mu W as a whole: its feet share it unevenly
+        return Need("sliding", where, case_name,
+                    why=f"its push of {plain_number(push)} N is within what friction gives "
+                        f"it as a whole ({plain_number(mu * weight)} N): it slides by a "
+                        "twist or an uneven share between its feet, which hand statics of "
+                        "the whole does not tell")
     needed = push / mu
     return Need("sliding", where, case_name, values={
         "push": push, "weight": weight, "friction": mu, "holds": mu * weight,
@@ -141,39 +149,48 @@ def _sliding(design: Design, geometry: Geometry, where: str, case: CaseResult | 
         "ratio": push / (mu * weight)})
 
 
-def _sliding_part(design: Design, geometry: Geometry, where: str, case_name: str | None,
-                  push: float, holds: float) -> Need:
-    """The sliding need of the loose part of ``where``'s group that friction on its rests
-    holds least (``_loose_parts``: a top on its frame), where the floor holds the whole
-    group (its ``push`` N within the ``holds`` N that friction gives there): the push along
-    its rests' faces against mu N, N what presses it onto them (``part``: its planks,
-    ``on``: the planks it rests on; ``extra_mass`` only where its rests are level, so that
-    a mass on it presses them by its weight)."""
+def _sliding_part(design: Design, geometry: Geometry, where: str,
+                  case_name: str | None) -> Need | None:
+    """The sliding need of the loose part of ``where``'s group (``geometry.loose``: a top
+    on its frame) that friction on its rests holds least, where one needs more than it
+    has: the push along its rests' faces against mu N, N what presses it onto them
+    (``part``: its planks, ``on``: the planks it rests on; ``extra_mass`` only where its
+    rests are level to within PUSH_ANGLE, so that a mass on it presses them by its weight
+    and pushes it nowhere); None where no loose part slides (the whole then does)."""
     mu = design.material.friction
+    if mu <= 0.0:
+        return None
     worst = None
-    for part in _loose_parts(design, geometry, _group(design, geometry, where)):
-        forces, _ = _part_loads(design, case_name, part.planks)
-        total = forces.sum(axis=0)
+    for part in _parts_of(design, geometry, where):
+        total = _part_loads(design, case_name, part.planks)[0].sum(axis=0)
         pressing = float(-(total @ part.push))
         along = float(np.linalg.norm(total + pressing * part.push))
-        if pressing > 0.0 and (worst is None or along / pressing > worst[0]):
+        if pressing > 0.0 and along > mu * pressing \
+                and (worst is None or along / pressing > worst[0]):
             worst = (along / pressing, part, along, pressing)
-    if worst is None or worst[0] <= mu:
-        return Need("sliding", where, case_name,
-                    why=f"the floor holds its push of {plain_number(push)} N (friction "
-                        f"gives up to {plain_number(holds)} N there), and no part resting "
-                        "on others slides by statics alone")
+    if worst is None:
+        return None
     _, part, along, pressing = worst
     values = {"push": along, "weight": pressing, "friction": mu, "holds": mu * pressing,
               "friction_needed": along / pressing, "ratio": along / (mu * pressing),
               "part": part.names(design), "on": part.under_names(design)}
-    if part.push[2] >= LEVEL_COS:
+    if part.push[2] >= math.cos(math.radians(tol.PUSH_ANGLE)):
         values["extra_mass"] = (along / mu - pressing) / (GRAVITY * float(part.push[2]))
     return Need("sliding", where, case_name, values=values)
 
 
+def _parts_of(design: Design, geometry: Geometry, where: str) -> list[LoosePart]:
+    """The loose parts (``geometry.loose``) among the planks of ``where``'s group."""
+    group = _group(design, geometry, where)
+    return [part for part in loose_parts(design, geometry) if part.planks <= group]
+
+
 def _lift_off(design: Design, geometry: Geometry, where: str, case: CaseResult | None,
               case_name: str | None) -> Need:
+    part = _lift_off_part(design, geometry, where, case_name)
+    if part is not None and (_on_walls(design, geometry, where) or _stands(
+            design, geometry, where, case_name)):
+        return part
     if _on_walls(design, geometry, where):
         return Need("lift-off", where, case_name, why="it leans on walls or is anchored")
     forces, points = _group_loads(design, geometry, where, case_name)
@@ -188,7 +205,9 @@ def _lift_off(design: Design, geometry: Geometry, where: str, case: CaseResult |
     crossing = _floor_crossing(forces, points)
     distance, nearest = outside(hull, crossing)
     if distance <= 0.0:
-        return _lift_off_part(design, geometry, where, case_name)
+        return Need("lift-off", where, case_name,
+                    why="the loads' resultant meets the floor inside the support: it tips "
+                        "where planks rest on others in a way hand statics does not tell")
     scale = design.unit_scale
     away = (crossing - nearest) / distance
     arms = (nearest - hull) @ away
@@ -215,33 +234,47 @@ def _lift_off(design: Design, geometry: Geometry, where: str, case: CaseResult |
     return Need("lift-off", where, case_name, values=values)
 
 
+def _stands(design: Design, geometry: Geometry, where: str, case_name: str | None) -> bool:
+    """Whether the loads' resultant of ``where``'s group meets the floor inside the support
+    of its floor contacts (the whole stands: what tips is a part on its rests)."""
+    group = _group(design, geometry, where)
+    feet = [c.point[:2] for c in geometry.contacts
+            if c.on_floor and design.plank_index[c.plank] in group]
+    forces, points = _group_loads(design, geometry, where, case_name)
+    if not feet or not forces[:, 2].sum() < 0.0:
+        return False
+    hull, _ = _hull(feet, [""] * len(feet))
+    return outside(hull, _floor_crossing(forces, points))[0] <= 0.0
+
+
 def _lift_off_part(design: Design, geometry: Geometry, where: str,
-                   case_name: str | None) -> Need:
-    """The lift-off need of the loose part of ``where``'s group that tips furthest off its
-    rests (``_loose_parts``), where the whole group stands (its loads' resultant meets the
-    floor inside its support): by ``tipping_on_plane``, where its loads' resultant meets
-    the plane of its rests (``point``, 3 coordinates), how far outside the polygon of its
-    resting corners (``outside``) and beyond which plank under it (``edge_plank``), and the
-    least pull at one resting corner that would hold it down (``hold`` N, at a corner on
-    ``hold_plank``; ``hold_arm`` where it lies beyond one edge: V d / a), as ballast on
-    it there where its rests are level (``ballast`` kg)."""
+                   case_name: str | None) -> Need | None:
+    """The lift-off need of the loose part of ``where``'s group (``geometry.loose``) that
+    tips furthest off its rests, or whose loads lift it: by ``tipping_on_plane``, where
+    its loads' resultant meets the plane of its rests (``point``, 3 coordinates), how far
+    outside the polygon of its resting corners (``outside``) and beyond which planks
+    under it (``edge_plank``), and the least pull at one resting corner that would hold it
+    down (``hold`` N, at a corner on ``hold_plank``, 'end_l or end_r' where they tie;
+    ``hold_arm`` where it lies beyond one edge: V d / a), as ballast on it there where its
+    rests are level to within PUSH_ANGLE (``ballast`` kg); a part its loads lift needs
+    their upward part held (``lifted`` N).  None where no part tips."""
     scale, worst = design.unit_scale, None
-    for part in _loose_parts(design, geometry, _group(design, geometry, where)):
+    for part in _parts_of(design, geometry, where):
         forces, points = _part_loads(design, case_name, part.planks)
-        tipping = tipping_on_plane(forces.sum(axis=0), np.cross(points, forces).sum(axis=0),
+        total = forces.sum(axis=0)
+        if float(total @ part.push) > 0.0:          # lifted bodily: the worst there is
+            return Need("lift-off", where, case_name, values={
+                "part": part.names(design), "on": part.under_names(design),
+                "lifted": float(total @ part.push), "ratio": math.inf})
+        tipping = tipping_on_plane(total, np.cross(points, forces).sum(axis=0),
                                    part.points, part.push)
-        if tipping is None or tipping.outside <= 0.0 or tipping.ratios is None \
-                or not np.isfinite(tipping.ratios.min()):
-            continue
-        if worst is None or tipping.outside > worst[1].outside:
-            worst = (part, tipping)
+        held = None if tipping is None else tipping.least_pull()
+        if held is not None and (worst is None or tipping.outside > worst[1].outside):
+            worst = (part, tipping, held)
     if worst is None:
-        return Need("lift-off", where, case_name,
-                    why="the loads' resultant meets the floor inside the support, and no "
-                        "part resting on others tips by statics alone")
-    part, tipping = worst
-    far = int(tipping.hull[int(np.argmin(tipping.ratios))])
-    least = float(tipping.ratios.min())
+        return None
+    part, tipping, (pull, tied) = worst
+    far = int(tied[0])
     away = (tipping.crossing - tipping.nearest_point) / tipping.outside
     arm = float((tipping.nearest_point - part.points[far]) @ away)
     values = {"part": part.names(design), "on": part.under_names(design),
@@ -251,67 +284,15 @@ def _lift_off_part(design: Design, geometry: Geometry, where: str,
               "edge_plank": _edge_planks(part.points[tipping.hull],
                                          [part.under[k] for k in tipping.hull],
                                          tipping.nearest_point),
-              "hold": tipping.load * least, "hold_plank": part.under[far],
-              "ratio": 1.0 + tipping.outside / max(arm, 1e-12)}
-    if arm > 0.0 and math.isclose(least, tipping.outside / arm, rel_tol=1e-9):
+              "hold": pull,
+              "hold_plank": " or ".join(sorted({part.under[k] for k in tied},
+                                               key=design.plank_index.__getitem__)),
+              "ratio": 1.0 + tipping.outside / arm if arm > 0.0 else math.inf}
+    if arm > 0.0 and math.isclose(pull, tipping.load * tipping.outside / arm, rel_tol=1e-9):
         values["hold_arm"] = arm / scale      # beyond one edge: V d / a
-    if part.push[2] >= LEVEL_COS:
-        values["ballast"] = tipping.load * least / (GRAVITY * float(part.push[2]))
+    if part.push[2] >= math.cos(math.radians(tol.PUSH_ANGLE)):
+        values["ballast"] = pull / (GRAVITY * float(part.push[2]))
     return Need("lift-off", where, case_name, values=values)
-
-
-@dataclass(frozen=True, eq=False)    # holds arrays: no == by value
-class _LoosePart:
-    """A jointed group of planks that stands on resting joints alone, all pushing it one
-    way (``_loose_parts``): its planks (indices), its resting corners' points (k, 3) m,
-    the way they push it (``push``, a unit vector) and the plank under each corner."""
-
-    planks: frozenset[int]
-    points: np.ndarray
-    push: np.ndarray
-    under: tuple[str, ...]
-
-    def names(self, design: Design) -> str:
-        return ",".join(design.planks[i].id for i in sorted(self.planks))
-
-    def under_names(self, design: Design) -> str:
-        return ",".join(sorted(set(self.under), key=design.plank_index.__getitem__))
-
-
-def _loose_parts(design: Design, geometry: Geometry, group: set[int]) -> list[_LoosePart]:
-    """The jointed groups (``Geometry.components``) of ``group`` that stand on resting
-    joints alone: no ground, wall or anchor contact, nothing resting on them, and every
-    resting corner under them pushing them the same way (a loose top on its frame's
-    edges, a shelf on pins)."""
-    index, parts = design.plank_index, []
-    anchored = {index[a.plank] for a in design.anchors}
-    for component in geometry.components:
-        planks = frozenset(component)
-        if not planks <= group or planks & anchored:
-            continue
-        corners, pushes, under, carries = [], [], [], False
-        for contact in geometry.contacts:
-            if contact.on is None:
-                if index[contact.plank] in planks:
-                    corners = []
-                    break
-                continue
-            upper, lower = (contact.on, contact.plank) if contact.face_above \
-                else (contact.plank, contact.on)
-            if index[lower] in planks and index[upper] not in planks:
-                carries = True
-            if index[upper] in planks and index[lower] not in planks:
-                normal = np.asarray(contact.frame[2], dtype=float)
-                corners.append(contact.point)
-                pushes.append(-normal if contact.face_above else normal)
-                under.append(lower)
-        if not corners or carries:
-            continue
-        pushes = np.array(pushes)
-        if np.all(pushes @ pushes[0] >= PARALLEL_PUSH):
-            parts.append(_LoosePart(planks, np.array(corners, dtype=float), pushes[0],
-                                    tuple(under)))
-    return parts
 
 
 def _part_loads(design: Design, case_name: str | None,

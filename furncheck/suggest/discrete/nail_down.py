@@ -49,19 +49,36 @@ def nail_down(search: Search) -> Fix | None:
     found = {frozenset(joint.planks): joint.nails for joint in analyze(nailed).joints}
     counts = {k: found.get(frozenset(specs[k].planks), 0) for k in failing}
     joints = [f"{specs[k].planks[0]}/{specs[k].planks[1]}" for k in sorted(failing)]
-    onto = [_onto(geometry, k) for k in sorted(failing)]
-    each = sorted({counts[k] for k in failing})
-    nails = (f"{each[0]} nail{'s' if each[0] != 1 else ''} into "
-             f"{'each' if len(onto) > 1 else 'it'}" if len(each) == 1 else
-             names([f"{counts[k]} into {_onto(geometry, k)}" for k in sorted(failing)]))
-    plural = "s" if len(failing) > 1 else ""
-    advice = (f"Nail {names(sorted(loose))} down onto {names(onto)}, {nails} (its resting "
-              f"joint{plural} made nail joint{plural}).")
+    advice = _advice(geometry, sorted(failing), counts)
     candidate = Candidate("nails", nailed, advice,
                           new_joints=tuple(specs[k].planks for k in sorted(failing)),
                           trial_rule=NAIL_DOWN, target=names(joints),
                           place=f"{len(failing)} resting joints nailed")
     return search.first_valid([candidate])
+
+
+def _advice(geometry, joints: list[int], counts: dict[int, int]) -> str:
+    """'Nail top to end_l and end_r, 30 nails into each (its resting joints made nail
+    joints).'; with several loose planks, or counts that differ, each plank with what it
+    is nailed to: 'Nail top_a to end_l (30 nails) and divider (29), and top_b to divider
+    (29) and end_r (30) (their resting joints made nail joints).'"""
+    by_plank: dict[str, list[int]] = {}
+    for k in joints:
+        by_plank.setdefault(_loose_plank(geometry, k), []).append(k)
+    made = ("its resting joint made a nail joint" if len(joints) == 1 else
+            f"{'its' if len(by_plank) == 1 else 'their'} resting joints made nail joints")
+    if len(by_plank) == 1 and len({counts[k] for k in joints}) == 1:
+        plank, count = next(iter(by_plank)), counts[joints[0]]
+        each = f", {count} nail{'s' if count != 1 else ''} into " \
+            f"{'each' if len(joints) > 1 else 'it'}"
+        return f"Nail {plank} to {names([_onto(geometry, k) for k in joints])}{each} ({made})."
+    phrases = []
+    for p, (plank, rests) in enumerate(by_plank.items()):
+        said = [f"{_onto(geometry, k)} ({counts[k]}"
+                + (f" nail{'s' if counts[k] != 1 else ''})" if p == 0 and n == 0 else ")")
+                for n, k in enumerate(rests)]
+        phrases.append(f"{plank} to {names(said)}")
+    return f"Nail {', and '.join(phrases)} ({made})."
 
 
 def _corners(geometry, joint: int) -> list:
