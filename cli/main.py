@@ -162,6 +162,7 @@ def run() -> None:
     a Dask client) still run; what it skips is finalizing garbage cycles, which Python
     does not promise at exit either.  SIGTERM (a CI's cancel) stops the run as Ctrl-C
     does (``_Interrupted``: exit 143), and a second signal ends it at once (``_stop``).
+    At the end it leaves ``_quiet_closed_pipe`` as ``sys.unraisablehook`` for the exit.
     ``main`` called in a process that goes on (the tests' CliRunner) does none of this."""
     signal.signal(signal.SIGINT, _stop)
     signal.signal(signal.SIGTERM, _stop)

@@ -109,7 +109,10 @@ def test_a_cleat_shelfs_anchors_pull_by_the_moments_about_the_cleats_foot(model,
 
 def test_an_anchor_beyond_its_capacity_is_non_durable(tmp_path):
     """At 40 kg the two anchors at 70 mm pull about 2 x 640 N: over a 500 N capacity.  Each
-    message names the parts of its anchor's force, as a fixer reads them."""
+    message names the parts of its anchor's force, as a fixer reads them: its pull out of
+    the wall is half the weights' moment about the cleat's foot over the anchors' 70 mm
+    (the rigid wall pushes at the foot alone, as in the test above): (7.946 N x 9 mm +
+    19.87 N x 125 mm + 392.4 N x 225 mm) / 70 mm / 2 = 648.9 N."""
     doc = _cleat_shelf("rigid", load_kg=40.0, capacity=500.0)
     path = tmp_path / "shelf.yaml"
     path.write_text(yaml.safe_dump(doc, sort_keys=False))
@@ -131,6 +134,10 @@ def test_an_anchor_beyond_its_capacity_is_non_durable(tmp_path):
                           r"up(?:, ([\d.,]+) N along the wall)?\)", violation["message"])
         assert parts is not None, violation["message"]
         assert float(parts.group(1).replace(",", "")) == pytest.approx(-fy, rel=1e-3)
+        moment = (DENSITY * 0.6 * 0.1 * 0.018 * G * 9.0
+                  + DENSITY * 0.6 * 0.25 * 0.018 * G * 125.0 + 40.0 * G * 225.0)
+        assert float(parts.group(1).replace(",", "")) == pytest.approx(moment / 70.0 / 2.0,
+                                                                       rel=1e-3)
         assert float(parts.group(2).replace(",", "")) == pytest.approx(fz, rel=1e-3)
         along = float(parts.group(3).replace(",", "")) if parts.group(3) else 0.0
         assert along == pytest.approx(abs(fx), rel=1e-3, abs=0.5)

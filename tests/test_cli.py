@@ -362,3 +362,22 @@ def test_a_closed_pipe_at_exit_is_not_printed_anything_else_is(capsys, monkeypat
     Raising(ValueError("something else"))
     gc.collect()
     assert "ValueError: something else" in capsys.readouterr().err
+
+
+def test_the_console_script_installs_the_exit_hook(monkeypatch):
+    """``cli.main.run`` (the console script) leaves ``_quiet_closed_pipe`` as
+    ``sys.unraisablehook`` for the interpreter's exit, whatever the command did."""
+    import signal
+    import sys
+
+    from furncheck.cli import main as cli_main
+
+    def done(**_):
+        raise SystemExit(0)
+
+    monkeypatch.setattr(cli_main, "main", done)
+    monkeypatch.setattr(sys, "unraisablehook", sys.__unraisablehook__)
+    monkeypatch.setattr(signal, "signal", lambda *_: None)    # the test's own stay
+    with pytest.raises(SystemExit):
+        cli_main.run()
+    assert sys.unraisablehook is cli_main._quiet_closed_pipe

@@ -607,3 +607,118 @@ loads:
     assert need.values["point"][1] == pytest.approx(y, rel=1e-6)
     assert need.values["outside"] == pytest.approx(y - 150.0, rel=1e-6)
     assert need.values["edge_plank"] == "side_l and side_r"
+
+
+DESK_FRAME = """\
+furncheck: 1
+name: desk
+model: {model}
+material: {{thickness: 18}}
+{walls}planks:
+  - {{id: end_l, size: [700, 600], center: [-691, 0, 350], rotation: [0, -90, 0]}}
+  - {{id: end_r, size: [700, 600], center: [691, 0, 350], rotation: [0, -90, 0]}}
+  - {{id: stretcher, size: [1364, 150], center: [0, 291, 400], rotation: [90, 0, 0]}}
+{planks}joints:
+  - [end_l, stretcher]
+  - [end_r, stretcher]
+{joints}loads:
+{loads}"""
+
+
+def desk_with(model: str, planks: str, joints: str, loads: str, walls: str = ""):
+    from furncheck.design import parse_design
+
+    return parse_design(DESK_FRAME.format(model=model, planks=planks, joints=joints,
+                                          loads=loads, walls=walls), "desk.yaml", "yaml")
+
+
+def lift_off_message(design) -> str:
+    return next(v.message for v in check_design(design).violations if v.kind == "lift-off")
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_loose_top_with_a_box_on_it_tips_with_the_box(model):
+    """The desk's loose top (148.33 N) sat on at its front edge (686.7 N at y = -390 mm)
+    with a 200 x 200 x 60 mm box (17.66 N) resting on it at y = 100: the box tips with the
+    top, so the pull at the back corners (a = 600 mm from the front edge) is
+    (686.7 x 90 - 148.33 x 300 - 17.66 x 400) / 600 = 17.07 N, in the message and in the
+    hand estimate (where the elastic model's bolted corners read 15,150 N)."""
+    design = desk_with(model, """\
+  - {id: top, size: [1400, 800], center: [0, 0, 709]}
+  - {id: box, size: [200, 200], center: [0, 100, 818], rotation: [0, -90, 0], thickness: 60}
+""", """\
+  - {planks: [top, end_l], type: rests}
+  - {planks: [top, end_r], type: rests}
+  - {planks: [box, top], type: rests}
+""", "  - {plank: top, mass: 70, at: [0, -390, 718]}\n")
+    box = MDF * 0.2 * 0.2 * 0.06 * G
+    hold = (70.0 * G * 90.0 - TOP_WEIGHT * 300.0 - box * 400.0) / 600.0
+    assert hold == pytest.approx(17.07, abs=0.01)
+    assert f"its rests would have to pull at least {hold:.4g} N there" in \
+        lift_off_message(design)
+    geometry = analyze(design)
+    need = need_of(design, geometry, check_design(design, geometry), "lift-off")
+    assert need.values["part"] == "top,box"
+    assert need.values["hold"] == pytest.approx(hold, rel=1e-6)
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_two_loose_tops_are_each_held_down(model):
+    """Two 700 x 800 tops (74.16 N each) on the ends and a middle divider, 40 kg at each
+    one's front edge (y = -390): each tips about the front edge (y = -300) and is held
+    at its corner on an end (a = 600 mm; the divider, 582 mm deep, gives less arm):
+    (392.4 x 90 - 74.16 x 300) / 600 = 21.78 N each, 43.56 N in all."""
+    design = desk_with(model, """\
+  - {id: divider, size: [700, 582], center: [0, -9, 350], rotation: [0, -90, 0]}
+  - {id: top_a, size: [700, 800], center: [-350, 0, 709]}
+  - {id: top_b, size: [700, 800], center: [350, 0, 709]}
+""", """\
+  - [divider, stretcher]
+  - {planks: [top_a, end_l], type: rests}
+  - {planks: [top_a, divider], type: rests}
+  - {planks: [top_b, divider], type: rests}
+  - {planks: [top_b, end_r], type: rests}
+""", """\
+  - {plank: top_a, mass: 40, at: [-350, -390, 718]}
+  - {plank: top_b, mass: 40, at: [350, -390, 718]}
+""")
+    weight = MDF * 0.7 * 0.8 * 0.018 * G
+    each = (40.0 * G * 90.0 - weight * 300.0) / 600.0
+    assert each == pytest.approx(21.78, abs=0.01)
+    message = lift_off_message(design)
+    assert (f"held down, top_a at end_l ({each:.4g} N) and top_b at end_r ({each:.4g} N), "
+            f"their rests would have to pull at least {2 * each:.4g} N in all") in message
+
+
+def test_a_loose_top_lifted_bodily_needs_its_lift_held():
+    """200 N straight up on the 148.33 N top: its loads lift it off its rests by
+    51.67 N, what a fixing must hold (no tipping edge: it comes off whole)."""
+    design = desk_with("rigid", "  - {id: top, size: [1400, 800], center: [0, 0, 709]}\n",
+                       "  - {planks: [top, end_l], type: rests}\n"
+                       "  - {planks: [top, end_r], type: rests}\n",
+                       "  - {plank: top, force: [0, 0, 200], at: [0, 0, 718]}\n")
+    assert f"its rests would have to pull at least {200.0 - TOP_WEIGHT:.4g} N there" in \
+        lift_off_message(design)
+    geometry = analyze(design)
+    need = need_of(design, geometry, check_design(design, geometry), "lift-off")
+    assert need.values["lifted"] == pytest.approx(200.0 - TOP_WEIGHT, rel=1e-6)
+
+
+def test_a_loose_top_on_a_frame_against_a_wall_gets_its_hand_estimate():
+    """The frame's ends stand against a wall behind them (y = 300 mm); the 699 mm deep top
+    stops 1 mm short of it (y from -400 to 299), weighing 750 x 1.4 x 0.699 x 0.018 x 9.81
+    = 129.6 N at y = -50.5: its rests run 599 mm deep (y from -300 to 299), so the pull at
+    the back corners is (686.7 x 90 - 129.6 x 249.5) / 599 = 49.19 N.  The wall touches the
+    frame, not the top: the top's estimate is given, not 'it leans on walls'."""
+    design = desk_with("rigid", "  - {id: top, size: [1400, 699], center: [0, -50.5, 709]}\n",
+                       "  - {planks: [top, end_l], type: rests}\n"
+                       "  - {planks: [top, end_r], type: rests}\n",
+                       "  - {plank: top, mass: 70, at: [0, -390, 718]}\n",
+                       walls="walls:\n  - {point: [0, 300, 0], normal: [0, -1, 0]}\n")
+    top = MDF * 1.4 * 0.699 * 0.018 * G
+    hold = (70.0 * G * 90.0 - top * 249.5) / 599.0
+    assert hold == pytest.approx(49.19, abs=0.01)
+    assert f"at least {hold:.4g} N there" in lift_off_message(design)
+    geometry = analyze(design)
+    need = need_of(design, geometry, check_design(design, geometry), "lift-off")
+    assert need.values["hold"] == pytest.approx(hold, rel=1e-6)

@@ -171,3 +171,18 @@ def test_a_mirror_pair_hung_by_their_top_edges_grows_at_their_bottoms():
     shelf = with_model(load_design(str(CATALOG / "wall-shelf.yaml")), "rigid")
     assert advise(shelf, {"cleat_l.width": 230.0, "cleat_r.width": 230.0}) == \
         "Lower the bottom of cleat_l and cleat_r by 230 mm each (valid for 207-276 mm each)."
+
+
+def test_an_end_cut_is_asked_only_of_ends_that_sit_square_now():
+    """The cut is the angle the tilted plank's length makes with the normal of what each
+    end sits on, asked only where the ends sit square now: a leg already drawn 10 degrees
+    off upright has ends the model takes as they are (tilted 5 more, or back upright, no
+    cut is named), while the stool's upright leg tilted 5 degrees about x has both ends,
+    on the floor and under the seat, cut at 5 degrees."""
+    stool = with_model(load_design(str(CATALOG / "stool.yaml")), "rigid")
+    tilted = edited(stool, {"leg_r.ry": -10.0})
+    for change in (-5.0, 10.0):
+        assert "cut" not in advise(tilted, {"leg_r.ry": change}), change
+    assert advise(stool, {"leg_r.rx": 5.0}) == (
+        "Tilt leg_r 5 degrees about x, its ends cut at 5 degrees to sit flat (valid for "
+        "4.5-6 degrees).")
