@@ -536,7 +536,7 @@ def test_a_loose_top_tipped_off_its_rests_needs_its_hold_down(model):
         from furncheck.suggest.cutlist import nail_changes
 
         first = suggest_design(design).suggestions[0]
-        assert first.advice == ("Nail top down onto end_l and end_r, 30 nails into each (its "
+        assert first.advice == ("Nail top to end_l and end_r, 30 nails into each (its "
                                 "resting joints made nail joints).")
         assert check_design(first.design).valid
         assert "rests" not in first.text and "- [top, end_l]" in first.text

@@ -57,16 +57,23 @@ def outside(hull: np.ndarray, point: np.ndarray) -> tuple[float, np.ndarray]:
             (b[0] - a[0]) * (point[1] - a[1]) - (b[1] - a[1]) * (point[0] - a[0]) >= 0.0
             for a, b in zip(hull, np.roll(hull, -1, axis=0))):
         return 0.0, point
-    best, nearest = math.inf, hull[0]
-    for a, b in zip(hull, np.roll(hull, -1, axis=0)):
+    _, distance, nearest = nearest_edge(hull, point)
+    return distance, nearest
+
+
+def nearest_edge(hull: np.ndarray, point: np.ndarray) -> tuple[int, float, np.ndarray]:
+    """(k, distance, nearest point): the edge from hull point k to the next nearest
+    ``point``, in any dimension (the first of equals)."""
+    best, nearest, index = math.inf, hull[0], 0
+    for k, (a, b) in enumerate(zip(hull, np.roll(hull, -1, axis=0))):
         edge = b - a
         length = float(edge @ edge)
         t = 0.0 if length == 0.0 else min(max(float((point - a) @ edge) / length, 0.0), 1.0)
         candidate = a + t * edge
         distance = float(np.linalg.norm(point - candidate))
         if distance < best:
-            best, nearest = distance, candidate
-    return best, nearest
+            best, nearest, index = distance, candidate, k
+    return index, best, nearest
 
 
 def hold_down_ratios(hull: np.ndarray, point: np.ndarray) -> np.ndarray | None:
@@ -117,19 +124,30 @@ def pressure_centre(design, case) -> np.ndarray | None:
     over the forces F_i acting at r_i (the moments about the floor point c have no
     horizontal part: friction acts in the floor's plane); None when they do not press
     down."""
-    forces, points = [], []
-    for plank in design.planks:
-        forces.append((0.0, 0.0, -design.plank_mass(plank) * GRAVITY))
-        points.append(plank.center_array)
-    for load in case.loads:
-        forces.append(load.force)
-        points.append(design.plank(load.plank).center_array if load.point is None
-                      else np.asarray(load.point))
-    f, r = np.asarray(forces, dtype=float), np.asarray(points, dtype=float)
+    f, r = plank_loads(design, case)
     total = f.sum(axis=0)
     if total[2] >= 0.0:
         return None
     return floor_point(total, np.cross(r, f).sum(axis=0))
+
+
+def plank_loads(design, case, planks=None) -> tuple[np.ndarray, np.ndarray]:
+    """(forces (k, 3) N, points (k, 3) m): the weight of each plank (of ``planks``,
+    design indices; all when None) at its centre and every load of ``case`` (None: none)
+    on them (a spread load at its plank's centre, where its resultant acts)."""
+    chosen = range(len(design.planks)) if planks is None else sorted(planks)
+    forces, points = [], []
+    for i in chosen:
+        plank = design.planks[i]
+        forces.append((0.0, 0.0, -design.plank_mass(plank) * GRAVITY))
+        points.append(plank.center_array)
+    for load in case.loads if case is not None else ():
+        if planks is None or design.plank_index[load.plank] in planks:
+            forces.append(load.force)
+            points.append(design.plank(load.plank).center_array if load.point is None
+                          else np.asarray(load.point))
+    return np.asarray(forces, dtype=float).reshape(-1, 3), \
+        np.asarray(points, dtype=float).reshape(-1, 3)
 
 
 @dataclass(frozen=True, eq=False)    # holds arrays: no == by value

@@ -15,6 +15,13 @@ and planks as they are:
   hold_down_ratios``): V d / a at the point farthest from the edge, at arm a, where p
   lies beyond one edge, more beyond a corner (``ballast``);
   with sideways loads, the largest fraction of them that keeps p inside (``push_max``).
+* a loose part (``geometry.loose``: a top lying on its frame by resting joints, with what
+  rests on it) that tips off its rests or slides on them while the whole stands, or
+  whatever stands by a wall: the same statics in the plane of its rests
+  (``geometry.support.tipping_on_plane``): the pull a fixing there must take (``hold``,
+  V d / a beyond one edge, ``hold_arm``), or its loads' lift (``lifted``), ballast where
+  its rests are level; for sliding, its push along them against mu N, N what presses it
+  onto them (``part``, ``on``: its planks and those under it).
 * non-durable joint: the pull and shear per nail are the joint's forces shared by its n
   nails (``validity.nail_pull_shear``: every term goes with 1 / n for the same wrench),
   so n' = ceil(n x max(pull / capacity, shear / capacity)) nails hold it; unless the file
@@ -53,10 +60,13 @@ from furncheck.geometry.loose import LoosePart, loose_parts
 from furncheck.geometry.model import nails_listed
 from furncheck.geometry.near import carried_groups
 from furncheck.geometry.support import (
+    DUPLICATE,
     convex_hull,
     floor_point,
     hold_down_ratios,
+    nearest_edge,
     outside,
+    plank_loads,
     tipping_on_plane,
 )
 from furncheck.plain import plain_number
@@ -297,21 +307,9 @@ def _lift_off_part(design: Design, geometry: Geometry, where: str,
 
 def _part_loads(design: Design, case_name: str | None,
                 planks: frozenset[int]) -> tuple[np.ndarray, np.ndarray]:
-    """(forces (k, 3) N, points (k, 3) m): the weight of each of ``planks`` at its centre
-    and every load of the case on them (a spread load at its plank's centre, where its
-    resultant acts)."""
-    forces, points = [], []
-    for i in sorted(planks):
-        plank = design.planks[i]
-        forces.append((0.0, 0.0, -design.plank_mass(plank) * GRAVITY))
-        points.append(plank.center_array)
+    """``geometry.support.plank_loads`` of ``planks`` in the case named ``case_name``."""
     case = next((c for c in design.load_cases if c.name == case_name), None)
-    for load in case.loads if case is not None else ():
-        if design.plank_index[load.plank] in planks:
-            forces.append(load.force)
-            points.append(design.plank(load.plank).center_array if load.point is None
-                          else load.point)
-    return np.array(forces, dtype=float), np.array(points, dtype=float)
+    return plank_loads(design, case, planks)
 
 
 def _on_walls(design: Design, geometry: Geometry, where: str) -> bool:
@@ -373,19 +371,10 @@ def _edge_planks(hull: np.ndarray, owners: list[str], point: np.ndarray) -> str:
     step's front edge, which both sides' feet make)."""
     distances = np.linalg.norm(hull - point, axis=1)
     vertex = int(np.argmin(distances))
-    scale = max(float(np.abs(hull).max(initial=0.0)), 1.0)
-    if distances[vertex] <= 1e-9 * scale or len(hull) < 2:
+    if distances[vertex] <= DUPLICATE or len(hull) < 2:
         return owners[vertex]
-    best, pair = np.inf, (vertex, vertex)
-    for k in range(len(hull)):
-        a, b = hull[k], hull[(k + 1) % len(hull)]
-        edge = b - a
-        length = float(edge @ edge)
-        t = 0.0 if length == 0.0 else min(max(float((point - a) @ edge) / length, 0.0), 1.0)
-        distance = float(np.linalg.norm(point - (a + t * edge)))
-        if distance < best:
-            best, pair = distance, (k, (k + 1) % len(hull))
-    first, second = owners[pair[0]], owners[pair[1]]
+    k = nearest_edge(hull, point)[0]
+    first, second = owners[k], owners[(k + 1) % len(hull)]
     return first if first == second else " and ".join(sorted((first, second)))
 
 
