@@ -35,13 +35,15 @@ def output_problem(output: str) -> str | None:
         existing = os.path.dirname(existing)
     if not os.path.isdir(existing):
         return f"{existing} is a file, not a folder"
+    from furncheck.files import why_unwritable
+
     if existing != parent:
         return None if os.access(existing, os.W_OK) else \
-            f"cannot make the folder {os.path.dirname(output)} (permission denied)"
+            f"cannot make the folder {os.path.dirname(output)} ({why_unwritable(existing)})"
     if os.path.exists(output) and not os.access(output, os.W_OK):
-        return "permission denied"
+        return why_unwritable(output)
     if not os.path.exists(output) and not os.access(parent, os.W_OK):
-        return "permission denied"
+        return why_unwritable(parent)
     return None
 
 

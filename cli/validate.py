@@ -242,10 +242,10 @@ def _cache_folder(option: str | None, config: Config) -> str:
     """The result cache's folder: --cache-dir, else $FURNCHECK_CACHE_DIR, else
     ``cache-dir`` of [tool.furncheck], else the user cache directory (a CI job's variable
     wins over the repository's file, as the command line does); '~' expanded in each."""
-    from furncheck.cache import ENV_DIRECTORY, default_directory
+    from furncheck.cache import ENV_DIRECTORY, default_directory, expand_user
 
     chosen = option or os.environ.get(ENV_DIRECTORY) or config.cache_dir
-    return os.path.expanduser(chosen) if chosen else default_directory()
+    return expand_user(chosen) if chosen else default_directory()
 
 
 def open_cache(directory: str, model: str | None):
@@ -260,8 +260,13 @@ def open_cache(directory: str, model: str | None):
 
 def _progress_bar(total: int):
     """A click progress bar on stderr for ``total`` files to check when stderr is a
-    terminal and they are at least PROGRESS_MIN_FILES, else None."""
+    terminal and they are at least PROGRESS_MIN_FILES, else None; never in a CI job
+    (``CI`` set, as GitHub Actions, GitLab CI and most runners set it: one given a
+    terminal, ``docker run -t``, would log every frame) or on a dumb terminal."""
     if total < PROGRESS_MIN_FILES or not _is_terminal(sys.stderr):
+        return None
+    if os.environ.get("CI", "").lower() not in ("", "0", "false", "no") \
+            or os.environ.get("TERM") == "dumb":
         return None
     return click.progressbar(length=total, label="checking", file=sys.stderr,
                              show_pos=True, show_percent=False)

@@ -69,16 +69,29 @@ def default_directory() -> str:
     """The user cache directory of furncheck (see the module docstring)."""
     chosen = os.environ.get(ENV_DIRECTORY)
     if chosen:
-        return os.path.expanduser(chosen)
+        return expand_user(chosen)
     if sys.platform == "win32":
-        base = os.environ.get("LOCALAPPDATA") or os.path.expanduser(r"~\AppData\Local")
+        base = os.environ.get("LOCALAPPDATA") or expand_user(r"~\AppData\Local")
         return os.path.join(base, "furncheck", "Cache")
     if sys.platform == "darwin":
-        return os.path.expanduser("~/Library/Caches/furncheck")
+        return expand_user("~/Library/Caches/furncheck")
     base = os.environ.get("XDG_CACHE_HOME")
     if not base or not os.path.isabs(base):
-        base = os.path.expanduser("~/.cache")
+        base = expand_user("~/.cache")
     return os.path.join(base, "furncheck")
+
+
+def expand_user(path: str) -> str:
+    """``os.path.expanduser``, but a HOME set to nothing (some CI containers run so) counts
+    as unset: the user database's home, as Python takes it when HOME is unset (the empty
+    one made '~/.cache' the root's '/.cache')."""
+    if not path.startswith("~") or os.environ.get("HOME", None) != "":
+        return os.path.expanduser(path)
+    home = os.environ.pop("HOME")
+    try:
+        return os.path.expanduser(path)
+    finally:
+        os.environ["HOME"] = home
 
 
 def code_fingerprint() -> str:

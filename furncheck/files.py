@@ -83,3 +83,15 @@ def _mode_for(path: str, follow_links: bool = True) -> int:
     umask = os.umask(0)
     os.umask(umask)
     return 0o666 & ~umask
+
+
+def why_unwritable(path: str) -> str:
+    """Why ``path`` (a file or folder that ``os.access`` finds not writable) cannot be
+    written, in the words of the error writing would raise: 'read-only file system' where
+    its file system is mounted so (a CI runner's read-only checkout), else 'permission
+    denied'."""
+    try:
+        read_only = bool(os.statvfs(path).f_flag & os.ST_RDONLY)
+    except (OSError, AttributeError):       # no statvfs (Windows), or gone
+        read_only = False
+    return "read-only file system" if read_only else "permission denied"

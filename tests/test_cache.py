@@ -336,3 +336,20 @@ def test_the_report_page_reads_the_results_the_run_stored(tmp_path, monkeypatch)
                         lambda *_: pytest.fail("a design was checked again"))
     assert run("validate", *designs, "--cache-dir", cache_dir, "--html", str(warm)).exit_code == 1
     assert fresh.read_bytes() == cold.read_bytes() == warm.read_bytes()
+
+
+def test_an_empty_home_is_an_unset_one(monkeypatch):
+    """Some CI containers run with HOME set to nothing: '~/.cache' then read '/.cache', a
+    folder at the file system's root.  An empty HOME counts as unset: the user database's
+    home, as Python takes it when HOME is unset."""
+    import os
+    import pwd
+
+    from furncheck.cache import default_directory
+
+    monkeypatch.delenv("XDG_CACHE_HOME", raising=False)
+    monkeypatch.delenv("FURNCHECK_CACHE_DIR", raising=False)
+    monkeypatch.setenv("HOME", "")
+    home = pwd.getpwuid(os.getuid()).pw_dir
+    assert default_directory() == os.path.join(home, ".cache", "furncheck")
+    assert os.environ["HOME"] == ""                 # left as it was

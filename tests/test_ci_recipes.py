@@ -441,8 +441,10 @@ def test_no_progress_bar_when_stderr_is_no_terminal(checked_paths, tmp_path):
 
 def test_the_progress_bar_counts_the_files_checked(checked_paths, tmp_path, monkeypatch):
     """On a terminal, PROGRESS_MIN_FILES files to check get a bar of that length, advanced
-    once per file; a warm run (every file from the cache), a run with one file fewer and
-    a run whose report goes to the terminal too (no -o) get none."""
+    once per file; a warm run (every file from the cache), a run with one file fewer, a
+    run whose report goes to the terminal too (no -o), and one in a CI job (CI set: a
+    runner that gives the job a terminal would log every frame) or on a dumb terminal
+    get none."""
     import click
 
     from furncheck.cli import validate as validate_module
@@ -465,6 +467,8 @@ def test_the_progress_bar_counts_the_files_checked(checked_paths, tmp_path, monk
 
     monkeypatch.setattr(validate_module, "_is_terminal", lambda stream: True)
     monkeypatch.setattr(click, "progressbar", Bar)
+    monkeypatch.delenv("CI", raising=False)             # the suite may run in a CI job
+    monkeypatch.setenv("TERM", "xterm")
     count = validate_module.PROGRESS_MIN_FILES
     write(tmp_path / "many", *[f"valid{i:03d}.yaml" for i in range(count)])
     write(tmp_path / "fewer", *[f"valid{i:03d}.yaml" for i in range(count - 1)])
@@ -476,6 +480,11 @@ def test_the_progress_bar_counts_the_files_checked(checked_paths, tmp_path, monk
     run("validate", str(tmp_path / "many"), "--jobs", "1", *report)
     run("validate", str(tmp_path / "fewer"), "--jobs", "1", *report)
     assert len(bars) == 1
+    for name, value in (("CI", "true"), ("TERM", "dumb")):   # a CI job given a terminal
+        with monkeypatch.context() as scoped:
+            scoped.setenv(name, value)
+            run("validate", str(tmp_path / "many"), "--jobs", "1", "--no-cache", *report)
+        assert len(bars) == 1, name
 
 
 # --- the README's CI recipes --------------------------------------------------------------

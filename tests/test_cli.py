@@ -381,3 +381,25 @@ def test_the_console_script_installs_the_exit_hook(monkeypatch):
     with pytest.raises(SystemExit):
         cli_main.run()
     assert sys.unraisablehook is cli_main._quiet_closed_pipe
+
+
+def test_a_read_only_file_system_is_said_as_such(calls, tmp_path, monkeypatch):
+    """-o into a folder on a file system mounted read-only (a CI runner's checkout) says
+    'read-only file system', as writing would, not 'permission denied' (os.access finds
+    both alike; statvfs tells them apart: faked here, a mount needs privileges)."""
+    import os
+    import types
+
+    (valid,) = write(tmp_path, "valid.yaml")
+    folder = tmp_path / "mounted"
+    folder.mkdir()
+    real_access, real_statvfs = os.access, os.statvfs
+    monkeypatch.setattr(os, "access", lambda path, mode, **kw: False
+                        if str(path).startswith(str(folder)) else real_access(path, mode, **kw))
+    monkeypatch.setattr(os, "statvfs", lambda path: types.SimpleNamespace(
+        f_flag=os.ST_RDONLY) if str(path).startswith(str(folder)) else real_statvfs(path))
+    result = run("validate", valid, "-o", str(folder / "report.json"))
+    assert result.exit_code == 2
+    assert result.stderr == f"furncheck: cannot write the report to {folder / 'report.json'}: " \
+                            "read-only file system\n"
+    assert calls == []

@@ -212,6 +212,15 @@ def test_yaml_syntax_error_has_line():
     assert "not closed" not in error.message
 
 
+def test_a_tab_indenting_a_line_is_named():
+    """A tab that indents a block line: the C parser's message says only that a character
+    cannot start a token (it drops the character); the message says it is a tab, which
+    YAML does not indent with, at that line."""
+    text = "furncheck: 1\nplanks:\n  - id: a\n    size: [300, 300]\n\tcenter: [0, 0, 6]\n"
+    expect(text, "", 5, "found character that cannot start any token (while scanning for "
+                        "the next token); a tab there: YAML indents with spaces")
+
+
 def test_lines_are_counted_as_an_editor_counts_them_where_yaml_breaks_more():
     """YAML (1.1, as PyYAML reads it) breaks lines at NEL (U+0085), LS (U+2028) and PS
     (U+2029) too; an editor, grep and a GitHub annotation do not.  A NEL inside a quoted

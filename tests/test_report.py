@@ -330,3 +330,14 @@ def test_a_toppling_case_names_the_joint_that_would_fail_held_down():
     assert violation.message.endswith(
         f"; so held, joint {'/'.join(worst.planks)} would fail too (pull "
         f"{plain_number(worst.pull)} N per nail exceeds {plain_number(worst.pull_capacity)} N)")
+
+
+def test_every_violation_kind_has_a_sarif_rule_description():
+    """Code scanning shows a rule's short description on every alert: each violation kind
+    of the contract has its own sentence (sagging and overstressed, the elastic model's
+    commonest, read "furncheck violation 'sagging'." before)."""
+    from furncheck.report.sarif import RULE_DESCRIPTIONS
+    from furncheck.result import VIOLATION_KINDS
+
+    for kind in VIOLATION_KINDS:
+        assert kind in RULE_DESCRIPTIONS and RULE_DESCRIPTIONS[kind].endswith("."), kind

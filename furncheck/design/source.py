@@ -354,6 +354,9 @@ def _yaml_syntax_error(error: yaml.YAMLError, text: str, source: str) -> DesignE
         else:                       # the last line, counted as the parser counts breaks
             line = min(line, max(_line_count(text) if editor_line is None
                                  else editor_line(len(text) - 1), 1))
+    if problem_mark is not None and problem_mark.index < len(text) \
+            and text[problem_mark.index] == "\t" and "\t" not in message:
+        message = f"{message}; a tab there: YAML indents with spaces"
     marks = [m.index for m in (context_mark, problem_mark) if m is not None]
     if editor_line is not None and marks:   # a break the parser saw on the lines it read
         start = text.rfind("\n", 0, min(marks)) + 1      # up to the error may be the

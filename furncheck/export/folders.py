@@ -46,7 +46,9 @@ def prepare_out_dir(out_dir: str) -> str | None:
     except OSError as error:
         return error.strerror or str(error)
     if not os.access(out_dir, os.W_OK):
-        return "permission denied"
+        from furncheck.files import why_unwritable
+
+        return why_unwritable(out_dir)
     return None
 
 

@@ -32,12 +32,17 @@ RULE_DESCRIPTIONS = {
     "penetration": "A plank corner lies below the ground plane.",
     "floating": "Part of the assembly touches the ground nowhere, or a plank standing on "
                 "its end stops just short of the floor (up to 20 x tolerance).",
-    "non-durable": "A nail joint's pull or shear force per nail exceeds the nail capacity.",
+    "non-durable": "A nail joint's pull or shear force per nail exceeds the nail capacity, "
+                   "or a wall anchor holds more than its rating.",
     "lift-off": "No equilibrium exists with non-negative ground forces: the design topples.",
     "sliding": "No equilibrium exists within the friction cones: the design slides.",
+    "sagging": "A plank's sag, with creep, exceeds its span / sag_limit (elastic model).",
+    "overstressed": "A plank's bending stress exceeds its bending strength / safety factor "
+                    "(elastic model).",
     INPUT_ERROR: "The design file cannot be read or is ill-formed.",
 }
-"""Rule id -> one-sentence description.  Ids are the violation kinds of the contract."""
+"""Rule id -> one-sentence description.  Ids are the violation kinds of the contract
+(``result.VIOLATION_KINDS``, every one described: a test checks)."""
 
 
 def render(batch: BatchReport) -> str:
