@@ -72,9 +72,10 @@ the report does not go to that terminal too."""
               help="Leave out named files without a top-level 'furncheck' key too, as "
                    "directory scans do (for hooks that pass every changed file).")
 @click.option("--force-exclude", is_flag=True, default=None,
-              help="Leave out named files that an exclude pattern matches too (--exclude, "
-                   "'exclude' of [tool.furncheck]), as directory scans do (for hooks that "
-                   "pass every changed file; '-' by its --stdin-filename).")
+              help="Leave out named files that a directory scan would leave out too (a "
+                   "hidden name on the way, .gitignore, --exclude, 'exclude' of "
+                   "[tool.furncheck]), as directory scans do (for hooks that pass every "
+                   "changed file; '-' by its --stdin-filename).")
 @click.option("--cache/--no-cache", "use_cache", default=None,
               help="Reuse the results of unchanged designs.  [default: --cache]")
 @click.option("--cache-dir", metavar="DIR", default=None,

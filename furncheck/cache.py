@@ -65,6 +65,12 @@ _DEPENDENCIES = ("numpy", "scipy", "yaml")
 _THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 
 
+IGNORE_ALL = b"# made by furncheck: its result cache, nothing to commit\n*\n"
+"""The ``.gitignore`` that a cache folder furncheck makes holds (``cache-dir =
+".furncheck-cache"`` in a repository stays out of ``git status``); a folder that
+existed before is left as it was."""
+
+
 def default_directory() -> str:
     """The user cache directory of furncheck (see the module docstring)."""
     chosen = os.environ.get(ENV_DIRECTORY)
@@ -200,10 +206,13 @@ class ResultCache:
         """Find out now whether entries can be written (``unwritable`` says why not), so
         that worker processes, whose own findings are lost, need not try."""
         folder = os.path.join(self.directory, LAYOUT)
+        made = not os.path.lexists(self.directory)
         try:
             os.makedirs(folder, exist_ok=True)
             if not os.access(folder, os.W_OK | os.X_OK):
                 raise PermissionError(13, "Permission denied")
+            if made:            # a folder of its own: git leaves it out (as pytest's)
+                write_atomically(os.path.join(self.directory, ".gitignore"), IGNORE_ALL)
         except OSError as error:
             self.unwritable = f"{self.directory}: {error.strerror or error}"
             return

@@ -29,12 +29,15 @@ CATALOG = sorted((ROOT / "designs").glob("*.yaml"))
 
 
 def entries(directory: Path) -> list[Path]:
-    """The result entries under ``directory`` (not the report pieces, NAME.FORMAT)."""
-    return sorted(path for path in directory.rglob("*") if path.is_file() and not path.suffix)
+    """The result entries under ``directory`` (not the report pieces, NAME.FORMAT; not the
+    folder's own '.gitignore')."""
+    return sorted(path for path in (directory / cache_module.LAYOUT).rglob("*")
+                  if path.is_file() and not path.suffix)
 
 
 def pieces(directory: Path) -> list[Path]:
-    return sorted(path for path in directory.rglob("*.*") if path.is_file())
+    return sorted(path for path in (directory / cache_module.LAYOUT).rglob("*.*")
+                  if path.is_file())
 
 
 # --- hits, misses, invalidation -------------------------------------------------------------
@@ -99,7 +102,7 @@ def test_input_errors_are_not_cached(checked_paths, tmp_path):
     run("validate", missing, "--cache-dir", str(tmp_path / "cache"))
     run("validate", missing, "--cache-dir", str(tmp_path / "cache"))
     assert checked_paths == [missing, missing]
-    assert not [path for path in (tmp_path / "cache").rglob("*") if path.is_file()]
+    assert not entries(tmp_path / "cache") and not pieces(tmp_path / "cache")
 
 
 # --- damaged entries and concurrency --------------------------------------------------------
@@ -353,3 +356,17 @@ def test_an_empty_home_is_an_unset_one(monkeypatch):
     home = pwd.getpwuid(os.getuid()).pw_dir
     assert default_directory() == os.path.join(home, ".cache", "furncheck")
     assert os.environ["HOME"] == ""                 # left as it was
+
+
+def test_a_cache_folder_furncheck_makes_is_left_out_of_git(checked_paths, tmp_path):
+    """A cache folder that furncheck makes holds a '.gitignore' of '*' (as pytest's does),
+    so that 'cache-dir = ".furncheck-cache"' in a repository stays out of git status; a
+    folder that existed before (a user's own, or '.') gets none."""
+    (design,) = write(tmp_path, "valid.yaml")
+    made = tmp_path / "made-cache"
+    run("validate", str(design), "--cache-dir", str(made))
+    assert (made / ".gitignore").read_text().splitlines()[-1] == "*"
+    existing = tmp_path / "existing"
+    existing.mkdir()
+    run("validate", str(design), "--cache-dir", str(existing))
+    assert not (existing / ".gitignore").exists() and any(existing.iterdir())
