@@ -359,6 +359,28 @@ def test_geometric_needs_close_the_gap():
         assert need.values["change_max"] == pytest.approx(distance + 0.5, abs=1e-9)
 
 
+def test_a_plank_behind_a_wall_needs_to_come_out_of_the_wall():
+    """A 400 x 400 top whose back edge lies 100 mm behind the wall (y = -100 against the
+    wall's y = 0), its lowest corner 800 mm up: the need is 100 mm behind wall 0 (99.5 to
+    100.5 mm to move it out), not '-800 mm into the floor'."""
+    from furncheck.design import parse_design
+
+    design = parse_design("""\
+furncheck: 1
+name: wall-pen
+walls:
+  - {point: [0, 0, 0], normal: [0, 1, 0]}
+planks:
+  - {id: side, size: [800, 300], center: [0, 150, 400], rotation: [0, -90, 0]}
+  - {id: top, size: [400, 400], center: [206, 100, 806]}
+""", "wall.yaml", "yaml")
+    geometry = analyze(design)
+    need = need_of(design, geometry, check_design(design, geometry), "penetration")
+    assert need.values["wall"] == 0
+    assert need.values["distance"] == pytest.approx(100.0, abs=1e-9)
+    assert need.values["change_min"] == pytest.approx(99.5, abs=1e-9)
+
+
 # -- what was tried ----------------------------------------------------------------------
 def sliding_table():
     """The rigid table-slides shoved with 400 N at 20 mm above the floor: it slides (400 N

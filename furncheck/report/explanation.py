@@ -198,6 +198,9 @@ def _geometric(kind: str):
         if kind == "disconnected":
             return f"the end is {_n(v['distance'])} {units} from the face; closing it by " \
                    f"{span} ({tolerance}) would join them"
+        if kind == "penetration" and "wall" in v:
+            return f"{_n(v['distance'])} {units} behind wall {v['wall']}; moving it out or " \
+                   f"shortening it by {span} ({tolerance}) would bring it to the wall"
         if kind == "penetration":
             return f"{_n(v['distance'])} {units} into the floor; raising or shortening it by " \
                    f"{span} ({tolerance}) would stand it on the floor"

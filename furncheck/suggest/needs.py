@@ -495,7 +495,7 @@ def _geometric(design: Design, geometry: Geometry, where: str, case: CaseResult 
             return Need(kind, where, None, why="neither plank's end faces the other")
         distance = abs(gap)
     elif kind == "penetration":
-        distance = -float(design.plank(where).corners[:, 2].min())
+        distance, wall = _deepest(design, design.plank(where))
     else:
         distance = min(float(design.plank(p).corners[:, 2].min()) for p in where.split(","))
         if where in carried_groups(design, geometry):
@@ -507,7 +507,21 @@ def _geometric(design: Design, geometry: Geometry, where: str, case: CaseResult 
               "change_max": (distance + tolerance) / scale}
     if kind == "disconnected" and gap < 0.0:
         values["overlap"] = True
+    if kind == "penetration" and wall is not None:
+        values["wall"] = wall
     return Need(kind, where, None, values=values)
+
+
+def _deepest(design: Design, plank: Plank) -> tuple[float, int | None]:
+    """(m, wall): how deep the plank's deepest corner lies below the floor or behind a wall
+    (its index; None for the floor), whichever is deeper."""
+    depth, where = -float(plank.corners[:, 2].min()), None
+    for index, wall in enumerate(design.walls):
+        behind = -float(((plank.corners - np.asarray(wall.point)) @ np.asarray(wall.normal))
+                        .min())
+        if behind > depth:
+            depth, where = behind, index
+    return depth, where
 
 
 _ESTIMATES = {
