@@ -84,20 +84,35 @@ def default_directory() -> str:
     base = os.environ.get("XDG_CACHE_HOME")
     if not base or not os.path.isabs(base):
         base = expand_user("~/.cache")
+    if not os.path.isabs(base):         # no home known at all: not a folder named '~'
+        import tempfile
+
+        uid = os.getuid() if hasattr(os, "getuid") else 0
+        return os.path.join(tempfile.gettempdir(), f"furncheck-cache-{uid}")
     return os.path.join(base, "furncheck")
 
 
 def expand_user(path: str) -> str:
     """``os.path.expanduser``, but a HOME set to nothing (some CI containers run so) counts
     as unset: the user database's home, as Python takes it when HOME is unset (the empty
-    one made '~/.cache' the root's '/.cache')."""
-    if not path.startswith("~") or os.environ.get("HOME", None) != "":
+    one made '~/.cache' the root's '/.cache').  Where neither knows a home (a container's
+    user with no passwd entry), a '~' path stays as it is (``default_directory`` then
+    uses the temporary folder: never a folder named '~' in the current one)."""
+    if not (path == "~" or path.startswith(("~/", "~" + os.sep))) \
+            or os.environ.get("HOME", None) != "":
         return os.path.expanduser(path)
-    home = os.environ.pop("HOME")
+    home = _user_database_home()
+    return path if home is None else home + path[1:]
+
+
+def _user_database_home() -> str | None:
+    """The current user's home from the user database, None where there is none."""
     try:
-        return os.path.expanduser(path)
-    finally:
-        os.environ["HOME"] = home
+        import pwd
+
+        return pwd.getpwuid(os.getuid()).pw_dir or None
+    except (ImportError, KeyError, AttributeError, OSError):
+        return None
 
 
 def code_fingerprint() -> str:

@@ -344,7 +344,8 @@ def test_the_report_page_reads_the_results_the_run_stored(tmp_path, monkeypatch)
 def test_an_empty_home_is_an_unset_one(monkeypatch):
     """Some CI containers run with HOME set to nothing: '~/.cache' then read '/.cache', a
     folder at the file system's root.  An empty HOME counts as unset: the user database's
-    home, as Python takes it when HOME is unset."""
+    home, as Python takes it when HOME is unset; with no home known at all, the temporary
+    folder."""
     import os
     import pwd
 
@@ -356,6 +357,13 @@ def test_an_empty_home_is_an_unset_one(monkeypatch):
     home = pwd.getpwuid(os.getuid()).pw_dir
     assert default_directory() == os.path.join(home, ".cache", "furncheck")
     assert os.environ["HOME"] == ""                 # left as it was
+    # a container's user with no passwd entry: no home anywhere; the temporary folder,
+    # never a folder named '~' in the current one
+    import tempfile
+
+    monkeypatch.setattr(cache_module, "_user_database_home", lambda: None)
+    assert default_directory() == os.path.join(tempfile.gettempdir(),
+                                               f"furncheck-cache-{os.getuid()}")
 
 
 def test_a_cache_folder_furncheck_makes_is_left_out_of_git(checked_paths, tmp_path):

@@ -99,6 +99,8 @@ def _lift_off(v: dict, units: str) -> str:
     if "push_max" in v:
         text += (f", or a sideways push of at most {_n(v['push_max'])} N (now "
                  f"{_n(v['push'])} N)")
+    if "also" in v:             # a loose part that still tips once the whole is held
+        text += f"; and {_lift_off_part(v['also'], units)}"
     return text
 
 
@@ -110,18 +112,18 @@ def _lift_off_part(v: dict, units: str) -> str:
                 f"with {_n(v['lifted'])} N; fixing it down (nails or screws taking at least "
                 f"that pull) would hold it")
     point = ", ".join(_n(c) for c in v["point"])
-    text = (f"{v['part']} resting on {_and(v['on'])}: the resultant of its weight and loads, "
-            f"{_n(v['weight'])} N, meets the plane of its rests at ({point}) {units}, "
-            f"{_n(v['outside'])} {units} outside them beyond {v['edge_plank']}; fixing it "
-            f"down (nails or screws taking at least {_n(v['hold'])} N of pull at its rests "
-            f"on {v['hold_plank']}")
+    text = (f"{v['part']} resting on {_and(v['on'])}: its weight and loads press it onto its "
+            f"rests with {_n(v['weight'])} N along a line that meets their plane at "
+            f"({point}) {units}, {_n(v['outside'])} {units} outside them beyond "
+            f"{v['edge_plank']}; fixing it down (nails or screws taking at least "
+            f"{_n(v['hold'])} N of pull at its rests on {v['hold_plank']}")
     if "hold_arm" in v:
         text += (f": W d / a = {_n(v['weight'])} N x {_n(v['outside'])} {units} / "
                  f"{_n(v['hold_arm'])} {units}")
     text += ")"
     if "ballast" in v:
-        text += f", or {_n(v['ballast'])} kg of ballast on it over {v['hold_plank']}"
-    return text + ", would hold it"
+        text += f", or {_n(v['ballast'])} kg of ballast on it over {v['hold_plank']},"
+    return text + " would hold it"
 
 
 def _and(names: str) -> str:

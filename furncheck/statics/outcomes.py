@@ -134,6 +134,8 @@ class _Outcomes:
             detail = (f"no equilibrium with the {self._supports()} only pushing: the line of "
                       "action of its weight and loads together falls outside the support "
                       f"polygon, the design topples ({held})")
+            if least is not None and self.model.rest_node is not None:
+                detail += self._parts_also()
         else:
             detail = (f"no equilibrium within the friction cones "
                       f"(mu = {plain_number(self.mu, 6)}); forces shown as if the design were "
@@ -261,21 +263,56 @@ class _Outcomes:
         couples bolted, 28.8 N needed).  None where a part the opening joints carry is
         not loose by ``geometry.loose`` (it carries what stands elsewhere, its rests push
         it different ways) or stands."""
-        model, design = self.model, self.model.design
-        parts = [part for part in loose_parts(design, model.geometry)
+        model = self.model
+        parts = [part for part in loose_parts(model.design, model.geometry)
                  if part.rests & set(lifting)]
         if not parts or not set(lifting) <= {r for part in parts for r in part.rests}:
             return None
-        design_of_node = np.asarray(model.planks)[model.node_plank]
-        loads = self.f.reshape(-1, 6)
-        pulls, places = [], []
+        return self._parts_held(parts)
+
+    def _parts_also(self) -> str:
+        """'; top also lifts off its rests (held down at ...)' for the loose parts that tip
+        by statics while the whole topples ('' for none): holding the whole down does not
+        hold them."""
+        parts = self._parts_tipping()
+        held = self._parts_held(parts) if parts else None
+        if held is None:
+            return ""
+        design = self.model.design
+        names = _and([part.names(design).replace(",", " and ") for part in parts])
+        verb = "also lifts" if len(parts) == 1 else "also lift"
+        return f"; {names} {verb} off {'its' if len(parts) == 1 else 'their'} rests ({held})"
+
+    def _parts_tipping(self) -> list:
+        """The loose parts (``geometry.loose``) that tip off their rests by statics alone,
+        or that their loads lift: those a design that topples as a whole also loses."""
+        model = self.model
+        tipping = []
+        for part in loose_parts(model.design, model.geometry):
+            force, moment = self._part_resultant(part)
+            if float(force @ part.push) > 0.0 or _held(
+                    tipping_on_plane(force, moment, part.points, part.push)) is not None:
+                tipping.append(part)
+        return tipping
+
+    def _part_resultant(self, part) -> tuple[np.ndarray, np.ndarray]:
+        """(force, moment about the origin) of the node loads on a loose part's planks."""
+        model = self.model
+        nodes = np.isin(np.asarray(model.planks)[model.node_plank], list(part.planks))
+        return _resultant(model.node_points[nodes], self.f.reshape(-1, 6)[nodes])
+
+    def _parts_held(self, parts: list) -> str | None:
+        """The hold-down words of loose ``parts`` (``_rest_hold_down``), None where one of
+        them does not tip by statics (its resultant meets its rests' plane inside)."""
+        design = self.model.design
+        pulls, places, lifted = [], [], []
         for part in parts:
-            nodes = np.isin(design_of_node, list(part.planks))
-            force, moment = _resultant(model.node_points[nodes], loads[nodes])
-            lifted = float(force @ part.push)
-            if lifted > 0.0:                    # its loads lift it: at least that
-                pulls.append(lifted)
-                places.append(part.under_names(design).replace(",", " and "))
+            force, moment = self._part_resultant(part)
+            lift = float(force @ part.push)
+            if lift > 0.0:                      # its loads lift it: at least that, in all
+                pulls.append(lift)
+                places.append(_and(sorted(set(part.under), key=design.plank_index.get)))
+                lifted.append(True)
                 continue
             held = _held(tipping_on_plane(force, moment, part.points, part.push))
             if held is None:
@@ -283,9 +320,11 @@ class _Outcomes:
             pulls.append(held[0])
             places.append(" or ".join(sorted({part.under[k] for k in held[1]},
                                              key=design.plank_index.__getitem__)))
+            lifted.append(False)
         if len(parts) == 1:
+            where = "in all" if lifted[0] else "there"
             return (f"held down at {places[0]}, its rests would have to pull at least "
-                    f"{plain_number(pulls[0])} N there")
+                    f"{plain_number(pulls[0])} N {where}")
         each = " and ".join(f"{part.names(design)} at {place} ({plain_number(pull)} N)"
                             for part, place, pull in zip(parts, places, pulls))
         return (f"held down, {each}, their rests would have to pull at least "
@@ -472,3 +511,8 @@ def _held(tipping) -> tuple[float, np.ndarray] | None:
     """``Tipping.least_pull`` where there is a tipping (None where the loads do not press
     the part onto its supports)."""
     return None if tipping is None else tipping.least_pull()
+
+
+def _and(names: list[str]) -> str:
+    """'a', 'a and b', 'a, b and c'."""
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]

@@ -228,8 +228,11 @@ def _lift_off(design: Design, geometry: Geometry, where: str, case: CaseResult |
     ratios = hold_down_ratios(hull, crossing)
     if ratios is not None and np.isfinite(ratios.min()):
         far = int(np.argmin(ratios))
+        tied = ratios <= float(ratios[far]) * (1.0 + tol.HOLD_TIE) + tol.HOLD_TIE
         values.update({"ballast": weight * float(ratios[far]) / GRAVITY,
-                       "ballast_plank": owners[far]})
+                       "ballast_plank": " or ".join(sorted(
+                           {owner for owner, tie in zip(owners, tied) if tie},
+                           key=design.plank_index.__getitem__))})
         if arms[far] > 0.0 and math.isclose(float(ratios[far]), distance / float(arms[far]),
                                             rel_tol=1e-9):     # beyond an edge: W d / a
             values["ballast_arm"] = float(arms[far]) / scale
@@ -241,6 +244,8 @@ def _lift_off(design: Design, geometry: Geometry, where: str, case: CaseResult |
         fraction = _inside_fraction(hull, still, crossing)
         if fraction is not None:
             values.update({"push": push, "push_max": fraction * push})
+    if part is not None:        # held down as a whole, a loose part still tips
+        values["also"] = part.values
     return Need("lift-off", where, case_name, values=values)
 
 
