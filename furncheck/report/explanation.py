@@ -61,7 +61,8 @@ def need_text(need: Need, units: str) -> str:
 
 def _sliding(v: dict, units: str) -> str:
     if v["friction"] <= 0.0:        # no weight holds a push without friction
-        return (f"the push of {_n(v['push'])} N meets no friction (mu = 0): no weight "
+        on = f"{v['part']} resting on {_and(v['on'])}: " if "part" in v else ""
+        return (f"{on}the push of {_n(v['push'])} N meets no friction (mu = 0): no weight "
                 f"holds it; friction mu >= {_n(v['friction_needed'])} would (or no push)")
     digits = _digits(v["push"], v["holds"])
     push, holds = _n(v["push"], digits), _n(v["holds"], digits)

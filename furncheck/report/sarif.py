@@ -34,8 +34,10 @@ RULE_DESCRIPTIONS = {
                 "its end stops just short of the floor (up to 20 x tolerance).",
     "non-durable": "A nail joint's pull or shear force per nail exceeds the nail capacity, "
                    "or a wall anchor holds more than its rating.",
-    "lift-off": "No equilibrium exists with non-negative ground forces: the design topples.",
-    "sliding": "No equilibrium exists within the friction cones: the design slides.",
+    "lift-off": "No equilibrium exists with non-negative ground forces: the design "
+                "topples, or a part lifts off what it rests on.",
+    "sliding": "No equilibrium exists within the friction cones: the design slides, or a "
+               "part slides on what it rests on.",
     "sagging": "A plank's sag, with creep, exceeds its span / sag_limit (elastic model).",
     "overstressed": "A plank's bending stress exceeds its bending strength / safety factor "
                     "(elastic model).",

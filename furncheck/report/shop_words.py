@@ -214,9 +214,9 @@ def _bevel(design: Design, edited: Design, held: dict, plank_id: str, whose: str
     """', its ends cut at 6.5 degrees to sit flat' for a plank whose ends along its length
     sit square on the floor or on other planks' faces (``held``) and that the edit tilts
     off them by BEVEL_ANGLE or more: a square end, tilted, would touch along one edge only
-    (the angle between its length and the normal of what it sits on, in ``edited``; 'its
-    foot ... and its top ...' where they differ, 'its end on top' where one end sits);
-    '' otherwise, also for a plank whose ends were not square to what they sit on."""
+    (the angle between its length and the normal of what it sits on, in ``edited``; each
+    end's own where they differ, 'its end on the ground' where one end sits square: an
+    end not square to what it sits on now is cut as the maker cut it); '' otherwise."""
     if plank_id not in design.plank_index or plank_id not in edited.plank_index:
         return ""
     ends = [end for end in held.get(plank_id, ()) if end.axis == 0]
@@ -224,14 +224,16 @@ def _bevel(design: Design, edited: Design, held: dict, plank_id: str, whose: str
         return ""
     before = design.plank(plank_id).rotation_matrix[:, 0]
     after = edited.plank(plank_id).rotation_matrix[:, 0]
-    angles = []
+    square, angles = [], []
     for end in ends:
+        if _angle(before, end.normal) >= BEVEL_ANGLE:       # not square to it now: its
+            continue                                        # cut is the maker's own
         normal = end.normal if end.on is None or end.on not in edited.plank_index else \
             edited.plank(end.on).rotation_matrix[:, 2]
-        if _angle(before, end.normal) >= BEVEL_ANGLE:       # not square to it now
-            return ""
+        square.append(end)
         angles.append(_angle(after, normal))
-    if max(angles) < BEVEL_ANGLE:
+    ends = square
+    if not ends or max(angles) < BEVEL_ANGLE:
         return ""
     if len(ends) == 1:
         return f", {whose} end on {ends[0].support} cut at {_amount(angles[0])} degrees to " \

@@ -168,8 +168,6 @@ def _sliding_part(design: Design, geometry: Geometry, where: str,
     rests are level to within PUSH_ANGLE, so that a mass on it presses them by its weight
     and pushes it nowhere); None where no loose part slides (the whole then does)."""
     mu = design.material.friction
-    if mu <= 0.0:
-        return None
     worst = None
     for part in _parts_of(design, geometry, where):
         total = _part_loads(design, case_name, part.planks)[0].sum(axis=0)
@@ -182,8 +180,11 @@ def _sliding_part(design: Design, geometry: Geometry, where: str,
         return None
     _, part, along, pressing = worst
     values = {"push": along, "weight": pressing, "friction": mu, "holds": mu * pressing,
-              "friction_needed": along / pressing, "ratio": along / (mu * pressing),
+              "friction_needed": along / pressing,
               "part": part.names(design), "on": part.under_names(design)}
+    if mu <= 0.0:               # no weight holds a push without friction
+        return Need("sliding", where, case_name, values=values)
+    values["ratio"] = along / (mu * pressing)
     if part.push[2] >= math.cos(math.radians(tol.PUSH_ANGLE)):
         values["extra_mass"] = (along / mu - pressing) / (GRAVITY * float(part.push[2]))
     return Need("sliding", where, case_name, values=values)
