@@ -396,3 +396,55 @@ def test_an_arm_under_a_loose_board_stays_a_cantilever():
             and v.where.startswith("arm")}
     assert set(arms) == {"arm_f", "arm_b"}
     assert all("at the free end of its 250 mm overhang" in m for m in arms.values())
+
+
+PINS = """\
+furncheck: 1
+name: bookcase-pins
+model: {model}
+material: {{thickness: 18}}
+planks:
+  - {{id: side_l, size: [1000, 300], center: [-309, 0, 500], rotation: [0, -90, 0]}}
+  - {{id: side_r, size: [1000, 300], center: [309, 0, 500], rotation: [0, -90, 0]}}
+  - {{id: top, size: [636, 300], center: [0, 0, 1009]}}
+  - {{id: bottom, size: [600, 300], center: [0, 0, 59]}}
+  - {{id: shelf_a, size: [598, 300], center: [0, 0, 359]}}
+  - {{id: shelf_b, size: [598, 300], center: [0, 0, 679]}}
+""" + "".join(
+    f"  - {{{{id: pin_{s}{x}{y}, size: [20, 12], center: [{sx}, {sy}, {z}], "
+    f"rotation: [0, -90, -90], thickness: 8}}}}\n"
+    for s, z in (("a", 340), ("b", 660)) for x, sx in (("l", -294), ("r", 294))
+    for y, sy in (("f", 120), ("b", -120))) + """\
+joints:
+  - [top, side_l]
+  - [top, side_r]
+  - [side_l, bottom]
+  - [side_r, bottom]
+""" + "".join(
+    f"  - {{{{planks: [side_{x}, pin_{s}{x}{y}], nails: 1}}}}\n"
+    f"  - {{{{planks: [shelf_{s}, pin_{s}{x}{y}], type: rests}}}}\n"
+    for s in "ab" for x in "lr" for y in "fb") + """\
+loads:
+  - {{plank: shelf_a, mass: 30, at: [0, 145, 368]}}
+"""
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_a_shelf_on_pins_tips_off_its_back_pins_and_the_empty_one_stays(model):
+    """Two loose shelves on four pins each (a woodworker's bookcase, session 18); 30 kg
+    (294.3 N) at shelf_a's front edge, y = 145 mm, shelf_b empty.  shelf_a (23.76 N) tips
+    over its front pins' edge (y = 124 mm): its resultant meets the pins' plane at
+    y = 294.3 x 145 / 318.06 = 134.17 mm, d = 10.17 mm beyond, and its back pins (a =
+    248 mm) would have to pull V d / a = 13.04 N.  It lifts off its back pins; its front
+    pins, the edge it tips over, and the empty shelf_b are not named, in both models
+    (the elastic model's bolted solve shows couples at every pin, 60 N in all)."""
+    design = parse_design(PINS.format(model=model), "pins.yaml", "yaml")
+    report = check_design(design)
+    (violation,) = [v for v in report.violations if v.kind == "lift-off"]
+    weight = 294.3 + DENSITY * 0.598 * 0.3 * 0.018 * G
+    pull = weight * (294.3 * 145.0 / weight - 124.0) / 248.0
+    assert pull == pytest.approx(13.04, abs=0.01)
+    assert violation.message.endswith(
+        "shelf_a lifts off pin_alb; shelf_a lifts off pin_arb (held down at pin_alb or "
+        f"pin_arb, its rests would have to pull at least {pull:.4g} N there)")
+    assert violation.where == "shelf_a,pin_alb,pin_arb"

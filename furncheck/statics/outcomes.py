@@ -16,7 +16,12 @@ import numpy as np
 
 from furncheck import tolerances as tol
 from furncheck.geometry.loose import loose_parts
-from furncheck.geometry.support import convex_hull, outside, tipping_on_plane
+from furncheck.geometry.support import (
+    convex_hull,
+    nearest_edge,
+    outside,
+    tipping_on_plane,
+)
 from furncheck.plain import plain_compared, plain_number
 from furncheck.statics.model import CaseStatics
 
@@ -114,13 +119,16 @@ class _Outcomes:
         if self.model.rest_node is not None and least is None:  # resting joints that open
             forces = bolted.contact_forces
             lifting = self._lifting_rests(forces)
+            pulled = -float(forces[pulling, 2].sum()) + sum(lifting.values())
+            by_statics = self._opening_by_statics(lifting)
+            if by_statics is not None:          # the loose parts that tip, by statics:
+                lifting, rests_held = by_statics    # the planks named are theirs alone
+                pulling = np.zeros(len(forces), dtype=bool)
             corners = np.zeros(len(forces), dtype=bool)
             for rest, rows in self._rest_corners().items():
                 corners[rows] = rest in lifting
             resting = self._rests_phrase(corners, "lifts off")
-            pulled = -float(forces[pulling, 2].sum()) + sum(lifting.values())
             pulling = pulling | corners         # the planks named: those that lift
-            rests_held = self._rest_hold_down(lifting)
         if stability == "lift-off" and resting:
             held = rests_held or f"held down, the {self._supports()} would have to pull " \
                 f"{plain_number(pulled)} N"
@@ -249,26 +257,38 @@ class _Outcomes:
         planks = sorted(set(model.contact_plank[rows[tied]].tolist()))
         return pull, " or ".join(model.design.planks[model.planks[k]].id for k in planks)
 
-    def _rest_hold_down(self, lifting: dict[int, float]) -> str | None:
-        """The hold-down's words ('held down at end_l or end_r, its rests would have to
-        pull at least 28.84 N there') for resting joints that open (``lifting``): the
-        least pull that would hold each loose part they carry down (``geometry.loose``: a
-        top on its frame, a shelf on pins, with what rests on it), at one of its resting
-        corners, by the statics of ``_hold_down`` in the plane of its rests
-        (``geometry.support.tipping_on_plane``), and where (the planks under the corners
-        where it is least: 'end_l or end_r'; several parts each with its own pull, and
-        their sum); a part whose loads lift it off its rests needs their upward part.
-        The bolted solve's pulls are no measure of it in the elastic model (a loose desk
-        top tipped by a sitter at its front edge: 15,400 N of its resting corners'
-        couples bolted, 28.8 N needed).  None where a part the opening joints carry is
-        not loose by ``geometry.loose`` (it carries what stands elsewhere, its rests push
-        it different ways) or stands."""
+    def _opening_by_statics(self, lifting) -> tuple[set[int], str] | None:
+        """(the resting joints that open, the hold-down's words) by the statics of the
+        loose parts that carry the joints the bolted solve finds opening (``lifting``):
+        the parts that tip off their rests by ``tipping_on_plane`` (or that their loads
+        lift), each opening every rest but those along the edge it tips over, with the
+        least pull that would hold each down (``_parts_held``: 'held down at end_l or
+        end_r, its rests would have to pull at least 28.84 N there').  The bolted solve
+        is no measure of either in the elastic model: a plank's bending between its
+        resting corners shows as couples at them, at an empty shelf on pins that lifts
+        off nothing, or at the edge a loose desk top tips over (15,400 N of them where
+        28.8 N holds it).  None where statics cannot say (a joint of no loose part, by
+        ``geometry.loose``: a group that stands on its own too, carries what stands
+        elsewhere, or rests on faces that push it different ways) or no part tips."""
         model = self.model
         parts = [part for part in loose_parts(model.design, model.geometry)
                  if part.rests & set(lifting)]
         if not parts or not set(lifting) <= {r for part in parts for r in part.rests}:
             return None
-        return self._parts_held(parts)
+        opening, tipping = set(), []
+        for part in parts:
+            force, moment = self._part_resultant(part)
+            if float(force @ part.push) > 0.0:          # lifted: off every rest
+                opening |= part.rests
+                tipping.append(part)
+                continue
+            tips = tipping_on_plane(force, moment, part.points, part.push)
+            if _held(tips) is None:
+                continue
+            opening |= part.rests - _pivot_rests(model.design, model.geometry, part, tips)
+            tipping.append(part)
+        held = self._parts_held(tipping) if tipping else None
+        return None if held is None else (opening, held)
 
     def _parts_also(self) -> str:
         """'; top also lifts off its rests (held down at ...)' for the loose parts that tip
@@ -302,7 +322,7 @@ class _Outcomes:
         return _resultant(model.node_points[nodes], self.f.reshape(-1, 6)[nodes])
 
     def _parts_held(self, parts: list) -> str | None:
-        """The hold-down words of loose ``parts`` (``_rest_hold_down``), None where one of
+        """The hold-down words of loose ``parts`` (``_opening_by_statics``), None where one of
         them does not tip by statics (its resultant meets its rests' plane inside)."""
         design = self.model.design
         pulls, places, lifted = [], [], []
@@ -516,3 +536,35 @@ def _held(tipping) -> tuple[float, np.ndarray] | None:
 def _and(names: list[str]) -> str:
     """'a', 'a and b', 'a, b and c'."""
     return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+
+
+def _pivot_rests(design, geometry, part, tipping) -> set[int]:
+    """The resting joints of a loose ``part`` that lie along the edge (or at the corner)
+    of its support that it tips over (``tipping``: the polygon's side or vertex nearest
+    where its loads' line meets the rests' plane): each of its corners within PIVOT_SHARE
+    of the farthest support's distance from it, or the design's tolerance (a front apron's
+    18 mm top edge, a front pin): they stay pressed, the others open."""
+    hull = part.points[tipping.hull]
+    k = nearest_edge(hull, tipping.nearest_point)[0]
+    a, b = hull[k], hull[(k + 1) % len(hull)]
+    at_corner = min(float(np.linalg.norm(tipping.nearest_point - p)) for p in (a, b)) \
+        <= design.tolerance + 1e-9 or float(np.linalg.norm(b - a)) == 0.0
+
+    def distance(point: np.ndarray) -> float:
+        if at_corner:
+            return float(np.linalg.norm(point - tipping.nearest_point))
+        along = (b - a) / float(np.linalg.norm(b - a))
+        offset = point - a
+        return float(np.linalg.norm(offset - (offset @ along) * along))
+
+    distances = np.array([distance(point) for point in part.points])
+    reach = max(PIVOT_SHARE * float(distances.max(initial=0.0)), design.tolerance) + 1e-9
+    near: dict[int, list[bool]] = {}
+    for k, gap in zip(part.corners, distances):
+        near.setdefault(geometry.contacts[k].rest, []).append(bool(gap <= reach))
+    return {rest for rest, flags in near.items() if all(flags)}
+
+
+PIVOT_SHARE = 0.1
+"""A loose part's resting joint whose corners all lie within this share of its support's
+depth from the edge it tips over is that edge (``_pivot_rests``)."""
