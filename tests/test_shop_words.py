@@ -51,11 +51,14 @@ def test_a_tilt_says_where_the_top_goes_and_quotes_magnitudes():
     """leg_r turned -7.55 degrees about y: its top (local x = world +z) turns toward -x,
     toward leg_l; the amount and the interval (5.04-10.1 degrees: 0.667 and 1.333 of the
     step) are magnitudes, no minus sign.  The leg stands on the floor and under the seat,
-    so a maker cuts its ends at the tilt's angle to sit flat, and the advice says so."""
+    so a maker cuts its ends at the tilt's angle to sit flat, and the advice says so, with
+    the length along its edges that spans the 438 mm from the floor to the seat tilted:
+    438 / cos 7.55 = 441.8 mm."""
     stool = with_model(load_design(str(CATALOG / "stool.yaml")), "rigid")
     text = advise(stool, {"leg_r.ry": -7.55}, interval=(5.04 / 7.55, 10.1 / 7.55))
     assert text == ("Tilt leg_r 7.55 degrees about y, its top toward leg_l, its ends cut at "
-                    "7.55 degrees to sit flat (valid for 5.04-10.1 degrees).")
+                    "7.55 degrees to sit flat (441.8 mm along its edges) (valid for "
+                    "5.04-10.1 degrees).")
 
 
 def test_a_shorter_back_rest_is_its_top_lowered():
@@ -114,7 +117,7 @@ def test_a_mirror_pair_tilted_along_its_plane_names_where_the_tops_go():
     stool = with_model(load_design(str(CATALOG / "stool.yaml")), "rigid")
     assert advise(stool, {"leg_l.rx": 5.0, "leg_r.rx": 5.0}) == \
         "Tilt leg_l and leg_r by 5 degrees each, their tops along -y, their ends cut at 5 " \
-        "degrees to sit flat (valid for 4.5-6 degrees each)."
+        "degrees to sit flat (439.7 mm along their edges) (valid for 4.5-6 degrees each)."
 
 
 
@@ -178,11 +181,12 @@ def test_an_end_cut_is_asked_only_of_ends_that_sit_square_now():
     end sits on, asked only where the ends sit square now: a leg already drawn 10 degrees
     off upright has ends the model takes as they are (tilted 5 more, or back upright, no
     cut is named), while the stool's upright leg tilted 5 degrees about x has both ends,
-    on the floor and under the seat, cut at 5 degrees."""
+    on the floor and under the seat, cut at 5 degrees, 438 / cos 5 = 439.7 mm along its
+    edges."""
     stool = with_model(load_design(str(CATALOG / "stool.yaml")), "rigid")
     tilted = edited(stool, {"leg_r.ry": -10.0})
     for change in (-5.0, 10.0):
         assert "cut" not in advise(tilted, {"leg_r.ry": change}), change
     assert advise(stool, {"leg_r.rx": 5.0}) == (
-        "Tilt leg_r 5 degrees about x, its ends cut at 5 degrees to sit flat (valid for "
-        "4.5-6 degrees).")
+        "Tilt leg_r 5 degrees about x, its ends cut at 5 degrees to sit flat (439.7 mm along "
+        "its edges) (valid for 4.5-6 degrees).")

@@ -239,9 +239,28 @@ def _bevel(design: Design, edited: Design, held: dict, plank_id: str, whose: str
         return f", {whose} end on {ends[0].support} cut at {_amount(angles[0])} degrees to " \
                "sit flat"
     if max(angles) - min(angles) < BEVEL_ANGLE:
-        return f", {whose} ends cut at {_amount(max(angles))} degrees to sit flat"
+        edges = _edge_length(edited, plank_id, ends[0].normal, max(angles))
+        return f", {whose} ends cut at {_amount(max(angles))} degrees to sit flat " \
+               f"({format_number(edges / edited.unit_scale, 4)} {edited.units} along " \
+               f"{whose} edges)"
     said = [f"on {end.support} at {_amount(angle)}" for end, angle in zip(ends, angles)]
     return f", {whose} ends cut to sit flat ({', '.join(said)} degrees)"
+
+
+def _edge_length(design: Design, plank_id: str, normal: np.ndarray, angle: float) -> float:
+    """m: how long a plank whose ends are cut parallel at ``angle`` degrees is along its
+    edges, the ends' planes those square ones met at its corners: its length L (the
+    model's box, whose square ends touch what it sits on at a corner) plus its extent e
+    across it in the tilt's plane times tan(angle): the ends' planes lie that much
+    apart along each edge (L cos a + e sin a = the height it spans = its edges x cos a)."""
+    plank = design.plank(plank_id)
+    axes = plank.rotation_matrix
+    across = np.asarray(normal, dtype=float) - float(np.asarray(normal) @ axes[:, 0]) * axes[:, 0]
+    size = float(np.linalg.norm(across))
+    extent = 0.0 if size == 0.0 else \
+        (abs(float(across @ axes[:, 1])) * plank.width
+         + abs(float(across @ axes[:, 2])) * plank.thickness) / size
+    return plank.length + extent * math.tan(math.radians(angle))
 
 
 def _angle(axis: np.ndarray, normal: np.ndarray) -> float:

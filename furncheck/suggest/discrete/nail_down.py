@@ -3,13 +3,13 @@ supports without nails (``type: rests``, contract section 2) and lifts off them 
 on them.
 
 A resting joint holds only by pressing and by friction; the same touching region nailed
-is a nail joint (an end face of one plank on the face of the other), with the nails its
-length takes by the spacing rule.  The candidate nails every resting joint that a lift-off
-or sliding violation names (both of its planks among the violation's), and those of the
-same loose part with them (a top on two frames is nailed to both), and is checked in full:
-the nails must hold what the rests could not (a top tipped by a sitter at its front edge
-pulls its back nails).  A shelf on pins is nailed to them the same way: whether the pins
-take nails (or the shelf a screw into them) is the maker's to judge.
+is a nail joint (an end face of one plank on the face of the other).  The candidates nail
+every resting joint that a lift-off or sliding violation names (both of its planks among
+the violation's), and those of the same loose part with them (a top on two frames is
+nailed to both), with FEW_NAILS each, then with as many as each length takes by the
+spacing rule, each checked in full: the nails must hold what the rests could not (a top
+tipped by a sitter at its front edge pulls its back nails).  A part resting on pins
+(planks under PIN_SIZE) is not nailed: a nail would split them.
 """
 
 from __future__ import annotations
@@ -43,18 +43,48 @@ def nail_down(search: Search) -> Fix | None:
     loose = {_loose_plank(geometry, k) for k in failing}
     failing |= {k for k, spec in enumerate(specs) if spec.rests
                 and _loose_plank(geometry, k) in loose}
+    pins = sorted({_onto(geometry, k) for k in failing if _is_pin(design, _onto(geometry, k))})
+    if pins:
+        search.not_applicable(NAIL_DOWN, f"{names(sorted(loose))} rests on "
+                              f"{names(pins)}: pins, which a nail would split")
+        return None
+    joints = [f"{specs[k].planks[0]}/{specs[k].planks[1]}" for k in sorted(failing)]
+    candidates = [_candidate(design, geometry, specs, failing, count, joints)
+                  for count in (FEW_NAILS, None)]
+    return search.first_valid(candidates)
+
+
+def _candidate(design, geometry, specs: list, failing: set[int], count: int | None,
+               joints: list[str]) -> Candidate:
+    """The design with the ``failing`` resting joints nailed, each with ``count`` nails
+    (None: as many as its length takes by the spacing rule), and its advice."""
+    specs = list(specs)
     for k in failing:
-        specs[k] = replace(specs[k], rests=False)
+        specs[k] = replace(specs[k], rests=False,
+                           nails=count if count is not None else specs[k].nails)
     nailed = replace(design, joints=tuple(specs))
     found = {frozenset(joint.planks): joint.nails for joint in analyze(nailed).joints}
     counts = {k: found.get(frozenset(specs[k].planks), 0) for k in failing}
-    joints = [f"{specs[k].planks[0]}/{specs[k].planks[1]}" for k in sorted(failing)]
-    advice = _advice(geometry, sorted(failing), counts)
-    candidate = Candidate("nails", nailed, advice,
-                          new_joints=tuple(specs[k].planks for k in sorted(failing)),
-                          trial_rule=NAIL_DOWN, target=names(joints),
-                          place=f"{len(failing)} resting joints nailed")
-    return search.first_valid([candidate])
+    return Candidate("nails", nailed, _advice(geometry, sorted(failing), counts),
+                     new_joints=tuple(specs[k].planks for k in sorted(failing)),
+                     trial_rule=NAIL_DOWN, target=names(joints),
+                     place=f"{len(failing)} resting joints nailed"
+                           + (f", {count} nails each" if count is not None else ""))
+
+
+FEW_NAILS = 2
+"""Nails per resting joint the rule tries first (two screws or nails through a top into
+its frame hold what a sitter at its edge asks of them), before as many as the joint's
+length takes."""
+
+PIN_SIZE = 0.06
+"""m: a plank whose length and width are both below this is a pin or a small block, into
+which a nail would split it (a shelf on pins is not nailed down)."""
+
+
+def _is_pin(design, plank_id: str) -> bool:
+    plank = design.plank(plank_id)
+    return max(plank.length, plank.width) < PIN_SIZE
 
 
 def _advice(geometry, joints: list[int], counts: dict[int, int]) -> str:
