@@ -355,3 +355,17 @@ def test_an_anchored_plank_moved_lists_its_wall_fixings():
                                            "to": [-200.0, 0.0, 1520.0]}
     shelf_moved = apply_dof(before, frame, parse_dof(before, "shelf.x"), 20.0)
     assert anchor_moves(before, shelf_moved) == ()
+
+
+def test_a_moved_load_is_written_with_the_digits_that_show_its_move():
+    """A load carried 0.004 mm with its plank (moved by more than CUT_LIST_EPS, so in the
+    cut list) is written with the digits that show it, not as '(0, 395, 745) -> (0, 395,
+    745)', which a woodworker read as a move of nothing."""
+    from furncheck.design import load_design
+    from furncheck.report.cutlist import load_move_lines
+    from furncheck.suggest.cutlist import LoadMove
+
+    design = load_design(str(Path(__file__).resolve().parents[1] / "designs" / "stool.yaml"))
+    (line,) = load_move_lines((LoadMove("sit", "top", "100 kg", (0.0, 395.0, 745.0),
+                                        (0.0, 395.004, 745.0)),), design)[1:]
+    assert line == "  100 kg on top (case 'sit'): at (0, 395, 745) -> (0, 395.004, 745) mm"

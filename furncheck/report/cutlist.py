@@ -123,10 +123,18 @@ def _moved_lines(what: str, moves: tuple, design: Design, label) -> list[str]:
     planks = "its plank" if len(moves) == 1 else "their planks"
     lines = [f"moves {plural(len(moves), what)} with {planks}:"]
     for move in moves:
-        start = ", ".join(_number(v) for v in move.before)
-        end = ", ".join(_number(v) for v in move.after)
+        for extra in range(MOVE_EXTRA_DIGITS + 1):     # digits enough to show the move
+            start = ", ".join(_number(v, extra) for v in move.before)
+            end = ", ".join(_number(v, extra) for v in move.after)
+            if start != end:
+                break
         lines.append(f"  {label(move)}: at ({start}) -> ({end}) {design.units}")
     return lines
+
+
+MOVE_EXTRA_DIGITS = 4
+"""Digits a moved load's or fixing's point may be written with beyond a tenth of the unit,
+so that its line shows the move ('(0, 395, 745) -> (0, 395, 745)' read as none)."""
 
 
 def load_spread_lines(spreads: tuple[LoadSpread, ...], design: Design) -> list[str]:
