@@ -567,4 +567,5 @@ def _pivot_rests(design, geometry, part, tipping) -> set[int]:
 
 PIVOT_SHARE = 0.1
 """A loose part's resting joint whose corners all lie within this share of its support's
-depth from the edge it tips over is that edge (``_pivot_rests``)."""
+depth from the edge it tips over counts as that edge, which stays pressed
+(``_pivot_rests``)."""
