@@ -79,6 +79,12 @@ def plain_compared(value: float, limit: float,
     return plain_number(value, digits), plain_number(limit, digits)
 
 
+def plain_list(items) -> str:
+    """Words of a list for messages: 'a', 'a and b', 'a, b and c'."""
+    items = list(items)
+    return items[0] if len(items) == 1 else f"{', '.join(items[:-1])} and {items[-1]}"
+
+
 def plain_length(value_m: float, scale: float, unit: str,
                  digits: int = MESSAGE_SIGNIFICANT_DIGITS) -> str:
     """A length given in metres, in the design's unit (``scale`` m per unit): ``'4 mm'``."""

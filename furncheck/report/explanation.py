@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from furncheck.plain import distinguishing_digits, plain_number
+from furncheck.plain import distinguishing_digits, plain_list, plain_number
 from furncheck.report.common import plural
 from furncheck.report.numbers import format_number
 from furncheck.suggest.candidates import MAX_STEP
@@ -61,7 +61,7 @@ def need_text(need: Need, units: str) -> str:
 
 def _sliding(v: dict, units: str) -> str:
     if v["friction"] <= 0.0:        # no weight holds a push without friction
-        on = f"{v['part']} resting on {_and(v['on'])}: " if "part" in v else ""
+        on = _resting(v) if "part" in v else ""
         return (f"{on}the push of {_n(v['push'])} N meets no friction (mu = 0): no weight "
                 f"holds it; friction mu >= {_n(v['friction_needed'])} would (or no push)")
     digits = _digits(v["push"], v["holds"])
@@ -69,7 +69,7 @@ def _sliding(v: dict, units: str) -> str:
     if "part" in v:                 # a loose part on its rests, the floor holding
         more = f"{_n(v['extra_mass'])} kg more weight on {v['part']}, or " \
             if "extra_mass" in v else ""
-        return (f"{v['part']} resting on {_and(v['on'])}: the push of {push} N along its "
+        return (f"{_resting(v)}the push of {push} N along its "
                 f"rests exceeds mu N = {_n(v['friction'])} x {_n(v['weight'])} N = {holds} N "
                 f"(N: what presses it onto them); {more}friction mu >= "
                 f"{_n(v['friction_needed'])}, or fixing it to them, would hold it (or a push "
@@ -105,15 +105,20 @@ def _lift_off(v: dict, units: str) -> str:
     return text
 
 
+def _resting(v: dict) -> str:
+    """'top resting on end_l and end_r: ', the loose part a need is of (``needs``)."""
+    return f"{v['part']} resting on {plain_list(v['on'].split(','))}: "
+
+
 def _lift_off_part(v: dict, units: str) -> str:
     """A loose part that tips off its rests, or that its loads lift (``needs.
     _lift_off_part``)."""
     if "lifted" in v:
-        return (f"{v['part']} resting on {_and(v['on'])}: its loads lift it off its rests "
+        return (f"{_resting(v)}its loads lift it off its rests "
                 f"with {_n(v['lifted'])} N; fixing it down (nails or screws taking at least "
                 f"that pull) would hold it")
     point = ", ".join(_n(c) for c in v["point"])
-    text = (f"{v['part']} resting on {_and(v['on'])}: its weight and loads press it onto its "
+    text = (f"{_resting(v)}its weight and loads press it onto its "
             f"rests with {_n(v['weight'])} N along a line that meets their plane at "
             f"({point}) {units}, {_n(v['outside'])} {units} outside them beyond "
             f"{v['edge_plank']}; fixing it down (nails or screws taking at least "
@@ -125,12 +130,6 @@ def _lift_off_part(v: dict, units: str) -> str:
     if "ballast" in v:
         text += f", or {_n(v['ballast'])} kg of ballast on it over {v['hold_plank']},"
     return text + " would hold it"
-
-
-def _and(names: str) -> str:
-    """'a', 'a and b', 'a, b and c' of comma-joined plank ids."""
-    items = names.split(",")
-    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " and " + items[-1]
 
 
 def _non_durable(v: dict, units: str) -> str:

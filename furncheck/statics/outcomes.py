@@ -22,7 +22,7 @@ from furncheck.geometry.support import (
     outside,
     tipping_on_plane,
 )
-from furncheck.plain import plain_compared, plain_number
+from furncheck.plain import plain_compared, plain_list, plain_number
 from furncheck.statics.model import CaseStatics
 
 if TYPE_CHECKING:   # the programs are imported where a case needs them
@@ -299,7 +299,7 @@ class _Outcomes:
         if held is None:
             return ""
         design = self.model.design
-        names = _and([part.names(design).replace(",", " and ") for part in parts])
+        names = plain_list([part.names(design).replace(",", " and ") for part in parts])
         verb = "also lifts" if len(parts) == 1 else "also lift"
         return f"; {names} {verb} off {'its' if len(parts) == 1 else 'their'} rests ({held})"
 
@@ -331,7 +331,7 @@ class _Outcomes:
             lift = float(force @ part.push)
             if lift > 0.0:                      # its loads lift it: at least that, in all
                 pulls.append(lift)
-                places.append(_and(sorted(set(part.under), key=design.plank_index.get)))
+                places.append(plain_list(sorted(set(part.under), key=design.plank_index.get)))
                 lifted.append(True)
                 continue
             held = _held(tipping_on_plane(force, moment, part.points, part.push))
@@ -531,11 +531,6 @@ def _held(tipping) -> tuple[float, np.ndarray] | None:
     """``Tipping.least_pull`` where there is a tipping (None where the loads do not press
     the part onto its supports)."""
     return None if tipping is None else tipping.least_pull()
-
-
-def _and(names: list[str]) -> str:
-    """'a', 'a and b', 'a, b and c'."""
-    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
 
 
 def _pivot_rests(design, geometry, part, tipping) -> set[int]:

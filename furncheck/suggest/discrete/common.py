@@ -15,7 +15,7 @@ from furncheck.check import check_design, is_valid
 from furncheck.design.model import Design, JointSpec, Plank
 from furncheck.dofs import Dof, dof_value, euler_degrees
 from furncheck.geometry import Geometry, analyze, interpenetrations
-from furncheck.plain import plain_number
+from furncheck.plain import plain_list, plain_number
 from furncheck.result import DesignReport
 from furncheck.suggest.tried import FAILED, FOUND, NOT_APPLICABLE, Trial
 from furncheck.tolerances import REPORT_DECIMALS
@@ -404,7 +404,5 @@ def point_of(point, design: Design) -> str:
     return f"({', '.join(amount(v / scale) for v in point)}) {design.units}"
 
 
-def names(ids) -> str:
-    """'a', 'a and b', 'a, b and c'."""
-    ids = list(ids)
-    return ids[0] if len(ids) == 1 else f"{', '.join(ids[:-1])} and {ids[-1]}"
+names = plain_list
+"""'a', 'a and b', 'a, b and c' (``plain.plain_list``): plank ids in a fix's words."""
