@@ -17,6 +17,7 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.geometry.loose import loose_parts
 from furncheck.geometry.support import (
+    Tipping,
     convex_hull,
     nearest_edge,
     outside,
@@ -249,8 +250,9 @@ class _Outcomes:
         rows[model.rest_rows] = False
         rows = np.flatnonzero(rows)
         loads = self.f.reshape(-1, 6)
-        held = _held(tipping_on_plane(*_resultant(model.node_points, loads),
-                                      model.contact_points[rows], np.array([0.0, 0.0, 1.0])))
+        tipping = tipping_on_plane(*_resultant(model.node_points, loads),
+                                   model.contact_points[rows], np.array([0.0, 0.0, 1.0]))
+        held = None if tipping is None else tipping.least_pull()
         if held is None:
             return None
         pull, tied = held
@@ -262,7 +264,7 @@ class _Outcomes:
         loose parts that carry the joints the bolted solve finds opening (``lifting``):
         the parts that tip off their rests by ``tipping_on_plane`` (or that their loads
         lift), each opening every rest but those along the edge it tips over, with the
-        least pull that would hold each down (``_parts_held``: 'held down at end_l or
+        least pull that would hold each down (``_hold_words``: 'held down at end_l or
         end_r, its rests would have to pull at least 28.84 N there').  The bolted solve
         is no measure of either in the elastic model: a plank's bending between its
         resting corners shows as couples at them, at an empty shelf on pins that lifts
@@ -275,45 +277,29 @@ class _Outcomes:
                  if part.rests & set(lifting)]
         if not parts or not set(lifting) <= {r for part in parts for r in part.rests}:
             return None
-        opening, tipping = set(), []
-        for part in parts:
-            force, moment = self._part_resultant(part)
-            if float(force @ part.push) > 0.0:          # lifted: off every rest
-                opening |= part.rests
-                tipping.append(part)
-                continue
-            tips = tipping_on_plane(force, moment, part.points, part.push)
-            if _held(tips) is None:
-                continue
-            opening |= part.rests - _pivot_rests(model.design, model.geometry, part, tips)
-            tipping.append(part)
-        held = self._parts_held(tipping) if tipping else None
-        return None if held is None else (opening, held)
+        holds = [(part, hold) for part in parts if (hold := self._part_hold(part)) is not None]
+        if not holds:
+            return None
+        opening = set()
+        for part, (_, _, tipping) in holds:     # a part lifted bodily opens every rest
+            opening |= part.rests if tipping is None else \
+                part.rests - _pivot_rests(model.design, model.geometry, part, tipping)
+        return opening, self._hold_words(holds)
 
     def _parts_also(self) -> str:
         """'; top also lifts off its rests (held down at ...)' for the loose parts that tip
-        by statics while the whole topples ('' for none): holding the whole down does not
-        hold them."""
-        parts = self._parts_tipping()
-        held = self._parts_held(parts) if parts else None
-        if held is None:
-            return ""
-        design = self.model.design
-        names = plain_list([part.names(design).replace(",", " and ") for part in parts])
-        verb = "also lifts" if len(parts) == 1 else "also lift"
-        return f"; {names} {verb} off {'its' if len(parts) == 1 else 'their'} rests ({held})"
-
-    def _parts_tipping(self) -> list:
-        """The loose parts (``geometry.loose``) that tip off their rests by statics alone,
-        or that their loads lift: those a design that topples as a whole also loses."""
+        by statics while the whole topples, or that their loads lift ('' for none):
+        holding the whole down does not hold them."""
         model = self.model
-        tipping = []
-        for part in loose_parts(model.design, model.geometry):
-            force, moment = self._part_resultant(part)
-            if float(force @ part.push) > 0.0 or _held(
-                    tipping_on_plane(force, moment, part.points, part.push)) is not None:
-                tipping.append(part)
-        return tipping
+        holds = [(part, hold) for part in loose_parts(model.design, model.geometry)
+                 if (hold := self._part_hold(part)) is not None]
+        if not holds:
+            return ""
+        names = plain_list([part.names(model.design).replace(",", " and ")
+                            for part, _ in holds])
+        one = len(holds) == 1
+        return (f"; {names} {'also lifts' if one else 'also lift'} off "
+                f"{'its' if one else 'their'} rests ({self._hold_words(holds)})")
 
     def _part_resultant(self, part) -> tuple[np.ndarray, np.ndarray]:
         """(force, moment about the origin) of the node loads on a loose part's planks."""
@@ -321,34 +307,38 @@ class _Outcomes:
         nodes = np.isin(np.asarray(model.planks)[model.node_plank], list(part.planks))
         return _resultant(model.node_points[nodes], self.f.reshape(-1, 6)[nodes])
 
-    def _parts_held(self, parts: list) -> str | None:
-        """The hold-down words of loose ``parts`` (``_opening_by_statics``), None where one of
-        them does not tip by statics (its resultant meets its rests' plane inside)."""
+    def _part_hold(self, part) -> tuple[float, str, Tipping | None] | None:
+        """(N, where, tipping) of a loose ``part``: the least pull at one of its resting
+        corners that would hold it down and the planks under the corners where it is
+        least ('end_l or end_r'), by ``tipping_on_plane``; where its loads lift it, their
+        upward part, at the planks it rests on ('end_l and end_r'; tipping None).  None
+        where it stands (its loads' line meets its rests' plane inside them)."""
         design = self.model.design
-        pulls, places, lifted = [], [], []
-        for part in parts:
-            force, moment = self._part_resultant(part)
-            lift = float(force @ part.push)
-            if lift > 0.0:                      # its loads lift it: at least that, in all
-                pulls.append(lift)
-                places.append(plain_list(sorted(set(part.under), key=design.plank_index.get)))
-                lifted.append(True)
-                continue
-            held = _held(tipping_on_plane(force, moment, part.points, part.push))
-            if held is None:
-                return None
-            pulls.append(held[0])
-            places.append(" or ".join(sorted({part.under[k] for k in held[1]},
-                                             key=design.plank_index.__getitem__)))
-            lifted.append(False)
-        if len(parts) == 1:
-            where = "in all" if lifted[0] else "there"
-            return (f"held down at {places[0]}, its rests would have to pull at least "
-                    f"{plain_number(pulls[0])} N {where}")
+        force, moment = self._part_resultant(part)
+        lift = float(force @ part.push)
+        if lift > 0.0:
+            return lift, plain_list(sorted(set(part.under), key=design.plank_index.get)), None
+        tipping = tipping_on_plane(force, moment, part.points, part.push)
+        held = None if tipping is None else tipping.least_pull()
+        if held is None:
+            return None
+        return held[0], " or ".join(sorted({part.under[k] for k in held[1]},
+                                           key=design.plank_index.__getitem__)), tipping
+
+    def _hold_words(self, holds: list) -> str:
+        """'held down at end_l or end_r, its rests would have to pull at least 28.84 N
+        there' ('in all' for a part lifted bodily), or for several parts each with its own
+        pull and their sum, of (part, ``_part_hold``) pairs."""
+        if len(holds) == 1:
+            (_, (pull, place, tipping)), = holds
+            return (f"held down at {place}, its rests would have to pull at least "
+                    f"{plain_number(pull)} N {'in all' if tipping is None else 'there'}")
+        design = self.model.design
         each = " and ".join(f"{part.names(design)} at {place} ({plain_number(pull)} N)"
-                            for part, place, pull in zip(parts, places, pulls))
+                            for part, (pull, place, _) in holds)
+        total = sum(pull for _, (pull, _, _) in holds)
         return (f"held down, {each}, their rests would have to pull at least "
-                f"{plain_number(sum(pulls))} N in all")
+                f"{plain_number(total)} N in all")
 
     def _one_body(self) -> bool:
         """Whether the grounded components, joined where one rests on another, are one."""
@@ -525,12 +515,6 @@ def _resultant(points: np.ndarray, loads: np.ndarray) -> tuple[np.ndarray, np.nd
     force = loads[:, :3].sum(axis=0)
     moment = (np.cross(points, loads[:, :3]) + loads[:, 3:]).sum(axis=0)
     return force, moment
-
-
-def _held(tipping) -> tuple[float, np.ndarray] | None:
-    """``Tipping.least_pull`` where there is a tipping (None where the loads do not press
-    the part onto its supports)."""
-    return None if tipping is None else tipping.least_pull()
 
 
 def _pivot_rests(design, geometry, part, tipping) -> set[int]:
