@@ -199,11 +199,9 @@ def _parts_of(design: Design, geometry: Geometry, where: str) -> list[LoosePart]
 def _lift_off(design: Design, geometry: Geometry, where: str, case: CaseResult | None,
               case_name: str | None) -> Need:
     part = _lift_off_part(design, geometry, where, case_name)
-    if part is not None and (_on_walls(design, geometry, where) or _stands(
-            design, geometry, where, case_name)):
-        return part
     if _on_walls(design, geometry, where):
-        return Need("lift-off", where, case_name, why="it leans on walls or is anchored")
+        return part or Need("lift-off", where, case_name,
+                            why="it leans on walls or is anchored")
     forces, points = _group_loads(design, geometry, where, case_name)
     group = _group(design, geometry, where)
     feet = [c for c in geometry.contacts
@@ -215,10 +213,11 @@ def _lift_off(design: Design, geometry: Geometry, where: str, case: CaseResult |
     hull, owners = _hull([c.point[:2] for c in feet], [c.plank for c in feet])
     crossing = _floor_crossing(forces, points)
     distance, nearest = outside(hull, crossing)
-    if distance <= 0.0:
-        return Need("lift-off", where, case_name,
-                    why="the loads' resultant meets the floor inside the support: it tips "
-                        "where planks rest on others in a way hand statics does not tell")
+    if distance <= 0.0:                 # the whole stands: what tips is a part on its rests
+        return part or Need("lift-off", where, case_name,
+                            why="the loads' resultant meets the floor inside the support: it "
+                                "tips where planks rest on others in a way hand statics does "
+                                "not tell")
     scale = design.unit_scale
     away = (crossing - nearest) / distance
     arms = (nearest - hull) @ away
@@ -228,15 +227,11 @@ def _lift_off(design: Design, geometry: Geometry, where: str, case: CaseResult |
               "wider": distance / scale, "ratio": 1.0 + distance / max(float(arms.max()), 1e-12)}
     ratios = hold_down_ratios(hull, crossing)
     if ratios is not None and np.isfinite(ratios.min()):
-        far = int(np.argmin(ratios))
-        tied = ratios <= float(ratios[far]) * (1.0 + tol.HOLD_TIE) + tol.HOLD_TIE
-        values.update({"ballast": weight * float(ratios[far]) / GRAVITY,
-                       "ballast_plank": " or ".join(sorted(
-                           {owner for owner, tie in zip(owners, tied) if tie},
-                           key=design.plank_index.__getitem__))})
-        if arms[far] > 0.0 and math.isclose(float(ratios[far]), distance / float(arms[far]),
-                                            rel_tol=1e-9):     # beyond an edge: W d / a
-            values["ballast_arm"] = float(arms[far]) / scale
+        least, planks, arm, beyond = _least_hold(ratios, hull, owners, crossing, nearest,
+                                                 distance, design)
+        values.update({"ballast": weight * least / GRAVITY, "ballast_plank": planks})
+        if beyond:                                              # W d / a
+            values["ballast_arm"] = arm / scale
     sideways = forces.copy()
     sideways[:, :2] = 0.0
     push = float(np.hypot(*forces[:, :2].sum(axis=0)))
@@ -248,19 +243,6 @@ def _lift_off(design: Design, geometry: Geometry, where: str, case: CaseResult |
     if part is not None:        # held down as a whole, a loose part still tips
         values["also"] = part.values
     return Need("lift-off", where, case_name, values=values)
-
-
-def _stands(design: Design, geometry: Geometry, where: str, case_name: str | None) -> bool:
-    """Whether the loads' resultant of ``where``'s group meets the floor inside the support
-    of its floor contacts (the whole stands: what tips is a part on its rests)."""
-    group = _group(design, geometry, where)
-    feet = [c.point[:2] for c in geometry.contacts
-            if c.on_floor and design.plank_index[c.plank] in group]
-    forces, points = _group_loads(design, geometry, where, case_name)
-    if not feet or not forces[:, 2].sum() < 0.0:
-        return False
-    hull, _ = _hull(feet, [""] * len(feet))
-    return outside(hull, _floor_crossing(forces, points))[0] <= 0.0
 
 
 def _lift_off_part(design: Design, geometry: Geometry, where: str,
@@ -289,26 +271,43 @@ def _lift_off_part(design: Design, geometry: Geometry, where: str,
             worst = (part, tipping, held)
     if worst is None:
         return None
-    part, tipping, (pull, tied) = worst
-    far = int(tied[0])
-    away = (tipping.crossing - tipping.nearest_point) / tipping.outside
-    arm = float((tipping.nearest_point - part.points[far]) @ away)
+    part, tipping, _ = worst
+    hull, owners = part.points[tipping.hull], [part.under[k] for k in tipping.hull]
+    least, planks, arm, beyond = _least_hold(tipping.ratios, hull, owners, tipping.crossing,
+                                             tipping.nearest_point, tipping.outside, design)
+    pull = tipping.load * least
     values = {"part": part.names(design), "on": part.under_names(design),
               "weight": tipping.load,
               "point": tuple(float(v) / scale for v in tipping.crossing),
               "outside": tipping.outside / scale,
-              "edge_plank": _edge_planks(part.points[tipping.hull],
-                                         [part.under[k] for k in tipping.hull],
-                                         tipping.nearest_point),
-              "hold": pull,
-              "hold_plank": " or ".join(sorted({part.under[k] for k in tied},
-                                               key=design.plank_index.__getitem__)),
+              "edge_plank": _edge_planks(hull, owners, tipping.nearest_point),
+              "hold": pull, "hold_plank": planks,
               "ratio": 1.0 + tipping.outside / arm if arm > 0.0 else math.inf}
-    if arm > 0.0 and math.isclose(pull, tipping.load * tipping.outside / arm, rel_tol=1e-9):
+    if beyond:
         values["hold_arm"] = arm / scale      # beyond one edge: V d / a
     if part.push[2] >= math.cos(math.radians(tol.PUSH_ANGLE)):
         values["ballast"] = pull / (GRAVITY * float(part.push[2]))
     return Need("lift-off", where, case_name, values=values)
+
+
+def _least_hold(ratios: np.ndarray, hull: np.ndarray, owners: list[str], crossing: np.ndarray,
+                nearest: np.ndarray, distance: float, design: Design
+                ) -> tuple[float, str, float, bool]:
+    """(least, planks, arm, beyond) of a support polygon ``hull`` (the plank of each point
+    in ``owners``) that the loads' line misses, meeting its plane at ``crossing``,
+    ``distance`` from its nearest point ``nearest``, with ``ratios`` the least pull at
+    each point over the load (``hold_down_ratios``): the least of them, the planks where
+    it is least ('end_l or end_r', to HOLD_TIE), how far inside the edge nearest the
+    crossing the first of them lies (a), and whether it lies beyond that one edge
+    (least = d / a, the W d / a of the floor's and a loose part's hand estimates)."""
+    far = int(np.argmin(ratios))
+    least = float(ratios[far])
+    tied = ratios <= least * (1.0 + tol.HOLD_TIE) + tol.HOLD_TIE
+    planks = " or ".join(sorted({owner for owner, tie in zip(owners, tied) if tie},
+                                key=design.plank_index.__getitem__))
+    arm = float((nearest - hull[far]) @ ((crossing - nearest) / distance))
+    beyond = arm > 0.0 and math.isclose(least, distance / arm, rel_tol=1e-9)
+    return least, planks, arm, beyond
 
 
 def _part_loads(design: Design, case_name: str | None,
