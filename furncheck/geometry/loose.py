@@ -64,7 +64,7 @@ def loose_parts(design: Design, geometry: Geometry) -> list[LoosePart]:
     for k, contact in enumerate(geometry.contacts):
         if contact.on is None:
             continue
-        upper, lower = _upper_lower(contact)
+        upper, lower = contact.resting
         above, below = group_of[index[upper]], group_of[index[lower]]
         rests_on.setdefault(above, set()).add(below)
         corners_of.setdefault(above, []).append(k)
@@ -77,17 +77,11 @@ def loose_parts(design: Design, geometry: Geometry) -> list[LoosePart]:
             continue
         planks = frozenset(p for g in body for p in geometry.components[g])
         corners = [k for g in body for k in corners_of.get(g, ())
-                   if index[_upper_lower(geometry.contacts[k])[1]] not in planks]
+                   if index[geometry.contacts[k].resting[1]] not in planks]
         part = _part(design, geometry, planks, corners)
         if part is not None:
             parts.append(part)
     return parts
-
-
-def _upper_lower(contact) -> tuple[str, str]:
-    """(the plank that lies on the other, the other) of a resting corner: the face plank
-    when its face looks down onto the edge plank."""
-    return (contact.on, contact.plank) if contact.face_above else (contact.plank, contact.on)
 
 
 def _body(group: int, rests_on: dict[int, set[int]], standing: set[int]) -> set[int] | None:
@@ -118,7 +112,7 @@ def _part(design: Design, geometry: Geometry, planks: frozenset[int],
         contact = geometry.contacts[k]
         normal = np.asarray(contact.frame[2], dtype=float)
         pushes.append(-normal if contact.face_above else normal)
-        under.append(_upper_lower(contact)[1])
+        under.append(contact.resting[1])
     pushes = np.array(pushes)
     push = pushes.mean(axis=0)
     push /= np.linalg.norm(push)

@@ -98,6 +98,12 @@ class Contact:
         the edge plank (``plank``), its face looking down onto it; False otherwise."""
         return self.frame is not None and self.on is not None and self.frame[2][2] < 0.0
 
+    @property
+    def resting(self) -> tuple[str, str]:
+        """For a resting joint's corner: (the plank that lies on the other, the other): the
+        face plank first where its face looks down onto the edge plank (``face_above``)."""
+        return (self.on, self.plank) if self.face_above else (self.plank, self.on)
+
 
 def anchor_contacts(design) -> list[Contact]:
     """The design's anchors as contacts (see ``Contact.anchor``), in order."""

@@ -464,8 +464,7 @@ class _Outcomes:
             if not mask[k]:
                 continue
             contact = model.geometry.contacts[model.contacts[k]]
-            upper, lower = (contact.on, contact.plank) if contact.face_above \
-                else (contact.plank, contact.on)
+            upper, lower = contact.resting
             phrase = f"{upper} {verb} {lower}"
             if phrase not in phrases:
                 phrases.append(phrase)

@@ -111,24 +111,11 @@ def _advice(geometry, joints: list[int], counts: dict[int, int]) -> str:
     return f"Nail {', and '.join(phrases)} ({made})."
 
 
-def _corners(geometry, joint: int) -> list:
-    return [c for c in geometry.contacts if c.rest == joint]
-
-
 def _loose_plank(geometry, joint: int) -> str:
-    """The plank that lies on the other at resting joint ``joint`` (the face plank when
-    its face looks down onto the edge plank)."""
-    corners = _corners(geometry, joint)
-    if not corners:
-        return ""
-    corner = corners[0]
-    return corner.on if corner.face_above else corner.plank
+    """The plank that lies on the other at resting joint ``joint`` (``Contact.resting``)."""
+    return next((c.resting[0] for c in geometry.contacts if c.rest == joint), "")
 
 
 def _onto(geometry, joint: int) -> str:
     """The plank the loose one lies on at resting joint ``joint``."""
-    corners = _corners(geometry, joint)
-    if not corners:
-        return ""
-    corner = corners[0]
-    return corner.plank if corner.face_above else corner.on
+    return next((c.resting[1] for c in geometry.contacts if c.rest == joint), "")
