@@ -224,13 +224,14 @@ def _bevel(design: Design, edited: Design, held: dict, plank_id: str, whose: str
         return ""
     before = design.plank(plank_id).rotation_matrix[:, 0]
     after = edited.plank(plank_id).rotation_matrix[:, 0]
-    square, angles = [], []
+    square, normals, angles = [], [], []
     for end in ends:
         if _angle(before, end.normal) >= BEVEL_ANGLE:       # not square to it now: its
             continue                                        # cut is the maker's own
         normal = end.normal if end.on is None or end.on not in edited.plank_index else \
             edited.plank(end.on).rotation_matrix[:, 2]
         square.append(end)
+        normals.append(normal)
         angles.append(_angle(after, normal))
     ends = square
     if not ends or max(angles) < BEVEL_ANGLE:
@@ -239,7 +240,7 @@ def _bevel(design: Design, edited: Design, held: dict, plank_id: str, whose: str
         return f", {whose} end on {ends[0].support} cut at {_amount(angles[0])} degrees to " \
                "sit flat"
     if max(angles) - min(angles) < BEVEL_ANGLE:
-        edges = _edge_length(edited, plank_id, ends[0].normal, max(angles))
+        edges = _edge_length(edited, plank_id, normals[0], max(angles))
         return f", {whose} ends cut at {_amount(max(angles))} degrees to sit flat " \
                f"({format_number(edges / edited.unit_scale, 4)} {edited.units} along " \
                f"{whose} edges)"
