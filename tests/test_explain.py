@@ -533,8 +533,9 @@ def test_a_loose_top_tipped_off_its_rests_needs_its_hold_down(model):
     y = -686.7 x 390 / 835.0 = -320.7 mm, d = 20.7 mm beyond the front edge; a pull at the
     back corners (a = 600 mm) holds it from V d / a = (686.7 x 90 - 148.33 x 300) / 600 =
     28.84 N, as ballast 2.94 kg.  Nailing the rests down (two nails each: the nail rule's
-    first try, well above that pull) repairs it: ``suggest``'s 'nail down' fix, where the elastic top also sags
-    past its allowance and no board up to the thicker rule's limit saves it."""
+    first try, well above that pull) repairs it: ``suggest``'s 'nail down' fix, where the
+    elastic top also sags past its allowance and no board up to the thicker rule's limit
+    saves it."""
     design = loose_top_desk(model, Load.of_mass("top", 70.0, (0.0, -0.39, 0.718)))
     geometry = analyze(design)
     report = check_design(design, geometry)
