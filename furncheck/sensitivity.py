@@ -102,7 +102,7 @@ class Linearization:
         elif bolted and self.statics.joint_wrenches is not None and self.model.planks:
             self.holding = np.ones(len(self.model.contacts), dtype=bool)
             self.state = solve_system(self.model, self.holding,
-                                      np.concatenate([f, np.zeros(6 * len(self.model.joints))]))
+                                      np.concatenate([f, np.zeros(6 * self.model.n_springs)]))
             self.law = ContactLaw(self.holding, np.zeros_like(self.holding),
                                   self.model.contact_springs, self.model.friction)
         else:
@@ -114,7 +114,7 @@ class Linearization:
     @property
     def joint_wrenches(self) -> np.ndarray:
         """(nJ, 6) the joint wrenches of the linearized state."""
-        return self.state[self.model.n_dof:].reshape(-1, 6)
+        return self.model.joint_totals(self.state[self.model.n_dof:]).reshape(-1, 6)
 
     @property
     def contact_forces(self) -> np.ndarray:
@@ -248,7 +248,11 @@ class Linearization:
         else:
             rates = solve_system(model, self.holding, differences.residual)  # (n, n_dofs)
         n = model.n_dof
-        joint_rates = rates[n:].T.reshape(n_dofs, -1, 6)
+        joint_rates = model.joint_totals(rates[n:]).T.reshape(n_dofs, -1, 6)
+        if differences.arms is not None:    # a part's arm moves with the edit too
+            forces = self.state[n:].reshape(-1, 6)[:, :3]
+            turned = np.cross(differences.arms, forces[None], axis=2)          # (D, nS, 3)
+            np.add.at(joint_rates, (slice(None), model.joint_parts, slice(3, None)), turned)
         q = self.state[:n].reshape(-1, 6)[model.contact_node]               # (nK, 6)
         dq = rates[:n].T.reshape(n_dofs, -1, 6)[:, model.contact_node]      # (D, nK, 6)
         dw = (np.einsum("dkab,kb->dka", map_rates, q)

@@ -107,6 +107,51 @@ more nodes) is enough: the Timoshenko elements are exact at their nodes for end 
 their own uniform load, and sag and stress are read inside them exactly
 (``beams.element_interior``); more nodes change no result (a test refines to 8)."""
 
+JOINT_PART_LENGTH = 0.1
+"""m: elastic model: a nail joint whose row runs along a plank's beam (a batten along a
+rail, a rail under a shelf's middle, a slat along a side) is modelled as parts of its
+nail row, about one per this length of the row's reach along that beam (rounded to
+whole parts, at most one per two nails), each a spring of its own at its own node
+(``beams.nail_row_parts``, ``elastic.joint_part_counts``): the plank is held along the
+row, not at its middle alone, and two planks nailed along each other bend together as
+a nailed composite beam.  The parts' springs sum to the contract's one spring of the
+whole row exactly (translations, the turn about the joint line, and S by the
+parallel-axis rule), so planks that do not bend get the same joint wrenches as from one
+spring.  A tenth of a metre: a plank between parts spans about 100 mm (a 12 mm MDF
+shelf under 25 kg/m of books then sags 0.01 mm there), and a design's nodes grow by
+about one per 100 mm of such a row."""
+
+JOINT_PART_SHARE = 0.25
+"""... or per this share of the beam the row runs along, where that is shorter: a short
+plank nailed along its length (with 8 nails or more) is held at four places."""
+
+JOINT_PART_NARROW = 8.0
+"""A row stays whole where a plank whose beam it runs along would bend across its width,
+as a plate, under what the row holds it against, which the one-beam model's rigid arms
+from its axis to the parts would hold straight (``elastic.joint_part_counts``): the row
+off the plank's middle (JOINT_PART_CORE), and the plank wider than this many thicknesses
+(96 mm of 12 mm stock: a batten, a slat, a rail are narrower) where it is the row's face
+plank (the row's force acts across its face: a shelf on a cleat, a top on its rails or
+aprons) or lies level (JOINT_PART_LEVEL: its own load acts across its face: a shelf
+nailed by its back edge, a shelf deeper than it is wide held by its ends).  Its joint
+keeps the one spring at its middle, which overstates the board's sag (the sagging
+message says so, ``validity._held_along``) rather than understating it."""
+
+JOINT_PART_EDGE_NARROW = 16.0
+"""... or wider than this many thicknesses (192 mm of 12 mm stock) where it is an upright
+edge plank: the row's force acts in its plane, where it is stiff across its width, but
+the row's moment about its line acts across its face (a coffee table's 400 mm end panel
+under the top's end).  A rail on edge under a shelf, up to twice the stiffening rule's
+deepest (8 thicknesses), is held along the shelf."""
+
+JOINT_PART_LEVEL = 0.7071
+"""A plank lies level when its face normal is within 45 degrees of the vertical (the
+cosine, |n_z| >= this)."""
+
+JOINT_PART_CORE = 0.25
+"""... the row off the plank's middle: beyond this share of its half width from its
+beam's axis (a spine rail along the middle of a top is within it)."""
+
 SAG_SAMPLES = 31
 """Elastic model: points inside each beam element where the deflection is read for the sag
 and the moment for the stress (besides its ends and, for the stress, the peaks of its

@@ -202,7 +202,7 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
                 violations.append(Violation("sagging", plank.id, case.name, _sag_message(
                     design, material, sag, allowed, statics.planks.span[k], sideways,
                     overhang)
-                    + (_held_along(geometry, plank, crosswise) if overhang else ""),
+                    + (_held_along(geometry, model, plank, crosswise) if overhang else ""),
                     design.line_of(key)))
             if stress > strength * (1.0 + tol.CAPACITY_REL_TOL):
                 violations.append(Violation("overstressed", plank.id, case.name,
@@ -376,14 +376,19 @@ ALONG_SHARE = 0.5
 """... and a joint along at least this share of the beam's length holds it along it."""
 
 
-def _held_along(geometry: Geometry, plank, crosswise: bool) -> str:
+def _held_along(geometry: Geometry, model, plank, crosswise: bool) -> str:
     """A note for the overhang's sag of a plank nailed along its beam (its longer side: a
-    runner, a cleat, a shelf nailed by its back edge), which the one-beam model holds at
-    the joint's middle only, its halves overhangs (README, "Elastic planks"): what it
-    reads is an overstatement.  '' for any other plank."""
+    shelf nailed by its back edge, a top on a rail by its edge), which the one-beam model
+    holds at the joint's middle only, its halves overhangs, where the joint is left whole
+    (a wide board held near its edge: ``elastic.joint_part_counts``; README, "Elastic
+    planks"): what it reads is an overstatement.  '' for any other plank."""
     axis = beam_frame(plank, crosswise)[:, 0]
     length = beam_length_width(plank, crosswise)[0]
-    for joint in geometry.joints:
+    parts = model.plank_cache.get("joint_part_counts")
+    for row, j in enumerate(model.joints):
+        joint = geometry.joints[j]
+        if parts is not None and parts[row] > 1:
+            continue                    # held along its row
         if plank.id in joint.planks and joint.length >= ALONG_SHARE * length and \
                 abs(float(joint.frame[:, 1] @ axis)) >= ALONG_COSINE:
             other = joint.face if joint.edge == plank.id else joint.edge

@@ -1,7 +1,8 @@
 """Shared test set-up: every test gets its own result cache directory; the fake checker;
 ``suggest`` on the invalid catalog designs, computed once per session and only for the
 (design, model) pairs a test asks for; ``without_matplotlib`` for the tests of a machine
-that cannot draw.
+that cannot draw; ``whole_joints`` for the tests whose premise was found with every elastic
+nail joint one spring.
 
 ``furncheck validate`` caches results in the user cache directory by default; a test that
 runs it must neither write to the developer's cache nor be served a result that another
@@ -15,6 +16,7 @@ on an example that no earlier run met (most tests also say so in their own setti
 
 from __future__ import annotations
 
+import math
 import sys
 import types
 from pathlib import Path
@@ -23,6 +25,7 @@ import pytest
 from hypothesis import settings
 
 import furncheck.cli  # noqa: F401  (first: one BLAS thread, as the command line runs)
+from furncheck import tolerances as tol
 from furncheck.design import load_design
 from furncheck.design.model import with_model
 from furncheck.suggest import suggest_design
@@ -35,6 +38,16 @@ settings.load_profile("furncheck")
 def _own_cache_directory(tmp_path_factory: pytest.TempPathFactory,
                          monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv("FURNCHECK_CACHE_DIR", str(tmp_path_factory.mktemp("cache")))
+
+
+@pytest.fixture
+def whole_joints(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The elastic model with every nail joint one spring at its point, as before joints
+    along a beam were cut into parts (``elastic.joint_part_counts``): for tests whose
+    premise (a case that cycles, a plank held at one node) was found on such a model and
+    whose subject is another part of the statics."""
+    monkeypatch.setattr(tol, "JOINT_PART_LENGTH", math.inf)
+    monkeypatch.setattr(tol, "JOINT_PART_SHARE", math.inf)
 
 
 @pytest.fixture

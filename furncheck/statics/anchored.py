@@ -105,7 +105,7 @@ def system_matrix(model: StaticsModel, holding: np.ndarray) -> sp.csr_matrix:
     holding contacts (sparse, (6 nN + 6 nJ) square): the A of the paper's eq. 6."""
     import scipy.sparse as sp
 
-    n, m = model.n_dof, 6 * len(model.joints)
+    n, m = model.n_dof, 6 * model.n_springs
     maps = model.contact_maps
     blocks = np.transpose(maps, (0, 2, 1)) @ (anchor_springs(holding, model.contact_springs)
                                               @ maps)

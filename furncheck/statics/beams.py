@@ -152,10 +152,73 @@ def nail_row_springs(joints, nail_slip: float, nail_withdrawal: float) -> np.nda
     n = np.array([joint.nails for joint in joints], dtype=float)
     spread = nail_row_spread(np.array([joint.length for joint in joints], dtype=float), n)
     half = 0.5 * np.array([joint.edge_thickness for joint in joints], dtype=float)
-    translation = np.column_stack([n * nail_slip, n * nail_slip, n * nail_withdrawal])
-    rotation = np.column_stack([nail_withdrawal * spread, n * nail_withdrawal * half * half,
+    return _in_world(frames, n, spread, half, nail_slip, nail_withdrawal)
+
+
+def nail_row_parts(joints, counts, nail_slip: float,
+                   nail_withdrawal: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The springs of ``joints`` cut into parts along their nail rows (``counts`` (nJ,):
+    parts per joint, 1 for a joint left whole): (W (nS, 6, 6), each spring's joint
+    (nS,), where it sits along its joint line in lengths L from the middle (nS,),
+    ``part_fractions``).
+
+    Part g of m holds n / m of the joint's n nails, centred at y_g = ((g + 1/2) / m -
+    1/2) L: along n (n / m) k_w, across it (n / m) k_s, about the joint line (n / m) k_w
+    (t/2)^2, about x k_w S_m and about n k_s S_m with S_m = (S - (n / m) sum_g y_g^2) / m
+    = L^2 (n / m^2 - 1 / n) / 12 m, so that the parts together, on planks that do not
+    bend, are the whole row's spring of ``joint_springs``: their translations add up, and
+    their turns add up with the parallel-axis terms (n / m) k y_g^2 (contract 3a's S =
+    L^2 (n^2 - 1) / 12 n for n >= 2 nails).  m <= n / 2 keeps S_m > 0.  A joint left
+    whole (m = 1) gets ``nail_row_springs``' own numbers."""
+    counts = np.asarray(counts, dtype=int)
+    whole = nail_row_springs(joints, nail_slip, nail_withdrawal)
+    rows = np.repeat(np.arange(len(counts)), counts)
+    if not (counts > 1).any():
+        return whole, rows, np.zeros(len(rows))
+    springs = whole[rows]
+    parted = np.flatnonzero(counts[rows] > 1)
+    picked = [joints[row] for row in rows[parted]]
+    frames = np.array([joint.frame for joint in picked], dtype=float).reshape(-1, 3, 3)
+    n = np.array([joint.nails for joint in picked], dtype=float)
+    length = np.array([joint.length for joint in picked], dtype=float)
+    m = counts[rows[parted]].astype(float)
+    spread = length * length * (n / (m * m) - 1.0 / n) / (12.0 * m)
+    half = 0.5 * np.array([joint.edge_thickness for joint in picked], dtype=float)
+    springs[parted] = _in_world(frames, n / m, spread, half, nail_slip, nail_withdrawal)
+    return springs, rows, part_fractions(counts)
+
+
+def part_fractions(counts) -> np.ndarray:
+    """(sum counts,) where each part of a joint cut into ``counts`` parts sits along its
+    joint line, in joint lengths from its middle: (g + 1/2) / m - 1/2, g = 0 .. m - 1."""
+    return np.concatenate([(np.arange(m) + 0.5) / m - 0.5 for m in np.asarray(counts)]) \
+        if len(counts) else np.zeros(0)
+
+
+def part_points(joints, counts) -> tuple[np.ndarray, np.ndarray]:
+    """(points (nS, 3), arms (nS, 3)) m of the springs of ``joints`` cut into ``counts``
+    parts (``nail_row_parts``): each part's point on its joint line, and that point less
+    its joint's point (a whole joint's spring sits at the joint's point, its arm 0)."""
+    counts = np.asarray(counts, dtype=int)
+    centres = np.array([joint.point for joint in joints], dtype=float).reshape(-1, 3)
+    rows = np.repeat(np.arange(len(counts)), counts)
+    lines = np.array([joint.length * joint.frame[:, 1] for joint in joints],
+                     dtype=float).reshape(-1, 3)
+    arms = part_fractions(counts)[:, None] * lines[rows]
+    arms[counts[rows] == 1] = 0.0
+    return centres[rows] + arms, arms
+
+
+def _in_world(frames: np.ndarray, nails: np.ndarray, spread: np.ndarray, half: np.ndarray,
+              nail_slip: float, nail_withdrawal: float) -> np.ndarray:
+    """(k, 6, 6) world-frame springs of k nail rows of ``nails`` nails (floats: a part's
+    share), S = ``spread`` and half edge thickness ``half``, in their joint frames
+    (``joint_springs``)."""
+    translation = np.column_stack([nails * nail_slip, nails * nail_slip,
+                                   nails * nail_withdrawal])
+    rotation = np.column_stack([nail_withdrawal * spread, nails * nail_withdrawal * half * half,
                                 nail_slip * spread])
-    W = np.zeros((len(n), 6, 6))
+    W = np.zeros((len(nails), 6, 6))
     transposed = np.transpose(frames, (0, 2, 1))
     W[:, :3, :3] = (frames * translation[:, None, :]) @ transposed
     W[:, 3:, 3:] = (frames * rotation[:, None, :]) @ transposed

@@ -143,7 +143,7 @@ def _condense_planks(model: StaticsModel, ground: np.ndarray,
     """``_PlankCondensation`` of the model; None if K_ii is singular.  K is summed from
     the joints' blocks, B_s^T W B_t into the block of nodes (s, t), plus the beams'
     stiffness (elastic model)."""
-    n, m = model.n_dof, 6 * len(model.joints)
+    n, m = model.n_dof, 6 * model.n_springs
     blocks, nodes = model.joint_blocks, model.joint_nodes
     weighted = model.joint_stiffness[:, None] @ blocks                  # (nJ, 2, 6, 6)
     pairs = np.swapaxes(blocks, 2, 3)[:, :, None] @ weighted[:, None]   # (nJ, 2, 2, 6, 6)
@@ -201,7 +201,7 @@ def _condense_beams(model: StaticsModel, ground: np.ndarray,
     time than they save)."""
     import scipy.sparse as sp
 
-    n, m = model.n_dof, 6 * len(model.joints)
+    n, m = model.n_dof, 6 * model.n_springs
     inner = _others(n, ground)
     ni, ng = len(inner), len(ground)
     if _implicit(ni, ng):
@@ -232,7 +232,7 @@ def _condense_implicit(model: StaticsModel, ground: np.ndarray, inner: np.ndarra
     """``_condense_beams`` of a model whose X = K_ii^-1 K_ig is never stored: K = K_b +
     G^T W G by sparse products, S0 as the trailing block of one more factorization
     (``_trailing_schur``) or a few columns at a time (``_blocked_schur``)."""
-    n, m = model.n_dof, 6 * len(model.joints)
+    n, m = model.n_dof, 6 * model.n_springs
     G = model.G
     K = (model.beam_stiffness + (G.T @ _block_diagonal(model.joint_stiffness) @ G)).tocsc()
     inner_rows = K[inner]
@@ -404,7 +404,7 @@ def _condense(model: StaticsModel) -> _Condensed | None:
     to DENSE_PLANKS_MAX plank displacements go through the planks with dense matrices
     (``_PlankCondensation``), larger elastic ones through the planks with a sparse LU
     (``_condense_beams``), larger rigid ones through the sparse mixed system by SuperLU."""
-    n, m = model.n_dof, 6 * len(model.joints)
+    n, m = model.n_dof, 6 * model.n_springs
     grounded, contact_block = np.unique(model.contact_node, return_inverse=True)
     if model.rest_node is not None:     # the nodes that resting corners rest on, too
         grounded = _distinct(np.concatenate([model.contact_node,
@@ -443,7 +443,7 @@ def _contact_free_matrix(model: StaticsModel) -> sp.coo_matrix:
     stiffness, zero for rigid planks; E the joints' compliance blocks)."""
     import scipy.sparse as sp
 
-    n, m = model.n_dof, 6 * len(model.joints)
+    n, m = model.n_dof, 6 * model.n_springs
     G = model.G.tocoo()
     block = np.arange(m).reshape(-1, 6)
     rows_e = np.broadcast_to(block[:, :, None], (len(block), 6, 6)).ravel()

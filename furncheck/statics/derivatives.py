@@ -60,7 +60,8 @@ class AssemblySide:
 class AssemblyDifferences:
     """The differences over the sides: ``residual`` (N, D) of b - A x, ``maps``
     (D, nK, 3, 6) of the contact maps (and ``rest_maps`` of the resting corners' other
-    planks' maps, when the model has them), ``lengths`` (D, nJ) of the joint lengths (m),
+    planks' maps, when the model has them; ``arms`` of the arms of joints cut into parts,
+    ``StaticsModel.part_arms``), ``lengths`` (D, nJ) of the joint lengths (m),
     per DOF unit; for the planks' rates (elastic model only), ``sides``: per side (column,
     weight, offset, the stepped model's ``bending.PlankPart``, its case), the state's
     displacements ``q`` and holding contacts, the local ``planks`` read (None: all;
@@ -76,6 +77,7 @@ class AssemblyDifferences:
     planks: np.ndarray | None = None
     n_planks: int = 0
     base: PlankPart | None = None
+    arms: np.ndarray | None = None      # (D, nS, 3) of the joint parts' arms (m), if any
 
     def plank_rates(self, dq: np.ndarray) -> tuple[np.ndarray, ...]:
         """(D, nP) each: d sag (m), d span (m), d stress (Pa) per DOF unit, from the
@@ -167,6 +169,8 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
                               holding=law.holding, planks=planks, n_planks=len(model.planks))
     if model.rest_maps is not None:
         out.rest_maps = np.zeros((n_dofs, *model.rest_maps.shape))
+    if model.part_arms is not None:
+        out.arms = np.zeros((n_dofs, *model.part_arms.shape))
     geometry = model.geometry
     own_case = next(c for c in model.design.load_cases if c.name == case_name)
     whole = plank_part(model, own_case, law.holding)
@@ -193,6 +197,8 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
         out.maps[side.column] += side.weight * stepped.contact_maps
         if stepped.rest_maps is not None:
             out.rest_maps[side.column] += side.weight * stepped.rest_maps
+        if stepped.part_arms is not None:
+            out.arms[side.column] += side.weight * stepped.part_arms
         out.lengths[side.column] += side.weight * np.array(
             [stepped_geometry.joints[j].length for j in model.joints])
         out.sides.append((side.column, side.weight, side.offset, part, case))
@@ -224,7 +230,7 @@ def _residuals(models: list[StaticsModel], cases: list, q: np.ndarray, h: np.nda
     one pass, and summed at each model's nodes in the same order as ``_residual`` does,
     so the numbers are its own.  One model at a time where resting corners are."""
     first = models[0]
-    if len(models) == 1 or first.rest_node is not None or not len(first.joints) \
+    if len(models) == 1 or first.rest_node is not None or not first.n_springs \
             or not len(first.contacts):
         return [_residual(m, c, q, h, law) for m, c in zip(models, cases)]
     count, n_nodes = len(models), first.n_nodes
@@ -249,7 +255,7 @@ def _residuals(models: list[StaticsModel], cases: list, q: np.ndarray, h: np.nda
     top = beam + reactions - generalized                                       # (S, 6 nN)
     compliance = (np.concatenate([m.joint_compliance for m in models])
                   @ wrench.reshape(-1, 6, 1)).reshape(count, -1)
-    columns = np.tile(nodes_q[first.joint_nodes].reshape(len(first.joints), 12, 1),
+    columns = np.tile(nodes_q[first.joint_nodes].reshape(first.n_springs, 12, 1),
                       (count, 1, 1))
     deviations = (np.concatenate([m.joint_rows for m in models]) @ columns).reshape(count, -1)
     bottom = deviations - compliance

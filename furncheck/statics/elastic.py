@@ -31,7 +31,8 @@ from furncheck.statics.beams import (
     along_width,
     beam_frame,
     beam_length_width,
-    nail_row_springs,
+    nail_row_parts,
+    part_points,
 )
 from furncheck.statics.elements import beam_elements, nodal_loads, read_only, weights_per_length
 from furncheck.statics.model import StaticsModel, grounded_parts
@@ -123,6 +124,58 @@ def _crosswise(design: Design, geometry: Geometry, planks: list[Plank], joints: 
     return tuple(out)
 
 
+def joint_part_counts(design: Design, joints: list, local: dict[int, int], frames: list,
+                      sizes: np.ndarray) -> np.ndarray:
+    """(nJ,) into how many parts each joint's nail row is cut (``beams.nail_row_parts``):
+    the most of its two planks' ``L |y . e1| / part`` (its reach along that plank's beam,
+    e1, over part = the least of JOINT_PART_LENGTH and JOINT_PART_SHARE of that beam's
+    length), rounded to the nearest whole number, at most n / 2 of its n nails, at least
+    1.  A joint across both beams (a shelf's end nailed through a side) stays whole.  So
+    does one where a plank whose beam the row runs along (one that would cut it) would
+    bend across its width under what the row holds it against, as a plate, which the
+    rigid arms from its beam to the parts would hold straight: the row off the plank's
+    middle (outside JOINT_PART_CORE of its half width), and the plank wider than
+    JOINT_PART_NARROW thicknesses if it is the face plank (the row's force acts across
+    its face) or lies level (JOINT_PART_LEVEL: its own load acts across its face: a
+    shelf nailed by its back edge, a shelf deeper than it is wide held by its ends),
+    JOINT_PART_EDGE_NARROW if it is an upright edge plank (the row's moment about its
+    line acts across its face: a coffee table's end panel under the top; a rail on edge
+    under a shelf is held along it).  ``sizes`` (nP, 2): each local plank's beam
+    length and section width.  Reaches and widths are compared with PART_ROUNDING to
+    spare, so that a joint exactly on a half part, or a plank exactly on a limit, is taken
+    alike whatever the last bits of a turned design's numbers."""
+    if not joints:
+        return np.ones(0, dtype=int)
+    owners = [design.planks[design.plank_index[plank_id]]
+              for joint in joints for plank_id in joint.planks]
+    sides = np.array([local[design.plank_index[plank.id]] for plank in owners],
+                     dtype=int).reshape(-1, 2)                                 # (nJ, 2)
+    axes = np.array(frames, dtype=float).reshape(-1, 3, 3)[sides]              # (nJ, 2, 3, 3)
+    lines = np.array([joint.frame[:, 1] for joint in joints], dtype=float)     # (nJ, 3)
+    lengths = np.array([joint.length for joint in joints], dtype=float)
+    points = np.array([joint.point for joint in joints], dtype=float)
+    centres = np.array([plank.center_array for plank in owners], dtype=float).reshape(-1, 2, 3)
+    thickness = np.array([plank.thickness for plank in owners], dtype=float).reshape(-1, 2)
+    length, width = sizes[sides, 0], sizes[sides, 1]                           # (nJ, 2)
+    along = np.abs(np.einsum("ji,jsi->js", lines, axes[:, :, :, 0]))
+    part = np.minimum(tol.JOINT_PART_LENGTH, tol.JOINT_PART_SHARE * length)
+    cut = np.floor(lengths[:, None] * along / part + 0.5 + PART_ROUNDING).astype(int)
+    offset = np.abs(np.einsum("jsi,jsi->js", points[:, None, :] - centres, axes[:, :, :, 1]))
+    face = np.array([[plank_id == joint.face for plank_id in joint.planks]
+                     for joint in joints], dtype=bool)
+    level = np.abs(axes[:, :, 2, 2]) >= tol.JOINT_PART_LEVEL      # face normal's z
+    narrow = np.where(face | level, tol.JOINT_PART_NARROW, tol.JOINT_PART_EDGE_NARROW)
+    plate = (width > narrow * thickness * (1.0 + PART_ROUNDING)) \
+        & (offset > tol.JOINT_PART_CORE * 0.5 * width * (1.0 + PART_ROUNDING))
+    nails = np.array([joint.nails for joint in joints], dtype=int)
+    counts = np.maximum(np.minimum(cut.max(axis=1), nails // 2), 1)
+    return np.where(((cut > 1) & plate).any(axis=1), 1, counts)
+
+
+PART_ROUNDING = 1e-9
+"""Parts of a joint's reach spared in rounding it to whole parts (``joint_part_counts``)."""
+
+
 @dataclass(frozen=True, eq=False)    # holds arrays: no == by value
 class _NodeLayout:
     """Which attachments each node serves, as arrays (from the nodes' origins: a local
@@ -208,15 +261,22 @@ def build_elastic_model(design: Design, geometry: Geometry,
     halves = np.array([0.5 * beam_length_width(p, c)[0]
                        for p, c in zip(plank_list, crosswise)])
 
+    joint_list = [geometry.joints[j] for j in joints]
+    part_counts = joint_part_counts(
+        design, joint_list, local, frames,
+        np.array([beam_length_width(p, c) for p, c in zip(plank_list, crosswise)],
+                 dtype=float).reshape(-1, 2)) \
+        if template is None else template.plank_cache["joint_part_counts"]
+    spring_points, arms = part_points(joint_list, part_counts)
+    spring_joint = np.repeat(np.arange(len(joints)), part_counts)
     keys: list[tuple] = []              # what is attached where: its key,
     owners: list[int] = []              # its local plank
     points: list = []                   # and its point
-    for row, j in enumerate(joints):
-        joint = geometry.joints[j]
-        for side, plank_id in enumerate(joint.planks):
+    for row, (j, point) in enumerate(zip(spring_joint.tolist(), spring_points)):
+        for side, plank_id in enumerate(joint_list[j].planks):
             keys.append(("joint", row, side))
             owners.append(local[design.plank_index[plank_id]])
-            points.append(joint.point)
+            points.append(point)
     for row, c in enumerate(contacts):
         keys.append(("contact", row))
         owners.append(local[design.plank_index[geometry.contacts[c].plank]])
@@ -257,12 +317,12 @@ def build_elastic_model(design: Design, geometry: Geometry,
                    [design.material_of(p) for p in plank_list], origins, crosswise)
 
     weights = read_only(weights_per_length(design, plank_list, beams))
-    n_sides = 2 * len(joints)
+    n_sides = 2 * len(spring_joint)
     joint_nodes = layout.row_node[:n_sides].reshape(-1, 2)
-    points = np.array([geometry.joints[j].point for j in joints], dtype=float).reshape(-1, 3)
-    joint_blocks = joint_deviation_blocks(points, node_points[joint_nodes])
-    stiffness = nail_row_springs([geometry.joints[j] for j in joints], material.nail_slip,
-                                 material.nail_withdrawal)
+    joint_blocks = joint_deviation_blocks(spring_points, node_points[joint_nodes])
+    stiffness = nail_row_parts(joint_list, part_counts, material.nail_slip,
+                               material.nail_withdrawal)[0]
+    parted = bool((np.asarray(part_counts) > 1).any())
 
     owner = owner_array[n_sides:n_sides + len(contacts)]
     contact_points = np.array([geometry.contacts[c].point for c in contacts],
@@ -298,8 +358,10 @@ def build_elastic_model(design: Design, geometry: Geometry,
         anchor_stiffness=tol.ANCHOR_STIFFNESS,
         beams=beams,
         nodal_weight=nodal_loads(beams, weights, len(node_plank)),
-        load_nodes=load_nodes)
+        load_nodes=load_nodes,
+        joint_parts=spring_joint if parted else None, part_arms=arms if parted else None)
     model.plank_cache["node_layout"] = layout
+    model.plank_cache["joint_part_counts"] = part_counts
     model.plank_cache["weights_per_length"] = weights
     model.plank_cache["attachments"] = Attachments(
         owner_array, tuple(key[1] for key in keys if key[0] == "rest"),

@@ -43,11 +43,18 @@ class StaticsModel:
     joints   : geometry joint indices taking part
     contacts : geometry contact indices taking part
     node_plank, node_points : (nN,) local plank and (nN, 3) m, position of each node
-    joint_nodes, joint_blocks : (nJ, 2) local nodes and (nJ, 2, 6, 6) signed blocks of
-               the joint deviation map G (``G``: the same as a sparse (6 nJ, 6 nN) matrix)
-    joint_stiffness : (nJ, 6, 6) W, joint wrench = W (deviation), world frame: diagonal in
+    joint_nodes, joint_blocks : (nS, 2) local nodes and (nS, 2, 6, 6) signed blocks of
+               the joint deviation map G (``G``: the same as a sparse (6 nS, 6 nN) matrix)
+               of each joint *spring*: one per joint (nS = nJ), but in the elastic model
+               a joint whose nail row runs along a plank's beam is cut into parts, each a
+               spring at its own point (``joint_parts``)
+    joint_stiffness : (nS, 6, 6) W, spring wrench = W (deviation), world frame: diagonal in
                the rigid model (its penalty constants), the nail row's springs in the
-               elastic one
+               elastic one (``beams.nail_row_parts``)
+    joint_parts, part_arms : (nS,) the joint (row of ``joints``) of each spring and (nS, 3)
+               m, its point less the joint's, or both None when every joint is one spring;
+               the mixed system's wrench unknowns h are the springs', and
+               ``joint_totals`` sums them into each joint's wrench about its point
     contact_maps : (nK, 3, 6) displacement of each contact point from its node's q, in
                the contact's frame (``contact_frames``): two tangential components, then
                the normal one (into the room for a wall, up for the ground)
@@ -95,10 +102,31 @@ class StaticsModel:
     contact_anchored: np.ndarray | None = None
     rest_node: np.ndarray | None = None
     rest_maps: np.ndarray | None = None
+    joint_parts: np.ndarray | None = None
+    part_arms: np.ndarray | None = None
 
     @property
     def n_dof(self) -> int:
         return 6 * len(self.node_plank)
+
+    @property
+    def n_springs(self) -> int:
+        """Joint springs (``joint_nodes``): the wrench unknowns are six per spring."""
+        return len(self.joint_nodes)
+
+    def joint_totals(self, h: np.ndarray) -> np.ndarray:
+        """Each joint's wrench (force N, moment N m about its point) from its springs'
+        wrenches h, (6 nS,) or (6 nS, k) -> (6 nJ,) or (6 nJ, k): a part's force, and its
+        moment plus its arm x its force, summed by joint (h itself where every joint is
+        one spring)."""
+        if self.joint_parts is None:
+            return h
+        per = h.reshape((self.n_springs, 6, -1))
+        moved = per.copy()
+        moved[:, 3:] += np.cross(self.part_arms[:, :, None], per[:, :3], axis=1)
+        totals = block_sums(self.joint_parts, moved.reshape(self.n_springs, -1),
+                            len(self.joints))
+        return totals.reshape((6 * len(self.joints),) + h.shape[1:])
 
     @property
     def n_nodes(self) -> int:
@@ -216,7 +244,7 @@ class StaticsModel:
         designs: scipy.sparse is imported here)."""
         import scipy.sparse as sp
 
-        n_joints = len(self.joints)
+        n_joints = self.n_springs
         shape = (n_joints, 2, 6, 6)
         rows = np.broadcast_to(6 * np.arange(n_joints)[:, None, None, None]
                                + _SIX[None, None, :, None], shape).ravel()
@@ -228,14 +256,14 @@ class StaticsModel:
     @cached_property
     def joint_compliance(self) -> np.ndarray:
         """(nJ, 6, 6) E = W^-1 per joint, the mixed system's -E blocks."""
-        return np.linalg.inv(self.joint_stiffness) if len(self.joints) \
+        return np.linalg.inv(self.joint_stiffness) if self.n_springs \
             else np.zeros((0, 6, 6))
 
     def joint_wrench(self, deviations: np.ndarray) -> np.ndarray:
         """W d per joint for deviations (6 nJ,) or (6 nJ, k)."""
-        if not len(self.joints):
+        if not self.n_springs:
             return np.zeros_like(deviations)
-        per_joint = deviations.reshape((len(self.joints), 6, -1))
+        per_joint = deviations.reshape((self.n_springs, 6, -1))
         return (self.joint_stiffness @ per_joint).reshape(deviations.shape)
 
     def deviations(self, q: np.ndarray) -> np.ndarray:
@@ -243,7 +271,7 @@ class StaticsModel:
         (6, 12) rows of G times the 12 displacements of its two nodes (one stacked
         matmul; two to five times faster than the same contraction by einsum)."""
         columns = q.reshape((self.n_nodes, 6) + q.shape[1:])[self.joint_nodes]
-        columns = columns.reshape((len(self.joints), 12, math.prod(q.shape[1:])))  # (nJ, 12, k)
+        columns = columns.reshape((self.n_springs, 12, math.prod(q.shape[1:])))  # (nS, 12, k)
         return (self.joint_rows @ columns).reshape((-1,) + q.shape[1:])
 
     @cached_property
@@ -254,11 +282,11 @@ class StaticsModel:
 
     def reactions(self, h: np.ndarray) -> np.ndarray:
         """G^T h for joint values h, (6 nJ,) or (6 nJ, k), by blocks."""
-        if not len(self.joints):
+        if not self.n_springs:
             return np.zeros((self.n_dof,) + h.shape[1:])
         per_joint = np.einsum("jsab,ja...->jsb...", self.joint_blocks,
                               h.reshape((-1, 6) + h.shape[1:]))
-        out = block_sums(self.joint_nodes.ravel(), per_joint.reshape(2 * len(self.joints), -1),
+        out = block_sums(self.joint_nodes.ravel(), per_joint.reshape(2 * self.n_springs, -1),
                          self.n_nodes)
         return out.reshape((-1,) + h.shape[1:])
 

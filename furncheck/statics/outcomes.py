@@ -24,7 +24,7 @@ from furncheck.geometry.support import (
     tipping_on_plane,
 )
 from furncheck.plain import plain_compared, plain_list, plain_number
-from furncheck.statics.model import CaseStatics
+from furncheck.statics.model import CaseStatics, StaticsModel
 
 if TYPE_CHECKING:   # the programs are imported where a case needs them
     from furncheck.statics.contacts import _Solution
@@ -50,7 +50,8 @@ class _Outcomes:
 
     # -- results -------------------------------------------------------------------------------
     def stable(self, solution: _Solution, status: np.ndarray) -> CaseStatics:
-        return CaseStatics("stable", _wrenches(solution.h), solution.contact_forces,
+        return CaseStatics("stable", _wrenches(self.model, solution.h),
+                           solution.contact_forces,
                            state=np.concatenate([solution.q, solution.h]),
                            holding=status != LIFT, displacements=solution.q,
                            ground=solution.ground)
@@ -76,7 +77,7 @@ class _Outcomes:
                        f"{gives} N"
             detail = (f"no equilibrium within the friction cones (mu = "
                       f"{plain_number(self.mu, 6)}): {what}")
-            return CaseStatics("sliding", _wrenches(solution.h), forces,
+            return CaseStatics("sliding", _wrenches(self.model, solution.h), forces,
                                self._plank_ids(over), detail, displacements=solution.q)
         sideways = float(np.hypot(*forces[:, :2].sum(axis=0)))
         capacity = self.mu * float(forces[:, 2].sum())
@@ -93,7 +94,8 @@ class _Outcomes:
                   f"friction gives at most {gives} N")
         if sideways > capacity + self.force_tol:    # it slides as a whole: all its feet
             over = forces[:, 2] > self.force_tol
-        return CaseStatics("sliding", _wrenches(solution.h), forces, self._plank_ids(over),
+        return CaseStatics("sliding", _wrenches(self.model, solution.h), forces,
+                           self._plank_ids(over),
                            detail, displacements=solution.q)
 
     def unstable(self, stability: str, program: Feasibility | None = None) -> CaseStatics:
@@ -149,7 +151,7 @@ class _Outcomes:
             detail = (f"no equilibrium within the friction cones "
                       f"(mu = {plain_number(self.mu, 6)}); forces shown as if the design were "
                       f"bolted to the {self._supports()}")
-        return CaseStatics(stability, _wrenches(bolted.h), bolted.contact_forces,
+        return CaseStatics(stability, _wrenches(self.model, bolted.h), bolted.contact_forces,
                            self._plank_ids(pulling), detail + undecided,
                            displacements=bolted.q)
 
@@ -219,7 +221,7 @@ class _Outcomes:
                 break
         if solution is None:
             return CaseStatics("lift-off", None, None, (), _LINE_DETAIL)
-        return CaseStatics("stable", _wrenches(solution.h), contact_forces.copy(),
+        return CaseStatics("stable", _wrenches(self.model, solution.h), contact_forces.copy(),
                            holding=self._pressing(contact_forces),
                            displacements=solution.q)
 
@@ -505,8 +507,9 @@ def _on_one_line(points: np.ndarray) -> bool:
     return bool(spread[1] <= tol.MECHANISM_RCOND * max(spread[0], 1e-300))
 
 
-def _wrenches(h: np.ndarray) -> np.ndarray:
-    return h.reshape(-1, 6).copy()
+def _wrenches(model: StaticsModel, h: np.ndarray) -> np.ndarray:
+    """(nJ, 6) each joint's wrench from the springs' wrenches h (``joint_totals``)."""
+    return model.joint_totals(h).reshape(-1, 6).copy()
 
 
 def _resultant(points: np.ndarray, loads: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

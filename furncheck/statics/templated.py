@@ -21,7 +21,8 @@ from furncheck.statics.beams import (
     beam_frame,
     beam_length_width,
     beam_stiffness_local,
-    nail_row_springs,
+    nail_row_parts,
+    part_points,
 )
 from furncheck.statics.elements import (
     Beams,
@@ -118,7 +119,8 @@ class _Placed:
     halves: np.ndarray
     node_s: np.ndarray
     node_points: np.ndarray
-    joint_points: np.ndarray
+    joint_points: np.ndarray       # the joints' springs' points (``beams.part_points``)
+    part_arms: np.ndarray
     contact_points: np.ndarray
     materials: list
 
@@ -133,7 +135,8 @@ def _placed_on(design: Design, geometry: Geometry, template: StaticsModel) -> _P
     frames = [beam_frame(p, c) for p, c in zip(plank_list, crosswise)]
     halves = np.array([0.5 * beam_length_width(p, c)[0]
                        for p, c in zip(plank_list, crosswise)])
-    joint_points = [geometry.joints[j].point for j in joints]
+    joint_points, arms = part_points([geometry.joints[j] for j in joints],
+                                     template.plank_cache["joint_part_counts"])
     contact_points = [geometry.contacts[c].point for c in contacts]
     points = [point for point in joint_points for _ in (0, 1)] + contact_points \
         + [contact_points[row] for row in attachments.rest_rows] \
@@ -148,7 +151,7 @@ def _placed_on(design: Design, geometry: Geometry, template: StaticsModel) -> _P
     node_s = layout.positions(along, halves)
     node_points = (centres[node_plank] + node_s[:, None] * axes[node_plank]).reshape(-1, 3)
     return _Placed(design, geometry, plank_list, frames, halves, node_s, node_points,
-                   np.array(joint_points, dtype=float).reshape(-1, 3),
+                   joint_points, arms,
                    np.array(contact_points, dtype=float).reshape(-1, 3),
                    [design.material_of(p) for p in plank_list])
 
@@ -186,17 +189,18 @@ def _finished_on(placed: list[_Placed], template: StaticsModel) -> list[StaticsM
         count)
     materials = {(p.design.material.nail_slip, p.design.material.nail_withdrawal)
                  for p in placed}
+    part_counts = template.plank_cache["joint_part_counts"]
     if len(materials) == 1:
         ((slip, withdrawal),) = materials
-        springs = np.split(nail_row_springs(
-            [p.geometry.joints[j] for p in placed for j in template.joints], slip,
-            withdrawal), count)
+        springs = np.split(nail_row_parts(
+            [p.geometry.joints[j] for p in placed for j in template.joints],
+            np.tile(part_counts, count), slip, withdrawal)[0], count)
     else:
-        springs = [nail_row_springs([p.geometry.joints[j] for j in template.joints],
-                                    p.design.material.nail_slip,
-                                    p.design.material.nail_withdrawal) for p in placed]
+        springs = [nail_row_parts([p.geometry.joints[j] for j in template.joints],
+                                  part_counts, p.design.material.nail_slip,
+                                  p.design.material.nail_withdrawal)[0] for p in placed]
     compliance = np.split(np.linalg.inv(np.concatenate(springs)), count) \
-        if len(template.joints) else [np.zeros((0, 6, 6))] * count
+        if template.n_springs else [np.zeros((0, 6, 6))] * count
     contacts = list(template.contacts)
     models = []
     for k, p in enumerate(placed):
@@ -218,9 +222,11 @@ def _finished_on(placed: list[_Placed], template: StaticsModel) -> list[StaticsM
             components=template.components, friction=design.material.friction,
             contact_stiffness=tol.ELASTIC_CONTACT_STIFFNESS,
             anchor_stiffness=tol.ANCHOR_STIFFNESS,
-            beams=beams[k], nodal_weight=nodal_weight, load_nodes=template.load_nodes)
+            beams=beams[k], nodal_weight=nodal_weight, load_nodes=template.load_nodes,
+            joint_parts=template.joint_parts,
+            part_arms=None if template.joint_parts is None else p.part_arms)
         model.__dict__["joint_compliance"] = compliance[k]     # its cached property's value
-        for key in ("node_layout", "attachments", *TOPOLOGY_CACHE):
+        for key in ("node_layout", "attachments", "joint_part_counts", *TOPOLOGY_CACHE):
             if key in template.plank_cache:
                 model.plank_cache[key] = template.plank_cache[key]
         model.plank_cache["weights_per_length"] = weights[k]
