@@ -202,7 +202,8 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
                 violations.append(Violation("sagging", plank.id, case.name, _sag_message(
                     design, material, sag, allowed, statics.planks.span[k], sideways,
                     overhang)
-                    + (_held_along(geometry, model, plank, crosswise) if overhang else ""),
+                    + (_held_along(geometry, model, plank, crosswise) if overhang else "")
+                    + _rests_along(geometry, plank, crosswise),
                     design.line_of(key)))
             if stress > strength * (1.0 + tol.CAPACITY_REL_TOL):
                 violations.append(Violation("overstressed", plank.id, case.name,
@@ -394,6 +395,30 @@ def _held_along(geometry: Geometry, model, plank, crosswise: bool) -> str:
             other = joint.face if joint.edge == plank.id else joint.edge
             return (f" (it is nailed along its length to {other}, which the model holds "
                     f"at the joint's middle only: this overstates its sag)")
+    return ""
+
+
+def _rests_along(geometry: Geometry, plank, crosswise: bool) -> str:
+    """A note for the sag of a plank that a resting joint holds along its beam (a loose
+    seat lying on a rail along its length, or the rail under it), whose contacts are the
+    corners of the planks' touching region (contract section 2): the model holds the
+    plank at the region's ends only, so what it reads between them is an overstatement
+    (README, "Elastic planks").  '' for any other plank."""
+    axis = beam_frame(plank, crosswise)[:, 0]
+    length = beam_length_width(plank, crosswise)[0]
+    corners: dict[int, list] = {}
+    for contact in geometry.contacts:
+        if contact.on is not None and plank.id in (contact.plank, contact.on):
+            corners.setdefault(contact.rest, []).append(contact)
+    for held in corners.values():
+        along = np.array([c.point for c in held], dtype=float) @ axis
+        if float(along.max() - along.min()) >= ALONG_SHARE * length:
+            upper, lower = held[0].resting
+            if upper == plank.id:
+                return (f" (it rests along its length on {lower}, which the model holds "
+                        "at the rest's corners only: this overstates its sag)")
+            return (f" ({upper} rests on it along its length, which the model holds at the "
+                    "rest's corners only: this overstates its sag)")
     return ""
 
 

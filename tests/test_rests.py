@@ -448,3 +448,32 @@ def test_a_shelf_on_pins_tips_off_its_back_pins_and_the_empty_one_stays(model):
         "shelf_a lifts off pin_alb; shelf_a lifts off pin_arb (held down at pin_alb or "
         f"pin_arb, its rests would have to pull at least {pull:.4g} N there)")
     assert violation.where == "shelf_a,pin_alb,pin_arb"
+
+
+def test_a_plank_resting_along_its_length_is_told_its_sag_is_overstated():
+    """A loose 800 x 300 seat lying along two 800 mm rails on edge (under its long edges),
+    500 N spread on it: the resting joints' contacts are the corners of the touching
+    regions (contract section 2), so the model holds the seat at the rails' ends only
+    and reads a span of 800 mm where it lies on them all along; the sagging message says
+    it is overstated.  The loose top of this module's frame, resting on the sides' top
+    edges across its beam, spans between them as in the shop: no such note."""
+    doc = {
+        "furncheck": 1, "name": "seat-resting", "model": "elastic",
+        "planks": [
+            {"id": "seat", "size": [800, 300], "center": [0, 0, 306]},
+            {"id": "rail_a", "size": [800, 300], "center": [0, 140, 150],
+             "rotation": [90, 0, 0]},
+            {"id": "rail_b", "size": [800, 300], "center": [0, -140, 150],
+             "rotation": [90, 0, 0]}],
+        "joints": [{"planks": ["seat", "rail_a"], "type": "rests"},
+                   {"planks": ["seat", "rail_b"], "type": "rests"}],
+        "loads": [{"plank": "seat", "force": [0, 0, -500], "spread": True}],
+    }
+    report = check_design(parse_design(yaml.safe_dump(doc), "seat.yaml", "yaml"))
+    sagging = [v.message for v in report.violations if v.kind == "sagging"]
+    assert sagging and all(message.endswith(
+        "(it rests along its length on rail_a, which the model holds at the rest's corners "
+        "only: this overstates its sag)") for message in sagging)
+    heavy = _design("elastic", [{"plank": "top", "mass": 200, "spread": True}])
+    spans = [v.message for v in check_design(heavy).violations if v.kind == "sagging"]
+    assert spans and not any("rests" in message for message in spans)
