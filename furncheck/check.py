@@ -141,6 +141,7 @@ def margin_of(design: Design, geometry: Geometry,
         order.insert(0, order.pop(first))
     rows = nail_rows([geometry.joints[j] for j in model.joints]) if model.joints else None
     wrenches: dict[int, np.ndarray] = {}
+    parts: dict[int, np.ndarray] = {}       # the springs' wrenches of joints cut into parts
     plank_used = 0.0
     stable, stopped = True, False
     limiting, worst_used = order[0], -np.inf
@@ -158,8 +159,11 @@ def margin_of(design: Design, geometry: Geometry,
         holds = used <= 1.0 + tol.CAPACITY_REL_TOL
         if statics.joint_wrenches is not None and model.joints:
             wrenches[k] = statics.joint_wrenches
+            if statics.part_wrenches is not None:
+                parts[k] = statics.part_wrenches
             joint_used, joint_holds = joint_utilization(design, geometry, model,
-                                                        statics.joint_wrenches, rows)
+                                                        statics.joint_wrenches, rows,
+                                                        statics.part_wrenches)
             used = max(used, float(joint_used.max()))
             holds = holds and bool(np.all(joint_holds))
         if used > worst_used:
@@ -170,9 +174,10 @@ def margin_of(design: Design, geometry: Geometry,
     utilization = np.zeros(len(geometry.joints))
     valid = stable and not stopped
     if wrenches:        # the joints' utilization in all those cases at once
-        used, holds = joint_utilization(design, geometry, model,
-                                        np.stack([wrenches[k] for k in sorted(wrenches)]),
-                                        rows)
+        used, holds = joint_utilization(
+            design, geometry, model, np.stack([wrenches[k] for k in sorted(wrenches)]), rows,
+            np.stack([parts[k] for k in sorted(wrenches)]) if len(parts) == len(wrenches)
+            else None)
         utilization[np.asarray(model.joints, dtype=int)] = used.max(axis=0)
         valid = valid and bool(np.all(holds))
     if not stable:

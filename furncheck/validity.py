@@ -121,7 +121,47 @@ def nail_pull_shear(joints: list[Joint], wrenches: np.ndarray,
     """
     if not joints:
         return np.zeros(wrenches.shape[:-1]), np.zeros(wrenches.shape[:-1])
-    frames, sign, thickness, nails, lever = rows or nail_rows(joints)
+    return _group_forces(rows or nail_rows(joints), wrenches)
+
+
+def part_rows(geometry: Geometry, model: StaticsModel) -> NailRows:
+    """The ``NailRows`` of a model's joint springs where its joints are cut into parts
+    (``StaticsModel.joint_parts``): part g of a row of n nails cut into m holds n / m of
+    them over L / m, y_max = (n / m - 1) L / 2 n from its middle and S_m = L^2 (n / m^2 -
+    1 / n) / 12 m (``beams.nail_row_parts``), in its joint's frame; a joint left whole
+    (its one spring) has its row's own (``nail_rows``)."""
+    joints = [geometry.joints[j] for j in model.joints]
+    whole = nail_rows(joints)
+    parts = model.joint_parts
+    counts = np.asarray(model.plank_cache["joint_part_counts"], dtype=float)[parts]
+    nails = whole.nails[parts]
+    length = np.array([j.length for j in joints], dtype=float)[parts]
+    cut = counts > 1.0                      # a whole joint's one spring: its own row
+    share = np.where(cut, nails / counts, nails)
+    y_max = (share - 1.0) * length / (2.0 * nails)
+    spread = length * length * (nails / (counts * counts) - 1.0 / nails) / (12.0 * counts)
+    lever = whole.lever[parts].copy()
+    lever[cut] = y_max[cut] / spread[cut]
+    return NailRows(whole.frames[parts], whole.sign[parts], whole.thickness[parts], share,
+                    lever)
+
+
+def worst_part_forces(model: StaticsModel, rows: NailRows,
+                      part_wrenches: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per joint, the pull and shear (N) of the worst nail of its parts, each part's nails
+    sharing its own spring's wrench (``nail_pull_shear``'s rule, ``part_rows``); (nS, 6)
+    or (k, nS, 6) wrenches give (nJ,) or (k, nJ).  A row that the composite action of its
+    planks shears along (a batten nailed on a rail) loads its end parts' nails with the
+    shear flow, which the whole row's wrench sums away."""
+    pull, shear = _group_forces(rows, part_wrenches)
+    starts = np.flatnonzero(np.diff(model.joint_parts, prepend=-1))     # parts are in order
+    return (np.maximum.reduceat(pull, starts, axis=-1),
+            np.maximum.reduceat(shear, starts, axis=-1))
+
+
+def _group_forces(rows: NailRows, wrenches: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``nail_pull_shear``'s formula for the nail groups of ``rows``."""
+    frames, sign, thickness, nails, lever = rows
     force = np.einsum("jab,...ja->...jb", frames, sign * wrenches[..., :3])   # frame^T F
     moment = np.einsum("jab,...ja->...jb", frames, sign * wrenches[..., 3:])  # frame^T M
     pull = (2.0 * np.abs(moment[..., 1]) / thickness - force[..., 2]) / nails \
@@ -145,6 +185,10 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
     if statics.joint_wrenches is not None:
         model_joints = [geometry.joints[j] for j in model.joints]
         pulls, shears = nail_pull_shear(model_joints, statics.joint_wrenches)
+        if statics.part_wrenches is not None:   # the worst nail of the row's parts too
+            part_pulls, part_shears = worst_part_forces(
+                model, part_rows(geometry, model), statics.part_wrenches)
+            pulls, shears = np.maximum(pulls, part_pulls), np.maximum(shears, part_shears)
         for joint, wrench, pull, shear in zip(model_joints, statics.joint_wrenches.tolist(),
                                               pulls.tolist(), shears.tolist()):
             nails = NailForces(pull, shear, pull_cap, shear_cap)
@@ -447,7 +491,8 @@ def case_margin(design: Design, geometry: Geometry, model: StaticsModel,
         return -np.inf, False
     margin, holds = 1.0, True
     if statics.joint_wrenches is not None and model.joints:
-        utilization, held = joint_utilization(design, geometry, model, statics.joint_wrenches)
+        utilization, held = joint_utilization(design, geometry, model, statics.joint_wrenches,
+                                              parts=statics.part_wrenches)
         margin, holds = 1.0 - float(utilization.max()), bool(np.all(held))
     used = max(worst_plank_utilization(design, model, statics),
                anchor_utilization(design, geometry, model, statics))
@@ -464,14 +509,19 @@ def worst_plank_utilization(design: Design, model: StaticsModel,
 
 
 def joint_utilization(design: Design, geometry: Geometry, model: StaticsModel,
-                      wrenches: np.ndarray,
-                      rows: NailRows | None = None) -> tuple[np.ndarray, np.ndarray]:
+                      wrenches: np.ndarray, rows: NailRows | None = None,
+                      parts: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Per model joint, for its wrenches in a solved case ((nJ, 6), or (k, nJ, 6) for k
     cases): max(pull / pull capacity, shear / shear capacity), and whether it is within
     capacity (``within_capacity``); ``rows``: the model joints' ``nail_rows``, if the
-    caller has them."""
+    caller has them; ``parts``: the springs' wrenches where joints are cut into parts
+    ((nS, 6) or (k, nS, 6), ``CaseStatics.part_wrenches``), whose worst nails count too
+    (``worst_part_forces``)."""
     pulls, shears = nail_pull_shear([geometry.joints[j] for j in model.joints], wrenches,
                                     rows)
+    if parts is not None:
+        part_pulls, part_shears = worst_part_forces(model, part_rows(geometry, model), parts)
+        pulls, shears = np.maximum(pulls, part_pulls), np.maximum(shears, part_shears)
     pull_cap = design.material.nail_pull / design.safety_factor
     shear_cap = design.material.nail_shear / design.safety_factor
     return (np.maximum(pulls / pull_cap, shears / shear_cap),

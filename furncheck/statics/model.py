@@ -368,6 +368,9 @@ class CaseStatics:
     stability : 'stable', 'lift-off', 'sliding', or 'mechanism' (no force state could be
                 computed: the planks are free to move even when held at every contact)
     joint_wrenches : (nJ, 6) force N and moment N m per model joint, or None (mechanism)
+    part_wrenches : (nS, 6) the same per joint spring where the model cuts joints into
+                parts (``StaticsModel.joint_parts``; their sum about each joint's point is
+                its wrench), else None
     contact_forces : (nK, 3) N, the ground's force on each model contact, or None
     culprits  : plank ids whose contacts lift or slide (for messages)
     detail    : a sentence with the numbers behind an unstable verdict
@@ -384,6 +387,8 @@ class CaseStatics:
     ground: np.ndarray | None = None    # the grounded nodes' q (x_g) of a stable case found
                                         # by the contact iterations (not the programs')
     planks: object = None      # elastic.PlankStatics: sag, span, stress (elastic model)
+    part_wrenches: np.ndarray | None = None   # (nS, 6) each spring's wrench about its
+                                              # own point, where joints are cut into parts
 
 
 def build_model(design: Design, geometry: Geometry) -> StaticsModel:

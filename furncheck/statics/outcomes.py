@@ -54,7 +54,7 @@ class _Outcomes:
                            solution.contact_forces,
                            state=np.concatenate([solution.q, solution.h]),
                            holding=status != LIFT, displacements=solution.q,
-                           ground=solution.ground)
+                           ground=solution.ground, part_wrenches=_parts(self.model, solution.h))
 
     def sliding(self, solution: _Solution) -> CaseStatics:
         """Report a case that slides, with the forces it would need if friction were endless."""
@@ -78,7 +78,8 @@ class _Outcomes:
             detail = (f"no equilibrium within the friction cones (mu = "
                       f"{plain_number(self.mu, 6)}): {what}")
             return CaseStatics("sliding", _wrenches(self.model, solution.h), forces,
-                               self._plank_ids(over), detail, displacements=solution.q)
+                               self._plank_ids(over), detail, displacements=solution.q,
+                               part_wrenches=_parts(self.model, solution.h))
         sideways = float(np.hypot(*forces[:, :2].sum(axis=0)))
         capacity = self.mu * float(forces[:, 2].sum())
         centre = (forces[:, 2] @ model.contact_points) / max(float(forces[:, 2].sum()), 1e-300)
@@ -95,8 +96,8 @@ class _Outcomes:
         if sideways > capacity + self.force_tol:    # it slides as a whole: all its feet
             over = forces[:, 2] > self.force_tol
         return CaseStatics("sliding", _wrenches(self.model, solution.h), forces,
-                           self._plank_ids(over),
-                           detail, displacements=solution.q)
+                           self._plank_ids(over), detail, displacements=solution.q,
+                           part_wrenches=_parts(self.model, solution.h))
 
     def unstable(self, stability: str, program: Feasibility | None = None) -> CaseStatics:
         """Report a case without admissible equilibrium: forces as if bolted to the ground
@@ -153,7 +154,7 @@ class _Outcomes:
                       f"bolted to the {self._supports()}")
         return CaseStatics(stability, _wrenches(self.model, bolted.h), bolted.contact_forces,
                            self._plank_ids(pulling), detail + undecided,
-                           displacements=bolted.q)
+                           displacements=bolted.q, part_wrenches=_parts(self.model, bolted.h))
 
     def from_programs(self, target: np.ndarray, on_failure: _Solution | None,
                       bolted: _Solution | None = None) -> CaseStatics:
@@ -223,7 +224,8 @@ class _Outcomes:
             return CaseStatics("lift-off", None, None, (), _LINE_DETAIL)
         return CaseStatics("stable", _wrenches(self.model, solution.h), contact_forces.copy(),
                            holding=self._pressing(contact_forces),
-                           displacements=solution.q)
+                           displacements=solution.q,
+                           part_wrenches=_parts(self.model, solution.h))
 
     def _hold_down(self) -> tuple[float, str] | None:
         """(N, planks): the least pull at one ground contact that would hold a toppling
@@ -510,6 +512,11 @@ def _on_one_line(points: np.ndarray) -> bool:
 def _wrenches(model: StaticsModel, h: np.ndarray) -> np.ndarray:
     """(nJ, 6) each joint's wrench from the springs' wrenches h (``joint_totals``)."""
     return model.joint_totals(h).reshape(-1, 6).copy()
+
+
+def _parts(model: StaticsModel, h: np.ndarray) -> np.ndarray | None:
+    """(nS, 6) the springs' own wrenches where joints are cut into parts, else None."""
+    return None if model.joint_parts is None else h.reshape(-1, 6).copy()
 
 
 def _resultant(points: np.ndarray, loads: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
