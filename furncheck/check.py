@@ -12,6 +12,7 @@ from furncheck.design import Design
 from furncheck.design.model import with_model
 from furncheck.errors import DesignError, DesignTooBig
 from furncheck.geometry import Geometry, analyze
+from furncheck.nail_groups import joint_utilization, nail_rows
 from furncheck.result import NOT_SOLVED, CaseResult, DesignReport
 from furncheck.statics import (
     CaseStatics,
@@ -25,8 +26,6 @@ from furncheck.validity import (
     case_holds,
     case_loads,
     evaluate_case,
-    joint_utilization,
-    nail_rows,
     worst_plank_utilization,
 )
 
@@ -123,7 +122,7 @@ def margin_of(design: Design, geometry: Geometry,
               solved: dict[int, CaseStatics] | None = None) -> Margin:
     """The design's ``Margin``: the margin is the smallest 1 - utilization of any joint,
     anchor (and, elastic model, any plank's sag or stress) in any load case, -inf if a
-    case is not stable; the utilization (``validity.joint_utilization``) is per joint of
+    case is not stable; the utilization (``nail_groups.joint_utilization``) is per joint of
     ``geometry.joints``, the largest of the load cases (0 for a joint outside the
     statics).  Every case is solved, except that an unstable one ends the search.  The
     geometry must have no violations (``model``: its statics model, if the caller already

@@ -283,7 +283,7 @@ def test_the_shear_flow_of_a_nailed_t_beam_loads_its_end_nails():
     59 N each, where the whole row's wrench sums the two ends' flows away (no shear).
     The joint's reported shear is its worst part's (within 10 % of the hand value), and
     its utilization counts it."""
-    from furncheck.validity import nail_pull_shear
+    from furncheck.nail_groups import nail_pull_shear
 
     design = _parsed(_t_beam())
     material = design.material

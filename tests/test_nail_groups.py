@@ -23,7 +23,7 @@ import pytest
 from furncheck.check import check_design
 from furncheck.design import parse_design
 from furncheck.geometry import Joint
-from furncheck.validity import nail_pull_shear, nail_row
+from furncheck.nail_groups import nail_pull_shear, nail_row
 
 REL = 5e-3
 JOINT_Z = 12.0            # mm, the base's top face

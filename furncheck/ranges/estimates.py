@@ -15,10 +15,10 @@ from typing import NamedTuple
 import numpy as np
 
 from furncheck.geometry import Geometry
+from furncheck.nail_groups import nail_pull_shear
 from furncheck.sensitivity import Linearization, Sensitivity
 from furncheck.statics import external_forces
 from furncheck.tolerances import NAIL_COUNT_EPS
-from furncheck.validity import nail_pull_shear
 
 MODEL_GRID = 64
 """The modelled margins are scanned for their first flip on this many turns, twice (the

@@ -15,10 +15,11 @@ import numpy as np
 
 from furncheck.design.model import Design
 from furncheck.geometry.model import nails_listed
+from furncheck.nail_groups import nail_pull_shear
 from furncheck.sensitivity import Linearization, Sensitivity
 from furncheck.statics import external_forces
 from furncheck.tolerances import GRAVITY
-from furncheck.validity import anchor_capacity, nail_pull_shear, plank_limits
+from furncheck.validity import anchor_capacity, plank_limits
 
 NAIL_FORCE_STEP = 1e-6
 """Step (N, N m per unit rate) of the difference that turns wrench rates into pull and

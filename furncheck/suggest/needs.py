@@ -23,7 +23,7 @@ and planks as they are:
   its rests are level; for sliding, its push along them against mu N, N what presses it
   onto them (``part``, ``on``: its planks and those under it).
 * non-durable joint: the pull and shear per nail are the joint's forces shared by its n
-  nails (``validity.nail_pull_shear``: every term goes with 1 / n for the same wrench),
+  nails (``nail_groups.nail_pull_shear``: every term goes with 1 / n for the same wrench),
   so n' = ceil(n x max(pull / capacity, shear / capacity)) nails hold it; unless the file
   lists the count, that is a joint n' x spacing long.
 * an anchor over its capacity: a rating of at least its force x the safety factor.

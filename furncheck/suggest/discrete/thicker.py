@@ -43,6 +43,7 @@ from furncheck import tolerances as tol
 from furncheck.check import check_design
 from furncheck.design.model import Design, Plank
 from furncheck.geometry import Geometry, Joint, analyze, interpenetrations
+from furncheck.nail_groups import nail_row
 from furncheck.result import DesignReport, JointResult
 from furncheck.suggest.discrete.common import (
     BENDING,
@@ -55,7 +56,6 @@ from furncheck.suggest.discrete.common import (
 )
 from furncheck.suggest.symmetry import MirrorPlane, mirror_planes
 from furncheck.suggest.tried import FOUND, Trial
-from furncheck.validity import nail_row
 
 THICKEN_TRIES = 3
 """Thicknesses tried per suggestion (the estimate, then from the reports of the tries)."""
@@ -258,7 +258,7 @@ def _needed(design: Design, geometry: Geometry, report: DesignReport) -> dict[st
 
 def _edge_thickness(joint: Joint, result: JointResult) -> float | None:
     """m: the edge plank's thickness at which the joint's nails hold in this case, its
-    wrench kept: with F and M in the joint frame (``validity.nail_pull_shear``),
+    wrench kept: with F and M in the joint frame (``nail_groups.nail_pull_shear``),
 
         pull(t) = (2 |M_y| / t - F_n) / n + |M_x| y_max / S <= capacity
         <=>  t >= 2 |M_y| / (n (capacity - |M_x| y_max / S) + F_n);
