@@ -244,23 +244,23 @@ class StaticsModel:
         designs: scipy.sparse is imported here)."""
         import scipy.sparse as sp
 
-        n_joints = self.n_springs
-        shape = (n_joints, 2, 6, 6)
-        rows = np.broadcast_to(6 * np.arange(n_joints)[:, None, None, None]
+        n_springs = self.n_springs
+        shape = (n_springs, 2, 6, 6)
+        rows = np.broadcast_to(6 * np.arange(n_springs)[:, None, None, None]
                                + _SIX[None, None, :, None], shape).ravel()
         cols = np.broadcast_to(6 * self.joint_nodes[:, :, None, None]
                                + _SIX[None, None, None, :], shape).ravel()
         return sp.csr_matrix((self.joint_blocks.ravel(), (rows, cols)),
-                             shape=(6 * n_joints, self.n_dof))
+                             shape=(6 * n_springs, self.n_dof))
 
     @cached_property
     def joint_compliance(self) -> np.ndarray:
-        """(nJ, 6, 6) E = W^-1 per joint, the mixed system's -E blocks."""
+        """(nS, 6, 6) E = W^-1 per joint spring, the mixed system's -E blocks."""
         return np.linalg.inv(self.joint_stiffness) if self.n_springs \
             else np.zeros((0, 6, 6))
 
     def joint_wrench(self, deviations: np.ndarray) -> np.ndarray:
-        """W d per joint for deviations (6 nJ,) or (6 nJ, k)."""
+        """W d per joint spring for deviations (6 nS,) or (6 nS, k)."""
         if not self.n_springs:
             return np.zeros_like(deviations)
         per_joint = deviations.reshape((self.n_springs, 6, -1))
@@ -281,7 +281,7 @@ class StaticsModel:
                                     .reshape(-1, 6, 12))
 
     def reactions(self, h: np.ndarray) -> np.ndarray:
-        """G^T h for joint values h, (6 nJ,) or (6 nJ, k), by blocks."""
+        """G^T h for joint spring values h, (6 nS,) or (6 nS, k), by blocks."""
         if not self.n_springs:
             return np.zeros((self.n_dof,) + h.shape[1:])
         per_joint = np.einsum("jsab,ja...->jsb...", self.joint_blocks,
