@@ -205,7 +205,6 @@ def part_points(joints, counts) -> tuple[np.ndarray, np.ndarray]:
     lines = np.array([joint.length * joint.frame[:, 1] for joint in joints],
                      dtype=float).reshape(-1, 3)
     arms = part_fractions(counts)[:, None] * lines[rows]
-    arms[counts[rows] == 1] = 0.0
     return centres[rows] + arms, arms
 
 
