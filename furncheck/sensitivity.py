@@ -48,7 +48,8 @@ class Sensitivity:
     dofs            : the DOFs, in order (blocked ones are left out, see ``blocked``)
     joint_wrenches  : (n_dofs, nJ, 6): d(force N, moment N m) per DOF unit (file length
                       unit or degree), joints in the order of ``CaseResult.joints``
-    contact_forces  : (n_dofs, nK, 3): d(ground force, N) per DOF unit
+    contact_forces  : (n_dofs, nC, 3): d(ground force, N) per DOF unit, at the geometry's
+                      contacts (``StaticsModel.corner_forces``), as ``CaseResult.contacts``
     blocked         : DOF name -> reason it cannot move
     joint_lengths   : (n_dofs, nJ): d(joint length, m) per DOF unit (the nail count
                       follows the length in steps; this is its smooth trend)
@@ -118,9 +119,11 @@ class Linearization:
 
     @property
     def contact_forces(self) -> np.ndarray:
-        """(nK, 3) the ground's forces of the linearized state (its contact law, as in
-        ``solve_case``: springs where contacts stick, mu N where they slipped)."""
-        return self.law.forces(self._contact_displacements())
+        """(nC, 3) the ground's forces of the linearized state (its contact law, as in
+        ``solve_case``: springs where contacts stick, mu N where they slipped) at the
+        geometry's contacts (``StaticsModel.corner_forces``: the support stations'
+        shared out to their corners)."""
+        return self.model.corner_forces(self.law.forces(self._contact_displacements()))
 
     def _contact_displacements(self) -> np.ndarray:
         """(nK, 3) m: each contact point's displacement in the linearized state."""
@@ -197,7 +200,7 @@ class Linearization:
                                    stepped.joints, stepped.contacts, *stepped.minus)]
             moving.append(dof)
         model = self.model
-        n_joints, n_contacts = len(model.joints), len(model.contacts)
+        n_joints, n_contacts = len(model.joints), model.n_corners
         if not moving:
             return Sensitivity(self.case.name, (), np.zeros((0, n_joints, 6)),
                                np.zeros((0, n_contacts, 3)), blocked, np.zeros((0, n_joints)))
@@ -263,7 +266,13 @@ class Linearization:
             dq_b = rates[:n].T.reshape(n_dofs, -1, 6)[:, nodes]
             dw[:, rows] -= (np.einsum("dkab,kb->dka", differences.rest_maps[:, rows], q_b)
                             + np.einsum("kab,dkb->dka", model.rest_maps[rows], dq_b))
-        contact_rates = -np.einsum("kab,dkb->dka", springs, dw)
+        contact_rates = model.corner_forces(-np.einsum("kab,dkb->dka", springs, dw))
+        if differences.shares is not None:  # a station's share moves with the edit too
+            station = self.law.forces(self._contact_displacements())[model.n_corners:]
+            moved = differences.shares[:, :, None] * station[None]             # (D, nSt, 3)
+            for side, sign in ((0, -1.0), (1, 1.0)):
+                np.add.at(contact_rates, (slice(None), model.station_corners[:, side]),
+                          sign * moved)
         bending = differences.plank_rates(rates[:n])
         return (joint_rates, contact_rates, length_rates, *bending)
 

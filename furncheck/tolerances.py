@@ -152,6 +152,27 @@ JOINT_PART_CORE = 0.25
 """... the row off the plank's middle: beyond this share of its half width from its
 beam's axis (a spine rail along the middle of a top is within it)."""
 
+SUPPORT_STATION_LENGTH = 0.1
+"""m: elastic model: a plank that touches the floor or a wall along its beam (a board lying
+on the floor, a kick board standing on its long edge, a shelf's back edge against a wall:
+two of its corners on that support at the beam's two ends) is held by that support along
+its length, not at its corners alone: it gets a node at least about every this length of
+its beam and a contact on each such edge at every node between its corners
+(``elastic.support_stations``), unilateral and with friction like the corners.  What the
+floor holds it with is reported at its corners (``StaticsModel.corner_forces``: each
+station's force shared between the two corners of its edge by the lever rule, so the
+reported forces have the same sum and moment, and press and stay within their friction
+cones wherever the stations' do).  A tenth of a metre: a 12 mm MDF board on the floor
+spans about 100 mm between stations (a 100 kg person on a 100 mm batten there: about 7
+N/mm^2), and the load of a joint or a point load goes into the floor where it acts."""
+
+SUPPORT_STATION_DEPTHS = 4.0
+"""... or this many times the plank's depth across its support, where that is longer: a
+kick board 80 mm deep on edge gets a station about every 320 mm (between them it acts
+as a deep beam, its load carried to the stations in its plane; a 12 mm board lying flat
+every 100 mm), so that a design's nodes and contacts grow by little more than what
+changes its numbers."""
+
 SAG_SAMPLES = 31
 """Elastic model: points inside each beam element where the deflection is read for the sag
 and the moment for the stress (besides its ends and, for the stress, the peaks of its

@@ -66,9 +66,10 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
                                             _joint_line(design, joint)))
     contacts, anchors = [], []
     if statics.contact_forces is not None:
-        points = (model.contact_points / scale).tolist()
-        forces = model.world_forces(statics.contact_forces).tolist()
-        normals = statics.contact_forces[:, 2].tolist()
+        held = model.corner_forces(statics.contact_forces)     # the stations shared out
+        points = (model.contact_points[:model.n_corners] / scale).tolist()
+        forces = model.world_forces(held).tolist()
+        normals = held[:, 2].tolist()
         for row, (point, force) in enumerate(zip(points, forces)):
             contact = geometry.contacts[model.contacts[row]]
             if contact.anchor is None:

@@ -51,6 +51,17 @@ def whole_joints(monkeypatch: pytest.MonkeyPatch) -> None:
 
 
 @pytest.fixture
+def floor_at_corners(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The elastic model with the floor and the walls holding a plank at its corners
+    alone, as before support stations (``statics.stations``): a plank on its long edge
+    on the floor then spans between its end corners, as on two narrow feet.  For tests
+    whose premise (a beam simply supported at its ends, a plank bowed between its feet, a
+    case found on such a model) needs that and whose subject is another part of the
+    statics."""
+    monkeypatch.setattr(tol, "SUPPORT_STATION_LENGTH", math.inf)
+
+
+@pytest.fixture
 def checked_paths(monkeypatch: pytest.MonkeyPatch) -> list[str]:
     """``furncheck.check`` replaced by the fake checker of ``test_cli`` (the verdict comes
     from the file name: valid*, bad*, boom*, garbage*); returns the paths it checks, in

@@ -606,22 +606,25 @@ def test_an_added_part_that_needs_a_thicker_board_is_said_as_cut():
 
 def test_an_added_panel_covers_the_edge_of_a_plank_the_fix_makes_thicker():
     """designs/bench.yaml (elastic): a back panel over the edges of the seat and legs holds
-    it once the seat is a 36 mm board; the seat, whose underside holds the legs' ends,
-    grows upward (444 + 6 -> top face 474 mm), so the panel, drawn up to the 12 mm seat's
-    top face (450 mm), is lengthened to 474 mm: it still covers the whole edge, which now
-    bears on it over its 36 mm (a panel left at 450 would cover 12 mm of it, less than
-    the half a nail joint needs, and the fix was dropped).  The advice gives the panel
-    as cut."""
+    it once the seat is a 30 mm board; the seat, whose underside holds the legs' ends,
+    grows upward (444 - 6 + 30 -> top face 468 mm), so the panel, drawn up to the 12 mm
+    seat's top face (450 mm), is lengthened to 468 mm: it still covers the whole edge,
+    which now bears on it over its 30 mm (a panel left at 450 would cover 12 mm of it,
+    less than the half a nail joint needs, and the fix was dropped).  The panel stands on
+    its long edge on the floor, which holds it along its length, so a 12 mm board does
+    (held at its two end corners alone, as before support stations, it had to be 25 mm
+    and the seat 36).  The advice gives the panel as cut."""
     design = with_model(load_design(str(CATALOG / "bench.yaml")), "elastic")
     panel = next(fix for fix in fixes(design) if fix.rule == "back panel")
     back = panel.design.plank("back-1")
     seat = panel.design.plank("seat")
-    assert seat.thickness == pytest.approx(0.036)
+    assert seat.thickness == pytest.approx(0.030)
     top_of_seat = seat.center[2] + 0.5 * seat.thickness
-    assert top_of_seat == pytest.approx(0.474)
+    assert top_of_seat == pytest.approx(0.468)
     assert back.center[2] + 0.5 * back.width == pytest.approx(top_of_seat, abs=1e-9)
     assert back.center[2] - 0.5 * back.width == pytest.approx(0.0, abs=1e-9)
-    assert panel.advice.startswith("Add back panel back-1 (1200 x 474 x 25 mm) ")
+    assert back.thickness == pytest.approx(0.012)
+    assert panel.advice.startswith("Add back panel back-1 (1200 x 468 mm) ")
     assert check_design(panel.design).valid
 
 

@@ -193,8 +193,9 @@ loads: [{plank: shelf, mass: 15, at: [0, 0, 606]}]
 
 
 @pytest.mark.parametrize("turn", [90, 180, 270])
-def test_a_square_board_loaded_off_centre_turned_is_the_same_board(turn):
-    """A 600 x 600 board on the floor with 40 kg at (250, 60) mm: its four corners and no
+def test_a_square_board_loaded_off_centre_turned_is_the_same_board(turn, floor_at_corners):
+    """A 600 x 600 board held at its four corners (``floor_at_corners``: on four narrow
+    feet; the floor would hold it all over) with 40 kg at (250, 60) mm: its corners and no
     joint say nothing of which way it spans, so its beam runs along the side its load
     lies farthest out on (x, 250 mm from the centre), however the file turns it (it ran
     along the file's local x: 1.29 N/mm^2 as written, 4.09 turned 90 degrees)."""

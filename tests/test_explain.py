@@ -304,9 +304,12 @@ def test_plank_on_edge_bends_across_its_width():
     assert _bending_depth(design.plank("leg_l")) == ("thickness", pytest.approx(0.012))
 
 
-def test_an_end_panel_bowed_sideways_needs_a_thicker_panel_not_a_deeper_one():
+def test_an_end_panel_bowed_sideways_needs_a_thicker_panel_not_a_deeper_one(
+        floor_at_corners):
     """A woodworker's coffee table: 400 x 550 mm end panels on edge (their 550 mm level),
-    a 9 mm top between them, 75 kg sat on it: the top's sag spreads the ends, which bow
+    each held by the floor at its two bottom corners (``floor_at_corners``: on two narrow
+    feet; standing on the floor along its edge it is held there, and does not bow), a 9 mm
+    top between them, 75 kg sat on it: the top's sag spreads the ends, which bow
     4.08 mm sideways, across their 12 mm thickness (6.12 mm with creep against 550 / 400
     = 1.38 mm).  Sag goes with 1 / t^3: t' = 12 x (6.12 / 1.38)^(1/3) = 19.7 mm thick,
     not a panel 658 mm deep (the rail rule's reading of a plank on edge, for vertical

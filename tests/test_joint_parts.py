@@ -10,10 +10,12 @@ understate its sag).  Hand checks, with E, G and the nails' slip modulus K of th
 material (12 mm MDF: 3000 N/mm^2, 800 N/mm^2, 1200 N/mm per nail):
 
 * A T-beam: a flange F (1000 x 80 mm, flat) nailed every 20 mm along the top edge of a
-  web W (1000 x 96 mm, on edge) standing on the floor without friction (simply supported
-  at its ends), a spread load P on F.  F is carried by its joint alone, so statics fixes
-  the joint's wrench: force P + W_F down, no moment about the joint's middle.  The
-  nailed T bends as a mechanically jointed beam, Eurocode 5 (EN 1995-1-1) Annex B:
+  web W (1000 x 96 mm, on edge) standing on the floor without friction, held by it at
+  its end corners alone (``floor_at_corners``: as on two narrow feet, simply supported at
+  its ends; the floor would hold it along its length), a spread load P on F.  F is
+  carried by its joint alone, so statics fixes the joint's wrench: force P + W_F down,
+  no moment about the joint's middle.  The nailed T bends as a mechanically jointed
+  beam, Eurocode 5 (EN 1995-1-1) Annex B:
       gamma_F = 1 / (1 + pi^2 E A_F s / (K L^2)),   a_W = gamma_F A_F (h_F + h_W) / 2 /
       (gamma_F A_F + A_W),   a_F = (h_F + h_W) / 2 - a_W,
       (EI)_ef = E (I_F + gamma_F A_F a_F^2 + I_W + A_W a_W^2)
@@ -136,7 +138,7 @@ def _gamma_sag(design) -> tuple[float, float, float, float]:
     return composite(gamma), composite(0.0), composite(1.0), middle
 
 
-def test_a_nailed_t_beam_bends_as_eurocode_5_annex_b_says():
+def test_a_nailed_t_beam_bends_as_eurocode_5_annex_b_says(floor_at_corners):
     """The module docstring's T-beam: its row cut into 10 parts (1000 mm / 100 mm), the
     joint's wrench statics', and the web's sag within 2 % of the Annex B (gamma method)
     value: 1.367 mm, between the glued T's 1.20 and the web's alone 3.08."""
@@ -155,7 +157,7 @@ def test_a_nailed_t_beam_bends_as_eurocode_5_annex_b_says():
     assert web.sag / 1000.0 == pytest.approx(nailed, rel=0.02)
 
 
-def test_a_row_held_at_its_middle_alone_loads_the_web_there(whole_joints):
+def test_a_row_held_at_its_middle_alone_loads_the_web_there(whole_joints, floor_at_corners):
     """Every joint one spring (as before parts): the flange's whole load reaches the web at
     the joint's middle, P_F L^3 / 48 E I_W + P_F L / 4 k G A_W plus the web's own weight's
     sag (within 2 %), more than twice the nailed T's."""
@@ -275,7 +277,7 @@ def test_the_force_sensitivity_of_a_cut_joint_follows_its_parts_arms(dof_name):
     assert np.abs(rates - central).max() <= 1e-4 * scale, (rates, central)
 
 
-def test_the_shear_flow_of_a_nailed_t_beam_loads_its_end_nails():
+def test_the_shear_flow_of_a_nailed_t_beam_loads_its_end_nails(floor_at_corners):
     """The T-beam bends compositely because its nails carry the shear flow between
     flange and web: Eurocode 5 Annex B, F = gamma_F E A_F a_F s V / (EI)_ef per nail for
     the shear force V.  Near the supports V is largest; the end part (the 100 mm of row

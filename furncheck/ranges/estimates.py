@@ -208,13 +208,13 @@ def _margins(linear: Linearization, sens: Sensitivity):
     for p, s, p1, s1 in zip(pull, shear, pull_next, shear_next):
         yield -(p1 - p) / eps / pull_cap, 1.0 - p / pull_cap
         yield -(s1 - s) / eps / shear_cap, 1.0 - s / shear_cap
-    forces = linear.statics.contact_forces
+    forces = linear.model.corner_forces(linear.statics.contact_forces)
     weight = max(float(forces[:, 2].sum()), 1e-12)
     ties = linear.model.contact_anchored
     if linear.model.contact_frames is not None or ties is not None:
         applied = external_forces(linear.model, linear.case).reshape(-1, 6)[:, :3]
         weight = max(float(np.sqrt((applied * applied).sum(axis=1)).sum()), 1e-12)
-    for k in np.nonzero(linear.holding)[0]:
+    for k in np.nonzero(linear.holding[:linear.model.n_corners])[0]:
         if ties is not None and ties[k]:
             continue                    # an anchor's tie may pull
         yield sens.contact_forces[0][k, 2] / weight, forces[k, 2] / weight

@@ -78,6 +78,7 @@ class AssemblyDifferences:
     n_planks: int = 0
     base: PlankPart | None = None
     arms: np.ndarray | None = None      # (D, nS, 3) of the joint parts' arms (m), if any
+    shares: np.ndarray | None = None    # (D, nSt) of the support stations' shares, if any
 
     def plank_rates(self, dq: np.ndarray) -> tuple[np.ndarray, ...]:
         """(D, nP) each: d sag (m), d span (m), d stress (Pa) per DOF unit, from the
@@ -171,6 +172,8 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
         out.rest_maps = np.zeros((n_dofs, *model.rest_maps.shape))
     if model.part_arms is not None:
         out.arms = np.zeros((n_dofs, *model.part_arms.shape))
+    if model.station_shares is not None:
+        out.shares = np.zeros((n_dofs, len(model.station_shares)))
     geometry = model.geometry
     own_case = next(c for c in model.design.load_cases if c.name == case_name)
     whole = plank_part(model, own_case, law.holding)
@@ -199,6 +202,8 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
             out.rest_maps[side.column] += side.weight * stepped.rest_maps
         if stepped.part_arms is not None:
             out.arms[side.column] += side.weight * stepped.part_arms
+        if stepped.station_shares is not None:
+            out.shares[side.column] += side.weight * stepped.station_shares
         out.lengths[side.column] += side.weight * np.array(
             [stepped_geometry.joints[j].length for j in model.joints])
         out.sides.append((side.column, side.weight, side.offset, part, case))

@@ -44,10 +44,17 @@ from furncheck.statics.offsets import (
     point_maps,
     rest_maps,
 )
+from furncheck.statics.stations import (
+    station_places,
+    station_segments,
+    support_edges,
+    support_stations,
+)
 from furncheck.statics.templated import TOPOLOGY_CACHE, Attachments, built_on
 
 
-def _plank_nodes(k: int, half: float, attachments: list[tuple[float, tuple]]) -> list[tuple]:
+def _plank_nodes(k: int, half: float, attachments: list[tuple[float, tuple]],
+                 stations: int = 0) -> list[tuple]:
     """The nodes of local plank k, a beam of half length ``half``, in order along it, each
     as its origin: k and the attachment keys it serves (``attachments``: (s, key),
     s the attachment's position along the axis; those within NODE_MERGE of each other, or
@@ -58,7 +65,10 @@ def _plank_nodes(k: int, half: float, attachments: list[tuple[float, tuple]]) ->
     of BEAM_SEGMENTS where no node is within a quarter of its step (fraction 0 .. 1 from
     the -e1 end).  Consecutive nodes are apart (a node's mean lies within its group, and
     each group starts past the last one's attachments), though they may be nearer than
-    the merge distance where a group's attachments spread over it."""
+    the merge distance where a group's attachments spread over it.  ``stations``: for a
+    plank the floor or a wall holds along its length, the parts of its grid of support
+    stations (``stations.station_segments``), ('station', k, fraction) where no node is
+    within a quarter of its step, placed before the grid of BEAM_SEGMENTS."""
     step = 2.0 * half / tol.BEAM_SEGMENTS
     merge = min(tol.NODE_MERGE, 0.1 * step) + tol.NODE_MERGE_ROUNDOFF
     marks = [(-half, ("end", k, -1)), (0.0, ("centre", k)), (half, ("end", k, 1))]
@@ -73,10 +83,13 @@ def _plank_nodes(k: int, half: float, attachments: list[tuple[float, tuple]]) ->
             groups.append([s, [key], [s]])
     nodes = [(sum(positions) / len(positions), tuple(keys)) for _, keys, positions in groups]
     placed = [s for s, _ in nodes]
-    for i in range(1, tol.BEAM_SEGMENTS):
-        s = -half + i * step
-        if min(abs(p - s) for p in placed) > 0.25 * step:
-            nodes.append((s, (("grid", k, i / tol.BEAM_SEGMENTS),)))
+    for kind, parts in (("station", stations), ("grid", tol.BEAM_SEGMENTS)):
+        spacing = 2.0 * half / max(parts, 1)
+        for i in range(1, parts):
+            s = -half + i * spacing
+            if min(abs(p - s) for p in placed) > 0.25 * spacing:
+                nodes.append((s, ((kind, k, i / parts),)))
+                placed.append(s)
     return [(k, *origin) for _, origin in sorted(nodes, key=lambda item: item[0])]
 
 
@@ -213,7 +226,8 @@ class _NodeLayout:
                 key_plank.append(owners[row] if row >= 0 else plank)
                 key_row.append(row)
                 key_scale.append(float(key[2]) if key[0] == "end" else
-                                 2.0 * key[2] - 1.0 if key[0] == "grid" else 0.0)
+                                 2.0 * key[2] - 1.0 if key[0] in ("grid", "station")
+                                 else 0.0)
                 if key[0] == "centre":
                     centre_node[plank] = node
         key_node = np.array(key_node, dtype=int)
@@ -281,6 +295,7 @@ def build_elastic_model(design: Design, geometry: Geometry,
         keys.append(("contact", row))
         owners.append(local[design.plank_index[geometry.contacts[c].plank]])
         points.append(geometry.contacts[c].point)
+    n_corners = len(contacts)
     for row, c in enumerate(contacts):              # a resting corner's other plank
         if geometry.contacts[c].on is not None:
             keys.append(("rest", row))
@@ -296,19 +311,27 @@ def build_elastic_model(design: Design, geometry: Geometry,
     centres = np.array([p.center_array for p in plank_list], dtype=float).reshape(-1, 3)
     axes = np.array([frame[:, 0] for frame in frames], dtype=float).reshape(-1, 3)
     owner_array = np.array(owners, dtype=int)
-    along = ((np.array(points, dtype=float).reshape(-1, 3) - centres[owner_array])
-             * axes[owner_array]).sum(axis=1)
-
+    point_array = np.array(points, dtype=float).reshape(-1, 3)
+    along = ((point_array - centres[owner_array]) * axes[owner_array]).sum(axis=1)
+    n_sides = 2 * len(spring_joint)
+    corner_points = point_array[n_sides:n_sides + n_corners]
     if template is None:
+        edges, depths = support_edges(design, geometry, contacts,
+                                      owner_array[n_sides:n_sides + n_corners],
+                                      corner_points, plank_list, axes, halves)
+        segments = station_segments(edges, halves, depths)
         attachments: list[list] = [[] for _ in plank_list]
         for key, s, owner in zip(keys, along.tolist(), owners):
             attachments[owner].append((s, key))
         origins = tuple(origin for k in range(len(plank_list))
-                        for origin in _plank_nodes(k, float(halves[k]), attachments[k]))
+                        for origin in _plank_nodes(k, float(halves[k]), attachments[k],
+                                                   segments.get(k, 0)))
         layout = _NodeLayout.of(origins, keys, owners)
+        stations = support_stations(edges, origins)
     else:
         origins = template.beams.origins
         layout = template.plank_cache["node_layout"]
+        stations = template.plank_cache["support_stations"]
 
     node_plank = layout.node_plank
     node_s = layout.positions(along, halves)
@@ -317,17 +340,20 @@ def build_elastic_model(design: Design, geometry: Geometry,
                    [design.material_of(p) for p in plank_list], origins, crosswise)
 
     weights = read_only(weights_per_length(design, plank_list, beams))
-    n_sides = 2 * len(spring_joint)
     joint_nodes = layout.row_node[:n_sides].reshape(-1, 2)
     joint_blocks = joint_deviation_blocks(spring_points, node_points[joint_nodes])
     stiffness = nail_row_parts(joint_list, part_counts, material.nail_slip,
                                material.nail_withdrawal)[0]
     parted = bool((np.asarray(part_counts) > 1).any())
 
-    owner = owner_array[n_sides:n_sides + len(contacts)]
-    contact_points = np.array([geometry.contacts[c].point for c in contacts],
-                              dtype=float).reshape(-1, 3)
-    contact_node = layout.row_node[n_sides:n_sides + len(contacts)]
+    station_points, shares = station_places(stations, corner_points, node_s, node_plank,
+                                            centres, axes)
+    owner = np.concatenate([owner_array[n_sides:n_sides + n_corners],
+                            node_plank[stations[:, 2]]])
+    contact_points = np.vstack([corner_points, station_points])
+    contact_node = np.concatenate([layout.row_node[n_sides:n_sides + n_corners],
+                                   stations[:, 2]])
+    held = [*contacts, *(contacts[a] for a in stations[:, 0].tolist())]
     load_rows = {key[1:]: row for row, key in enumerate(keys) if key[0] == "load"}
     load_nodes = {(case.name, li): int(layout.row_node[load_rows[ci, li]])
                   if (ci, li) in load_rows else int(layout.centre_node[k])
@@ -335,20 +361,20 @@ def build_elastic_model(design: Design, geometry: Geometry,
                   for li, load in enumerate(case.loads)
                   if (k := local.get(design.plank_index[load.plank])) is not None}
     component_of = {p: c for c, comp in enumerate(components) for p in comp}
-    frames = contact_frames(design, geometry, contacts)
+    frames = contact_frames(design, geometry, held)
     rest_node = None
     if any(key[0] == "rest" for key in keys):
-        rest_node = np.full(len(contacts), -1)
+        rest_node = np.full(len(held), -1)
         for index, key in enumerate(keys):
             if key[0] == "rest":
                 rest_node[key[1]] = layout.row_node[index]
     model = StaticsModel(
         design=design, geometry=geometry, planks=tuple(planks_used), joints=tuple(joints),
-        contacts=tuple(contacts), node_plank=node_plank, node_points=node_points,
+        contacts=tuple(held), node_plank=node_plank, node_points=node_points,
         joint_nodes=joint_nodes, joint_blocks=joint_blocks, joint_stiffness=stiffness,
         contact_maps=in_contact_frames(
             point_maps(contact_points - node_points[contact_node].reshape(-1, 3)), frames),
-        contact_frames=frames, contact_anchored=anchored_contacts(geometry, contacts),
+        contact_frames=frames, contact_anchored=anchored_contacts(geometry, held),
         rest_node=rest_node,
         rest_maps=rest_maps(rest_node, contact_points, node_points, frames),
         contact_node=contact_node, contact_plank=owner, contact_points=contact_points,
@@ -359,8 +385,11 @@ def build_elastic_model(design: Design, geometry: Geometry,
         beams=beams,
         nodal_weight=nodal_loads(beams, weights, len(node_plank)),
         load_nodes=load_nodes,
-        joint_parts=spring_joint if parted else None, part_arms=arms if parted else None)
+        joint_parts=spring_joint if parted else None, part_arms=arms if parted else None,
+        station_corners=stations[:, :2] if len(stations) else None,
+        station_shares=shares if len(stations) else None)
     model.plank_cache["node_layout"] = layout
+    model.plank_cache["support_stations"] = stations
     model.plank_cache["joint_part_counts"] = part_counts
     model.plank_cache["weights_per_length"] = weights
     model.plank_cache["attachments"] = Attachments(

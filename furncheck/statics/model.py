@@ -69,6 +69,13 @@ class StaticsModel:
                the first plank and against it on the second; both None without rests
     contact_node, contact_plank : (nK,) local node and local plank of each contact
     contact_component : (nK,) component number of each contact
+    station_corners, station_shares : (nSt, 2) contact rows and (nSt,) shares t of the
+               elastic model's support stations (``statics.stations``: a plank the floor
+               or a wall holds along its length), the last nSt of the nK contacts, each
+               on the line between its edge's two corners (t = 0 at the first); None
+               without them.  ``contacts`` lists a station under its first corner's
+               geometry contact (its plank, support and frame); ``corner_forces`` shares
+               the stations' forces out to the corners, which is what is reported
     contact_stiffness : N/m, the contacts' normal and anchor springs
     anchor_stiffness : N/m, the springs of the anchors' ties (``contact_springs``)
     components : local plank numbers of each grounded component (``component_nodes``:
@@ -104,6 +111,8 @@ class StaticsModel:
     rest_maps: np.ndarray | None = None
     joint_parts: np.ndarray | None = None
     part_arms: np.ndarray | None = None
+    station_corners: np.ndarray | None = None
+    station_shares: np.ndarray | None = None
 
     @property
     def n_dof(self) -> int:
@@ -161,10 +170,35 @@ class StaticsModel:
                                (len(self.contacts),))
 
     def world_forces(self, forces: np.ndarray) -> np.ndarray:
-        """(nK, 3) N: contact forces given in the contacts' frames, in the world frame."""
+        """(m, 3) N: contact forces given in the contacts' frames, in the world frame: of
+        the first m contacts (all nK, or the corners' of ``corner_forces``)."""
         if self.contact_frames is None:
             return forces
-        return np.einsum("kji,kj->ki", self.contact_frames, forces)
+        return np.einsum("kji,kj->ki", self.contact_frames[:len(forces)], forces)
+
+    @property
+    def n_corners(self) -> int:
+        """The contacts that are the geometry's (its corners, anchors and resting
+        corners): all but the support stations, which follow them."""
+        stations = 0 if self.station_corners is None else len(self.station_corners)
+        return len(self.contacts) - stations
+
+    def corner_forces(self, forces: np.ndarray) -> np.ndarray:
+        """(..., n_corners, 3) contact forces (or their rates) of the geometry's contacts
+        from (..., nK, 3) of the model's, in the contacts' frames: each corner's own, plus
+        (1 - t) of each support station on its edge at its first corner and t at its
+        second (the lever rule: the same sum and moment; a station's frame is its
+        corners').  The forces themselves where there are no stations."""
+        if self.station_corners is None:
+            return forces
+        n = self.n_corners
+        out = forces[..., :n, :].copy()
+        station = forces[..., n:, :]
+        shares = self.station_shares[:, None]
+        for side, weight in ((0, 1.0 - shares), (1, shares)):
+            rows = self.station_corners[:, side]
+            np.add.at(np.moveaxis(out, -2, 0), rows, np.moveaxis(station * weight, -2, 0))
+        return out
 
     def contact_displacements(self, q: np.ndarray) -> np.ndarray:
         """(nK, 3) m: each contact point's displacement for node displacements q (6 nN,),

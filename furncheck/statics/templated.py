@@ -42,6 +42,7 @@ from furncheck.statics.offsets import (
     point_maps,
     rest_maps,
 )
+from furncheck.statics.stations import station_places
 
 TOPOLOGY_CACHE = ("carrying", "lying", "supports")
 """The entries of ``StaticsModel.plank_cache`` (filled by ``bending``) that depend on which
@@ -121,8 +122,9 @@ class _Placed:
     node_points: np.ndarray
     joint_points: np.ndarray       # the joints' springs' points (``beams.part_points``)
     part_arms: np.ndarray
-    contact_points: np.ndarray
+    contact_points: np.ndarray     # the corners', then the support stations'
     materials: list
+    station_shares: np.ndarray | None
 
 
 def _placed_on(design: Design, geometry: Geometry, template: StaticsModel) -> _Placed:
@@ -137,7 +139,7 @@ def _placed_on(design: Design, geometry: Geometry, template: StaticsModel) -> _P
                        for p, c in zip(plank_list, crosswise)])
     joint_points, arms = part_points([geometry.joints[j] for j in joints],
                                      template.plank_cache["joint_part_counts"])
-    contact_points = [geometry.contacts[c].point for c in contacts]
+    contact_points = [geometry.contacts[c].point for c in contacts[:template.n_corners]]
     points = [point for point in joint_points for _ in (0, 1)] + contact_points \
         + [contact_points[row] for row in attachments.rest_rows] \
         + [design.load_cases[ci].loads[li].point for ci, li in attachments.loads]
@@ -150,10 +152,13 @@ def _placed_on(design: Design, geometry: Geometry, template: StaticsModel) -> _P
     node_plank = layout.node_plank
     node_s = layout.positions(along, halves)
     node_points = (centres[node_plank] + node_s[:, None] * axes[node_plank]).reshape(-1, 3)
+    corners = np.array(contact_points, dtype=float).reshape(-1, 3)
+    station_points, shares = station_places(template.plank_cache["support_stations"],
+                                            corners, node_s, node_plank, centres, axes)
     return _Placed(design, geometry, plank_list, frames, halves, node_s, node_points,
-                   joint_points, arms,
-                   np.array(contact_points, dtype=float).reshape(-1, 3),
-                   [design.material_of(p) for p in plank_list])
+                   joint_points, arms, np.vstack([corners, station_points]),
+                   [design.material_of(p) for p in plank_list],
+                   shares if template.station_shares is not None else None)
 
 
 def _finished_on(placed: list[_Placed], template: StaticsModel) -> list[StaticsModel]:
@@ -224,9 +229,11 @@ def _finished_on(placed: list[_Placed], template: StaticsModel) -> list[StaticsM
             anchor_stiffness=tol.ANCHOR_STIFFNESS,
             beams=beams[k], nodal_weight=nodal_weight, load_nodes=template.load_nodes,
             joint_parts=template.joint_parts,
-            part_arms=None if template.joint_parts is None else p.part_arms)
+            part_arms=None if template.joint_parts is None else p.part_arms,
+            station_corners=template.station_corners, station_shares=p.station_shares)
         model.__dict__["joint_compliance"] = compliance[k]     # its cached property's value
-        for key in ("node_layout", "attachments", "joint_part_counts", *TOPOLOGY_CACHE):
+        for key in ("node_layout", "attachments", "joint_part_counts", "support_stations",
+                    *TOPOLOGY_CACHE):
             if key in template.plank_cache:
                 model.plank_cache[key] = template.plank_cache[key]
         model.plank_cache["weights_per_length"] = weights[k]
