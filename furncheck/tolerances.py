@@ -158,7 +158,7 @@ on the floor, a kick board standing on its long edge, a shelf's back edge agains
 two of its corners on that support at the beam's two ends) is held by that support along
 its length, not at its corners alone: it gets a node at least about every this length of
 its beam and a contact on each such edge at every node between its corners
-(``elastic.support_stations``), unilateral and with friction like the corners.  What the
+(``stations.support_stations``), unilateral and with friction like the corners.  What the
 floor holds it with is reported at its corners (``StaticsModel.corner_forces``: each
 station's force shared between the two corners of its edge by the lever rule, so the
 reported forces have the same sum and moment, and press and stay within their friction

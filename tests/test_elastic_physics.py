@@ -673,3 +673,39 @@ def test_a_plank_nailed_along_its_length_is_told_overstated():
                                          / "table.yaml")))
     tops = [v for v in table.violations if v.kind == "sagging" and v.where == "top"]
     assert tops and not any("nailed along" in v.message for v in tops)
+
+
+LONG_BENCH = """furncheck: 1
+name: long-bench
+planks:
+  - {id: seat, size: [1800, 350], center: [0, 0, 441], thickness: 18}
+  - {id: leg_l, size: [432, 350], center: [-850, 0, 216], rotation: [0, -90, 0]}
+  - {id: leg_m, size: [432, 350], center: [0, 0, 216], rotation: [0, -90, 0]}
+  - {id: leg_r, size: [432, 350], center: [850, 0, 216], rotation: [0, -90, 0]}
+loads:
+  - {plank: seat, mass: 80, at: [-425, 0, 450]}
+"""
+
+
+def test_a_leg_lifted_off_the_floor_carries_nothing():
+    """A woodworker's 1800 mm bench on three panels (x = -850, 0, 850), 80 kg in the middle
+    of its left bay: it see-saws on its middle panel and its right panel lifts off the
+    floor (its contacts carry nothing), hanging from the seat.  Contract 3a measures the
+    seat's sag from the line through its outermost supports that *carry* it: the left and
+    middle panels' joints, 850 mm apart (it read 20.1 mm over 1700 mm, from the lifted
+    panel).  By hand, P = 80 g = 784.8 N at the middle of that span, EI = 3000 x 350 x
+    18^3 / 12 = 5.103e8 N mm^2: between the fixed-ended P L^3 / 192 EI = 4.92 mm and the
+    pinned P L^3 / 48 EI = 19.68 mm plus its own weight's 5 w L^4 / 384 EI = 0.62 mm (the
+    nailed ends hold it partly; the overhang's weight lifts it a little)."""
+    report = check_design(parse_design(LONG_BENCH, "bench.yaml", "yaml"))
+    case = report.cases[0]
+    lifted = [c.force[2] for c in case.contacts if c.plank == "leg_r"]
+    assert lifted and max(abs(f) for f in lifted) < 1e-6 * 784.8
+    seat = next(p for p in case.planks if p.id == "seat")
+    e_i = 3000.0 * 350.0 * 18.0 ** 3 / 12.0
+    p_l3 = 80.0 * G * 850.0 ** 3 / e_i
+    weight = 350.0 * 18.0 * 750e-9 * G                  # N/mm
+    own = 5.0 * weight * 850.0 ** 4 / (384.0 * e_i)
+    assert p_l3 / 192.0 < seat.sag < p_l3 / 48.0 + own
+    span = next(v for v in report.violations if v.kind == "sagging" and v.where == "seat")
+    assert "over a 850 mm span" in span.message

@@ -19,27 +19,47 @@ import numpy as np
 from furncheck.statics.model import StaticsModel
 
 
-def plank_supports(model: StaticsModel) -> tuple:
+def plank_supports(model: StaticsModel, grounded: frozenset[int] | None = None) -> tuple:
     """(the nodes where a joint carries its plank (``carrying_neighbours``), whether each
     plank's sag is read (not lying on the floor, ``lying_on_floor``), where resting joints
     carry either plank (``resting_supports``)): which planks are
     jointed and which contacts stand decide them, so they are kept per model and shared
-    by the models built on it (``templated.TOPOLOGY_CACHE``)."""
+    by the models built on it (``templated.TOPOLOGY_CACHE``).  ``grounded``: the local
+    planks whose contacts hold in a case, where that is fewer than all that have
+    contacts (a bench that see-saws, one end leg lifted off the floor: that leg hangs
+    from the seat and carries nothing); None for all."""
     cached = model.plank_cache.get("supports")
-    if cached is not None:
+    if cached is None:
+        cached = _joint_supports(model, carrying_neighbours(model)), None
+        measured = np.ones(len(model.planks), dtype=bool)
+        measured[sorted(lying_on_floor(model))] = False
+        cached = cached[0], measured, resting_supports(model)
+        model.plank_cache["supports"] = cached
+    if grounded is None or grounded == _all_grounded(model):
         return cached
-    carried_by = carrying_neighbours(model)
+    lifted = model.plank_cache.setdefault("supports_lifted", {})
+    if grounded not in lifted:
+        pairs = model.node_plank[model.joint_nodes].reshape(-1, 2).tolist()
+        lifted[grounded] = (_joint_supports(model, carriers(len(model.planks), pairs,
+                                                            set(grounded))),
+                            *cached[1:])
+    return lifted[grounded]
+
+
+def _all_grounded(model: StaticsModel) -> frozenset[int]:
+    """The local planks with contacts (what ``carrying_neighbours`` takes as grounded)."""
+    return frozenset(int(k) for k in model.contact_plank)
+
+
+def _joint_supports(model: StaticsModel, carried_by: list[set[int]]) -> np.ndarray:
+    """The nodes where a joint carries its plank, given each plank's carriers."""
     joint_supports = []
     for nodes in model.joint_nodes:
         a, b = (int(model.node_plank[node]) for node in nodes)
         for node, plank, other in ((nodes[0], a, b), (nodes[1], b, a)):
             if other in carried_by[plank]:
                 joint_supports.append(int(node))
-    measured = np.ones(len(model.planks), dtype=bool)
-    measured[sorted(lying_on_floor(model))] = False
-    supports = np.array(joint_supports, dtype=int), measured, resting_supports(model)
-    model.plank_cache["supports"] = supports
-    return supports
+    return np.array(joint_supports, dtype=int)
 
 
 END_ON_COSINE = 0.7
@@ -93,11 +113,14 @@ def outermost_supports(model: StaticsModel, holding: np.ndarray | None
     """(low, high) per local plank (nP,) int: its carrying support nearest its -e1 end and
     nearest its +e1 end (nodes where a joint carries it, ``carrying_neighbours``, a
     holding contact stands, or a holding resting joint carries it, ``resting_supports``),
-    -1 for a plank with none or lying on the floor."""
+    -1 for a plank with none or lying on the floor.  A joint carries a plank through
+    planks that reach the ground by contacts that hold in the case (``holding``, None:
+    all): a leg lifted off the floor carries nothing."""
     beams = model.beams
-    joint_supports, measured, (corner_carried, face_carried) = plank_supports(model)
     carrying = np.ones(len(model.contacts), dtype=bool) if holding is None \
         else np.asarray(holding, dtype=bool)
+    joint_supports, measured, (corner_carried, face_carried) = plank_supports(
+        model, frozenset(int(k) for k in model.contact_plank[carrying]))
     on_ground = carrying.copy()
     on_ground[model.rest_rows] = False
     nodes = [model.contact_node[on_ground]]

@@ -135,8 +135,12 @@ def _first_valid(margin, predicted: float, start: float, aim: float = math.inf,
     FIRST_PROBE's overshoot of the prediction (its near edge) steps over, and every probe
     further out cuts the plank into the floor.  A valid aim comes back with that first
     probe as a third item, (step, margin): invalid, beyond the valid one (``line_search``
-    brackets the upper end with it).  ``probed``: a list to which every (step, margin)
-    probed is added."""
+    brackets the upper end with it).  So does the predicted step itself, tried where the
+    first probe fails with a finite margin: the window may end between the prediction
+    and its overshoot (a stool's leg moved toward the other until the stool balances on
+    it, where that leg bends as a cantilever: valid to 176 mm, predicted 169, first
+    probed at 177), and probes further out would only step away from it.  ``probed``: a
+    list to which every (step, margin) probed is added."""
     previous = (0.0, start)
     step = min(predicted * FIRST_PROBE, MAX_STEP)
     probed = [] if probed is None else probed
@@ -149,6 +153,11 @@ def _first_valid(margin, predicted: float, start: float, aim: float = math.inf,
             aimed = margin(aim)
             if aimed >= 0.0:
                 return previous, (aim, aimed), (step, value)
+        if probe == 0 and np.isfinite(value) and predicted < step:
+            at = margin(predicted)      # the overshoot may have stepped past the window
+            probed.append((predicted, at))
+            if at >= 0.0:
+                return previous, (predicted, at), (step, value)
         if step >= MAX_STEP:
             return None
         growth = GROWTH[1]
