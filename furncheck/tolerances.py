@@ -152,25 +152,30 @@ JOINT_PART_CORE = 0.25
 """... the row off the plank's middle: beyond this share of its half width from its
 beam's axis (a spine rail along the middle of a top is within it)."""
 
-SUPPORT_STATION_LENGTH = 0.1
+SUPPORT_STATION_LENGTH = 0.25
 """m: elastic model: a plank that touches the floor or a wall along its beam (a board lying
 on the floor, a kick board standing on its long edge, a shelf's back edge against a wall:
 two of its corners on that support at the beam's two ends) is held by that support along
-its length, not at its corners alone: it gets a node at least about every this length of
-its beam and a contact on each such edge at every node between its corners
-(``stations.support_stations``), unilateral and with friction like the corners.  What the
-floor holds it with is reported at its corners (``StaticsModel.corner_forces``: each
-station's force shared between the two corners of its edge by the lever rule, so the
-reported forces have the same sum and moment, and press and stay within their friction
-cones wherever the stations' do).  A tenth of a metre: a 12 mm MDF board on the floor
-spans about 100 mm between stations (a 100 kg person on a 100 mm batten there: about 7
-N/mm^2), and the load of a joint or a point load goes into the floor where it acts."""
+its length, not at its corners alone: each such edge gets a contact at every node of the
+beam between its corners, where joints and loads act and at its centre, and at a grid of
+nodes about this length apart (``stations.support_stations``), unilateral and with
+friction like the corners.  What the support holds it with is reported at its corners
+(``StaticsModel.corner_forces``: each station's force shared between the two corners of
+its edge by the lever rule, so the reported forces have the same sum and moment, and
+press and stay within their friction cones wherever the stations' do).  A quarter of a
+metre: a point load or a joint has a station under it, so what spans between stations is
+the plank's own weight and spread loads (a 300 x 12 mm MDF board with 100 kg of books
+spread on a metre of it sags about 0.08 mm between stations 250 mm apart, w L^4 / 384 EI
+for a span held on both sides), and a board on the floor adds
+a node and two contacts per 250 mm; a finer grid changes its numbers by little more than
+it costs the friction phase (at 100 mm, the Table-1 9-plank design's bottom board had
+three stations, and its elastic suggestion step took 78 ms against 63)."""
 
 SUPPORT_STATION_DEPTHS = 4.0
 """... or this many times the plank's depth across its support, where that is longer: a
 kick board 80 mm deep on edge gets a station about every 320 mm (between them it acts
 as a deep beam, its load carried to the stations in its plane; a 12 mm board lying flat
-every 100 mm), so that a design's nodes and contacts grow by little more than what
+every 250 mm), so that a design's nodes and contacts grow by little more than what
 changes its numbers."""
 
 SAG_SAMPLES = 31

@@ -32,11 +32,9 @@ def support_edges(design: Design, geometry: Geometry, contacts: list[int],
     ``points`` (nK, 3) m their points).  A plank's corners on one support (not an
     anchor's tie or a resting joint's corner) make edges where they lie at both ends of
     its beam (within the design's tolerance of its ends, half lengths ``halves``,
-    directions ``axes``), the beam longer
-    than 1.5 SUPPORT_STATION_LENGTH (a shorter one gets no station between them); each
-    corner at the -e1 end is paired with the nearest one across the beam at the +e1
-    end.  Also (nE,) m: each edge's plank's depth across its support (its extent along
-    the support's normal: up for the floor, a wall's normal)."""
+    directions ``axes``); each corner at the -e1 end is paired with the nearest one
+    across the beam at the +e1 end.  Also (nE,) m: each edge's plank's depth across its
+    support (its extent along the support's normal: up for the floor, a wall's normal)."""
     tolerance = design.tolerance
     groups: dict[tuple, list[int]] = {}
     for row, c in enumerate(contacts):
@@ -46,7 +44,7 @@ def support_edges(design: Design, geometry: Geometry, contacts: list[int],
             groups.setdefault(key, []).append(row)
     edges, depths = [], []
     for (k, wall), rows in sorted(groups.items()):
-        if 2.0 * halves[k] < 1.5 * tol.SUPPORT_STATION_LENGTH or len(rows) < 2:
+        if len(rows) < 2:
             continue
         normal = np.array([0.0, 0.0, 1.0]) if wall < 0 else \
             np.asarray(design.walls[wall].normal, dtype=float)
