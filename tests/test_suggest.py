@@ -349,7 +349,7 @@ def test_the_first_probe_falls_back_on_the_aim(aim, found, tried):
     else:
         below, first, beyond = result
         assert below == (0.0, -math.inf) and first == (found, 1.0)
-        assert beyond == (pytest.approx(0.098175), -math.inf)
+        assert beyond == (pytest.approx(0.098175), -math.inf, True)     # a window
 
 
 def test_a_finite_first_probe_never_asks_for_the_aim():
@@ -365,6 +365,32 @@ def test_a_finite_first_probe_never_asks_for_the_aim():
 
     below, first = _first_valid(margin, 0.0935, -0.0935, 0.094)
     assert 0.094 not in calls and first[1] >= 0.0 and below[1] < 0.0
+
+
+def test_a_first_probe_past_the_valid_interval_falls_back_on_the_prediction():
+    """The margin valid on [0.09, 0.1] only (a stool's leg moved toward the other, valid
+    until the stool balances on that leg, where the leg bends as a cantilever: beyond, a
+    finite margin), predicted at 0.097: the first probe, 1.05 x 0.097 = 0.10185, is past
+    the interval; the prediction itself is probed next, valid, and comes back with that
+    probe as the bracket's invalid end, (step, margin, False): no geometric window, so
+    ``line_search`` closes it to its usual resolution.  Where the prediction fails too,
+    the search goes on outward as before, and gives up where the margin falls."""
+    from furncheck.suggest.line_search import _first_valid
+
+    def margin(step: float) -> float:
+        calls.append(step)
+        return 0.1 - step if step >= 0.09 else step - 0.09
+
+    calls: list = []
+    below, first, beyond = _first_valid(margin, 0.097, -0.09)
+    assert calls == [pytest.approx(0.10185), 0.097]
+    assert below == (0.0, -0.09) and first == (0.097, pytest.approx(0.003))
+    assert beyond == (pytest.approx(0.10185), pytest.approx(-0.00185), False)
+
+    calls = []
+    result = _first_valid(margin, 0.095 / 1.05 * 1.2, -0.09)    # first probe at 0.114
+    assert calls[:2] == [pytest.approx(0.114), pytest.approx(0.095 / 1.05 * 1.2)]
+    assert len(calls) == 3 and calls[2] > 0.114 and result is None
 
 
 STOOL_LEG_CUT_TOO_LONG = """\

@@ -108,11 +108,12 @@ def line_search(editor: Editor, dofs: tuple[Dof, ...], candidate: Candidate,
             candidate.enter * PROBE_BELOW < first[0]:
         guess = (candidate.enter * PROBE_BELOW, margin(candidate.enter * PROBE_BELOW))
         below, first = (below, guess) if guess[1] >= 0.0 else (guess, first)
-    if beyond:                  # the aim's window: the probe past it closes the bracket
-        fine = _tolerance_step(editor, dofs, direction)
+    if beyond:                  # the probe past the valid one closes the bracket
+        *upper, window = beyond[0]
+        fine = _tolerance_step(editor, dofs, direction) if window else math.inf
         low = _boundary(margin, first, below, min(LOWER_RESOLUTION, fine / first[0]))
         resolution = min(max(UPPER_RESOLUTION * low[0], MIN_RESOLUTION), fine)
-        return Interval(low[0], _boundary(margin, first, beyond[0], resolution)[0])
+        return Interval(low[0], _boundary(margin, first, tuple(upper), resolution)[0])
     low = _boundary(margin, first, below, LOWER_RESOLUTION)
     resolution = max(UPPER_RESOLUTION * low[0], MIN_RESOLUTION)
     reach = _geometric_reach(editor, dofs, direction, low[0], max(first[0], low[0] + resolution))
@@ -134,13 +135,15 @@ def _first_valid(margin, predicted: float, start: float, aim: float = math.inf,
     floor stands on it when lowered by 93.5 to 94.5 mm, tolerance 0.5 mm), a window that
     FIRST_PROBE's overshoot of the prediction (its near edge) steps over, and every probe
     further out cuts the plank into the floor.  A valid aim comes back with that first
-    probe as a third item, (step, margin): invalid, beyond the valid one (``line_search``
-    brackets the upper end with it).  So does the predicted step itself, tried where the
-    first probe fails with a finite margin: the window may end between the prediction
-    and its overshoot (a stool's leg moved toward the other until the stool balances on
-    it, where that leg bends as a cantilever: valid to 176 mm, predicted 169, first
-    probed at 177), and probes further out would only step away from it.  ``probed``: a
-    list to which every (step, margin) probed is added."""
+    probe as a third item, (step, margin, True): invalid, beyond the valid one
+    (``line_search`` brackets the upper end with it, to the window's resolution).  So
+    does the predicted step itself, tried where the first probe fails with a finite
+    margin, with (step, margin, False) (bracketed to the usual resolution): the valid
+    interval may end between the prediction and its overshoot (a stool's leg moved
+    toward the other until the stool balances on it, where that leg bends as a
+    cantilever: valid to 176 mm, predicted 169, first probed at 177), and probes further
+    out would only step away from it.  ``probed``: a list to which every (step, margin)
+    probed is added."""
     previous = (0.0, start)
     step = min(predicted * FIRST_PROBE, MAX_STEP)
     probed = [] if probed is None else probed
@@ -152,12 +155,12 @@ def _first_valid(margin, predicted: float, start: float, aim: float = math.inf,
         if probe == 0 and value == -math.inf and predicted <= aim < step:
             aimed = margin(aim)
             if aimed >= 0.0:
-                return previous, (aim, aimed), (step, value)
+                return previous, (aim, aimed), (step, value, True)
         if probe == 0 and np.isfinite(value) and predicted < step:
             at = margin(predicted)      # the overshoot may have stepped past the window
             probed.append((predicted, at))
             if at >= 0.0:
-                return previous, (predicted, at), (step, value)
+                return previous, (predicted, at), (step, value, False)
         if step >= MAX_STEP:
             return None
         growth = GROWTH[1]
