@@ -30,10 +30,10 @@ def plank_supports(model: StaticsModel, grounded: frozenset[int] | None = None) 
     from the seat and carries nothing); None for all."""
     cached = model.plank_cache.get("supports")
     if cached is None:
-        cached = _joint_supports(model, carrying_neighbours(model)), None
         measured = np.ones(len(model.planks), dtype=bool)
         measured[sorted(lying_on_floor(model))] = False
-        cached = cached[0], measured, resting_supports(model)
+        cached = (_joint_supports(model, carrying_neighbours(model)), measured,
+                  resting_supports(model))
         model.plank_cache["supports"] = cached
     if grounded is None or grounded == _all_grounded(model):
         return cached
