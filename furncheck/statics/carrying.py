@@ -35,20 +35,20 @@ def plank_supports(model: StaticsModel, grounded: frozenset[int] | None = None) 
         cached = (_joint_supports(model, carrying_neighbours(model)), measured,
                   resting_supports(model))
         model.plank_cache["supports"] = cached
-    if grounded is None or grounded == _all_grounded(model):
+    if grounded is None or grounded == _grounded(model):
         return cached
     lifted = model.plank_cache.setdefault("supports_lifted", {})
     if grounded not in lifted:
-        pairs = model.node_plank[model.joint_nodes].reshape(-1, 2).tolist()
-        lifted[grounded] = (_joint_supports(model, carriers(len(model.planks), pairs,
-                                                            set(grounded))),
+        lifted[grounded] = (_joint_supports(model, _carried_by(model, grounded)),
                             *cached[1:])
     return lifted[grounded]
 
 
-def _all_grounded(model: StaticsModel) -> frozenset[int]:
-    """The local planks with contacts (what ``carrying_neighbours`` takes as grounded)."""
-    return frozenset(int(k) for k in model.contact_plank)
+def _grounded(model: StaticsModel, holding: np.ndarray | None = None) -> frozenset[int]:
+    """The local planks with contacts (``holding`` (nK,) bool: those of the contacts that
+    hold; None: every contact), what ``carriers`` takes as grounded."""
+    planks = model.contact_plank if holding is None else model.contact_plank[holding]
+    return frozenset(int(k) for k in planks)
 
 
 def _joint_supports(model: StaticsModel, carried_by: list[set[int]]) -> np.ndarray:
@@ -120,7 +120,7 @@ def outermost_supports(model: StaticsModel, holding: np.ndarray | None
     carrying = np.ones(len(model.contacts), dtype=bool) if holding is None \
         else np.asarray(holding, dtype=bool)
     joint_supports, measured, (corner_carried, face_carried) = plank_supports(
-        model, frozenset(int(k) for k in model.contact_plank[carrying]))
+        model, _grounded(model, carrying))
     on_ground = carrying.copy()
     on_ground[model.rest_rows] = False
     nodes = [model.contact_node[on_ground]]
@@ -147,10 +147,16 @@ def carrying_neighbours(model: StaticsModel) -> list[set[int]]:
     cached = model.plank_cache.get("carrying")
     if cached is not None:
         return cached
-    pairs = model.node_plank[model.joint_nodes].reshape(-1, 2).tolist()
-    carrying = carriers(len(model.planks), pairs, {int(k) for k in model.contact_plank})
+    carrying = _carried_by(model, _grounded(model))
     model.plank_cache["carrying"] = carrying
     return carrying
+
+
+def _carried_by(model: StaticsModel, grounded: frozenset[int]) -> list[set[int]]:
+    """``carriers`` of the model's planks over its joints, ``grounded`` the planks on the
+    ground."""
+    pairs = model.node_plank[model.joint_nodes].reshape(-1, 2).tolist()
+    return carriers(len(model.planks), pairs, set(grounded))
 
 
 def carriers(n: int, pairs: list, grounded: set[int]) -> list[set[int]]:
