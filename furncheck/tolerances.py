@@ -152,6 +152,22 @@ JOINT_PART_CORE = 0.25
 """... the row off the plank's middle: beyond this share of its half width from its
 beam's axis (a spine rail along the middle of a top is within it)."""
 
+SPAN_ACROSS_DEPTH = 0.5
+"""Elastic model: a plank nailed along both its longer edges to panels spans across its
+width (``elastic._spans_across``) where each panel is at least this share of the joint
+line's length deep across it: a deep beam (span over depth at most 2), which does not bend
+along the line.  A nightstand's 550 mm high sides hold its 400 mm deep top's edges
+straight; an 80 mm apron under a 1200 mm seat bends with the seat, and the seat keeps
+its length."""
+
+SPAN_ACROSS_CROSSING = 0.5
+"""... and where its joint lines across its width (along its shorter side) add up to less
+than this share of that side: a top nailed to a back panel along a whole short edge as
+well is held on three edges, and the beam along its longer side (held along its
+length, and at its end) is kept, as in contract 3a (the README's limits: a nailed back
+hides a front edge's sag).  Half, not the whole side, so that a back exactly as wide as
+the shelf does not sit on the edge of the rule."""
+
 SUPPORT_STATION_LENGTH = 0.25
 """m: elastic model: a plank that touches the floor or a wall along its beam (a board lying
 on the floor, a kick board standing on its long edge, a shelf's back edge against a wall:

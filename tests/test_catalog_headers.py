@@ -313,6 +313,20 @@ ESTIMATES = [
     Estimate("bookcase-sagging", "default", "side_l/middle pull (N per nail)",
              joint("side_l", "middle", "pull"), 174.0, "174 N per nail", kind="at most"),
 
+    # nightstand-deep (elastic): the top spans the 388 mm between the sides, across its
+    # 400 mm depth (``elastic._spans_across``), P = 392.4 N at its middle.
+    Estimate("nightstand-deep", "default", "top sag (mm)", plank("top", "sag"),
+             (0.71, 2.83), "= 0.71 mm", kind="between", model="elastic"),
+    Estimate("nightstand-deep", "default", "top allowed sag (mm)", plank("top", "sag_allowed"),
+             0.97, "L / 400 = 0.97 mm", model="elastic"),
+    Estimate("nightstand-deep", "default", "shelf sag (mm)", plank("shelf", "sag"),
+             0.49, "5 w L^4 / 384 EI = 0.49 mm", kind="at most", model="elastic"),
+    Estimate("nightstand-deep", "default", "top stress (N/mm^2)", plank("top", "stress"),
+             4.0, "= 4.0 N/mm^2", kind="at most", model="elastic"),
+    *(Estimate("nightstand-deep", "default", f"{side}/top vertical force (N)",
+               joint(side, "top", "fz"), 203.0, "203 N: 10 N per nail", model=model)
+      for side in ("side_l", "side_r") for model in ("rigid", "elastic")),
+
     Estimate("bookshelf-20", "default", "self-weight (kg)", self_weight, 36.0,
              "self-weight 36 kg"),
     # a shelf hangs on its two end joints with the books AND its own weight:

@@ -387,7 +387,8 @@ def test_catalog_range_is_valid_inside_and_invalid_beyond(design_name, model, do
         for reason in reasons:
             assert (reason.endswith("less leaves no plank")
                     and low <= finder.size * RANGE_RESOLUTION) \
-                or (reason.startswith("past ") and "is square and then turned" in reason), \
+                or (reason.startswith("past ") and ("is square and then turned" in reason
+                                                   or "beam is turned" in reason)), \
                 reason
         assert low <= value <= high
     else:
@@ -770,17 +771,25 @@ def test_a_narrow_window_between_two_doublings_is_found():
 
 def test_a_size_range_past_the_square_says_the_beam_turns():
     """Contract 3a lays an elastic plank's one beam along its longer side, so a seat
-    widened past its length bends the other way (the stool's 400 x 300 seat sags as a
-    beam across its legs; at 401 mm wide it spans its 400 mm length the other way).  The
-    stool's seat.width window, 400.7 mm on (its 300 mm seat sags in the elastic model),
-    lies past the square: the row says so.  The rigid model has no beams: its seat.width
-    range, 60.2 to 750 mm, passes the square with no such note, nor has its seat.length
-    (340 to 492 mm of a 300 mm width, one side of it)."""
+    widened past its length would bend the other way; the stool's 400 x 300 seat is
+    nailed along both its 300 mm edges to its legs, panels, and spans across between
+    them (``elastic._spans_across``) while their nail lines, 600 mm in all, cover its
+    longer side: widened past 600 mm it spans its width the other way, from front to back
+    over the legs' lines.  Its seat.width window, from about 600 mm on (its 300 mm seat
+    sags in the elastic model), lies past that turn: the row says so, and where.  The
+    rigid model has no beams: its seat.width range, 60.2 to 750 mm, passes the square
+    with no such note, nor has its seat.length (340 to 492 mm of a 300 mm width, one side
+    of it)."""
     stool = load_design(str(DESIGNS / "stool.yaml"))
     found = one_range(stool, "seat.width")
-    assert found.valid is not None and found.valid[0] > 400.0
-    assert "past 400 mm (its length) seat is square and then turned" in found.reason
+    assert found.valid is not None and found.valid[0] > 600.0
+    (note,) = [r for r in found.reason.split("; ") if "beam is turned" in r]
+    where = note.split()[1]
+    assert note == f"past {where} mm seat's beam is turned: the elastic model lays its one " \
+        "beam along the longer side, or across it between panels nailed along both its " \
+        "edges, so values beyond are judged spanning the other way"
+    assert 600.0 <= float(where) <= 600.5, where        # four figures of 600 + 0.0075 mm
     rigid_stool = rigid(stool)
     for name in ("seat.width", "seat.length"):
         reason = one_range(rigid_stool, name).reason or ""
-        assert "square" not in reason, (name, reason)
+        assert "square" not in reason and "turned" not in reason, (name, reason)

@@ -94,8 +94,9 @@ def test_a_leg_wider_than_the_seat_it_holds_is_implausible():
     slight = STOOL.replace("{id: leg_l, size: [438, 300]", "{id: leg_l, size: [438, 300.4]")
     assert score_of(STOOL, wide).implausible == (
         "leg_l is wider than seat, which it is nailed to",
-        "leg_l is 438 x 594 mm now, the longer side the other way: the elastic model "
-        "turns the beam with it (one beam along the longer side), so the fix may be the model's")
+        "leg_l is 438 x 594 mm now, and the elastic model turns the beam with it (one beam "
+        "along the longer side, or across between panels nailed along both edges), so the "
+        "fix may be the model's")
     assert score_of(STOOL, slight).implausible == ()
 
 
@@ -181,20 +182,36 @@ def test_an_end_turned_in_the_face_plane_is_clipped_to_the_outline():
 
 
 def test_a_plank_resized_past_square_is_implausible_in_the_elastic_model():
-    """The stool's 400 x 300 mm seat widened to 420 mm: its longer side is now its width,
-    and the elastic model's one beam per plank (contract 3a: along the longer side) turns
-    with it, so whatever the edit repairs may be the turn's doing; the rigid model has no
-    beam, and a seat widened to 390 mm (still longer than wide) is no turn."""
+    """The stool's 400 x 300 mm seat on two 60 mm wide legs, widened to 420 mm: its longer
+    side is now its width, and the elastic model's one beam per plank (contract 3a: along
+    the longer side) turns with it, so whatever the edit repairs may be the turn's doing;
+    the rigid model has no beam, and a seat widened to 390 mm (still longer than wide) is
+    no turn.  On the catalog stool's 300 mm wide legs the seat spans between them either
+    way (``elastic._spans_across``: nailed along both its edges to panels) while their
+    nail lines, 600 mm in all, cover its longer side: no turn at 420 mm; at 620 mm, and
+    from 700 mm back to 590 mm (no square passed), a turn."""
+    narrow = STOOL.replace("size: [438, 300]", "size: [438, 60]")
     seat = "{id: seat, size: [400, 300]"
-    wider = STOOL.replace(seat, "{id: seat, size: [400, 420]")
-    still = STOOL.replace(seat, "{id: seat, size: [400, 390]")
-    reason = ("seat is 400 x 420 mm now, the longer side the other way: the elastic model "
-              "turns the beam with it (one beam along the longer side), so the fix may be "
-              "the model's")
-    assert reason in score_of(STOOL, wider).implausible
-    assert not any("longer side" in r for r in score_of(STOOL, still).implausible)
-    rigid = score_of(STOOL, wider, model="rigid").implausible
+    wider = narrow.replace(seat, "{id: seat, size: [400, 420]")
+    still = narrow.replace(seat, "{id: seat, size: [400, 390]")
+    reason = ("seat is 400 x 420 mm now, and the elastic model turns the beam with it (one "
+              "beam along the longer side, or across between panels nailed along both "
+              "edges), so the fix may be the model's")
+    assert reason in score_of(narrow, wider).implausible
+    assert not any("longer side" in r for r in score_of(narrow, still).implausible)
+    rigid = score_of(narrow, wider, model="rigid").implausible
     assert not any("longer side" in r for r in rigid)
+    on_panels = score_of(STOOL, STOOL.replace(seat, "{id: seat, size: [400, 420]"))
+    assert not any("longer side" in r for r in on_panels.implausible)
+    # past the legs' 600 mm of nail lines it does turn, from across to along its width,
+    # and back again without passing the square (700 -> 590 mm wide)
+    wide = STOOL.replace(seat, "{id: seat, size: [400, 620]")
+    assert any(r.startswith("seat is 400 x 620 mm now, and the elastic model turns")
+               for r in score_of(STOOL, wide).implausible)
+    back = score_of(STOOL.replace(seat, "{id: seat, size: [400, 700]"),
+                    STOOL.replace(seat, "{id: seat, size: [400, 590]")).implausible
+    assert any(r.startswith("seat is 400 x 590 mm now, and the elastic model turns")
+               for r in back)
 
 
 def test_the_ranking_key_is_lexicographic():
@@ -328,7 +345,9 @@ loads:
 def test_planks_alike_are_named_together():
     """A shelf unit's two shelves (582 x 300 mm, books on each) both cut to 199 mm by the
     sides moving in: one reason naming both, not one per shelf (a bookshelf of ten such
-    shelves read twenty lines), and one for their turned beams."""
+    shelves read twenty lines).  Their beams do not turn past square: nailed along both
+    their 300 mm edges to the sides, they span between them either way
+    (``elastic._spans_across``)."""
     unit = """
 furncheck: 1
 name: two shelves
@@ -344,10 +363,7 @@ loads:
     narrow = unit.replace("[-297,", "[-105.5,").replace("[297,", "[105.5,") \
         .replace("[582, 300]", "[199, 300]")
     assert score_of(unit, narrow).implausible == (
-        "shelf_a and shelf_b are 199 x 300 mm now, the longer side the other way: the "
-        "elastic model turns the beam with it (one beam along the longer side), so the fix "
-        "may be the model's",
-        "shelf_a and shelf_b are cut to 199 mm of their 582 mm length under their loads")
+        "shelf_a and shelf_b are cut to 199 mm of their 582 mm length under their loads",)
 
 
 def test_a_loaded_top_cut_to_a_strip_is_implausible_a_pushed_leg_narrowed_is_not():

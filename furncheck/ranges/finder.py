@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 from collections.abc import Generator
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -24,7 +25,7 @@ from furncheck.dofs import (
     dof_value,
     parse_dof,
 )
-from furncheck.geometry import follow_many
+from furncheck.geometry import Geometry, analyze, follow_many
 from furncheck.plain import plain_number
 from furncheck.ranges.estimates import (
     _Drop,
@@ -41,10 +42,16 @@ from furncheck.ranges.nearest import (
 )
 from furncheck.ranges.reach import ReachSearch
 from furncheck.sensitivity import Linearization, Sensitivity
+from furncheck.statics.elastic import beam_axes, beam_turned, may_span_across
 
 RANGE_RESOLUTION = 1e-3
 """Bisection stops when the bracket is this fraction of the design's size (lengths) or
 this many degrees x 100 (rotations: 0.1 degree)."""
+
+TURN_RESOLUTION = 0.01
+"""Where a resize turns a beam (``BeamTurns.first_turn``) is found to this share of the
+range's resolution: seven more bisections, each a geometry analysis of the edited
+design, on the rows that pass one."""
 
 SEARCH_LIMIT = 1.0
 """How far a range is searched: this fraction of the design's size for lengths, x 90
@@ -181,7 +188,8 @@ class RangeFinder(ReachSearch):
                 low, high = value - ends[0], value + ends[1]
                 floor = dof.kind in ("length", "width") and low <= resolution
                 reasons = [floor_reason(dof, low, resolution, unit)] if floor else []
-                reasons += turn_reasons(self.design, dof, value, low, high, unit)
+                reasons += turn_reasons(self.design, dof, value, low, high, unit,
+                                        self._turns)
                 out.append(DofRange(dof.name, value, (low, high), unit,
                                     "; ".join(reasons) or None,
                                     limited=(ends[0] >= limit, ends[1] >= limit),
@@ -331,7 +339,7 @@ class RangeFinder(ReachSearch):
         steps = sorted((inner, outer))
         far = abs(outer) >= limit        # its outer end is the search limit
         turned = turn_reasons(self.design, dof, value, value + steps[0], value + steps[1],
-                              unit)
+                              unit, self._turns)
         return DofRange(dof.name, value, (value + steps[0], value + steps[1]), unit,
                         "; ".join([f"the current value is invalid; this is the {reason}",
                                    *turned]),
@@ -398,6 +406,12 @@ class RangeFinder(ReachSearch):
                  and abs(rate) * reach > tol.RATE_ROUNDOFF * max(1.0, abs(current))}
         return signs.pop() if len(signs) == 1 else 1.0
 
+    @cached_property
+    def _turns(self) -> BeamTurns:
+        """Where resizes turn the elastic planks' beams (``turn_reasons``), to the
+        resolution of a size's range."""
+        return BeamTurns(self.design, self.geometry, self.frame, self.size * RANGE_RESOLUTION)
+
     def _scales(self, dof: Dof) -> tuple[float, float]:
         if dof.is_rotation:
             return 90.0 * SEARCH_LIMIT, 100.0 * RANGE_RESOLUTION
@@ -405,25 +419,72 @@ class RangeFinder(ReachSearch):
 
 
 def turn_reasons(design: Design, dof: Dof, value: float, low: float, high: float,
-                 unit: str) -> list[str]:
-    """For a length or width of a plank in the elastic model whose interval, or the way to
-    it from the current ``value``, passes the plank's other side (beyond the design's
-    tolerance): that past it the longer side is
-    the other one, and the model lays the plank's one beam along it (contract 3a), so that
-    a sag judged across the plank there may be the model's, not the shop's (a shelf
-    widened past its length spans the other way, from its front edge to its back); else
-    nothing."""
+                 unit: str, turns: BeamTurns) -> list[str]:
+    """For a length or width of a plank in the elastic model, whose interval, or the way
+    to it from the current ``value``, passes where the model turns the plank's one beam:
+    that values beyond are judged spanning the other way, so that a sag judged there may
+    be the model's, not the shop's (a seat widened past its length spans from its front
+    edge to its back).  The beam runs along the longer side (contract 3a), and turns at
+    the square; a plank nailed along both edges to panels spans across between them
+    (``elastic.may_span_across``), and its beam turns where those lines stop covering
+    its length (the stool's 400 mm seat on its 300 mm legs, widened past 600 mm), not at
+    the square (a shelf between two sides spans between them whatever its depth):
+    ``turns`` finds where.  Else nothing."""
     if not design.elastic or dof.kind not in ("length", "width"):
         return []
     plank = design.plank(dof.plank)
     other = (plank.width if dof.kind == "length" else plank.length) / design.unit_scale
     margin = design.tolerance / design.unit_scale
-    if not min(low, value) + margin < other < max(high, value) - margin:
+    if dof.plank not in turns.candidates:
+        if not min(low, value) + margin < other < max(high, value) - margin:
+            return []
+        side = "length" if dof.kind == "width" else "width"
+        return [f"past {plain_number(other, 6)} {unit} (its {side}) {dof.plank} is square "
+                "and then turned: the elastic model lays its one beam along the longer "
+                "side, so values beyond are judged spanning the other way"]
+    where = turns.first_turn(dof, value, (low, high))
+    if where is None:
         return []
-    side = "length" if dof.kind == "width" else "width"
-    return [f"past {plain_number(other, 6)} {unit} (its {side}) {dof.plank} is square and "
-            "then turned: the elastic model lays its one beam along the longer side, so "
-            "values beyond are judged spanning the other way"]
+    return [f"past {plain_number(where, 4)} {unit} {dof.plank}'s beam is turned: the "
+            "elastic model lays its one beam along the longer side, or across it between "
+            "panels nailed along both its edges, so values beyond are judged spanning the "
+            "other way"]
+
+
+class BeamTurns:
+    """Where a resize turns an elastic plank's beam (``turn_reasons``), for one design:
+    the planks that may span across (``elastic.may_span_across``) and their beams'
+    directions now, found once."""
+
+    def __init__(self, design: Design, geometry: Geometry, frame, resolution: float):
+        self.design, self.frame, self.resolution = design, frame, resolution
+        self.candidates = may_span_across(design, geometry) if design.elastic else set()
+        self._now = beam_axes(design, geometry) if self.candidates else {}
+
+    def turned(self, dof: Dof, value: float, at: float) -> bool:
+        """Whether the plank's beam runs the other way with ``dof`` at ``at`` (False where
+        the edit cannot be made)."""
+        try:
+            edited = apply_dof(self.design, self.frame, dof, at - value)
+        except (Blocked, OutOfReach):
+            return False
+        return beam_turned(self._now[dof.plank], beam_axes(edited, analyze(edited))[dof.plank])
+
+    def first_turn(self, dof: Dof, value: float, ends: tuple[float, float]) -> float | None:
+        """The value nearest ``value`` past which the beam is turned, toward the nearer
+        of ``ends`` where it is turned (to within TURN_RESOLUTION of ``resolution``, by
+        bisection: the turn is where joint lines stop covering a length, which the row
+        names to four figures); None where it is turned at neither."""
+        for end in sorted({*ends} - {value}, key=lambda e: abs(e - value)):
+            if not self.turned(dof, value, end):
+                continue
+            near, far = value, end
+            while abs(far - near) > TURN_RESOLUTION * self.resolution:
+                middle = 0.5 * (near + far)
+                near, far = (near, middle) if self.turned(dof, value, middle) \
+                    else (middle, far)
+            return far
+        return None
 
 
 def floor_reason(dof: Dof, low: float, resolution: float, unit: str) -> str:

@@ -20,6 +20,7 @@ on a template's nodes (the force sensitivity's stepped designs).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -103,20 +104,18 @@ def _crosswise(design: Design, geometry: Geometry, planks: list[Plank], joints: 
     along the side its loads lie farthest out on (every case's point loads: a square
     board on its corners loaded off its centre), so that describing it turned by 90
     degrees changes nothing; the local x where all of these tie."""
-    points: dict[str, list] = {p.id: [] for p in planks}
-    lines: dict[str, list] = {p.id: [] for p in planks}
-    for j in joints:
-        joint = geometry.joints[j]
-        for plank_id in joint.planks:
-            points[plank_id].append(joint.point)
-            lines[plank_id].append(joint.length * joint.frame[:, 1])
+    held = _joint_lines(design, geometry, joints)
+    points = {p.id: [point for point, _, _ in held.get(p.id, ())] for p in planks}
+    lines = {p.id: [line for _, line, _ in held.get(p.id, ())] for p in planks}
     for c in contacts:
         points[geometry.contacts[c].plank].append(geometry.contacts[c].point)
+    grounded = {geometry.contacts[c].plank for c in contacts}
     margin = tol.NODE_MERGE + tol.NODE_MERGE_ROUNDOFF
     out = []
     for plank in planks:
         if abs(plank.length - plank.width) > design.tolerance or not points[plank.id]:
-            out.append(along_width(plank))
+            spans = plank.id not in grounded and _spans_across(plank, held.get(plank.id, []))
+            out.append(along_width(plank) != spans)
             continue
         local = plank.to_local(np.array(points[plank.id]))
         spread = local.max(axis=0) - local.min(axis=0)
@@ -135,6 +134,111 @@ def _crosswise(design: Design, geometry: Geometry, planks: list[Plank], joints: 
         out.append(bool(reach[1] > reach[0]) if abs(reach[1] - reach[0]) > margin
                    else along_width(plank))
     return tuple(out)
+
+
+def beam_axes(design: Design, geometry: Geometry) -> dict[str, np.ndarray]:
+    """Per plank id, the world direction (unit) of its beam in the elastic model
+    (``_crosswise``: its longer side, or across it where ``_spans_across`` says), for
+    whoever asks whether an edit turns a plank's beam (a resize past square turns it,
+    unless the plank spans between panels on both sides of the square)."""
+    crosswise = _crosswise(design, geometry, list(design.planks),
+                           list(range(len(geometry.joints))),
+                           list(range(len(geometry.contacts))))
+    return {plank.id: beam_frame(plank, c)[:, 0] for plank, c in zip(design.planks, crosswise)}
+
+
+def beam_turned(before: np.ndarray, after: np.ndarray) -> bool:
+    """Whether a beam's world direction ``after`` (unit) lies nearer the other in-plane
+    side than its direction ``before`` (unit) did: an edit that resizes a plank past
+    square turns its beam unless the plank spans across on one side of the square."""
+    return abs(float(before @ after)) < math.sqrt(0.5)
+
+
+def _joint_lines(design: Design, geometry: Geometry,
+                 joints: list[int]) -> dict[str, list[tuple[np.ndarray, np.ndarray, float]]]:
+    """Per plank id, its joints' (point, line: length x direction, and the depth of the
+    plank at the other end across that line, ``_depth_across``)."""
+    held: dict[str, list] = {}
+    for j in joints:
+        joint = geometry.joints[j]
+        line = joint.length * joint.frame[:, 1]
+        for plank_id, partner in zip(joint.planks, reversed(joint.planks)):
+            held.setdefault(plank_id, []).append(
+                (joint.point, line, _depth_across(design.plank(partner), joint.frame[:, 1])))
+    return held
+
+
+def _spans_across(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, float]]) -> bool:
+    """Whether a plank that stands on nothing spans across its width, not along its
+    length (contract 3a takes the longer in-plane axis; this is its one exception).  It
+    does where it is nailed along both its longer edges to planks that cannot bend along
+    the joint lines, and hardly across: its joint lines (``held``: each joint's point,
+    its line, length x direction, and the depth of the plank across it,
+    ``_depth_across``) that run along its longer side lie on both sides of its axis and
+    add up to at least that side's length, each held by a plank deep across it
+    (SPAN_ACROSS_DEPTH: a panel, not a rail), and those that run across it add up to
+    less than SPAN_ACROSS_CROSSING of its shorter side.
+
+    A nightstand's top between its sides, or a cabinet's shelf deeper than it is wide:
+    along its length such a beam is held all along by the sides and cannot bend, though
+    the plank bends across, between them (a 400 mm deep top over a 388 mm span then sags
+    as a 380 mm deep one does, and the sides' nails share the load along their rows).
+    A seat on two long aprons, or a T-beam's flange, keeps its length: the rails bend
+    with it along the span, and the composite beam is what carries the load.  So does a
+    plank nailed by one long edge (a bracket under a shelf, a shelf on a back panel
+    alone): which of its joints holds it and which loads it, the joints do not say."""
+    longer, shorter = (1, 0) if along_width(plank) else (0, 1)
+    found = _held_along(plank, held, longer)
+    if found is None:
+        return False
+    along, crossing, sides = found
+    sizes = (plank.length, plank.width)
+    return bool(sides == 2 and along >= sizes[longer]
+                and crossing < tol.SPAN_ACROSS_CROSSING * sizes[shorter])
+
+
+def _held_along(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, float]],
+                axis: int) -> tuple[float, float, int] | None:
+    """(m, m, count): the joint lines ``held`` (``_joint_lines``) of the plank that run along
+    its local ``axis`` (0: x, 1: y), their length along it in all, the length of all its
+    lines across it, and on how many sides of that axis (0 to 2) the lines along it lie;
+    None where one of them is held by a rail (a plank shallower across the line than
+    SPAN_ACROSS_DEPTH of its length: the plank spans along with it)."""
+    other = 1 - axis
+    axes = plank.rotation_matrix[:, :2]
+    along = crossing = 0.0
+    sides = set()
+    for point, line, depth in held:
+        parts = np.abs(line @ axes)
+        crossing += parts[other]
+        if parts[axis] > parts[other]:
+            if depth < tol.SPAN_ACROSS_DEPTH * float(np.linalg.norm(line)):
+                return None
+            along += parts[axis]
+            offset = float(plank.to_local(point[None, :])[0, other])
+            if abs(offset) > tol.NODE_MERGE:        # a line along the axis holds no side
+                sides.add(offset > 0.0)
+    return along, crossing, len(sides)
+
+
+def may_span_across(design: Design, geometry: Geometry) -> set[str]:
+    """The ids of the planks whose beam a resize may turn other than at the square: those
+    standing on nothing with joint lines along one of their sides, on both sides of it,
+    held by panels (``_held_along``), which span across where those lines cover their
+    length (``_spans_across``)."""
+    grounded = {contact.plank for contact in geometry.contacts}
+    held = _joint_lines(design, geometry, list(range(len(geometry.joints))))
+    return {plank_id for plank_id, lines in held.items() if plank_id not in grounded
+            and any((found := _held_along(design.plank(plank_id), lines, axis)) is not None
+                    and found[2] == 2 for axis in (0, 1))}
+
+
+def _depth_across(plank: Plank, direction: np.ndarray) -> float:
+    """m: the plank's size in its own plane across ``direction`` (a joint line's): how
+    deep a beam it makes along that line."""
+    axes = plank.rotation_matrix[:, :2]
+    parts = np.abs(direction @ axes)
+    return plank.width if parts[0] >= parts[1] else plank.length
 
 
 def joint_part_counts(design: Design, joints: list, local: dict[int, int], frames: list,

@@ -47,8 +47,9 @@ import numpy as np
 
 from furncheck.design.model import Design, Plank
 from furncheck.dofs import design_size
-from furncheck.geometry import Geometry
+from furncheck.geometry import Geometry, analyze
 from furncheck.plain import plain_load
+from furncheck.statics.elastic import beam_axes, beam_turned, may_span_across
 from furncheck.suggest.cutlist import (
     ANGLE_FIELDS,
     POSITION_FIELDS,
@@ -144,6 +145,38 @@ def shop_score(original: Design, geometry: Geometry, planes: tuple[MirrorPlane, 
     return ShopScore(implausible(original, geometry, edited), broken, cost, len(edits))
 
 
+def _turned_beams(original: Design, geometry: Geometry, edited: Design,
+                  changed: set[str]) -> list[str]:
+    """The ids of the resized planks among ``changed`` whose one beam the elastic model
+    lays the other way in ``edited`` than in ``original`` (``elastic.beam_axes``): past
+    square (beyond the design's tolerance), or for a plank nailed along both edges to
+    panels (``elastic.may_span_across``), past where those lines cover its length; in
+    the order of the design's planks.  The edited design's geometry is analysed only
+    where one of these may have turned."""
+    if not edited.elastic:
+        return []
+    may_turn = None
+    resized = []
+    for plank_id in sorted(changed, key=original.plank_index.get):
+        before_plank, after_plank = original.plank(plank_id), edited.plank(plank_id)
+        if (before_plank.length, before_plank.width) == (after_plank.length,
+                                                         after_plank.width):
+            continue
+        before = before_plank.length - before_plank.width
+        after = after_plank.length - after_plank.width
+        if before * after < 0.0 and min(abs(before), abs(after)) > original.tolerance:
+            resized.append(plank_id)
+            continue
+        if may_turn is None:
+            may_turn = may_span_across(original, geometry)
+        if plank_id in may_turn:
+            resized.append(plank_id)
+    if not resized:
+        return []
+    before_axes, after_axes = beam_axes(original, geometry), beam_axes(edited, analyze(edited))
+    return [p for p in resized if beam_turned(before_axes[p], after_axes[p])]
+
+
 def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[str, ...]:
     """Why ``edited`` has proportions a maker would not build that ``original`` did not
     have: planks too big for a stock board, planks wider than the face they are nailed
@@ -184,18 +217,15 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
                            f"of its {after[1]}{was}")
     scale, unit = original.unit_scale, original.units
     turned: dict[tuple, list[str]] = {}         # planks alike, named together
-    for plank_id in sorted(changed, key=original.plank_index.get) if edited.elastic else ():
-        before_plank, after_plank = original.plank(plank_id), edited.plank(plank_id)
-        before = before_plank.length - before_plank.width
-        after = after_plank.length - after_plank.width
-        if before * after < 0.0 and min(abs(before), abs(after)) > original.tolerance:
-            size = (amount(after_plank.length / scale), amount(after_plank.width / scale))
-            turned.setdefault(size, []).append(plank_id)
+    for plank_id in _turned_beams(original, geometry, edited, changed):
+        after_plank = edited.plank(plank_id)
+        size = (amount(after_plank.length / scale), amount(after_plank.width / scale))
+        turned.setdefault(size, []).append(plank_id)
     for (length, width), planks in turned.items():
         reasons.append(f"{names(planks)} {'is' if len(planks) == 1 else 'are'} {length} x "
-                       f"{width} {unit} now, the longer side the other way: the elastic "
-                       "model turns the beam with it (one beam along the longer side), so "
-                       "the fix may be the model's")
+                       f"{width} {unit} now, and the elastic model turns the beam with it "
+                       "(one beam along the longer side, or across between panels nailed "
+                       "along both edges), so the fix may be the model's")
     loaded = {load.plank for case in original.load_cases for load in case.loads
               if level(original.plank(load.plank))}    # what the loads stand on
     cut: dict[tuple, list[str]] = {}
