@@ -154,19 +154,32 @@ beam's axis (a spine rail along the middle of a top is within it)."""
 
 SPAN_ACROSS_DEPTH = 0.5
 """Elastic model: a plank nailed along both its longer edges to panels spans across its
-width (``elastic._spans_across``) where each panel is at least this share of the joint
-line's length deep across it: a deep beam (span over depth at most 2), which does not bend
-along the line.  A nightstand's 550 mm high sides hold its 400 mm deep top's edges
-straight; an 80 mm apron under a 1200 mm seat bends with the seat, and the seat keeps
-its length."""
+width (``elastic._spans_across``) where each panel holds its joint line straight
+(``elastic._holds_straight``): it is at least this share of the line's length deep
+across it, a deep beam (span over depth at most 2), or it stands on the floor along
+that share of it.  A nightstand's 550 mm high sides hold its 400 mm deep top's edges
+straight, and so do 150 mm sides standing on the floor under a step's tread; an 80 mm
+apron under a 1200 mm seat bends with the seat, and the seat keeps its length."""
 
-SPAN_ACROSS_CROSSING = 0.5
+SPAN_ACROSS_COVER = 0.75
+"""... where the lines held straight cover at least this share of each of its two longer
+edges: a top whose sides are shallower than it is deep overhangs them along its length,
+and over a quarter of it the overhang's bending along that length is what the beam along
+it shows (a 400 mm deep top on 300 mm deep sides still spans across; on 200 mm sides it
+keeps its length).  Three quarters: a top overhanging its sides by 20 or 30 mm at the
+front, as tops do, is held along nearly all of its edges."""
+
+SPAN_ACROSS_CROSSING = 1.5
 """... and where its joint lines across its width (along its shorter side) add up to less
-than this share of that side: a top nailed to a back panel along a whole short edge as
-well is held on three edges, and the beam along its longer side (held along its
-length, and at its end) is kept, as in contract 3a (the README's limits: a nailed back
-hides a front edge's sag).  Half, not the whole side, so that a back exactly as wide as
-the shelf does not sit on the edge of the rule."""
+than this many times that side: a top nailed to a back panel along one short edge as
+well (held on three edges) still spans across, held at its back by the back's nail row
+(a 388 x 400 nightstand top with a back, 40 kg at its centre: 1.56 mm, where a Mindlin
+plate held on those three edges sags 0.90 mm with clamped and 2.23 mm with simply
+supported edges, ``benchmarks/compare_plate.py``; along its depth its beam, held along
+its length and at its end, read 0.04 mm); one nailed all round keeps the beam along its
+longer side, as contract 3a has it (the README's limits: a plate held on four edges).
+One and a half, so that neither a back exactly as wide as the plank nor two such sit on
+the edge of the rule."""
 
 SUPPORT_STATION_LENGTH = 0.25
 """m: elastic model: a plank that touches the floor or a wall along its beam (a board lying

@@ -225,9 +225,11 @@ loads:
 def test_a_shelf_deeper_than_it_is_wide_gets_a_rail_between_its_sides():
     """A 300 x 400 shelf between two sides 300 mm apart (its 400 mm edges nailed to them),
     30 kg near its front edge: it spans across, between the sides (``elastic.
-    _spans_across``: its beam runs along its 300 mm width), and sags 0.74 mm, 1.11 mm
-    with creep, against 0.75 allowed.  The stiffening rail spans between the sides (300
-    mm, the gap between their inner faces at x = -150 .. 150)."""
+    _spans_across``: its beam runs along its 300 mm width, section 400 x 12, EI = 172.8
+    N m^2), its sag between P L^3 / 192 EI = 0.24 mm (fixed ends) and P L^3 / 48 EI plus
+    its weight's 5 w L^4 / 384 EI = 0.98 mm (pinned), and sagging (allowed 0.75 mm /
+    1.5).  The stiffening rail spans between the sides (300 mm, the gap between their
+    inner faces at x = -150 .. 150)."""
     text = """\
 furncheck: 1
 name: deep-shelf
@@ -241,7 +243,12 @@ loads:
   - {plank: shelf, mass: 30, at: [0, 150, 306]}
 """
     design = parsed(text, "elastic")
-    assert [v.kind for v in check_design(design).violations] == ["sagging"]
+    report = check_design(design)
+    assert [v.kind for v in report.violations] == ["sagging"]
+    P, L, EI, w = 30 * 9.81, 0.300, 3e9 * 0.4 * 0.012 ** 3 / 12, 750 * 9.81 * 0.4 * 0.012
+    (shelf,) = [p for p in report.cases[0].planks if p.id == "shelf"]
+    assert P * L ** 3 / (192 * EI) < shelf.sag * 1e-3 \
+        < P * L ** 3 / (48 * EI) + 5 * w * L ** 4 / (384 * EI)
     rails = [fix for fix in fixes(design) if fix.rule == "rail"]
     assert rails and fix_valid(rails[0])
     rail = rails[0].adds[0]
@@ -684,7 +691,12 @@ def test_a_fix_that_needs_every_board_of_the_thicker_fix_is_not_counted_found(wh
     the top beside it unsupported): no rail works.  The support between top and tray
     works with a 30 mm top, and spares the tray's 25 mm board that the thicker-board fix
     needs (its first try thickened the tray too, which the top's 30 mm then made
-    needless: ``thicker._pruned``), so it is a fix of its own and counted found.  A fix
+    needless: ``thicker._pruned``), so it is a fix of its own and counted found.  (The
+    hangers, 100 x 300 mm, nailed along their top edge to the top and their bottom edge
+    to the tray, span across, 100 mm from top to tray, ``elastic._spans_across``: they
+    bend out of their plane and let the tray's ends turn, where along their 300 mm their
+    two joints sat on one node and held the tray's ends rigidly; the tray needed 22 mm
+    then.)  A fix
     that needed every board of the thicker fix, each at least as thick, would only add a
     part: ``spares_no_board`` leaves it out."""
     design = parsed(DESK, "elastic")

@@ -74,7 +74,7 @@ def _counted_dofs(design: Design) -> list[str]:
                  if reason.startswith("past ") and ("is square and then turned" in reason
                                                     or "beam is turned" in reason)]
         if kind in ("length", "width") and turns:
-            where = float(turns[0].split()[1])      # past where the range says it turns
+            where = float(turns[0].split()[1].replace(",", ""))  # where the range says it turns
             if (low > where) if found.value <= where else (high < where):
                 continue                # valid only with its beam turned
         counted.append(found.dof)

@@ -29,6 +29,7 @@ import pytest
 import range_designs as rd
 from click.testing import CliRunner
 
+from furncheck import tolerances as tol
 from furncheck.check import check_design
 from furncheck.cli.main import main
 from furncheck.design import load_design, parse_design
@@ -772,23 +773,25 @@ def test_a_narrow_window_between_two_doublings_is_found():
 def test_a_size_range_past_the_square_says_the_beam_turns():
     """Contract 3a lays an elastic plank's one beam along its longer side, so a seat
     widened past its length would bend the other way; the stool's 400 x 300 seat is
-    nailed along both its 300 mm edges to its legs, panels, and spans across between
-    them (``elastic._spans_across``) while their nail lines, 600 mm in all, cover its
-    longer side: widened past 600 mm it spans its width the other way, from front to back
-    over the legs' lines.  Its seat.width window, from about 600 mm on (its 300 mm seat
-    sags in the elastic model), lies past that turn: the row says so, and where.  The
-    rigid model has no beams: its seat.width range, 60.2 to 750 mm, passes the square
-    with no such note, nor has its seat.length (340 to 492 mm of a 300 mm width, one side
-    of it)."""
+    nailed along both its edges to its legs, 300 mm deep panels, and past the square it
+    spans across between them (``elastic._spans_across``) while their lines cover
+    SPAN_ACROSS_COVER of its edges, to a millimetre: up to (300 + 1) / 0.75 = 401.33 mm
+    wide.  Past that it spans its width, from front to back over the legs' lines.  Its
+    seat.width window, from about 401 mm on (its 300 mm seat sags in the elastic model),
+    lies past that turn: the row says so, and where.  The rigid model has no beams: its
+    seat.width range, 60.2 to 750 mm, passes the square with no such note, nor has its
+    seat.length (340 to 492 mm of a 300 mm width, one side of it)."""
     stool = load_design(str(DESIGNS / "stool.yaml"))
     found = one_range(stool, "seat.width")
-    assert found.valid is not None and found.valid[0] > 600.0
+    turn = (0.300 + tol.NODE_MERGE) / tol.SPAN_ACROSS_COVER * 1000.0
+    assert turn == pytest.approx(401.333, abs=1e-3)
+    assert found.valid is not None and found.valid[0] > turn
     (note,) = [r for r in found.reason.split("; ") if "beam is turned" in r]
     where = note.split()[1]
     assert note == f"past {where} mm seat's beam is turned: the elastic model lays its one " \
         "beam along the longer side, or across it between panels nailed along both its " \
         "edges, so values beyond are judged spanning the other way"
-    assert 600.0 <= float(where) <= 600.5, where        # four figures of 600 + 0.0075 mm
+    assert float(where) == pytest.approx(turn, abs=0.05)     # four figures
     rigid_stool = rigid(stool)
     for name in ("seat.width", "seat.length"):
         reason = one_range(rigid_stool, name).reason or ""

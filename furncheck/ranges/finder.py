@@ -427,9 +427,10 @@ def turn_reasons(design: Design, dof: Dof, value: float, low: float, high: float
     edge to its back).  The beam runs along the longer side (contract 3a), and turns at
     the square; a plank nailed along both edges to panels spans across between them
     (``elastic.may_span_across``), and its beam turns where those lines stop covering
-    its length (the stool's 400 mm seat on its 300 mm legs, widened past 600 mm), not at
-    the square (a shelf between two sides spans between them whatever its depth):
-    ``turns`` finds where.  Else nothing."""
+    three quarters of its edges (the stool's 400 mm seat on its 300 mm legs, widened past
+    401.3 mm), not at the square (a shelf between two sides as deep as itself spans
+    between them either side of it): ``turns`` finds where.  Else nothing.  A turn that
+    another plank's edit causes (a side cut shallower under a top) is not named here."""
     if not design.elastic or dof.kind not in ("length", "width"):
         return []
     plank = design.plank(dof.plank)
@@ -474,7 +475,9 @@ class BeamTurns:
         """The value nearest ``value`` past which the beam is turned, toward the nearer
         of ``ends`` where it is turned (to within TURN_RESOLUTION of ``resolution``, by
         bisection: the turn is where joint lines stop covering a length, which the row
-        names to four figures); None where it is turned at neither."""
+        names to four figures; one turn is assumed between the value and that end, a
+        turn and a turn back between them is not seen); None where it is turned at
+        neither."""
         for end in sorted({*ends} - {value}, key=lambda e: abs(e - value)):
             if not self.turned(dof, value, end):
                 continue

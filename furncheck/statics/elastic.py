@@ -109,7 +109,7 @@ def _crosswise(design: Design, geometry: Geometry, planks: list[Plank], joints: 
     lines = {p.id: [line for _, line, _ in held.get(p.id, ())] for p in planks}
     for c in contacts:
         points[geometry.contacts[c].plank].append(geometry.contacts[c].point)
-    grounded = {geometry.contacts[c].plank for c in contacts}
+    grounded = {geometry.contacts[c].plank for c in contacts if geometry.contacts[c].on_floor}
     margin = tol.NODE_MERGE + tol.NODE_MERGE_ROUNDOFF
     out = []
     for plank in planks:
@@ -155,90 +155,127 @@ def beam_turned(before: np.ndarray, after: np.ndarray) -> bool:
 
 
 def _joint_lines(design: Design, geometry: Geometry,
-                 joints: list[int]) -> dict[str, list[tuple[np.ndarray, np.ndarray, float]]]:
-    """Per plank id, its joints' (point, line: length x direction, and the depth of the
-    plank at the other end across that line, ``_depth_across``)."""
+                 joints: list[int]) -> dict[str, list[tuple[np.ndarray, np.ndarray, bool]]]:
+    """Per plank id, its joints' (point, line: length x direction, and whether the plank
+    at the other end holds the line straight: ``_holds_straight``)."""
+    feet: dict[str, list] = {}
+    for contact in geometry.contacts:
+        if contact.on_floor:
+            feet.setdefault(contact.plank, []).append(contact.point)
     held: dict[str, list] = {}
     for j in joints:
         joint = geometry.joints[j]
         line = joint.length * joint.frame[:, 1]
         for plank_id, partner in zip(joint.planks, reversed(joint.planks)):
-            held.setdefault(plank_id, []).append(
-                (joint.point, line, _depth_across(design.plank(partner), joint.frame[:, 1])))
+            straight = _holds_straight(design.plank(partner), feet.get(partner, []), line)
+            held.setdefault(plank_id, []).append((joint.point, line, straight))
     return held
 
 
-def _spans_across(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, float]]) -> bool:
-    """Whether a plank that stands on nothing spans across its width, not along its
-    length (contract 3a takes the longer in-plane axis; this is its one exception).  It
-    does where it is nailed along both its longer edges to planks that cannot bend along
-    the joint lines, and hardly across: its joint lines (``held``: each joint's point,
-    its line, length x direction, and the depth of the plank across it,
-    ``_depth_across``) that run along its longer side lie on both sides of its axis and
-    add up to at least that side's length, each held by a plank deep across it
-    (SPAN_ACROSS_DEPTH: a panel, not a rail), and those that run across it add up to
-    less than SPAN_ACROSS_CROSSING of its shorter side.
+def _holds_straight(partner: Plank, feet: list[np.ndarray], line: np.ndarray) -> bool:
+    """Whether ``partner`` holds a joint line (length x direction) along it straight: it
+    is deep across the line, at least SPAN_ACROSS_DEPTH of the line's length (a panel:
+    a deep beam), or it stands on the floor along the line (its floor corners ``feet``
+    spread along it over at least that share: a low side on the floor does not bend
+    either); a rail does neither, and bends with what is nailed along it."""
+    length = float(np.linalg.norm(line))
+    if length <= 0.0:
+        return False
+    direction = line / length
+    need = tol.SPAN_ACROSS_DEPTH * length - tol.NODE_MERGE
+    parts = np.abs(direction @ partner.rotation_matrix[:, :2])
+    depth = partner.width if parts[0] >= parts[1] else partner.length
+    if depth >= need:
+        return True
+    if len(feet) < 2:
+        return False
+    reach = np.asarray(feet) @ direction
+    return float(reach.max() - reach.min()) >= need
 
-    A nightstand's top between its sides, or a cabinet's shelf deeper than it is wide:
-    along its length such a beam is held all along by the sides and cannot bend, though
-    the plank bends across, between them (a 400 mm deep top over a 388 mm span then sags
-    as a 380 mm deep one does, and the sides' nails share the load along their rows).
-    A seat on two long aprons, or a T-beam's flange, keeps its length: the rails bend
-    with it along the span, and the composite beam is what carries the load.  So does a
-    plank nailed by one long edge (a bracket under a shelf, a shelf on a back panel
-    alone): which of its joints holds it and which loads it, the joints do not say."""
+
+def _spans_across(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, bool]]) -> bool:
+    """Whether a plank that does not stand on the floor spans across its width, not along
+    its length (contract 3a takes the longer in-plane axis; this is its one exception).
+    It does where both its longer edges are nailed, along most of their length, to planks
+    that hold the joint lines straight, and it is not nailed all round: on each side of
+    its axis the joint lines along its longer side held straight (``held``: each joint's
+    point, its line and whether the plank at its other end holds it straight,
+    ``_joint_lines``) cover at least SPAN_ACROSS_COVER of that side (their union), and
+    its joint lines across it add up to less than SPAN_ACROSS_CROSSING times its shorter
+    side (a back along one short edge too, not a rim all round).  Each share is compared
+    with a millimetre (NODE_MERGE) to spare, so that a design drawn with round numbers
+    (sides exactly half as deep as their lines, lines covering exactly the share) does
+    not sit on the edge of the rule, which a rigid motion's round-off could tip.
+
+    A nightstand's top between its sides, a cabinet's shelf deeper than it is wide, a
+    hanger held along its top and bottom edges: along its length such a beam is held all
+    along by the panels and cannot bend, though the plank bends across, between them (a
+    400 mm deep top over a 388 mm span then sags as a 380 mm deep one does, and the
+    sides' nails share the load along their rows).  A seat on two long aprons, or a
+    T-beam's flange, keeps its length: the rails bend with it along the span, and the
+    composite beam is what carries the load.  So does a plank nailed by one long edge
+    (a bracket under a shelf, a shelf on a back panel alone: which of its joints holds
+    it and which loads it, the joints do not say), and one held along less of its edges
+    (a top on narrow sides: the rest of it overhangs along its length)."""
     longer, shorter = (1, 0) if along_width(plank) else (0, 1)
+    sizes = (plank.length, plank.width)
     found = _held_along(plank, held, longer)
     if found is None:
         return False
-    along, crossing, sides = found
-    sizes = (plank.length, plank.width)
-    return bool(sides == 2 and along >= sizes[longer]
-                and crossing < tol.SPAN_ACROSS_CROSSING * sizes[shorter])
+    covered, crossing = found
+    need = tol.SPAN_ACROSS_COVER * sizes[longer] - tol.NODE_MERGE
+    return bool(min(covered) >= need
+                and crossing < tol.SPAN_ACROSS_CROSSING * sizes[shorter] - tol.NODE_MERGE)
 
 
-def _held_along(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, float]],
-                axis: int) -> tuple[float, float, int] | None:
-    """(m, m, count): the joint lines ``held`` (``_joint_lines``) of the plank that run along
-    its local ``axis`` (0: x, 1: y), their length along it in all, the length of all its
-    lines across it, and on how many sides of that axis (0 to 2) the lines along it lie;
-    None where one of them is held by a rail (a plank shallower across the line than
-    SPAN_ACROSS_DEPTH of its length: the plank spans along with it)."""
+def _held_along(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, bool]],
+                axis: int, straight_only: bool = True
+                ) -> tuple[tuple[float, float], float] | None:
+    """((m, m), m): how much of the plank's length along its local ``axis`` (0: x, 1: y)
+    its joint lines along that axis cover on each side of it (the union of their spans;
+    only the lines held straight, ``_holds_straight``, unless not ``straight_only``), and
+    the length of all its lines across it; None where the lines along it lie on one
+    side of it only (or on the axis: a line along the middle holds no side)."""
     other = 1 - axis
     axes = plank.rotation_matrix[:, :2]
-    along = crossing = 0.0
-    sides = set()
-    for point, line, depth in held:
+    half = 0.5 * (plank.length, plank.width)[axis]
+    spans: tuple[list, list] = ([], [])
+    crossing = 0.0
+    for point, line, straight in held:
         parts = np.abs(line @ axes)
         crossing += parts[other]
-        if parts[axis] > parts[other]:
-            if depth < tol.SPAN_ACROSS_DEPTH * float(np.linalg.norm(line)):
-                return None
-            along += parts[axis]
-            offset = float(plank.to_local(point[None, :])[0, other])
-            if abs(offset) > tol.NODE_MERGE:        # a line along the axis holds no side
-                sides.add(offset > 0.0)
-    return along, crossing, len(sides)
+        if parts[axis] <= parts[other] or not (straight or not straight_only):
+            continue
+        local = plank.to_local(point[None, :])[0]
+        if abs(local[other]) <= tol.NODE_MERGE:
+            continue
+        spans[int(local[other] > 0.0)].append((max(local[axis] - 0.5 * parts[axis], -half),
+                                               min(local[axis] + 0.5 * parts[axis], half)))
+    if not (spans[0] and spans[1]):
+        return None
+    return (_union_length(spans[0]), _union_length(spans[1])), crossing
+
+
+def _union_length(spans: list[tuple[float, float]]) -> float:
+    """m: the length of the union of intervals (low, high)."""
+    total, reach = 0.0, -np.inf
+    for low, high in sorted(spans):
+        if high > reach:
+            total += high - max(low, reach)
+            reach = high
+    return total
 
 
 def may_span_across(design: Design, geometry: Geometry) -> set[str]:
-    """The ids of the planks whose beam a resize may turn other than at the square: those
-    standing on nothing with joint lines along one of their sides, on both sides of it,
-    held by panels (``_held_along``), which span across where those lines cover their
-    length (``_spans_across``)."""
-    grounded = {contact.plank for contact in geometry.contacts}
+    """The ids of the planks whose beam an edit may turn other than at the square: those
+    not standing on the floor with joint lines along one of their sides on both sides
+    of it, whoever holds them (``_held_along``): where those lines come to cover their
+    edges, held straight, they span across (``_spans_across``)."""
+    grounded = {contact.plank for contact in geometry.contacts if contact.on_floor}
     held = _joint_lines(design, geometry, list(range(len(geometry.joints))))
     return {plank_id for plank_id, lines in held.items() if plank_id not in grounded
-            and any((found := _held_along(design.plank(plank_id), lines, axis)) is not None
-                    and found[2] == 2 for axis in (0, 1))}
-
-
-def _depth_across(plank: Plank, direction: np.ndarray) -> float:
-    """m: the plank's size in its own plane across ``direction`` (a joint line's): how
-    deep a beam it makes along that line."""
-    axes = plank.rotation_matrix[:, :2]
-    parts = np.abs(direction @ axes)
-    return plank.width if parts[0] >= parts[1] else plank.length
+            and any(_held_along(design.plank(plank_id), lines, axis, straight_only=False)
+                    is not None for axis in (0, 1))}
 
 
 def joint_part_counts(design: Design, joints: list, local: dict[int, int], frames: list,

@@ -146,35 +146,31 @@ def shop_score(original: Design, geometry: Geometry, planes: tuple[MirrorPlane, 
 
 
 def _turned_beams(original: Design, geometry: Geometry, edited: Design,
-                  changed: set[str]) -> list[str]:
-    """The ids of the resized planks among ``changed`` whose one beam the elastic model
-    lays the other way in ``edited`` than in ``original`` (``elastic.beam_axes``): past
-    square (beyond the design's tolerance), or for a plank nailed along both edges to
-    panels (``elastic.may_span_across``), past where those lines cover its length; in
-    the order of the design's planks.  The edited design's geometry is analysed only
-    where one of these may have turned."""
+                  changed: set[str]) -> tuple[list[str], list[str]]:
+    """The planks whose one beam the elastic model lays the other way in ``edited`` than
+    in ``original`` (``elastic.beam_axes``), in the order of the design's planks: those
+    among ``changed`` resized past square (beyond the design's tolerance), and any plank
+    nailed along both edges (``elastic.may_span_across``, in either design), which spans
+    across or not as the edit moves what holds it: (resized ones, others)."""
     if not edited.elastic:
-        return []
-    may_turn = None
-    resized = []
-    for plank_id in sorted(changed, key=original.plank_index.get):
+        return [], []
+    squared = []
+    for plank_id in changed:
         before_plank, after_plank = original.plank(plank_id), edited.plank(plank_id)
-        if (before_plank.length, before_plank.width) == (after_plank.length,
-                                                         after_plank.width):
-            continue
         before = before_plank.length - before_plank.width
         after = after_plank.length - after_plank.width
         if before * after < 0.0 and min(abs(before), abs(after)) > original.tolerance:
-            resized.append(plank_id)
-            continue
-        if may_turn is None:
-            may_turn = may_span_across(original, geometry)
-        if plank_id in may_turn:
-            resized.append(plank_id)
-    if not resized:
-        return []
-    before_axes, after_axes = beam_axes(original, geometry), beam_axes(edited, analyze(edited))
-    return [p for p in resized if beam_turned(before_axes[p], after_axes[p])]
+            squared.append(plank_id)
+    edited_geometry = analyze(edited)
+    candidates = may_span_across(original, geometry) | may_span_across(edited, edited_geometry)
+    if not squared and not candidates:
+        return [], []
+    before_axes = beam_axes(original, geometry)
+    after_axes = beam_axes(edited, edited_geometry)
+    turned = [p for p in sorted((set(squared) | candidates) & set(before_axes) & set(after_axes),
+                                key=original.plank_index.get)
+              if beam_turned(before_axes[p], after_axes[p])]
+    return [p for p in turned if p in changed], [p for p in turned if p not in changed]
 
 
 def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[str, ...]:
@@ -217,13 +213,18 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
                            f"of its {after[1]}{was}")
     scale, unit = original.unit_scale, original.units
     turned: dict[tuple, list[str]] = {}         # planks alike, named together
-    for plank_id in _turned_beams(original, geometry, edited, changed):
+    resized, others = _turned_beams(original, geometry, edited, changed)
+    for plank_id in resized:
         after_plank = edited.plank(plank_id)
         size = (amount(after_plank.length / scale), amount(after_plank.width / scale))
         turned.setdefault(size, []).append(plank_id)
     for (length, width), planks in turned.items():
         reasons.append(f"{names(planks)} {'is' if len(planks) == 1 else 'are'} {length} x "
                        f"{width} {unit} now, and the elastic model turns the beam with it "
+                       "(one beam along the longer side, or across between panels nailed "
+                       "along both edges), so the fix may be the model's")
+    if others:
+        reasons.append(f"the elastic model turns the beam of {names(others)} with the edit "
                        "(one beam along the longer side, or across between panels nailed "
                        "along both edges), so the fix may be the model's")
     loaded = {load.plank for case in original.load_cases for load in case.loads
