@@ -211,29 +211,39 @@ def test_a_plank_resized_past_square_is_implausible_in_the_elastic_model():
                for r in turned.implausible)
 
 
-def test_a_beam_turned_by_another_planks_edit_is_named():
-    """designs/nightstand-deep.yaml: its 388 x 400 top spans across between its 400 mm
-    deep sides (``elastic._spans_across``).  The sides cut to 250 mm deep hold 250 of its
-    400 mm edges, under SPAN_ACROSS_COVER: the top and the shelf keep their longer side,
-    their beams turned by the sides' edit although they are unchanged (one reason names
-    both); cut to 350 mm the sides still hold them across."""
+def test_a_beam_turned_by_another_planks_edit_is_named_where_it_is_held_all_along():
+    """designs/nightstand-deep.yaml with a back panel: its 388 x 400 top spans across
+    between its 400 mm deep sides (``elastic._spans_across``: one short edge nailed
+    too).  A front panel added nails it all round: its beam turns to its 400 mm depth,
+    held all along by the sides' rows, and reads almost none of its bending (a plate
+    held on four edges): the edit's fix may be the model's, and the reason names the top
+    (and the shelf, which the front holds too) although neither is changed.  Sides cut
+    to 250 mm deep turn the top's beam to its depth as well, but over the 150 mm that
+    overhangs them it bends there (not held all along: no reason); two panels added
+    along a table's long sides turn its top across, between them, where the shop's top
+    bends too (no reason)."""
     nightstand = (CATALOG / "nightstand-deep.yaml").read_text()
-    sides = "size: [550, 400], center: [{x}, 0, 275]"
-
-    def cut(depth: float) -> str:
-        text = nightstand
-        for x in (-200, 200):
-            text = text.replace(sides.format(x=x), f"size: [550, {depth:g}], "
-                                                    f"center: [{x}, {(400 - depth) / 2:g}, 275]")
-        return text
-
-    assert cut(250) != nightstand
+    back = "  - {id: back, size: [412, 550], center: [0, 206, 275], rotation: [90, 0, 0]}\n"
+    front = "  - {id: front, size: [412, 550], center: [0, -206, 275], rotation: [90, 0, 0]}\n"
+    with_back = nightstand.replace("loads:", back + "loads:")
+    all_round = with_back.replace("loads:", front + "loads:")
     reason = ("the elastic model turns the beam of shelf and top with the edit (one beam "
-              "along the "
-              "longer side, or across between panels nailed along both edges), so the fix "
-              "may be the model's")
-    assert reason in score_of(nightstand, cut(250)).implausible
-    assert not any("turns the beam" in r for r in score_of(nightstand, cut(350)).implausible)
+              "along the longer side, or across between panels nailed along both edges), "
+              "so the fix may be the model's")
+    assert reason in score_of(with_back, all_round).implausible
+    sides = "size: [550, 400], center: [{x}, 0, 275]"
+    cut = with_back
+    for x in (-200, 200):
+        cut = cut.replace(sides.format(x=x), f"size: [550, 250], center: [{x}, 75, 275]")
+    assert cut != with_back
+    assert not any("turns the beam" in r for r in score_of(with_back, cut).implausible)
+    table = (CATALOG / "table-racking.yaml").read_text()
+    panels = ("  - {id: back-1, size: [1000, 712], center: [0, 306, 356], rotation: [90, 0, 0]}\n"
+              "  - {id: back-2, size: [1000, 712], center: [0, -306, 356], "
+              "rotation: [90, 0, 0]}\n")
+    boxed = table.replace("loads:", panels + "loads:", 1)
+    assert boxed != table
+    assert not any("turns the beam" in r for r in score_of(table, boxed).implausible)
 
 
 def test_the_ranking_key_is_lexicographic():

@@ -147,6 +147,31 @@ def beam_axes(design: Design, geometry: Geometry) -> dict[str, np.ndarray]:
     return {plank.id: beam_frame(plank, c)[:, 0] for plank, c in zip(design.planks, crosswise)}
 
 
+def held_along_beams(design: Design, geometry: Geometry) -> set[str]:
+    """The ids of the planks (not standing on the floor) whose beam in the elastic model
+    runs along joint lines held straight that cover SPAN_ACROSS_COVER of its length on
+    both sides of it (``_held_along``): such a beam cannot bend along its length, and
+    reads almost none of the plank's bending, which happens across it, as a plate's (a
+    top nailed all round; a seat whose legs' rows run along its beam, past square).  A
+    plank that spans across (``_spans_across``) has its beam across its lines, not
+    along them."""
+    crosswise = _crosswise(design, geometry, list(design.planks),
+                           list(range(len(geometry.joints))),
+                           list(range(len(geometry.contacts))))
+    grounded = {contact.plank for contact in geometry.contacts if contact.on_floor}
+    held = _joint_lines(design, geometry, list(range(len(geometry.joints))))
+    out = set()
+    for plank, along_y in zip(design.planks, crosswise):
+        if plank.id in grounded or plank.id not in held:
+            continue
+        axis = 1 if along_y else 0
+        found = _held_along(plank, held[plank.id], axis)
+        need = tol.SPAN_ACROSS_COVER * (plank.length, plank.width)[axis] - tol.NODE_MERGE
+        if found is not None and min(found[0]) >= need:
+            out.add(plank.id)
+    return out
+
+
 def beam_turned(before: np.ndarray, after: np.ndarray) -> bool:
     """Whether a beam's world direction ``after`` (unit) lies nearer the other in-plane
     side than its direction ``before`` (unit) did: an edit that resizes a plank past

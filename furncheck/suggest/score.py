@@ -49,7 +49,12 @@ from furncheck.design.model import Design, Plank
 from furncheck.dofs import design_size
 from furncheck.geometry import Geometry, analyze
 from furncheck.plain import plain_load
-from furncheck.statics.elastic import beam_axes, beam_turned, may_span_across
+from furncheck.statics.elastic import (
+    beam_axes,
+    beam_turned,
+    held_along_beams,
+    may_span_across,
+)
 from furncheck.suggest.cutlist import (
     ANGLE_FIELDS,
     POSITION_FIELDS,
@@ -148,10 +153,15 @@ def shop_score(original: Design, geometry: Geometry, planes: tuple[MirrorPlane, 
 def _turned_beams(original: Design, geometry: Geometry, edited: Design,
                   changed: set[str]) -> tuple[list[str], list[str]]:
     """The planks whose one beam the elastic model lays the other way in ``edited`` than
-    in ``original`` (``elastic.beam_axes``), in the order of the design's planks: those
-    among ``changed`` resized past square (beyond the design's tolerance), and any plank
-    nailed along both edges (``elastic.may_span_across``, in either design), which spans
-    across or not as the edit moves what holds it: (resized ones, others)."""
+    in ``original`` (``elastic.beam_axes``) where that may be the model's doing, in the
+    order of the design's planks: (those among ``changed`` resized past square, beyond
+    the design's tolerance, or turned to run along joint lines that hold them all along,
+    ``elastic.held_along_beams``; the other planks so turned).  A plank nailed along
+    both edges (``elastic.may_span_across``, in either design) spans across or not as
+    an edit moves what holds it: turned across, between panels that now hold its edges
+    (a table's top between two panels added along its sides), it bends as the shop's
+    plank does; turned to its length with those lines along it (a top nailed all round
+    once a front is added), its beam reads almost none of its bending."""
     if not edited.elastic:
         return [], []
     squared = []
@@ -167,9 +177,10 @@ def _turned_beams(original: Design, geometry: Geometry, edited: Design,
         return [], []
     before_axes = beam_axes(original, geometry)
     after_axes = beam_axes(edited, edited_geometry)
+    held = held_along_beams(edited, edited_geometry) if candidates else set()
     turned = [p for p in sorted((set(squared) | candidates) & set(before_axes) & set(after_axes),
                                 key=original.plank_index.get)
-              if beam_turned(before_axes[p], after_axes[p])]
+              if beam_turned(before_axes[p], after_axes[p]) and (p in squared or p in held)]
     return [p for p in turned if p in changed], [p for p in turned if p not in changed]
 
 
