@@ -42,7 +42,7 @@ from furncheck.ranges.nearest import (
 )
 from furncheck.ranges.reach import ReachSearch
 from furncheck.sensitivity import Linearization, Sensitivity
-from furncheck.statics.elastic import beam_axes, beam_turned, may_span_across
+from furncheck.statics.elastic import beam_layout, beam_turned
 
 RANGE_RESOLUTION = 1e-3
 """Bisection stops when the bracket is this fraction of the design's size (lengths) or
@@ -426,7 +426,7 @@ def turn_reasons(design: Design, dof: Dof, value: float, low: float, high: float
     be the model's, not the shop's (a seat widened past its length spans from its front
     edge to its back).  The beam runs along the longer side (contract 3a), and turns at
     the square; a plank nailed along both edges to panels spans across between them
-    (``elastic.may_span_across``), and its beam turns where those lines stop covering
+    (``elastic.BeamLayout.candidates``), and its beam turns where those lines stop covering
     three quarters of its edges (the stool's 400 mm seat on its 300 mm legs, widened past
     401.3 mm), not at the square (a shelf between two sides as deep as itself spans
     between them either side of it): ``turns`` finds where.  Else nothing.  A turn that
@@ -454,13 +454,14 @@ def turn_reasons(design: Design, dof: Dof, value: float, low: float, high: float
 
 class BeamTurns:
     """Where a resize turns an elastic plank's beam (``turn_reasons``), for one design:
-    the planks that may span across (``elastic.may_span_across``) and their beams'
+    the planks that may span across (``elastic.BeamLayout.candidates``) and their beams'
     directions now, found once."""
 
     def __init__(self, design: Design, geometry: Geometry, frame, resolution: float):
         self.design, self.frame, self.resolution = design, frame, resolution
-        self.candidates = may_span_across(design, geometry) if design.elastic else set()
-        self._now = beam_axes(design, geometry) if self.candidates else {}
+        layout = beam_layout(design, geometry) if design.elastic else None
+        self.candidates = layout.candidates if layout is not None else frozenset()
+        self._now = layout.axes if layout is not None else {}
 
     def turned(self, dof: Dof, value: float, at: float) -> bool:
         """Whether the plank's beam runs the other way with ``dof`` at ``at`` (False where
@@ -469,7 +470,8 @@ class BeamTurns:
             edited = apply_dof(self.design, self.frame, dof, at - value)
         except (Blocked, OutOfReach):
             return False
-        return beam_turned(self._now[dof.plank], beam_axes(edited, analyze(edited))[dof.plank])
+        return beam_turned(self._now[dof.plank],
+                           beam_layout(edited, analyze(edited)).axes[dof.plank])
 
     def first_turn(self, dof: Dof, value: float, ends: tuple[float, float]) -> float | None:
         """The value nearest ``value`` past which the beam is turned, toward the nearer

@@ -22,6 +22,8 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import partial
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -95,7 +97,7 @@ def _plank_nodes(k: int, half: float, attachments: list[tuple[float, tuple]],
 
 
 def _crosswise(design: Design, geometry: Geometry, planks: list[Plank], joints: list[int],
-               contacts: list[int]) -> tuple[bool, ...]:
+               contacts: list[int], held: dict | None = None) -> tuple[bool, ...]:
     """Per plank, whether its beam runs along its local y: its longer side (contract 3a);
     a square plank (sides within the design's tolerance) along the side over which what
     holds it (its joints' and contacts' points) is spread the most, where that ties (by
@@ -103,8 +105,11 @@ def _crosswise(design: Design, geometry: Geometry, planks: list[Plank], joints: 
     square shelf nailed by one edge spans away from that edge), and where that ties too
     along the side its loads lie farthest out on (every case's point loads: a square
     board on its corners loaded off its centre), so that describing it turned by 90
-    degrees changes nothing; the local x where all of these tie."""
-    held = _joint_lines(design, geometry, joints)
+    degrees changes nothing; the local x where all of these tie.  A plank nailed along both
+    its longer edges to panels spans across (``_spans_across``).  ``held``: the joints'
+    ``_joint_lines``, where the caller has them."""
+    if held is None:
+        held = _joint_lines(design, geometry, joints)
     points = {p.id: [point for point, _, _ in held.get(p.id, ())] for p in planks}
     lines = {p.id: [line for _, line, _ in held.get(p.id, ())] for p in planks}
     for c in contacts:
@@ -136,40 +141,51 @@ def _crosswise(design: Design, geometry: Geometry, planks: list[Plank], joints: 
     return tuple(out)
 
 
-def beam_axes(design: Design, geometry: Geometry) -> dict[str, np.ndarray]:
-    """Per plank id, the world direction (unit) of its beam in the elastic model
-    (``_crosswise``: its longer side, or across it where ``_spans_across`` says), for
-    whoever asks whether an edit turns a plank's beam (a resize past square turns it,
-    unless the plank spans between panels on both sides of the square)."""
-    crosswise = _crosswise(design, geometry, list(design.planks),
-                           list(range(len(geometry.joints))),
-                           list(range(len(geometry.contacts))))
-    return {plank.id: beam_frame(plank, c)[:, 0] for plank, c in zip(design.planks, crosswise)}
+class BeamLayout(NamedTuple):
+    """Where the elastic model lays each plank's one beam (``beam_layout``).
+
+    axes       : per plank id, the world direction (unit) of its beam (``_crosswise``)
+    candidates : the planks not standing on the floor with joint lines along one of their
+                 sides on both sides of it, whoever holds them (``_held_along``): where
+                 those lines come to cover their edges, held straight, they span across
+                 (``_spans_across``), so an edit may turn their beam other than at the
+                 square
+    held_along : the candidates whose beam runs along such lines, held straight and
+                 covering SPAN_ACROSS_COVER of its length on both sides of it: such a
+                 beam cannot bend along its length and reads almost none of the plank's
+                 bending, which happens across it, as a plate's (a top nailed all round;
+                 a seat whose legs' rows run along its beam, past square); a plank that
+                 spans across has its beam across its lines, not along them
+    """
+
+    axes: dict[str, np.ndarray]
+    candidates: frozenset[str]
+    held_along: frozenset[str]
 
 
-def held_along_beams(design: Design, geometry: Geometry) -> set[str]:
-    """The ids of the planks (not standing on the floor) whose beam in the elastic model
-    runs along joint lines held straight that cover SPAN_ACROSS_COVER of its length on
-    both sides of it (``_held_along``): such a beam cannot bend along its length, and
-    reads almost none of the plank's bending, which happens across it, as a plate's (a
-    top nailed all round; a seat whose legs' rows run along its beam, past square).  A
-    plank that spans across (``_spans_across``) has its beam across its lines, not
-    along them."""
-    crosswise = _crosswise(design, geometry, list(design.planks),
-                           list(range(len(geometry.joints))),
-                           list(range(len(geometry.contacts))))
+def beam_layout(design: Design, geometry: Geometry) -> BeamLayout:
+    """The ``BeamLayout`` of every plank of the design, for whoever asks whether an edit
+    turns a plank's beam (``ranges.finder.turn_reasons``, ``suggest.score``)."""
+    joints = list(range(len(geometry.joints)))
+    held = _joint_lines(design, geometry, joints)
+    crosswise = _crosswise(design, geometry, list(design.planks), joints,
+                           list(range(len(geometry.contacts))), held)
     grounded = {contact.plank for contact in geometry.contacts if contact.on_floor}
-    held = _joint_lines(design, geometry, list(range(len(geometry.joints))))
-    out = set()
+    axes, candidates, held_along = {}, set(), set()
     for plank, along_y in zip(design.planks, crosswise):
-        if plank.id in grounded or plank.id not in held:
+        axes[plank.id] = beam_frame(plank, along_y)[:, 0]
+        lines = held.get(plank.id)
+        if plank.id in grounded or not lines:
             continue
-        axis = 1 if along_y else 0
-        found = _held_along(plank, held[plank.id], axis)
-        need = tol.SPAN_ACROSS_COVER * (plank.length, plank.width)[axis] - tol.NODE_MERGE
-        if found is not None and min(found[0]) >= need:
-            out.add(plank.id)
-    return out
+        if any(_held_along(plank, lines, axis, straight_only=False) is not None
+               for axis in (0, 1)):
+            candidates.add(plank.id)
+            axis = 1 if along_y else 0
+            found = _held_along(plank, lines, axis)
+            need = tol.SPAN_ACROSS_COVER * (plank.length, plank.width)[axis] - tol.NODE_MERGE
+            if found is not None and min(found[0]) >= need:
+                held_along.add(plank.id)
+    return BeamLayout(axes, frozenset(candidates), frozenset(held_along))
 
 
 def beam_turned(before: np.ndarray, after: np.ndarray) -> bool:
@@ -180,9 +196,10 @@ def beam_turned(before: np.ndarray, after: np.ndarray) -> bool:
 
 
 def _joint_lines(design: Design, geometry: Geometry,
-                 joints: list[int]) -> dict[str, list[tuple[np.ndarray, np.ndarray, bool]]]:
+                 joints: list[int]) -> dict[str, list[tuple[np.ndarray, np.ndarray, Any]]]:
     """Per plank id, its joints' (point, line: length x direction, and whether the plank
-    at the other end holds the line straight: ``_holds_straight``)."""
+    at the other end holds the line straight, ``_holds_straight``, as a call made when
+    asked: most planks never ask)."""
     feet: dict[str, list] = {}
     for contact in geometry.contacts:
         if contact.on_floor:
@@ -190,35 +207,36 @@ def _joint_lines(design: Design, geometry: Geometry,
     held: dict[str, list] = {}
     for j in joints:
         joint = geometry.joints[j]
-        line = joint.length * joint.frame[:, 1]
+        direction = joint.frame[:, 1]
+        line = joint.length * direction
         for plank_id, partner in zip(joint.planks, reversed(joint.planks)):
-            straight = _holds_straight(design.plank(partner), feet.get(partner, []), line)
+            straight = partial(_holds_straight, design.plank(partner), feet.get(partner, ()),
+                               direction, joint.length)
             held.setdefault(plank_id, []).append((joint.point, line, straight))
     return held
 
 
-def _holds_straight(partner: Plank, feet: list[np.ndarray], line: np.ndarray) -> bool:
-    """Whether ``partner`` holds a joint line (length x direction) along it straight: it
-    is deep across the line, at least SPAN_ACROSS_DEPTH of the line's length (a panel:
-    a deep beam), or it stands on the floor along the line (its floor corners ``feet``
-    spread along it over at least that share: a low side on the floor does not bend
-    either); a rail does neither, and bends with what is nailed along it."""
-    length = float(np.linalg.norm(line))
+def _holds_straight(partner: Plank, feet, direction: np.ndarray, length: float) -> bool:
+    """Whether ``partner`` holds a joint line (``direction``, unit, and ``length``)
+    straight along it: it is deep across the line, at least SPAN_ACROSS_DEPTH of the
+    line's length (a panel: a deep beam), or it stands on the floor along the line (its
+    floor corners ``feet`` spread along it over at least that share: a low side on the
+    floor does not bend either); a rail does neither, and bends with what is nailed
+    along it."""
     if length <= 0.0:
         return False
-    direction = line / length
-    need = tol.SPAN_ACROSS_DEPTH * length - tol.NODE_MERGE
     parts = np.abs(direction @ partner.rotation_matrix[:, :2])
     depth = partner.width if parts[0] >= parts[1] else partner.length
+    need = tol.SPAN_ACROSS_DEPTH * length - tol.NODE_MERGE
     if depth >= need:
         return True
     if len(feet) < 2:
         return False
-    reach = np.asarray(feet) @ direction
-    return float(reach.max() - reach.min()) >= need
+    reach = [float(point @ direction) for point in feet]
+    return max(reach) - min(reach) >= need
 
 
-def _spans_across(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, bool]]) -> bool:
+def _spans_across(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, Any]]) -> bool:
     """Whether a plank that does not stand on the floor spans across its width, not along
     its length (contract 3a takes the longer in-plane axis; this is its one exception).
     It does where both its longer edges are nailed, along most of their length, to planks
@@ -253,7 +271,7 @@ def _spans_across(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, bool]])
                 and crossing < tol.SPAN_ACROSS_CROSSING * sizes[shorter] - tol.NODE_MERGE)
 
 
-def _held_along(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, bool]],
+def _held_along(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, Any]],
                 axis: int, straight_only: bool = True
                 ) -> tuple[tuple[float, float], float] | None:
     """((m, m), m): how much of the plank's length along its local ``axis`` (0: x, 1: y)
@@ -262,16 +280,20 @@ def _held_along(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, bool]],
     the length of all its lines across it; None where the lines along it lie on one
     side of it only (or on the axis: a line along the middle holds no side)."""
     other = 1 - axis
-    axes = plank.rotation_matrix[:, :2]
+    rotation = plank.rotation_matrix
+    axes = (rotation[:, 0].tolist(), rotation[:, 1].tolist())   # plain floats: every
+    centre = plank.center_array.tolist()                         # model build asks
     half = 0.5 * (plank.length, plank.width)[axis]
     spans: tuple[list, list] = ([], [])
     crossing = 0.0
     for point, line, straight in held:
-        parts = np.abs(line @ axes)
+        lx, ly, lz = line.tolist()
+        parts = [abs(lx * a[0] + ly * a[1] + lz * a[2]) for a in axes]
         crossing += parts[other]
-        if parts[axis] <= parts[other] or not (straight or not straight_only):
+        if parts[axis] <= parts[other] or (straight_only and not straight()):
             continue
-        local = plank.to_local(point[None, :])[0]
+        rx, ry, rz = (p - c for p, c in zip(point.tolist(), centre))
+        local = [rx * a[0] + ry * a[1] + rz * a[2] for a in axes]
         if abs(local[other]) <= tol.NODE_MERGE:
             continue
         spans[int(local[other] > 0.0)].append((max(local[axis] - 0.5 * parts[axis], -half),
@@ -289,18 +311,6 @@ def _union_length(spans: list[tuple[float, float]]) -> float:
             total += high - max(low, reach)
             reach = high
     return total
-
-
-def may_span_across(design: Design, geometry: Geometry) -> set[str]:
-    """The ids of the planks whose beam an edit may turn other than at the square: those
-    not standing on the floor with joint lines along one of their sides on both sides
-    of it, whoever holds them (``_held_along``): where those lines come to cover their
-    edges, held straight, they span across (``_spans_across``)."""
-    grounded = {contact.plank for contact in geometry.contacts if contact.on_floor}
-    held = _joint_lines(design, geometry, list(range(len(geometry.joints))))
-    return {plank_id for plank_id, lines in held.items() if plank_id not in grounded
-            and any(_held_along(design.plank(plank_id), lines, axis, straight_only=False)
-                    is not None for axis in (0, 1))}
 
 
 def joint_part_counts(design: Design, joints: list, local: dict[int, int], frames: list,

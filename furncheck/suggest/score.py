@@ -49,12 +49,7 @@ from furncheck.design.model import Design, Plank
 from furncheck.dofs import design_size
 from furncheck.geometry import Geometry, analyze
 from furncheck.plain import plain_load
-from furncheck.statics.elastic import (
-    beam_axes,
-    beam_turned,
-    held_along_beams,
-    may_span_across,
-)
+from furncheck.statics.elastic import BeamLayout, beam_layout, beam_turned
 from furncheck.suggest.cutlist import (
     ANGLE_FIELDS,
     POSITION_FIELDS,
@@ -150,18 +145,29 @@ def shop_score(original: Design, geometry: Geometry, planes: tuple[MirrorPlane, 
     return ShopScore(implausible(original, geometry, edited), broken, cost, len(edits))
 
 
+_LAYOUT: list = []         # (geometry, its design's BeamLayout): the design being ranked
+
+
+def _original_layout(original: Design, geometry: Geometry) -> BeamLayout:
+    """``elastic.beam_layout`` of the design whose suggestions are being scored, kept for
+    the next one (every suggestion of a ranking asks, of the same design and geometry)."""
+    if not _LAYOUT or _LAYOUT[0][0] is not geometry or _LAYOUT[0][1] is not original:
+        _LAYOUT[:] = [(geometry, original, beam_layout(original, geometry))]
+    return _LAYOUT[0][2]
+
+
 def _turned_beams(original: Design, geometry: Geometry, edited: Design,
                   changed: set[str]) -> tuple[list[str], list[str]]:
     """The planks whose one beam the elastic model lays the other way in ``edited`` than
-    in ``original`` (``elastic.beam_axes``) where that may be the model's doing, in the
+    in ``original`` (``elastic.beam_layout``) where that may be the model's doing, in the
     order of the design's planks: (those among ``changed`` resized past square, beyond
     the design's tolerance, or turned to run along joint lines that hold them all along,
-    ``elastic.held_along_beams``; the other planks so turned).  A plank nailed along
-    both edges (``elastic.may_span_across``, in either design) spans across or not as
-    an edit moves what holds it: turned across, between panels that now hold its edges
-    (a table's top between two panels added along its sides), it bends as the shop's
-    plank does; turned to its length with those lines along it (a top nailed all round
-    once a front is added), its beam reads almost none of its bending."""
+    ``BeamLayout.held_along``; the other planks so turned).  A plank nailed along both
+    edges (``BeamLayout.candidates``, in either design) spans across or not as an edit
+    moves what holds it: turned across, between panels that now hold its edges (a
+    table's top between two panels added along its sides), it bends as the shop's plank
+    does; turned to its length with those lines along it (a top nailed all round once a
+    front is added), its beam reads almost none of its bending."""
     if not edited.elastic:
         return [], []
     squared = []
@@ -171,16 +177,17 @@ def _turned_beams(original: Design, geometry: Geometry, edited: Design,
         after = after_plank.length - after_plank.width
         if before * after < 0.0 and min(abs(before), abs(after)) > original.tolerance:
             squared.append(plank_id)
-    edited_geometry = analyze(edited)
-    candidates = may_span_across(original, geometry) | may_span_across(edited, edited_geometry)
-    if not squared and not candidates:
-        return [], []
-    before_axes = beam_axes(original, geometry)
-    after_axes = beam_axes(edited, edited_geometry)
-    held = held_along_beams(edited, edited_geometry) if candidates else set()
-    turned = [p for p in sorted((set(squared) | candidates) & set(before_axes) & set(after_axes),
-                                key=original.plank_index.get)
-              if beam_turned(before_axes[p], after_axes[p]) and (p in squared or p in held)]
+    before = _original_layout(original, geometry)
+    added = any(plank.id not in original.plank_index for plank in edited.planks)
+    if not squared and not before.candidates and not added:
+        return [], []   # nothing nailed along both edges before, nor a plank added to be
+    after = beam_layout(edited, analyze(edited))    # (an edit of the planks there that
+    # comes to nail one along both edges, its own joints new, is not looked for)
+    candidates = before.candidates | after.candidates
+    turned = [p for p in sorted((set(squared) | candidates) & set(before.axes)
+                                & set(after.axes), key=original.plank_index.get)
+              if beam_turned(before.axes[p], after.axes[p])
+              and (p in squared or p in after.held_along)]
     return [p for p in turned if p in changed], [p for p in turned if p not in changed]
 
 
