@@ -152,25 +152,38 @@ JOINT_PART_CORE = 0.25
 """... the row off the plank's middle: beyond this share of its half width from its
 beam's axis (a spine rail along the middle of a top is within it)."""
 
-SPAN_ACROSS_DEPTH = 0.5
+SPAN_ACROSS_STIFFNESS = 1.0
 """Elastic model: a plank nailed along both its longer edges to panels spans across its
 width (``elastic._spans_across``) where each panel holds its joint line straight
-(``elastic._holds_straight``): it is at least this share of the line's length deep
-across it, a deep beam (span over depth at most 2), or it stands on the floor along
-that share of it.  A nightstand's 550 mm high sides hold its 400 mm deep top's edges
-straight, and so do 150 mm sides standing on the floor under a step's tread; an 80 mm
-apron under a 1200 mm seat bends with the seat, and the seat keeps its length."""
+(``elastic._holds_straight``): bending in its own plane over the line's length L, the
+panel gives at most this many times what the plank gives across its span s under the
+same load, L^3 / (E_p t_p h^3) <= this x s^3 / (E w t^3) (h the panel's depth across
+the line; w, t the plank's section width along the lines and its thickness).  Equal
+compliances: where the panel gives less, the plank's bending across is what shows; where
+it gives more, the two bend together along the line and the plank's beam along it is
+the composite's.  A nightstand's 550 mm high side holds its 400 mm deep top's edge about
+2,600 times stiffer than the top (388 mm across) bends, a 190 mm side hung on a wall
+about 110 times; a 100 mm apron under a 1200 x 300 mm bench seat gives fourteen times
+more than the seat across it: a rail, and the seat keeps its length."""
+
+SPAN_ACROSS_STANDING = 0.5
+"""... or where it stands on the floor along at least this share of the line (its floor
+corners that far apart along it): a low side on the floor does not bend along it."""
 
 SPAN_ACROSS_COVER = 0.75
 """... where the lines held straight cover at least this share of each of its two longer
-edges: a top whose sides are shallower than it is deep overhangs them along its length,
-and over a quarter of it the overhang's bending along that length is what the beam along
-it shows (a 400 mm deep top on 300 mm deep sides still spans across; on 200 mm sides it
-keeps its length).  Three quarters: a top overhanging its sides by 20 or 30 mm at the
-front, as tops do, is held along nearly all of its edges."""
+edges (each share compared with a millimetre, NODE_MERGE, to spare).  A top whose sides
+are shallower than it is deep overhangs them along its length: held along less than
+this, its beam keeps its length and shows the overhang's bending along it, not its
+bending across between the sides (a 400 mm deep top on 300 mm deep sides spans across;
+on 290 mm sides its beam reads the 110 mm overhang, 0.46 mm under 40 kg at its middle,
+where a plate held along 290 mm of its edges sags more, about 1 mm: the README's
+limits).  Three quarters: a top overhanging its sides by 20 or 30 mm at the front, as
+tops do, is held along nearly all of its edges."""
 
 SPAN_ACROSS_CROSSING = 1.5
-"""... and where its joint lines across its width (along its shorter side) add up to less
+"""... and where its joint lines across its width (along its shorter side) held straight
+by panels (rails across do not count: a drawer rail under its front edge) add up to less
 than this many times that side: a top nailed to a back panel along one short edge as
 well (held on three edges) still spans across, held at its back by the back's nail row
 (a 388 x 400 nightstand top with a back, 40 kg at its centre: 1.56 mm, where a Mindlin

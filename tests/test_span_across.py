@@ -27,12 +27,13 @@ G = 800 N/mm^2, 750 kg/m^3, creep 0.5, sag limit span / 400):
   1200 mm length (the aprons bend with it: a rail, not a panel).
 * The rule's own cases: sides that hold less than three quarters of the top's edges
   (SPAN_ACROSS_COVER: 200 mm deep sides under the 400 mm top) leave it its length, and
-  its overhang's bending along it; 300 mm sides hold it across; low sides standing on
-  the floor hold its edges straight however shallow; a cleat nailed under its middle,
-  or a wall at its back, changes nothing.
+  its overhang's bending along it; 300 mm sides hold it across; sides hold its edges
+  straight where, bending in their plane, they give less than the top does across
+  (SPAN_ACROSS_STIFFNESS), or stand on the floor along them (30 mm battens); a cleat
+  nailed under its middle, or a wall at its back, changes nothing.
 * Rigid motions, metres, and turning the top's description by 90 degrees change
-  nothing, also for designs drawn at the rule's round numbers (sides exactly three
-  quarters of the top's depth; hanging sides exactly half as tall as they are deep).
+  nothing, also for a design drawn at the rule's round numbers (sides exactly three
+  quarters of the top's depth) and one hung on a wall.
 """
 
 from __future__ import annotations
@@ -196,12 +197,18 @@ def test_a_top_with_a_back_spans_across_too_and_sags_less():
 def test_what_keeps_its_longer_side(monkeypatch):
     """A front and a back panel along both the top's short edges (four edges held, 776
     mm of lines across it: a plate; the beam along its depth, as contract 3a has it), and
-    a seat nailed only along its length to two 100 mm aprons (rails that bend with it
-    over 1200 mm, 100 < SPAN_ACROSS_DEPTH x 1200: the composite beam).  Counted as
-    panels (SPAN_ACROSS_DEPTH 0), the aprons would hold the seat across."""
+    a seat nailed only along its length to two 100 mm aprons: bending in their plane
+    over the 1200 mm line they give L^3 / (E t h^3) = 1.728 / (E 0.012 x 0.001), 14
+    times what the 300 mm deep seat gives across its 276 mm between them, s^3 / (E w
+    t^3) = 0.0210 / (E 1.2 x 1.728e-6) (SPAN_ACROSS_STIFFNESS 1): rails that bend with
+    it, the composite beam.  Counted as panels (SPAN_ACROSS_STIFFNESS 20), the aprons
+    would hold the seat across."""
     assert spans(nightstand(back=True, front=True))["top"] is False
+    apron = 1.2 ** 3 / (0.012 * 0.1 ** 3)
+    seat = 0.276 ** 3 / (1.2 * 0.012 ** 3)
+    assert apron / seat == pytest.approx(14.3, abs=0.1)
     assert spans(BENCH)["seat"] is False
-    monkeypatch.setattr(tol, "SPAN_ACROSS_DEPTH", 0.0)
+    monkeypatch.setattr(tol, "SPAN_ACROSS_STIFFNESS", 20.0)
     assert spans(BENCH)["seat"] is True
 
 
@@ -232,17 +239,48 @@ def test_sides_holding_three_quarters_of_its_edges_hold_it_across():
     assert sag * 1e-3 > 40 * G * 0.1 ** 2 * (3 * 0.2 - 0.1) / (6 * EI)
 
 
-def test_low_sides_on_the_floor_a_cleat_or_a_wall_change_nothing():
-    """150 mm sides standing on the floor (shallower than half the 400 mm lines, but held
-    straight along them by the floor), a 30 mm cleat nailed under the top's middle along
-    its depth (a rail: it is left out of the cover, not a veto), and a wall behind the
-    nightstand (a wall's contacts are not the floor's): the top spans across in each."""
+PLINTH = """furncheck: 1
+name: plinth
+planks:
+  - {id: batten_l, size: [30, 400], center: [-200, 0, 15], rotation: [0, -90, 0]}
+  - {id: batten_r, size: [30, 400], center: [200, 0, 15], rotation: [0, -90, 0]}
+  - {id: top, size: [388, 400], center: [0, 0, 24]}
+loads:
+  - {plank: top, mass: 40, at: [0, 0, 30]}
+"""
+
+
+def test_battens_standing_on_the_floor_hold_a_top_across(monkeypatch):
+    """A 388 x 400 top nailed between two 30 mm battens standing on the floor: bending in
+    their plane over 400 mm they would give L^3 / (E t h^3) = 0.064 / (E 0.012 x 2.7e-5)
+    = 197,531 / E, more than the top across its 388 mm, s^3 / (E w t^3) = 0.0584 / (E 0.4
+    x 1.728e-6) = 84,507 / E: rails, but the floor holds them straight along their whole
+    length (SPAN_ACROSS_STANDING): the top spans across.  Standing counted for nothing,
+    it keeps its length."""
+    assert 0.4 ** 3 / (0.012 * 0.03 ** 3) > 0.388 ** 3 / (0.4 * 0.012 ** 3)
+    assert spans(PLINTH)["top"] is True
+    monkeypatch.setattr(tol, "SPAN_ACROSS_STANDING", 10.0)
+    assert spans(PLINTH)["top"] is False
+
+
+def test_low_or_raised_sides_a_cleat_or_a_wall_change_nothing():
+    """150 mm sides standing on the floor, or on a base board lying on it (deep enough in
+    their plane: 0.064 / (E 0.012 x 0.003375) = 1,580 / E against the top's 84,507 / E),
+    a 30 mm cleat nailed under the top's middle along its depth (a rail: it is left out
+    of the cover, not a veto), and a wall behind the nightstand (a wall's contacts are
+    not the floor's): the top spans across in each."""
     step = ("furncheck: 1\nname: step\nplanks:\n"
             "  - {id: side_l, size: [150, 400], center: [-200, 0, 75], rotation: [0, -90, 0]}\n"
             "  - {id: side_r, size: [150, 400], center: [200, 0, 75], rotation: [0, -90, 0]}\n"
             "  - {id: top, size: [388, 400], center: [0, 0, 144]}\n"
             "loads:\n  - {plank: top, mass: 40, at: [0, 0, 150]}\n")
     assert spans(step)["top"] is True
+    on_board = step.replace("center: [-200, 0, 75]", "center: [-200, 0, 87]") \
+        .replace("center: [200, 0, 75]", "center: [200, 0, 87]") \
+        .replace("center: [0, 0, 144]", "center: [0, 0, 156]") \
+        .replace("at: [0, 0, 150]", "at: [0, 0, 162]") \
+        .replace("loads:", "  - {id: base, size: [500, 400], center: [0, 0, 6]}\nloads:")
+    assert spans(on_board)["top"] is True
     cleat = nightstand().replace(
         "loads:", "  - {id: cleat, size: [400, 30], center: [0, 0, 523], "
                   "rotation: [90, 0, 90]}\nloads:")
@@ -255,10 +293,10 @@ def test_low_sides_on_the_floor_a_cleat_or_a_wall_change_nothing():
                          ids=["nightstand", "sides-three-quarters", "hanging-half-deep"])
 @pytest.mark.parametrize("phi", [10.0, 37.0, 60.0, 90.0, -123.4])
 def test_rigid_motions_and_metres_change_nothing(text, phi):
-    """The nightstand, and two designs drawn at the rule's round numbers: sides exactly
-    300 of the top's 400 mm deep (three quarters), and sides hanging on a wall exactly
-    200 mm tall under a 400 mm deep top (half as deep as their lines are long), turned
-    about the vertical and moved, and in metres: the same sag (to 1e-9 of itself)."""
+    """The nightstand, a design drawn at the rule's round numbers (sides exactly 300 of
+    the top's 400 mm deep: three quarters), and one hung on a wall by anchors (its 200
+    mm sides holding the top across), turned about the vertical and moved, and in
+    metres: the same sag (to 1e-9 of itself)."""
     base = plank_result(text, "top")[1].sag
     design = yaml.safe_load(text)
     moved = pd.to_text(pd.rigid_motion(design, phi, 800.0, -1700.0))

@@ -198,8 +198,9 @@ def beam_turned(before: np.ndarray, after: np.ndarray) -> bool:
 def _joint_lines(design: Design, geometry: Geometry,
                  joints: list[int]) -> dict[str, list[tuple[np.ndarray, np.ndarray, Any]]]:
     """Per plank id, its joints' (point, line: length x direction, and whether the plank
-    at the other end holds the line straight, ``_holds_straight``, as a call made when
-    asked: most planks never ask)."""
+    at the other end holds the line straight against the plank's bending across it,
+    ``_holds_straight``, as a call made when asked, with the plank's section width and
+    span across the line: most planks never ask)."""
     feet: dict[str, list] = {}
     for contact in geometry.contacts:
         if contact.on_floor:
@@ -210,30 +211,42 @@ def _joint_lines(design: Design, geometry: Geometry,
         direction = joint.frame[:, 1]
         line = joint.length * direction
         for plank_id, partner in zip(joint.planks, reversed(joint.planks)):
-            straight = partial(_holds_straight, design.plank(partner), feet.get(partner, ()),
-                               direction, joint.length)
+            plank, other = design.plank(plank_id), design.plank(partner)
+            straight = partial(_holds_straight, other, feet.get(partner, ()), direction,
+                               joint.length,
+                               design.material_of(other).elastic_modulus * other.thickness,
+                               design.material_of(plank).elastic_modulus
+                               * plank.thickness ** 3)
             held.setdefault(plank_id, []).append((joint.point, line, straight))
     return held
 
 
-def _holds_straight(partner: Plank, feet, direction: np.ndarray, length: float) -> bool:
+def _holds_straight(partner: Plank, feet, direction: np.ndarray, length: float,
+                    partner_stiffness: float, plank_stiffness: float, width: float,
+                    span: float) -> bool:
     """Whether ``partner`` holds a joint line (``direction``, unit, and ``length``)
-    straight along it: it is deep across the line, at least SPAN_ACROSS_DEPTH of the
-    line's length (a panel: a deep beam), or it stands on the floor along the line (its
-    floor corners ``feet`` spread along it over at least that share: a low side on the
-    floor does not bend either); a rail does neither, and bends with what is nailed
+    straight along it while a plank nailed along it bends across, over ``span``, with a
+    section ``width`` wide: it stands on the floor along the line (its floor corners
+    ``feet`` spread along it over at least SPAN_ACROSS_STANDING of the line's length),
+    or, bending in its own plane over the line's length, it gives no more than
+    SPAN_ACROSS_STIFFNESS times what the plank gives across its span under the same
+    load: L^3 / (E_p t_p h^3) against s^3 / (E w t^3) (``partner_stiffness`` E_p t_p,
+    h its depth across the line; ``plank_stiffness`` E t^3).  A nightstand's 550 mm
+    side holds its 400 mm line about 2,600 times stiffer than the 388 mm top bends
+    across, a 190 mm one hung on a wall about 110 times, a 150 mm one on a base board
+    about 50 times; a 100 mm apron under a 1200 mm bench seat 300 mm deep gives
+    fourteen times more than the seat across: a rail, which bends with what is nailed
     along it."""
-    if length <= 0.0:
+    if length <= 0.0 or span <= 0.0:
         return False
+    if len(feet) >= 2:
+        reach = [float(point @ direction) for point in feet]
+        if max(reach) - min(reach) >= tol.SPAN_ACROSS_STANDING * length - tol.NODE_MERGE:
+            return True
     parts = np.abs(direction @ partner.rotation_matrix[:, :2])
     depth = partner.width if parts[0] >= parts[1] else partner.length
-    need = tol.SPAN_ACROSS_DEPTH * length - tol.NODE_MERGE
-    if depth >= need:
-        return True
-    if len(feet) < 2:
-        return False
-    reach = [float(point @ direction) for point in feet]
-    return max(reach) - min(reach) >= need
+    gives = length ** 3 / (partner_stiffness * depth ** 3)
+    return gives <= tol.SPAN_ACROSS_STIFFNESS * span ** 3 / (plank_stiffness * width)
 
 
 def _spans_across(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, Any]]) -> bool:
@@ -243,11 +256,11 @@ def _spans_across(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, Any]]) 
     that hold the joint lines straight, and it is not nailed all round: on each side of
     its axis the joint lines along its longer side held straight (``held``: each joint's
     point, its line and whether the plank at its other end holds it straight,
-    ``_joint_lines``) cover at least SPAN_ACROSS_COVER of that side (their union), and
-    its joint lines across it add up to less than SPAN_ACROSS_CROSSING times its shorter
-    side (a back along one short edge too, not a rim all round).  Each share is compared
-    with a millimetre (NODE_MERGE) to spare, so that a design drawn with round numbers
-    (sides exactly half as deep as their lines, lines covering exactly the share) does
+    ``_joint_lines``, ``_holds_straight``) cover at least SPAN_ACROSS_COVER of that side
+    (their union), and its joint lines across it held straight add up to less than
+    SPAN_ACROSS_CROSSING times its shorter side (a back along one short edge too, not a
+    rim all round).  Both shares are compared with a millimetre (NODE_MERGE) to spare,
+    so that a design drawn with round numbers (sides covering exactly the share) does
     not sit on the edge of the rule, which a rigid motion's round-off could tip.
 
     A nightstand's top between its sides, a cabinet's shelf deeper than it is wide, a
@@ -275,22 +288,28 @@ def _held_along(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, Any]],
                 axis: int, straight_only: bool = True
                 ) -> tuple[tuple[float, float], float] | None:
     """((m, m), m): how much of the plank's length along its local ``axis`` (0: x, 1: y)
-    its joint lines along that axis cover on each side of it (the union of their spans;
-    only the lines held straight, ``_holds_straight``, unless not ``straight_only``), and
-    the length of all its lines across it; None where the lines along it lie on one
-    side of it only (or on the axis: a line along the middle holds no side)."""
+    its joint lines along that axis cover on each side of it (the union of their spans),
+    and the length of its lines across it, each counting only where its other plank
+    holds it straight (``_holds_straight``: a panel, not a rail), unless not
+    ``straight_only`` (then every line along it counts, and none across); None where the
+    lines along it lie on one side of it only (or on the axis: a line along the middle
+    holds no side)."""
     other = 1 - axis
     rotation = plank.rotation_matrix
     axes = (rotation[:, 0].tolist(), rotation[:, 1].tolist())   # plain floats: every
     centre = plank.center_array.tolist()                         # model build asks
-    half = 0.5 * (plank.length, plank.width)[axis]
+    sizes = (plank.length, plank.width)
+    half = 0.5 * sizes[axis]
     spans: tuple[list, list] = ([], [])
     crossing = 0.0
     for point, line, straight in held:
         lx, ly, lz = line.tolist()
         parts = [abs(lx * a[0] + ly * a[1] + lz * a[2]) for a in axes]
-        crossing += parts[other]
-        if parts[axis] <= parts[other] or (straight_only and not straight()):
+        if parts[axis] <= parts[other]:     # across: a rim where it holds, not a rail
+            if straight_only and straight(sizes[other], sizes[axis]):
+                crossing += parts[other]
+            continue
+        if straight_only and not straight(sizes[axis], sizes[other]):
             continue
         rx, ry, rz = (p - c for p, c in zip(point.tolist(), centre))
         local = [rx * a[0] + ry * a[1] + rz * a[2] for a in axes]
