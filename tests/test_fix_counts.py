@@ -8,11 +8,12 @@ min(4, E) suggestions, where E counts the distinct valid fixes found here withou
 * one per DOF whose ``range`` (``ranges.finder``: probes and sampling of that DOF alone)
   holds a valid value within the search's limits -- half the design's size for a length,
   MAX_STEP radians for a turn -- except a turn that tilts a level plank (a top, seat or
-  shelf) out of level and a length or width change that is valid only past where the
-  elastic model turns the plank's one beam (``ranges.finder.turn_reasons``, which the
-  row names: past its other side, or for a plank nailed along both edges to panels past
-  where their lines cover its length; a stool's seat widened past 600 mm stops bending
-  across its legs in the model, not in the shop);
+  shelf) out of level and a change that is valid only past where the elastic model
+  turns a plank's one beam (``ranges.finder.turn_reasons``, which the row names: past
+  its other side, or for a plank nailed along both edges to panels past where their
+  lines cover three quarters of its length; a stool's seat widened past 401 mm stops
+  bending across its legs in the model, not in the shop, and a nightstand's side cut
+  under 299 mm deep turns its top's beam back to its depth);
 * one per discrete rule whose fix, written to YAML and checked again here, is valid,
   unless it only adds a part to the thicker-board fix: it makes every plank that fix
   thickens at least as thick (read off the design files), or builds what a fix counted
@@ -72,8 +73,9 @@ def _counted_dofs(design: Design) -> list[str]:
             continue                    # a level plank tilted
         turns = [reason for reason in (found.reason or "").split("; ")
                  if reason.startswith("past ") and ("is square and then turned" in reason
-                                                    or "beam is turned" in reason)]
-        if kind in ("length", "width") and turns:
+                                                    or "beam is turned" in reason
+                                                    or "beams of" in reason)]
+        if turns:
             where = float(turns[0].split()[1].replace(",", ""))  # where the range says it turns
             if (low > where) if found.value <= where else (high < where):
                 continue                # valid only with its beam turned

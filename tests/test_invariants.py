@@ -505,17 +505,14 @@ def _magazine_rack_with_a_hanging_end() -> dict:
     return design
 
 
-def test_rigid_motion_of_a_magazine_rack_whose_end_does_not_bend(monkeypatch):
+def test_rigid_motion_of_a_magazine_rack_whose_end_does_not_bend():
     """(a) the planks' sag (``statics.sag.plank_sags``): end_r, held at one node, deviates
     in the 'default' case from the tangent there by round-off only (1e-16 to 1e-13 m) at
     both ends, and the larger sag / span of its two overhangs (spans 2 x 70.17 and 2 x
     208.06 mm) chose its measure: its allowed sag read 1.04 mm as written and 0.35 mm
     turned by 37 degrees.
     Deviations up to SAG_ROUNDOFF now tie, and the first overhang (toward its -e1 end)
-    is taken in every turn: allowed 2 x 70.17 mm / 400 = 0.3509 mm.  (Its end now spans
-    across between the two slats' lines, ``elastic._spans_across``, held at two nodes:
-    the rule is off here, so that the sag measure's tie is what is tested.)"""
-    monkeypatch.setattr(tol, "SPAN_ACROSS_CROSSING", 0.0)
+    is taken in every turn: allowed 2 x 70.17 mm / 400 = 0.3509 mm."""
     design = _magazine_rack_with_a_hanging_end()
     report = check(design, model="elastic")
     default = next(case for case in report.cases if case.name == "default")

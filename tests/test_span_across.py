@@ -226,14 +226,17 @@ def with_sides(depth: float, text: str = "") -> str:
 
 def test_sides_holding_three_quarters_of_its_edges_hold_it_across():
     """Sides 300 mm deep hold 300 of the top's 400 mm edges, three quarters
-    (SPAN_ACROSS_COVER, to a millimetre): it spans across.  Sides 200 mm deep hold half:
-    it keeps its length, and its front 200 mm overhang bends along it, as a cantilever
-    from the sides' front edges (the 40 kg at its middle, 100 mm out, and its weight):
-    at least P a^2 (3 L - a) / 6 EI over the overhang L = 0.2 m, a = 0.1 m, EI = 3e9 x
-    0.388 x 0.012^3 / 12 = 167.6 N m^2, 0.49 mm."""
+    (SPAN_ACROSS_COVER, to a millimetre): it spans across.  Sides 200 mm deep, at the
+    back, hold half: it keeps its length, and its front 200 mm overhang bends along it,
+    as a cantilever from the sides' front edges (the 40 kg moved to the overhang's
+    middle, 100 mm out, and its weight): at least P a^2 (3 L - a) / 6 EI over the
+    overhang L = 0.2 m, a = 0.1 m, EI = 3e9 x 0.388 x 0.012^3 / 12 = 167.6 N m^2,
+    0.49 mm."""
     assert spans(with_sides(300))["top"] is True
     assert spans(with_sides(200))["top"] is False
-    sag = plank_result(with_sides(200), "top")[1].sag
+    out = with_sides(200).replace("at: [0, 0, 550]", "at: [0, -100, 550]")
+    assert out != with_sides(200)
+    sag = plank_result(out, "top")[1].sag
     EI = E * 0.388 * T ** 3 / 12
     assert EI == pytest.approx(167.6, abs=0.1)
     assert sag * 1e-3 > 40 * G * 0.1 ** 2 * (3 * 0.2 - 0.1) / (6 * EI)
@@ -282,21 +285,24 @@ def test_low_or_raised_sides_a_cleat_or_a_wall_change_nothing():
         .replace("loads:", "  - {id: base, size: [500, 400], center: [0, 0, 6]}\nloads:")
     assert spans(on_board)["top"] is True
     cleat = nightstand().replace(
-        "loads:", "  - {id: cleat, size: [400, 30], center: [0, 0, 523], "
+        "loads:", "  - {id: cleat, size: [400, 30], center: [100, 0, 523], "
                   "rotation: [90, 0, 90]}\nloads:")
     assert spans(cleat)["top"] is True
     walled = nightstand() + "walls:\n  - {point: [0, -200, 0], normal: [0, 1, 0]}\n"
     assert spans(walled)["top"] is True
 
 
-@pytest.mark.parametrize("text", [nightstand(), with_sides(300), HANGING],
-                         ids=["nightstand", "sides-three-quarters", "hanging-half-deep"])
+@pytest.mark.parametrize("text", [nightstand(), with_sides(300), with_sides(299),
+                                  with_sides(298), HANGING],
+                         ids=["nightstand", "sides-three-quarters", "sides-299", "sides-298",
+                              "hanging"])
 @pytest.mark.parametrize("phi", [10.0, 37.0, 60.0, 90.0, -123.4])
 def test_rigid_motions_and_metres_change_nothing(text, phi):
-    """The nightstand, a design drawn at the rule's round numbers (sides exactly 300 of
-    the top's 400 mm deep: three quarters), and one hung on a wall by anchors (its 200
-    mm sides holding the top across), turned about the vertical and moved, and in
-    metres: the same sag (to 1e-9 of itself)."""
+    """The nightstand, designs drawn at the rule's round numbers (sides 300 of the top's
+    400 mm deep, three quarters; 299, three quarters less the millimetre to spare; 298,
+    under it), and one hung on a wall by anchors (its 200 mm sides holding the top
+    across), turned about the vertical and moved, and in metres: the same sag (to 1e-9
+    of itself)."""
     base = plank_result(text, "top")[1].sag
     design = yaml.safe_load(text)
     moved = pd.to_text(pd.rigid_motion(design, phi, 800.0, -1700.0))

@@ -25,7 +25,7 @@ from furncheck.dofs import (
     dof_value,
     parse_dof,
 )
-from furncheck.geometry import Geometry, analyze, follow_many
+from furncheck.geometry import Geometry, follow_many
 from furncheck.plain import plain_number
 from furncheck.ranges.estimates import (
     _Drop,
@@ -42,7 +42,7 @@ from furncheck.ranges.nearest import (
 )
 from furncheck.ranges.reach import ReachSearch
 from furncheck.sensitivity import Linearization, Sensitivity
-from furncheck.statics.elastic import beam_layout, beam_turned
+from furncheck.statics.elastic import beam_layout, plank_crosswise
 
 RANGE_RESOLUTION = 1e-3
 """Bisection stops when the bracket is this fraction of the design's size (lengths) or
@@ -50,8 +50,9 @@ this many degrees x 100 (rotations: 0.1 degree)."""
 
 TURN_RESOLUTION = 0.01
 """Where a resize turns a beam (``BeamTurns.first_turn``) is found to this share of the
-range's resolution: seven more bisections, each a geometry analysis of the edited
-design, on the rows that pass one."""
+range's resolution: about seven more bisections than the range's own resolution would
+take, each the plank's joints followed onto the edited design (``BeamTurns.turned``),
+on the rows that pass a turn."""
 
 SEARCH_LIMIT = 1.0
 """How far a range is searched: this fraction of the design's size for lengths, x 90
@@ -420,73 +421,108 @@ class RangeFinder(ReachSearch):
 
 def turn_reasons(design: Design, dof: Dof, value: float, low: float, high: float,
                  unit: str, turns: BeamTurns) -> list[str]:
-    """For a length or width of a plank in the elastic model, whose interval, or the way
-    to it from the current ``value``, passes where the model turns the plank's one beam:
-    that values beyond are judged spanning the other way, so that a sag judged there may
-    be the model's, not the shop's (a seat widened past its length spans from its front
-    edge to its back).  The beam runs along the longer side (contract 3a), and turns at
-    the square; a plank nailed along both edges to panels spans across between them
-    (``elastic.BeamLayout.candidates``), and its beam turns where those lines stop covering
-    three quarters of its edges (the stool's 400 mm seat on its 300 mm legs, widened past
-    401.3 mm), not at the square (a shelf between two sides as deep as itself spans
-    between them either side of it): ``turns`` finds where.  Else nothing.  A turn that
-    another plank's edit causes (a side cut shallower under a top) is not named here."""
-    if not design.elastic or dof.kind not in ("length", "width"):
+    """Where a row's interval, or the way to it from the current ``value``, passes a value
+    at which the elastic model turns a plank's one beam: that values beyond are judged
+    spanning the other way, so that a sag judged there may be the model's, not the
+    shop's.  The beam runs along the longer side (contract 3a), and turns at the square
+    (a seat widened past its length spans from its front edge to its back); a plank
+    nailed along both edges to panels spans across between them
+    (``elastic.BeamLayout.candidates``), and its beam turns where those lines stop
+    covering three quarters of its edges, not at the square: resized (the stool's 400
+    mm seat on its 300 mm legs, widened past 401.335 mm), or as its neighbours are (a
+    nightstand's sides cut shallower than 299 mm under its 400 mm deep top; a shelf
+    between two sides as deep as itself spans between them either side of the square):
+    ``turns`` finds where, for the DOF's plank and the planks nailed to it.  Else
+    nothing."""
+    if not design.elastic:
         return []
-    plank = design.plank(dof.plank)
-    other = (plank.width if dof.kind == "length" else plank.length) / design.unit_scale
-    margin = design.tolerance / design.unit_scale
-    if dof.plank not in turns.candidates:
-        if not min(low, value) + margin < other < max(high, value) - margin:
-            return []
-        side = "length" if dof.kind == "width" else "width"
-        return [f"past {plain_number(other, 6)} {unit} (its {side}) {dof.plank} is square "
-                "and then turned: the elastic model lays its one beam along the longer "
-                "side, so values beyond are judged spanning the other way"]
-    where = turns.first_turn(dof, value, (low, high))
-    if where is None:
-        return []
-    return [f"past {plain_number(where, 4)} {unit} {dof.plank}'s beam is turned: the "
-            "elastic model lays its one beam along the longer side, or across it between "
-            "panels nailed along both its edges, so values beyond are judged spanning the "
-            "other way"]
+    reasons = []
+    if dof.kind in ("length", "width") and dof.plank not in turns.candidates:
+        plank = design.plank(dof.plank)
+        other = (plank.width if dof.kind == "length" else plank.length) / design.unit_scale
+        margin = design.tolerance / design.unit_scale
+        if min(low, value) + margin < other < max(high, value) - margin:
+            side = "length" if dof.kind == "width" else "width"
+            reasons.append(f"past {plain_number(other, 6)} {unit} (its {side}) {dof.plank} "
+                           "is square and then turned: the elastic model lays its one beam "
+                           "along the longer side, so values beyond are judged spanning "
+                           "the other way")
+    turned: dict[str, list[str]] = {}            # planks turned at one value, together
+    for plank_id in turns.affected(dof):
+        where = turns.first_turn(dof, value, (low, high), plank_id)
+        if where is not None:
+            turned.setdefault(plain_number(where, 6), []).append(plank_id)
+    for where, planks in turned.items():
+        whose = f"{planks[0]}'s beam is" if len(planks) == 1 else \
+            f"the beams of {', '.join(planks[:-1])} and {planks[-1]} are"
+        reasons.append(f"past {where} {unit} {whose} turned: the elastic model lays a "
+                       "plank's one beam along the longer side, or across it between "
+                       "panels nailed along both its edges, so values beyond are judged "
+                       "spanning the other way")
+    return reasons
 
 
 class BeamTurns:
-    """Where a resize turns an elastic plank's beam (``turn_reasons``), for one design:
-    the planks that may span across (``elastic.BeamLayout.candidates``) and their beams'
-    directions now, found once."""
+    """Where an edit turns an elastic plank's beam (``turn_reasons``), for one design: the
+    planks that may span across (``elastic.BeamLayout.candidates``), which of them each
+    plank is nailed to, and their beams' directions now, found once."""
 
     def __init__(self, design: Design, geometry: Geometry, frame, resolution: float):
-        self.design, self.frame, self.resolution = design, frame, resolution
+        self.design, self.geometry, self.frame = design, geometry, frame
+        self.resolution = resolution
         layout = beam_layout(design, geometry) if design.elastic else None
         self.candidates = layout.candidates if layout is not None else frozenset()
-        self._now = layout.axes if layout is not None else {}
+        self._now = layout.crosswise if layout is not None else {}
+        self._nailed: dict[str, set] = {}
+        for joint in geometry.joints if self.candidates else ():
+            a, b = joint.planks
+            for one, other in ((a, b), (b, a)):
+                if other in self.candidates:
+                    self._nailed.setdefault(one, set()).add(other)
 
-    def turned(self, dof: Dof, value: float, at: float) -> bool:
-        """Whether the plank's beam runs the other way with ``dof`` at ``at`` (False where
-        the edit cannot be made)."""
+    def affected(self, dof: Dof) -> list[str]:
+        """The planks whose beam ``dof`` may turn other than at the square: its own plank
+        if that may span across and the DOF resizes it, and the candidates nailed to it,
+        in the design's order."""
+        planks = set(self._nailed.get(dof.plank, ()))
+        if dof.plank in self.candidates and dof.kind in ("length", "width"):
+            planks.add(dof.plank)
+        return sorted(planks, key=self.design.plank_index.get)
+
+    def turned(self, dof: Dof, value: float, at: float, plank_id: str) -> bool:
+        """Whether plank ``plank_id``'s beam runs the other way with ``dof`` at ``at``
+        (False where the edit cannot be made): its joints and its neighbours' floor
+        corners followed onto the edited design (``geometry.follow_many``: the joints it
+        has now, measured again; one that the edit would open or close is not looked
+        for), not the whole design analysed again."""
         try:
             edited = apply_dof(self.design, self.frame, dof, at - value)
         except (Blocked, OutOfReach):
             return False
-        return beam_turned(self._now[dof.plank],
-                           beam_layout(edited, analyze(edited)).axes[dof.plank])
+        joints = [j for j, joint in enumerate(self.geometry.joints)
+                  if plank_id in joint.planks]
+        near = {plank_id} | {p for j in joints for p in self.geometry.joints[j].planks}
+        corners = [c for c, contact in enumerate(self.geometry.contacts)
+                   if contact.plank in near]
+        (followed, contacts), = follow_many(self.geometry, [(edited, joints, corners)])
+        return plank_crosswise(edited, followed, contacts, plank_id) != self._now[plank_id]
 
-    def first_turn(self, dof: Dof, value: float, ends: tuple[float, float]) -> float | None:
-        """The value nearest ``value`` past which the beam is turned, toward the nearer
-        of ``ends`` where it is turned (to within TURN_RESOLUTION of ``resolution``, by
-        bisection: the turn is where joint lines stop covering a length, which the row
-        names to four figures; one turn is assumed between the value and that end, a
-        turn and a turn back between them is not seen); None where it is turned at
-        neither."""
+    def first_turn(self, dof: Dof, value: float, ends: tuple[float, float],
+                   plank_id: str) -> float | None:
+        """The value nearest ``value`` past which plank ``plank_id``'s beam is turned,
+        toward the nearer of ``ends`` where it is turned (to within TURN_RESOLUTION of
+        ``resolution``, by bisection: the turn is where joint lines stop covering a
+        length, which the row names to six figures, as the interval; one turn is assumed
+        between the value and that end, a turn and a turn back between them is not
+        seen); None where it is turned at neither."""
+        resolution = 100.0 * RANGE_RESOLUTION if dof.is_rotation else self.resolution
         for end in sorted({*ends} - {value}, key=lambda e: abs(e - value)):
-            if not self.turned(dof, value, end):
+            if not self.turned(dof, value, end, plank_id):
                 continue
             near, far = value, end
-            while abs(far - near) > TURN_RESOLUTION * self.resolution:
+            while abs(far - near) > TURN_RESOLUTION * resolution:
                 middle = 0.5 * (near + far)
-                near, far = (near, middle) if self.turned(dof, value, middle) \
+                near, far = (near, middle) if self.turned(dof, value, middle, plank_id) \
                     else (middle, far)
             return far
         return None

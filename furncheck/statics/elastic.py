@@ -20,9 +20,9 @@ on a template's nodes (the force sensitivity's stepped designs).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from functools import partial
+from types import SimpleNamespace
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -144,21 +144,24 @@ def _crosswise(design: Design, geometry: Geometry, planks: list[Plank], joints: 
 class BeamLayout(NamedTuple):
     """Where the elastic model lays each plank's one beam (``beam_layout``).
 
-    axes       : per plank id, the world direction (unit) of its beam (``_crosswise``)
+    crosswise  : per plank id, whether its beam runs along its local y (``_crosswise``);
+                 an edit turns a plank's beam where this changes (in the plank's own
+                 frame: an edit that turns the plank itself turns its beam with it)
+    across     : the planks that span across by ``_spans_across``, their beam along their
+                 shorter side
     candidates : the planks not standing on the floor with joint lines along one of their
                  sides on both sides of it, whoever holds them (``_held_along``): where
-                 those lines come to cover their edges, held straight, they span across
-                 (``_spans_across``), so an edit may turn their beam other than at the
-                 square
+                 those lines come to cover their edges, held straight, they span across,
+                 so an edit may turn their beam other than at the square
     held_along : the candidates whose beam runs along such lines, held straight and
                  covering SPAN_ACROSS_COVER of its length on both sides of it: such a
                  beam cannot bend along its length and reads almost none of the plank's
                  bending, which happens across it, as a plate's (a top nailed all round;
-                 a seat whose legs' rows run along its beam, past square); a plank that
-                 spans across has its beam across its lines, not along them
+                 a seat whose legs' rows run along its beam, past square)
     """
 
-    axes: dict[str, np.ndarray]
+    crosswise: dict[str, bool]
+    across: frozenset[str]
     candidates: frozenset[str]
     held_along: frozenset[str]
 
@@ -168,39 +171,48 @@ def beam_layout(design: Design, geometry: Geometry) -> BeamLayout:
     turns a plank's beam (``ranges.finder.turn_reasons``, ``suggest.score``)."""
     joints = list(range(len(geometry.joints)))
     held = _joint_lines(design, geometry, joints)
-    crosswise = _crosswise(design, geometry, list(design.planks), joints,
-                           list(range(len(geometry.contacts))), held)
+    flags = _crosswise(design, geometry, list(design.planks), joints,
+                       list(range(len(geometry.contacts))), held)
     grounded = {contact.plank for contact in geometry.contacts if contact.on_floor}
-    axes, candidates, held_along = {}, set(), set()
-    for plank, along_y in zip(design.planks, crosswise):
-        axes[plank.id] = beam_frame(plank, along_y)[:, 0]
+    crosswise, across, candidates, held_along = {}, set(), set(), set()
+    for plank, along_y in zip(design.planks, flags):
+        crosswise[plank.id] = along_y
         lines = held.get(plank.id)
         if plank.id in grounded or not lines:
             continue
         if any(_held_along(plank, lines, axis, straight_only=False) is not None
                for axis in (0, 1)):
             candidates.add(plank.id)
+            if abs(plank.length - plank.width) > design.tolerance \
+                    and along_y != along_width(plank):
+                across.add(plank.id)
             axis = 1 if along_y else 0
             found = _held_along(plank, lines, axis)
             need = tol.SPAN_ACROSS_COVER * (plank.length, plank.width)[axis] - tol.NODE_MERGE
-            if found is not None and min(found[0]) >= need:
+            if found is not None and min(found[0]) + tol.NODE_MERGE_ROUNDOFF >= need:
                 held_along.add(plank.id)
-    return BeamLayout(axes, frozenset(candidates), frozenset(held_along))
+    return BeamLayout(crosswise, frozenset(across), frozenset(candidates),
+                      frozenset(held_along))
 
 
-def beam_turned(before: np.ndarray, after: np.ndarray) -> bool:
-    """Whether a beam's world direction ``after`` (unit) lies nearer the other in-plane
-    side than its direction ``before`` (unit) did: an edit that resizes a plank past
-    square turns its beam unless the plank spans across on one side of the square."""
-    return abs(float(before @ after)) < math.sqrt(0.5)
+def plank_crosswise(design: Design, joints: tuple, contacts: tuple, plank_id: str) -> bool:
+    """``_crosswise`` of one plank, from the joints and contacts given (the plank's own and
+    its neighbours' floor corners, as ``geometry.follow_many`` measures them again on an
+    edited design), without analysing the whole design: what a resize does to that
+    plank's beam, on a 2,000-plank wall as on a stool."""
+    local = SimpleNamespace(joints=tuple(joints), contacts=tuple(contacts))
+    mine = [k for k, joint in enumerate(joints) if plank_id in joint.planks]
+    corners = [k for k, contact in enumerate(contacts) if contact.plank == plank_id]
+    return _crosswise(design, local, [design.plank(plank_id)], mine, corners,
+                      _joint_lines(design, local, mine))[0]
 
 
-def _joint_lines(design: Design, geometry: Geometry,
-                 joints: list[int]) -> dict[str, list[tuple[np.ndarray, np.ndarray, Any]]]:
-    """Per plank id, its joints' (point, line: length x direction, and whether the plank
-    at the other end holds the line straight against the plank's bending across it,
-    ``_holds_straight``, as a call made when asked, with the plank's section width and
-    span across the line: most planks never ask)."""
+def _joint_lines(design: Design, geometry,
+                 joints: list[int]) -> dict[str, list[tuple[tuple, tuple, Any]]]:
+    """Per plank id, its joints' (point, line: length x direction, both as floats, and
+    whether the plank at the other end holds the line straight against the plank's
+    bending across it, ``_holds_straight``, as a call made when asked, with the plank's
+    section width and span across the line: most planks never ask)."""
     feet: dict[str, list] = {}
     for contact in geometry.contacts:
         if contact.on_floor:
@@ -208,45 +220,48 @@ def _joint_lines(design: Design, geometry: Geometry,
     held: dict[str, list] = {}
     for j in joints:
         joint = geometry.joints[j]
-        direction = joint.frame[:, 1]
-        line = joint.length * direction
+        direction = tuple(joint.frame[:, 1].tolist())
+        length = joint.length
+        line = (length * direction[0], length * direction[1], length * direction[2])
+        point = tuple(joint.point.tolist())
         for plank_id, partner in zip(joint.planks, reversed(joint.planks)):
-            plank, other = design.plank(plank_id), design.plank(partner)
-            straight = partial(_holds_straight, other, feet.get(partner, ()), direction,
-                               joint.length,
-                               design.material_of(other).elastic_modulus * other.thickness,
-                               design.material_of(plank).elastic_modulus
-                               * plank.thickness ** 3)
-            held.setdefault(plank_id, []).append((joint.point, line, straight))
+            straight = partial(_holds_straight, design, plank_id, partner,
+                               feet.get(partner, ()), direction, length)
+            held.setdefault(plank_id, []).append((point, line, straight))
     return held
 
 
-def _holds_straight(partner: Plank, feet, direction: np.ndarray, length: float,
-                    partner_stiffness: float, plank_stiffness: float, width: float,
-                    span: float) -> bool:
-    """Whether ``partner`` holds a joint line (``direction``, unit, and ``length``)
-    straight along it while a plank nailed along it bends across, over ``span``, with a
-    section ``width`` wide: it stands on the floor along the line (its floor corners
-    ``feet`` spread along it over at least SPAN_ACROSS_STANDING of the line's length),
-    or, bending in its own plane over the line's length, it gives no more than
-    SPAN_ACROSS_STIFFNESS times what the plank gives across its span under the same
-    load: L^3 / (E_p t_p h^3) against s^3 / (E w t^3) (``partner_stiffness`` E_p t_p,
-    h its depth across the line; ``plank_stiffness`` E t^3).  A nightstand's 550 mm
-    side holds its 400 mm line about 2,600 times stiffer than the 388 mm top bends
-    across, a 190 mm one hung on a wall about 110 times, a 150 mm one on a base board
-    about 50 times; a 100 mm apron under a 1200 mm bench seat 300 mm deep gives
-    fourteen times more than the seat across: a rail, which bends with what is nailed
-    along it."""
+def _holds_straight(design: Design, plank_id: str, partner_id: str, feet,
+                    direction: tuple, length: float, width: float, span: float) -> bool:
+    """Whether plank ``partner_id`` holds a joint line (``direction``, unit, and
+    ``length``) straight along it while plank ``plank_id``, nailed along it, bends across,
+    over ``span``, with a section ``width`` wide: it stands on the floor along the line
+    (its floor corners ``feet`` spread along it over at least SPAN_ACROSS_STANDING of the
+    line's length), or, bending in its own plane over the line's length, it gives no more
+    than SPAN_ACROSS_STIFFNESS times what the plank gives across its span under the same
+    load: L^3 / (E_p t_p h^3) against s^3 / (E w t^3) (h its depth across the line).  A
+    nightstand's 550 mm side holds its 400 mm line about 2,600 times stiffer than the
+    388 mm top bends across, a 190 mm one hung on a wall about 110 times, a 150 mm one
+    on a base board about 50 times; a 100 mm apron under a 1200 mm bench seat 300 mm
+    deep gives fourteen times more than the seat across: a rail, which bends with what
+    is nailed along it."""
     if length <= 0.0 or span <= 0.0:
         return False
+    dx, dy, dz = direction
     if len(feet) >= 2:
-        reach = [float(point @ direction) for point in feet]
-        if max(reach) - min(reach) >= tol.SPAN_ACROSS_STANDING * length - tol.NODE_MERGE:
+        reach = [dx * p[0] + dy * p[1] + dz * p[2] for p in feet]
+        if max(reach) - min(reach) + tol.NODE_MERGE_ROUNDOFF \
+                >= tol.SPAN_ACROSS_STANDING * length - tol.NODE_MERGE:
             return True
-    parts = np.abs(direction @ partner.rotation_matrix[:, :2])
-    depth = partner.width if parts[0] >= parts[1] else partner.length
-    gives = length ** 3 / (partner_stiffness * depth ** 3)
-    return gives <= tol.SPAN_ACROSS_STIFFNESS * span ** 3 / (plank_stiffness * width)
+    partner, plank = design.plank(partner_id), design.plank(plank_id)
+    (ax, ay, az), (bx, by, bz), _ = partner.axes
+    across_x = abs(dx * ax + dy * ay + dz * az) >= abs(dx * bx + dy * by + dz * bz)
+    depth = partner.width if across_x else partner.length
+    gives = length ** 3 / (design.material_of(partner).elastic_modulus * partner.thickness
+                           * depth ** 3)
+    allowed = tol.SPAN_ACROSS_STIFFNESS * span ** 3 / (
+        design.material_of(plank).elastic_modulus * plank.thickness ** 3 * width)
+    return gives <= allowed * (1.0 + tol.RATE_ROUNDOFF)     # equal to the last bits: holds
 
 
 def _spans_across(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, Any]]) -> bool:
@@ -260,8 +275,9 @@ def _spans_across(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, Any]]) 
     (their union), and its joint lines across it held straight add up to less than
     SPAN_ACROSS_CROSSING times its shorter side (a back along one short edge too, not a
     rim all round).  Both shares are compared with a millimetre (NODE_MERGE) to spare,
-    so that a design drawn with round numbers (sides covering exactly the share) does
-    not sit on the edge of the rule, which a rigid motion's round-off could tip.
+    and that with NODE_MERGE_ROUNDOFF more, so that a design drawn with round numbers
+    (sides covering exactly the share, or the share less the millimetre) does not sit on
+    the edge of the rule, which a rigid motion's round-off could tip.
 
     A nightstand's top between its sides, a cabinet's shelf deeper than it is wide, a
     hanger held along its top and bottom edges: along its length such a beam is held all
@@ -279,9 +295,10 @@ def _spans_across(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, Any]]) 
     if found is None:
         return False
     covered, crossing = found
+    slack = tol.NODE_MERGE_ROUNDOFF             # a share met to the last bits is met
     need = tol.SPAN_ACROSS_COVER * sizes[longer] - tol.NODE_MERGE
-    return bool(min(covered) >= need
-                and crossing < tol.SPAN_ACROSS_CROSSING * sizes[shorter] - tol.NODE_MERGE)
+    rim = tol.SPAN_ACROSS_CROSSING * sizes[shorter] - tol.NODE_MERGE
+    return bool(min(covered) + slack >= need and crossing - slack < rim)
 
 
 def _held_along(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, Any]],
@@ -295,15 +312,14 @@ def _held_along(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, Any]],
     lines along it lie on one side of it only (or on the axis: a line along the middle
     holds no side)."""
     other = 1 - axis
-    rotation = plank.rotation_matrix
-    axes = (rotation[:, 0].tolist(), rotation[:, 1].tolist())   # plain floats: every
-    centre = plank.center_array.tolist()                         # model build asks
+    axes = plank.axes[:2]                       # plain floats: every model build asks
+    centre = plank.center
     sizes = (plank.length, plank.width)
     half = 0.5 * sizes[axis]
     spans: tuple[list, list] = ([], [])
     crossing = 0.0
     for point, line, straight in held:
-        lx, ly, lz = line.tolist()
+        lx, ly, lz = line
         parts = [abs(lx * a[0] + ly * a[1] + lz * a[2]) for a in axes]
         if parts[axis] <= parts[other]:     # across: a rim where it holds, not a rail
             if straight_only and straight(sizes[other], sizes[axis]):
@@ -311,7 +327,7 @@ def _held_along(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, Any]],
             continue
         if straight_only and not straight(sizes[axis], sizes[other]):
             continue
-        rx, ry, rz = (p - c for p, c in zip(point.tolist(), centre))
+        rx, ry, rz = (p - c for p, c in zip(point, centre))
         local = [rx * a[0] + ry * a[1] + rz * a[2] for a in axes]
         if abs(local[other]) <= tol.NODE_MERGE:
             continue

@@ -49,7 +49,7 @@ from furncheck.design.model import Design, Plank
 from furncheck.dofs import design_size
 from furncheck.geometry import Geometry, analyze
 from furncheck.plain import plain_load
-from furncheck.statics.elastic import BeamLayout, beam_layout, beam_turned
+from furncheck.statics.elastic import BeamLayout, beam_layout
 from furncheck.suggest.cutlist import (
     ANGLE_FIELDS,
     POSITION_FIELDS,
@@ -159,15 +159,17 @@ def _original_layout(original: Design, geometry: Geometry) -> BeamLayout:
 def _turned_beams(original: Design, geometry: Geometry, edited: Design,
                   changed: set[str]) -> tuple[list[str], list[str]]:
     """The planks whose one beam the elastic model lays the other way in ``edited`` than
-    in ``original`` (``elastic.beam_layout``) where that may be the model's doing, in the
-    order of the design's planks: (those among ``changed`` resized past square, beyond
-    the design's tolerance, or turned to run along joint lines that hold them all along,
-    ``BeamLayout.held_along``; the other planks so turned).  A plank nailed along both
-    edges (``BeamLayout.candidates``, in either design) spans across or not as an edit
-    moves what holds it: turned across, between panels that now hold its edges (a
-    table's top between two panels added along its sides), it bends as the shop's plank
-    does; turned to its length with those lines along it (a top nailed all round once a
-    front is added), its beam reads almost none of its bending."""
+    in ``original`` (``elastic.beam_layout``, in each plank's own frame) where that may
+    be the model's doing, in the order of the design's planks: (those among ``changed``
+    resized past square, beyond the design's tolerance, turned to run along joint lines
+    that hold them all along, ``BeamLayout.held_along``, or no longer spanning across,
+    ``BeamLayout.across``; the other planks so turned).  A plank nailed along both edges
+    (``BeamLayout.candidates``, in either design) spans across or not as an edit moves
+    what holds it: turned across, between panels that now hold its edges (a table's top
+    between two panels added along its sides), it bends as the shop's plank does; turned
+    back to its length, the lines along it hold its beam where they reach, and it reads
+    little of its bending (a nightstand's sides cut shallower than three quarters of its
+    top's depth, a top nailed all round once a front is added)."""
     if not edited.elastic:
         return [], []
     squared = []
@@ -184,10 +186,11 @@ def _turned_beams(original: Design, geometry: Geometry, edited: Design,
     after = beam_layout(edited, analyze(edited))    # (an edit of the planks there that
     # comes to nail one along both edges, its own joints new, is not looked for)
     candidates = before.candidates | after.candidates
-    turned = [p for p in sorted((set(squared) | candidates) & set(before.axes)
-                                & set(after.axes), key=original.plank_index.get)
-              if beam_turned(before.axes[p], after.axes[p])
-              and (p in squared or p in after.held_along)]
+    turned = [p for p in sorted((set(squared) | candidates) & set(before.crosswise)
+                                & set(after.crosswise), key=original.plank_index.get)
+              if before.crosswise[p] != after.crosswise[p]
+              and (p in squared or p in after.held_along
+                   or (p in before.across and p not in after.across))]
     return [p for p in turned if p in changed], [p for p in turned if p not in changed]
 
 
