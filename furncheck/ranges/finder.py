@@ -448,9 +448,14 @@ def turn_reasons(design: Design, dof: Dof, value: float, low: float, high: float
                            "along the longer side, so values beyond are judged spanning "
                            "the other way")
     turned: dict[str, list[str]] = {}            # planks turned at one value, together
-    for plank_id in turns.affected(dof):
-        where = turns.first_turn(dof, value, (low, high), plank_id)
-        if where is not None:
+    affected = turns.affected(dof)
+    ends = sorted({low, high} - {value}, key=lambda end: abs(end - value))
+    at_ends = [turns.turned(dof, value, end, affected) if affected else set()
+               for end in ends]
+    for plank_id in affected:
+        end = next((end for end, there in zip(ends, at_ends) if plank_id in there), None)
+        if end is not None:
+            where = turns.first_turn(dof, value, end, plank_id)
             turned.setdefault(plain_number(where, 6), []).append(plank_id)
     for where, planks in turned.items():
         whose = f"{planks[0]}'s beam is" if len(planks) == 1 else \
@@ -489,43 +494,40 @@ class BeamTurns:
             planks.add(dof.plank)
         return sorted(planks, key=self.design.plank_index.get)
 
-    def turned(self, dof: Dof, value: float, at: float, plank_id: str) -> bool:
-        """Whether plank ``plank_id``'s beam runs the other way with ``dof`` at ``at``
-        (False where the edit cannot be made): its joints and its neighbours' floor
-        corners followed onto the edited design (``geometry.follow_many``: the joints it
-        has now, measured again; one that the edit would open or close is not looked
-        for), not the whole design analysed again."""
+    def turned(self, dof: Dof, value: float, at: float, planks: list[str]) -> set[str]:
+        """Which of ``planks`` have their beam the other way with ``dof`` at ``at`` (none
+        where the edit cannot be made): their joints and their neighbours' floor corners
+        followed onto the edited design at once (``geometry.follow_many``: the joints
+        they have now, measured again; one that the edit would open or close is not
+        looked for), not the whole design analysed again."""
         try:
             edited = apply_dof(self.design, self.frame, dof, at - value)
         except (Blocked, OutOfReach):
-            return False
+            return set()
+        wanted = set(planks)
         joints = [j for j, joint in enumerate(self.geometry.joints)
-                  if plank_id in joint.planks]
-        near = {plank_id} | {p for j in joints for p in self.geometry.joints[j].planks}
+                  if wanted.intersection(joint.planks)]
+        near = wanted | {p for j in joints for p in self.geometry.joints[j].planks}
         corners = [c for c, contact in enumerate(self.geometry.contacts)
                    if contact.plank in near]
         (followed, contacts), = follow_many(self.geometry, [(edited, joints, corners)])
-        return plank_crosswise(edited, followed, contacts, plank_id) != self._now[plank_id]
+        return {plank_id for plank_id in planks
+                if plank_crosswise(edited, followed, contacts, plank_id)
+                != self._now[plank_id]}
 
-    def first_turn(self, dof: Dof, value: float, ends: tuple[float, float],
-                   plank_id: str) -> float | None:
+    def first_turn(self, dof: Dof, value: float, end: float, plank_id: str) -> float:
         """The value nearest ``value`` past which plank ``plank_id``'s beam is turned,
-        toward the nearer of ``ends`` where it is turned (to within TURN_RESOLUTION of
-        ``resolution``, by bisection: the turn is where joint lines stop covering a
-        length, which the row names to six figures, as the interval; one turn is assumed
-        between the value and that end, a turn and a turn back between them is not
-        seen); None where it is turned at neither."""
+        toward ``end``, where it is (to within TURN_RESOLUTION of ``resolution``, by
+        bisection: the turn is where joint lines stop covering a length, which the row
+        names to six figures, as the interval; one turn is assumed between the value and
+        that end, a turn and a turn back between them is not seen)."""
         resolution = 100.0 * RANGE_RESOLUTION if dof.is_rotation else self.resolution
-        for end in sorted({*ends} - {value}, key=lambda e: abs(e - value)):
-            if not self.turned(dof, value, end, plank_id):
-                continue
-            near, far = value, end
-            while abs(far - near) > TURN_RESOLUTION * resolution:
-                middle = 0.5 * (near + far)
-                near, far = (near, middle) if self.turned(dof, value, middle, plank_id) \
-                    else (middle, far)
-            return far
-        return None
+        near, far = value, end
+        while abs(far - near) > TURN_RESOLUTION * resolution:
+            middle = 0.5 * (near + far)
+            near, far = (near, middle) if self.turned(dof, value, middle, [plank_id]) \
+                else (middle, far)
+        return far
 
 
 def floor_reason(dof: Dof, low: float, resolution: float, unit: str) -> str:
