@@ -1,10 +1,11 @@
 """Comparison: furncheck's one beam per plank against a plate, for tops held on their edges.
 
 A 388 x 400 x 12 mm MDF top (E = 3000 N/mm^2, nu = 0.25) between two 550 mm high sides,
-40 kg at its centre, as in ``designs/nightstand-deep.yaml``: open (held on its two
-400 mm edges), with a back panel (three edges) and with a back and a front panel (four
-edges); and the load 10 mm inside the free front edge (the plate's largest deflection
-against furncheck's sag, which is its beam's: the section turns as a whole).
+40 kg at its centre, the sides and top of ``designs/nightstand-deep.yaml`` (no shelf):
+open (held on its two 400 mm edges), with a back panel (three edges) and with a back
+and a front panel (four edges); and the load 10 mm inside the free front edge (the
+plate's largest deflection against furncheck's sag, which is its beam's: the section
+turns as a whole).
 furncheck reads each design in the elastic model (``statics.elastic``: a beam along the
 top's shorter side where it spans between panels, ``_spans_across``); the plate is a
 Mindlin plate of 40 x 40 bilinear elements with selectively reduced shear integration

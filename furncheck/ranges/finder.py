@@ -42,7 +42,7 @@ from furncheck.ranges.nearest import (
 )
 from furncheck.ranges.reach import ReachSearch
 from furncheck.sensitivity import Linearization, Sensitivity
-from furncheck.statics.elastic import beam_layout, plank_crosswise
+from furncheck.statics.elastic import beam_layout, plank_geometry
 
 RANGE_RESOLUTION = 1e-3
 """Bisection stops when the bracket is this fraction of the design's size (lengths) or
@@ -504,16 +504,9 @@ class BeamTurns:
             edited = apply_dof(self.design, self.frame, dof, at - value)
         except (Blocked, OutOfReach):
             return set()
-        wanted = set(planks)
-        joints = [j for j, joint in enumerate(self.geometry.joints)
-                  if wanted.intersection(joint.planks)]
-        near = wanted | {p for j in joints for p in self.geometry.joints[j].planks}
-        corners = [c for c, contact in enumerate(self.geometry.contacts)
-                   if contact.plank in near]
-        (followed, contacts), = follow_many(self.geometry, [(edited, joints, corners)])
+        after = beam_layout(edited, plank_geometry(self.geometry, edited, planks), planks)
         return {plank_id for plank_id in planks
-                if plank_crosswise(edited, followed, contacts, plank_id)
-                != self._now[plank_id]}
+                if after.crosswise[plank_id] != self._now[plank_id]}
 
     def first_turn(self, dof: Dof, value: float, end: float, plank_id: str) -> float:
         """The value nearest ``value`` past which plank ``plank_id``'s beam is turned,

@@ -29,7 +29,7 @@ import numpy as np
 
 from furncheck import tolerances as tol
 from furncheck.design.model import Design, Plank
-from furncheck.geometry import Geometry
+from furncheck.geometry import Geometry, follow_many
 from furncheck.statics.beams import (
     along_width,
     beam_frame,
@@ -166,16 +166,21 @@ class BeamLayout(NamedTuple):
     held_along: frozenset[str]
 
 
-def beam_layout(design: Design, geometry: Geometry) -> BeamLayout:
-    """The ``BeamLayout`` of every plank of the design, for whoever asks whether an edit
-    turns a plank's beam (``ranges.finder.turn_reasons``, ``suggest.score``)."""
+def beam_layout(design: Design, geometry, planks: list[str] | None = None) -> BeamLayout:
+    """The ``BeamLayout`` of the design's planks (or of ``planks``, by id, whose joints and
+    whose neighbours' floor corners ``geometry`` holds: ``plank_geometry``), for whoever
+    asks whether an edit turns a plank's beam (``ranges.finder.turn_reasons``,
+    ``suggest.score``)."""
     joints = list(range(len(geometry.joints)))
     held = _joint_lines(design, geometry, joints)
-    flags = _crosswise(design, geometry, list(design.planks), joints,
-                       list(range(len(geometry.contacts))), held)
+    chosen = list(design.planks) if planks is None else [design.plank(p) for p in planks]
+    mine = {plank.id for plank in chosen}
+    flags = _crosswise(design, geometry, chosen, joints,
+                       [c for c, contact in enumerate(geometry.contacts)
+                        if contact.plank in mine], held)
     grounded = {contact.plank for contact in geometry.contacts if contact.on_floor}
     crosswise, across, candidates, held_along = {}, set(), set(), set()
-    for plank, along_y in zip(design.planks, flags):
+    for plank, along_y in zip(chosen, flags):
         crosswise[plank.id] = along_y
         lines = held.get(plank.id)
         if plank.id in grounded or not lines:
@@ -195,16 +200,18 @@ def beam_layout(design: Design, geometry: Geometry) -> BeamLayout:
                       frozenset(held_along))
 
 
-def plank_crosswise(design: Design, joints: tuple, contacts: tuple, plank_id: str) -> bool:
-    """``_crosswise`` of one plank, from the joints and contacts given (the plank's own and
-    its neighbours' floor corners, as ``geometry.follow_many`` measures them again on an
-    edited design), without analysing the whole design: what a resize does to that
-    plank's beam, on a 2,000-plank wall as on a stool."""
-    local = SimpleNamespace(joints=tuple(joints), contacts=tuple(contacts))
-    mine = [k for k, joint in enumerate(joints) if plank_id in joint.planks]
-    corners = [k for k, contact in enumerate(contacts) if contact.plank == plank_id]
-    return _crosswise(design, local, [design.plank(plank_id)], mine, corners,
-                      _joint_lines(design, local, mine))[0]
+def plank_geometry(geometry: Geometry, edited: Design, planks) -> SimpleNamespace:
+    """The joints of ``planks`` (ids) and the corners of the planks they are nailed to,
+    followed from ``geometry`` onto ``edited`` (``geometry.follow_many``: the joints they
+    have, measured again; one that the edit would open or close is not looked for), as
+    a geometry for ``beam_layout`` of those planks: what an edit does to their beams,
+    on a 2,000-plank wall as on a stool, without analysing the whole design."""
+    wanted = set(planks)
+    joints = [j for j, joint in enumerate(geometry.joints) if wanted.intersection(joint.planks)]
+    near = wanted | {p for j in joints for p in geometry.joints[j].planks}
+    corners = [c for c, contact in enumerate(geometry.contacts) if contact.plank in near]
+    (followed, contacts), = follow_many(geometry, [(edited, joints, corners)])
+    return SimpleNamespace(joints=tuple(followed), contacts=tuple(contacts))
 
 
 def _joint_lines(design: Design, geometry,

@@ -49,7 +49,7 @@ from furncheck.design.model import Design, Plank
 from furncheck.dofs import design_size
 from furncheck.geometry import Geometry, analyze
 from furncheck.plain import plain_load
-from furncheck.statics.elastic import BeamLayout, beam_layout
+from furncheck.statics.elastic import BeamLayout, beam_layout, plank_geometry
 from furncheck.suggest.cutlist import (
     ANGLE_FIELDS,
     POSITION_FIELDS,
@@ -183,8 +183,11 @@ def _turned_beams(original: Design, geometry: Geometry, edited: Design,
     added = any(plank.id not in original.plank_index for plank in edited.planks)
     if not squared and not before.candidates and not added:
         return [], []   # nothing nailed along both edges before, nor a plank added to be
-    after = beam_layout(edited, analyze(edited))    # (an edit of the planks there that
-    # comes to nail one along both edges, its own joints new, is not looked for)
+    if added:           # (an edit of the planks there that comes to nail one along both
+        after = beam_layout(edited, analyze(edited))  # edges, joints new, is not looked for)
+    else:               # the same joints: followed onto the edit, for the planks in
+        asked = sorted(set(squared) | before.candidates, key=original.plank_index.get)
+        after = beam_layout(edited, plank_geometry(geometry, edited, asked), asked)
     candidates = before.candidates | after.candidates
     turned = [p for p in sorted((set(squared) | candidates) & set(before.crosswise)
                                 & set(after.crosswise), key=original.plank_index.get)
