@@ -487,10 +487,11 @@ class BeamTurns:
 
     def affected(self, dof: Dof) -> list[str]:
         """The planks whose beam ``dof`` may turn other than at the square: its own plank
-        if that may span across and the DOF resizes it, and the candidates nailed to it,
-        in the design's order."""
+        if that may span across (resized, moved or turned, it comes to be held along
+        more or less of its edges), and the candidates nailed to it, in the design's
+        order."""
         planks = set(self._nailed.get(dof.plank, ()))
-        if dof.plank in self.candidates and dof.kind in ("length", "width"):
+        if dof.plank in self.candidates:
             planks.add(dof.plank)
         return sorted(planks, key=self.design.plank_index.get)
 
