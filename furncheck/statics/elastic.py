@@ -193,8 +193,7 @@ def beam_layout(design: Design, geometry, planks: list[str] | None = None) -> Be
                 across.add(plank.id)
             axis = 1 if along_y else 0
             found = _held_along(plank, lines, axis)
-            need = tol.SPAN_ACROSS_COVER * (plank.length, plank.width)[axis] - tol.NODE_MERGE
-            if found is not None and min(found[0]) + tol.NODE_MERGE_ROUNDOFF >= need:
+            if found is not None and _covers(plank, axis, found[0]):
                 held_along.add(plank.id)
     return BeamLayout(crosswise, frozenset(across), frozenset(candidates),
                       frozenset(held_along))
@@ -271,7 +270,7 @@ def _holds_straight(design: Design, plank_id: str, partner_id: str, feet,
     return gives <= allowed * (1.0 + tol.RATE_ROUNDOFF)     # equal to the last bits: holds
 
 
-def _spans_across(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, Any]]) -> bool:
+def _spans_across(plank: Plank, held: list[tuple[tuple, tuple, Any]]) -> bool:
     """Whether a plank that does not stand on the floor spans across its width, not along
     its length (contract 3a takes the longer in-plane axis; this is its one exception).
     It does where both its longer edges are nailed, along most of their length, to planks
@@ -302,13 +301,20 @@ def _spans_across(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, Any]]) 
     if found is None:
         return False
     covered, crossing = found
-    slack = tol.NODE_MERGE_ROUNDOFF             # a share met to the last bits is met
-    need = tol.SPAN_ACROSS_COVER * sizes[longer] - tol.NODE_MERGE
     rim = tol.SPAN_ACROSS_CROSSING * sizes[shorter] - tol.NODE_MERGE
-    return bool(min(covered) + slack >= need and crossing - slack < rim)
+    return _covers(plank, longer, covered) and crossing - tol.NODE_MERGE_ROUNDOFF < rim
 
 
-def _held_along(plank: Plank, held: list[tuple[np.ndarray, np.ndarray, Any]],
+def _covers(plank: Plank, axis: int, covered: tuple[float, float]) -> bool:
+    """Whether joint lines covering ``covered`` (m, on each side) of the plank's side along
+    its local ``axis`` cover SPAN_ACROSS_COVER of it on both sides, a millimetre
+    (NODE_MERGE) to spare, and the last bits (NODE_MERGE_ROUNDOFF): ``_spans_across``'s
+    cover, and ``BeamLayout.held_along``'s."""
+    need = tol.SPAN_ACROSS_COVER * (plank.length, plank.width)[axis] - tol.NODE_MERGE
+    return min(covered) + tol.NODE_MERGE_ROUNDOFF >= need
+
+
+def _held_along(plank: Plank, held: list[tuple[tuple, tuple, Any]],
                 axis: int, straight_only: bool = True
                 ) -> tuple[tuple[float, float], float] | None:
     """((m, m), m): how much of the plank's length along its local ``axis`` (0: x, 1: y)

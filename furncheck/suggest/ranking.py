@@ -21,6 +21,7 @@ from furncheck.design.write import design_text
 from furncheck.dofs import Dof, all_dofs
 from furncheck.geometry import analyze
 from furncheck.statics import build_model
+from furncheck.statics.elastic import beam_layout
 from furncheck.suggest.closures import finished_closures
 from furncheck.suggest.continuous import LINE_SEARCHES_PER_SUGGESTION, ContinuousSearch
 from furncheck.suggest.cutlist import anchor_moves, load_moves, load_spreads, plank_edits
@@ -106,9 +107,10 @@ def _ranked(design: Design, geometry, planes, suggestions: list[Suggestion],
     """The suggestions with their cut lists and scores, best first (module docstring),
     at most ``limit``, renumbered (their files' names follow their new ranks)."""
     scored = []
+    layout = beam_layout(design, geometry) if design.elastic and suggestions else None
     for suggestion in suggestions:
         edits = plank_edits(design, suggestion.design)
-        score = shop_score(design, geometry, planes, suggestion.design, edits)
+        score = shop_score(design, geometry, planes, suggestion.design, edits, layout)
         scored.append(replace(suggestion, edits=edits, score=score,
                               loads_moved=load_moves(design, suggestion.design),
                               loads_spread=load_spreads(design, suggestion.design),

@@ -136,28 +136,22 @@ class ShopScore:
 
 
 def shop_score(original: Design, geometry: Geometry, planes: tuple[MirrorPlane, ...],
-               edited: Design, edits: tuple[PlankEdit, ...]) -> ShopScore:
+               edited: Design, edits: tuple[PlankEdit, ...],
+               layout: BeamLayout | None = None) -> ShopScore:
     """The score of the suggestion whose design is ``edited`` and cut list ``edits``;
-    ``geometry`` is the original's, ``planes`` its mirror planes."""
+    ``geometry`` is the original's, ``planes`` its mirror planes, ``layout`` its
+    ``elastic.beam_layout`` where the caller scores many suggestions of it (None: made
+    here when needed)."""
     size = design_size(original)
     cost = sum(_relative(edit, size) for edit in edits) + PLANK_COST * len(edits)
     broken = broken_pairs(edited, planes, frozenset(original.plank_index))
-    return ShopScore(implausible(original, geometry, edited), broken, cost, len(edits))
-
-
-_LAYOUT: list = []         # (geometry, its design's BeamLayout): the design being ranked
-
-
-def _original_layout(original: Design, geometry: Geometry) -> BeamLayout:
-    """``elastic.beam_layout`` of the design whose suggestions are being scored, kept for
-    the next one (every suggestion of a ranking asks, of the same design and geometry)."""
-    if not _LAYOUT or _LAYOUT[0][0] is not geometry or _LAYOUT[0][1] is not original:
-        _LAYOUT[:] = [(geometry, original, beam_layout(original, geometry))]
-    return _LAYOUT[0][2]
+    return ShopScore(implausible(original, geometry, edited, layout), broken, cost,
+                     len(edits))
 
 
 def _turned_beams(original: Design, geometry: Geometry, edited: Design,
-                  changed: set[str]) -> tuple[list[str], list[str]]:
+                  changed: set[str], layout: BeamLayout | None
+                  ) -> tuple[list[str], list[str]]:
     """The planks whose one beam the elastic model lays the other way in ``edited`` than
     in ``original`` (``elastic.beam_layout``, in each plank's own frame) where that may
     be the model's doing, in the order of the design's planks: (those among ``changed``
@@ -169,7 +163,8 @@ def _turned_beams(original: Design, geometry: Geometry, edited: Design,
     between two panels added along its sides), it bends as the shop's plank does; turned
     back to its length, the lines along it hold its beam where they reach, and it reads
     little of its bending (a nightstand's sides cut shallower than three quarters of its
-    top's depth, a top nailed all round once a front is added)."""
+    top's depth, a top nailed all round once a front is added).  ``layout``: the
+    original's ``beam_layout``, or None to make it."""
     if not edited.elastic:
         return [], []
     squared = []
@@ -179,7 +174,7 @@ def _turned_beams(original: Design, geometry: Geometry, edited: Design,
         after = after_plank.length - after_plank.width
         if before * after < 0.0 and min(abs(before), abs(after)) > original.tolerance:
             squared.append(plank_id)
-    before = _original_layout(original, geometry)
+    before = beam_layout(original, geometry) if layout is None else layout
     added = any(plank.id not in original.plank_index for plank in edited.planks)
     if not squared and not before.candidates and not added:
         return [], []   # nothing nailed along both edges before, nor a plank added to be
@@ -197,7 +192,8 @@ def _turned_beams(original: Design, geometry: Geometry, edited: Design,
     return [p for p in turned if p in changed], [p for p in turned if p not in changed]
 
 
-def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[str, ...]:
+def implausible(original: Design, geometry: Geometry, edited: Design,
+                layout: BeamLayout | None = None) -> tuple[str, ...]:
     """Why ``edited`` has proportions a maker would not build that ``original`` did not
     have: planks too big for a stock board, planks wider than the face they are nailed
     to (the original's joints; a plank ``edited`` adds is checked for the board only)."""
@@ -237,7 +233,7 @@ def implausible(original: Design, geometry: Geometry, edited: Design) -> tuple[s
                            f"of its {after[1]}{was}")
     scale, unit = original.unit_scale, original.units
     turned: dict[tuple, list[str]] = {}         # planks alike, named together
-    resized, others = _turned_beams(original, geometry, edited, changed)
+    resized, others = _turned_beams(original, geometry, edited, changed, layout)
     for plank_id in resized:
         after_plank = edited.plank(plank_id)
         size = (amount(after_plank.length / scale), amount(after_plank.width / scale))
