@@ -177,9 +177,9 @@ are shallower than it is deep overhangs them along its length: held along less t
 this, its beam keeps its length and shows the overhang's bending along it, not its
 bending across between the sides (a 400 mm deep top on 300 mm deep sides spans across;
 on 290 mm sides its beam reads the 110 mm overhang, 0.46 mm under 40 kg at its middle,
-where a plate held along 290 mm of its edges sags more, about 1 mm: the README's
-limits).  Three quarters: a top overhanging its sides by 20 or 30 mm at the front, as
-tops do, is held along nearly all of its edges."""
+and the plate check, ``statics.plates``, the top's bending across: 2.23 mm).  Three
+quarters: a top overhanging its sides by 20 or 30 mm at the front, as tops do, is held
+along nearly all of its edges."""
 
 SPAN_ACROSS_CROSSING = 1.5
 """... and where its joint lines across its width (along its shorter side) held straight
@@ -190,9 +190,62 @@ well (held on three edges) still spans across, held at its back by the back's na
 plate held on those three edges sags 0.90 mm with clamped and 2.23 mm with simply
 supported edges, ``benchmarks/compare_plate.py``; along its depth its beam, held along
 its length and at its end, read 0.04 mm); one nailed all round keeps the beam along its
-longer side, as contract 3a has it (the README's limits: a plate held on four edges).
+longer side, as contract 3a has it, and the plate check reads its bending
+(``statics.plates``).
 One and a half, so that neither a back exactly as wide as the plank nor two such sit on
 the edge of the rule."""
+
+PLATE_HELD_SHARE = 0.25
+"""Elastic model: a plank not standing on the floor whose joint lines held straight by
+their other planks (``elastic._holds_straight``) run along its beam on both sides of
+it, covering at least this share of its length on each side (their union, a
+millimetre, NODE_MERGE, to spare), is also checked as a plate (``statics.plates``):
+held all along, its beam shows little of its bending, which happens across it, between
+the lines (a step box's top nailed to its four sides read 0.02 mm under 80 kg where the
+plate sags 1.70 mm; a nightstand top on sides 290 mm deep under its 400 mm depth).  A quarter:
+a table top's legs, 40 mm of a 1000 mm side, hold its beam at its ends only, where the
+beam's bending is the plank's."""
+
+PLATE_CELLS = 10
+"""Elastic model: a plate plank's grid has about this many elements across its shorter
+side (``plates._grid``; its lines also pass through every support line's ends and every
+load patch's edges).  Bilinear Mindlin elements with one-point shear: at 10, with the
+shear made stiff (Kirchhoff's plate), a simply supported plate's centre deflection is
+within 1.6 % of Navier's series under a uniform load and a central patch (400 x 400, 600 x
+400, 1000 x 300), a strip's middle within 2 % of 5 q L^4 / 384 D plus its shear term
+(``tests/test_plates.py``); at 8 the strip read 2.9 % low, at 12 the cabinet's check
+took about 6 % longer."""
+
+PLATE_POISSON = 0.25
+"""Elastic model: Poisson's ratio of a plate plank (its rigidity E t^3 / 12 (1 - nu^2)).
+MDF is nearly isotropic in its plane; 0.25 is the Wood Handbook's value for MDF (as
+MakeItFrom's MDF sheet cites it), and Ganev et al. (2005, Wood and Fiber Science 37(2))
+found MDF's in-plane Poisson's ratio independent of its density.  Between 0.2 and 0.3 a
+plate's deflection moves by about 3 %."""
+
+PLATE_LOAD_PATCH = 0.05
+"""m: a point load on a plate plank presses on a square this wide about its point (moved
+onto the plank where it would overhang an edge): Eurocode 1 (EN 1991-1-1, 6.3.1.2 (5))
+lets a floor's concentrated load Q_k act on a square of 50 mm side.  A plate's bending
+stress under a true point is unbounded; over 50 mm a simply supported 400 mm square of
+12 mm MDF under 40 kg reads 4.1 N/mm^2 by Navier's series, over 100 mm 3.0 (its centre
+1.53 and 1.44 mm down)."""
+
+PLATE_PATCH_CELLS = 4
+"""... and each load patch is cut into this many elements each way, so that the largest
+moment, under the patch, is read near its peak (one element per patch read 11 % low
+against Navier's series; four, 2 to 4 % low)."""
+
+PLATE_CACHE = 64
+"""How many factored plates (``plates._plate_grid``) a process keeps: the planks alike in
+a design (a bookcase's shelves), and a plank an edit leaves as it was in the many
+checked designs of a ``range`` or ``suggest``, share one.  At most about 0.5 MB each
+(a 600 x 300 shelf's band, 8 cells across)."""
+
+PLATE_SLANT = 1e-6
+"""A joint line whose direction, in a plate plank's plane, leans from both its axes by
+more than this (its sine) is not a plate support (``plates._support_segments``: the
+grid runs along the plank's axes)."""
 
 SUPPORT_STATION_LENGTH = 0.25
 """m: elastic model: a plank that touches the floor or a wall along its beam (a board lying

@@ -407,7 +407,7 @@ PORTAL_EI = ed.E * second_moment(ed.PORTAL_B, ed.PORTAL_T)      # both members: 
 PORTAL_E = ed.PORTAL_T / 2                                       # foot corner line offset
 
 
-def test_portal_under_gravity():
+def test_portal_under_gravity(monkeypatch):
     """Seat 712 x 300 x 12 on two legs 450 x 300 x 12 at x = +-350, stiff nails (1e9 N/mm:
     rigid knees), 40 kg spread on the seat, weightless planks: w = 392.4 / 712 = 0.55112
     N/mm, R = 196.2 N per foot.  Both members bend about their weak axis (world y): the seat
@@ -430,7 +430,15 @@ def test_portal_under_gravity():
     Seat: M(+-a) = R e - w o^2 / 2 - H (h + c) = -16,060 N mm, M(0) = M(a) + w a^2 / 2 =
     17,695 N mm; stress 17,695 / 7200 + H / 3600 = 2.468 N/mm^2; sag between the joints
     5 w L^4 / 384 EI + M(a) L^2 / 8 EI + w L^2 / 8 kGA = 13.29 - 7.59 + 0.01 = 5.71 mm.
-    Legs: stress |R e - H h| / 7200 + R / 3600 = 2.198 + 0.055 = 2.252 N/mm^2."""
+    Legs: stress |R e - H h| / 7200 + R / 3600 = 2.198 + 0.055 = 2.252 N/mm^2.
+    (The frame's beams, as contract 3a has them: the seat, held along its ends by the
+    legs' rows, is checked as a plate too, ``statics.plates``, whose supports do not
+    turn; with these rigid knees it is a clamped plate, its end moments w L^2 / 12 more
+    than the frame's, which its legs' bending lets turn.  Switched off here: what this
+    checks is the frame.)"""
+    from furncheck import tolerances as tol
+
+    monkeypatch.setattr(tol, "PLATE_HELD_SHARE", float("inf"))
     mass = 40.0
     w = line_load(mass, 2 * (ed.PORTAL_A + ed.PORTAL_OVERHANG))
     hand = portal_hand(**PORTAL_GEOMETRY, e_left=-PORTAL_E, e_right=PORTAL_E, w=w,

@@ -35,9 +35,12 @@ OUTWARD_SAMPLES = 13
 the reach out to the reach, each sqrt(2) times the one before (doubling, 7 probes, stepped
 over a 52 mm window between 95 and 190 mm of a headboard's 1524 mm reach)."""
 
-PREDICTED_PROBES = (1.05, 0.85, 1.5, 2.25, 3.4)
-"""Multiples of the predicted step probed, in order (the first as ``suggest``'s line
-search's first probe)."""
+PREDICTED_PROBES = (1.05, 1.0, 0.85, 1.5, 2.25, 3.4)
+"""Multiples of the predicted step probed, in order: the first as ``suggest``'s line
+search's first probe, the second the predicted step itself, which that line search
+tries where its first probe fails (the window may end between the prediction and its
+overshoot: bench-tips' seat, shortened, is valid from 521 to 558 mm shorter, predicted
+542, first probed at 569, where its seat, now checked as a plate too, sags)."""
 
 WINDOW_RESOLUTION = 0.02
 """The ends of a window found at a predicted step are closed to at most this fraction of

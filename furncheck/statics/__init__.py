@@ -73,9 +73,10 @@ def solve_load_case(model: StaticsModel, case: LoadCase,
     if model.beams is None or statics.displacements is None:
         return statics
     from furncheck.statics.bending import plank_results
+    from furncheck.statics.plates import with_plates
 
-    return replace(statics, planks=plank_results(model, case, statics.displacements,
-                                                 statics.holding))
+    planks = plank_results(model, case, statics.displacements, statics.holding)
+    return replace(statics, planks=with_plates(model, [case], [planks])[0])
 
 
 def solve_load_cases(model: StaticsModel, cases: list[LoadCase]) -> list[CaseStatics]:
@@ -94,9 +95,11 @@ def solve_load_cases(model: StaticsModel, cases: list[LoadCase]) -> list[CaseSta
     if model.beams is None or not solved:
         return statics
     from furncheck.statics.bending import plank_part, plank_results_of
+    from furncheck.statics.plates import with_plates
 
     parts = [plank_part(model, cases[k], statics[k].holding) for k in solved]
     results = plank_results_of(parts, [statics[k].displacements for k in solved])
+    results = with_plates(model, [cases[k] for k in solved], results)
     for k, planks in zip(solved, results):
         statics[k] = replace(statics[k], planks=planks)
     return statics

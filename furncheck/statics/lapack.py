@@ -37,6 +37,8 @@ class Routines(NamedTuple):
     potrs: object
     gesv: object
     source: str
+    pbtrf: object = None
+    pbtrs: object = None
 
 
 @functools.cache
@@ -44,12 +46,14 @@ def routines() -> Routines:
     """scipy's double-precision potrf, potrs and gesv (see the module docstring)."""
     module = _load_flapack_file()
     if module is not None:
-        return Routines(module.dpotrf, module.dpotrs, module.dgesv, "file")
+        return Routines(module.dpotrf, module.dpotrs, module.dgesv, "file", module.dpbtrf,
+                        module.dpbtrs)
     import numpy as np
     from scipy.linalg import lapack
 
-    potrf, potrs, gesv = lapack.get_lapack_funcs(("potrf", "potrs", "gesv"), (np.zeros(1),))
-    return Routines(potrf, potrs, gesv, "scipy.linalg")
+    found = lapack.get_lapack_funcs(("potrf", "potrs", "gesv", "pbtrf", "pbtrs"),
+                                    (np.zeros(1),))
+    return Routines(*found[:3], "scipy.linalg", *found[3:])
 
 
 def _load_flapack_file():
@@ -67,7 +71,8 @@ def _load_flapack_file():
                 file_spec = importlib.util.spec_from_file_location(FLAPACK, path)
                 module = importlib.util.module_from_spec(file_spec)
                 file_spec.loader.exec_module(module)
-                if all(hasattr(module, name) for name in ("dpotrf", "dpotrs", "dgesv")):
+                if all(hasattr(module, name)
+                       for name in ("dpotrf", "dpotrs", "dgesv", "dpbtrf", "dpbtrs")):
                     return module
                 return None
     except (ImportError, OSError, AttributeError, ValueError):
@@ -86,4 +91,18 @@ def cholesky(matrix):
 def cholesky_solve(factor, rhs):
     """x with U^T U x = rhs for the upper Cholesky factor U (``cholesky``)."""
     x, _ = routines().potrs(factor, rhs, lower=0)
+    return x
+
+
+def banded_cholesky(bands):
+    """The upper Cholesky factor of a symmetric banded matrix in LAPACK's upper band
+    storage (``bands[u + i - j, j] = A[i, j]`` for i <= j, u the bands above the
+    diagonal), None if it is not positive definite (``pbtrf``)."""
+    factor, info = routines().pbtrf(bands, lower=0)
+    return factor if info == 0 else None
+
+
+def banded_solve(factor, rhs):
+    """x with U^T U x = rhs for a ``banded_cholesky`` factor U (``pbtrs``)."""
+    x, _ = routines().pbtrs(factor, rhs, lower=0)
     return x

@@ -1,0 +1,666 @@
+"""A plank held along lines, checked as a plate as well as by its beam.
+
+Contract 3a gives each plank one beam, whose cross-section stays straight.  Where panels
+hold the plank along lines (a step box's top nailed to its four sides, a shelf nailed
+along its back edge to slats and at its ends to sides, a nightstand top on sides
+shallower than it is deep), the beam held along them shows little of the plank's
+bending, which happens across it, between the lines: a top nailed all round read 0.01
+mm where a plate sags 0.8 to 1.6 mm (``benchmarks/compare_plate.py``), and a beam
+spreads a point load over its whole width (a load at a top's free front edge read as
+at its centre).  So such a plank is also solved as a plate, on its own:
+
+* which planks (``_held_planks``): those not standing on the floor whose joint lines,
+  held straight by their other planks (``elastic._holds_straight``: a panel, not a
+  rail), cover at least PLATE_HELD_SHARE of one of its sides on one line or one side of
+  its middle, and hold it somewhere off that line too; and whose weight or loads push
+  across its face (``_loaded_across``);
+* the plate: Mindlin, bilinear elements with selectively reduced shear integration, on
+  a grid through every support line's ends and load patch's edges, about PLATE_CELLS
+  elements across its shorter side (``_grid``, ``_element_matrices``), factored as a
+  band (LAPACK's pbtrf, the nodes numbered across the shorter direction first);
+* its supports: those joint lines, simply supported, with each nail row's grip against
+  turning about its line as a spring (contract 3a's n nail_withdrawal (t/2)^2, spread
+  along the line), as the beams have it;
+* its loads: its own weight and the case's spread loads over its face, each point load
+  spread over a square PLATE_LOAD_PATCH wide (kept on the plank), the components across
+  its face only.  Forces that other planks bring through its joints (a divider standing
+  on a cabinet's bottom) are not the plate's: its beam carries them.
+
+Its sag is the plate's largest deflection between its supports (the supports do not
+move; an overhang beyond them is its beam's, measured from the tangent at its support),
+its span twice that point's distance to the nearest supported node (two lines s apart:
+s), and its stress the largest principal moment's 6 |M| / t^2 at the elements' centres.
+Where these exceed the beam's they are the plank's (``with_plates``); the joints' and
+contacts' forces stay the beam model's.  The sensitivities of ``range`` and ``suggest``
+read the beams alone; every range end and suggestion is checked in full, plate included.
+Planks alike (a bookcase's shelves) and a plank that an edit leaves as it was share one
+factored plate (``plate_for``: its inputs rounded to a nanometre).
+"""
+
+from __future__ import annotations
+
+import functools
+from typing import NamedTuple
+
+import numpy as np
+
+from furncheck import tolerances as tol
+from furncheck.design.model import Design, LoadCase, Plank
+from furncheck.statics.beams import SHEAR_FACTOR
+
+
+class PlateGrid(NamedTuple):
+    """A plank's plate, factored (``_plate_grid``): the grid lines (x, y, m, plank-local,
+    ascending), the supported nodes (indices, row-major, x fastest), each unknown's place
+    in the banded matrix (``_ranks``: -1 for those held at zero, the supported nodes'
+    w), those held at zero, the banded Cholesky factor (``_banded_factor``), per element
+    the (3, 12) map from its unknowns to its centre's moments (M_x, M_y, M_xy, N m / m)
+    and its unknowns (``_element_dofs``), the plate's thickness (m), the elements'
+    centres (x, y) and areas (m^2), the nodes (X, Y, row-major) and which of them lie
+    between the supports (within the supported nodes' bounding box, ``_sag_span``)."""
+
+    xs: np.ndarray
+    ys: np.ndarray
+    supported: np.ndarray
+    rank: np.ndarray
+    fixed: np.ndarray
+    factor: np.ndarray
+    moments: np.ndarray
+    dofs: np.ndarray
+    thickness: float
+    centres: tuple
+    areas: np.ndarray
+    nodes: tuple
+    between: np.ndarray
+
+
+class PlatePlank(NamedTuple):
+    """One plank checked as a plate: its local index in the model, the plank and its
+    ``PlateGrid``."""
+
+    local: int
+    plank: Plank
+    grid: PlateGrid
+
+
+def plate_planks(model) -> tuple[PlatePlank, ...]:
+    """The model's planks to check as plates, each with its factored plate; kept in
+    ``model.plank_cache`` (load-independent)."""
+    cached = model.plank_cache.get("plates")
+    if cached is not None:
+        return cached
+    found = tuple(plate for k, plank, lines, rails in _held_planks(model)
+                  if (plate := _plate(model, k, plank, lines, rails)) is not None)
+    model.plank_cache["plates"] = found
+    return found
+
+
+def _held_planks(model):
+    """(local index, plank, support segments, stiffeners) of each plank of the model that does not
+    stand on the floor and that joint lines held straight by their other planks hold
+    along its beam over at least PLATE_HELD_SHARE of its length (on one side of its axis
+    or on it; the union of their spans), besides somewhere off that line (the plate is
+    then held, not hinged on one line): each segment ((x0, y0), (x1, y1), grip),
+    plank-local, and the rails nailed along it (``_support_segments``)."""
+    from furncheck.statics.elastic import _joint_lines
+
+    design, geometry = model.design, model.geometry
+    grounded = {contact.plank for contact in geometry.contacts if contact.on_floor}
+    held = None
+    for k, index in enumerate(model.planks):
+        plank = design.planks[index]
+        if plank.id in grounded:
+            continue
+        if held is None:
+            held = _joint_lines(design, geometry, list(model.joints))
+        lines = held.get(plank.id)
+        if not lines or len(lines) < 2:
+            continue
+        joints = [geometry.joints[j] for j in model.joints
+                  if plank.id in geometry.joints[j].planks]     # ``_joint_lines``' order
+        if not _loaded_across(design, plank):
+            continue
+        segments, stiffeners = _support_segments(design, plank, lines, joints)
+        if _holds_beam(plank, segments, 0) or _holds_beam(plank, segments, 1):
+            yield k, plank, segments, stiffeners
+
+
+def _loaded_across(design: Design, plank: Plank) -> bool:
+    """Whether its weight or a load of some case pushes the plank across its face (a
+    plank standing on edge, loaded in its plane only, bends as its beam does)."""
+    normal = plank.axes[2]
+    if abs(normal[2]) > tol.PLATE_SLANT:
+        return True
+    return any(abs(float(np.dot(load.force, normal))) > 0.0
+               for case in design.load_cases for load in case.loads if load.plank == plank.id)
+
+
+def _holds_beam(plank: Plank, segments, axis: int) -> bool:
+    """Whether ``segments`` along the plank's local ``axis`` (its beam's) cover at least
+    PLATE_HELD_SHARE of its length on one line or on one side of the axis, and some
+    segment lies off the line of the first such (see ``_held_planks``)."""
+    from furncheck.statics.elastic import _union_length
+
+    size = (plank.length, plank.width)[axis]
+    need = tol.PLATE_HELD_SHARE * size - tol.NODE_MERGE - tol.NODE_MERGE_ROUNDOFF
+    along = [seg for seg in segments if _segment_axis(seg) == axis]
+    for side in (-1.0, 0.0, 1.0):
+        mine = [seg for seg in along if _side(seg[0][1 - axis]) == side]
+        if _union_length([(seg[0][axis], seg[1][axis]) for seg in mine]) < need:
+            continue
+        lines = {round(seg[0][1 - axis] / tol.NODE_MERGE) for seg in mine}
+        if len(lines) > 1 or any(_segment_axis(seg) != axis or
+                                 round(seg[0][1 - axis] / tol.NODE_MERGE) not in lines
+                                 for seg in segments):
+            return True
+    return False
+
+
+def _side(offset: float) -> float:
+    """-1, 0 or 1: which side of the beam's axis a line at ``offset`` (m) lies on (0:
+    within NODE_MERGE of it)."""
+    return 0.0 if abs(offset) <= tol.NODE_MERGE else float(np.sign(offset))
+
+
+def _segment_axis(segment) -> int:
+    """0 where a segment ((x0, y0), (x1, y1), grip) runs along the plank's x, else 1."""
+    (x0, y0), (x1, y1), _ = segment
+    return 0 if abs(y1 - y0) <= abs(x1 - x0) else 1
+
+
+def _support_segments(design: Design, plank: Plank, lines, joints) -> tuple[list, list]:
+    """The plank's joint lines (``lines``, of ``joints`` in order) as local segments along
+    its x or y axis (clipped to the plank; a line at a slant to both is left out): those
+    held straight by their other planks, each with its nail row's grip against turning
+    about it per metre (contract 3a: n nail_withdrawal (t/2)^2 over its length, N m /
+    rad per m; the other plank taken as not turning), and the others, the rails and
+    aprons that bend with the plank, each with
+    the bending stiffness it adds across the plank's face, E I (N m^2,
+    ``_bending_across``): (supports, stiffeners), each ((x0, y0), (x1, y1), value)."""
+    frame = plank.rotation_matrix
+    sizes = (plank.length, plank.width)
+    half = np.array(sizes) / 2.0
+    withdrawal = design.material_of(plank).nail_withdrawal
+    supports, stiffeners = [], []
+    for (point, line, straight), joint in zip(lines, joints, strict=True):
+        along = np.asarray(line) @ frame[:, :2]
+        length = float(np.hypot(*along))
+        if length <= 0.0:
+            continue
+        axis = int(abs(along[1]) > abs(along[0]))
+        if abs(along[1 - axis]) > tol.PLATE_SLANT * length:
+            continue
+        centre = plank.to_local(np.asarray(point)[None, :])[0, :2]
+        low, high = centre.copy(), centre.copy()
+        low[axis] -= length / 2.0
+        high[axis] += length / 2.0
+        low, high = np.clip(low, -half, half), np.clip(high, -half, half)
+        if high[axis] - low[axis] <= tol.NODE_MERGE:
+            continue
+        ends = (tuple(low.tolist()), tuple(high.tolist()))
+        if straight(sizes[axis], sizes[1 - axis]):
+            grip = joint.nails * withdrawal * (0.5 * joint.edge_thickness) ** 2
+            supports.append((*ends, grip / length))
+        else:
+            partner = design.plank(next(p for p in joint.planks if p != plank.id))
+            stiffeners.append((*ends, _bending_across(design, plank, partner, joint,
+                                                      length)))
+    return supports, stiffeners
+
+
+def _bending_across(design: Design, plank: Plank, partner: Plank, joint,
+                    length: float) -> float:
+    """N m^2: the bending stiffness a rail or batten (``partner``, nailed along ``joint``'s
+    line, ``length`` of it on the plank) adds to the plank's plate along that line, out
+    of the plate's plane: its own E I, I = t_p h^3 / 12 (a_h . n)^2 + h t_p^3 / 12 (n_p .
+    n)^2 (t_p its thickness, h its depth across the line in its own plane, a_h that
+    axis, n_p its normal, n the plate's), and the composite action of the two nailed
+    together by Eurocode 5's method for mechanically jointed beams (EN 1995-1-1 Annex B,
+    as the beams have it): gamma E_f A_f E_r A_r / (gamma E_f A_f + E_r A_r) d^2, d
+    between the rail's centroid and the plate's mid-plane, the plate's flange A_f = t b_ef
+    with b_ef the rail's thickness plus, on each side the plate reaches, at most 0.15 of
+    the line's length and 25 plate thicknesses (EN 1995-1-1 table 9.1, fibreboard), and
+    gamma = 1 / (1 + pi^2 E_f A_f s / (K l^2)) for the nails' spacing s and slip modulus K
+    (``nail_slip``) over the line's length l."""
+    normal = plank.rotation_matrix[:, 2]
+    line = joint.frame[:, 1]
+    axes = partner.rotation_matrix
+    across_x = abs(float(line @ axes[:, 0])) <= abs(float(line @ axes[:, 1]))
+    depth, in_plane = (partner.length, axes[:, 0]) if across_x else (partner.width, axes[:, 1])
+    t_p = partner.thickness
+    second_moment = (t_p * depth ** 3 / 12.0 * float(in_plane @ normal) ** 2
+                     + depth * t_p ** 3 / 12.0 * float(axes[:, 2] @ normal) ** 2)
+    e_rail = design.material_of(partner).elastic_modulus
+    material = design.material_of(plank)
+    rail_area = e_rail * t_p * depth
+    d = abs(float((partner.center_array - plank.center_array) @ normal))
+    local = plank.to_local(partner.center_array[None, :])[0, :2]
+    line_axis = int(abs(float(line @ plank.rotation_matrix[:, 1]))
+                    > abs(float(line @ plank.rotation_matrix[:, 0])))
+    reach = 0.5 * (plank.length, plank.width)[1 - line_axis]
+    offset = local[1 - line_axis]
+    side = min(0.15 * length, 25.0 * plank.thickness)
+    width = (min(t_p, 2 * reach) + min(side, max(reach - offset, 0.0))
+             + min(side, max(reach + offset, 0.0)))
+    flange = material.elastic_modulus * plank.thickness * width
+    spacing = length / max(joint.nails, 1)
+    gamma = 1.0 / (1.0 + np.pi ** 2 * flange * spacing / (material.nail_slip * length ** 2))
+    composite = gamma * flange * rail_area / (gamma * flange + rail_area) * d * d
+    return e_rail * second_moment + composite
+
+
+def _grid(low: float, high: float, lines, edges, cell: float) -> np.ndarray:
+    """Ascending grid coordinates from ``low`` to ``high`` through every support or rail
+    line's coordinate and end (``lines``: those within NODE_MERGE of one another taken
+    as one, the first kept) and every load patch edge (``edges``) not within NODE_MERGE
+    of those (a patch edge may move; a support may not lose its grid line), each
+    interval cut into equal cells of at most ``cell``."""
+    kept = _thinned(np.sort(np.clip(np.asarray([low, high, *lines], dtype=float), low, high)))
+    kept[0], kept[-1] = low, high
+    fixed = np.array(kept)
+    soft = [value for value in np.clip(np.asarray(edges, dtype=float), low, high)
+            if np.abs(fixed - value).min() > tol.NODE_MERGE]
+    kept = _thinned(np.sort(np.concatenate([fixed, soft])))
+    # (np.sort, not np.unique: numpy 2's unique imports numpy.ma, 12 ms of a cold start)
+    out = [kept[0]]
+    for a, b in zip(kept[:-1], kept[1:]):
+        n = max(1, int(np.ceil((b - a) / cell - 1e-9)))
+        out.extend(a + (b - a) * np.arange(1, n + 1) / n)
+    return np.array(out)
+
+
+def _thinned(points: np.ndarray) -> list[float]:
+    """Ascending ``points`` with those within NODE_MERGE of the one kept before dropped."""
+    kept = [float(points[0])]
+    for value in points[1:]:
+        if value - kept[-1] > tol.NODE_MERGE:
+            kept.append(float(value))
+    return kept
+
+
+_CORNERS = np.array([(-1, -1), (1, -1), (1, 1), (-1, 1)], dtype=float)
+
+
+def _reference_derivatives(xi: float, eta: float) -> tuple[np.ndarray, ...]:
+    """(4,) each: the bilinear shape functions and their derivatives by xi and eta."""
+    a, b = _CORNERS[:, 0], _CORNERS[:, 1]
+    return ((1 + a * xi) * (1 + b * eta) / 4, a * (1 + b * eta) / 4, b * (1 + a * xi) / 4)
+
+
+def _bending_matrix(rigidity: float, poisson: float) -> np.ndarray:
+    """(3, 3) N m: the moments (M_x, M_y, M_xy) per unit curvature (kappa_x, kappa_y,
+    2 kappa_xy) of an isotropic plate of ``rigidity`` D = E t^3 / 12 (1 - nu^2)."""
+    return rigidity * np.array([[1, poisson, 0], [poisson, 1, 0], [0, 0, (1 - poisson) / 2]])
+
+
+def _element_matrices(rigidity: float, poisson: float, shear: float):
+    """Six (12, 12) matrices whose sum, weighted by (hy/hx, hx/hy, 1, hy, hx, hx hy), is
+    the stiffness of an hx x hy element (unknowns w, beta_x, beta_y per corner, corners
+    counter-clockwise from (-, -)): bending by 2 x 2 Gauss points, transverse shear
+    (``shear``: k G t, N/m) by one.  With dx = (2 / hx) d/dxi and dy = (2 / hy) d/deta,
+    the bending integrand B^T C B hx hy / 4 splits into hy/hx, hx/hy and 1 terms, the
+    shear one's k G t hx hy B_s^T B_s into the six."""
+    C = _bending_matrix(rigidity, poisson)
+    terms = np.zeros((6, 12, 12))
+    g = 1 / np.sqrt(3)
+    for xi in (-g, g):
+        for eta in (-g, g):
+            _, dxi, deta = _reference_derivatives(xi, eta)
+            gx, gy = np.zeros((3, 12)), np.zeros((3, 12))
+            gx[0, 1::3], gx[2, 2::3] = dxi, dxi          # kappa_x, and d beta_y / dx
+            gy[1, 2::3], gy[2, 1::3] = deta, deta        # kappa_y, and d beta_x / dy
+            terms[0] += gx.T @ C @ gx
+            terms[1] += gy.T @ C @ gy
+            terms[2] += gx.T @ C @ gy + gy.T @ C @ gx
+    n, dxi, deta = _reference_derivatives(0.0, 0.0)
+    sx, sy, s0 = np.zeros((2, 12)), np.zeros((2, 12)), np.zeros((2, 12))
+    sx[0, 0::3], sy[1, 0::3] = dxi, deta
+    s0[0, 1::3], s0[1, 2::3] = n, n
+    terms[0] += shear * 4 * sx.T @ sx
+    terms[1] += shear * 4 * sy.T @ sy
+    terms[3] -= shear * 2 * (sx.T @ s0 + s0.T @ sx)
+    terms[4] -= shear * 2 * (sy.T @ s0 + s0.T @ sy)
+    terms[5] += shear * s0.T @ s0
+    return terms
+
+
+def _plate(model, k: int, plank: Plank, segments, stiffeners) -> PlatePlank | None:
+    """The factored plate of plank ``plank`` (local ``k``) on ``segments``, stiffened by
+    ``stiffeners``, its grid through the patches of its point loads in every case too."""
+    design = model.design
+    patches = [_patch(plank, load) for case in design.load_cases for load in case.loads
+               if load.plank == plank.id and not load.spread]
+    return plate_for(plank, design.material_of(plank), segments, patches, k, stiffeners)
+
+
+def plate_for(plank: Plank, material, segments, patches, local: int = 0,
+              stiffeners=()) -> PlatePlank | None:
+    """The factored plate of ``plank`` (its sizes and thickness; ``material``: E and G)
+    simply supported on ``segments`` (((x0, y0), (x1, y1), grip N m / rad per m),
+    plank-local, along its axes), with the nail rows' grip against turning about them;
+    its grid passes through the segments' ends and the ``patches`` ((x0, x1, y0, y1),
+    plank-local) edges.  ``stiffeners`` (((x0, y0), (x1, y1), E I N m^2)): rails along
+    its axes, beams that bend with it along their lines (``_bending_across``).  None
+    where the segments leave it free to move.  Its numbers are those of the inputs
+    rounded to a nanometre (and the grips and stiffnesses to nine digits), so that planks
+    alike (a bookcase's shelves) and the same plank in a design's edits
+    share one factored plate (``_plate_grid``, kept for the last PLATE_CACHE asked)."""
+    def nm(value: float) -> float:
+        return round(float(value), 9)
+
+    key = (nm(plank.length), nm(plank.width), nm(plank.thickness),
+           float(material.elastic_modulus), float(material.shear_modulus),
+           tuple(((nm(a[0]), nm(a[1])), (nm(b[0]), nm(b[1])), float(f"{grip:.9g}"))
+                 for a, b, grip in segments),
+           tuple(tuple(nm(v) for v in patch) for patch in patches),
+           tuple(((nm(a[0]), nm(a[1])), (nm(b[0]), nm(b[1])), float(f"{rigidity:.9g}"))
+                 for a, b, rigidity in stiffeners))
+    grid = _plate_grid(*key)
+    return None if grid is None else PlatePlank(local, plank, grid)
+
+
+@functools.lru_cache(maxsize=tol.PLATE_CACHE)
+def _plate_grid(length: float, width: float, thickness: float, elastic_modulus: float,
+                shear_modulus: float, segments: tuple, patches: tuple,
+                stiffeners: tuple = ()) -> PlateGrid | None:
+    """``plate_for``'s ``PlateGrid`` of a ``length`` x ``width`` x ``thickness`` plate
+    (m) of moduli E and G (Pa) on ``segments``, stiffened by ``stiffeners``, its grid
+    through ``patches``."""
+    half_x, half_y = length / 2.0, width / 2.0
+    lines = (*segments, *stiffeners)
+    quarters = np.linspace(0.0, 1.0, tol.PLATE_PATCH_CELLS + 1)
+    lines_x = [v for (a, b, _) in lines for v in (a[0], b[0])]
+    lines_y = [v for (a, b, _) in lines for v in (a[1], b[1])]
+    edges_x = [v for p in patches for v in p[0] + (p[1] - p[0]) * quarters]
+    edges_y = [v for p in patches for v in p[2] + (p[3] - p[2]) * quarters]
+    cell = min(length, width) / tol.PLATE_CELLS
+    xs = _grid(-half_x, half_x, lines_x, edges_x, cell)
+    ys = _grid(-half_y, half_y, lines_y, edges_y, cell)
+    nx, ny = len(xs), len(ys)
+    t = thickness
+    rigidity = elastic_modulus * t ** 3 / (12 * (1 - tol.PLATE_POISSON ** 2))
+    terms = _element_matrices(rigidity, tol.PLATE_POISSON,
+                              SHEAR_FACTOR * shear_modulus * t)
+    hx, hy = np.meshgrid(np.diff(xs), np.diff(ys))            # (ny - 1, nx - 1)
+    hx, hy = hx.ravel(), hy.ravel()
+    weights = np.column_stack([hy / hx, hx / hy, np.ones_like(hx), hy, hx, hx * hy])
+    K_elements = np.einsum("ek,kij->eij", weights, terms)
+    supported = _supported_nodes(xs, ys, segments)
+    held = np.column_stack([np.tile(xs, ny)[supported], np.repeat(ys, nx)[supported]])
+    if len(held) < 3 or np.linalg.svd(held - held.mean(axis=0), compute_uv=False)[-1] \
+            <= tol.NODE_MERGE:                  # on one line: free to turn about it
+        return None
+    fixed = np.zeros(3 * nx * ny, dtype=bool)
+    fixed[3 * supported] = True
+    rank = _ranks(nx, ny, fixed)
+    dofs = _element_dofs(nx, ny)
+    grip_dofs, grips = _grips(xs, ys, segments)
+    rows, cols, values = _stiffener_entries(xs, ys, stiffeners)
+    factor = _banded_factor(int((~fixed).sum()), rank[dofs], K_elements,
+                            (np.concatenate([rank[grip_dofs], rank[rows]]),
+                             np.concatenate([rank[grip_dofs], rank[cols]]),
+                             np.concatenate([grips, values])))
+    _, dxi, deta = _reference_derivatives(0.0, 0.0)
+    C = _bending_matrix(rigidity, tol.PLATE_POISSON)
+    kappa = np.zeros((len(hx), 3, 12))
+    kappa[:, 0, 1::3] = 2 * dxi / hx[:, None]
+    kappa[:, 1, 2::3] = 2 * deta / hy[:, None]
+    kappa[:, 2, 1::3] = 2 * deta / hy[:, None]
+    kappa[:, 2, 2::3] = 2 * dxi / hx[:, None]
+    moments = np.einsum("ab,ebj->eaj", C, kappa)
+    if factor is None:
+        return None
+    cx, cy = (c.ravel() for c in np.meshgrid(0.5 * (xs[1:] + xs[:-1]),
+                                             0.5 * (ys[1:] + ys[:-1])))
+    X, Y = (c.ravel() for c in np.meshgrid(xs, ys))
+    sx, sy = X[supported], Y[supported]
+    slack = tol.NODE_MERGE
+    between = (X >= sx.min() - slack) & (X <= sx.max() + slack) \
+        & (Y >= sy.min() - slack) & (Y <= sy.max() + slack)
+    return PlateGrid(xs, ys, supported, rank, fixed, factor, moments, dofs, thickness,
+                     (cx, cy), hx * hy, (X, Y), between)
+
+
+def _ranks(nx: int, ny: int, fixed: np.ndarray) -> np.ndarray:
+    """(3 nx ny,) each free unknown's place in the banded matrix, -1 for the ``fixed``
+    ones (held at zero, left out): the nodes numbered with the grid's shorter direction
+    fastest, so that the band is about three times that direction's node count wide."""
+    i, j = np.meshgrid(np.arange(nx), np.arange(ny))         # node j * nx + i
+    node_rank = (j * nx + i) if nx <= ny else (i * ny + j)
+    order = (3 * node_rank.ravel()[:, None] + np.arange(3)).ravel()
+    free_in_order = np.zeros(len(order), dtype=bool)
+    free_in_order[order] = ~fixed
+    place = np.cumsum(free_in_order) - 1
+    return np.where(fixed, -1, place[order])
+
+
+def _banded_factor(n: int, element_ranks: np.ndarray, element_matrices: np.ndarray,
+                   entries: tuple) -> np.ndarray | None:
+    """The banded Cholesky factor (LAPACK's upper band storage) of the plate's stiffness
+    in its ``n`` free unknowns: the elements' (nE, 12, 12) at their unknowns' places
+    (``element_ranks``, -1 for a fixed one: its rows and columns left out) and the
+    ``entries`` (rows, columns, values, at places alike: the grips, the stiffeners); None
+    where the supports leave the plate free to move (not positive definite)."""
+    from furncheck.statics.lapack import banded_cholesky
+
+    rows = np.concatenate([np.repeat(element_ranks, 12, axis=1).ravel(), entries[0]])
+    cols = np.concatenate([np.tile(element_ranks, (1, 12)).ravel(), entries[1]])
+    values = np.concatenate([element_matrices.ravel(), entries[2]])
+    kept = (rows <= cols) & (rows >= 0)
+    rows, cols, values = rows[kept], cols[kept], values[kept]
+    width = int((cols - rows).max())
+    bands = np.bincount((width + rows - cols) * n + cols, weights=values,
+                        minlength=(width + 1) * n).reshape(width + 1, n)
+    return banded_cholesky(bands)
+
+
+def _stiffener_entries(xs: np.ndarray, ys: np.ndarray, stiffeners) -> tuple:
+    """(rows, columns, values): each stiffener's Euler-Bernoulli beam elements between
+    the grid nodes along its line, on the nodes' w and their slope along it (beta_x for
+    a line along x, beta_y along y), each h long: E I / h^3 [[12, 6 h, -12, 6 h], [6 h,
+    4 h^2, -6 h, 2 h^2], [-12, -6 h, 12, -6 h], [6 h, 2 h^2, -6 h, 4 h^2]]."""
+    X, Y = (grid.ravel() for grid in np.meshgrid(xs, ys))
+    rows, cols, values = [], [], []
+    for stiffener in stiffeners:
+        on, axis = _on_segment(X, Y, stiffener)
+        nodes = np.flatnonzero(on)
+        s = (X, Y)[axis][nodes]
+        order = np.argsort(s)
+        nodes, s = nodes[order], s[order]
+        for a, b, h in zip(nodes[:-1], nodes[1:], np.diff(s)):
+            if h <= 0.0:
+                continue
+            k = stiffener[2] / h ** 3 * np.array([[12, 6 * h, -12, 6 * h],
+                                                   [6 * h, 4 * h * h, -6 * h, 2 * h * h],
+                                                   [-12, -6 * h, 12, -6 * h],
+                                                   [6 * h, 2 * h * h, -6 * h, 4 * h * h]])
+            dofs = np.array([3 * a, 3 * a + 1 + axis, 3 * b, 3 * b + 1 + axis])
+            rows.append(np.repeat(dofs, 4))
+            cols.append(np.tile(dofs, 4))
+            values.append(k.ravel())
+    if not rows:
+        return np.zeros(0, dtype=int), np.zeros(0, dtype=int), np.zeros(0)
+    return np.concatenate(rows), np.concatenate(cols), np.concatenate(values)
+
+
+def _element_dofs(nx: int, ny: int) -> np.ndarray:
+    """(nE, 12) each element's unknowns, corners counter-clockwise from (-, -)."""
+    i, j = np.meshgrid(np.arange(nx - 1), np.arange(ny - 1))
+    i, j = i.ravel(), j.ravel()
+    corners = np.column_stack([j * nx + i, j * nx + i + 1, (j + 1) * nx + i + 1,
+                               (j + 1) * nx + i])
+    return (3 * corners[:, :, None] + np.arange(3)).reshape(-1, 12)
+
+
+def _on_segment(X: np.ndarray, Y: np.ndarray, segment) -> tuple[np.ndarray, int]:
+    """Which points (X, Y) lie on a segment ((x0, y0), (x1, y1), grip) along x or y
+    (bool array), and its axis (0: x)."""
+    (x0, y0), (x1, y1), _ = segment
+    slack = tol.NODE_MERGE        # its grid line, kept within that of it (``_grid``)
+    if abs(y1 - y0) <= abs(x1 - x0):                # along x, at y0 = y1
+        return (X >= x0 - slack) & (X <= x1 + slack) & (np.abs(Y - y0) <= slack), 0
+    return (Y >= y0 - slack) & (Y <= y1 + slack) & (np.abs(X - x0) <= slack), 1
+
+
+def _supported_nodes(xs: np.ndarray, ys: np.ndarray, segments) -> np.ndarray:
+    """Indices of the grid nodes on the support segments (row-major, x fastest)."""
+    X, Y = (grid.ravel() for grid in np.meshgrid(xs, ys))
+    on = np.zeros(len(X), dtype=bool)
+    for segment in segments:
+        on |= _on_segment(X, Y, segment)[0]
+    return np.flatnonzero(on)
+
+
+def _grips(xs: np.ndarray, ys: np.ndarray, segments) -> tuple[np.ndarray, np.ndarray]:
+    """The unknowns (indices) and stiffnesses (N m / rad) of the nail rows' grip: each
+    segment's grip per metre times each of its nodes' share of its length, on the node's
+    turn about the segment (beta_y for a line along x, beta_x for one along y)."""
+    X, Y = (grid.ravel() for grid in np.meshgrid(xs, ys))
+    dofs, values = [], []
+    for segment in segments:
+        on, axis = _on_segment(X, Y, segment)
+        nodes = np.flatnonzero(on)
+        if len(nodes) == 0:
+            continue
+        s = (X, Y)[axis][nodes]
+        order = np.argsort(s)
+        nodes, s = nodes[order], s[order]
+        low, high = segment[0][axis], segment[1][axis]
+        bounds = np.concatenate([[low], 0.5 * (s[1:] + s[:-1]), [high]])
+        dofs.append(3 * nodes + (2 if axis == 0 else 1))
+        values.append(segment[2] * np.diff(bounds))
+    if not dofs:
+        return np.zeros(0, dtype=int), np.zeros(0)
+    return np.concatenate(dofs), np.concatenate(values)
+
+
+def _patch(plank: Plank, load) -> tuple[float, float, float, float]:
+    """(x0, x1, y0, y1) m, plank-local: where a point load presses, a PLATE_LOAD_PATCH
+    square about its point (the plank's centre where it has none), clipped to the plank."""
+    point = plank.center_array if load.point is None else np.asarray(load.point, dtype=float)
+    x, y = plank.to_local(point[None, :])[0, :2]
+    a = tol.PLATE_LOAD_PATCH / 2.0
+    hx, hy = plank.length / 2.0, plank.width / 2.0
+    x0 = max(-hx, min(x - a, hx - 2.0 * a))   # on the plank, along its edge at most
+    y0 = max(-hy, min(y - a, hy - 2.0 * a))
+    x1, y1 = x0 + min(2.0 * a, 2.0 * hx), y0 + min(2.0 * a, 2.0 * hy)
+    return float(x0), float(x1), float(y0), float(y1)
+
+
+def plate_results(model, cases: list[LoadCase]) -> list[list[tuple[int, float, float, float]]]:
+    """Per case, (local plank, sag m, span m, stress Pa) of each plate plank of the model
+    (see the module docstring): each plate solved for all the cases at once."""
+    out: list[list] = [[] for _ in cases]
+    for plate in plate_planks(model):
+        loads = [_case_loads(model.design, case, plate.plank) for case in cases]
+        for found, (w, stress) in zip(out, plate_solutions(plate, loads)):
+            found.append((plate.local, *_sag_span(plate, w), stress))
+    return out
+
+
+def _case_loads(design: Design, case: LoadCase, plank: Plank) -> tuple[float, list]:
+    """(Pa, [(patch, N)]): the pressure across the plank's face of its weight and the
+    case's spread loads on it, and each of the case's point loads on it, its force
+    across the face and its patch (``_patch``); along the face normal, positive."""
+    normal = np.asarray(plank.axes[2])
+    area = plank.length * plank.width
+    uniform = -design.plank_mass(plank) * tol.GRAVITY * normal[2] / area
+    points = []
+    for load in case.loads:
+        if load.plank != plank.id:
+            continue
+        across = float(np.dot(load.force, normal))
+        if load.spread:
+            uniform += across / area
+        else:
+            points.append((_patch(plank, load), across))
+    return uniform, points
+
+
+def plate_solution(plate: PlatePlank, uniform: float, points) -> tuple[np.ndarray, float]:
+    """The plate's node deflections (m, along the plank's face normal; row-major, x
+    fastest) under a ``uniform`` pressure (Pa) and forces spread over patches
+    (``points``: ((x0, x1, y0, y1), N) each, shared by the elements by their overlap with
+    the square: its edges are grid lines, or within a millimetre of one), and its largest
+    bending stress (Pa), 6 |M| / t^2 of the largest principal moment at an element's
+    centre."""
+    return plate_solutions(plate, [(uniform, points)])[0]
+
+
+def plate_solutions(plate: PlatePlank, loads: list) -> list[tuple[np.ndarray, float]]:
+    """``plate_solution`` of each (uniform, points) of ``loads``, solved at once."""
+    from furncheck.statics.lapack import banded_solve
+
+    grid = plate.grid
+    xs, ys = grid.xs, grid.ys
+    pressure = np.zeros((len(grid.areas), len(loads)))
+    for column, (uniform, points) in enumerate(loads):
+        pressure[:, column] = uniform
+        for (x0, x1, y0, y1), force in points:     # each element's share of the square
+            over_x = np.clip(np.minimum(xs[1:], x1) - np.maximum(xs[:-1], x0), 0.0, None)
+            over_y = np.clip(np.minimum(ys[1:], y1) - np.maximum(ys[:-1], y0), 0.0, None)
+            overlap = np.outer(over_y, over_x).ravel()
+            pressure[:, column] += force / ((x1 - x0) * (y1 - y0)) * overlap / grid.areas
+    share = pressure * (grid.areas / 4.0)[:, None]          # (nE, k) to each corner's w
+    n_dofs = 3 * len(grid.xs) * len(grid.ys)
+    f = np.zeros((n_dofs, len(loads)))
+    for corner in range(4):
+        np.add.at(f, grid.dofs[:, 3 * corner], share)
+    free = ~grid.fixed
+    ranked = np.empty((int(free.sum()), len(loads)))
+    ranked[grid.rank[free]] = f[free]
+    u = np.zeros_like(f)
+    u[free] = banded_solve(grid.factor, ranked)[grid.rank[free]]
+    m = np.einsum("eaj,ejk->eak", grid.moments, u[grid.dofs])
+    principal = np.abs(0.5 * (m[:, 0] + m[:, 1])) + np.hypot(0.5 * (m[:, 0] - m[:, 1]),
+                                                             m[:, 2])
+    stress = 6.0 * principal.max(axis=0, initial=0.0) / grid.thickness ** 2
+    return [(u[0::3, column], float(stress[column])) for column in range(len(loads))]
+
+
+def _sag_span(plate: PlatePlank, w: np.ndarray) -> tuple[float, float]:
+    """(m, m): the largest deflection between the supports (at the nodes within the
+    supported nodes' bounding box: an overhang beyond them is its beam's, measured from
+    the tangent at its support, contract 3a), and twice its node's distance to the
+    nearest supported node (two lines s apart: s)."""
+    grid = plate.grid
+    X, Y = grid.nodes
+    sx, sy = X[grid.supported], Y[grid.supported]
+    between = np.where(grid.between, np.abs(w), -1.0)
+    k = int(np.argmax(between))
+    reach = np.hypot(sx - X[k], sy - Y[k]).min()
+    return float(max(between[k], 0.0)), float(2.0 * reach)
+
+
+def with_plates(model, cases: list[LoadCase], planks: list) -> list:
+    """``planks`` (a ``bending.PlankStatics`` per case of ``cases``) with each plate
+    plank's sag, span and stress the plate's where it exceeds the beam's (sag and span
+    together)."""
+    if not plate_planks(model):
+        return planks
+    return [_merged(one, found) for one, found in zip(planks, plate_results(model, cases))]
+
+
+def _merged(planks, found):
+    """``planks`` (one case's ``PlankStatics``) with the plates' ``found`` (local plank,
+    sag, span, stress) where they exceed it."""
+    from dataclasses import replace
+
+    sag, span, stress = planks.sag.copy(), planks.span.copy(), planks.stress.copy()
+    overhang = None if planks.overhang is None else planks.overhang.copy()
+    by_plate = set()
+    for k, plate_sag, plate_span, plate_stress in found:
+        if plate_sag > sag[k]:
+            sag[k], span[k] = plate_sag, plate_span
+            by_plate.add(k)
+            if overhang is not None:
+                overhang[k] = False
+        stress[k] = max(stress[k], plate_stress)
+    beam_sideways = planks.sideways
+
+    def sideways(k: int) -> bool:       # a plate's sag is across its face: not sideways
+        return False if k in by_plate else beam_sideways(k)
+
+    return replace(planks, sag=sag, span=span, stress=stress, overhang=overhang,
+                   sideways=sideways if beam_sideways is not None and by_plate
+                   else beam_sideways)

@@ -1,0 +1,198 @@
+"""A plank held along lines on both sides of its beam, checked as a plate
+(``furncheck.statics.plates``): the plate against Navier's series and the strip, the nail
+rows' grip between the simply supported and clamped limits, and designs that the beam
+alone read as almost flat (a step box's top nailed to its four sides, a top on sides
+shallower than it is deep)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from furncheck.design.model import Material, Plank
+from furncheck.statics import plates
+
+E, T, NU = 3.0e9, 0.012, 0.25            # the defaults: Pa, m, PLATE_POISSON
+D = E * T ** 3 / (12 * (1 - NU ** 2))
+KIRCHHOFF = Material(shear_modulus=1e3 * E)     # shear this stiff: Kirchhoff's plate
+
+
+def _navier(a: float, b: float, load, x: float, y: float, terms: int = 199) -> tuple:
+    """(w, M_x, M_y) at (x, y) of a simply supported a x b Kirchhoff plate (corner at the
+    origin), Navier's double sine series: w = sum q_mn sin(m pi x / a) sin(n pi y / b) /
+    (pi^4 D (m^2 / a^2 + n^2 / b^2)^2), M_x = sum D pi^2 (m^2 / a^2 + nu n^2 / b^2) w_mn
+    sin sin; ``load`` ('uniform', q) with q_mn = 16 q / (pi^2 m n) for odd m, n, or
+    ('patch', P, u, v, xi, eta): P over u x v about (xi, eta), q_mn = 16 P / (pi^2 m n u
+    v) sin(m pi xi / a) sin(n pi eta / b) sin(m pi u / 2a) sin(n pi v / 2b)."""
+    m = np.arange(1, terms + 1, dtype=float)[:, None]
+    n = np.arange(1, terms + 1, dtype=float)[None, :]
+    if load[0] == "uniform":
+        q = np.where((m % 2 == 1) & (n % 2 == 1), 16 * load[1] / (np.pi ** 2 * m * n), 0.0)
+    else:
+        _, P, u, v, xi, eta = load
+        q = (16 * P / (np.pi ** 2 * m * n * u * v) * np.sin(m * np.pi * xi / a)
+             * np.sin(n * np.pi * eta / b) * np.sin(m * np.pi * u / (2 * a))
+             * np.sin(n * np.pi * v / (2 * b)))
+    w_mn = q / (np.pi ** 4 * D * (m ** 2 / a ** 2 + n ** 2 / b ** 2) ** 2)
+    shape = np.sin(m * np.pi * x / a) * np.sin(n * np.pi * y / b)
+    w = float((w_mn * shape).sum())
+    mx = float((D * np.pi ** 2 * (m ** 2 / a ** 2 + NU * n ** 2 / b ** 2) * w_mn * shape).sum())
+    my = float((D * np.pi ** 2 * (n ** 2 / b ** 2 + NU * m ** 2 / a ** 2) * w_mn * shape).sum())
+    return w, mx, my
+
+
+def _edges(a: float, b: float, grip: float = 0.0, which: str = "LRBT") -> list:
+    """Support segments of an a x b plank (centred) on its edges: L, R (x = -a/2, a/2,
+    along y), B, T (y = -b/2, b/2, along x), each with ``grip`` N m / rad per m."""
+    ha, hb = a / 2, b / 2
+    edges = {"L": ((-ha, -hb), (-ha, hb)), "R": ((ha, -hb), (ha, hb)),
+             "B": ((-ha, -hb), (ha, -hb)), "T": ((-ha, hb), (ha, hb))}
+    return [(*edges[e], grip) for e in which]
+
+
+PATCH = (-0.025, 0.025, -0.025, 0.025)
+
+
+@pytest.mark.parametrize("a, b", [(0.4, 0.4), (0.6, 0.4), (1.0, 0.3)])
+def test_simply_supported_plate_against_navier(a: float, b: float) -> None:
+    """Simply supported on four edges, Kirchhoff's limit (shear made stiff): the centre's
+    deflection under a uniform 1 kPa and under 400 N over a central 50 mm square within
+    2 % of Navier's series; the largest bending stress under the patch, 6 max(M_x, M_y) /
+    t^2 at the centre, within 4 % (read at the centres of the patch's elements, a quarter
+    of it wide)."""
+    plank = Plank("p", a, b, T, (0.0, 0.0, 0.0))
+    plate = plates.plate_for(plank, KIRCHHOFF, _edges(a, b), [PATCH])
+    uniform, _ = plates.plate_solution(plate, 1000.0, [])
+    w, _, _ = _navier(a, b, ("uniform", 1000.0), a / 2, b / 2)
+    assert uniform.max() == pytest.approx(w, rel=0.02)
+    patch, stress = plates.plate_solution(plate, 0.0, [(PATCH, 400.0)])
+    w, mx, my = _navier(a, b, ("patch", 400.0, 0.05, 0.05, a / 2, b / 2), a / 2, b / 2, 399)
+    assert patch.max() == pytest.approx(w, rel=0.02)
+    assert stress == pytest.approx(6 * max(mx, my) / T ** 2, rel=0.04)
+
+
+def test_strip_on_two_edges() -> None:
+    """Simply supported on two opposite edges and free on the others, MDF's own shear
+    modulus: under a uniform load its middle bends as a strip, w = 5 q L^4 / 384 D + q
+    L^2 / 8 k G t (Mindlin's shear term, which Navier's plate leaves out), within 2 %;
+    its free edges, curling the other way (anticlastic), go down further, by about 12 %
+    (of (1 - nu^2)^-1 = 1.07 of a beam's EI, and more: the edges are not held)."""
+    a, b, q = 0.388, 0.4, 1000.0
+    plank = Plank("p", a, b, T, (0.0, 0.0, 0.0))
+    plate = plates.plate_for(plank, Material(), _edges(a, b, which="LR"), [])
+    w, _ = plates.plate_solution(plate, q, [])
+    xs, ys = plate.grid.xs, plate.grid.ys
+    middle = w.reshape(len(ys), len(xs))[np.abs(ys).argmin(), np.abs(xs).argmin()]  # centre
+    strip = 5 * q * a ** 4 / (384 * D) + q * a ** 2 / (8 * 5 / 6 * Material().shear_modulus * T)
+    assert middle == pytest.approx(strip, rel=0.02)
+    assert 1.05 * middle < w.max() < 1.2 * middle
+
+
+def test_the_nail_rows_grip_lies_between_the_limits() -> None:
+    """The nail rows' grip (N m / rad per m) makes the plate stiffer, never softer: the
+    centre's deflection falls as the grip grows, from the simply supported plate's (no
+    grip) towards the clamped one's, Kirchhoff's clamped square under a uniform load
+    0.00126 q a^4 / D (Timoshenko and Woinowsky-Krieger, table 35), within 3 %."""
+    a = 0.4
+    plank = Plank("p", a, a, T, (0.0, 0.0, 0.0))
+    centre = []
+    for grip in (0.0, 10.0, 1e3, 1e7):
+        plate = plates.plate_for(plank, KIRCHHOFF, _edges(a, a, grip), [])
+        centre.append(plates.plate_solution(plate, 1000.0, [])[0].max())
+    assert centre == sorted(centre, reverse=True) and centre[0] > 2.5 * centre[-1]
+    assert centre[-1] == pytest.approx(0.00126 * 1000.0 * a ** 4 / D, rel=0.03)
+
+
+def test_a_plate_hinged_on_one_line_is_not_solved() -> None:
+    """Supports on one line only leave the plate free to turn about it (no grip): no
+    factor, no plate (its beam reads it)."""
+    plank = Plank("p", 0.4, 0.3, T, (0.0, 0.0, 0.0))
+    assert plates.plate_for(plank, Material(), _edges(0.4, 0.3, which="L"), []) is None
+
+
+STEP_BOX = """furncheck: 1
+name: step-box
+units: mm
+planks:
+  - {id: front, size: [400, 288], center: [0, -144, 144], rotation: [90, 0, 0]}
+  - {id: back, size: [400, 288], center: [0, 144, 144], rotation: [90, 0, 0]}
+  - {id: end_l, size: [288, 276], center: [-194, 0, 144], rotation: [0, -90, 0]}
+  - {id: end_r, size: [288, 276], center: [194, 0, 144], rotation: [0, -90, 0]}
+  - {id: top, size: [400, 300], center: [0, 0, 294]}
+loads:
+  - {plank: top, mass: 80, at: [0, 0, 300]}
+"""
+
+
+def _top(text: str, plank: str = "top"):
+    from furncheck.check import check_design
+    from furncheck.design import parse_design
+
+    report = check_design(parse_design(text, "d.yaml", "yaml"))
+    case = report.cases[0]
+    return report, next(p for p in case.planks if p.id == plank)
+
+
+def test_step_box_top_nailed_all_round_sags_as_a_plate() -> None:
+    """A 400 x 300 top nailed to four sides (joint lines 388 mm apart one way, 288 mm the
+    other), 80 kg at its centre: its beam, held all along, read 0.02 mm and valid; as a
+    plate it sags between the simply supported plate's deflection (Navier, 784.8 N over
+    the 50 mm patch on 388 x 288, its own weight left out: the bound is the load's, the
+    weight adds under 2 %) and half of it (the nail rows' grip), and it is sagging:
+    1.5 x sag > 288 / 400 = 0.72 mm."""
+    report, top = _top(STEP_BOX)
+    simply = _navier(0.388, 0.288, ("patch", 784.8, 0.05, 0.05, 0.194, 0.144), 0.194,
+                     0.144)[0] * 1e3
+    assert 0.5 * simply < top.sag < 1.02 * simply
+    assert top.sag_allowed == pytest.approx(288.0 / 400, abs=0.01)
+    assert ("sagging", "top") in {(v.kind, v.where) for v in report.violations}
+
+
+@pytest.mark.parametrize("phi", [37.0, 90.0, -123.4])
+def test_step_box_rigid_motions_and_metres_change_nothing(phi: float) -> None:
+    """The step box turned about the vertical and moved, and in metres: the same top sag,
+    allowed sag and stress (to 1e-9 of themselves; the plate's grid is the plank's
+    own)."""
+    import physics_designs as pd
+    import yaml
+
+    top = _top(STEP_BOX)[1]
+    design = yaml.safe_load(STEP_BOX)
+    for text, scale in ((pd.to_text(pd.rigid_motion(design, phi, 800.0, -1700.0)), 1.0),
+                        (pd.to_text(pd.convert_units(design, "m")), 1000.0)):
+        other = _top(text)[1]
+        assert (other.sag * scale, other.sag_allowed * scale, other.stress) == pytest.approx(
+            (top.sag, top.sag_allowed, top.stress), rel=1e-9)
+
+
+NIGHTSTAND = """furncheck: 1
+name: nightstand
+units: mm
+planks:
+  - {id: side_l, size: [550, @DEPTH], center: [-200, 0, 275], rotation: [0, -90, 0]}
+  - {id: side_r, size: [550, @DEPTH], center: [200, 0, 275], rotation: [0, -90, 0]}
+  - {id: top, size: [388, 400], center: [0, 0, 544]}
+loads:
+  - {plank: top, mass: 40, at: [0, 0, 550]}
+"""
+
+
+def test_a_top_on_shallow_sides_no_longer_reads_flat() -> None:
+    """A 388 x 400 top between sides 290 mm deep (under 3/4 of its depth: its beam keeps
+    its length, held along 290 mm of it) read 0.46 mm, where on sides 300 mm deep it
+    spans across and reads 2.31 mm: a cliff of five times at 3/4.  As a plate held along
+    the 290 mm lines it reads within 10 % of the 300 mm sides' beam."""
+    shallow = _top(NIGHTSTAND.replace("@DEPTH", "290"))[1].sag
+    deep = _top(NIGHTSTAND.replace("@DEPTH", "300"))[1].sag
+    assert shallow == pytest.approx(deep, rel=0.10)
+    assert shallow > 1.5
+
+
+def test_a_plank_loaded_in_its_plane_is_not_a_plate() -> None:
+    """A plank standing on edge that nothing pushes across its face (a rail under a cap)
+    bends as its beam does: it is not checked as a plate; one lying flat is."""
+    from furncheck.design import parse_design
+
+    design = parse_design(STEP_BOX, "d.yaml", "yaml")
+    assert plates._loaded_across(design, design.plank("top"))
+    assert not plates._loaded_across(design, design.plank("front"))
