@@ -197,14 +197,14 @@ the edge of the rule."""
 
 PLATE_HELD_SHARE = 0.25
 """Elastic model: a plank not standing on the floor whose joint lines held straight by
-their other planks (``elastic._holds_straight``) run along its beam on both sides of
-it, covering at least this share of its length on each side (their union, a
-millimetre, NODE_MERGE, to spare), is also checked as a plate (``statics.plates``):
-held all along, its beam shows little of its bending, which happens across it, between
-the lines (a step box's top nailed to its four sides read 0.02 mm under 80 kg where the
-plate sags 1.70 mm; a nightstand top on sides 290 mm deep under its 400 mm depth).  A quarter:
-a table top's legs, 40 mm of a 1000 mm side, hold its beam at its ends only, where the
-beam's bending is the plank's."""
+their other planks (``elastic._holds_straight``) cover at least this share of one of its
+sides, on one line or on one side of its middle (their union, a millimetre, NODE_MERGE,
+to spare), and hold it somewhere off that line too, is also checked as a plate
+(``statics.plates``): held along them, its beam shows little of its bending, which
+happens across it, between the lines (a step box's top nailed to its four sides read
+0.02 mm under 80 kg where the plate sags 1.71 mm; a nightstand top on sides 290 mm
+deep under its 400 mm depth).  A quarter: a table top's legs, 40 mm of a 1000 mm side,
+hold its beam at its ends only, where the beam's bending is the plank's."""
 
 PLATE_CELLS = 10
 """Elastic model: a plate plank's grid has about this many elements across its shorter
@@ -236,11 +236,18 @@ PLATE_PATCH_CELLS = 4
 moment, under the patch, is read near its peak (one element per patch read 11 % low
 against Navier's series; four, 2 to 4 % low)."""
 
-PLATE_CACHE = 64
+PLATE_CACHE = 32
 """How many factored plates (``plates._plate_grid``) a process keeps: the planks alike in
 a design (a bookcase's shelves), and a plank an edit leaves as it was in the many
-checked designs of a ``range`` or ``suggest``, share one.  At most about 0.5 MB each
-(a 600 x 300 shelf's band, 8 cells across)."""
+checked designs of a ``range`` or ``suggest``, share one.  A 600 x 300 shelf's band is
+about 0.3 MB, a 1200 x 600 top's with PLATE_GRID_LINES lines each way at most about
+20 MB."""
+
+PLATE_GRID_LINES = 60
+"""At most this many grid lines each way in a plate (``plates._grid``): where the edges
+of many point loads (of every case) would pass it, they are left out, and each load is
+shared by the elements it overlaps all the same (a 1.2 x 0.6 m top with 30 point loads
+took 87 MB and half a second to factor with them in)."""
 
 PLATE_SLANT = 1e-6
 """A joint line whose direction, in a plate plank's plane, leans from both its axes by

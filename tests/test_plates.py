@@ -196,3 +196,72 @@ def test_a_plank_loaded_in_its_plane_is_not_a_plate() -> None:
     design = parse_design(STEP_BOX, "d.yaml", "yaml")
     assert plates._loaded_across(design, design.plank("top"))
     assert not plates._loaded_across(design, design.plank("front"))
+
+
+def test_a_pure_twist_gives_the_twisting_moment_alone() -> None:
+    """w = x y (beta_x = y, beta_y = x: no shear strain) is a pure twist, kappa_xy = 2:
+    every element's centre reads M_xy = D (1 - nu) / 2 x 2 = D (1 - nu) and M_x = M_y = 0
+    (the bilinear element holds this field exactly)."""
+    plank = Plank("p", 0.4, 0.3, T, (0.0, 0.0, 0.0))
+    grid = plates.plate_for(plank, KIRCHHOFF, _edges(0.4, 0.3), []).grid
+    X, Y = grid.nodes
+    u = np.column_stack([X * Y, Y, X]).ravel()
+    moments = np.einsum("eaj,ej->ea", grid.moments, u[grid.dofs])
+    assert moments[:, 2] == pytest.approx(np.full(len(moments), D * (1 - NU)), rel=1e-9)
+    assert np.abs(moments[:, :2]).max() <= 1e-9 * D
+
+
+def test_a_rail_along_a_strip_bends_with_it() -> None:
+    """A 600 x 50 strip simply supported at its ends, a rail along its middle line of
+    nine times its own E I: under a uniform load it bends as one beam of ten times it,
+    5 w L^4 / 384 (10 E I), within 2 % (a strip this narrow bends as a beam, E I = E b
+    t^3 / 12; the plate's D b is 7 % stiffer, a tenth of that in the sum).  A rail a
+    thousand times stiffer along one free edge holds that edge: under 1 % of the
+    strip's deflection there."""
+    L, b, q = 0.6, 0.05, 1000.0
+    plank = Plank("p", L, b, T, (0.0, 0.0, 0.0))
+    EI = E * b * T ** 3 / 12
+    rail = ((-L / 2, 0.0), (L / 2, 0.0), 9 * EI)
+    plate = plates.plate_for(plank, KIRCHHOFF, _edges(L, b, which="LR"), [],
+                             stiffeners=[rail])
+    w, _ = plates.plate_solution(plate, q, [])
+    assert np.abs(w).max() == pytest.approx(5 * q * b * L ** 4 / (384 * 10 * EI), rel=0.02)
+    wide = Plank("p", L, 0.3, T, (0.0, 0.0, 0.0))
+    bare = plates.plate_solution(plates.plate_for(wide, KIRCHHOFF, _edges(L, 0.3, which="LR"),
+                                                  []), q, [])[0]
+    edge = ((-L / 2, -0.15), (L / 2, -0.15), 1e3 * E * 0.3 * T ** 3 / 12)
+    held = plates.plate_for(wide, KIRCHHOFF, _edges(L, 0.3, which="LR"), [],
+                            stiffeners=[edge])
+    w, _ = plates.plate_solution(held, q, [])
+    X, Y = held.grid.nodes
+    on_edge = np.abs(Y + 0.15) < 1e-12
+    assert np.abs(w[on_edge]).max() < 0.01 * np.abs(bare).max()
+
+
+def test_segments_given_either_way_round_are_the_same_plate() -> None:
+    """A support segment from its far end to its near one holds the plate as it does the
+    other way round."""
+    plank = Plank("p", 0.4, 0.3, T, (0.0, 0.0, 0.0))
+    ahead = plates.plate_for(plank, Material(), _edges(0.4, 0.3), [])
+    back = plates.plate_for(plank, Material(), [(b, a, g) for a, b, g in _edges(0.4, 0.3)], [])
+    assert back is not None
+    assert plates.plate_solution(back, 1000.0, [])[0] == pytest.approx(
+        plates.plate_solution(ahead, 1000.0, [])[0], rel=1e-12)
+
+
+def test_the_plate_takes_over_where_its_share_of_the_allowed_sag_is_larger() -> None:
+    """``_merged``: a beam's short overhang, 0.5 mm over a 220 mm span (0.0023), keeps its
+    reading against a plate's 0.6 mm over 388 mm (0.0015); the plate's 0.6 mm over 388
+    mm replaces a beam's 0.4 mm over 388 mm, and clears the overhang flag; the stress is
+    the larger either way."""
+    from furncheck.statics.bending import PlankStatics
+
+    beam = PlankStatics(sag=np.array([0.5e-3, 0.4e-3]), span=np.array([0.22, 0.388]),
+                        stress=np.array([3e6, 3e6]), overhang=np.array([True, False]),
+                        sideways=lambda k: True)
+    merged = plates._merged(beam, [(0, 0.6e-3, 0.388, 2e6), (1, 0.6e-3, 0.388, 4e6)])
+    assert merged.sag.tolist() == [0.5e-3, 0.6e-3]
+    assert merged.span.tolist() == [0.22, 0.388]
+    assert merged.overhang.tolist() == [True, False]
+    assert merged.stress.tolist() == [3e6, 4e6]
+    assert merged.sideways(0) is True and merged.sideways(1) is False

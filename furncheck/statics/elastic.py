@@ -493,7 +493,8 @@ def build_elastic_model(design: Design, geometry: Geometry,
     planks_used, joints, contacts, components = grounded_parts(design, geometry)
     local = {plank: k for k, plank in enumerate(planks_used)}
     plank_list = [design.planks[i] for i in planks_used]
-    crosswise = _crosswise(design, geometry, plank_list, joints, contacts) \
+    joint_lines = _joint_lines(design, geometry, joints) if template is None else None
+    crosswise = _crosswise(design, geometry, plank_list, joints, contacts, joint_lines) \
         if template is None else template.beams.crosswise
     frames = [beam_frame(p, c) for p, c in zip(plank_list, crosswise)]
     halves = np.array([0.5 * beam_length_width(p, c)[0]
@@ -616,6 +617,8 @@ def build_elastic_model(design: Design, geometry: Geometry,
     model.plank_cache["support_stations"] = stations
     model.plank_cache["joint_part_counts"] = part_counts
     model.plank_cache["weights_per_length"] = weights
+    if joint_lines is not None:     # the plate check asks again (``plates._held_planks``)
+        model.plank_cache["joint_lines"] = joint_lines
     model.plank_cache["attachments"] = Attachments(
         owner_array, tuple(key[1] for key in keys if key[0] == "rest"),
         tuple(key[1:] for key in keys if key[0] == "load"))

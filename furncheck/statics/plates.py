@@ -5,7 +5,7 @@ hold the plank along lines (a step box's top nailed to its four sides, a shelf n
 along its back edge to slats and at its ends to sides, a nightstand top on sides
 shallower than it is deep), the beam held along them shows little of the plank's
 bending, which happens across it, between the lines: a top nailed all round read 0.01
-mm where a plate sags 0.8 to 1.6 mm (``benchmarks/compare_plate.py``), and a beam
+mm where a plate sags 0.71 to 1.53 mm (``benchmarks/compare_plate.py``), and a beam
 spreads a point load over its whole width (a load at a top's free front edge read as
 at its centre).  So such a plank is also solved as a plate, on its own:
 
@@ -28,8 +28,10 @@ at its centre).  So such a plank is also solved as a plate, on its own:
 
 Its sag is the plate's largest deflection between its supports (the supports do not
 move; an overhang beyond them is its beam's, measured from the tangent at its support),
-its span twice that point's distance to the nearest supported node (two lines s apart:
-s), and its stress the largest principal moment's 6 |M| / t^2 at the elements' centres.
+its span the distance between the outermost supports on either side of that point
+along the plank's axes, the shorter way (``_span_at``, as contract 3a has a beam's),
+and its stress the largest principal moment's 6 |M| / t^2 at
+the elements' centres.
 Where these exceed the beam's they are the plank's (``with_plates``); the joints' and
 contacts' forces stay the beam model's.  The sensitivities of ``range`` and ``suggest``
 read the beams alone; every range end and suggestion is checked in full, plate included.
@@ -89,8 +91,14 @@ def plate_planks(model) -> tuple[PlatePlank, ...]:
     cached = model.plank_cache.get("plates")
     if cached is not None:
         return cached
+    point_loads: dict[str, list] = {}
+    for case in model.design.load_cases:
+        for load in case.loads:
+            if not load.spread:
+                point_loads.setdefault(load.plank, []).append(load)
     found = tuple(plate for k, plank, lines, rails in _held_planks(model)
-                  if (plate := _plate(model, k, plank, lines, rails)) is not None)
+                  if (plate := _plate(model, k, plank, lines, rails,
+                                      point_loads.get(plank.id, ()))) is not None)
     model.plank_cache["plates"] = found
     return found
 
@@ -107,17 +115,21 @@ def _held_planks(model):
     design, geometry = model.design, model.geometry
     grounded = {contact.plank for contact in geometry.contacts if contact.on_floor}
     held = None
+    joints_of: dict[str, list] = {}
     for k, index in enumerate(model.planks):
         plank = design.planks[index]
         if plank.id in grounded:
             continue
         if held is None:
-            held = _joint_lines(design, geometry, list(model.joints))
+            held = model.plank_cache.get("joint_lines") \
+                or _joint_lines(design, geometry, list(model.joints))
+            for j in model.joints:                  # in ``_joint_lines``' order
+                for plank_id in geometry.joints[j].planks:
+                    joints_of.setdefault(plank_id, []).append(geometry.joints[j])
         lines = held.get(plank.id)
         if not lines or len(lines) < 2:
             continue
-        joints = [geometry.joints[j] for j in model.joints
-                  if plank.id in geometry.joints[j].planks]     # ``_joint_lines``' order
+        joints = joints_of[plank.id]
         if not _loaded_across(design, plank):
             continue
         segments, stiffeners = _support_segments(design, plank, lines, joints)
@@ -218,10 +230,12 @@ def _bending_across(design: Design, plank: Plank, partner: Plank, joint,
     together by Eurocode 5's method for mechanically jointed beams (EN 1995-1-1 Annex B,
     as the beams have it): gamma E_f A_f E_r A_r / (gamma E_f A_f + E_r A_r) d^2, d
     between the rail's centroid and the plate's mid-plane, the plate's flange A_f = t b_ef
-    with b_ef the rail's thickness plus, on each side the plate reaches, at most 0.15 of
-    the line's length and 25 plate thicknesses (EN 1995-1-1 table 9.1, fibreboard), and
-    gamma = 1 / (1 + pi^2 E_f A_f s / (K l^2)) for the nails' spacing s and slip modulus K
-    (``nail_slip``) over the line's length l."""
+    with b_ef the rail's width on the plate (its thickness on edge, its depth lying flat)
+    plus at most 0.2 of the line's length l and 30 plate thicknesses, half on each side
+    the plate reaches (EN 1995-1-1 9.1.2, table 9.1: particleboard or fibreboard with
+    random fibre orientation; taken as both sides' sum, the smaller reading), and gamma
+    = 1 / (1 + pi^2 E_f A_f s / (K l^2)) for the nails' spacing s and slip modulus K
+    (``nail_slip``) over l."""
     normal = plank.rotation_matrix[:, 2]
     line = joint.frame[:, 1]
     axes = partner.rotation_matrix
@@ -239,9 +253,12 @@ def _bending_across(design: Design, plank: Plank, partner: Plank, joint,
                     > abs(float(line @ plank.rotation_matrix[:, 0])))
     reach = 0.5 * (plank.length, plank.width)[1 - line_axis]
     offset = local[1 - line_axis]
-    side = min(0.15 * length, 25.0 * plank.thickness)
-    width = (min(t_p, 2 * reach) + min(side, max(reach - offset, 0.0))
-             + min(side, max(reach + offset, 0.0)))
+    across = np.cross(normal, line)                 # in the plate, across the line
+    web = min(abs(float(in_plane @ across)) * depth + abs(float(axes[:, 2] @ across)) * t_p,
+              2 * reach)
+    side = 0.5 * min(0.2 * length, 30.0 * plank.thickness)
+    width = (web + min(side, max(reach - offset - 0.5 * web, 0.0))
+             + min(side, max(reach + offset - 0.5 * web, 0.0)))
     flange = material.elastic_modulus * plank.thickness * width
     spacing = length / max(joint.nails, 1)
     gamma = 1.0 / (1.0 + np.pi ** 2 * flange * spacing / (material.nail_slip * length ** 2))
@@ -261,6 +278,8 @@ def _grid(low: float, high: float, lines, edges, cell: float) -> np.ndarray:
     soft = [value for value in np.clip(np.asarray(edges, dtype=float), low, high)
             if np.abs(fixed - value).min() > tol.NODE_MERGE]
     kept = _thinned(np.sort(np.concatenate([fixed, soft])))
+    if len(kept) > tol.PLATE_GRID_LINES:        # many point loads: their edges are left
+        kept = list(fixed)                      # out (each load is still shared by area)
     # (np.sort, not np.unique: numpy 2's unique imports numpy.ma, 12 ms of a cold start)
     out = [kept[0]]
     for a, b in zip(kept[:-1], kept[1:]):
@@ -299,7 +318,7 @@ def _element_matrices(rigidity: float, poisson: float, shear: float):
     counter-clockwise from (-, -)): bending by 2 x 2 Gauss points, transverse shear
     (``shear``: k G t, N/m) by one.  With dx = (2 / hx) d/dxi and dy = (2 / hy) d/deta,
     the bending integrand B^T C B hx hy / 4 splits into hy/hx, hx/hy and 1 terms, the
-    shear one's k G t hx hy B_s^T B_s into the six."""
+    shear one's k G t hx hy B_s^T B_s into the hy/hx, hx/hy, hy, hx and hx hy ones."""
     C = _bending_matrix(rigidity, poisson)
     terms = np.zeros((6, 12, 12))
     g = 1 / np.sqrt(3)
@@ -324,13 +343,14 @@ def _element_matrices(rigidity: float, poisson: float, shear: float):
     return terms
 
 
-def _plate(model, k: int, plank: Plank, segments, stiffeners) -> PlatePlank | None:
+def _plate(model, k: int, plank: Plank, segments, stiffeners,
+           point_loads) -> PlatePlank | None:
     """The factored plate of plank ``plank`` (local ``k``) on ``segments``, stiffened by
-    ``stiffeners``, its grid through the patches of its point loads in every case too."""
-    design = model.design
-    patches = [_patch(plank, load) for case in design.load_cases for load in case.loads
-               if load.plank == plank.id and not load.spread]
-    return plate_for(plank, design.material_of(plank), segments, patches, k, stiffeners)
+    ``stiffeners``, its grid through the patches of its ``point_loads`` (of every case)
+    too."""
+    patches = [_patch(plank, load) for load in point_loads]
+    return plate_for(plank, model.design.material_of(plank), segments, patches, k,
+                     stiffeners)
 
 
 def plate_for(plank: Plank, material, segments, patches, local: int = 0,
@@ -348,7 +368,11 @@ def plate_for(plank: Plank, material, segments, patches, local: int = 0,
     def nm(value: float) -> float:
         return round(float(value), 9)
 
-    key = (nm(plank.length), nm(plank.width), nm(plank.thickness),
+    segments = [(*sorted((tuple(a), tuple(b))), value) for a, b, value in segments]
+    stiffeners = [(*sorted((tuple(a), tuple(b))), value) for a, b, value in stiffeners]
+
+    key = (tol.PLATE_CELLS, tol.PLATE_PATCH_CELLS, tol.PLATE_POISSON, tol.NODE_MERGE,
+           tol.PLATE_GRID_LINES, nm(plank.length), nm(plank.width), nm(plank.thickness),
            float(material.elastic_modulus), float(material.shear_modulus),
            tuple(((nm(a[0]), nm(a[1])), (nm(b[0]), nm(b[1])), float(f"{grip:.9g}"))
                  for a, b, grip in segments),
@@ -360,12 +384,16 @@ def plate_for(plank: Plank, material, segments, patches, local: int = 0,
 
 
 @functools.lru_cache(maxsize=tol.PLATE_CACHE)
-def _plate_grid(length: float, width: float, thickness: float, elastic_modulus: float,
+def _plate_grid(cells: int, patch_cells: int, poisson: float, merge: float, lines: int,
+                length: float, width: float, thickness: float, elastic_modulus: float,
                 shear_modulus: float, segments: tuple, patches: tuple,
                 stiffeners: tuple = ()) -> PlateGrid | None:
     """``plate_for``'s ``PlateGrid`` of a ``length`` x ``width`` x ``thickness`` plate
     (m) of moduli E and G (Pa) on ``segments``, stiffened by ``stiffeners``, its grid
-    through ``patches``."""
+    through ``patches``; the tolerances it reads (PLATE_CELLS, PLATE_PATCH_CELLS,
+    PLATE_POISSON, NODE_MERGE, PLATE_GRID_LINES) are its first arguments, so that a
+    grid made under others is not taken for this one.  Its arrays are read-only: the
+    cache shares them."""
     half_x, half_y = length / 2.0, width / 2.0
     lines = (*segments, *stiffeners)
     quarters = np.linspace(0.0, 1.0, tol.PLATE_PATCH_CELLS + 1)
@@ -417,6 +445,9 @@ def _plate_grid(length: float, width: float, thickness: float, elastic_modulus: 
     slack = tol.NODE_MERGE
     between = (X >= sx.min() - slack) & (X <= sx.max() + slack) \
         & (Y >= sy.min() - slack) & (Y <= sy.max() + slack)
+    arrays = (xs, ys, supported, rank, fixed, factor, moments, dofs, cx, cy, X, Y, between)
+    for array in arrays:
+        array.setflags(write=False)
     return PlateGrid(xs, ys, supported, rank, fixed, factor, moments, dofs, thickness,
                      (cx, cy), hx * hy, (X, Y), between)
 
@@ -549,26 +580,37 @@ def _patch(plank: Plank, load) -> tuple[float, float, float, float]:
 
 def plate_results(model, cases: list[LoadCase]) -> list[list[tuple[int, float, float, float]]]:
     """Per case, (local plank, sag m, span m, stress Pa) of each plate plank of the model
-    (see the module docstring): each plate solved for all the cases at once."""
-    out: list[list] = [[] for _ in cases]
+    (see the module docstring): the planks that share a factored plate (planks alike)
+    solved for all the cases at once."""
+    design = model.design
+    on_plank = [{} for _ in cases]
+    for by_plank, case in zip(on_plank, cases):
+        for load in case.loads:
+            by_plank.setdefault(load.plank, []).append(load)
+    groups: dict[int, list[PlatePlank]] = {}
     for plate in plate_planks(model):
-        loads = [_case_loads(model.design, case, plate.plank) for case in cases]
-        for found, (w, stress) in zip(out, plate_solutions(plate, loads)):
-            found.append((plate.local, *_sag_span(plate, w), stress))
-    return out
+        groups.setdefault(id(plate.grid), []).append(plate)
+    found: dict[int, list] = {}
+    for plates in groups.values():
+        loads = [_case_loads(design, by_plank.get(plate.plank.id, ()), plate.plank)
+                 for plate in plates for by_plank in on_plank]
+        solutions = iter(plate_solutions(plates[0], loads))
+        for plate in plates:
+            found[plate.local] = [(plate.local, *_sag_span(plate, w), stress)
+                                  for w, stress in (next(solutions) for _ in cases)]
+    return [[found[plate.local][c] for plate in plate_planks(model)]
+            for c in range(len(cases))]
 
 
-def _case_loads(design: Design, case: LoadCase, plank: Plank) -> tuple[float, list]:
+def _case_loads(design: Design, loads, plank: Plank) -> tuple[float, list]:
     """(Pa, [(patch, N)]): the pressure across the plank's face of its weight and the
-    case's spread loads on it, and each of the case's point loads on it, its force
-    across the face and its patch (``_patch``); along the face normal, positive."""
+    spread ones of ``loads`` (a case's loads on it), and each of its point loads, its
+    force across the face and its patch (``_patch``); along the face normal, positive."""
     normal = np.asarray(plank.axes[2])
     area = plank.length * plank.width
     uniform = -design.plank_mass(plank) * tol.GRAVITY * normal[2] / area
     points = []
-    for load in case.loads:
-        if load.plank != plank.id:
-            continue
+    for load in loads:
         across = float(np.dot(load.force, normal))
         if load.spread:
             uniform += across / area
@@ -621,21 +663,42 @@ def plate_solutions(plate: PlatePlank, loads: list) -> list[tuple[np.ndarray, fl
 def _sag_span(plate: PlatePlank, w: np.ndarray) -> tuple[float, float]:
     """(m, m): the largest deflection between the supports (at the nodes within the
     supported nodes' bounding box: an overhang beyond them is its beam's, measured from
-    the tangent at its support, contract 3a), and twice its node's distance to the
-    nearest supported node (two lines s apart: s)."""
+    the tangent at its support, contract 3a), and its span (``_span_at``)."""
     grid = plate.grid
-    X, Y = grid.nodes
-    sx, sy = X[grid.supported], Y[grid.supported]
     between = np.where(grid.between, np.abs(w), -1.0)
     k = int(np.argmax(between))
-    reach = np.hypot(sx - X[k], sy - Y[k]).min()
-    return float(max(between[k], 0.0)), float(2.0 * reach)
+    return float(max(between[k], 0.0)), _span_at(grid, k)
+
+
+def _span_at(grid: PlateGrid, k: int) -> float:
+    """m: the span at node ``k``, as contract 3a has a beam's (between its outermost
+    supports), along the plank's axes through it: the shorter of the distances between
+    the outermost supported nodes met on either side along x and along y (a shelf
+    between its sides: the distance between them; a top held all round: its shorter
+    side's); where no axis meets one on both sides, twice the distance to the nearest
+    one met (an edge held on one side, as a cantilever); where none is met, twice the
+    distance to the nearest supported node."""
+    X, Y = grid.nodes
+    sx, sy = X[grid.supported], Y[grid.supported]
+    x, y = X[k], Y[k]
+    spans, reaches = [], []
+    for along, across, at, level in ((sx, sy, x, y), (sy, sx, y, x)):
+        line = along[np.abs(across - level) <= tol.NODE_MERGE_ROUNDOFF]
+        below, above = line[line < at], line[line > at]
+        if len(below) and len(above):
+            spans.append(float(above.max() - below.min()))
+        reaches += [at - float(below.max())] if len(below) else []
+        reaches += [float(above.min()) - at] if len(above) else []
+    if spans:
+        return min(spans)
+    if reaches:
+        return 2.0 * min(reaches)
+    return float(2.0 * np.hypot(sx - x, sy - y).min())
 
 
 def with_plates(model, cases: list[LoadCase], planks: list) -> list:
     """``planks`` (a ``bending.PlankStatics`` per case of ``cases``) with each plate
-    plank's sag, span and stress the plate's where it exceeds the beam's (sag and span
-    together)."""
+    plank's sag, span and stress the plate's where they exceed the beam's (``_merged``)."""
     if not plate_planks(model):
         return planks
     return [_merged(one, found) for one, found in zip(planks, plate_results(model, cases))]
@@ -643,14 +706,18 @@ def with_plates(model, cases: list[LoadCase], planks: list) -> list:
 
 def _merged(planks, found):
     """``planks`` (one case's ``PlankStatics``) with the plates' ``found`` (local plank,
-    sag, span, stress) where they exceed it."""
+    sag, span, stress) where they exceed it: the plate's sag and span where its sag over
+    its span is the larger (the sag rule's share: a beam's short overhang may use more
+    of its allowed sag than the plate's larger sag over its longer span), the larger
+    stress."""
     from dataclasses import replace
 
     sag, span, stress = planks.sag.copy(), planks.span.copy(), planks.stress.copy()
     overhang = None if planks.overhang is None else planks.overhang.copy()
     by_plate = set()
     for k, plate_sag, plate_span, plate_stress in found:
-        if plate_sag > sag[k]:
+        beam = sag[k] / span[k] if span[k] > 0.0 else 0.0      # no span: no sag rule
+        if plate_span > 0.0 and plate_sag / plate_span > beam:
             sag[k], span[k] = plate_sag, plate_span
             by_plate.add(k)
             if overhang is not None:
