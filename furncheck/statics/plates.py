@@ -594,7 +594,9 @@ def plate_results(model, cases: list[LoadCase]) -> list[list[tuple[int, float, f
     for plates in groups.values():
         loads = [_case_loads(design, by_plank.get(plate.plank.id, ()), plate.plank)
                  for plate in plates for by_plank in on_plank]
-        solutions = iter(plate_solutions(plates[0], loads))
+        batch = tol.PLATE_BATCH
+        solutions = (solution for start in range(0, len(loads), batch)
+                     for solution in plate_solutions(plates[0], loads[start:start + batch]))
         for plate in plates:
             found[plate.local] = [(plate.local, *_sag_span(plate, w), stress)
                                   for w, stress in (next(solutions) for _ in cases)]
