@@ -265,3 +265,42 @@ def test_the_plate_takes_over_where_its_share_of_the_allowed_sag_is_larger() -> 
     assert merged.overhang.tolist() == [True, False]
     assert merged.stress.tolist() == [3e6, 4e6]
     assert merged.sideways(0) is True and merged.sideways(1) is False
+
+
+def test_a_rail_between_two_panels_bends_under_the_plate_it_holds() -> None:
+    """The step box with a 376 x 72 mm rail on edge under the top's middle, between the
+    ends (``suggest``'s rail fix).  Stiff in its own plane, the rail holds its line
+    straight (``elastic._holds_straight``), but it spans between the ends, held up at
+    its ends only: not a support of the top's plate but a beam that bends with it
+    (``plates._carried``), so the top reads more than on a rigid line there (about a
+    tenth of the box without rail) and less than without the rail; the ends, standing
+    on the floor, and the front and back are supports."""
+    from furncheck.design import parse_design
+    from furncheck.geometry import analyze
+    from furncheck.statics import build_model
+    from furncheck.statics.plates import _carried
+
+    railed = STEP_BOX.replace(
+        "  - {id: top,", "  - {id: rail, size: [376, 72], center: [0, 0, 252], "
+                         "rotation: [-90, 0, 0]}\n  - {id: top,")
+    design = parse_design(railed, "d.yaml", "yaml")
+    geometry = analyze(design)
+    model = build_model(design, geometry)
+    joints_of: dict = {}
+    for j in model.joints:
+        for plank_id in geometry.joints[j].planks:
+            joints_of.setdefault(plank_id, []).append(geometry.joints[j])
+    carried = _carried(geometry, joints_of)
+    (rail_joint,) = [j for j in joints_of["top"] if "rail" in j.planks]
+    (end_joint,) = [j for j in joints_of["top"] if "end_l" in j.planks]
+    assert not carried("rail", rail_joint) and carried("end_l", end_joint)
+    bare = _top(STEP_BOX)[1].sag
+    (top,) = [p for p in check_design_of(railed).cases[0].planks if p.id == "top"]
+    assert 0.1 * bare < top.sag < bare
+
+
+def check_design_of(text: str):
+    from furncheck.check import check_design
+    from furncheck.design import parse_design
+
+    return check_design(parse_design(text, "d.yaml", "yaml"))

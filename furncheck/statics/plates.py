@@ -104,12 +104,13 @@ def plate_planks(model) -> tuple[PlatePlank, ...]:
 
 
 def _held_planks(model):
-    """(local index, plank, support segments, stiffeners) of each plank of the model that does not
-    stand on the floor and that joint lines held straight by their other planks hold
-    along its beam over at least PLATE_HELD_SHARE of its length (on one side of its axis
-    or on it; the union of their spans), besides somewhere off that line (the plate is
-    then held, not hinged on one line): each segment ((x0, y0), (x1, y1), grip),
-    plank-local, and the rails nailed along it (``_support_segments``)."""
+    """(local index, plank, support segments, stiffeners) of each plank of the model that
+    does not stand on the floor, that its weight or a load pushes across its face, and
+    that joint lines held straight by their other planks hold along one of its sides
+    over at least PLATE_HELD_SHARE of it (on one line, or on one side of its middle: the
+    union of their spans), besides somewhere off that line (the plate is then held, not
+    hinged on one line): each segment ((x0, y0), (x1, y1), grip), plank-local, and the
+    rails nailed along it (``_support_segments``)."""
     from furncheck.statics.elastic import _joint_lines
 
     design, geometry = model.design, model.geometry
@@ -132,7 +133,8 @@ def _held_planks(model):
         joints = joints_of[plank.id]
         if not _loaded_across(design, plank):
             continue
-        segments, stiffeners = _support_segments(design, plank, lines, joints)
+        segments, stiffeners = _support_segments(design, plank, lines, joints,
+                                                 _carried(geometry, joints_of))
         if _holds_beam(plank, segments, 0) or _holds_beam(plank, segments, 1):
             yield k, plank, segments, stiffeners
 
@@ -148,9 +150,9 @@ def _loaded_across(design: Design, plank: Plank) -> bool:
 
 
 def _holds_beam(plank: Plank, segments, axis: int) -> bool:
-    """Whether ``segments`` along the plank's local ``axis`` (its beam's) cover at least
-    PLATE_HELD_SHARE of its length on one line or on one side of the axis, and some
-    segment lies off the line of the first such (see ``_held_planks``)."""
+    """Whether ``segments`` along the plank's local ``axis`` (0: x) cover at least
+    PLATE_HELD_SHARE of its side along it on one line, or on one side of its middle
+    line, and some segment lies off that line (see ``_held_planks``)."""
     from furncheck.statics.elastic import _union_length
 
     size = (plank.length, plank.width)[axis]
@@ -180,15 +182,44 @@ def _segment_axis(segment) -> int:
     return 0 if abs(y1 - y0) <= abs(x1 - x0) else 1
 
 
-def _support_segments(design: Design, plank: Plank, lines, joints) -> tuple[list, list]:
+def _carried(geometry, joints_of: dict[str, list]):
+    """A test whether a plank (id) holds a joint's line up where it is: it stands on the
+    floor along at least SPAN_ACROSS_STANDING of the line (its floor corners that far
+    apart along it), or another of its joints runs along the line over as much of it (a
+    divider standing on a cabinet's bottom, a back panel nailed to a shelf below): not a
+    rail that spans between two panels, which carries what the line puts on it by
+    bending."""
+    feet: dict[str, list] = {}
+    for contact in geometry.contacts:
+        if contact.on_floor:
+            feet.setdefault(contact.plank, []).append(contact.point)
+
+    def carried(partner: str, joint) -> bool:
+        line = joint.frame[:, 1]
+        need = tol.SPAN_ACROSS_STANDING * joint.length - tol.NODE_MERGE
+        corners = feet.get(partner, ())
+        if len(corners) >= 2:
+            reach = np.asarray(corners, dtype=float) @ line
+            if reach.max() - reach.min() + tol.NODE_MERGE_ROUNDOFF >= need:
+                return True
+        return any(other is not joint and other.length >= need
+                   and abs(float(other.frame[:, 1] @ line)) >= 1.0 - tol.PLATE_SLANT
+                   for other in joints_of.get(partner, ()))
+    return carried
+
+
+def _support_segments(design: Design, plank: Plank, lines, joints,
+                      carried=None) -> tuple[list, list]:
     """The plank's joint lines (``lines``, of ``joints`` in order) as local segments along
     its x or y axis (clipped to the plank; a line at a slant to both is left out): those
-    held straight by their other planks, each with its nail row's grip against turning
+    held straight by their other planks and held up by them where they are (``carried``,
+    ``_carried``; all, where it is None), each with its nail row's grip against turning
     about it per metre (contract 3a: n nail_withdrawal (t/2)^2 over its length, N m /
     rad per m; the other plank taken as not turning), and the others, the rails and
-    aprons that bend with the plank, each with
-    the bending stiffness it adds across the plank's face, E I (N m^2,
-    ``_bending_across``): (supports, stiffeners), each ((x0, y0), (x1, y1), value)."""
+    aprons that bend with the plank (a rail stiff in its own plane that spans between
+    panels too: it carries what the plate puts on it by bending), each with the bending
+    stiffness it adds across the plank's face, E I (N m^2, ``_bending_across``):
+    (supports, stiffeners), each ((x0, y0), (x1, y1), value)."""
     frame = plank.rotation_matrix
     sizes = (plank.length, plank.width)
     half = np.array(sizes) / 2.0
@@ -210,13 +241,14 @@ def _support_segments(design: Design, plank: Plank, lines, joints) -> tuple[list
         if high[axis] - low[axis] <= tol.NODE_MERGE:
             continue
         ends = (tuple(low.tolist()), tuple(high.tolist()))
-        if straight(sizes[axis], sizes[1 - axis]):
+        partner_id = next(p for p in joint.planks if p != plank.id)
+        if straight(sizes[axis], sizes[1 - axis]) \
+                and (carried is None or carried(partner_id, joint)):
             grip = joint.nails * withdrawal * (0.5 * joint.edge_thickness) ** 2
             supports.append((*ends, grip / length))
         else:
-            partner = design.plank(next(p for p in joint.planks if p != plank.id))
-            stiffeners.append((*ends, _bending_across(design, plank, partner, joint,
-                                                      length)))
+            stiffeners.append((*ends, _bending_across(design, plank, design.plank(partner_id),
+                                                      joint, length)))
     return supports, stiffeners
 
 
