@@ -295,12 +295,4 @@ def test_a_rail_between_two_panels_bends_under_the_plate_it_holds() -> None:
     (end_joint,) = [j for j in joints_of["top"] if "end_l" in j.planks]
     assert not carried("rail", rail_joint) and carried("end_l", end_joint)
     bare = _top(STEP_BOX)[1].sag
-    (top,) = [p for p in check_design_of(railed).cases[0].planks if p.id == "top"]
-    assert 0.1 * bare < top.sag < bare
-
-
-def check_design_of(text: str):
-    from furncheck.check import check_design
-    from furncheck.design import parse_design
-
-    return check_design(parse_design(text, "d.yaml", "yaml"))
+    assert 0.1 * bare < _top(railed)[1].sag < bare

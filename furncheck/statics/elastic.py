@@ -219,10 +219,7 @@ def _joint_lines(design: Design, geometry,
     whether the plank at the other end holds the line straight against the plank's
     bending across it, ``_holds_straight``, as a call made when asked, with the plank's
     section width and span across the line: most planks never ask)."""
-    feet: dict[str, list] = {}
-    for contact in geometry.contacts:
-        if contact.on_floor:
-            feet.setdefault(contact.plank, []).append(contact.point)
+    feet = floor_feet(geometry)
     held: dict[str, list] = {}
     for j in joints:
         joint = geometry.joints[j]
@@ -235,6 +232,37 @@ def _joint_lines(design: Design, geometry,
                                feet.get(partner, ()), direction, length)
             held.setdefault(plank_id, []).append((point, line, straight))
     return held
+
+
+def floor_feet(geometry) -> dict[str, list]:
+    """Per plank id, the points where it stands on the floor (its floor contacts)."""
+    feet: dict[str, list] = {}
+    for contact in geometry.contacts:
+        if contact.on_floor:
+            feet.setdefault(contact.plank, []).append(contact.point)
+    return feet
+
+
+def stands_along(feet, direction, length: float) -> bool:
+    """Whether floor corners ``feet`` spread along ``direction`` (unit) over at least
+    SPAN_ACROSS_STANDING of a line ``length`` long (a millimetre, NODE_MERGE, to spare):
+    the plank standing on them holds that line up and straight."""
+    if len(feet) < 2:
+        return False
+    dx, dy, dz = (float(c) for c in direction)
+    reach = [dx * p[0] + dy * p[1] + dz * p[2] for p in feet]
+    return max(reach) - min(reach) + tol.NODE_MERGE_ROUNDOFF \
+        >= tol.SPAN_ACROSS_STANDING * length - tol.NODE_MERGE
+
+
+def depth_across(plank: Plank, direction) -> tuple[float, int]:
+    """(m, 0 or 1): the plank's depth across a line along ``direction`` (unit) in its
+    own plane, and which of its local axes (0: x, 1: y) that depth runs along: a line
+    more along its x has its width across it."""
+    dx, dy, dz = (float(c) for c in direction)
+    (ax, ay, az), (bx, by, bz), _ = plank.axes
+    along_x = abs(dx * ax + dy * ay + dz * az) >= abs(dx * bx + dy * by + dz * bz)
+    return (plank.width, 1) if along_x else (plank.length, 0)
 
 
 def _holds_straight(design: Design, plank_id: str, partner_id: str, feet,
@@ -253,16 +281,10 @@ def _holds_straight(design: Design, plank_id: str, partner_id: str, feet,
     is nailed along it."""
     if length <= 0.0 or span <= 0.0:
         return False
-    dx, dy, dz = direction
-    if len(feet) >= 2:
-        reach = [dx * p[0] + dy * p[1] + dz * p[2] for p in feet]
-        if max(reach) - min(reach) + tol.NODE_MERGE_ROUNDOFF \
-                >= tol.SPAN_ACROSS_STANDING * length - tol.NODE_MERGE:
-            return True
+    if stands_along(feet, direction, length):
+        return True
     partner, plank = design.plank(partner_id), design.plank(plank_id)
-    (ax, ay, az), (bx, by, bz), _ = partner.axes
-    across_x = abs(dx * ax + dy * ay + dz * az) >= abs(dx * bx + dy * by + dz * bz)
-    depth = partner.width if across_x else partner.length
+    depth = depth_across(partner, direction)[0]
     gives = length ** 3 / (design.material_of(partner).elastic_modulus * partner.thickness
                            * depth ** 3)
     allowed = tol.SPAN_ACROSS_STIFFNESS * span ** 3 / (

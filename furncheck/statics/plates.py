@@ -189,19 +189,15 @@ def _carried(geometry, joints_of: dict[str, list]):
     divider standing on a cabinet's bottom, a back panel nailed to a shelf below): not a
     rail that spans between two panels, which carries what the line puts on it by
     bending."""
-    feet: dict[str, list] = {}
-    for contact in geometry.contacts:
-        if contact.on_floor:
-            feet.setdefault(contact.plank, []).append(contact.point)
+    from furncheck.statics.elastic import floor_feet, stands_along
+
+    feet = floor_feet(geometry)
 
     def carried(partner: str, joint) -> bool:
         line = joint.frame[:, 1]
+        if stands_along(feet.get(partner, ()), line, joint.length):
+            return True
         need = tol.SPAN_ACROSS_STANDING * joint.length - tol.NODE_MERGE
-        corners = feet.get(partner, ())
-        if len(corners) >= 2:
-            reach = np.asarray(corners, dtype=float) @ line
-            if reach.max() - reach.min() + tol.NODE_MERGE_ROUNDOFF >= need:
-                return True
         return any(other is not joint and other.length >= need
                    and abs(float(other.frame[:, 1] @ line)) >= 1.0 - tol.PLATE_SLANT
                    for other in joints_of.get(partner, ()))
@@ -268,11 +264,13 @@ def _bending_across(design: Design, plank: Plank, partner: Plank, joint,
     random fibre orientation; taken as both sides' sum, the smaller reading), and gamma
     = 1 / (1 + pi^2 E_f A_f s / (K l^2)) for the nails' spacing s and slip modulus K
     (``nail_slip``) over l."""
+    from furncheck.statics.elastic import depth_across
+
     normal = plank.rotation_matrix[:, 2]
     line = joint.frame[:, 1]
     axes = partner.rotation_matrix
-    across_x = abs(float(line @ axes[:, 0])) <= abs(float(line @ axes[:, 1]))
-    depth, in_plane = (partner.length, axes[:, 0]) if across_x else (partner.width, axes[:, 1])
+    depth, axis = depth_across(partner, line)
+    in_plane = axes[:, axis]
     t_p = partner.thickness
     second_moment = (t_p * depth ** 3 / 12.0 * float(in_plane @ normal) ** 2
                      + depth * t_p ** 3 / 12.0 * float(axes[:, 2] @ normal) ** 2)
@@ -422,24 +420,25 @@ def _plate_grid(cells: int, patch_cells: int, poisson: float, merge: float, line
                 stiffeners: tuple = ()) -> PlateGrid | None:
     """``plate_for``'s ``PlateGrid`` of a ``length`` x ``width`` x ``thickness`` plate
     (m) of moduli E and G (Pa) on ``segments``, stiffened by ``stiffeners``, its grid
-    through ``patches``; the tolerances it reads (PLATE_CELLS, PLATE_PATCH_CELLS,
-    PLATE_POISSON, NODE_MERGE, PLATE_GRID_LINES) are its first arguments, so that a
-    grid made under others is not taken for this one.  Its arrays are read-only: the
+    through ``patches``; its first arguments are the tolerances it follows (PLATE_CELLS,
+    PLATE_PATCH_CELLS and PLATE_POISSON, as given; NODE_MERGE and PLATE_GRID_LINES, which
+    ``_grid`` reads, for the key alone), so that a grid made under others is not taken
+    for this one.  Its arrays are read-only: the
     cache shares them."""
     half_x, half_y = length / 2.0, width / 2.0
     lines = (*segments, *stiffeners)
-    quarters = np.linspace(0.0, 1.0, tol.PLATE_PATCH_CELLS + 1)
+    quarters = np.linspace(0.0, 1.0, patch_cells + 1)
     lines_x = [v for (a, b, _) in lines for v in (a[0], b[0])]
     lines_y = [v for (a, b, _) in lines for v in (a[1], b[1])]
     edges_x = [v for p in patches for v in p[0] + (p[1] - p[0]) * quarters]
     edges_y = [v for p in patches for v in p[2] + (p[3] - p[2]) * quarters]
-    cell = min(length, width) / tol.PLATE_CELLS
+    cell = min(length, width) / cells
     xs = _grid(-half_x, half_x, lines_x, edges_x, cell)
     ys = _grid(-half_y, half_y, lines_y, edges_y, cell)
     nx, ny = len(xs), len(ys)
     t = thickness
-    rigidity = elastic_modulus * t ** 3 / (12 * (1 - tol.PLATE_POISSON ** 2))
-    terms = _element_matrices(rigidity, tol.PLATE_POISSON,
+    rigidity = elastic_modulus * t ** 3 / (12 * (1 - poisson ** 2))
+    terms = _element_matrices(rigidity, poisson,
                               SHEAR_FACTOR * shear_modulus * t)
     hx, hy = np.meshgrid(np.diff(xs), np.diff(ys))            # (ny - 1, nx - 1)
     hx, hy = hx.ravel(), hy.ravel()
@@ -461,7 +460,7 @@ def _plate_grid(cells: int, patch_cells: int, poisson: float, merge: float, line
                              np.concatenate([rank[grip_dofs], rank[cols]]),
                              np.concatenate([grips, values])))
     _, dxi, deta = _reference_derivatives(0.0, 0.0)
-    C = _bending_matrix(rigidity, tol.PLATE_POISSON)
+    C = _bending_matrix(rigidity, poisson)
     kappa = np.zeros((len(hx), 3, 12))
     kappa[:, 0, 1::3] = 2 * dxi / hx[:, None]
     kappa[:, 1, 2::3] = 2 * deta / hy[:, None]
@@ -525,11 +524,7 @@ def _stiffener_entries(xs: np.ndarray, ys: np.ndarray, stiffeners) -> tuple:
     X, Y = (grid.ravel() for grid in np.meshgrid(xs, ys))
     rows, cols, values = [], [], []
     for stiffener in stiffeners:
-        on, axis = _on_segment(X, Y, stiffener)
-        nodes = np.flatnonzero(on)
-        s = (X, Y)[axis][nodes]
-        order = np.argsort(s)
-        nodes, s = nodes[order], s[order]
+        nodes, s, axis = _nodes_along(X, Y, stiffener)
         for a, b, h in zip(nodes[:-1], nodes[1:], np.diff(s)):
             if h <= 0.0:
                 continue
@@ -565,6 +560,16 @@ def _on_segment(X: np.ndarray, Y: np.ndarray, segment) -> tuple[np.ndarray, int]
     return (Y >= y0 - slack) & (Y <= y1 + slack) & (np.abs(X - x0) <= slack), 1
 
 
+def _nodes_along(X: np.ndarray, Y: np.ndarray, segment) -> tuple[np.ndarray, np.ndarray, int]:
+    """The grid nodes (X, Y) on a segment (``_on_segment``), in order along it, their
+    coordinates along it, and its axis (0: x)."""
+    on, axis = _on_segment(X, Y, segment)
+    nodes = np.flatnonzero(on)
+    s = (X, Y)[axis][nodes]
+    order = np.argsort(s)
+    return nodes[order], s[order], axis
+
+
 def _supported_nodes(xs: np.ndarray, ys: np.ndarray, segments) -> np.ndarray:
     """Indices of the grid nodes on the support segments (row-major, x fastest)."""
     X, Y = (grid.ravel() for grid in np.meshgrid(xs, ys))
@@ -581,13 +586,9 @@ def _grips(xs: np.ndarray, ys: np.ndarray, segments) -> tuple[np.ndarray, np.nda
     X, Y = (grid.ravel() for grid in np.meshgrid(xs, ys))
     dofs, values = [], []
     for segment in segments:
-        on, axis = _on_segment(X, Y, segment)
-        nodes = np.flatnonzero(on)
+        nodes, s, axis = _nodes_along(X, Y, segment)
         if len(nodes) == 0:
             continue
-        s = (X, Y)[axis][nodes]
-        order = np.argsort(s)
-        nodes, s = nodes[order], s[order]
         low, high = segment[0][axis], segment[1][axis]
         bounds = np.concatenate([[low], 0.5 * (s[1:] + s[:-1]), [high]])
         dofs.append(3 * nodes + (2 if axis == 0 else 1))
