@@ -54,8 +54,8 @@ from furncheck.statics.beams import SHEAR_FACTOR
 class PlateGrid(NamedTuple):
     """A plank's plate, factored (``_plate_grid``): the grid lines (x, y, m, plank-local,
     ascending), the supported nodes (indices, row-major, x fastest), each unknown's place
-    in the banded matrix (``_ranks``: -1 for those held at zero, the supported nodes'
-    w), those held at zero, the banded Cholesky factor (``_banded_factor``), per element
+    in the banded matrix (``_ranks``), those held at zero (the supported nodes' w:
+    identity rows in the matrix), the banded Cholesky factor (``_banded_factor``), per element
     the (3, 12) map from its unknowns to its centre's moments (M_x, M_y, M_xy, N m / m)
     and its unknowns (``_element_dofs``), the plate's thickness (m), the elements'
     centres (x, y) and areas (m^2), the nodes (X, Y, row-major) and which of them lie
@@ -218,7 +218,7 @@ def _support_segments(design: Design, plank: Plank, lines, joints,
     (supports, stiffeners), each ((x0, y0), (x1, y1), value)."""
     frame = plank.rotation_matrix
     sizes = (plank.length, plank.width)
-    half = np.array(sizes) / 2.0
+    half = (sizes[0] / 2.0, sizes[1] / 2.0)
     withdrawal = design.material_of(plank).nail_withdrawal
     supports, stiffeners = [], []
     for (point, line, straight), joint in zip(lines, joints, strict=True):
@@ -230,13 +230,14 @@ def _support_segments(design: Design, plank: Plank, lines, joints,
         if abs(along[1 - axis]) > tol.PLATE_SLANT * length:
             continue
         centre = plank.to_local(np.asarray(point)[None, :])[0, :2]
-        low, high = centre.copy(), centre.copy()
+        low, high = centre.tolist(), centre.tolist()
         low[axis] -= length / 2.0
         high[axis] += length / 2.0
-        low, high = np.clip(low, -half, half), np.clip(high, -half, half)
+        low = tuple(min(max(v, -h), h) for v, h in zip(low, half))     # on the plank
+        high = tuple(min(max(v, -h), h) for v, h in zip(high, half))
         if high[axis] - low[axis] <= tol.NODE_MERGE:
             continue
-        ends = (tuple(low.tolist()), tuple(high.tolist()))
+        ends = (low, high)
         partner_id = next(p for p in joint.planks if p != plank.id)
         if straight(sizes[axis], sizes[1 - axis]) \
                 and (carried is None or carried(partner_id, joint)):
@@ -311,11 +312,12 @@ def _grid(low: float, high: float, lines, edges, cell: float) -> np.ndarray:
     if len(kept) > tol.PLATE_GRID_LINES:        # many point loads: their edges are left
         kept = list(fixed)                      # out (each load is still shared by area)
     # (np.sort, not np.unique: numpy 2's unique imports numpy.ma, 12 ms of a cold start)
-    out = [kept[0]]
-    for a, b in zip(kept[:-1], kept[1:]):
-        n = max(1, int(np.ceil((b - a) / cell - 1e-9)))
-        out.extend(a + (b - a) * np.arange(1, n + 1) / n)
-    return np.array(out)
+    kept = np.asarray(kept)
+    low, size = kept[:-1], np.diff(kept)
+    cuts = np.maximum(1, np.ceil(size / cell - 1e-9).astype(int))    # per interval
+    step = np.arange(1, int(cuts.sum()) + 1) - np.repeat(np.cumsum(cuts) - cuts, cuts)
+    return np.concatenate([kept[:1], np.repeat(low, cuts)
+                           + np.repeat(size, cuts) * step / np.repeat(cuts, cuts)])
 
 
 def _thinned(points: np.ndarray) -> list[float]:
@@ -342,15 +344,24 @@ def _bending_matrix(rigidity: float, poisson: float) -> np.ndarray:
     return rigidity * np.array([[1, poisson, 0], [poisson, 1, 0], [0, 0, (1 - poisson) / 2]])
 
 
-def _element_matrices(rigidity: float, poisson: float, shear: float):
-    """Six (12, 12) matrices whose sum, weighted by (hy/hx, hx/hy, 1, hy, hx, hx hy), is
-    the stiffness of an hx x hy element (unknowns w, beta_x, beta_y per corner, corners
-    counter-clockwise from (-, -)): bending by 2 x 2 Gauss points, transverse shear
-    (``shear``: k G t, N/m) by one.  With dx = (2 / hx) d/dxi and dy = (2 / hy) d/deta,
-    the bending integrand B^T C B hx hy / 4 splits into hy/hx, hx/hy and 1 terms, the
-    shear one's k G t hx hy B_s^T B_s into the hy/hx, hx/hy, hy, hx and hx hy ones."""
-    C = _bending_matrix(rigidity, poisson)
-    terms = np.zeros((6, 12, 12))
+def _element_matrices(rigidity: float, poisson: float, shear: float) -> np.ndarray:
+    """(6, 144): six (12, 12) matrices, flattened, whose sum weighted by (hy/hx, hx/hy,
+    1, hy, hx, hx hy) is the stiffness of an hx x hy element (unknowns w, beta_x, beta_y
+    per corner, corners counter-clockwise from (-, -)): bending by 2 x 2 Gauss points,
+    transverse shear (``shear``: k G t, N/m) by one (``_unit_element_matrices``)."""
+    bending, shearing = _unit_element_matrices(poisson)
+    return (rigidity * bending + shear * shearing).reshape(6, 144)
+
+
+@functools.lru_cache(maxsize=4)
+def _unit_element_matrices(poisson: float) -> tuple[np.ndarray, np.ndarray]:
+    """(bending, shear), (6, 12, 12) each: ``_element_matrices``' terms for D = 1 and
+    k G t = 1.  With dx = (2 / hx) d/dxi and dy = (2 / hy) d/deta, the bending integrand
+    B^T C B hx hy / 4 splits into hy/hx, hx/hy and 1 terms, the shear one's k G t hx hy
+    B_s^T B_s into the hy/hx, hx/hy, hy, hx and hx hy ones.  Read-only: the cache
+    shares them."""
+    C = _bending_matrix(1.0, poisson)
+    bending, shearing = np.zeros((6, 12, 12)), np.zeros((6, 12, 12))
     g = 1 / np.sqrt(3)
     for xi in (-g, g):
         for eta in (-g, g):
@@ -358,19 +369,21 @@ def _element_matrices(rigidity: float, poisson: float, shear: float):
             gx, gy = np.zeros((3, 12)), np.zeros((3, 12))
             gx[0, 1::3], gx[2, 2::3] = dxi, dxi          # kappa_x, and d beta_y / dx
             gy[1, 2::3], gy[2, 1::3] = deta, deta        # kappa_y, and d beta_x / dy
-            terms[0] += gx.T @ C @ gx
-            terms[1] += gy.T @ C @ gy
-            terms[2] += gx.T @ C @ gy + gy.T @ C @ gx
+            bending[0] += gx.T @ C @ gx
+            bending[1] += gy.T @ C @ gy
+            bending[2] += gx.T @ C @ gy + gy.T @ C @ gx
     n, dxi, deta = _reference_derivatives(0.0, 0.0)
     sx, sy, s0 = np.zeros((2, 12)), np.zeros((2, 12)), np.zeros((2, 12))
     sx[0, 0::3], sy[1, 0::3] = dxi, deta
     s0[0, 1::3], s0[1, 2::3] = n, n
-    terms[0] += shear * 4 * sx.T @ sx
-    terms[1] += shear * 4 * sy.T @ sy
-    terms[3] -= shear * 2 * (sx.T @ s0 + s0.T @ sx)
-    terms[4] -= shear * 2 * (sy.T @ s0 + s0.T @ sy)
-    terms[5] += shear * s0.T @ s0
-    return terms
+    shearing[0] += 4 * sx.T @ sx
+    shearing[1] += 4 * sy.T @ sy
+    shearing[3] -= 2 * (sx.T @ s0 + s0.T @ sx)
+    shearing[4] -= 2 * (sy.T @ s0 + s0.T @ sy)
+    shearing[5] += s0.T @ s0
+    for array in (bending, shearing):
+        array.setflags(write=False)
+    return bending, shearing
 
 
 def _plate(model, k: int, plank: Plank, segments, stiffeners,
@@ -440,25 +453,25 @@ def _plate_grid(cells: int, patch_cells: int, poisson: float, merge: float, line
     rigidity = elastic_modulus * t ** 3 / (12 * (1 - poisson ** 2))
     terms = _element_matrices(rigidity, poisson,
                               SHEAR_FACTOR * shear_modulus * t)
-    hx, hy = np.meshgrid(np.diff(xs), np.diff(ys))            # (ny - 1, nx - 1)
-    hx, hy = hx.ravel(), hy.ravel()
+    hx = np.tile(np.diff(xs), ny - 1)                # per element, row-major
+    hy = np.repeat(np.diff(ys), nx - 1)
     weights = np.column_stack([hy / hx, hx / hy, np.ones_like(hx), hy, hx, hx * hy])
-    K_elements = np.einsum("ek,kij->eij", weights, terms)
+    K_elements = weights @ terms                    # (nE, 144)
+    X, Y = np.tile(xs, ny), np.repeat(ys, nx)       # the nodes, row-major
     supported = _supported_nodes(xs, ys, segments)
-    held = np.column_stack([np.tile(xs, ny)[supported], np.repeat(ys, nx)[supported]])
+    held = np.column_stack([X[supported], Y[supported]])
     if len(held) < 3 or np.linalg.svd(held - held.mean(axis=0), compute_uv=False)[-1] \
             <= tol.NODE_MERGE:                  # on one line: free to turn about it
         return None
     fixed = np.zeros(3 * nx * ny, dtype=bool)
     fixed[3 * supported] = True
-    rank = _ranks(nx, ny, fixed)
-    dofs = _element_dofs(nx, ny)
+    rank, dofs, low, high = _layout(nx, ny)
     grip_dofs, grips = _grips(xs, ys, segments)
     rows, cols, values = _stiffener_entries(xs, ys, stiffeners)
-    factor = _banded_factor(int((~fixed).sum()), rank[dofs], K_elements,
+    factor = _banded_factor(low, high, K_elements[:, _UPPER_FLAT].ravel(),
                             (np.concatenate([rank[grip_dofs], rank[rows]]),
                              np.concatenate([rank[grip_dofs], rank[cols]]),
-                             np.concatenate([grips, values])))
+                             np.concatenate([grips, values])), rank[fixed])
     _, dxi, deta = _reference_derivatives(0.0, 0.0)
     C = _bending_matrix(rigidity, poisson)
     kappa = np.zeros((len(hx), 3, 12))
@@ -466,53 +479,76 @@ def _plate_grid(cells: int, patch_cells: int, poisson: float, merge: float, line
     kappa[:, 1, 2::3] = 2 * deta / hy[:, None]
     kappa[:, 2, 1::3] = 2 * deta / hy[:, None]
     kappa[:, 2, 2::3] = 2 * dxi / hx[:, None]
-    moments = np.einsum("ab,ebj->eaj", C, kappa)
+    moments = C @ kappa                             # (nE, 3, 12)
     if factor is None:
         return None
-    cx, cy = (c.ravel() for c in np.meshgrid(0.5 * (xs[1:] + xs[:-1]),
-                                             0.5 * (ys[1:] + ys[:-1])))
-    X, Y = (c.ravel() for c in np.meshgrid(xs, ys))
+    cx = np.tile(0.5 * (xs[1:] + xs[:-1]), ny - 1)
+    cy = np.repeat(0.5 * (ys[1:] + ys[:-1]), nx - 1)
     sx, sy = X[supported], Y[supported]
     slack = tol.NODE_MERGE
     between = (X >= sx.min() - slack) & (X <= sx.max() + slack) \
         & (Y >= sy.min() - slack) & (Y <= sy.max() + slack)
-    arrays = (xs, ys, supported, rank, fixed, factor, moments, dofs, cx, cy, X, Y, between)
+    arrays = (xs, ys, supported, fixed, factor, moments, cx, cy, X, Y, between)
     for array in arrays:
         array.setflags(write=False)
     return PlateGrid(xs, ys, supported, rank, fixed, factor, moments, dofs, thickness,
                      (cx, cy), hx * hy, (X, Y), between)
 
 
-def _ranks(nx: int, ny: int, fixed: np.ndarray) -> np.ndarray:
-    """(3 nx ny,) each free unknown's place in the banded matrix, -1 for the ``fixed``
-    ones (held at zero, left out): the nodes numbered with the grid's shorter direction
-    fastest, so that the band is about three times that direction's node count wide."""
+@functools.lru_cache(maxsize=tol.PLATE_CACHE)
+def _layout(nx: int, ny: int) -> tuple[np.ndarray, ...]:
+    """An nx x ny grid's numbering: (3 nx ny,) each unknown's place in the banded matrix
+    (``_ranks``), (nE, 12) each element's unknowns (``_element_dofs``), and the places
+    (row <= column) of each element's upper triangle (``_UPPER``, (nE 78,) each).
+    Read-only: the cache shares them among the plates of one grid's shape."""
+    rank = _ranks(nx, ny)
+    dofs = _element_dofs(nx, ny)
+    first, second = rank[dofs][:, _UPPER[0]], rank[dofs][:, _UPPER[1]]
+    layout = (rank, dofs, np.minimum(first, second).ravel(), np.maximum(first, second).ravel())
+    for array in layout:
+        array.setflags(write=False)
+    return layout
+
+
+def _ranks(nx: int, ny: int) -> np.ndarray:
+    """(3 nx ny,) each unknown's place in the banded matrix: the nodes numbered with the
+    grid's shorter direction fastest, so that the band is about three times that
+    direction's node count wide."""
     i, j = np.meshgrid(np.arange(nx), np.arange(ny))         # node j * nx + i
     node_rank = (j * nx + i) if nx <= ny else (i * ny + j)
-    order = (3 * node_rank.ravel()[:, None] + np.arange(3)).ravel()
-    free_in_order = np.zeros(len(order), dtype=bool)
-    free_in_order[order] = ~fixed
-    place = np.cumsum(free_in_order) - 1
-    return np.where(fixed, -1, place[order])
+    return (3 * node_rank.ravel()[:, None] + np.arange(3)).ravel()
 
 
-def _banded_factor(n: int, element_ranks: np.ndarray, element_matrices: np.ndarray,
-                   entries: tuple) -> np.ndarray | None:
-    """The banded Cholesky factor (LAPACK's upper band storage) of the plate's stiffness
-    in its ``n`` free unknowns: the elements' (nE, 12, 12) at their unknowns' places
-    (``element_ranks``, -1 for a fixed one: its rows and columns left out) and the
-    ``entries`` (rows, columns, values, at places alike: the grips, the stiffeners); None
-    where the supports leave the plate free to move (not positive definite)."""
+_UPPER = np.triu_indices(12)           # an element matrix's upper triangle, diagonal in
+_UPPER_FLAT = _UPPER[0] * 12 + _UPPER[1]
+
+
+def _banded_factor(low: np.ndarray, high: np.ndarray, element_values: np.ndarray,
+                   entries: tuple, fixed: np.ndarray) -> np.ndarray | None:
+    """The banded Cholesky factor (LAPACK's upper band storage) of the plate's stiffness:
+    the elements' upper triangles (``element_values``) at their places (``low`` <=
+    ``high``, ``_layout``) and the ``entries`` (rows, columns, values, both triangles
+    given: the grips, the stiffeners), with the unknowns held at zero (``fixed``: their
+    places) as identity rows and columns (their right-hand sides are zero, and so are
+    they); None where the supports leave the plate free to move (not positive
+    definite)."""
     from furncheck.statics.lapack import banded_cholesky
 
-    rows = np.concatenate([np.repeat(element_ranks, 12, axis=1).ravel(), entries[0]])
-    cols = np.concatenate([np.tile(element_ranks, (1, 12)).ravel(), entries[1]])
-    values = np.concatenate([element_matrices.ravel(), entries[2]])
-    kept = (rows <= cols) & (rows >= 0)
-    rows, cols, values = rows[kept], cols[kept], values[kept]
+    rows, cols, more = entries
+    upper = rows <= cols
+    rows = np.concatenate([low, rows[upper]])
+    cols = np.concatenate([high, cols[upper]])
+    values = np.concatenate([element_values, more[upper]])
+    n = int(cols.max()) + 1
     width = int((cols - rows).max())
     bands = np.bincount((width + rows - cols) * n + cols, weights=values,
                         minlength=(width + 1) * n).reshape(width + 1, n)
+    bands[:, fixed] = 0.0                           # their columns, to the diagonal
+    bands[width, fixed] = 1.0
+    offsets = np.arange(1, width + 1)
+    beyond = fixed[:, None] + offsets               # their rows, right of the diagonal
+    inside = beyond < n
+    bands[np.broadcast_to(width - offsets, beyond.shape)[inside], beyond[inside]] = 0.0
     return banded_cholesky(bands)
 
 
@@ -521,21 +557,24 @@ def _stiffener_entries(xs: np.ndarray, ys: np.ndarray, stiffeners) -> tuple:
     the grid nodes along its line, on the nodes' w and their slope along it (beta_x for
     a line along x, beta_y along y), each h long: E I / h^3 [[12, 6 h, -12, 6 h], [6 h,
     4 h^2, -6 h, 2 h^2], [-12, -6 h, 12, -6 h], [6 h, 2 h^2, -6 h, 4 h^2]]."""
-    X, Y = (grid.ravel() for grid in np.meshgrid(xs, ys))
     rows, cols, values = [], [], []
     for stiffener in stiffeners:
-        nodes, s, axis = _nodes_along(X, Y, stiffener)
-        for a, b, h in zip(nodes[:-1], nodes[1:], np.diff(s)):
-            if h <= 0.0:
-                continue
-            k = stiffener[2] / h ** 3 * np.array([[12, 6 * h, -12, 6 * h],
-                                                   [6 * h, 4 * h * h, -6 * h, 2 * h * h],
-                                                   [-12, -6 * h, 12, -6 * h],
-                                                   [6 * h, 2 * h * h, -6 * h, 4 * h * h]])
-            dofs = np.array([3 * a, 3 * a + 1 + axis, 3 * b, 3 * b + 1 + axis])
-            rows.append(np.repeat(dofs, 4))
-            cols.append(np.tile(dofs, 4))
-            values.append(k.ravel())
+        nodes, s, axis = _nodes_along(xs, ys, stiffener)
+        h = np.diff(s)
+        ends = h > 0.0
+        a, b, h = nodes[:-1][ends], nodes[1:][ends], h[ends]
+        if len(h) == 0:
+            continue
+        one = np.ones_like(h)
+        k = stiffener[2] / h[:, None, None] ** 3 * np.stack([
+            np.stack([12 * one, 6 * h, -12 * one, 6 * h], axis=1),
+            np.stack([6 * h, 4 * h * h, -6 * h, 2 * h * h], axis=1),
+            np.stack([-12 * one, -6 * h, 12 * one, -6 * h], axis=1),
+            np.stack([6 * h, 2 * h * h, -6 * h, 4 * h * h], axis=1)], axis=1)
+        dofs = np.column_stack([3 * a, 3 * a + 1 + axis, 3 * b, 3 * b + 1 + axis])
+        rows.append(np.repeat(dofs, 4, axis=1).ravel())
+        cols.append(np.tile(dofs, (1, 4)).ravel())
+        values.append(k.ravel())
     if not rows:
         return np.zeros(0, dtype=int), np.zeros(0, dtype=int), np.zeros(0)
     return np.concatenate(rows), np.concatenate(cols), np.concatenate(values)
@@ -550,32 +589,36 @@ def _element_dofs(nx: int, ny: int) -> np.ndarray:
     return (3 * corners[:, :, None] + np.arange(3)).reshape(-1, 12)
 
 
-def _on_segment(X: np.ndarray, Y: np.ndarray, segment) -> tuple[np.ndarray, int]:
-    """Which points (X, Y) lie on a segment ((x0, y0), (x1, y1), grip) along x or y
-    (bool array), and its axis (0: x)."""
+def _on_segment(xs: np.ndarray, ys: np.ndarray, segment) -> tuple[np.ndarray, int]:
+    """The grid nodes (indices, row-major, x fastest, ascending) on a segment ((x0, y0),
+    (x1, y1), grip) along x or y, and its axis (0: x)."""
     (x0, y0), (x1, y1), _ = segment
     slack = tol.NODE_MERGE        # its grid line, kept within that of it (``_grid``)
     if abs(y1 - y0) <= abs(x1 - x0):                # along x, at y0 = y1
-        return (X >= x0 - slack) & (X <= x1 + slack) & (np.abs(Y - y0) <= slack), 0
-    return (Y >= y0 - slack) & (Y <= y1 + slack) & (np.abs(X - x0) <= slack), 1
+        i = np.flatnonzero((xs >= x0 - slack) & (xs <= x1 + slack))
+        j = np.flatnonzero(np.abs(ys - y0) <= slack)
+        axis = 0
+    else:
+        i = np.flatnonzero(np.abs(xs - x0) <= slack)
+        j = np.flatnonzero((ys >= y0 - slack) & (ys <= y1 + slack))
+        axis = 1
+    return (j[:, None] * len(xs) + i[None, :]).ravel(), axis
 
 
-def _nodes_along(X: np.ndarray, Y: np.ndarray, segment) -> tuple[np.ndarray, np.ndarray, int]:
-    """The grid nodes (X, Y) on a segment (``_on_segment``), in order along it, their
+def _nodes_along(xs: np.ndarray, ys: np.ndarray, segment) -> tuple[np.ndarray, np.ndarray, int]:
+    """The grid nodes on a segment (``_on_segment``), in order along it, their
     coordinates along it, and its axis (0: x)."""
-    on, axis = _on_segment(X, Y, segment)
-    nodes = np.flatnonzero(on)
-    s = (X, Y)[axis][nodes]
+    nodes, axis = _on_segment(xs, ys, segment)
+    s = xs[nodes % len(xs)] if axis == 0 else ys[nodes // len(xs)]
     order = np.argsort(s)
     return nodes[order], s[order], axis
 
 
 def _supported_nodes(xs: np.ndarray, ys: np.ndarray, segments) -> np.ndarray:
     """Indices of the grid nodes on the support segments (row-major, x fastest)."""
-    X, Y = (grid.ravel() for grid in np.meshgrid(xs, ys))
-    on = np.zeros(len(X), dtype=bool)
+    on = np.zeros(len(xs) * len(ys), dtype=bool)
     for segment in segments:
-        on |= _on_segment(X, Y, segment)[0]
+        on[_on_segment(xs, ys, segment)[0]] = True
     return np.flatnonzero(on)
 
 
@@ -583,10 +626,9 @@ def _grips(xs: np.ndarray, ys: np.ndarray, segments) -> tuple[np.ndarray, np.nda
     """The unknowns (indices) and stiffnesses (N m / rad) of the nail rows' grip: each
     segment's grip per metre times each of its nodes' share of its length, on the node's
     turn about the segment (beta_y for a line along x, beta_x for one along y)."""
-    X, Y = (grid.ravel() for grid in np.meshgrid(xs, ys))
     dofs, values = [], []
     for segment in segments:
-        nodes, s, axis = _nodes_along(X, Y, segment)
+        nodes, s, axis = _nodes_along(xs, ys, segment)
         if len(nodes) == 0:
             continue
         low, high = segment[0][axis], segment[1][axis]
@@ -678,17 +720,21 @@ def plate_solutions(plate: PlatePlank, loads: list) -> list[tuple[np.ndarray, fl
             over_y = np.clip(np.minimum(ys[1:], y1) - np.maximum(ys[:-1], y0), 0.0, None)
             overlap = np.outer(over_y, over_x).ravel()
             pressure[:, column] += force / ((x1 - x0) * (y1 - y0)) * overlap / grid.areas
-    share = pressure * (grid.areas / 4.0)[:, None]          # (nE, k) to each corner's w
-    n_dofs = 3 * len(grid.xs) * len(grid.ys)
-    f = np.zeros((n_dofs, len(loads)))
-    for corner in range(4):
-        np.add.at(f, grid.dofs[:, 3 * corner], share)
+    nx, ny = len(xs), len(ys)
+    share = (pressure * (grid.areas / 4.0)[:, None]).reshape(ny - 1, nx - 1, len(loads))
+    on_nodes = np.zeros((ny, nx, len(loads)))     # each element's share to its corners' w
+    on_nodes[:-1, :-1] += share                     # counter-clockwise from (-, -)
+    on_nodes[:-1, 1:] += share
+    on_nodes[1:, 1:] += share
+    on_nodes[1:, :-1] += share
+    f = np.zeros((3 * nx * ny, len(loads)))
+    f[0::3] = on_nodes.reshape(nx * ny, len(loads))
     free = ~grid.fixed
-    ranked = np.empty((int(free.sum()), len(loads)))
+    ranked = np.zeros((len(grid.rank), len(loads)))
     ranked[grid.rank[free]] = f[free]
     u = np.zeros_like(f)
     u[free] = banded_solve(grid.factor, ranked)[grid.rank[free]]
-    m = np.einsum("eaj,ejk->eak", grid.moments, u[grid.dofs])
+    m = grid.moments @ u[grid.dofs]                 # (nE, 3, k)
     principal = np.abs(0.5 * (m[:, 0] + m[:, 1])) + np.hypot(0.5 * (m[:, 0] - m[:, 1]),
                                                              m[:, 2])
     stress = 6.0 * principal.max(axis=0, initial=0.0) / grid.thickness ** 2
