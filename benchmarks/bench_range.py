@@ -42,10 +42,12 @@ def main(paths: list[str], jobs: int = 1) -> None:
         seconds = time.perf_counter() - start
         movable = sum(r.valid is not None or (r.reason or "").startswith("the current")
                       for r in ranges)
+        # an invalid design has no valid range to move in: no time per movable DOF
+        per_dof = f"{1000 * seconds / movable:.0f}" if movable else "-"
         print(f"| {Path(path).name:<23} | {model:<7} | {len(design.planks):>6} | "
               f"{len(ranges):>4} | "
               f"{movable:>7} | {finder.evaluations:>11} | {seconds:>8.2f} | "
-              f"{1000 * seconds / max(movable, 1):>18.0f} |")
+              f"{per_dof:>18} |")
 
 
 if __name__ == "__main__":

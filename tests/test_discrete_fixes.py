@@ -222,6 +222,48 @@ loads:
     assert shelf.center[2] - shelf.thickness / 2 == pytest.approx(0.364)
 
 
+def test_a_bottom_held_on_both_faces_grows_into_the_kick_board_cut_to_make_room():
+    """cabinet-28's bottom (z 80..92) has the dividers standing on its top face (nailed to
+    the cap and the shelves too: they cannot move) and the kick board (z 0..80, standing
+    on the floor) nailed under it.  Made 15 mm thick it grows 3 mm down (z 77..92: its
+    top and the dividers stay), and the kick board, square on its bottom face, is ripped
+    3 mm narrower at its top (80 -> 77 mm wide, z 0..77, still on the floor); the
+    dividers keep their 908 mm."""
+    design = load_design(str(CATALOG / "cabinet-28.yaml"))
+    edited = grown(design, analyze(design), {"bottom": 0.015})
+    bottom, kick = edited.plank("bottom"), edited.plank("kick")
+    assert bottom.center[2] + bottom.thickness / 2 == pytest.approx(0.092)
+    assert bottom.center[2] - bottom.thickness / 2 == pytest.approx(0.077)
+    assert kick.width == pytest.approx(0.077)
+    assert kick.center[2] - kick.width / 2 == pytest.approx(0.0)
+    assert kick.center[2] + kick.width / 2 == pytest.approx(0.077)
+    assert edited.plank("divider_l") == design.plank("divider_l")
+    after = analyze(edited)
+    assert not after.violations
+    assert {frozenset(j.planks) for j in after.joints} == \
+        {frozenset(j.planks) for j in analyze(design).joints}
+
+
+def test_the_sagging_cabinet_gets_thicker_shelves_and_bottom_with_its_kick_board_cut():
+    """cabinet-28 in the elastic model: shelf_b1 and b2 sag 1.54 mm with creep against
+    1.22 mm allowed, the bottom 1.06 against 0.985 mm (its header).  Sag goes with
+    1 / t^3: they need 12 x 1.27^(1/3) = 13.0 mm and 12 x 1.07^(1/3) = 12.3 mm, so the
+    next board, 15 mm, for all three; the bottom, held on both faces, grows into its kick
+    board, ripped 3 mm narrower, which the advice says.  Before the kick board could be
+    cut the thicker-board rule failed ('a plank held on both faces cannot grow') and the
+    cabinet got no suggestion at all."""
+    design = load_design(str(CATALOG / "cabinet-28.yaml"))
+    thicker = next(f for f in fixes(design) if f.rule == "thicker")
+    assert thicker.thickened == {"bottom": pytest.approx(0.015),
+                                 "shelf_b1": pytest.approx(0.015),
+                                 "shelf_b2": pytest.approx(0.015)}
+    assert thicker.advice == ("Make bottom 15 mm thick (now 12 mm), shelf_b1 15 mm (now 12 "
+                              "mm) and shelf_b2 15 mm (now 12 mm); rip kick 3 mm narrower "
+                              "(80 -> 77 mm) to make room.")
+    assert thicker.design.plank("kick").width == pytest.approx(0.077)
+    assert fix_valid(thicker)
+
+
 def test_a_shelf_deeper_than_it_is_wide_gets_a_rail_between_its_sides():
     """A 300 x 400 shelf between two sides 300 mm apart (its 400 mm edges nailed to them),
     30 kg at its middle: it spans across, between the sides (``elastic._spans_across``:

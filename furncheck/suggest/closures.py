@@ -28,7 +28,7 @@ from furncheck.suggest.candidates import MAX_STEP, Candidate
 from furncheck.suggest.continuous import ContinuousSearch
 from furncheck.suggest.discrete.common import BENDING, Search
 from furncheck.suggest.discrete.reconnect import RECONNECT
-from furncheck.suggest.discrete.thicker import finish, thickness_phrase
+from furncheck.suggest.discrete.thicker import cut_phrase, finish, thickness_phrase
 from furncheck.suggest.line_search import FIRST_PROBE
 from furncheck.suggest.shop_round import rounded_changes
 from furncheck.suggest.tried import FAILED, FOUND, Trial
@@ -82,10 +82,10 @@ def finished_closures(search: ContinuousSearch, directions: list[Candidate],
                                          "direction: no thicker boards (up to 44 mm) make "
                                          "it valid"))
             continue
-        amounts, design, valid_report, thickened = closed
+        amounts, design, valid_report, thickened, cut = closed
         discrete.trials.append(Trial(RECONNECT, target, FOUND))
         closures.append(Closure(dofs, amounts, design, valid_report,
-                                f"{thickness_phrase(thickened, discrete.design)}."))
+                                f"{thickness_phrase(thickened, discrete.design)}{cut}."))
     return closures
 
 
@@ -96,7 +96,8 @@ _NOT_FINISHED = object()
 def _closed(search: ContinuousSearch, discrete: Search, dofs: tuple[Dof, ...],
             changes: tuple[float, ...]):
     """The design closed by ``changes`` and finished with thicker boards: (changes, design,
-    report, the planks thickened); _NOT_FINISHED if it keeps its geometry and fails only
+    report, the planks thickened, the planks cut to make room for them in words,
+    ``cut_phrase``); _NOT_FINISHED if it keeps its geometry and fails only
     by bending but no thicker boards make it valid; None if it is no closure (a change
     that cannot be made, a geometry not kept, valid already, or another violation)."""
     try:
@@ -112,4 +113,4 @@ def _closed(search: ContinuousSearch, discrete: Search, dofs: tuple[Dof, ...],
     finished = finish(discrete, edited, geometry, report)
     if finished is None:
         return _NOT_FINISHED
-    return (tuple(changes), *finished)
+    return (tuple(changes), *finished, cut_phrase(edited, finished[0], finished[2]))

@@ -164,7 +164,7 @@ class Search:
             self._record(candidate, FAILED, "the design with it is still not valid", edited)
             if report.violations and all(v.kind in BENDING for v in report.violations):
                 bent.append((candidate, edited, after, report))
-        from furncheck.suggest.discrete.thicker import finish, thickness_phrase
+        from furncheck.suggest.discrete.thicker import cut_phrase, finish, thickness_phrase
 
         best = None
         for candidate, edited, after, report in reversed(_nearest(bent)):
@@ -202,7 +202,8 @@ class Search:
                 point_of(old.center, self.design), point_of(plank.center, self.design), 1)
         existing = {p: v for p, v in thickened.items() if p in self.design.plank_index}
         if existing:
-            advice = f"{advice[:-1]}, and {thickness_phrase(existing, self.design)}."
+            advice = (f"{advice[:-1]}, and {thickness_phrase(existing, self.design)}"
+                      f"{cut_phrase(self.design, design, thickened)}.")
         return Fix(candidate.rule, advice, design, report, adds, candidate.between,
                    thickened={p: new for p, (_, new) in thickened.items()})
 

@@ -47,6 +47,7 @@ from furncheck.nail_groups import nail_row
 from furncheck.result import DesignReport, JointResult
 from furncheck.suggest.discrete.common import (
     BENDING,
+    PARALLEL_COS,
     Fix,
     Search,
     amount,
@@ -82,7 +83,8 @@ def thicker_planks(search: Search) -> Fix | None:
         return None
     edited, after_report, thickened = checked
     search.trials.append(Trial(THICKER, "", FOUND, plank=names(list(thickened))))
-    advice = f"{thickness_phrase(thickened, search.design, capital=True)}."
+    advice = (f"{thickness_phrase(thickened, search.design, capital=True)}"
+              f"{cut_phrase(search.design, edited, thickened)}.")
     return Fix("thicker", advice, edited, after_report, between=tuple(thickened),
                thickened={p: new for p, (_, new) in thickened.items()})
 
@@ -363,13 +365,18 @@ def grown(design: Design, geometry: Geometry, thicknesses: dict[str, float],
             side = next((s for s in (1, -1) if all(
                 len(set(jointed.get(leaf, ()))) == 1
                 for leaf in resting.get((plank_id, s), ()))), None)
-            if side is None:
-                return None
-            for leaf in resting.get((plank_id, side), ()):
-                shift = axis * side * grow
-                planks[leaf] = replace(planks[leaf], center=tuple(
-                    float(v) for v in planks[leaf].center_array + shift))
-                moves.setdefault(leaf, []).append(_translation(shift))
+            if side is not None:
+                for leaf in resting.get((plank_id, side), ()):
+                    shift = axis * side * grow
+                    planks[leaf] = replace(planks[leaf], center=tuple(
+                        float(v) for v in planks[leaf].center_array + shift))
+                    moves.setdefault(leaf, []).append(_translation(shift))
+            else:       # the planks standing on one face cut shorter by the growth
+                side = _cut_side(plank, resting, planks, grow)
+                if side is None:
+                    return None
+                for leaf in resting[(plank_id, side)]:
+                    planks[leaf] = _cut(planks[leaf], axis * side, grow)
         elif sides:
             side = -next(iter(sides))
         else:
@@ -397,6 +404,69 @@ def grown(design: Design, geometry: Geometry, thicknesses: dict[str, float],
     anchors = tuple(replace(a, point=moved(a.plank, a.point)) for a in design.anchors)
     return replace(design, planks=tuple(planks[p.id] for p in design.planks),
                    load_cases=cases, anchors=anchors)
+
+
+def _cut_side(plank: Plank, resting: dict, planks: dict[str, Plank],
+              grow: float) -> int | None:
+    """The face (+1 local +z, -1 -z) of a plank held on both faces toward which it can grow
+    by cutting the planks that stand on that face shorter by ``grow`` (``_cut``: a
+    cabinet's bottom, the dividers standing on it and a kick board under it, grows down
+    into the kick board, ripped that much narrower): each of them standing square on it
+    (an in-plane axis along its normal) and longer than the growth that way.  The lower
+    face of a level plank first (its top and what stands on it stay), else the face
+    with fewer planks to cut; None where neither face will do."""
+    axis = plank.rotation_matrix[:, 2]
+    order = (-1, 1) if axis[2] > 0.0 else (1, -1)
+    if not level(plank):
+        order = tuple(sorted((1, -1), key=lambda s: len(resting.get((plank.id, s), ()))))
+    for side in order:
+        leaves = resting.get((plank.id, side), ())
+        if leaves and all(_along(planks[leaf], axis) is not None
+                          and _sizes(planks[leaf])[_along(planks[leaf], axis)] > 2.0 * grow
+                          for leaf in leaves):
+            return side
+    return None
+
+
+def _along(plank: Plank, way: np.ndarray) -> int | None:
+    """Which of the plank's in-plane axes (0: length, 1: width) lies along ``way`` (a unit
+    vector) within PARALLEL_COS, else None (it does not stand square that way)."""
+    axes = plank.rotation_matrix
+    axis = int(np.argmax(np.abs(axes[:, :2].T @ way)))
+    return axis if abs(float(axes[:, axis] @ way)) >= PARALLEL_COS else None
+
+
+def _sizes(plank: Plank) -> list[float]:
+    return [plank.length, plank.width]
+
+
+def _cut(leaf: Plank, way: np.ndarray, grow: float) -> Plank:
+    """``leaf``, standing square on a face that moves ``grow`` along ``way`` (a unit vector,
+    from the face into the leaf), cut that much shorter at that end (``_cut_side``)."""
+    axis = _along(leaf, way)
+    sizes = _sizes(leaf)
+    sizes[axis] -= grow
+    return replace(leaf, length=sizes[0], width=sizes[1], center=tuple(
+        float(v) for v in leaf.center_array + way * 0.5 * grow))
+
+
+def cut_phrase(design: Design, edited: Design, thickened: dict) -> str:
+    """'; rip kick 3 mm narrower (80 -> 77 mm) to make room': the planks of ``design``
+    that ``edited`` cut shorter to make room for the ``thickened`` ones (``_cut``), in
+    shop words ('' where none is)."""
+    scale, unit = design.unit_scale, design.units
+    parts = []
+    for plank in design.planks:
+        if plank.id in thickened or plank.id not in edited.plank_index:
+            continue
+        after = edited.plank(plank.id)
+        for (verb, shorter), old, new in zip((("cut", "shorter"), ("rip", "narrower")),
+                                             _sizes(plank), _sizes(after)):
+            if new < old * (1.0 - tol.STOCK_MATCH):
+                parts.append(f"{verb} {plank.id} {amount((old - new) / scale)} {unit} "
+                             f"{shorter} ({amount(old / scale)} -> {amount(new / scale)} "
+                             f"{unit})")
+    return f"; {names(parts)} to make room" if parts else ""
 
 
 def _covering(face: Plank, edge: Plank, way: np.ndarray) -> Plank:
