@@ -249,6 +249,26 @@ of many point loads (of every case) would pass it, they are left out, and each l
 shared by the elements it overlaps all the same (a 1.2 x 0.6 m top with 30 point loads
 took 87 MB and half a second to factor with them in)."""
 
+PLATE_RATES_FROM = 0.8
+"""The force sensitivities (``derivatives._plate_sides``) read how a plank's plate reading
+changes with a DOF where that reading is the plank's (above its beam's) and uses at least
+this share of its allowed sag or strength: each DOF that moves the plank or what holds it
+factors a new plate (the cabinet's four cases: 452 plates, about a second; the paper's
+Table 1 designs, whose plates hold with a quarter to spare, 10 to 20 % more time in
+``suggest``).  Far from its limit a plate's rate barely steers a search; every
+suggestion and range end is checked in full, plates included."""
+
+PLATE_READINGS = 4096
+"""How many plate readings (sag, span, stress of one plate under one case's loads) a
+process keeps for the force sensitivities (``plates.plate_readings``: a design's stepped
+edits are linearized case by case, and each case reads the plates the first factored;
+a few hundred bytes each)."""
+
+PLATE_DESIGNS = 1024
+"""How many designs' plate inputs (which planks are plates, and each plate's
+``plates._plate_key``) a process keeps for the force sensitivities
+(``plates.plate_readings``: a DOF's stepped designs are linearized in every load case)."""
+
 PLATE_BATCH = 64
 """Planks alike (one factored plate) are solved for this many (plank, case) loads at a
 time (``plates.plate_results``): a 2,000-plank wall's 1,960 shelves at once held about

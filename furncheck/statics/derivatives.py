@@ -65,7 +65,10 @@ class AssemblyDifferences:
     per DOF unit; for the planks' rates (elastic model only), ``sides``: per side (column,
     weight, offset, the stepped model's ``bending.PlankPart``, its case), the state's
     displacements ``q`` and holding contacts, the local ``planks`` read (None: all;
-    ``n_planks`` in the model) and the ``PlankPart`` of the model itself (``base``)."""
+    ``n_planks`` in the model) and the ``PlankPart`` of the model itself (``base``); of
+    the planks checked as plates too (``statics.plates``), their plates' (sag, span,
+    stress) in the model itself (``plate_base``, local plank -> reading) and per side
+    (``plate_sides``: (column, weight, readings), ``_plate_sides``)."""
 
     residual: np.ndarray
     maps: np.ndarray
@@ -79,6 +82,9 @@ class AssemblyDifferences:
     base: PlankPart | None = None
     arms: np.ndarray | None = None      # (D, nS, 3) of the joint parts' arms (m), if any
     shares: np.ndarray | None = None    # (D, nSt) of the support stations' shares, if any
+    plate_base: dict = field(default_factory=dict)
+    plate_sides: list = field(default_factory=list)
+    at_rest: tuple | None = None        # the base's planks and where their largest lie
 
     def plank_rates(self, dq: np.ndarray) -> tuple[np.ndarray, ...]:
         """(D, nP) each: d sag (m), d span (m), d stress (Pa) per DOF unit, from the
@@ -101,7 +107,7 @@ class AssemblyDifferences:
         n_planks = self.n_planks
         read = slice(None) if self.planks is None else self.planks
         sag, span, stress = (np.zeros((n_dofs, n_planks)) for _ in range(3))
-        at_rest, where = plank_results_where(self.base, self.q)
+        at_rest, where = self.at_rest or plank_results_where(self.base, self.q)
         stepped = [(part, column, offset)
                    for column, _, offset, part, _ in self.sides if offset != 0.0]
         moved = _plank_results_batched(stepped, self.q, dq, where)
@@ -110,7 +116,28 @@ class AssemblyDifferences:
             sag[column, read] += weight * result.sag
             span[column, read] += weight * result.span
             stress[column, read] += weight * result.stress
+        if self.plate_base:
+            self._plate_rates(at_rest, sag, span, stress)
         return sag, span, stress
+
+    def _plate_rates(self, at_rest, sag: np.ndarray, span: np.ndarray,
+                     stress: np.ndarray) -> None:
+        """Where a plank's plate reading is the plank's (``plates._merged``: its sag over
+        its span above its beam's, its stress above its beam's), its rates (in place)
+        are the plate's, differenced over the sides as the beams' are: a shelf held on
+        three edges sags as its plate says, and a step that moves what holds it changes
+        that sag, not its beam's (``plate_sides``)."""
+        read = list(range(self.n_planks)) if self.planks is None else list(self.planks)
+        place = {k: i for i, k in enumerate(read)}
+        for k, reading in self.plate_base.items():
+            sags, stresses = _plate_reads(reading, at_rest, place[k])
+            rates = np.zeros((sag.shape[0], 3))
+            for column, weight, readings in self.plate_sides:
+                rates[column] += weight * np.asarray(readings.get(k, reading))
+            if sags:
+                sag[:, k], span[:, k] = rates[:, 0], rates[:, 1]
+            if stresses:
+                stress[:, k] = rates[:, 2]
 
 
 def _plank_results_batched(stepped: list, q: np.ndarray, dq: np.ndarray, where):
@@ -181,6 +208,7 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
     out.base = whole if planks is None else \
         plank_part(model, own_case, law.holding, planks, supports)
     unchanged = {}                  # case name -> b - A x of the model itself
+    plates = _plate_sides(model, own_case, planks, out)
     own = [side.design is model.design and _followed_as_is(geometry, side) for side in sides]
     built = _stepped_models(model, [side for side, itself in zip(sides, own) if not itself],
                             case_name, q, h, law)
@@ -207,7 +235,76 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
         out.lengths[side.column] += side.weight * np.array(
             [stepped_geometry.joints[j].length for j in model.joints])
         out.sides.append((side.column, side.weight, side.offset, part, case))
+        if plates is not None and side.offset > 0.0:    # forward differences
+            out.plate_sides += [(side.column, 1.0 / side.offset,
+                                 plates(side, stepped, case, itself)),
+                                (side.column, -1.0 / side.offset, out.plate_base)]
     return out
+
+
+def _plate_reads(reading: tuple, beams, i: int) -> tuple[bool, bool]:
+    """Whether a plate's (sag, span, stress) ``reading`` is its plank's sag and span, and
+    whether its stress, over the beam's readings ``beams`` (``bending.PlankStatics``,
+    the plank at ``i``): its sag over its span the larger, its stress the larger
+    (``plates._merged``)."""
+    sag, span, stress = reading
+    beam_span = float(beams.span[i])
+    beam = float(beams.sag[i]) / beam_span if beam_span > 0.0 else 0.0
+    return span > 0.0 and sag / span > beam, stress > float(beams.stress[i])
+
+
+def _plate_sides(model: StaticsModel, case, planks: np.ndarray | None,
+                 out: AssemblyDifferences):
+    """For the planks read (``planks``, None: all) that the model checks as plates too:
+    their plates' readings in the model itself (kept in ``out.plate_base``), and a
+    function of a side (side, its stepped model, its case, whether it is the design
+    itself) that gives theirs in its stepped design: read again for the planks whose
+    plate the step may change (the plank, or a plank nailed to it, among those it
+    changes: its size, its supports or its loads), the design's for the others.  None
+    where no plank read is a plate whose reading is its plank's (its sag over its span,
+    or its stress, above its beam's: the beams' rates hold) and uses PLATE_RATES_FROM of
+    its allowance or more.  The plates'
+    rates are forward differences, from the side a step ahead and the design, where the
+    sides are a step either way (each stepped plate is factored anew: the cabinet's
+    linearizations in its four cases meet 452 new plates, about a second)."""
+    from furncheck.statics.bending_points import plank_results_where
+    from furncheck.statics.plates import plate_planks, plate_readings
+    from furncheck.validity import plank_limits
+
+    locals_ = {plate.local for plate in plate_planks(model)}
+    if planks is not None:
+        locals_ &= {int(k) for k in planks}
+    if not locals_:
+        return None
+    readings = plate_readings(model, case, locals_)
+    out.at_rest = plank_results_where(out.base, out.q)  # the planks read, in order
+    read = list(range(len(model.planks))) if planks is None else [int(k) for k in planks]
+    place = {k: i for i, k in enumerate(read)}
+    sag_limit, creep, strength = plank_limits(model.design, model)
+    out.plate_base = {
+        k: (sag, span, stress) for k, (sag, span, stress) in readings.items()
+        if any(_plate_reads((sag, span, stress), out.at_rest[0], place[k]))
+        and max(sag * (1.0 + creep[k]) * sag_limit[k] / span if span > 0.0 else 0.0,
+                stress / strength[k]) >= tol.PLATE_RATES_FROM}
+    if not out.plate_base:
+        return None
+    design, geometry = model.design, model.geometry
+    near: dict[int, set[int]] = {k: {model.planks[k]} for k in out.plate_base}
+    by_id = {design.planks[model.planks[k]].id: k for k in out.plate_base}
+    for joint in geometry.joints:
+        first, second = joint.planks
+        for one, other in ((first, second), (second, first)):
+            if one in by_id:
+                near[by_id[one]].add(design.plank_index[other])
+
+    def readings(side: AssemblySide, stepped: StaticsModel, stepped_case,
+                 itself: bool) -> dict:
+        changed = set(side.changed)
+        moved = {k for k, around in near.items() if around & changed}
+        if itself or not moved:
+            return out.plate_base
+        return {**out.plate_base, **plate_readings(stepped, stepped_case, moved)}
+    return readings
 
 
 def _stepped_models(model: StaticsModel, sides: list[AssemblySide], case_name: str,

@@ -34,7 +34,9 @@ and its stress the largest principal moment's 6 |M| / t^2 at
 the elements' centres.
 Where these exceed the beam's they are the plank's (``with_plates``); the joints' and
 contacts' forces stay the beam model's.  The sensitivities of ``range`` and ``suggest``
-read the beams alone; every range end and suggestion is checked in full, plate included.
+read a plate's changes where its reading is its plank's and near its limit
+(``plate_readings``, ``derivatives._plate_sides``); every range end and suggestion is
+checked in full, plate included.
 Planks alike (a bookcase's shelves) and a plank that an edit leaves as it was share one
 factored plate (``plate_for``: its inputs rounded to a nanometre).
 """
@@ -42,6 +44,7 @@ factored plate (``plate_for``: its inputs rounded to a nanometre).
 from __future__ import annotations
 
 import functools
+from collections import OrderedDict
 from typing import NamedTuple
 
 import numpy as np
@@ -91,11 +94,7 @@ def plate_planks(model) -> tuple[PlatePlank, ...]:
     cached = model.plank_cache.get("plates")
     if cached is not None:
         return cached
-    point_loads: dict[str, list] = {}
-    for case in model.design.load_cases:
-        for load in case.loads:
-            if not load.spread:
-                point_loads.setdefault(load.plank, []).append(load)
+    point_loads = _point_loads(model.design)
     found = tuple(plate for k, plank, lines, rails in _held_planks(model)
                   if (plate := _plate(model, k, plank, lines, rails,
                                       point_loads.get(plank.id, ()))) is not None)
@@ -103,14 +102,108 @@ def plate_planks(model) -> tuple[PlatePlank, ...]:
     return found
 
 
-def _held_planks(model):
+def _point_loads(design: Design) -> dict[str, list]:
+    """Per plank id, the point loads on it of every load case (their patches' edges are
+    its plate's grid lines)."""
+    point_loads: dict[str, list] = {}
+    for case in design.load_cases:
+        for load in case.loads:
+            if not load.spread:
+                point_loads.setdefault(load.plank, []).append(load)
+    return point_loads
+
+
+def plate_readings(model, case: LoadCase, only: set[int]) -> dict[int, tuple[float, ...]]:
+    """Per local plank of ``only`` that the model checks as a plate: its plate's (sag m,
+    span m, stress Pa) in ``case``, as ``plate_results`` reads them, each plank found and
+    solved on its own: the force sensitivities read the plates of a design's stepped
+    edits, where the planks a step leaves as they were read as the design's
+    (``derivatives._plate_sides``).  A stepped design is linearized in every load case,
+    each time a model of its own, and each of its plates is new to the PLATE_CACHE
+    factored plates, which do not keep it long: so which planks of a design are plates,
+    and their plates' inputs, are kept per design and geometry (``_KEYS``, the last
+    PLATE_DESIGNS asked), and a plate asked for is solved for every case's loads on it at once, each
+    reading kept by the plate's inputs and its loads (``_READINGS``, the last
+    PLATE_READINGS): a case asked later reads it without finding or factoring the plate
+    again.  Each reading is solved alone, a function of the plate and its loads whatever
+    else was asked."""
+    design, geometry = model.design, model.geometry
+    ids = (id(design), id(geometry))
+    entry = _KEYS.get(ids)
+    if entry is None or entry[0] is not design or entry[1] is not geometry:
+        entry = _KEYS[ids] = (design, geometry, {})     # (ids freed and reused: anew)
+        while len(_KEYS) > tol.PLATE_DESIGNS:
+            _KEYS.popitem(last=False)
+    _KEYS.move_to_end(ids)
+    known = entry[2]
+    missing = only - known.keys()
+    if missing:
+        point_loads = _point_loads(design)
+        for k in missing:
+            known[k] = None
+        for k, plank, lines, rails in _held_planks(model, missing):
+            patches = [_patch(plank, load) for load in point_loads.get(plank.id, ())]
+            known[k] = (plank, _plate_key(plank, design.material_of(plank), lines, patches,
+                                          rails))
+    found = {}
+    for k in sorted(only):
+        if known[k] is None:
+            continue
+        plank, key = known[k]
+        reading = _reading(design, plank, key, case, k)
+        if reading is not None:
+            found[k] = reading
+    return found
+
+
+def _reading(design: Design, plank: Plank, key: tuple, case: LoadCase, local: int):
+    """``plate_readings``' (sag, span, stress) of the plate of inputs ``key`` in ``case``
+    (None where its supports leave it free), from ``_READINGS`` or solved for every
+    case's loads on the plank and kept there."""
+    by_case = {other.name: _case_loads(design, [load for load in other.loads
+                                                if load.plank == plank.id], plank)
+               for other in design.load_cases}
+    wanted = (key, _load_key(by_case[case.name]))
+    if wanted not in _READINGS:
+        grid = _plate_grid(*key)
+        for loads in by_case.values():
+            reading = None
+            if grid is not None:
+                plate = PlatePlank(local, plank, grid)
+                ((w, stress),) = plate_solutions(plate, [loads])
+                reading = (*_sag_span(plate, w), stress)
+            _READINGS[(key, _load_key(loads))] = reading
+        while len(_READINGS) > tol.PLATE_READINGS:
+            _READINGS.popitem(last=False)
+    _READINGS.move_to_end(wanted)
+    return _READINGS[wanted]
+
+
+_KEYS: OrderedDict = OrderedDict()
+"""(id(design), id(geometry)) -> (the design, the geometry, {local plank: (plank,
+``_plate_key``) or None where it is no plate}) (``plate_readings``), the most recently
+asked last; both are kept so that their ids are not others' while they are here."""
+
+_READINGS: OrderedDict = OrderedDict()
+"""(``_plate_key``, ``_load_key``) -> (sag m, span m, stress Pa), or None where the
+supports leave the plate free (``plate_readings``), the most recently asked last."""
+
+
+def _load_key(loads: tuple) -> tuple:
+    """A plate's loads (``_case_loads``: pressure, [(patch, N)]) as a key."""
+    uniform, points = loads
+    return float(uniform), tuple((tuple(patch), float(force)) for patch, force in points)
+
+
+def _held_planks(model, only: set[int] | None = None):
     """(local index, plank, support segments, stiffeners) of each plank of the model that
     does not stand on the floor, that its weight or a load pushes across its face, and
     that joint lines held straight by their other planks hold along one of its sides
     over at least PLATE_HELD_SHARE of it (on one line, or on one side of its middle: the
     union of their spans), besides somewhere off that line (the plate is then held, not
     hinged on one line): each segment ((x0, y0), (x1, y1), grip), plank-local, and the
-    rails nailed along it (``_support_segments``)."""
+    rails nailed along it (``_support_segments``).  ``only``: of these local planks alone.
+    """
     from furncheck.statics.elastic import _joint_lines
 
     design, geometry = model.design, model.geometry
@@ -119,7 +212,7 @@ def _held_planks(model):
     joints_of: dict[str, list] = {}
     for k, index in enumerate(model.planks):
         plank = design.planks[index]
-        if plank.id in grounded:
+        if plank.id in grounded or (only is not None and k not in only):
             continue
         if held is None:
             held = model.plank_cache.get("joint_lines") \
@@ -408,22 +501,26 @@ def plate_for(plank: Plank, material, segments, patches, local: int = 0,
     rounded to a nanometre (and the grips and stiffnesses to nine digits), so that planks
     alike (a bookcase's shelves) and the same plank in a design's edits
     share one factored plate (``_plate_grid``, kept for the last PLATE_CACHE asked)."""
+    grid = _plate_grid(*_plate_key(plank, material, segments, patches, stiffeners))
+    return None if grid is None else PlatePlank(local, plank, grid)
+
+
+def _plate_key(plank: Plank, material, segments, patches, stiffeners) -> tuple:
+    """``_plate_grid``'s arguments for ``plate_for``'s inputs: the tolerances it follows,
+    then the inputs rounded to a nanometre (the grips and stiffnesses to nine digits)."""
     def nm(value: float) -> float:
         return round(float(value), 9)
 
     segments = [(*sorted((tuple(a), tuple(b))), value) for a, b, value in segments]
     stiffeners = [(*sorted((tuple(a), tuple(b))), value) for a, b, value in stiffeners]
-
-    key = (tol.PLATE_CELLS, tol.PLATE_PATCH_CELLS, tol.PLATE_POISSON, tol.NODE_MERGE,
-           tol.PLATE_GRID_LINES, nm(plank.length), nm(plank.width), nm(plank.thickness),
-           float(material.elastic_modulus), float(material.shear_modulus),
-           tuple(((nm(a[0]), nm(a[1])), (nm(b[0]), nm(b[1])), float(f"{grip:.9g}"))
-                 for a, b, grip in segments),
-           tuple(tuple(nm(v) for v in patch) for patch in patches),
-           tuple(((nm(a[0]), nm(a[1])), (nm(b[0]), nm(b[1])), float(f"{rigidity:.9g}"))
-                 for a, b, rigidity in stiffeners))
-    grid = _plate_grid(*key)
-    return None if grid is None else PlatePlank(local, plank, grid)
+    return (tol.PLATE_CELLS, tol.PLATE_PATCH_CELLS, tol.PLATE_POISSON, tol.NODE_MERGE,
+            tol.PLATE_GRID_LINES, nm(plank.length), nm(plank.width), nm(plank.thickness),
+            float(material.elastic_modulus), float(material.shear_modulus),
+            tuple(((nm(a[0]), nm(a[1])), (nm(b[0]), nm(b[1])), float(f"{grip:.9g}"))
+                  for a, b, grip in segments),
+            tuple(tuple(nm(v) for v in patch) for patch in patches),
+            tuple(((nm(a[0]), nm(a[1])), (nm(b[0]), nm(b[1])), float(f"{rigidity:.9g}"))
+                  for a, b, rigidity in stiffeners))
 
 
 @functools.lru_cache(maxsize=tol.PLATE_CACHE)
