@@ -96,6 +96,8 @@ def is_valid(design: Design, geometry: Geometry | None = None,
     if geometry.violations:
         return False
     model = build_model(design, geometry)
+    if plates_fail(design, model):
+        return False
     for k, case in enumerate(design.load_cases):
         statics = solve_load_case(model, case, None if starts is None else starts[k])
         if solved is not None:
@@ -103,6 +105,28 @@ def is_valid(design: Design, geometry: Geometry | None = None,
         if not case_holds(design, geometry, model, statics):
             return False
     return True
+
+
+def plates_fail(design: Design, model: StaticsModel) -> bool:
+    """Whether a plank checked as a plate (elastic model, ``statics.plates``) fails by its
+    plate alone in some load case: its plate's sag over its span, or its stress, over
+    the limit.  A plank's reading is its plate's where that is the larger
+    (``plates._merged``), so the design is then invalid whatever its statics say, and a
+    search that needs only the verdict (``is_valid``: a range's probes of a design whose
+    shelves sag as plates) need not solve them.  The plates are those the full check
+    solves, with the same numbers."""
+    from furncheck.statics.plates import plate_planks, plate_results
+    from furncheck.validity import plank_limits
+
+    if model.beams is None or not plate_planks(model):
+        return False
+    sag_limit, creep, strength = plank_limits(design, model)
+    for found in plate_results(model, list(design.load_cases)):
+        for k, sag, span, stress in found:
+            sag_used = sag * (1.0 + creep[k]) * sag_limit[k] / span if span > 0.0 else 0.0
+            if max(sag_used, stress / strength[k]) > 1.0 + tol.CAPACITY_REL_TOL:
+                return True
+    return False
 
 
 class Margin(NamedTuple):
