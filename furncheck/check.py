@@ -116,15 +116,15 @@ def plates_fail(design: Design, model: StaticsModel) -> bool:
     shelves sag as plates) need not solve them.  The plates are those the full check
     solves, with the same numbers."""
     from furncheck.statics.plates import plate_planks, plate_results
-    from furncheck.validity import plank_limits
+    from furncheck.validity import bending_use, plank_limits
 
     if model.beams is None or not plate_planks(model):
         return False
     sag_limit, creep, strength = plank_limits(design, model)
     for found in plate_results(model, list(design.load_cases)):
         for k, sag, span, stress in found:
-            sag_used = sag * (1.0 + creep[k]) * sag_limit[k] / span if span > 0.0 else 0.0
-            if max(sag_used, stress / strength[k]) > 1.0 + tol.CAPACITY_REL_TOL:
+            used = bending_use(sag, span, stress, sag_limit[k], creep[k], strength[k])
+            if max(float(used[0]), float(used[1])) > 1.0 + tol.CAPACITY_REL_TOL:
                 return True
     return False
 

@@ -216,6 +216,13 @@ within 1.6 % of Navier's series under a uniform load and a central patch (400 x 
 (``tests/test_plates.py``); at 8 the strip read 2.9 % low, at 12 the cabinet's check
 took about 6 % longer."""
 
+PLATE_CELL_SLACK = 1e-3
+"""An interval between a plate's grid lines up to this fraction of a cell longer than a
+whole number of cells is cut into that number (``plates._grid``): a design drawn in
+whole millimetres has intervals of whole cells, which a sensitivity's step (1e-7 of the
+design's size) must not cut into one more (its sag's rate read 3,000 times too large);
+the cells are then at most 0.1 % longer than PLATE_CELLS makes them."""
+
 PLATE_POISSON = 0.25
 """Elastic model: Poisson's ratio of a plate plank (its rigidity E t^3 / 12 (1 - nu^2)).
 MDF is nearly isotropic in its plane; 0.25 is the Wood Handbook's value for MDF (as
@@ -264,10 +271,18 @@ process keeps for the force sensitivities (``plates.plate_readings``: a design's
 edits are linearized case by case, and each case reads the plates the first factored;
 a few hundred bytes each)."""
 
-PLATE_DESIGNS = 1024
+PLATE_DESIGNS = 4096
 """How many designs' plate inputs (which planks are plates, and each plate's
 ``plates._plate_key``) a process keeps for the force sensitivities
-(``plates.plate_readings``: a DOF's stepped designs are linearized in every load case)."""
+(``plates.plate_readings``: a DOF's stepped designs are linearized in every load case;
+the designs themselves are not kept, only weak references to them)."""
+
+PLATE_STEP_LINES = 1e-5
+"""m: a stepped design's plate (``plates.same_grid``) reads the plate's rate only where
+its grid lines lie within this of the design's plate's (a sensitivity's step moves a
+support line by 1e-7 of the design's size, a few hundredths of a micrometre; a line
+more or a cell cut otherwise moves lines by millimetres); elsewhere the DOF's rate is
+its beam's."""
 
 PLATE_BATCH = 64
 """Planks alike (one factored plate) are solved for this many (plank, case) loads at a

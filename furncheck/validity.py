@@ -219,11 +219,20 @@ def plank_bending(design: Design, model: StaticsModel, planks) -> tuple[np.ndarr
     safety_factor (Pa) and utilization max(sag (1 + creep) / allowed, stress / strength),
     each plank with its own material (``Design.material_of``)."""
     sag_limit, creep, strength = plank_limits(design, model)
-    allowed = planks.span / sag_limit
-    final = planks.sag * (1.0 + creep)
+    sag_used, stress_used = bending_use(planks.sag, planks.span, planks.stress, sag_limit,
+                                        creep, strength)
+    return planks.sag, planks.span / sag_limit, planks.stress, strength, \
+        np.maximum(sag_used, stress_used)
+
+
+def bending_use(sag, span, stress, sag_limit, creep, strength) -> tuple:
+    """(sag use, stress use) of planks (arrays) or of one plank (numbers, as 0-d arrays):
+    sag (1 + creep) over the allowed span / sag_limit (0 without a span), and stress over
+    strength (bending_strength / safety_factor, ``plank_limits``)."""
+    allowed = np.asarray(span, dtype=float) / sag_limit
+    final = np.asarray(sag, dtype=float) * (1.0 + creep)
     sag_used = np.divide(final, allowed, out=np.zeros_like(final), where=allowed > 0.0)
-    used = np.maximum(sag_used, planks.stress / strength)
-    return planks.sag, allowed, planks.stress, strength, used
+    return sag_used, np.asarray(stress, dtype=float) / strength
 
 
 def plank_limits(design: Design, model: StaticsModel) -> tuple[np.ndarray, ...]:

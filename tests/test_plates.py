@@ -298,25 +298,31 @@ def test_a_rail_between_two_panels_bends_under_the_plate_it_holds() -> None:
     assert 0.1 * bare < _top(railed)[1].sag < bare
 
 
-@pytest.mark.parametrize("name", ["end_r.x", "front.y", "top.width"])
-def test_a_plates_sag_rate_is_the_plates_own(name: str) -> None:
+@pytest.mark.parametrize(("name", "load_x"), [("end_r.x", 0), ("front.y", 0), ("top.width", 0),
+                                             ("end_r.x", 33), ("end_r.x", -1)])
+def test_a_plates_sag_rate_is_the_plates_own(name: str, load_x: int) -> None:
     """The force sensitivity's sag rate of a plank whose plate reading is its sag (the
     step box with its top 440 x 340, overhanging its sides by 20 mm all round: as a
     plate 1.61 mm, its beam, held all round, a few hundredths) is the plate's: the
-    central difference of the full check's sag over the DOF stepped 0.5 mm either way
-    (end_r moved out, which moves a support line away from end_l's; front moved in,
-    which shortens the span across; the top widened, its overhangs longer), within 2 %.
-    With the beams' rates alone (before) the rate read almost none of it.  (The top
-    overhangs so that a step keeps each side's edge under it: where an edge reaches the
-    top's end, re-detecting the joint after a step puts its line half the step over,
-    while the sensitivity follows the joint through the step.)"""
+    central difference of the full check's sag over the DOF stepped 0.01 mm either way
+    (small enough that the full check's grid keeps its cells), within 2 %: end_r moved
+    out, which moves a support line away from end_l's; front moved in, which shortens
+    the span across; the top widened, its overhangs longer.  With the beams' rates alone
+    (before) the rate read almost none of it.  The load 33 or 1 mm off centre puts its
+    patch's lines a whole number of cells from a support: the sensitivity's step (1e-7
+    of the design's size) cut one interval into a cell more, and the rate read 20.7 mm
+    per mm against 0.0066 (PLATE_CELL_SLACK).  (The top overhangs so that a step keeps
+    each side's edge under it: where an edge reaches the top's end, re-detecting the
+    joint after a step puts its line half the step over, while the sensitivity follows
+    the joint through the step.)"""
     from furncheck.check import check_design
     from furncheck.design import parse_design
     from furncheck.dofs import apply_dof, parse_dof, structure
     from furncheck.geometry import analyze
     from furncheck.sensitivity import Linearization
 
-    text = STEP_BOX.replace("{id: top, size: [400, 300]", "{id: top, size: [440, 340]")
+    text = STEP_BOX.replace("{id: top, size: [400, 300]", "{id: top, size: [440, 340]") \
+        .replace("at: [0, 0, 300]", f"at: [{load_x}, 0, 300]")
     design = parse_design(text, "d.yaml", "yaml")
     geometry = analyze(design)
     dof = parse_dof(design, name)
@@ -325,5 +331,5 @@ def test_a_plates_sag_rate_is_the_plates_own(name: str) -> None:
     local = list(linear.model.planks).index(design.plank_index["top"])
     rate = 1e3 * float(linear.derivatives([dof]).plank_sags[0, local])     # mm per mm
     sags = [next(p.sag for p in check_design(apply_dof(design, frame, dof, step)).cases[0]
-                 .planks if p.id == "top") for step in (-0.5, 0.5)]
-    assert rate == pytest.approx(sags[1] - sags[0], rel=0.02)
+                 .planks if p.id == "top") for step in (-0.01, 0.01)]
+    assert rate == pytest.approx((sags[1] - sags[0]) / 0.02, rel=0.02)

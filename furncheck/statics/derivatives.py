@@ -122,22 +122,33 @@ class AssemblyDifferences:
 
     def _plate_rates(self, at_rest, sag: np.ndarray, span: np.ndarray,
                      stress: np.ndarray) -> None:
-        """Where a plank's plate reading is the plank's (``plates._merged``: its sag over
-        its span above its beam's, its stress above its beam's), its rates (in place)
-        are the plate's, differenced over the sides as the beams' are: a shelf held on
-        three edges sags as its plate says, and a step that moves what holds it changes
-        that sag, not its beam's (``plate_sides``)."""
+        """Where a plank's plate reading is its plank's (``plates.plate_governs``: its sag
+        over its span above its beam's, its stress above its beam's), its rates (in
+        place) are the plate's, differenced over the sides as the beams' are: a shelf
+        held on three edges sags as its plate says, and a step that moves what holds it
+        changes that sag, not its beam's (``plate_sides``).  A DOF whose stepped design
+        has no plate there, or one on another grid (``plates.same_grid``), keeps its
+        beam's rates."""
+        from furncheck.statics.plates import plate_governs
+
         read = list(range(self.n_planks)) if self.planks is None else list(self.planks)
         place = {k: i for i, k in enumerate(read)}
         for k, reading in self.plate_base.items():
-            sags, stresses = _plate_reads(reading, at_rest, place[k])
+            i = place[k]
+            sags, stresses = plate_governs(reading, float(at_rest.sag[i]),
+                                           float(at_rest.span[i]), float(at_rest.stress[i]))
             rates = np.zeros((sag.shape[0], 3))
+            kept = np.ones(sag.shape[0], dtype=bool)
             for column, weight, readings in self.plate_sides:
-                rates[column] += weight * np.asarray(readings.get(k, reading))
+                stepped = readings.get(k)
+                if stepped is None:
+                    kept[column] = False
+                else:
+                    rates[column] += weight * np.asarray(stepped[:3])
             if sags:
-                sag[:, k], span[:, k] = rates[:, 0], rates[:, 1]
+                sag[kept, k], span[kept, k] = rates[kept, 0], rates[kept, 1]
             if stresses:
-                stress[:, k] = rates[:, 2]
+                stress[kept, k] = rates[kept, 2]
 
 
 def _plank_results_batched(stepped: list, q: np.ndarray, dq: np.ndarray, where):
@@ -242,17 +253,6 @@ def _rebuilt(model: StaticsModel, state: np.ndarray, law: ContactLaw, case_name:
     return out
 
 
-def _plate_reads(reading: tuple, beams, i: int) -> tuple[bool, bool]:
-    """Whether a plate's (sag, span, stress) ``reading`` is its plank's sag and span, and
-    whether its stress, over the beam's readings ``beams`` (``bending.PlankStatics``,
-    the plank at ``i``): its sag over its span the larger, its stress the larger
-    (``plates._merged``)."""
-    sag, span, stress = reading
-    beam_span = float(beams.span[i])
-    beam = float(beams.sag[i]) / beam_span if beam_span > 0.0 else 0.0
-    return span > 0.0 and sag / span > beam, stress > float(beams.stress[i])
-
-
 def _plate_sides(model: StaticsModel, case, planks: np.ndarray | None,
                  out: AssemblyDifferences):
     """For the planks read (``planks``, None: all) that the model checks as plates too:
@@ -260,16 +260,17 @@ def _plate_sides(model: StaticsModel, case, planks: np.ndarray | None,
     function of a side (side, its stepped model, its case, whether it is the design
     itself) that gives theirs in its stepped design: read again for the planks whose
     plate the step may change (the plank, or a plank nailed to it, among those it
-    changes: its size, its supports or its loads), the design's for the others.  None
-    where no plank read is a plate whose reading is its plank's (its sag over its span,
-    or its stress, above its beam's: the beams' rates hold) and uses PLATE_RATES_FROM of
-    its allowance or more.  The plates'
-    rates are forward differences, from the side a step ahead and the design, where the
-    sides are a step either way (each stepped plate is factored anew: the cabinet's
-    linearizations in its four cases meet 452 new plates, about a second)."""
+    changes: its size, its supports or its loads), the design's for the others, None
+    where the stepped design has no plate there or one on another grid
+    (``plates.same_grid``).  None where no plank read is a plate whose reading is its
+    plank's (its sag over its span, or its stress, above its beam's: the beams' rates
+    hold) and uses PLATE_RATES_FROM of its allowance or more by that reading.  The
+    plates' rates are forward differences, from the side a step ahead and the design,
+    where the sides are a step either way (each stepped plate is factored anew: the
+    cabinet's linearizations in its four cases meet 452 new plates, about a second)."""
     from furncheck.statics.bending_points import plank_results_where
-    from furncheck.statics.plates import plate_planks, plate_readings
-    from furncheck.validity import plank_limits
+    from furncheck.statics.plates import plate_governs, plate_planks, plate_readings, same_grid
+    from furncheck.validity import bending_use, plank_limits
 
     locals_ = {plate.local for plate in plate_planks(model)}
     if planks is not None:
@@ -278,14 +279,18 @@ def _plate_sides(model: StaticsModel, case, planks: np.ndarray | None,
         return None
     readings = plate_readings(model, case, locals_)
     out.at_rest = plank_results_where(out.base, out.q)  # the planks read, in order
+    beams = out.at_rest[0]
     read = list(range(len(model.planks))) if planks is None else [int(k) for k in planks]
     place = {k: i for i, k in enumerate(read)}
     sag_limit, creep, strength = plank_limits(model.design, model)
-    out.plate_base = {
-        k: (sag, span, stress) for k, (sag, span, stress) in readings.items()
-        if any(_plate_reads((sag, span, stress), out.at_rest[0], place[k]))
-        and max(sag * (1.0 + creep[k]) * sag_limit[k] / span if span > 0.0 else 0.0,
-                stress / strength[k]) >= tol.PLATE_RATES_FROM}
+    for k, reading in readings.items():
+        i = place[k]
+        governs = plate_governs(reading, float(beams.sag[i]), float(beams.span[i]),
+                                float(beams.stress[i]))
+        used = bending_use(reading.sag, reading.span, reading.stress, sag_limit[k],
+                           creep[k], strength[k])
+        if any(g and float(u) >= tol.PLATE_RATES_FROM for g, u in zip(governs, used)):
+            out.plate_base[k] = reading
     if not out.plate_base:
         return None
     design, geometry = model.design, model.geometry
@@ -297,14 +302,16 @@ def _plate_sides(model: StaticsModel, case, planks: np.ndarray | None,
             if one in by_id:
                 near[by_id[one]].add(design.plank_index[other])
 
-    def readings(side: AssemblySide, stepped: StaticsModel, stepped_case,
-                 itself: bool) -> dict:
+    def readings_of(side: AssemblySide, stepped: StaticsModel, stepped_case,
+                    itself: bool) -> dict:
         changed = set(side.changed)
         moved = {k for k, around in near.items() if around & changed}
         if itself or not moved:
             return out.plate_base
-        return {**out.plate_base, **plate_readings(stepped, stepped_case, moved)}
-    return readings
+        found = plate_readings(stepped, stepped_case, moved)
+        return {k: (found[k] if k in found and same_grid(found[k], reading) else None)
+                if k in moved else reading for k, reading in out.plate_base.items()}
+    return readings_of
 
 
 def _stepped_models(model: StaticsModel, sides: list[AssemblySide], case_name: str,

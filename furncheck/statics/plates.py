@@ -44,6 +44,7 @@ factored plate (``plate_for``: its inputs rounded to a nanometre).
 from __future__ import annotations
 
 import functools
+import weakref
 from collections import OrderedDict
 from typing import NamedTuple
 
@@ -113,29 +114,39 @@ def _point_loads(design: Design) -> dict[str, list]:
     return point_loads
 
 
-def plate_readings(model, case: LoadCase, only: set[int]) -> dict[int, tuple[float, ...]]:
-    """Per local plank of ``only`` that the model checks as a plate: its plate's (sag m,
-    span m, stress Pa) in ``case``, as ``plate_results`` reads them, each plank found and
-    solved on its own: the force sensitivities read the plates of a design's stepped
+class PlateReading(NamedTuple):
+    """A plate's sag (m), span (m) and stress (Pa) in one load case, and its grid lines
+    (x, y: ``PlateGrid.xs``, ``ys``), for the force sensitivities (``plate_readings``)."""
+
+    sag: float
+    span: float
+    stress: float
+    lines: tuple
+
+
+def plate_readings(model, case: LoadCase, only: set[int]) -> dict[int, PlateReading]:
+    """Per local plank of ``only`` that the model checks as a plate: its plate's reading
+    in ``case``, the sag, span and stress that ``plate_results`` gives, each plank found
+    and solved on its own: the force sensitivities read the plates of a design's stepped
     edits, where the planks a step leaves as they were read as the design's
     (``derivatives._plate_sides``).  A stepped design is linearized in every load case,
     each time a model of its own, and each of its plates is new to the PLATE_CACHE
     factored plates, which do not keep it long: so which planks of a design are plates,
-    and their plates' inputs, are kept per design and geometry (``_KEYS``, the last
-    PLATE_DESIGNS asked), and a plate asked for is solved for every case's loads on it at once, each
-    reading kept by the plate's inputs and its loads (``_READINGS``, the last
-    PLATE_READINGS): a case asked later reads it without finding or factoring the plate
-    again.  Each reading is solved alone, a function of the plate and its loads whatever
-    else was asked."""
-    design, geometry = model.design, model.geometry
-    ids = (id(design), id(geometry))
-    entry = _KEYS.get(ids)
-    if entry is None or entry[0] is not design or entry[1] is not geometry:
-        entry = _KEYS[ids] = (design, geometry, {})     # (ids freed and reused: anew)
+    and their plates' inputs, are kept per design object (``_KEYS``, the last
+    PLATE_DESIGNS asked; a design's stepped edits live as long as its search, one object
+    each, and their joints followed through the step are theirs alone), and a plate
+    asked for is solved for every case's loads on it at once, each reading kept by the
+    plate's inputs and its loads (``_READINGS``, the last PLATE_READINGS): a case asked
+    later reads it without finding or factoring the plate again.  Each reading is solved
+    alone, a function of the plate and its loads whatever else was asked."""
+    design = model.design
+    entry = _KEYS.get(id(design))
+    if entry is None or entry[0]() is not design:       # (an id freed and reused: anew)
+        entry = _KEYS[id(design)] = (weakref.ref(design), {})
         while len(_KEYS) > tol.PLATE_DESIGNS:
             _KEYS.popitem(last=False)
-    _KEYS.move_to_end(ids)
-    known = entry[2]
+    _KEYS.move_to_end(id(design))
+    known = entry[1]
     missing = only - known.keys()
     if missing:
         point_loads = _point_loads(design)
@@ -156,10 +167,11 @@ def plate_readings(model, case: LoadCase, only: set[int]) -> dict[int, tuple[flo
     return found
 
 
-def _reading(design: Design, plank: Plank, key: tuple, case: LoadCase, local: int):
-    """``plate_readings``' (sag, span, stress) of the plate of inputs ``key`` in ``case``
-    (None where its supports leave it free), from ``_READINGS`` or solved for every
-    case's loads on the plank and kept there."""
+def _reading(design: Design, plank: Plank, key: tuple, case: LoadCase,
+             local: int) -> PlateReading | None:
+    """``plate_readings``' reading of the plate of inputs ``key`` in ``case`` (None where
+    its supports leave it free), from ``_READINGS`` or solved for every case's loads on
+    the plank and kept there."""
     by_case = {other.name: _case_loads(design, [load for load in other.loads
                                                 if load.plank == plank.id], plank)
                for other in design.load_cases}
@@ -171,7 +183,7 @@ def _reading(design: Design, plank: Plank, key: tuple, case: LoadCase, local: in
             if grid is not None:
                 plate = PlatePlank(local, plank, grid)
                 ((w, stress),) = plate_solutions(plate, [loads])
-                reading = (*_sag_span(plate, w), stress)
+                reading = PlateReading(*_sag_span(plate, w), stress, (grid.xs, grid.ys))
             _READINGS[(key, _load_key(loads))] = reading
         while len(_READINGS) > tol.PLATE_READINGS:
             _READINGS.popitem(last=False)
@@ -179,14 +191,35 @@ def _reading(design: Design, plank: Plank, key: tuple, case: LoadCase, local: in
     return _READINGS[wanted]
 
 
+def same_grid(reading: PlateReading, other: PlateReading) -> bool:
+    """Whether two readings' plates have the same grid but for lines moved by at most
+    PLATE_STEP_LINES (a support line that a sensitivity's step moves): their difference
+    is then the plate's, not a cell more or less (a step of a few hundredths of a
+    micrometre can add one, where an interval between lines is a whole number of cells:
+    its sag read 3,000 times its rate)."""
+    return all(len(a) == len(b) and float(np.abs(a - b).max(initial=0.0)) <= tol.PLATE_STEP_LINES
+               for a, b in zip(reading.lines, other.lines))
+
+
+def plate_governs(reading, beam_sag: float, beam_span: float,
+                  beam_stress: float) -> tuple[bool, bool]:
+    """Whether a plate's (sag, span, stress) ``reading`` is its plank's sag and span (its
+    sag over its span the larger: the sag rule's share, a beam's short overhang may use
+    more of its allowed sag than the plate's larger sag over its longer span), and
+    whether its stress (the larger): ``_merged``'s rule."""
+    sag, span, stress = reading[:3]
+    beam = beam_sag / beam_span if beam_span > 0.0 else 0.0      # no span: no sag rule
+    return span > 0.0 and sag / span > beam, stress > beam_stress
+
+
 _KEYS: OrderedDict = OrderedDict()
-"""(id(design), id(geometry)) -> (the design, the geometry, {local plank: (plank,
-``_plate_key``) or None where it is no plate}) (``plate_readings``), the most recently
-asked last; both are kept so that their ids are not others' while they are here."""
+"""id(design) -> (a weak reference to the design, {local plank: (plank, ``_plate_key``)
+or None where it is no plate}) (``plate_readings``), the most recently asked last; an
+entry whose design is gone, its id another's, is made anew."""
 
 _READINGS: OrderedDict = OrderedDict()
-"""(``_plate_key``, ``_load_key``) -> (sag m, span m, stress Pa), or None where the
-supports leave the plate free (``plate_readings``), the most recently asked last."""
+"""(``_plate_key``, ``_load_key``) -> ``PlateReading``, or None where the supports leave
+the plate free (``plate_readings``), the most recently asked last."""
 
 
 def _load_key(loads: tuple) -> tuple:
@@ -407,7 +440,7 @@ def _grid(low: float, high: float, lines, edges, cell: float) -> np.ndarray:
     # (np.sort, not np.unique: numpy 2's unique imports numpy.ma, 12 ms of a cold start)
     kept = np.asarray(kept)
     low, size = kept[:-1], np.diff(kept)
-    cuts = np.maximum(1, np.ceil(size / cell - 1e-9).astype(int))    # per interval
+    cuts = np.maximum(1, np.ceil(size / cell - tol.PLATE_CELL_SLACK).astype(int))
     step = np.arange(1, int(cuts.sum()) + 1) - np.repeat(np.cumsum(cuts) - cuts, cuts)
     return np.concatenate([kept[:1], np.repeat(low, cuts)
                            + np.repeat(size, cuts) * step / np.repeat(cuts, cuts)])
@@ -514,7 +547,8 @@ def _plate_key(plank: Plank, material, segments, patches, stiffeners) -> tuple:
     segments = [(*sorted((tuple(a), tuple(b))), value) for a, b, value in segments]
     stiffeners = [(*sorted((tuple(a), tuple(b))), value) for a, b, value in stiffeners]
     return (tol.PLATE_CELLS, tol.PLATE_PATCH_CELLS, tol.PLATE_POISSON, tol.NODE_MERGE,
-            tol.PLATE_GRID_LINES, nm(plank.length), nm(plank.width), nm(plank.thickness),
+            tol.PLATE_GRID_LINES, tol.PLATE_CELL_SLACK, nm(plank.length), nm(plank.width),
+            nm(plank.thickness),
             float(material.elastic_modulus), float(material.shear_modulus),
             tuple(((nm(a[0]), nm(a[1])), (nm(b[0]), nm(b[1])), float(f"{grip:.9g}"))
                   for a, b, grip in segments),
@@ -525,16 +559,16 @@ def _plate_key(plank: Plank, material, segments, patches, stiffeners) -> tuple:
 
 @functools.lru_cache(maxsize=tol.PLATE_CACHE)
 def _plate_grid(cells: int, patch_cells: int, poisson: float, merge: float, lines: int,
-                length: float, width: float, thickness: float, elastic_modulus: float,
-                shear_modulus: float, segments: tuple, patches: tuple,
-                stiffeners: tuple = ()) -> PlateGrid | None:
+                slack: float, length: float, width: float, thickness: float,
+                elastic_modulus: float, shear_modulus: float, segments: tuple,
+                patches: tuple, stiffeners: tuple = ()) -> PlateGrid | None:
     """``plate_for``'s ``PlateGrid`` of a ``length`` x ``width`` x ``thickness`` plate
     (m) of moduli E and G (Pa) on ``segments``, stiffened by ``stiffeners``, its grid
     through ``patches``; its first arguments are the tolerances it follows (PLATE_CELLS,
-    PLATE_PATCH_CELLS and PLATE_POISSON, as given; NODE_MERGE and PLATE_GRID_LINES, which
-    ``_grid`` reads, for the key alone), so that a grid made under others is not taken
-    for this one.  Its arrays are read-only: the
-    cache shares them."""
+    PLATE_PATCH_CELLS and PLATE_POISSON, as given; NODE_MERGE, PLATE_GRID_LINES and
+    PLATE_CELL_SLACK, which ``_grid`` reads, for the key alone), so that a grid made
+    under others is not taken for this one.  Its arrays are read-only: the cache shares
+    them."""
     half_x, half_y = length / 2.0, width / 2.0
     lines = (*segments, *stiffeners)
     quarters = np.linspace(0.0, 1.0, patch_cells + 1)
@@ -894,8 +928,8 @@ def _merged(planks, found):
     overhang = None if planks.overhang is None else planks.overhang.copy()
     by_plate = set()
     for k, plate_sag, plate_span, plate_stress in found:
-        beam = sag[k] / span[k] if span[k] > 0.0 else 0.0      # no span: no sag rule
-        if plate_span > 0.0 and plate_sag / plate_span > beam:
+        if plate_governs((plate_sag, plate_span, plate_stress), sag[k], span[k],
+                         stress[k])[0]:
             sag[k], span[k] = plate_sag, plate_span
             by_plate.add(k)
             if overhang is not None:

@@ -113,4 +113,4 @@ def _closed(search: ContinuousSearch, discrete: Search, dofs: tuple[Dof, ...],
     finished = finish(discrete, edited, geometry, report)
     if finished is None:
         return _NOT_FINISHED
-    return (tuple(changes), *finished, cut_phrase(edited, finished[0], finished[2]))
+    return (tuple(changes), *finished, cut_phrase(edited, finished[0]))

@@ -182,10 +182,10 @@ class Search:
             if best is not None:
                 self._record(best[1], FAILED, f"valid, but it adds more board than "
                              f"{candidate.place}", thickening=True)
-            best = (added, candidate, finished)
+            best = (added, candidate, finished, edited)
         if best is None:
             return None
-        _, candidate, (design, report, thickened) = best
+        _, candidate, (design, report, thickened), unfinished = best
         self._record(candidate, FOUND, thickening=True)
         advice = candidate.advice
         adds = tuple(design.plank(plank.id) for plank in candidate.adds)   # as finished
@@ -203,7 +203,7 @@ class Search:
         existing = {p: v for p, v in thickened.items() if p in self.design.plank_index}
         if existing:
             advice = (f"{advice[:-1]}, and {thickness_phrase(existing, self.design)}"
-                      f"{cut_phrase(self.design, design, thickened)}.")
+                      f"{cut_phrase(unfinished, design)}.")
         return Fix(candidate.rule, advice, design, report, adds, candidate.between,
                    thickened={p: new for p, (_, new) in thickened.items()})
 

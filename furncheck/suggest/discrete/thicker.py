@@ -84,7 +84,7 @@ def thicker_planks(search: Search) -> Fix | None:
     edited, after_report, thickened = checked
     search.trials.append(Trial(THICKER, "", FOUND, plank=names(list(thickened))))
     advice = (f"{thickness_phrase(thickened, search.design, capital=True)}"
-              f"{cut_phrase(search.design, edited, thickened)}.")
+              f"{cut_phrase(search.design, edited)}.")
     return Fix("thicker", advice, edited, after_report, between=tuple(thickened),
                thickened={p: new for p, (_, new) in thickened.items()})
 
@@ -406,34 +406,46 @@ def grown(design: Design, geometry: Geometry, thicknesses: dict[str, float],
                    load_cases=cases, anchors=anchors)
 
 
+CUT_LEFT = 2.0
+"""A plank standing on a face that grows is cut shorter only where at least this many
+times the cut would be left of it along the cut (``_cut_side``)."""
+
+
 def _cut_side(plank: Plank, resting: dict, planks: dict[str, Plank],
               grow: float) -> int | None:
     """The face (+1 local +z, -1 -z) of a plank held on both faces toward which it can grow
-    by cutting the planks that stand on that face shorter by ``grow`` (``_cut``: a
-    cabinet's bottom, the dividers standing on it and a kick board under it, grows down
-    into the kick board, ripped that much narrower): each of them standing square on it
-    (an in-plane axis along its normal) and longer than the growth that way.  The lower
-    face of a level plank first (its top and what stands on it stay), else the face
-    with fewer planks to cut; None where neither face will do."""
+    by cutting the planks that stand on that face shorter (``_cut``: a cabinet's bottom,
+    the dividers standing on it and a kick board under it, grows down into the kick
+    board, ripped that much narrower): each of them standing square on it, within
+    PARALLEL_COS (an in-plane axis along its normal), and at least CUT_LEFT times the
+    cut long that way.  The lower face of a level plank first (its top and what stands
+    on it stay), else the face with fewer planks to cut; None where neither face will
+    do."""
     axis = plank.rotation_matrix[:, 2]
     order = (-1, 1) if axis[2] > 0.0 else (1, -1)
     if not level(plank):
         order = tuple(sorted((1, -1), key=lambda s: len(resting.get((plank.id, s), ()))))
     for side in order:
         leaves = resting.get((plank.id, side), ())
-        if leaves and all(_along(planks[leaf], axis) is not None
-                          and _sizes(planks[leaf])[_along(planks[leaf], axis)] > 2.0 * grow
-                          for leaf in leaves):
+        if leaves and all(_fits(planks[leaf], axis * side, grow) for leaf in leaves):
             return side
     return None
 
 
-def _along(plank: Plank, way: np.ndarray) -> int | None:
-    """Which of the plank's in-plane axes (0: length, 1: width) lies along ``way`` (a unit
-    vector) within PARALLEL_COS, else None (it does not stand square that way)."""
+def _fits(leaf: Plank, way: np.ndarray, grow: float) -> bool:
+    """Whether ``leaf`` stands square along ``way`` and is long enough to be cut by
+    ``grow`` (``_cut_side``)."""
+    axis, _, cosine = _toward(leaf, way)
+    return cosine >= PARALLEL_COS and _sizes(leaf)[axis] >= CUT_LEFT * grow / cosine
+
+
+def _toward(plank: Plank, way: np.ndarray) -> tuple[int, np.ndarray, float]:
+    """The plank's in-plane axis nearest ``way`` (a unit vector): its index (0: length,
+    1: width), its direction turned toward ``way``, and the cosine between the two."""
     axes = plank.rotation_matrix
     axis = int(np.argmax(np.abs(axes[:, :2].T @ way)))
-    return axis if abs(float(axes[:, axis] @ way)) >= PARALLEL_COS else None
+    cosine = float(axes[:, axis] @ way)
+    return axis, axes[:, axis] * (1.0 if cosine > 0.0 else -1.0), abs(cosine)
 
 
 def _sizes(plank: Plank) -> list[float]:
@@ -441,23 +453,25 @@ def _sizes(plank: Plank) -> list[float]:
 
 
 def _cut(leaf: Plank, way: np.ndarray, grow: float) -> Plank:
-    """``leaf``, standing square on a face that moves ``grow`` along ``way`` (a unit vector,
-    from the face into the leaf), cut that much shorter at that end (``_cut_side``)."""
-    axis = _along(leaf, way)
+    """``leaf``, standing on a face that moves ``grow`` along ``way`` (a unit vector, from
+    the face into the leaf), cut shorter at that end by what keeps its other end where
+    it was: grow / cos along its own axis (``_cut_side``)."""
+    axis, along, cosine = _toward(leaf, way)
+    cut = grow / cosine
     sizes = _sizes(leaf)
-    sizes[axis] -= grow
+    sizes[axis] -= cut
     return replace(leaf, length=sizes[0], width=sizes[1], center=tuple(
-        float(v) for v in leaf.center_array + way * 0.5 * grow))
+        float(v) for v in leaf.center_array + along * 0.5 * cut))
 
 
-def cut_phrase(design: Design, edited: Design, thickened: dict) -> str:
+def cut_phrase(design: Design, edited: Design) -> str:
     """'; rip kick 3 mm narrower (80 -> 77 mm) to make room': the planks of ``design``
-    that ``edited`` cut shorter to make room for the ``thickened`` ones (``_cut``), in
-    shop words ('' where none is)."""
+    that ``edited`` (``design`` with planks thickened, ``grown``) has shorter or
+    narrower, cut to make room for them (``_cut``), in shop words ('' where none is)."""
     scale, unit = design.unit_scale, design.units
     parts = []
     for plank in design.planks:
-        if plank.id in thickened or plank.id not in edited.plank_index:
+        if plank.id not in edited.plank_index:
             continue
         after = edited.plank(plank.id)
         for (verb, shorter), old, new in zip((("cut", "shorter"), ("rip", "narrower")),
@@ -472,9 +486,7 @@ def cut_phrase(design: Design, edited: Design, thickened: dict) -> str:
 def _covering(face: Plank, edge: Plank, way: np.ndarray) -> Plank:
     """``face`` lengthened along its in-plane axis nearest ``way`` (the way ``edge`` grew,
     a unit vector), its far end moved, until it reaches ``edge``'s grown face there."""
-    axes = face.rotation_matrix
-    axis = int(np.argmax(np.abs(axes[:, :2].T @ way)))
-    along = axes[:, axis] * (1.0 if float(axes[:, axis] @ way) > 0.0 else -1.0)
+    axis, along, _ = _toward(face, way)
     sizes = [face.length, face.width]
     reach = float(edge.center_array @ way) + 0.5 * edge.thickness
     end = float(face.center_array @ way) + 0.5 * sizes[axis] * float(along @ way)
