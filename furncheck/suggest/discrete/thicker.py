@@ -22,8 +22,11 @@ brackets grows upward, a post with a shelf nailed to its front grows backward); 
 neither face held a level plank (a shelf between two sides) grows downward, its top face
 and what stands on it where they were (a shelf flush with the sides' tops stays flush),
 any other toward the planks its ends are nailed to (a table's leg grows inward), else
-equally both ways; with both held it cannot grow.  Load and
-anchor points on a face that moves move with it.
+equally both ways; with both held it grows toward a face whose planks rest on it alone
+(a chair's back on its seat, which moves with it), else into the planks standing square
+on one face, cut that much shorter (a cabinet's bottom into its kick board, ripped
+narrower; the lower face first), else it cannot grow.  Load and anchor points on a
+face that moves move with it (not those on a cut plank's cut end).
 
 The rule (``thicker_planks``) thickens every failing plank and the edge planks of the
 joints that pull out, in one suggestion; ``finish`` does the same for the candidate of
@@ -245,7 +248,8 @@ def _grown_whole(search: Search, design: Design, geometry: Geometry,
     added = frozenset(design.plank_index) - frozenset(search.design.plank_index)
     edited = grown(design, geometry, thicknesses, added)
     if edited is None or not search.keeps_locks(edited):
-        why[:] = ["a plank held on both faces cannot grow, or a locked DOF would change"
+        why[:] = ["a plank held on both faces cannot grow (nothing on either face moves "
+                  "with it or can be cut shorter), or a locked DOF would change"
                   if edited is None else "it would change a locked DOF"]
         return None
     after = analyze(edited)
@@ -345,7 +349,8 @@ def grown(design: Design, geometry: Geometry, thicknesses: dict[str, float],
     """The design with the planks of ``thicknesses`` (id -> m) that thick, each grown away
     from its held faces (module docstring); a plank held on both faces grows toward the
     side where only planks nailed to it alone rest (a chair's back on its seat), which
-    move with that face; load and anchor points on a moved face move with it.  A plank of
+    move with that face, else into the planks standing square on one face, cut that much
+    shorter (``_cut_side``); load and anchor points on a moved face move with it.  A plank of
     ``stretchable`` (one the same fix adds) on whose face a grown plank's edge is nailed
     is lengthened with it, so that it still covers that edge (a back panel over a seat
     made thicker).  None when a plank cannot grow."""
