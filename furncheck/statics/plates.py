@@ -241,26 +241,31 @@ def _held_planks(model, only: set[int] | None = None):
 
     design, geometry = model.design, model.geometry
     grounded = {contact.plank for contact in geometry.contacts if contact.on_floor}
-    held = None
+    held = carried = None
     joints_of: dict[str, list] = {}
     for k, index in enumerate(model.planks):
         plank = design.planks[index]
         if plank.id in grounded or (only is not None and k not in only):
             continue
         if held is None:
-            held = model.plank_cache.get("joint_lines") \
-                or _joint_lines(design, geometry, list(model.joints))
+            held = model.plank_cache.get("joint_lines")
+            if held is None:        # (a stepped model's: only those of the planks asked)
+                ids = None if only is None else \
+                    {design.planks[model.planks[i]].id for i in only}
+                held = _joint_lines(design, geometry, [
+                    j for j in model.joints
+                    if ids is None or not ids.isdisjoint(geometry.joints[j].planks)])
             for j in model.joints:                  # in ``_joint_lines``' order
                 for plank_id in geometry.joints[j].planks:
                     joints_of.setdefault(plank_id, []).append(geometry.joints[j])
+            carried = _carried(geometry, joints_of)     # (its floor feet found once)
         lines = held.get(plank.id)
         if not lines or len(lines) < 2:
             continue
         joints = joints_of[plank.id]
         if not _loaded_across(design, plank):
             continue
-        segments, stiffeners = _support_segments(design, plank, lines, joints,
-                                                 _carried(geometry, joints_of))
+        segments, stiffeners = _support_segments(design, plank, lines, joints, carried)
         if _holds_beam(plank, segments, 0) or _holds_beam(plank, segments, 1):
             yield k, plank, segments, stiffeners
 
