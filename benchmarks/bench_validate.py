@@ -59,10 +59,13 @@ def _forget_plates() -> None:
     each run pays for its own, as the first check of a design in a process does (a tree
     without plates has nothing to empty)."""
     try:
-        from furncheck.statics.plates import _plate_grid
+        from furncheck.statics.plate_mesh import plate_grid
     except ImportError:
-        return
-    _plate_grid.cache_clear()
+        try:                                    # a tree before plate_mesh was split off
+            from furncheck.statics.plates import _plate_grid as plate_grid
+        except ImportError:
+            return
+    plate_grid.cache_clear()
 
 
 def _row(label: str, path: Path, repeat: int) -> str:

@@ -208,7 +208,7 @@ hold its beam at its ends only, where the beam's bending is the plank's."""
 
 PLATE_CELLS = 10
 """Elastic model: a plate plank's grid has about this many elements across its shorter
-side (``plates._grid``; its lines also pass through every support line's ends and every
+side (``plate_mesh.grid_lines``; its lines also pass through every support line's ends and every
 load patch's edges).  Bilinear Mindlin elements with one-point shear: at 10, with the
 shear made stiff (Kirchhoff's plate), a simply supported plate's centre deflection is
 within 1.6 % of Navier's series under a uniform load and a central patch (400 x 400, 600 x
@@ -218,7 +218,7 @@ took about 6 % longer."""
 
 PLATE_CELL_SLACK = 1e-3
 """An interval between a plate's grid lines up to this fraction of a cell longer than a
-whole number of cells is cut into that number (``plates._grid``): a design drawn in
+whole number of cells is cut into that number (``plate_mesh.grid_lines``): a design drawn in
 whole millimetres has intervals of whole cells, which a sensitivity's step (1e-7 of the
 design's size) must not cut into one more (its sag's rate read 3,000 times too large);
 the cells are then at most 0.1 % longer than PLATE_CELLS makes them."""
@@ -244,14 +244,14 @@ moment, under the patch, is read near its peak (one element per patch read 11 % 
 against Navier's series; four, 2 to 4 % low)."""
 
 PLATE_CACHE = 32
-"""How many factored plates (``plates._plate_grid``) a process keeps: the planks alike in
+"""How many factored plates (``plate_mesh.plate_grid``) a process keeps: the planks alike in
 a design (a bookcase's shelves), and a plank an edit leaves as it was in the many
 checked designs of a ``range`` or ``suggest``, share one.  A 600 x 300 shelf's band is
 about 0.3 MB, a 1200 x 600 top's with PLATE_GRID_LINES lines each way at most about
 20 MB."""
 
 PLATE_GRID_LINES = 60
-"""At most this many grid lines each way in a plate (``plates._grid``): where the edges
+"""At most this many grid lines each way in a plate (``plate_mesh.grid_lines``): where the edges
 of many point loads (of every case) would pass it, they are left out, and each load is
 shared by the elements it overlaps all the same (a 1.2 x 0.6 m top with 30 point loads
 took 87 MB and half a second to factor with them in)."""

@@ -14,10 +14,10 @@ at its centre).  So such a plank is also solved as a plate, on its own:
   rail), cover at least PLATE_HELD_SHARE of one of its sides on one line or one side of
   its middle, and hold it somewhere off that line too; and whose weight or loads push
   across its face (``_loaded_across``);
-* the plate: Mindlin, bilinear elements with selectively reduced shear integration, on
-  a grid through every support line's ends and load patch's edges, about PLATE_CELLS
-  elements across its shorter side (``_grid``, ``_element_matrices``), factored as a
-  band (LAPACK's pbtrf, the nodes numbered across the shorter direction first);
+* the plate (``statics.plate_mesh``): Mindlin, bilinear elements with selectively
+  reduced shear integration, on a grid through every support line's ends and load
+  patch's edges, about PLATE_CELLS elements across its shorter side, factored as a band
+  (LAPACK's pbtrf, the nodes numbered across the shorter direction first);
 * its supports: those joint lines, simply supported, with each nail row's grip against
   turning about its line as a spring (contract 3a's n nail_withdrawal (t/2)^2, spread
   along the line), as the beams have it;
@@ -43,7 +43,6 @@ factored plate (``plate_for``: its inputs rounded to a nanometre).
 
 from __future__ import annotations
 
-import functools
 import weakref
 from collections import OrderedDict
 from typing import NamedTuple
@@ -52,32 +51,7 @@ import numpy as np
 
 from furncheck import tolerances as tol
 from furncheck.design.model import Design, LoadCase, Plank
-from furncheck.statics.beams import SHEAR_FACTOR
-
-
-class PlateGrid(NamedTuple):
-    """A plank's plate, factored (``_plate_grid``): the grid lines (x, y, m, plank-local,
-    ascending), the supported nodes (indices, row-major, x fastest), each unknown's place
-    in the banded matrix (``_ranks``), those held at zero (the supported nodes' w:
-    identity rows in the matrix), the banded Cholesky factor (``_banded_factor``), per element
-    the (3, 12) map from its unknowns to its centre's moments (M_x, M_y, M_xy, N m / m)
-    and its unknowns (``_element_dofs``), the plate's thickness (m), the elements'
-    centres (x, y) and areas (m^2), the nodes (X, Y, row-major) and which of them lie
-    between the supports (within the supported nodes' bounding box, ``_sag_span``)."""
-
-    xs: np.ndarray
-    ys: np.ndarray
-    supported: np.ndarray
-    rank: np.ndarray
-    fixed: np.ndarray
-    factor: np.ndarray
-    moments: np.ndarray
-    dofs: np.ndarray
-    thickness: float
-    centres: tuple
-    areas: np.ndarray
-    nodes: tuple
-    between: np.ndarray
+from furncheck.statics.plate_mesh import PlateGrid, plate_grid, plate_solutions, sag_span
 
 
 class PlatePlank(NamedTuple):
@@ -161,14 +135,13 @@ def plate_readings(model, case: LoadCase, only: set[int]) -> dict[int, PlateRead
         if known[k] is None:
             continue
         plank, key = known[k]
-        reading = _reading(design, plank, key, case, k)
+        reading = _reading(design, plank, key, case)
         if reading is not None:
             found[k] = reading
     return found
 
 
-def _reading(design: Design, plank: Plank, key: tuple, case: LoadCase,
-             local: int) -> PlateReading | None:
+def _reading(design: Design, plank: Plank, key: tuple, case: LoadCase) -> PlateReading | None:
     """``plate_readings``' reading of the plate of inputs ``key`` in ``case`` (None where
     its supports leave it free), from ``_READINGS`` or solved for every case's loads on
     the plank and kept there."""
@@ -177,13 +150,12 @@ def _reading(design: Design, plank: Plank, key: tuple, case: LoadCase,
                for other in design.load_cases}
     wanted = (key, _load_key(by_case[case.name]))
     if wanted not in _READINGS:
-        grid = _plate_grid(*key)
+        grid = plate_grid(*key)
         for loads in by_case.values():
             reading = None
             if grid is not None:
-                plate = PlatePlank(local, plank, grid)
-                ((w, stress),) = plate_solutions(plate, [loads])
-                reading = PlateReading(*_sag_span(plate, w), stress, (grid.xs, grid.ys))
+                ((w, stress),) = plate_solutions(grid, [loads])
+                reading = PlateReading(*sag_span(grid, w), stress, (grid.xs, grid.ys))
             _READINGS[(key, _load_key(loads))] = reading
         while len(_READINGS) > tol.PLATE_READINGS:
             _READINGS.popitem(last=False)
@@ -428,95 +400,6 @@ def _bending_across(design: Design, plank: Plank, partner: Plank, joint,
     return e_rail * second_moment + composite
 
 
-def _grid(low: float, high: float, lines, edges, cell: float) -> np.ndarray:
-    """Ascending grid coordinates from ``low`` to ``high`` through every support or rail
-    line's coordinate and end (``lines``: those within NODE_MERGE of one another taken
-    as one, the first kept) and every load patch edge (``edges``) not within NODE_MERGE
-    of those (a patch edge may move; a support may not lose its grid line), each
-    interval cut into equal cells of at most ``cell``."""
-    kept = _thinned(np.sort(np.clip(np.asarray([low, high, *lines], dtype=float), low, high)))
-    kept[0], kept[-1] = low, high
-    fixed = np.array(kept)
-    soft = [value for value in np.clip(np.asarray(edges, dtype=float), low, high)
-            if np.abs(fixed - value).min() > tol.NODE_MERGE]
-    kept = _thinned(np.sort(np.concatenate([fixed, soft])))
-    if len(kept) > tol.PLATE_GRID_LINES:        # many point loads: their edges are left
-        kept = list(fixed)                      # out (each load is still shared by area)
-    # (np.sort, not np.unique: numpy 2's unique imports numpy.ma, 12 ms of a cold start)
-    kept = np.asarray(kept)
-    low, size = kept[:-1], np.diff(kept)
-    cuts = np.maximum(1, np.ceil(size / cell - tol.PLATE_CELL_SLACK).astype(int))
-    step = np.arange(1, int(cuts.sum()) + 1) - np.repeat(np.cumsum(cuts) - cuts, cuts)
-    return np.concatenate([kept[:1], np.repeat(low, cuts)
-                           + np.repeat(size, cuts) * step / np.repeat(cuts, cuts)])
-
-
-def _thinned(points: np.ndarray) -> list[float]:
-    """Ascending ``points`` with those within NODE_MERGE of the one kept before dropped."""
-    kept = [float(points[0])]
-    for value in points[1:]:
-        if value - kept[-1] > tol.NODE_MERGE:
-            kept.append(float(value))
-    return kept
-
-
-_CORNERS = np.array([(-1, -1), (1, -1), (1, 1), (-1, 1)], dtype=float)
-
-
-def _reference_derivatives(xi: float, eta: float) -> tuple[np.ndarray, ...]:
-    """(4,) each: the bilinear shape functions and their derivatives by xi and eta."""
-    a, b = _CORNERS[:, 0], _CORNERS[:, 1]
-    return ((1 + a * xi) * (1 + b * eta) / 4, a * (1 + b * eta) / 4, b * (1 + a * xi) / 4)
-
-
-def _bending_matrix(rigidity: float, poisson: float) -> np.ndarray:
-    """(3, 3) N m: the moments (M_x, M_y, M_xy) per unit curvature (kappa_x, kappa_y,
-    2 kappa_xy) of an isotropic plate of ``rigidity`` D = E t^3 / 12 (1 - nu^2)."""
-    return rigidity * np.array([[1, poisson, 0], [poisson, 1, 0], [0, 0, (1 - poisson) / 2]])
-
-
-def _element_matrices(rigidity: float, poisson: float, shear: float) -> np.ndarray:
-    """(6, 144): six (12, 12) matrices, flattened, whose sum weighted by (hy/hx, hx/hy,
-    1, hy, hx, hx hy) is the stiffness of an hx x hy element (unknowns w, beta_x, beta_y
-    per corner, corners counter-clockwise from (-, -)): bending by 2 x 2 Gauss points,
-    transverse shear (``shear``: k G t, N/m) by one (``_unit_element_matrices``)."""
-    bending, shearing = _unit_element_matrices(poisson)
-    return (rigidity * bending + shear * shearing).reshape(6, 144)
-
-
-@functools.lru_cache(maxsize=4)
-def _unit_element_matrices(poisson: float) -> tuple[np.ndarray, np.ndarray]:
-    """(bending, shear), (6, 12, 12) each: ``_element_matrices``' terms for D = 1 and
-    k G t = 1.  With dx = (2 / hx) d/dxi and dy = (2 / hy) d/deta, the bending integrand
-    B^T C B hx hy / 4 splits into hy/hx, hx/hy and 1 terms, the shear one's k G t hx hy
-    B_s^T B_s into the hy/hx, hx/hy, hy, hx and hx hy ones.  Read-only: the cache
-    shares them."""
-    C = _bending_matrix(1.0, poisson)
-    bending, shearing = np.zeros((6, 12, 12)), np.zeros((6, 12, 12))
-    g = 1 / np.sqrt(3)
-    for xi in (-g, g):
-        for eta in (-g, g):
-            _, dxi, deta = _reference_derivatives(xi, eta)
-            gx, gy = np.zeros((3, 12)), np.zeros((3, 12))
-            gx[0, 1::3], gx[2, 2::3] = dxi, dxi          # kappa_x, and d beta_y / dx
-            gy[1, 2::3], gy[2, 1::3] = deta, deta        # kappa_y, and d beta_x / dy
-            bending[0] += gx.T @ C @ gx
-            bending[1] += gy.T @ C @ gy
-            bending[2] += gx.T @ C @ gy + gy.T @ C @ gx
-    n, dxi, deta = _reference_derivatives(0.0, 0.0)
-    sx, sy, s0 = np.zeros((2, 12)), np.zeros((2, 12)), np.zeros((2, 12))
-    sx[0, 0::3], sy[1, 0::3] = dxi, deta
-    s0[0, 1::3], s0[1, 2::3] = n, n
-    shearing[0] += 4 * sx.T @ sx
-    shearing[1] += 4 * sy.T @ sy
-    shearing[3] -= 2 * (sx.T @ s0 + s0.T @ sx)
-    shearing[4] -= 2 * (sy.T @ s0 + s0.T @ sy)
-    shearing[5] += s0.T @ s0
-    for array in (bending, shearing):
-        array.setflags(write=False)
-    return bending, shearing
-
-
 def _plate(model, k: int, plank: Plank, segments, stiffeners,
            point_loads) -> PlatePlank | None:
     """The factored plate of plank ``plank`` (local ``k``) on ``segments``, stiffened by
@@ -538,13 +421,13 @@ def plate_for(plank: Plank, material, segments, patches, local: int = 0,
     where the segments leave it free to move.  Its numbers are those of the inputs
     rounded to a nanometre (and the grips and stiffnesses to nine digits), so that planks
     alike (a bookcase's shelves) and the same plank in a design's edits
-    share one factored plate (``_plate_grid``, kept for the last PLATE_CACHE asked)."""
-    grid = _plate_grid(*_plate_key(plank, material, segments, patches, stiffeners))
+    share one factored plate (``plate_grid``, kept for the last PLATE_CACHE asked)."""
+    grid = plate_grid(*_plate_key(plank, material, segments, patches, stiffeners))
     return None if grid is None else PlatePlank(local, plank, grid)
 
 
 def _plate_key(plank: Plank, material, segments, patches, stiffeners) -> tuple:
-    """``_plate_grid``'s arguments for ``plate_for``'s inputs: the tolerances it follows,
+    """``plate_grid``'s arguments for ``plate_for``'s inputs: the tolerances it follows,
     then the inputs rounded to a nanometre (the grips and stiffnesses to nine digits)."""
     def nm(value: float) -> float:
         return round(float(value), 9)
@@ -560,220 +443,6 @@ def _plate_key(plank: Plank, material, segments, patches, stiffeners) -> tuple:
             tuple(tuple(nm(v) for v in patch) for patch in patches),
             tuple(((nm(a[0]), nm(a[1])), (nm(b[0]), nm(b[1])), float(f"{rigidity:.9g}"))
                   for a, b, rigidity in stiffeners))
-
-
-@functools.lru_cache(maxsize=tol.PLATE_CACHE)
-def _plate_grid(cells: int, patch_cells: int, poisson: float, merge: float, lines: int,
-                slack: float, length: float, width: float, thickness: float,
-                elastic_modulus: float, shear_modulus: float, segments: tuple,
-                patches: tuple, stiffeners: tuple = ()) -> PlateGrid | None:
-    """``plate_for``'s ``PlateGrid`` of a ``length`` x ``width`` x ``thickness`` plate
-    (m) of moduli E and G (Pa) on ``segments``, stiffened by ``stiffeners``, its grid
-    through ``patches``; its first arguments are the tolerances it follows (PLATE_CELLS,
-    PLATE_PATCH_CELLS and PLATE_POISSON, as given; NODE_MERGE, PLATE_GRID_LINES and
-    PLATE_CELL_SLACK, which ``_grid`` reads, for the key alone), so that a grid made
-    under others is not taken for this one.  Its arrays are read-only: the cache shares
-    them."""
-    half_x, half_y = length / 2.0, width / 2.0
-    lines = (*segments, *stiffeners)
-    quarters = np.linspace(0.0, 1.0, patch_cells + 1)
-    lines_x = [v for (a, b, _) in lines for v in (a[0], b[0])]
-    lines_y = [v for (a, b, _) in lines for v in (a[1], b[1])]
-    edges_x = [v for p in patches for v in p[0] + (p[1] - p[0]) * quarters]
-    edges_y = [v for p in patches for v in p[2] + (p[3] - p[2]) * quarters]
-    cell = min(length, width) / cells
-    xs = _grid(-half_x, half_x, lines_x, edges_x, cell)
-    ys = _grid(-half_y, half_y, lines_y, edges_y, cell)
-    nx, ny = len(xs), len(ys)
-    t = thickness
-    rigidity = elastic_modulus * t ** 3 / (12 * (1 - poisson ** 2))
-    terms = _element_matrices(rigidity, poisson,
-                              SHEAR_FACTOR * shear_modulus * t)
-    hx = np.tile(np.diff(xs), ny - 1)                # per element, row-major
-    hy = np.repeat(np.diff(ys), nx - 1)
-    weights = np.column_stack([hy / hx, hx / hy, np.ones_like(hx), hy, hx, hx * hy])
-    K_elements = weights @ terms                    # (nE, 144)
-    X, Y = np.tile(xs, ny), np.repeat(ys, nx)       # the nodes, row-major
-    supported = _supported_nodes(xs, ys, segments)
-    held = np.column_stack([X[supported], Y[supported]])
-    if len(held) < 3 or np.linalg.svd(held - held.mean(axis=0), compute_uv=False)[-1] \
-            <= tol.NODE_MERGE:                  # on one line: free to turn about it
-        return None
-    fixed = np.zeros(3 * nx * ny, dtype=bool)
-    fixed[3 * supported] = True
-    rank, dofs, low, high = _layout(nx, ny)
-    grip_dofs, grips = _grips(xs, ys, segments)
-    rows, cols, values = _stiffener_entries(xs, ys, stiffeners)
-    factor = _banded_factor(low, high, K_elements[:, _UPPER_FLAT].ravel(),
-                            (np.concatenate([rank[grip_dofs], rank[rows]]),
-                             np.concatenate([rank[grip_dofs], rank[cols]]),
-                             np.concatenate([grips, values])), rank[fixed])
-    _, dxi, deta = _reference_derivatives(0.0, 0.0)
-    C = _bending_matrix(rigidity, poisson)
-    kappa = np.zeros((len(hx), 3, 12))
-    kappa[:, 0, 1::3] = 2 * dxi / hx[:, None]
-    kappa[:, 1, 2::3] = 2 * deta / hy[:, None]
-    kappa[:, 2, 1::3] = 2 * deta / hy[:, None]
-    kappa[:, 2, 2::3] = 2 * dxi / hx[:, None]
-    moments = C @ kappa                             # (nE, 3, 12)
-    if factor is None:
-        return None
-    cx = np.tile(0.5 * (xs[1:] + xs[:-1]), ny - 1)
-    cy = np.repeat(0.5 * (ys[1:] + ys[:-1]), nx - 1)
-    sx, sy = X[supported], Y[supported]
-    slack = tol.NODE_MERGE
-    between = (X >= sx.min() - slack) & (X <= sx.max() + slack) \
-        & (Y >= sy.min() - slack) & (Y <= sy.max() + slack)
-    arrays = (xs, ys, supported, fixed, factor, moments, cx, cy, X, Y, between)
-    for array in arrays:
-        array.setflags(write=False)
-    return PlateGrid(xs, ys, supported, rank, fixed, factor, moments, dofs, thickness,
-                     (cx, cy), hx * hy, (X, Y), between)
-
-
-@functools.lru_cache(maxsize=tol.PLATE_CACHE)
-def _layout(nx: int, ny: int) -> tuple[np.ndarray, ...]:
-    """An nx x ny grid's numbering: (3 nx ny,) each unknown's place in the banded matrix
-    (``_ranks``), (nE, 12) each element's unknowns (``_element_dofs``), and the places
-    (row <= column) of each element's upper triangle (``_UPPER``, (nE 78,) each).
-    Read-only: the cache shares them among the plates of one grid's shape."""
-    rank = _ranks(nx, ny)
-    dofs = _element_dofs(nx, ny)
-    first, second = rank[dofs][:, _UPPER[0]], rank[dofs][:, _UPPER[1]]
-    layout = (rank, dofs, np.minimum(first, second).ravel(), np.maximum(first, second).ravel())
-    for array in layout:
-        array.setflags(write=False)
-    return layout
-
-
-def _ranks(nx: int, ny: int) -> np.ndarray:
-    """(3 nx ny,) each unknown's place in the banded matrix: the nodes numbered with the
-    grid's shorter direction fastest, so that the band is about three times that
-    direction's node count wide."""
-    i, j = np.meshgrid(np.arange(nx), np.arange(ny))         # node j * nx + i
-    node_rank = (j * nx + i) if nx <= ny else (i * ny + j)
-    return (3 * node_rank.ravel()[:, None] + np.arange(3)).ravel()
-
-
-_UPPER = np.triu_indices(12)           # an element matrix's upper triangle, diagonal in
-_UPPER_FLAT = _UPPER[0] * 12 + _UPPER[1]
-
-
-def _banded_factor(low: np.ndarray, high: np.ndarray, element_values: np.ndarray,
-                   entries: tuple, fixed: np.ndarray) -> np.ndarray | None:
-    """The banded Cholesky factor (LAPACK's upper band storage) of the plate's stiffness:
-    the elements' upper triangles (``element_values``) at their places (``low`` <=
-    ``high``, ``_layout``) and the ``entries`` (rows, columns, values, both triangles
-    given: the grips, the stiffeners), with the unknowns held at zero (``fixed``: their
-    places) as identity rows and columns (their right-hand sides are zero, and so are
-    they); None where the supports leave the plate free to move (not positive
-    definite)."""
-    from furncheck.statics.lapack import banded_cholesky
-
-    rows, cols, more = entries
-    upper = rows <= cols
-    rows = np.concatenate([low, rows[upper]])
-    cols = np.concatenate([high, cols[upper]])
-    values = np.concatenate([element_values, more[upper]])
-    n = int(cols.max()) + 1
-    width = int((cols - rows).max())
-    bands = np.bincount((width + rows - cols) * n + cols, weights=values,
-                        minlength=(width + 1) * n).reshape(width + 1, n)
-    bands[:, fixed] = 0.0                           # their columns, to the diagonal
-    bands[width, fixed] = 1.0
-    offsets = np.arange(1, width + 1)
-    beyond = fixed[:, None] + offsets               # their rows, right of the diagonal
-    inside = beyond < n
-    bands[np.broadcast_to(width - offsets, beyond.shape)[inside], beyond[inside]] = 0.0
-    return banded_cholesky(bands)
-
-
-def _stiffener_entries(xs: np.ndarray, ys: np.ndarray, stiffeners) -> tuple:
-    """(rows, columns, values): each stiffener's Euler-Bernoulli beam elements between
-    the grid nodes along its line, on the nodes' w and their slope along it (beta_x for
-    a line along x, beta_y along y), each h long: E I / h^3 [[12, 6 h, -12, 6 h], [6 h,
-    4 h^2, -6 h, 2 h^2], [-12, -6 h, 12, -6 h], [6 h, 2 h^2, -6 h, 4 h^2]]."""
-    rows, cols, values = [], [], []
-    for stiffener in stiffeners:
-        nodes, s, axis = _nodes_along(xs, ys, stiffener)
-        h = np.diff(s)
-        ends = h > 0.0
-        a, b, h = nodes[:-1][ends], nodes[1:][ends], h[ends]
-        if len(h) == 0:
-            continue
-        one = np.ones_like(h)
-        k = stiffener[2] / h[:, None, None] ** 3 * np.stack([
-            np.stack([12 * one, 6 * h, -12 * one, 6 * h], axis=1),
-            np.stack([6 * h, 4 * h * h, -6 * h, 2 * h * h], axis=1),
-            np.stack([-12 * one, -6 * h, 12 * one, -6 * h], axis=1),
-            np.stack([6 * h, 2 * h * h, -6 * h, 4 * h * h], axis=1)], axis=1)
-        dofs = np.column_stack([3 * a, 3 * a + 1 + axis, 3 * b, 3 * b + 1 + axis])
-        rows.append(np.repeat(dofs, 4, axis=1).ravel())
-        cols.append(np.tile(dofs, (1, 4)).ravel())
-        values.append(k.ravel())
-    if not rows:
-        return np.zeros(0, dtype=int), np.zeros(0, dtype=int), np.zeros(0)
-    return np.concatenate(rows), np.concatenate(cols), np.concatenate(values)
-
-
-def _element_dofs(nx: int, ny: int) -> np.ndarray:
-    """(nE, 12) each element's unknowns, corners counter-clockwise from (-, -)."""
-    i, j = np.meshgrid(np.arange(nx - 1), np.arange(ny - 1))
-    i, j = i.ravel(), j.ravel()
-    corners = np.column_stack([j * nx + i, j * nx + i + 1, (j + 1) * nx + i + 1,
-                               (j + 1) * nx + i])
-    return (3 * corners[:, :, None] + np.arange(3)).reshape(-1, 12)
-
-
-def _on_segment(xs: np.ndarray, ys: np.ndarray, segment) -> tuple[np.ndarray, int]:
-    """The grid nodes (indices, row-major, x fastest, ascending) on a segment ((x0, y0),
-    (x1, y1), grip) along x or y, and its axis (0: x)."""
-    (x0, y0), (x1, y1), _ = segment
-    slack = tol.NODE_MERGE        # its grid line, kept within that of it (``_grid``)
-    if abs(y1 - y0) <= abs(x1 - x0):                # along x, at y0 = y1
-        i = np.flatnonzero((xs >= x0 - slack) & (xs <= x1 + slack))
-        j = np.flatnonzero(np.abs(ys - y0) <= slack)
-        axis = 0
-    else:
-        i = np.flatnonzero(np.abs(xs - x0) <= slack)
-        j = np.flatnonzero((ys >= y0 - slack) & (ys <= y1 + slack))
-        axis = 1
-    return (j[:, None] * len(xs) + i[None, :]).ravel(), axis
-
-
-def _nodes_along(xs: np.ndarray, ys: np.ndarray, segment) -> tuple[np.ndarray, np.ndarray, int]:
-    """The grid nodes on a segment (``_on_segment``), in order along it, their
-    coordinates along it, and its axis (0: x)."""
-    nodes, axis = _on_segment(xs, ys, segment)
-    s = xs[nodes % len(xs)] if axis == 0 else ys[nodes // len(xs)]
-    order = np.argsort(s)
-    return nodes[order], s[order], axis
-
-
-def _supported_nodes(xs: np.ndarray, ys: np.ndarray, segments) -> np.ndarray:
-    """Indices of the grid nodes on the support segments (row-major, x fastest)."""
-    on = np.zeros(len(xs) * len(ys), dtype=bool)
-    for segment in segments:
-        on[_on_segment(xs, ys, segment)[0]] = True
-    return np.flatnonzero(on)
-
-
-def _grips(xs: np.ndarray, ys: np.ndarray, segments) -> tuple[np.ndarray, np.ndarray]:
-    """The unknowns (indices) and stiffnesses (N m / rad) of the nail rows' grip: each
-    segment's grip per metre times each of its nodes' share of its length, on the node's
-    turn about the segment (beta_y for a line along x, beta_x for one along y)."""
-    dofs, values = [], []
-    for segment in segments:
-        nodes, s, axis = _nodes_along(xs, ys, segment)
-        if len(nodes) == 0:
-            continue
-        low, high = segment[0][axis], segment[1][axis]
-        bounds = np.concatenate([[low], 0.5 * (s[1:] + s[:-1]), [high]])
-        dofs.append(3 * nodes + (2 if axis == 0 else 1))
-        values.append(segment[2] * np.diff(bounds))
-    if not dofs:
-        return np.zeros(0, dtype=int), np.zeros(0)
-    return np.concatenate(dofs), np.concatenate(values)
 
 
 def _patch(plank: Plank, load) -> tuple[float, float, float, float]:
@@ -807,9 +476,9 @@ def plate_results(model, cases: list[LoadCase]) -> list[list[tuple[int, float, f
                  for plate in plates for by_plank in on_plank]
         batch = tol.PLATE_BATCH
         solutions = (solution for start in range(0, len(loads), batch)
-                     for solution in plate_solutions(plates[0], loads[start:start + batch]))
+                     for solution in plate_solutions(plates[0].grid, loads[start:start + batch]))
         for plate in plates:
-            found[plate.local] = [(plate.local, *_sag_span(plate, w), stress)
+            found[plate.local] = [(plate.local, *sag_span(plate.grid, w), stress)
                                   for w, stress in (next(solutions) for _ in cases)]
     return [[found[plate.local][c] for plate in plate_planks(model)]
             for c in range(len(cases))]
@@ -839,78 +508,7 @@ def plate_solution(plate: PlatePlank, uniform: float, points) -> tuple[np.ndarra
     the square: its edges are grid lines, or within a millimetre of one), and its largest
     bending stress (Pa), 6 |M| / t^2 of the largest principal moment at an element's
     centre."""
-    return plate_solutions(plate, [(uniform, points)])[0]
-
-
-def plate_solutions(plate: PlatePlank, loads: list) -> list[tuple[np.ndarray, float]]:
-    """``plate_solution`` of each (uniform, points) of ``loads``, solved at once."""
-    from furncheck.statics.lapack import banded_solve
-
-    grid = plate.grid
-    xs, ys = grid.xs, grid.ys
-    pressure = np.zeros((len(grid.areas), len(loads)))
-    for column, (uniform, points) in enumerate(loads):
-        pressure[:, column] = uniform
-        for (x0, x1, y0, y1), force in points:     # each element's share of the square
-            over_x = np.clip(np.minimum(xs[1:], x1) - np.maximum(xs[:-1], x0), 0.0, None)
-            over_y = np.clip(np.minimum(ys[1:], y1) - np.maximum(ys[:-1], y0), 0.0, None)
-            overlap = np.outer(over_y, over_x).ravel()
-            pressure[:, column] += force / ((x1 - x0) * (y1 - y0)) * overlap / grid.areas
-    nx, ny = len(xs), len(ys)
-    share = (pressure * (grid.areas / 4.0)[:, None]).reshape(ny - 1, nx - 1, len(loads))
-    on_nodes = np.zeros((ny, nx, len(loads)))     # each element's share to its corners' w
-    on_nodes[:-1, :-1] += share                     # counter-clockwise from (-, -)
-    on_nodes[:-1, 1:] += share
-    on_nodes[1:, 1:] += share
-    on_nodes[1:, :-1] += share
-    f = np.zeros((3 * nx * ny, len(loads)))
-    f[0::3] = on_nodes.reshape(nx * ny, len(loads))
-    free = ~grid.fixed
-    ranked = np.zeros((len(grid.rank), len(loads)))
-    ranked[grid.rank[free]] = f[free]
-    u = np.zeros_like(f)
-    u[free] = banded_solve(grid.factor, ranked)[grid.rank[free]]
-    m = grid.moments @ u[grid.dofs]                 # (nE, 3, k)
-    principal = np.abs(0.5 * (m[:, 0] + m[:, 1])) + np.hypot(0.5 * (m[:, 0] - m[:, 1]),
-                                                             m[:, 2])
-    stress = 6.0 * principal.max(axis=0, initial=0.0) / grid.thickness ** 2
-    return [(u[0::3, column], float(stress[column])) for column in range(len(loads))]
-
-
-def _sag_span(plate: PlatePlank, w: np.ndarray) -> tuple[float, float]:
-    """(m, m): the largest deflection between the supports (at the nodes within the
-    supported nodes' bounding box: an overhang beyond them is its beam's, measured from
-    the tangent at its support, contract 3a), and its span (``_span_at``)."""
-    grid = plate.grid
-    between = np.where(grid.between, np.abs(w), -1.0)
-    k = int(np.argmax(between))
-    return float(max(between[k], 0.0)), _span_at(grid, k)
-
-
-def _span_at(grid: PlateGrid, k: int) -> float:
-    """m: the span at node ``k``, as contract 3a has a beam's (between its outermost
-    supports), along the plank's axes through it: the shorter of the distances between
-    the outermost supported nodes met on either side along x and along y (a shelf
-    between its sides: the distance between them; a top held all round: its shorter
-    side's); where no axis meets one on both sides, twice the distance to the nearest
-    one met (an edge held on one side, as a cantilever); where none is met, twice the
-    distance to the nearest supported node."""
-    X, Y = grid.nodes
-    sx, sy = X[grid.supported], Y[grid.supported]
-    x, y = X[k], Y[k]
-    spans, reaches = [], []
-    for along, across, at, level in ((sx, sy, x, y), (sy, sx, y, x)):
-        line = along[np.abs(across - level) <= tol.NODE_MERGE_ROUNDOFF]
-        below, above = line[line < at], line[line > at]
-        if len(below) and len(above):
-            spans.append(float(above.max() - below.min()))
-        reaches += [at - float(below.max())] if len(below) else []
-        reaches += [float(above.min()) - at] if len(above) else []
-    if spans:
-        return min(spans)
-    if reaches:
-        return 2.0 * min(reaches)
-    return float(2.0 * np.hypot(sx - x, sy - y).min())
+    return plate_solutions(plate.grid, [(uniform, points)])[0]
 
 
 def with_plates(model, cases: list[LoadCase], planks: list) -> list:
