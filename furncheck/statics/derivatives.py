@@ -67,7 +67,8 @@ class AssemblyDifferences:
     displacements ``q`` and holding contacts, the local ``planks`` read (None: all;
     ``n_planks`` in the model) and the ``PlankPart`` of the model itself (``base``); of
     the planks checked as plates too (``statics.plates``), their plates' (sag, span,
-    stress) in the model itself (``plate_base``, local plank -> reading) and per side
+    stress) in the model itself (``plate_base``, local plank -> reading), whether their
+    sag and their stress are the plate's (``plate_governs``) and per side
     (``plate_sides``: (column, weight, readings), ``_plate_sides``)."""
 
     residual: np.ndarray
@@ -83,6 +84,7 @@ class AssemblyDifferences:
     arms: np.ndarray | None = None      # (D, nS, 3) of the joint parts' arms (m), if any
     shares: np.ndarray | None = None    # (D, nSt) of the support stations' shares, if any
     plate_base: dict = field(default_factory=dict)
+    plate_governs: dict = field(default_factory=dict)   # local plank -> (sag, stress)
     plate_sides: list = field(default_factory=list)
     at_rest: tuple | None = None        # the base's planks and where their largest lie
 
@@ -117,11 +119,10 @@ class AssemblyDifferences:
             span[column, read] += weight * result.span
             stress[column, read] += weight * result.stress
         if self.plate_base:
-            self._plate_rates(at_rest, sag, span, stress)
+            self._plate_rates(sag, span, stress)
         return sag, span, stress
 
-    def _plate_rates(self, at_rest, sag: np.ndarray, span: np.ndarray,
-                     stress: np.ndarray) -> None:
+    def _plate_rates(self, sag: np.ndarray, span: np.ndarray, stress: np.ndarray) -> None:
         """Where a plank's plate reading is its plank's (``plates.plate_governs``: its sag
         over its span above its beam's, its stress above its beam's), its rates (in
         place) are the plate's, differenced over the sides as the beams' are: a shelf
@@ -129,14 +130,7 @@ class AssemblyDifferences:
         changes that sag, not its beam's (``plate_sides``).  A DOF whose stepped design
         has no plate there, or one on another grid (``plates.same_grid``), keeps its
         beam's rates."""
-        from furncheck.statics.plates import plate_governs
-
-        read = list(range(self.n_planks)) if self.planks is None else list(self.planks)
-        place = {k: i for i, k in enumerate(read)}
-        for k, reading in self.plate_base.items():
-            i = place[k]
-            sags, stresses = plate_governs(reading, float(at_rest.sag[i]),
-                                           float(at_rest.span[i]), float(at_rest.stress[i]))
+        for k, (sags, stresses) in self.plate_governs.items():
             rates = np.zeros((sag.shape[0], 3))
             kept = np.ones(sag.shape[0], dtype=bool)
             for column, weight, readings in self.plate_sides:
@@ -290,7 +284,7 @@ def _plate_sides(model: StaticsModel, case, planks: np.ndarray | None,
         used = bending_use(reading.sag, reading.span, reading.stress, sag_limit[k],
                            creep[k], strength[k])
         if any(g and float(u) >= tol.PLATE_RATES_FROM for g, u in zip(governs, used)):
-            out.plate_base[k] = reading
+            out.plate_base[k], out.plate_governs[k] = reading, governs
     if not out.plate_base:
         return None
     design, geometry = model.design, model.geometry

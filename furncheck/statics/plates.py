@@ -145,13 +145,14 @@ def _reading(design: Design, plank: Plank, key: tuple, case: LoadCase) -> PlateR
     """``plate_readings``' reading of the plate of inputs ``key`` in ``case`` (None where
     its supports leave it free), from ``_READINGS`` or solved for every case's loads on
     the plank and kept there."""
-    by_case = {other.name: _case_loads(design, [load for load in other.loads
-                                                if load.plank == plank.id], plank)
-               for other in design.load_cases}
-    wanted = (key, _load_key(by_case[case.name]))
+    def loads_of(one: LoadCase) -> tuple:
+        return _case_loads(design, [load for load in one.loads if load.plank == plank.id],
+                           plank)
+
+    wanted = (key, _load_key(loads_of(case)))
     if wanted not in _READINGS:
         grid = plate_grid(*key)
-        for loads in by_case.values():
+        for loads in map(loads_of, design.load_cases):
             reading = None
             if grid is not None:
                 ((w, stress),) = plate_solutions(grid, [loads])
