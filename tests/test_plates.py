@@ -88,6 +88,22 @@ def test_strip_on_two_edges() -> None:
     assert 1.05 * middle < w.max() < 1.2 * middle
 
 
+def test_a_plank_narrower_than_its_thickness_is_a_strip_of_few_cells() -> None:
+    """A 488 x 20 mm strip of 15 mm MDF (a range's probe narrowing a shelf) simply
+    supported at its ends: its cells are no shorter than PLATE_CELL_FLOOR of its
+    thickness (3 across, 488 / 7.5 = 66 along; 10 across, 244 along, without the
+    floor), and its middle bends as a beam's, w = 5 q b L^4 / 384 E I + q b L^2 / 8 k G A
+    with I = b t^3 / 12, A = b t, within 2 %."""
+    L, b, t, q = 0.488, 0.02, 0.015, 1000.0
+    plank = Plank("p", L, b, t, (0.0, 0.0, 0.0))
+    plate = plates.plate_for(plank, Material(), _edges(L, b, which="LR"), [])
+    assert (len(plate.grid.xs), len(plate.grid.ys)) == (67, 4)
+    w, _ = plates.plate_solution(plate, q, [])
+    G = Material().shear_modulus
+    beam = 5 * q * b * L ** 4 / (384 * E * b * t ** 3 / 12) + q * L ** 2 / (8 * 5 / 6 * G * t)
+    assert np.abs(w).max() == pytest.approx(beam, rel=0.02)
+
+
 def test_the_nail_rows_grip_lies_between_the_limits() -> None:
     """The nail rows' grip (N m / rad per m) makes the plate stiffer, never softer: the
     centre's deflection falls as the grip grows, from the simply supported plate's (no

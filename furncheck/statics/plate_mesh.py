@@ -2,7 +2,7 @@
 under what loads): Mindlin, bilinear elements with selectively reduced shear integration
 (bending by 2 x 2 Gauss points, transverse shear by one), on a grid through every support
 line's ends and load patch's edges, about PLATE_CELLS elements across its shorter side
-(``grid_lines``, ``_element_matrices``); the supported nodes' w held at zero, each nail
+(none shorter than PLATE_CELL_FLOOR of its thickness; ``grid_lines``, ``_element_matrices``); the supported nodes' w held at zero, each nail
 row's grip a rotational spring along its line, each rail a Hermite beam along its line;
 factored as a band (LAPACK's pbtrf, the nodes numbered across the shorter direction
 first) and kept for the last PLATE_CACHE asked (``plate_grid``: planks alike, and a plank
@@ -136,16 +136,16 @@ def _unit_element_matrices(poisson: float) -> tuple[np.ndarray, np.ndarray]:
 
 
 @functools.lru_cache(maxsize=tol.PLATE_CACHE)
-def plate_grid(cells: int, patch_cells: int, poisson: float, merge: float, lines: int,
-                slack: float, length: float, width: float, thickness: float,
-                elastic_modulus: float, shear_modulus: float, segments: tuple,
-                patches: tuple, stiffeners: tuple = ()) -> PlateGrid | None:
+def plate_grid(cells: int, floor: float, patch_cells: int, poisson: float, merge: float,
+               lines: int, slack: float, length: float, width: float, thickness: float,
+               elastic_modulus: float, shear_modulus: float, segments: tuple,
+               patches: tuple, stiffeners: tuple = ()) -> PlateGrid | None:
     """``plate_for``'s ``PlateGrid`` of a ``length`` x ``width`` x ``thickness`` plate
     (m) of moduli E and G (Pa) on ``segments``, stiffened by ``stiffeners``, its grid
     through ``patches``; its first arguments are the tolerances it follows (PLATE_CELLS,
-    PLATE_PATCH_CELLS and PLATE_POISSON, as given; NODE_MERGE, PLATE_GRID_LINES and
-    PLATE_CELL_SLACK, which ``grid_lines`` reads, for the key alone), so that a grid made
-    under others is not taken for this one.  Its arrays are read-only: the cache shares
+    PLATE_CELL_FLOOR, PLATE_PATCH_CELLS and PLATE_POISSON, as given; NODE_MERGE,
+    PLATE_GRID_LINES and PLATE_CELL_SLACK, which ``grid_lines`` reads, for the key
+    alone), so that a grid made under others is not taken for this one.  Its arrays are read-only: the cache shares
     them."""
     half_x, half_y = length / 2.0, width / 2.0
     lines = (*segments, *stiffeners)
@@ -154,7 +154,7 @@ def plate_grid(cells: int, patch_cells: int, poisson: float, merge: float, lines
     lines_y = [v for (a, b, _) in lines for v in (a[1], b[1])]
     edges_x = [v for p in patches for v in p[0] + (p[1] - p[0]) * quarters]
     edges_y = [v for p in patches for v in p[2] + (p[3] - p[2]) * quarters]
-    cell = min(length, width) / cells
+    cell = max(min(length, width) / cells, floor * thickness)
     xs = grid_lines(-half_x, half_x, lines_x, edges_x, cell)
     ys = grid_lines(-half_y, half_y, lines_y, edges_y, cell)
     nx, ny = len(xs), len(ys)

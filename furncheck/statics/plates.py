@@ -435,9 +435,9 @@ def _plate_key(plank: Plank, material, segments, patches, stiffeners) -> tuple:
 
     segments = [(*sorted((tuple(a), tuple(b))), value) for a, b, value in segments]
     stiffeners = [(*sorted((tuple(a), tuple(b))), value) for a, b, value in stiffeners]
-    return (tol.PLATE_CELLS, tol.PLATE_PATCH_CELLS, tol.PLATE_POISSON, tol.NODE_MERGE,
-            tol.PLATE_GRID_LINES, tol.PLATE_CELL_SLACK, nm(plank.length), nm(plank.width),
-            nm(plank.thickness),
+    return (tol.PLATE_CELLS, tol.PLATE_CELL_FLOOR, tol.PLATE_PATCH_CELLS, tol.PLATE_POISSON,
+            tol.NODE_MERGE, tol.PLATE_GRID_LINES, tol.PLATE_CELL_SLACK, nm(plank.length),
+            nm(plank.width), nm(plank.thickness),
             float(material.elastic_modulus), float(material.shear_modulus),
             tuple(((nm(a[0]), nm(a[1])), (nm(b[0]), nm(b[1])), float(f"{grip:.9g}"))
                   for a, b, grip in segments),
