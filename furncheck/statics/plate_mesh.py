@@ -2,8 +2,9 @@
 under what loads): Mindlin, bilinear elements with selectively reduced shear integration
 (bending by 2 x 2 Gauss points, transverse shear by one), on a grid through every support
 line's ends and load patch's edges, about PLATE_CELLS elements across its shorter side
-(none shorter than PLATE_CELL_FLOOR of its thickness; ``grid_lines``, ``_element_matrices``); the supported nodes' w held at zero, each nail
-row's grip a rotational spring along its line, each rail a Hermite beam along its line;
+(none shorter than PLATE_CELL_FLOOR of its thickness; ``grid_lines``,
+``_element_matrices``); the supported nodes' w held at zero, each nail row's grip a
+rotational spring along its line, each rail a Hermite beam along its line;
 factored as a band (LAPACK's pbtrf, the nodes numbered across the shorter direction
 first) and kept for the last PLATE_CACHE asked (``plate_grid``: planks alike, and a plank
 an edit leaves as it was, share one); solved for many loads at once
@@ -145,8 +146,8 @@ def plate_grid(cells: int, floor: float, patch_cells: int, poisson: float, merge
     through ``patches``; its first arguments are the tolerances it follows (PLATE_CELLS,
     PLATE_CELL_FLOOR, PLATE_PATCH_CELLS and PLATE_POISSON, as given; NODE_MERGE,
     PLATE_GRID_LINES and PLATE_CELL_SLACK, which ``grid_lines`` reads, for the key
-    alone), so that a grid made under others is not taken for this one.  Its arrays are read-only: the cache shares
-    them."""
+    alone), so that a grid made under others is not taken for this one.  Its arrays are
+    read-only: the cache shares them."""
     half_x, half_y = length / 2.0, width / 2.0
     lines = (*segments, *stiffeners)
     quarters = np.linspace(0.0, 1.0, patch_cells + 1)
