@@ -113,16 +113,19 @@ def plates_fail(design: Design, model: StaticsModel) -> bool:
     the limit.  A plank's reading is its plate's where that is the larger
     (``plates._merged``), so the design is then invalid whatever its statics say, and a
     search that needs only the verdict (``is_valid``: a range's probes of a design whose
-    shelves sag as plates) need not solve them.  The plates are those the full check
-    solves, with the same numbers."""
-    from furncheck.statics.plates import plate_planks, plate_results
+    shelves sag as plates) need not solve them.  The plates are found, factored and
+    solved one at a time (``plates.each_plate``, ``plates.plate_cases``), up to the
+    first that fails: a probe of a design whose bottom sags factors no more."""
+    from furncheck.statics.plates import each_plate, plate_cases
     from furncheck.validity import bending_use, plank_limits
 
-    if model.beams is None or not plate_planks(model):
+    if model.beams is None:
         return False
-    sag_limit, creep, strength = plank_limits(design, model)
-    for found in plate_results(model, list(design.load_cases)):
-        for k, sag, span, stress in found:
+    cases = list(design.load_cases)
+    for plate in each_plate(model):
+        sag_limit, creep, strength = plank_limits(design, model)
+        k = plate.local
+        for sag, span, stress in plate_cases(design, plate, cases):
             used = bending_use(sag, span, stress, sag_limit[k], creep[k], strength[k])
             if max(float(used[0]), float(used[1])) > 1.0 + tol.CAPACITY_REL_TOL:
                 return True

@@ -67,14 +67,29 @@ def plate_planks(model) -> tuple[PlatePlank, ...]:
     """The model's planks to check as plates, each with its factored plate; kept in
     ``model.plank_cache`` (load-independent)."""
     cached = model.plank_cache.get("plates")
+    if cached is None:
+        for _ in each_plate(model):
+            pass
+        cached = model.plank_cache["plates"]
+    return cached
+
+
+def each_plate(model):
+    """``plate_planks``, one at a time, in the model's order, each found and factored as
+    it is asked for (a search that stops at the first plate that fails finds no more);
+    kept in ``model.plank_cache`` once all have been."""
+    cached = model.plank_cache.get("plates")
     if cached is not None:
-        return cached
+        yield from cached
+        return
     point_loads = _point_loads(model.design)
-    found = tuple(plate for k, plank, lines, rails in _held_planks(model)
-                  if (plate := _plate(model, k, plank, lines, rails,
-                                      point_loads.get(plank.id, ()))) is not None)
-    model.plank_cache["plates"] = found
-    return found
+    found = []
+    for k, plank, lines, rails in _held_planks(model):
+        plate = _plate(model, k, plank, lines, rails, point_loads.get(plank.id, ()))
+        if plate is not None:
+            found.append(plate)
+            yield plate
+    model.plank_cache["plates"] = tuple(found)
 
 
 def _point_loads(design: Design) -> dict[str, list]:
@@ -483,6 +498,18 @@ def plate_results(model, cases: list[LoadCase]) -> list[list[tuple[int, float, f
                                   for w, stress in (next(solutions) for _ in cases)]
     return [[found[plate.local][c] for plate in plate_planks(model)]
             for c in range(len(cases))]
+
+
+def plate_cases(design: Design, plate: PlatePlank,
+                cases: list[LoadCase]) -> list[tuple[float, float, float]]:
+    """Per case of ``cases``, the (sag m, span m, stress Pa) of one plate plank, solved
+    for all of them at once and for nothing else (``plate_results`` solves planks alike
+    together)."""
+    plank = plate.plank
+    loads = [_case_loads(design, [load for load in case.loads if load.plank == plank.id],
+                         plank) for case in cases]
+    return [(*sag_span(plate.grid, w), stress)
+            for w, stress in plate_solutions(plate.grid, loads)]
 
 
 def _case_loads(design: Design, loads, plank: Plank) -> tuple[float, list]:
