@@ -55,12 +55,13 @@ from furncheck.statics.plate_mesh import PlateGrid, plate_grid, plate_solutions,
 
 
 class PlatePlank(NamedTuple):
-    """One plank checked as a plate: its local index in the model, the plank and its
-    ``PlateGrid``."""
+    """One plank checked as a plate: its local index in the model, the plank, its
+    ``PlateGrid`` and the grid's inputs (``_plate_key``: its readings are kept by them)."""
 
     local: int
     plank: Plank
     grid: PlateGrid
+    key: tuple
 
 
 def plate_planks(model) -> tuple[PlatePlank, ...]:
@@ -158,25 +159,42 @@ def plate_readings(model, case: LoadCase, only: set[int]) -> dict[int, PlateRead
 
 def _reading(design: Design, plank: Plank, key: tuple, case: LoadCase) -> PlateReading | None:
     """``plate_readings``' reading of the plate of inputs ``key`` in ``case`` (None where
-    its supports leave it free), from ``_READINGS`` or solved for every case's loads on
-    the plank and kept there."""
-    def loads_of(one: LoadCase) -> tuple:
-        return _case_loads(design, [load for load in one.loads if load.plank == plank.id],
-                           plank)
+    its supports leave it free): ``_solved`` for every case's loads on the plank (a case
+    asked later finds its reading kept)."""
+    cases = list(design.load_cases)
+    return _solved(key, None, _plank_loads(design, plank, cases))[cases.index(case)]
 
-    wanted = (key, _load_key(loads_of(case)))
-    if wanted not in _READINGS:
-        grid = plate_grid(*key)
-        for loads in map(loads_of, design.load_cases):
-            reading = None
-            if grid is not None:
-                ((w, stress),) = plate_solutions(grid, [loads])
-                reading = PlateReading(*sag_span(grid, w), stress, (grid.xs, grid.ys))
-            _READINGS[(key, _load_key(loads))] = reading
-        while len(_READINGS) > tol.PLATE_READINGS:
-            _READINGS.popitem(last=False)
-    _READINGS.move_to_end(wanted)
-    return _READINGS[wanted]
+
+def _solved(key: tuple, grid: PlateGrid | None, loads: list) -> list[PlateReading | None]:
+    """The readings of the plate of inputs ``key`` (its factored ``grid``, or None: found
+    by ``key`` where a reading is missing) under each of ``loads`` (``_case_loads``),
+    each kept by the plate's inputs and its loads (``_READINGS``, the last PLATE_READINGS
+    asked): those missing are solved together, in batches of PLATE_BATCH, and each is a
+    function of the plate and its loads alone (``plate_solutions`` solves each load
+    alone, bit for bit), whatever was asked with it or before it.  None where the
+    supports leave the plate free."""
+    wanted = [(key, _load_key(one)) for one in loads]
+    found = {want: _READINGS.get(want, _MISSING) for want in wanted}
+    missing = [(want, one) for want, one in zip(wanted, loads) if found[want] is _MISSING]
+    missing = list(dict(missing).items())           # each distinct load once
+    if missing:
+        grid = plate_grid(*key) if grid is None else grid
+        for start in range(0, len(missing), tol.PLATE_BATCH):
+            some = missing[start:start + tol.PLATE_BATCH]
+            solutions = [None] * len(some) if grid is None else \
+                plate_solutions(grid, [one for _, one in some])
+            for (want, _), solution in zip(some, solutions):
+                found[want] = None if solution is None else \
+                    PlateReading(*sag_span(grid, solution[0]), solution[1], (grid.xs, grid.ys))
+    for want in found:
+        _READINGS[want] = found[want]
+        _READINGS.move_to_end(want)
+    while len(_READINGS) > tol.PLATE_READINGS:
+        _READINGS.popitem(last=False)
+    return [found[want] for want in wanted]
+
+
+_MISSING = object()
 
 
 def same_grid(reading: PlateReading, other: PlateReading) -> bool:
@@ -438,8 +456,9 @@ def plate_for(plank: Plank, material, segments, patches, local: int = 0,
     rounded to a nanometre (and the grips and stiffnesses to nine digits), so that planks
     alike (a bookcase's shelves) and the same plank in a design's edits
     share one factored plate (``plate_grid``, kept for the last PLATE_CACHE asked)."""
-    grid = plate_grid(*_plate_key(plank, material, segments, patches, stiffeners))
-    return None if grid is None else PlatePlank(local, plank, grid)
+    key = _plate_key(plank, material, segments, patches, stiffeners)
+    grid = plate_grid(*key)
+    return None if grid is None else PlatePlank(local, plank, grid, key)
 
 
 def _plate_key(plank: Plank, material, segments, patches, stiffeners) -> tuple:
@@ -476,40 +495,39 @@ def _patch(plank: Plank, load) -> tuple[float, float, float, float]:
 
 def plate_results(model, cases: list[LoadCase]) -> list[list[tuple[int, float, float, float]]]:
     """Per case, (local plank, sag m, span m, stress Pa) of each plate plank of the model
-    (see the module docstring): the planks that share a factored plate (planks alike)
-    solved for all the cases at once."""
+    (see the module docstring): ``_solved``, the planks that share a factored plate
+    (planks alike) for all the cases at once."""
     design = model.design
     on_plank = [{} for _ in cases]
     for by_plank, case in zip(on_plank, cases):
         for load in case.loads:
             by_plank.setdefault(load.plank, []).append(load)
-    groups: dict[int, list[PlatePlank]] = {}
+    groups: dict[tuple, list[PlatePlank]] = {}
     for plate in plate_planks(model):
-        groups.setdefault(id(plate.grid), []).append(plate)
+        groups.setdefault(plate.key, []).append(plate)
     found: dict[int, list] = {}
-    for plates in groups.values():
+    for key, plates in groups.items():
         loads = [_case_loads(design, by_plank.get(plate.plank.id, ()), plate.plank)
                  for plate in plates for by_plank in on_plank]
-        batch = tol.PLATE_BATCH
-        solutions = (solution for start in range(0, len(loads), batch)
-                     for solution in plate_solutions(plates[0].grid, loads[start:start + batch]))
+        readings = iter(_solved(key, plates[0].grid, loads))
         for plate in plates:
-            found[plate.local] = [(plate.local, *sag_span(plate.grid, w), stress)
-                                  for w, stress in (next(solutions) for _ in cases)]
+            found[plate.local] = [(plate.local, *next(readings)[:3]) for _ in cases]
     return [[found[plate.local][c] for plate in plate_planks(model)]
             for c in range(len(cases))]
 
 
 def plate_cases(design: Design, plate: PlatePlank,
                 cases: list[LoadCase]) -> list[tuple[float, float, float]]:
-    """Per case of ``cases``, the (sag m, span m, stress Pa) of one plate plank, solved
-    for all of them at once and for nothing else (``plate_results`` solves planks alike
-    together)."""
-    plank = plate.plank
-    loads = [_case_loads(design, [load for load in case.loads if load.plank == plank.id],
-                         plank) for case in cases]
-    return [(*sag_span(plate.grid, w), stress)
-            for w, stress in plate_solutions(plate.grid, loads)]
+    """Per case of ``cases``, the (sag m, span m, stress Pa) of one plate plank
+    (``_solved``: the numbers ``plate_results`` gives)."""
+    return [reading[:3] for reading in
+            _solved(plate.key, plate.grid, _plank_loads(design, plate.plank, cases))]
+
+
+def _plank_loads(design: Design, plank: Plank, cases: list[LoadCase]) -> list:
+    """``_case_loads`` of the plank in each of ``cases``."""
+    return [_case_loads(design, [load for load in case.loads if load.plank == plank.id],
+                        plank) for case in cases]
 
 
 def _case_loads(design: Design, loads, plank: Plank) -> tuple[float, list]:
