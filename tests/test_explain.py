@@ -469,12 +469,12 @@ def test_failed_support_names_what_remains():
 
 
 def test_partial_results_say_what_was_tried():
-    """bench-tips (rigid) gets fewer than the 8 suggestions asked for: the text says so
+    """bench-tips (rigid) gets fewer than the 8 suggestions it lists at most: the text says so
     after them, with the lift-off need and the line searches that found an interval."""
     run = CliRunner().invoke(main, ["suggest", str(CATALOG / "bench-tips.yaml"),
                                     "--model", "rigid"], catch_exceptions=False)
     text = run.output
-    assert "Fewer than the 8 asked for:" in text
+    assert "Fewer than 8, the most it lists (--max-suggestions):" in text
     assert "215 mm outside the support beyond leg_r" in text
     assert "30.2 kg of ballast over leg_l" in text
     assert re.search(r"\n    \d+ line searches with the full checks, [1-9]\d* with a valid "

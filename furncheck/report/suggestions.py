@@ -113,7 +113,8 @@ def render_text(result: SuggestionReport, original: Design,
             for path in (*files.meshes, *files.plots):
                 lines.append(f"{INDENT}   {path}")
     if explanation is not None and len(result.suggestions) < explanation.tried.wanted:
-        lines.append(f"Fewer than the {explanation.tried.wanted} asked for:")
+        lines.append(f"Fewer than {explanation.tried.wanted}, the most it lists "
+                     "(--max-suggestions):")
         lines.extend(explanation_lines(explanation, original.units, len(result.suggestions),
                                        INDENT))
     return "\n".join(lines) + "\n"
