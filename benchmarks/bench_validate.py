@@ -55,9 +55,10 @@ def _median_seconds(action, repeat: int) -> float:
 
 
 def _forget_plates() -> None:
-    """Empty the factored plates kept from the run before (``statics.plates``), so that
-    each run pays for its own, as the first check of a design in a process does (a tree
-    without plates has nothing to empty)."""
+    """Empty the factored plates and their readings kept from the run before
+    (``statics.plate_mesh``, ``statics.plates``), so that each run pays for its own, as
+    the first check of a design in a process does (a tree without plates, or without
+    kept readings, has nothing to empty)."""
     try:
         from furncheck.statics.plate_mesh import plate_grid
     except ImportError:
@@ -66,6 +67,11 @@ def _forget_plates() -> None:
         except ImportError:
             return
     plate_grid.cache_clear()
+    from furncheck.statics import plates
+
+    readings = getattr(plates, "_READINGS", None)
+    if readings is not None:
+        readings.clear()
 
 
 def _row(label: str, path: Path, repeat: int) -> str:
