@@ -897,3 +897,15 @@ def test_a_leg_moved_toward_the_load_before_it_leaves_the_seat_is_suggested(mode
     (found,) = RangeFinder(design).ranges(["leg_r.x"])
     assert found.valid[0] <= x <= found.valid[1]
     assert check_design(parse_design(moved[0].text, "s.yaml", "yaml")).valid
+
+
+def test_each_violated_margin_weighs_its_own_dofs():
+    """A shelf far past its sag limit (rate 1000 per unit step on DOF 0, 0.2 on DOF 2) and
+    a joint just past its own (0.5 on DOF 1, which nothing else moves): DOFs 0 and 1 are
+    combined, each the strongest on its margin; DOF 2, under RELEVANT_RATE (1e-3) of
+    the shelf's strongest, is not.  Weighed against all rates at once, the joint's DOF
+    (0.5 < 1e-3 x 1000) fell out, and no combination could restore the joint."""
+    from furncheck.suggest.candidates import _relevant, _strength
+
+    rates = np.array([[1000.0, 0.0, 0.2], [0.0, 0.5, 0.0]])
+    assert _relevant(_strength(rates)) == [0, 1]

@@ -37,8 +37,11 @@ MAX_RELEVANT_DOFS = 48
 violated margins most (a DOF that hardly moves them needs a huge step)."""
 
 RELEVANT_RATE = 1e-3
-"""A DOF is relevant when its largest rate on a violated margin is at least this fraction
-of the largest rate of any DOF."""
+"""A DOF is relevant when its rate on some violated margin is at least this fraction of
+the largest rate of any DOF on that margin: each margin weighs its DOFs against its own
+(a shelf at 11,000 % of its sag has rates a thousand times a joint's just past its
+limit; measured against all rates at once, the joint's DOFs fell out of the
+combinations)."""
 
 SAME_DIRECTION = 0.999
 """Directions over the same DOFs whose cosine exceeds this are the same suggestion."""
@@ -86,7 +89,7 @@ def candidates(margins: Margins, max_dofs: int,
     if not violated.any():
         return []
     deficit = np.array([m.target for m in rows])[violated] - values[violated]
-    relevant = _relevant(np.abs(rates[violated]).max(axis=0))
+    relevant = _relevant(_strength(rates[violated]))
     kept: list[Candidate] = []
     found: set[tuple[int, ...]] = set()
     for m in range(1, max_dofs + 1):
@@ -167,7 +170,7 @@ def unit_candidates(margins: Margins, units: list, max_dofs: int) -> list[Candid
     for u, unit in enumerate(units):
         basis[list(unit.dofs), u] = unit.coefficients
     unit_rates = rates @ basis                                       # (rows, units)
-    relevant = set(_relevant(np.abs(unit_rates[violated]).max(axis=0)))
+    relevant = set(_relevant(_strength(unit_rates[violated])))
     kept: list[Candidate] = []
     working: set[int] = set()          # units that work alone (paired or not)
     for m in (1, 2):
@@ -191,6 +194,15 @@ def unit_candidates(margins: Margins, units: list, max_dofs: int) -> list[Candid
                                   candidate.dofs, candidate.aim))
     kept.sort(key=lambda c: (c.enter, len(c.dofs), c.dofs))
     return kept
+
+
+def _strength(rates: np.ndarray) -> np.ndarray:
+    """(n,): each DOF's largest rate on a violated margin (``rates``: (violated, n)) as a
+    fraction of that margin's largest (see RELEVANT_RATE); 0 on a margin no DOF moves."""
+    size = np.abs(rates)
+    top = size.max(axis=1, keepdims=True, initial=0.0)
+    return np.divide(size, top, out=np.zeros_like(size), where=top > 0.0) \
+        .max(axis=0, initial=0.0)
 
 
 def _relevant(strength: np.ndarray) -> list[int]:
