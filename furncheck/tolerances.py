@@ -300,7 +300,7 @@ time (``plates.plate_results``): a 2,000-plank wall's 1,960 shelves at once held
 
 PLATE_SLANT = 1e-6
 """A joint line whose direction, in a plate plank's plane, leans from both its axes by
-more than this (its sine) is not a plate support (``plates._support_segments``: the
+more than this (its sine) is not a plate support (``plate_supports._support_segments``: the
 grid runs along the plank's axes)."""
 
 SUPPORT_STATION_LENGTH = 0.25

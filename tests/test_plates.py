@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from furncheck.design.model import Material, Plank
-from furncheck.statics import plates
+from furncheck.statics import plate_supports, plates
 
 E, T, NU = 3.0e9, 0.012, 0.25            # the defaults: Pa, m, PLATE_POISSON
 D = E * T ** 3 / (12 * (1 - NU ** 2))
@@ -210,8 +210,8 @@ def test_a_plank_loaded_in_its_plane_is_not_a_plate() -> None:
     from furncheck.design import parse_design
 
     design = parse_design(STEP_BOX, "d.yaml", "yaml")
-    assert plates._loaded_across(design, design.plank("top"))
-    assert not plates._loaded_across(design, design.plank("front"))
+    assert plate_supports._loaded_across(design, design.plank("top"))
+    assert not plate_supports._loaded_across(design, design.plank("front"))
 
 
 def test_a_pure_twist_gives_the_twisting_moment_alone() -> None:
@@ -288,13 +288,13 @@ def test_a_rail_between_two_panels_bends_under_the_plate_it_holds() -> None:
     ends (``suggest``'s rail fix).  Stiff in its own plane, the rail holds its line
     straight (``elastic._holds_straight``), but it spans between the ends, held up at
     its ends only: not a support of the top's plate but a beam that bends with it
-    (``plates._carried``), so the top reads more than on a rigid line there (about a
+    (``plate_supports._carried``), so the top reads more than on a rigid line there (about a
     tenth of the box without rail) and less than without the rail; the ends, standing
     on the floor, and the front and back are supports."""
     from furncheck.design import parse_design
     from furncheck.geometry import analyze
     from furncheck.statics import build_model
-    from furncheck.statics.plates import _carried
+    from furncheck.statics.plate_supports import _carried
 
     railed = STEP_BOX.replace(
         "  - {id: top,", "  - {id: rail, size: [376, 72], center: [0, 0, 252], "

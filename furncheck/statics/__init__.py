@@ -46,9 +46,10 @@ The package, by job:
                  bending_points reads a stepped design's planks where the design's sag
                  and stress peak; carrying, what carries each plank (where its sag is
                  measured from)
-    plates       a plank held along lines checked as a plate too: which planks, their
-                 supports and loads, their readings merged with the beams' (with_plates);
-                 plate_mesh, the plate itself (grid, elements, banded factor, solves)
+    plates       a plank held along lines checked as a plate too: its loads, its
+                 readings (kept by plate and loads) merged with the beams' (with_plates);
+                 plate_supports, which planks and what holds them; plate_mesh, the
+                 plate itself (grid, elements, banded factor, solves)
     starts       where the contact iterations of a search's edits start (LineStarts)
     derivatives  eq. 6's right-hand sides for both models (a plate's rates too)
 

@@ -639,7 +639,7 @@ def build_elastic_model(design: Design, geometry: Geometry,
     model.plank_cache["support_stations"] = stations
     model.plank_cache["joint_part_counts"] = part_counts
     model.plank_cache["weights_per_length"] = weights
-    if joint_lines is not None:     # the plate check asks again (``plates._held_planks``)
+    if joint_lines is not None:     # the plate check asks again (``plate_supports.held_planks``)
         model.plank_cache["joint_lines"] = joint_lines
     model.plank_cache["attachments"] = Attachments(
         owner_array, tuple(key[1] for key in keys if key[0] == "rest"),

@@ -9,11 +9,11 @@ mm where a plate sags 0.71 to 1.53 mm (``benchmarks/compare_plate.py``), and a b
 spreads a point load over its whole width (a load at a top's free front edge read as
 at its centre).  So such a plank is also solved as a plate, on its own:
 
-* which planks (``_held_planks``): those not standing on the floor whose joint lines,
+* which planks (``plate_supports``): those not standing on the floor whose joint lines,
   held straight by their other planks (``elastic._holds_straight``: a panel, not a
   rail), cover at least PLATE_HELD_SHARE of one of its sides on one line or one side of
   its middle, and hold it somewhere off that line too; and whose weight or loads push
-  across its face (``_loaded_across``);
+  across its face;
 * the plate (``statics.plate_mesh``): Mindlin, bilinear elements with selectively
   reduced shear integration, on a grid through every support line's ends and load
   patch's edges, about PLATE_CELLS elements across its shorter side, factored as a band
@@ -52,6 +52,7 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.design.model import Design, LoadCase, Plank
 from furncheck.statics.plate_mesh import PlateGrid, plate_grid, plate_solutions, sag_span
+from furncheck.statics.plate_supports import held_planks
 
 
 class PlatePlank(NamedTuple):
@@ -85,7 +86,7 @@ def each_plate(model):
         return
     point_loads = _point_loads(model.design)
     found = []
-    for k, plank, lines, rails in _held_planks(model):
+    for k, plank, lines, rails in held_planks(model):
         plate = _plate(model, k, plank, lines, rails, point_loads.get(plank.id, ()))
         if plate is not None:
             found.append(plate)
@@ -142,7 +143,7 @@ def plate_readings(model, case: LoadCase, only: set[int]) -> dict[int, PlateRead
         point_loads = _point_loads(design)
         for k in missing:
             known[k] = None
-        for k, plank, lines, rails in _held_planks(model, missing):
+        for k, plank, lines, rails in held_planks(model, missing):
             patches = [_patch(plank, load) for load in point_loads.get(plank.id, ())]
             known[k] = (plank, _plate_key(plank, design.material_of(plank), lines, patches,
                                           rails))
@@ -234,206 +235,6 @@ def _load_key(loads: tuple) -> tuple:
     return float(uniform), tuple((tuple(patch), float(force)) for patch, force in points)
 
 
-def _held_planks(model, only: set[int] | None = None):
-    """(local index, plank, support segments, stiffeners) of each plank of the model that
-    does not stand on the floor, that its weight or a load pushes across its face, and
-    that joint lines held straight by their other planks hold along one of its sides
-    over at least PLATE_HELD_SHARE of it (on one line, or on one side of its middle: the
-    union of their spans), besides somewhere off that line (the plate is then held, not
-    hinged on one line): each segment ((x0, y0), (x1, y1), grip), plank-local, and the
-    rails nailed along it (``_support_segments``).  ``only``: of these local planks alone.
-    """
-    from furncheck.statics.elastic import _joint_lines
-
-    design, geometry = model.design, model.geometry
-    grounded = {contact.plank for contact in geometry.contacts if contact.on_floor}
-    held = carried = None
-    joints_of: dict[str, list] = {}
-    for k, index in enumerate(model.planks):
-        plank = design.planks[index]
-        if plank.id in grounded or (only is not None and k not in only):
-            continue
-        if held is None:
-            held = model.plank_cache.get("joint_lines")
-            if held is None:        # (a stepped model's: only those of the planks asked)
-                ids = None if only is None else \
-                    {design.planks[model.planks[i]].id for i in only}
-                held = _joint_lines(design, geometry, [
-                    j for j in model.joints
-                    if ids is None or not ids.isdisjoint(geometry.joints[j].planks)])
-            for j in model.joints:                  # in ``_joint_lines``' order
-                for plank_id in geometry.joints[j].planks:
-                    joints_of.setdefault(plank_id, []).append(geometry.joints[j])
-            carried = _carried(geometry, joints_of)     # (its floor feet found once)
-        lines = held.get(plank.id)
-        if not lines or len(lines) < 2:
-            continue
-        joints = joints_of[plank.id]
-        if not _loaded_across(design, plank):
-            continue
-        segments, stiffeners = _support_segments(design, plank, lines, joints, carried)
-        if _holds_beam(plank, segments, 0) or _holds_beam(plank, segments, 1):
-            yield k, plank, segments, stiffeners
-
-
-def _loaded_across(design: Design, plank: Plank) -> bool:
-    """Whether its weight or a load of some case pushes the plank across its face (a
-    plank standing on edge, loaded in its plane only, bends as its beam does)."""
-    normal = plank.axes[2]
-    if abs(normal[2]) > tol.PLATE_SLANT:
-        return True
-    return any(abs(float(np.dot(load.force, normal))) > 0.0
-               for case in design.load_cases for load in case.loads if load.plank == plank.id)
-
-
-def _holds_beam(plank: Plank, segments, axis: int) -> bool:
-    """Whether ``segments`` along the plank's local ``axis`` (0: x) cover at least
-    PLATE_HELD_SHARE of its side along it on one line, or on one side of its middle
-    line, and some segment lies off that line (see ``_held_planks``)."""
-    from furncheck.statics.elastic import _union_length
-
-    size = (plank.length, plank.width)[axis]
-    need = tol.PLATE_HELD_SHARE * size - tol.NODE_MERGE - tol.NODE_MERGE_ROUNDOFF
-    along = [seg for seg in segments if _segment_axis(seg) == axis]
-    for side in (-1.0, 0.0, 1.0):
-        mine = [seg for seg in along if _side(seg[0][1 - axis]) == side]
-        if _union_length([(seg[0][axis], seg[1][axis]) for seg in mine]) < need:
-            continue
-        lines = {round(seg[0][1 - axis] / tol.NODE_MERGE) for seg in mine}
-        if len(lines) > 1 or any(_segment_axis(seg) != axis or
-                                 round(seg[0][1 - axis] / tol.NODE_MERGE) not in lines
-                                 for seg in segments):
-            return True
-    return False
-
-
-def _side(offset: float) -> float:
-    """-1, 0 or 1: which side of the beam's axis a line at ``offset`` (m) lies on (0:
-    within NODE_MERGE of it)."""
-    return 0.0 if abs(offset) <= tol.NODE_MERGE else float(np.sign(offset))
-
-
-def _segment_axis(segment) -> int:
-    """0 where a segment ((x0, y0), (x1, y1), grip) runs along the plank's x, else 1."""
-    (x0, y0), (x1, y1), _ = segment
-    return 0 if abs(y1 - y0) <= abs(x1 - x0) else 1
-
-
-def _carried(geometry, joints_of: dict[str, list]):
-    """A test whether a plank (id) holds a joint's line up where it is: it stands on the
-    floor along at least SPAN_ACROSS_STANDING of the line (its floor corners that far
-    apart along it), or another of its joints runs along the line over as much of it (a
-    divider standing on a cabinet's bottom, a back panel nailed to a shelf below): not a
-    rail that spans between two panels, which carries what the line puts on it by
-    bending."""
-    from furncheck.statics.elastic import floor_feet, stands_along
-
-    feet = floor_feet(geometry)
-
-    def carried(partner: str, joint) -> bool:
-        line = joint.frame[:, 1]
-        if stands_along(feet.get(partner, ()), line, joint.length):
-            return True
-        need = tol.SPAN_ACROSS_STANDING * joint.length - tol.NODE_MERGE
-        return any(other is not joint and other.length >= need
-                   and abs(float(other.frame[:, 1] @ line)) >= 1.0 - tol.PLATE_SLANT
-                   for other in joints_of.get(partner, ()))
-    return carried
-
-
-def _support_segments(design: Design, plank: Plank, lines, joints,
-                      carried=None) -> tuple[list, list]:
-    """The plank's joint lines (``lines``, of ``joints`` in order) as local segments along
-    its x or y axis (clipped to the plank; a line at a slant to both is left out): those
-    held straight by their other planks and held up by them where they are (``carried``,
-    ``_carried``; all, where it is None), each with its nail row's grip against turning
-    about it per metre (contract 3a: n nail_withdrawal (t/2)^2 over its length, N m /
-    rad per m; the other plank taken as not turning), and the others, the rails and
-    aprons that bend with the plank (a rail stiff in its own plane that spans between
-    panels too: it carries what the plate puts on it by bending), each with the bending
-    stiffness it adds across the plank's face, E I (N m^2, ``_bending_across``):
-    (supports, stiffeners), each ((x0, y0), (x1, y1), value)."""
-    frame = plank.rotation_matrix
-    sizes = (plank.length, plank.width)
-    half = (sizes[0] / 2.0, sizes[1] / 2.0)
-    withdrawal = design.material_of(plank).nail_withdrawal
-    supports, stiffeners = [], []
-    for (point, line, straight), joint in zip(lines, joints, strict=True):
-        along = np.asarray(line) @ frame[:, :2]
-        length = float(np.hypot(*along))
-        if length <= 0.0:
-            continue
-        axis = int(abs(along[1]) > abs(along[0]))
-        if abs(along[1 - axis]) > tol.PLATE_SLANT * length:
-            continue
-        centre = plank.to_local(np.asarray(point)[None, :])[0, :2]
-        low, high = centre.tolist(), centre.tolist()
-        low[axis] -= length / 2.0
-        high[axis] += length / 2.0
-        low = tuple(min(max(v, -h), h) for v, h in zip(low, half))     # on the plank
-        high = tuple(min(max(v, -h), h) for v, h in zip(high, half))
-        if high[axis] - low[axis] <= tol.NODE_MERGE:
-            continue
-        ends = (low, high)
-        partner_id = next(p for p in joint.planks if p != plank.id)
-        if straight(sizes[axis], sizes[1 - axis]) \
-                and (carried is None or carried(partner_id, joint)):
-            grip = joint.nails * withdrawal * (0.5 * joint.edge_thickness) ** 2
-            supports.append((*ends, grip / length))
-        else:
-            stiffeners.append((*ends, _bending_across(design, plank, design.plank(partner_id),
-                                                      joint, length)))
-    return supports, stiffeners
-
-
-def _bending_across(design: Design, plank: Plank, partner: Plank, joint,
-                    length: float) -> float:
-    """N m^2: the bending stiffness a rail or batten (``partner``, nailed along ``joint``'s
-    line, ``length`` of it on the plank) adds to the plank's plate along that line, out
-    of the plate's plane: its own E I, I = t_p h^3 / 12 (a_h . n)^2 + h t_p^3 / 12 (n_p .
-    n)^2 (t_p its thickness, h its depth across the line in its own plane, a_h that
-    axis, n_p its normal, n the plate's), and the composite action of the two nailed
-    together by Eurocode 5's method for mechanically jointed beams (EN 1995-1-1 Annex B,
-    as the beams have it): gamma E_f A_f E_r A_r / (gamma E_f A_f + E_r A_r) d^2, d
-    between the rail's centroid and the plate's mid-plane, the plate's flange A_f = t b_ef
-    with b_ef the rail's width on the plate (its thickness on edge, its depth lying flat)
-    plus at most 0.2 of the line's length l and 30 plate thicknesses, half on each side
-    the plate reaches (EN 1995-1-1 9.1.2, table 9.1: particleboard or fibreboard with
-    random fibre orientation; taken as both sides' sum, the smaller reading), and gamma
-    = 1 / (1 + pi^2 E_f A_f s / (K l^2)) for the nails' spacing s and slip modulus K
-    (``nail_slip``) over l."""
-    from furncheck.statics.elastic import depth_across
-
-    normal = plank.rotation_matrix[:, 2]
-    line = joint.frame[:, 1]
-    axes = partner.rotation_matrix
-    depth, axis = depth_across(partner, line)
-    in_plane = axes[:, axis]
-    t_p = partner.thickness
-    second_moment = (t_p * depth ** 3 / 12.0 * float(in_plane @ normal) ** 2
-                     + depth * t_p ** 3 / 12.0 * float(axes[:, 2] @ normal) ** 2)
-    e_rail = design.material_of(partner).elastic_modulus
-    material = design.material_of(plank)
-    rail_area = e_rail * t_p * depth
-    d = abs(float((partner.center_array - plank.center_array) @ normal))
-    local = plank.to_local(partner.center_array[None, :])[0, :2]
-    line_axis = int(abs(float(line @ plank.rotation_matrix[:, 1]))
-                    > abs(float(line @ plank.rotation_matrix[:, 0])))
-    reach = 0.5 * (plank.length, plank.width)[1 - line_axis]
-    offset = local[1 - line_axis]
-    across = np.cross(normal, line)                 # in the plate, across the line
-    web = min(abs(float(in_plane @ across)) * depth + abs(float(axes[:, 2] @ across)) * t_p,
-              2 * reach)
-    side = 0.5 * min(0.2 * length, 30.0 * plank.thickness)
-    width = (web + min(side, max(reach - offset - 0.5 * web, 0.0))
-             + min(side, max(reach + offset - 0.5 * web, 0.0)))
-    flange = material.elastic_modulus * plank.thickness * width
-    spacing = length / max(joint.nails, 1)
-    gamma = 1.0 / (1.0 + np.pi ** 2 * flange * spacing / (material.nail_slip * length ** 2))
-    composite = gamma * flange * rail_area / (gamma * flange + rail_area) * d * d
-    return e_rail * second_moment + composite
-
-
 def _plate(model, k: int, plank: Plank, segments, stiffeners,
            point_loads) -> PlatePlank | None:
     """The factored plate of plank ``plank`` (local ``k``) on ``segments``, stiffened by
@@ -451,7 +252,7 @@ def plate_for(plank: Plank, material, segments, patches, local: int = 0,
     plank-local, along its axes), with the nail rows' grip against turning about them;
     its grid passes through the segments' ends and the ``patches`` ((x0, x1, y0, y1),
     plank-local) edges.  ``stiffeners`` (((x0, y0), (x1, y1), E I N m^2)): rails along
-    its axes, beams that bend with it along their lines (``_bending_across``).  None
+    its axes, beams that bend with it along their lines (``plate_supports``).  None
     where the segments leave it free to move.  Its numbers are those of the inputs
     rounded to a nanometre (and the grips and stiffnesses to nine digits), so that planks
     alike (a bookcase's shelves) and the same plank in a design's edits
