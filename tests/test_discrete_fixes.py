@@ -244,6 +244,20 @@ def test_a_bottom_held_on_both_faces_grows_into_the_kick_board_cut_to_make_room(
         {frozenset(j.planks) for j in analyze(design).joints}
 
 
+def test_points_on_the_cut_end_of_the_kick_board_move_with_it():
+    """A 50 N push down on the kick board's top edge (z 80, the end the bottom grows into)
+    and a 50 N push on its front face (z 40): ripped 3 mm narrower at its top, the first
+    moves down with that edge (z 77, still on the board), the second stays where it is."""
+    text = (CATALOG / "cabinet-28.yaml").read_text().replace("loads:\n", (
+        "loads:\n  - {plank: kick, force: [0, 0, -50], at: [300, -194, 80]}\n"
+        "  - {plank: kick, force: [0, 50, 0], at: [300, -200, 40]}\n"), 1)
+    design = parse_design(text, "cabinet-pushed.yaml", "yaml")
+    edited = grown(design, analyze(design), {"bottom": 0.015})
+    edge, front = edited.load_cases[0].loads[:2]
+    assert edge.point == pytest.approx((0.300, -0.194, 0.077))
+    assert front.point == pytest.approx((0.300, -0.200, 0.040))
+
+
 def test_the_sagging_cabinet_gets_thicker_shelves_and_bottom_with_its_kick_board_cut():
     """cabinet-28 in the elastic model: shelf_b1 and b2 sag 1.54 mm with creep against
     1.22 mm allowed, the bottom 1.06 against 0.985 mm (its header).  Sag goes with

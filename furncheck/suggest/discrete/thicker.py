@@ -26,7 +26,7 @@ equally both ways; with both held it grows toward a face whose planks rest on it
 (a chair's back on its seat, which moves with it), else into the planks standing square
 on one face, cut that much shorter (a cabinet's bottom into its kick board, ripped
 narrower; the lower face first), else it cannot grow.  Load and anchor points on a
-face that moves move with it (not those on a cut plank's cut end).
+face that moves move with it, and those on a cut plank's cut end with that end.
 
 The rule (``thicker_planks``) thickens every failing plank and the edge planks of the
 joints that pull out, in one suggestion; ``finish`` does the same for the candidate of
@@ -350,10 +350,10 @@ def grown(design: Design, geometry: Geometry, thicknesses: dict[str, float],
     from its held faces (module docstring); a plank held on both faces grows toward the
     side where only planks nailed to it alone rest (a chair's back on its seat), which
     move with that face, else into the planks standing square on one face, cut that much
-    shorter (``_cut_side``); load and anchor points on a moved face move with it.  A plank of
-    ``stretchable`` (one the same fix adds) on whose face a grown plank's edge is nailed
-    is lengthened with it, so that it still covers that edge (a back panel over a seat
-    made thicker).  None when a plank cannot grow."""
+    shorter (``_cut_side``); load and anchor points on a moved face or a cut end move with
+    it.  A plank of ``stretchable`` (one the same fix adds) on whose face a grown plank's
+    edge is nailed is lengthened with it, so that it still covers that edge (a back panel
+    over a seat made thicker).  None when a plank cannot grow."""
     held = _held_sides(design, geometry)
     resting = _resting(geometry)
     jointed = geometry.jointed()
@@ -381,6 +381,8 @@ def grown(design: Design, geometry: Geometry, thicknesses: dict[str, float],
                 if side is None:
                     return None
                 for leaf in resting[(plank_id, side)]:
+                    moves.setdefault(leaf, []).append(
+                        _end_shift(planks[leaf], axis * side, grow, design))
                     planks[leaf] = _cut(planks[leaf], axis * side, grow)
         elif sides:
             side = -next(iter(sides))
@@ -451,6 +453,22 @@ def _toward(plank: Plank, way: np.ndarray) -> tuple[int, np.ndarray, float]:
     axis = int(np.argmax(np.abs(axes[:, :2].T @ way)))
     cosine = float(axes[:, axis] @ way)
     return axis, axes[:, axis] * (1.0 if cosine > 0.0 else -1.0), abs(cosine)
+
+
+def _end_shift(leaf: Plank, way: np.ndarray, grow: float, design: Design):
+    """How a point on ``leaf`` moves when ``_cut`` cuts it shorter at the end toward a
+    face that grows along ``way``: with that end where it lies on it or within the strip
+    cut off (a load on a kick board's top edge stays on its edge), else not at all."""
+    axis, along, cosine = _toward(leaf, way)
+    cut = grow / cosine
+    end = -0.5 * _sizes(leaf)[axis]                 # the cut end, along ``along``
+    reach = end + cut + design.tolerance + tol.ON_PLANK_EPS
+
+    def move(point):
+        if float((np.asarray(point) - leaf.center_array) @ along) <= reach:
+            return tuple(float(v) for v in np.asarray(point) + along * cut)
+        return point
+    return move
 
 
 def _sizes(plank: Plank) -> list[float]:
