@@ -122,8 +122,8 @@ def plates_fail(design: Design, model: StaticsModel) -> bool:
     if model.beams is None:
         return False
     cases = list(design.load_cases)
+    sag_limit, creep, strength = plank_limits(design, model)
     for plate in each_plate(model):
-        sag_limit, creep, strength = plank_limits(design, model)
         k = plate.local
         for sag, span, stress in plate_cases(design, plate, cases):
             used = bending_use(sag, span, stress, sag_limit[k], creep[k], strength[k])

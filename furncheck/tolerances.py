@@ -218,7 +218,7 @@ took about 6 % longer."""
 
 PLATE_CELL_FLOOR = 0.5
 """... but a plate's cells are never shorter than this share of its thickness: a plank
-narrower than PLATE_CELLS / PLATE_CELL_FLOOR thicknesses (60 mm of 12 mm MDF) gets fewer
+narrower than PLATE_CELLS x PLATE_CELL_FLOOR thicknesses (60 mm of 12 mm MDF) gets fewer
 cells across it, and cells as long along it.  Its plate is then a strip, which its beam
 reads as well (a plate's theory, thin or Mindlin's, does not resolve lengths shorter
 than its thickness anyway).  Without it a range probe that narrowed a 488 mm shelf to
@@ -275,10 +275,12 @@ Table 1 designs, whose plates hold with a quarter to spare, 10 to 20 % more time
 suggestion and range end is checked in full, plates included."""
 
 PLATE_READINGS = 4096
-"""How many plate readings (sag, span, stress of one plate under one case's loads) a
-process keeps for the force sensitivities (``plates.plate_readings``: a design's stepped
-edits are linearized case by case, and each case reads the plates the first factored;
-a few hundred bytes each)."""
+"""How many plate readings (sag, span, stress of one plate under one case's loads, by
+the plate's inputs and its loads) a process keeps (``plates._solved``): every check
+reads its plates through them, so that a range's or a search's probe reads the plates
+its edit left as they were without solving them again, and the force sensitivities
+(``plates.plate_readings``) read a stepped design's plates case by case; about 0.5 to
+2 kB each, a few megabytes in all."""
 
 PLATE_DESIGNS = 4096
 """How many designs' plate inputs (which planks are plates, and each plate's
@@ -294,9 +296,10 @@ more or a cell cut otherwise moves lines by millimetres); elsewhere the DOF's ra
 its beam's."""
 
 PLATE_BATCH = 64
-"""Planks alike (one factored plate) are solved for this many (plank, case) loads at a
-time (``plates.plate_results``): a 2,000-plank wall's 1,960 shelves at once held about
-75 MB of moments and displacements; in 64s, a few megabytes."""
+"""A plate's distinct loads not yet read (planks alike share one factored plate: every
+plank's loads in every case) are solved this many at a time (``plates._solved``): a
+2,000-plank wall's 1,960 shelves at once held about 75 MB of moments and displacements;
+in 64s, a few megabytes."""
 
 PLATE_SLANT = 1e-6
 """A joint line whose direction, in a plate plank's plane, leans from both its axes by

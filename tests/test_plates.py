@@ -349,3 +349,21 @@ def test_a_plates_sag_rate_is_the_plates_own(name: str, load_x: int) -> None:
     sags = [next(p.sag for p in check_design(apply_dof(design, frame, dof, step)).cases[0]
                  .planks if p.id == "top") for step in (-0.01, 0.01)]
     assert rate == pytest.approx((sags[1] - sags[0]) / 0.02, rel=0.02)
+
+
+def test_a_load_reads_the_same_bit_for_bit_whatever_is_solved_with_it() -> None:
+    """``plate_solutions`` of a load alone and in a batch with others, at any place in it:
+    the same deflections and stress, bit for bit (the readings are kept by the plate and
+    its loads and shared by every check, ``plates._solved``, so that ``--jobs 1`` and
+    ``--jobs 2``, and a check with or without searches before it, read the same)."""
+    from furncheck.statics.plate_mesh import plate_solutions
+
+    plank = Plank("p", 0.6, 0.4, T, (0.0, 0.0, 0.0))
+    plate = plates.plate_for(plank, Material(), _edges(0.6, 0.4), [PATCH])
+    loads = [(1000.0 * (k + 1), [(PATCH, 37.0 * k)]) for k in range(9)]
+    batch = plate_solutions(plate.grid, loads)
+    for k in range(len(loads)):
+        ((w, stress),) = plate_solutions(plate.grid, [loads[k]])
+        assert w.tobytes() == batch[k][0].tobytes() and stress == batch[k][1]
+    again = plate_solutions(plate.grid, loads[5:] + loads[:5])
+    assert again[3][0].tobytes() == batch[8][0].tobytes() and again[3][1] == batch[8][1]

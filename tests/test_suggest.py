@@ -908,4 +908,17 @@ def test_each_violated_margin_weighs_its_own_dofs():
     from furncheck.suggest.candidates import _relevant, _strength
 
     rates = np.array([[1000.0, 0.0, 0.2], [0.0, 0.5, 0.0]])
-    assert _relevant(_strength(rates)) == [0, 1]
+    deficit = np.array([110.0, 0.05])
+    assert _relevant(_strength(rates, deficit)) == [0, 1]
+
+
+def test_a_margin_no_dof_moves_promotes_none():
+    """A violated margin whose rates are round-off (1e-14: its largest DOF would close
+    1e-3 of its deficit only 2e10 design sizes away) weighs none of its DOFs; a rate that
+    is not a number counts as none, an infinite one as the strongest."""
+    from furncheck.suggest.candidates import _relevant, _strength
+
+    rates = np.array([[1e-14, 3e-16, 0.0], [0.0, 0.0, 2.0]])
+    assert _relevant(_strength(rates, np.array([0.1, 0.1]))) == [2]
+    rates = np.array([[np.inf, 1.0, np.nan], [0.0, 0.0, 2.0]])
+    assert _relevant(_strength(rates, np.array([0.1, 0.1]))) == [0, 2]

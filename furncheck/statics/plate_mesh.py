@@ -356,7 +356,9 @@ def plate_solutions(grid: PlateGrid, loads: list) -> list[tuple[np.ndarray, floa
     (Pa) and forces spread over patches (``points``: ((x0, x1, y0, y1), N) each, shared
     by the elements by their overlap with the square: its edges are grid lines, or within
     a millimetre of one), and its largest bending stress (Pa), 6 |M| / t^2 of the largest
-    principal moment at an element's centre."""
+    principal moment at an element's centre.  Each load's, bit for bit, as if solved
+    alone (LAPACK's pbtrs solves each column on its own; the moments are summed term by
+    term, where a matrix product's blocking depends on how many columns it has)."""
     from furncheck.statics.lapack import banded_solve
 
     xs, ys = grid.xs, grid.ys

@@ -45,6 +45,7 @@ from __future__ import annotations
 
 import weakref
 from collections import OrderedDict
+from collections.abc import Iterator
 from typing import NamedTuple
 
 import numpy as np
@@ -76,7 +77,7 @@ def plate_planks(model) -> tuple[PlatePlank, ...]:
     return cached
 
 
-def each_plate(model):
+def each_plate(model) -> Iterator[PlatePlank]:
     """``plate_planks``, one at a time, in the model's order, each found and factored as
     it is asked for (a search that stops at the first plate that fails finds no more);
     kept in ``model.plank_cache`` once all have been."""
@@ -126,10 +127,10 @@ def plate_readings(model, case: LoadCase, only: set[int]) -> dict[int, PlateRead
     and their plates' inputs, are kept per design object (``_KEYS``, the last
     PLATE_DESIGNS asked; a design's stepped edits live as long as its search, one object
     each, and their joints followed through the step are theirs alone), and a plate
-    asked for is solved for every case's loads on it at once, each reading kept by the
-    plate's inputs and its loads (``_READINGS``, the last PLATE_READINGS): a case asked
-    later reads it without finding or factoring the plate again.  Each reading is solved
-    alone, a function of the plate and its loads whatever else was asked."""
+    asked for is read for every case's loads on it at once (``_solved``: kept by the
+    plate's inputs and its loads): a case asked later reads it without finding or
+    factoring the plate again.  Each reading is a function of the plate and its loads,
+    bit for bit, whatever else was asked.  ``case`` is one of the design's own."""
     design = model.design
     entry = _KEYS.get(id(design))
     if entry is None or entry[0]() is not design:       # (an id freed and reused: anew)
@@ -163,18 +164,20 @@ def _reading(design: Design, plank: Plank, key: tuple, case: LoadCase) -> PlateR
     its supports leave it free): ``_solved`` for every case's loads on the plank (a case
     asked later finds its reading kept)."""
     cases = list(design.load_cases)
-    return _solved(key, None, _plank_loads(design, plank, cases))[cases.index(case)]
+    index = next(i for i, one in enumerate(cases) if one.name == case.name)
+    return _solved(key, None, _plank_loads(design, plank, cases))[index]
 
 
 def _solved(key: tuple, grid: PlateGrid | None, loads: list) -> list[PlateReading | None]:
     """The readings of the plate of inputs ``key`` (its factored ``grid``, or None: found
     by ``key`` where a reading is missing) under each of ``loads`` (``_case_loads``),
     each kept by the plate's inputs and its loads (``_READINGS``, the last PLATE_READINGS
-    asked): those missing are solved together, in batches of PLATE_BATCH, and each is a
-    function of the plate and its loads alone (``plate_solutions`` solves each load
-    alone, bit for bit), whatever was asked with it or before it.  None where the
-    supports leave the plate free."""
-    wanted = [(key, _load_key(one)) for one in loads]
+    asked, with the tolerance ``sag_span`` reads that the key leaves out): those
+    missing are solved together, in batches of PLATE_BATCH, and each is a function of
+    the plate and its loads alone (``plate_solutions`` solves each load bit for bit as
+    alone: ``tests/test_plates.py``), whatever was asked with it or before it.  None
+    where the supports leave the plate free."""
+    wanted = [(key, tol.NODE_MERGE_ROUNDOFF, _load_key(one)) for one in loads]
     found = {want: _READINGS.get(want, _MISSING) for want in wanted}
     missing = [(want, one) for want, one in zip(wanted, loads) if found[want] is _MISSING]
     missing = list(dict(missing).items())           # each distinct load once
@@ -225,8 +228,9 @@ or None where it is no plate}) (``plate_readings``), the most recently asked las
 entry whose design is gone, its id another's, is made anew."""
 
 _READINGS: OrderedDict = OrderedDict()
-"""(``_plate_key``, ``_load_key``) -> ``PlateReading``, or None where the supports leave
-the plate free (``plate_readings``), the most recently asked last."""
+"""(``_plate_key``, NODE_MERGE_ROUNDOFF, ``_load_key``) -> ``PlateReading``, or None where
+the supports leave the plate free (``_solved``: every reading of a plate), the most
+recently asked last."""
 
 
 def _load_key(loads: tuple) -> tuple:

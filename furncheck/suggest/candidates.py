@@ -89,7 +89,7 @@ def candidates(margins: Margins, max_dofs: int,
     if not violated.any():
         return []
     deficit = np.array([m.target for m in rows])[violated] - values[violated]
-    relevant = _relevant(_strength(rates[violated]))
+    relevant = _relevant(_strength(rates[violated], deficit))
     kept: list[Candidate] = []
     found: set[tuple[int, ...]] = set()
     for m in range(1, max_dofs + 1):
@@ -170,7 +170,7 @@ def unit_candidates(margins: Margins, units: list, max_dofs: int) -> list[Candid
     for u, unit in enumerate(units):
         basis[list(unit.dofs), u] = unit.coefficients
     unit_rates = rates @ basis                                       # (rows, units)
-    relevant = set(_relevant(_strength(unit_rates[violated])))
+    relevant = set(_relevant(_strength(unit_rates[violated], deficit)))
     kept: list[Candidate] = []
     working: set[int] = set()          # units that work alone (paired or not)
     for m in (1, 2):
@@ -196,13 +196,16 @@ def unit_candidates(margins: Margins, units: list, max_dofs: int) -> list[Candid
     return kept
 
 
-def _strength(rates: np.ndarray) -> np.ndarray:
+def _strength(rates: np.ndarray, deficit: np.ndarray) -> np.ndarray:
     """(n,): each DOF's largest rate on a violated margin (``rates``: (violated, n)) as a
-    fraction of that margin's largest (see RELEVANT_RATE); 0 on a margin no DOF moves."""
-    size = np.abs(rates)
+    fraction of that margin's largest (see RELEVANT_RATE).  A margin that no DOF moves
+    by RELEVANT_RATE of its ``deficit`` (target - value) within MAX_STEP counts for none:
+    its rates are round-off, and its largest would weigh as much as a real one's.  A rate
+    that is not a number counts as none, an infinite one as the largest there is."""
+    size = np.nan_to_num(np.abs(rates), nan=0.0, posinf=np.finfo(float).max)
     top = size.max(axis=1, keepdims=True, initial=0.0)
-    return np.divide(size, top, out=np.zeros_like(size), where=top > 0.0) \
-        .max(axis=0, initial=0.0)
+    moved = (top > 0.0) & (top * MAX_STEP >= RELEVANT_RATE * deficit[:, None])
+    return np.divide(size, top, out=np.zeros_like(size), where=moved).max(axis=0, initial=0.0)
 
 
 def _relevant(strength: np.ndarray) -> list[int]:
