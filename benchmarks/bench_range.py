@@ -3,7 +3,9 @@
 Prints, per design and statics model (rigid and elastic, one row each, in the same run):
 planks, DOFs, DOFs that can move, full-check evaluations, total time and time per movable
 DOF.  The targets for the ~28-plank catalog design (all DOFs) on the project's 2-core
-machine: 1 s in the rigid model, 2 s in the elastic one.
+machine: 1 s in the rigid model, 2 s in the elastic one.  The catalog's cabinet is
+invalid in the elastic model (its plates sag); ``benchmarks/cabinet-28-fixed.yaml``, the
+cabinet with ``suggest``'s first fix, is a valid one, the case the targets were set on.
 
     python benchmarks/bench_range.py [--jobs N] [DESIGN ...]   (default: a few catalog
                                                                 designs, one process)
