@@ -9,7 +9,7 @@ min(4, E) suggestions, where E counts the distinct valid fixes found here withou
   holds a valid value within the search's limits -- half the design's size for a length,
   MAX_STEP radians for a turn -- except a turn that tilts a level plank (a top, seat or
   shelf) out of level and a change that is valid only past where the elastic model
-  turns a plank's one beam (``ranges.finder.turn_reasons``, which the row names: past
+  turns a plank's one beam (``ranges.notes.turn_reasons``, which the row names: past
   its other side, or for a plank nailed along both edges to panels past where their
   lines cover three quarters of its length; a stool's seat widened past 401 mm stops
   bending across its legs in the model, not in the shop, and a nightstand's side cut

@@ -385,7 +385,7 @@ def test_catalog_range_is_valid_inside_and_invalid_beyond(design_name, model, do
     assert found.value == value
     low, high = found.valid
     if valid_now:       # no reason but a size's end where the plank runs out, or the
-        # square passed (an elastic plank's beam turns there: ``finder.turn_reasons``)
+        # square passed (an elastic plank's beam turns there: ``notes.turn_reasons``)
         reasons = [] if found.reason is None else found.reason.split("; ")
         for reason in reasons:
             assert (reason.endswith("less leaves no plank")
@@ -830,3 +830,14 @@ def test_a_sides_range_says_where_it_turns_the_tops_beam():
     assert one_range(load_design(str(DESIGNS / "nightstand-deep.yaml")),
                      "side_l.width").valid is None
     assert note.startswith(f"past {note.split()[1]} mm the beams of shelf and top are turned")
+
+
+def test_a_dof_valid_at_its_value_alone_says_so():
+    """The cabinet with ``suggest``'s fix (``benchmarks/cabinet-28-fixed.yaml``, elastic):
+    side_l turned about the vertical by the range's resolution (0.1 degree) either way
+    is invalid, so its interval is its value alone, 0 .. 0, and the row says why instead
+    of leaving a bare '0 .. 0'."""
+    design = load_design(str(DESIGNS.parent / "benchmarks" / "cabinet-28-fixed.yaml"))
+    (found,) = dof_ranges(design, ["side_l.rz"])
+    assert found.valid == (0.0, 0.0)
+    assert found.reason == "valid at its value only: a step of 0.1 deg either way is not"

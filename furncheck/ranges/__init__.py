@@ -34,6 +34,8 @@ The package, by job:
 
     finder     RangeFinder: the searches of each side of a DOF, its physical limit,
                DofRange, dof_ranges
+    notes      what a row says besides its interval: a beam the edit turns, a size's
+               floor, a value pinned
     reach      ReachSearch: how far the geometry lets a DOF go; doubling and bisection
     shares     the DOFs shared among worker processes (--jobs) or a Dask cluster
     batches    Evaluator: a design's edits and their checks, answered in batches for

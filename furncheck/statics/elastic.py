@@ -169,7 +169,7 @@ class BeamLayout(NamedTuple):
 def beam_layout(design: Design, geometry, planks: list[str] | None = None) -> BeamLayout:
     """The ``BeamLayout`` of the design's planks (or of ``planks``, by id, whose joints and
     whose neighbours' floor corners ``geometry`` holds: ``plank_geometry``), for whoever
-    asks whether an edit turns a plank's beam (``ranges.finder.turn_reasons``,
+    asks whether an edit turns a plank's beam (``ranges.notes.turn_reasons``,
     ``suggest.score``)."""
     joints = list(range(len(geometry.joints)))
     held = _joint_lines(design, geometry, joints)
