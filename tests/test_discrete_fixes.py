@@ -245,16 +245,22 @@ def test_a_bottom_held_on_both_faces_grows_into_the_kick_board_cut_to_make_room(
 
 
 def test_points_on_the_cut_end_of_the_kick_board_move_with_it():
-    """A 50 N push down on the kick board's top edge (z 80, the end the bottom grows into)
-    and a 50 N push on its front face (z 40): ripped 3 mm narrower at its top, the first
-    moves down with that edge (z 77, still on the board), the second stays where it is."""
+    """A 50 N push down on the kick board's top edge (z 80, the end the bottom grows into),
+    and 50 N pushes on its front face at z 78.5 (in the 3 mm strip cut off), 76.8 (on what
+    is kept, within the design's half-millimetre tolerance of the new edge) and 40:
+    ripped 3 mm narrower at its top, the first two come onto the new edge (z 77, still
+    on the board), the others stay where they are."""
     text = (CATALOG / "cabinet-28.yaml").read_text().replace("loads:\n", (
         "loads:\n  - {plank: kick, force: [0, 0, -50], at: [300, -194, 80]}\n"
+        "  - {plank: kick, force: [0, 50, 0], at: [300, -200, 78.5]}\n"
+        "  - {plank: kick, force: [0, 50, 0], at: [300, -200, 76.8]}\n"
         "  - {plank: kick, force: [0, 50, 0], at: [300, -200, 40]}\n"), 1)
     design = parse_design(text, "cabinet-pushed.yaml", "yaml")
     edited = grown(design, analyze(design), {"bottom": 0.015})
-    edge, front = edited.load_cases[0].loads[:2]
+    edge, strip, kept, front = edited.load_cases[0].loads[:4]
     assert edge.point == pytest.approx((0.300, -0.194, 0.077))
+    assert strip.point == pytest.approx((0.300, -0.200, 0.077))
+    assert kept.point == pytest.approx((0.300, -0.200, 0.0768))
     assert front.point == pytest.approx((0.300, -0.200, 0.040))
 
 

@@ -840,4 +840,4 @@ def test_a_dof_valid_at_its_value_alone_says_so():
     design = load_design(str(DESIGNS.parent / "benchmarks" / "cabinet-28-fixed.yaml"))
     (found,) = dof_ranges(design, ["side_l.rz"])
     assert found.valid == (0.0, 0.0)
-    assert found.reason == "valid at its value only: a step of 0.1 deg either way is not"
+    assert found.reason == "valid at its value only, to the range's resolution (0.1 deg)"

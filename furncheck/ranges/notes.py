@@ -135,7 +135,7 @@ def floor_reason(dof: Dof, low: float, resolution: float, unit: str) -> str:
 
 
 def pinned_reason(resolution: float, unit: str) -> str:
-    """Why an interval is its value alone: a step of the range's resolution either way is
-    invalid (what lies within it is not searched)."""
-    return (f"valid at its value only: a step of {plain_number(resolution, 5)} {unit} "
-            f"either way is not")
+    """Why an interval is its value alone: either way a step of at most the range's
+    resolution was found invalid (what lies closer is not searched)."""
+    return (f"valid at its value only, to the range's resolution "
+            f"({plain_number(resolution, 5)} {unit})")

@@ -457,17 +457,18 @@ def _toward(plank: Plank, way: np.ndarray) -> tuple[int, np.ndarray, float]:
 
 def _end_shift(leaf: Plank, way: np.ndarray, grow: float, design: Design):
     """How a point on ``leaf`` moves when ``_cut`` cuts it shorter at the end toward a
-    face that grows along ``way``: with that end where it lies on it or within the strip
-    cut off (a load on a kick board's top edge stays on its edge), else not at all."""
+    face that grows along ``way``: a point on that end (within the design's tolerance of
+    it) or in the strip cut off comes onto the new end (a load on a kick board's top
+    edge stays on its edge); any other stays where it is."""
     axis, along, cosine = _toward(leaf, way)
-    cut = grow / cosine
-    end = -0.5 * _sizes(leaf)[axis]                 # the cut end, along ``along``
-    reach = end + cut + design.tolerance + tol.ON_PLANK_EPS
+    new_end = -0.5 * _sizes(leaf)[axis] + grow / cosine     # along ``along``
+    slack = design.tolerance + tol.ON_PLANK_EPS
 
     def move(point):
-        if float((np.asarray(point) - leaf.center_array) @ along) <= reach:
-            return tuple(float(v) for v in np.asarray(point) + along * cut)
-        return point
+        short = new_end - float((np.asarray(point) - leaf.center_array) @ along)
+        if short <= 0.0 or short > grow / cosine + slack:
+            return point
+        return tuple(float(v) for v in np.asarray(point) + along * short)
     return move
 
 
