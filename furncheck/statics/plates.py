@@ -140,7 +140,13 @@ def plate_readings(model, case: LoadCase, only: set[int]) -> dict[int, PlateRead
     _KEYS.move_to_end(id(design))
     known = entry[1]
     missing = only - known.keys()
-    if missing:
+    found_all = model.plank_cache.get("plates")
+    if missing and found_all is not None:       # the model's own plates, found already
+        for k in missing:
+            known[k] = None
+        known.update((plate.local, (plate.plank, plate.key)) for plate in found_all
+                     if plate.local in missing)
+    elif missing:
         point_loads = _point_loads(design)
         for k in missing:
             known[k] = None

@@ -381,9 +381,8 @@ def grown(design: Design, geometry: Geometry, thicknesses: dict[str, float],
                 if side is None:
                     return None
                 for leaf in resting[(plank_id, side)]:
-                    moves.setdefault(leaf, []).append(
-                        _end_shift(planks[leaf], axis * side, grow, design))
-                    planks[leaf] = _cut(planks[leaf], axis * side, grow)
+                    planks[leaf], move = _cut(planks[leaf], axis * side, grow, design)
+                    moves.setdefault(leaf, []).append(move)
         elif sides:
             side = -next(iter(sides))
         else:
@@ -455,37 +454,33 @@ def _toward(plank: Plank, way: np.ndarray) -> tuple[int, np.ndarray, float]:
     return axis, axes[:, axis] * (1.0 if cosine > 0.0 else -1.0), abs(cosine)
 
 
-def _end_shift(leaf: Plank, way: np.ndarray, grow: float, design: Design):
-    """How a point on ``leaf`` moves when ``_cut`` cuts it shorter at the end toward a
-    face that grows along ``way``: a point on that end (within the design's tolerance of
-    it) or in the strip cut off comes onto the new end (a load on a kick board's top
-    edge stays on its edge); any other stays where it is."""
-    axis, along, cosine = _toward(leaf, way)
-    new_end = -0.5 * _sizes(leaf)[axis] + grow / cosine     # along ``along``
-    slack = design.tolerance + tol.ON_PLANK_EPS
-
-    def move(point):
-        short = new_end - float((np.asarray(point) - leaf.center_array) @ along)
-        if short <= 0.0 or short > grow / cosine + slack:
-            return point
-        return tuple(float(v) for v in np.asarray(point) + along * short)
-    return move
-
-
 def _sizes(plank: Plank) -> list[float]:
     return [plank.length, plank.width]
 
 
-def _cut(leaf: Plank, way: np.ndarray, grow: float) -> Plank:
-    """``leaf``, standing on a face that moves ``grow`` along ``way`` (a unit vector, from
-    the face into the leaf), cut shorter at that end by what keeps its other end where
-    it was: grow / cos along its own axis (``_cut_side``)."""
+def _cut(leaf: Plank, way: np.ndarray, grow: float, design: Design):
+    """(``leaf`` cut, how a point on it moves): standing on a face that moves ``grow``
+    along ``way`` (a unit vector, from the face into the leaf), it is cut shorter at that
+    end by what keeps its other end where it was, grow / cos along its own axis
+    (``_cut_side``); a point on that end (within the design's tolerance of it) or in the
+    strip cut off comes onto the new end (a load on a kick board's top edge stays on its
+    edge), any other stays where it is."""
     axis, along, cosine = _toward(leaf, way)
     cut = grow / cosine
     sizes = _sizes(leaf)
+    new_end = cut - 0.5 * sizes[axis]                       # along ``along``
+    slack = design.tolerance + tol.ON_PLANK_EPS
+    centre = leaf.center_array
+
+    def move(point):
+        short = new_end - float((np.asarray(point) - centre) @ along)
+        if short <= 0.0 or short > cut + slack:
+            return point
+        return tuple(float(v) for v in np.asarray(point) + along * short)
+
     sizes[axis] -= cut
     return replace(leaf, length=sizes[0], width=sizes[1], center=tuple(
-        float(v) for v in leaf.center_array + along * 0.5 * cut))
+        float(v) for v in centre + along * 0.5 * cut)), move
 
 
 def cut_phrase(design: Design, edited: Design) -> str:
@@ -511,7 +506,7 @@ def _covering(face: Plank, edge: Plank, way: np.ndarray) -> Plank:
     """``face`` lengthened along its in-plane axis nearest ``way`` (the way ``edge`` grew,
     a unit vector), its far end moved, until it reaches ``edge``'s grown face there."""
     axis, along, _ = _toward(face, way)
-    sizes = [face.length, face.width]
+    sizes = _sizes(face)
     reach = float(edge.center_array @ way) + 0.5 * edge.thickness
     end = float(face.center_array @ way) + 0.5 * sizes[axis] * float(along @ way)
     short = (reach - end) / max(float(along @ way), 1e-12)
