@@ -221,6 +221,25 @@ def test_a_tab_indenting_a_line_is_named():
                         "the next token); a tab there: YAML indents with spaces")
 
 
+def test_a_block_indented_out_of_line_says_to_check_the_indentation():
+    """PyYAML's words for a block line indented out of line name its parser's state ('did
+    not find expected key', '... '-' indicator', 'mapping values are not allowed'); the
+    message keeps them, at the line they name, and says what to look at."""
+    item = ("furncheck: 1\nname: x\nplanks:\n  - {id: a, size: [100, 100], center: [0, 0, 6]}"
+            "\n   - {id: b, size: [100, 100], center: [0, 0, 18]}\n")
+    expect(item, "", 5, "did not find expected '-' indicator (while parsing a block "
+                        "collection); check this line's indentation against the list items "
+                        "above it")
+    key = "furncheck: 1\nname: x\nplanks:\n- id: a\n  size: [100, 100]\n   center: [0, 0, 6]\n"
+    expect(key, "", 6, "did not find expected key (while parsing a block mapping); check "
+                       "this line's indentation against the keys above it")
+    nested = "furncheck: 1\n  name: x\n"
+    expect(nested, "", 2, "mapping values are not allowed in this context; check this "
+                          "line's indentation, or quote a value that holds ': '")
+    colon = "furncheck: 1\nname: chair: big\n"
+    expect(colon, "", 2, "or quote a value that holds ': '")
+
+
 def test_lines_are_counted_as_an_editor_counts_them_where_yaml_breaks_more():
     """YAML (1.1, as PyYAML reads it) breaks lines at NEL (U+0085), LS (U+2028) and PS
     (U+2029) too; an editor, grep and a GitHub annotation do not.  A NEL inside a quoted

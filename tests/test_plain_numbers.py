@@ -1,6 +1,7 @@
 """Numbers in human messages are plain (issue 14): ``11,210 N``, never ``1.121e+04 N``."""
 
 import math
+from pathlib import Path
 
 import pytest
 from shop_designs import SIDE_TABLE_RACK
@@ -13,6 +14,8 @@ from furncheck.plain import (
     plain_number,
 )
 from furncheck.report.numbers import format_number, format_percent
+
+CATALOG = Path(__file__).resolve().parents[1] / "designs"
 
 
 @pytest.mark.parametrize(("value", "digits", "text"), [
@@ -127,3 +130,46 @@ def test_a_sag_just_over_its_allowance_reads_over_it(tmp_path):
     assert float(crept) > float(allowed)
     ratio, needed = re.search(r"\(([\d.]+)\)\^\(1/3\) = ([\d.]+) mm", text).groups()
     assert float(ratio) > 1.0 and float(needed) > 18.0
+
+
+@pytest.mark.parametrize(("value", "digits", "text"), [
+    (2.235, 3, "2.24"),                 # its float is 2.23499999999999988...
+    (2.2349999999999994, 3, "2.24"),    # 894 mm / 400, computed one way
+    (2.2350000000000003, 3, "2.24"),    # ... and the other
+    (1.095, 3, "1.1"),                  # 438 mm / 400
+    (6.125, 3, "6.13"),                 # 2450 mm / 400 (exact in binary: half up)
+    (2.5, 1, "3"),
+    (-2.235, 3, "-2.24"),               # half away from zero
+    (2.2345, 3, "2.23"),                # below the half: down
+])
+def test_ties_round_half_up_from_the_decimal_a_number_reads_as(value, digits, text):
+    """A reader rounds the decimal a report shows (the JSON's 2.235) half up, so the
+    messages do too, whichever side of it the float's round-off fell: the same allowance
+    read 'allowed 2.24 mm' in a violation and '2.23 mm allowed' in the suggestion's
+    explanation of it before."""
+    assert plain_number(value, digits) == text
+    assert format_number(value, digits) == text
+
+
+def test_a_violation_and_its_explanation_give_the_same_allowance():
+    """particleboard-shelf-overloaded's sides bow between supports 894 mm apart: allowed
+    894 / 400 = 2.235 mm, 2.24 mm to three digits in both the violation and the
+    suggestion's explanation of it (the two came from floats either side of 2.235)."""
+    from furncheck.check import check_design
+    from furncheck.design import load_design
+    from furncheck.design.model import with_model
+    from furncheck.geometry import analyze
+    from furncheck.report.explanation import need_text
+    from furncheck.suggest.needs import violation_needs
+
+    design = with_model(load_design(CATALOG / "particleboard-shelf-overloaded.yaml"),
+                        "elastic")
+    geometry = analyze(design)
+    report = check_design(design, geometry)
+    sides = [v.message for v in report.violations
+             if v.kind == "sagging" and v.where in ("side_l", "side_r")]
+    assert len(sides) == 2 and all("894 mm apart" in m and "allowed 2.24 mm (span / 400)"
+                                   in m for m in sides)
+    texts = [need_text(n, "mm") for n in violation_needs(design, geometry, report)
+             if n.kind == "sagging" and n.where in ("side_l", "side_r")]
+    assert len(texts) == 2 and all("against 2.24 mm allowed" in t for t in texts)

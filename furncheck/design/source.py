@@ -357,6 +357,9 @@ def _yaml_syntax_error(error: yaml.YAMLError, text: str, source: str) -> DesignE
     if problem_mark is not None and problem_mark.index < len(text) \
             and text[problem_mark.index] == "\t" and "\t" not in message:
         message = f"{message}; a tab there: YAML indents with spaces"
+    elif problem_mark is not None and problem_mark.index < len(text) and problem:
+        hint = next((hint for start, hint in _BLOCK_HINTS if problem.startswith(start)), None)
+        message = message if hint is None else f"{message}; {hint}"
     marks = [m.index for m in (context_mark, problem_mark) if m is not None]
     if editor_line is not None and marks:   # a break the parser saw on the lines it read
         start = text.rfind("\n", 0, min(marks)) + 1      # up to the error may be the
@@ -367,6 +370,17 @@ def _yaml_syntax_error(error: yaml.YAMLError, text: str, source: str) -> DesignE
             message = f"{message}; line {line_of(problem_mark or context_mark)} holds " \
                       f"{shown}, which YAML reads as a line break"
     return DesignError(source, "", line, _one_line(f"YAML syntax error: {message}"))
+
+
+_BLOCK_HINTS = (
+    ("did not find expected key", "check this line's indentation against the keys above it"),
+    ("did not find expected '-' indicator",
+     "check this line's indentation against the list items above it"),
+    ("mapping values are not allowed",
+     "check this line's indentation, or quote a value that holds ': '"),
+)
+"""PyYAML's problems of a block indented out of line (its words name the parser's state,
+not the file's mistake) -> what to look at."""
 
 
 _YAML_ONLY_BREAKS = "\x85\u2028\u2029"

@@ -66,12 +66,15 @@ def json_ready(value: Any) -> Any:
 
 
 def format_number(value: float, digits: int = REPORT_SIGNIFICANT_DIGITS) -> str:
-    """``value`` for human eyes: rounded like JSON, in plain digits without trailing
-    zeros (``812``, ``0.125``, ``12,500``; ``furncheck.plain.plain_number``)."""
+    """``value`` for human eyes: rounded as the JSON report rounds it, then to ``digits``
+    significant digits half up, in plain digits without trailing zeros (``812``,
+    ``0.125``, ``12,500``; ``furncheck.plain.plain_number``): what a reader of the JSON
+    report's number would write (its 2.235 reads 2.24)."""
     value = float(value)
     if not math.isfinite(value):
         return str(value)
-    return plain_number(round_significant(value, digits), digits)
+    return plain_number(round_significant(value, max(digits, REPORT_SIGNIFICANT_DIGITS)),
+                        digits)
 
 
 def format_percent(fraction: float) -> str:
