@@ -166,7 +166,7 @@ def plate_grid(cells: int, floor: float, patch_cells: int, poisson: float, merge
     hx = np.tile(np.diff(xs), ny - 1)                # per element, row-major
     hy = np.repeat(np.diff(ys), nx - 1)
     weights = np.column_stack([hy / hx, hx / hy, np.ones_like(hx), hy, hx, hx * hy])
-    K_elements = weights @ terms                    # (nE, 144)
+    upper = weights @ terms[:, _UPPER_FLAT]         # (nE, 78): each element's upper triangle
     X, Y = np.tile(xs, ny), np.repeat(ys, nx)       # the nodes, row-major
     supported = _supported_nodes(xs, ys, segments)
     held = np.column_stack([X[supported], Y[supported]])
@@ -175,10 +175,11 @@ def plate_grid(cells: int, floor: float, patch_cells: int, poisson: float, merge
         return None
     fixed = np.zeros(3 * nx * ny, dtype=bool)
     fixed[3 * supported] = True
-    rank, dofs, low, high = _layout(nx, ny)
+    layout = _layout(nx, ny)
+    rank, dofs = layout.rank, layout.dofs
     grip_dofs, grips = _grips(xs, ys, segments)
     rows, cols, values = _stiffener_entries(xs, ys, stiffeners)
-    factor = _banded_factor(low, high, K_elements[:, _UPPER_FLAT].ravel(),
+    factor = _banded_factor(layout, upper.ravel(),
                             (np.concatenate([rank[grip_dofs], rank[rows]]),
                              np.concatenate([rank[grip_dofs], rank[cols]]),
                              np.concatenate([grips, values])), rank[fixed])
@@ -205,19 +206,33 @@ def plate_grid(cells: int, floor: float, patch_cells: int, poisson: float, merge
                      (cx, cy), hx * hy, (X, Y), between)
 
 
+class _Layout(NamedTuple):
+    """An nx x ny grid's numbering (``_layout``): each unknown's place in the banded
+    matrix (``_ranks``), each element's unknowns (``_element_dofs``), and for the
+    elements' upper triangles (``_UPPER``, element by element) their flat places in the
+    band storage (``bands.ravel()``, ``_banded_factor``), with the band's width (the
+    bands above the diagonal) and its order."""
+
+    rank: np.ndarray
+    dofs: np.ndarray
+    flat: np.ndarray
+    width: int
+    size: int
+
+
 @functools.lru_cache(maxsize=tol.PLATE_CACHE)
-def _layout(nx: int, ny: int) -> tuple[np.ndarray, ...]:
-    """An nx x ny grid's numbering: (3 nx ny,) each unknown's place in the banded matrix
-    (``_ranks``), (nE, 12) each element's unknowns (``_element_dofs``), and the places
-    (row <= column) of each element's upper triangle (``_UPPER``, (nE 78,) each).
-    Read-only: the cache shares them among the plates of one grid's shape."""
+def _layout(nx: int, ny: int) -> _Layout:
+    """The ``_Layout`` of an nx x ny grid.  Read-only: the cache shares it among the plates
+    of one grid's shape."""
     rank = _ranks(nx, ny)
     dofs = _element_dofs(nx, ny)
     first, second = rank[dofs][:, _UPPER[0]], rank[dofs][:, _UPPER[1]]
-    layout = (rank, dofs, np.minimum(first, second).ravel(), np.maximum(first, second).ravel())
-    for array in layout:
+    low, high = np.minimum(first, second).ravel(), np.maximum(first, second).ravel()
+    size, width = len(rank), int((high - low).max(initial=0))
+    flat = (width + low - high) * size + high
+    for array in (rank, dofs, flat):
         array.setflags(write=False)
-    return layout
+    return _Layout(rank, dofs, flat, width, size)
 
 
 def _ranks(nx: int, ny: int) -> np.ndarray:
@@ -233,26 +248,26 @@ _UPPER = np.triu_indices(12)           # an element matrix's upper triangle, dia
 _UPPER_FLAT = _UPPER[0] * 12 + _UPPER[1]
 
 
-def _banded_factor(low: np.ndarray, high: np.ndarray, element_values: np.ndarray,
-                   entries: tuple, fixed: np.ndarray) -> np.ndarray | None:
+def _banded_factor(layout: _Layout, element_values: np.ndarray, entries: tuple,
+                   fixed: np.ndarray) -> np.ndarray | None:
     """The banded Cholesky factor (LAPACK's upper band storage) of the plate's stiffness:
-    the elements' upper triangles (``element_values``) at their places (``low`` <=
-    ``high``, ``_layout``) and the ``entries`` (rows, columns, values, both triangles
-    given: the grips, the stiffeners), with the unknowns held at zero (``fixed``: their
-    places) as identity rows and columns (their right-hand sides are zero, and so are
-    they); None where the supports leave the plate free to move (not positive
-    definite)."""
+    the elements' upper triangles (``element_values``) at their places (``layout.flat``)
+    and the ``entries`` (rows, columns, values, both triangles given: the grips on the
+    diagonal, the stiffeners between the nodes of an element's edge, both inside the
+    elements' band), with the unknowns held at zero (``fixed``: their places) as
+    identity rows and columns (their right-hand sides are zero, and so are they); None
+    where the supports leave the plate free to move (not positive definite)."""
     from furncheck.statics.lapack import banded_cholesky
 
     rows, cols, more = entries
     upper = rows <= cols
-    rows = np.concatenate([low, rows[upper]])
-    cols = np.concatenate([high, cols[upper]])
-    values = np.concatenate([element_values, more[upper]])
-    n = int(cols.max()) + 1
-    width = int((cols - rows).max())
-    bands = np.bincount((width + rows - cols) * n + cols, weights=values,
+    n, width = layout.size, layout.width
+    bands = np.bincount(layout.flat, weights=element_values,
                         minlength=(width + 1) * n).reshape(width + 1, n)
+    rows, cols = rows[upper], cols[upper]
+    if rows.size and int((cols - rows).max()) > width:
+        raise ValueError("a grip or stiffener entry outside the elements' band")
+    np.add.at(bands, (width + rows - cols, cols), more[upper])      # in order, as one sum
     bands[:, fixed] = 0.0                           # their columns, to the diagonal
     bands[width, fixed] = 1.0
     offsets = np.arange(1, width + 1)
