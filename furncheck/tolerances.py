@@ -260,10 +260,10 @@ about 0.3 MB, a 1200 x 600 top's with PLATE_GRID_LINES lines each way at most ab
 20 MB."""
 
 PLATE_GRID_LINES = 60
-"""At most this many grid lines each way in a plate (``plate_mesh.grid_lines``): where the edges
-of many point loads (of every case) would pass it, they are left out, and each load is
-shared by the elements it overlaps all the same (a 1.2 x 0.6 m top with 30 point loads
-took 87 MB and half a second to factor with them in)."""
+"""At most this many grid lines each way in a plate (``plate_mesh.grid_lines``): where the
+edges of many point loads (of one case: each case has its own grid) would pass it, they
+are left out, and each load is shared by the elements it overlaps all the same (a 1.2 x
+0.6 m top with 30 point loads took 87 MB and half a second to factor with them in)."""
 
 PLATE_RATES_FROM = 0.8
 """The force sensitivities (``derivatives._plate_sides``) read how a plank's plate reading
@@ -304,7 +304,8 @@ in 64s, a few megabytes."""
 PLATE_SLANT = 1e-6
 """A joint line whose direction, in a plate plank's plane, leans from both its axes by
 more than this (its sine) is not a plate support (``plate_supports._support_segments``: the
-grid runs along the plank's axes)."""
+grid runs along the plank's axes); a point load whose force leans off a plate plank's face
+by this much or less pushes along it, not across (``plates._case_loads``: no patch)."""
 
 SUPPORT_STATION_LENGTH = 0.25
 """m: elastic model: a plank that touches the floor or a wall along its beam (a board lying

@@ -212,6 +212,13 @@ def test_a_plank_loaded_in_its_plane_is_not_a_plate() -> None:
     design = parse_design(STEP_BOX, "d.yaml", "yaml")
     assert plate_supports._loaded_across(design, design.plank("top"))
     assert not plate_supports._loaded_across(design, design.plank("front"))
+    # an end standing on edge (turned -90 degrees about y: its normal's z is 6e-17, not
+    # 0) with a weight on its top edge: the weight's component across is round-off
+    weighted = parse_design(STEP_BOX + "  - {plank: end_l, mass: 10, at: [-194, 0, 288]}\n",
+                            "d.yaml", "yaml")
+    end = weighted.plank("end_l")
+    assert float(np.dot((0.0, 0.0, -98.1), end.axes[2])) != 0.0
+    assert not plate_supports._loaded_across(weighted, end)
 
 
 def test_a_pure_twist_gives_the_twisting_moment_alone() -> None:
@@ -367,3 +374,29 @@ def test_a_load_reads_the_same_bit_for_bit_whatever_is_solved_with_it() -> None:
         assert w.tobytes() == batch[k][0].tobytes() and stress == batch[k][1]
     again = plate_solutions(plate.grid, loads[5:] + loads[:5])
     assert again[3][0].tobytes() == batch[8][0].tobytes() and again[3][1] == batch[8][1]
+
+
+def test_a_cases_plate_reading_is_its_own_whatever_the_other_cases_load() -> None:
+    """Each case reads a plate on the grid through its own loads' patches: the step box's
+    80 kg case reads the same top sag and stress (to 1e-12 of themselves) with a second
+    case that puts 40 kg near a corner of the top (its patch's edges, on one grid with
+    the first case's, moved the first case's sag by 0.14 %) and a third that
+    pushes the top along its face (no patch: nothing across the face)."""
+    alone = _top(STEP_BOX)[1]
+    more = STEP_BOX + """\
+load_cases:
+  corner:
+    - {plank: top, mass: 40, at: [130, 90, 300]}
+  push:
+    - {plank: top, force: [200, 0, 0], at: [0, 0, 300]}
+"""
+    with_others = _top(more)[1]
+    assert (with_others.sag, with_others.stress) == pytest.approx(
+        (alone.sag, alone.stress), rel=1e-12)
+    assert with_others.sag > 0.5
+    # turned about the vertical, the push's force across the top is round-off: no patch
+    import physics_designs as pd
+    import yaml
+
+    turned = _top(pd.to_text(pd.rigid_motion(yaml.safe_load(more), 37.0, 800.0, -1700.0)))[1]
+    assert (turned.sag, turned.stress) == pytest.approx((alone.sag, alone.stress), rel=1e-9)

@@ -68,8 +68,17 @@ def _loaded_across(design: Design, plank: Plank) -> bool:
     normal = plank.axes[2]
     if abs(normal[2]) > tol.PLATE_SLANT:
         return True
-    return any(abs(float(np.dot(load.force, normal))) > 0.0
+    return any(force_across(load.force, normal) != 0.0
                for case in design.load_cases for load in case.loads if load.plank == plank.id)
+
+
+def force_across(force, normal) -> float:
+    """N: a force's component along a plank's face ``normal``; 0 where it is PLATE_SLANT of
+    the force or less (a push along a turned plank's face, or a weight on a plank standing
+    on edge, its normal off the horizontal by round-off: along the face, in any turn of
+    the design)."""
+    across = float(np.dot(force, normal))
+    return 0.0 if abs(across) <= tol.PLATE_SLANT * float(np.linalg.norm(force)) else across
 
 
 def _holds_beam(plank: Plank, segments, axis: int) -> bool:

@@ -15,9 +15,10 @@ at its centre).  So such a plank is also solved as a plate, on its own:
   its middle, and hold it somewhere off that line too; and whose weight or loads push
   across its face;
 * the plate (``statics.plate_mesh``): Mindlin, bilinear elements with selectively
-  reduced shear integration, on a grid through every support line's ends and load
-  patch's edges, about PLATE_CELLS elements across its shorter side, factored as a band
-  (LAPACK's pbtrf, the nodes numbered across the shorter direction first);
+  reduced shear integration, on a grid through every support line's ends and the edges
+  of the load patches of the case it is read in (each case on its own grid: ``_solved``),
+  about PLATE_CELLS elements across its shorter side, factored as a band (LAPACK's
+  pbtrf, the nodes numbered across the shorter direction first);
 * its supports: those joint lines, simply supported, with each nail row's grip against
   turning about its line as a spring (contract 3a's n nail_withdrawal (t/2)^2, spread
   along the line), as the beams have it;
@@ -53,7 +54,7 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.design.model import Design, LoadCase, Plank
 from furncheck.statics.plate_mesh import PlateGrid, plate_grid, plate_solutions, sag_span
-from furncheck.statics.plate_supports import held_planks
+from furncheck.statics.plate_supports import force_across, held_planks
 
 
 class PlatePlank(NamedTuple):
@@ -85,25 +86,22 @@ def each_plate(model) -> Iterator[PlatePlank]:
     if cached is not None:
         yield from cached
         return
-    point_loads = _point_loads(model.design)
     found = []
     for k, plank, lines, rails in held_planks(model):
-        plate = _plate(model, k, plank, lines, rails, point_loads.get(plank.id, ()))
+        plate = _plate(model, k, plank, lines, rails)
         if plate is not None:
             found.append(plate)
             yield plate
     model.plank_cache["plates"] = tuple(found)
 
 
-def _point_loads(design: Design) -> dict[str, list]:
-    """Per plank id, the point loads on it of every load case (their patches' edges are
-    its plate's grid lines)."""
-    point_loads: dict[str, list] = {}
-    for case in design.load_cases:
-        for load in case.loads:
-            if not load.spread:
-                point_loads.setdefault(load.plank, []).append(load)
-    return point_loads
+def _first_patches(design: Design, plank: Plank) -> list:
+    """The patches of the first load case's point loads on ``plank`` that push across its
+    face (``_load_patches``): the grid a plate plank is found on, the first case's."""
+    first = design.load_cases[0] if design.load_cases else None
+    if first is None:
+        return []
+    return list(_load_patches(_plank_loads(design, plank, [first])[0]))
 
 
 class PlateReading(NamedTuple):
@@ -147,13 +145,11 @@ def plate_readings(model, case: LoadCase, only: set[int]) -> dict[int, PlateRead
         known.update((plate.local, (plate.plank, plate.key)) for plate in found_all
                      if plate.local in missing)
     elif missing:
-        point_loads = _point_loads(design)
         for k in missing:
             known[k] = None
         for k, plank, lines, rails in held_planks(model, missing):
-            patches = [_patch(plank, load) for load in point_loads.get(plank.id, ())]
-            known[k] = (plank, _plate_key(plank, design.material_of(plank), lines, patches,
-                                          rails))
+            known[k] = (plank, _plate_key(plank, design.material_of(plank), lines,
+                                          _first_patches(design, plank), rails))
     found = {}
     for k in sorted(only):
         if known[k] is None:
@@ -175,33 +171,52 @@ def _reading(design: Design, plank: Plank, key: tuple, case: LoadCase) -> PlateR
 
 
 def _solved(key: tuple, grid: PlateGrid | None, loads: list) -> list[PlateReading | None]:
-    """The readings of the plate of inputs ``key`` (its factored ``grid``, or None: found
-    by ``key`` where a reading is missing) under each of ``loads`` (``_case_loads``),
-    each kept by the plate's inputs and its loads (``_READINGS``, the last PLATE_READINGS
-    asked, with the tolerance ``sag_span`` reads that the key leaves out): those
-    missing are solved together, in batches of PLATE_BATCH, and each is a function of
-    the plate and its loads alone (``plate_solutions`` solves each load bit for bit as
-    alone: ``tests/test_plates.py``), whatever was asked with it or before it.  None
-    where the supports leave the plate free."""
-    wanted = [(key, tol.NODE_MERGE_ROUNDOFF, _load_key(one)) for one in loads]
+    """The readings of the plate of inputs ``key`` under each of ``loads``
+    (``_case_loads``), each on the grid through its own load's patches: the plate of
+    ``key`` with the patches of ``key`` replaced by that load's (``_grid_key``; ``grid``,
+    the factored plate of ``key`` itself, or None: found by its key where asked for), so
+    that a case's reading is a function of its own loads, whatever the other cases load
+    (with every case's patches in one grid, one case's sag moved by a percent or two
+    when another case's load was added).  Each reading is kept by its grid's inputs and
+    its loads (``_READINGS``, the last PLATE_READINGS asked, with the tolerance
+    ``sag_span`` reads that the key leaves out): those missing are solved together per
+    grid, in batches of PLATE_BATCH, and each is a function of the plate and its loads
+    alone (``plate_solutions`` solves each load bit for bit as alone:
+    ``tests/test_plates.py``), whatever was asked with it or before it.  None where the
+    supports leave the plate free."""
+    wanted = [(_grid_key(key, one), tol.NODE_MERGE_ROUNDOFF, _load_key(one)) for one in loads]
     found = {want: _READINGS.get(want, _MISSING) for want in wanted}
-    missing = [(want, one) for want, one in zip(wanted, loads) if found[want] is _MISSING]
-    missing = list(dict(missing).items())           # each distinct load once
-    if missing:
-        grid = plate_grid(*key) if grid is None else grid
-        for start in range(0, len(missing), tol.PLATE_BATCH):
-            some = missing[start:start + tol.PLATE_BATCH]
-            solutions = [None] * len(some) if grid is None else \
-                plate_solutions(grid, [one for _, one in some])
+    missing = dict((want, one) for want, one in zip(wanted, loads)
+                   if found[want] is _MISSING)                  # each distinct load once
+    by_grid: dict[tuple, list] = {}
+    for want, one in missing.items():
+        by_grid.setdefault(want[0], []).append((want, one))
+    for grid_key, asked in by_grid.items():
+        on = grid if grid is not None and grid_key == key else plate_grid(*grid_key)
+        for start in range(0, len(asked), tol.PLATE_BATCH):
+            some = asked[start:start + tol.PLATE_BATCH]
+            solutions = [None] * len(some) if on is None else \
+                plate_solutions(on, [one for _, one in some])
             for (want, _), solution in zip(some, solutions):
                 found[want] = None if solution is None else \
-                    PlateReading(*sag_span(grid, solution[0]), solution[1], (grid.xs, grid.ys))
+                    PlateReading(*sag_span(on, solution[0]), solution[1], (on.xs, on.ys))
     for want in found:
         _READINGS[want] = found[want]
         _READINGS.move_to_end(want)
     while len(_READINGS) > tol.PLATE_READINGS:
         _READINGS.popitem(last=False)
     return [found[want] for want in wanted]
+
+
+def _grid_key(key: tuple, loads: tuple) -> tuple:
+    """``key`` (``_plate_key``) with its patches those of ``loads`` (``_load_patches``)."""
+    return (*key[:-2], _patch_key(_load_patches(loads)), key[-1])
+
+
+def _load_patches(loads: tuple) -> list:
+    """The patches of a plate's loads (``_case_loads``) whose forces push across its face
+    (their edges are its grid's lines; a force along the face has none)."""
+    return [patch for patch, force in loads[1] if force != 0.0]
 
 
 _MISSING = object()
@@ -245,14 +260,13 @@ def _load_key(loads: tuple) -> tuple:
     return float(uniform), tuple((tuple(patch), float(force)) for patch, force in points)
 
 
-def _plate(model, k: int, plank: Plank, segments, stiffeners,
-           point_loads) -> PlatePlank | None:
+def _plate(model, k: int, plank: Plank, segments, stiffeners) -> PlatePlank | None:
     """The factored plate of plank ``plank`` (local ``k``) on ``segments``, stiffened by
-    ``stiffeners``, its grid through the patches of its ``point_loads`` (of every case)
-    too."""
-    patches = [_patch(plank, load) for load in point_loads]
-    return plate_for(plank, model.design.material_of(plank), segments, patches, k,
-                     stiffeners)
+    ``stiffeners``, on the grid of the first load case (``_first_patches``; each case is
+    read on its own, ``_solved``)."""
+    design = model.design
+    return plate_for(plank, design.material_of(plank), segments,
+                     _first_patches(design, plank), k, stiffeners)
 
 
 def plate_for(plank: Plank, material, segments, patches, local: int = 0,
@@ -286,9 +300,15 @@ def _plate_key(plank: Plank, material, segments, patches, stiffeners) -> tuple:
             float(material.elastic_modulus), float(material.shear_modulus),
             tuple(((nm(a[0]), nm(a[1])), (nm(b[0]), nm(b[1])), float(f"{grip:.9g}"))
                   for a, b, grip in segments),
-            tuple(tuple(nm(v) for v in patch) for patch in patches),
+            _patch_key(patches),
             tuple(((nm(a[0]), nm(a[1])), (nm(b[0]), nm(b[1])), float(f"{rigidity:.9g}"))
                   for a, b, rigidity in stiffeners))
+
+
+def _patch_key(patches) -> tuple:
+    """Patches ((x0, x1, y0, y1) m each) as a key: each rounded to a nanometre, each once,
+    in order (the grid they make does not depend on their order)."""
+    return tuple(sorted({tuple(round(float(v), 9) for v in patch) for patch in patches}))
 
 
 def _patch(plank: Plank, load) -> tuple[float, float, float, float]:
@@ -344,13 +364,16 @@ def _plank_loads(design: Design, plank: Plank, cases: list[LoadCase]) -> list:
 def _case_loads(design: Design, loads, plank: Plank) -> tuple[float, list]:
     """(Pa, [(patch, N)]): the pressure across the plank's face of its weight and the
     spread ones of ``loads`` (a case's loads on it), and each of its point loads, its
-    force across the face and its patch (``_patch``); along the face normal, positive."""
+    force across the face and its patch (``_patch``); along the face normal, positive.
+    A force across the face of PLATE_SLANT of itself or less is along the face
+    (``plate_supports.force_across``): its patch makes no grid lines
+    (``_load_patches``)."""
     normal = np.asarray(plank.axes[2])
     area = plank.length * plank.width
     uniform = -design.plank_mass(plank) * tol.GRAVITY * normal[2] / area
     points = []
     for load in loads:
-        across = float(np.dot(load.force, normal))
+        across = force_across(load.force, normal)
         if load.spread:
             uniform += across / area
         else:
