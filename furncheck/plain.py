@@ -24,11 +24,14 @@ GROUP_FROM_DIGITS = 5
 """Integer parts with at least this many digits are grouped in threes by commas."""
 
 READ_DIGITS = 12
-"""Significant digits a float is read to before ``plain_number`` rounds it: its binary
-round-off beyond them is noise.  The same allowance computed twice, 894 mm / 400, came
-out 2.2350000000000003 in a violation and 2.2349999999999994 in the suggestion's
-explanation, read 2.24 and 2.23 mm; read as 2.235 first, both round half up to 2.24, as a
-reader rounds the 2.235 that the JSON report gives."""
+"""Significant digits a float is read to before ``plain_number`` rounds it (at least; more
+where more are asked for, up to FLOAT_DIGITS): its binary round-off beyond them is
+noise.  The same allowance computed twice, 894 mm / 400, came out 2.2350000000000003 in
+a violation and 2.2349999999999994 in the suggestion's explanation, read 2.24 and 2.23
+mm; read as 2.235 first, both round half up to 2.24, as a reader rounds 2.235."""
+
+FLOAT_DIGITS = 17
+"""The most significant digits ``plain_number`` writes: a float has no more."""
 
 PLAIN_RANGE = (1e-9, 1e15)
 """Sizes written out positionally; beyond them (a 1e308 capacity in a bad file) a number
@@ -38,7 +41,8 @@ is written as ``1.2e+308``: positional it would run to hundreds of digits."""
 def plain_number(value: float, digits: int = MESSAGE_SIGNIFICANT_DIGITS) -> str:
     """``value`` rounded to ``digits`` significant digits, in plain positional notation:
     half up, from the decimal it reads as to READ_DIGITS digits (2.235 reads 2.24, as a
-    person rounds it, where its float, 2.23499999999999988..., would round down).
+    person rounds it, where its float, 2.23499999999999988..., would round down); at
+    most FLOAT_DIGITS digits.
 
     >>> plain_number(1.121e4), plain_number(919.234), plain_number(0.000123)
     ('11,210', '919.2', '0.000123')
@@ -58,8 +62,9 @@ def plain_number(value: float, digits: int = MESSAGE_SIGNIFICANT_DIGITS) -> str:
         if "." in mantissa:
             mantissa = mantissa.rstrip("0").rstrip(".")
         return f"{mantissa}e{int(exponent):+d}"
-    read = Decimal(f"{value:.{READ_DIGITS - 1}e}")
-    place = Decimal(1).scaleb(read.adjusted() - max(digits, 1) + 1)
+    digits = min(max(digits, 1), FLOAT_DIGITS)
+    read = Decimal(f"{value:.{max(READ_DIGITS, digits) - 1}e}")
+    place = Decimal(1).scaleb(read.adjusted() - digits + 1)
     rounded = read.quantize(place, rounding=ROUND_HALF_UP).normalize()
     text = format(rounded, "f")
     whole = text.lstrip("-").split(".", 1)[0]

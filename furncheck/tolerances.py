@@ -297,7 +297,8 @@ its beam's."""
 
 PLATE_BATCH = 64
 """A plate's distinct loads not yet read (planks alike share one factored plate: every
-plank's loads in every case) are solved this many at a time (``plates._solved``): a
+plank's loads in every case with the same patches) are solved this many at a time
+(``plates._solved``): a
 2,000-plank wall's 1,960 shelves at once held about 75 MB of moments and displacements;
 in 64s, a few megabytes."""
 

@@ -238,6 +238,18 @@ def test_a_block_indented_out_of_line_says_to_check_the_indentation():
                           "line's indentation, or quote a value that holds ': '")
     colon = "furncheck: 1\nname: chair: big\n"
     expect(colon, "", 2, "or quote a value that holds ': '")
+    # the pure-Python parser's words, where libyaml is missing
+    import yaml
+
+    from furncheck.design.source import _yaml_syntax_error
+
+    for text, line in ((item, 5), (key, 6)):
+        with pytest.raises(yaml.YAMLError) as raised:
+            yaml.load(text, Loader=yaml.SafeLoader)
+        error = _yaml_syntax_error(raised.value, text, "d.yaml")
+        assert error.line == line and error.message.endswith(
+            "check this line's indentation against the lines "
+            "above it"), error.message
 
 
 def test_lines_are_counted_as_an_editor_counts_them_where_yaml_breaks_more():

@@ -70,7 +70,8 @@ def test_plain_length_is_in_the_design_unit():
 
 def test_report_helpers_use_plain_numbers():
     assert format_number(1.25e6) == "1,250,000"            # :.6g wrote 1.25e+06
-    assert format_number(0.00001234) == "0.000012"          # rounded to 6 decimals first
+    assert format_number(0.00001234) == "0.00001234"        # as a message writes it
+    assert format_number(-3e-14) == "0"                     # a solver's round-off
     assert format_percent(112.1) == "11,210 %"
     assert format_percent(0.42) == "42 %"
 
@@ -141,6 +142,9 @@ def test_a_sag_just_over_its_allowance_reads_over_it(tmp_path):
     (2.5, 1, "3"),
     (-2.235, 3, "-2.24"),               # half away from zero
     (2.2345, 3, "2.23"),                # below the half: down
+    (2.2349996, 3, "2.23"),             # near the tie, either side: each path alike
+    (2.2350004, 3, "2.24"),
+    (123456789012345.0, 15, "123,456,789,012,345"),    # more digits asked: read to them
 ])
 def test_ties_round_half_up_from_the_decimal_a_number_reads_as(value, digits, text):
     """A reader rounds the decimal a report shows (the JSON's 2.235) half up, so the
@@ -149,6 +153,17 @@ def test_ties_round_half_up_from_the_decimal_a_number_reads_as(value, digits, te
     explanation of it before."""
     assert plain_number(value, digits) == text
     assert format_number(value, digits) == text
+
+
+def test_percent_ties_round_half_up_and_round_off_reads_zero():
+    """Whole percents round a tie half up as every number in a message does (12.5 % and
+    14.5 % read 13 % and 15 %; Python's round() gave 12 % and 14 %); a utilization of
+    round-off reads 0 %; 40 digits asked for are the float's 17."""
+    assert format_percent(0.125) == "13 %"
+    assert format_percent(0.145) == "15 %"
+    assert format_percent(0.00145) == "0.15 %"
+    assert format_percent(1e-20) == "0 %"
+    assert plain_number(1.0 / 3.0, 40) == "0.33333333333333331"
 
 
 def test_a_violation_and_its_explanation_give_the_same_allowance():

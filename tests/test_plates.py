@@ -219,6 +219,11 @@ def test_a_plank_loaded_in_its_plane_is_not_a_plate() -> None:
     end = weighted.plank("end_l")
     assert float(np.dot((0.0, 0.0, -98.1), end.axes[2])) != 0.0
     assert not plate_supports._loaded_across(weighted, end)
+    # ... and read as a plate's load, it pushes nothing across and makes no grid lines
+    load = weighted.load_cases[0].loads[-1]
+    _, points = plates._case_loads(weighted, [load], end)
+    assert [force for _, force in points] == [0.0]
+    assert plates._load_patches((0.0, points)) == []
 
 
 def test_a_pure_twist_gives_the_twisting_moment_alone() -> None:
@@ -381,7 +386,8 @@ def test_a_cases_plate_reading_is_its_own_whatever_the_other_cases_load() -> Non
     80 kg case reads the same top sag and stress (to 1e-12 of themselves) with a second
     case that puts 40 kg near a corner of the top (its patch's edges, on one grid with
     the first case's, moved the first case's sag by 0.14 %) and a third that
-    pushes the top along its face (no patch: nothing across the face)."""
+    pushes the top along its face (no patch: nothing across the face), in any turn of
+    the design."""
     alone = _top(STEP_BOX)[1]
     more = STEP_BOX + """\
 load_cases:
@@ -394,7 +400,7 @@ load_cases:
     assert (with_others.sag, with_others.stress) == pytest.approx(
         (alone.sag, alone.stress), rel=1e-12)
     assert with_others.sag > 0.5
-    # turned about the vertical, the push's force across the top is round-off: no patch
+    # and turned about the vertical and moved, the same
     import physics_designs as pd
     import yaml
 

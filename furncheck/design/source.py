@@ -378,9 +378,11 @@ _BLOCK_HINTS = (
      "check this line's indentation against the list items above it"),
     ("mapping values are not allowed",
      "check this line's indentation, or quote a value that holds ': '"),
+    ("expected <block end>", "check this line's indentation against the lines above it"),
 )
 """PyYAML's problems of a block indented out of line (its words name the parser's state,
-not the file's mistake) -> what to look at."""
+not the file's mistake; the last, the pure-Python parser's where libyaml is missing) ->
+what to look at."""
 
 
 _YAML_ONLY_BREAKS = "\x85\u2028\u2029"

@@ -32,7 +32,8 @@ SHOWN = 8
 def _n(value: float, digits: int = DIGITS) -> str:
     """``digits`` significant digits, whole units at least (1250, not 1.25e+03); more than
     DIGITS (``_digits``: a value told from its limit) as ``plain_number`` writes them,
-    without the report's rounding to 6 decimals first (a metre design's sag)."""
+    where ``format_number`` writes 0 below the report's 6 decimals (a metre design's
+    small sag)."""
     whole = len(str(int(abs(round(value)))))
     if digits > DIGITS:
         return plain_number(value, max(digits, whole))

@@ -66,15 +66,18 @@ def json_ready(value: Any) -> Any:
 
 
 def format_number(value: float, digits: int = REPORT_SIGNIFICANT_DIGITS) -> str:
-    """``value`` for human eyes: rounded as the JSON report rounds it, then to ``digits``
-    significant digits half up, in plain digits without trailing zeros (``812``,
-    ``0.125``, ``12,500``; ``furncheck.plain.plain_number``): what a reader of the JSON
-    report's number would write (its 2.235 reads 2.24)."""
+    """``value`` for human eyes, as every message writes it (``furncheck.plain.
+    plain_number``: ``digits`` significant digits, a tie half up from the decimal it reads
+    as, plain digits without trailing zeros: ``812``, ``0.125``, ``12,500``), so that a
+    report's text and a violation's message write one number alike (894 mm / 400 reads
+    2.24 in both); 0 where the JSON report rounds it to 0 (REPORT_DECIMALS: a solver's
+    round-off)."""
     value = float(value)
     if not math.isfinite(value):
         return str(value)
-    return plain_number(round_significant(value, max(digits, REPORT_SIGNIFICANT_DIGITS)),
-                        digits)
+    if round(value, REPORT_DECIMALS) == 0.0:
+        return "0"
+    return plain_number(value, digits)
 
 
 def format_percent(fraction: float) -> str:
@@ -86,7 +89,8 @@ def format_percent(fraction: float) -> str:
     percent = float(fraction) * 100.0
     if not math.isfinite(percent):
         return f"{percent} %"
-    if abs(percent) >= 1.0 or percent == 0.0:
-        whole = round(percent)
-        return f"{plain_number(whole, max(1, len(str(abs(whole)))))} %"
-    return f"{plain_number(round_significant(percent, 2), 2)} %"
+    if round(percent, REPORT_DECIMALS) == 0.0:     # a solver's round-off
+        return "0 %"
+    if abs(percent) >= 1.0:                         # whole percents, a tie half up
+        return f"{plain_number(percent, len(str(int(abs(percent)))))} %"
+    return f"{plain_number(percent, 2)} %"

@@ -38,8 +38,9 @@ contacts' forces stay the beam model's.  The sensitivities of ``range`` and ``su
 read a plate's changes where its reading is its plank's and near its limit
 (``plate_readings``, ``derivatives._plate_sides``); every range end and suggestion is
 checked in full, plate included.
-Planks alike (a bookcase's shelves) and a plank that an edit leaves as it was share one
-factored plate (``plate_for``: its inputs rounded to a nanometre).
+Planks alike (a bookcase's shelves), cases with the same patches on one plank, and a
+plank that an edit leaves as it was share one factored plate (``plate_for``: its inputs
+rounded to a nanometre).
 """
 
 from __future__ import annotations
@@ -59,7 +60,8 @@ from furncheck.statics.plate_supports import force_across, held_planks
 
 class PlatePlank(NamedTuple):
     """One plank checked as a plate: its local index in the model, the plank, its
-    ``PlateGrid`` and the grid's inputs (``_plate_key``: its readings are kept by them)."""
+    ``PlateGrid`` on its first case's patches (``_first_patches``) and that grid's inputs
+    (``_plate_key``: each case's grid is this key with its own patches, ``_grid_key``)."""
 
     local: int
     plank: Plank
@@ -87,21 +89,28 @@ def each_plate(model) -> Iterator[PlatePlank]:
         yield from cached
         return
     found = []
+    first = _first_case_loads(model.design)
     for k, plank, lines, rails in held_planks(model):
-        plate = _plate(model, k, plank, lines, rails)
+        plate = _plate(model, k, plank, lines, rails, first.get(plank.id, ()))
         if plate is not None:
             found.append(plate)
             yield plate
     model.plank_cache["plates"] = tuple(found)
 
 
-def _first_patches(design: Design, plank: Plank) -> list:
-    """The patches of the first load case's point loads on ``plank`` that push across its
-    face (``_load_patches``): the grid a plate plank is found on, the first case's."""
-    first = design.load_cases[0] if design.load_cases else None
-    if first is None:
-        return []
-    return list(_load_patches(_plank_loads(design, plank, [first])[0]))
+def _first_case_loads(design: Design) -> dict[str, list]:
+    """Per plank id, the first load case's loads on it (``_first_patches``)."""
+    loads: dict[str, list] = {}
+    for load in design.load_cases[0].loads if design.load_cases else ():
+        loads.setdefault(load.plank, []).append(load)
+    return loads
+
+
+def _first_patches(design: Design, plank: Plank, loads) -> list:
+    """The patches of the first load case's point loads on ``plank`` (``loads``: its
+    entry of ``_first_case_loads``) that push across its face (``_load_patches``): the
+    grid a plate plank is found on, the first case's."""
+    return _load_patches(_case_loads(design, loads, plank))
 
 
 class PlateReading(NamedTuple):
@@ -147,9 +156,11 @@ def plate_readings(model, case: LoadCase, only: set[int]) -> dict[int, PlateRead
     elif missing:
         for k in missing:
             known[k] = None
+        first = _first_case_loads(design)
         for k, plank, lines, rails in held_planks(model, missing):
-            known[k] = (plank, _plate_key(plank, design.material_of(plank), lines,
-                                          _first_patches(design, plank), rails))
+            patches = _first_patches(design, plank, first.get(plank.id, ()))
+            known[k] = (plank, _plate_key(plank, design.material_of(plank), lines, patches,
+                                          rails))
     found = {}
     for k in sorted(only):
         if known[k] is None:
@@ -163,11 +174,15 @@ def plate_readings(model, case: LoadCase, only: set[int]) -> dict[int, PlateRead
 
 def _reading(design: Design, plank: Plank, key: tuple, case: LoadCase) -> PlateReading | None:
     """``plate_readings``' reading of the plate of inputs ``key`` in ``case`` (None where
-    its supports leave it free): ``_solved`` for every case's loads on the plank (a case
-    asked later finds its reading kept)."""
+    its supports leave it free): ``_solved`` for the loads on the plank of every case
+    read on the same grid as ``case`` (a case asked later finds its reading kept; one
+    with other patches factors its own grid when it is asked for)."""
     cases = list(design.load_cases)
     index = next(i for i, one in enumerate(cases) if one.name == case.name)
-    return _solved(key, None, _plank_loads(design, plank, cases))[index]
+    loads = _plank_loads(design, plank, cases)
+    grid_key = _grid_key(key, loads[index])
+    alike = [i for i, one in enumerate(loads) if _grid_key(key, one) == grid_key]
+    return _solved(key, None, [loads[i] for i in alike])[alike.index(index)]
 
 
 def _solved(key: tuple, grid: PlateGrid | None, loads: list) -> list[PlateReading | None]:
@@ -249,7 +264,7 @@ or None where it is no plate}) (``plate_readings``), the most recently asked las
 entry whose design is gone, its id another's, is made anew."""
 
 _READINGS: OrderedDict = OrderedDict()
-"""(``_plate_key``, NODE_MERGE_ROUNDOFF, ``_load_key``) -> ``PlateReading``, or None where
+"""(``_grid_key``, NODE_MERGE_ROUNDOFF, ``_load_key``) -> ``PlateReading``, or None where
 the supports leave the plate free (``_solved``: every reading of a plate), the most
 recently asked last."""
 
@@ -260,13 +275,14 @@ def _load_key(loads: tuple) -> tuple:
     return float(uniform), tuple((tuple(patch), float(force)) for patch, force in points)
 
 
-def _plate(model, k: int, plank: Plank, segments, stiffeners) -> PlatePlank | None:
+def _plate(model, k: int, plank: Plank, segments, stiffeners,
+           first_loads) -> PlatePlank | None:
     """The factored plate of plank ``plank`` (local ``k``) on ``segments``, stiffened by
-    ``stiffeners``, on the grid of the first load case (``_first_patches``; each case is
-    read on its own, ``_solved``)."""
+    ``stiffeners``, on the grid of the first load case (``first_loads``: that case's loads
+    on it, ``_first_patches``; each case is read on its own grid, ``_solved``)."""
     design = model.design
     return plate_for(plank, design.material_of(plank), segments,
-                     _first_patches(design, plank), k, stiffeners)
+                     _first_patches(design, plank, first_loads), k, stiffeners)
 
 
 def plate_for(plank: Plank, material, segments, patches, local: int = 0,
@@ -342,17 +358,26 @@ def plate_results(model, cases: list[LoadCase]) -> list[list[tuple[int, float, f
                  for plate in plates for by_plank in on_plank]
         readings = iter(_solved(key, plates[0].grid, loads))
         for plate in plates:
-            found[plate.local] = [(plate.local, *next(readings)[:3]) for _ in cases]
-    return [[found[plate.local][c] for plate in plate_planks(model)]
-            for c in range(len(cases))]
+            found[plate.local] = [_entry(plate.local, next(readings)) for _ in cases]
+    return [[found[plate.local][c] for plate in plate_planks(model)
+             if found[plate.local][c] is not None] for c in range(len(cases))]
+
+
+def _entry(local: int, reading: PlateReading | None) -> tuple | None:
+    """(local plank, sag, span, stress) of a reading; None where the case's grid leaves
+    the plate free (its supports on one line: as on the first case's grid, but for a
+    factoring that fails by round-off)."""
+    return None if reading is None else (local, *reading[:3])
 
 
 def plate_cases(design: Design, plate: PlatePlank,
                 cases: list[LoadCase]) -> list[tuple[float, float, float]]:
     """Per case of ``cases``, the (sag m, span m, stress Pa) of one plate plank
-    (``_solved``: the numbers ``plate_results`` gives)."""
+    (``_solved``: the numbers ``plate_results`` gives; none for a case whose grid leaves
+    the plate free)."""
     return [reading[:3] for reading in
-            _solved(plate.key, plate.grid, _plank_loads(design, plate.plank, cases))]
+            _solved(plate.key, plate.grid, _plank_loads(design, plate.plank, cases))
+            if reading is not None]
 
 
 def _plank_loads(design: Design, plank: Plank, cases: list[LoadCase]) -> list:
