@@ -100,8 +100,13 @@ def each_plate(model) -> Iterator[PlatePlank]:
 
 def _first_case_loads(design: Design) -> dict[str, list]:
     """Per plank id, the first load case's loads on it (``_first_patches``)."""
+    return _by_plank(design.load_cases[0]) if design.load_cases else {}
+
+
+def _by_plank(case: LoadCase) -> dict[str, list]:
+    """Per plank id, the case's loads on it, in order."""
     loads: dict[str, list] = {}
-    for load in design.load_cases[0].loads if design.load_cases else ():
+    for load in case.loads:
         loads.setdefault(load.plank, []).append(load)
     return loads
 
@@ -345,10 +350,7 @@ def plate_results(model, cases: list[LoadCase]) -> list[list[tuple[int, float, f
     (see the module docstring): ``_solved``, the planks that share a factored plate
     (planks alike) for all the cases at once."""
     design = model.design
-    on_plank = [{} for _ in cases]
-    for by_plank, case in zip(on_plank, cases):
-        for load in case.loads:
-            by_plank.setdefault(load.plank, []).append(load)
+    on_plank = [_by_plank(case) for case in cases]
     groups: dict[tuple, list[PlatePlank]] = {}
     for plate in plate_planks(model):
         groups.setdefault(plate.key, []).append(plate)
