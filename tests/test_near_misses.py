@@ -13,6 +13,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from furncheck import tolerances as tol
@@ -384,6 +385,48 @@ def test_a_cut_in_is_looked_for_among_the_overlapping_neighbours_only(monkeypatc
     message = next(v.message for v in geometry.violations if v.where == "mid")
     assert message.endswith("its end cuts 15 mm into the face of side_l and of side_r: "
                             "shorten or move it to rest on those faces")
+
+
+def test_boards_stacked_face_to_face_each_measure_their_two_neighbours_alone(monkeypatch):
+    """Sixty boards stacked face to face (z = 6 + 12 k mm, 12 mm thick), no end on any
+    face: each is joined to nothing, and its box meets at most those of the boards above
+    and below it (they touch: which meet is round-off's).  Each message's search builds
+    the face tables of those three boards (``faces._pairs_planks``), not of all sixty
+    (the joints' and near misses' searches build the design's once each): a table of
+    every plank per loose plank made a stack of 80,000 boards quadratic (not done after
+    11 minutes; 11 s now).  The neighbours found all at once by sort and sweep
+    (``fit.box_neighbours``) are those of the pairwise box test, and the messages are
+    those each plank's own test gives."""
+    from furncheck.geometry import faces as faces_module
+    from furncheck.geometry import fit
+
+    count = 60
+    text = "furncheck: 1\nplanks:\n" + "".join(
+        f"  - {{id: b{k}, size: [400, 300], center: [0, 0, {6 + 12 * k}]}}\n"
+        for k in range(count))
+    design = parsed(text)
+    built = []
+    real = faces_module._face_tables
+
+    def counting(planks):
+        built.append(len(planks))
+        return real(planks)
+
+    monkeypatch.setattr(faces_module, "_face_tables", counting)
+    geometry = analyze(design)
+    loose = [v for v in geometry.violations if v.kind == "disconnected"]
+    assert [v.where for v in loose] == [f"b{k}" for k in range(count)]
+    whole = [n for n in built if n == count]    # the joints' and near misses' search, once
+    assert len(whole) <= 2 and len(built) > count // 2
+    assert max(n for n in built if n != count) == 3
+    neighbours = fit.box_neighbours(design)
+    lo, hi = faces_module._bounding_boxes(design.planks)
+    for k in range(count):
+        meets = np.all((lo <= hi[k]) & (lo[k] <= hi), axis=1)
+        meets[k] = False
+        assert neighbours[k].tolist() == np.flatnonzero(meets).tolist()
+        assert set(neighbours[k].tolist()) <= {k - 1, k + 1}     # (touching: round-off)
+        assert fit.cut_ins(design, k, neighbours[k]) == fit.cut_ins(design, k) == []
 
 
 # --- bearing: an end that covers a sliver of the face is no nail joint -------------------------

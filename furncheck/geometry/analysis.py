@@ -29,6 +29,7 @@ from furncheck.geometry.fit import (
     _fmt_len,
     _fmt_point,
     _plural,
+    box_neighbours,
 )
 from furncheck.geometry.model import (
     _GEOMETRY_EPS,
@@ -389,16 +390,16 @@ def _connectivity_violations(design: Design, joints: list[Joint],
     if len(design.planks) > 1:
         joined = {pid for joint in joints for pid in joint.planks}
         listed = {pid for spec in design.joints or () for pid in spec.planks}
-        boxes = None                    # the planks' boxes, once, where a plank needs them
+        neighbours = None       # whose boxes meet each plank's, once, where one needs them
         for index, plank in enumerate(design.planks):
             if plank.id not in joined and plank.id not in listed and \
                     plank.id not in nearly_joined:
-                boxes = boxes or _bounding_boxes(design.planks)
+                neighbours = neighbours or box_neighbours(design)
                 violations.append(Violation(
                     "disconnected", plank.id, None,
                     "plank is joined to no other plank (no end face rests on a neighbour's "
                     "face, and no neighbour's end face rests on it)"
-                    + _cut_in_phrase(design, index, boxes),
+                    + _cut_in_phrase(design, index, neighbours[index]),
                     design.line_of(f"planks[{index}]")))
     for component, is_grounded in zip(components, grounded):
         if not is_grounded:

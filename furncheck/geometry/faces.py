@@ -76,19 +76,23 @@ def _best_touches(planks: tuple[Plank, ...], pairs: np.ndarray, slack: float, ke
                   faces: _Faces | None = None, one_way: bool = False,
                   bearing: float | None = None) -> dict:
     """For each plank pair (i, j) (indices into ``planks``, whose face tables ``faces`` are
-    when given), the best narrow-face-on-broad-face contact either way round (``one_way``:
-    only i's narrow faces on j's broad faces), by ``_rank``: contacts within the slack
-    first, then the least sunk, then the flushest, then the largest.  ``keep_deep``
-    keeps faces sunk deeper than the slack (to report interpenetration).  ``bearing``:
-    a region narrower across the joint line than this share of the edge plank's thickness
-    is no contact (None: ``tolerances.MIN_BEARING_SHARE``; 0 keeps every one).  A contact's gap
-    is that of the part of the narrow face over the broad face (``_region_gaps``), not of
-    its nearest corner anywhere: a long edge turned away from a narrow face touches its
-    plane beyond it, and counted as touching, but only where the planks' bounding boxes
-    met (in some turns of the design; ``tests/test_geometry.py``)."""
+    when given; else made for the pairs' planks alone), the best narrow-face-on-broad-face
+    contact either way round (``one_way``: only i's narrow faces on j's broad faces), by
+    ``_rank``: contacts within the slack first, then the least sunk, then the flushest,
+    then the largest.  ``keep_deep`` keeps faces sunk deeper than the slack (to report
+    interpenetration).  ``bearing``: a region narrower across the joint line than this
+    share of the edge plank's thickness is no contact (None:
+    ``tolerances.MIN_BEARING_SHARE``; 0 keeps every one).  A contact's gap is that of
+    the part of the narrow face over the broad face (``_region_gaps``), not of its nearest
+    corner anywhere: a long edge turned away from a narrow face touches its plane beyond
+    it, and counted as touching, but only where the planks' bounding boxes met (in some
+    turns of the design; ``tests/test_geometry.py``)."""
     if len(pairs) == 0:
         return {}
-    faces = _face_tables(planks) if faces is None else faces
+    keyed = pairs
+    if faces is None:           # the tables of the pairs' planks alone (``_pairs_planks``)
+        planks, pairs = _pairs_planks(planks, pairs)
+        faces = _face_tables(planks)
     ordered = pairs if one_way else np.vstack([pairs, pairs[:, ::-1]])   # (edge, face)
     edge, face = ordered[:, 0], ordered[:, 1]
     broad = faces.broad_normal[face]                              # (P, 2, 3)
@@ -108,7 +112,7 @@ def _best_touches(planks: tuple[Plank, ...], pairs: np.ndarray, slack: float, ke
     touches = _touch_regions(planks, faces, edge[p], face[p], f, g, gap[p, f, g],
                              alignment[p, f, g],
                              tol.MIN_BEARING_SHARE if bearing is None else bearing)
-    keys = [(i, j) for i, j in pairs.tolist()]
+    keys = [(i, j) for i, j in keyed.tolist()]
     for p_k, touch in zip(chosen[:, 0].tolist(), touches):
         if touch is None or touch.gap > slack or (not keep_deep and touch.gap < -slack):
             continue                        # the region's own gap (``_region_gaps``)
@@ -117,6 +121,18 @@ def _best_touches(planks: tuple[Plank, ...], pairs: np.ndarray, slack: float, ke
         if current is None or _rank(touch, slack) > _rank(current, slack):
             best[key] = touch
     return best
+
+
+def _pairs_planks(planks: tuple[Plank, ...], pairs: np.ndarray) -> tuple[tuple, np.ndarray]:
+    """The planks that ``pairs`` name, in index order, and the pairs as indices into them:
+    a design's face tables built for a few pairs among thousands of planks cost a pass
+    over all of them each time (a message per plank joined to nothing, each measuring
+    its few neighbours, made a stack of 80,000 loose boards quadratic)."""
+    named = np.sort(pairs.ravel())
+    used = named[np.concatenate([[True], named[1:] != named[:-1]])]
+    if len(used) == len(planks):
+        return planks, pairs
+    return tuple(planks[i] for i in used.tolist()), np.searchsorted(used, pairs)
 
 
 def _rank(touch: _Touch, slack: float) -> tuple:

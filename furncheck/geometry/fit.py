@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from furncheck.design.model import Design
+from furncheck.geometry.boxes import meeting_pairs
 from furncheck.geometry.faces import _bearing, _bears, _best_touches, _bounding_boxes, _Touch
 from furncheck.geometry.model import _GEOMETRY_EPS, Geometry
 from furncheck.geometry.near import near_band
@@ -85,11 +86,11 @@ def _lying_on(design: Design, upper, lower) -> tuple[str, str] | None:
     return (upper.id, lower.id) if bool(overlaps.all()) else None
 
 
-def _cut_in_phrase(design: Design, index: int, boxes=None) -> str:
+def _cut_in_phrase(design: Design, index: int, neighbours: np.ndarray | None = None) -> str:
     """For a plank joined to nothing: '; its end cuts 15 mm into the face of side_l (and
     of side_r)' where its end faces sink into neighbours' faces deeper than a near miss
     (``cut_ins``), else ''."""
-    deep = cut_ins(design, index, boxes)
+    deep = cut_ins(design, index, neighbours)
     if not deep:
         return ""
     depth, face = deep[0]
@@ -100,23 +101,36 @@ def _cut_in_phrase(design: Design, index: int, boxes=None) -> str:
             f"{'that face' if len(deep) == 1 else 'those faces'}")
 
 
+def box_neighbours(design: Design) -> list[np.ndarray]:
+    """Per plank, the other planks whose world boxes meet its own (``cut_ins``' candidates),
+    found for all planks at once by sort and sweep (``boxes.meeting_pairs``)."""
+    pairs = meeting_pairs(*_bounding_boxes(design.planks), 0.0)
+    ends = np.concatenate([pairs, pairs[:, ::-1]])
+    ends = ends[np.lexsort((ends[:, 1], ends[:, 0]))]
+    cuts = np.searchsorted(ends[:, 0], np.arange(1, len(design.planks)))
+    return np.split(ends[:, 1], cuts)
+
+
 def cut_ins(design: Design, index: int,
-            boxes: tuple[np.ndarray, np.ndarray] | None = None) -> list[tuple[float, int]]:
+            neighbours: np.ndarray | None = None) -> list[tuple[float, int]]:
     """(depth m, face plank index) of each neighbour whose broad face an end face of plank
     ``index`` sinks into deeper than a near miss, deepest first (then by the face's id):
     a board cut too long, the real reason a plank joined to nothing forms no joint.  Its
     own end faces only: where the neighbour's end also cuts into it (a seat's end into a
     leg that pokes up through the seat), the leg's end still counts.
 
-    Only the neighbours whose boxes overlap this plank's are measured (``boxes``: the
-    planks' world boxes, ``_bounding_boxes``, made here if not given): an end face sunk
+    Only the neighbours whose boxes meet this plank's are measured (``neighbours``: their
+    indices, ``box_neighbours``' entry for it; found here if not given): an end face sunk
     into a face lies over it and the plank runs on through its plane, so their boxes
     overlap.  Measuring every other plank made a design of a thousand planks joined to
-    nothing take seconds (5,000 boards lying apart: 99 s)."""
-    lo, hi = _bounding_boxes(design.planks) if boxes is None else boxes
-    meets = np.all((lo <= hi[index]) & (lo[index] <= hi), axis=1)
-    meets[index] = False
-    others = np.flatnonzero(meets)
+    nothing take seconds (5,000 boards lying apart: 99 s), and so did finding each one's
+    neighbours among all the others (a stack of 80,000 loose boards)."""
+    if neighbours is None:
+        lo, hi = _bounding_boxes(design.planks)
+        meets = np.all((lo <= hi[index]) & (lo[index] <= hi), axis=1)
+        meets[index] = False
+        neighbours = np.flatnonzero(meets)
+    others = np.asarray(neighbours, dtype=int)
     if not len(others):
         return []
     pairs = np.column_stack([np.full(len(others), index), others])
