@@ -997,6 +997,32 @@ def test_every_problem_of_a_file_is_reported_one_line_each(tmp_path):
         == ["line=2", "line=4", "line=6"]
 
 
+MATERIAL_PROBLEMS = """\
+furncheck: 1
+material: {density: abc, nail_pull: 0, friction: -1}
+planks:
+  - {id: board, size: [400, 300], center: [0, 0, 6], material: {colour: red, density: x,
+                                                               elastic_modulus: -3}}
+"""
+
+
+def test_every_problem_of_a_material_is_reported_one_line_each():
+    """A material written with several mistakes is told of all of them, as a plank is
+    (README: "A file's problems are all reported"): the top-level material's density
+    (text), nail_pull (0) and friction (-1), and a plank's own material's unknown key,
+    density and modulus; each with its key path and line.  (The first of them alone was
+    reported before.)"""
+    with pytest.raises(DesignError) as info:
+        parse_design(MATERIAL_PROBLEMS, "materials.yaml", "yaml")
+    problems = (info.value, *info.value.more)
+    assert [(p.line, p.key) for p in problems] == [
+        (2, "material.density"), (2, "material.nail_pull"), (2, "material.friction"),
+        (4, "planks[0].material.colour"), (4, "planks[0].material.density"),
+        (5, "planks[0].material.elastic_modulus")]
+    assert "must be positive, got 0 N" in problems[1].message
+    assert 'unknown key "colour"' in problems[3].message
+
+
 @pytest.mark.parametrize(("plank", "why"), [
     ("{id: seat one, size: [400, 300], center: [0, 0, 6]}", 'invalid plank id "seat one"'),
     ("{id: seat, size: [400], center: [0, 0, 6]}", "expected 2 numbers, got 1"),

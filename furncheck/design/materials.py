@@ -19,6 +19,7 @@ from furncheck import tolerances as tol
 from furncheck.design.model import Material
 from furncheck.design.source import _child, _quote
 from furncheck.design.values import _Doc, _quantity, _Units, _unknown_key_message
+from furncheck.errors import DesignError
 
 MATERIAL_KEYS = ("thickness", "density", "nail_spacing", "nail_pull", "nail_shear", "friction",
                  "elastic_modulus", "shear_modulus", "bending_strength", "creep", "sag_limit",
@@ -54,9 +55,8 @@ def design_material(doc: _Doc, top: dict, units: _Units) -> Material:
     """The top-level ``material``; ``Material``'s defaults for the keys it does not give."""
     if "material" not in top:
         return Material()
-    fields = doc.mapping(top["material"], "material", MATERIAL_KEYS)
-    return Material(**{name: _value(doc, fields[name], "material", name, units)
-                       for name in MATERIAL_KEYS if name in fields})
+    fields = doc.mapping(top["material"], "material", MATERIAL_KEYS, keep_going=True)
+    return Material(**_values(doc, fields, "material", MATERIAL_KEYS, units))
 
 
 def plank_material(doc: _Doc, node: Any, key: str, units: _Units) -> dict[str, float]:
@@ -64,18 +64,41 @@ def plank_material(doc: _Doc, node: Any, key: str, units: _Units) -> dict[str, f
     order.  A nail key or friction is refused: it is not a property of one plank."""
     if not isinstance(node, dict):
         doc.mapping(node, key)                      # fails: expected a mapping
-    for name in node:
-        if name in MATERIAL_KEYS and name not in PLANK_MATERIAL_KEYS:
-            what = "the ground's friction" if name == "friction" else "a property of the nails"
-            doc.fail(_child(key, name), f"{_quote(name)} is {what}, not of one plank: set it "
-                                        f"in the top-level material")
-        if name not in PLANK_MATERIAL_KEYS:
-            doc.fail(_child(key, name), _unknown_key_message(name, PLANK_MATERIAL_KEYS))
     if not node:
         doc.fail(key, "an empty material: give the plank's own values, e.g. "
                       "{elastic_modulus: 11000, density: 600}, or leave it out")
-    return {name: _value(doc, node[name], key, name, units)
-            for name in PLANK_MATERIAL_KEYS if name in node}
+    problems = []
+    for name in node:
+        if name in MATERIAL_KEYS and name not in PLANK_MATERIAL_KEYS:
+            what = "the ground's friction" if name == "friction" else "a property of the nails"
+            problems.append(doc.error(_child(key, name), f"{_quote(name)} is {what}, not of "
+                                                         f"one plank: set it in the top-level "
+                                                         f"material"))
+        elif name not in PLANK_MATERIAL_KEYS:
+            problems.append(doc.error(_child(key, name),
+                                      _unknown_key_message(name, PLANK_MATERIAL_KEYS)))
+    return _values(doc, node, key, PLANK_MATERIAL_KEYS, units, problems)
+
+
+def _values(doc: _Doc, fields: dict, parent: str, names: tuple[str, ...], units: _Units,
+            problems: list | None = None) -> dict[str, float]:
+    """{name: SI value} of each of ``names`` that ``fields`` gives (``_value``), in that
+    order; every problem among them (and ``problems``, found before) raised together, the
+    first with the others as its ``more``, so that a material written with several
+    mistakes is told of all of them at once, as a plank is."""
+    problems = list(problems or ())
+    values = {}
+    for name in names:
+        if name in fields:
+            try:
+                values[name] = _value(doc, fields[name], parent, name, units)
+            except DesignError as error:
+                problems.extend((error, *error.more))
+    if problems:
+        first, *rest = problems
+        first.more = tuple(rest)
+        raise first
+    return values
 
 
 def material_entry(values: dict[str, float], scale: float) -> dict[str, float]:
