@@ -43,6 +43,10 @@ PROGRESS_MIN_FILES = 50
 """A progress bar is shown on a terminal's stderr from this many files to check on, when
 the report does not go to that terminal too."""
 
+SKIPPED_SHOWN = 5
+"""Files skipped as no designs named on stderr at most (then how many more): a design
+file emptied or cut short by mistake is skipped as no design, and its name on that line
+can be noticed, where a count alone would pass in silence."""
 
 
 @click.command()
@@ -133,7 +137,8 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
     if collected.skipped:
         click.echo(f"furncheck: skipped {collected.skipped} "
                    f"file{'s' if collected.skipped != 1 else ''} without a top-level "
-                   f"'furncheck' key (not designs)", err=True)
+                   f"'furncheck' key (not designs)"
+                   f"{collected.skipped_names(SKIPPED_SHOWN)}", err=True)
     if collected.force_excluded:
         count = collected.force_excluded
         click.echo(f"furncheck: left out {count} named file{'s' if count != 1 else ''} "

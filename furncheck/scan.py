@@ -68,12 +68,23 @@ class Collected:
     were left out because they are no designs (each once, however many scans met it)."""
 
     sources: list[str | DesignReport] = field(default_factory=list)
-    skipped_files: set[str] = field(default_factory=set)
+    skipped_files: dict[str, str] = field(default_factory=dict)     # identity -> path met
     force_excluded: int = 0         # named files left out (``force_exclude``)
 
     @property
     def skipped(self) -> int:
         return len(self.skipped_files)
+
+    def skipped_names(self, shown: int) -> str:
+        """The first ``shown`` files skipped as no designs, as met (in path order), and
+        how many more: ': a.yaml, ci.yml and 3 more' ('' if none) -- a design emptied by
+        mistake is skipped as no design, and a line that names it can be noticed."""
+        names = sorted(self.skipped_files.values())
+        if not names:
+            return ""
+        listed = ", ".join(names[:shown])
+        more = len(names) - shown
+        return f": {listed}" + (f" and {more} more" if more > 0 else "")
 
 
 def collect(paths: tuple[str, ...] | list[str], options: ScanOptions = ScanOptions()
@@ -98,7 +109,7 @@ def collect(paths: tuple[str, ...] | list[str], options: ScanOptions = ScanOptio
             collected.force_excluded += 1
             files = []
         elif options.skip_non_designs and not _is_design(given):
-            collected.skipped_files.add(_identity(given))
+            collected.skipped_files.setdefault(_identity(given), given)
             files = []
         else:
             files = [given]
@@ -130,7 +141,8 @@ def _scan_folder(folder: str, options: ScanOptions, collected: Collected) -> lis
     collected.sources.extend(
         error_report(path, f"{path}: cannot read this directory: {why}")
         for path, why in found.unreadable)
-    collected.skipped_files.update(map(_identity, found.skipped))
+    for path in found.skipped:
+        collected.skipped_files.setdefault(_identity(path), path)
     if not found.files and not found.unreadable:
         left_out = "" if not found.ignored else \
             f" ({found.ignored} left out by .gitignore or exclude patterns)"

@@ -462,6 +462,23 @@ def test_yaml_and_json_files_without_a_furncheck_key_are_skipped_and_counted(che
     checked = sorted(Path(path).relative_to(tmp_path).as_posix() for path in checked_paths)
     assert checked == ["designs/broken.yaml", "designs/shelf.yaml", "designs/table.json"]
     assert "skipped 6 files without a top-level 'furncheck' key (not designs)" in result.stderr
+    line = next(line for line in result.stderr.splitlines() if "skipped 6" in line)
+    shown = sorted(str(tmp_path / name) for name in (
+        "package.json", "tsconfig.json", "node_modules/x/package.json", "ci.yml",
+        "compose.yaml", "deps/package.json"))
+    assert line.endswith(f"(not designs): {', '.join(shown[:5])} and 1 more")
+
+
+def test_an_emptied_design_in_a_scanned_folder_is_named_among_the_skipped(tmp_path):
+    """A design file emptied by mistake (0 bytes) has no furncheck key: a scan skips it as
+    no design (contract section 4), and the line that counts the skipped files names it,
+    so that it can be noticed; the folder's other design is checked."""
+    tree(tmp_path, {"shelf.yaml": DESIGN, "stool.yaml": ""})
+    result = run("validate", str(tmp_path))
+    assert result.stderr.strip().endswith(
+        "skipped 1 file without a top-level 'furncheck' key (not designs): "
+        f"{tmp_path / 'stool.yaml'}")
+    assert "1 design:" in result.stdout
 
 
 @pytest.mark.parametrize(("text", "fmt", "expected"), [
