@@ -124,7 +124,11 @@ _KEYS = ("cache", "cache-dir", "exclude", "force-exclude", "format", "jobs", "mo
 def _config(path: str, table: dict) -> Config:
     for key in table:
         if key not in _KEYS:
-            raise ConfigError(f"{path}: [tool.furncheck]: unknown key {key!r} (known: "
+            import difflib  # (for the message alone)
+
+            close = difflib.get_close_matches(key, _KEYS, n=1)
+            meant = f"did you mean {close[0]!r}? " if close else ""
+            raise ConfigError(f"{path}: [tool.furncheck]: unknown key {key!r} ({meant}known: "
                               f"{', '.join(_KEYS)})")
 
     def fail(key: str, expected: str) -> ConfigError:

@@ -95,6 +95,17 @@ def plain_compared(value: float, limit: float,
     return plain_number(value, digits), plain_number(limit, digits)
 
 
+def article(number: str) -> str:
+    """'a' or 'an' before a number as written (``plain_number``), as it is read aloud: an
+    8, an 80, an 860 (eight...), an 11 and an 18 (eleven, eighteen), an 11,500 (eleven
+    thousand...); a 1,860 (one thousand...), a 118, a 0.8, a -8 (minus...)."""
+    whole = number.split(".")[0].replace(",", "")
+    if not whole.isdigit():
+        return "a"
+    lead = whole[:len(whole) % 3 or 3]          # the digits read before "thousand"...
+    return "an" if lead.startswith("8") or lead in ("11", "18") else "a"
+
+
 def plain_list(items) -> str:
     """Words of a list for messages: 'a', 'a and b', 'a, b and c'."""
     items = list(items)

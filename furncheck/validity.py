@@ -20,7 +20,7 @@ from furncheck.nail_groups import (
     part_rows,
     worst_part_forces,
 )
-from furncheck.plain import distinguishing_digits, plain_compared, plain_number
+from furncheck.plain import article, distinguishing_digits, plain_compared, plain_number
 from furncheck.result import (
     AnchorResult,
     CaseResult,
@@ -280,7 +280,8 @@ def _sag_message(design: Design, material: Material, sag: float, allowed: float,
         bends = (f"bows {shown} sideways between supports {plain_number(span / scale)} "
                  f"{unit} apart, ")
     else:
-        bends = f"sags {shown} over a {plain_number(span / scale)} {unit} span, "
+        across = plain_number(span / scale)
+        bends = f"sags {shown} over {article(across)} {across} {unit} span, "
     return (bends +
             f"{plain_number(sag * (1 + creep) / scale, digits)} {unit} with creep "
             f"(x {plain_number(1 + creep, 6)}); allowed {plain_number(allowed / scale, digits)} "

@@ -53,7 +53,7 @@ def test_the_search_stops_at_the_repository_top(tmp_path):
 
 
 @pytest.mark.parametrize(("table", "message"), [
-    ('formt = "json"', "unknown key 'formt'"),
+    ('formt = "json"', "unknown key 'formt' (did you mean 'format'? known: cache, "),
     ('format = "yml"', "format: expected one of text, json, junit, github, sarif, got 'yml'"),
     ("jobs = 0", "jobs: expected a whole number of at least 1, got 0"),
     ("jobs = true", "jobs: expected a whole number"),

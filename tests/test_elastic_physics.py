@@ -716,4 +716,4 @@ def test_a_leg_lifted_off_the_floor_carries_nothing():
     own = 5.0 * weight * 850.0 ** 4 / (384.0 * e_i)
     assert p_l3 / 192.0 < seat.sag < p_l3 / 48.0 + own
     span = next(v for v in report.violations if v.kind == "sagging" and v.where == "seat")
-    assert "over a 850 mm span" in span.message
+    assert "over an 850 mm span" in span.message      # (read: an eight hundred...)

@@ -8,6 +8,7 @@ from shop_designs import SIDE_TABLE_RACK
 
 from furncheck.plain import (
     GROUP_FROM_DIGITS,
+    article,
     distinguishing_digits,
     plain_compared,
     plain_length,
@@ -60,6 +61,18 @@ def test_non_finite_values_are_written_as_python_writes_them():
     assert plain_number(math.inf) == "inf"
     assert plain_number(-math.inf) == "-inf"
     assert plain_number(math.nan) == "nan"
+
+
+@pytest.mark.parametrize(("number", "word"), [
+    ("860", "an"), ("8", "an"), ("80", "an"), ("8.5", "an"), ("8000", "an"),
+    ("800,000", "an"), ("11", "an"), ("18", "an"), ("11,500", "an"), ("18,000", "an"),
+    ("1860", "a"), ("1100", "a"), ("118", "a"), ("110", "a"), ("0.8", "a"), ("12", "a"),
+    ("1", "a"), ("-8", "a"), ("388", "a"), ("inf", "a"),
+])
+def test_the_article_before_a_number_is_as_the_number_is_read(number, word):
+    """'an 860 mm span' (eight hundred...), 'a 1860 mm span' (one thousand...): the
+    article follows the number's first spoken word (the newcomer's 'a 860 mm span')."""
+    assert article(number) == word
 
 
 def test_plain_length_is_in_the_design_unit():

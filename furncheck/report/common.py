@@ -39,9 +39,10 @@ def _input_error(design: str, message: str) -> tuple[int | None, str]:
 def describe_violation(violation: Violation) -> str:
     """``post/shelf in case 'default': pull 812 N per nail exceeds 700 N``.
 
-    Geometric violations (case None) hold in every load case and name no case.
+    Geometric violations (case None) hold in every load case and name no case.  Several
+    planks (``base,post``: ids hold no comma) read as a list, ``base, post``.
     """
-    where = violation.where
+    where = violation.where.replace(",", ", ")
     if violation.case is not None:
         where = f"{where} in case '{violation.case}'"
     return f"{where}: {violation.message}" if where else violation.message

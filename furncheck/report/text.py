@@ -5,7 +5,7 @@
       case 'sit': 2 loads (1 from default): 80 kg on seat at (0, 0, 450) mm; 100 N +x on seat
     designs/shelf.yaml: INVALID, 2 violations
       non-durable: post/shelf in case 'default': pull 812 N per nail exceeds 700 N (line 14)
-      floating: base,post: 2 planks touch the ground nowhere (lowest corner 3 mm above it)
+      floating: base, post: 2 planks touch the ground nowhere (lowest corner 3 mm above it)
       case 'default': 2 loads: 10 kg each on shelf, post
     designs/broken.yaml: error: line 3: planks[0].size: expected [length, width]
     3 designs: 1 valid, 1 invalid, 1 error

@@ -23,7 +23,7 @@ from furncheck.geometry.support import (
     outside,
     tipping_on_plane,
 )
-from furncheck.plain import plain_compared, plain_list, plain_number
+from furncheck.plain import article, plain_compared, plain_list, plain_number
 from furncheck.statics.model import CaseStatics, StaticsModel
 
 if TYPE_CHECKING:   # the programs are imported where a case needs them
@@ -88,7 +88,8 @@ class _Outcomes:
         radius = float(np.sqrt(forces[:, 2] @ (arms ** 2).sum(axis=1)
                                / max(float(forces[:, 2].sum()), 1e-300)))
         significant = twist > 0.05 * sideways * radius + self.force_tol
-        twist_text = f" and a {plain_number(twist, 3)} N m twist" if significant else ""
+        turning = plain_number(twist, 3)
+        twist_text = f" and {article(turning)} {turning} N m twist" if significant else ""
         needs, gives = plain_compared(sideways, capacity)
         detail = (f"no equilibrium within the friction cones (mu = {plain_number(self.mu, 6)}): "
                   f"the ground must resist {needs} N sideways{twist_text}, "
