@@ -25,7 +25,14 @@ The package, by job:
 """
 
 from furncheck.geometry.analysis import analyze, follow, follow_many, nail_count
-from furncheck.geometry.fit import cut_in_pairs, cut_ins, end_bearing, end_depth, end_gap
+from furncheck.geometry.fit import (
+    box_neighbours,
+    cut_in_pairs,
+    cut_ins,
+    end_bearing,
+    end_depth,
+    end_gap,
+)
 from furncheck.geometry.model import Contact, Geometry, Joint, NearMiss
 
 _EDITS = ("EditMargins", "EditedTables", "edit_margins_many", "interpenetrations")
@@ -41,5 +48,5 @@ def __getattr__(name: str):
 
 
 __all__ = ["Contact", "EditMargins", "EditedTables", "Geometry", "Joint", "NearMiss", "analyze",
-           "cut_in_pairs", "cut_ins", "edit_margins_many", "end_bearing", "end_depth",
-           "end_gap", "follow", "follow_many", "interpenetrations", "nail_count"]
+           "box_neighbours", "cut_in_pairs", "cut_ins", "edit_margins_many", "end_bearing",
+           "end_depth", "end_gap", "follow", "follow_many", "interpenetrations", "nail_count"]

@@ -146,10 +146,11 @@ def cut_in_pairs(design: Design, geometry: Geometry) -> set[tuple[str, str]]:
     """(face, edge) plank ids of the joints that the planks joined to nothing would form
     with the faces their ends cut into (``cut_ins``): the joints a repair that shortens or
     moves such a plank may add (as it may close a near miss)."""
-    return {(design.planks[face].id, violation.where)
-            for violation in geometry.violations
-            if violation.kind == "disconnected" and "/" not in violation.where
-            for _, face in cut_ins(design, design.plank_index[violation.where])}
+    loose = [design.plank_index[violation.where] for violation in geometry.violations
+             if violation.kind == "disconnected" and "/" not in violation.where]
+    neighbours = box_neighbours(design) if loose else []
+    return {(design.planks[face].id, design.planks[index].id)
+            for index in loose for _, face in cut_ins(design, index, neighbours[index])}
 
 
 def end_depth(design: Design, face: int, edge: int) -> float | None:

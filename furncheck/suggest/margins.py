@@ -31,7 +31,7 @@ import numpy as np
 
 from furncheck.design.model import Design
 from furncheck.dofs import Blocked, Dof, OutOfReach, design_size
-from furncheck.geometry import Geometry, cut_ins, end_depth, end_gap
+from furncheck.geometry import Geometry, box_neighbours, cut_ins, end_depth, end_gap
 from furncheck.geometry.near import carried_groups, hovering_ends
 from furncheck.geometry.support import convex_hull, outside, pressure_centre
 from furncheck.result import DesignReport
@@ -285,6 +285,7 @@ class Margins:
         design, tolerance = self.design, self.design.tolerance
         measures: list[tuple[str, object]] = []
         carried = carried_groups(design, self.geometry)
+        neighbours = None               # whose boxes meet each plank's, where one needs them
         for violation in report.violations:
             if violation.kind == "penetration":
                 plank = design.plank_index[violation.where]
@@ -307,7 +308,8 @@ class Margins:
                     measures.append((violation.where, _gap_measure(pair)))
             elif violation.kind == "disconnected":      # its end cut into faces: rest on them
                 edge = design.plank_index[violation.where]
-                for _, face in cut_ins(design, edge):
+                neighbours = neighbours or box_neighbours(design)
+                for _, face in cut_ins(design, edge, neighbours[edge]):
                     measures.append((f"{design.planks[face].id}/{violation.where}",
                                      _depth_measure(face, edge)))
         if not measures:
