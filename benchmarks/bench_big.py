@@ -13,11 +13,14 @@ commands run from that tree too, alternately with this one, so both meet the sam
 of a busy machine.
 
     python benchmarks/bench_big.py [--repeat N] [--old TREE] [--cap BYTES]
-                                   [--columns C] [--rows R] [--scaling]
+                                   [--columns C] [--rows R] [--scaling] [--loose N]
 
 ``--scaling`` times ``validate`` alone on walls of about 250, 500, 1,000 and 2,000 planks
 in both models instead, with the exponent of time in planks between the two largest (the
-command's start, about 0.5 s, weighs on the smaller ones).
+command's start, about 0.5 s, weighs on the smaller ones).  ``--loose N`` instead runs the
+three commands on N boards stacked face to face and joined to nothing (a generated file
+gone wrong: a ``disconnected`` line per board, each looking for an end cut into its
+neighbours' faces), ``range`` of one board's x.
 """
 
 from __future__ import annotations
@@ -106,6 +109,8 @@ def main() -> None:
                         help="run only these commands (repeatable)")
     parser.add_argument("--scaling", action="store_true",
                         help="validate walls of 250 to 2,000 planks, both models")
+    parser.add_argument("--loose", type=int, default=0, metavar="N",
+                        help="N boards stacked face to face, joined to nothing, instead")
     args = parser.parse_args()
     if args.scaling:
         _scaling(args)
@@ -117,19 +122,27 @@ def main() -> None:
 
     from furncheck.design import write_design
 
-    design = shelving_wall(args.columns, args.rows, heavy_kg=20.0)
-    heavy = f"shelf{args.columns // 2}_{args.rows // 2}"
     trees = [("this", TREE)] + ([("old", Path(args.old).resolve())] if args.old else [])
     commands = args.only or list(COMMANDS)
     with tempfile.TemporaryDirectory() as tmp:
-        path = Path(tmp) / f"shelving-{len(design.planks)}.yaml"
-        write_design(design, str(path))
-        print(f"{path.name}: {len(design.planks)} planks, elastic model; one DOF: "
-              f"{heavy}.width; cap {args.cap / 1e9:.1f} GB; medians of {args.repeat}\n")
+        if args.loose:
+            path, dof = Path(tmp) / f"loose-{args.loose}.yaml", "b1.x"
+            path.write_text("furncheck: 1\nplanks:\n" + "".join(
+                f"  - {{id: b{k}, size: [400, 300], center: [0, 0, {6 + 12 * k}]}}\n"
+                for k in range(args.loose)))
+            planks = args.loose
+        else:
+            design = shelving_wall(args.columns, args.rows, heavy_kg=20.0)
+            dof = f"shelf{args.columns // 2}_{args.rows // 2}.width"
+            path = Path(tmp) / f"shelving-{len(design.planks)}.yaml"
+            write_design(design, str(path))
+            planks = len(design.planks)
+        print(f"{path.name}: {planks} planks, elastic model; one DOF: "
+              f"{dof}; cap {args.cap / 1e9:.1f} GB; medians of {args.repeat}\n")
         print("| command       | version | time (s) | peak RSS (MB) | outcome |")
         print("|---------------|---------|---------:|--------------:|---------|")
         for name in commands:
-            argv = [part.format(file=path, dof=f"{heavy}.width") for part in COMMANDS[name]]
+            argv = [part.format(file=path, dof=dof) for part in COMMANDS[name]]
             runs: dict[str, list] = {label: [] for label, _ in trees}
             for _ in range(args.repeat):
                 for label, tree in trees:

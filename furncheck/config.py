@@ -28,6 +28,7 @@ from dataclasses import dataclass
 
 from furncheck import tolerances as tol
 from furncheck.errors import FurncheckError
+from furncheck.plain import closest
 from furncheck.report import REPORTERS
 
 PYPROJECT = "pyproject.toml"
@@ -124,10 +125,8 @@ _KEYS = ("cache", "cache-dir", "exclude", "force-exclude", "format", "jobs", "mo
 def _config(path: str, table: dict) -> Config:
     for key in table:
         if key not in _KEYS:
-            import difflib  # (for the message alone)
-
-            close = difflib.get_close_matches(key, _KEYS, n=1)
-            meant = f"did you mean {close[0]!r}? " if close else ""
+            close = closest(key, _KEYS)
+            meant = f"did you mean {close!r}? " if close else ""
             raise ConfigError(f"{path}: [tool.furncheck]: unknown key {key!r} ({meant}known: "
                               f"{', '.join(_KEYS)})")
 

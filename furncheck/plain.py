@@ -95,11 +95,23 @@ def plain_compared(value: float, limit: float,
     return plain_number(value, digits), plain_number(limit, digits)
 
 
+def closest(name: str, choices) -> str | None:
+    """The closest of ``choices`` to a misspelt ``name``, or None (difflib is imported for
+    the messages only: a file without mistakes never needs it)."""
+    import difflib
+
+    close = difflib.get_close_matches(name, list(choices), n=1)
+    return close[0] if close else None
+
+
 def article(number: str) -> str:
     """'a' or 'an' before a number as written (``plain_number``), as it is read aloud: an
     8, an 80, an 860 (eight...), an 11 and an 18 (eleven, eighteen), an 11,500 (eleven
-    thousand...); a 1,860 (one thousand...), a 118, a 0.8, a -8 (minus...)."""
-    whole = number.split(".")[0].replace(",", "")
+    thousand...); a 1,860 (one thousand...), a 118, a 0.8, a -8 (minus...); an 8e+15 and
+    an inf (infinite), as ``plain_number`` writes those beyond its plain range."""
+    if number == "inf":
+        return "an"
+    whole = number.split("e")[0].split(".")[0].replace(",", "")
     if not whole.isdigit():
         return "a"
     lead = whole[:len(whole) % 3 or 3]          # the digits read before "thousand"...

@@ -68,7 +68,7 @@ class Collected:
     were left out because they are no designs (each once, however many scans met it)."""
 
     sources: list[str | DesignReport] = field(default_factory=list)
-    skipped_files: dict[str, str] = field(default_factory=dict)     # identity -> path met
+    skipped_files: dict[str, str] = field(default_factory=dict)  # identity -> path first met
     force_excluded: int = 0         # named files left out (``force_exclude``)
 
     @property
@@ -76,15 +76,42 @@ class Collected:
         return len(self.skipped_files)
 
     def skipped_names(self, shown: int) -> str:
-        """The first ``shown`` files skipped as no designs, as met (in path order), and
-        how many more: ': a.yaml, ci.yml and 3 more' ('' if none) -- a design emptied by
-        mistake is skipped as no design, and a line that names it can be noticed."""
-        names = sorted(self.skipped_files.values())
-        if not names:
+        """The first ``shown`` files skipped as no designs and how many more: ': empty.yaml
+        (empty), a.yaml, ci.yml and 3 more' ('' if none).  Those that are empty (blank,
+        or comments alone: a design emptied by mistake, skipped as no design) come first,
+        then the others, each sorted by the path it was first met by; a name that is not
+        plain printable text, or holds ', ', is written quoted with its escapes (one line,
+        whatever the file is called)."""
+        found = sorted((not _blank(path), path) for path in self.skipped_files.values())
+        if not found:
             return ""
-        listed = ", ".join(names[:shown])
-        more = len(names) - shown
+        listed = ", ".join(_shown_name(path) + (" (empty)" if not filled else "")
+                           for filled, path in found[:shown])
+        more = len(found) - shown
         return f": {listed}" + (f" and {more} more" if more > 0 else "")
+
+
+BLANK_BYTES = 4096
+"""A skipped file is read to tell whether it is empty only up to this size."""
+
+
+def _blank(path: str) -> bool:
+    """Whether a file holds nothing but blank lines and ``#`` comments (an empty YAML
+    document); False for one that cannot be read or is over BLANK_BYTES."""
+    try:
+        if os.path.getsize(path) > BLANK_BYTES:
+            return False
+        with open(path, "rb") as stream:
+            data = stream.read(BLANK_BYTES + 1)
+    except OSError:
+        return False
+    return all(not line.strip() or line.strip().startswith(b"#") for line in data.splitlines())
+
+
+def _shown_name(path: str) -> str:
+    """A path for a line of stderr: as it is, or quoted with its escapes (``repr``) where
+    it is not printable text or holds ', ' (a list's separator)."""
+    return path if path.isprintable() and ", " not in path else repr(path)
 
 
 def collect(paths: tuple[str, ...] | list[str], options: ScanOptions = ScanOptions()

@@ -1007,11 +1007,11 @@ planks:
 
 
 def test_every_problem_of_a_material_is_reported_one_line_each():
-    """A material written with several mistakes is told of all of them, as a plank is
-    (README: "A file's problems are all reported"): the top-level material's density
-    (text), nail_pull (0) and friction (-1), and a plank's own material's unknown key,
-    density and modulus; each with its key path and line.  (The first of them alone was
-    reported before.)"""
+    """A material written with several mistakes is told of all of them, in the order they
+    are written (README: "A file's problems are all reported"): the top-level material's
+    density (text), nail_pull (0) and friction (-1), and a plank's own material's
+    unknown key, density and modulus; each with its key path and line.  (The first of
+    them alone was reported before.)"""
     with pytest.raises(DesignError) as info:
         parse_design(MATERIAL_PROBLEMS, "materials.yaml", "yaml")
     problems = (info.value, *info.value.more)

@@ -67,7 +67,7 @@ def test_non_finite_values_are_written_as_python_writes_them():
     ("860", "an"), ("8", "an"), ("80", "an"), ("8.5", "an"), ("8000", "an"),
     ("800,000", "an"), ("11", "an"), ("18", "an"), ("11,500", "an"), ("18,000", "an"),
     ("1860", "a"), ("1100", "a"), ("118", "a"), ("110", "a"), ("0.8", "a"), ("12", "a"),
-    ("1", "a"), ("-8", "a"), ("388", "a"), ("inf", "a"),
+    ("1", "a"), ("-8", "a"), ("388", "a"), ("8e+15", "an"), ("1.2e+16", "a"), ("inf", "an"),
 ])
 def test_the_article_before_a_number_is_as_the_number_is_read(number, word):
     """'an 860 mm span' (eight hundred...), 'a 1860 mm span' (one thousand...): the

@@ -12,6 +12,7 @@ import io
 import os
 import shutil
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -469,16 +470,35 @@ def test_yaml_and_json_files_without_a_furncheck_key_are_skipped_and_counted(che
     assert line.endswith(f"(not designs): {', '.join(shown[:5])} and 1 more")
 
 
-def test_an_emptied_design_in_a_scanned_folder_is_named_among_the_skipped(tmp_path):
+def test_an_emptied_design_in_a_scanned_folder_is_named_first_among_the_skipped(tmp_path):
     """A design file emptied by mistake (0 bytes) has no furncheck key: a scan skips it as
-    no design (contract section 4), and the line that counts the skipped files names it,
-    so that it can be noticed; the folder's other design is checked."""
-    tree(tmp_path, {"shelf.yaml": DESIGN, "stool.yaml": ""})
+    no design (contract section 4), and the line that counts the skipped files names it
+    first, marked empty, before six non-designs whose names sort before it (five names
+    shown, then how many more); a file of comments alone is empty too.  The folder's
+    other design is checked."""
+    files = {"shelf.yaml": DESIGN, "stool.yaml": "", "notes.yaml": "# to do\n\n# later\n"}
+    files.update({f"a{k}.json": '{"name": "x"}' for k in range(6)})
+    tree(tmp_path, files)
     result = run("validate", str(tmp_path))
-    assert result.stderr.strip().endswith(
-        "skipped 1 file without a top-level 'furncheck' key (not designs): "
-        f"{tmp_path / 'stool.yaml'}")
+    line = result.stderr.strip().splitlines()[-1]
+    assert line.endswith(
+        "skipped 8 files without a top-level 'furncheck' key (not designs): "
+        f"{tmp_path / 'notes.yaml'} (empty), {tmp_path / 'stool.yaml'} (empty), "
+        f"{tmp_path / 'a0.json'}, {tmp_path / 'a1.json'}, {tmp_path / 'a2.json'} and 3 more")
     assert "1 design:" in result.stdout
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="a newline in a file name")
+def test_a_skipped_file_whose_name_holds_a_newline_is_named_on_one_line(tmp_path):
+    """A name is written quoted with its escapes where it is not printable text: the
+    skipped files' line stays one line, and no part of a name reads as a line of its own
+    (a workflow annotation, '::error ...', in GitHub's log)."""
+    tree(tmp_path, {"shelf.yaml": DESIGN, "x\n::error file=a.yaml::y.json": "{}"})
+    result = run("validate", str(tmp_path), "--format", "github")
+    assert not any(line.startswith("::error file=a.yaml") for line in
+                   result.stderr.splitlines() + result.stdout.splitlines())
+    (line,) = [line for line in result.stderr.splitlines() if "skipped 1 file" in line]
+    assert line.endswith(repr(str(tmp_path / "x\n::error file=a.yaml::y.json")))
 
 
 @pytest.mark.parametrize(("text", "fmt", "expected"), [

@@ -43,7 +43,6 @@ from furncheck.design.source import (
 )
 from furncheck.design.values import (
     _IDENTIFIER,
-    _closest,
     _describe,
     _Doc,
     _identifier,
@@ -58,7 +57,7 @@ from furncheck.design.values import (
 from furncheck.design.walls import anchors as read_anchors
 from furncheck.design.walls import walls as read_walls
 from furncheck.errors import DesignError
-from furncheck.plain import plain_number
+from furncheck.plain import closest, plain_number
 
 UNIT_SCALES = {"mm": 0.001, "m": 1.0}
 """Length unit -> metres per unit."""
@@ -151,7 +150,7 @@ def _design(doc: _Doc, tree: Any) -> Design:
 
 def _read_design(doc: _Doc, tree: Any) -> Design:
     top = _top_level(doc, tree)
-    if any(_closest(key, TOP_KEYS) in SHAPING_KEYS for key in tree if key not in TOP_KEYS):
+    if any(closest(key, TOP_KEYS) in SHAPING_KEYS for key in tree if key not in TOP_KEYS):
         doc.unsure()                # a misspelt tolerance, material, ...: its default stands
     units = _units(doc, top)
     before = len(doc.problems)

@@ -55,50 +55,47 @@ def design_material(doc: _Doc, top: dict, units: _Units) -> Material:
     """The top-level ``material``; ``Material``'s defaults for the keys it does not give."""
     if "material" not in top:
         return Material()
-    fields = doc.mapping(top["material"], "material", MATERIAL_KEYS, keep_going=True)
+    fields = doc.mapping(top["material"], "material")
     return Material(**_values(doc, fields, "material", MATERIAL_KEYS, units))
 
 
 def plank_material(doc: _Doc, node: Any, key: str, units: _Units) -> dict[str, float]:
     """A plank's ``material`` at key path ``key``: {key: SI value} in ``PLANK_MATERIAL_KEYS``
     order.  A nail key or friction is refused: it is not a property of one plank."""
-    if not isinstance(node, dict):
-        doc.mapping(node, key)                      # fails: expected a mapping
-    if not node:
+    fields = doc.mapping(node, key)
+    if not fields:
         doc.fail(key, "an empty material: give the plank's own values, e.g. "
                       "{elastic_modulus: 11000, density: 600}, or leave it out")
-    problems = []
-    for name in node:
-        if name in MATERIAL_KEYS and name not in PLANK_MATERIAL_KEYS:
-            what = "the ground's friction" if name == "friction" else "a property of the nails"
-            problems.append(doc.error(_child(key, name), f"{_quote(name)} is {what}, not of "
-                                                         f"one plank: set it in the top-level "
-                                                         f"material"))
-        elif name not in PLANK_MATERIAL_KEYS:
-            problems.append(doc.error(_child(key, name),
-                                      _unknown_key_message(name, PLANK_MATERIAL_KEYS)))
-    return _values(doc, node, key, PLANK_MATERIAL_KEYS, units, problems)
+    return _values(doc, fields, key, PLANK_MATERIAL_KEYS, units)
 
 
-def _values(doc: _Doc, fields: dict, parent: str, names: tuple[str, ...], units: _Units,
-            problems: list | None = None) -> dict[str, float]:
+def _values(doc: _Doc, fields: dict, parent: str, names: tuple[str, ...],
+            units: _Units) -> dict[str, float]:
     """{name: SI value} of each of ``names`` that ``fields`` gives (``_value``), in that
-    order; every problem among them (and ``problems``, found before) raised together, the
-    first with the others as its ``more``, so that a material written with several
-    mistakes is told of all of them at once, as a plank is."""
-    problems = list(problems or ())
-    values = {}
-    for name in names:
-        if name in fields:
+    order.  Every problem of ``fields``, in the order they are written (a key that is
+    not one of ``names``: the nails' and the ground's keys in a plank's material refused
+    with a line saying where they belong, any other unknown; a value out of range, or no
+    number), is raised together, the first with the others as its ``more``: a material
+    written with several mistakes is told of all of them at once."""
+    problems, values = [], {}
+    for name, node in fields.items():
+        where = _child(parent, name)
+        if name in MATERIAL_KEYS and name not in names:
+            what = "the ground's friction" if name == "friction" else "a property of the nails"
+            problems.append(doc.error(where, f"{_quote(name)} is {what}, not of one plank: "
+                                             f"set it in the top-level material"))
+        elif name not in names:
+            problems.append(doc.error(where, _unknown_key_message(name, names)))
+        else:
             try:
-                values[name] = _value(doc, fields[name], parent, name, units)
+                values[name] = _value(doc, node, parent, name, units)
             except DesignError as error:
                 problems.extend((error, *error.more))
     if problems:
         first, *rest = problems
         first.more = tuple(rest)
         raise first
-    return values
+    return {name: values[name] for name in names if name in values}
 
 
 def material_entry(values: dict[str, float], scale: float) -> dict[str, float]:

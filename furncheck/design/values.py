@@ -18,7 +18,7 @@ from furncheck.design.json_source import JsonLines, _json_lines
 from furncheck.design.model import Plank
 from furncheck.design.source import _PATH_SAFE_KEY, _child, _one_line, _quote, _Scalar
 from furncheck.errors import DesignError
-from furncheck.plain import plain_number
+from furncheck.plain import closest, plain_number
 
 _NULL_WORDS = {"", "~", "null", "Null", "NULL"}
 _BOOL_WORDS = {word: value for value, words in
@@ -169,7 +169,7 @@ class _Doc:
         if not isinstance(node, dict):
             self.fail(key, f"expected a mapping, got {_describe(node)}")
         unknown = [name for name in node if allowed is not None and name not in allowed]
-        meant = {name: _closest(name, allowed) for name in unknown}
+        meant = {name: closest(name, allowed) for name in unknown}
         problems = [self.error(_child(key, name), _unknown_key_message(name, allowed,
                                                                         meant[name]))
                     for name in unknown]
@@ -247,25 +247,18 @@ def _describe(node: Any) -> str:
 
 
 def _unknown_key_message(name: str, allowed: tuple[str, ...], close: Any = ...) -> str:
-    """``close``: the closest allowed key or None, when the caller has it (``_closest``)."""
-    close = _closest(name, allowed) if close is ... else close
+    """``close``: the closest allowed key or None, when the caller has it (``plain.closest``)."""
+    close = closest(name, allowed) if close is ... else close
     meant = f" (did you mean {_quote(close)}?)" if close is not None else ""
     return f"unknown key {_quote(name)}{meant}; allowed keys: {', '.join(allowed)}"
 
 
 def _did_you_mean(name: str, choices) -> str:
     """`` (did you mean "x"?)`` with the closest of ``choices``, or ''."""
-    close = _closest(name, choices)
+    close = closest(name, choices)
     return f" (did you mean {_quote(close)}?)" if close is not None else ""
 
 
-def _closest(name: str, choices) -> str | None:
-    """The closest of ``choices`` to a misspelt ``name``, or None (difflib is imported for
-    the messages only: a file without mistakes never needs it)."""
-    import difflib
-
-    close = difflib.get_close_matches(name, list(choices), n=1)
-    return close[0] if close else None
 
 
 # --- quantities: SI values from the file's units -----------------------------------------------

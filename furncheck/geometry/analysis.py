@@ -394,7 +394,8 @@ def _connectivity_violations(design: Design, joints: list[Joint],
         for index, plank in enumerate(design.planks):
             if plank.id not in joined and plank.id not in listed and \
                     plank.id not in nearly_joined:
-                neighbours = neighbours or box_neighbours(design)
+                if neighbours is None:
+                    neighbours = box_neighbours(design)
                 violations.append(Violation(
                     "disconnected", plank.id, None,
                     "plank is joined to no other plank (no end face rests on a neighbour's "

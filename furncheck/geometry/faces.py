@@ -37,7 +37,7 @@ class _Touch(NamedTuple):
 
 @dataclass(frozen=True, eq=False)    # holds arrays: no == by value
 class _Faces:
-    """Face tables of all planks (n planks).
+    """Face tables of the planks given (n planks: a design's, or those some pairs name).
 
     narrow_normal (n, 4, 3), narrow_corners (n, 4, 4, 3), narrow_long (n, 4, 3) unit joint
     line of each narrow face; broad_normal (n, 2, 3), broad_offset (n, 2) = n . face centre.

@@ -308,7 +308,8 @@ class Margins:
                     measures.append((violation.where, _gap_measure(pair)))
             elif violation.kind == "disconnected":      # its end cut into faces: rest on them
                 edge = design.plank_index[violation.where]
-                neighbours = neighbours or box_neighbours(design)
+                if neighbours is None:
+                    neighbours = box_neighbours(design)
                 for _, face in cut_ins(design, edge, neighbours[edge]):
                     measures.append((f"{design.planks[face].id}/{violation.where}",
                                      _depth_measure(face, edge)))
