@@ -259,8 +259,6 @@ def _did_you_mean(name: str, choices) -> str:
     return f" (did you mean {_quote(close)}?)" if close is not None else ""
 
 
-
-
 # --- quantities: SI values from the file's units -----------------------------------------------
 
 @dataclass(frozen=True)

@@ -120,17 +120,13 @@ def cut_ins(design: Design, index: int,
     leg that pokes up through the seat), the leg's end still counts.
 
     Only the neighbours whose boxes meet this plank's are measured (``neighbours``: their
-    indices, ``box_neighbours``' entry for it; found here if not given): an end face sunk
+    indices, ``box_neighbours``' entry for it, found here if not given): an end face sunk
     into a face lies over it and the plank runs on through its plane, so their boxes
     overlap.  Measuring every other plank made a design of a thousand planks joined to
     nothing take seconds (5,000 boards lying apart: 99 s), and so did finding each one's
     neighbours among all the others (a stack of 80,000 loose boards)."""
-    if neighbours is None:
-        lo, hi = _bounding_boxes(design.planks)
-        meets = np.all((lo <= hi[index]) & (lo[index] <= hi), axis=1)
-        meets[index] = False
-        neighbours = np.flatnonzero(meets)
-    others = np.asarray(neighbours, dtype=int)
+    others = np.asarray(box_neighbours(design)[index] if neighbours is None else neighbours,
+                        dtype=int)
     if not len(others):
         return []
     pairs = np.column_stack([np.full(len(others), index), others])
