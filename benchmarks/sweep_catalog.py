@@ -17,6 +17,9 @@ resting planks), and checks each in both models:
 - units: moved (71.3 degrees, 2.2 m) and written in metres: the same, and (elastic
   model) every plank's sag scaled by 1000, the same stress and utilization;
 - json: the same design as JSON: the same report;
+- mirror: its mirror image in the plane x = 0: the same verdicts, per-nail forces and
+  (elastic model) sags and stresses, forces and points mirrored, moments as axial vectors;
+- order: its planks written in the reverse order: the same;
 - balance: every case's ground forces balance the loads, every plank its own forces;
 - pushes (every K-th design, default 10; 0: none): a sideways push of 15 to 200 N in three
   directions on the top plank: the verdict is the feasibility programs' own, stable
@@ -77,7 +80,7 @@ from furncheck.statics import feasibility  # noqa: E402
 from furncheck.statics.contacts import _force_scale, solve_case  # noqa: E402
 from furncheck.statics.model import build_model, external_forces  # noqa: E402
 
-KINDS = ("motion", "units", "json", "balance", "pushes")
+KINDS = ("motion", "units", "json", "mirror", "order", "balance", "pushes")
 MODELS = ("elastic", "rigid")
 
 
@@ -109,6 +112,8 @@ def sweep_one(path: str, pushes: bool) -> tuple[dict[str, int], list[tuple[str, 
         attempt("units", f"{model} in metres", _same_moved, data, report, model,
                 (71.3, 2.2, -1.1), True)
         attempt("json", f"{model} as JSON", _same_as_json, data, report, model)
+        attempt("mirror", f"{model} mirrored", _same_mirrored, data, report, model)
+        attempt("order", f"{model} planks reversed", _same_reordered, data, report, model)
         design = with_model(parse_design(invariants.pd.to_text(data), path, "yaml"), model)
         attempt("balance", f"{model} balance", _balanced, design)
         if pushes:
@@ -134,6 +139,18 @@ def _same_moved(data: dict, report, model: str, motion: tuple[float, float, floa
                                    point_tol=1e-9 * pd.unit_factor(moved))
     if model == "elastic" and all(case.planks for case in report.cases):
         invariants.assert_same_planks(report, other, factor)   # where every case is solved
+
+
+def _same_mirrored(data: dict, report, model: str) -> None:
+    """The design's mirror image in x = 0 gives ``report`` mirrored."""
+    invariants.assert_same_mirrored(
+        data, report, invariants.check(invariants.pd.mirrored(data), model=model))
+
+
+def _same_reordered(data: dict, report, model: str) -> None:
+    """The design with its planks in the reverse order gives ``report``."""
+    invariants.assert_same_reordered(
+        data, report, invariants.check(invariants.reversed_planks(data), model=model))
 
 
 def _same_as_json(data: dict, report, model: str) -> None:

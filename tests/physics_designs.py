@@ -320,6 +320,34 @@ def rigid_motion(design: dict, phi_deg: float, tx: float, ty: float) -> dict:
     return out
 
 
+def mirrored(design: dict) -> dict:
+    """The design's mirror image in the plane x = 0: every point (plank centres, load
+    points, wall points, anchors) and every force and wall normal with x negated; a
+    plank's rotation R becomes M R M (M = diag(-1, 1, 1): a proper rotation, since a
+    plank's box is its own mirror image), converted back to x-y-z Euler angles."""
+    out = copy.deepcopy(design)
+    mirror = [[-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+
+    def flip(vector):
+        x, y, z = (float(v) for v in vector)
+        return [-x, y, z]
+
+    for plank in out["planks"]:
+        plank["center"] = flip(plank["center"])
+        turned = _matmul(mirror, _matmul(euler_matrix(plank.get("rotation", [0, 0, 0])),
+                                         mirror))
+        plank["rotation"] = matrix_to_euler(turned)
+    for load in _all_loads(out):
+        for key in ("at", "force"):
+            if key in load:
+                load[key] = flip(load[key])
+    for wall in out.get("walls") or []:
+        wall["point"], wall["normal"] = flip(wall["point"]), flip(wall["normal"])
+    for anchor in out.get("anchors") or []:
+        anchor["at"] = flip(anchor["at"])
+    return out
+
+
 def unit_factor(design: dict) -> float:
     """File units per metre of the design's unit: 1000 for mm, 1 for m."""
     return 1000.0 if design.get("units", "mm") == "mm" else 1.0

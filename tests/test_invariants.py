@@ -19,6 +19,10 @@ of units, changes no verdict and no force magnitude; forces always balance the l
     (``with_model``), and (c) holds for them too: in the elastic model the ground's forces
     balance self-weight and loads.
 
+(f) The design's mirror image (in the plane x = 0), or its planks written in another
+    order, changes no verdict, per-nail force, sag or stress; forces, moments and points
+    are mirrored with it.
+
 The designs are the hand-written ones of ``physics_designs`` plus every readable catalog file.
 Defaults that are lengths (thickness 12 mm, nail spacing 20 mm, tolerance 0.5 mm) are left
 implicit when the original leaves them implicit, so (b) also checks that they mean the same
@@ -109,9 +113,15 @@ def force_scale(design: dict) -> float:
 
 def assert_same_physics(a, b, scale: float, rotation=np.eye(3), map_point=lambda p: p,
                         point_tol: float = 1e-6):
-    """Report ``b`` is report ``a`` seen through a rigid motion / change of unit:
+    """Report ``b`` is report ``a`` seen through a rigid motion / change of unit / mirror:
     same verdicts; b's points = map_point(a's points) (file units, within point_tol); b's
-    forces and moments = rotation @ a's; same per-nail forces and nail counts."""
+    forces = rotation @ a's, and its moments too, but for a mirror (``rotation`` of
+    determinant -1), where a moment, an axial vector, turns as -rotation @ it; same
+    per-nail forces and nail counts.  Joints are matched by their two planks either way
+    round (the file's plank order says which is first: a joint named the other way
+    round carries the opposite wrench), violations by the planks they name in any
+    order."""
+    turn_moment = np.linalg.det(rotation) * np.asarray(rotation)
     f_abs, m_abs = ABS * scale, ABS * scale * 1.0          # N, N m (1 m lever)
     pull_abs = ABS * scale * 200.0                          # 2 |M| / t with t >= 10 mm
 
@@ -120,25 +130,28 @@ def assert_same_physics(a, b, scale: float, rotation=np.eye(3), map_point=lambda
         assert np.allclose(y, x, rtol=REL, atol=abs_tol), f"{what}: {x} -> {y}"
 
     assert b.valid == a.valid
-    key = lambda v: (v.kind, v.where, v.case)                           # noqa: E731
+    key = lambda v: (v.kind, sorted(v.where.split(",")), v.case)        # noqa: E731
     assert sorted(map(key, b.violations)) == sorted(map(key, a.violations))
     assert [c.name for c in b.cases] == [c.name for c in a.cases]
     for ca, cb in zip(a.cases, b.cases):
         where = f"case {ca.name}"
         assert (cb.stability, cb.stable, cb.durable) == (ca.stability, ca.stable, ca.durable), \
             where
-        assert sorted(j.planks for j in cb.joints) == sorted(j.planks for j in ca.joints), where
-        joints_b = {tuple(j.planks): j for j in cb.joints}
+        pair = lambda joint: tuple(sorted(joint.planks))                  # noqa: E731
+        assert sorted(map(pair, cb.joints)) == sorted(map(pair, ca.joints)), where
+        joints_b = {pair(j): j for j in cb.joints}
         for ja in ca.joints:
-            jb = joints_b[tuple(ja.planks)]
+            jb = joints_b[pair(ja)]
+            sign = 1.0 if tuple(jb.planks) == tuple(ja.planks) else -1.0
             what = f"{where} joint {'/'.join(ja.planks)}"
             assert (jb.nails, jb.durable) == (ja.nails, ja.durable), what
             close(map_point(np.array(ja.point)), jb.point, point_tol, what + " point")
             close(np.linalg.norm(ja.force), np.linalg.norm(jb.force), f_abs, what + " |force|")
             close(np.linalg.norm(ja.moment), np.linalg.norm(jb.moment), m_abs,
                   what + " |moment|")
-            close(rotation @ np.array(ja.force), jb.force, f_abs, what + " force")
-            close(rotation @ np.array(ja.moment), jb.moment, m_abs, what + " moment")
+            close(sign * rotation @ np.array(ja.force), jb.force, f_abs, what + " force")
+            close(sign * turn_moment @ np.array(ja.moment), jb.moment, m_abs,
+                  what + " moment")
             close(ja.pull, jb.pull, pull_abs, what + " pull")
             close(ja.shear, jb.shear, f_abs, what + " shear")
             close(ja.utilization, jb.utilization, pull_abs / min(ja.pull_capacity,
@@ -661,6 +674,52 @@ def test_moved_design_in_other_units(name, phi, tx):
     k = pd.unit_factor(converted) / pd.unit_factor(design)
     assert_same_physics(check(design), check(converted), force_scale(design), rotation,
                         lambda p: map_point(p) * k, point_tol=1e-9 * pd.unit_factor(converted))
+
+
+# --- (f) mirror images and plank order ----------
+
+MIRROR = np.diag([-1.0, 1.0, 1.0])
+
+
+def reversed_planks(design: dict) -> dict:
+    """The design with its planks written in the reverse order."""
+    return {**design, "planks": list(reversed(design["planks"]))}
+
+
+def assert_same_mirrored(design: dict, a, b):
+    """Report ``b``, of ``design``'s mirror image (``physics_designs.mirrored``), is report
+    ``a`` mirrored: the same verdicts, per-nail forces and (elastic model, every case
+    solved) sags and stresses; points and forces are a's with x negated, moments -M m
+    (axial vectors), M = diag(-1, 1, 1)."""
+    assert_same_physics(a, b, force_scale(design), MIRROR, lambda p: MIRROR @ p,
+                        point_tol=1e-9 * pd.unit_factor(design))
+    if all(case.planks for case in a.cases):
+        assert_same_planks(a, b)
+
+
+def assert_same_reordered(design: dict, a, b):
+    """Report ``b``, of ``design`` with its planks in another order, is report ``a`` (a
+    joint then named the other way round carries the opposite wrench,
+    ``assert_same_physics``), with the same sags and stresses (elastic model)."""
+    assert_same_physics(a, b, force_scale(design), point_tol=1e-9 * pd.unit_factor(design))
+    if all(case.planks for case in a.cases):
+        assert_same_planks(a, b)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_mirror_image_changes_nothing(name):
+    """(f): the design's mirror image in the plane x = 0 (``assert_same_mirrored``).
+    Physics has no handedness: a rule that read a sign or an order of the world's axes
+    (a nail row's worst nail, a slip direction, a support line's side) would show here."""
+    design = DESIGNS[name]
+    assert_same_mirrored(design, check(design), check(pd.mirrored(design)))
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_plank_order_changes_nothing(name):
+    """(f): the planks written in the reverse order (``assert_same_reordered``)."""
+    design = DESIGNS[name]
+    assert_same_reordered(design, check(design), check(reversed_planks(design)))
 
 
 # --- (c) balance on the catalog ----------
