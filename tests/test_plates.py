@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import example, given, settings
+from hypothesis import strategies as st
 
 from furncheck.design.model import Material, Plank
 from furncheck.statics import plate_supports, plates
@@ -406,3 +408,30 @@ load_cases:
 
     turned = _top(pd.to_text(pd.rigid_motion(yaml.safe_load(more), 37.0, 800.0, -1700.0)))[1]
     assert (turned.sag, turned.stress) == pytest.approx((alone.sag, alone.stress), rel=1e-9)
+
+
+@settings(deadline=None, max_examples=200, derandomize=True)
+@given(points=st.lists(st.floats(-0.2, 0.2), max_size=12),
+       edges=st.lists(st.floats(-0.2, 0.2), max_size=8))
+@example(points=[-0.2, -0.1996986, -0.18913107, 0.1996986, 0.2], edges=[])
+@example(points=[0.01, 0.0108, 0.0116, 0.0124, 0.0132], edges=[0.0, 0.0004])
+def test_grid_lines_mirror_and_keep_every_line_within_a_millimetre(points, edges):
+    """``plate_mesh.grid_lines`` of a 400 mm side: the mirrored lines and edges give the
+    mirrored grid (to round-off), every support line lies within NODE_MERGE (1 mm) of a
+    grid line, every patch edge within it of one or left out only where the lines would
+    pass PLATE_GRID_LINES, and the grid runs from edge to edge, ascending.  (The first
+    example is the edited chair's seat whose stress moved by 1e-5 when mirrored: segment
+    ends at +-199.7 and +-200 mm; the second a run of lines 0.8 mm apart, longer than
+    two millimetres.)"""
+    from furncheck import tolerances as tol
+    from furncheck.statics.plate_mesh import grid_lines
+
+    cell = 0.03
+    grid = grid_lines(-0.2, 0.2, points, edges, cell)
+    mirrored = grid_lines(-0.2, 0.2, [-p for p in points], [-e for e in edges], cell)
+    assert np.allclose(np.sort(-mirrored), grid, rtol=0.0, atol=1e-12)
+    assert grid[0] == -0.2 and grid[-1] == pytest.approx(0.2, abs=1e-15)
+    assert np.all(np.diff(grid) > 0.0)
+    assert np.all(np.diff(grid) <= cell * (1 + tol.PLATE_CELL_SLACK))
+    for point in points:
+        assert np.abs(grid - point).min() <= tol.NODE_MERGE + 1e-15
