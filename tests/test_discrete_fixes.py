@@ -1042,3 +1042,28 @@ def test_a_thickening_leaves_the_planks_it_does_not_need_as_they_were():
     assert thick["side_l"] == thick["side_r"] == 12.0
     assert sorted(p for p, t in thick.items() if t > 12.0) == ["s0", "s2", "s3", "s4"]
     assert "side_l 15 mm" not in rail.advice and fix_valid(rail)
+
+
+def test_pads_left_out_where_the_boards_that_finish_them_hold_the_table_down():
+    """table-slides (elastic): shoved with H = 110 N on mu = 0.5 it slides (W = 124 N,
+    mu W = 62 N), and its top and legs sag or bow.  Non-slip pads (mu' >= 110 / 124 =
+    0.887, asked as 0.9) leave the sag, which thicker boards finish; but the boards weigh
+    the table down: with them W = sum of the planks' masses x g and mu W >= 110 N with
+    the floor's own 0.5, so the pads do nothing.  The fix offered is the boards alone (the
+    thicker rule's, the floor's friction unchanged), valid; the pads' candidate is told
+    as left out for that reason."""
+    design = load_design(str(ROOT / "designs" / "table-slides.yaml"))
+    geometry = analyze(design)
+    report = check_design(design, geometry)
+    assert {v.kind for v in report.violations} == {"sliding", "sagging"}
+    trials = []
+    fixes = discrete_fixes(design, geometry, report, trials=trials)
+    assert [fix.rule for fix in fixes] == ["thicker"]
+    (fix,) = fixes
+    assert fix.report.valid and fix.design.material.friction == design.material.friction
+    weight = sum(fix.design.plank_mass(p) for p in fix.design.planks) * 9.81
+    assert 0.5 * weight >= 110.0 > 0.5 * sum(design.plank_mass(p) for p in design.planks) * 9.81
+    pads = [t for t in trials if t.rule == "non-slip pads"]
+    assert pads and all(t.outcome != "found" for t in pads)
+    assert any("thicker boards alone make the design valid" in t.reason for t in pads)
+    assert [t.outcome for t in trials if t.rule == "thicker board"][-1] == "found"

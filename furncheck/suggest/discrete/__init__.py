@@ -69,6 +69,22 @@ def spares_no_board(thickened: dict, alone: dict) -> bool:
                                    for plank, new in alone.items())
 
 
+def _fewest_boards(fixes: list[Fix]) -> list[Fix]:
+    """The thicker boards fixes (the thicker rule's, and another rule's boards that hold
+    without its part: ``thicker.boards_alone``) that no other one of them betters: a fix
+    is left out where another thickens no plank it does not, none more, and is not the
+    same (the same boards: the first is kept)."""
+    kept = []
+    for k, fix in enumerate(fixes):
+        bettered = any(
+            spares_no_board(fix.thickened, other.thickened)
+            and (other.thickened != fix.thickened or j < k)
+            for j, other in enumerate(fixes) if j != k)
+        if not bettered:
+            kept.append(fix)
+    return kept
+
+
 def _not_covered(search: Search) -> None:
     """The reconnect rule where the continuous search closed the gaps: no fix."""
     search.not_applicable(RECONNECT, "the continuous search closes the gaps")
@@ -93,7 +109,8 @@ def discrete_fixes(design: Design, geometry: Geometry, report: DesignReport,
     report given), each with what it restores.  A design that does not stand as drawn
     gets ``reconnect`` only, and only when the continuous search found nothing
     (``covered`` False).  A fix that adds a part and thickens planks is dropped when it
-    spares no board of the thicker rule's fix alone (``spares_no_board``).  No fix
+    spares no board of a fix of thicker boards alone (``spares_no_board``), and so is
+    a fix of thicker boards that another betters (``_fewest_boards``).  No fix
     changes a DOF of ``locked``.  Every rule's trials (each candidate, or why the rule
     does not apply) are appended to ``trials`` (``tried.Trial``)."""
     search = Search(design, geometry, report, locked, [] if trials is None else trials)
@@ -106,14 +123,16 @@ def discrete_fixes(design: Design, geometry: Geometry, report: DesignReport,
         tried_by.append(range(start, len(search.trials)))
     kept = [(fix, tried) for fix, tried in zip(found, tried_by, strict=True)
             if fix is not None]
-    found = [fix for fix, _ in kept]
-    alone = next((fix.thickened for fix in found if fix.rule == "thicker"), None)
-    if alone:
-        for fix, tried in kept:
-            if fix.rule != "thicker" and spares_no_board(fix.thickened, alone):
-                _dropped(search.trials, tried)
-        found = [fix for fix in found if fix.rule == "thicker" or not spares_no_board(
-            fix.thickened, alone)]
+    boards = _fewest_boards([fix for fix, _ in kept if fix.rule == "thicker"])
+    found = []
+    for fix, tried in kept:
+        if fix.rule == "thicker":
+            if any(fix is other for other in boards):
+                found.append(fix)
+        elif any(spares_no_board(fix.thickened, other.thickened) for other in boards):
+            _dropped(search.trials, tried)
+        else:
+            found.append(fix)
     restores = search.restores
     return [Fix(f.rule, f.advice, f.design, f.report, f.adds, f.between, restores,
                 f.thickened) for f in found]

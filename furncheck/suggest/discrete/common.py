@@ -164,7 +164,12 @@ class Search:
             self._record(candidate, FAILED, "the design with it is still not valid", edited)
             if report.violations and all(v.kind in BENDING for v in report.violations):
                 bent.append((candidate, edited, after, report))
-        from furncheck.suggest.discrete.thicker import cut_phrase, finish, thickness_phrase
+        from furncheck.suggest.discrete.thicker import (
+            boards_alone,
+            cut_phrase,
+            finish,
+            thickness_phrase,
+        )
 
         best = None
         for candidate, edited, after, report in reversed(_nearest(bent)):
@@ -186,6 +191,11 @@ class Search:
         if best is None:
             return None
         _, candidate, (design, report, thickened), unfinished = best
+        bare = boards_alone(self, thickened, candidate.trial_rule or candidate.rule)
+        if bare is not None:
+            self._record(candidate, FAILED, "valid, but the thicker boards alone make the "
+                         "design valid: left out", thickening=True)
+            return bare
         self._record(candidate, FOUND, thickening=True)
         advice = candidate.advice
         adds = tuple(design.plank(plank.id) for plank in candidate.adds)   # as finished

@@ -85,11 +85,48 @@ def thicker_planks(search: Search) -> Fix | None:
         search.failed(THICKER, why[0] if why else "no thicker boards make it valid")
         return None
     edited, after_report, thickened = checked
-    search.trials.append(Trial(THICKER, "", FOUND, plank=names(list(thickened))))
+    return _fix(search, edited, after_report, thickened)
+
+
+def _fix(search: Search, edited: Design, report: DesignReport, thickened: dict,
+         reason: str = "") -> Fix:
+    """The rule's Fix: ``edited``, the design with the planks ``thickened`` ({id: (old,
+    new) m}), valid by ``report``; its Trial recorded as found (with ``reason``)."""
+    search.trials.append(Trial(THICKER, "", FOUND, reason, plank=names(list(thickened))))
     advice = (f"{thickness_phrase(thickened, search.design, capital=True)}"
               f"{cut_phrase(search.design, edited)}.")
-    return Fix("thicker", advice, edited, after_report, between=tuple(thickened),
+    return Fix("thicker", advice, edited, report, between=tuple(thickened),
                thickened={p: new for p, (_, new) in thickened.items()})
+
+
+def boards_alone(search: Search, thickened: dict, rule: str) -> Fix | None:
+    """The thicker boards with which another rule's candidate was finished (``thickened``:
+    {id: (old, new) m}; ``rule``: that rule's name in the reports), on the design
+    without that rule's part, as this rule's fix, when that is valid (the boards the
+    design has, pruned as ``_pruned`` prunes them); else None.  A heavier board holds a
+    piece down as well as stiffening it: a table that slid under a shove (mu W less than
+    the push) and sagged, given non-slip pads and a thicker top and legs, stood on its
+    own feet with the boards alone, its weight from 124 to 237 N (mu W from 62 to 118 N
+    against 110), and a maker should not be sent for pads that do nothing."""
+    existing = {plank: new for plank, (_, new) in thickened.items()
+                if plank in search.design.plank_index}
+    if not existing:
+        return None
+    design, geometry = search.design, search.geometry
+    grown_up = _grown_whole(search, design, geometry, existing, [])
+    if grown_up is None:
+        return None
+    edited, after = grown_up
+    search.checks += 1
+    report = check_design(edited, after)
+    if not report.valid:
+        return None
+    edited, report, current = _pruned(search, design, geometry, mirror_planes(design),
+                                      existing, (edited, report))
+    original = {p.id: p.thickness for p in design.planks}
+    order = sorted(current, key=design.plank_index.get)
+    return _fix(search, edited, report, {p: (original[p], current[p]) for p in order},
+                f"the boards that finished the {rule}' candidate, without it")
 
 
 def finish(search: Search, edited: Design, geometry: Geometry,
