@@ -1067,3 +1067,22 @@ def test_pads_left_out_where_the_boards_that_finish_them_hold_the_table_down():
     assert pads and all(t.outcome != "found" for t in pads)
     assert any("thicker boards alone make the design valid" in t.reason for t in pads)
     assert [t.outcome for t in trials if t.rule == "thicker board"][-1] == "found"
+
+
+def test_a_thicker_top_alone_where_the_legs_cannot_grow():
+    """coffee-table-splayed (elastic): its top sags (12 mm over a 788 mm span) and its
+    legs bow with the top's turning ends.  The legs cannot grow (each end face against
+    the top, its feet on the floor), so the thicker rule once gave up on the whole
+    thickening; the top alone can grow upward, and the estimate t = 12 mm x (44.2 /
+    1.97)^(1/3) = 33.8 mm rounds up to a 36 mm board, then to 44 mm from the report of
+    that try.  With the stiffer top the legs' ends turn less and they no longer bow past
+    their limit: the fix thickens the top alone, and is valid."""
+    design = load_design(str(ROOT / "designs" / "coffee-table-splayed.yaml"))
+    geometry = analyze(design)
+    report = check_design(design, geometry)
+    assert {v.where for v in report.violations} == {"top", "leg_pp", "leg_pm", "leg_mp",
+                                                    "leg_mm"}
+    assert 12.0 * (44.2 / 1.97) ** (1 / 3) == pytest.approx(33.8, abs=0.05)
+    fixes = discrete_fixes(design, geometry, report)
+    (fix,) = [fix for fix in fixes if fix.rule == "thicker"]
+    assert fix.thickened == {"top": pytest.approx(0.044)} and fix.report.valid

@@ -186,8 +186,11 @@ def _thickened(search: Search, design: Design, geometry: Geometry, report: Desig
         why[:] = ["no thickness helps (a joint's nails shear off, or the moment across "
                   "its nail row alone pulls them out)"]
         return None
+    stuck: set[str] = set()             # planks that cannot grow: the others alone
     for _ in range(THICKEN_TRIES):
         for plank, thickness in wanted.items():
+            if plank in stuck:
+                continue
             stock = _stock(thickness)
             if plank in current and (stock is None or stock <= current[plank]):
                 stock = _stock(current[plank], above=True)     # at least one board up
@@ -207,6 +210,8 @@ def _thickened(search: Search, design: Design, geometry: Geometry, report: Desig
         else:       # the images cannot take the board: the planks that need it alone
             grown_up = _grown_whole(search, design, geometry, current, why)
         if grown_up is None:
+            grown_up = _without_stuck(search, design, geometry, current, stuck, why)
+        if grown_up is None:
             return None
         edited, after = grown_up
         search.checks += 1
@@ -225,6 +230,24 @@ def _thickened(search: Search, design: Design, geometry: Geometry, report: Desig
         if not wanted:
             return None
     return None
+
+
+def _without_stuck(search: Search, design: Design, geometry: Geometry,
+                   current: dict[str, float], stuck: set[str], why: list[str]):
+    """``_grown_whole`` of the thickening ``current`` less the planks that cannot grow
+    on their own (each tried alone; they are taken out of ``current`` and added to
+    ``stuck``, in place), where some can; else None.  A splayed coffee table's legs,
+    their top ends against the top and their feet on the floor, cannot grow, but its top
+    can, upward, and a 44 mm top alone holds it (the legs bowed for the thin top's
+    turning ends)."""
+    cannot = {plank for plank, thickness in current.items()
+              if _grown_whole(search, design, geometry, {plank: thickness}, []) is None}
+    if not cannot or cannot == set(current):
+        return None
+    for plank in cannot:
+        del current[plank]
+    stuck |= cannot
+    return _grown_whole(search, design, geometry, current, why)
 
 
 def _pruned(search: Search, design: Design, geometry: Geometry,
