@@ -190,3 +190,18 @@ def test_an_end_cut_is_asked_only_of_ends_that_sit_square_now():
     assert advise(stool, {"leg_r.rx": 5.0}) == (
         "Tilt leg_r 5 degrees about x, its ends cut at 5 degrees to sit flat (439.7 mm along "
         "its edges) (valid for 4.5-6 degrees).")
+
+
+def test_a_board_cut_shorter_at_both_ends_says_how_much_comes_off_each():
+    """The tipping bench's seat (1200 mm, its legs nailed under it, neither end held):
+    its length change keeps its centre, so 546 mm shorter is 273 mm off each end, and a
+    maker must know which: the advice says so; widened by 490 mm, 245 mm at each edge.
+    The chair's back, nailed to the seat by its bottom end, grows at its top only: no
+    such note (its phrase says it raises its top)."""
+    bench = with_model(load_design(str(CATALOG / "bench-tips.yaml")), "rigid")
+    assert advise(bench, {"seat.length": -546.0}) == \
+        "Shorten seat by 546 mm (273 mm off each end) (valid for 491-655 mm)."
+    assert advise(bench, {"seat.width": 490.0}).startswith(
+        "Widen seat by 490 mm (245 mm at each edge) (valid for")
+    chair = with_model(load_design(str(CATALOG / "chair-upright.yaml")), "rigid")
+    assert advise(chair, {"back.length": 10.0}).startswith("Raise the top of back by 10 mm (")

@@ -202,7 +202,12 @@ def _phrase(design: Design, edited: Design, held: dict, plank: str, subject: str
             # a board hung by its top edge (a batten, an apron): its bottom edge moves; a
             # leg whose foot moves is still lengthened or shortened
             return f"{'lower' if change > 0 else 'raise'} the bottom of {subject} by {amount}"
-        return f"{_size_verb(kind, change)} {subject} by {amount}"
+        phrase = f"{_size_verb(kind, change)} {subject} by {amount}"
+        if moved is None and not _held_at_both(held, plank, 0 if kind == "length" else 1):
+            side = "end" if kind == "length" else "edge"
+            half = f"{_amount(abs(change) / 2.0)} {_unit(unit)}"
+            phrase += f" ({half} {'off' if change < 0 else 'at'} each {side})"
+        return phrase
     if kind == "rz":
         turn = "counterclockwise" if change > 0 else "clockwise"
         return f"turn {subject} {amount} {turn} (seen from above)"
@@ -329,6 +334,11 @@ def _moved_end(design: Design, held: dict, plank_id: str, axis: int) -> np.ndarr
     if len(ends) != 1:
         return None
     return -ends[0].sign * design.plank(plank_id).rotation_matrix[:, axis]
+
+
+def _held_at_both(held: dict, plank_id: str, axis: int) -> bool:
+    """Whether joints or the ground hold both of the plank's ends along local ``axis``."""
+    return len([end for end in held.get(plank_id, ()) if end.axis == axis]) >= 2
 
 
 def _top(design: Design, plank_id: str, side: int = 0) -> np.ndarray | None:
