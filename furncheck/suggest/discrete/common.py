@@ -138,8 +138,9 @@ class Search:
         self.trials.append(Trial(rule, target, FAILED, reason))
 
     def first_valid(self, candidates: Iterable[Candidate]) -> Fix | None:
-        """The Fix of the first candidate that is valid (``verdict``), trying at most
-        MAX_CANDIDATES of them; when none is, but some failed only by planks that bend
+        """The Fix of the first candidate that is valid (``verdict``), checking at most
+        MAX_CANDIDATES of them in full (those ruled out by their geometry alone, before
+        any check, do not count); when none is, but some failed only by planks that bend
         too much (elastic model), the FINISHED of those whose planks bend least past
         their limits (``_nearest``; on a tie the later, as the rules list their smallest
         parts first) with those planks thickened (``thicker.finish``): of the
@@ -147,7 +148,8 @@ class Search:
         else None.  Every candidate checked is recorded in ``trials`` (``tried.Trial``:
         found, or failed and why)."""
         bent: list[tuple] = []
-        for count, candidate in enumerate(candidates):
+        count = 0                           # candidates checked in full
+        for candidate in candidates:
             if count >= MAX_CANDIDATES:
                 self.failed(candidate.trial_rule or candidate.rule, f"the rule checks "
                             f"{MAX_CANDIDATES} candidates at most", candidate.target)
@@ -156,6 +158,7 @@ class Search:
             if isinstance(outcome, str):
                 self._record(candidate, FAILED, outcome)
                 continue
+            count += 1
             edited, after, report = outcome
             if report.valid:
                 self._record(candidate, FOUND)

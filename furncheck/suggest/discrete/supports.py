@@ -27,6 +27,7 @@ import numpy as np
 
 from furncheck.design.model import Design, Plank
 from furncheck.suggest.discrete.common import (
+    BENDING,
     PARALLEL_COS,
     Candidate,
     Fix,
@@ -34,6 +35,7 @@ from furncheck.suggest.discrete.common import (
     amount,
     board,
     level,
+    names,
     new_id,
     parallel,
     point_of,
@@ -183,14 +185,59 @@ def _stiffeners(search: Search, i: str, neighbours: list[str],
     both: the woodworker's fix for a sagging shelf.  (A lip at one edge carries that
     edge; the beam model's shelf, whose section does not bend across its width, then
     twists about its axis: where that is too much, the rail under the middle does it.)
-    ``stiffener_depths`` deep, the shallowest first.  None (and the reason recorded) when i
-    is not level, is not held at both ends by parallel planks, or a rail would not reach
-    every failing place (``reaches``, see ``_reach``)."""
+    ``stiffener_depths`` deep, the shallowest first; at each depth, first a rail under
+    the middle of i and of every failing plank alike to i (``_alike_failing``: a
+    bookcase's identical shelves get one rail each, not a rail under one and thicker
+    boards for the rest), then the three places under i.  None (and the reason
+    recorded) when i is not level, is not held at both ends by parallel planks, or a rail
+    would not reach every failing place (``reaches``, see ``_reach``)."""
     design = search.design
     shelf = design.plank(i)
     if not level(shelf):
         search.not_applicable(STIFFENER, f"{i} is not level", i)
         return
+    span = _rail_span(design, shelf, neighbours)
+    if span is None:
+        search.not_applicable(STIFFENER, f"{i} is not held at both ends by parallel planks",
+                              i)
+        return
+    low, high = span[1], span[2]
+    if not reaches({i, low.id, high.id}):
+        search.failed(STIFFENER, f"a rail under {i} would not come near every failing joint "
+                      f"and plank", i)
+        return
+    thickness = design.material.thickness
+    depths = stiffener_depths(thickness, float(shelf.corners[:, 2].min()), design.tolerance)
+    if not depths:
+        search.not_applicable(STIFFENER, f"{i} is too near the floor for a rail under it", i)
+        return
+    name = new_id(design, "rail")
+    nailed = (i, low.id, high.id)
+    others = _alike_failing(search, shelf)
+    for rail_depth in depths:
+        group = _rails_under_each(design, shelf, span, others, rail_depth, thickness)
+        if group is not None:
+            yield replace(group, target=i)
+        for side, edge, where in ((-1.0, 1.0, "under one long edge"),
+                                  (1.0, 1.0, "under the other long edge"),
+                                  (1.0, 0.0, "under the middle")):
+            rail = _rail(shelf, span, rail_depth, thickness, side, edge, name)
+            advice = (f"Add {name} ({size_of(rail, design)}) on edge under {i}, from "
+                      f"{low.id} to {high.id}, centred at {point_of(rail.center, design)}, "
+                      f"nailed to all three.")
+            place = (f"{amount(rail_depth / design.unit_scale)} {design.units} deep, from "
+                     f"{low.id} to {high.id}, {where}")
+            yield Candidate("rail", with_planks(design, (rail,)), advice, (rail,), nailed,
+                            tuple((end, name) for end in nailed), STIFFENER, i, place, name)
+
+
+def _rail_span(design: Design, shelf: Plank, neighbours: list[str]):
+    """(frame, low, high, start, stop, width) of a rail under the level ``shelf``: its
+    beam's frame (axis, across, normal), the parallel planks (among ``neighbours``) that
+    hold its ends, nearest on each side along the beam (else along its other axis, a
+    shelf deeper than it is wide), where the rail starts and stops along the axis from
+    the shelf's centre (m, between their faces), and the shelf's width across the axis;
+    None where no two parallel planks hold its ends."""
     from furncheck.statics.beams import along_width, beam_frame, beam_length_width
 
     for crosswise in (along_width(shelf), not along_width(shelf)):
@@ -204,44 +251,86 @@ def _stiffeners(search: Search, i: str, neighbours: list[str],
         below = [e for e in ends if e[0] < 0]
         above = [e for e in ends if e[0] > 0]
         if below and above:
-            break
-    else:
-        search.not_applicable(STIFFENER, f"{i} is not held at both ends by parallel planks",
-                              i)
-        return
-    (s_low, low), (s_high, high) = max(below, key=lambda e: e[0]), min(above, key=lambda e: e[0])
-    if not reaches({i, low.id, high.id}):
-        search.failed(STIFFENER, f"a rail under {i} would not come near every failing joint "
-                      f"and plank", i)
-        return
-    start = s_low + low.half_extents[2]
-    stop = s_high - high.half_extents[2]
-    thickness = design.material.thickness
-    length, width = beam_length_width(shelf, crosswise)
+            (s_low, low), (s_high, high) = max(below, key=lambda e: e[0]), \
+                min(above, key=lambda e: e[0])
+            return (frame, low, high, s_low + low.half_extents[2],
+                    s_high - high.half_extents[2], beam_length_width(shelf, crosswise)[1])
+    return None
+
+
+def _rail(shelf: Plank, span, depth: float, thickness: float, side: float, edge: float,
+          name: str) -> Plank:
+    """The rail ``name``, ``depth`` deep and ``thickness`` thick, on edge under ``shelf``
+    along ``span`` (``_rail_span``): under the long edge on ``side`` (``edge`` 1) or
+    under the middle (``edge`` 0)."""
+    frame, _, _, start, stop, width = span
+    axis, across = frame[:, 0], frame[:, 1] * side
     down = -frame[:, 2] if frame[2, 2] > 0 else frame[:, 2]
-    name = new_id(design, "rail")
-    nailed = (i, low.id, high.id)
-    clearance = float(shelf.corners[:, 2].min())
-    depths = stiffener_depths(thickness, clearance, design.tolerance)
-    if not depths:
-        search.not_applicable(STIFFENER, f"{i} is too near the floor for a rail under it", i)
-        return
-    for rail_depth in depths:
-        for side, edge, where in ((-1.0, 1.0, "under one long edge"),
-                                  (1.0, 1.0, "under the other long edge"),
-                                  (1.0, 0.0, "under the middle")):
-            across = frame[:, 1] * side
-            centre = (shelf.center_array + axis * 0.5 * (start + stop)
-                      + across * edge * (0.5 * width - 0.5 * thickness)
-                      + down * (shelf.half_extents[2] + 0.5 * rail_depth))
-            rail = board(name, stop - start, rail_depth, thickness, centre, axis, across)
-            advice = (f"Add {name} ({size_of(rail, design)}) on edge under {i}, from "
-                      f"{low.id} to {high.id}, centred at {point_of(rail.center, design)}, "
-                      f"nailed to all three.")
-            place = (f"{amount(rail_depth / design.unit_scale)} {design.units} deep, from "
-                     f"{low.id} to {high.id}, {where}")
-            yield Candidate("rail", with_planks(design, (rail,)), advice, (rail,), nailed,
-                            tuple((end, name) for end in nailed), STIFFENER, i, place, name)
+    centre = (shelf.center_array + axis * 0.5 * (start + stop)
+              + across * edge * (0.5 * width - 0.5 * thickness)
+              + down * (shelf.half_extents[2] + 0.5 * depth))
+    return board(name, stop - start, depth, thickness, centre, axis, across)
+
+
+def _alike_failing(search: Search, shelf: Plank) -> list[tuple[Plank, tuple]]:
+    """The other planks that sag or break in the report and are alike to ``shelf``: level,
+    of its length, width and thickness (to the design's tolerance), each with its rail's
+    span (``_rail_span``), in the design's order; [] where any of them has no span or no
+    room for a rail as deep as the deepest tried under ``shelf``."""
+    design, tolerance = search.design, search.design.tolerance
+    failing = {v.where for v in search.report.violations if v.kind in BENDING}
+    found = []
+    for plank in design.planks:
+        if plank.id == shelf.id or plank.id not in failing or not level(plank):
+            continue
+        if max(abs(plank.length - shelf.length), abs(plank.width - shelf.width),
+               abs(plank.thickness - shelf.thickness)) > tolerance:
+            continue
+        span = _rail_span(design, plank, search.neighbours[plank.id])
+        if span is None:
+            return []
+        found.append((plank, span))
+    return found
+
+
+def _rails_under_each(design: Design, shelf: Plank, span, others, depth: float,
+                      thickness: float) -> Candidate | None:
+    """The candidate of a rail ``depth`` deep under the middle of ``shelf`` and of each of
+    ``others`` (``_alike_failing``), each nailed to its plank and the two that hold its
+    ends; None without others, or where one of them has no room for it above the floor
+    (within the design's tolerance)."""
+    if not others:
+        return None
+    rails, joints, taken = [], [], set()
+    group = sorted(((shelf, span), *others), key=lambda item: design.plank_index[item[0].id])
+    for plank, plank_span in group:
+        if float(plank.corners[:, 2].min()) < depth - design.tolerance:
+            return None
+        name = new_id(design, "rail", taken)
+        taken.add(name)
+        rails.append(_rail(plank, plank_span, depth, thickness, 1.0, 0.0, name))
+        joints += [(end, name) for end in (plank.id, plank_span[1].id, plank_span[2].id)]
+    shelves = [plank.id for plank, _ in group]
+    ends = {(plank_span[1].id, plank_span[2].id) for _, plank_span in group}
+    between = (f"each from {span[1].id} to {span[2].id}" if len(ends) == 1 else
+               "each between the two planks that hold its shelf's ends")
+    advice = (f"Add {_run(rails)} ({size_of(rails[0], design)}), one on "
+              f"edge under the middle of each of {names(shelves)}, {between}, nailed to all "
+              f"three.")
+    place = (f"{amount(depth / design.unit_scale)} {design.units} deep, under the middle of "
+             f"each of {names(shelves)}")
+    return Candidate("rail", with_planks(design, tuple(rails)), advice, tuple(rails),
+                     tuple(shelves), tuple(joints), STIFFENER, shelf.id, place, _run(rails))
+
+
+def _run(rails: list[Plank]) -> str:
+    """The rails' names: 'rail-1 to rail-8' where they are numbered one after another,
+    else listed."""
+    numbers = [rail.id.rpartition("-")[2] for rail in rails]
+    if len(rails) > 2 and all(n.isdigit() for n in numbers) and \
+            [int(n) for n in numbers] == list(range(int(numbers[0]), int(numbers[0]) + len(rails))):
+        return f"{rails[0].id} to {rails[-1].id}"
+    return names([rail.id for rail in rails])
 
 
 def support_candidate(search: Search, away: np.ndarray, i: str, j: str | None,
