@@ -1104,3 +1104,27 @@ def test_a_thicker_top_alone_where_the_legs_cannot_grow():
     fixes = discrete_fixes(design, geometry, report)
     (fix,) = [fix for fix in fixes if fix.rule == "thicker"]
     assert fix.thickened == {"top": pytest.approx(0.044)} and fix.report.valid
+
+
+def test_identical_shelves_get_a_rail_each():
+    """bookshelf-20 (elastic): its ten 582 x 300 x 12 mm shelves sag (the eight hung ones
+    3 mm over their 582 mm span, the two bottoms as plates in 'full').  The stiffening
+    rail rule's fix is a 48 mm rail on edge under the middle of each of the ten, each
+    nailed to its shelf and the two sides that hold its ends, and no thicker board: a
+    maker fixes identical shelves alike (it once gave a rail under shelf_a2 and 25 mm
+    boards for the nine others).  Each rail spans between its shelf's sides' faces, 582
+    mm, and the design with them is valid."""
+    design = load_design(str(CATALOG / "bookshelf-20.yaml"))
+    geometry = analyze(design)
+    report = check_design(design, geometry)
+    shelves = [f"shelf_{bay}{k}" for bay in "ab" for k in range(5)]
+    assert {v.where for v in report.violations} == set(shelves)
+    (rail,) = [fix for fix in discrete_fixes(design, geometry, report) if fix.rule == "rail"]
+    assert rail.advice.startswith("Add rail-1 to rail-10 (582 x 48 mm), one on edge under "
+                                  "the middle of each of shelf_a0, shelf_a1,")
+    assert not rail.thickened and len(rail.adds) == 10 and rail.report.valid
+    for k, plank in enumerate(rail.adds):
+        assert plank.length == pytest.approx(0.582) and plank.width == pytest.approx(0.048)
+        partners = {p for j in analyze(rail.design).joints if plank.id in j.planks
+                    for p in j.planks} - {plank.id}
+        assert partners == {shelves[k], "side_m", "side_l" if k < 5 else "side_r"}
