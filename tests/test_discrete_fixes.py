@@ -1140,3 +1140,49 @@ def test_identical_shelves_get_a_rail_each():
         partners = {p for j in analyze(rail.design).joints if plank.id in j.planks
                     for p in j.planks} - {plank.id}
         assert partners == {shelves[k], "side_m", "side_l" if k < 5 else "side_r"}
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_racking_legs_get_a_quarter_turn(model):
+    """table-racking: four 700 x 60 x 12 mm legs, their broad faces square to the 100 N
+    push along x, rack: the far legs' top joints pull 1400 N per nail (rigid) against 700.
+    The quarter-turn rule turns all four (the two that fail and their mirror images)
+    about their length: rotation [0, -90, 0] -> [0, -90, 90], the push then meets their
+    60 mm width.  Their top joints' lines then run along x, so the moment about y, which
+    pulled on a nail row with a lever of t / 2 = 6 mm (2 |M| / t per row), is the moment
+    across the row: M y_max / S with the three nails at y = -20, 0, 20 mm, S = 800 mm^2,
+    25 M per nail against 2 M / (0.012 x 3) = 55.6 M (contract section 3; the rigid
+    model's moments are the statics', 25.8 N m either way).  Rigid: the fix is the turn
+    alone, the legs centred where they stood; elastic: with a 25 mm top for its sag, the
+    legs moved 24 mm in so that their outer edges stay at x = +-450 mm.  A quarter turn
+    stands square with the piece: no implausible proportion, and its cost counts no turn
+    (``score._relative``), so it ranks above the aprons and panels."""
+    from furncheck.suggest.cutlist import plank_edits
+    from furncheck.suggest.score import shop_score
+    from furncheck.suggest.symmetry import mirror_planes
+
+    design = with_model(load_design(str(CATALOG / "table-racking.yaml")), model)
+    geometry = analyze(design)
+    report = check_design(design, geometry)
+    (turn,) = [fix for fix in discrete_fixes(design, geometry, report) if fix.rule == "turn"]
+    assert turn.advice.startswith("Turn leg_pp, leg_mp, leg_pm and leg_mm a quarter turn "
+                                  "about their length, so that the push meets their 60 mm "
+                                  "width, not their 12 mm thickness")
+    assert turn.report.valid and fix_valid(turn)
+    for leg in ("leg_pp", "leg_mp", "leg_pm", "leg_mm"):
+        plank = turn.design.plank(leg)
+        assert plank.rotation == pytest.approx((0.0, -90.0, 90.0), abs=1e-9)
+        outer = abs(plank.center[0]) + 0.03
+        assert outer == pytest.approx(0.474 if model == "rigid" else 0.450, abs=1e-9)
+    assert (turn.thickened == {}) == (model == "rigid")
+    score = shop_score(design, geometry, mirror_planes(design), turn.design,
+                       plank_edits(design, turn.design))
+    assert score.implausible == () and score.broken == 0
+    if model == "rigid":
+        before = {tuple(j.planks): j for j in report.cases[1].joints}
+        for joint in turn.report.cases[1].joints:
+            old = before[tuple(joint.planks)]
+            moment, old_moment = abs(joint.moment[1]), abs(old.moment[1])
+            pressing = 2 * old_moment / (0.012 * 3) - old.pull       # F_n / n
+            assert joint.pull == pytest.approx(moment * 0.020 / 8e-4 - pressing, rel=0.01)
+        assert max(j.pull for j in turn.report.cases[1].joints) < 700.0

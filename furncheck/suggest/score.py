@@ -30,7 +30,9 @@ design, and ranked by ``ShopScore.key`` (smaller first), lexicographically:
    -- on a symmetric design a symmetric fix comes first where one works;
 3. ``cost``: the sum over the planks touched of each one's largest *relative* change --
    a size change over the size it had, a move over the design's size (its largest
-   dimension), a turn in radians, a plank's own material value over its old value, an
+   dimension), a turn in radians (to the nearest quarter turn: a leg given a quarter
+   turn, ``discrete.turns``, is the same board standing square), a plank's own material
+   value over its old value, an
    added or removed plank 1 -- plus PLANK_COST per plank touched (a change of one plank
    is easier to make than the same change spread over five);
 4. the smaller change of the suggestion's own DOFs (``step``), then its rank as found.
@@ -343,14 +345,17 @@ def _pushes_lowered(original: Design, edited: Design) -> list[str]:
 
 def _plan_turn(before: Plank, after: Plank) -> float:
     """Degrees a plank standing square (its face normal level) is turned about the
-    vertical: between the horizontal parts of its face normal before and after (a tilt
-    in its own plane or across it leaves their direction alone)."""
+    vertical, out of square: between the horizontal parts of its face normal before and
+    after (a tilt in its own plane or across it leaves their direction alone), or to the
+    quarter turn, whichever is nearer (a leg given a quarter turn, ``discrete.turns``,
+    stands square with the piece)."""
     old, new = before.rotation_matrix[:, 2], after.rotation_matrix[:, 2]
     if not np.linalg.norm(new[:2]):
         return 0.0          # turned to lie flat: the other rules judge it
     a, b = old[:2] / np.linalg.norm(old[:2]), new[:2] / np.linalg.norm(new[:2])
     cosine = abs(float(a @ b))          # a face turned 180 degrees is the same face plane
-    return math.degrees(math.acos(min(1.0, cosine)))
+    turn = math.degrees(math.acos(min(1.0, cosine)))
+    return min(turn, 90.0 - turn)       # a quarter turn stands square again
 
 
 def _slope(plank: Plank) -> float:
@@ -434,8 +439,9 @@ def _relative(edit: PlankEdit, size: float) -> float:
             largest = max(largest, WHOLE_PLANK)
         elif field.field in POSITION_FIELDS:
             largest = max(largest, abs(field.change) / size)
-        elif field.field in ANGLE_FIELDS:
-            largest = max(largest, math.radians(abs(field.change)))
+        elif field.field in ANGLE_FIELDS:       # to the nearest quarter turn
+            turn = abs(field.change) % 90.0
+            largest = max(largest, math.radians(min(turn, 90.0 - turn)))
         elif field.field in SIZE_FIELDS or field.before != 0.0:
             largest = max(largest, abs(field.change) / abs(field.before))
     return largest

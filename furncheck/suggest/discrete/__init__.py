@@ -9,6 +9,7 @@ section 6.5 and the shop's standard fixes), each checked in full like every sugg
     anchors    a wall anchor where the design stands by a wall
     racking    aprons and stretchers between facing legs, back panels and diagonal braces
                across their edges
+    turns      legs that rack across their thickness given a quarter turn about their length
     thicker    a thicker plank for one that sags, breaks or whose nails pull out; also
                finishes another rule's candidate that fails only by bending
     reconnect  a near miss closed by lengthening or shortening the plank that misses
@@ -45,19 +46,20 @@ from furncheck.suggest.discrete.racking import aprons, back_panels, braces, stre
 from furncheck.suggest.discrete.reconnect import RECONNECT, reconnect_near_misses
 from furncheck.suggest.discrete.supports import _reach, support_planks
 from furncheck.suggest.discrete.thicker import thicker_planks
+from furncheck.suggest.discrete.turns import quarter_turns
 from furncheck.suggest.tried import FAILED, FOUND, Trial
 
 __all__ = ["RULES", "Fix", "Search", "_reach", "discrete_fixes", "spares_no_board",
            "support_planks"]
 
 RULES = (support_planks, overhang_supports, outriggers, wall_anchors, aprons, stretchers,
-         back_panels, braces, thicker_planks, more_nails, nail_down, stronger_fixings,
-         non_slip_pads)
+         back_panels, braces, quarter_turns, thicker_planks, more_nails, nail_down,
+         stronger_fixings, non_slip_pads)
 """The rules for a design that stands as drawn, in the order their fixes are listed: the
-paper's support first, then added parts by how little they change the piece, then a
-thicker board (a change of material), then more nails in a listed joint that takes
-them, a loose part nailed down, wall fixings rated for what they hold and non-slip pads
-under the feet (which change no part)."""
+paper's support first, then added parts by how little they change the piece, then legs
+turned (no part added), then a thicker board (a change of material), then more nails in
+a listed joint that takes them, a loose part nailed down, wall fixings rated for what
+they hold and non-slip pads under the feet (which change no part)."""
 
 
 def spares_no_board(thickened: dict, alone: dict) -> bool:
