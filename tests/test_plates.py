@@ -433,5 +433,5 @@ def test_grid_lines_mirror_and_keep_every_line_within_a_millimetre(points, edges
     assert grid[0] == -0.2 and grid[-1] == pytest.approx(0.2, abs=1e-15)
     assert np.all(np.diff(grid) > 0.0)
     assert np.all(np.diff(grid) <= cell * (1 + tol.PLATE_CELL_SLACK))
-    for point in points:
+    for point in (*points, *edges):       # (22 lines at most: no edge is left out)
         assert np.abs(grid - point).min() <= tol.NODE_MERGE + 1e-15

@@ -112,7 +112,9 @@ def _changes_sentence(dofs: tuple[str, ...], changes: tuple[float, ...],
                 words = [_phrase(original, edited, held, p, "{}", kind, changes[k], units[k])
                          for p in (plank, image)]
                 if words[0] == words[1]:        # the same end of each (mirrored)
-                    phrases.append(words[0].format(f"{plank} and {image}") + " each")
+                    head, bracket, note = words[0].partition(" (")
+                    phrases.append(head.format(f"{plank} and {image}") + " each"
+                                   + bracket + note)
                 else:                           # held otherwise: each its own words
                     phrases.append(f"{words[0].format(plank)} and {words[1].format(image)}")
             else:
@@ -203,7 +205,7 @@ def _phrase(design: Design, edited: Design, held: dict, plank: str, subject: str
             # leg whose foot moves is still lengthened or shortened
             return f"{'lower' if change > 0 else 'raise'} the bottom of {subject} by {amount}"
         phrase = f"{_size_verb(kind, change)} {subject} by {amount}"
-        if moved is None and not _held_at_both(held, plank, 0 if kind == "length" else 1):
+        if not _held_at(held, plank, 0 if kind == "length" else 1):
             side = "end" if kind == "length" else "edge"
             half = f"{_amount(abs(change) / 2.0)} {_unit(unit)}"
             phrase += f" ({half} {'off' if change < 0 else 'at'} each {side})"
@@ -336,9 +338,11 @@ def _moved_end(design: Design, held: dict, plank_id: str, axis: int) -> np.ndarr
     return -ends[0].sign * design.plank(plank_id).rotation_matrix[:, axis]
 
 
-def _held_at_both(held: dict, plank_id: str, axis: int) -> bool:
-    """Whether joints or the ground hold both of the plank's ends along local ``axis``."""
-    return len([end for end in held.get(plank_id, ()) if end.axis == axis]) >= 2
+def _held_at(held: dict, plank_id: str, axis: int) -> bool:
+    """Whether a joint or the ground holds an end of the plank along local ``axis`` (where
+    none does, a size change along it moves both ends alike, as ``dofs.apply_dof``
+    makes it)."""
+    return any(end.axis == axis for end in held.get(plank_id, ()))
 
 
 def _top(design: Design, plank_id: str, side: int = 0) -> np.ndarray | None:

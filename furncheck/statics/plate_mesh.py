@@ -81,9 +81,9 @@ def _merged(points: np.ndarray, low: float | None = None,
     stress moved by 1e-5 of itself when mirrored).  Where ``low`` and ``high`` are given
     (the plate's edges), they are lines, each taking the points within NODE_MERGE of
     it.  The other points fall into runs, each point within NODE_MERGE of the next; a
-    run no longer than twice NODE_MERGE gets one line at its middle, a longer one k =
-    floor(length / (2 NODE_MERGE)) + 1 lines at the middles of k equal parts, each
-    point within NODE_MERGE of its part's middle."""
+    run gets k = floor(length / (2 NODE_MERGE)) + 1 lines at the middles of k equal parts
+    (one at its middle where it is shorter than twice NODE_MERGE), each point within
+    NODE_MERGE of its part's middle."""
     merge = tol.NODE_MERGE
     lines = []
     if low is not None:

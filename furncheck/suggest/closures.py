@@ -27,8 +27,9 @@ from furncheck.result import DesignReport
 from furncheck.suggest.candidates import MAX_STEP, Candidate
 from furncheck.suggest.continuous import ContinuousSearch
 from furncheck.suggest.discrete.common import BENDING, Search
+from furncheck.suggest.discrete.growth import cut_phrase
 from furncheck.suggest.discrete.reconnect import RECONNECT
-from furncheck.suggest.discrete.thicker import cut_phrase, finish, thickness_phrase
+from furncheck.suggest.discrete.thicker import finish, thickness_phrase
 from furncheck.suggest.line_search import FIRST_PROBE
 from furncheck.suggest.shop_round import rounded_changes
 from furncheck.suggest.tried import FAILED, FOUND, Trial

@@ -30,9 +30,9 @@ design, and ranked by ``ShopScore.key`` (smaller first), lexicographically:
    -- on a symmetric design a symmetric fix comes first where one works;
 3. ``cost``: the sum over the planks touched of each one's largest *relative* change --
    a size change over the size it had, a move over the design's size (its largest
-   dimension), a turn in radians (to the nearest quarter turn: a leg given a quarter
-   turn, ``discrete.turns``, is the same board standing square), a plank's own material
-   value over its old value, an
+   dimension), a turn in radians (none for a quarter turn about the plank's own axis: a
+   leg so turned, ``discrete.turns``, is the same board standing square), a plank's own
+   material value over its old value, an
    added or removed plank 1 -- plus PLANK_COST per plank touched (a change of one plank
    is easier to make than the same change spread over five);
 4. the smaller change of the suggestion's own DOFs (``step``), then its rank as found.
@@ -145,7 +145,8 @@ def shop_score(original: Design, geometry: Geometry, planes: tuple[MirrorPlane, 
     ``elastic.beam_layout`` where the caller scores many suggestions of it (None: made
     here when needed)."""
     size = design_size(original)
-    cost = sum(_relative(edit, size) for edit in edits) + PLANK_COST * len(edits)
+    cost = sum(_relative(edit, size, _quarter_turned(original, edited, edit.plank))
+               for edit in edits) + PLANK_COST * len(edits)
     broken = broken_pairs(edited, planes, frozenset(original.plank_index))
     return ShopScore(implausible(original, geometry, edited, layout), broken, cost,
                      len(edits))
@@ -429,8 +430,9 @@ def _overhang_share(design: Design, plank_id: str,
     return max(shares, key=lambda item: item[0])
 
 
-def _relative(edit: PlankEdit, size: float) -> float:
-    """The plank's largest relative change (module docstring, item 3)."""
+def _relative(edit: PlankEdit, size: float, square: bool = False) -> float:
+    """The plank's largest relative change (module docstring, item 3); its turn counts
+    nothing where it is ``square``: given a quarter turn (``_quarter_turned``)."""
     if edit.action != "change":
         return WHOLE_PLANK
     largest = 0.0
@@ -439,12 +441,34 @@ def _relative(edit: PlankEdit, size: float) -> float:
             largest = max(largest, WHOLE_PLANK)
         elif field.field in POSITION_FIELDS:
             largest = max(largest, abs(field.change) / size)
-        elif field.field in ANGLE_FIELDS:       # to the nearest quarter turn
-            turn = abs(field.change) % 90.0
-            largest = max(largest, math.radians(min(turn, 90.0 - turn)))
+        elif field.field in ANGLE_FIELDS:
+            if not square:
+                largest = max(largest, math.radians(abs(field.change)))
         elif field.field in SIZE_FIELDS or field.before != 0.0:
             largest = max(largest, abs(field.change) / abs(field.before))
     return largest
+
+
+QUARTER_SLACK = 1e-6
+"""Degrees: a plank's turn counts as a quarter turn within this of 90 degrees."""
+
+
+def _quarter_turned(original: Design, edited: Design, plank_id: str) -> bool:
+    """Whether the plank is turned by a quarter turn about one of its own axes (the same
+    board standing square: ``discrete.turns``): the rotation from its old frame to its
+    new one is 90 degrees, within QUARTER_SLACK, about an axis along one of its own."""
+    if plank_id not in original.plank_index or plank_id not in edited.plank_index:
+        return False
+    before = original.plank(plank_id).rotation_matrix
+    after = edited.plank(plank_id).rotation_matrix
+    relative = after @ before.T
+    cosine = min(1.0, max(-1.0, 0.5 * (float(np.trace(relative)) - 1.0)))
+    if abs(math.degrees(math.acos(cosine)) - 90.0) > QUARTER_SLACK:
+        return False
+    axis = np.array([relative[2, 1] - relative[1, 2], relative[0, 2] - relative[2, 0],
+                     relative[1, 0] - relative[0, 1]])
+    axis /= float(np.linalg.norm(axis))
+    return float(np.abs(before.T @ axis).max()) >= 1.0 - math.radians(QUARTER_SLACK)
 
 
 def _fits_board(plank: Plank) -> bool:

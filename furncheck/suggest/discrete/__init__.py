@@ -12,6 +12,7 @@ section 6.5 and the shop's standard fixes), each checked in full like every sugg
     turns      legs that rack across their thickness given a quarter turn about their length
     thicker    a thicker plank for one that sags, breaks or whose nails pull out; also
                finishes another rule's candidate that fails only by bending
+    growth     how a thicker plank grows: which face stays, what moves or is cut with it
     reconnect  a near miss closed by lengthening or shortening the plank that misses
     nails      more nails in a listed joint that takes them
     nail_down  a loose part (type: rests) that lifts off or slides, nailed to what it
@@ -92,16 +93,18 @@ def _not_covered(search: Search) -> None:
     search.not_applicable(RECONNECT, "the continuous search closes the gaps")
 
 
-def _dropped(trials: list[Trial], tried: range) -> None:
-    """The found trial among ``tried`` (the trials of the rule whose fix spares no board
-    of the thicker rule's fix alone) told as failed for that reason (the explanation must
-    not count it found)."""
+SPARES_NO_BOARD = ("valid with thicker boards, but it needs every board the thicker board "
+                  "fix alone needs, and adds a part: left out")
+
+
+def _dropped(trials: list[Trial], tried: range, reason: str = SPARES_NO_BOARD) -> None:
+    """The found trial among ``tried`` (the trials of the rule whose fix is left out: it
+    spares no board of a thicker-board fix, or is one that another betters) told as
+    failed for ``reason`` (the explanation must not count it found)."""
     for k in tried:
         trial = trials[k]
         if trial.outcome == FOUND:
-            trials[k] = replace(trial, outcome=FAILED, reason=(
-                "valid with thicker boards, but it needs every board the thicker board "
-                "fix alone needs, and adds a part: left out"))
+            trials[k] = replace(trial, outcome=FAILED, reason=reason)
 
 
 def discrete_fixes(design: Design, geometry: Geometry, report: DesignReport,
@@ -131,6 +134,9 @@ def discrete_fixes(design: Design, geometry: Geometry, report: DesignReport,
         if fix.rule == "thicker":
             if any(fix is other for other in boards):
                 found.append(fix)
+            else:
+                _dropped(search.trials, tried, "the same boards as another thicker-board "
+                         "fix, or more: left out")
         elif any(spares_no_board(fix.thickened, other.thickened) for other in boards):
             _dropped(search.trials, tried)
         else:

@@ -167,12 +167,8 @@ class Search:
             self._record(candidate, FAILED, "the design with it is still not valid", edited)
             if report.violations and all(v.kind in BENDING for v in report.violations):
                 bent.append((candidate, edited, after, report))
-        from furncheck.suggest.discrete.thicker import (
-            boards_alone,
-            cut_phrase,
-            finish,
-            thickness_phrase,
-        )
+        from furncheck.suggest.discrete.growth import cut_phrase
+        from furncheck.suggest.discrete.thicker import boards_alone, finish, thickness_phrase
 
         best = None
         for candidate, edited, after, report in reversed(_nearest(bent)):

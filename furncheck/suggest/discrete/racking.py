@@ -97,25 +97,28 @@ def racking_places(search: Search, rule: str) -> list[str] | None:
 
 def aprons(search: Search) -> Fix | None:
     """The first working aprons between each failing leg and its nearest facing leg."""
-    return _first(search, APRON, _apron_candidates)
+    return racking_fix(search, APRON, _apron_candidates)
 
 
 def stretchers(search: Search) -> Fix | None:
     """The first working stretchers between each failing leg and its nearest facing leg."""
-    return _first(search, STRETCHER, _stretcher_candidates)
+    return racking_fix(search, STRETCHER, _stretcher_candidates)
 
 
 def back_panels(search: Search) -> Fix | None:
     """The first working back panels over the legs' edges."""
-    return _first(search, BACK_PANEL, _back_panel_candidates)
+    return racking_fix(search, BACK_PANEL, _back_panel_candidates)
 
 
 def braces(search: Search) -> Fix | None:
     """The first working diagonal braces across the legs' edges."""
-    return _first(search, BRACE, _brace_candidates)
+    return racking_fix(search, BRACE, _brace_candidates)
 
 
-def _first(search: Search, rule: str, candidates) -> Fix | None:
+def racking_fix(search: Search, rule: str, candidates) -> Fix | None:
+    """The first working candidate of ``candidates(search, failing legs)`` for the racking
+    rule ``rule`` (``racking_places``), each told as that rule's trial; None where the
+    design does not rack."""
     failing = racking_places(search, rule)
     if failing is None:
         return None

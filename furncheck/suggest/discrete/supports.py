@@ -109,7 +109,7 @@ def support_candidates(search: Search) -> Iterator[Candidate]:
         else:                                            # a bent plank i
             if (where, "stiffener") not in tried:
                 tried.add((where, "stiffener"))
-                yield from _stiffeners(search, where, neighbours[where], reaches)
+                yield from _stiffeners(search, where, neighbours[where], reaches, tried)
             placements = [(k, where, PLACES[1:]) for k in neighbours[where]]
         out_of_reach = []
         for k, i, places in placements:
@@ -178,7 +178,8 @@ def _place(design: Design, where: str) -> str:
 
 
 def _stiffeners(search: Search, i: str, neighbours: list[str],
-                reaches: Callable[[set], bool]) -> Iterator[Candidate]:
+                reaches: Callable[[set], bool], tried: set | None = None
+                ) -> Iterator[Candidate]:
     """Rails on edge under one long edge of the level plank i (a shelf's front lip), or
     under its middle, between the two parallel planks that hold i's ends (the ends of its
     beam, else, on a shelf deeper than it is wide, its other two), nailed to i and to
@@ -190,7 +191,9 @@ def _stiffeners(search: Search, i: str, neighbours: list[str],
     bookcase's identical shelves get one rail each, not a rail under one and thicker
     boards for the rest), then the three places under i.  None (and the reason
     recorded) when i is not level, is not held at both ends by parallel planks, or a rail
-    would not reach every failing place (``reaches``, see ``_reach``)."""
+    would not reach every failing place (``reaches``, see ``_reach``).  ``tried``: the
+    rule's keys of what it built, where the rails under each alike plank are kept too,
+    so that each alike plank's turn does not build them again."""
     design = search.design
     shelf = design.plank(i)
     if not level(shelf):
@@ -216,7 +219,10 @@ def _stiffeners(search: Search, i: str, neighbours: list[str],
     others = _alike_failing(search, shelf)
     for rail_depth in depths:
         group = _rails_under_each(design, shelf, span, others, rail_depth, thickness)
-        if group is not None:
+        key = ("rails under each", group and group.between, rail_depth)
+        if group is not None and (tried is None or key not in tried):
+            if tried is not None:           # (its alike planks' turns make the same one)
+                tried.add(key)
             yield replace(group, target=i)
         for side, edge, where in ((-1.0, 1.0, "under one long edge"),
                                   (1.0, 1.0, "under the other long edge"),
@@ -275,8 +281,8 @@ def _rail(shelf: Plank, span, depth: float, thickness: float, side: float, edge:
 def _alike_failing(search: Search, shelf: Plank) -> list[tuple[Plank, tuple]]:
     """The other planks that sag or break in the report and are alike to ``shelf``: level,
     of its length, width and thickness (to the design's tolerance), each with its rail's
-    span (``_rail_span``), in the design's order; [] where any of them has no span or no
-    room for a rail as deep as the deepest tried under ``shelf``."""
+    span (``_rail_span``), in the design's order; [] where any of them has no span (each
+    rail's room above the floor is ``_rails_under_each``'s, depth by depth)."""
     design, tolerance = search.design, search.design.tolerance
     failing = {v.where for v in search.report.violations if v.kind in BENDING}
     found = []

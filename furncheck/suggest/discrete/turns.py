@@ -10,14 +10,16 @@ and no board bought: the maker cuts the same legs and nails them on turned.
 
 Tried where the design racks (``racking.racking_places``: a leg's joint fails or a leg
 bends in a load case with a sideways load) and a failing leg's broad face is square to
-that case's push (within 45 degrees), wider than it is thick (and carries no load at a
-point, which would have to move with it): those legs, and their mirror images that are
-legs too (a maker turns all four legs of a table whose two far ones fail), turned about
-their length through their centres, then (a second candidate) each moved along the
-push so that its outer edge stays where its outer face was, flush with what it carries
-as a maker sets a leg at a corner.  Each candidate is checked in full like every other
-(joints kept, no plank cut into another); one that then fails only by bending is
-finished with thicker boards (``common.Search.first_valid``).
+that case's push (within 45 degrees), wider than it is thick: those legs, and their
+mirror images that are legs too (a maker turns all four legs of a table whose two far
+ones fail), turned about their length, each moved along the push so that its outer edge
+stays where its outer face was (flush with what it carries, as a maker sets a leg at a
+corner; turned in place, a leg flush with the top's end would hang past it), then (a
+second candidate) turned in place (where both are finished with as much board, the
+first is kept).  Load and anchor points on a leg turn with it.  Each
+candidate is checked in full like every other (joints kept, no plank cut into another);
+one that then fails only by bending is finished with thicker boards
+(``common.Search.first_valid``).
 """
 
 from __future__ import annotations
@@ -39,7 +41,7 @@ from furncheck.suggest.discrete.common import (
     names,
     normal,
 )
-from furncheck.suggest.discrete.racking import racking_places
+from furncheck.suggest.discrete.racking import racking_fix
 from furncheck.suggest.symmetry import mirror_planes
 
 TURNED = "quarter turn"
@@ -47,24 +49,23 @@ TURNED = "quarter turn"
 
 SQUARE_TO_PUSH = math.cos(math.radians(45.0))
 """A leg's broad face is square to a push where the cosine between its normal and the
-push's horizontal direction is at least this."""
+push's horizontal direction is at least this (less SHAPE_ROUNDOFF: 45 degrees is in)."""
+
+SHAPE_ROUNDOFF = 1e-9
+"""Relative round-off spared where a leg's width is compared with its thickness and its
+face with the push (a square leg is not turned; a push at exactly 45 degrees counts)."""
 
 
 def quarter_turns(search: Search) -> Fix | None:
     """The failing legs turned a quarter turn about their length (module docstring), when
     that (finished with thicker boards where only bending is left) is valid; else None."""
-    failing = racking_places(search, TURNED)
-    if failing is None:
-        return None
-    target = ",".join(failing)
-    return search.first_valid(replace(candidate, trial_rule=TURNED, target=target)
-                              for candidate in _candidates(search, failing))
+    return racking_fix(search, TURNED, _candidates)
 
 
 def _candidates(search: Search, failing: list[str]) -> Iterator[Candidate]:
-    """The legs of ``failing`` square to the push they fail under, turned through their
-    centres, then turned and moved to keep their outer edges where their outer faces
-    were."""
+    """The legs of ``failing`` square to the push they fail under, and their mirror images,
+    turned and moved to keep their outer edges where their outer faces were, then turned
+    through their centres."""
     design = search.design
     standing = set(legs(design, search.geometry))
     images = list(failing)                  # and their mirror images, turned alike
@@ -81,34 +82,42 @@ def _candidates(search: Search, failing: list[str]) -> Iterator[Candidate]:
             push = next((pushes[other] for other in failing if pushes[other] is not None),
                         None)
         plank = design.plank(leg)
-        loaded = any(load.plank == leg and load.point is not None
-                     for case in design.load_cases for load in case.loads)
-        if push is not None and not loaded \
-                and abs(float(normal(plank)[:2] @ push)) >= SQUARE_TO_PUSH \
-                and plank.width > plank.thickness * (1.0 + 1e-9):
+        across = _across(plank)
+        if push is not None \
+                and abs(float(normal(plank)[:2] @ push)) >= SQUARE_TO_PUSH - SHAPE_ROUNDOFF \
+                and across > plank.thickness * (1.0 + SHAPE_ROUNDOFF):
             turning.append((leg, push))
     if not turning:
         search.failed(TURNED, "no failing leg is pushed square to its broad face and wider "
-                      "than it is thick, without a load at a point on it", ",".join(failing))
+                      "than it is thick", ",".join(failing))
         return
     turned_legs = [leg for leg, _ in turning]
-    width = {amount(design.plank(leg).width / design.unit_scale) for leg in turned_legs}
+    width = {amount(_across(design.plank(leg)) / design.unit_scale) for leg in turned_legs}
     thick = {amount(design.plank(leg).thickness / design.unit_scale) for leg in turned_legs}
     their = "its" if len(turned_legs) == 1 else "their"
     meets = (f"so that the push meets {their} {width.pop()} {design.units} width, not "
              f"{their} {thick.pop()} {design.units} thickness" if len(width) == len(thick) == 1
              else "so that the push meets their width, not their thickness")
-    for flush in (False, True):
-        turned = {leg: _turned(design, design.plank(leg), push, flush) for leg, push in turning}
-        edited = replace(design, planks=tuple(turned.get(p.id, p) for p in design.planks))
-        one = len(turned_legs) == 1
+    one = len(turned_legs) == 1
+    for flush in (True, False):
+        edited = _with_turned(design, dict(turning), flush)
         where = (f"{'its' if one else 'each with its'} outer edge where its outer face was"
                  if flush else f"{'centred' if one else 'each centred'} where it stood")
         advice = (f"Turn {names(turned_legs)} a quarter turn about {their} length, {meets} "
                   f"({where}).")
         yield Candidate("turn", edited, advice,
                         place="turned, outer edges kept" if flush else "turned in place",
-                        plank=names(turned_legs))
+                        plank=names(turned_legs), preferred=flush)
+
+
+def _across(plank: Plank) -> float:
+    """m: the leg's size across its length (its local axis nearest the vertical)."""
+    return (plank.length, plank.width)[1 - _length_axis(plank)]
+
+
+def _length_axis(plank: Plank) -> int:
+    """0 or 1: the leg's local axis along its length, the one nearest the vertical."""
+    return int(np.argmax(np.abs(plank.rotation_matrix[2, :2])))
 
 
 def _push(design: Design, search: Search, leg: str) -> np.ndarray | None:
@@ -120,26 +129,43 @@ def _push(design: Design, search: Search, leg: str) -> np.ndarray | None:
         if leg not in violation.where.split("/"):
             continue
         case = cases.get(violation.case)
-        if case is None:
+        if case is None or not case.loads:
             continue
-        total = np.sum([load.force[:2] for load in case.loads], axis=0) if case.loads \
-            else np.zeros(2)
+        total = np.sum([load.force[:2] for load in case.loads], axis=0)
         size = float(np.hypot(*total))
         if size > 0.0:
             return np.asarray(total, dtype=float) / size
     return None
 
 
-def _turned(design: Design, plank: Plank, push: np.ndarray, flush: bool) -> Plank:
-    """``plank`` turned a quarter turn about its length (its local axis nearest the
-    vertical, through its centre); with ``flush``, also moved along ``push`` so that its
+def _with_turned(design: Design, pushes: dict[str, np.ndarray], flush: bool) -> Design:
+    """The design with each leg of ``pushes`` (id -> the push's direction) turned
+    (``_turned``), the load and anchor points on it turned and moved with it."""
+    planks, moves = {}, {}
+    for leg, push in pushes.items():
+        planks[leg], moves[leg] = _turned(design, design.plank(leg), push, flush)
+
+    def moved(plank_id: str, point):
+        move = moves.get(plank_id)
+        return point if move is None or point is None else move(point)
+    cases = tuple(replace(case, loads=tuple(
+        replace(load, point=moved(load.plank, load.point)) if load.plank in moves
+        else load for load in case.loads)) for case in design.load_cases)
+    anchors = tuple(replace(a, point=moved(a.plank, a.point)) if a.plank in moves else a
+                    for a in design.anchors)
+    return replace(design, planks=tuple(planks.get(p.id, p) for p in design.planks),
+                   load_cases=cases, anchors=anchors)
+
+
+def _turned(design: Design, plank: Plank, push: np.ndarray, flush: bool):
+    """(``plank`` turned a quarter turn about its length through its centre, the map of a
+    point on it to where it goes); with ``flush``, also moved along ``push`` so that its
     extent away from the design's middle ends where it did."""
     rotation = plank.rotation_matrix
-    along = int(np.argmax(np.abs(rotation[2, :2])))           # its length: local x or y
-    axis = rotation[:, along]
-    turn = _about(axis, math.pi / 2.0)
+    turn = _about(rotation[:, _length_axis(plank)], math.pi / 2.0)
     new_rotation = turn @ rotation
-    centre = plank.center_array.copy()
+    old_centre = plank.center_array
+    centre = old_centre.copy()
     if flush:
         direction = np.array([push[0], push[1], 0.0])
         middle = np.mean([p.center_array for p in design.planks], axis=0)
@@ -148,8 +174,12 @@ def _turned(design: Design, plank: Plank, push: np.ndarray, flush: bool) -> Plan
         after = _reach(new_rotation, plank, direction * side)
         centre = centre + direction * side * (before - after)
     angles = euler_degrees(new_rotation, plank.rotation)
+
+    def move(point):
+        where = centre + turn @ (np.asarray(point, dtype=float) - old_centre)
+        return tuple(float(v) for v in where)
     return replace(plank, rotation=tuple(float(a) for a in angles),
-                   center=tuple(float(v) for v in centre))
+                   center=tuple(float(v) for v in centre)), move
 
 
 def _reach(rotation: np.ndarray, plank: Plank, direction: np.ndarray) -> float:
