@@ -1256,3 +1256,31 @@ def test_a_thicker_fix_that_another_betters_is_not_counted_found():
     found = [t for t in trials if t.rule == "thicker board" and t.outcome == "found"]
     assert len(thicker) == len(found) == 1
     assert any("the same boards as another thicker-board fix" in t.reason for t in trials)
+
+
+def test_candidates_ruled_out_by_their_geometry_are_bounded_too():
+    """A rule's candidates that their geometry rules out (here a bar through the table's
+    top, joined to nothing: disconnected) cost no full check and do not count against the
+    12 full checks, but a design of many failing planks could bring hundreds: at most
+    MAX_RULED_OUT (48) are looked at, and the trials say why the rule stopped."""
+    from furncheck.suggest.discrete.common import (
+        MAX_RULED_OUT,
+        Candidate,
+        board,
+        with_planks,
+    )
+
+    design = load_design(str(CATALOG / "table.yaml"))
+    geometry = analyze(design)
+    search = Search(design, geometry, check_design(design, geometry))
+    top = design.plank("top")
+    through = board("bar", 0.2, 0.05, 0.012, top.center_array, np.array([1.0, 0, 0]),
+                    np.array([0, 1.0, 0]))
+    candidates = (Candidate("support", with_planks(design, (through,)), "Add bar.",
+                            trial_rule="support plank", place=f"try {k}")
+                  for k in range(100))
+    assert search.first_valid(candidates) is None
+    assert search.checks == 0
+    reasons = [t.reason for t in search.trials]
+    assert sum("disconnected: bar" in r for r in reasons) == MAX_RULED_OUT == 48
+    assert reasons[-1] == "the rule rules out 48 candidates by their geometry at most"

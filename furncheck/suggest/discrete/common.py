@@ -37,6 +37,12 @@ MAX_CANDIDATES = 12
 """Candidates checked in full per rule at most (each is a full check of every load case):
 the rules list their likeliest candidates first."""
 
+MAX_RULED_OUT = 48
+"""Candidates ruled out by their geometry alone (a part that would cut into another,
+float, or miss what it is nailed to: one analysis each, no full check) per rule at most,
+beyond MAX_CANDIDATES checked in full: on a design of many failing planks each brings
+its own, and the analysis of a big design takes a second."""
+
 LOCK_SLACK = 1e-9
 """A locked DOF counts as unchanged within this (file unit or degrees: round-off)."""
 
@@ -140,23 +146,27 @@ class Search:
     def first_valid(self, candidates: Iterable[Candidate]) -> Fix | None:
         """The Fix of the first candidate that is valid (``verdict``), checking at most
         MAX_CANDIDATES of them in full (those ruled out by their geometry alone, before
-        any check, do not count); when none is, but some failed only by planks that bend
-        too much (elastic model), the FINISHED of those whose planks bend least past
-        their limits (``_nearest``; on a tie the later, as the rules list their smallest
-        parts first) with those planks thickened (``thicker.finish``): of the
+        any check, do not count; at most MAX_RULED_OUT of those); when none is, but some
+        failed only by planks that bend too much (elastic model), the FINISHED of those
+        whose planks bend least past their limits (``_nearest``; on a tie the later, as
+        the rules list their smallest parts first) with those planks thickened
+        (``thicker.finish``): of the
         ones that are then valid, the one that adds the least board (``_added_board``);
         else None.  Every candidate checked is recorded in ``trials`` (``tried.Trial``:
         found, or failed and why)."""
         bent: list[tuple] = []
-        count = 0                           # candidates checked in full
+        count = ruled_out = 0               # checked in full; ruled out by geometry
         for candidate in candidates:
-            if count >= MAX_CANDIDATES:
+            if count >= MAX_CANDIDATES or ruled_out >= MAX_RULED_OUT:
                 self.failed(candidate.trial_rule or candidate.rule, f"the rule checks "
-                            f"{MAX_CANDIDATES} candidates at most", candidate.target)
+                            f"{MAX_CANDIDATES} candidates at most" if count >= MAX_CANDIDATES
+                            else f"the rule rules out {MAX_RULED_OUT} candidates by their "
+                            "geometry at most", candidate.target)
                 break
             outcome = self.verdict(candidate.design, candidate.new_joints, full=self.elastic)
             if isinstance(outcome, str):
                 self._record(candidate, FAILED, outcome)
+                ruled_out += 1
                 continue
             count += 1
             edited, after, report = outcome
