@@ -1152,11 +1152,13 @@ def test_racking_legs_get_a_quarter_turn(model):
     push along x, rack: the far legs' top joints pull 1400 N per nail (rigid) against 700.
     The quarter-turn rule turns all four (the two that fail and their mirror images)
     about their length: rotation [0, -90, 0] -> [0, -90, 90], the push then meets their
-    60 mm width.  Each is moved along x so that its outer edge stays where its outer face
-    was: that face at |x| = 444 + 6 = 450 mm, the turned leg 60 mm deep along x, so its
-    centre at 450 - 30 = 420 mm.  Their top joints' lines then run along x, so the moment
-    about y, which pulled on a nail row with a lever of t / 2 = 6 mm (2 |M| / t per row),
-    is the moment across the row: M y_max / S with the three nails at y = -20, 0, 20 mm,
+    60 mm width.  Each is moved along x and y so that its outer edges stay where its outer
+    faces were (set in its corner): along x that face at |x| = 444 + 6 = 450 mm, the
+    turned leg 60 mm deep along x, so its centre at 450 - 30 = 420 mm; along y the edge
+    at |y| = 270 + 30 = 300 mm, the turned leg 12 mm thick along y: 300 - 6 = 294 mm.
+    Their top joints' lines then run along x, so the moment about y, which pulled on a
+    nail row with a lever of t / 2 = 6 mm (2 |M| / t per row), is the moment across the
+    row: M y_max / S with the three nails at y = -20, 0, 20 mm,
     S = 800 mm^2, 25 M per nail against 2 M / (0.012 x 3) = 55.6 M (contract section 3;
     the rigid model's moments are the statics', 25.8 N m either way).  Rigid: the turn
     alone; elastic: with a 25 mm top for its sag.  A quarter turn stands square with the
@@ -1173,13 +1175,16 @@ def test_racking_legs_get_a_quarter_turn(model):
     assert turn.advice.startswith("Turn leg_pp, leg_mp, leg_pm and leg_mm a quarter turn "
                                   "about their length, so that the push meets their 60 mm "
                                   "width, not their 12 mm thickness (each with its outer "
-                                  "edge where its outer face was)")
+                                  "edges where its outer faces were; against a push along y "
+                                  "they are then 12 mm deep)")
     assert turn.report.valid and fix_valid(turn)
     for leg in ("leg_pp", "leg_mp", "leg_pm", "leg_mm"):
         before, plank = design.plank(leg), turn.design.plank(leg)
         assert plank.rotation == pytest.approx((0.0, -90.0, 90.0), abs=1e-9)
         outer_face = abs(before.center[0]) + before.thickness / 2
         assert abs(plank.center[0]) == pytest.approx(outer_face - 0.060 / 2, abs=1e-12)
+        outer_edge = abs(before.center[1]) + before.width / 2
+        assert abs(plank.center[1]) == pytest.approx(outer_edge - 0.012 / 2, abs=1e-12)
     assert (turn.thickened == {}) == (model == "rigid")
     score = shop_score(design, geometry, mirror_planes(design), turn.design,
                        plank_edits(design, turn.design))
@@ -1228,15 +1233,16 @@ def test_a_quarter_turn_reads_the_legs_length_however_they_are_drawn():
 def test_a_load_on_a_turned_leg_turns_with_it():
     """A 1 kg bag hung at the middle of leg_pp's outer face (x = 450 mm): the leg turned
     a quarter turn about its vertical length (+90 degrees about z) takes the point from
-    its centre's +x side, 6 mm out, to its +y side, 6 mm out, and moves 24 mm in with the
-    leg: (420, 276, 350) mm.  All four legs turn, the bag with its leg."""
+    its centre's +x side, 6 mm out, to its +y side, 6 mm out, and moves with the leg, 24
+    mm in along x and 24 mm out along y (its corner kept): (420, 300, 350) mm.  All four
+    legs turn, the bag with its leg."""
     text = RACKING.replace("loads:\n  - {plank: top, mass: 20}",
                            "loads:\n  - {plank: top, mass: 20}\n"
                            "  - {plank: leg_pp, mass: 1, at: [450, 270, 350]}", 1)
     design, (turn,) = turn_fixes(text)
     assert len(design.load_cases[0].loads) == 2
     (bag,) = [load for load in turn.design.load_cases[0].loads if load.plank == "leg_pp"]
-    assert bag.point == pytest.approx((0.420, 0.276, 0.350), abs=1e-12)
+    assert bag.point == pytest.approx((0.420, 0.300, 0.350), abs=1e-12)
     assert "leg_pp, leg_mp, leg_pm and leg_mm" in turn.advice and turn.report.valid
 
 
@@ -1284,3 +1290,33 @@ def test_candidates_ruled_out_by_their_geometry_are_bounded_too():
     reasons = [t.reason for t in search.trials]
     assert sum("disconnected: bar" in r for r in reasons) == MAX_RULED_OUT == 48
     assert reasons[-1] == "the rule rules out 48 candidates by their geometry at most"
+
+
+def test_panels_are_not_given_a_quarter_turn():
+    """A side table on two 400 mm end panels, racked by a push along its length: turned,
+    each panel would stand on a 12 mm fin reaching 194 mm past the top's ends, and tip
+    under a cup at its edge.  A leg is turned only up to 8 times as wide as it is thick
+    (96 mm of 12 mm stock), so the rule says why it does not turn them."""
+    text = """\
+furncheck: 1
+name: side-table
+planks:
+  - {id: top, size: [500, 400], center: [0, 0, 606]}
+  - {id: end_l, size: [600, 400], center: [-244, 0, 300], rotation: [0, -90, 0]}
+  - {id: end_r, size: [600, 400], center: [244, 0, 300], rotation: [0, -90, 0]}
+loads:
+  - {plank: top, mass: 10}
+load_cases:
+  push:
+    include: [default]
+    loads: [{plank: top, force: [60, 0, 0], at: [-250, 0, 606]}]
+"""
+    design = parse_design(text, "side.yaml", "yaml")
+    geometry = analyze(design)
+    report = check_design(design, geometry)
+    assert report.violations and geometry.violations == ()
+    trials = []
+    fixes = discrete_fixes(design, geometry, report, trials=trials)
+    assert not [fix for fix in fixes if fix.rule == "turn"]
+    (why,) = [t.reason for t in trials if t.rule == "quarter turn"]
+    assert why.endswith("at most 8 times (a leg, not a panel)")

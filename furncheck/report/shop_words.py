@@ -207,7 +207,9 @@ def _phrase(design: Design, edited: Design, held: dict, plank: str, subject: str
         phrase = f"{_size_verb(kind, change)} {subject} by {amount}"
         if not _held_at(held, plank, 0 if kind == "length" else 1):
             side = "end" if kind == "length" else "edge"
-            half = f"{_amount(abs(change) / 2.0)} {_unit(unit)}"
+            whole = len(str(int(abs(round(change)))))
+            half = f"{format_number(abs(change) / 2.0, max(ADVICE_DIGITS, whole) + 1)} " \
+                   f"{_unit(unit)}"              # (553 mm: 276.5 off each end, not 277)
             phrase += f" ({half} {'off' if change < 0 else 'at'} each {side})"
         return phrase
     if kind == "rz":

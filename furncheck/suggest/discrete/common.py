@@ -152,8 +152,9 @@ class Search:
         the rules list their smallest parts first) with those planks thickened
         (``thicker.finish``): of the
         ones that are then valid, the one that adds the least board (``_added_board``);
-        else None.  Every candidate checked is recorded in ``trials`` (``tried.Trial``:
-        found, or failed and why)."""
+        else None (on a tie of board, a preferred one, then the one whose parts are
+        smaller: a 48 mm rail where a 96 mm one needs the same boards).  Every candidate
+        checked is recorded in ``trials`` (``tried.Trial``: found, or failed and why)."""
         bent: list[tuple] = []
         count = ruled_out = 0               # checked in full; ruled out by geometry
         for candidate in candidates:
@@ -187,16 +188,16 @@ class Search:
                 self._record(candidate, FAILED, "no thicker boards (up to 44 mm) make the "
                              "design with it valid", thickening=True)
                 continue
-            added = _added_board(edited, finished[2])
-            if best is not None and (added > best[0] or (
-                    added == best[0] and not candidate.preferred > best[1].preferred)):
-                self._record(candidate, FAILED, "valid, but it adds more board than "
+            key = (_added_board(edited, finished[2]), not candidate.preferred,
+                   _part_volume(candidate))
+            if best is not None and key >= best[0]:
+                self._record(candidate, FAILED, f"valid, but {_worse(key, best[0])} "
                              f"{best[1].place}", thickening=True)
                 continue
             if best is not None:
-                self._record(best[1], FAILED, f"valid, but it adds more board than "
+                self._record(best[1], FAILED, f"valid, but {_worse(best[0], key)} "
                              f"{candidate.place}", thickening=True)
-            best = (added, candidate, finished, edited)
+            best = (key, candidate, finished, edited)
         if best is None:
             return None
         _, candidate, (design, report, thickened), unfinished = best
@@ -306,6 +307,24 @@ class Candidate:
     place: str = ""
     plank: str = ""
     preferred: bool = False
+
+
+def _part_volume(candidate: Candidate) -> float:
+    """m^3: the parts a candidate adds, as it adds them (before any is thickened)."""
+    return sum(p.length * p.width * p.thickness for p in candidate.adds)
+
+
+def _worse(key: tuple, other: tuple) -> str:
+    """Why a finished candidate of ``key`` (``first_valid``'s: board added, not
+    preferred, its parts' volume) loses to one of ``other`` (at least as good), in words
+    ending in 'than'."""
+    if key[0] > other[0]:
+        return "it adds more board than"
+    if key[1] > other[1]:
+        return "it adds as much board as, and is not preferred to,"
+    if key[2] > other[2]:
+        return "it adds as much board as, and a bigger part than,"
+    return "it is no better than"
 
 
 def _nearest(bent: list[tuple]) -> list[tuple]:

@@ -10,15 +10,16 @@ and no board bought: the maker cuts the same legs and nails them on turned.
 
 Tried where the design racks (``racking.racking_places``: a leg's joint fails or a leg
 bends in a load case with a sideways load) and a failing leg's broad face is square to
-that case's push (within 45 degrees), wider than it is thick: those legs, and their
-mirror images that are legs too (a maker turns all four legs of a table whose two far
-ones fail), turned about their length, each moved along the push so that its outer edge
-stays where its outer face was (flush with what it carries, as a maker sets a leg at a
-corner; turned in place, a leg flush with the top's end would hang past it), then (a
-second candidate) turned in place (where both are finished with as much board, the
-first is kept).  Load and anchor points on a leg turn with it.  Each
-candidate is checked in full like every other (joints kept, no plank cut into another);
-one that then fails only by bending is finished with thicker boards
+that case's push (within 45 degrees), wider than it is thick and at most LEG_WIDTH
+times (a leg, not a panel): those legs, and their mirror images that are legs too (a
+maker turns all four legs of a table whose two far ones fail), turned about their
+length, each moved along the push and across it so that its outer edges stay where its
+outer faces were (set in its corner as before), then (a second candidate) turned in
+place, each candidate only where no turned leg reaches past the plan of what it carries
+(turned in place, a leg flush with the top's end would stand past it); where both are
+finished with as much board, the first is kept.  Load and anchor points on a leg turn
+with it.  Each candidate is checked in full like every other (joints kept, no plank cut
+into another); one that then fails only by bending is finished with thicker boards
 (``common.Search.first_valid``).
 """
 
@@ -51,6 +52,11 @@ SQUARE_TO_PUSH = math.cos(math.radians(45.0))
 """A leg's broad face is square to a push where the cosine between its normal and the
 push's horizontal direction is at least this (less SHAPE_ROUNDOFF: 45 degrees is in)."""
 
+LEG_WIDTH = 8.0
+"""A leg is turned where it is at most this many times as wide as it is thick (96 mm of
+12 mm stock): a leg or a post, not a panel (a side table's 400 mm end panel turned stands
+on a 12 mm fin, past the top's ends)."""
+
 SHAPE_ROUNDOFF = 1e-9
 """Relative round-off spared where a leg's width is compared with its thickness and its
 face with the push (a square leg is not turned; a push at exactly 45 degrees counts)."""
@@ -65,7 +71,8 @@ def quarter_turns(search: Search) -> Fix | None:
 def _candidates(search: Search, failing: list[str]) -> Iterator[Candidate]:
     """The legs of ``failing`` square to the push they fail under, and their mirror images,
     turned and moved to keep their outer edges where their outer faces were, then turned
-    through their centres."""
+    through their centres; the advice says what the turn gives up (against a push across
+    the first, the legs are then their thickness deep)."""
     design = search.design
     standing = set(legs(design, search.geometry))
     images = list(failing)                  # and their mirror images, turned alike
@@ -85,29 +92,66 @@ def _candidates(search: Search, failing: list[str]) -> Iterator[Candidate]:
         across = _across(plank)
         if push is not None \
                 and abs(float(normal(plank)[:2] @ push)) >= SQUARE_TO_PUSH - SHAPE_ROUNDOFF \
-                and across > plank.thickness * (1.0 + SHAPE_ROUNDOFF):
+                and plank.thickness * (1.0 + SHAPE_ROUNDOFF) < across \
+                <= LEG_WIDTH * plank.thickness * (1.0 + SHAPE_ROUNDOFF):
             turning.append((leg, push))
     if not turning:
-        search.failed(TURNED, "no failing leg is pushed square to its broad face and wider "
-                      "than it is thick", ",".join(failing))
+        search.failed(TURNED, f"no failing leg is pushed square to its broad face, wider "
+                      f"than it is thick and at most {LEG_WIDTH:g} times (a leg, not a "
+                      f"panel)", ",".join(failing))
         return
     turned_legs = [leg for leg, _ in turning]
     width = {amount(_across(design.plank(leg)) / design.unit_scale) for leg in turned_legs}
     thick = {amount(design.plank(leg).thickness / design.unit_scale) for leg in turned_legs}
     their = "its" if len(turned_legs) == 1 else "their"
-    meets = (f"so that the push meets {their} {width.pop()} {design.units} width, not "
-             f"{their} {thick.pop()} {design.units} thickness" if len(width) == len(thick) == 1
-             else "so that the push meets their width, not their thickness")
     one = len(turned_legs) == 1
+    push = turning[0][1]
+    other = "xy"[int(abs(push[0]) >= abs(push[1]))]         # the way across the push
+    if len(width) == len(thick) == 1:
+        wide, deep = f"{width.pop()} {design.units}", f"{thick.pop()} {design.units}"
+        meets = f"so that the push meets {their} {wide} width, not {their} {deep} thickness"
+        trade = f"; against a push along {other} {'it is' if one else 'they are'} then {deep} deep"
+    else:
+        meets, trade = "so that the push meets their width, not their thickness", ""
     for flush in (True, False):
         edited = _with_turned(design, dict(turning), flush)
-        where = (f"{'its' if one else 'each with its'} outer edge where its outer face was"
-                 if flush else f"{'centred' if one else 'each centred'} where it stood")
+        clear = _clear_of(edited, search.geometry, turned_legs)
+        if clear:
+            search.failed(TURNED, f"{'outer edges kept' if flush else 'in place'}: "
+                          f"{clear} would reach past what it carries", ",".join(failing))
+            continue
+        where = (f"{'its' if one else 'each with its'} outer edges where its outer faces "
+                 f"were" if flush else f"{'centred' if one else 'each centred'} where it "
+                 f"stood")
         advice = (f"Turn {names(turned_legs)} a quarter turn about {their} length, {meets} "
-                  f"({where}).")
+                  f"({where}{trade}).")
         yield Candidate("turn", edited, advice,
                         place="turned, outer edges kept" if flush else "turned in place",
                         plank=names(turned_legs), preferred=flush)
+
+
+def _clear_of(edited: Design, geometry, turned: list[str]) -> str:
+    """The first turned leg (id) whose plan reaches past the plan of the planks it is
+    jointed to above its middle (what it carries: a table's top), where those are; ''
+    where none does (a leg turned in place under a top flush with its end face would
+    stand 24 mm past the top's end)."""
+    partners: dict[str, list[str]] = {}
+    for joint in geometry.joints:
+        for a, b in (joint.planks, joint.planks[::-1]):
+            partners.setdefault(a, []).append(b)
+    slack = edited.tolerance
+    for leg in turned:
+        plank = edited.plank(leg)
+        above = [edited.plank(p) for p in partners.get(leg, ())
+                 if edited.plank(p).center[2] > plank.center[2]]
+        if not above:
+            continue
+        low = np.min([p.corners[:, :2].min(axis=0) for p in above], axis=0)
+        high = np.max([p.corners[:, :2].max(axis=0) for p in above], axis=0)
+        corners = plank.corners[:, :2]
+        if np.any(corners < low - slack) or np.any(corners > high + slack):
+            return leg
+    return ""
 
 
 def _across(plank: Plank) -> float:
@@ -159,20 +203,22 @@ def _with_turned(design: Design, pushes: dict[str, np.ndarray], flush: bool) -> 
 
 def _turned(design: Design, plank: Plank, push: np.ndarray, flush: bool):
     """(``plank`` turned a quarter turn about its length through its centre, the map of a
-    point on it to where it goes); with ``flush``, also moved along ``push`` so that its
-    extent away from the design's middle ends where it did."""
+    point on it to where it goes); with ``flush``, also moved along ``push`` and across
+    it so that its extent away from the design's middle ends where it did, each way (a
+    table's leg set in its corner as before)."""
     rotation = plank.rotation_matrix
     turn = _about(rotation[:, _length_axis(plank)], math.pi / 2.0)
     new_rotation = turn @ rotation
     old_centre = plank.center_array
     centre = old_centre.copy()
-    if flush:
-        direction = np.array([push[0], push[1], 0.0])
+    if flush:                       # along the push, then across it
         middle = np.mean([p.center_array for p in design.planks], axis=0)
-        side = 1.0 if float((centre - middle) @ direction) >= 0.0 else -1.0
-        before = _reach(rotation, plank, direction * side)
-        after = _reach(new_rotation, plank, direction * side)
-        centre = centre + direction * side * (before - after)
+        for direction in (np.array([push[0], push[1], 0.0]),
+                          np.array([-push[1], push[0], 0.0])):
+            side = 1.0 if float((centre - middle) @ direction) >= 0.0 else -1.0
+            before = _reach(rotation, plank, direction * side)
+            after = _reach(new_rotation, plank, direction * side)
+            centre = centre + direction * side * (before - after)
     angles = euler_degrees(new_rotation, plank.rotation)
 
     def move(point):
