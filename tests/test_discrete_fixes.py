@@ -1175,8 +1175,8 @@ def test_racking_legs_get_a_quarter_turn(model):
     assert turn.advice.startswith("Turn leg_pp, leg_mp, leg_pm and leg_mm a quarter turn "
                                   "about their length, so that the push meets their 60 mm "
                                   "width, not their 12 mm thickness (each with its outer "
-                                  "edges where its outer faces were; against a push along y "
-                                  "they are then 12 mm deep)")
+                                  "edges where its outer faces were; against a push across "
+                                  "that one they are then 12 mm deep)")
     assert turn.report.valid and fix_valid(turn)
     for leg in ("leg_pp", "leg_mp", "leg_pm", "leg_mm"):
         before, plank = design.plank(leg), turn.design.plank(leg)
@@ -1189,6 +1189,8 @@ def test_racking_legs_get_a_quarter_turn(model):
     score = shop_score(design, geometry, mirror_planes(design), turn.design,
                        plank_edits(design, turn.design))
     assert score.implausible == () and score.broken == 0
+    if model == "rigid":            # four legs moved 24 mm each way of a 1000 mm design,
+        assert score.cost == pytest.approx(4 * (0.024 + 0.05))     # no turn counted
     if model == "rigid":
         before = {tuple(j.planks): j for j in report.cases[1].joints}
         for joint in turn.report.cases[1].joints:
@@ -1289,7 +1291,7 @@ def test_candidates_ruled_out_by_their_geometry_are_bounded_too():
     assert search.checks == 0
     reasons = [t.reason for t in search.trials]
     assert sum("disconnected: bar" in r for r in reasons) == MAX_RULED_OUT == 48
-    assert reasons[-1] == "the rule rules out 48 candidates by their geometry at most"
+    assert reasons[-1] == "the rule rules out 48 candidates before a check at most"
 
 
 def test_panels_are_not_given_a_quarter_turn():
@@ -1320,3 +1322,58 @@ load_cases:
     assert not [fix for fix in fixes if fix.rule == "turn"]
     (why,) = [t.reason for t in trials if t.rule == "quarter turn"]
     assert why.endswith("at most 8 times (a leg, not a panel)")
+
+
+SIX_LEGS = RACKING.replace(
+    "  - {id: leg_mm, size: [700, 60], center: [-444, -270, 350], rotation: [0, -90, 0]}",
+    "  - {id: leg_mm, size: [700, 60], center: [-444, -270, 350], rotation: [0, -90, 0]}\n"
+    "  - {id: leg_cp, size: [700, 60], center: [0, 270, 350], rotation: [0, -90, 0]}\n"
+    "  - {id: leg_cm, size: [700, 60], center: [0, -270, 350], rotation: [0, -90, 0]}")
+
+
+def test_a_middle_leg_turns_on_its_middle_line_and_a_proud_leg_may_stay_proud():
+    """A six-legged racking table: the middle pair (x = 0) has no outer side along the
+    push; turned, it stays on x = 0 (set against the y edges as the others), so the fix
+    keeps the table's mirror symmetry.  And the four-legged table with a top 590 mm deep
+    (its legs 5 mm proud of the top's long edges as drawn): turned and set in their
+    corners they stand exactly as proud, which is no reason to refuse them; turned in
+    place, under a top flush with their outer faces, they would stand 24 mm past its
+    ends (``turns._clear_of``)."""
+    from furncheck.suggest.discrete.turns import _clear_of, _with_turned
+
+    assert SIX_LEGS.count("leg_c") == 2
+    design, (turn,) = turn_fixes(SIX_LEGS)
+    for leg in ("leg_cp", "leg_cm"):
+        assert turn.design.plank(leg).center[0] == pytest.approx(0.0, abs=1e-12)
+    assert turn.advice.startswith("Turn leg_pp, leg_mp, leg_pm, leg_mm, leg_cp and leg_cm")
+    proud = RACKING.replace("size: [1000, 600]", "size: [1000, 590]")
+    design, (turn,) = turn_fixes(proud)
+    assert turn.design.plank("leg_pp").center[1] == pytest.approx(0.294, abs=1e-12)
+    flush_ends = with_model(parse_design(RACKING.replace("444,", "494,").replace(
+        "-444,", "-494,"), "f.yaml", "yaml"), "rigid")
+    geometry = analyze(flush_ends)
+    pushes = {leg: np.array([1.0, 0.0]) for leg in ("leg_pp", "leg_mp", "leg_pm", "leg_mm")}
+    legs = list(pushes)
+    in_place = _with_turned(flush_ends, pushes, flush=False)
+    assert _clear_of(flush_ends, in_place, geometry, legs) == "leg_pp"
+    cornered = _with_turned(flush_ends, pushes, flush=True)
+    assert _clear_of(flush_ends, cornered, geometry, legs) == ""
+
+
+def test_on_a_tie_of_board_the_smaller_rails_are_kept():
+    """cabinet-28: rails under each of shelf_b1 and shelf_b2 (alike, 488 mm between the
+    dividers) leave the bottom to thicken, 15 mm, at every depth tried: 48, 72 and 96 mm
+    rails add the same board (the bottom's 3 mm over its area).  Of equal board the one
+    whose added parts are smaller is kept: the 48 mm rails; the deeper ones are told as
+    adding as much board and bigger parts (once told as adding more board, which was
+    false)."""
+    design = load_design(str(CATALOG / "cabinet-28.yaml"))
+    geometry = analyze(design)
+    trials = []
+    fixes = discrete_fixes(design, geometry, check_design(design, geometry), trials=trials)
+    (rail,) = [fix for fix in fixes if fix.rule == "rail"]
+    assert rail.advice.startswith("Add rail-1 and rail-2 (488 x 48 mm), one on edge under "
+                                  "the middle of each of shelf_b1 and shelf_b2")
+    assert rail.thickened == {"bottom": pytest.approx(0.015)}
+    assert any("adds as much board as, and bigger parts than," in t.reason
+               for t in trials if t.rule == "stiffening rail")

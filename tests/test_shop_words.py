@@ -65,6 +65,9 @@ def test_a_shorter_back_rest_is_its_top_lowered():
     """The chair's back shortened by 79.8 mm: its bottom end is nailed to the seat, so its
     top comes down: 'lower the top of back', not 'shorten back'.  Its seat shortened (no
     end held: both ends move) stays 'shorten'."""
+    stool = with_model(load_design(str(CATALOG / "stool.yaml")), "rigid")
+    assert advise(stool, {"leg_l.width": 20.0, "leg_r.width": 20.0}).startswith(
+        "Widen leg_l and leg_r by 20 mm each (10 mm at each edge) (")
     chair = with_model(load_design(str(CATALOG / "chair-upright.yaml")), "rigid")
     assert advise(chair, {"back.length": -79.8}) == \
         "Lower the top of back by 79.8 mm (valid for 71.8-95.8 mm)."
@@ -201,7 +204,12 @@ def test_a_board_cut_shorter_at_both_ends_says_how_much_comes_off_each():
     bench = with_model(load_design(str(CATALOG / "bench-tips.yaml")), "rigid")
     assert advise(bench, {"seat.length": -546.0}) == \
         "Shorten seat by 546 mm (273 mm off each end) (valid for 491-655 mm)."
+    assert advise(bench, {"seat.length": -553.0}).startswith(
+        "Shorten seat by 553 mm (276.5 mm off each end) (")          # not 277
     assert advise(bench, {"seat.width": 490.0}).startswith(
         "Widen seat by 490 mm (245 mm at each edge) (valid for")
+    stool = with_model(load_design(str(CATALOG / "stool.yaml")), "rigid")
+    assert advise(stool, {"leg_l.width": 20.0, "leg_r.width": 20.0}).startswith(
+        "Widen leg_l and leg_r by 20 mm each (10 mm at each edge) (")
     chair = with_model(load_design(str(CATALOG / "chair-upright.yaml")), "rigid")
     assert advise(chair, {"back.length": 10.0}).startswith("Raise the top of back by 10 mm (")

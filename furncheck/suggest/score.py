@@ -30,7 +30,7 @@ design, and ranked by ``ShopScore.key`` (smaller first), lexicographically:
    -- on a symmetric design a symmetric fix comes first where one works;
 3. ``cost``: the sum over the planks touched of each one's largest *relative* change --
    a size change over the size it had, a move over the design's size (its largest
-   dimension), a turn in radians (none for a quarter turn about the plank's own axis: a
+   dimension), a turn in radians (none for a quarter turn about the plank's length: a
    leg so turned, ``discrete.turns``, is the same board standing square), a plank's own
    material value over its old value, an
    added or removed plank 1 -- plus PLANK_COST per plank touched (a change of one plank
@@ -104,6 +104,10 @@ TURN_LIMIT = 5.0
 out of square with the piece, by at most this before a suggestion reads as implausible
 (a stool's leg turned 8.5 degrees in plan to hold a push, where a brace does it
 square)."""
+
+QUARTER_SLACK = 1e-4
+"""Degrees: a plank's turn counts as a quarter turn about its length where it is within
+this of 90 degrees, about an axis within this of its length (``_quarter_turned``)."""
 
 PUSH_DROP_SHARE = 0.1
 """A push (a load with a force and no mass: a child's pull, a shove) at the top of the
@@ -449,14 +453,11 @@ def _relative(edit: PlankEdit, size: float, square: bool = False) -> float:
     return largest
 
 
-QUARTER_SLACK = 1e-6
-"""Degrees: a plank's turn counts as a quarter turn within this of 90 degrees."""
-
-
 def _quarter_turned(original: Design, edited: Design, plank_id: str) -> bool:
-    """Whether the plank is turned by a quarter turn about one of its own axes (the same
-    board standing square: ``discrete.turns``): the rotation from its old frame to its
-    new one is 90 degrees, within QUARTER_SLACK, about an axis along one of its own."""
+    """Whether the plank is given a quarter turn about its length (its longer side: the
+    same board standing square, a leg so turned by ``discrete.turns``): the rotation
+    from its old frame to its new one is 90 degrees about an axis along that side, each
+    within QUARTER_SLACK."""
     if plank_id not in original.plank_index or plank_id not in edited.plank_index:
         return False
     before = original.plank(plank_id).rotation_matrix
@@ -468,7 +469,9 @@ def _quarter_turned(original: Design, edited: Design, plank_id: str) -> bool:
     axis = np.array([relative[2, 1] - relative[1, 2], relative[0, 2] - relative[2, 0],
                      relative[1, 0] - relative[0, 1]])
     axis /= float(np.linalg.norm(axis))
-    return float(np.abs(before.T @ axis).max()) >= 1.0 - math.radians(QUARTER_SLACK)
+    plank = original.plank(plank_id)
+    length = before[:, 0 if plank.length >= plank.width else 1]
+    return abs(float(length @ axis)) >= math.cos(math.radians(QUARTER_SLACK))
 
 
 def _fits_board(plank: Plank) -> bool:

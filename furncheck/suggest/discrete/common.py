@@ -37,9 +37,14 @@ MAX_CANDIDATES = 12
 """Candidates checked in full per rule at most (each is a full check of every load case):
 the rules list their likeliest candidates first."""
 
+BOARD_DIGITS = 12
+"""Decimals (m^3) to which the board a finished candidate adds is compared: equal
+boards summed in another order are a tie, not one ulp more."""
+
 MAX_RULED_OUT = 48
-"""Candidates ruled out by their geometry alone (a part that would cut into another,
-float, or miss what it is nailed to: one analysis each, no full check) per rule at most,
+"""Candidates ruled out before a check (by their geometry: a part that would cut into
+another, float, or miss what it is nailed to; or a locked DOF: one analysis each, no
+full check) per rule at most,
 beyond MAX_CANDIDATES checked in full: on a design of many failing planks each brings
 its own, and the analysis of a big design takes a second."""
 
@@ -150,10 +155,10 @@ class Search:
         failed only by planks that bend too much (elastic model), the FINISHED of those
         whose planks bend least past their limits (``_nearest``; on a tie the later, as
         the rules list their smallest parts first) with those planks thickened
-        (``thicker.finish``): of the
-        ones that are then valid, the one that adds the least board (``_added_board``);
-        else None (on a tie of board, a preferred one, then the one whose parts are
-        smaller: a 48 mm rail where a 96 mm one needs the same boards).  Every candidate
+        (``thicker.finish``): of the ones that are then valid, the one that adds the
+        least board (``_added_board``; on a tie, a preferred one, then the one whose added
+        parts are smaller: a 48 mm rail where a 96 mm one needs the same boards); else
+        None.  Every candidate
         checked is recorded in ``trials`` (``tried.Trial``: found, or failed and why)."""
         bent: list[tuple] = []
         count = ruled_out = 0               # checked in full; ruled out by geometry
@@ -161,8 +166,8 @@ class Search:
             if count >= MAX_CANDIDATES or ruled_out >= MAX_RULED_OUT:
                 self.failed(candidate.trial_rule or candidate.rule, f"the rule checks "
                             f"{MAX_CANDIDATES} candidates at most" if count >= MAX_CANDIDATES
-                            else f"the rule rules out {MAX_RULED_OUT} candidates by their "
-                            "geometry at most", candidate.target)
+                            else f"the rule rules out {MAX_RULED_OUT} candidates before a "
+                            "check at most", candidate.target)
                 break
             outcome = self.verdict(candidate.design, candidate.new_joints, full=self.elastic)
             if isinstance(outcome, str):
@@ -188,8 +193,8 @@ class Search:
                 self._record(candidate, FAILED, "no thicker boards (up to 44 mm) make the "
                              "design with it valid", thickening=True)
                 continue
-            key = (_added_board(edited, finished[2]), not candidate.preferred,
-                   _part_volume(candidate))
+            key = (round(_added_board(edited, finished[2]), BOARD_DIGITS),
+                   not candidate.preferred, _part_volume(candidate))
             if best is not None and key >= best[0]:
                 self._record(candidate, FAILED, f"valid, but {_worse(key, best[0])} "
                              f"{best[1].place}", thickening=True)
@@ -293,7 +298,8 @@ class Candidate:
     plank      : the plank (or fixing) it adds, as the advice names it
     preferred  : of candidates that thicker boards finish with as much board, a preferred
                  one is kept over one that is not (the anchors on a plank and its mirror
-                 images over those on the plank alone); else the later one is
+                 images over those on the plank alone); else the one whose added parts
+                 are smaller
     """
 
     rule: str
@@ -323,7 +329,7 @@ def _worse(key: tuple, other: tuple) -> str:
     if key[1] > other[1]:
         return "it adds as much board as, and is not preferred to,"
     if key[2] > other[2]:
-        return "it adds as much board as, and a bigger part than,"
+        return "it adds as much board as, and bigger parts than,"
     return "it is no better than"
 
 

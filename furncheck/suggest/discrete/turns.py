@@ -26,13 +26,14 @@ into another); one that then fails only by bending is finished with thicker boar
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import replace
 
 import numpy as np
 
 from furncheck.design.model import Design, Plank
 from furncheck.dofs import euler_degrees
+from furncheck.geometry import Geometry
 from furncheck.suggest.discrete.common import (
     Candidate,
     Fix,
@@ -72,7 +73,7 @@ def _candidates(search: Search, failing: list[str]) -> Iterator[Candidate]:
     """The legs of ``failing`` square to the push they fail under, and their mirror images,
     turned and moved to keep their outer edges where their outer faces were, then turned
     through their centres; the advice says what the turn gives up (against a push across
-    the first, the legs are then their thickness deep)."""
+    the one it fails under, the legs are then their thickness deep)."""
     design = search.design
     standing = set(legs(design, search.geometry))
     images = list(failing)                  # and their mirror images, turned alike
@@ -105,17 +106,16 @@ def _candidates(search: Search, failing: list[str]) -> Iterator[Candidate]:
     thick = {amount(design.plank(leg).thickness / design.unit_scale) for leg in turned_legs}
     their = "its" if len(turned_legs) == 1 else "their"
     one = len(turned_legs) == 1
-    push = turning[0][1]
-    other = "xy"[int(abs(push[0]) >= abs(push[1]))]         # the way across the push
     if len(width) == len(thick) == 1:
         wide, deep = f"{width.pop()} {design.units}", f"{thick.pop()} {design.units}"
         meets = f"so that the push meets {their} {wide} width, not {their} {deep} thickness"
-        trade = f"; against a push along {other} {'it is' if one else 'they are'} then {deep} deep"
+        trade = (f"; against a push across that one {'it is' if one else 'they are'} then "
+                 f"{deep} deep")
     else:
         meets, trade = "so that the push meets their width, not their thickness", ""
     for flush in (True, False):
         edited = _with_turned(design, dict(turning), flush)
-        clear = _clear_of(edited, search.geometry, turned_legs)
+        clear = _clear_of(design, edited, search.geometry, turned_legs)
         if clear:
             search.failed(TURNED, f"{'outer edges kept' if flush else 'in place'}: "
                           f"{clear} would reach past what it carries", ",".join(failing))
@@ -130,28 +130,38 @@ def _candidates(search: Search, failing: list[str]) -> Iterator[Candidate]:
                         plank=names(turned_legs), preferred=flush)
 
 
-def _clear_of(edited: Design, geometry, turned: list[str]) -> str:
-    """The first turned leg (id) whose plan reaches past the plan of the planks it is
-    jointed to above its middle (what it carries: a table's top), where those are; ''
-    where none does (a leg turned in place under a top flush with its end face would
-    stand 24 mm past the top's end)."""
+def _clear_of(design: Design, edited: Design, geometry: Geometry, turned: list[str]) -> str:
+    """The first turned leg (id) that reaches further past the outline of what it carries
+    (the planks jointed to it above its middle: a table's top, each in its own frame) in
+    ``edited`` than it did in ``design``, beyond the design's tolerance; '' where none
+    does (turned in place, a leg flush with a top's end would stand 24 mm past it; one
+    that stood proud of the top as drawn may stand as proud)."""
     partners: dict[str, list[str]] = {}
     for joint in geometry.joints:
         for a, b in (joint.planks, joint.planks[::-1]):
             partners.setdefault(a, []).append(b)
-    slack = edited.tolerance
     for leg in turned:
-        plank = edited.plank(leg)
-        above = [edited.plank(p) for p in partners.get(leg, ())
-                 if edited.plank(p).center[2] > plank.center[2]]
-        if not above:
+        carried = [p for p in partners.get(leg, ())
+                   if design.plank(p).center[2] > design.plank(leg).center[2]]
+        if not carried:
             continue
-        low = np.min([p.corners[:, :2].min(axis=0) for p in above], axis=0)
-        high = np.max([p.corners[:, :2].max(axis=0) for p in above], axis=0)
-        corners = plank.corners[:, :2]
-        if np.any(corners < low - slack) or np.any(corners > high + slack):
+        if _overreach(edited, leg, carried) > _overreach(design, leg, carried) \
+                + design.tolerance:
             return leg
     return ""
+
+
+def _overreach(design: Design, leg: str, carried: list[str]) -> float:
+    """m: how far the leg's corners reach past the outlines of the ``carried`` planks, in
+    the plane of each (a corner counts under the plank it is least past)."""
+    corners = design.plank(leg).corners
+    past = []
+    for plank_id in carried:
+        plank = design.plank(plank_id)
+        local = plank.to_local(corners)[:, :2]
+        halves = np.array([plank.length, plank.width]) / 2.0
+        past.append(np.clip(np.abs(local) - halves, 0.0, None).max(axis=1))
+    return float(np.min(past, axis=0).max())
 
 
 def _across(plank: Plank) -> float:
@@ -201,21 +211,28 @@ def _with_turned(design: Design, pushes: dict[str, np.ndarray], flush: bool) -> 
                    load_cases=cases, anchors=anchors)
 
 
-def _turned(design: Design, plank: Plank, push: np.ndarray, flush: bool):
+def _turned(design: Design, plank: Plank, push: np.ndarray,
+            flush: bool) -> tuple[Plank, Callable]:
     """(``plank`` turned a quarter turn about its length through its centre, the map of a
     point on it to where it goes); with ``flush``, also moved along ``push`` and across
-    it so that its extent away from the design's middle ends where it did, each way (a
-    table's leg set in its corner as before)."""
+    it so that its extent away from the middle of the design's bounding box ends where it
+    did, each way (a table's leg set in its corner as before; not along a way in which it
+    stands at the middle, within the design's tolerance: a six-legged table's middle
+    legs)."""
     rotation = plank.rotation_matrix
     turn = _about(rotation[:, _length_axis(plank)], math.pi / 2.0)
     new_rotation = turn @ rotation
     old_centre = plank.center_array
     centre = old_centre.copy()
     if flush:                       # along the push, then across it
-        middle = np.mean([p.center_array for p in design.planks], axis=0)
+        corners = np.vstack([p.corners for p in design.planks])
+        middle = 0.5 * (corners.min(axis=0) + corners.max(axis=0))
         for direction in (np.array([push[0], push[1], 0.0]),
                           np.array([-push[1], push[0], 0.0])):
-            side = 1.0 if float((centre - middle) @ direction) >= 0.0 else -1.0
+            offset = float((centre - middle) @ direction)
+            if abs(offset) <= design.tolerance:     # a middle leg: no outer side
+                continue
+            side = 1.0 if offset > 0.0 else -1.0
             before = _reach(rotation, plank, direction * side)
             after = _reach(new_rotation, plank, direction * side)
             centre = centre + direction * side * (before - after)
