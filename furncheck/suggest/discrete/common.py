@@ -44,9 +44,9 @@ boards summed in another order are a tie, not one ulp more."""
 MAX_RULED_OUT = 48
 """Candidates ruled out before a check (by their geometry: a part that would cut into
 another, float, or miss what it is nailed to; or a locked DOF: one analysis each, no
-full check) per rule at most,
-beyond MAX_CANDIDATES checked in full: on a design of many failing planks each brings
-its own, and the analysis of a big design takes a second."""
+full check) per rule at most, beyond MAX_CANDIDATES checked in full: on a design of
+many failing planks each brings its own, and the analysis of a big design takes a
+second."""
 
 LOCK_SLACK = 1e-9
 """A locked DOF counts as unchanged within this (file unit or degrees: round-off)."""
@@ -150,18 +150,18 @@ class Search:
 
     def first_valid(self, candidates: Iterable[Candidate]) -> Fix | None:
         """The Fix of the first candidate that is valid (``verdict``), checking at most
-        MAX_CANDIDATES of them in full (those ruled out by their geometry alone, before
-        any check, do not count; at most MAX_RULED_OUT of those); when none is, but some
-        failed only by planks that bend too much (elastic model), the FINISHED of those
-        whose planks bend least past their limits (``_nearest``; on a tie the later, as
-        the rules list their smallest parts first) with those planks thickened
-        (``thicker.finish``): of the ones that are then valid, the one that adds the
-        least board (``_added_board``; on a tie, a preferred one, then the one whose added
-        parts are smaller: a 48 mm rail where a 96 mm one needs the same boards); else
-        None.  Every candidate
-        checked is recorded in ``trials`` (``tried.Trial``: found, or failed and why)."""
+        MAX_CANDIDATES of them in full (those ruled out before any check, by their
+        geometry or a locked DOF, do not count; at most MAX_RULED_OUT of those); when
+        none is, but some failed only by planks that bend too much (elastic model), the
+        FINISHED of those whose planks bend least past their limits (``_nearest``; on a
+        tie the later, as the rules list their smallest parts first) with those planks
+        thickened (``thicker.finish``): of the ones that are then valid, the one that adds
+        the least board (``_added_board``; on a tie, a preferred one, then the one whose
+        added parts are smaller: a 48 mm rail where a 96 mm one needs the same boards);
+        else None.  Every candidate checked is recorded in ``trials`` (``tried.Trial``:
+        found, or failed and why)."""
         bent: list[tuple] = []
-        count = ruled_out = 0               # checked in full; ruled out by geometry
+        count = ruled_out = 0               # checked in full; ruled out before a check
         for candidate in candidates:
             if count >= MAX_CANDIDATES or ruled_out >= MAX_RULED_OUT:
                 self.failed(candidate.trial_rule or candidate.rule, f"the rule checks "

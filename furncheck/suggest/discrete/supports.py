@@ -221,7 +221,7 @@ def _stiffeners(search: Search, i: str, neighbours: list[str],
         group = _rails_under_each(design, shelf, span, others, rail_depth, thickness)
         key = ("rails under each", group and group.between, rail_depth)
         if group is not None and (tried is None or key not in tried):
-            if tried is not None:           # (its alike planks' turns make the same one)
+            if tried is not None:       # (each alike plank, in its own pass, makes it too)
                 tried.add(key)
             yield replace(group, target=i)
         for side, edge, where in ((-1.0, 1.0, "under one long edge"),
