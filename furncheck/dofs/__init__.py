@@ -24,7 +24,7 @@ Its modules: ``names`` (the DOFs, their values and the two refusals),
 ``plank_edits`` (the plank arithmetic it uses, all SI).
 """
 
-from furncheck.dofs.apply import apply_dof, carried_point
+from furncheck.dofs.apply import apply_dof, carried_point, with_planks_carried
 from furncheck.dofs.frame import End, Structure, structure
 from furncheck.dofs.names import (
     DOF_KINDS,
@@ -36,8 +36,8 @@ from furncheck.dofs.names import (
     dof_value,
     parse_dof,
 )
-from furncheck.dofs.plank_edits import euler_degrees
+from furncheck.dofs.plank_edits import axis_rotation, euler_degrees
 
 __all__ = ["DOF_KINDS", "Blocked", "Dof", "End", "OutOfReach", "Structure", "all_dofs",
-           "apply_dof", "carried_point", "design_size", "dof_value", "euler_degrees",
-           "parse_dof", "structure"]
+           "apply_dof", "axis_rotation", "carried_point", "design_size", "dof_value",
+           "euler_degrees", "parse_dof", "structure", "with_planks_carried"]

@@ -53,14 +53,23 @@ def apply_dof(design: Design, frame: Structure, dof: Dof, step: float) -> Design
     else:
         _resize(frame, planks, plank, 0 if dof.kind == "length" else 1,
                 step * design.unit_scale)
-    edited = tuple(planks[p.id] for p in design.planks)
-    changed = {plank_id for plank_id, p in planks.items() if p is not before[plank_id]}
-    return replace(design, planks=edited,
-                   load_cases=tuple(_carried_case(case, before, planks, changed)
+    return with_planks_carried(design, tuple(planks[p.id] for p in design.planks))
+
+
+def with_planks_carried(design: Design, planks: tuple[Plank, ...]) -> Design:
+    """The design with ``planks`` in place of its own (one each, in its order), the load
+    and anchor points on each plank that changed (not the same object) carried with it
+    (``_carried``, ``carried_point``): an edit of a DOF, a plank lengthened to close a
+    gap, a leg given a quarter turn."""
+    before = {p.id: p for p in design.planks}
+    after = {p.id: p for p in planks}
+    changed = {plank_id for plank_id, p in after.items() if p is not before[plank_id]}
+    return replace(design, planks=planks,
+                   load_cases=tuple(_carried_case(case, before, after, changed)
                                     for case in design.load_cases),
                    anchors=tuple(anchor if anchor.plank not in changed else replace(
                        anchor, point=carried_point(anchor.point, before[anchor.plank],
-                                                   planks[anchor.plank]))
+                                                   after[anchor.plank]))
                        for anchor in design.anchors))
 
 

@@ -30,7 +30,7 @@ from dataclasses import replace
 import numpy as np
 
 from furncheck.design.model import Design, Plank
-from furncheck.dofs import carried_point
+from furncheck.dofs import with_planks_carried
 from furncheck.geometry.faces import _best_touches
 from furncheck.geometry.near import carried_groups, near_band
 from furncheck.suggest.discrete.common import Candidate, Fix, Search, amount, names
@@ -128,16 +128,8 @@ def _closed(search: Search) -> tuple[Design, dict, tuple] | None:
             moves.setdefault(plank.id, []).append((axis, sign, -depth, "at its foot"))
         else:
             return None
-    before = {p.id: p for p in design.planks}
-    planks = tuple(_extended(p, moves[p.id]) if p.id in moves else p for p in design.planks)
-    after = {p.id: p for p in planks}
-    cases = tuple(replace(case, loads=tuple(
-        replace(load, point=carried_point(load.point, before[load.plank], after[load.plank]))
-        if load.point is not None and load.plank in moves else load for load in case.loads))
-        for case in design.load_cases)
-    anchors = tuple(replace(a, point=carried_point(a.point, before[a.plank], after[a.plank]))
-                    if a.plank in moves else a for a in design.anchors)
-    edited = replace(design, planks=planks, load_cases=cases, anchors=anchors)
+    edited = with_planks_carried(design, tuple(
+        _extended(p, moves[p.id]) if p.id in moves else p for p in design.planks))
     ends = {plank: [(amount_m, where, axis) for axis, _, amount_m, where in changes]
             for plank, changes in moves.items()}
     return edited, ends, tuple(joints)

@@ -26,13 +26,13 @@ into another); one that then fails only by bending is finished with thicker boar
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from dataclasses import replace
 
 import numpy as np
 
 from furncheck.design.model import Design, Plank
-from furncheck.dofs import euler_degrees
+from furncheck.dofs import axis_rotation, euler_degrees, with_planks_carried
 from furncheck.geometry import Geometry
 from furncheck.suggest.discrete.common import (
     Candidate,
@@ -136,10 +136,7 @@ def _clear_of(design: Design, edited: Design, geometry: Geometry, turned: list[s
     ``edited`` than it did in ``design``, beyond the design's tolerance; '' where none
     does (turned in place, a leg flush with a top's end would stand 24 mm past it; one
     that stood proud of the top as drawn may stand as proud)."""
-    partners: dict[str, list[str]] = {}
-    for joint in geometry.joints:
-        for a, b in (joint.planks, joint.planks[::-1]):
-            partners.setdefault(a, []).append(b)
+    partners = geometry.jointed()
     for leg in turned:
         carried = [p for p in partners.get(leg, ())
                    if design.plank(p).center[2] > design.plank(leg).center[2]]
@@ -194,36 +191,22 @@ def _push(design: Design, search: Search, leg: str) -> np.ndarray | None:
 
 def _with_turned(design: Design, pushes: dict[str, np.ndarray], flush: bool) -> Design:
     """The design with each leg of ``pushes`` (id -> the push's direction) turned
-    (``_turned``), the load and anchor points on it turned and moved with it."""
-    planks, moves = {}, {}
-    for leg, push in pushes.items():
-        planks[leg], moves[leg] = _turned(design, design.plank(leg), push, flush)
-
-    def moved(plank_id: str, point):
-        move = moves.get(plank_id)
-        return point if move is None or point is None else move(point)
-    cases = tuple(replace(case, loads=tuple(
-        replace(load, point=moved(load.plank, load.point)) if load.plank in moves
-        else load for load in case.loads)) for case in design.load_cases)
-    anchors = tuple(replace(a, point=moved(a.plank, a.point)) if a.plank in moves else a
-                    for a in design.anchors)
-    return replace(design, planks=tuple(planks.get(p.id, p) for p in design.planks),
-                   load_cases=cases, anchors=anchors)
+    (``_turned``), the load and anchor points on it carried with it
+    (``dofs.with_planks_carried``)."""
+    turned = {leg: _turned(design, design.plank(leg), push, flush)
+              for leg, push in pushes.items()}
+    return with_planks_carried(design, tuple(turned.get(p.id, p) for p in design.planks))
 
 
-def _turned(design: Design, plank: Plank, push: np.ndarray,
-            flush: bool) -> tuple[Plank, Callable]:
-    """(``plank`` turned a quarter turn about its length through its centre, the map of a
-    point on it to where it goes); with ``flush``, also moved along ``push`` and across
-    it so that its extent away from the middle of the design's bounding box ends where it
-    did, each way (a table's leg set in its corner as before; not along a way in which it
-    stands at the middle, within the design's tolerance: a six-legged table's middle
-    legs)."""
+def _turned(design: Design, plank: Plank, push: np.ndarray, flush: bool) -> Plank:
+    """``plank`` turned a quarter turn about its length (its own axis, through its
+    centre); with ``flush``, also moved along ``push`` and across it so that its extent
+    away from the middle of the design's bounding box ends where it did, each way (a
+    table's leg set in its corner as before; not along a way in which it stands at the
+    middle, within the design's tolerance: a six-legged table's middle legs)."""
     rotation = plank.rotation_matrix
-    turn = _about(rotation[:, _length_axis(plank)], math.pi / 2.0)
-    new_rotation = turn @ rotation
-    old_centre = plank.center_array
-    centre = old_centre.copy()
+    new_rotation = rotation @ axis_rotation(_length_axis(plank), math.pi / 2.0)
+    centre = plank.center_array.copy()
     if flush:                       # along the push, then across it
         corners = np.vstack([p.corners for p in design.planks])
         middle = 0.5 * (corners.min(axis=0) + corners.max(axis=0))
@@ -237,12 +220,8 @@ def _turned(design: Design, plank: Plank, push: np.ndarray,
             after = _reach(new_rotation, plank, direction * side)
             centre = centre + direction * side * (before - after)
     angles = euler_degrees(new_rotation, plank.rotation)
-
-    def move(point):
-        where = centre + turn @ (np.asarray(point, dtype=float) - old_centre)
-        return tuple(float(v) for v in where)
     return replace(plank, rotation=tuple(float(a) for a in angles),
-                   center=tuple(float(v) for v in centre)), move
+                   center=tuple(float(v) for v in centre))
 
 
 def _reach(rotation: np.ndarray, plank: Plank, direction: np.ndarray) -> float:
@@ -250,10 +229,3 @@ def _reach(rotation: np.ndarray, plank: Plank, direction: np.ndarray) -> float:
     ``rotation``: its half sizes times the local axes' components along it."""
     halves = np.array([plank.length, plank.width, plank.thickness]) / 2.0
     return float(np.abs(rotation.T @ direction) @ halves)
-
-
-def _about(axis: np.ndarray, angle: float) -> np.ndarray:
-    """The rotation by ``angle`` (rad) about the unit ``axis`` (Rodrigues' formula)."""
-    x, y, z = axis / np.linalg.norm(axis)
-    k = np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
-    return np.eye(3) + math.sin(angle) * k + (1.0 - math.cos(angle)) * (k @ k)
