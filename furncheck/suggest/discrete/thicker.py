@@ -113,11 +113,8 @@ def boards_alone(search: Search, thickened: dict, rule: str) -> Fix | None:
     report = check_design(edited, after)
     if not report.valid:
         return None
-    edited, report, current = _pruned(search, design, geometry, mirror_planes(design),
-                                      existing, (edited, report))
-    original = {p.id: p.thickness for p in design.planks}
-    order = sorted(current, key=design.plank_index.get)
-    return _fix(search, edited, report, {p: (original[p], current[p]) for p in order},
+    return _fix(search, *_pruned(search, design, geometry, mirror_planes(design), existing,
+                                 (edited, report)),
                 f"the boards that finished the {rule} candidate, without it")
 
 
@@ -209,10 +206,8 @@ def _thickened(search: Search, design: Design, geometry: Geometry, report: Desig
         search.checks += 1
         after_report = check_design(edited, after)
         if after_report.valid:
-            edited, after_report, current = _pruned(search, design, geometry, planes,
-                                                    current, (edited, after_report))
-            order = sorted(current, key=design.plank_index.get)
-            return edited, after_report, {p: (original[p], current[p]) for p in order}
+            return _pruned(search, design, geometry, planes, current,
+                           (edited, after_report))
         first = after_report.violations[0]
         why[:] = [f"with {names(list(current))} thicker, {first.kind}: {first.where}: "
                   f"{first.message}"]
@@ -252,7 +247,8 @@ def _pruned(search: Search, design: Design, geometry: Geometry,
     thickened for what an earlier try showed (a bookcase's sides bowed by its sagging
     shelves) may need it no more once the planks that bent it are thicker: a maker does
     not buy 1800 mm sides of 15 mm board that 12 mm ones would do.  Nothing to try where
-    one plank (or group) is thickened."""
+    one plank (or group) is thickened.  (design, report, {id: (old, new) thickness}),
+    in the design's plank order."""
     edited, report = valid
     group_of = {plank: {plank} for plank in current}     # mirror images of upright planks
     for plane in planes:                                   # joined, over every plane
@@ -269,7 +265,7 @@ def _pruned(search: Search, design: Design, geometry: Geometry,
             seen |= group_of[plank]
             groups.append(group_of[plank])
     if len(groups) < 2:
-        return edited, report, current
+        return edited, report, _pairs(design, current)
     checks = 0
     for group in groups:
         fewer = {p: t for p, t in current.items() if p not in group}
@@ -284,7 +280,13 @@ def _pruned(search: Search, design: Design, geometry: Geometry,
         trial_report = check_design(trial, trial_geometry)
         if trial_report.valid:
             current, edited, report = fewer, trial, trial_report
-    return edited, report, current
+    return edited, report, _pairs(design, current)
+
+
+def _pairs(design: Design, thicknesses: dict[str, float]) -> dict[str, tuple[float, float]]:
+    """{id: (its thickness in ``design``, the new one)} of ``thicknesses``, in plank order."""
+    return {p: (design.plank(p).thickness, thicknesses[p])
+            for p in sorted(thicknesses, key=design.plank_index.get)}
 
 
 PRUNE_CHECKS = 4
