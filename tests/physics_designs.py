@@ -293,58 +293,48 @@ def case_loads(design: dict, name: str = "default") -> list[dict]:
 
 def rigid_motion(design: dict, phi_deg: float, tx: float, ty: float) -> dict:
     """The design rotated by phi about the world z axis through the origin, then moved by
-    (tx, ty) in the file's length unit.  Plank rotations become Rz(phi) @ R, converted back
-    to x-y-z Euler angles; load points, walls and anchors move with the design, force
-    vectors and wall normals turn with it."""
-    out = copy.deepcopy(design)
-    r = rz(phi_deg)
-
-    def move(point):
-        x, y, z = _apply(r, [float(v) for v in point])
-        return [x + tx, y + ty, z]
-
-    for plank in out["planks"]:
-        plank["center"] = move(plank["center"])
-        new = _matmul(r, euler_matrix(plank.get("rotation", [0, 0, 0])))
-        plank["rotation"] = matrix_to_euler(new)
-    for load in _all_loads(out):
-        if "at" in load:
-            load["at"] = move(load["at"])
-        if "force" in load:
-            load["force"] = _apply(r, [float(v) for v in load["force"]])
-    for wall in out.get("walls") or []:
-        wall["point"] = move(wall["point"])
-        wall["normal"] = _apply(r, [float(v) for v in wall["normal"]])
-    for anchor in out.get("anchors") or []:
-        anchor["at"] = move(anchor["at"])
-    return out
+    (tx, ty) in the file's length unit (``_mapped``)."""
+    return _mapped(design, rz(phi_deg), (tx, ty, 0.0))
 
 
 def mirrored(design: dict) -> dict:
-    """The design's mirror image in the plane x = 0: every point (plank centres, load
-    points, wall points, anchors) and every force and wall normal with x negated; a
-    plank's rotation R becomes M R M (M = diag(-1, 1, 1): a proper rotation, since a
-    plank's box is its own mirror image), converted back to x-y-z Euler angles."""
-    out = copy.deepcopy(design)
-    mirror = [[-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+    """The design's mirror image in the plane x = 0 (``_mapped`` by M = diag(-1, 1, 1))."""
+    return _mapped(design, [[-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+                   (0.0, 0.0, 0.0))
 
-    def flip(vector):
-        x, y, z = (float(v) for v in vector)
-        return [-x, y, z]
+
+def _mapped(design: dict, matrix, shift) -> dict:
+    """The design mapped by p -> matrix p + shift (a rotation, or a mirror: determinant
+    -1), in the file's length unit: plank centres, load points, wall points and anchors
+    mapped, forces and wall normals turned by ``matrix``; a plank's rotation R becomes
+    matrix R, or matrix R F for a mirror (F = diag(-1, 1, 1): a proper rotation again,
+    since a plank's box is its own mirror image in its local x), converted back to x-y-z
+    Euler angles."""
+    out = copy.deepcopy(design)
+    (a, b, c), (d, e, f), (g, h, i) = matrix
+    mirror = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g) < 0.0
+    frame = [[-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] if mirror else \
+        [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+
+    def vector(value):
+        return _apply(matrix, [float(v) for v in value])
+
+    def point(value):
+        return [v + float(s) for v, s in zip(vector(value), shift)]
 
     for plank in out["planks"]:
-        plank["center"] = flip(plank["center"])
-        turned = _matmul(mirror, _matmul(euler_matrix(plank.get("rotation", [0, 0, 0])),
-                                         mirror))
-        plank["rotation"] = matrix_to_euler(turned)
+        plank["center"] = point(plank["center"])
+        new = _matmul(matrix, _matmul(euler_matrix(plank.get("rotation", [0, 0, 0])), frame))
+        plank["rotation"] = matrix_to_euler(new)
     for load in _all_loads(out):
-        for key in ("at", "force"):
-            if key in load:
-                load[key] = flip(load[key])
+        if "at" in load:
+            load["at"] = point(load["at"])
+        if "force" in load:
+            load["force"] = vector(load["force"])
     for wall in out.get("walls") or []:
-        wall["point"], wall["normal"] = flip(wall["point"]), flip(wall["normal"])
+        wall["point"], wall["normal"] = point(wall["point"]), vector(wall["normal"])
     for anchor in out.get("anchors") or []:
-        anchor["at"] = flip(anchor["at"])
+        anchor["at"] = point(anchor["at"])
     return out
 
 
