@@ -415,6 +415,7 @@ load_cases:
        edges=st.lists(st.floats(-0.2, 0.2), max_size=8))
 @example(points=[-0.2, -0.1996986, -0.18913107, 0.1996986, 0.2], edges=[])
 @example(points=[0.01, 0.0108, 0.0116, 0.0124, 0.0132], edges=[0.0, 0.0004])
+@example(points=[-0.199, 0.199], edges=[])
 def test_grid_lines_mirror_and_keep_every_line_within_a_millimetre(points, edges):
     """``plate_mesh.grid_lines`` of a 400 mm side: the mirrored lines and edges give the
     mirrored grid (to round-off), every support line lies within NODE_MERGE (1 mm) of a
@@ -422,7 +423,9 @@ def test_grid_lines_mirror_and_keep_every_line_within_a_millimetre(points, edges
     pass PLATE_GRID_LINES, and the grid runs from edge to edge, ascending.  (The first
     example is the edited chair's seat whose stress moved by 1e-5 when mirrored: segment
     ends at +-199.7 and +-200 mm; the second a run of lines 0.8 mm apart, longer than
-    two millimetres.)"""
+    two millimetres; the third supports 1 mm inside the edges, |-0.199 - -0.2| =
+    1.0000000000000009 mm as ``_on_segment`` measures it: a support line is within
+    NODE_MERGE of a grid line as measured there, exactly, or its nodes are not found.)"""
     from furncheck import tolerances as tol
     from furncheck.statics.plate_mesh import grid_lines
 
@@ -433,5 +436,59 @@ def test_grid_lines_mirror_and_keep_every_line_within_a_millimetre(points, edges
     assert grid[0] == -0.2 and grid[-1] == pytest.approx(0.2, abs=1e-15)
     assert np.all(np.diff(grid) > 0.0)
     assert np.all(np.diff(grid) <= cell * (1 + tol.PLATE_CELL_SLACK))
-    for point in (*points, *edges):       # (22 lines at most: no edge is left out)
+    for point in np.clip(points, -0.2, 0.2):
+        assert np.abs(grid - point).min() <= tol.NODE_MERGE
+    for point in edges:                   # (22 lines at most: no edge is left out)
         assert np.abs(grid - point).min() <= tol.NODE_MERGE + 1e-15
+
+
+FOUR_FINS = """
+furncheck: 1
+name: four-fins
+units: mm
+material: {{thickness: 12, density: 1.0e-06, elastic_modulus: 3000.0, shear_modulus: 800.0,
+  nail_slip: 1200.0, nail_withdrawal: 1000.0}}
+planks:
+  - {{id: shelf, size: [{length}, 200], center: [0, 0, 159], thickness: 18}}
+  - {{id: fin0, size: [150, 100], center: [-950, 0, 75], rotation: [0, -90, 0], thickness: 2}}
+  - {{id: fin1, size: [150, 100], center: [-450, 0, 75], rotation: [0, -90, 0], thickness: 2}}
+  - {{id: fin2, size: [150, 100], center: [350, 0, 75], rotation: [0, -90, 0], thickness: 2}}
+  - {{id: fin3, size: [150, 100], center: [950, 0, 75], rotation: [0, -90, 0], thickness: 2}}
+loads:
+  - {{plank: shelf, mass: 30, spread: true}}
+"""
+
+
+def test_a_support_a_millimetre_inside_the_edge_holds_the_plate() -> None:
+    """A 1902 x 200 x 18 mm shelf on four 2 mm fins at x = -950, -450, 350 and 950 mm
+    (spans 500, 800, 600; the end fins flush with its ends, their joint lines 1 mm inside
+    them), 30 kg spread, weightless planks.  By the three-moment equation (pinned
+    supports, uniform w = 294.3 N / 1902 mm; the 1 mm overhangs left out):
+
+        2 M_B (l1 + l2) + M_C l2 = -w (l1^3 + l2^3) / 4
+        M_B l2 + 2 M_C (l2 + l3) = -w (l2^3 + l3^3) / 4
+
+    M_B = -6998, M_C = -8058 N mm, the largest moment: stress |M_C| / (b t^2 / 6) = 0.746
+    N/mm^2.  The end lines lay 1.0000000000000009 mm from the edges as the plate measured
+    them, and the plate, held on the two middle fins alone, read a 3.65 mm sag over the
+    800 mm span (its middle lifting) and 2.80 N/mm^2 (the 600 mm span as a cantilever):
+    'sagging'.  Now it is valid, and reads as the shelf 0.2 mm longer does (its lines
+    then 1.1 mm inside)."""
+    from furncheck.check import check_design
+    from furncheck.design import parse_design
+
+    def shelf(length: float):
+        report = check_design(parse_design(FOUR_FINS.format(length=length), "d.yaml",
+                                           "yaml"))
+        return report, next(p for p in report.cases[0].planks if p.id == "shelf")
+
+    w = 30 * 9.80665 / 1902.0
+    l1, l2, l3 = 500.0, 800.0, 600.0
+    m_b, m_c = np.linalg.solve([[2 * (l1 + l2), l2], [l2, 2 * (l2 + l3)]],
+                               [-w * (l1 ** 3 + l2 ** 3) / 4, -w * (l2 ** 3 + l3 ** 3) / 4])
+    assert (m_b, m_c) == pytest.approx((-6998, -8058), rel=2e-3)
+    report, flush = shelf(1902.0)
+    longer = shelf(1902.2)[1]
+    assert report.valid, report.violations
+    assert flush.stress == pytest.approx(abs(m_c) / (200 * 18 ** 2 / 6), rel=0.02)
+    assert (flush.sag, flush.stress) == pytest.approx((longer.sag, longer.stress), rel=0.01)
