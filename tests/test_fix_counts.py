@@ -168,7 +168,11 @@ def test_each_way_to_close_a_gap_is_offered_with_the_boards_it_needs(catalog_sug
     for suggestion in closing:
         assert check_design(parse_design(suggestion.text, "s.yaml", "yaml")).valid
         assert any(e.field("thickness") for e in suggestion.edits)
-    words = sorted(advice(s, design).split(",")[0] for s in closing if s.dofs)
+    words = sorted(advice(s, design).split(";")[0] for s in closing if s.dofs)
     assert words == ["Move side_l 3 mm toward side_r",
                      "Move side_l and side_r closer together by 1.5 mm each",
                      "Move side_r 3 mm toward side_l"]
+    for suggestion in closing:          # the bottom and top between the sides follow
+        if suggestion.dofs:
+            assert "; to fit, shorten bottom and top by 3 mm each (600 -> 597 mm), and " \
+                "make bottom 22 mm thick" in advice(suggestion, design)

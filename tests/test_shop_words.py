@@ -213,3 +213,30 @@ def test_a_board_cut_shorter_at_both_ends_says_how_much_comes_off_each():
         "Widen leg_l and leg_r by 20 mm each (10 mm at each edge) (")
     chair = with_model(load_design(str(CATALOG / "chair-upright.yaml")), "rigid")
     assert advise(chair, {"back.length": 10.0}).startswith("Raise the top of back by 10 mm (")
+
+
+def test_planks_resized_to_follow_are_named_with_their_new_sizes():
+    """The stool's rung runs between its legs (328 mm, nailed to both): moving leg_l 40 mm
+    toward leg_r shortens the rung by the same 40 mm (328 -> 288 mm), moving both legs
+    apart by 25 mm each lengthens it by 50 mm (378 mm); the sentence names it after the
+    interval, as the cut list has it.  A plank the DOFs change themselves, or whose new
+    size the rest of the suggestion's words give already (a discrete fix's own cuts), is
+    not named again; one only thickened there is."""
+    from furncheck.report.shop_words import follow_phrase
+    from furncheck.suggest.cutlist import plank_edits
+
+    stool = with_model(load_design(str(CATALOG / "stool.yaml")), "rigid")
+    closer = edited(stool, {"leg_l.x": 40.0})
+    edits = plank_edits(stool, closer)
+    assert continuous_advice(("leg_l.x",), (40.0,), ("mm",), 1.0, (0.9, 1.2), False, stool,
+                             closer, follow_phrase(edits, {"leg_l"}, "mm")) == \
+        "Move leg_l 40 mm toward leg_r (valid for 36-48 mm); to fit, shorten rung by 40 mm " \
+        "(328 -> 288 mm)."
+    apart = plank_edits(stool, edited(stool, {"leg_l.x": -25.0, "leg_r.x": 25.0}))
+    assert follow_phrase(apart, {"leg_l", "leg_r"}, "mm") == \
+        "; to fit, lengthen rung by 50 mm (328 -> 378 mm)"
+    assert follow_phrase(apart, {"leg_l", "leg_r", "rung"}, "mm") == ""
+    said = "make seat 22 mm thick (now 12 mm); cut {} 3 mm shorter (328 -> 325 mm) to make room"
+    assert follow_phrase(apart, {"leg_l", "leg_r"}, "mm", said.format("rung")) == ""
+    assert follow_phrase(apart, {"leg_l", "leg_r"}, "mm", said.format("rung_b")) != ""
+    assert follow_phrase(apart, {"leg_l", "leg_r"}, "mm", "make rung 22 mm thick") != ""

@@ -660,7 +660,8 @@ def test_cli_text_reads_like_advice():
     that stands it (``bench_stance_needed``, about 220 mm) to where its joint would be
     lost (``BENCH_STANCE_REACH``, 300 mm): 1.5 x 220 = 330 mm is past the middle, so about
     (220 + 300) / 2 = 260 mm, each to the line search's resolution (so 3 %).  Its cut list
-    names the stretcher, which lengthens by the same amount (its end follows leg_r)."""
+    names the stretcher, which lengthens by the same amount (its end follows leg_r), and so
+    does the sentence: 'to fit, lengthen stretcher by N mm (588 -> 588 + N mm)'."""
     result = run("suggest", str(CATALOG / "shelf-cantilever-overloaded.yaml"), "--model",
                  "rigid")
     assert result.exit_code == 0
@@ -668,10 +669,12 @@ def test_cli_text_reads_like_advice():
     assert "Restores durability." in result.output
     assert "Add support-1 (582 x 300 mm) between shelf and base" in result.output
     bench = run("suggest", str(CATALOG / "bench-tips.yaml"), "--model", "rigid")
-    move = re.search(r"Move leg_r (\d+) mm away from leg_l \(valid for (\d+)-(\d+) mm\)\.",
+    move = re.search(r"Move leg_r (\d+) mm away from leg_l \(valid for (\d+)-(\d+) mm\); "
+                     r"to fit, lengthen stretcher by (\d+) mm \(588 -> (\d+) mm\)\.",
                      bench.output)
     assert move, bench.output
-    amount, low, high = (float(group) for group in move.groups())
+    amount, low, high, longer, length = (float(group) for group in move.groups())
+    assert longer == amount and length == 588 + amount
     needed = bench_stance_needed()
     assert low == pytest.approx(needed, rel=0.03)
     assert high == pytest.approx(BENCH_STANCE_REACH, rel=0.03)

@@ -4,6 +4,8 @@
     Lower the top of back by 79.8 mm (valid for 60-120 mm).
     Tilt leg_r 7.55 degrees about y, its top toward leg_l, its ends cut at 7.55 degrees to
     sit flat (valid for 5.04-10.1 degrees).
+    Move leg_l 161 mm toward leg_r (valid for 147-176 mm); to fit, shorten rung by 161
+    mm (328 -> 167 mm).
 
 A mirror pair changed symmetrically (``suggest.symmetry``) is one phrase: apart or closer
 for a move across the mirror plane, raise or lower, lengthen or shorten, tilt with their
@@ -13,12 +15,16 @@ magnitude; the verb says which way, and the interval is of that same magnitude, 
 sign of a change and of its interval never disagree.  A plank whose ends sit square on
 the floor or on faces, tilted, has them cut at the angle it then makes with them
 (``_bevel``): a square end would sit on one edge.  Where the upper end is where the
-search stopped rather than an invalid step, the sentence says so.
+search stopped rather than an invalid step, the sentence says so.  Planks that the change
+resizes to follow (a rung between legs moved closer, shelves between sides, legs under
+a raised seat) are named after it with their new sizes (``follow_phrase``): the cut list
+has them too, but a maker reads the sentence to know which boards to cut again.
 """
 
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 
@@ -26,7 +32,9 @@ from furncheck.design.model import Design
 from furncheck.dofs import parse_dof, structure
 from furncheck.edit_check import standing_geometry
 from furncheck.geometry import analyze
+from furncheck.plain import plain_list
 from furncheck.report.numbers import format_number
+from furncheck.suggest.cutlist import PlankEdit
 from furncheck.suggest.symmetry import MirrorPlane, mirror_planes, mirrored_dof
 
 ADVICE_DIGITS = 3
@@ -57,9 +65,10 @@ SEARCH_LIMITS = {"length": "half the design's size", "deg": "28.6 degrees (0.5 r
 
 def continuous_advice(dofs: tuple[str, ...], changes: tuple[float, ...],
                       units: tuple[str, ...], step: float, interval: tuple[float, float],
-                      limited: bool, original: Design, edited: Design) -> str:
+                      limited: bool, original: Design, edited: Design,
+                      follow: str = "") -> str:
     """The suggestion as one sentence: its phrases joined by 'and', then the valid interval
-    of the first phrase's amount."""
+    of the first phrase's amount, then ``follow`` (``follow_phrase``)."""
     sentence, first_each, count = _changes_sentence(dofs, changes, units, original, edited)
     lead = abs(changes[0]) / step if step else 0.0
     low, high = interval
@@ -77,7 +86,42 @@ def continuous_advice(dofs: tuple[str, ...], changes: tuple[float, ...],
         valid = f"valid at {near} {unit}{each}{first}, where the search stopped, at {limit}"
     else:
         valid = f"valid for {near} {unit}{each}{first} only, to the search's resolution"
-    return f"{sentence[0].upper()}{sentence[1:]} ({valid})."
+    return f"{sentence[0].upper()}{sentence[1:]} ({valid}){follow}."
+
+
+def follow_phrase(edits: tuple[PlankEdit, ...], changed: set[str], unit: str,
+                  said: str = "") -> str:
+    """'; to fit, shorten bottom, middle and top by 604 mm each (900 -> 296 mm)': the
+    planks of the cut list (``edits``) other than those the DOFs change (``changed``) whose
+    length or width the change alters, those alike (the same verb, old and new size) in
+    one phrase, in the cut list's order; '' where there are none.  Planks whose new size
+    ``said`` (the rest of the suggestion's words) gives already, a discrete fix's own cuts
+    ('cut kick 3 mm shorter (80 -> 77 mm) to make room'), are left to it."""
+    groups: dict[tuple[str, str, str], list[str]] = {}
+    for edit in edits:
+        if edit.action != "change" or edit.plank in changed or _sized(said, edit.plank):
+            continue
+        for field in edit.fields:
+            if field.field not in ("length", "width") or field.before is None \
+                    or field.after is None:
+                continue
+            verb = _size_verb(field.field, field.after - field.before)
+            by = _amount(abs(field.after - field.before))
+            sizes = f"({_amount(field.before)} -> {_amount(field.after)} {_unit(unit)})"
+            groups.setdefault((verb, by, sizes), []).append(edit.plank)
+    if not groups:
+        return ""
+    phrases = [f"{verb} {plain_list(planks)} by {by} {_unit(unit)}"
+               f"{' each' if len(planks) > 1 else ''} {sizes}"
+               for (verb, by, sizes), planks in groups.items()]
+    return f"; to fit, {' and '.join(phrases)}"
+
+
+def _sized(text: str, plank: str) -> bool:
+    """Whether ``text`` gives the plank ``plank`` a new size ('kick 3 mm narrower (80 ->
+    77 mm)', ``suggest.discrete.growth.cut_phrase``)."""
+    return re.search(rf"(?<![\w-]){re.escape(plank)} [\d.]+ \S+ "
+                     r"(shorter|narrower|longer|wider) \(", text) is not None
 
 
 def change_sentence(dofs: tuple[str, ...], changes: tuple[float, ...],

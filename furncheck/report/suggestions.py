@@ -44,7 +44,7 @@ from furncheck.report.cutlist import (
 )
 from furncheck.report.explanation import explanation_dict, explanation_lines
 from furncheck.report.numbers import format_number, json_ready
-from furncheck.report.shop_words import change_sentence, continuous_advice
+from furncheck.report.shop_words import change_sentence, continuous_advice, follow_phrase
 from furncheck.report.text import INDENT, design_lines
 from furncheck.suggest import Suggestion, SuggestionReport
 from furncheck.suggest.cutlist import friction_change, nail_changes, rating_changes
@@ -57,15 +57,18 @@ def advice(suggestion: Suggestion, original: Design) -> str:
     """'Move shelf 42 mm toward post and tilt it 3 degrees about y (valid for 18-61 mm).'
     or 'Add support-1 (582 x 300 mm) between shelf and base, centred at (250, 0, 303) mm,
     nailed to both.' (or 'under ledge, standing on the floor, ...')"""
-    if suggestion.kind == "discrete" and suggestion.dofs:      # a closure, finished
+    if suggestion.kind == "discrete" and not suggestion.dofs:
+        return suggestion.advice
+    follow = follow_phrase(suggestion.edits, {name.rpartition(".")[0] for name in
+                                              suggestion.dofs}, original.units,
+                           suggestion.advice)
+    if suggestion.kind == "discrete":                       # a closure, finished
         closing = change_sentence(suggestion.dofs, suggestion.changes, suggestion.units,
                                   original, suggestion.design)
-        return f"{closing}, and {suggestion.advice}"
-    if suggestion.kind == "discrete":
-        return suggestion.advice
+        return f"{closing}{follow}, and {suggestion.advice}"
     return continuous_advice(suggestion.dofs, suggestion.changes, suggestion.units,
                              suggestion.step, suggestion.range, suggestion.limited, original,
-                             suggestion.design)
+                             suggestion.design, follow)
 
 
 def _amount(value: float) -> str:
