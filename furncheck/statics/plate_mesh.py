@@ -53,7 +53,9 @@ def grid_lines(low: float, high: float, lines, edges, cell: float) -> np.ndarray
     line's coordinate and end (``lines``: those within NODE_MERGE of one another taken
     as one, ``_merged``) and every load patch edge (``edges``) not within NODE_MERGE of
     those (a patch edge may move; a support may not lose its grid line), likewise
-    merged, each interval cut into equal cells of at most ``cell``."""
+    merged, each interval cut into equal cells of at most ``cell``, the kept lines
+    themselves exactly among them (``_on_segment`` finds a support's nodes by their
+    distance to its line)."""
     fixed = _merged(np.sort(np.clip(np.asarray([*lines], dtype=float), low, high)),
                     low, high)
     soft = np.sort([value for value in np.clip(np.asarray(edges, dtype=float), low, high)
@@ -67,8 +69,10 @@ def grid_lines(low: float, high: float, lines, edges, cell: float) -> np.ndarray
     low, size = kept[:-1], np.diff(kept)
     cuts = np.maximum(1, np.ceil(size / cell - tol.PLATE_CELL_SLACK).astype(int))
     step = np.arange(1, int(cuts.sum()) + 1) - np.repeat(np.cumsum(cuts) - cuts, cuts)
-    return np.concatenate([kept[:1], np.repeat(low, cuts)
+    grid = np.concatenate([kept[:1], np.repeat(low, cuts)
                            + np.repeat(size, cuts) * step / np.repeat(cuts, cuts)])
+    grid[np.cumsum(cuts)] = kept[1:]        # each kept line as it is, not off by round-off
+    return grid
 
 
 def _merged(points: np.ndarray, low: float | None = None,
