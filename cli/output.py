@@ -11,6 +11,7 @@ import click
 
 from furncheck import exitcodes
 from furncheck import tolerances as tol
+from furncheck.files import utf8
 
 
 def fail(message: str | list[str]) -> NoReturn:
@@ -101,21 +102,14 @@ def write_chunks(chunks: Iterable[str], output: str | None) -> None:
     try:
         make_folder(output)
         with replacing(output, durable=True) as stream:
-            _write_blocks(chunks, lambda text: stream.write(_utf8(text)), output)
+            _write_blocks(chunks, lambda text: stream.write(utf8(text)), output)
     except OSError as error:
         fail(f"cannot write the report to {output}: {error.strerror or error}")
 
 
-def _utf8(text: str) -> bytes:
-    """``text`` in UTF-8; a file name that is not UTF-8 (its bytes held as surrogates, as
-    Python reads such names) written with its odd characters escaped ('\\udcff'), as the
-    JSON report writes them, so that every report stays valid UTF-8."""
-    return text.encode("utf-8", "backslashreplace")
-
-
 def _echo(text: str) -> None:
     """``text`` to standard output; what its encoding cannot take (a file name's bytes
-    that are not UTF-8, as in ``_utf8``) escaped."""
+    that are not UTF-8, as in ``files.utf8``) escaped."""
     try:
         click.echo(text, nl=False)
     except UnicodeEncodeError:

@@ -21,6 +21,14 @@ TEMP_NAME_ROOM = 255 - len(".." + "XXXXXXXX" + TEMP_SUFFIX)
 limit of a file name); a longer one makes it ``.furncheck.XXXXXXXX.tmp``."""
 
 
+def utf8(text: str) -> bytes:
+    """``text`` in UTF-8; a file name that is not UTF-8 (its bytes held as surrogates, as
+    Python reads such names) written with its odd characters escaped ('\\udcff'), as the
+    JSON report writes them, so that every report, page and file written stays valid
+    UTF-8 (a strict encoding failed on them: an internal error, and no page at all)."""
+    return text.encode("utf-8", "backslashreplace")
+
+
 def write_atomically(path: str, data: bytes, *, durable: bool = False,
                      follow_links: bool = True) -> None:
     """Replace the file at ``path`` by ``data`` in one step (see ``replacing``)."""

@@ -15,6 +15,8 @@ from click.testing import CliRunner
 
 from furncheck.cli.main import main
 
+CATALOG = Path(__file__).resolve().parents[1] / "designs"
+
 GOOD = """\
 furncheck: 1
 planks:
@@ -269,3 +271,38 @@ def test_a_file_name_with_a_line_break_keeps_its_one_verdict_line(tmp_path: Path
     first, summary = result.output.splitlines()[0], result.output.splitlines()[-1]
     assert first.startswith(f"{tmp_path}/two\\x0alines.yaml: valid")
     assert summary == "1 design: 1 valid, 0 invalid, 0 errors"
+
+
+def test_pages_and_suggestion_files_of_a_file_named_not_in_utf8(tmp_path: Path) -> None:
+    """``validate --html`` and ``suggest --out`` of designs whose file name has a byte that
+    is not UTF-8 (b'bad\\xffname.yaml'; without a ``name`` key the design is named after
+    its file): the page and the suggestion's files are written, valid UTF-8, the byte
+    escaped ('\\udcff') as the reports escape it.  Both ended in 'internal error:
+    UnicodeEncodeError' with no page, the other design's part lost with it."""
+    import os
+    import shutil
+
+    folder = tmp_path / "enc"
+    folder.mkdir()
+    source = (CATALOG / "shelf-cantilever-overloaded.yaml").read_text()
+    unnamed = "\n".join(line for line in source.splitlines() if not line.startswith("name:"))
+    try:
+        odd = folder / os.fsdecode(b"bad\xffname.yaml")
+        odd.write_text(unnamed)
+    except (OSError, UnicodeEncodeError):
+        pytest.skip("this file system takes UTF-8 names only")
+    shutil.copy(CATALOG / "stool.yaml", folder / "good.yaml")
+    page = tmp_path / "page.html"
+    result = CliRunner().invoke(main, ["validate", str(folder), "--no-cache", "--model",
+                                       "rigid", "--html", str(page)])
+    assert result.exit_code == 1, result.output
+    text = page.read_bytes().decode("utf-8")
+    assert "bad\\udcffname" in text and "good.yaml" in text
+    out = tmp_path / "out"
+    result = CliRunner().invoke(main, ["suggest", str(odd), "--model", "rigid", "--out",
+                                       str(out), "--no-plots", "--max-suggestions", "1"])
+    assert result.exit_code == 0, result.output
+    for written in out.iterdir():
+        if written.suffix in (".html", ".yaml", ".obj", ".mtl"):
+            written.read_bytes().decode("utf-8")
+    assert "name: bad\\udcffname-suggestion-01" in (out / "suggestion-01.yaml").read_text()

@@ -37,6 +37,7 @@ from furncheck.design.source import (
     _checked_text,
     _decode,
     _format_of,
+    _one_line,
     _quote,
     _read_yaml,
     _too_large,
@@ -221,8 +222,11 @@ def _top_level(doc: _Doc, tree: Any) -> dict:
 
 
 def _name(doc: _Doc, top: dict) -> str:
+    """The ``name`` key, or without one the file's stem, what is not printable in it (a
+    byte that is not UTF-8, held as a surrogate; a line break) escaped ('bad\\udcffname'):
+    a name is written into suggestion files and pages, which a surrogate failed."""
     if "name" not in top:
-        return Path(doc.source).stem or "design"
+        return _one_line(Path(doc.source).stem) or "design"
     name = doc.text(top["name"], "name")
     if not name.strip() or not name.isprintable():
         doc.fail("name", "must be printable text on one line")

@@ -77,7 +77,7 @@ def write_catalog_page(reports: list[DesignReport] | tuple[DesignReport, ...], p
     interrupted run leaves an earlier page whole)."""
     from furncheck.check import load_checked
     from furncheck.errors import DesignError
-    from furncheck.files import write_atomically
+    from furncheck.files import utf8, write_atomically
     from furncheck.report.pages import CatalogEntry, catalog_page
 
     entries = []
@@ -89,4 +89,4 @@ def write_catalog_page(reports: list[DesignReport] | tuple[DesignReport, ...], p
             except DesignError:  # changed since it was checked: its report says enough
                 design = None
         entries.append(CatalogEntry(report, design))
-    write_atomically(path, catalog_page(entries, title).encode("utf-8"))
+    write_atomically(path, utf8(catalog_page(entries, title)))

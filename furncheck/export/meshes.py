@@ -40,7 +40,7 @@ import numpy as np
 from furncheck.design.model import Design
 from furncheck.export.colours import MARK_RGB, utilization_rgb
 from furncheck.export.findings import plank_utilization
-from furncheck.files import write_atomically
+from furncheck.files import utf8, write_atomically
 from furncheck.result import DesignReport
 
 BOX_FACES = np.array([
@@ -207,8 +207,8 @@ def write_meshes(design: Design, stem: Path, report: DesignReport | None = None,
     paths = [stem.parent / f"{stem.name}{suffix}" for suffix in (".glb", ".obj", ".mtl")]
     write_atomically(str(paths[0]), glb_bytes(design, report, marks))
     write_atomically(str(paths[1]),
-                     obj_text(design, report, marks, paths[2].name).encode("utf-8"))
-    write_atomically(str(paths[2]), mtl_text(design, report, marks).encode("utf-8"))
+                     utf8(obj_text(design, report, marks, paths[2].name)))
+    write_atomically(str(paths[2]), utf8(mtl_text(design, report, marks)))
     return [str(path) for path in paths]
 
 

@@ -36,7 +36,7 @@ from furncheck.export.errors import ExportUnavailable
 from furncheck.export.findings import changed_planks
 from furncheck.export.folders import file_stem, pictures_missing, prepare_out_dir
 from furncheck.export.meshes import write_meshes
-from furncheck.files import write_atomically
+from furncheck.files import utf8, write_atomically
 from furncheck.workers import process_pool, quiet_worker, usable_cpus
 
 if TYPE_CHECKING:
@@ -121,7 +121,7 @@ def write_files(result: SuggestionReport, out_dir: str, design: Design,
     for suggestion in result.suggestions:
         stem = Path(out_dir) / f"{prefix}suggestion-{suggestion.rank:02d}"
         design_file = f"{stem}.yaml"
-        write_atomically(design_file, suggestion.text.encode("utf-8"))
+        write_atomically(design_file, utf8(suggestion.text))
         marks = changed_planks(design, suggestion.design)
         meshes = tuple(write_meshes(suggestion.design, stem, suggestion.report, marks))
         written[suggestion.rank] = Written(design_file, meshes)
@@ -227,5 +227,5 @@ def write_page(out_dir: str, design: Design, result: SuggestionReport,
                            {s.rank: shown(s.rank, s.report, s.design)
                             for s in result.suggestions})
     path = Path(out_dir) / f"{suggestion_prefix(out_dir, design.name)}index.html"
-    write_atomically(str(path), page.encode("utf-8"))
+    write_atomically(str(path), utf8(page))
     return str(path)
