@@ -28,6 +28,8 @@ def output_problem(output: str) -> str | None:
     (``make_folder``; as ``--views`` makes its folder, and pytest's ``--junitxml`` its
     report's: a CI job writes to a fresh 'reports/' folder), not before, so a run that
     fails leaves none behind."""
+    if not output:          # an unset variable in a script: the path of no file
+        return "an empty path names no file"
     if output.endswith(("/", os.sep)) or os.path.isdir(output):
         return "it is a directory" if os.path.isdir(output) else "it names a folder"
     parent = os.path.dirname(os.path.abspath(output))
@@ -77,6 +79,17 @@ def check_not_an_input(output: str | None, inputs, what: str = "the report") -> 
         if isinstance(path, str) and path != STDIN and os.path.exists(path) \
                 and os.path.samefile(path, output):
             fail(f"cannot write {what} to {output}: it is one of the designs to check")
+
+
+def check_apart(output: str | None, other: str | None, what: str, others: str) -> None:
+    """Fail (one line, exit 2) when two files a run writes are one (``validate -o r.html
+    --html r.html``: the page replaced the report, which the run said it had written)."""
+    if output is None or other is None or STDIN in (output, other):
+        return
+    same = os.path.samefile(output, other) if os.path.exists(output) \
+        and os.path.exists(other) else os.path.abspath(output) == os.path.abspath(other)
+    if same:
+        fail(f"cannot write {what} to {output}: {others} goes there")
 
 
 def write_output(document: str, output: str | None) -> None:

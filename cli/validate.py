@@ -23,6 +23,7 @@ from furncheck.cli.output import (
     STDIN,
     STDIN_FILENAME_OPTION,
     WholeNumber,
+    check_apart,
     check_not_an_input,
     check_output,
     check_stdin_name,
@@ -116,6 +117,7 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
     check_output(output)
     if html_file is not None:
         check_output(html_file, "the report page")
+        check_apart(html_file, output, "the report page", "the report (-o)")
     if views_dir is not None:
         _check_views_dir(views_dir)
     caching = use_cache if use_cache is not None else config.cache is not False

@@ -114,8 +114,9 @@ def test_a_usage_error_is_one_line_and_exit_2(args, fragment) -> None:
 
 def test_an_internal_error_is_one_line_and_exit_2(monkeypatch) -> None:
     """A bug (any exception the command does not expect) is one line naming it and exit 2
-    (CI reads exit 1 as 'invalid design'), not a traceback; FURNCHECK_DEBUG=1 lets the
-    exception through for a developer."""
+    (CI reads exit 1 as 'invalid design'), not a traceback; FURNCHECK_DEBUG=1 shows the
+    traceback before that line, for a developer, and the exit code stays 2 (letting the
+    exception through exited 1: a crash a CI step took for invalid designs)."""
     import furncheck.suggest
 
     def broken(*_args, **_kwargs):
@@ -128,7 +129,10 @@ def test_an_internal_error_is_one_line_and_exit_2(monkeypatch) -> None:
         "please report it with the design; FURNCHECK_DEBUG=1 shows the traceback)\n")
     monkeypatch.setenv("FURNCHECK_DEBUG", "1")
     debug = CliRunner().invoke(main, ["suggest", "designs/stool.yaml"])
-    assert isinstance(debug.exception, ValueError)
+    assert debug.exit_code == 2
+    assert debug.output.startswith("Traceback (most recent call last):")
+    assert 'raise ValueError("max() arg is an' in debug.output
+    assert debug.output.endswith(result.output)
 
 
 def test_an_os_error_is_the_machines_one_line_not_a_bug(monkeypatch) -> None:
@@ -271,6 +275,24 @@ def test_a_file_name_with_a_line_break_keeps_its_one_verdict_line(tmp_path: Path
     first, summary = result.output.splitlines()[0], result.output.splitlines()[-1]
     assert first.startswith(f"{tmp_path}/two\\x0alines.yaml: valid")
     assert summary == "1 design: 1 valid, 0 invalid, 0 errors"
+
+
+def test_two_outputs_of_one_run_are_not_one_file_and_an_empty_path_is_none(
+        tmp_path: Path) -> None:
+    """``validate -o r.html --html r.html``: the page replaced the report, which the run
+    said it had written; now refused up front, one line, exit 2, nothing checked or
+    written.  ``-o ''`` said 'Is a directory', ``--html ''`` only after the whole run."""
+    same = tmp_path / "r.html"
+    stool = str(CATALOG / "stool.yaml")
+    result = CliRunner().invoke(main, ["validate", stool, "-o", str(same), "--html",
+                                       str(same)])
+    assert result.exit_code == 2 and not same.exists()
+    assert result.output == f"furncheck: cannot write the report page to {same}: the " \
+        "report (-o) goes there\n"
+    for option in ("-o", "--html"):
+        empty = CliRunner().invoke(main, ["validate", stool, option, ""])
+        assert empty.exit_code == 2 and "an empty path names no file" in empty.output
+        assert "valid" not in empty.output
 
 
 def test_pages_and_suggestion_files_of_a_file_named_not_in_utf8(tmp_path: Path) -> None:
