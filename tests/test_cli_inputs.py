@@ -328,3 +328,24 @@ def test_pages_and_suggestion_files_of_a_file_named_not_in_utf8(tmp_path: Path) 
         if written.suffix in (".html", ".yaml", ".obj", ".mtl"):
             written.read_bytes().decode("utf-8")
     assert "name: bad\\udcffname-suggestion-01" in (out / "suggestion-01.yaml").read_text()
+
+
+@pytest.mark.filterwarnings("error::RuntimeWarning")
+def test_absurd_but_legal_values_give_results_and_no_numpy_warnings(tmp_path: Path) -> None:
+    """The stool with ``tolerance: 1000`` (mm: larger than the stool, so contacts are made
+    of edges whose corners lie at one place along a plank) and a density of 1e-320
+    (denormal loads): ``range`` ended in 'internal error: LinAlgError: SVD did not
+    converge' (0 / 0 in a station's place along its beam) and the checks printed numpy's
+    RuntimeWarnings; now each gives its result, and no warning (turned into errors
+    here)."""
+    stool = (CATALOG / "stool.yaml").read_text()
+    wide = tmp_path / "wide.yaml"
+    wide.write_text(stool + "tolerance: 1000\n")
+    result = CliRunner().invoke(main, ["range", str(wide), "leg_l.length", "--format",
+                                       "json"])
+    assert result.exit_code == 0, result.output
+    assert json.loads(result.stdout)["ranges"][0]["dof"] == "leg_l.length"
+    light = tmp_path / "light.yaml"
+    light.write_text(stool.replace("planks:", "material: {density: 1.0e-320}\nplanks:", 1))
+    result = CliRunner().invoke(main, ["validate", str(light), "--no-cache"])
+    assert result.exit_code in (0, 1) and "0 errors" in result.output, result.output

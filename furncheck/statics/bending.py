@@ -323,7 +323,8 @@ def _stress_along(model: StaticsModel, layout: _Layout, displacement: np.ndarray
     # each plane's moment as M(xi) = c0 + c1 xi + c2 xi^2 along the element, (2, nE) each
     c0, V0, q = _moment_lines(model, layout, w, slope, line_loads)
     c1, c2 = V0 * beams.length, 0.5 * q * beams.length ** 2
-    vertex = np.divide(-c1, 2.0 * c2, out=np.zeros_like(c1), where=c2 != 0.0)
+    with np.errstate(over="ignore"):    # a curvature of a denormal load: past 1, clipped
+        vertex = np.divide(-c1, 2.0 * c2, out=np.zeros_like(c1), where=c2 != 0.0)
     xi = np.concatenate([np.broadcast_to(np.linspace(0.0, 1.0, tol.SAG_SAMPLES + 2),
                                          (len(beams.plank), tol.SAG_SAMPLES + 2)),
                          np.clip(vertex, 0.0, 1.0).T], axis=1)          # (nE, m)
