@@ -216,7 +216,7 @@ def entries_in_workers(paths: list[str], fmt: str, jobs: int, model: str | None 
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
 
-    from furncheck.workers import quiet_worker
+    from furncheck.workers import pool_options
 
     workers = max(1, min(jobs, len(paths)))
     size = max(1, math.ceil(len(paths) / (workers * TASKS_PER_WORKER)))
@@ -231,7 +231,7 @@ def entries_in_workers(paths: list[str], fmt: str, jobs: int, model: str | None 
     gc.freeze()     # the workers leave this process's objects alone (no copied pages)
     try:
         pool = ProcessPoolExecutor(max_workers=workers, mp_context=context,
-                                   initializer=quiet_worker)
+                                   **pool_options())
     except (OSError, NotImplementedError, ImportError):  # no multiprocessing here
         gc.unfreeze()
         yield from (entry_of(path, fmt, model, cache, key) for path, key in items)

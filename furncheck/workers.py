@@ -92,15 +92,50 @@ def local_jobs(jobs: int | None) -> int:
     return usable if jobs is None else max(1, min(jobs, usable))
 
 
-def quiet_worker() -> None:
+def quiet_worker(parent: int | None = None) -> None:
     """A pool's initializer: Ctrl-C is left to the parent process.  The terminal sends it
     to the whole process group; a worker that took it printed a KeyboardInterrupt
     traceback from inside ``multiprocessing`` after the parent's own one-line 'Aborted!'.
     Ignoring it, each worker ends with its current task when the parent shuts the pool
     down.  SIGTERM ends a worker at once, as by default (a forked worker would otherwise
-    inherit the command line's handler, which unwinds the parent's run)."""
+    inherit the command line's handler, which unwinds the parent's run).
+
+    A worker ends with its parent (``parent``: its process id, given by the pool's
+    maker): on Linux the kernel sends it SIGTERM when the parent dies (``prctl``'s
+    PR_SET_PDEATHSIG), and one whose parent died before that was set ends at once.  A
+    parent killed by SIGKILL (a CI job's timeout, the out-of-memory killer) runs no
+    shutdown, and its workers sat blocked on their pipes for good."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    if parent is not None:
+        _end_with_parent(parent)
+
+
+PR_SET_PDEATHSIG = 1
+"""Linux's prctl option: the signal a process gets when its parent dies."""
+
+
+def _end_with_parent(parent: int) -> None:
+    """Have the kernel end this process with ``parent`` (Linux); elsewhere nothing."""
+    import sys
+
+    if not sys.platform.startswith("linux"):
+        return
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(PR_SET_PDEATHSIG, signal.SIGTERM, 0, 0, 0)
+    except (OSError, AttributeError):       # no C library to ask: as before
+        return
+    if os.getppid() != parent:              # it died before we asked
+        os._exit(1)
+
+
+def pool_options() -> dict:
+    """The initializer every furncheck pool runs in its workers (``quiet_worker``) and
+    its argument, this process's id: ``ProcessPoolExecutor(**pool_options(), ...)``."""
+    return {"initializer": quiet_worker, "initargs": (os.getpid(),)}
 
 
 def stop_pool(pool) -> None:

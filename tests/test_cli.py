@@ -237,6 +237,59 @@ def test_workers_leave_ctrl_c_to_the_parent(tmp_path, monkeypatch):
     assert signal.getsignal(signal.SIGINT) is not signal.SIG_IGN     # here: untouched
 
 
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="prctl is Linux's")
+def test_workers_end_with_a_parent_killed_outright(tmp_path):
+    """A parent killed by SIGKILL (a CI job's timeout, the out-of-memory killer) runs no
+    shutdown: its pool's workers sat blocked on their pipes for good.  Now the kernel ends
+    them with it (``workers.quiet_worker``, PR_SET_PDEATHSIG): a process makes a pool of
+    two the way furncheck's pools are made (``pool_options``), its workers busy, and is
+    killed; both are gone within ten seconds."""
+    import signal
+    import subprocess
+    import time
+
+    script = tmp_path / "parent.py"
+    script.write_text(
+        "import multiprocessing, os, sys, time\n"
+        "from furncheck.workers import pool_options, process_pool\n"
+        "def busy(_):\n"
+        "    time.sleep(120)\n"
+        "def pid(_):\n"
+        "    time.sleep(0.5)\n"
+        "    return os.getpid()\n"
+        "with process_pool(max_workers=2, mp_context=multiprocessing.get_context('fork'),\n"
+        "                  **pool_options()) as pool:\n"
+        "    pids = set(pool.map(pid, range(2)))\n"
+        "    print(' '.join(map(str, sorted(pids))), flush=True)\n"
+        "    list(pool.map(busy, range(2)))\n")
+    parent = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE,
+                              text=True)
+    try:
+        workers = [int(word) for word in parent.stdout.readline().split()]
+        assert workers
+        parent.send_signal(signal.SIGKILL)
+        parent.wait(timeout=30)
+        deadline = time.monotonic() + 10.0
+        alive = workers
+        while alive and time.monotonic() < deadline:
+            time.sleep(0.1)
+            alive = [pid for pid in workers if _running(pid)]
+        assert not alive
+    finally:
+        parent.kill()
+        parent.wait()
+        parent.stdout.close()
+
+
+def _running(pid: int) -> bool:
+    """Whether process ``pid`` runs (a zombie, reaped by init soon, does not)."""
+    try:
+        with open(f"/proc/{pid}/stat") as stat:
+            return stat.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
 def test_the_workers_are_at_most_the_usable_cpus(tmp_path, monkeypatch):
     """``workers.usable_cpus``: the CPUs of the process's affinity, at most a container's
     quota rounded up: the least cgroup v2 'cpu.max' of the process's own cgroup (named in

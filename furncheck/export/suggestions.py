@@ -37,7 +37,7 @@ from furncheck.export.findings import changed_planks
 from furncheck.export.folders import file_stem, pictures_missing, prepare_out_dir
 from furncheck.export.meshes import write_meshes
 from furncheck.files import utf8, write_atomically
-from furncheck.workers import process_pool, quiet_worker, usable_cpus
+from furncheck.workers import pool_options, process_pool, usable_cpus
 
 if TYPE_CHECKING:
     from furncheck.suggest import SuggestionReport
@@ -159,7 +159,7 @@ def draw_in_parallel(jobs: list[Callable[[], tuple[str, ...]]]) -> list[tuple[st
     _JOBS = jobs
     try:
         with process_pool(max_workers=workers, mp_context=multiprocessing.get_context("fork"),
-                          initializer=quiet_worker) as pool:
+                          **pool_options()) as pool:
             return list(pool.map(_run_job, range(len(jobs))))
     except BrokenProcessPool:            # a worker died: draw here instead
         return [job() for job in jobs]

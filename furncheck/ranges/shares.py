@@ -15,7 +15,7 @@ from concurrent.futures.process import BrokenProcessPool
 from typing import TYPE_CHECKING
 
 from furncheck.dofs import DOF_KINDS, Dof
-from furncheck.workers import process_pool, quiet_worker
+from furncheck.workers import pool_options, process_pool
 
 if TYPE_CHECKING:
     from furncheck.ranges.finder import DofRange, RangeFinder
@@ -88,7 +88,7 @@ def ranges_in_workers(finder: RangeFinder, tasks: list[list[Dof]],
     gc.freeze()
     try:
         with process_pool(max_workers=min(jobs, len(tasks)), mp_context=context,
-                          initializer=quiet_worker) as pool:
+                          **pool_options()) as pool:
             done = list(pool.map(_ranges_of, tasks))
     except (OSError, BrokenProcessPool):
         return None
