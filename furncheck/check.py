@@ -81,7 +81,7 @@ def refuse_too_big(design: Design, model: StaticsModel | None = None,
         model = build_model(design, geometry)
     unknowns = ground_unknowns(model)
     if unknowns > tol.MAX_GROUND_UNKNOWNS:
-        raise DesignTooBig(design.source, unknowns, tol.MAX_GROUND_UNKNOWNS)
+        raise DesignTooBig.of_unknowns(design.source, unknowns, tol.MAX_GROUND_UNKNOWNS)
 
 
 def is_valid(design: Design, geometry: Geometry | None = None,

@@ -39,18 +39,27 @@ class DesignError(FurncheckError):
 
 
 class DesignTooBig(DesignError):
-    """A design whose check would need more memory than furncheck allows itself: the
-    dense system of its grounded planks' displacements (``statics.condense``) would have
-    ``unknowns`` rows and columns, more than ``limit``.  Refused before any solve."""
+    """A design whose check would need more memory than furncheck allows itself, refused
+    before any solve: the dense system of its grounded planks' displacements
+    (``statics.condense``) would have ``unknowns`` rows and columns, more than ``limit``
+    (``of_unknowns``), or its planks' boxes meet in more pairs than the geometry compares
+    (``of_pairs``)."""
 
-    def __init__(self, file: str, unknowns: int, limit: int):
-        self.unknowns = unknowns
-        self.limit = limit
+    def __init__(self, file: str, detail: str):
+        super().__init__(file, "", None, f"too big to check: {detail}")
+
+    @classmethod
+    def of_unknowns(cls, file: str, unknowns: int, limit: int) -> DesignTooBig:
         nodes, most = unknowns // 6, limit // 6
-        super().__init__(file, "", None,
-                         f"too big to check: its ground contacts sit on {nodes} nodes, a "
-                         f"dense contact system of {unknowns} unknowns (furncheck takes at "
-                         f"most {limit}, {most} nodes: about 1 GB of memory)")
+        return cls(file, f"its ground contacts sit on {nodes} nodes, a dense contact "
+                         f"system of {unknowns} unknowns (furncheck takes at most {limit}, "
+                         f"{most} nodes: about 1 GB of memory)")
+
+    @classmethod
+    def of_pairs(cls, file: str, pairs: int, planks: int, limit: int) -> DesignTooBig:
+        return cls(file, f"its {planks} planks meet or overlap in {pairs} pairs, each "
+                         f"compared face by face (furncheck takes at most {limit}: about "
+                         "500 MB of memory; planks drawn on top of one another?)")
 
 
 class MechanismError(FurncheckError):

@@ -191,6 +191,11 @@ def _pairs_to_detect(design: Design, lo: np.ndarray, hi: np.ndarray,
     whether each must be detected (not both planks among the ``known`` unchanged ones)."""
     slack = design.tolerance + _GEOMETRY_EPS
     pairs = meeting_pairs(lo, hi, slack)
+    if len(pairs) > tol.MAX_MEETING_PAIRS:
+        from furncheck.errors import DesignTooBig
+
+        raise DesignTooBig.of_pairs(design.source, len(pairs), len(design.planks),
+                                    tol.MAX_MEETING_PAIRS)
     if known is None:
         return pairs, np.ones(len(pairs), dtype=bool)
     changed = np.array([plank.id not in known["planks"] for plank in design.planks])
