@@ -87,8 +87,8 @@ def check_apart(output: str | None, other: str | None, what: str, others: str) -
     if output is None or other is None or STDIN in (output, other):
         return
     same = os.path.samefile(output, other) if os.path.exists(output) \
-        and os.path.exists(other) else os.path.abspath(output) == os.path.abspath(other)
-    if same:
+        and os.path.exists(other) else os.path.realpath(output) == os.path.realpath(other)
+    if same:            # (realpath: through a linked folder, or a link not yet pointing)
         fail(f"cannot write {what} to {output}: {others} goes there")
 
 

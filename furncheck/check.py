@@ -227,7 +227,22 @@ def load_checked(path: str) -> Design:
     listed joint's: contract section 2)."""
     from furncheck.design import load_design
 
-    return load_design(path)
+    return refuse_overlapping(load_design(path))
+
+
+def refuse_overlapping(design: Design) -> Design:
+    """``design``, or DesignTooBig when its planks' boxes meet in more than
+    MAX_MEETING_PAIRS pairs (``geometry.analysis.meeting_count``: planks drawn on top of
+    one another), asked of each input design as it is read, before its geometry: not of
+    the edits a search checks on the way (one that adds a pair is a design of its own,
+    not the input's fault)."""
+    from furncheck.geometry.analysis import meeting_count
+
+    pairs = meeting_count(design)
+    if pairs > tol.MAX_MEETING_PAIRS:
+        raise DesignTooBig.of_pairs(design.source, pairs, len(design.planks),
+                                    tol.MAX_MEETING_PAIRS)
+    return design
 
 
 def load_data(data: bytes, source: str, fmt: str) -> Design:
@@ -235,7 +250,7 @@ def load_data(data: bytes, source: str, fmt: str) -> Design:
     file read by another process): ``source`` names it, ``fmt`` is 'yaml' or 'json'."""
     from furncheck.design.load import parse_design_bytes
 
-    return parse_design_bytes(data, source, fmt)
+    return refuse_overlapping(parse_design_bytes(data, source, fmt))
 
 
 def check_file(path: str, model: str | None = None) -> DesignReport:

@@ -45,7 +45,9 @@ class DesignTooBig(DesignError):
     (``of_unknowns``), or its planks' boxes meet in more pairs than the geometry compares
     (``of_pairs``)."""
 
-    def __init__(self, file: str, detail: str):
+    def __init__(self, file: str, detail: str, size: int, limit: int):
+        self.size = size            # the unknowns, or the pairs
+        self.limit = limit
         super().__init__(file, "", None, f"too big to check: {detail}")
 
     @classmethod
@@ -53,13 +55,14 @@ class DesignTooBig(DesignError):
         nodes, most = unknowns // 6, limit // 6
         return cls(file, f"its ground contacts sit on {nodes} nodes, a dense contact "
                          f"system of {unknowns} unknowns (furncheck takes at most {limit}, "
-                         f"{most} nodes: about 1 GB of memory)")
+                         f"{most} nodes: about 1 GB of memory)", unknowns, limit)
 
     @classmethod
     def of_pairs(cls, file: str, pairs: int, planks: int, limit: int) -> DesignTooBig:
         return cls(file, f"its {planks} planks meet or overlap in {pairs} pairs, each "
                          f"compared face by face (furncheck takes at most {limit}: about "
-                         "500 MB of memory; planks drawn on top of one another?)")
+                         "500 MB of memory; planks drawn on top of one another?)", pairs,
+                   limit)
 
 
 class MechanismError(FurncheckError):

@@ -609,7 +609,9 @@ compares face by face, about 2 kB each: furniture has a few per plank (the 28-pl
 cabinet 99, a 20,000-board stack 19,999), but planks drawn on top of one another meet
 in n^2 / 2 (2,000 boards in one place: 2 million pairs, 4.2 GB and 30 s before the
 contact system was refused; 500 of them, 125,000 pairs, 330 MB).  A design with more is
-refused (``errors.DesignTooBig``) before they are compared."""
+refused (``errors.DesignTooBig``, ``check.refuse_overlapping``) as it is read, before
+they are compared."""
+
 MAX_GROUND_UNKNOWNS = 3600
 """Most unknowns of a design's dense contact system (six per node a ground contact sits
 on: 600 planks standing on the floor).  Its condensed matrix, the factors of its contact

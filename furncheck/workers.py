@@ -134,7 +134,11 @@ def _end_with_parent(parent: int) -> None:
 
 def pool_options() -> dict:
     """The initializer every furncheck pool runs in its workers (``quiet_worker``) and
-    its argument, this process's id: ``ProcessPoolExecutor(**pool_options(), ...)``."""
+    its argument, this process's id: ``ProcessPoolExecutor(**pool_options(), ...)``.
+    For pools whose workers are forked by this process from its main thread, as all of
+    furncheck's are (``get_context('fork')``): the kernel's signal follows the thread
+    that forked, and a forkserver's workers have the server for their parent (each would
+    end at once)."""
     return {"initializer": quiet_worker, "initargs": (os.getpid(),)}
 
 

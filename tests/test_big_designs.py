@@ -304,7 +304,31 @@ def test_planks_drawn_on_top_of_one_another_are_refused_before_they_are_compared
     if command == ["validate"]:
         checked = CliRunner().invoke(main, ["validate", stack(600), "--model", "rigid",
                                             "--no-cache"])
-        assert "meet or overlap" not in checked.output
+        assert checked.exit_code in (0, 1) and "0 errors" in checked.output
+
+
+@pytest.mark.parametrize("command", [["suggest"], ["range", "seat.x"]])
+def test_the_pairs_limit_is_the_inputs_not_its_edits(command, monkeypatch):
+    """The limit is asked of the design a command reads, not of the edits its search
+    checks: with MAX_MEETING_PAIRS set to bench-tips' own count, an edit that adds a pair
+    (a support under the seat) is a candidate like any other; the search ended in
+    'internal error: DesignTooBig' (suggest) or blamed the input for the edit's count
+    (range).  One pair fewer, the input is refused."""
+    from click.testing import CliRunner
+
+    from furncheck import tolerances as tol
+    from furncheck.cli.main import main
+    from furncheck.design import load_design
+    from furncheck.geometry.analysis import meeting_count
+
+    path = str(DESIGNS / "bench-tips.yaml")
+    own = meeting_count(load_design(path))
+    monkeypatch.setattr(tol, "MAX_MEETING_PAIRS", own)
+    result = CliRunner().invoke(main, [command[0], path, *command[1:], "--model", "rigid"])
+    assert result.exit_code == 0 and "too big" not in result.output, result.output
+    monkeypatch.setattr(tol, "MAX_MEETING_PAIRS", own - 1)
+    result = CliRunner().invoke(main, [command[0], path, *command[1:], "--model", "rigid"])
+    assert result.exit_code == 2 and f"meet or overlap in {own} pairs" in result.output
 
 
 def test_a_statics_model_is_freed_when_dropped():

@@ -244,10 +244,10 @@ def test_workers_end_with_a_parent_killed_outright(tmp_path):
     them with it (``workers.quiet_worker``, PR_SET_PDEATHSIG): a process makes a pool of
     two the way furncheck's pools are made (``pool_options``), its workers busy, and is
     killed; both are gone within ten seconds."""
+    import os
     import signal
-    import subprocess
-    import time
 
+    workers: list[int] = []
     script = tmp_path / "parent.py"
     script.write_text(
         "import multiprocessing, os, sys, time\n"
@@ -279,6 +279,11 @@ def test_workers_end_with_a_parent_killed_outright(tmp_path):
         parent.kill()
         parent.wait()
         parent.stdout.close()
+        for pid in workers:
+            try:
+                os.kill(pid, signal.SIGKILL)        # a failing run leaves none behind
+            except OSError:
+                pass
 
 
 def _running(pid: int) -> bool:

@@ -281,7 +281,8 @@ def test_two_outputs_of_one_run_are_not_one_file_and_an_empty_path_is_none(
         tmp_path: Path) -> None:
     """``validate -o r.html --html r.html``: the page replaced the report, which the run
     said it had written; now refused up front, one line, exit 2, nothing checked or
-    written.  ``-o ''`` said 'Is a directory', ``--html ''`` only after the whole run."""
+    written; also where one names it through a linked folder.  ``-o ''`` said 'Is a
+    directory', ``--html ''`` only after the whole run."""
     same = tmp_path / "r.html"
     stool = str(CATALOG / "stool.yaml")
     result = CliRunner().invoke(main, ["validate", stool, "-o", str(same), "--html",
@@ -289,6 +290,12 @@ def test_two_outputs_of_one_run_are_not_one_file_and_an_empty_path_is_none(
     assert result.exit_code == 2 and not same.exists()
     assert result.output == f"furncheck: cannot write the report page to {same}: the " \
         "report (-o) goes there\n"
+    real = tmp_path / "real"
+    real.mkdir()
+    (tmp_path / "link").symlink_to(real)
+    linked = CliRunner().invoke(main, ["validate", stool, "-o", str(tmp_path / "link" / "r"),
+                                       "--html", str(real / "r")])
+    assert linked.exit_code == 2 and not (real / "r").exists()     # one file, two names
     for option in ("-o", "--html"):
         empty = CliRunner().invoke(main, ["validate", stool, option, ""])
         assert empty.exit_code == 2 and "an empty path names no file" in empty.output

@@ -236,6 +236,9 @@ def test_planks_resized_to_follow_are_named_with_their_new_sizes():
     assert follow_phrase(apart, {"leg_l", "leg_r"}, "mm") == \
         "; to fit, lengthen rung by 50 mm (328 -> 378 mm)"
     assert follow_phrase(apart, {"leg_l", "leg_r", "rung"}, "mm") == ""
+    nudged = plank_edits(stool, edited(stool, {"leg_l.x": 1.5}))        # as the cut list
+    assert follow_phrase(nudged, {"leg_l"}, "mm") == \
+        "; to fit, shorten rung by 1.5 mm (328 -> 326.5 mm)"
     said = "make seat 22 mm thick (now 12 mm); cut {} 3 mm shorter (328 -> 325 mm) to make room"
     assert follow_phrase(apart, {"leg_l", "leg_r"}, "mm", said.format("rung")) == ""
     assert follow_phrase(apart, {"leg_l", "leg_r"}, "mm", said.format("rung_b")) != ""

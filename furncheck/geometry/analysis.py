@@ -185,17 +185,20 @@ def _detect_joints(design: Design, known: dict | None = None) -> list[Joint]:
     return _detected_joints(design, pairs, fresh, known, best)
 
 
+def meeting_count(design: Design) -> int:
+    """How many plank pairs of ``design`` the joint detection compares face by face (their
+    boxes meet within the tolerance: ``_pairs_to_detect``), for ``check.
+    refuse_overlapping``."""
+    lo, hi = _bounding_boxes(design.planks)
+    return len(meeting_pairs(lo, hi, design.tolerance + _GEOMETRY_EPS))
+
+
 def _pairs_to_detect(design: Design, lo: np.ndarray, hi: np.ndarray,
                      known: dict | None) -> tuple[np.ndarray, np.ndarray]:
     """The plank pairs (i < j) whose boxes (``lo``, ``hi``) meet within the slack, and
     whether each must be detected (not both planks among the ``known`` unchanged ones)."""
     slack = design.tolerance + _GEOMETRY_EPS
     pairs = meeting_pairs(lo, hi, slack)
-    if len(pairs) > tol.MAX_MEETING_PAIRS:
-        from furncheck.errors import DesignTooBig
-
-        raise DesignTooBig.of_pairs(design.source, len(pairs), len(design.planks),
-                                    tol.MAX_MEETING_PAIRS)
     if known is None:
         return pairs, np.ones(len(pairs), dtype=bool)
     changed = np.array([plank.id not in known["planks"] for plank in design.planks])

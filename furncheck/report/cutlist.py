@@ -75,8 +75,8 @@ def rating_lines(changes: tuple[RatingChange, ...]) -> list[str]:
     if not changes:
         return []
     return [f"changes {plural(len(changes), 'wall fixing')}:",
-            *(f"  anchors[{change.anchor}]: rated {_number(change.before)} -> "
-              f"{_number(change.after)} N" for change in changes)]
+            *(f"  anchors[{change.anchor}]: rated {cut_number(change.before)} -> "
+              f"{cut_number(change.after)} N" for change in changes)]
 
 
 def added_anchor_lines(original: Design, edited: Design) -> list[str]:
@@ -88,9 +88,9 @@ def added_anchor_lines(original: Design, edited: Design) -> list[str]:
         return []
     lines = [f"adds {plural(len(added), 'wall fixing')}:"]
     for index, anchor in enumerate(added, start=len(original.anchors)):
-        point = ", ".join(_number(v / original.unit_scale) for v in anchor.point)
+        point = ", ".join(cut_number(v / original.unit_scale) for v in anchor.point)
         lines.append(f"  anchors[{index}] on {anchor.plank} (wall {anchor.wall}): at "
-                     f"({point}) {original.units}, rated {_number(anchor.capacity)} N")
+                     f"({point}) {original.units}, rated {cut_number(anchor.capacity)} N")
     return lines
 
 
@@ -124,8 +124,8 @@ def _moved_lines(what: str, moves: tuple, design: Design, label) -> list[str]:
     lines = [f"moves {plural(len(moves), what)} with {planks}:"]
     for move in moves:
         for extra in range(MOVE_EXTRA_DIGITS + 1):     # digits enough to show the move
-            start = ", ".join(_number(v, extra) for v in move.before)
-            end = ", ".join(_number(v, extra) for v in move.after)
+            start = ", ".join(cut_number(v, extra) for v in move.before)
+            end = ", ".join(cut_number(v, extra) for v in move.after)
             if start != end:
                 break
         lines.append(f"  {label(move)}: at ({start}) -> ({end}) {design.units}")
@@ -146,9 +146,9 @@ def load_spread_lines(spreads: tuple[LoadSpread, ...], design: Design) -> list[s
     lines = [f"spreads {plural(len(spreads), 'load')} over {planks}:"]
     for spread in spreads:
         lines.append(f"  {spread.load} spread on {spread.plank} (case '{spread.case}'): over "
-                     f"{_number(spread.after[0])} x {_number(spread.after[1])} "
-                     f"{design.units}, was {_number(spread.before[0])} x "
-                     f"{_number(spread.before[1])} {design.units}")
+                     f"{cut_number(spread.after[0])} x {cut_number(spread.after[1])} "
+                     f"{design.units}, was {cut_number(spread.before[0])} x "
+                     f"{cut_number(spread.before[1])} {design.units}")
     return lines
 
 
@@ -183,16 +183,16 @@ def _edit_text(edit: PlankEdit, design: Design) -> str:
     if edit.action == "add":
         new = {name: after for name, (_, after) in values.items()}
         unit = design.units
-        text = (f"new plank {_number(new['length'])} x {_number(new['width'])} x "
-                f"{_number(new['thickness'])} {unit}, centred at ({_number(new['x'])}, "
-                f"{_number(new['y'])}, {_number(new['z'])}) {unit}")
+        text = (f"new plank {cut_number(new['length'])} x {cut_number(new['width'])} x "
+                f"{cut_number(new['thickness'])} {unit}, centred at ({cut_number(new['x'])}, "
+                f"{cut_number(new['y'])}, {cut_number(new['z'])}) {unit}")
         if any(new[name] for name in ANGLE_FIELDS):
-            text += (f", turned ({_number(new['rx'])}, {_number(new['ry'])}, "
-                     f"{_number(new['rz'])}) degrees")
+            text += (f", turned ({cut_number(new['rx'])}, {cut_number(new['ry'])}, "
+                     f"{cut_number(new['rz'])}) degrees")
         return text
     if edit.action == "remove":
         return "taken away"
-    text = ", ".join(f"{_label(f.field)} {_from_to(f.before, f.after)}"
+    text = ", ".join(f"{_label(f.field)} {from_to(f.before, f.after)}"
                      f"{_unit_of(f.field, design)}" for f in edit.fields)
     if sum(name in values for name in ANGLE_FIELDS) > 1:     # several angles, one turn
         text += f" ({_turn(edit, design)})"
@@ -222,16 +222,16 @@ def _turn(edit: PlankEdit, design: Design) -> str:
     named = int(np.argmax(np.abs(axis)))
     if abs(axis[named]) >= math.cos(math.radians(AXIS_SLACK)):
         sign = "" if axis[named] > 0.0 or angle > 179.999 else "-"
-        return f"a turn of {_number(angle)} degrees about {sign}{'xyz'[named]}"
+        return f"a turn of {cut_number(angle)} degrees about {sign}{'xyz'[named]}"
     shown = ", ".join(f"{round(float(v), 2) + 0.0:g}" for v in axis)
-    return f"a turn of {_number(angle)} degrees about ({shown})"
+    return f"a turn of {cut_number(angle)} degrees about ({shown})"
 
 
-def _from_to(before: float, after: float) -> str:
+def from_to(before: float, after: float) -> str:
     """'588 -> 848.1'; with more digits where the two would read the same (a change
     finer than a tenth of the unit is still a change)."""
     for extra in range(0, 9):
-        old, new = _number(before, extra), _number(after, extra)
+        old, new = cut_number(before, extra), cut_number(after, extra)
         if old != new:
             break
     return f"{old} -> {new}"
@@ -250,7 +250,7 @@ def _unit_of(field: str, design: Design) -> str:
     return f" {design.units}"
 
 
-def _number(value: float | None, extra: int = 0) -> str:
+def cut_number(value: float | None, extra: int = 0) -> str:
     """To a tenth of the unit or finer (at least four significant digits), ``extra``
     digits more; '-' for no value."""
     if value is None:

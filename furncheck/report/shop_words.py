@@ -33,6 +33,7 @@ from furncheck.dofs import parse_dof, structure
 from furncheck.edit_check import standing_geometry
 from furncheck.geometry import analyze
 from furncheck.plain import plain_list
+from furncheck.report.cutlist import cut_number, from_to
 from furncheck.report.numbers import format_number
 from furncheck.suggest.cutlist import PlankEdit
 from furncheck.suggest.symmetry import MirrorPlane, mirror_planes, mirrored_dof
@@ -94,7 +95,9 @@ def follow_phrase(edits: tuple[PlankEdit, ...], changed: set[str], unit: str,
     """'; to fit, shorten bottom, middle and top by 604 mm each (900 -> 296 mm)': the
     planks of the cut list (``edits``) other than those the DOFs change (``changed``) whose
     length or width the change alters, those alike (the same verb, old and new size) in
-    one phrase, in the cut list's order; '' where there are none.  Planks whose new size
+    one phrase, in the cut list's order, its numbers as the cut list writes them (a
+    tenth of the unit or finer: 328 -> 326.5, not 327); '' where there are none.  Planks
+    whose new size
     ``said`` (the rest of the suggestion's words) gives already, a discrete fix's own cuts
     ('cut kick 3 mm shorter (80 -> 77 mm) to make room'), are left to it."""
     groups: dict[tuple[str, str, str], list[str]] = {}
@@ -106,8 +109,8 @@ def follow_phrase(edits: tuple[PlankEdit, ...], changed: set[str], unit: str,
                     or field.after is None:
                 continue
             verb = _size_verb(field.field, field.after - field.before)
-            by = _amount(abs(field.after - field.before))
-            sizes = f"({_amount(field.before)} -> {_amount(field.after)} {_unit(unit)})"
+            by = cut_number(abs(field.after - field.before))
+            sizes = f"({from_to(field.before, field.after)} {_unit(unit)})"
             groups.setdefault((verb, by, sizes), []).append(edit.plank)
     if not groups:
         return ""
@@ -120,7 +123,7 @@ def follow_phrase(edits: tuple[PlankEdit, ...], changed: set[str], unit: str,
 def _sized(text: str, plank: str) -> bool:
     """Whether ``text`` gives the plank ``plank`` a new size ('kick 3 mm narrower (80 ->
     77 mm)', ``suggest.discrete.growth.cut_phrase``)."""
-    return re.search(rf"(?<![\w-]){re.escape(plank)} [\d.]+ \S+ "
+    return re.search(rf"(?<![\w.-]){re.escape(plank)} [\d.,]+ \S+ "
                      r"(shorter|narrower|longer|wider) \(", text) is not None
 
 

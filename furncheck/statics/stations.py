@@ -103,8 +103,8 @@ def station_places(stations: np.ndarray, corner_points: np.ndarray, node_s: np.n
     """(nSt, 3) m, the stations' points, and (nSt,) their shares t in 0..1: each on the
     line from its edge's -e1 corner (t = 0) to its +e1 corner (t = 1) where its node
     lies along the beam (``node_s``, m from the plank's centre along its axis); an edge
-    whose corners lie at one place along the beam (a design whose tolerance exceeds its
-    planks' sizes makes such contacts) at its middle, not 0 / 0."""
+    whose corners lie at one place along the beam, to NODE_MERGE_ROUNDOFF (a design whose
+    tolerance exceeds its planks' sizes makes such contacts), at its middle, not 0 / 0."""
     a, b, node = stations[:, 0], stations[:, 1], stations[:, 2]
     k = node_plank[node]
     start, end = corner_points[a], corner_points[b]
@@ -112,6 +112,6 @@ def station_places(stations: np.ndarray, corner_points: np.ndarray, node_s: np.n
     s_end = ((end - centres[k]) * axes[k]).sum(axis=1)
     span = s_end - s_start
     along = np.divide(node_s[node] - s_start, span, out=np.full(len(span), 0.5),
-                      where=span != 0.0)
+                      where=np.abs(span) > tol.NODE_MERGE_ROUNDOFF)
     shares = np.clip(along, 0.0, 1.0)
     return start + shares[:, None] * (end - start), shares
