@@ -186,19 +186,23 @@ def _detect_joints(design: Design, known: dict | None = None) -> list[Joint]:
 
 
 def meeting_count(design: Design) -> int:
-    """How many plank pairs of ``design`` the joint detection compares face by face (their
-    boxes meet within the tolerance: ``_pairs_to_detect``), for ``check.
-    refuse_overlapping``."""
-    lo, hi = _bounding_boxes(design.planks)
-    return len(meeting_pairs(lo, hi, design.tolerance + _GEOMETRY_EPS))
+    """How many plank pairs of ``design`` the joint detection compares face by face
+    (``_meeting``), for ``check.refuse_overlapping``."""
+    return len(_meeting(design, *_bounding_boxes(design.planks)))
+
+
+def _meeting(design: Design, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
+    """The plank pairs (i < j) whose boxes (``lo``, ``hi``) meet within the design's
+    tolerance: those the joint detection compares."""
+    return meeting_pairs(lo, hi, design.tolerance + _GEOMETRY_EPS)
 
 
 def _pairs_to_detect(design: Design, lo: np.ndarray, hi: np.ndarray,
                      known: dict | None) -> tuple[np.ndarray, np.ndarray]:
-    """The plank pairs (i < j) whose boxes (``lo``, ``hi``) meet within the slack, and
-    whether each must be detected (not both planks among the ``known`` unchanged ones)."""
-    slack = design.tolerance + _GEOMETRY_EPS
-    pairs = meeting_pairs(lo, hi, slack)
+    """The plank pairs (i < j) whose boxes (``lo``, ``hi``) meet within the tolerance
+    (``_meeting``), and whether each must be detected (not both planks among the
+    ``known`` unchanged ones)."""
+    pairs = _meeting(design, lo, hi)
     if known is None:
         return pairs, np.ones(len(pairs), dtype=bool)
     changed = np.array([plank.id not in known["planks"] for plank in design.planks])

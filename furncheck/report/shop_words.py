@@ -97,9 +97,9 @@ def follow_phrase(edits: tuple[PlankEdit, ...], changed: set[str], unit: str,
     length or width the change alters, those alike (the same verb, old and new size) in
     one phrase, in the cut list's order, its numbers as the cut list writes them (a
     tenth of the unit or finer: 328 -> 326.5, not 327); '' where there are none.  Planks
-    whose new size
-    ``said`` (the rest of the suggestion's words) gives already, a discrete fix's own cuts
-    ('cut kick 3 mm shorter (80 -> 77 mm) to make room'), are left to it."""
+    whose new size ``said`` (the rest of the suggestion's words) gives already, a
+    discrete fix's own cuts ('cut kick 3 mm shorter (80 -> 77 mm) to make room'), are
+    left to it."""
     groups: dict[tuple[str, str, str], list[str]] = {}
     for edit in edits:
         if edit.action != "change" or edit.plank in changed or _sized(said, edit.plank):

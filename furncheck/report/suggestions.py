@@ -43,14 +43,11 @@ from furncheck.report.cutlist import (
     ratings_json,
 )
 from furncheck.report.explanation import explanation_dict, explanation_lines
-from furncheck.report.numbers import format_number, json_ready
+from furncheck.report.numbers import json_ready
 from furncheck.report.shop_words import change_sentence, continuous_advice, follow_phrase
 from furncheck.report.text import INDENT, design_lines
 from furncheck.suggest import Suggestion, SuggestionReport
 from furncheck.suggest.cutlist import friction_change, nail_changes, rating_changes
-
-ADVICE_DIGITS = 3
-"""Significant digits of the amounts in the advice (the JSON keeps REPORT digits)."""
 
 
 def advice(suggestion: Suggestion, original: Design) -> str:
@@ -69,16 +66,6 @@ def advice(suggestion: Suggestion, original: Design) -> str:
     return continuous_advice(suggestion.dofs, suggestion.changes, suggestion.units,
                              suggestion.step, suggestion.range, suggestion.limited, original,
                              suggestion.design, follow)
-
-
-def _amount(value: float) -> str:
-    """ADVICE_DIGITS significant digits, but whole units at least (1250 mm, not 1.25e+03)."""
-    whole = len(str(int(abs(round(value)))))
-    return format_number(value, max(ADVICE_DIGITS, whole))
-
-
-def _unit(unit: str) -> str:
-    return "degrees" if unit == "deg" else unit
 
 
 def render_text(result: SuggestionReport, original: Design,

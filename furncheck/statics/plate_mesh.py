@@ -88,10 +88,10 @@ def _merged(points: np.ndarray, low: float | None = None,
     low + NODE_MERGE`` rounds the other way at times: a support 1 mm inside a 1902 mm
     shelf's end, 1.0000000000000009 mm as measured, was folded into the edge and then
     found on no line, and the plate, held on two of its four supports, read a 3.65 mm
-    sag for 0.82).  The other points fall into runs, each point within NODE_MERGE of the next; a
-    run gets k = floor(length / (2 NODE_MERGE)) + 1 lines at the middles of k equal parts
-    (one at its middle where it is shorter than twice NODE_MERGE), each point within
-    NODE_MERGE of its part's middle."""
+    sag for 0.82).  The other points fall into runs, each point within NODE_MERGE of the
+    next; a run gets k = floor(length / (2 NODE_MERGE)) + 1 lines at the middles of k
+    equal parts (one at its middle where it is shorter than twice NODE_MERGE), each point
+    within NODE_MERGE of its part's middle."""
     merge = tol.NODE_MERGE
     lines = []
     if low is not None:
