@@ -76,7 +76,9 @@ class ContactResult:
 @dataclass(frozen=True)
 class AnchorResult:
     """An anchor in one load case: the wall's force on its plank (N, world) at ``point``
-    (file unit), its size, the capacity (N, / safety factor) and their ratio."""
+    (file unit: its ``at`` on the plank's mid-plane, where it holds:
+    ``geometry.model.anchor_tie``), its size, the capacity (N, / safety factor) and their
+    ratio; ``index`` is its place in the design's ``anchors``."""
 
     plank: str
     wall: int
@@ -85,6 +87,7 @@ class AnchorResult:
     size: float
     capacity: float
     utilization: float
+    index: int
 
 
 @dataclass(frozen=True)

@@ -76,7 +76,7 @@ def evaluate_case(design: Design, geometry: Geometry, model: StaticsModel, case:
                 contacts.append(ContactResult(contact.plank, tuple(point), tuple(force),
                                               contact.wall, normals[row], contact.on))
                 continue
-            held = _anchor_held(design, contact.anchor, force)
+            held = _anchor_held(design, contact.anchor, point, force)
             anchors.append(held)
             if held.utilization > 1.0 + tol.CAPACITY_REL_TOL \
                     and statics.stability in ("stable", "sliding"):
@@ -145,14 +145,15 @@ def anchor_capacity(design: Design, index: int) -> float:
     return design.anchors[index].capacity / design.safety_factor
 
 
-def _anchor_held(design: Design, index: int, force: list[float]) -> AnchorResult:
-    """An anchor's result for the wall's force on its plank (N, world)."""
+def _anchor_held(design: Design, index: int, point: list[float],
+                 force: list[float]) -> AnchorResult:
+    """An anchor's result for the wall's force on its plank (N, world) at ``point`` (file
+    unit: where it holds, ``geometry.model.anchor_tie``)."""
     anchor = design.anchors[index]
     size = float(np.linalg.norm(force))
     capacity = anchor_capacity(design, index)
-    return AnchorResult(anchor.plank, anchor.wall,
-                        tuple(float(c) / design.unit_scale for c in anchor.point),
-                        tuple(force), size, capacity, size / capacity)
+    return AnchorResult(anchor.plank, anchor.wall, tuple(point), tuple(force), size,
+                        capacity, size / capacity, index)
 
 
 def _anchor_parts(design: Design, wall: int, force: list[float]) -> str:

@@ -7,12 +7,13 @@ Two hand checks, in both models:
   wall y = 0, screwed to it by two anchors at height a above its bottom edge; a 250 mm
   deep shelf is nailed onto its top edge, its back edge on the wall, and carries a load.
   The load turns shelf and cleat outwards about the cleat's bottom edge, where the wall
-  pushes.  Moments about that edge (a line in the wall's plane, so neither the wall's
-  friction nor the anchors' vertical forces have an arm):
+  pushes.  Moments about that edge (a line in the wall's plane, so the wall's friction
+  has no arm; an anchor holds at the cleat's mid-plane, t / 2 = 9 mm in front of the
+  wall, where a screw bears on its hole, so its vertical force V has that arm):
 
-      sum over anchors of their pull F_y  x  a  -  sum of the wall's pushes N_c above the
-      edge x their heights z_c above it  =  sum of the weights W_i x their distance y_i in
-      front of the wall
+      sum over anchors of (their pull F_y  x  a  +  V x t / 2)  -  sum of the wall's
+      pushes N_c above the edge x their heights z_c above it  =  sum of the weights W_i x
+      their distance y_i in front of the wall
 
   (W_i: the shelf's and the cleat's self-weight at their centres and the load).  Rigid
   planks leave the wall above the edge, so the anchors alone make up the moment.
@@ -91,9 +92,10 @@ def test_a_cleat_shelfs_anchors_pull_by_the_moments_about_the_cleats_foot(model,
                "shelf": DENSITY * 0.6 * 0.25 * 0.018 * G}
     moment = weights["cleat"] * 9.0 + weights["shelf"] * 125.0 + 10.0 * G * 225.0   # N mm
     pull = -sum(a.force[1] for a in case.anchors)          # the wall pulls the cleat: -y
+    held_up = sum(a.force[2] for a in case.anchors)
     above = [c for c in case.contacts if c.point[2] > 1000.0 + 1e-6]
     pushes = sum(c.force[1] * (c.point[2] - 1000.0) for c in above)
-    assert pull * anchor_height - pushes == pytest.approx(moment, rel=2e-3)
+    assert pull * anchor_height + held_up * 9.0 - pushes == pytest.approx(moment, rel=2e-3)
     bearing = {(c.plank, *c.point) for c in above
                if abs(c.force[1]) > 1e-6 * sum(weights.values())}
     if model == "elastic":              # the cleat's top edge, at its corners
@@ -112,9 +114,10 @@ def test_a_cleat_shelfs_anchors_pull_by_the_moments_about_the_cleats_foot(model,
 def test_an_anchor_beyond_its_capacity_is_non_durable(tmp_path):
     """At 40 kg the two anchors at 70 mm pull about 2 x 640 N: over a 500 N capacity.  Each
     message names the parts of its anchor's force, as a fixer reads them: its pull out of
-    the wall is half the weights' moment about the cleat's foot over the anchors' 70 mm
-    (the rigid wall pushes at the foot alone, as in the test above): (7.946 N x 9 mm +
-    19.87 N x 125 mm + 392.4 N x 225 mm) / 70 mm / 2 = 648.9 N."""
+    the wall is half the weights' moment about the cleat's foot, less that of what the
+    anchors hold up (V at the cleat's mid-plane, 9 mm from the wall), over the anchors'
+    70 mm (the rigid wall pushes at the foot alone, as in the test above): (7.946 N x 9 mm
+    + 19.87 N x 125 mm + 392.4 N x 225 mm - V x 9 mm) / 70 mm / 2 = 648.9 N - V x 0.0643."""
     doc = _cleat_shelf("rigid", load_kg=40.0, capacity=500.0)
     path = tmp_path / "shelf.yaml"
     path.write_text(yaml.safe_dump(doc, sort_keys=False))
@@ -137,12 +140,54 @@ def test_an_anchor_beyond_its_capacity_is_non_durable(tmp_path):
         assert parts is not None, violation["message"]
         assert float(parts.group(1).replace(",", "")) == pytest.approx(-fy, rel=1e-3)
         moment = (DENSITY * 0.6 * 0.1 * 0.018 * G * 9.0
-                  + DENSITY * 0.6 * 0.25 * 0.018 * G * 125.0 + 40.0 * G * 225.0)
+                  + DENSITY * 0.6 * 0.25 * 0.018 * G * 125.0 + 40.0 * G * 225.0
+                  - sum(a["force"][2] for a in anchors) * 9.0)
         assert float(parts.group(1).replace(",", "")) == pytest.approx(moment / 70.0 / 2.0,
                                                                        rel=1e-3)
         assert float(parts.group(2).replace(",", "")) == pytest.approx(fz, rel=1e-3)
         along = float(parts.group(3).replace(",", "")) if parts.group(3) else 0.0
         assert along == pytest.approx(abs(fx), rel=1e-3, abs=0.5)
+
+
+def _pulled_board(model: str, depth: float) -> dict:
+    """A 400 x 300 x 12 mm board flat on the wall y = 0, screwed 5 mm in from its ends at
+    z = 640 (``depth``: where in its 12 mm the drawing puts the screws' points), pulled
+    100 N out of the wall between them."""
+    return {
+        "furncheck": 1, "name": "board-pull", "model": model,
+        "walls": [{"point": [0, 0, 0], "normal": [0, 1, 0]}],
+        "planks": [{"id": "back", "size": [400, 300], "center": [0, 6, 500],
+                    "rotation": [90, 0, 0]}],
+        "anchors": [{"plank": "back", "at": [x, depth, 640], "wall": 0, "capacity": 196}
+                    for x in (-195.0, 195.0)],
+        "loads": [{"plank": "back", "force": [0, 100, 0], "at": [0, 12, 640]}],
+    }
+
+
+@pytest.mark.parametrize("model", ["rigid", "elastic"])
+def test_an_anchor_holds_at_its_planks_mid_plane_wherever_at_is_drawn(model):
+    """A screw bears on its hole over the board's thickness and pulls along its own axis,
+    so the anchor holds at ``at`` brought onto the plank's mid-plane: its forces are the
+    same whether ``at`` is drawn on the face against the wall, in the middle or on the
+    front face.  (Held at the point as drawn, the elastic board's bending stretched its
+    back face and shortened its front one between the screws, which then pulled against
+    each other along the wall: 121 N each drawn at the back, 129 N the other way at the
+    front, 100 N of load.)  Rigid, by symmetry and statics each screw pulls F / 2 = 50 N,
+    nothing along the wall; elastic, the bending board's ends press on the wall beside
+    the screws (a prying action), but what it puts along the wall stays small."""
+    forces = []
+    for depth in (0.0, 6.0, 12.0):
+        case = check_design(_parse(_pulled_board(model, depth))).cases[0]
+        assert [a.point[1] for a in case.anchors] == pytest.approx([6.0, 6.0])
+        forces.append(np.array([a.force for a in case.anchors]))
+    assert forces[0] == pytest.approx(forces[1], rel=1e-9, abs=1e-9)
+    assert forces[2] == pytest.approx(forces[1], rel=1e-9, abs=1e-9)
+    pulls, along = -forces[1][:, 1], np.abs(forces[1][:, 0])
+    if model == "rigid":
+        assert pulls == pytest.approx([50.0, 50.0], rel=1e-6)
+        assert along == pytest.approx([0.0, 0.0], abs=1e-6)
+    else:
+        assert np.all(along < 0.1 * pulls)
 
 
 def _side(model: str, anchored: bool, push: float) -> dict:

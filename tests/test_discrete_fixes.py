@@ -498,6 +498,8 @@ def test_a_bookcase_by_a_wall_gets_anchored(model):
     assert anchor.advice.startswith("Screw top to the wall at (-141, 15, 1791) mm and "
                                     "(141, 15, 1791) mm with fixings rated 196 N through "
                                     "angle brackets at its edge; each takes at most ")
+    said = float(re.search(r"each takes at most ([\d.]+) N", anchor.advice).group(1))
+    assert said == pytest.approx(worst, abs=0.5)
     assert fix_valid(anchor)
     rails = text.replace("loads:", "  - {id: kick, size: [564, 40], center: [0, 24, 120], "
                          "rotation: [90, 0, 0]}\n  - {id: cleat, size: [564, 60], center: "

@@ -95,7 +95,8 @@ def reports(draw) -> DesignReport:
         planks = draw(st.one_of(st.none(), st.lists(st.builds(
             PlankResult, texts, reals, reals, reals, reals, reals), max_size=2)))
         anchors = tuple(draw(st.lists(st.builds(
-            AnchorResult, texts, st.integers(0, 3), points, points, reals, reals, reals),
+            AnchorResult, texts, st.integers(0, 3), points, points, reals, reals, reals,
+            st.integers(0, 3)),
             max_size=2)))
         cases.append(CaseResult(draw(texts), draw(st.booleans()), draw(st.booleans()),
                                 joints, contacts, planks=None if planks is None

@@ -37,6 +37,7 @@ from furncheck.geometry.model import (
     Geometry,
     Joint,
     anchor_contacts,
+    anchor_tie,
     corner_contacts,
     support_point,
 )
@@ -146,7 +147,7 @@ def follow_many(geometry: Geometry, edits: list) -> list[tuple[tuple[Joint, ...]
         for c in contact_ids:
             contact = geometry.contacts[c]
             if contact.anchor is not None:      # it rides on its plank (``dofs.apply_dof``)
-                point = np.asarray(design.anchors[contact.anchor].point, dtype=float)
+                point = anchor_tie(design, contact.anchor)
             elif contact.on is not None:        # a resting joint's corner, measured again
                 followed.append(_rest_followed(design, contact))
                 continue

@@ -107,8 +107,24 @@ class Contact:
 
 def anchor_contacts(design) -> list[Contact]:
     """The design's anchors as contacts (see ``Contact.anchor``), in order."""
-    return [Contact(anchor.plank, np.asarray(anchor.point, dtype=float), -1, anchor.wall, i)
+    return [Contact(anchor.plank, anchor_tie(design, i), -1, anchor.wall, i)
             for i, anchor in enumerate(design.anchors)]
+
+
+def anchor_tie(design, index: int) -> np.ndarray:
+    """(3,) m: where anchor ``index`` holds its plank: its ``at`` brought along the plank's
+    face normal onto the plank's mid-plane.  A screw through a board bears on its hole over
+    the board's whole thickness, so the shear it takes acts at mid-thickness, and it pulls
+    along its own axis, so where along that axis ``at`` is drawn does not matter; a point
+    drawn on the face against the wall would instead turn the board's bending into shear
+    along the wall (its back face stretches and shortens as it bends: two screws in a
+    bending cleat then pulled against each other, by more as ``at`` lay further from the
+    mid-plane, and on the front face the other way)."""
+    anchor = design.anchors[index]
+    plank = design.planks[design.plank_index[anchor.plank]]
+    point = np.asarray(anchor.point, dtype=float)
+    normal = plank.rotation_matrix[:, 2]
+    return point - float((point - plank.center_array) @ normal) * normal
 
 
 def support_point(design, wall: int | None, corner: np.ndarray) -> np.ndarray:

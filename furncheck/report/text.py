@@ -155,8 +155,8 @@ def _worst_joint_phrase(report: DesignReport) -> str:
         case, result = plank
         phrase += (f"; worst plank {result.id} at {format_percent(result.utilization)} "
                    f"in case '{case}'")
-    anchors = [(anchor.utilization, -k, case.name, anchor) for case in report.cases
-               for k, anchor in enumerate(case.anchors)]
+    anchors = [(anchor.utilization, -anchor.index, case.name, anchor)
+               for case in report.cases for anchor in case.anchors]
     if anchors:
         _, index, case_name, anchor = max(anchors, key=lambda item: item[:2])
         phrase += (f"; worst anchor anchors[{-index}] ({anchor.plank}) at "

@@ -424,10 +424,7 @@ def _non_durable(design: Design, geometry: Geometry, where: str, case: CaseResul
 def _anchor(design: Design, where: str, case: CaseResult | None,
             case_name: str | None) -> Need:
     index = int(where[len("anchors["):-1])
-    anchor = design.anchors[index]
-    point = tuple(float(c) / design.unit_scale for c in anchor.point)     # as reported
-    result = next((a for a in case.anchors if a.plank == anchor.plank
-                   and a.wall == anchor.wall and a.point == point), None) \
+    result = next((a for a in case.anchors if a.index == index), None) \
         if case is not None else None
     if result is None:
         return Need("non-durable", where, case_name, why="no anchor result")

@@ -66,10 +66,8 @@ def wall_anchors(search: Search) -> Fix | None:
                              if candidate is not None)
     if fix is None:
         return None
-    added = [np.asarray(a.point) / design.unit_scale
-             for a in fix.design.anchors[len(design.anchors):]]
     force = max((a.size for case in fix.report.cases for a in case.anchors
-                 if any(np.allclose(a.point, point) for point in added)), default=0.0)
+                 if a.index >= len(design.anchors)), default=0.0)
     advice = f"{fix.advice[:-1]}; each takes at most {plain_number(force, 3)} N."
     return replace(fix, advice=advice)
 
