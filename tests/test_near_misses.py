@@ -638,3 +638,38 @@ loads:
     (fix,) = [s for s in suggest_design(design).suggestions if s.rule == "reconnect"]
     assert fix.advice.startswith("Widen seat by 10 mm at the side over odd")
     assert fix.design.plank("seat").width == pytest.approx(0.310)
+
+
+@pytest.mark.parametrize("x, depth", [(170.0, 12.0), (174.0, 8.0)])
+def test_boards_drawn_through_each_other_are_disconnected_with_their_depth(x, depth):
+    """The stool with leg_r pasted a second time (leg_r2) at x = ``x``: two 12 mm boards
+    in one place (12 mm deep) or 4 mm apart (8 mm deep, the separating-axis overlap of
+    their thicknesses, 12 - 4).  No joint forms between boards drawn through each other,
+    so the pair is ``disconnected`` with that depth (it read as valid: every other joint
+    and contact of both legs was there); a second leg drawn face to face beside it
+    (x = 182: touching, not overlapping) is a board more, no violation."""
+    leg = "  - {id: leg_r, size: [438, 300], center: [170, 0, 219], rotation: [0, -90, 0]}\n"
+    doubled = STOOL.replace(leg, leg + leg.replace("leg_r,", "leg_r2,").replace("170,", f"{x},"))
+    geometry = analyze(parsed(doubled))
+    (violation,) = [v for v in geometry.violations if v.where == "leg_r/leg_r2"]
+    assert violation.kind == "disconnected"
+    assert violation.message.startswith(f"leg_r and leg_r2 are drawn through each other, "
+                                        f"{depth:g} mm deep (tolerance 0.5 mm)")
+    assert violation.line == doubled.splitlines().index(leg.rstrip("\n")) + 2
+    beside = STOOL.replace(leg, leg + leg.replace("leg_r,", "leg_r2,").replace("170,", "182,"))
+    assert not [v for v in analyze(parsed(beside)).violations if "leg_r2" in v.where]
+
+
+def test_a_shelf_drawn_into_one_side_and_nearly_into_the_other_names_both():
+    """The carcass's middle shelf 830 mm long, 10 mm left of centre, between faces 800 mm
+    apart: its left end 25 mm into side_l (beyond the 10 mm near-miss band: drawn through
+    it), its right end 5 mm into side_r (a near miss, said as such).  Each pair is named
+    once, by what it is."""
+    text = shelf_between_sides(830).replace("center: [0, 0, 600]", "center: [-10, 0, 600]")
+    geometry = analyze(parsed(text))
+    found = {v.where: v.message for v in geometry.violations if v.kind == "disconnected"}
+    assert set(found) == {"side_l/mid", "side_r/mid"} or set(found) == {"side_l/mid", "mid/side_r"}
+    assert found["side_l/mid"].startswith("side_l and mid are drawn through each other, 25 mm "
+                                          "deep")
+    right = found.get("side_r/mid", found.get("mid/side_r"))
+    assert right.startswith("5 mm overlap: the end of mid cuts into the face of side_r")

@@ -19,7 +19,9 @@ from furncheck.geometry.faces import (
     _bears,
     _best_touches,
     _bounding_boxes,
+    _box_depths,
     _face_tables,
+    _overlapping,
     _Touch,
     _touch_regions,
 )
@@ -104,6 +106,7 @@ def _completed(design: Design, joints: list[Joint], violations: list[Violation],
                              {pid for miss in missed if len(miss.planks) == 2
                               for pid in miss.planks})
     violations.extend(near_miss_violation(design, miss) for miss in missed)
+    _drawn_through(design, violations)
     return Geometry(tuple(joints), tuple(contacts), components, grounded, tuple(violations),
                     tuple(missed))
 
@@ -392,6 +395,44 @@ def _components(design: Design, joints: list[Joint]) -> tuple[tuple[int, ...], .
     for k in range(len(design.planks)):
         groups.setdefault(root(k), []).append(k)
     return tuple(tuple(g) for g in sorted(groups.values()))
+
+
+def interpenetrations(design: Design) -> list[tuple[str, str, float]]:
+    """Plank pairs whose boxes overlap deeper than the tolerance: (id, id, depth m).
+
+    Separating-axis test of two oriented boxes over their 15 candidate axes; the depth is
+    the smallest overlap of their projections.  Planks meeting at a joint only touch, so
+    their depth is ~0.  A design's own are ``disconnected`` (``_drawn_through``); an edit
+    that has any is refused (``edit_check``).
+    """
+    slack = design.tolerance + _GEOMETRY_EPS
+    pairs = _overlapping(*_bounding_boxes(design.planks), slack)
+    if len(pairs) == 0:
+        return []
+    depth = _box_depths(np.stack([p.rotation_matrix for p in design.planks]),
+                        np.stack([p.half_extents for p in design.planks]),
+                        np.stack([p.center_array for p in design.planks]), pairs)
+    return [(design.planks[i].id, design.planks[j].id, float(d))
+            for (i, j), d in zip(pairs, depth) if d > slack]
+
+
+def _drawn_through(design: Design, violations: list[Violation]) -> None:
+    """Two planks drawn through each other, deeper than the tolerance (``interpenetrations``:
+    a board pasted twice in one place, a shelf drawn into its side), form no joint: each
+    such pair is ``disconnected`` (as the contract has a listed joint whose planks
+    interpenetrate), unless a violation names the pair already (a missed joint's overlap)
+    or one of them as joined to nothing (its message says what it cuts into)."""
+    named = {v.where for v in violations if v.kind == "disconnected"}
+    index = design.plank_index
+    for a, b, depth in interpenetrations(design):
+        if {f"{a}/{b}", f"{b}/{a}", a, b} & named:
+            continue
+        violations.append(Violation(
+            "disconnected", f"{a}/{b}", None,
+            f"{a} and {b} are drawn through each other, {_fmt_len(depth, design)} deep "
+            f"(tolerance {_fmt_len(design.tolerance, design)}): no joint forms; move one "
+            "out of the other, or remove one if it is drawn twice",
+            design.line_of(f"planks[{index[b]}]")))
 
 
 def _connectivity_violations(design: Design, joints: list[Joint],

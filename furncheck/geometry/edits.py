@@ -21,12 +21,12 @@ from furncheck.geometry.analysis import (
     _unchanged_joints,
     _unchanged_planks,
     analyze,
+    interpenetrations,
     nail_count,
 )
 from furncheck.geometry.faces import (
     _bears,
     _best_touches,
-    _bounding_boxes,
     _box_depths,
     _clipped_to_rectangles,
     _design_tables,
@@ -49,25 +49,6 @@ from furncheck.geometry.model import (
     corner_contacts,
 )
 from furncheck.geometry.near import missed_ground, near_band
-
-
-def interpenetrations(design: Design) -> list[tuple[str, str, float]]:
-    """Plank pairs whose boxes overlap deeper than the tolerance: (id, id, depth m).
-
-    Separating-axis test of two oriented boxes over their 15 candidate axes; the depth is
-    the smallest overlap of their projections.  Planks meeting at a joint only touch, so
-    their depth is ~0.  (Not a violation of the contract's kinds: furncheck uses it to
-    refuse design edits that would push one plank through another.)
-    """
-    slack = design.tolerance + _GEOMETRY_EPS
-    pairs = _overlapping(*_bounding_boxes(design.planks), slack)
-    if len(pairs) == 0:
-        return []
-    depth = _box_depths(np.stack([p.rotation_matrix for p in design.planks]),
-                        np.stack([p.half_extents for p in design.planks]),
-                        np.stack([p.center_array for p in design.planks]), pairs)
-    return [(design.planks[i].id, design.planks[j].id, float(d))
-            for (i, j), d in zip(pairs, depth) if d > slack]
 
 
 class EditedTables:
