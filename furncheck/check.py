@@ -11,7 +11,7 @@ from furncheck import tolerances as tol
 from furncheck.design import Design
 from furncheck.design.model import with_model
 from furncheck.errors import DesignError, DesignTooBig
-from furncheck.geometry import Geometry, analyze
+from furncheck.geometry import Geometry, analyze, drawn_through
 from furncheck.nail_groups import joint_utilization, nail_rows
 from furncheck.result import NOT_SOLVED, CaseResult, DesignReport
 from furncheck.statics import (
@@ -44,7 +44,7 @@ def check_design(design: Design, geometry: Geometry | None = None,
     have the key), and reads neither durable nor stable (nothing was shown to
     hold; no toppling of a stool whose leg is 4 mm short either)."""
     geometry = geometry or analyze(design)
-    violations = list(geometry.violations)
+    violations = list(geometry.violations) + drawn_through(design, geometry.violations)
     if not geometry.stands:
         planks = () if design.elastic else None     # the key, empty
         cases = tuple(CaseResult(case.name, durable=False, stable=False, joints=(), contacts=(),

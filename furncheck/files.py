@@ -63,7 +63,15 @@ def replacing(path: str, *, durable: bool = False,
     folder, name = os.path.split(path)
     if len(os.fsencode(name)) > TEMP_NAME_ROOM:         # '.NAME.XXXXXXXX.tmp' too long
         name = "furncheck"
-    handle, temporary = tempfile.mkstemp(dir=folder, prefix=f".{name}.", suffix=TEMP_SUFFIX)
+    try:
+        handle, temporary = tempfile.mkstemp(dir=folder, prefix=f".{name}.",
+                                             suffix=TEMP_SUFFIX)
+    except FileNotFoundError as error:
+        if not os.path.isdir(folder or "."):
+            raise
+        # the folder is there but makes no new files (/proc, /sys): its ENOENT is no reason
+        raise OSError(error.errno, f"its folder {folder or '.'} takes no new files "
+                                   f"({error.strerror})") from None
     try:
         with os.fdopen(handle, "wb") as stream:
             yield stream

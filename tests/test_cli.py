@@ -7,6 +7,7 @@ tests need neither the loader nor the solver and run in well under a second.
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 import time
@@ -184,6 +185,21 @@ def test_unwritable_output_is_one_line_and_exit_2(calls, tmp_path, target):
     assert result.stdout == ""
     assert len(result.stderr.splitlines()) == 1 and "cannot write" in result.stderr
     assert calls == []  # found before any design was checked
+
+
+@pytest.mark.skipif(not os.path.isfile("/proc/version") or not os.access("/proc/version",
+                                                                          os.W_OK),
+                    reason="needs Linux's /proc/version reported writable (as root)")
+def test_a_file_in_a_folder_that_takes_no_new_files_says_so(tmp_path):
+    """-o /proc/version as root: the file is there and writable as far as access() says,
+    but /proc makes no new files, so the atomic write's temporary file fails with ENOENT;
+    the line said 'No such file or directory' of a file that exists."""
+    (valid,) = write(tmp_path, "valid.yaml")
+    result = run("validate", valid, "-o", "/proc/version")
+    assert result.exit_code == 2
+    assert result.stderr.splitlines()[-1] == (
+        "furncheck: cannot write the report to /proc/version: its folder /proc takes no new "
+        "files (No such file or directory)")
 
 
 @pytest.mark.parametrize("fmt", ["text", "json", "junit", "github", "sarif"])

@@ -179,6 +179,15 @@ def test_text_with_nul_or_lone_surrogate():
     assert error_of("name: \ud800").message.startswith("not a text file")
 
 
+def test_a_json_name_with_an_escaped_lone_surrogate_gets_its_line():
+    """JSON reads "\\ud800" as a lone surrogate, which a name may not hold; the line of a
+    JSON key is found by reading the text as YAML, which refuses that escape: the message
+    had no line.  The escape is read as another of its length for the lines."""
+    for text, line in (('{"furncheck": 1, "name": "a\\ud800b", "planks": []}', 1),
+                       ('{"furncheck": 1,\n "name": "a\\uDC00",\n "planks": []}', 2)):
+        expect(text, "name", line, "must be printable text on one line", fmt="json")
+
+
 def test_too_large(tmp_path):
     path = tmp_path / "bench.yaml"
     with open(path, "wb") as handle:

@@ -650,14 +650,14 @@ def test_boards_drawn_through_each_other_are_disconnected_with_their_depth(x, de
     (x = 182: touching, not overlapping) is a board more, no violation."""
     leg = "  - {id: leg_r, size: [438, 300], center: [170, 0, 219], rotation: [0, -90, 0]}\n"
     doubled = STOOL.replace(leg, leg + leg.replace("leg_r,", "leg_r2,").replace("170,", f"{x},"))
-    geometry = analyze(parsed(doubled))
-    (violation,) = [v for v in geometry.violations if v.where == "leg_r/leg_r2"]
+    (violation,) = [v for v in check_design(parsed(doubled)).violations
+                    if v.where == "leg_r/leg_r2"]
     assert violation.kind == "disconnected"
     assert violation.message.startswith(f"leg_r and leg_r2 are drawn through each other, "
                                         f"{depth:g} mm deep (tolerance 0.5 mm)")
     assert violation.line == doubled.splitlines().index(leg.rstrip("\n")) + 2
     beside = STOOL.replace(leg, leg + leg.replace("leg_r,", "leg_r2,").replace("170,", "182,"))
-    assert not [v for v in analyze(parsed(beside)).violations if "leg_r2" in v.where]
+    assert not [v for v in check_design(parsed(beside)).violations if "leg_r2" in v.where]
 
 
 def test_a_shelf_drawn_into_one_side_and_nearly_into_the_other_names_both():
@@ -666,8 +666,8 @@ def test_a_shelf_drawn_into_one_side_and_nearly_into_the_other_names_both():
     it), its right end 5 mm into side_r (a near miss, said as such).  Each pair is named
     once, by what it is."""
     text = shelf_between_sides(830).replace("center: [0, 0, 600]", "center: [-10, 0, 600]")
-    geometry = analyze(parsed(text))
-    found = {v.where: v.message for v in geometry.violations if v.kind == "disconnected"}
+    found = {v.where: v.message for v in check_design(parsed(text)).violations
+             if v.kind == "disconnected"}
     assert set(found) == {"side_l/mid", "side_r/mid"} or set(found) == {"side_l/mid", "mid/side_r"}
     assert found["side_l/mid"].startswith("side_l and mid are drawn through each other, 25 mm "
                                           "deep")

@@ -116,11 +116,19 @@ def _json_duplicate_error(text: str, source: str, key: str) -> DesignError:
 
 
 def _json_lines(text: str, source: str) -> dict[str, int]:
-    """Best effort: key path -> line of a JSON text, read as YAML; {} when that fails."""
-    try:
-        return _read_yaml(text, source)[1]
-    except (DesignError, yaml.YAMLError, ValueError, RecursionError):
-        return {}
+    """Best effort: key path -> line of a JSON text, read as YAML; {} when that fails.
+    JSON escapes a lone surrogate (``"\\ud800"``, which JSON reads and YAML refuses): each
+    is read as another escape of the same length, which moves no line."""
+    for attempt in (text, _SURROGATE_ESCAPE.sub(r"\\u003f", text)):
+        try:
+            return _read_yaml(attempt, source)[1]
+        except (DesignError, yaml.YAMLError, ValueError, RecursionError):
+            continue
+    return {}
+
+
+_SURROGATE_ESCAPE = re.compile(r"\\u[dD][89a-fA-F][0-9a-fA-F]{2}")
+"""A JSON escape of a UTF-16 surrogate (``_json_lines``)."""
 
 
 class JsonLines(Mapping):

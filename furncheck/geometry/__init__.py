@@ -14,17 +14,25 @@ The package, by job:
     faces     face tables of planks, touching regions of a narrow face on a broad face,
               bounding boxes and box overlaps
     analysis  analyze (joints detected or checked, ground contacts, components,
-              violations), follow / follow_many (a structure's joints on edited designs)
+              violations), follow / follow_many (a structure's joints on edited designs),
+              interpenetrations and the design's own (drawn_through)
     fit       how two planks fail to meet: gaps, depths, narrow bearings and cut-ins, and
               the phrases of the messages that say so
-    edits     what decides whether an edit keeps the joints: interpenetrations, many
-              edits checked at once (EditedTables) and the edits' continuous margins
-              (EditMargins, edit_margins_many)
+    edits     what decides whether an edit keeps the joints: many edits checked at
+              once (EditedTables) and the edits' continuous margins (EditMargins,
+              edit_margins_many)
     support   the support polygon on the floor: convex hull of the floor contacts and
               how far a point lies outside it
 """
 
-from furncheck.geometry.analysis import analyze, follow, follow_many, nail_count
+from furncheck.geometry.analysis import (
+    analyze,
+    drawn_through,
+    follow,
+    follow_many,
+    interpenetrations,
+    nail_count,
+)
 from furncheck.geometry.fit import (
     box_neighbours,
     cut_in_pairs,
@@ -35,7 +43,7 @@ from furncheck.geometry.fit import (
 )
 from furncheck.geometry.model import Contact, Geometry, Joint, NearMiss
 
-_EDITS = ("EditMargins", "EditedTables", "edit_margins_many", "interpenetrations")
+_EDITS = ("EditMargins", "EditedTables", "edit_margins_many")
 
 
 def __getattr__(name: str):
@@ -48,5 +56,6 @@ def __getattr__(name: str):
 
 
 __all__ = ["Contact", "EditMargins", "EditedTables", "Geometry", "Joint", "NearMiss", "analyze",
-           "box_neighbours", "cut_in_pairs", "cut_ins", "edit_margins_many", "end_bearing",
+           "box_neighbours", "cut_in_pairs", "cut_ins", "drawn_through", "edit_margins_many",
+           "end_bearing",
            "end_depth", "end_gap", "follow", "follow_many", "interpenetrations", "nail_count"]

@@ -106,7 +106,6 @@ def _completed(design: Design, joints: list[Joint], violations: list[Violation],
                              {pid for miss in missed if len(miss.planks) == 2
                               for pid in miss.planks})
     violations.extend(near_miss_violation(design, miss) for miss in missed)
-    _drawn_through(design, violations)
     return Geometry(tuple(joints), tuple(contacts), components, grounded, tuple(violations),
                     tuple(missed))
 
@@ -416,23 +415,28 @@ def interpenetrations(design: Design) -> list[tuple[str, str, float]]:
             for (i, j), d in zip(pairs, depth) if d > slack]
 
 
-def _drawn_through(design: Design, violations: list[Violation]) -> None:
+def drawn_through(design: Design, violations: tuple[Violation, ...]) -> list[Violation]:
     """Two planks drawn through each other, deeper than the tolerance (``interpenetrations``:
     a board pasted twice in one place, a shelf drawn into its side), form no joint: each
     such pair is ``disconnected`` (as the contract has a listed joint whose planks
-    interpenetrate), unless a violation names the pair already (a missed joint's overlap)
-    or one of them as joined to nothing (its message says what it cuts into)."""
+    interpenetrate), unless one of the geometry's ``violations`` names the pair already (a
+    missed joint's overlap) or one of them as joined to nothing (its message says what it
+    cuts into).  Asked of a design being checked (``check.check_design``), not part of
+    ``analyze``: an edit that cuts into a plank is refused as such (``edit_check``), and
+    the geometry of an edit that keeps the design's joints is the design's."""
     named = {v.where for v in violations if v.kind == "disconnected"}
     index = design.plank_index
+    found = []
     for a, b, depth in interpenetrations(design):
         if {f"{a}/{b}", f"{b}/{a}", a, b} & named:
             continue
-        violations.append(Violation(
+        found.append(Violation(
             "disconnected", f"{a}/{b}", None,
             f"{a} and {b} are drawn through each other, {_fmt_len(depth, design)} deep "
             f"(tolerance {_fmt_len(design.tolerance, design)}): no joint forms; move one "
             "out of the other, or remove one if it is drawn twice",
             design.line_of(f"planks[{index[b]}]")))
+    return found
 
 
 def _connectivity_violations(design: Design, joints: list[Joint],
