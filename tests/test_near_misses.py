@@ -673,3 +673,23 @@ def test_a_shelf_drawn_into_one_side_and_nearly_into_the_other_names_both():
                                           "deep")
     right = found.get("side_r/mid", found.get("mid/side_r"))
     assert right.startswith("5 mm overlap: the end of mid cuts into the face of side_r")
+
+
+@pytest.mark.parametrize("x, words", [
+    (170.0, "leg_r2 is leg_r drawn a second time, in the same place: removing leg_r2 "
+            "(its loads, joints and fixings then leg_r's) leaves the one board"),
+    (174.0, "drawn 8 mm through each other: moving one 7.5 to 8 mm out of the other (the "
+            "way they overlap least) would leave them touching, not joined")])
+def test_the_explanation_says_how_to_part_boards_drawn_through_each_other(x, words):
+    """A newcomer's check: suggest read "no hand estimate (neither plank's end faces the
+    other)" for a leg pasted twice.  The estimate now says which is the copy (every corner
+    within the tolerance of the other's) or how far apart to move them: the overlap less
+    the tolerance, to the overlap (8 mm for legs drawn 4 mm apart in 12 mm boards)."""
+    from furncheck.report.explanation import need_text
+    from furncheck.suggest import suggest_design
+
+    leg = "  - {id: leg_r, size: [438, 300], center: [170, 0, 219], rotation: [0, -90, 0]}\n"
+    doubled = STOOL.replace(leg, leg + leg.replace("leg_r,", "leg_r2,").replace("170,", f"{x},"))
+    result = suggest_design(parsed(doubled))
+    (need,) = [n for n in result.explanation.needs if n.where == "leg_r/leg_r2"]
+    assert need_text(need, "mm") == f"disconnected leg_r/leg_r2: {words}"

@@ -189,6 +189,15 @@ def _geometric(kind: str):
                     f"{_n(v['bearing_needed'], digits)} {units}: the face plank reaching "
                     f"{_n(v['change_min'])} to {_n(v['change_max'])} {units} further over it "
                     f"(or the planks moved that much together) would join them")
+        if "through" in v and v["copy"]:
+            return (f"{v['second']} is {v['first']} drawn a second time, in the same place: "
+                    f"removing {v['second']} (its loads, joints and fixings then "
+                    f"{v['first']}'s) leaves the one board")
+        if "through" in v:
+            low, high = _n(v["change_min"]), _n(v["change_max"])
+            return (f"drawn {_n(v['through'])} {units} through each other: moving one "
+                    f"{low} to {high} {units} out of the other (the way they overlap "
+                    f"least) would leave them touching, not joined")
         if v.get("carried"):
             return f"{_n(v['distance'])} {units} above the floor, it hangs on joints it " \
                    "misses: closing those carries it, nothing to lower"

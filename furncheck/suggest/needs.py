@@ -55,7 +55,7 @@ import numpy as np
 
 from furncheck import tolerances as tol
 from furncheck.design.model import Design, Plank
-from furncheck.geometry import Geometry, end_bearing, end_gap
+from furncheck.geometry import Geometry, end_bearing, end_gap, interpenetrations
 from furncheck.geometry.loose import LoosePart, loose_parts
 from furncheck.geometry.model import nails_listed
 from furncheck.geometry.near import carried_groups
@@ -494,7 +494,7 @@ def _geometric(design: Design, geometry: Geometry, where: str, case: CaseResult 
                 "change_max": (thickness - band) / scale})
         gap = end_gap(design, a, b, signed=True)
         if gap is None:
-            return Need(kind, where, None, why="neither plank's end faces the other")
+            return _drawn_through(design, where, a, b)
         distance = abs(gap)
     elif kind == "penetration":
         distance, wall = _deepest(design, design.plank(where))
@@ -512,6 +512,25 @@ def _geometric(design: Design, geometry: Geometry, where: str, case: CaseResult 
     if kind == "penetration" and wall is not None:
         values["wall"] = wall
     return Need(kind, where, None, values=values)
+
+
+def _drawn_through(design: Design, where: str, a: int, b: int) -> Need:
+    """The estimate for two planks drawn through each other (``geometry.drawn_through``):
+    how deep (the least overlap of their boxes), and whether one is the other drawn
+    twice (the same sizes, every corner within the tolerance of one of the other's)."""
+    first, second = design.planks[a], design.planks[b]
+    depth = next((d for i, j, d in interpenetrations(design)
+                  if {i, j} == {first.id, second.id}), None)
+    if depth is None:
+        return Need("disconnected", where, None, why="neither plank's end faces the other")
+    slack = design.tolerance + 1e-9
+    gaps = np.linalg.norm(first.corners[:, None, :] - second.corners[None, :, :], axis=2)
+    copy = bool(gaps.min(axis=1).max() <= slack and gaps.min(axis=0).max() <= slack)
+    scale = design.unit_scale
+    return Need("disconnected", where, None, values={
+        "through": depth / scale, "copy": copy, "first": first.id, "second": second.id,
+        "change_min": max(depth - design.tolerance, 0.0) / scale,
+        "change_max": depth / scale})
 
 
 def _deepest(design: Design, plank: Plank) -> tuple[float, int | None]:
