@@ -93,7 +93,7 @@ def is_valid(design: Design, geometry: Geometry | None = None,
     (``case_statics``), where its contact iterations start (``solve_case``'s ``near``);
     ``solved``: a dict that gets each case solved by its index."""
     geometry = geometry or analyze(design)
-    if geometry.violations:
+    if geometry.violations or drawn_through(design, geometry.violations):
         return False
     model = build_model(design, geometry)
     if plates_fail(design, model):
@@ -152,8 +152,9 @@ def margin_of(design: Design, geometry: Geometry,
     case is not stable; the utilization (``nail_groups.joint_utilization``) is per joint of
     ``geometry.joints``, the largest of the load cases (0 for a joint outside the
     statics).  Every case is solved, except that an unstable one ends the search.  The
-    geometry must have no violations (``model``: its statics model, if the caller already
-    has it).
+    geometry must have no violations, and the design no planks drawn through each other
+    (``drawn_through``: its callers refuse edits that cut into a plank), (``model``: its
+    statics model, if the caller already has it).
 
     With ``first`` (a case's index), for a search that needs of an invalid design only
     its verdict and a margin to interpolate: that case is solved first and the cases stop

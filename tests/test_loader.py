@@ -182,10 +182,14 @@ def test_text_with_nul_or_lone_surrogate():
 def test_a_json_name_with_an_escaped_lone_surrogate_gets_its_line():
     """JSON reads "\\ud800" as a lone surrogate, which a name may not hold; the line of a
     JSON key is found by reading the text as YAML, which refuses that escape: the message
-    had no line.  The escape is read as another of its length for the lines."""
+    had no line.  The escape is read as a private-use character's for the lines, and a
+    key holding one (a load case's name) finds its own line, not its parent's."""
     for text, line in (('{"furncheck": 1, "name": "a\\ud800b", "planks": []}', 1),
                        ('{"furncheck": 1,\n "name": "a\\uDC00",\n "planks": []}', 2)):
         expect(text, "name", line, "must be printable text on one line", fmt="json")
+    keys = ('{"furncheck": 1,\n "planks": [{"id": "p", "size": [100, 100], "center": [0, 0, 6]}],'
+            '\n "load_cases": {\n  "c\\ud800": {"loads": []},\n  "d\\udfff": {"loads": []}}}')
+    expect(keys, 'load_cases["c\\ud800"]', 4, "invalid load case name", fmt="json")
 
 
 def test_too_large(tmp_path):

@@ -693,3 +693,27 @@ def test_the_explanation_says_how_to_part_boards_drawn_through_each_other(x, wor
     result = suggest_design(parsed(doubled))
     (need,) = [n for n in result.explanation.needs if n.where == "leg_r/leg_r2"]
     assert need_text(need, "mm") == f"disconnected leg_r/leg_r2: {words}"
+
+
+def test_a_board_pasted_many_times_is_told_once_per_copy():
+    """The stool's leg_r pasted four more times in place: each copy is drawn through leg_r,
+    and through every other copy; each copy is named once, with the first plank in the
+    file it is drawn through (4 lines, not the 10 pairs)."""
+    leg = "  - {id: leg_r, size: [438, 300], center: [170, 0, 219], rotation: [0, -90, 0]}\n"
+    copies = "".join(leg.replace("leg_r,", f"leg_r{k},") for k in range(2, 6))
+    found = [v.where for v in check_design(parsed(STOOL.replace(leg, leg + copies))).violations
+             if v.kind == "disconnected"]
+    assert found == [f"leg_r/leg_r{k}" for k in range(2, 6)]
+
+
+def test_a_plank_joined_to_nothing_inside_another_is_said_to_be_drawn_through_it():
+    """A second middle shelf, 13 mm lower and 24 mm shorter than the carcass's, inside the
+    first one's thickness but for 5 mm (both 18 mm): joined to nothing (its ends reach
+    neither side), and its message says nothing of what it cuts into, so the pair is told
+    as well."""
+    text = shelf_between_sides(800).replace(
+        "  - {id: top,", "  - {id: mid2, size: [776, 300], center: [0, 0, 587]}\n  - {id: top,")
+    found = {v.where: v.message for v in check_design(parsed(text)).violations
+             if v.kind == "disconnected"}
+    assert set(found) == {"mid2", "mid/mid2"}
+    assert found["mid/mid2"].startswith("mid and mid2 are drawn through each other, 5 mm deep")

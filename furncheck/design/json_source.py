@@ -118,17 +118,36 @@ def _json_duplicate_error(text: str, source: str, key: str) -> DesignError:
 def _json_lines(text: str, source: str) -> dict[str, int]:
     """Best effort: key path -> line of a JSON text, read as YAML; {} when that fails.
     JSON escapes a lone surrogate (``"\\ud800"``, which JSON reads and YAML refuses): each
-    is read as another escape of the same length, which moves no line."""
-    for attempt in (text, _SURROGATE_ESCAPE.sub(r"\\u003f", text)):
-        try:
-            return _read_yaml(attempt, source)[1]
-        except (DesignError, yaml.YAMLError, ValueError, RecursionError):
-            continue
-    return {}
+    is read as the escape of a private-use character (U+E000 to U+E7FF, as many
+    characters: no line moves), and the keys' paths get their surrogates back."""
+    try:
+        return _read_yaml(text, source)[1]
+    except (DesignError, yaml.YAMLError, ValueError, RecursionError):
+        pass
+    if not _SURROGATE_ESCAPE.search(text):
+        return {}
+    private = _SURROGATE_ESCAPE.sub(
+        lambda m: f"\\u{int(m.group(0)[2:], 16) + _PRIVATE_SHIFT:04x}", text)
+    try:
+        lines = _read_yaml(private, source)[1]
+    except (DesignError, yaml.YAMLError, ValueError, RecursionError):
+        return {}
+    return {_surrogates_back(key): line for key, line in lines.items()}
+
+
+def _surrogates_back(key: str) -> str:
+    """A key path read from ``_json_lines``' private-use text with its surrogates back:
+    as characters, and as the escapes that a path writes them as (``source._one_line``)."""
+    key = key.translate(_SURROGATES_BACK)
+    return _PRIVATE_ESCAPE.sub(
+        lambda m: f"\\u{int(m.group(0)[2:], 16) - _PRIVATE_SHIFT:04x}", key)
 
 
 _SURROGATE_ESCAPE = re.compile(r"\\u[dD][89a-fA-F][0-9a-fA-F]{2}")
 """A JSON escape of a UTF-16 surrogate (``_json_lines``)."""
+_PRIVATE_SHIFT = 0xE000 - 0xD800
+_SURROGATES_BACK = {code + _PRIVATE_SHIFT: code for code in range(0xD800, 0xE000)}
+_PRIVATE_ESCAPE = re.compile(r"\\ue[0-7][0-9a-f]{2}")
 
 
 class JsonLines(Mapping):

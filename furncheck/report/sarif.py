@@ -27,8 +27,9 @@ SARIF_SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
 
 RULE_DESCRIPTIONS = {
     "disconnected": "A listed joint's planks do not touch or interpenetrate, a plank is "
-                    "joined to no other plank, or two planks miss a joint by a little (a "
-                    "gap or overlap up to 20 x tolerance).",
+                    "joined to no other plank, two planks miss a joint by a little (a "
+                    "gap or overlap up to 20 x tolerance), or two planks are drawn through "
+                    "each other (a board pasted twice).",
     "penetration": "A plank corner lies below the ground plane.",
     "floating": "Part of the assembly touches the ground nowhere, or a plank standing on "
                 "its end stops just short of the floor (up to 20 x tolerance).",
