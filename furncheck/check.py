@@ -153,8 +153,8 @@ def margin_of(design: Design, geometry: Geometry,
     ``geometry.joints``, the largest of the load cases (0 for a joint outside the
     statics).  Every case is solved, except that an unstable one ends the search.  The
     geometry must have no violations, and the design no planks drawn through each other
-    (``drawn_through``: its callers refuse edits that cut into a plank), (``model``: its
-    statics model, if the caller already has it).
+    (``drawn_through``: its callers refuse edits that cut into a plank).  ``model``: its
+    statics model, if the caller already has it.
 
     With ``first`` (a case's index), for a search that needs of an invalid design only
     its verdict and a margin to interpolate: that case is solved first and the cases stop

@@ -402,7 +402,7 @@ def interpenetrations(design: Design) -> list[tuple[str, str, float]]:
 
     Separating-axis test of two oriented boxes over their 15 candidate axes; the depth is
     the smallest overlap of their projections.  Planks meeting at a joint only touch, so
-    their depth is ~0.  A design's own are ``disconnected`` (``_drawn_through``); an edit
+    their depth is ~0.  A design's own are ``disconnected`` (``drawn_through``); an edit
     that has any is refused (``edit_check``).
     """
     slack = design.tolerance + _GEOMETRY_EPS
