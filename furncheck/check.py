@@ -44,7 +44,7 @@ def check_design(design: Design, geometry: Geometry | None = None,
     have the key), and reads neither durable nor stable (nothing was shown to
     hold; no toppling of a stool whose leg is 4 mm short either)."""
     geometry = geometry or analyze(design)
-    violations = list(geometry.violations) + drawn_through(design, geometry.violations)
+    violations = list(geometry.violations) + drawn_through(design, geometry)
     if not geometry.stands:
         planks = () if design.elastic else None     # the key, empty
         cases = tuple(CaseResult(case.name, durable=False, stable=False, joints=(), contacts=(),
@@ -93,7 +93,7 @@ def is_valid(design: Design, geometry: Geometry | None = None,
     (``case_statics``), where its contact iterations start (``solve_case``'s ``near``);
     ``solved``: a dict that gets each case solved by its index."""
     geometry = geometry or analyze(design)
-    if geometry.violations or drawn_through(design, geometry.violations):
+    if geometry.violations or drawn_through(design, geometry):
         return False
     model = build_model(design, geometry)
     if plates_fail(design, model):

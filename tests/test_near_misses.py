@@ -717,3 +717,12 @@ def test_a_plank_joined_to_nothing_inside_another_is_said_to_be_drawn_through_it
              if v.kind == "disconnected"}
     assert set(found) == {"mid2", "mid/mid2"}
     assert found["mid/mid2"].startswith("mid and mid2 are drawn through each other, 5 mm deep")
+
+
+def test_a_plank_joined_to_nothing_that_cuts_into_its_sides_is_told_once():
+    """The carcass's 830 mm middle shelf cuts 15 mm into each side: joined to nothing,
+    its message names both faces (``geometry.cut_in_pairs``), so no pair of it is told
+    again as drawn through."""
+    found = [v.where for v in check_design(parsed(shelf_between_sides(830))).violations
+             if v.kind == "disconnected"]
+    assert found == ["mid"]

@@ -8,7 +8,6 @@ a structure's joints again on edited designs (for derivatives).
 
 from __future__ import annotations
 
-import re
 from dataclasses import replace
 
 import numpy as np
@@ -33,6 +32,7 @@ from furncheck.geometry.fit import (
     _fmt_point,
     _plural,
     box_neighbours,
+    cut_in_pairs,
 )
 from furncheck.geometry.model import (
     _GEOMETRY_EPS,
@@ -416,25 +416,29 @@ def interpenetrations(design: Design) -> list[tuple[str, str, float]]:
             for (i, j), d in zip(pairs, depth) if d > slack]
 
 
-def drawn_through(design: Design, violations: tuple[Violation, ...]) -> list[Violation]:
+def drawn_through(design: Design, geometry: Geometry) -> list[Violation]:
     """Two planks drawn through each other, deeper than the tolerance (``interpenetrations``:
     a board pasted twice in one place, a shelf drawn into its side), form no joint: such a
     pair is ``disconnected`` (as the contract has a listed joint whose planks
     interpenetrate), each plank once, with the first plank in the file that it is drawn
     through (a board pasted k times: k - 1 lines, not k (k - 1) / 2); unless one of the
-    geometry's ``violations`` names the pair already (a missed joint's overlap), or names
-    one of them as joined to nothing and says that it cuts into the other.  Asked of a
-    design being checked (``check.check_design``, ``check.is_valid``), not part of
-    ``analyze``: an edit that cuts into a plank is refused as such (``edit_check``), and
-    the geometry of an edit that keeps the design's joints is the design's."""
-    said = {v.where: v.message for v in violations if v.kind == "disconnected"}
+    ``geometry``'s violations names the pair already (a missed joint's overlap), or one of
+    them is joined to nothing and its end cuts into the other (``cut_in_pairs``: its
+    message says so).  Asked of a design being checked (``check.check_design``,
+    ``check.is_valid``), not part of ``analyze``: an edit that cuts into a plank is refused
+    as such (``edit_check``), and the geometry of an edit that keeps the design's joints is
+    the design's."""
+    through = interpenetrations(design)
+    if not through:
+        return []
+    named = {v.where for v in geometry.violations if v.kind == "disconnected"}
+    cut = cut_in_pairs(design, geometry, {p for a, b, _ in through for p in (a, b)})
     index = design.plank_index
     first: dict[str, tuple[str, float]] = {}
-    for a, b, depth in interpenetrations(design):
+    for a, b, depth in through:
         if index[a] > index[b]:
             a, b = b, a
-        if f"{a}/{b}" in said or f"{b}/{a}" in said or _cut_into_said(said, a, b) \
-                or _cut_into_said(said, b, a):
+        if f"{a}/{b}" in named or f"{b}/{a}" in named or (a, b) in cut or (b, a) in cut:
             continue
         if b not in first or index[a] < index[first[b][0]]:
             first[b] = (a, depth)
@@ -448,14 +452,6 @@ def drawn_through(design: Design, violations: tuple[Violation, ...]) -> list[Vio
             "out of the other, or remove one if it is drawn twice",
             design.line_of(f"planks[{index[b]}]")))
     return found
-
-
-def _cut_into_said(said: dict[str, str], plank: str, other: str) -> bool:
-    """Whether ``plank`` is said to be joined to nothing, its message naming ``other`` as
-    a face its end cuts into (``fit._cut_in_phrase``)."""
-    message = said.get(plank)
-    return message is not None and " cuts " in message and \
-        re.search(rf"\bof {re.escape(other)}(?![\w.-])", message) is not None
 
 
 def _connectivity_violations(design: Design, joints: list[Joint],

@@ -138,12 +138,15 @@ def cut_ins(design: Design, index: int,
     return [(-gap, design.plank_index[face]) for gap, face in deep]
 
 
-def cut_in_pairs(design: Design, geometry: Geometry) -> set[tuple[str, str]]:
-    """(face, edge) plank ids of the joints that the planks joined to nothing would form
-    with the faces their ends cut into (``cut_ins``): the joints a repair that shortens or
-    moves such a plank may add (as it may close a near miss)."""
+def cut_in_pairs(design: Design, geometry: Geometry,
+                 among: set[str] | None = None) -> set[tuple[str, str]]:
+    """(face, edge) plank ids of the joints that the planks joined to nothing (those of
+    ``among``, where given) would form with the faces their ends cut into (``cut_ins``):
+    the joints a repair that shortens or moves such a plank may add (as it may close a
+    near miss), and the cut-ins that their violations' messages tell."""
     loose = [design.plank_index[violation.where] for violation in geometry.violations
-             if violation.kind == "disconnected" and "/" not in violation.where]
+             if violation.kind == "disconnected" and "/" not in violation.where
+             and (among is None or violation.where in among)]
     neighbours = box_neighbours(design) if loose else []
     return {(design.planks[face].id, design.planks[index].id)
             for index in loose for _, face in cut_ins(design, index, neighbours[index])}
