@@ -230,7 +230,8 @@ def test_a_file_name_that_is_not_utf8_is_reported_in_every_format(tmp_path: Path
     Python reads as a surrogate; its content is not a design) is reported on stdout and
     with -o, the report valid UTF-8 with the odd byte escaped ('\\udcff'; in a SARIF URI
     '%FF'); it ended in 'internal error while writing the report' with nothing written.
-    (JUnit wrote U+FFFD for the byte, so that bad\\xfe and bad\\xff named one suite.)"""
+    (JUnit wrote U+FFFD for the byte, so that bad\\xfe and bad\\xff named one suite; JSON
+    wrote it as the escape of the surrogate itself.)"""
     import os
     import xml.etree.ElementTree as ElementTree
 
@@ -247,10 +248,15 @@ def test_a_file_name_that_is_not_utf8_is_reported_in_every_format(tmp_path: Path
         assert result.exit_code == 2, result.output
         text = (out.read_bytes() if "-o" in args else result.stdout_bytes).decode("utf-8")
         if fmt in ("json", "sarif"):
-            json.loads(text)
+            # the name as the text every report shows, not a JSON escape that reads back
+            # as a lone surrogate (RFC 8259 8.2: undefined; jq wrote U+FFFD for it)
+            json.dumps(json.loads(text), ensure_ascii=False).encode("utf-8")
+            if fmt == "json":
+                assert json.loads(text)["reports"][0]["design"].endswith(
+                    "bad\\udcffname.yaml")
         elif fmt == "junit":
             ElementTree.fromstring(text.encode("utf-8"))
-        escaped = {"sarif": "bad%FFname.yaml"}
+        escaped = {"sarif": "bad%FFname.yaml", "json": "bad\\\\udcffname.yaml"}
         assert escaped.get(fmt, "bad\\udcffname.yaml") in text
     # the console script's own stdout, in the C locale (Python's UTF-8 mode writes a
     # name's odd bytes back raw where a format does not escape them: github did)

@@ -281,6 +281,24 @@ def test_github_escaping():
                     "a in case 'x': 50%25%0Amore")
 
 
+def test_annotation_paths_lose_dot_slash_and_text_lines_never_start_a_command():
+    """An annotation's ``file`` is the path as the SARIF log's URI has it ('./designs//x'
+    named 'designs/x'); the text report shows a path that begins with '::' as './::...':
+    a GitHub runner reads a log line that begins with '::' as a workflow command (a
+    design named '::error::x.yaml' wrote an annotation from the text report)."""
+    from furncheck.report.github import annotation_path
+    from furncheck.report.text import shown
+
+    assert annotation_path("./designs//x.yaml") == "designs/x.yaml"
+    assert annotation_path("/abs/x.yaml") == "/abs/x.yaml"
+    assert shown("::error::x.yaml") == "./::error::x.yaml"
+    assert shown("designs/::x.yaml") == "designs/::x.yaml"
+    report = DesignReport(design="::warning title=x::y.yaml", name="y", valid=None,
+                          error="line 2: planks: expected a list")
+    assert not any(line.startswith("::") for line in render(BatchReport((report,)),
+                                                              "text").splitlines())
+
+
 # --- sarif ----------------------------------------------------------------------------------
 
 def test_sarif_log():
@@ -302,6 +320,38 @@ def test_sarif_log():
                             "region": {"startLine": 14}}
     assert "region" not in locations[1]
     assert locations[2]["region"] == {"startLine": 3}
+
+
+def test_sarif_fingerprints_name_the_problem_not_its_line_or_numbers(tmp_path):
+    """Code scanning matches alerts from run to run by ``partialFingerprints``: without
+    them the upload hashes the line's text, the same for designs/stool.yaml's seat
+    sagging in its three cases (one line).  Each result's fingerprint is its rule, file,
+    planks and case: three cases, three fingerprints; the same design with a comment
+    line above and 5 kg more on the seat (other lines, other numbers) gives the same."""
+    from pathlib import Path
+
+    from furncheck.batch import check_one
+    from furncheck.report.sarif import FINGERPRINT
+
+    source = (Path(__file__).resolve().parents[1] / "designs" / "stool.yaml").read_text()
+    first = tmp_path / "stool.yaml"
+    first.write_text(source)
+    before = json.loads(render(BatchReport((check_one(str(first)),)), "sarif"))
+    first.write_text("# moved down a line\n" + source.replace(
+        "{plank: seat, mass: 80, at: [0, 0, 450]}", "{plank: seat, mass: 85, at: [0, 0, 450]}"))
+    after = json.loads(render(BatchReport((check_one(str(first)),)), "sarif"))
+
+    def read(log):
+        return [(r["partialFingerprints"][FINGERPRINT],
+                 r["locations"][0]["physicalLocation"]["region"]["startLine"],
+                 r["message"]["text"]) for r in log["runs"][0]["results"]]
+
+    old, new = read(before), read(after)
+    assert len(old) == 3 and len({line for _, line, _ in old}) == 1
+    assert len({fingerprint for fingerprint, _, _ in old}) == 3
+    assert [f for f, _, _ in new] == [f for f, _, _ in old]
+    assert all(b[1] == a[1] + 1 for a, b in zip(old, new))
+    assert old[0][2] != new[0][2]           # the default case's sag, with 85 kg
 
 
 def test_sarif_uris():

@@ -13,6 +13,7 @@ additionally ``:`` and ``,`` in property values.
 from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
+from pathlib import PurePosixPath
 
 from furncheck.report.common import INPUT_ERROR, describe_violation, input_errors
 from furncheck.report.entries import Entry, Summary, is_text
@@ -76,8 +77,17 @@ def escape_property(text: str) -> str:
 
 
 def _properties(file: str, line: int | None, kind: str) -> dict[str, str]:
-    properties = {"file": file}
+    properties = {"file": annotation_path(file)}
     if line is not None:
         properties["line"] = str(line)
     properties["title"] = f"furncheck {kind}"
     return properties
+
+
+def annotation_path(path: str) -> str:
+    """A design's path as an annotation's ``file``: a relative one without its './' and
+    doubled slashes ('./designs//x.yaml' -> 'designs/x.yaml'), as the SARIF log's URI
+    has it, so that the runner finds the file in the diff whichever way it was named."""
+    if not path or path.startswith("/"):
+        return path
+    return str(PurePosixPath(path))

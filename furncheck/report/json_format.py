@@ -19,11 +19,11 @@ from __future__ import annotations
 import functools
 import json
 from collections.abc import Iterable, Iterator, Sequence
-from json.encoder import encode_basestring_ascii as _string
+from json.encoder import encode_basestring_ascii
 from typing import Any
 
 from furncheck.report.entries import Entry, Summary, is_text
-from furncheck.report.numbers import json_ready, real_text
+from furncheck.report.numbers import json_ready, readable, real_text
 from furncheck.result import (
     AnchorResult,
     BatchReport,
@@ -35,6 +35,12 @@ from furncheck.result import (
     PlankResult,
     Violation,
 )
+
+
+def _string(text: str) -> str:
+    """A string as ``json.dumps(json_ready(text))`` writes it (``readable``)."""
+    return encode_basestring_ascii(readable(text))
+
 
 _STEP = "  "
 _ENTRY_INDENT = 2 * _STEP          # a design's entry is an item of the "reports" list

@@ -41,15 +41,29 @@ def real_text(value: float) -> str:
     return float.__repr__(float(_ROUNDED % round(value, REPORT_DECIMALS)) + 0.0)
 
 
+def readable(text: str) -> str:
+    """``text`` with what UTF-8 cannot hold (a file name's byte that is not UTF-8, held as
+    a lone surrogate, as Python reads such names) written out as its escape, the text
+    ``\\udcff``: the name every report shows (README, "-o FILE").  JSON would write the
+    surrogate itself as "\\udcff", an escape that reads back as a lone surrogate, which
+    JSON leaves undefined (RFC 8259 8.2: jq writes U+FFFD for it, Python's reader keeps a
+    string that cannot be written as UTF-8)."""
+    if text.isascii():
+        return text
+    return text.encode("utf-8", "backslashreplace").decode("utf-8")
+
+
 def json_ready(value: Any) -> Any:
     """A copy of ``value`` that ``json.dumps`` writes deterministically.
 
     Floats are rounded (``round_significant``); non-finite floats become None (JSON has no
-    nan/inf); ints and bools stay as they are; tuples become lists; mappings keep their key
-    order.  numpy scalars and arrays are accepted through their ``item``/``tolist`` methods,
-    so this module never imports numpy.
+    nan/inf); ints and bools stay as they are; strings are ``readable``; tuples become
+    lists; mappings keep their key order.  numpy scalars and arrays are accepted through
+    their ``item``/``tolist`` methods, so this module never imports numpy.
     """
-    if value is None or isinstance(value, (bool, str)):
+    if isinstance(value, str):
+        return readable(value)
+    if value is None or isinstance(value, bool):
         return value
     if isinstance(value, numbers.Integral):
         return int(value)

@@ -6,6 +6,7 @@ import json
 
 from furncheck.ranges import DofRange
 from furncheck.report.numbers import format_number, json_ready
+from furncheck.report.text import shown
 
 
 def render_json(design: str, ranges: list[DofRange]) -> str:
@@ -42,7 +43,7 @@ def render_text(design: str, ranges: list[DofRange]) -> str:
                      "; ".join(note for note in (item.reason, _limited(item),
                                                  _rotations(item)) if note)))
     widths = [max(len(row[i]) for row in rows) for i in range(4)]
-    lines = [f"{design}:"]
+    lines = [f"{shown(design)}:"]
     for dof, value, interval, unit, reason in rows:
         lines.append(f"  {dof:<{widths[0]}}  {value:>{widths[1]}}  {interval:<{widths[2]}}  "
                      f"{unit:<{widths[3]}}  {reason}".rstrip())

@@ -5,11 +5,18 @@ One run; ``tool.driver.rules`` holds one rule per violation kind plus ``input-er
 Every violation and every unreadable input is one result of level ``error``, located at
 the design file (``artifactLocation.uri``) and, when known, its line (``region.startLine``).
 Relative paths stay relative (resolved against the repository root by code scanning);
-absolute ones become ``file://`` URIs.
+absolute ones become ``file://`` URIs.  Each result has ``partialFingerprints``
+(``FINGERPRINT``): a hash of its rule, file and what it is about -- the plank or joint
+and the load case, not the line nor the numbers -- so that code scanning keeps one alert
+per problem from run to run (a sag that changes, or lines added above it, is the same
+alert) and tells apart the cases of one problem that share a line (a seat sagging in
+three cases: three alerts, where the hash of the line's text that the upload computes
+otherwise is the same for all three).
 """
 
 from __future__ import annotations
 
+import hashlib
 import json
 import os
 from collections.abc import Iterable, Iterator
@@ -24,6 +31,9 @@ from furncheck.result import VIOLATION_KINDS, BatchReport, DesignReport
 
 SARIF_VERSION = "2.1.0"
 SARIF_SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
+FINGERPRINT = "furncheck/v1"
+"""The ``partialFingerprints`` key of each result (its own, not the upload's
+``primaryLocationLineHash``, which code scanning computes from the line's text)."""
 
 RULE_DESCRIPTIONS = {
     "disconnected": "A listed joint's planks do not touch or interpenetrate, a plank is "
@@ -53,8 +63,9 @@ def render(batch: BatchReport) -> str:
     return "".join(document(Entry.of(report, piece(report)) for report in batch.reports))
 
 
-def piece(report: DesignReport) -> tuple[str, tuple[tuple[str, int | None, str], ...]]:
-    """(the design's path, its findings: (rule id, line, message) of every problem)."""
+def piece(report: DesignReport) -> tuple[str, tuple[tuple[str, int | None, str, str], ...]]:
+    """(the design's path, its findings: (rule id, line, message, what it is about) of
+    every problem)."""
     return report.design, tuple(_findings(report))
 
 
@@ -62,9 +73,9 @@ def is_piece(value: Any) -> bool:
     """Whether ``value`` is shaped as ``piece`` returns it (a cached piece is checked)."""
     return type(value) is tuple and len(value) == 2 and type(value[0]) is str \
         and type(value[1]) is tuple and all(
-            type(finding) is tuple and len(finding) == 3 and type(finding[0]) is str
+            type(finding) is tuple and len(finding) == 4 and type(finding[0]) is str
             and (finding[1] is None or type(finding[1]) is int) and type(finding[2]) is str
-            for finding in value[1])
+            and type(finding[3]) is str for finding in value[1])
 
 
 def document(entries: Iterable[Entry]) -> Iterator[str]:
@@ -75,10 +86,14 @@ def document(entries: Iterable[Entry]) -> Iterator[str]:
     results: list[dict[str, Any]] = []
     for entry in entries:
         design, findings = entry.piece
-        for rule_id, line, text in findings:
+        seen: dict[str, int] = {}
+        for rule_id, line, text, about in findings:
             if rule_id not in rule_ids:  # a kind this version does not know: still a rule
                 rule_ids.append(rule_id)
-            results.append(_result(rule_id, rule_ids.index(rule_id), design, line, text))
+            identity = "\0".join((rule_id, artifact_uri(design), about))
+            seen[identity] = seen.get(identity, 0) + 1     # the same twice: :1, :2
+            results.append(_result(rule_id, rule_ids.index(rule_id), design, line, text,
+                                   _fingerprint(identity, seen[identity])))
     log = {
         "$schema": SARIF_SCHEMA,
         "version": SARIF_VERSION,
@@ -103,11 +118,22 @@ def artifact_uri(path: str) -> str:
     return quote(os.fsencode(pure.as_posix()), safe="/")
 
 
-def _findings(report: DesignReport) -> list[tuple[str, int | None, str]]:
-    """(rule id, line, message) of every problem of one design."""
+def _findings(report: DesignReport) -> list[tuple[str, int | None, str, str]]:
+    """(rule id, line, message, what it is about) of every problem of one design: a
+    violation is about its planks or joint and its case, an input error about its
+    message (it names the key and what is wrong with it)."""
     if report.error is not None or report.valid is None:
-        return [(INPUT_ERROR, line, message) for line, message in input_errors(report)]
-    return [(v.kind, v.line, describe_violation(v)) for v in report.violations]
+        return [(INPUT_ERROR, line, message, message)
+                for line, message in input_errors(report)]
+    return [(v.kind, v.line, describe_violation(v), f"{v.where}\0{v.case or ''}")
+            for v in report.violations]
+
+
+def _fingerprint(identity: str, occurrence: int) -> str:
+    """A result's fingerprint: 16 hex digits of the SHA-256 of its identity (rule, file,
+    what it is about), and which occurrence of that identity in its file it is."""
+    digest = hashlib.sha256(identity.encode("utf-8", "backslashreplace")).hexdigest()
+    return f"{digest[:16]}:{occurrence}"
 
 
 def _rule(rule_id: str) -> dict[str, Any]:
@@ -121,7 +147,7 @@ def _rule(rule_id: str) -> dict[str, Any]:
 
 
 def _result(rule_id: str, rule_index: int, design: str, line: int | None,
-            text: str) -> dict[str, Any]:
+            text: str, fingerprint: str) -> dict[str, Any]:
     physical: dict[str, Any] = {"artifactLocation": {"uri": artifact_uri(design)}}
     if line is not None and line >= 1:
         physical["region"] = {"startLine": line}
@@ -131,4 +157,5 @@ def _result(rule_id: str, rule_index: int, design: str, line: int | None,
         "level": "error",
         "message": {"text": text},
         "locations": [{"physicalLocation": physical}],
+        "partialFingerprints": {FINGERPRINT: fingerprint},
     }

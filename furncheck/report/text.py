@@ -47,7 +47,13 @@ is_piece = is_text
 def shown(path: str) -> str:
     """A file's path as a report line shows it: what is not printable (a line break in a
     file name, a byte that is not UTF-8) escaped, so that each design keeps its one
-    verdict line; an empty path (an unset variable in a script) as ''."""
+    verdict line; an empty path (an unset variable in a script) as ''; a relative path
+    that begins with '::' as './::...', the same file: a GitHub Actions runner reads a
+    line of the log that begins with '::' as a workflow command (a design named
+    '::error::x.yaml' in a pull request wrote an annotation, or '::add-mask::' and
+    '::stop-commands::' lines, into the text report's job)."""
+    if path.startswith("::"):
+        path = "./" + path
     if path.isprintable():
         return path or "''"
     return "".join(c if c.isprintable() else f"\\x{ord(c):02x}" if ord(c) < 0x100
