@@ -223,6 +223,41 @@ def test_tipping_bench_is_given_a_wider_stance(results):
     assert math.isclose(wider[0].range[1] * scale, BENCH_STANCE_REACH, rel_tol=0.03)
 
 
+def test_the_elastic_tipping_bench_has_its_legs_moved_apart_not_its_seat_widened(
+        catalog_suggestions):
+    """bench-tips in the elastic model: moving both legs out by d each stands it once its
+    centre of mass is inside leg_r's outer face, x_G(d) = 80 x 0.56 / (80 + m_seat +
+    2 m_leg + m_stretcher(d)) <= 0.306 + d (the legs' moments cancel; the stretcher
+    stays centred), about 215 mm; its seat, then spanning 2 (300 + d) mm, sags past its
+    limit a little further out, so the valid window is narrow (242 to 255 mm).  The
+    linear prediction (281 mm) lies past it, where the seat sags: the line search looks
+    between the toppling steps and that one (``_past_failing``).  It found the window
+    only with the seat widened from 300 to 790 mm as ballast before, the symmetric fix
+    ranked over one leg moved alone; now the legs move apart alone, a direction that
+    changes a DOF the legs-apart one does not need (the seat's width) is dropped, and one
+    leg moved alone is still offered after it."""
+    _, result = catalog_suggestions("bench-tips.yaml", "elastic")
+
+    def excess(d: float) -> float:
+        stretcher = MDF * (0.588 + 2 * d) * 0.08 * T
+        seat, leg = MDF * 1.2 * 0.3 * T, MDF * 0.438 * 0.3 * T
+        return 80 * 0.560 / (80 + seat + 2 * leg + stretcher) - (0.306 + d)
+
+    low, high = 0.0, 0.5
+    for _ in range(60):
+        middle = 0.5 * (low + high)
+        low, high = (middle, high) if excess(middle) > 0 else (low, middle)
+    needed = 1000.0 * high
+    assert 210.0 < needed < 220.0
+    assert not any("seat.width" in s.dofs for s in result.suggestions)
+    apart = [s for s in result.suggestions if set(s.dofs) == {"leg_l.x", "leg_r.x"}]
+    alone = [s for s in result.suggestions if s.dofs == ("leg_r.x",)]
+    assert apart and alone and apart[0].rank < alone[0].rank
+    moves = dict(zip(apart[0].dofs, apart[0].changes))
+    assert moves["leg_l.x"] == -moves["leg_r.x"] and moves["leg_r.x"] >= needed
+    assert apart[0].report.valid
+
+
 def test_table_pushed_past_tipping_gets_a_wider_stance(tmp_path):
     """designs/table.yaml with its 'lean' load raised to 150 kg at x = 495 mm tips over
     leg_r (outer face x = 436 mm).  Moving leg_r out by d (the apron lengthening with it:
@@ -391,6 +426,32 @@ def test_a_first_probe_past_the_valid_interval_falls_back_on_the_prediction():
     result = _first_valid(margin, 0.095 / 1.05 * 1.2, -0.09)    # first probe at 0.114
     assert calls[:2] == [pytest.approx(0.114), pytest.approx(0.095 / 1.05 * 1.2)]
     assert len(calls) == 3 and calls[2] > 0.114 and result is None
+
+
+def test_between_toppling_and_another_failure_the_window_is_bisected():
+    """A margin -inf below 0.2 (the design topples), valid on [0.2, 0.25], then failing by
+    a finite margin (a plank sags), predicted at 0.3: the first probe (0.315) and the
+    prediction fail by finite margins; the steps between 0 and the prediction are
+    bisected for the first that does not topple, and that one is valid here.  Where the
+    finite margin is < 0 from the toppling's end on (no window), nothing comes back from
+    there, in at most log2(1 / LOWER_RESOLUTION) + 1 probes more."""
+    from furncheck.suggest.line_search import LOWER_RESOLUTION, _first_valid
+
+    def margin(window_end: float):
+        def at(step: float) -> float:
+            calls.append(step)
+            return -math.inf if step < 0.2 else window_end - step
+        return at
+
+    calls: list = []
+    below, first, beyond = _first_valid(margin(0.25), 0.3, -math.inf)
+    assert calls[:2] == [pytest.approx(0.315), 0.3]
+    assert below[1] == -math.inf and below[0] < 0.2 <= first[0] <= 0.25 and first[1] >= 0
+    assert beyond == (0.3, pytest.approx(-0.05), False)
+    calls = []
+    assert _first_valid(margin(0.19), 0.3, -math.inf) is None
+    bisections = [step for step in calls[2:] if step < 0.3]
+    assert 0 < len(bisections) <= math.ceil(math.log2(1 / LOWER_RESOLUTION)) + 1
 
 
 STOOL_LEG_CUT_TOO_LONG = """\

@@ -63,6 +63,7 @@ class Found:
     low: float
     high: float
     limited: bool = False       # high is the search limit (valid; not searched beyond)
+    parts: frozenset = frozenset()  # what it changes: its DOFs, a mirror pair as one
 
 
 class ContinuousSearch:
@@ -110,7 +111,12 @@ class ContinuousSearch:
 
     def run(self, directions: list[Candidate], wanted: int) -> list[Found]:
         """Line-search the directions in order until ``wanted`` have a valid interval (at
-        most LINE_SEARCHES_PER_SUGGESTION x wanted searches)."""
+        most LINE_SEARCHES_PER_SUGGESTION x wanted searches).  A direction whose DOFs
+        contain those of another with a valid interval is not one of them, a mirror pair
+        changed together counting as one (a suggestion never changes a DOF it does not
+        need: ``candidates`` skips such combinations as the linearization predicts them,
+        this where the full checks found them; a bench's legs moved apart together are
+        not dropped for one leg moved alone, which breaks the mirror)."""
         margins = self.margins
         own_margin = utilization_margin(self.report)
         found: list[Found] = []
@@ -127,9 +133,14 @@ class ContinuousSearch:
                 candidate.enter, tuple(probes),
                 None if interval is None else (interval.low, interval.high),
                 tuple(d.unit(self.editor.design) for d in dofs)))
-            if interval is not None:
-                found.append(Found(dofs, candidate.direction, interval.low, interval.high,
-                                   interval.limited))
+            parts = frozenset(frozenset(dofs[candidate.dofs.index(i)] for i in group)
+                              for group in candidate.units) if candidate.units \
+                else frozenset(frozenset((dof,)) for dof in dofs)
+            if interval is None or any(f.parts < parts for f in found):
+                continue
+            found = [f for f in found if not parts < f.parts]
+            found.append(Found(dofs, candidate.direction, interval.low, interval.high,
+                               interval.limited, parts))
         return found
 
     def representatives(self, found: Found) -> list[tuple[Design, float, tuple[float, ...]]]:

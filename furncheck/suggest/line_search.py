@@ -161,6 +161,10 @@ def _first_valid(margin, predicted: float, start: float, aim: float = math.inf,
             probed.append((predicted, at))
             if at >= 0.0:
                 return previous, (predicted, at), (step, value, False)
+            if start == -math.inf and np.isfinite(at):
+                found = _past_failing(margin, predicted, probed)
+                if found is not None:
+                    return (*found, (predicted, at, False))
         if step >= MAX_STEP:
             return None
         growth = GROWTH[1]
@@ -171,6 +175,32 @@ def _first_valid(margin, predicted: float, start: float, aim: float = math.inf,
             growth = min(max(crossing * FIRST_PROBE / step, GROWTH[0]), GROWTH[2])
         previous, step = (step, value), min(step * growth, MAX_STEP)
     return None
+
+
+def _past_failing(margin, high: float, probed: list):
+    """Where the design fails outright (margin -inf: it topples, slides or loses a
+    joint) and the prediction ``high`` fails by a finite margin (the violation repaired
+    before it, another check failing there: a bench's legs moved apart hold it up, and
+    the seat they span sags), the steps just past the repair, before the other check
+    fails too: the first step with a finite margin, bisected between 0 and ``high`` to
+    LOWER_RESOLUTION of itself; ((step, -inf) of the last failing one, (step, margin) of
+    a valid one) as ``_first_valid`` returns them, or None where none is valid (the
+    other check fails as soon as the repair holds).  (The bench-tips bench in the
+    elastic model: its legs moved apart hold it from 230 mm, its seat sags past its
+    limit beyond 254 mm; predicted 281, where the seat sags.)"""
+    low, high_value = 0.0, None
+    while high - low > max(LOWER_RESOLUTION * high, MIN_RESOLUTION):
+        middle = 0.5 * (low + high)
+        value = margin(middle)
+        probed.append((middle, value))
+        if value >= 0.0:
+            return (low, -math.inf), (middle, value)
+        if value == -math.inf:
+            low = middle
+        else:
+            high, high_value = middle, value
+    return None if high_value is None or high_value < 0.0 else ((low, -math.inf),
+                                                                 (high, high_value))
 
 
 def _before_reach(editor: Editor, dofs: tuple[Dof, ...], direction: np.ndarray, margin,

@@ -66,10 +66,22 @@ def wall_anchors(search: Search) -> Fix | None:
                              if candidate is not None)
     if fix is None:
         return None
-    force = max((a.size for case in fix.report.cases for a in case.anchors
-                 if a.index >= len(design.anchors)), default=0.0)
-    advice = f"{fix.advice[:-1]}; each takes at most {plain_number(force, 3)} N."
-    return replace(fix, advice=advice)
+    return replace(fix, advice=f"{fix.advice[:-1]}; {_largest_forces(fix, design)}.")
+
+
+def _largest_forces(fix: Fix, design: Design) -> str:
+    """Words for the largest force an added fixing takes, in any case, and where the
+    design had fixings, the largest one of those takes then ('each takes at most 100
+    N' read as if every fixing did, where the old ones still took 142 N)."""
+    def largest(added: bool) -> float:
+        return max((a.size for case in fix.report.cases for a in case.anchors
+                    if (a.index >= len(design.anchors)) is added), default=0.0)
+
+    new = f"at most {plain_number(largest(True), 3)} N"
+    if not design.anchors:
+        return f"each takes {new}"
+    return f"each added fixing takes {new}, each of the {len(design.anchors)} it has " \
+           f"at most {plain_number(largest(False), 3)} N"
 
 
 def _candidates(search: Search) -> Iterator[tuple[Candidate | None, Candidate]]:

@@ -51,11 +51,13 @@ second."""
 LOCK_SLACK = 1e-9
 """A locked DOF counts as unchanged within this (file unit or degrees: round-off)."""
 
-FINISHED = 3
+FINISHED = 4
 """Candidates of a rule that fail only by bending (elastic model) that are finished with
-thicker planks at most: the last ones checked (the deepest rail, the biggest part), of
-which the one that needs the least extra board is kept (a 96 mm rail under a table top
-may spare the top that a 48 mm one leaves sagging)."""
+thicker planks at most: those whose planks bend least (``_nearest``), of which the one
+that needs the least extra board is kept (a 96 mm rail under a table top may spare the
+top that a 48 mm one leaves sagging).  (Three left out the table's 72 mm rail under its
+top's middle once the rails under its overhanging edges met its legs, and offered a
+96 mm one for the same thicker legs.)"""
 
 BENDING = ("sagging", "overstressed")
 """The violations a thicker plank repairs (``thicker.finish``)."""

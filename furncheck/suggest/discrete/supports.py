@@ -268,12 +268,17 @@ def _rail(shelf: Plank, span, depth: float, thickness: float, side: float, edge:
           name: str) -> Plank:
     """The rail ``name``, ``depth`` deep and ``thickness`` thick, on edge under ``shelf``
     along ``span`` (``_rail_span``): under the long edge on ``side`` (``edge`` 1) or
-    under the middle (``edge`` 0)."""
-    frame, _, _, start, stop, width = span
+    under the middle (``edge`` 0).  Under an edge that overhangs the planks holding the
+    shelf's ends (a desk's top 25 mm past its end panels, front and back), the rail is
+    set back flush with the nearer of their edges, where it meets both: under the very
+    edge it met neither, and the rule offered only the rail under the middle."""
+    frame, low, high, start, stop, width = span
     axis, across = frame[:, 0], frame[:, 1] * side
     down = -frame[:, 2] if frame[2, 2] > 0 else frame[:, 2]
+    reach = min(0.5 * width, *(float(((end.corners - shelf.center_array) @ across).max())
+                               for end in (low, high)))
     centre = (shelf.center_array + axis * 0.5 * (start + stop)
-              + across * edge * (0.5 * width - 0.5 * thickness)
+              + across * edge * (reach - 0.5 * thickness)
               + down * (shelf.half_extents[2] + 0.5 * depth))
     return board(name, stop - start, depth, thickness, centre, axis, across)
 
