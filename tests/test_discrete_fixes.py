@@ -1173,6 +1173,13 @@ def test_pads_left_out_where_the_boards_that_finish_them_hold_the_table_down():
     assert pads and all(t.outcome != "found" for t in pads)
     assert any("thicker boards alone make the design valid" in t.reason for t in pads)
     assert [t.outcome for t in trials if t.rule == "thicker board"][-1] == "found"
+    # the advice tells the maker that the weight holds it, and by how little
+    said = re.search(r"; their weight alone also keeps it from sliding: friction then gives "
+                     r"up to ([\d.]+) N \(mu W\) against the 110 N push in case 'shove', "
+                     r"([\d.]+) % to spare \(non-slip pads would add more\)\.$", fix.advice)
+    assert said, fix.advice
+    assert float(said.group(1)) == pytest.approx(0.5 * weight, abs=0.5)
+    assert float(said.group(2)) == pytest.approx(100 * (0.5 * weight / 110.0 - 1), abs=0.05)
 
 
 def test_a_thicker_top_alone_where_the_legs_cannot_grow():

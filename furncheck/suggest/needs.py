@@ -136,9 +136,7 @@ def _sliding(design: Design, geometry: Geometry, where: str, case: CaseResult | 
         return part
     if _on_walls(design, geometry, where):
         return Need("sliding", where, case_name, why="it leans on walls or is anchored")
-    forces, _ = _group_loads(design, geometry, where, case_name)
-    total = forces.sum(axis=0)
-    weight, push = float(-total[2]), float(np.hypot(total[0], total[1]))
+    weight, push = weight_and_push(design, geometry, where, case_name)
     mu = design.material.friction
     if weight <= 0.0:
         return Need("sliding", where, case_name, why="its loads lift it")
@@ -157,6 +155,16 @@ def _sliding(design: Design, geometry: Geometry, where: str, case: CaseResult | 
         "push": push, "weight": weight, "friction": mu, "holds": mu * weight,
         "extra_mass": (needed - weight) / GRAVITY, "friction_needed": push / weight,
         "ratio": push / (mu * weight)})
+
+
+def weight_and_push(design: Design, geometry: Geometry, where: str,
+                    case_name: str | None) -> tuple[float, float]:
+    """(N, N): the weight W that the grounded group of planks named by ``where`` presses
+    on the floor with in the case, and the sideways push H on it (the horizontal
+    resultant of its weight and loads): friction holds it as a whole while H <= mu W."""
+    forces, _ = _group_loads(design, geometry, where, case_name)
+    total = forces.sum(axis=0)
+    return float(-total[2]), float(np.hypot(total[0], total[1]))
 
 
 def _sliding_part(design: Design, geometry: Geometry, where: str,

@@ -29,6 +29,7 @@ the job).
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -37,6 +38,7 @@ from furncheck.check import check_design
 from furncheck.design.model import Design
 from furncheck.geometry import Geometry, Joint, analyze, interpenetrations
 from furncheck.nail_groups import nail_row
+from furncheck.plain import plain_number
 from furncheck.result import DesignReport, JointResult
 from furncheck.suggest.discrete.common import (
     BENDING,
@@ -47,6 +49,7 @@ from furncheck.suggest.discrete.common import (
     upright,
 )
 from furncheck.suggest.discrete.growth import cut_phrase, grown
+from furncheck.suggest.needs import weight_and_push
 from furncheck.suggest.symmetry import MirrorPlane, mirror_planes
 from furncheck.suggest.tried import FOUND, Trial
 
@@ -95,7 +98,7 @@ def boards_alone(search: Search, thickened: dict, rule: str) -> Fix | None:
     design has, pruned as ``_pruned`` prunes them); else None.  A heavier board holds a
     piece down as well as stiffening it: a table that slid under a shove (mu W less than
     the push) and sagged, given non-slip pads and a thicker top and legs, stood on its
-    own feet with the boards alone, its weight from 124 to 237 N (mu W from 62 to 118 N
+    own feet with the boards alone, its weight from 124 to 237 N (mu W from 62 to 118.5 N
     against 110), and a maker should not be sent for pads that do nothing.  (The boards
     are those pruned with the part: a design turned off the world's axes, whose mirror
     planes ``_alike`` does not find, may keep one leg thinner than its image, too light
@@ -113,9 +116,40 @@ def boards_alone(search: Search, thickened: dict, rule: str) -> Fix | None:
     report = check_design(edited, after)
     if not report.valid:
         return None
-    return _fix(search, *_pruned(search, design, geometry, mirror_planes(design), existing,
-                                 (edited, report)),
-                f"the boards that finished the {rule} candidate, without it")
+    fix = _fix(search, *_pruned(search, design, geometry, mirror_planes(design), existing,
+                                (edited, report)),
+               f"the boards that finished the {rule} candidate, without it")
+    held = _held_by_weight(search, fix.design)
+    return fix if not held else replace(fix, advice=f"{fix.advice[:-1]}; {held}.")
+
+
+def _held_by_weight(search: Search, edited: Design) -> str:
+    """Words for the sliding that ``edited``'s heavier boards hold by their weight alone
+    (``boards_alone``): per sliding violation of the design, the friction mu W it then
+    has against the push, and how much of it is to spare ('' where none slid, or a part
+    slid on what it rests on): a maker should know that the boards, not a fix of the
+    sliding, hold the shove, and by how little."""
+    sliding = [v for v in search.report.violations if v.kind == "sliding"]
+    if not sliding:
+        return ""
+    after = analyze(edited)
+    said = []
+    mu = edited.material.friction
+    for violation in sliding:
+        try:
+            weight, push = weight_and_push(edited, after, violation.where, violation.case)
+        except (KeyError, ValueError):
+            continue
+        if push <= 0.0 or mu * weight < push:
+            continue
+        spare = mu * weight / push - 1.0
+        said.append(f"friction then gives up to {plain_number(mu * weight, 3)} N (mu W) "
+                    f"against the {plain_number(push, 3)} N push in case "
+                    f"'{violation.case}', {plain_number(100.0 * spare, 2)} % to spare")
+    if not said:
+        return ""
+    return "their weight alone also keeps it from sliding: " + "; ".join(said) + \
+        " (non-slip pads would add more)"
 
 
 def finish(search: Search, edited: Design, geometry: Geometry,
