@@ -47,6 +47,26 @@ def test_a_mirror_pair_moves_apart_or_closer_together():
         "Move leg_l and leg_r closer together by 20 mm each (valid for 18-24 mm each)."
 
 
+def test_a_combined_change_quotes_its_first_amount_the_others_in_proportion():
+    """Two phrases, the legs apart by 20 mm each and the seat 30 mm higher: the interval
+    (0.9-1.2 of the step) is the first phrase's, 18-24 mm each, and the other change
+    scales with it, as the words say (a woodworker read 'of the first change' as code);
+    a combined change valid up to the search's limit names that limit as the limit for
+    the changes together (the limit of one change alone: half the design's size)."""
+    stool = with_model(load_design(str(CATALOG / "stool.yaml")), "rigid")
+    assert advise(stool, {"leg_l.x": -20.0, "leg_r.x": 20.0, "seat.z": 30.0}) == (
+        "Move leg_l and leg_r apart by 20 mm each and raise seat by 30 mm (valid for "
+        "18-24 mm each, the other change in proportion).")
+    assert advise(stool, {"leg_l.x": -20.0, "leg_r.x": 20.0, "seat.z": 30.0},
+                  limited=True).startswith(
+        "Move leg_l and leg_r apart by 20 mm each and raise seat by 30 mm (valid for "
+        "18-24 mm each, the other change in proportion; the search stopped there, at its "
+        "limit for these changes together)")
+    assert advise(stool, {"seat.z": 30.0}, limited=True).startswith(
+        "Raise seat by 30 mm (valid for 27-36 mm; the search stopped there, at half the "
+        "design's size)")
+
+
 def test_a_tilt_says_where_the_top_goes_and_quotes_magnitudes():
     """leg_r turned -7.55 degrees about y: its top (local x = world +z) turns toward -x,
     toward leg_l; the amount and the interval (5.04-10.1 degrees: 0.667 and 1.333 of the

@@ -311,7 +311,7 @@ def _line_search(search: LineSearch) -> str:
         """The first DOF's change at ``step``, signed, in its unit."""
         return f"{_n(step * lead)} {unit}"
 
-    first = " of the first change" if len(search.dofs) > 1 else ""
+    first = f" of {search.dofs[0]}" if len(search.dofs) > 1 else ""
     if search.interval is not None:
         low, high = search.interval
         return f"{names}: valid for {at(low)} to {at(high)}{first}"

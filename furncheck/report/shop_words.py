@@ -69,16 +69,19 @@ def continuous_advice(dofs: tuple[str, ...], changes: tuple[float, ...],
                       limited: bool, original: Design, edited: Design,
                       follow: str = "") -> str:
     """The suggestion as one sentence: its phrases joined by 'and', then the valid interval
-    of the first phrase's amount, then ``follow`` (``follow_phrase``)."""
+    of the first phrase's amount ('valid for 157-194 mm each, the other change in
+    proportion': the others scale with it; 'of the first change' read as code to a
+    woodworker), then ``follow`` (``follow_phrase``)."""
     sentence, first_each, count = _changes_sentence(dofs, changes, units, original, edited)
     lead = abs(changes[0]) / step if step else 0.0
     low, high = interval
     unit = _unit(units[0])
     each = " each" if first_each else ""
-    first = " of the first change" if count > 1 else ""
+    first = "" if count <= 1 else ", the other change in proportion" if count == 2 \
+        else ", the other changes in proportion"
     near, far = _amount(low * lead), _amount(high * lead)
     limit = (SEARCH_LIMITS["deg" if units[0] == "deg" else "length"] if len(dofs) == 1
-             else "its step limit") if limited else ""
+             else "its limit for these changes together") if limited else ""
     if near != far:
         valid = f"valid for {near}-{far} {unit}{each}{first}"
         if limited:
