@@ -23,7 +23,8 @@ design, and ranked by ``ShopScore.key`` (smaller first), lexicographically:
    lowered to 80 mm: another piece), or a push at the top carried down with its plank
    below the rest of the piece by more than PUSH_DROP_SHARE of its height (a bookcase's
    top lowered under a child's pull, its sides as tall as before), or an
-   upright plank turned in plan by more than TURN_LIMIT degrees (a leg out of square);
+   upright plank turned in plan by more than TURN_LIMIT degrees (a leg out of square), or
+   a plank added standing on the floor under a piece that hangs on a wall (a floor unit);
 2. ``broken``: mirror relations the edit breaks (``symmetry.broken_pairs``: a pair of
    mirror planks no longer mirrored, a plank on the mirror plane no longer symmetric, or
    an added plank without a mirror image among the added ones)
@@ -280,7 +281,26 @@ def implausible(original: Design, geometry: Geometry, edited: Design,
         if abs(after - before) > HEIGHT_SHARE * before:
             reasons.append(f"{plank_id} ends {amount(after / scale)} {unit} above the floor "
                            f"(it was {amount(before / scale)} {unit}: another piece)")
+    reasons += _stood_on_the_floor(original, edited)
     return tuple(reasons)
+
+
+def _stood_on_the_floor(original: Design, edited: Design) -> list[str]:
+    """A piece that hangs on a wall (held by its anchors, no plank within the tolerance
+    of the floor) given an added plank that stands on the floor: a floor unit, another
+    piece (a wall shelf 1.4 m up offered a 1.46 m panel under it, where a maker adds a
+    cleat or a stronger fixing)."""
+    def on_floor(plank: Plank) -> bool:
+        return float(plank.corners[:, 2].min()) <= original.tolerance
+
+    if not original.anchors or any(on_floor(plank) for plank in original.planks):
+        return []
+    standing = [plank.id for plank in edited.planks
+                if plank.id not in original.plank_index and on_floor(plank)]
+    if not standing:
+        return []
+    return [f"{names(standing)} {'stands' if len(standing) == 1 else 'stand'} on the floor "
+            f"under a piece that hangs on the wall: a floor unit, another piece"]
 
 
 def _sloped(original: Design, edited: Design, planks: set[str]) -> list[str]:
