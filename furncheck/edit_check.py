@@ -1,6 +1,7 @@
 """Whether an edit of a design (``dofs.apply_dof``) is still the design: the same joints
 and contacts (none lost, none gained but a near miss closing, a plank joined to nothing
-coming to rest on the face its end cut into, or, for the edits of an invalid design, a
+or drawn through another coming to rest on the face its end cut into, or, for the
+edits of an invalid design, a
 plank coming to stand on the ground), no plank cutting into another, no plank shrunk to
 nothing, no anchor moved off its wall.
 
@@ -20,6 +21,7 @@ from furncheck.geometry import (
     Geometry,
     analyze,
     cut_in_pairs,
+    drawn_through_closing,
     interpenetrations,
 )
 from furncheck.plain import plain_number
@@ -56,7 +58,7 @@ def check_edit_many(original: Geometry, edits: list[Design], design: Design,
     sized = [k for k, (problem, _) in enumerate(out) if problem is None]
     tables = EditedTables(design, original, [edits[k] for k in sized])
     geometries = tables.geometries()
-    cut_in = cut_in_pairs(design, original)
+    cut_in = cut_in_pairs(design, original) | drawn_through_closing(design, original)
     problems = [None if kept else _edit_problem(original, geometry, cut_in, stand)
                 for kept, geometry in zip(tables.kept, geometries)]
     clear = [n for n, problem in enumerate(problems) if problem is None]
@@ -103,8 +105,9 @@ def _cut_problem(edited: Design, cutting: list[tuple[str, str, float]]) -> str |
 def _edit_problem(original: Geometry, geometry: Geometry,
                   cut_in: set[tuple[str, str]] = frozenset(), stand: bool = False) -> str | None:
     """Why ``geometry`` (of an edit) no longer has the ``original``'s joints and contacts,
-    or None.  ``cut_in``: the (face, edge) joints that planks joined to nothing may form
-    with the faces their ends cut into (``geometry.cut_in_pairs``); ``stand``: planks may
+    or None.  ``cut_in``: the (face, edge) joints that planks joined to nothing, or drawn
+    through another, may form with the faces their ends cut into (``geometry.cut_in_pairs``,
+    ``drawn_through_closing``); ``stand``: planks may
     come to stand on the ground (``check_edit_many``)."""
     known = {(v.kind, v.where) for v in original.violations}
     problems = [v for v in geometry.violations if (v.kind, v.where) not in known]

@@ -28,6 +28,7 @@ The package, by job:
 from furncheck.geometry.analysis import (
     analyze,
     drawn_through,
+    drawn_through_closing,
     follow,
     follow_many,
     interpenetrations,
@@ -56,6 +57,7 @@ def __getattr__(name: str):
 
 
 __all__ = ["Contact", "EditMargins", "EditedTables", "Geometry", "Joint", "NearMiss", "analyze",
-           "box_neighbours", "cut_in_pairs", "cut_ins", "drawn_through", "edit_margins_many",
+           "box_neighbours", "cut_in_pairs", "cut_ins", "drawn_through",
+           "drawn_through_closing", "edit_margins_many",
            "end_bearing",
            "end_depth", "end_gap", "follow", "follow_many", "interpenetrations", "nail_count"]

@@ -30,9 +30,11 @@ from furncheck.geometry.fit import (
     _cut_in_phrase,
     _fmt_len,
     _fmt_point,
+    _nearest_touch,
     _plural,
     box_neighbours,
     cut_in_pairs,
+    cut_ins,
 )
 from furncheck.geometry.model import (
     _GEOMETRY_EPS,
@@ -445,13 +447,34 @@ def drawn_through(design: Design, geometry: Geometry) -> list[Violation]:
     found = []
     for b in sorted(first, key=index.__getitem__):
         a, depth = first[b]
-        found.append(Violation(
-            "disconnected", f"{a}/{b}", None,
-            f"{a} and {b} are drawn through each other, {_fmt_len(depth, design)} deep "
-            f"(tolerance {_fmt_len(design.tolerance, design)}): no joint forms; move one "
-            "out of the other, or remove one if it is drawn twice",
-            design.line_of(f"planks[{index[b]}]")))
+        touch = _nearest_touch(design, index[a], index[b])
+        if touch is not None and touch.gap < 0.0:   # an end sunk into the other's face
+            told = (f"an end of {touch.edge.id} runs {_fmt_len(-touch.gap, design)} past "
+                    f"the face of {touch.face.id} it meets (tolerance "
+                    f"{_fmt_len(design.tolerance, design)}): no joint forms; draw it back "
+                    "onto that face (a board cut too long), or move it out")
+        else:
+            told = (f"{a} and {b} are drawn through each other, {_fmt_len(depth, design)} "
+                    f"deep (tolerance {_fmt_len(design.tolerance, design)}): no joint "
+                    "forms; move one out of the other, or remove one if it is drawn twice")
+        found.append(Violation("disconnected", f"{a}/{b}", None, told,
+                               design.line_of(f"planks[{index[b]}]")))
     return found
+
+
+def drawn_through_closing(design: Design, geometry: Geometry) -> set[tuple[str, str]]:
+    """(face, edge) plank ids of the joints that the pairs drawn through each other
+    (``drawn_through``) would form where an end of one cuts into the other's face: a leg
+    drawn 20 mm too long, up through the seat it stands under (joined to a rung, so not
+    to nothing).  The joints a repair that draws the end back may add, as it may close a
+    near miss (``cut_in_pairs`` for a plank joined to nothing)."""
+    closing = set()
+    for violation in drawn_through(design, geometry):
+        a, b = (design.plank_index[i] for i in violation.where.split("/", 1))
+        for edge, face in ((a, b), (b, a)):
+            if cut_ins(design, edge, np.array([face])):
+                closing.add((design.planks[face].id, design.planks[edge].id))
+    return closing
 
 
 def _connectivity_violations(design: Design, joints: list[Joint],

@@ -28,7 +28,13 @@ from furncheck.dofs import (
     dof_value,
 )
 from furncheck.edit_check import design_problem
-from furncheck.geometry import Geometry, analyze, cut_in_pairs, interpenetrations
+from furncheck.geometry import (
+    Geometry,
+    analyze,
+    cut_in_pairs,
+    drawn_through_closing,
+    interpenetrations,
+)
 from furncheck.result import DesignReport
 from furncheck.statics import CaseStatics, LineStarts, build_model, solve_load_case
 from furncheck.validity import case_margin
@@ -65,7 +71,7 @@ class Editor:
         self.scales: dict[Dof, float] = {}
         self._joints = _joint_set(geometry)
         self._closing = {miss.planks for miss in geometry.near_misses if len(miss.planks) == 2} \
-            | cut_in_pairs(design, geometry)
+            | cut_in_pairs(design, geometry) | drawn_through_closing(design, geometry)
         self.checks = 0
 
     def scale(self, dof: Dof) -> float:
@@ -104,8 +110,9 @@ class Editor:
     def keeps(self, edited: Design) -> Geometry | None:
         """The geometry of ``edited`` if it has no geometric violation, keeps the joints of
         the design (none lost; none added unless the joints are listed in the file, or
-        the design missed that joint narrowly, or a plank joined to nothing cut its end
-        into that face (``geometry.cut_in_pairs``): closing it is the point) and no two
+        the design missed that joint narrowly, or a plank joined to nothing, or drawn
+        through the other, cut its end into that face (``geometry.cut_in_pairs``,
+        ``drawn_through_closing``): closing it is the point) and no two
         planks cut into each other; else None.  Ground contacts may change: standing a
         hovering leg on the floor is the point of some suggestions.  A plank shrunk to no
         length or width, or an anchor moved off its wall, is refused too

@@ -89,7 +89,10 @@ class Margins:
         self.blocked: dict[str, str] = {}
         self._edited: dict[Dof, tuple[float, Design, Design]] = {}   # (step apart, +, -)
         self.alternatives: list[list[Margin]] = []
-        if geometry.violations:
+        if geometry.violations or any(v.kind == "disconnected" for v in report.violations):
+            # (the report's: two planks drawn through each other are told by the check,
+            # ``geometry.drawn_through``, not by the geometry: a leg drawn too long, up
+            # through the seat, is repaired by drawing it back before its statics count)
             self.dofs = [dof for dof in dofs if self._movable(dof)]
             self.margins = self._geometric(report)
         else:
