@@ -11,14 +11,14 @@ import click
 
 from furncheck import exitcodes
 from furncheck import tolerances as tol
-from furncheck.files import utf8
+from furncheck.files import neutral, utf8
 
 
 def fail(message: str | list[str]) -> NoReturn:
     """One line on stderr (per problem, for a design file's list of them), exit code 2
     (bad input or usage)."""
     for problem in [message] if isinstance(message, str) else message:
-        click.echo(f"furncheck: {problem}", err=True)
+        click.echo(neutral(f"furncheck: {problem}"), err=True)
     raise click.exceptions.Exit(exitcodes.BAD_INPUT)
 
 

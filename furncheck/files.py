@@ -29,6 +29,14 @@ def utf8(text: str) -> bytes:
     return text.encode("utf-8", "backslashreplace")
 
 
+def neutral(text: str) -> str:
+    """A text report's lines with '##[' written '#\\x23[': a GitHub Actions runner reads
+    '##[' anywhere in a line of the log as a workflow command (the old form,
+    '##[error]...'), and a file's path, a design's name or a load case's name, which
+    the lines quote, may hold one."""
+    return text.replace("##[", "#\\x23[") if "##[" in text else text
+
+
 def write_atomically(path: str, data: bytes, *, durable: bool = False,
                      follow_links: bool = True) -> None:
     """Replace the file at ``path`` by ``data`` in one step (see ``replacing``)."""

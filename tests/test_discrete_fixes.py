@@ -1182,6 +1182,44 @@ def test_pads_left_out_where_the_boards_that_finish_them_hold_the_table_down():
     assert float(said.group(2)) == pytest.approx(100 * (0.5 * weight / 110.0 - 1), abs=0.05)
 
 
+LOOSE_TOP = """\
+furncheck: 1
+name: loosetop
+units: mm
+planks:
+  - {id: top, size: [1000, 600], center: [0, 0, 726]}
+  - {id: leg_l, size: [720, 500], center: [-430, 0, 360], rotation: [0, -90, 0]}
+  - {id: leg_r, size: [720, 500], center: [430, 0, 360], rotation: [0, -90, 0]}
+  - {id: apron, size: [848, 100], center: [0, -244, 670], rotation: [90, 0, 0]}
+joints:
+  - {planks: [leg_l, top], type: rests}
+  - {planks: [leg_r, top], type: rests}
+  - [leg_l, apron]
+  - [leg_r, apron]
+loads:
+  - {plank: top, mass: 30, at: [0, 0, 732]}
+load_cases:
+  shove:
+    - {plank: top, force: [40, 0, 0], at: [-500, 0, 726]}
+"""
+
+
+def test_a_top_sliding_on_its_rests_is_not_said_held_by_the_tables_weight():
+    """A reviewer's table whose top rests loose on its legs, shoved 40 N: the top slides
+    on its rests (what holds it is mu times what presses it on them, 0.5 x 132 N), not
+    the whole table on the floor (0.5 x 235 N).  A fix of thicker boards that holds it
+    said 'their weight alone also keeps it from sliding: friction then gives up to 118
+    N', the whole table's; where a part slides on what it rests on (or a piece leans on
+    a wall), the advice says nothing of the floor's friction."""
+    design = parsed(LOOSE_TOP, "elastic")
+    geometry = analyze(design)
+    report = check_design(design, geometry)
+    assert any(v.kind == "sliding" for v in report.violations)
+    fixes = discrete_fixes(design, geometry, report)
+    assert fixes and all(f.report.valid for f in fixes)
+    assert not any("keeps it from sliding" in f.advice for f in fixes)
+
+
 def test_a_thicker_top_alone_where_the_legs_cannot_grow():
     """coffee-table-splayed (elastic): its top sags (12 mm over a 788 mm span) and its
     legs bow with the top's turning ends.  The legs cannot grow (each end face against

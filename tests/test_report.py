@@ -285,14 +285,22 @@ def test_annotation_paths_lose_dot_slash_and_text_lines_never_start_a_command():
     """An annotation's ``file`` is the path as the SARIF log's URI has it ('./designs//x'
     named 'designs/x'); the text report shows a path that begins with '::' as './::...':
     a GitHub runner reads a log line that begins with '::' as a workflow command (a
-    design named '::error::x.yaml' wrote an annotation from the text report)."""
+    design named '::error::x.yaml' wrote an annotation from the text report), after any
+    blanks (the runner strips them), and writes '##[' as '#\\x23[' anywhere (the runner's
+    old command form, read anywhere in a line)."""
     from furncheck.report.github import annotation_path
     from furncheck.report.text import shown
 
     assert annotation_path("./designs//x.yaml") == "designs/x.yaml"
     assert annotation_path("/abs/x.yaml") == "/abs/x.yaml"
     assert shown("::error::x.yaml") == "./::error::x.yaml"
+    assert shown(" ::error::x.yaml") == "./ ::error::x.yaml"    # the runner strips blanks
     assert shown("designs/::x.yaml") == "designs/::x.yaml"
+    # the old form, '##[error]...', is read anywhere in a line: every text report's lines
+    broken = DesignReport(design="a##[error]z.yaml", name="z", valid=None,
+                          error="line 2: planks: expected a list")
+    assert "##[" not in render(BatchReport((broken,)), "text")
+    assert "a#\\x23[error]z.yaml" in render(BatchReport((broken,)), "text")
     report = DesignReport(design="::warning title=x::y.yaml", name="y", valid=None,
                           error="line 2: planks: expected a list")
     assert not any(line.startswith("::") for line in render(BatchReport((report,)),

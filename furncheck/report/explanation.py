@@ -314,7 +314,9 @@ def _line_search(search: LineSearch) -> str:
     first = f" of {search.dofs[0]}" if len(search.dofs) > 1 else ""
     if search.interval is not None:
         low, high = search.interval
-        return f"{names}: valid for {at(low)} to {at(high)}{first}"
+        dropped = f" (not offered: {' + '.join(search.contains)}, valid too, changes less)" \
+            if search.contains else ""
+        return f"{names}: valid for {at(low)} to {at(high)}{first}{dropped}"
     if not search.probes:
         return f"{names}: not probed"
     reach = f"probed {plural(len(search.probes), 'step')} as far as {at(search.furthest)}" \

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 
+from furncheck.files import neutral
 from furncheck.ranges import DofRange
 from furncheck.report.numbers import format_number, json_ready
 from furncheck.report.text import shown
@@ -47,7 +48,7 @@ def render_text(design: str, ranges: list[DofRange]) -> str:
     for dof, value, interval, unit, reason in rows:
         lines.append(f"  {dof:<{widths[0]}}  {value:>{widths[1]}}  {interval:<{widths[2]}}  "
                      f"{unit:<{widths[3]}}  {reason}".rstrip())
-    return "\n".join(lines) + "\n"
+    return neutral("\n".join(lines) + "\n")
 
 
 def _limited(item: DofRange) -> str:

@@ -25,6 +25,7 @@ from typing import Any
 from furncheck.design.model import Design
 from furncheck.design.write import anchor_entry, plank_entry
 from furncheck.export.suggestions import Written
+from furncheck.files import neutral
 from furncheck.plain import plain_number
 from furncheck.report.common import plural
 from furncheck.report.cutlist import (
@@ -70,7 +71,12 @@ def advice(suggestion: Suggestion, original: Design) -> str:
 
 def render_text(result: SuggestionReport, original: Design,
                 written: dict[int, Written]) -> str:
-    """The verdict, then one numbered piece of advice per suggestion and its files."""
+    """The verdict, then one numbered piece of advice per suggestion and its files
+    (``text.neutral``)."""
+    return neutral(_text(result, original, written))
+
+
+def _text(result: SuggestionReport, original: Design, written: dict[int, Written]) -> str:
     lines = design_lines(result.report)
     if result.valid:
         lines.append("Nothing needs to change: the design is valid.")

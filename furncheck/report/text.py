@@ -18,6 +18,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator, Mapping
 
+from furncheck.files import neutral
 from furncheck.report.common import (
     describe_violation,
     input_errors,
@@ -48,11 +49,11 @@ def shown(path: str) -> str:
     """A file's path as a report line shows it: what is not printable (a line break in a
     file name, a byte that is not UTF-8) escaped, so that each design keeps its one
     verdict line; an empty path (an unset variable in a script) as ''; a relative path
-    that begins with '::' as './::...', the same file: a GitHub Actions runner reads a
-    line of the log that begins with '::' as a workflow command (a design named
-    '::error::x.yaml' in a pull request wrote an annotation, or '::add-mask::' and
-    '::stop-commands::' lines, into the text report's job)."""
-    if path.startswith("::"):
+    that begins with '::' (after blanks) as './::...', the same file: a GitHub Actions
+    runner reads a line of the log that begins with '::' as a workflow command (a design
+    named '::error::x.yaml' in a pull request wrote an annotation, or '::add-mask::' and
+    '::stop-commands::' lines, into the text report's job; ``neutral`` the rest)."""
+    if path.lstrip().startswith("::"):
         path = "./" + path
     if path.isprintable():
         return path or "''"
@@ -61,8 +62,8 @@ def shown(path: str) -> str:
 
 
 def piece(report: DesignReport) -> str:
-    """The design's block: ``design_lines``, each ending with a newline."""
-    return "\n".join(design_lines(report)) + "\n"
+    """The design's block: ``design_lines``, each ending with a newline (``neutral``)."""
+    return neutral("\n".join(design_lines(report)) + "\n")
 
 
 def document(entries: Iterable[Entry]) -> Iterator[str]:

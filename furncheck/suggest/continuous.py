@@ -14,7 +14,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -64,6 +64,7 @@ class Found:
     high: float
     limited: bool = False       # high is the search limit (valid; not searched beyond)
     parts: frozenset = frozenset()  # what it changes: its DOFs, a mirror pair as one
+    search: int = -1            # its line search's index in ``line_searches``
 
 
 class ContinuousSearch:
@@ -133,15 +134,27 @@ class ContinuousSearch:
                 candidate.enter, tuple(probes),
                 None if interval is None else (interval.low, interval.high),
                 tuple(d.unit(self.editor.design) for d in dofs)))
-            parts = frozenset(frozenset(dofs[candidate.dofs.index(i)] for i in group)
+            parts = frozenset(frozenset(margins.dofs[i] for i in group)
                               for group in candidate.units) if candidate.units \
                 else frozenset(frozenset((dof,)) for dof in dofs)
-            if interval is None or any(f.parts < parts for f in found):
+            if interval is None:
                 continue
+            smaller = next((f for f in found if f.parts < parts), None)
+            if smaller is not None:
+                self._contains(len(self.line_searches) - 1, smaller)
+                continue
+            for bigger in [f for f in found if parts < f.parts]:
+                self._contains(bigger.search, len(self.line_searches) - 1)
             found = [f for f in found if not parts < f.parts]
             found.append(Found(dofs, candidate.direction, interval.low, interval.high,
-                               interval.limited, parts))
+                               interval.limited, parts, len(self.line_searches) - 1))
         return found
+
+    def _contains(self, search: int, smaller) -> None:
+        """Mark line search ``search`` as left out for the smaller direction found
+        (``smaller``: a ``Found`` or the index of its line search)."""
+        names = self.line_searches[smaller if isinstance(smaller, int) else smaller.search].dofs
+        self.line_searches[search] = replace(self.line_searches[search], contains=names)
 
     def representatives(self, found: Found) -> list[tuple[Design, float, tuple[float, ...]]]:
         """The designs that may stand for ``found``, to be validated in order (the first

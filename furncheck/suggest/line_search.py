@@ -188,7 +188,7 @@ def _past_failing(margin, high: float, probed: list):
     other check fails as soon as the repair holds).  (The bench-tips bench in the
     elastic model: its legs moved apart hold it from 230 mm, its seat sags past its
     limit beyond 254 mm; predicted 281, where the seat sags.)"""
-    low, high_value = 0.0, None
+    low = 0.0
     while high - low > max(LOWER_RESOLUTION * high, MIN_RESOLUTION):
         middle = 0.5 * (low + high)
         value = margin(middle)
@@ -198,9 +198,8 @@ def _past_failing(margin, high: float, probed: list):
         if value == -math.inf:
             low = middle
         else:
-            high, high_value = middle, value
-    return None if high_value is None or high_value < 0.0 else ((low, -math.inf),
-                                                                 (high, high_value))
+            high = middle
+    return None
 
 
 def _before_reach(editor: Editor, dofs: tuple[Dof, ...], direction: np.ndarray, margin,

@@ -157,6 +157,16 @@ def _sliding(design: Design, geometry: Geometry, where: str, case: CaseResult | 
         "ratio": push / (mu * weight)})
 
 
+def floor_friction(design: Design, geometry: Geometry, where: str,
+                   case_name: str | None) -> tuple[float, float] | None:
+    """``weight_and_push`` of ``where``'s group where the floor's friction alone holds it:
+    None where it has a part resting on others (a top on its frame, held by the friction
+    on its rests) or leans on a wall or is anchored."""
+    if _parts_of(design, geometry, where) or _on_walls(design, geometry, where):
+        return None
+    return weight_and_push(design, geometry, where, case_name)
+
+
 def weight_and_push(design: Design, geometry: Geometry, where: str,
                     case_name: str | None) -> tuple[float, float]:
     """(N, N): the weight W that the grounded group of planks named by ``where`` presses

@@ -67,6 +67,8 @@ class LineSearch:
     units     : each DOF's unit ('mm', 'm' or 'deg')
     verdict   : for a failed search that ``explain`` looked into: what fails at its best
                 probe, in words ('' otherwise)
+    contains  : for a search with an interval that is not a suggestion: the DOFs of the
+                smaller direction, also valid, whose changes it contains (() otherwise)
     """
 
     dofs: tuple[str, ...]
@@ -76,6 +78,7 @@ class LineSearch:
     interval: tuple[float, float] | None
     units: tuple[str, ...] = ()
     verdict: str = ""
+    contains: tuple[str, ...] = ()
 
     @property
     def outcome(self) -> str:

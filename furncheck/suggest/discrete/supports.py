@@ -271,14 +271,22 @@ def _rail(shelf: Plank, span, depth: float, thickness: float, side: float, edge:
     under the middle (``edge`` 0).  Under an edge that overhangs the planks holding the
     shelf's ends (a desk's top 25 mm past its end panels, front and back), the rail is
     set back flush with the nearer of their edges, where it meets both: under the very
-    edge it met neither, and the rule offered only the rail under the middle."""
+    edge it met neither, and the rule offered only the rail under the middle.  Only on
+    that edge's side of the shelf's middle, and where the rail then lies on both (a
+    table's front legs, holding its top's ends, would set the rail meant for the back
+    edge under the front one: it stays under the back edge, and meets neither)."""
     frame, low, high, start, stop, width = span
     axis, across = frame[:, 0], frame[:, 1] * side
     down = -frame[:, 2] if frame[2, 2] > 0 else frame[:, 2]
-    reach = min(0.5 * width, *(float(((end.corners - shelf.center_array) @ across).max())
-                               for end in (low, high)))
+    offset = 0.5 * width - 0.5 * thickness
+    if edge:
+        reach = [(end.corners - shelf.center_array) @ across for end in (low, high)]
+        flush = min(float(r.max()) for r in reach) - 0.5 * thickness
+        if 0.0 < flush < offset and flush >= max(float(r.min()) for r in reach) \
+                + 0.5 * thickness:
+            offset = flush
     centre = (shelf.center_array + axis * 0.5 * (start + stop)
-              + across * edge * (reach - 0.5 * thickness)
+              + across * edge * offset
               + down * (shelf.half_extents[2] + 0.5 * depth))
     return board(name, stop - start, depth, thickness, centre, axis, across)
 

@@ -49,7 +49,7 @@ from furncheck.suggest.discrete.common import (
     upright,
 )
 from furncheck.suggest.discrete.growth import cut_phrase, grown
-from furncheck.suggest.needs import weight_and_push
+from furncheck.suggest.needs import floor_friction
 from furncheck.suggest.symmetry import MirrorPlane, mirror_planes
 from furncheck.suggest.tried import FOUND, Trial
 
@@ -126,9 +126,10 @@ def boards_alone(search: Search, thickened: dict, rule: str) -> Fix | None:
 def _held_by_weight(search: Search, edited: Design) -> str:
     """Words for the sliding that ``edited``'s heavier boards hold by their weight alone
     (``boards_alone``): per sliding violation of the design, the friction mu W it then
-    has against the push, and how much of it is to spare ('' where none slid, or a part
-    slid on what it rests on): a maker should know that the boards, not a fix of the
-    sliding, hold the shove, and by how little."""
+    has against the push, and how much of it is to spare ('' where none slid, or where
+    what slid is held by more than the floor's friction: a part on its rests, a piece on
+    a wall, ``needs.floor_friction``): a maker should know that the boards, not a fix of
+    the sliding, hold the shove, and by how little."""
     sliding = [v for v in search.report.violations if v.kind == "sliding"]
     if not sliding:
         return ""
@@ -136,10 +137,13 @@ def _held_by_weight(search: Search, edited: Design) -> str:
     said = []
     mu = edited.material.friction
     for violation in sliding:
-        try:
-            weight, push = weight_and_push(edited, after, violation.where, violation.case)
-        except (KeyError, ValueError):
+        if floor_friction(search.design, search.geometry, violation.where,
+                          violation.case) is None:
             continue
+        held = floor_friction(edited, after, violation.where, violation.case)
+        if held is None:
+            continue
+        weight, push = held
         if push <= 0.0 or mu * weight < push:
             continue
         spare = mu * weight / push - 1.0
