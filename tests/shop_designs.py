@@ -21,6 +21,10 @@ TILE_BENCH       a 1000 mm bench of 18 mm boards at 600 kg/m^3 on tiles (mu 0.15
 SPLAYED_STOOL    a 360 x 300 seat on four legs splayed 10 degrees, each nailed by one
                  nail, 90 kg on the seat (rigid model): the legs spread and all four
                  nails pull out.
+WALL_SHELF_LONG  a 1200 x 250 shelf, 12 mm, on two 150 x 120 cleats 900 mm apart, each
+                 screwed once to the wall 30 mm above its middle (196 N fixings), 25 kg
+                 of books spread on it: each screw pulls about 181 N out of the wall,
+                 past its rating with the weight it holds up, and the shelf sags.
 """
 
 SIDE_TABLE_RACK = """\
@@ -114,4 +118,21 @@ joints:
   - {planks: [seat, leg_mm], nails: 1}
 loads:
   - {plank: seat, mass: 90, at: [0, 0, 450.0094]}
+"""
+
+WALL_SHELF_LONG = """\
+furncheck: 1
+name: wall-shelf-long
+units: mm
+walls:
+  - {point: [0, 0, 0], normal: [0, 1, 0]}
+planks:
+  - {id: cleat_l, size: [150, 120], center: [-450, 6, 1400], rotation: [90, 0, 0]}
+  - {id: cleat_r, size: [150, 120], center: [450, 6, 1400], rotation: [90, 0, 0]}
+  - {id: shelf, size: [1200, 250], center: [0, 125, 1466]}
+anchors:
+  - {plank: cleat_l, at: [-450, 0, 1430], wall: 0, capacity: 196}
+  - {plank: cleat_r, at: [450, 0, 1430], wall: 0, capacity: 196}
+loads:
+  - {plank: shelf, mass: 25, spread: true}
 """

@@ -18,7 +18,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from shop_designs import COAT_RACK, SIDE_TABLE_RACK, SPLAYED_STOOL, TILE_BENCH, WALL_SHELF
+from shop_designs import (
+    COAT_RACK,
+    SIDE_TABLE_RACK,
+    SPLAYED_STOOL,
+    TILE_BENCH,
+    WALL_SHELF,
+    WALL_SHELF_LONG,
+)
 
 from furncheck import tolerances as tol
 from furncheck.check import check_design
@@ -544,22 +551,6 @@ def test_a_rail_under_an_overhanging_edge_is_set_back_to_meet_the_ends():
     assert offsets == {0.319}
 
 
-WALL_SHELF_LONG = """\
-furncheck: 1
-name: wall-shelf-long
-units: mm
-walls:
-  - {point: [0, 0, 0], normal: [0, 1, 0]}
-planks:
-  - {id: cleat_l, size: [150, 120], center: [-450, 6, 1400], rotation: [90, 0, 0]}
-  - {id: cleat_r, size: [150, 120], center: [450, 6, 1400], rotation: [90, 0, 0]}
-  - {id: shelf, size: [1200, 250], center: [0, 125, 1466]}
-anchors:
-  - {plank: cleat_l, at: [-450, 0, 1430], wall: 0, capacity: 196}
-  - {plank: cleat_r, at: [450, 0, 1430], wall: 0, capacity: 196}
-loads:
-  - {plank: shelf, mass: 25, spread: true}
-"""
 
 
 def test_added_fixings_say_what_the_old_ones_still_take():

@@ -11,6 +11,7 @@ import math
 from pathlib import Path
 
 import pytest
+from shop_designs import WALL_SHELF_LONG
 
 from furncheck.design.load import parse_design
 from furncheck.design.model import with_model
@@ -536,22 +537,6 @@ def test_a_reclined_slat_rolled_is_not_turned_in_plan():
     assert not [r for r in score.implausible if "in plan" in r]
 
 
-WALL_SHELF = """
-furncheck: 1
-name: wall-shelf-long
-units: mm
-walls:
-  - {point: [0, 0, 0], normal: [0, 1, 0]}
-planks:
-  - {id: cleat_l, size: [150, 120], center: [-450, 6, 1400], rotation: [90, 0, 0]}
-  - {id: cleat_r, size: [150, 120], center: [450, 6, 1400], rotation: [90, 0, 0]}
-  - {id: shelf, size: [1200, 250], center: [0, 125, 1466]}
-anchors:
-  - {plank: cleat_l, at: [-450, 0, 1430], wall: 0, capacity: 196}
-  - {plank: cleat_r, at: [450, 0, 1430], wall: 0, capacity: 196}
-loads:
-  - {plank: shelf, mass: 25, spread: true}
-"""
 SUPPORT = "  - {id: support-1, size: [1460, 250], center: [0, 125, 730], rotation: [0, 90, 0]}\n"
 CLEAT = "  - {id: cleat_m, size: [150, 120], center: [0, 6, 1400], rotation: [90, 0, 0]}\n"
 
@@ -561,13 +546,13 @@ def test_a_wall_shelf_stood_on_the_floor_is_implausible():
     panel added under it, standing on the floor, makes a floor unit, another piece (a
     maker adds a cleat or a stronger fixing); a third cleat screwed to the wall does not
     read so, nor does a panel added to a piece that stood on the floor already."""
-    with_support = WALL_SHELF.replace("anchors:", SUPPORT + "anchors:")
-    assert score_of(WALL_SHELF, with_support).implausible == (
+    with_support = WALL_SHELF_LONG.replace("anchors:", SUPPORT + "anchors:")
+    assert score_of(WALL_SHELF_LONG, with_support).implausible == (
         "support-1 stands on the floor under a piece that hangs on the wall: a floor unit, "
         "another piece",)
-    assert score_of(WALL_SHELF, WALL_SHELF.replace("anchors:", CLEAT + "anchors:")
+    assert score_of(WALL_SHELF_LONG, WALL_SHELF_LONG.replace("anchors:", CLEAT + "anchors:")
                     ).implausible == ()
-    standing = WALL_SHELF.replace("  - {id: shelf,", "  - {id: post, size: [1460, 250], "
+    standing = WALL_SHELF_LONG.replace("  - {id: shelf,", "  - {id: post, size: [1460, 250], "
                                   "center: [-600, 125, 730], rotation: [0, 90, 0]}\n"
                                   "  - {id: shelf,")
     assert score_of(standing, standing.replace("anchors:", SUPPORT + "anchors:")
