@@ -29,6 +29,16 @@ def utf8(text: str) -> bytes:
     return text.encode("utf-8", "backslashreplace")
 
 
+def readable(text: str) -> str:
+    """``text`` as the text of ``utf8``: what UTF-8 cannot hold (a file name's byte that
+    is not UTF-8, held as a lone surrogate) written out as its escape, '\\udcff', the
+    name every report shows (README, "-o FILE").  JSON would write the surrogate itself
+    as "\\udcff", an escape that reads back as a lone surrogate, which JSON leaves
+    undefined (RFC 8259 8.2: jq writes U+FFFD for it); XML and the runner's workflow
+    commands cannot hold it either."""
+    return text if text.isascii() else utf8(text).decode("utf-8")
+
+
 def neutral(text: str) -> str:
     """A text report's lines with '##[' written '#\\x23[': a GitHub Actions runner reads
     '##[' anywhere in a line of the log as a workflow command (the old form,

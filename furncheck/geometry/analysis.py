@@ -430,23 +430,9 @@ def drawn_through(design: Design, geometry: Geometry) -> list[Violation]:
     ``check.is_valid``), not part of ``analyze``: an edit that cuts into a plank is refused
     as such (``edit_check``), and the geometry of an edit that keeps the design's joints is
     the design's."""
-    through = interpenetrations(design)
-    if not through:
-        return []
-    named = {v.where for v in geometry.violations if v.kind == "disconnected"}
-    cut = cut_in_pairs(design, geometry, {p for a, b, _ in through for p in (a, b)})
     index = design.plank_index
-    first: dict[str, tuple[str, float]] = {}
-    for a, b, depth in through:
-        if index[a] > index[b]:
-            a, b = b, a
-        if f"{a}/{b}" in named or f"{b}/{a}" in named or (a, b) in cut or (b, a) in cut:
-            continue
-        if b not in first or index[a] < index[first[b][0]]:
-            first[b] = (a, depth)
     found = []
-    for b in sorted(first, key=index.__getitem__):
-        a, depth = first[b]
+    for a, b, depth in _drawn_through_pairs(design, geometry):
         touch = _nearest_touch(design, index[a], index[b])
         if touch is not None and touch.gap < 0.0:   # an end sunk into the other's face
             told = (f"an end of {touch.edge.id} runs {_fmt_len(-touch.gap, design)} past "
@@ -462,6 +448,27 @@ def drawn_through(design: Design, geometry: Geometry) -> list[Violation]:
     return found
 
 
+def _drawn_through_pairs(design: Design, geometry: Geometry) -> list[tuple[str, str, float]]:
+    """``drawn_through``'s pairs (a, b, depth m), a before b in the file, in the order of
+    b: each plank with the first plank in the file it is drawn through, those the
+    geometry's violations tell already left out."""
+    through = interpenetrations(design)
+    if not through:
+        return []
+    named = {v.where for v in geometry.violations if v.kind == "disconnected"}
+    cut = cut_in_pairs(design, geometry, {p for a, b, _ in through for p in (a, b)})
+    index = design.plank_index
+    first: dict[str, tuple[str, float]] = {}
+    for a, b, depth in through:
+        if index[a] > index[b]:
+            a, b = b, a
+        if f"{a}/{b}" in named or f"{b}/{a}" in named or (a, b) in cut or (b, a) in cut:
+            continue
+        if b not in first or index[a] < index[first[b][0]]:
+            first[b] = (a, depth)
+    return [(first[b][0], b, first[b][1]) for b in sorted(first, key=index.__getitem__)]
+
+
 def drawn_through_closing(design: Design, geometry: Geometry) -> set[tuple[str, str]]:
     """(face, edge) plank ids of the joints that the pairs drawn through each other
     (``drawn_through``) would form where an end of one cuts into the other's face: a leg
@@ -469,8 +476,8 @@ def drawn_through_closing(design: Design, geometry: Geometry) -> set[tuple[str, 
     to nothing).  The joints a repair that draws the end back may add, as it may close a
     near miss (``cut_in_pairs`` for a plank joined to nothing)."""
     closing = set()
-    for violation in drawn_through(design, geometry):
-        a, b = (design.plank_index[i] for i in violation.where.split("/", 1))
+    for a, b, _ in _drawn_through_pairs(design, geometry):
+        a, b = design.plank_index[a], design.plank_index[b]
         for edge, face in ((a, b), (b, a)):
             if cut_ins(design, edge, np.array([face])):
                 closing.add((design.planks[face].id, design.planks[edge].id))

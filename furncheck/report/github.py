@@ -15,6 +15,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator
 from pathlib import PurePosixPath
 
+from furncheck.files import readable
 from furncheck.report.common import INPUT_ERROR, describe_violation, input_errors
 from furncheck.report.entries import Entry, Summary, is_text
 from furncheck.report.text import summary_line
@@ -61,9 +62,7 @@ def command(name: str, properties: dict[str, str], message: str) -> str:
     written escaped ('bad\\udcffname.yaml', as the text report shows them), not raw."""
     props = ",".join(f"{key}={escape_property(value)}" for key, value in properties.items())
     head = f"{name} {props}" if props else name
-    line = f"::{head}::{escape_data(message)}"
-    return line if line.isascii() else \
-        line.encode("utf-8", "backslashreplace").decode("utf-8")
+    return readable(f"::{head}::{escape_data(message)}")
 
 
 def escape_data(text: str) -> str:

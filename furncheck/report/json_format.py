@@ -22,8 +22,9 @@ from collections.abc import Iterable, Iterator, Sequence
 from json.encoder import encode_basestring_ascii
 from typing import Any
 
+from furncheck.files import readable
 from furncheck.report.entries import Entry, Summary, is_text
-from furncheck.report.numbers import json_ready, readable, real_text
+from furncheck.report.numbers import json_ready, real_text
 from furncheck.result import (
     AnchorResult,
     BatchReport,

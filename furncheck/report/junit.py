@@ -23,6 +23,7 @@ import xml.etree.ElementTree as ET
 from collections.abc import Iterable, Iterator
 from typing import Any
 
+from furncheck.files import readable
 from furncheck.report.common import INPUT_ERROR, case_violations, describe_violation, plural
 from furncheck.report.entries import Entry
 from furncheck.result import BatchReport, DesignReport, Violation
@@ -128,9 +129,7 @@ def _clean(text: str) -> str:
     not UTF-8 (held as surrogates, as Python reads such names) written escaped
     ('bad\\udcffname.yaml', as every other report shows them: two such names stay two),
     control characters replaced."""
-    if not text.isascii():
-        text = text.encode("utf-8", "backslashreplace").decode("utf-8")
-    return _xml_invalid().sub("\ufffd", text)
+    return _xml_invalid().sub("\ufffd", readable(text))
 
 
 @functools.cache

@@ -12,6 +12,7 @@ import numbers
 from collections.abc import Mapping
 from typing import Any
 
+from furncheck.files import readable
 from furncheck.plain import plain_number
 from furncheck.tolerances import REPORT_DECIMALS, REPORT_SIGNIFICANT_DIGITS
 
@@ -39,18 +40,6 @@ def real_text(value: float) -> str:
     if value - value != 0.0:                    # nan or inf
         return "null"
     return float.__repr__(float(_ROUNDED % round(value, REPORT_DECIMALS)) + 0.0)
-
-
-def readable(text: str) -> str:
-    """``text`` with what UTF-8 cannot hold (a file name's byte that is not UTF-8, held as
-    a lone surrogate, as Python reads such names) written out as its escape, the text
-    ``\\udcff``: the name every report shows (README, "-o FILE").  JSON would write the
-    surrogate itself as "\\udcff", an escape that reads back as a lone surrogate, which
-    JSON leaves undefined (RFC 8259 8.2: jq writes U+FFFD for it, Python's reader keeps a
-    string that cannot be written as UTF-8)."""
-    if text.isascii():
-        return text
-    return text.encode("utf-8", "backslashreplace").decode("utf-8")
 
 
 def json_ready(value: Any) -> Any:

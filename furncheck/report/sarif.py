@@ -25,6 +25,7 @@ from typing import Any
 from urllib.parse import quote
 
 from furncheck import __version__
+from furncheck.files import utf8
 from furncheck.report.common import INPUT_ERROR, describe_violation, input_errors
 from furncheck.report.entries import Entry
 from furncheck.result import VIOLATION_KINDS, BatchReport, DesignReport
@@ -132,7 +133,7 @@ def _findings(report: DesignReport) -> list[tuple[str, int | None, str, str]]:
 def _fingerprint(identity: str, occurrence: int) -> str:
     """A result's fingerprint: 16 hex digits of the SHA-256 of its identity (rule, file,
     what it is about), and which occurrence of that identity in its file it is."""
-    digest = hashlib.sha256(identity.encode("utf-8", "backslashreplace")).hexdigest()
+    digest = hashlib.sha256(utf8(identity)).hexdigest()
     return f"{digest[:16]}:{occurrence}"
 
 

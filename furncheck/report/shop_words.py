@@ -77,19 +77,19 @@ def continuous_advice(dofs: tuple[str, ...], changes: tuple[float, ...],
     low, high = interval
     unit = _unit(units[0])
     each = " each" if first_each else ""
-    first = "" if count <= 1 else ", the other change in proportion" if count == 2 \
+    others = "" if count <= 1 else ", the other change in proportion" if count == 2 \
         else ", the other changes in proportion"
     near, far = _amount(low * lead), _amount(high * lead)
     limit = (SEARCH_LIMITS["deg" if units[0] == "deg" else "length"] if len(dofs) == 1
              else "its limit for these changes together") if limited else ""
     if near != far:
-        valid = f"valid for {near}-{far} {unit}{each}{first}"
+        valid = f"valid for {near}-{far} {unit}{each}{others}"
         if limited:
             valid += f"; the search stopped there, at {limit}"
     elif limited:       # valid from there on, as far as the search went: not a lone value
-        valid = f"valid at {near} {unit}{each}{first}, where the search stopped, at {limit}"
+        valid = f"valid at {near} {unit}{each}{others}, where the search stopped, at {limit}"
     else:
-        valid = f"valid for {near} {unit}{each}{first} only, to the search's resolution"
+        valid = f"valid for {near} {unit}{each}{others} only, to the search's resolution"
     return f"{sentence[0].upper()}{sentence[1:]} ({valid}){follow}."
 
 

@@ -139,22 +139,23 @@ class ContinuousSearch:
                 else frozenset(frozenset((dof,)) for dof in dofs)
             if interval is None:
                 continue
+            search = len(self.line_searches) - 1
             smaller = next((f for f in found if f.parts < parts), None)
             if smaller is not None:
-                self._contains(len(self.line_searches) - 1, smaller)
+                self._contains(search, smaller.search)
                 continue
             for bigger in [f for f in found if parts < f.parts]:
-                self._contains(bigger.search, len(self.line_searches) - 1)
+                self._contains(bigger.search, search)
             found = [f for f in found if not parts < f.parts]
             found.append(Found(dofs, candidate.direction, interval.low, interval.high,
-                               interval.limited, parts, len(self.line_searches) - 1))
+                               interval.limited, parts, search))
         return found
 
-    def _contains(self, search: int, smaller) -> None:
-        """Mark line search ``search`` as left out for the smaller direction found
-        (``smaller``: a ``Found`` or the index of its line search)."""
-        names = self.line_searches[smaller if isinstance(smaller, int) else smaller.search].dofs
-        self.line_searches[search] = replace(self.line_searches[search], contains=names)
+    def _contains(self, search: int, smaller: int) -> None:
+        """Mark line search ``search`` as left out for the smaller direction found by line
+        search ``smaller`` (indices into ``line_searches``)."""
+        self.line_searches[search] = replace(self.line_searches[search],
+                                             contains=self.line_searches[smaller].dofs)
 
     def representatives(self, found: Found) -> list[tuple[Design, float, tuple[float, ...]]]:
         """The designs that may stand for ``found``, to be validated in order (the first
