@@ -1049,6 +1049,39 @@ def test_what_names_a_plank_that_could_not_be_read_is_left_unchecked(plank, why)
     assert why in info.value.message and info.value.more == ()
 
 
+VALUES_ON_UNREAD_PLANKS = """\
+furncheck: 1
+planks:
+  - {id: a, size: [400, 300], centre: [0, 0, 6]}
+  - {id: b, size: [400, 300], center: [0, 0, 300]}
+walls:
+  - {point: [0, 150, 0], normal: [0, -1, 0]}
+anchors:
+  - {plank: a, at: [0, 150, 6], wall: 3, capacity: -1}
+  - {plank: q, at: [0, 150, 6], wall: 0, capacity: abc}
+  - {plank: a, at: [0, 150, 6], wall: 0, capacity: 100}
+loads:
+  - {plank: a, mass: 100kg}
+  - {plank: z, force: [1, 2]}
+  - {plank: a, mass: 5, at: [9, 9, 9]}
+"""
+
+
+def test_a_load_or_anchor_on_an_unread_plank_still_has_its_own_values_checked():
+    """Plank a's line has a problem ('centre'), so where a load or anchor on it sits is
+    left unchecked (its point, on a plank not read as the file means it), but its own
+    values are not: 'mass: 100kg' on a, an anchor's wall 3 of one and capacity -1, are
+    reported now, not once 'centre' is fixed; an unknown plank and a bad value in one
+    entry are both reported, in the order written; a load and an anchor on a with good
+    values are left unchecked, as before."""
+    with pytest.raises(DesignError) as info:
+        parse_design(VALUES_ON_UNREAD_PLANKS, "values.yaml", "yaml")
+    assert [(p.line, p.key) for p in (info.value, *info.value.more)] == [
+        (3, "planks[0].centre"), (8, "anchors[0].wall"), (8, "anchors[0].capacity"),
+        (9, "anchors[1].plank"), (9, "anchors[1].capacity"), (12, "loads[0].mass"),
+        (13, "loads[1].plank"), (13, "loads[1].force")]
+
+
 def test_a_misspelt_required_key_is_one_problem():
     """'centre' for 'center': the unknown key (with its 'did you mean') is the problem; the
     missing 'center' it stands for is not reported again."""

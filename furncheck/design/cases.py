@@ -36,6 +36,7 @@ from furncheck.design.values import (
     _point,
     _quantity,
     _resolved,
+    _Skipped,
     _Units,
     _vector,
 )
@@ -215,24 +216,36 @@ def _loads(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank], units: _Unit
 def _load(doc: _Doc, node: Any, key: str, by_id: dict[str, Plank], units: _Units,
           tolerance: float) -> Load:
     """``{plank, mass | force, at? | spread?}``: mass kg, force N, ``at`` a world point on
-    the plank, ``spread: true`` the load spread evenly along the plank's length."""
+    the plank, ``spread: true`` the load spread evenly along the plank's length.  Its mass
+    or force is read whether or not its plank can be (an unknown plank, or one left
+    unchecked: ``_Doc.unsure``), so that a 'mass: 100kg' on a plank whose own line has a
+    problem is not kept back until that is fixed; its point, which needs the plank, once
+    both are read."""
     fields = doc.mapping(node, key, LOAD_KEYS, required=("plank",))
     spread = "spread" in fields and doc.flag(fields["spread"], f"{key}.spread")
     if spread and "at" in fields:
         doc.fail(f"{key}.at", "a spread load acts along the whole plank: give no point")
-    plank = _plank_ref(doc, fields["plank"], f"{key}.plank", by_id)
     if "mass" in fields and "force" in fields:
         doc.fail(key, "give either mass (kg) or force ([fx, fy, fz] N), not both")
     if "mass" not in fields and "force" not in fields:
         doc.fail(key, "a load needs a mass (kg) or a force ([fx, fy, fz] N)")
+    plank = doc.collect(_plank_ref, doc, fields["plank"], f"{key}.plank", by_id)
+    value = doc.collect(_load_value, doc, fields, key)
+    if plank is None or value is None:  # their problems kept, or a plank left unchecked
+        raise _Skipped(key)
     point = (_point_on_plank(doc, fields["at"], f"{key}.at", plank, units, tolerance)
              if "at" in fields else None)
     if "mass" in fields:
-        mass = _quantity(doc, fields["mass"], f"{key}.mass", 0.0, tol.MAX_MASS, unit="kg")
-        return Load.of_mass(plank.id, mass, point, spread)
-    force = _vector(doc, fields["force"], f"{key}.force", 3, -tol.MAX_FORCE, tol.MAX_FORCE,
-                    unit="N")
-    return Load(plank.id, force, point, spread=spread)
+        return Load.of_mass(plank.id, value, point, spread)
+    return Load(plank.id, value, point, spread=spread)
+
+
+def _load_value(doc: _Doc, fields: dict, key: str) -> float | tuple[float, float, float]:
+    """A load's mass (kg) or force (N, [fx, fy, fz])."""
+    if "mass" in fields:
+        return _quantity(doc, fields["mass"], f"{key}.mass", 0.0, tol.MAX_MASS, unit="kg")
+    return _vector(doc, fields["force"], f"{key}.force", 3, -tol.MAX_FORCE, tol.MAX_FORCE,
+                   unit="N")
 
 
 def _point_on_plank(doc: _Doc, node: Any, key: str, plank: Plank, units: _Units,

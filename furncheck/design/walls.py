@@ -15,7 +15,15 @@ import numpy as np
 from furncheck import tolerances as tol
 from furncheck.design.cases import _point_on_plank
 from furncheck.design.model import Anchor, Plank, Wall
-from furncheck.design.values import _Doc, _plank_ref, _point, _quantity, _Units, _vector
+from furncheck.design.values import (
+    _Doc,
+    _plank_ref,
+    _point,
+    _quantity,
+    _Skipped,
+    _Units,
+    _vector,
+)
 from furncheck.plain import plain_number
 
 WALL_KEYS = ("point", "normal")
@@ -63,20 +71,30 @@ def anchors(doc: _Doc, node: Any, by_id: dict[str, Plank], walls_found: tuple[Wa
 
 def _anchor(doc: _Doc, item: Any, key: str, by_id: dict[str, Plank],
             walls_found: tuple[Wall, ...], units: _Units, tolerance: float) -> Anchor:
-    """One anchor of ``anchors``."""
+    """One anchor of ``anchors``: its wall and capacity read whether or not its plank can
+    be (an unknown plank, or one left unchecked: ``_Doc.unsure``), its point once the
+    plank is read."""
     fields = doc.mapping(item, key, ANCHOR_KEYS, required=ANCHOR_KEYS)
-    plank = _plank_ref(doc, fields["plank"], f"{key}.plank", by_id)
-    point = _point_on_plank(doc, fields["at"], f"{key}.at", plank, units, tolerance)
-    wall = doc.number(fields["wall"], f"{key}.wall")
-    if not wall.is_integer() or not 0 <= wall < len(walls_found):
-        have = (f"the design has walls 0 to {len(walls_found) - 1}" if walls_found
-                else "the design has no walls: add one under walls")
-        doc.fail(f"{key}.wall", f"no wall {plain_number(wall, 6)} ({have})")
-    wall = int(wall)
+    plank = doc.collect(_plank_ref, doc, fields["plank"], f"{key}.plank", by_id)
+    point = None if plank is None else doc.collect(_point_on_plank, doc, fields["at"],
+                                                   f"{key}.at", plank, units, tolerance)
+    wall = doc.collect(_anchor_wall, doc, fields["wall"], f"{key}.wall", walls_found)
+    capacity = doc.collect(_quantity, doc, fields["capacity"], f"{key}.capacity", 0.0,
+                           tol.MAX_FORCE, 1.0, "N", True)
+    if point is None or wall is None or capacity is None:   # their problems kept, or a
+        raise _Skipped(key)                                 # plank left unchecked
     behind = -float(walls_found[wall].distance(np.asarray(point)))
     if behind > tolerance + tol.ON_PLANK_EPS:
         doc.fail(f"{key}.at", f"the point is {plain_number(behind / units.scale)} "
                               f"{units.name} behind wall {wall}")
-    capacity = _quantity(doc, fields["capacity"], f"{key}.capacity", 0.0, tol.MAX_FORCE,
-                         unit="N", positive=True)
     return Anchor(plank.id, point, wall, capacity, -behind)
+
+
+def _anchor_wall(doc: _Doc, node: Any, key: str, walls_found: tuple[Wall, ...]) -> int:
+    """An anchor's wall: an index into ``walls_found``."""
+    wall = doc.number(node, key)
+    if not wall.is_integer() or not 0 <= wall < len(walls_found):
+        have = (f"the design has walls 0 to {len(walls_found) - 1}" if walls_found
+                else "the design has no walls: add one under walls")
+        doc.fail(key, f"no wall {plain_number(wall, 6)} ({have})")
+    return int(wall)
