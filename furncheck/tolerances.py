@@ -745,3 +745,9 @@ ANCHOR_PART = 0.01
 """Share of an anchor's force below which its message leaves a part of it out (its pull
 out of the wall, what it holds up, its shear along the wall)."""
 
+WALL_FRICTION_SHARE = 0.05
+"""Share of what a design's supports hold up (its weight and loads) from which a valid
+anchored design's summary says how much of it the wall's friction holds ('with the
+wall's friction holding up 118 of its 178 N'): the anchors' utilization then counts on
+that friction, which a fixing's rated shear may be meant to carry alone."""
+

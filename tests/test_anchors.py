@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import json
 import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -407,3 +408,49 @@ def test_a_unit_that_topples_and_sags_gets_an_anchor_with_a_thicker_board():
     assert "make bottom" in fix.advice and fix.design.anchors
     assert fix.design.plank("bottom").thickness > design.plank("bottom").thickness
     assert check_design(parse_design(fix.text, "s.yaml", "yaml")).valid
+
+
+CATALOG_WALL_SHELF = "designs/wall-shelf.yaml"
+
+
+@pytest.mark.parametrize("friction", [None, 0.0])
+def test_the_summary_says_how_much_the_walls_friction_holds_up(friction, tmp_path):
+    """designs/wall-shelf.yaml: an 800 x 250 x 18 mm shelf (26.49 N) on two 150 x 120
+    cleats (2.38 N each), 15 kg of books (147.15 N): its supports hold up W = 178.4 N,
+    the anchors' vertical forces V and the friction of the cleats' feet where they bear
+    on the wall, W - V (a wall's normal is level: the vertical part of its force is
+    friction; the split is the stiffnesses').  The valid line names the worst anchor and
+    that friction, 'with the wall's friction holding up F of its 178 N', F = W - V of the
+    reported anchors: the anchors' margin counts on it.  With ``friction: 0`` the anchors
+    hold up all of W and the line says nothing of it: each holds W / 2 = 89.2 N up and
+    pulls (M - W x 9 mm) / 90 mm / 2 = 111.9 N (the design's header: M = 2 x 2.38 x 9 +
+    (26.49 + 147.15) x 125 = 21,748 N mm about the cleats' feet, the screws 90 mm above
+    them and 9 mm in front of the wall), 143.1 N in all, 73 % of 196 N: still valid."""
+    doc = yaml.safe_load((Path(__file__).resolve().parents[1] / CATALOG_WALL_SHELF)
+                         .read_text())
+    if friction is not None:
+        doc["material"]["friction"] = friction
+    path = tmp_path / "wall-shelf.yaml"
+    path.write_text(yaml.safe_dump(doc, sort_keys=False))
+    weight = 26.49 + 2 * 2.38 + 15 * G
+    assert weight == pytest.approx(178.4, abs=0.05)
+    report = check_design(_parse(doc))
+    (case,) = report.cases
+    held_by_anchors = sum(a.force[2] for a in case.anchors)
+    result = CliRunner().invoke(main, ["validate", str(path)])
+    assert result.exit_code == 0, result.output
+    if friction is None:
+        by_wall = weight - held_by_anchors
+        assert 0.05 * weight < by_wall < weight
+        assert (f"with the wall's friction holding up {round(by_wall)} of its "
+                f"{round(weight)} N)") in result.output
+    else:
+        assert held_by_anchors == pytest.approx(weight, rel=1e-3)
+        assert "wall's friction" not in result.output
+        moment = 2 * 2.38 * 9 + (26.49 + 15 * G) * 125
+        pull = (moment - weight * 9) / 90 / 2
+        assert pull == pytest.approx(111.9, abs=0.05)
+        for anchor in case.anchors:
+            assert -anchor.force[1] == pytest.approx(pull, rel=0.02)
+            assert anchor.utilization == pytest.approx(np.hypot(weight / 2, pull) / 196.0,
+                                                       rel=0.02)
