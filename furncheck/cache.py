@@ -13,8 +13,9 @@ The key of an entry (SHA-256) covers everything a result depends on:
   content);
 - the code that computes it: furncheck's version, a digest of the source of the installed
   ``furncheck`` package (a development install changes without a new version), the Python
-  version, the installed numpy, scipy and PyYAML (where each package's ``__init__.py`` is,
-  its size and modification time: an upgrade rewrites it; found without importing them),
+  version, the installed numpy, scipy and PyYAML (a digest of each distribution's
+  ``RECORD``, the hashes of its files: the same for every install of one build, so that
+  CI jobs installing afresh share entries; found without importing them),
   and the BLAS thread variables (another thread count may round a last digit differently).
 
 Entries are files ``<dir>/v1/<2 hex digits>/<62 hex digits>`` holding a marker, the key,
@@ -42,6 +43,7 @@ import importlib.util
 import json
 import marshal
 import os
+import re
 import stat
 import sys
 import zlib
@@ -61,7 +63,8 @@ LAYOUT = "v1"
 ENV_DIRECTORY = "FURNCHECK_CACHE_DIR"
 """Environment variable naming the cache directory (over the platform's default)."""
 
-_DEPENDENCIES = ("numpy", "scipy", "yaml")
+_DEPENDENCIES = (("numpy", "numpy"), ("scipy", "scipy"), ("yaml", "PyYAML"))
+"""The numerical dependencies whose build a result depends on: (module, distribution)."""
 _THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 
 
@@ -142,19 +145,53 @@ def _digest_sources(digest) -> None:
 
 
 def _dependency_files() -> list[str]:
-    """Per dependency: where its package is, the size and modification time of its
-    ``__init__.py`` (what an upgrade rewrites), found without importing it."""
+    """Per dependency, found without importing it: a digest of its installed
+    distribution's ``RECORD`` (each of its files with the hash the wheel gave it, the same
+    for every install of one build, wherever and whenever it was installed: CI jobs that
+    install the same versions afresh share their entries), or where it has none (a source
+    tree on the path) where its package is, with the size and modification time of its
+    ``__init__.py``.  (The modification time alone, kept before, is the install's: pip
+    stamps each file with it, so a fresh install missed every entry.)"""
     versions = []
-    for name in _DEPENDENCIES:
+    for name, distribution in _DEPENDENCIES:
         try:
             spec = importlib.util.find_spec(name)
             origin = spec.origin if spec is not None else None
-            info = os.stat(origin) if origin else None
+            record = _record(Path(origin).parent, distribution) if origin else None
+            info = os.stat(origin) if origin and record is None else None
         except (ImportError, ValueError, OSError):
-            info = origin = None
-        versions.append(f"{name}={origin}:{info.st_size}:{info.st_mtime_ns}" if info
-                        else f"{name}=?")
+            info = origin = record = None
+        if record is not None:
+            versions.append(f"{name}=record:{hashlib.sha256(record).hexdigest()}")
+        else:
+            versions.append(f"{name}={origin}:{info.st_size}:{info.st_mtime_ns}" if info
+                            else f"{name}=?")
     return versions
+
+
+def _record(package: Path, distribution: str) -> bytes | None:
+    """The ``RECORD`` of the distribution ``distribution`` installed beside ``package``
+    (its ``<name>-<version>.dist-info`` folder, the name compared as pip normalizes it)
+    that lists the package's ``__init__.py``; None where there is none."""
+    wanted = _normalized(distribution)
+    listed = f"{package.name}/__init__.py,".encode()
+    for entry in sorted(os.listdir(package.parent)):
+        stem, dot, kind = entry.rpartition(".")
+        if kind != "dist-info" or _normalized(stem.rpartition("-")[0]) != wanted:
+            continue
+        try:
+            record = (package.parent / entry / "RECORD").read_bytes()
+        except OSError:
+            continue
+        if record.startswith(listed) or b"\n" + listed in record:
+            return record
+    return None
+
+
+def _normalized(name: str) -> str:
+    """A distribution's name as pip compares names (PEP 503): lower case, runs of '-',
+    '_' and '.' as one '-'."""
+    return re.sub(r"[-_.]+", "-", name).lower()
 
 
 @dataclass

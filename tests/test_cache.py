@@ -378,3 +378,44 @@ def test_a_cache_folder_furncheck_makes_is_left_out_of_git(checked_paths, tmp_pa
     existing.mkdir()
     run("validate", str(design), "--cache-dir", str(existing))
     assert not (existing / ".gitignore").exists() and any(existing.iterdir())
+
+
+def _install(site: Path, record: bytes, when: int) -> None:
+    """A fake distribution 'Fake_Dep' 1.0 of the module ``fakedep`` installed in ``site``,
+    its files stamped ``when`` (pip stamps them with the time of the install)."""
+    package = site / "fakedep"
+    package.mkdir(parents=True)
+    (package / "__init__.py").write_text("x = 1\n")
+    info = site / "Fake_Dep-1.0.dist-info"
+    info.mkdir()
+    (info / "RECORD").write_bytes(record)
+    for path in (package / "__init__.py", info / "RECORD"):
+        os.utime(path, ns=(when, when))
+
+
+def test_a_dependencys_part_of_the_key_is_its_build_not_its_install(tmp_path, monkeypatch):
+    """Two installs of one build of a dependency, in other folders at other times (two CI
+    jobs each installing afresh), give the code fingerprint the same part: its
+    distribution's RECORD (the hash of each of its files).  Another build (a file's hash
+    in RECORD differs) gives another; without a RECORD (a source tree on the path) its
+    place and its __init__'s stamp stand for it, as before.  (With the stamp alone, every
+    fresh install missed every entry.)"""
+    record = (b"fakedep/__init__.py,sha256=abc,6\n"
+              b"Fake_Dep-1.0.dist-info/RECORD,,\n")
+    _install(tmp_path / "one", record, 1_000_000_000_000_000_000)
+    _install(tmp_path / "two", record, 1_700_000_000_000_000_000)
+    _install(tmp_path / "other", record.replace(b"abc", b"abd"), 1_000_000_000_000_000_000)
+    _install(tmp_path / "bare", record, 1_000_000_000_000_000_000)
+    (tmp_path / "bare" / "Fake_Dep-1.0.dist-info" / "RECORD").unlink()
+    monkeypatch.setattr(cache_module, "_DEPENDENCIES", (("fakedep", "fake-dep"),))
+    parts = {}
+    for site in ("one", "two", "other", "bare"):
+        monkeypatch.setattr(sys, "path", [str(tmp_path / site), *sys.path])
+        sys.path_importer_cache.clear()
+        (parts[site],) = cache_module._dependency_files()
+        monkeypatch.undo()
+        monkeypatch.setattr(cache_module, "_DEPENDENCIES", (("fakedep", "fake-dep"),))
+    assert parts["one"] == parts["two"] != parts["other"]
+    assert parts["one"].startswith("fakedep=record:")
+    assert parts["bare"].startswith(f"fakedep={tmp_path / 'bare' / 'fakedep'}")
+    assert "fakedep" not in sys.modules
