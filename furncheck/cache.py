@@ -172,7 +172,9 @@ def _dependency_files() -> list[str]:
 def _record(package: Path, distribution: str) -> bytes | None:
     """The ``RECORD`` of the distribution ``distribution`` installed beside ``package``
     (its ``<name>-<version>.dist-info`` folder, the name compared as pip normalizes it)
-    that lists the package's ``__init__.py``; None where there is none."""
+    that lists the package's ``__init__.py``, but for the files it put outside the
+    folder it is in (``../../../bin/f2py``: a script's first line names the environment's
+    Python); None where there is none."""
     wanted = _normalized(distribution)
     listed = f"{package.name}/__init__.py,".encode()
     for entry in sorted(os.listdir(package.parent)):
@@ -184,7 +186,8 @@ def _record(package: Path, distribution: str) -> bytes | None:
         except OSError:
             continue
         if record.startswith(listed) or b"\n" + listed in record:
-            return record
+            return b"\n".join(line for line in record.splitlines()
+                              if not line.startswith(b"../"))
     return None
 
 

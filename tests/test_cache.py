@@ -396,16 +396,19 @@ def _install(site: Path, record: bytes, when: int) -> None:
 def test_a_dependencys_part_of_the_key_is_its_build_not_its_install(tmp_path, monkeypatch):
     """Two installs of one build of a dependency, in other folders at other times (two CI
     jobs each installing afresh), give the code fingerprint the same part: its
-    distribution's RECORD (the hash of each of its files).  Another build (a file's hash
-    in RECORD differs) gives another; without a RECORD (a source tree on the path) its
-    place and its __init__'s stamp stand for it, as before.  (With the stamp alone, every
-    fresh install missed every entry.)"""
-    record = (b"fakedep/__init__.py,sha256=abc,6\n"
+    distribution's RECORD (the hash of each of its files), but for the files outside its
+    folder (a console script, whose first line names each environment's Python).
+    Another build (a file's hash in RECORD differs) gives another; without a RECORD (a
+    source tree on the path) its place and its __init__'s stamp stand for it, as before.
+    (With the stamp alone, every fresh install missed every entry.)"""
+    record = (b"../../../bin/fake,sha256=%s,229\n"
+              b"fakedep/__init__.py,sha256=abc,6\n"
               b"Fake_Dep-1.0.dist-info/RECORD,,\n")
-    _install(tmp_path / "one", record, 1_000_000_000_000_000_000)
-    _install(tmp_path / "two", record, 1_700_000_000_000_000_000)
-    _install(tmp_path / "other", record.replace(b"abc", b"abd"), 1_000_000_000_000_000_000)
-    _install(tmp_path / "bare", record, 1_000_000_000_000_000_000)
+    _install(tmp_path / "one", record % b"one", 1_000_000_000_000_000_000)
+    _install(tmp_path / "two", record % b"two", 1_700_000_000_000_000_000)
+    _install(tmp_path / "other", (record % b"one").replace(b"abc", b"abd"),
+             1_000_000_000_000_000_000)
+    _install(tmp_path / "bare", record % b"one", 1_000_000_000_000_000_000)
     (tmp_path / "bare" / "Fake_Dep-1.0.dist-info" / "RECORD").unlink()
     monkeypatch.setattr(cache_module, "_DEPENDENCIES", (("fakedep", "fake-dep"),))
     parts = {}
