@@ -225,22 +225,53 @@ def read_pattern_file(path: str, base: str) -> PatternFile | None:
     return patterns(lines, base, path)
 
 
+KEPT, LEFT_OUT, TRACKED = 0, 1, 2
+"""``IgnoreRules.state``: a path a scan keeps; one it leaves out; one a ``.gitignore``
+ignores that git tracks all the same (a tracked file, or a folder holding one)."""
+
+
 @dataclass(frozen=True)
 class IgnoreRules:
-    """The gitignore files in force in one folder (outermost first) and the excludes."""
+    """The gitignore files in force in one folder (outermost first) and the excludes;
+    ``root``: the top of the repository the folder lies in (None outside one);
+    ``below_ignored``: the folder lies in one a ``.gitignore`` ignores, entered for the
+    files git tracks in it (``TRACKED``), where the others stay ignored."""
 
     gitignores: tuple[PatternFile, ...] = ()
     excludes: tuple[PatternFile, ...] = ()
+    root: str | None = None
+    below_ignored: bool = False
 
     def ignored(self, path: str, is_dir: bool) -> bool:
         """Whether the absolute ``path`` is left out."""
+        return self.state(path, is_dir) == LEFT_OUT
+
+    def state(self, path: str, is_dir: bool) -> int:
+        """KEPT, LEFT_OUT or TRACKED for the absolute ``path``: an exclude pattern leaves
+        it out; else the deepest gitignore file with a pattern that matches it decides
+        (the folder's ``below_ignored`` standing for one that ignores everything), but a
+        file that git tracks, and a folder that holds one, are not ignored, as in git
+        (``git ls-files -ci --exclude-standard``: ``tracked_ignored``)."""
         if any(rule.verdict(path, is_dir) for rule in self.excludes):
-            return True
-        for rule in reversed(self.gitignores):
-            verdict = rule.verdict(path, is_dir)
-            if verdict is not None:
-                return verdict
-        return False
+            return LEFT_OUT
+        verdict = self.below_ignored or next(
+            (found for found in (rule.verdict(path, is_dir)
+                                 for rule in reversed(self.gitignores))
+             if found is not None), False)
+        if not verdict:
+            return KEPT
+        return TRACKED if self._tracked(path, is_dir) else LEFT_OUT
+
+    def _tracked(self, path: str, is_dir: bool) -> bool:
+        if self.root is None:
+            return False
+        files, folders = tracked_ignored(self.root)
+        return path in (folders if is_dir else files)
+
+    def under_ignored(self) -> IgnoreRules:
+        """These rules for a folder that a ``.gitignore`` ignores and git tracks files in
+        (``TRACKED``): only those files are kept below it."""
+        return IgnoreRules(self.gitignores, self.excludes, self.root, True)
 
     def leaves_out(self, folder: str) -> bool:
         """Whether the folder ``folder`` (absolute) is left out as a whole (an exclude,
@@ -258,17 +289,76 @@ class IgnoreRules:
         are another repository's and stop applying, as in git (its ``.git/info/exclude``
         applies instead; the excludes stay).  ``top``: whether ``folder`` holds ``.git``,
         where the caller's listing of it says (else looked up)."""
-        gitignores = self.gitignores
+        gitignores, root, below = self.gitignores, self.root, self.below_ignored
         if top is None:
             top = os.path.exists(os.path.join(folder, GIT_DIR))
         if top:
             info = read_pattern_file(_info_exclude(folder), folder)
             gitignores = () if info is None else (info,)
+            root, below = folder, False
         own = read_pattern_file(os.path.join(folder, GITIGNORE), folder)
         if own is not None:
             gitignores += (own,)
-        return self if gitignores is self.gitignores else IgnoreRules(gitignores,
-                                                                      self.excludes)
+        if gitignores is self.gitignores and root == self.root:
+            return self
+        return IgnoreRules(gitignores, self.excludes, root, below)
+
+
+TRACKED_IGNORED_SECONDS = 60.0
+"""How long ``git ls-files`` may take to list a repository's tracked, ignored files."""
+
+_TRACKED: dict[str, tuple[frozenset, frozenset]] = {}
+
+
+def tracked_ignored(root: str) -> tuple[frozenset, frozenset]:
+    """(files, folders), absolute paths under ``root``: the files that git tracks in the
+    repository whose top is ``root`` though its ignore rules match them (``git ls-files
+    --cached --ignored --exclude-standard``: a design committed before a ``*.json`` line
+    was added, or forced in with ``git add -f``), and the folders above them up to
+    ``root``.  Asked once per repository and scan (``scan.collect`` forgets the answers
+    before it starts), the first time a ``.gitignore`` ignores something there; empty
+    where git cannot tell (no git installed, not a repository git reads): the ignore
+    rules alone then decide, as they did before git was asked."""
+    found = _TRACKED.get(root)
+    if found is None:
+        found = _TRACKED[root] = _ask_git(root)
+    return found
+
+
+def forget_tracked() -> None:
+    """Forget what git said it tracks (``tracked_ignored``): the next scan asks again."""
+    _TRACKED.clear()
+
+
+def _ask_git(root: str) -> tuple[frozenset, frozenset]:
+    import shutil
+    import subprocess
+
+    git = shutil.which("git")
+    if git is None:
+        return frozenset(), frozenset()
+    environment = {name: value for name, value in os.environ.items()
+                   if name not in ("GIT_DIR", "GIT_WORK_TREE")}   # a hook's: ``root``'s own
+    try:
+        listed = subprocess.run(
+            [git, "-c", "safe.directory=*", "-C", root, "ls-files", "-z", "--cached",
+             "--ignored", "--exclude-standard"], capture_output=True,
+            timeout=TRACKED_IGNORED_SECONDS, env=environment, check=False)
+    except (OSError, subprocess.SubprocessError):
+        return frozenset(), frozenset()
+    if listed.returncode != 0:
+        return frozenset(), frozenset()
+    files, folders = set(), set()
+    for name in listed.stdout.split(b"\0"):
+        if not name:
+            continue
+        path = os.path.join(root, os.fsdecode(name).replace("/", os.sep))
+        files.add(path)
+        folder = os.path.dirname(path)
+        while folder not in folders and len(folder) > len(root):
+            folders.add(folder)
+            folder = os.path.dirname(folder)
+    return frozenset(files), frozenset(folders)
 
 
 def repository_root(folder: str) -> str | None:
@@ -315,7 +405,8 @@ def rules_above(folder: str, excludes: tuple[PatternFile, ...] = ()) -> IgnoreRu
     (``PatternFile.opened_at``: they no longer leave those folders out, and apply below
     them as to any folder)."""
     gitignores = _gitignores_above(folder)
-    rules = IgnoreRules(tuple(gitignores), excludes)
+    root = repository_root(folder)
+    rules = IgnoreRules(tuple(gitignores), excludes, root)
     ancestors = [folder]
     while os.path.dirname(ancestors[-1]) != ancestors[-1]:
         ancestors.append(os.path.dirname(ancestors[-1]))
@@ -323,7 +414,7 @@ def rules_above(folder: str, excludes: tuple[PatternFile, ...] = ()) -> IgnoreRu
     if not left_out:
         return rules
     return IgnoreRules(tuple(rule.opened_at(left_out) for rule in gitignores),
-                       tuple(rule.opened_at(left_out) for rule in excludes))
+                       tuple(rule.opened_at(left_out) for rule in excludes), root)
 
 
 def _gitignores_above(folder: str) -> list[PatternFile]:
@@ -350,8 +441,9 @@ def _gitignores_above(folder: str) -> list[PatternFile]:
 def left_out_by_a_scan(path: str, excludes: tuple[PatternFile, ...] = (),
                        read: dict[str, IgnoreRules] | None = None) -> bool:
     """Whether a scan of the repository (or of the current folder, outside one) would
-    leave out the file ``path``: a hidden name on its way there, or a ``.gitignore`` or
-    an exclude pattern that ignores it or a folder it lies in (``--force-exclude``: a
+    leave out the file ``path``: a hidden name on its way there, an exclude pattern that
+    matches it or a folder it lies in, or a ``.gitignore`` that ignores it or a folder
+    it lies in, unless git tracks it (``IgnoreRules.state``) (``--force-exclude``: a
     hook handed the changed files checks what CI's scan checks).  ``read``: the rules
     inside each folder met so far (with the same ``excludes``), kept there for the next
     file: a hook hands over hundreds of files of one folder, whose gitignore files are
@@ -366,12 +458,18 @@ def left_out_by_a_scan(path: str, excludes: tuple[PatternFile, ...] = (),
     if read is None:
         read = {}
     if folder not in read:
-        read[folder] = IgnoreRules(tuple(_gitignores_above(folder)), excludes).entering(folder)
+        read[folder] = IgnoreRules(tuple(_gitignores_above(folder)), excludes,
+                                   repository_root(folder)).entering(folder)
     rules = read[folder]
-    current, is_dir = absolute, False
-    while not rules.ignored(current, is_dir):
+    current, is_dir, tracked_in_ignored = absolute, False, False
+    while True:
+        state = rules.state(current, is_dir)
+        if state == LEFT_OUT:
+            return True
+        if state == TRACKED and is_dir:         # an ignored folder git tracks files in:
+            tracked_in_ignored = True           # only those are kept
         parent = os.path.dirname(current)
         if parent == current:
-            return False
+            break
         current, is_dir = parent, True
-    return True
+    return tracked_in_ignored and rules.under_ignored().state(absolute, False) != TRACKED

@@ -7,8 +7,9 @@ that pass every changed YAML file).  A directory is searched recursively for
 ``.yaml``, ``.yml`` and ``.json`` files, leaving out
 
 - hidden files and folders (names starting with '.'),
-- what ``.gitignore`` files ignore (in the tree and above it inside its repository) and
-  what an exclude pattern matches (``furncheck.ignores``),
+- what ``.gitignore`` files ignore (in the tree and above it inside its repository), but
+  for the files git tracks all the same (a design committed before a ``*.json`` line),
+  and what an exclude pattern matches (``furncheck.ignores``),
 - YAML/JSON files whose top level has no ``furncheck`` key: they are not designs
   (``furncheck.detect``; counted in ``Collected.skipped``).
 
@@ -23,6 +24,7 @@ from __future__ import annotations
 
 import os
 import stat
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path, PurePath
 from typing import TYPE_CHECKING
@@ -116,7 +118,11 @@ def _shown_name(path: str) -> str:
 
 def collect(paths: tuple[str, ...] | list[str], options: ScanOptions = ScanOptions()
             ) -> Collected:
-    """The sources of ``paths`` (see the module docstring)."""
+    """The sources of ``paths`` (see the module docstring).  What git tracks is asked
+    afresh for each call (``ignores.tracked_ignored``: a process that scans again, after
+    a commit, must not go by the last answer)."""
+    if "furncheck.ignores" in sys.modules:
+        sys.modules["furncheck.ignores"].forget_tracked()
     collected = Collected()
     seen: set[str] = set()
     rules: dict[str, IgnoreRules] = {}  # per folder: its gitignores read once for all
@@ -195,7 +201,7 @@ def find_design_files(folder: str, excludes: tuple[PatternFile, ...] = (),
     """The design files below ``folder`` (paths are ``folder`` joined with the relative
     path, normalized), by the rules of the module docstring; the folders ``unscanned``
     (absolute) are not entered."""
-    from furncheck.ignores import rules_above
+    from furncheck.ignores import LEFT_OUT, TRACKED, rules_above
 
     scan = FolderScan()
     visited: set[tuple[int, int]] = set()
@@ -238,12 +244,14 @@ def find_design_files(folder: str, excludes: tuple[PatternFile, ...] = (),
                 continue
             path = os.path.normpath(os.path.join(current, entry.name))
             is_dir = _is_folder(entry)
-            if rules.ignored(os.path.abspath(path), is_dir):
+            state = rules.state(os.path.abspath(path), is_dir)
+            if state == LEFT_OUT:
                 if is_dir or os.path.splitext(entry.name)[1].lower() in DESIGN_SUFFIXES:
                     scan.ignored += 1
                 continue
             if is_dir:
-                (links if via_link or entry.is_symlink() else subfolders).append((path, rules))
+                inside = rules.under_ignored() if state == TRACKED else rules
+                (links if via_link or entry.is_symlink() else subfolders).append((path, inside))
             elif os.path.splitext(entry.name)[1].lower() in DESIGN_SUFFIXES:
                 candidates.append(path)
         direct.extend(reversed(subfolders))   # depth first, in name order

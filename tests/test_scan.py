@@ -342,6 +342,48 @@ def test_force_exclude_leaves_out_named_files_as_a_scan_would(checked_paths, tmp
     assert checked_paths == ["designs/ok.yaml"]
 
 
+def _commit(root: Path, *paths: str) -> None:
+    """``git add -f`` the ``paths`` and commit them in the repository at ``root``."""
+    subprocess.run(["git", "init", "-q", str(root)], check=True)
+    subprocess.run(["git", "add", "-f", "--", *paths], cwd=root, check=True)
+    subprocess.run(["git", "-c", "user.email=t@t", "-c", "user.name=t", "commit", "-qm",
+                    "designs"], cwd=root, check=True)
+
+
+@pytest.mark.skipif(shutil.which("git") is None, reason="git is not installed")
+def test_a_file_git_tracks_is_checked_though_a_gitignore_matches_it(tmp_path, monkeypatch,
+                                                                   checked_paths):
+    """A .gitignore never ignores a tracked file, in git: designs/shelf.json committed
+    before '*.json' was added, and build/t.yaml committed inside the later ignored
+    'build/' (or forced in with 'git add -f'), are checked by a scan and kept by
+    --force-exclude (the pre-commit hook's: an edit to them was left unchecked, the run
+    green); build/new.yaml and designs/new.json beside them, untracked, stay ignored.
+    What git lists (tracked, and untracked not ignored) is what the scan checks.  Without
+    git on the PATH the ignore rules alone decide, as before."""
+    files = ("designs/shelf.json", "designs/a.yaml", "build/t.yaml")
+    tree(tmp_path, {name: DESIGN for name in files})
+    _commit(tmp_path, *files)
+    tree(tmp_path, {".gitignore": "*.json\nbuild/\n", "build/new.yaml": DESIGN,
+                    "designs/new.json": DESIGN, "designs/b.yaml": DESIGN})
+    tracked = subprocess.run(["git", "ls-files"], cwd=tmp_path, capture_output=True,
+                             text=True, check=True).stdout.split()
+    expected = sorted({*git_listed(tmp_path), *(n for n in tracked if n != ".gitignore")},
+                      key=lambda name: name.split("/"))
+    assert expected == ["build/t.yaml", "designs/a.yaml", "designs/b.yaml",
+                        "designs/shelf.json"]
+    assert found(tmp_path) == expected
+    monkeypatch.chdir(tmp_path)
+    run("validate", "--force-exclude", "--no-cache", "designs/shelf.json", "build/t.yaml",
+        "build/new.yaml", "designs/new.json", "designs/b.yaml")
+    assert [Path(p).as_posix() for p in checked_paths] == [
+        "designs/shelf.json", "build/t.yaml", "designs/b.yaml"]
+    from furncheck import ignores
+
+    monkeypatch.setattr(ignores, "_TRACKED", {})
+    monkeypatch.setattr(shutil, "which", lambda name, *args, **kwargs: None)
+    assert found(tmp_path) == ["designs/a.yaml", "designs/b.yaml"]
+
+
 def test_force_exclude_leaves_out_standard_input_by_its_stdin_filename(tmp_path, monkeypatch):
     """A hook that pipes a changed file to '-' and names it with --stdin-filename gets the
     file's own verdict from --force-exclude: left out (0 designs, exit 0, standard input
