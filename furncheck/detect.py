@@ -5,12 +5,15 @@ A design file's top level has a ``furncheck`` key (the format version, contract 
 and are not designs.  ``declares_design`` decides that for the file's bytes:
 
 - without the word ``furncheck`` anywhere, no (one substring search: most files stop here);
-- JSON: the document is an object with a ``furncheck`` key (``package.json`` depending on a
-  package named furncheck is no design);
+- JSON: the document is an object with a ``furncheck`` key whose value is no object or
+  array (``package.json`` depending on a package named furncheck is no design);
 - YAML: the first line that is not blank, a comment or ``---`` starts with ``furncheck:``
-  (the first key of a top-level block mapping: how design files begin), or else the first
-  document's top-level mapping has a ``furncheck`` key, read event by event (nothing is
-  constructed, values are skipped);
+  and a value on that line (the first key of a top-level block mapping: how design files
+  begin), or else the first document's top-level mapping has a ``furncheck`` key whose
+  value is no mapping or list, read event by event (nothing is constructed, values are
+  skipped).  The key's value is a design's format version: a ``furncheck:`` that holds a
+  mapping is something else's (a GitLab CI job of that name, as the README's recipe
+  writes one);
 - a file that does not parse: a top-level ``furncheck`` key written at the start of a line
   (YAML; in a ``.json`` file too: a design written in YAML but named .json) or a
   ``"furncheck":`` key (JSON): a design with a syntax error is still a design, and its
@@ -34,7 +37,7 @@ KEY = "furncheck"
 _Loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 _YAML_KEY_LINE = re.compile(rb"""^(?:\{\s*)?["']?furncheck["']?\s*:""", re.MULTILINE)
 _YAML_FIRST_KEY = re.compile(rb"""(?:\xef\xbb\xbf)?(?:[ \t]*(?:#[^\n]*)?\r?\n|---[ \t]*\r?\n)*"""
-                             rb"""furncheck[ \t]*:(?:[ \t]|\r?\n)""")
+                             rb"""furncheck[ \t]*:[ \t]+[^\s{\[&!*#]""")
 _JSON_KEY = re.compile(rb'"furncheck"\s*:')
 
 SNIFF_BLOCK = 1 << 20
@@ -55,7 +58,8 @@ def declares_design(data: bytes, fmt: str) -> bool:
         text = data.decode("utf-8-sig")
         if fmt == "json":
             document = json.loads(text)
-            return isinstance(document, dict) and KEY in document
+            return isinstance(document, dict) and KEY in document \
+                and not isinstance(document[KEY], (dict, list))
         if _YAML_FIRST_KEY.match(data):
             return True
         return _yaml_top_level_has_key(text)
@@ -107,7 +111,7 @@ def _mapping_has_key(loader) -> bool:
         if isinstance(key, yaml.MappingEndEvent):
             return False
         if isinstance(key, yaml.ScalarEvent) and key.value == KEY:
-            return True
+            return not isinstance(loader.peek_event(), yaml.CollectionStartEvent)
         if isinstance(key, yaml.CollectionStartEvent):   # a complex key: skip it
             _skip_collection(loader)
         _skip_node(loader)                               # the value

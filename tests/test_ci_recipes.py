@@ -545,3 +545,22 @@ def test_the_readme_recipes_keep_the_cache_whatever_the_verdict():
     assert cache["when"] == "always"
     assert gitlab["furncheck"]["variables"]["FURNCHECK_CACHE_DIR"].endswith(
         "/" + cache["paths"][0].rstrip("/"))
+
+
+def test_the_readme_recipes_in_a_scanned_folder_are_no_designs(checked_paths, tmp_path,
+                                                               monkeypatch):
+    """The GitLab recipe, whose job is named 'furncheck' (a top-level key holding a
+    mapping), saved as ci/furncheck.gitlab-ci.yml (an include file: not hidden), and the
+    GitHub one as ci/furncheck.yml, in a scanned tree: skipped as no designs, not read as
+    a design whose format version is a mapping (exit 2, a failed job and a blocked
+    commit)."""
+    _, github, gitlab = readme_ci_blocks()
+    write(tmp_path / "designs", "valid.yaml")
+    (tmp_path / "ci").mkdir()
+    (tmp_path / "ci" / "furncheck.gitlab-ci.yml").write_text(gitlab)
+    (tmp_path / "ci" / "furncheck.yml").write_text(github)
+    monkeypatch.chdir(tmp_path)
+    result = run("validate", ".", "--no-cache")
+    assert result.exit_code == 0, result.output
+    assert checked_paths == [str(Path("designs") / "valid.yaml")]
+    assert "skipped 2 files" in result.stderr

@@ -563,6 +563,17 @@ def test_a_skipped_file_whose_name_holds_a_newline_is_named_on_one_line(tmp_path
     ('{"name": "furncheck",', "json", False),             # broken JSON, no key
     ("{furncheck: 1}", "json", True),                     # YAML in a .json file: a design
     ("furncheck: 1\nplanks: []\n", "json", True),          # (with a JSON syntax error)
+    # a 'furncheck' that holds a mapping or list is no format version: a GitLab CI job
+    ("furncheck:\n  stage: test\n  script: [furncheck validate .]\n", "yaml", False),
+    ("furncheck: {stage: test}\n", "yaml", False),
+    ("stages: [test]\nfurncheck:\n  - a\n", "yaml", False),
+    ('{"furncheck": {"stage": "test"}}', "json", False),
+    ('{"furncheck": [1]}', "json", False),
+    ("furncheck:\n  1\n", "yaml", True),                  # a version on its own line
+    ("furncheck: # the format\n  1\n", "yaml", True),
+    ("furncheck:\nplanks: []\n", "yaml", True),            # no version: a design's error
+    ("furncheck: two\n", "yaml", True),
+    ('{"furncheck": null}', "json", True),
 ])
 def test_declares_design(text, fmt, expected):
     assert declares_design(text.encode(), fmt) is expected
