@@ -185,11 +185,15 @@ MODEL_OPTION = click.option(
          "else the file's 'model', elastic for a file without one]")
 
 
-def config_or_fail(paths):
-    """``[tool.furncheck]`` for a run on ``paths`` (``furncheck.config``), or one line and
-    exit 2."""
+def config_or_fail(paths, stdin_name: str | None = None):
+    """``[tool.furncheck]`` for a run on ``paths`` (``furncheck.config``), standard input
+    standing for the file ``stdin_name`` where it is given (``--stdin-filename``: an
+    editor piping a draft from another folder gets its project's options, as the file
+    would), or one line and exit 2."""
     from furncheck.config import ConfigError, load_config
 
+    if stdin_name:
+        paths = tuple(stdin_name if path == STDIN else path for path in paths)
     try:
         return load_config(paths)
     except ConfigError as error:

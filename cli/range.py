@@ -54,7 +54,7 @@ def range_command(design: str, dofs: tuple[str, ...], fmt: str, locks: tuple[str
     from furncheck.report.ranges import render_json, render_text
     from furncheck.workers import local_jobs
 
-    config = config_or_fail((design,))
+    config = config_or_fail((design,), stdin_filename)
     model = model or config.model
     check_output(output)
     check_not_an_input(output, (design,))

@@ -91,7 +91,7 @@ def suggest(design: str, max_dofs: int, max_suggestions: int, locks: tuple[str, 
     from furncheck.report.suggestions import advice, render_json, render_text
     from furncheck.suggest import suggest_design
 
-    config = config_or_fail((design,))
+    config = config_or_fail((design,), stdin_filename)
     model = model or config.model
     check_output(output)
     check_not_an_input(output, (design,))

@@ -73,14 +73,16 @@ can be noticed, where a count alone would pass in silence."""
 @click.option("--exclude", "excludes", metavar="GLOB", multiple=True,
               help="Leave out what this gitignore pattern matches in directory scans, "
                    "relative to the current folder (repeatable), e.g. --exclude drafts.")
-@click.option("--skip-non-designs", is_flag=True, default=None,
+@click.option("--skip-non-designs/--no-skip-non-designs", default=None,
               help="Leave out named files without a top-level 'furncheck' key too, as "
-                   "directory scans do (for hooks that pass every changed file).")
-@click.option("--force-exclude", is_flag=True, default=None,
+                   "directory scans do (for hooks that pass every changed file).  "
+                   "[default: 'skip-non-designs' of [tool.furncheck], else no]")
+@click.option("--force-exclude/--no-force-exclude", default=None,
               help="Leave out named files that a directory scan would leave out too (a "
                    "hidden name on the way, .gitignore, --exclude, 'exclude' of "
                    "[tool.furncheck]), as directory scans do (for hooks that pass every "
-                   "changed file; '-' by its --stdin-filename).")
+                   "changed file; '-' by its --stdin-filename).  [default: "
+                   "'force-exclude' of [tool.furncheck], else no]")
 @click.option("--cache/--no-cache", "use_cache", default=None,
               help="Reuse the results of unchanged designs.  [default: --cache]")
 @click.option("--cache-dir", metavar="DIR", default=None,
@@ -109,7 +111,7 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
     from furncheck.report.entries import Summary
     from furncheck.scan import ScanOptions, collect
 
-    config = config_or_fail(paths)
+    config = config_or_fail(paths, stdin_filename)
     check_stdin_name(stdin_filename, paths)
     fmt = fmt or config.format or "text"
     model = model or config.model
@@ -128,8 +130,9 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
     cache_folder = _cache_folder(cache_dir, config) if caching or scanning else None
     scan_options = ScanOptions(
         excludes=_exclude_patterns(excludes, config),
-        skip_non_designs=bool(skip_non_designs or config.skip_non_designs),
-        force_exclude=bool(force_exclude or config.force_exclude),
+        skip_non_designs=bool(config.skip_non_designs if skip_non_designs is None
+                              else skip_non_designs),
+        force_exclude=bool(config.force_exclude if force_exclude is None else force_exclude),
         unscanned=() if cache_folder is None else (os.path.abspath(cache_folder),),
         stdin_name=stdin_filename)
     collected = collect(paths, scan_options)

@@ -177,6 +177,56 @@ def test_suggest_and_range_read_the_model_too(stool):
     assert ranges["config"] == ranges["rigid"] != ranges["elastic"]
 
 
+def test_standard_input_gets_the_options_of_its_stdin_filename(stool, tmp_path,
+                                                                 monkeypatch):
+    """An editor pipes the stool (elastic: invalid) from another folder as '-' with
+    --stdin-filename naming it beside the pyproject.toml that sets the rigid model: the
+    search starts in that file's folder, so it reads rigid (valid, exit 0), as the file
+    itself does; without --stdin-filename the current folder's (none: elastic, exit 1).
+    suggest and range alike (suggest says valid: it ran rigid)."""
+    elsewhere = tmp_path / "elsewhere"
+    (elsewhere / ".git").mkdir(parents=True)
+    monkeypatch.chdir(elsewhere)
+    from click.testing import CliRunner
+
+    from furncheck.cli.main import main
+
+    text = stool.read_text()
+
+    def piped(*args: str):
+        return CliRunner().invoke(main, list(args), input=text)
+
+    assert piped("validate", "-", "--stdin-filename", str(stool)).exit_code == 0
+    assert piped("validate", "-").exit_code == 1
+    suggested = piped("suggest", "-", "--stdin-filename", str(stool), "--format", "json")
+    assert json.loads(suggested.stdout)["valid"] is True
+    ranges = piped("range", "-", "seat.z", "--stdin-filename", str(stool), "--format",
+                   "json")
+    assert ranges.exit_code == 0
+    assert json.loads(ranges.stdout)["ranges"] == json.loads(
+        run("range", str(stool), "seat.z", "--format", "json").stdout)["ranges"]
+
+
+def test_no_flags_turn_the_configs_true_off(checked_paths, tmp_path, monkeypatch):
+    """force-exclude = true and skip-non-designs = true in [tool.furncheck]: a named file
+    in an excluded folder and a named YAML file that is no design are left out, and
+    --no-force-exclude / --no-skip-non-designs check them for one run (both reach the
+    checker, here the fake of test_cli), each flag on its own turning its key off."""
+    pyproject(tmp_path, 'exclude = ["drafts"]\nforce-exclude = true\n'
+                        'skip-non-designs = true')
+    write(tmp_path / "drafts", "d.yaml")
+    (tmp_path / "ci.yml").write_text("stages: [test]\n")
+    monkeypatch.chdir(tmp_path)
+    assert run("validate", "drafts/d.yaml", "ci.yml").exit_code == 0
+    assert checked_paths == []
+    result = run("validate", "drafts/d.yaml", "ci.yml", "--no-force-exclude",
+                 "--no-skip-non-designs", "--no-cache")
+    assert checked_paths == ["drafts/d.yaml", "ci.yml"] and result.exit_code == 0
+    checked_paths.clear()
+    run("validate", "drafts/d.yaml", "ci.yml", "--no-force-exclude", "--no-cache")
+    assert checked_paths == ["drafts/d.yaml"]
+
+
 def test_the_cache_folder_is_the_command_lines_then_the_variables_then_the_configs(
         checked_paths, tmp_path, monkeypatch):
     """--cache-dir, else $FURNCHECK_CACHE_DIR (a CI job's variable), else cache-dir of
