@@ -237,14 +237,12 @@ def _exclude_patterns(excludes: tuple[str, ...], config: Config) -> tuple:
     exit 2 (``ignores.PatternError``)."""
     if not excludes and not config.exclude:
         return ()
-    from furncheck.ignores import PatternError, patterns
+    from furncheck.ignores import PatternError, exclude_patterns
 
     try:
-        return tuple(rule for rule in (
-            patterns(excludes, os.curdir, "--exclude", excludes=True) if excludes else None,
-            patterns(config.exclude, config.folder, f"{config.path}: [tool.furncheck] exclude",
-                     excludes=True) if config.exclude else None)
-            if rule is not None)
+        return (*exclude_patterns(excludes, os.curdir, "--exclude", typed=True),
+                *exclude_patterns(config.exclude, config.folder,
+                                  f"{config.path}: [tool.furncheck] exclude"))
     except PatternError as error:
         fail(str(error))
 

@@ -204,6 +204,43 @@ def patterns(lines: list[str] | tuple[str, ...], base: str, source: str,
     return PatternFile(os.path.abspath(base), tuple(rules), source)
 
 
+def exclude_patterns(lines: list[str] | tuple[str, ...], base: str, source: str,
+                     typed: bool = False) -> tuple[PatternFile, ...]:
+    """The exclude patterns ``lines`` anchored at folder ``base`` (``patterns`` with
+    ``excludes``), each line that is typed as a path to somewhere else anchored there
+    instead, so that none silently matches nothing: one beginning with ``../`` (a
+    pattern typed from a subfolder of the scanned tree) at that folder above ``base``, an
+    absolute path of this system (``--exclude $PWD/drafts``; not one that names a path
+    below ``base`` read as anchored there, as ``/build`` does) at its own folder.
+    ``typed``: the lines come from the command line, where a leading '#' is part of the
+    name (``--exclude '#draft.yaml'``), not a comment as in a config's list."""
+    if not lines:
+        return ()
+    groups: dict[str, list[str]] = {}
+    base = os.path.abspath(base)
+    for line in lines:
+        anchor, text = base, line
+        if typed and text.startswith("#"):
+            text = "\\" + text
+        elif text.startswith("../") or text == "..":
+            while text.startswith("../") or text == "..":
+                anchor, text = os.path.dirname(anchor), text[3:]
+            text = "/" + text
+        elif os.path.isabs(text) and not os.path.lexists(base + text) \
+                and os.path.lexists(text.rstrip("/") or "/"):
+            absolute = os.path.normpath(text)
+            folder_only = "/" if text.endswith("/") else ""
+            if absolute == base or absolute.startswith(base.rstrip(os.sep) + os.sep):
+                text = "/" + os.path.relpath(absolute, base).replace(os.sep, "/")
+            else:
+                anchor = os.path.dirname(absolute)
+                text = "/" + os.path.basename(absolute)
+            text += folder_only
+        groups.setdefault(anchor, []).append(text)
+    return tuple(patterns(group, anchor, source, excludes=True)
+                 for anchor, group in groups.items())
+
+
 def _without_trailing_spaces(line: str) -> str:
     """``line`` without its trailing spaces, as git drops them: all of them, but for the
     first one where it is escaped by an odd number of backslashes before it ('a\\ ')."""

@@ -303,6 +303,29 @@ def test_an_exclude_is_typed_as_a_path_and_checked(checked_paths, tmp_path, monk
     assert [Path(path).as_posix() for path in checked_paths] == ["y.yaml"]
 
 
+def test_an_exclude_typed_as_a_path_to_elsewhere_is_anchored_there(checked_paths, tmp_path,
+                                                                     monkeypatch):
+    """Excludes a user types as paths do what they say, where gitignore syntax read
+    literally would match nothing unseen: an absolute path ('$PWD/sub/drafts'), one
+    typed from a subfolder of the scanned tree ('../sub/drafts' from sub/, scanning
+    '..'), and on the command line a name beginning with '#' ('#d.yaml', which a config's
+    list reads as a comment); '/drafts' stays anchored at the current folder."""
+    tree(tmp_path, {"sub/a.yaml": DESIGN, "sub/drafts/d.yaml": DESIGN,
+                    "sub/#d.yaml": DESIGN, "top.yaml": DESIGN})
+    monkeypatch.chdir(tmp_path)
+    run("validate", "sub", "--exclude", str(tmp_path / "sub" / "drafts"), "--exclude",
+        "#d.yaml", "--no-cache")
+    assert [Path(p).as_posix() for p in checked_paths] == ["sub/a.yaml"]
+    checked_paths.clear()
+    monkeypatch.chdir(tmp_path / "sub")
+    run("validate", "..", "--exclude", "../sub/drafts", "--exclude", "../top.yaml",
+        "--no-cache")
+    assert [Path(p).as_posix() for p in checked_paths] == ["../sub/#d.yaml", "../sub/a.yaml"]
+    checked_paths.clear()
+    run("validate", ".", "--exclude", "/drafts", "--no-cache")
+    assert [Path(p).as_posix() for p in checked_paths] == ["#d.yaml", "a.yaml"]
+
+
 def test_force_exclude_leaves_out_named_files_as_a_scan_would(checked_paths, tmp_path,
                                                              monkeypatch):
     """With exclude = ["drafts"] in [tool.furncheck], a scan of designs/ leaves out
