@@ -172,7 +172,7 @@ def validate(paths: tuple[str, ...], fmt: str | None, output: str | None, jobs: 
 
         click.echo(f"furncheck: {summary_line(summary.as_dict())}; report written to "
                    f"{output}", err=True)
-    if cache is not None and cache.unwritable:
+    if cache is not None and cache.unwritable and cache.lost:   # (a warm run lost none)
         click.echo(f"furncheck: results not cached: {cache.unwritable}", err=True)
     if views_dir is not None and _views_missing():  # the report and exit code are validate's
         views_dir = None

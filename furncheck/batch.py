@@ -87,7 +87,10 @@ def entries(sources: Sequence[str | DesignReport], fmt: str, jobs: int | None,
             key, kind = keys[path_index], stored[path_index]
             path_index += 1
             if kind is None:
-                yield next(checked)
+                entry = next(checked)
+                if cache is not None and cache.unwritable is not None and not entry.error:
+                    cache.lost += 1     # (a worker's copy of the cache counted it there)
+                yield entry
                 continue
             entry = _from_cache(cache, source, key, kind, fmt)
             if entry is None:           # a damaged entry: checked here, stored again

@@ -28,7 +28,8 @@ only from where you would take code.)  Entries are written atomically
 only complete entries.  An entry that cannot be read, is cut short, fails its CRC, holds
 another key or a malformed result is ignored: the design is checked and its entry written
 again.  The cache never fails a run: when its directory
-cannot be written, results are not stored and one warning says so.  Deleting the directory
+cannot be written, results are not stored and one warning says so (none where no
+result was lost: a warm cache restored read-only).  Deleting the directory
 at any time is safe.
 
 The default directory is the user cache directory: ``$FURNCHECK_CACHE_DIR`` when set, else
@@ -53,7 +54,7 @@ from typing import Any
 
 from furncheck import __version__
 from furncheck import tolerances as tol
-from furncheck.files import write_atomically
+from furncheck.files import why_unwritable, write_atomically
 from furncheck.result import DesignReport
 from furncheck.result_codec import CodecError, decode_report, encode
 
@@ -207,6 +208,7 @@ class ResultCache:
     directory: str
     options: dict[str, str | None] = field(default_factory=dict)
     unwritable: str | None = None
+    lost: int = 0       # results or pieces not stored because of ``unwritable``
     _prefix: bytes = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -265,7 +267,8 @@ class ResultCache:
         try:
             os.makedirs(folder, exist_ok=True)
             if not os.access(folder, os.W_OK | os.X_OK):
-                raise PermissionError(13, "Permission denied")
+                self.unwritable = f"{self.directory}: {why_unwritable(folder)}"
+                return
             if made:            # a folder of its own: git leaves it out (as pytest's)
                 write_atomically(os.path.join(self.directory, ".gitignore"), IGNORE_ALL)
         except OSError as error:
@@ -280,15 +283,17 @@ class ResultCache:
         was checked) if the file still holds what it held then: a file edited during its
         check is not stored under its old content's key.  Whether it was stored.  (It may
         run in a worker process: entries are written atomically.)"""
-        if key is None or self.unwritable is not None or report.error is not None \
-                or self.key_of(path) != key:
+        if key is None or report.error is not None or self.key_of(path) != key:
             return False
         return self.put(key, report)
 
     def put(self, key: str, report: DesignReport) -> bool:
         """Store ``report`` (a checked design, not an input error) under ``key``; whether
         it was stored."""
-        if self.unwritable is not None or report.error is not None:
+        if report.error is not None:
+            return False
+        if self.unwritable is not None:
+            self.lost += 1
             return False
         return self._write(self.entry_path(key), _MARKER + bytes.fromhex(key), encode(report))
 
@@ -296,6 +301,7 @@ class ResultCache:
         """Store ``(valid, error, piece)`` of ``key``'s report in format ``fmt`` (only for
         a key whose report is stored: the piece is made from it)."""
         if self.unwritable is not None:
+            self.lost += 1
             return False
         return self._write(self.piece_path(key, fmt),
                            _MARKER + bytes.fromhex(key) + fmt.encode() + b"\0", fields)
@@ -315,6 +321,7 @@ class ResultCache:
             write_atomically(target, header + _crc(payload) + payload, follow_links=False)
         except (OSError, ValueError) as error:   # ValueError: marshal of an odd value
             self.unwritable = f"{self.directory}: {getattr(error, 'strerror', None) or error}"
+            self.lost += 1
             return False
         return True
 

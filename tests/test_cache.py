@@ -272,6 +272,27 @@ def test_an_unwritable_cache_directory_is_one_warning(checked_paths, tmp_path):
     assert "2 designs: 1 valid, 1 invalid" in result.stdout
 
 
+def test_a_read_only_cache_warns_only_where_a_result_was_lost(checked_paths, tmp_path,
+                                                              monkeypatch):
+    """A CI job restores a warm cache read-only (os.access says it cannot be written): a
+    run whose every result is stored already loses nothing and says nothing (it warned on
+    every run); one with a new design says once that results were not cached, in the
+    words of the error writing would raise ('permission denied' here; 'read-only file
+    system' on such a mount), not a made-up 'Permission denied'."""
+    valid, bad = write(tmp_path, "valid.yaml", "bad.yaml")
+    cache = tmp_path / "cache"
+    assert run("validate", valid, bad, "--cache-dir", str(cache)).stderr == ""
+    real_access = os.access
+    monkeypatch.setattr(os, "access", lambda path, mode, **kw: False if str(path).startswith(
+        str(cache)) else real_access(path, mode, **kw))
+    warm = run("validate", valid, bad, "--cache-dir", str(cache))
+    assert warm.stderr == "" and warm.exit_code == 1 and checked_paths == [valid, bad]
+    (other,) = write(tmp_path, "valid-2.yaml")
+    cold = run("validate", valid, other, "--cache-dir", str(cache))
+    assert cold.stderr == f"furncheck: results not cached: {cache}: permission denied\n"
+    assert checked_paths == [valid, bad, other]
+
+
 def test_a_file_edited_during_the_check_is_not_stored_under_its_old_key(tmp_path,
                                                                        monkeypatch):
     """The checker edits the file while checking it (as an editor saving mid-run would):
