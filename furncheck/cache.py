@@ -54,7 +54,7 @@ from typing import Any
 
 from furncheck import __version__
 from furncheck import tolerances as tol
-from furncheck.files import why_unwritable, write_atomically
+from furncheck.files import CACHEDIR_SIGNATURE, CACHEDIR_TAG, why_unwritable, write_atomically
 from furncheck.result import DesignReport
 from furncheck.result_codec import CodecError, decode_report, encode
 
@@ -68,6 +68,11 @@ _DEPENDENCIES = (("numpy", "numpy"), ("scipy", "scipy"), ("yaml", "PyYAML"))
 """The numerical dependencies whose build a result depends on: (module, distribution)."""
 _THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 
+
+CACHE_TAG = CACHEDIR_SIGNATURE + (b"\n# This file is a cache directory tag created by "
+                                  b"furncheck (its results).\n# For information about cache "
+                                  b"directory tags see https://bford.info/cachedir/\n")
+"""The CACHEDIR.TAG furncheck writes in its entries' folder (``files.CACHEDIR_TAG``)."""
 
 IGNORE_ALL = b"# made by furncheck: its result cache, nothing to commit\n*\n"
 """The ``.gitignore`` that a cache folder furncheck makes holds (``cache-dir =
@@ -277,6 +282,13 @@ class ResultCache:
         if os.path.islink(folder):     # (restored from an archive): no entry can be
             self.unwritable = (f"{self.directory}: {LAYOUT} is a symbolic link (nothing "
                                f"is written through one)")     # stored, and the run says so
+            return
+        tag = os.path.join(folder, CACHEDIR_TAG)    # scans pass the folder over, whatever
+        if not os.path.lexists(tag):                # cache is in use (and backups do)
+            try:
+                write_atomically(tag, CACHE_TAG, follow_links=False)
+            except OSError:
+                pass                    # (the entries' own writes will say what is wrong)
 
     def store(self, path: str, key: str | None, report: DesignReport) -> bool:
         """``put`` the report of the file ``path`` under ``key`` (its ``key_of`` before it

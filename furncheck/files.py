@@ -14,6 +14,13 @@ import os
 from collections.abc import Iterator
 from typing import BinaryIO
 
+CACHEDIR_TAG = "CACHEDIR.TAG"
+"""The file that marks a folder as a cache (the Cache Directory Tagging Specification,
+bford.info/cachedir: backup tools and ``tar --exclude-caches`` pass such folders over):
+furncheck writes one in its result cache's entries folder, and scans do not enter a
+folder that holds one."""
+CACHEDIR_SIGNATURE = b"Signature: 8a477f597d28d172789f06886806bc55"
+"""How a CACHEDIR.TAG begins (the specification's signature)."""
 TEMP_SUFFIX = ".tmp"
 """Suffix of the temporary files (``.NAME.XXXXXXXX.tmp`` beside the target)."""
 TEMP_NAME_ROOM = 255 - len(".." + "XXXXXXXX" + TEMP_SUFFIX)
@@ -129,3 +136,13 @@ def why_unwritable(path: str) -> str:
     except (OSError, AttributeError):       # no statvfs (Windows), or gone
         read_only = False
     return "read-only file system" if read_only else "permission denied"
+
+
+def is_cache_tag(path: str) -> bool:
+    """Whether the file at ``path`` begins with CACHEDIR_SIGNATURE (a CACHEDIR.TAG); False
+    where it cannot be read."""
+    try:
+        with open(path, "rb") as stream:
+            return stream.read(len(CACHEDIR_SIGNATURE)) == CACHEDIR_SIGNATURE
+    except OSError:
+        return False

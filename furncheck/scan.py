@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING
 
 from furncheck import tolerances as tol
 from furncheck.config import GIT_DIR
+from furncheck.files import CACHEDIR_TAG, is_cache_tag
 from furncheck.result import DesignReport
 
 if TYPE_CHECKING:       # the ignore rules are read where a folder is scanned
@@ -234,6 +235,9 @@ def find_design_files(folder: str, excludes: tuple[PatternFile, ...] = (),
         except OSError as error:
             scan.unreadable.append((current, error.strerror or str(error)))
             continue
+        if current != top and any(entry.name == CACHEDIR_TAG for entry in listing) \
+                and is_cache_tag(os.path.join(current, CACHEDIR_TAG)):
+            continue                    # a cache's folder (a result cache not in use)
         rules = rules.entering(os.path.abspath(current),       # (a .git link to nothing
                                any(entry.name == GIT_DIR and _exists(entry)  # is none)
                                    for entry in listing))

@@ -36,8 +36,9 @@ def entries(directory: Path) -> list[Path]:
 
 
 def pieces(directory: Path) -> list[Path]:
+    """The report pieces (NAME.FORMAT; not the folder's CACHEDIR.TAG)."""
     return sorted(path for path in (directory / cache_module.LAYOUT).rglob("*.*")
-                  if path.is_file())
+                  if path.is_file() and path.name != "CACHEDIR.TAG")
 
 
 # --- hits, misses, invalidation -------------------------------------------------------------
@@ -197,6 +198,7 @@ def test_a_symlink_in_the_cache_is_neither_read_nor_written_through(checked_path
     # through it, and the run says once that nothing was cached
     folder.unlink()
     layout = folder.parent
+    (layout / "CACHEDIR.TAG").unlink()
     for path in layout.iterdir():
         shutil.rmtree(path)
     layout.rmdir()

@@ -624,6 +624,14 @@ def test_a_file_that_is_no_design_is_counted_once(checked_paths, tmp_path):
     # the cache's folder named as the folder to scan is scanned (it holds no design)
     named = run("validate", cache, "--cache-dir", cache)
     assert "no design files" in named.output
+    # nor is it scanned while another cache is in use: its entries' folder holds a
+    # CACHEDIR.TAG (the Cache Directory Tagging Specification), and a scan enters no
+    # folder that holds one (its pieces were listed as files without a furncheck key)
+    tag = Path(cache) / "v1" / "CACHEDIR.TAG"
+    assert tag.read_bytes().startswith(b"Signature: 8a477f597d28d172789f06886806bc55")
+    (Path(cache) / ".gitignore").unlink()           # a folder the user made beforehand
+    other = run("validate", folder, "--cache-dir", str(tmp_path / "other"))
+    assert other.stderr == cold.stderr and other.stdout == cold.stdout
 
 
 def test_a_named_file_is_always_checked(checked_paths, tmp_path):
