@@ -32,6 +32,8 @@ from typing import BinaryIO
 
 import yaml
 
+from furncheck.files import as_utf8
+
 KEY = "furncheck"
 
 _Loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
@@ -52,6 +54,10 @@ of MB in a scanned tree is not read to its end on every run."""
 def declares_design(data: bytes, fmt: str) -> bool:
     """Whether ``data`` (a file's bytes; ``fmt`` 'yaml' or 'json') has a top-level
     ``furncheck`` key: see the module docstring."""
+    try:
+        data = as_utf8(data)
+    except UnicodeDecodeError:
+        return False
     if KEY.encode() not in data:
         return False
     try:

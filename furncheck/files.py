@@ -146,3 +146,19 @@ def is_cache_tag(path: str) -> bool:
             return stream.read(len(CACHEDIR_SIGNATURE)) == CACHEDIR_SIGNATURE
     except OSError:
         return False
+
+
+_WIDE_BOMS = ((b"\xff\xfe\x00\x00", "utf-32"), (b"\x00\x00\xfe\xff", "utf-32"),
+              (b"\xff\xfe", "utf-16"), (b"\xfe\xff", "utf-16"))
+"""Byte-order marks of UTF-32 and UTF-16 (UTF-32's first: its little-endian mark begins
+with UTF-16's) and the codec that reads the text after them."""
+
+
+def as_utf8(data: bytes) -> bytes:
+    """``data``, a text file's bytes, in UTF-8: UTF-16 or UTF-32 text that begins with its
+    byte-order mark (what an editor's 'Unicode' saves; YAML and JSON both allow it) recoded,
+    anything else as it is.  Raises UnicodeDecodeError where such text does not decode."""
+    for mark, codec in _WIDE_BOMS:
+        if data.startswith(mark):
+            return data.decode(codec).encode("utf-8")
+    return data

@@ -158,6 +158,32 @@ def test_empty_file(tmp_path, content):
     assert checked(info.value, str(path)).message == "empty file"
 
 
+@pytest.mark.parametrize("codec", ["utf-16", "utf-16-be", "utf-32", "utf-32-be"])
+@pytest.mark.parametrize("suffix", [".yaml", ".json"])
+def test_utf16_and_utf32_text_with_its_byte_order_mark_is_read(tmp_path, codec, suffix):
+    """A design saved as UTF-16 or UTF-32 with its byte-order mark (an editor's 'Unicode';
+    YAML and JSON both allow it) reads as its UTF-8 copy does, line numbers included (it
+    was 'not a text file (it holds NUL bytes)', and a scan passed it over as no design);
+    such a mark before text that does not decode says so."""
+    text = BASE if suffix == ".yaml" else json.dumps(yaml.safe_load(BASE), indent=1)
+    plain, wide = tmp_path / f"plain{suffix}", tmp_path / f"wide{suffix}"
+    plain.write_text(text, encoding="utf-8")
+    mark = {"utf-16-be": b"\xfe\xff", "utf-32-be": b"\x00\x00\xfe\xff"}.get(codec, b"")
+    wide.write_bytes(mark + text.encode(codec))
+    assert load_design(str(wide)).planks == load_design(str(plain)).planks
+    from furncheck.detect import declares_design
+    from furncheck.scan import find_design_files
+
+    assert declares_design(wide.read_bytes(), suffix[1:])
+    assert str(wide) in find_design_files(str(tmp_path)).files
+    broken = tmp_path / f"broken{suffix}"
+    broken.write_bytes(b"\xff\xfe" + b"f\x00u")               # an odd byte at its end
+    with pytest.raises(DesignError) as info:
+        load_design(str(broken))
+    assert info.value.message == ("not a text file (it begins with the byte-order mark of "
+                                  "UTF-16, but is not UTF-16 text)")
+
+
 def test_empty_json(tmp_path):
     path = tmp_path / "bench.json"
     path.write_bytes(b"\n \n")
@@ -165,7 +191,8 @@ def test_empty_json(tmp_path):
         load_design(str(path))
 
 
-@pytest.mark.parametrize("content", [b"furncheck: 1\x00\x01", b"\xff\xfe\x00a", b"name: \xe9t\xe9"])
+@pytest.mark.parametrize("content", [b"furncheck: 1\x00\x01", b"\xff\xfe\x00a\x00",
+                                     b"name: \xe9t\xe9"])
 def test_binary_file(tmp_path, content):
     path = tmp_path / "bench.yaml"
     path.write_bytes(content)

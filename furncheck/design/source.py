@@ -25,6 +25,7 @@ import yaml
 
 from furncheck import tolerances as tol
 from furncheck.errors import DesignError
+from furncheck.files import as_utf8
 from furncheck.plain import plain_number
 
 FORMATS = {".yaml": "yaml", ".yml": "yaml", ".json": "json"}
@@ -78,6 +79,14 @@ def _too_large(source: str, size: int) -> DesignError:
 
 
 def _decode(data: bytes, path: str) -> str:
+    """A design file's text: UTF-8 (a byte-order mark dropped), or UTF-16 or UTF-32 that
+    begins with its byte-order mark (``files.as_utf8``)."""
+    try:
+        data = as_utf8(data)
+    except UnicodeDecodeError as error:
+        wide = "-".join(error.encoding.upper().split("-")[:2])      # UTF-16, UTF-32
+        raise DesignError(path, "", None, f"not a text file (it begins with the byte-order "
+                                          f"mark of {wide}, but is not {wide} text)") from None
     if b"\x00" in data:
         raise DesignError(path, "", None, "not a text file (it holds NUL bytes)")
     data = data.removeprefix(codecs.BOM_UTF8)
