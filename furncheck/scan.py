@@ -16,7 +16,8 @@ that pass every changed YAML file).  A directory is searched recursively for
 Symlinked folders are followed, each folder once: a folder reached a second time (a loop,
 or two links to one folder) is not searched again, and folders reached without a symlink
 are searched before those reached through one (so a file is listed by its real path when
-the tree has one).  Files are listed in path order; a file
+the tree has one), and a symlinked file whose target the scan finds too is listed by the
+target's path.  Files are listed in path order; a file
 reached twice (named twice, or named and found) is checked once, at its first place.
 """
 
@@ -219,6 +220,7 @@ def find_design_files(folder: str, excludes: tuple[PatternFile, ...] = (),
         if (identity.st_dev, identity.st_ino) != own:
             visited.add((identity.st_dev, identity.st_ino))
     candidates: list[str] = []
+    linked_files: set[str] = set()      # candidates that are symlinks
     top = os.path.normpath(folder)
     direct = [(top, rules_above(os.path.abspath(top), excludes))]
     linked: list[tuple[str, IgnoreRules]] = []    # folders reached through a symlink
@@ -258,6 +260,8 @@ def find_design_files(folder: str, excludes: tuple[PatternFile, ...] = (),
                 (links if via_link or entry.is_symlink() else subfolders).append((path, inside))
             elif os.path.splitext(entry.name)[1].lower() in DESIGN_SUFFIXES:
                 candidates.append(path)
+                if entry.is_symlink():
+                    linked_files.add(path)
         direct.extend(reversed(subfolders))   # depth first, in name order
         linked.extend(reversed(links))
     for path in candidates:
@@ -266,6 +270,10 @@ def find_design_files(folder: str, excludes: tuple[PatternFile, ...] = (),
         else:
             scan.skipped.append(path)
     scan.files.sort(key=lambda path: PurePath(path).parts)
+    if linked_files:                # a file linked to one the scan found itself: by that
+        real = {_identity(path) for path in scan.files if path not in linked_files}
+        scan.files = [path for path in scan.files       # one's own path (the link named
+                      if path not in linked_files or _identity(path) not in real]  # it)
     scan.unreadable.sort()
     return scan
 

@@ -671,6 +671,18 @@ def test_symlinked_folders_are_followed_once(tmp_path):
     assert found(top) == ["outside/b.yaml", "real/a.yaml"]
 
 
+def test_a_symlinked_file_is_listed_by_its_targets_path_where_the_scan_finds_it(tmp_path):
+    """a.yaml -> z.yaml beside it: listed once, as z.yaml (as a linked folder is listed
+    by its real path; a.yaml, first in name order, hid z.yaml); b.yaml -> a file outside
+    the tree: listed as b.yaml (the scan finds no other path of it)."""
+    tree(tmp_path, {"top/z.yaml": DESIGN, "elsewhere/x.yaml": DESIGN})
+    symlink(tmp_path / "top" / "a.yaml", tmp_path / "top" / "z.yaml")
+    symlink(tmp_path / "top" / "b.yaml", tmp_path / "elsewhere" / "x.yaml")
+    assert found(tmp_path / "top") == ["b.yaml", "z.yaml"]
+    assert collect([str(tmp_path / "top")], ScanOptions()).sources == [
+        str(tmp_path / "top" / "b.yaml"), str(tmp_path / "top" / "z.yaml")]
+
+
 def test_a_folder_that_links_to_itself_ends(tmp_path):
     """self -> . and a pair a/to_b -> b, b/to_a -> a: every folder is searched once."""
     tree(tmp_path, {"a/x.yaml": DESIGN, "b/y.yaml": DESIGN})
