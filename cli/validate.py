@@ -72,7 +72,9 @@ can be noticed, where a count alone would pass in silence."""
 @SCHEDULER_OPTION
 @click.option("--exclude", "excludes", metavar="GLOB", multiple=True,
               help="Leave out what this gitignore pattern matches in directory scans, "
-                   "relative to the current folder (repeatable), e.g. --exclude drafts.")
+                   "relative to the current folder (repeatable), e.g. --exclude drafts; "
+                   "a path typed to elsewhere (../drafts, an absolute path) is anchored "
+                   "there.")
 @click.option("--skip-non-designs/--no-skip-non-designs", default=None,
               help="Leave out named files without a top-level 'furncheck' key too, as "
                    "directory scans do (for hooks that pass every changed file).  "
@@ -233,8 +235,9 @@ def _views_missing() -> bool:
 
 def _exclude_patterns(excludes: tuple[str, ...], config: Config) -> tuple:
     """The exclude patterns of --exclude (anchored at the current folder) and of the
-    config's ``exclude`` (at its folder); one that is no valid pattern is one line and
-    exit 2 (``ignores.PatternError``)."""
+    config's ``exclude`` (at its folder), a path typed to elsewhere anchored there
+    (``ignores.exclude_patterns``); one that is no valid pattern is one line and exit 2
+    (``ignores.PatternError``)."""
     if not excludes and not config.exclude:
         return ()
     from furncheck.ignores import PatternError, exclude_patterns

@@ -39,6 +39,7 @@ The default directory is the user cache directory: ``$FURNCHECK_CACHE_DIR`` when
 
 from __future__ import annotations
 
+import base64
 import hashlib
 import importlib.util
 import json
@@ -176,13 +177,21 @@ def _dependency_files() -> list[str]:
 
 
 def _record(package: Path, distribution: str) -> bytes | None:
-    """The ``RECORD`` of the distribution ``distribution`` installed beside ``package``
-    (its ``<name>-<version>.dist-info`` folder, the name compared as pip normalizes it)
-    that lists the package's ``__init__.py``, but for the files it put outside the
-    folder it is in (``../../../bin/f2py``: a script's first line names the environment's
-    Python); None where there is none."""
+    """The files of the distribution ``distribution`` installed beside ``package`` as its
+    ``RECORD`` lists them with their hashes (its ``<name>-<version>.dist-info`` folder,
+    the name compared as pip normalizes it): the lines that carry a hash, but for those
+    of the dist-info folder itself (``INSTALLER``, ``REQUESTED`` and the like say how it
+    was installed, not what) and of files it put outside the folder it is in
+    (``../../../bin/f2py``: a script's first line names the environment's Python).  Of
+    several such folders (a stale one left by an upgrade), the one whose hash of the
+    package's ``__init__.py`` is the file's on disk; None where there is none."""
     wanted = _normalized(distribution)
     listed = f"{package.name}/__init__.py,".encode()
+    try:
+        init = (package / "__init__.py").read_bytes()
+    except OSError:
+        return None
+    actual = b"sha256=" + base64.urlsafe_b64encode(hashlib.sha256(init).digest()).rstrip(b"=")
     for entry in sorted(os.listdir(package.parent)):
         stem, dot, kind = entry.rpartition(".")
         if kind != "dist-info" or _normalized(stem.rpartition("-")[0]) != wanted:
@@ -191,9 +200,12 @@ def _record(package: Path, distribution: str) -> bytes | None:
             record = (package.parent / entry / "RECORD").read_bytes()
         except OSError:
             continue
-        if record.startswith(listed) or b"\n" + listed in record:
-            return b"\n".join(line for line in record.splitlines()
-                              if not line.startswith(b"../"))
+        lines = record.splitlines()
+        if not any(line.startswith(listed + actual + b",") for line in lines):
+            continue
+        return b"\n".join(line for line in lines
+                          if not line.startswith((b"../", entry.encode() + b"/"))
+                          and line.split(b",")[1:2] not in ([], [b""]))
     return None
 
 
@@ -213,7 +225,7 @@ class ResultCache:
     directory: str
     options: dict[str, str | None] = field(default_factory=dict)
     unwritable: str | None = None
-    lost: int = 0       # results or pieces not stored because of ``unwritable``
+    lost: int = 0       # results not stored because of ``unwritable`` (pieces do not count)
     _prefix: bytes = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -312,9 +324,8 @@ class ResultCache:
     def put_piece(self, key: str, fmt: str, fields: tuple[bool | None, bool, Any]) -> bool:
         """Store ``(valid, error, piece)`` of ``key``'s report in format ``fmt`` (only for
         a key whose report is stored: the piece is made from it)."""
-        if self.unwritable is not None:
-            self.lost += 1
-            return False
+        if self.unwritable is not None:         # (no result lost: a piece is made from
+            return False                        # the stored result again)
         return self._write(self.piece_path(key, fmt),
                            _MARKER + bytes.fromhex(key) + fmt.encode() + b"\0", fields)
 

@@ -9,6 +9,7 @@ processes writing the same path leave one complete file, the last writer's.  The
 
 from __future__ import annotations
 
+import codecs
 import contextlib
 import os
 from collections.abc import Iterator
@@ -148,8 +149,8 @@ def is_cache_tag(path: str) -> bool:
         return False
 
 
-_WIDE_BOMS = ((b"\xff\xfe\x00\x00", "utf-32"), (b"\x00\x00\xfe\xff", "utf-32"),
-              (b"\xff\xfe", "utf-16"), (b"\xfe\xff", "utf-16"))
+_WIDE_BOMS = ((codecs.BOM_UTF32_LE, "utf-32"), (codecs.BOM_UTF32_BE, "utf-32"),
+              (codecs.BOM_UTF16_LE, "utf-16"), (codecs.BOM_UTF16_BE, "utf-16"))
 """Byte-order marks of UTF-32 and UTF-16 (UTF-32's first: its little-endian mark begins
 with UTF-16's) and the codec that reads the text after them."""
 

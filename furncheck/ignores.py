@@ -29,6 +29,7 @@ not resolved through symlinks (git does not follow symlinks either).
 
 from __future__ import annotations
 
+import enum
 import os
 import re
 from dataclasses import dataclass
@@ -208,37 +209,52 @@ def exclude_patterns(lines: list[str] | tuple[str, ...], base: str, source: str,
                      typed: bool = False) -> tuple[PatternFile, ...]:
     """The exclude patterns ``lines`` anchored at folder ``base`` (``patterns`` with
     ``excludes``), each line that is typed as a path to somewhere else anchored there
-    instead, so that none silently matches nothing: one beginning with ``../`` (a
-    pattern typed from a subfolder of the scanned tree) at that folder above ``base``, an
-    absolute path of this system (``--exclude $PWD/drafts``; not one that names a path
-    below ``base`` read as anchored there, as ``/build`` does) at its own folder.
-    ``typed``: the lines come from the command line, where a leading '#' is part of the
-    name (``--exclude '#draft.yaml'``), not a comment as in a config's list."""
-    if not lines:
-        return ()
+    instead, so that none silently matches nothing: one beginning with ``../`` (after a
+    ``./``: a pattern typed from a subfolder of the scanned tree) at that folder above
+    ``base``, an absolute path of this system (``--exclude $PWD/drafts``, compared
+    through symlinks; not one that names a path below ``base`` read as anchored there,
+    as ``/build`` does) at its own folder.  ``typed``: the lines come from the command
+    line, where a leading '#' is part of the name (``--exclude '#draft.yaml'``), not a
+    comment as in a config's list.  A line that is no valid pattern raises
+    ``PatternError`` naming it as written."""
     groups: dict[str, list[str]] = {}
-    base = os.path.abspath(base)
     for line in lines:
-        anchor, text = base, line
-        if typed and text.startswith("#"):
-            text = "\\" + text
-        elif text.startswith("../") or text == "..":
-            while text.startswith("../") or text == "..":
-                anchor, text = os.path.dirname(anchor), text[3:]
-            text = "/" + text
-        elif os.path.isabs(text) and not os.path.lexists(base + text) \
-                and os.path.lexists(text.rstrip("/") or "/"):
-            absolute = os.path.normpath(text)
-            folder_only = "/" if text.endswith("/") else ""
-            if absolute == base or absolute.startswith(base.rstrip(os.sep) + os.sep):
-                text = "/" + os.path.relpath(absolute, base).replace(os.sep, "/")
-            else:
-                anchor = os.path.dirname(absolute)
-                text = "/" + os.path.basename(absolute)
-            text += folder_only
+        anchor, text = _anchored(line, os.path.abspath(base), typed)
+        try:                            # (each line on its own, to name it as written)
+            patterns([text], anchor, source, excludes=True)
+        except PatternError:
+            if text == line:
+                raise
+            raise PatternError(f"{source}: {line!r} is not a valid gitignore pattern (it "
+                               f"names {anchor} itself, or nothing)") from None
         groups.setdefault(anchor, []).append(text)
     return tuple(patterns(group, anchor, source, excludes=True)
                  for anchor, group in groups.items())
+
+
+def _anchored(line: str, base: str, typed: bool) -> tuple[str, str]:
+    """(folder, pattern): where an exclude ``line`` is anchored and the pattern there
+    (``exclude_patterns``)."""
+    if typed and line.startswith("#"):
+        return base, "\\" + line
+    text = line
+    while text.startswith("./"):
+        text = text[2:].lstrip("/")
+    if text.startswith("../") or text == "..":
+        anchor = base
+        while text.startswith("../") or text == "..":
+            anchor, text = os.path.dirname(anchor), text[3:].lstrip("/")
+        return anchor, "/" + text
+    if os.path.isabs(line) and not os.path.lexists(base + line) \
+            and os.path.lexists(line.rstrip("/") or "/"):
+        absolute = os.path.realpath(line)
+        real_base = os.path.realpath(base)
+        folder_only = "/" if line.endswith("/") else ""
+        if absolute.startswith(real_base.rstrip(os.sep) + os.sep):
+            relative = os.path.relpath(absolute, real_base).replace(os.sep, "/")
+            return base, "/" + relative + folder_only
+        return os.path.dirname(absolute), "/" + os.path.basename(absolute) + folder_only
+    return base, line
 
 
 def _without_trailing_spaces(line: str) -> str:
@@ -262,9 +278,14 @@ def read_pattern_file(path: str, base: str) -> PatternFile | None:
     return patterns(lines, base, path)
 
 
-KEPT, LEFT_OUT, TRACKED = 0, 1, 2
-"""``IgnoreRules.state``: a path a scan keeps; one it leaves out; one a ``.gitignore``
-ignores that git tracks all the same (a tracked file, or a folder holding one)."""
+class Kept(enum.Enum):
+    """``IgnoreRules.state`` of a path: a scan keeps it (YES), leaves it out (NO), or a
+    ``.gitignore`` ignores it but git tracks it all the same (TRACKED: a tracked file, or
+    a folder holding one, entered for those files alone)."""
+
+    YES = "kept"
+    NO = "left out"
+    TRACKED = "tracked"
 
 
 @dataclass(frozen=True)
@@ -279,35 +300,33 @@ class IgnoreRules:
     root: str | None = None
     below_ignored: bool = False
 
-    def ignored(self, path: str, is_dir: bool) -> bool:
-        """Whether the absolute ``path`` is left out."""
-        return self.state(path, is_dir) == LEFT_OUT
-
-    def state(self, path: str, is_dir: bool) -> int:
-        """KEPT, LEFT_OUT or TRACKED for the absolute ``path``: an exclude pattern leaves
-        it out; else the deepest gitignore file with a pattern that matches it decides
-        (the folder's ``below_ignored`` standing for one that ignores everything), but a
-        file that git tracks, and a folder that holds one, are not ignored, as in git
-        (``git ls-files -ci --exclude-standard``: ``tracked_ignored``)."""
+    def state(self, path: str, is_dir: bool) -> Kept:
+        """Whether a scan keeps the absolute ``path``: an exclude pattern leaves it out;
+        else the deepest gitignore file with a pattern that matches it decides (the
+        folder's ``below_ignored`` standing for one that ignores everything), but a file
+        that git tracks, and a folder that holds one, are not ignored, as in git
+        (``tracked.tracked_ignored``)."""
         if any(rule.verdict(path, is_dir) for rule in self.excludes):
-            return LEFT_OUT
+            return Kept.NO
         verdict = self.below_ignored or next(
             (found for found in (rule.verdict(path, is_dir)
                                  for rule in reversed(self.gitignores))
              if found is not None), False)
         if not verdict:
-            return KEPT
-        return TRACKED if self._tracked(path, is_dir) else LEFT_OUT
+            return Kept.YES
+        return Kept.TRACKED if self._tracked(path, is_dir) else Kept.NO
 
     def _tracked(self, path: str, is_dir: bool) -> bool:
         if self.root is None:
             return False
+        from furncheck.tracked import tracked_ignored  # asks git: only where it matters
+
         files, folders = tracked_ignored(self.root)
         return path in (folders if is_dir else files)
 
     def under_ignored(self) -> IgnoreRules:
         """These rules for a folder that a ``.gitignore`` ignores and git tracks files in
-        (``TRACKED``): only those files are kept below it."""
+        (``Kept.TRACKED``): only those files are kept below it."""
         return IgnoreRules(self.gitignores, self.excludes, self.root, True)
 
     def leaves_out(self, folder: str) -> bool:
@@ -339,63 +358,6 @@ class IgnoreRules:
         if gitignores is self.gitignores and root == self.root:
             return self
         return IgnoreRules(gitignores, self.excludes, root, below)
-
-
-TRACKED_IGNORED_SECONDS = 60.0
-"""How long ``git ls-files`` may take to list a repository's tracked, ignored files."""
-
-_TRACKED: dict[str, tuple[frozenset, frozenset]] = {}
-
-
-def tracked_ignored(root: str) -> tuple[frozenset, frozenset]:
-    """(files, folders), absolute paths under ``root``: the files that git tracks in the
-    repository whose top is ``root`` though its ignore rules match them (``git ls-files
-    --cached --ignored --exclude-standard``: a design committed before a ``*.json`` line
-    was added, or forced in with ``git add -f``), and the folders above them up to
-    ``root``.  Asked once per repository and scan (``scan.collect`` forgets the answers
-    before it starts), the first time a ``.gitignore`` ignores something there; empty
-    where git cannot tell (no git installed, not a repository git reads): the ignore
-    rules alone then decide, as they did before git was asked."""
-    found = _TRACKED.get(root)
-    if found is None:
-        found = _TRACKED[root] = _ask_git(root)
-    return found
-
-
-def forget_tracked() -> None:
-    """Forget what git said it tracks (``tracked_ignored``): the next scan asks again."""
-    _TRACKED.clear()
-
-
-def _ask_git(root: str) -> tuple[frozenset, frozenset]:
-    import shutil
-    import subprocess
-
-    git = shutil.which("git")
-    if git is None:
-        return frozenset(), frozenset()
-    environment = {name: value for name, value in os.environ.items()
-                   if name not in ("GIT_DIR", "GIT_WORK_TREE")}   # a hook's: ``root``'s own
-    try:
-        listed = subprocess.run(
-            [git, "-c", "safe.directory=*", "-C", root, "ls-files", "-z", "--cached",
-             "--ignored", "--exclude-standard"], capture_output=True,
-            timeout=TRACKED_IGNORED_SECONDS, env=environment, check=False)
-    except (OSError, subprocess.SubprocessError):
-        return frozenset(), frozenset()
-    if listed.returncode != 0:
-        return frozenset(), frozenset()
-    files, folders = set(), set()
-    for name in listed.stdout.split(b"\0"):
-        if not name:
-            continue
-        path = os.path.join(root, os.fsdecode(name).replace("/", os.sep))
-        files.add(path)
-        folder = os.path.dirname(path)
-        while folder not in folders and len(folder) > len(root):
-            folders.add(folder)
-            folder = os.path.dirname(folder)
-    return frozenset(files), frozenset(folders)
 
 
 def repository_root(folder: str) -> str | None:
@@ -501,12 +463,21 @@ def left_out_by_a_scan(path: str, excludes: tuple[PatternFile, ...] = (),
     current, is_dir, tracked_in_ignored = absolute, False, False
     while True:
         state = rules.state(current, is_dir)
-        if state == LEFT_OUT:
+        if state is Kept.NO or (is_dir and _cache_folder(current)):
             return True
-        if state == TRACKED and is_dir:         # an ignored folder git tracks files in:
+        if state is Kept.TRACKED and is_dir:    # an ignored folder git tracks files in:
             tracked_in_ignored = True           # only those are kept
         parent = os.path.dirname(current)
         if parent == current:
             break
         current, is_dir = parent, True
-    return tracked_in_ignored and rules.under_ignored().state(absolute, False) != TRACKED
+    return tracked_in_ignored and rules.under_ignored().state(absolute, False) \
+        is not Kept.TRACKED
+
+
+def _cache_folder(folder: str) -> bool:
+    """Whether ``folder`` holds a CACHEDIR.TAG (``files.CACHEDIR_TAG``): a scan does not
+    enter it."""
+    from furncheck.files import CACHEDIR_TAG, is_cache_tag
+
+    return is_cache_tag(os.path.join(folder, CACHEDIR_TAG))

@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import os
 import stat
-import sys
 from dataclasses import dataclass, field
 from pathlib import Path, PurePath
 from typing import TYPE_CHECKING
@@ -121,10 +120,10 @@ def _shown_name(path: str) -> str:
 def collect(paths: tuple[str, ...] | list[str], options: ScanOptions = ScanOptions()
             ) -> Collected:
     """The sources of ``paths`` (see the module docstring).  What git tracks is asked
-    afresh for each call (``ignores.tracked_ignored``: a process that scans again, after
-    a commit, must not go by the last answer)."""
-    if "furncheck.ignores" in sys.modules:
-        sys.modules["furncheck.ignores"].forget_tracked()
+    afresh for each call (``tracked.forget``)."""
+    from furncheck.tracked import forget
+
+    forget()
     collected = Collected()
     seen: set[str] = set()
     rules: dict[str, IgnoreRules] = {}  # per folder: its gitignores read once for all
@@ -203,7 +202,7 @@ def find_design_files(folder: str, excludes: tuple[PatternFile, ...] = (),
     """The design files below ``folder`` (paths are ``folder`` joined with the relative
     path, normalized), by the rules of the module docstring; the folders ``unscanned``
     (absolute) are not entered."""
-    from furncheck.ignores import LEFT_OUT, TRACKED, rules_above
+    from furncheck.ignores import Kept, rules_above
 
     scan = FolderScan()
     visited: set[tuple[int, int]] = set()
@@ -251,12 +250,12 @@ def find_design_files(folder: str, excludes: tuple[PatternFile, ...] = (),
             path = os.path.normpath(os.path.join(current, entry.name))
             is_dir = _is_folder(entry)
             state = rules.state(os.path.abspath(path), is_dir)
-            if state == LEFT_OUT:
+            if state is Kept.NO:
                 if is_dir or os.path.splitext(entry.name)[1].lower() in DESIGN_SUFFIXES:
                     scan.ignored += 1
                 continue
             if is_dir:
-                inside = rules.under_ignored() if state == TRACKED else rules
+                inside = rules.under_ignored() if state is Kept.TRACKED else rules
                 (links if via_link or entry.is_symlink() else subfolders).append((path, inside))
             elif os.path.splitext(entry.name)[1].lower() in DESIGN_SUFFIXES:
                 candidates.append(path)

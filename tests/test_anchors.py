@@ -454,3 +454,26 @@ def test_the_summary_says_how_much_the_walls_friction_holds_up(friction, tmp_pat
             assert -anchor.force[1] == pytest.approx(pull, rel=0.02)
             assert anchor.utilization == pytest.approx(np.hypot(weight / 2, pull) / 196.0,
                                                        rel=0.02)
+
+
+@pytest.mark.parametrize(("share", "said"), [(0.049, False), (0.051, True)])
+def test_the_walls_friction_is_said_from_its_share_of_what_is_held_up(share, said):
+    """WALL_FRICTION_SHARE (5 %): a case whose supports hold up 1000 N, the wall's
+    contacts' vertical forces (friction: a wall's normal is level) ``share`` of it, an
+    anchor and the floor the rest (a resting joint's corner, inside the design, does not
+    count): said from 5 %, not below."""
+    from furncheck.report.text import _wall_friction_phrase
+    from furncheck.result import AnchorResult, CaseResult, ContactResult
+
+    wall = 1000.0 * share
+    case = CaseResult("default", True, True, (), (
+        ContactResult("back", (0, 0, 0), (0.0, 50.0, wall / 2), wall=0),
+        ContactResult("back", (1, 0, 0), (0.0, 50.0, wall / 2), wall=0),
+        ContactResult("foot", (0, 1, 0), (0.0, 0.0, 400.0)),
+        ContactResult("shelf", (0, 2, 0), (0.0, 0.0, 999.0), on="foot")),
+        anchors=(AnchorResult("back", 0, (0, 0, 1), (0.0, -100.0, 600.0 - wall), 620.0,
+                              196.0, 3.2, 0),))
+    phrase = _wall_friction_phrase(case)
+    assert bool(phrase) is said
+    if said:
+        assert phrase == ", with the wall's friction holding up 51 of its 1000 N"

@@ -7,6 +7,8 @@ catalog, in every report format.
 
 from __future__ import annotations
 
+import base64
+import hashlib
 import multiprocessing
 import os
 import shutil
@@ -278,7 +280,8 @@ def test_a_read_only_cache_warns_only_where_a_result_was_lost(checked_paths, tmp
                                                               monkeypatch):
     """A CI job restores a warm cache read-only (os.access says it cannot be written): a
     run whose every result is stored already loses nothing and says nothing (it warned on
-    every run); one with a new design says once that results were not cached, in the
+    every run), also in a format whose pieces were never stored (they are made from the
+    stored results); one with a new design says once that results were not cached, in the
     words of the error writing would raise ('permission denied' here; 'read-only file
     system' on such a mount), not a made-up 'Permission denied'."""
     valid, bad = write(tmp_path, "valid.yaml", "bad.yaml")
@@ -289,10 +292,32 @@ def test_a_read_only_cache_warns_only_where_a_result_was_lost(checked_paths, tmp
         str(cache)) else real_access(path, mode, **kw))
     warm = run("validate", valid, bad, "--cache-dir", str(cache))
     assert warm.stderr == "" and warm.exit_code == 1 and checked_paths == [valid, bad]
+    other_format = run("validate", valid, bad, "--cache-dir", str(cache), "--format", "json")
+    assert other_format.stderr == "" and checked_paths == [valid, bad]  # pieces made anew
     (other,) = write(tmp_path, "valid-2.yaml")
     cold = run("validate", valid, other, "--cache-dir", str(cache))
     assert cold.stderr == f"furncheck: results not cached: {cache}: permission denied\n"
     assert checked_paths == [valid, bad, other]
+
+
+def test_results_checked_in_workers_count_as_lost_where_the_cache_is_unwritable(
+        tmp_path, monkeypatch):
+    """Worker processes get a copy of the cache, so what they could not store is counted
+    where their entries come back (the warning's count): each design they checked, not
+    one whose input could not be read (never stored)."""
+    from furncheck import batch
+    from furncheck.report.entries import Entry
+
+    valid, bad, broken = write(tmp_path, "valid.yaml", "bad.yaml", "broken.yaml")
+    cache = ResultCache(str(tmp_path / "cache"), {"model": None})
+    cache.unwritable = "read-only file system"
+
+    def in_workers(to_check, fmt, jobs, model, cache_copy):
+        return iter([Entry(True, False, ""), Entry(False, False, ""), Entry(None, True, "")])
+
+    monkeypatch.setattr(batch, "_checked", in_workers)
+    assert len(list(batch.entries([valid, bad, broken], "text", 2, None, cache))) == 3
+    assert cache.lost == 2
 
 
 def test_a_file_edited_during_the_check_is_not_stored_under_its_old_key(tmp_path,
@@ -403,45 +428,68 @@ def test_a_cache_folder_furncheck_makes_is_left_out_of_git(checked_paths, tmp_pa
     assert not (existing / ".gitignore").exists() and any(existing.iterdir())
 
 
-def _install(site: Path, record: bytes, when: int) -> None:
-    """A fake distribution 'Fake_Dep' 1.0 of the module ``fakedep`` installed in ``site``,
+INIT = b"x = 1\n"
+INIT_HASH = b"sha256=" + base64.urlsafe_b64encode(hashlib.sha256(INIT).digest()).rstrip(b"=")
+
+
+def _install(site: Path, record: bytes, when: int, version: str = "1.0") -> None:
+    """A fake distribution 'Fake_Dep' ``version`` of the module ``fakedep`` installed in
+    ``site``, its RECORD ``record`` (``%(init)s`` standing for its __init__.py's hash),
     its files stamped ``when`` (pip stamps them with the time of the install)."""
     package = site / "fakedep"
-    package.mkdir(parents=True)
-    (package / "__init__.py").write_text("x = 1\n")
-    info = site / "Fake_Dep-1.0.dist-info"
+    package.mkdir(parents=True, exist_ok=True)
+    (package / "__init__.py").write_bytes(INIT)
+    info = site / f"Fake_Dep-{version}.dist-info"
     info.mkdir()
-    (info / "RECORD").write_bytes(record)
+    (info / "RECORD").write_bytes(record.replace(b"%(init)s", INIT_HASH)
+                                  .replace(b"1.0.dist-info", f"{version}.dist-info".encode()))
     for path in (package / "__init__.py", info / "RECORD"):
         os.utime(path, ns=(when, when))
 
 
+RECORD = (b"../../../bin/fake,sha256=%(script)s,229\n"
+          b"fakedep/__init__.py,%(init)s,6\n"
+          b"fakedep/__pycache__/__init__.cpython-311.pyc,,\n"
+          b"fakedep/core.so,sha256=%(core)s,99\n"
+          b"Fake_Dep-1.0.dist-info/INSTALLER,sha256=%(installer)s,4\n"
+          b"Fake_Dep-1.0.dist-info/RECORD,,\n")
+
+
+def _record(script=b"one", core=b"abc", installer=b"pip", pyc=True) -> bytes:
+    record = RECORD.replace(b"%(script)s", script).replace(b"%(core)s", core) \
+        .replace(b"%(installer)s", installer)
+    return record if pyc else b"".join(line for line in record.splitlines(keepends=True)
+                                       if b".pyc" not in line)
+
+
 def test_a_dependencys_part_of_the_key_is_its_build_not_its_install(tmp_path, monkeypatch):
-    """Two installs of one build of a dependency, in other folders at other times (two CI
-    jobs each installing afresh), give the code fingerprint the same part: its
-    distribution's RECORD (the hash of each of its files), but for the files outside its
-    folder (a console script, whose first line names each environment's Python).
-    Another build (a file's hash in RECORD differs) gives another; without a RECORD (a
+    """Installs of one build of a dependency, in other folders at other times, by pip or
+    uv, compiled or not (CI jobs each installing afresh), give the code fingerprint the
+    same part: the files of its distribution's RECORD with their hashes, but for its
+    dist-info folder's (INSTALLER, REQUESTED) and those outside its folder (a console
+    script, whose first line names each environment's Python).  Another build (a file's
+    hash differs) gives another.  Of two dist-info folders (a stale one left by an
+    upgrade) the one whose __init__.py hash is the file's counts.  Without a RECORD (a
     source tree on the path) its place and its __init__'s stamp stand for it, as before.
     (With the stamp alone, every fresh install missed every entry.)"""
-    record = (b"../../../bin/fake,sha256=%s,229\n"
-              b"fakedep/__init__.py,sha256=abc,6\n"
-              b"Fake_Dep-1.0.dist-info/RECORD,,\n")
-    _install(tmp_path / "one", record % b"one", 1_000_000_000_000_000_000)
-    _install(tmp_path / "two", record % b"two", 1_700_000_000_000_000_000)
-    _install(tmp_path / "other", (record % b"one").replace(b"abc", b"abd"),
-             1_000_000_000_000_000_000)
-    _install(tmp_path / "bare", record % b"one", 1_000_000_000_000_000_000)
+    early, late = 1_000_000_000_000_000_000, 1_700_000_000_000_000_000
+    _install(tmp_path / "one", _record(), early)
+    _install(tmp_path / "two", _record(script=b"two", installer=b"uv", pyc=False), late)
+    _install(tmp_path / "other", _record(core=b"abd"), early)
+    _install(tmp_path / "stale", _record(core=b"old").replace(b"%(init)s", b"sha256=old"),
+             early, version="0.9")
+    _install(tmp_path / "stale", _record(), early)
+    _install(tmp_path / "bare", _record(), early)
     (tmp_path / "bare" / "Fake_Dep-1.0.dist-info" / "RECORD").unlink()
     monkeypatch.setattr(cache_module, "_DEPENDENCIES", (("fakedep", "fake-dep"),))
     parts = {}
-    for site in ("one", "two", "other", "bare"):
+    for site in ("one", "two", "other", "stale", "bare"):
         monkeypatch.setattr(sys, "path", [str(tmp_path / site), *sys.path])
         sys.path_importer_cache.clear()
         (parts[site],) = cache_module._dependency_files()
         monkeypatch.undo()
         monkeypatch.setattr(cache_module, "_DEPENDENCIES", (("fakedep", "fake-dep"),))
-    assert parts["one"] == parts["two"] != parts["other"]
+    assert parts["one"] == parts["two"] == parts["stale"] != parts["other"]
     assert parts["one"].startswith("fakedep=record:")
     assert parts["bare"].startswith(f"fakedep={tmp_path / 'bare' / 'fakedep'}")
     assert "fakedep" not in sys.modules

@@ -225,6 +225,9 @@ def test_no_flags_turn_the_configs_true_off(checked_paths, tmp_path, monkeypatch
     checked_paths.clear()
     run("validate", "drafts/d.yaml", "ci.yml", "--no-force-exclude", "--no-cache")
     assert checked_paths == ["drafts/d.yaml"]
+    checked_paths.clear()
+    run("validate", "drafts/d.yaml", "ci.yml", "--no-skip-non-designs", "--no-cache")
+    assert checked_paths == ["ci.yml"]
 
 
 def test_the_cache_folder_is_the_command_lines_then_the_variables_then_the_configs(

@@ -400,11 +400,47 @@ def test_a_file_git_tracks_is_checked_though_a_gitignore_matches_it(tmp_path, mo
         "build/new.yaml", "designs/new.json", "designs/b.yaml")
     assert [Path(p).as_posix() for p in checked_paths] == [
         "designs/shelf.json", "build/t.yaml", "designs/b.yaml"]
-    from furncheck import ignores
+    from furncheck import tracked
 
-    monkeypatch.setattr(ignores, "_TRACKED", {})
+    monkeypatch.setattr(tracked, "_TRACKED", {})
     monkeypatch.setattr(shutil, "which", lambda name, *args, **kwargs: None)
     assert found(tmp_path) == ["designs/a.yaml", "designs/b.yaml"]
+
+
+@pytest.mark.skipif(shutil.which("git") is None, reason="git is not installed")
+def test_git_runs_no_command_of_the_repository_nor_a_hooks_index(tmp_path, monkeypatch):
+    """Asking git what it tracks runs no command the repository's configuration names
+    (core.fsmonitor, which 'git ls-files' runs: a .git planted above the scanned folder
+    by someone else would run theirs), and a commit hook's GIT_INDEX_FILE (the outer
+    repository's index) does not stand for a nested repository's: lib/ (its own
+    repository, whose .gitignore ignores *.yaml) keeps its tracked keep.yaml."""
+    marker = tmp_path / "ran"
+    monitor = tmp_path / "monitor.sh"
+    monitor.write_text(f"#!/bin/sh\ntouch {marker}\n")
+    monitor.chmod(0o755)
+    tree(tmp_path / "outer", {"lib/keep.yaml": DESIGN, "top.yaml": DESIGN})
+    _commit(tmp_path / "outer" / "lib", "keep.yaml")
+    subprocess.run(["git", "-C", str(tmp_path / "outer" / "lib"), "config", "core.fsmonitor",
+                    str(monitor)], check=True)
+    tree(tmp_path / "outer", {"lib/.gitignore": "*.yaml\n", ".gitignore": "lib/\n"})
+    _commit(tmp_path / "outer", "top.yaml", ".gitignore")
+    monkeypatch.setenv("GIT_INDEX_FILE", str(tmp_path / "outer" / ".git" / "index"))
+    from furncheck.tracked import forget
+
+    forget()
+    assert found(tmp_path / "outer" / "lib") == ["keep.yaml"]
+    assert not marker.exists()
+
+
+def test_force_exclude_leaves_out_a_file_in_a_cache_folder(tmp_path):
+    """A scan enters no folder that holds a CACHEDIR.TAG, so --force-exclude leaves out a
+    named file below one too (what a hook is handed, a scan would pass over)."""
+    tree(tmp_path, {"a.yaml": DESIGN, "gen/x.yaml": DESIGN,
+                    "gen/CACHEDIR.TAG": "Signature: 8a477f597d28d172789f06886806bc55\n"})
+    assert found(tmp_path) == ["a.yaml"]
+    named = [str(tmp_path / "a.yaml"), str(tmp_path / "gen" / "x.yaml")]
+    collected = collect(named, ScanOptions(force_exclude=True))
+    assert collected.sources == named[:1] and collected.force_excluded == 1
 
 
 def test_force_exclude_leaves_out_standard_input_by_its_stdin_filename(tmp_path, monkeypatch):

@@ -79,8 +79,7 @@ def _anchor(doc: _Doc, item: Any, key: str, by_id: dict[str, Plank],
     point = None if plank is None else doc.collect(_point_on_plank, doc, fields["at"],
                                                    f"{key}.at", plank, units, tolerance)
     wall = doc.collect(_anchor_wall, doc, fields["wall"], f"{key}.wall", walls_found)
-    capacity = doc.collect(_quantity, doc, fields["capacity"], f"{key}.capacity", 0.0,
-                           tol.MAX_FORCE, 1.0, "N", True)
+    capacity = doc.collect(_capacity, doc, fields["capacity"], f"{key}.capacity")
     if point is None or wall is None or capacity is None:   # their problems kept, or a
         raise _Skipped(key)                                 # plank left unchecked
     behind = -float(walls_found[wall].distance(np.asarray(point)))
@@ -88,6 +87,11 @@ def _anchor(doc: _Doc, item: Any, key: str, by_id: dict[str, Plank],
         doc.fail(f"{key}.at", f"the point is {plain_number(behind / units.scale)} "
                               f"{units.name} behind wall {wall}")
     return Anchor(plank.id, point, wall, capacity, -behind)
+
+
+def _capacity(doc: _Doc, node: Any, key: str) -> float:
+    """N: an anchor's capacity, > 0."""
+    return _quantity(doc, node, key, 0.0, tol.MAX_FORCE, unit="N", positive=True)
 
 
 def _anchor_wall(doc: _Doc, node: Any, key: str, walls_found: tuple[Wall, ...]) -> int:
