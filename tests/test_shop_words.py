@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
 from furncheck.design import load_design
 from furncheck.design.model import with_model
 from furncheck.dofs import apply_dof, parse_dof, structure
@@ -142,6 +144,20 @@ def test_a_mirror_pair_tilted_along_its_plane_names_where_the_tops_go():
         "Tilt leg_l and leg_r by 5 degrees each, their tops along -y, their ends cut at 5 " \
         "degrees to sit flat (439.7 mm along their edges) (valid for 4.5-6 degrees each)."
 
+
+
+@pytest.mark.parametrize(("turn", "words"), [
+    (5.0, "their tops leaning in (their feet splayed out)"),
+    (-5.0, "their tops leaning out (their feet in)")])
+def test_a_mirror_pair_tilted_across_its_plane_says_which_way_they_lean(turn, words):
+    """The stool's legs (leg_l at x = -170, leg_r at +170, turned (0, -90, 0): their
+    length along +z) tilted by 5 degrees each across their mirror plane x = 0: turning
+    leg_r about y by -5 degrees brings its top toward the plane, so the tops lean in and
+    the feet splay out (a woodworker read 'their tops together' as the tops touching);
+    the other way the tops lean out."""
+    stool = with_model(load_design(str(CATALOG / "stool.yaml")), "rigid")
+    text = advise(stool, {"leg_l.ry": turn, "leg_r.ry": -turn})
+    assert text.startswith(f"Tilt leg_l and leg_r by 5 degrees each, {words}, "), text
 
 
 def test_a_leg_moved_in_under_its_seat_goes_toward_the_leg_opposite():
