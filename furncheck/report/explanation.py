@@ -240,6 +240,10 @@ def tried_lines(tried: Tried, found: int) -> list[str]:
         succeeded = sum(1 for s in searches if s.interval is not None)
         limit = " (the limit)" if len(searches) >= tried.search_limit else ""
         count = f"{len(searches)} line search{'es' if len(searches) != 1 else ''}"
+        if tried.culled_searched:       # ContinuousSearch.directions' fallback
+            count += (f" ({'all' if tried.culled_searched == len(searches) else 'some'} of "
+                      "them single changes culled as breaking another check first: none "
+                      "was kept)")
         lines.append(f"{count}{limit} with the full checks, "
                      f"{succeeded} with a valid interval"
                      + (f", {tried.dropped} of them dropped (the design file at its middle "

@@ -206,6 +206,32 @@ def unit_candidates(margins: Margins, units: list, max_dofs: int) -> list[Candid
     return kept + unsure
 
 
+def culled_singles(margins: Margins) -> list[Candidate]:
+    """Each DOF changed alone that the slab test culled only because another margin is
+    predicted to fail first, nearest first: ``ContinuousSearch.directions``' fallback
+    where no direction was kept at all, for the line search's full checks to decide
+    (a desk's side moved out under its overhanging top, culled in the elastic model
+    where the span it lengthens was predicted to sag first, holds from 154 to 294 mm
+    out; without it the desk got only discrete fixes)."""
+    rows = margins.margins
+    if not rows or not margins.dofs:
+        return []
+    rates = np.array([m.rates for m in rows])
+    values = np.array([m.value for m in rows])
+    violated = values < 0.0
+    if not violated.any():
+        return []
+    deficit = np.array([m.target for m in rows])[violated] - values[violated]
+    relevant = _relevant(_strength(rates[violated], deficit))
+    if not relevant:
+        return []
+    breaking: list[Candidate] = []
+    _evaluate(rates, values, violated, deficit, np.array(relevant, dtype=int)[:, None],
+              breaking)
+    breaking.sort(key=lambda c: (c.enter, c.dofs))
+    return breaking
+
+
 def _in_dofs(candidate: Candidate, basis: np.ndarray) -> Candidate:
     """A candidate over units (``unit_candidates``) as one over the DOFs of its units."""
     real = basis[:, list(candidate.dofs)] @ candidate.direction

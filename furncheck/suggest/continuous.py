@@ -27,6 +27,7 @@ from furncheck.result import DesignReport
 from furncheck.statics import StaticsModel
 from furncheck.suggest.candidates import (
     Candidate,
+    culled_singles,
     every_candidate,
     same_direction,
     unit_candidates,
@@ -48,6 +49,12 @@ LINE_SEARCHES_PER_SUGGESTION = 3
 
 MAX_SYMMETRIC = 3
 """At most this many symmetric directions are line-searched (before the others)."""
+
+CULLED_SINGLES = 4
+"""Where the linearization keeps no direction at all, at most this many single DOFs that
+it culled only because another check was predicted to fail first are line-searched,
+nearest first (``candidates.culled_singles``): the full checks decide, at the cost of a
+few line searches only where nothing else would be."""
 
 SYMMETRIC_REACH = 3.0
 """A symmetric direction is searched first when its predicted step is at most this many
@@ -91,6 +98,7 @@ class ContinuousSearch:
         self.tally: list[DirectionTally] = []       # what ``directions`` formed
         self.line_searches: list[LineSearch] = []   # what ``run`` searched
         self.unsearched = 0                         # kept directions ``run`` left
+        self.culled_searched = 0                    # ``directions``' fallback
 
     @property
     def restores(self) -> tuple[str, ...]:
@@ -98,15 +106,21 @@ class ContinuousSearch:
 
     def directions(self, max_dofs: int) -> list[Candidate]:
         """The kept directions of 1..max_dofs DOFs, nearest first (``candidates``), after
-        at most MAX_SYMMETRIC symmetric ones within SYMMETRIC_REACH of the nearest."""
+        at most MAX_SYMMETRIC symmetric ones within SYMMETRIC_REACH of the nearest; where
+        none is kept, at most CULLED_SINGLES single DOFs culled only as breaking another
+        check first (``candidates.culled_singles``; ``culled_searched`` counts them)."""
         self.tally.clear()
+        self.culled_searched = 0
         found = every_candidate(self.margins, max_dofs, self.tally)
-        if not self.planes:
-            return found
-        units = symmetric_units(self.margins.design, self.planes, self.margins.dofs)
-        reach = SYMMETRIC_REACH * found[0].enter if found else np.inf
-        symmetric = [c for c in unit_candidates(self.margins, units, max_dofs)
-                     if c.enter <= reach][:MAX_SYMMETRIC]
+        symmetric: list[Candidate] = []
+        if self.planes:
+            units = symmetric_units(self.margins.design, self.planes, self.margins.dofs)
+            reach = SYMMETRIC_REACH * found[0].enter if found else np.inf
+            symmetric = [c for c in unit_candidates(self.margins, units, max_dofs)
+                         if c.enter <= reach][:MAX_SYMMETRIC]
+        if not found and not symmetric:     # none kept: one DOF alone, for the checks
+            found = culled_singles(self.margins)[:CULLED_SINGLES]
+            self.culled_searched = len(found)
         return symmetric + [c for c in found
                             if not any(same_direction(c, s) for s in symmetric)]
 

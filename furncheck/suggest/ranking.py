@@ -91,7 +91,8 @@ def suggest_design(design: Design, max_dofs: int = 3, max_suggestions: int = 8,
                   bool(geometry.violations),
                   tuple(search.tally), tuple(search.line_searches),
                   LINE_SEARCHES_PER_SUGGESTION * max_suggestions, search.unsearched,
-                  dropped - len(suggestions), tuple(trials), far=search.far)
+                  dropped - len(suggestions), tuple(trials), far=search.far,
+                  culled_searched=search.culled_searched)
     ranked = _ranked(design, geometry, search.planes, suggestions, max_suggestions)
     return SuggestionReport(design.source, design.name, report, ranked,
                             search.searched, search.editor.checks,

@@ -150,6 +150,9 @@ class Tried:
     far         : DOFs left out as far from the violations (a design of more than
                   SUGGEST_ALL_PLANKS planks changes only the planks nearest them,
                   ``neighbourhood``)
+    culled_searched : single DOFs line-searched though the slab test culled them as
+                  breaking another check first, no direction being kept at all
+                  (``continuous.CULLED_SINGLES``)
     """
 
     dofs: int
@@ -166,6 +169,7 @@ class Tried:
     dropped: int
     discrete: tuple[Trial, ...]
     far: int = 0
+    culled_searched: int = 0    # single DOFs searched though culled (none kept at all)
 
 
 class ProbeLog:
