@@ -227,6 +227,11 @@ def test_pushed_over_table_needs_a_smaller_push():
     assert need.values["push_max"] == pytest.approx(0.436 * weight / 0.7, rel=1e-6)
     assert need.values["outside"] == pytest.approx(300 * 700 / weight - 436.0, rel=1e-6)
     assert need.values["ballast"] == pytest.approx(18.23, abs=0.01)
+    from furncheck.report.explanation import need_text
+
+    assert need_text(need, "mm").endswith(        # a push or a pull: the force is level
+        f", or a horizontal push or pull of at most {0.436 * weight / 0.7:.3g} N (now "
+        "300 N)")
     for factor, tips in ((1.02, True), (0.98, False)):
         push = factor * need.values["push_max"]
         cases = tuple(replace(c, loads=(Load("leg_l", (push, 0.0, 0.0), (-0.436, 0.0, 0.7)),))

@@ -99,7 +99,7 @@ def _lift_off(v: dict, units: str) -> str:
                  f"({_n(v['ballast'] * GRAVITY)} N: the resultant passes a corner of the "
                  "support, so both edges beside it must hold)")
     if "push_max" in v:
-        text += (f", or a sideways push of at most {_n(v['push_max'])} N (now "
+        text += (f", or a horizontal push or pull of at most {_n(v['push_max'])} N (now "
                  f"{_n(v['push'])} N)")
     if "also" in v:             # a loose part that still tips once the whole is held
         text += f"; and {_lift_off_part(v['also'], units)}"

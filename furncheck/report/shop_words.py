@@ -60,7 +60,7 @@ together."""
 PAIR_MATCH = 1e-6
 """Two DOF changes are one symmetric change when they agree to this relative amount."""
 
-SEARCH_LIMITS = {"length": "half the design's size", "deg": "28.6 degrees (0.5 rad)"}
+SEARCH_LIMITS = {"length": "half the design's size", "deg": "28.6 degrees"}
 """Where the line search stops (``suggest.candidates.MAX_STEP``), in words."""
 
 
