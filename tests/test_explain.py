@@ -780,3 +780,21 @@ def test_a_desk_that_topples_and_a_top_that_tips_are_both_named(model):
     need = need_of(design, geometry, check_design(design, geometry), "lift-off")
     assert need.values["ballast"] * G == pytest.approx(whole, rel=1e-6)
     assert need.values["also"]["hold"] == pytest.approx(top, rel=1e-6)
+
+
+def test_the_discrete_trials_past_those_shown_are_counted_by_what_they_were():
+    """Nothing found: the first SHOWN discrete trials are listed, the rest counted as
+    candidates tried and rules that did not apply (a maker read 'and 8 more discrete
+    candidates' as eight planks tried where most were rules that did not apply)."""
+    from furncheck.report.explanation import SHOWN, tried_lines
+    from furncheck.suggest.tried import Trial
+
+    trials = tuple(Trial("support plank", "shelf", FAILED, "why", "support-1")
+                   for _ in range(SHOWN + 3)) + tuple(
+        Trial(rule, "", NOT_APPLICABLE, "it does not repair sagging")
+        for rule in ("apron", "stretcher"))
+    tried = Tried(24, 0, 0, {}, 3, 8, False, (), (), 24, 0, 0, trials)
+    assert tried_lines(tried, found=0)[-1] == \
+        "and 5 more: 3 candidates tried, 2 rules that did not apply"
+    assert tried_lines(replace(tried, discrete=trials[:SHOWN + 1]), found=0)[-1] == \
+        "and 1 more: 1 candidate tried"

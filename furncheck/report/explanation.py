@@ -260,7 +260,13 @@ def tried_lines(tried: Tried, found: int) -> list[str]:
         return lines + _rules(trials)
     lines.extend(_trial(t) for t in trials[:SHOWN])
     if len(trials) > SHOWN:
-        lines.append(f"and {len(trials) - SHOWN} more discrete candidates")
+        rest = trials[SHOWN:]
+        rules = sum(t.outcome == NOT_APPLICABLE for t in rest)
+        lines.append(f"and {len(rest)} more: "
+                     + ", ".join(part for part in (
+                         plural(len(rest) - rules, "candidate") + " tried" if rules < len(rest)
+                         else "", plural(rules, "rule") + " that did not apply" if rules
+                         else "") if part))
     return lines
 
 
