@@ -253,6 +253,14 @@ def test_overloaded_joint_needs_more_nails():
     assert (need.values["nails"], need.values["nails_needed"]) == (15, 22)
     assert need.values["length"] == pytest.approx(300.0)
     assert need.values["length_needed"] == pytest.approx(440.0)
+    # the shelf's end (its 300 mm width along the joint line) has no room for 440 mm:
+    # 22 nails at 20 mm do not fit on it, and the estimate says so
+    assert (need.values["room"], need.values["edge"]) == (pytest.approx(300.0), "shelf")
+    from furncheck.report.explanation import need_text
+
+    assert need_text(need, "mm").endswith(
+        "a joint 440 mm long at 20 mm spacing (now 300 mm), more than the 300 mm that the "
+        "end of shelf gives: a wider shelf, or a brace that takes the load off the joint")
     for nails, durable in ((22, True), (21, False)):
         joints = tuple(JointSpec(j.planks, nails if j.name == "post/shelf" else None)
                        for j in geometry.joints)

@@ -147,6 +147,9 @@ def _non_durable(v: dict, units: str) -> str:
     if "length_needed" in v:
         text += (f": a joint {_n(v['length_needed'])} {units} long at {_n(v['spacing'])} "
                  f"{units} spacing (now {_n(v['length'])} {units})")
+    if "room" in v:             # the edge plank's end is shorter than that
+        text += (f", more than the {_n(v['room'])} {units} that the end of {v['edge']} "
+                 f"gives: a wider {v['edge']}, or a brace that takes the load off the joint")
     return text
 
 

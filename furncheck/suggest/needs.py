@@ -417,6 +417,11 @@ def _inside_fraction(hull: np.ndarray, start: np.ndarray, end: np.ndarray) -> fl
 
 
 # -- durability --------------------------------------------------------------------------
+ROOM_SLACK = 1e-9
+"""Share by which a joint's needed length may pass its edge plank's end (round-off) before
+the estimate says the end has no room for it."""
+
+
 def _non_durable(design: Design, geometry: Geometry, where: str, case: CaseResult | None,
                  case_name: str | None) -> Need:
     if where.startswith("anchors["):
@@ -436,6 +441,11 @@ def _non_durable(design: Design, geometry: Geometry, where: str, case: CaseResul
         values.update({"spacing": spacing / design.unit_scale,
                        "length": joint.length / design.unit_scale,
                        "length_needed": nails * spacing / design.unit_scale})
+        edge = design.plank(joint.edge)
+        room = 2.0 * float(np.abs(edge.rotation_matrix.T @ joint.frame[:, 1])
+                           @ edge.half_extents)        # its end's reach along the line
+        if nails * spacing > room * (1.0 + ROOM_SLACK):
+            values.update({"room": room / design.unit_scale, "edge": joint.edge})
     return Need("non-durable", where, case_name, values=values)
 
 
