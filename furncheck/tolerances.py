@@ -748,6 +748,7 @@ out of the wall, what it holds up, its shear along the wall)."""
 WALL_FRICTION_SHARE = 0.05
 """Share of what a design's supports hold up (its weight and loads) from which a valid
 anchored design's summary says how much of it the wall's friction holds ('with the
-wall's friction holding up 118 of its 178 N'): the anchors' utilization then counts on
-that friction, which a fixing's rated shear may be meant to carry alone."""
+wall's friction holding up 118 N of its 178 N of weight and loads'): the anchors'
+utilization then counts on that friction, which a fixing's rated shear may be meant to
+carry alone."""
 

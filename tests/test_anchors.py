@@ -420,7 +420,8 @@ def test_the_summary_says_how_much_the_walls_friction_holds_up(friction, tmp_pat
     the anchors' vertical forces V and the friction of the cleats' feet where they bear
     on the wall, W - V (a wall's normal is level: the vertical part of its force is
     friction; the split is the stiffnesses').  The valid line names the worst anchor and
-    that friction, 'with the wall's friction holding up F of its 178 N', F = W - V of the
+    that friction, 'with the wall's friction holding up F N of its 178 N of weight and
+    loads', F = W - V of the
     reported anchors: the anchors' margin counts on it.  With ``friction: 0`` the anchors
     hold up all of W and the line says nothing of it: each holds W / 2 = 89.2 N up and
     pulls (M - W x 9 mm) / 90 mm / 2 = 111.9 N (the design's header: M = 2 x 2.38 x 9 +
@@ -442,8 +443,8 @@ def test_the_summary_says_how_much_the_walls_friction_holds_up(friction, tmp_pat
     if friction is None:
         by_wall = weight - held_by_anchors
         assert 0.05 * weight < by_wall < weight
-        assert (f"with the wall's friction holding up {round(by_wall)} of its "
-                f"{round(weight)} N)") in result.output
+        assert (f"with the wall's friction holding up {round(by_wall)} N of its "
+                f"{round(weight)} N of weight and loads)") in result.output
     else:
         assert held_by_anchors == pytest.approx(weight, rel=1e-3)
         assert "wall's friction" not in result.output
@@ -476,4 +477,5 @@ def test_the_walls_friction_is_said_from_its_share_of_what_is_held_up(share, sai
     phrase = _wall_friction_phrase(case)
     assert bool(phrase) is said
     if said:
-        assert phrase == ", with the wall's friction holding up 51 of its 1000 N"
+        assert phrase == (", with the wall's friction holding up 51 N of its 1000 N of "
+                          "weight and loads")

@@ -493,3 +493,21 @@ def test_a_dependencys_part_of_the_key_is_its_build_not_its_install(tmp_path, mo
     assert parts["one"].startswith("fakedep=record:")
     assert parts["bare"].startswith(f"fakedep={tmp_path / 'bare' / 'fakedep'}")
     assert "fakedep" not in sys.modules
+
+
+def test_a_read_only_mount_is_said_in_one_wording(tmp_path, monkeypatch):
+    """A cache on a read-only mount (a CI job's restored cache): making its folder raises
+    EROFS, and the warning reads 'read-only file system' as where os.access found it out
+    ('Read-only file system', the system's capital, differed from the README's words)."""
+    import errno
+
+    def refuse(*args, **kwargs):
+        raise OSError(errno.EROFS, "Read-only file system")
+
+    monkeypatch.setattr(cache_module.os, "makedirs", refuse)
+    cache = ResultCache(str(tmp_path / "cache"), {"model": None})
+    cache.probe()
+    assert cache.unwritable == f"{tmp_path / 'cache'}: read-only file system"
+    assert cache_module._why(OSError(errno.EACCES, "Permission denied")) == "permission denied"
+    assert cache_module._why(OSError(errno.ENOSPC, "No space left on device")) == \
+        "No space left on device"

@@ -175,16 +175,17 @@ def _worst_joint_phrase(report: DesignReport) -> str:
 
 
 def _wall_friction_phrase(case: CaseResult) -> str:
-    """``, with the wall's friction holding up 118 of its 178 N``: where the friction of
-    the walls' contacts (the vertical part of their forces: a wall's normal is level)
-    holds up at least WALL_FRICTION_SHARE of what the supports hold up (the floor's
-    contacts, the walls' and the anchors', resting joints' corners being inside the
-    design), so that the anchors' utilization counts on it; else nothing."""
+    """``, with the wall's friction holding up 118 N of its 178 N of weight and loads``:
+    where the friction of the walls' contacts (the vertical part of their forces: a
+    wall's normal is level) holds up at least WALL_FRICTION_SHARE of what the supports
+    hold up (the floor's contacts, the walls' and the anchors', resting joints' corners
+    being inside the design), so that the anchors' utilization counts on it; else
+    nothing."""
     by_wall = sum(c.force[2] for c in case.contacts if c.wall is not None)
     held = by_wall + sum(c.force[2] for c in case.contacts
                          if c.wall is None and c.on is None) \
         + sum(a.force[2] for a in case.anchors)
     if held <= 0.0 or by_wall < tol.WALL_FRICTION_SHARE * held:
         return ""
-    return (f", with the wall's friction holding up {format_number(by_wall, 3)} of its "
-            f"{format_number(held, 3)} N")
+    return (f", with the wall's friction holding up {format_number(by_wall, 3)} N of its "
+            f"{format_number(held, 3)} N of weight and loads")
