@@ -1489,3 +1489,41 @@ def test_on_a_tie_of_board_the_smaller_rails_are_kept():
     assert rail.thickened == {"bottom": pytest.approx(0.015)}
     assert any("adds as much board as, and bigger parts than," in t.reason
                for t in trials if t.rule == "stiffening rail")
+
+
+BENCH_THREE_TRESTLES = """\
+furncheck: 1
+name: bench-three-trestles
+units: mm
+planks:
+  - {id: seat, size: [1800, 300], center: [0, 0, 437.5], thickness: 25}
+  - {id: tr_a, size: [425, 300], center: [-850, 0, 212.5], rotation: [0, 90, 0], thickness: 18}
+  - {id: tr_b, size: [425, 300], center: [0, 0, 212.5], rotation: [0, 90, 0], thickness: 18}
+  - {id: tr_c, size: [425, 300], center: [850, 0, 212.5], rotation: [0, 90, 0], thickness: 18}
+loads:
+  - {plank: seat, mass: 80, at: [-425, 0, 450]}
+"""
+
+
+def test_a_seat_on_three_trestles_gets_a_rail_in_each_bay():
+    """A 1800 x 300 x 25 mm bench seat on three 18 mm trestles (x = -850, 0, 850), 80 kg
+    in the middle of its left bay (an engineer's design): the seat sags over its 850 mm
+    bay (elastic: 6.15 mm, 9.22 with creep, against 2.13 mm).  A rail from tr_a to tr_c
+    would cut into tr_b, so every long rail failed; the woodworker's fix is a rail under
+    each bay: two rails, each as long as its bay between the trestles' faces (850 - 18 =
+    832 mm), on edge under the seat's middle, each nailed to the seat and its two
+    trestles, and the design with them valid."""
+    design = parse_design(BENCH_THREE_TRESTLES, "bench.yaml", "yaml")
+    assert {v.kind for v in check_design(design).violations} == {"sagging"}
+    result = suggest_design(design)
+    (bays,) = [s for s in result.suggestions if "in each bay" in s.advice]
+    assert bays.advice.startswith("Add rail-1 and rail-2 (832 x ")
+    assert "(tr_a to tr_b, tr_b to tr_c)" in bays.advice
+    rails = [p for p in bays.design.planks if p.id.startswith("rail-")]
+    assert [round(p.length * 1000, 3) for p in rails] == [832.0, 832.0]
+    assert sorted(round(p.center[0] * 1000, 3) for p in rails) == [-425.0, 425.0]
+    joints = {frozenset(j.planks) for j in analyze(bays.design).joints}
+    assert {frozenset(("seat", "rail-1")), frozenset(("tr_a", "rail-1")),
+            frozenset(("tr_b", "rail-1")), frozenset(("seat", "rail-2")),
+            frozenset(("tr_b", "rail-2")), frozenset(("tr_c", "rail-2"))} <= joints
+    assert check_design(bays.design).valid

@@ -281,7 +281,9 @@ class Search:
                 before else "it would change the design's other joints"
         cuts = interpenetrations(edited)
         if cuts:
-            crossed = sorted({p for pair in cuts for p in pair[:2]})
+            added = set(edited.plank_index) - set(self.design.plank_index)
+            crossed = sorted({p for pair in cuts for p in pair[:2]} - added) or \
+                sorted({p for pair in cuts for p in pair[:2]})      # (added cut each other)
             return f"it would cut into {', '.join(crossed)}"
         self.checks += 1
         if not full and len(edited.load_cases) > 1 and not is_valid(edited, after):

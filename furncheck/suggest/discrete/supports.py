@@ -186,10 +186,12 @@ def _stiffeners(search: Search, i: str, neighbours: list[str],
     both: the woodworker's fix for a sagging shelf.  (A lip at one edge carries that
     edge; the beam model's shelf, whose section does not bend across its width, then
     twists about its axis: where that is too much, the rail under the middle does it.)
-    ``stiffener_depths`` deep, the shallowest first; at each depth, first a rail under
-    the middle of i and of every failing plank alike to i (``_alike_failing``: a
-    bookcase's identical shelves get one rail each, not a rail under one and thicker
-    boards for the rest), then the three places under i.  None (and the reason
+    ``stiffener_depths`` deep, the shallowest first; at each depth, first, where parallel
+    planks hold i between its ends too (a bench's middle trestle), a rail under its
+    middle in each bay between them (``_rails_per_bay``: a rail from end to end would cut
+    into them), then a rail under the middle of i and of every failing plank alike to i
+    (``_alike_failing``: a bookcase's identical shelves get one rail each, not a rail
+    under one and thicker boards for the rest), then the three places under i.  None (and the reason
     recorded) when i is not level, is not held at both ends by parallel planks, or a rail
     would not reach every failing place (``reaches``, see ``_reach``).  ``tried``: the
     rule's keys of what it built, where the rails under each alike plank are kept too,
@@ -217,7 +219,10 @@ def _stiffeners(search: Search, i: str, neighbours: list[str],
     name = new_id(design, "rail")
     nailed = (i, low.id, high.id)
     others = _alike_failing(search, shelf)
+    bays = _bays(design, shelf, span, neighbours)
     for rail_depth in depths:
+        if bays:                        # a plank held between its ends too: a rail a bay
+            yield _rails_per_bay(design, shelf, span, bays, rail_depth, thickness)
         group = _rails_under_each(design, shelf, span, others, rail_depth, thickness)
         key = ("rails under each", group and group.between, rail_depth)
         if group is not None and (tried is None or key not in tried):
@@ -262,6 +267,55 @@ def _rail_span(design: Design, shelf: Plank, neighbours: list[str]):
             return (frame, low, high, s_low + low.half_extents[2],
                     s_high - high.half_extents[2], beam_length_width(shelf, crosswise)[1])
     return None
+
+
+def _bays(design: Design, shelf: Plank, span, neighbours: list[str]) -> list[tuple]:
+    """The bays of the level ``shelf`` between the planks that hold its ends (``span``,
+    ``_rail_span``) where parallel planks among ``neighbours`` hold it between them too
+    (a bench's middle trestle, a shelf's divider): the spans (``_rail_span``'s shape) from
+    each holding plank's face to the next's, in order along the axis; [] where none
+    stands between the ends."""
+    frame, low, high, start, stop, width = span
+    axis = frame[:, 0]
+    middle = sorted((float((other.center_array - shelf.center_array) @ axis), other)
+                    for other in (design.plank(k) for k in neighbours)
+                    if other.id not in (low.id, high.id)
+                    and abs(float(other.rotation_matrix[:, 2] @ axis)) >= PARALLEL_COS)
+    inside = [(at, other) for at, other in middle
+              if start + other.half_extents[2] < at < stop - other.half_extents[2]]
+    if not inside:
+        return []
+    bays, first, begin = [], low, start
+    for at, other in inside:
+        bays.append((frame, first, other, begin, at - other.half_extents[2], width))
+        first, begin = other, at + other.half_extents[2]
+    bays.append((frame, first, high, begin, stop, width))
+    return bays
+
+
+def _rails_per_bay(design: Design, shelf: Plank, span, bays: list[tuple], depth: float,
+                   thickness: float) -> Candidate:
+    """Rails ``depth`` deep on edge under the middle of ``shelf``, one in each of its
+    ``bays`` (``_bays``), each nailed to the shelf and the two planks at its bay's ends:
+    a woodworker's rail per bay under a bench seat on three trestles, where one rail from
+    end to end would cut into the middle one."""
+    rails, joints, taken = [], [], set()
+    for bay in bays:
+        name = new_id(design, "rail", taken)
+        taken.add(name)
+        rails.append(_rail(shelf, bay, depth, thickness, 1.0, 0.0, name))
+        joints += [(end, name) for end in (shelf.id, bay[1].id, bay[2].id)]
+    sizes = [size_of(rail, design) for rail in rails]
+    size = sizes[0] if len(set(sizes)) == 1 else ", ".join(sizes)
+    ends = ", ".join(f"{bay[1].id} to {bay[2].id}" for bay in bays)
+    advice = (f"Add {_run(rails)} ({size}), one on edge under the middle of {shelf.id} in "
+              f"each bay ({ends}), each nailed to {shelf.id} and the two planks at its "
+              f"bay's ends.")
+    place = (f"{amount(depth / design.unit_scale)} {design.units} deep, under the middle of "
+             f"{shelf.id}, one in each bay")
+    nailed = tuple(dict.fromkeys((shelf.id, *(p.id for bay in bays for p in bay[1:3]))))
+    return Candidate("rail", with_planks(design, tuple(rails)), advice, tuple(rails),
+                     nailed, tuple(joints), STIFFENER, shelf.id, place, _run(rails))
 
 
 def _rail(shelf: Plank, span, depth: float, thickness: float, side: float, edge: float,
