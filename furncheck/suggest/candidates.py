@@ -81,15 +81,11 @@ def candidates(margins: Margins, max_dofs: int,
                tally: list[DirectionTally] | None = None) -> list[Candidate]:
     """Kept directions of 1..max_dofs DOFs, nearest (smallest predicted step) first;
     ``tally`` (when given) gets one ``DirectionTally`` per number of DOFs."""
+    system = _system(margins)
+    if system is None:
+        return []
     rows = margins.margins
-    if not rows or not margins.dofs:
-        return []
-    rates = np.array([m.rates for m in rows])                        # (rows, n)
-    values = np.array([m.value for m in rows])
-    violated = values < 0.0
-    if not violated.any():
-        return []
-    deficit = np.array([m.target for m in rows])[violated] - values[violated]
+    rates, values, violated, deficit = system
     relevant = _relevant(_strength(rates[violated], deficit))
     kept: list[Candidate] = []
     found: set[tuple[int, ...]] = set()
@@ -163,16 +159,11 @@ def unit_candidates(margins: Margins, units: list, max_dofs: int) -> list[Candid
     but not in the checks, were otherwise found only with the seat widened to 790 mm
     as ballast); ``ContinuousSearch.run`` drops a direction found that contains one of
     them found too."""
-    rows = margins.margins
     paired = {u for u, unit in enumerate(units) if len(unit.dofs) == 2}
-    if not rows or not margins.dofs or not paired or max_dofs < 2:
+    system = _system(margins)
+    if system is None or not paired or max_dofs < 2:
         return []
-    rates = np.array([m.rates for m in rows])
-    values = np.array([m.value for m in rows])
-    violated = values < 0.0
-    if not violated.any():
-        return []
-    deficit = np.array([m.target for m in rows])[violated] - values[violated]
+    rates, values, violated, deficit = system
     basis = np.zeros((len(margins.dofs), len(units)))
     for u, unit in enumerate(units):
         basis[list(unit.dofs), u] = unit.coefficients
@@ -213,15 +204,10 @@ def culled_singles(margins: Margins) -> list[Candidate]:
     (a desk's side moved out under its overhanging top, culled in the elastic model
     where the span it lengthens was predicted to sag first, holds from 154 to 294 mm
     out; without it the desk got only discrete fixes)."""
-    rows = margins.margins
-    if not rows or not margins.dofs:
+    system = _system(margins)
+    if system is None:
         return []
-    rates = np.array([m.rates for m in rows])
-    values = np.array([m.value for m in rows])
-    violated = values < 0.0
-    if not violated.any():
-        return []
-    deficit = np.array([m.target for m in rows])[violated] - values[violated]
+    rates, values, violated, deficit = system
     relevant = _relevant(_strength(rates[violated], deficit))
     if not relevant:
         return []
@@ -230,6 +216,22 @@ def culled_singles(margins: Margins) -> list[Candidate]:
               breaking)
     breaking.sort(key=lambda c: (c.enter, c.dofs))
     return breaking
+
+
+def _system(margins: Margins) -> tuple[np.ndarray, ...] | None:
+    """(rates (rows, n), values (rows,), violated (rows,) bool, deficit (violated,)): the
+    margins' linearization that the directions are formed from; None without margins,
+    DOFs or a violated margin."""
+    rows = margins.margins
+    if not rows or not margins.dofs:
+        return None
+    rates = np.array([m.rates for m in rows])                        # (rows, n)
+    values = np.array([m.value for m in rows])
+    violated = values < 0.0
+    if not violated.any():
+        return None
+    deficit = np.array([m.target for m in rows])[violated] - values[violated]
+    return rates, values, violated, deficit
 
 
 def _in_dofs(candidate: Candidate, basis: np.ndarray) -> Candidate:
