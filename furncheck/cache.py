@@ -40,7 +40,6 @@ The default directory is the user cache directory: ``$FURNCHECK_CACHE_DIR`` when
 from __future__ import annotations
 
 import base64
-import errno
 import hashlib
 import importlib.util
 import json
@@ -56,7 +55,13 @@ from typing import Any
 
 from furncheck import __version__
 from furncheck import tolerances as tol
-from furncheck.files import CACHEDIR_SIGNATURE, CACHEDIR_TAG, why_unwritable, write_atomically
+from furncheck.files import (
+    CACHEDIR_SIGNATURE,
+    CACHEDIR_TAG,
+    why_failed,
+    why_unwritable,
+    write_atomically,
+)
 from furncheck.result import DesignReport
 from furncheck.result_codec import CodecError, decode_report, encode
 
@@ -290,7 +295,7 @@ class ResultCache:
             if made:            # a folder of its own: git leaves it out (as pytest's)
                 write_atomically(os.path.join(self.directory, ".gitignore"), IGNORE_ALL)
         except OSError as error:
-            self.unwritable = f"{self.directory}: {_why(error)}"
+            self.unwritable = f"{self.directory}: {why_failed(error)}"
             return
         if os.path.islink(folder):     # (restored from an archive): no entry can be
             self.unwritable = (f"{self.directory}: {LAYOUT} is a symbolic link (nothing "
@@ -344,23 +349,10 @@ class ResultCache:
                 return False                    # a folder of the layout is a link
             write_atomically(target, header + _crc(payload) + payload, follow_links=False)
         except (OSError, ValueError) as error:   # ValueError: marshal of an odd value
-            self.unwritable = f"{self.directory}: {_why(error)}"
+            self.unwritable = f"{self.directory}: {why_failed(error)}"
             self.lost += 1
             return False
         return True
-
-
-def _why(error: Exception) -> str:
-    """Why a cache write failed, in ``files.why_unwritable``'s words where it is the file
-    system's or the permissions' ('read-only file system', 'permission denied': a CI
-    job's cache restored read-only reads alike however it was found out), else the
-    error's own."""
-    code = getattr(error, "errno", None)
-    if code == errno.EROFS:
-        return "read-only file system"
-    if code in (errno.EACCES, errno.EPERM):
-        return "permission denied"
-    return getattr(error, "strerror", None) or str(error)
 
 
 def _read_entry(path: str, header: bytes) -> Any:

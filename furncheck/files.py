@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import codecs
 import contextlib
+import errno
 import os
 from collections.abc import Iterator
 from typing import BinaryIO
@@ -125,6 +126,18 @@ def _mode_for(path: str, follow_links: bool = True) -> int:
     umask = os.umask(0)
     os.umask(umask)
     return 0o666 & ~umask
+
+
+def why_failed(error: Exception) -> str:
+    """Why a write failed, in ``why_unwritable``'s words where it is the file system's or
+    the permissions' ('read-only file system', 'permission denied': a CI job's cache
+    restored read-only reads alike however it was found out), else the error's own."""
+    code = getattr(error, "errno", None)
+    if code == errno.EROFS:
+        return "read-only file system"
+    if code in (errno.EACCES, errno.EPERM):
+        return "permission denied"
+    return getattr(error, "strerror", None) or str(error)
 
 
 def why_unwritable(path: str) -> str:

@@ -741,6 +741,10 @@ HOLD_TIE = 1e-9
 """Hull points whose hold-down is within this share of the least (round-off) are named
 with it: a sawhorse's two far feet, a loose top's two back corners."""
 
+ROOM_SLACK = 1e-9
+"""Share by which a joint's needed length (``suggest.needs``) may pass what its planks
+have room for along its line (round-off) before the estimate says they have none."""
+
 ANCHOR_PART = 0.01
 """Share of an anchor's force below which its message leaves a part of it out (its pull
 out of the wall, what it holds up, its shear along the wall)."""

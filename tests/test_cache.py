@@ -508,6 +508,8 @@ def test_a_read_only_mount_is_said_in_one_wording(tmp_path, monkeypatch):
     cache = ResultCache(str(tmp_path / "cache"), {"model": None})
     cache.probe()
     assert cache.unwritable == f"{tmp_path / 'cache'}: read-only file system"
-    assert cache_module._why(OSError(errno.EACCES, "Permission denied")) == "permission denied"
-    assert cache_module._why(OSError(errno.ENOSPC, "No space left on device")) == \
+    from furncheck.files import why_failed
+
+    assert why_failed(OSError(errno.EACCES, "Permission denied")) == "permission denied"
+    assert why_failed(OSError(errno.ENOSPC, "No space left on device")) == \
         "No space left on device"

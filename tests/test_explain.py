@@ -14,6 +14,7 @@ import re
 from dataclasses import replace
 from pathlib import Path
 
+import numpy as np
 import pytest
 from click.testing import CliRunner
 
@@ -259,8 +260,9 @@ def test_overloaded_joint_needs_more_nails():
     from furncheck.report.explanation import need_text
 
     assert need_text(need, "mm").endswith(
-        "a joint 440 mm long at 20 mm spacing (now 300 mm), more than the 300 mm that the "
-        "end of shelf gives: a wider shelf, or a brace that takes the load off the joint")
+        "a joint 440 mm long at 20 mm spacing (now 300 mm), more than the 300 mm that "
+        "shelf gives along the joint: a wider shelf, or a brace that takes the load off the "
+        "joint")
     for nails, durable in ((22, True), (21, False)):
         joints = tuple(JointSpec(j.planks, nails if j.name == "post/shelf" else None)
                        for j in geometry.joints)
@@ -268,6 +270,31 @@ def test_overloaded_joint_needs_more_nails():
         assert ("non-durable" not in kinds(listed)) is durable, nails
         if durable:
             assert listed.valid
+
+
+def test_the_room_for_a_longer_joint_is_the_chord_of_either_plank_along_its_line():
+    """The room a joint's nails have along its line is the chord of each plank's box along
+    it (2 min_i h_i / |c_i|), the smaller of the two planks', and names how that plank
+    would grow: the cantilever shelf's 300 mm width (shelf 300 wide: 'a wider shelf');
+    turned 90 degrees about z, the shelf's 300 mm side along the line is its length ('a
+    longer shelf'); a post only 200 mm wide limits it instead ('a wider post'); a 700 x
+    60 mm plank turned 12.5 degrees in its plane, the line across it, gives 60 / cos 12.5
+    = 61.4 mm, not its projection (700 sin 12.5 + 60 cos 12.5 = 210.9 mm)."""
+    from furncheck.suggest.needs import _room
+
+    design, geometry, report = catalog("shelf-cantilever-overloaded.yaml", "rigid")
+    joint = next(j for j in geometry.joints if j.name == "post/shelf")
+    line = joint.frame[:, 1]
+    assert _room(design.plank("shelf"), line)[::2] == (pytest.approx(0.3), 1)
+    turned = replace(design.plank("shelf"), length=0.3, width=0.4,
+                     rotation=(0.0, 0.0, 90.0))
+    assert _room(turned, line)[::2] == (pytest.approx(0.3), 0)
+    narrow = replace(design.plank("post"), width=0.2)
+    assert _room(narrow, line)[::2] == (pytest.approx(0.2), 1)
+    leg = replace(design.plank("post"), length=0.7, width=0.06, thickness=0.018,
+                  rotation=(0.0, 0.0, 12.5))       # turned in its plane: its ends slant
+    assert _room(leg, np.array([0.0, 1.0, 0.0]))[::2] == (
+        pytest.approx(0.06 / math.cos(math.radians(12.5)), rel=1e-9), 1)
 
 
 # -- bending (elastic model) -------------------------------------------------------------
@@ -803,6 +830,6 @@ def test_the_discrete_trials_past_those_shown_are_counted_by_what_they_were():
         for rule in ("apron", "stretcher"))
     tried = Tried(24, 0, 0, {}, 3, 8, False, (), (), 24, 0, 0, trials)
     assert tried_lines(tried, found=0)[-1] == \
-        "and 5 more: 3 candidates tried, 2 rules that did not apply"
+        "and 5 more trials: 3 candidates tried, 2 where a rule did not apply"
     assert tried_lines(replace(tried, discrete=trials[:SHOWN + 1]), found=0)[-1] == \
-        "and 1 more: 1 candidate tried"
+        "and 1 more trial: 1 candidate tried"

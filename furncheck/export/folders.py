@@ -41,13 +41,13 @@ def prepare_out_dir(out_dir: str) -> str | None:
     """Create ``out_dir`` (with its parents) if needed; why it cannot be used, or None."""
     if os.path.exists(out_dir) and not os.path.isdir(out_dir):
         return "it is not a directory"
+    from furncheck.files import why_failed, why_unwritable
+
     try:
         os.makedirs(out_dir, exist_ok=True)
     except OSError as error:
-        return error.strerror or str(error)
+        return why_failed(error)        # in the words os.access's finding reads
     if not os.access(out_dir, os.W_OK):
-        from furncheck.files import why_unwritable
-
         return why_unwritable(out_dir)
     return None
 

@@ -147,9 +147,10 @@ def _non_durable(v: dict, units: str) -> str:
     if "length_needed" in v:
         text += (f": a joint {_n(v['length_needed'])} {units} long at {_n(v['spacing'])} "
                  f"{units} spacing (now {_n(v['length'])} {units})")
-    if "room" in v:             # the edge plank's end is shorter than that
-        text += (f", more than the {_n(v['room'])} {units} that the end of {v['edge']} "
-                 f"gives: a wider {v['edge']}, or a brace that takes the load off the joint")
+    if "room" in v:             # its planks have no room for that along its line
+        text += (f", more than the {_n(v['room'])} {units} that {v['edge']} gives along "
+                 f"the joint: a {v['grow']} {v['edge']}, or a brace that takes the load off "
+                 f"the joint")
     return text
 
 
@@ -244,9 +245,9 @@ def tried_lines(tried: Tried, found: int) -> list[str]:
         limit = " (the limit)" if len(searches) >= tried.search_limit else ""
         count = f"{len(searches)} line search{'es' if len(searches) != 1 else ''}"
         if tried.culled_searched:       # ContinuousSearch.directions' fallback
-            count += (f" ({'all' if tried.culled_searched == len(searches) else 'some'} of "
-                      "them single changes culled as breaking another check first: none "
-                      "was kept)")
+            count += (f" ({tried.culled_searched} of them "
+                      f"{'a single change' if tried.culled_searched == 1 else 'single changes'}"
+                      " culled as breaking another check first: none was kept)")
         lines.append(f"{count}{limit} with the full checks, "
                      f"{succeeded} with a valid interval"
                      + (f", {tried.dropped} of them dropped (the design file at its middle "
@@ -265,10 +266,10 @@ def tried_lines(tried: Tried, found: int) -> list[str]:
     if len(trials) > SHOWN:
         rest = trials[SHOWN:]
         rules = sum(t.outcome == NOT_APPLICABLE for t in rest)
-        lines.append(f"and {len(rest)} more: "
+        lines.append(f"and {plural(len(rest), 'more trial')}: "
                      + ", ".join(part for part in (
                          plural(len(rest) - rules, "candidate") + " tried" if rules < len(rest)
-                         else "", plural(rules, "rule") + " that did not apply" if rules
+                         else "", f"{rules} where a rule did not apply" if rules
                          else "") if part))
     return lines
 

@@ -98,7 +98,8 @@ class ContinuousSearch:
         self.tally: list[DirectionTally] = []       # what ``directions`` formed
         self.line_searches: list[LineSearch] = []   # what ``run`` searched
         self.unsearched = 0                         # kept directions ``run`` left
-        self.culled_searched = 0                    # ``directions``' fallback
+        self.culled_searched = 0                    # ``directions``' fallback, searched
+        self._culled: set[int] = set()              # (its candidates' ids)
 
     @property
     def restores(self) -> tuple[str, ...]:
@@ -107,10 +108,11 @@ class ContinuousSearch:
     def directions(self, max_dofs: int) -> list[Candidate]:
         """The kept directions of 1..max_dofs DOFs, nearest first (``candidates``), after
         at most MAX_SYMMETRIC symmetric ones within SYMMETRIC_REACH of the nearest; where
-        none is kept, at most CULLED_SINGLES single DOFs culled only as breaking another
-        check first (``candidates.culled_singles``; ``culled_searched`` counts them)."""
+        none is kept (but for mirror pairs culled alike), at most CULLED_SINGLES single
+        DOFs culled only as breaking another check first (``candidates.culled_singles``;
+        ``run`` counts those it searches in ``culled_searched``)."""
         self.tally.clear()
-        self.culled_searched = 0
+        self.culled_searched, self._culled = 0, set()
         found = every_candidate(self.margins, max_dofs, self.tally)
         symmetric: list[Candidate] = []
         if self.planes:
@@ -118,9 +120,9 @@ class ContinuousSearch:
             reach = SYMMETRIC_REACH * found[0].enter if found else np.inf
             symmetric = [c for c in unit_candidates(self.margins, units, max_dofs)
                          if c.enter <= reach][:MAX_SYMMETRIC]
-        if not found and not symmetric:     # none kept: one DOF alone, for the checks
+        if not found:               # none kept: one DOF alone too, for the full checks
             found = culled_singles(self.margins)[:CULLED_SINGLES]
-            self.culled_searched = len(found)
+            self._culled = {id(c) for c in found}
         return symmetric + [c for c in found
                             if not any(same_direction(c, s) for s in symmetric)]
 
@@ -140,6 +142,7 @@ class ContinuousSearch:
                 self.unsearched = len(directions) - index
                 break
             self.searched += 1
+            self.culled_searched += id(candidate) in self._culled
             dofs = tuple(margins.dofs[i] for i in candidate.dofs)
             probes: list[tuple[float, float]] = []
             interval = line_search(ProbeLog(self.editor, probes), dofs, candidate, own_margin)

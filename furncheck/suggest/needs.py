@@ -417,11 +417,6 @@ def _inside_fraction(hull: np.ndarray, start: np.ndarray, end: np.ndarray) -> fl
 
 
 # -- durability --------------------------------------------------------------------------
-ROOM_SLACK = 1e-9
-"""Share by which a joint's needed length may pass its edge plank's end (round-off) before
-the estimate says the end has no room for it."""
-
-
 def _non_durable(design: Design, geometry: Geometry, where: str, case: CaseResult | None,
                  case_name: str | None) -> Need:
     if where.startswith("anchors["):
@@ -441,12 +436,24 @@ def _non_durable(design: Design, geometry: Geometry, where: str, case: CaseResul
         values.update({"spacing": spacing / design.unit_scale,
                        "length": joint.length / design.unit_scale,
                        "length_needed": nails * spacing / design.unit_scale})
-        edge = design.plank(joint.edge)
-        room = 2.0 * float(np.abs(edge.rotation_matrix.T @ joint.frame[:, 1])
-                           @ edge.half_extents)        # its end's reach along the line
-        if nails * spacing > room * (1.0 + ROOM_SLACK):
-            values.update({"room": room / design.unit_scale, "edge": joint.edge})
+        room, plank, axis = min(_room(design.plank(p), joint.frame[:, 1])
+                                for p in (joint.edge, joint.face))
+        if nails * spacing > room * (1.0 + tol.ROOM_SLACK):
+            values.update({"room": room / design.unit_scale, "edge": plank,
+                           "grow": ("longer", "wider", "thicker")[axis]})
     return Need("non-durable", where, case_name, values=values)
+
+
+def _room(plank: Plank, line: np.ndarray) -> tuple[float, str, int]:
+    """(m, id, axis): how long a line along ``line`` (unit, world) through the plank's
+    middle runs inside it (the chord of its box: 2 min_i h_i / |c_i|, c the line in the
+    plank's axes), the plank's id and the local axis (0 length, 1 width, 2 thickness)
+    whose faces end that chord: what a joint along the line has room for on it."""
+    direction = np.abs(plank.rotation_matrix.T @ line)
+    reach = [float(h) / float(c) if c > 1e-12 else math.inf
+             for h, c in zip(plank.half_extents, direction)]
+    axis = int(np.argmin(reach))
+    return 2.0 * reach[axis], plank.id, axis
 
 
 def _anchor(design: Design, where: str, case: CaseResult | None,
