@@ -128,15 +128,21 @@ def _mode_for(path: str, follow_links: bool = True) -> int:
     return 0o666 & ~umask
 
 
+READ_ONLY = "read-only file system"
+"""How ``why_failed`` and ``why_unwritable`` say that a file system is mounted read-only."""
+DENIED = "permission denied"
+"""... and that the permissions forbid the write."""
+
+
 def why_failed(error: Exception) -> str:
     """Why a write failed, in ``why_unwritable``'s words where it is the file system's or
     the permissions' ('read-only file system', 'permission denied': a CI job's cache
     restored read-only reads alike however it was found out), else the error's own."""
     code = getattr(error, "errno", None)
     if code == errno.EROFS:
-        return "read-only file system"
+        return READ_ONLY
     if code in (errno.EACCES, errno.EPERM):
-        return "permission denied"
+        return DENIED
     return getattr(error, "strerror", None) or str(error)
 
 
@@ -149,7 +155,7 @@ def why_unwritable(path: str) -> str:
         read_only = bool(os.statvfs(path).f_flag & os.ST_RDONLY)
     except (OSError, AttributeError):       # no statvfs (Windows), or gone
         read_only = False
-    return "read-only file system" if read_only else "permission denied"
+    return READ_ONLY if read_only else DENIED
 
 
 def is_cache_tag(path: str) -> bool:

@@ -403,8 +403,8 @@ def rules_above(folder: str, excludes: tuple[PatternFile, ...] = ()) -> IgnoreRu
     leave out ``folder`` or a folder above it, the patterns that do opened there
     (``PatternFile.opened_at``: they no longer leave those folders out, and apply below
     them as to any folder)."""
-    gitignores = _gitignores_above(folder)
     root = repository_root(folder)
+    gitignores = _gitignores_above(folder, root)
     rules = IgnoreRules(tuple(gitignores), excludes, root)
     ancestors = [folder]
     while os.path.dirname(ancestors[-1]) != ancestors[-1]:
@@ -416,10 +416,10 @@ def rules_above(folder: str, excludes: tuple[PatternFile, ...] = ()) -> IgnoreRu
                        tuple(rule.opened_at(left_out) for rule in excludes), root)
 
 
-def _gitignores_above(folder: str) -> list[PatternFile]:
-    """The gitignore files of the folders above ``folder`` (absolute) up to the top of its
-    repository, outermost first, and ``.git/info/exclude``; none outside a repository."""
-    root = repository_root(folder)
+def _gitignores_above(folder: str, root: str | None) -> list[PatternFile]:
+    """The gitignore files of the folders above ``folder`` (absolute) up to ``root``, the
+    top of its repository (``repository_root``), outermost first, and
+    ``.git/info/exclude``; none outside a repository (``root`` None)."""
     gitignores: list[PatternFile] = []
     if root is None:
         return gitignores
@@ -449,7 +449,8 @@ def left_out_by_a_scan(path: str, excludes: tuple[PatternFile, ...] = (),
     then read once."""
     absolute = os.path.abspath(path)
     folder = os.path.dirname(absolute)
-    top = repository_root(folder) or os.path.abspath(os.curdir)
+    root = repository_root(folder)
+    top = root or os.path.abspath(os.curdir)
     relative = os.path.relpath(absolute, top)
     if not relative.startswith(os.pardir) and any(
             part.startswith(".") for part in relative.split(os.sep)):
@@ -457,8 +458,8 @@ def left_out_by_a_scan(path: str, excludes: tuple[PatternFile, ...] = (),
     if read is None:
         read = {}
     if folder not in read:
-        read[folder] = IgnoreRules(tuple(_gitignores_above(folder)), excludes,
-                                   repository_root(folder)).entering(folder)
+        read[folder] = IgnoreRules(tuple(_gitignores_above(folder, root)), excludes,
+                                   root).entering(folder)
     rules = read[folder]
     current, is_dir, tracked_in_ignored = absolute, False, False
     while True:

@@ -256,7 +256,8 @@ def test_overloaded_joint_needs_more_nails():
     assert need.values["length_needed"] == pytest.approx(440.0)
     # the shelf's end (its 300 mm width along the joint line) has no room for 440 mm:
     # 22 nails at 20 mm do not fit on it, and the estimate says so
-    assert (need.values["room"], need.values["edge"]) == (pytest.approx(300.0), "shelf")
+    assert (need.values["room"], need.values["room_plank"]) == (pytest.approx(300.0),
+                                                                 "shelf")
     from furncheck.report.explanation import need_text
 
     assert need_text(need, "mm").endswith(

@@ -148,9 +148,9 @@ def _non_durable(v: dict, units: str) -> str:
         text += (f": a joint {_n(v['length_needed'])} {units} long at {_n(v['spacing'])} "
                  f"{units} spacing (now {_n(v['length'])} {units})")
     if "room" in v:             # its planks have no room for that along its line
-        text += (f", more than the {_n(v['room'])} {units} that {v['edge']} gives along "
-                 f"the joint: a {v['grow']} {v['edge']}, or a brace that takes the load off "
-                 f"the joint")
+        text += (f", more than the {_n(v['room'])} {units} that {v['room_plank']} gives "
+                 f"along the joint: a {v['room_grow']} {v['room_plank']}, or a brace that "
+                 f"takes the load off the joint")
     return text
 
 
@@ -266,11 +266,9 @@ def tried_lines(tried: Tried, found: int) -> list[str]:
     if len(trials) > SHOWN:
         rest = trials[SHOWN:]
         rules = sum(t.outcome == NOT_APPLICABLE for t in rest)
-        lines.append(f"and {plural(len(rest), 'more trial')}: "
-                     + ", ".join(part for part in (
-                         plural(len(rest) - rules, "candidate") + " tried" if rules < len(rest)
-                         else "", f"{rules} where a rule did not apply" if rules
-                         else "") if part))
+        parts = ([f"{plural(len(rest) - rules, 'candidate')} tried"] if rules < len(rest)
+                 else []) + ([f"{rules} where a rule did not apply"] if rules else [])
+        lines.append(f"and {plural(len(rest), 'more trial')}: {', '.join(parts)}")
     return lines
 
 

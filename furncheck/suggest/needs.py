@@ -439,8 +439,8 @@ def _non_durable(design: Design, geometry: Geometry, where: str, case: CaseResul
         room, plank, axis = min(_room(design.plank(p), joint.frame[:, 1])
                                 for p in (joint.edge, joint.face))
         if nails * spacing > room * (1.0 + tol.ROOM_SLACK):
-            values.update({"room": room / design.unit_scale, "edge": plank,
-                           "grow": ("longer", "wider", "thicker")[axis]})
+            values.update({"room": room / design.unit_scale, "room_plank": plank,
+                           "room_grow": ("longer", "wider", "thicker")[axis]})
     return Need("non-durable", where, case_name, values=values)
 
 
