@@ -135,7 +135,10 @@ plank (the row's force acts across its face: a shelf on a cleat, a top on its ra
 aprons) or lies level (JOINT_PART_LEVEL: its own load acts across its face: a shelf
 nailed by its back edge, a shelf deeper than it is wide held by its ends).  Its joint
 keeps the one spring at its middle, which overstates the board's sag (the sagging
-message says so, ``validity._held_along``) rather than understating it."""
+message says so, ``validity._held_along``) rather than understating it; but where the
+row alone holds the plank (``elastic.hung_planks``: a shelf nailed by its back edge onto
+a rail, and nothing else), it is cut, and the plate check of the plank hung on the row
+reads its bending across (``plate_supports._hangs_along``)."""
 
 JOINT_PART_EDGE_NARROW = 16.0
 """... or wider than this many thicknesses (192 mm of 12 mm stock) where it is an upright

@@ -65,6 +65,38 @@ loads:
   - {plank: shelf, mass: 25, spread: true}
 """
 
+WALL_SHELF_ONE_BRACKET = """\
+furncheck: 1
+name: wall-shelf-one-bracket
+material: {thickness: 18}
+walls:
+  - {point: [0, 0, 0], normal: [0, 1, 0]}
+planks:
+  - {id: back, size: [600, 200], center: [0, 9, 1400], rotation: [90, 0, 0]}
+  - {id: shelf, size: [600, 250], center: [0, 143, 1400]}
+  - {id: bracket, size: [250, 100], center: [-291, 143, 1341], rotation: [90, 0, 90]}
+anchors:
+  - {plank: back, at: [-200, 0, 1470], wall: 0, capacity: 400}
+  - {plank: back, at: [200, 0, 1470], wall: 0, capacity: 400}
+loads:
+  - {plank: shelf, mass: 25, spread: true}
+"""
+
+WALL_SHELF_ON_RAIL = """\
+furncheck: 1
+name: wall-shelf-on-rail
+material: {thickness: 18}
+walls: [{point: [0, 0, 0], normal: [0, 1, 0]}]
+planks:
+  - {id: rail, size: [900, 100], center: [0, 9, 1400], rotation: [90, 0, 0]}
+  - {id: shelf, size: [900, 250], center: [0, 125, 1459]}
+anchors:
+  - {plank: rail, at: [-300, 0, 1425], wall: 0, capacity: 400}
+  - {plank: rail, at: [300, 0, 1425], wall: 0, capacity: 400}
+loads:
+  - {plank: shelf, mass: 30, spread: true}
+"""
+
 COAT_RACK = """\
 furncheck: 1
 name: coat-rack

@@ -23,7 +23,7 @@ import elastic_designs as ed
 import numpy as np
 import physics_designs as pd
 import pytest
-from shop_designs import WALL_SHELF
+from shop_designs import WALL_SHELF_ON_RAIL, WALL_SHELF_ONE_BRACKET
 
 from furncheck.check import check_design
 from furncheck.design import parse_design
@@ -656,16 +656,17 @@ def test_an_overhang_says_so_with_its_length_and_its_span_of_twice_it():
 
 
 def test_a_plank_nailed_along_its_length_is_told_overstated():
-    """A 600 x 250 shelf nailed by its 600 mm back edge to a back board (``shop_designs``
-    WALL_SHELF): the one beam per
-    plank (along its longer side) is held at the joint's middle, its halves 300 mm
-    overhangs, and reads a sag it does not have (README, "Elastic planks"); the sagging
+    """A 600 x 250 shelf nailed by its 600 mm back edge to a back board and by its left
+    end onto a bracket (``shop_designs`` WALL_SHELF_ONE_BRACKET): the one beam per
+    plank (along its longer side) is held at the back joint's middle (a wide board held
+    near its edge: its row is left whole) and at the bracket, its right half a 300 mm
+    overhang, and reads a sag it does not have (README, "Elastic planks"); the sagging
     message says so.  The same shelf turned to be nailed by its 250 mm ends between two
     sides spans the way it does in the shop: no such note."""
     from furncheck.check import check_design
     from furncheck.design import load_design, parse_design
 
-    report = check_design(parse_design(WALL_SHELF, "wall-shelf.yaml", "yaml"))
+    report = check_design(parse_design(WALL_SHELF_ONE_BRACKET, "wall-shelf.yaml", "yaml"))
     sagging = [v for v in report.violations if v.kind == "sagging" and v.where == "shelf"]
     assert sagging and all(v.message.endswith(
         "(it is nailed along its length to back, which the model holds at the joint's "
@@ -681,6 +682,44 @@ def test_a_plank_nailed_along_its_length_is_told_overstated():
                                          / "table.yaml")))
     tops = [v for v in table.violations if v.kind == "sagging" and v.where == "top"]
     assert tops and not any("nailed along" in v.message for v in tops)
+
+
+def test_a_shelf_hung_on_its_back_edge_sags_as_a_plate_cantilever():
+    """A 900 x 250 x 18 shelf nailed down onto the top edge of a rail screwed to the wall,
+    its only joint (``shop_designs`` WALL_SHELF_ON_RAIL; 30 kg of books spread on it):
+    the row is cut into parts, so its beam is held along the rail (it read two 450 mm
+    overhangs from the joint's middle, 5.08 mm, before), and the shelf is checked as a
+    plate hung on the row.  Hand, a strip cantilevering c = 250 - 9 = 241 mm from the
+    row (the rail's mid-plane) under q = (30 kg + its own 3.04 kg) g / (0.9 x 0.25 m) =
+    1,440 Pa, D = E t^3 / 12 (1 - nu^2) = 1,555 N m (nu = 0.25, the plate's): from the
+    tangent at the row, q c^4 / 8 D + q c^2 / (2 k G t) = 0.390 + 0.003 = 0.394 mm
+    along its middle; its free corners droop up to an eighth more (see
+    ``test_plates``), so the reading lies within 0 to 8 %; its span 2 c = 482 mm (1.205
+    mm allowed); the root moment q c^2 / 2 = 41.8 N m/m, 6 M / t^2 = 0.774 N/mm^2,
+    within 2 %.  No sagging, no note; the joint's moment about its line is the weights'
+    about it: M = (294.2 + 29.8 N) x 116 mm = 37.6 N m (the shelf's centre 116 mm in front
+    of the row)."""
+    from furncheck.check import check_design
+    from furncheck.design import parse_design
+    from furncheck.geometry import analyze
+    from furncheck.statics import build_model
+
+    design = parse_design(WALL_SHELF_ON_RAIL, "wall-shelf-on-rail.yaml", "yaml")
+    report = check_design(design)
+    assert not any(v.kind == "sagging" for v in report.violations), report.violations
+    shelf = next(p for p in report.cases[0].planks if p.id == "shelf")
+    q = (30.0 + 0.9 * 0.25 * 0.018 * 750.0) * 9.80665 / (0.9 * 0.25)
+    c, t, E, G = 0.241, 0.018, 3.0e9, 0.8e9
+    D = E * t ** 3 / (12 * (1 - 0.25 ** 2))
+    hand = (q * c ** 4 / (8 * D) + q * c ** 2 / (2 * 5 / 6 * G * t)) * 1e3      # mm
+    assert hand <= shelf.sag <= 1.08 * hand
+    assert shelf.sag_allowed == pytest.approx(2 * 241.0 / 400, rel=1e-6)
+    assert shelf.stress == pytest.approx(6 * q * c ** 2 / 2 / t ** 2 / 1e6, rel=0.02)
+    model = build_model(design, analyze(design))
+    assert model.plank_cache["joint_part_counts"].tolist() == [9]
+    (joint,) = report.cases[0].joints
+    weight = 30.0 * 9.80665 + 0.9 * 0.25 * 0.018 * 750.0 * 9.80665
+    assert abs(joint.moment[0]) == pytest.approx(weight * 0.116, rel=0.02)
 
 
 LONG_BENCH = """furncheck: 1

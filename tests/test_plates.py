@@ -128,6 +128,56 @@ def test_a_plate_hinged_on_one_line_is_not_solved() -> None:
     assert plates.plate_for(plank, Material(), _edges(0.4, 0.3, which="L"), []) is None
 
 
+@pytest.mark.parametrize("grip", [1e2, 4e3, 1e5])
+def test_a_plate_hung_on_one_gripped_line_is_a_cantilever(grip: float) -> None:
+    """A 900 x 250 plate hung on its long edge B (a shelf nailed by its back edge onto a
+    rail), the nail row's grip (N m / rad per m) its only hold against turning; uniform
+    q.  Measured from the tangent at the line (contract 3a: a plank held at one end
+    only), whatever the grip: the front edge's middle deflects as a strip in cylindrical
+    bending, q c^4 / 8 D (c = 250 mm, Kirchhoff's limit), within 2 %, and no point of
+    it less; the free corners, no longer held to cylindrical bending, more, up to an
+    eighth with the softest grip (the line turns less near its ends: the plate twists);
+    its span is twice the overhang, 2 c.  The moment at the line is q c^2 / 2 along its
+    middle; the stress, 6 M / t^2 of its largest, within 2 % of that and at most 3 %
+    above (a clamped edge's moment rises a little towards the free corners)."""
+    from furncheck.statics.plate_mesh import sag_span
+
+    L, c, q = 0.9, 0.25, 1000.0
+    plank = Plank("p", L, c, T, (0.0, 0.0, 0.0))
+    plate = plates.plate_for(plank, KIRCHHOFF, _edges(L, c, grip, which="B"), [])
+    w, stress = plates.plate_solution(plate, q, [])
+    X, Y = plate.grid.nodes
+    cylindrical = q * c ** 4 / (8 * D)
+    front = np.abs(Y - c / 2) < 1e-12
+    middle = front & (np.abs(X) < 1e-12)
+    assert w[middle] == pytest.approx([cylindrical], rel=0.02)
+    assert w[front].min() >= 0.98 * cylindrical
+    assert cylindrical <= np.abs(w).max() <= 1.13 * cylindrical
+    sag, span = sag_span(plate.grid, w)
+    assert sag == np.abs(w).max() and span == pytest.approx(2 * c, rel=1e-12)
+    root = 6 * q * c ** 2 / 2 / T ** 2
+    assert root * 0.98 <= stress <= root * 1.03
+
+
+def test_a_hung_plates_sag_leaves_out_how_far_its_grip_lets_it_turn() -> None:
+    """The same plate with a grip a thousand times softer turns a thousand times more
+    about its line; its sag, from the tangent there, moves by a few percent (the twist
+    of the previous test), not by that turn, and its deflections from the tangent are
+    zero on the line."""
+    L, c, q = 0.9, 0.25, 1000.0
+    plank = Plank("p", L, c, T, (0.0, 0.0, 0.0))
+    readings = []
+    for grip in (1e2, 1e5):
+        plate = plates.plate_for(plank, KIRCHHOFF, _edges(L, c, grip, which="B"), [])
+        w, _ = plates.plate_solution(plate, q, [])
+        X, Y = plate.grid.nodes
+        assert np.abs(w[np.abs(Y + c / 2) < 1e-12]).max() < 1e-12 * np.abs(w).max()
+        readings.append(np.abs(w).max())
+    turn_at_front = q * c ** 2 / 2 / 1e2 * c          # the soft grip's turn, at the front
+    assert turn_at_front > 50 * readings[0]
+    assert readings[0] == pytest.approx(readings[1], rel=0.12)
+
+
 STEP_BOX = """furncheck: 1
 name: step-box
 units: mm

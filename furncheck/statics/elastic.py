@@ -20,6 +20,7 @@ on a template's nodes (the force sensitivity's stepped designs).
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from dataclasses import dataclass
 from functools import partial
 from types import SimpleNamespace
@@ -243,6 +244,23 @@ def floor_feet(geometry) -> dict[str, list]:
     return feet
 
 
+def hung_planks(joints: list, contacts: list) -> set[str]:
+    """The ids of the planks that one of ``joints`` alone holds: nailed at no other of
+    them, and neither standing on the floor nor resting on or under another plank among
+    ``contacts`` (a wall's contact or an anchor's tie may be theirs): a shelf nailed by its
+    back edge onto a rail or cleat, a flap, a board on a single rail.  Where such a
+    joint's row runs along the plank's beam it is cut into parts, whatever the plank's
+    width (``joint_part_counts``), and the plank is checked as a plate hung on that line
+    (``plate_supports.held_planks``), which reads its bending across its width."""
+    count: dict[str, int] = {}
+    for joint in joints:
+        for plank_id in joint.planks:
+            count[plank_id] = count.get(plank_id, 0) + 1
+    held = {plank_id for contact in contacts if contact.wall is None and contact.anchor is None
+            for plank_id in (contact.plank, contact.on) if plank_id is not None}
+    return {plank_id for plank_id, n in count.items() if n == 1 and plank_id not in held}
+
+
 def stands_along(feet, direction, length: float) -> bool:
     """Whether floor corners ``feet`` spread along ``direction`` (unit) over at least
     SPAN_ACROSS_STANDING of a line ``length`` long (a millimetre, NODE_MERGE, to spare):
@@ -384,7 +402,7 @@ def _union_length(spans: list[tuple[float, float]]) -> float:
 
 
 def joint_part_counts(design: Design, joints: list, local: dict[int, int], frames: list,
-                      sizes: np.ndarray) -> np.ndarray:
+                      sizes: np.ndarray, hung: Collection[str] = ()) -> np.ndarray:
     """(nJ,) into how many parts each joint's nail row is cut (``beams.nail_row_parts``):
     the most of its two planks' ``L |y . e1| / part`` (its reach along that plank's beam,
     e1, over part = the least of JOINT_PART_LENGTH and JOINT_PART_SHARE of that beam's
@@ -399,7 +417,9 @@ def joint_part_counts(design: Design, joints: list, local: dict[int, int], frame
     shelf nailed by its back edge, a shelf deeper than it is wide held by its ends),
     JOINT_PART_EDGE_NARROW if it is an upright edge plank (the row's moment about its
     line acts across its face: a coffee table's end panel under the top; a rail on edge
-    under a shelf is held along it).  ``sizes`` (nP, 2): each local plank's beam
+    under a shelf is held along it), unless that plank is one of ``hung``
+    (``hung_planks``: this row alone holds it, and the plate check reads its bending
+    across its width, ``plate_supports``).  ``sizes`` (nP, 2): each local plank's beam
     length and section width.  Reaches and widths are compared with PART_ROUNDING to
     spare, so that a joint exactly on a half part, or a plank exactly on a limit, is taken
     alike whatever the last bits of a turned design's numbers."""
@@ -424,8 +444,10 @@ def joint_part_counts(design: Design, joints: list, local: dict[int, int], frame
                      for joint in joints], dtype=bool)
     level = np.abs(axes[:, :, 2, 2]) >= tol.JOINT_PART_LEVEL      # face normal's z
     narrow = np.where(face | level, tol.JOINT_PART_NARROW, tol.JOINT_PART_EDGE_NARROW)
+    alone = np.array([[plank_id in hung for plank_id in joint.planks] for joint in joints],
+                     dtype=bool)
     plate = (width > narrow * thickness * (1.0 + PART_ROUNDING)) \
-        & (offset > tol.JOINT_PART_CORE * 0.5 * width * (1.0 + PART_ROUNDING))
+        & (offset > tol.JOINT_PART_CORE * 0.5 * width * (1.0 + PART_ROUNDING)) & ~alone
     nails = np.array([joint.nails for joint in joints], dtype=int)
     counts = np.maximum(np.minimum(cut.max(axis=1), nails // 2), 1)
     return np.where(((cut > 1) & plate).any(axis=1), 1, counts)
@@ -526,7 +548,8 @@ def build_elastic_model(design: Design, geometry: Geometry,
     part_counts = joint_part_counts(
         design, joint_list, local, frames,
         np.array([beam_length_width(p, c) for p, c in zip(plank_list, crosswise)],
-                 dtype=float).reshape(-1, 2)) \
+                 dtype=float).reshape(-1, 2),
+        hung_planks(joint_list, [geometry.contacts[c] for c in contacts])) \
         if template is None else template.plank_cache["joint_part_counts"]
     spring_points, arms = part_points(joint_list, part_counts)
     spring_joint = np.repeat(np.arange(len(joints)), part_counts)

@@ -31,7 +31,8 @@ class PlateGrid(NamedTuple):
     the (3, 12) map from its unknowns to its centre's moments (M_x, M_y, M_xy, N m / m)
     and its unknowns (``_element_dofs``), the plate's thickness (m), the elements'
     centres (x, y) and areas (m^2), the nodes (X, Y, row-major) and which of them lie
-    between the supports (within the supported nodes' bounding box, ``sag_span``)."""
+    between the supports (within the supported nodes' bounding box, ``sag_span``); for a
+    plate hung on one line, its ``_hinge`` (every node lies beyond it), else None."""
 
     xs: np.ndarray
     ys: np.ndarray
@@ -46,6 +47,7 @@ class PlateGrid(NamedTuple):
     areas: np.ndarray
     nodes: tuple
     between: np.ndarray
+    hinge: tuple | None = None
 
 
 def grid_lines(low: float, high: float, lines, edges, cell: float) -> np.ndarray:
@@ -199,9 +201,12 @@ def plate_grid(cells: int, floor: float, patch_cells: int, poisson: float, merge
     X, Y = np.tile(xs, ny), np.repeat(ys, nx)       # the nodes, row-major
     supported = _supported_nodes(xs, ys, segments)
     held = np.column_stack([X[supported], Y[supported]])
+    hinge = None
     if len(held) < 3 or np.linalg.svd(held - held.mean(axis=0), compute_uv=False)[-1] \
-            <= tol.NODE_MERGE:                  # on one line: free to turn about it
-        return None
+            <= tol.NODE_MERGE:                  # on one line: its grip alone holds it
+        hinge = _hinge(xs, ys, supported, segments)
+        if hinge is None:
+            return None
     fixed = np.zeros(3 * nx * ny, dtype=bool)
     fixed[3 * supported] = True
     layout = _layout(nx, ny)
@@ -228,11 +233,44 @@ def plate_grid(cells: int, floor: float, patch_cells: int, poisson: float, merge
     slack = tol.NODE_MERGE
     between = (X >= sx.min() - slack) & (X <= sx.max() + slack) \
         & (Y >= sy.min() - slack) & (Y <= sy.max() + slack)
-    arrays = (xs, ys, supported, fixed, factor, moments, cx, cy, X, Y, between)
+    if hinge is not None:
+        between = np.ones_like(between)
+    arrays = (xs, ys, supported, fixed, factor, moments, cx, cy, X, Y, between,
+              *(hinge or ()))
     for array in arrays:
         array.setflags(write=False)
     return PlateGrid(xs, ys, supported, rank, fixed, factor, moments, dofs, thickness,
-                     (cx, cy), hx * hy, (X, Y), between)
+                     (cx, cy), hx * hy, (X, Y), between, hinge)
+
+
+def _hinge(xs: np.ndarray, ys: np.ndarray, supported: np.ndarray, segments) -> tuple | None:
+    """For a plate whose supported nodes lie on one grid line, which its segments' nail
+    rows grip against turning about it (a shelf nailed by its back edge onto a rail, a
+    board on a single rail: ``plate_supports``): (per node, the unknown of the turn
+    about the line at its support node, the nearest supported node along the line, and
+    its distance from the line, m, signed; per supported node, the unknown of its turn
+    and its grip, N m / rad per m), from which ``plate_solutions`` reads its deflections
+    from the tangent at the line (contract 3a: a plank held at one end only) and the
+    moment at the line, where its largest is.  None where they hold it nowhere along the
+    line or do not grip it, or the nodes do not all lie on one line along an axis (it is
+    then free to move)."""
+    if len(supported) < 2 or not segments:
+        return None
+    i, j = supported % len(xs), supported // len(xs)
+    axis = 0 if np.all(j == j[0]) else 1 if np.all(i == i[0]) else None
+    grips = np.zeros(len(supported))
+    for segment in segments:
+        nodes, _ = _on_segment(xs, ys, segment)
+        grips[np.searchsorted(supported, nodes)] = np.maximum(
+            grips[np.searchsorted(supported, nodes)], segment[2])
+    if axis is None or not np.all(grips > 0.0):
+        return None
+    X, Y = np.tile(xs, len(ys)), np.repeat(ys, len(xs))
+    along, across = (X, Y) if axis == 0 else (Y, X)
+    line, place = (ys[j[0]], xs[i]) if axis == 0 else (xs[i[0]], ys[j])
+    nearest = np.abs(along[:, None] - place[None, :]).argmin(axis=1)
+    turn = 3 * supported + (2 if axis == 0 else 1)   # beta_y along x, beta_x along y
+    return turn[nearest], across - line, turn, grips
 
 
 class _Layout(NamedTuple):
@@ -400,7 +438,10 @@ def plate_solutions(grid: PlateGrid, loads: list) -> list[tuple[np.ndarray, floa
     (Pa) and forces spread over patches (``points``: ((x0, x1, y0, y1), N) each, shared
     by the elements by their overlap with the square: its edges are grid lines, or within
     a millimetre of one), and its largest bending stress (Pa), 6 |M| / t^2 of the largest
-    principal moment at an element's centre.  Each load's, bit for bit, as if solved
+    principal moment at an element's centre.  A plate hung on one line (``_hinge``): its
+    deflections from the tangent at the line, and the moment at the line (its grip's:
+    a cantilever's largest, half a cell from the nearest centre) among the moments.
+    Each load's, bit for bit, as if solved
     alone (LAPACK's pbtrs solves each column on its own; the moments are summed term by
     term, where a matrix product's blocking depends on how many columns it has)."""
     from furncheck.statics.lapack import banded_solve
@@ -434,14 +475,22 @@ def plate_solutions(grid: PlateGrid, loads: list) -> list[tuple[np.ndarray, floa
         m += grid.moments[:, :, term, None] * on_elements[:, None, term, :]
     principal = np.abs(0.5 * (m[:, 0] + m[:, 1])) + np.hypot(0.5 * (m[:, 0] - m[:, 1]),
                                                              m[:, 2])
-    stress = 6.0 * principal.max(axis=0, initial=0.0) / grid.thickness ** 2
-    return [(u[0::3, column], float(stress[column])) for column in range(len(loads))]
+    largest = principal.max(axis=0, initial=0.0)
+    w = u[0::3]
+    if grid.hinge is not None:          # from the tangent at its line; its moment there
+        tangent, distance, turns, grips = grid.hinge
+        w = w - u[tangent] * distance[:, None]
+        largest = np.maximum(largest, (grips[:, None] * np.abs(u[turns])).max(axis=0))
+    stress = 6.0 * largest / grid.thickness ** 2
+    return [(w[:, column], float(stress[column])) for column in range(len(loads))]
 
 
 def sag_span(grid: PlateGrid, w: np.ndarray) -> tuple[float, float]:
     """(m, m): the largest deflection between the supports (at the nodes within the
     supported nodes' bounding box: an overhang beyond them is its beam's, measured from
-    the tangent at its support, contract 3a), and its span (``_span_at``)."""
+    the tangent at its support, contract 3a; at every node of a plate hung on one line,
+    whose ``w`` is measured from the tangent there, ``plate_solutions``), and its span
+    (``_span_at``: twice the distance to the line, for a plate hung on one)."""
     between = np.where(grid.between, np.abs(w), -1.0)
     k = int(np.argmax(between))
     return float(max(between[k], 0.0)), _span_at(grid, k)

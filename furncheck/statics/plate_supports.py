@@ -9,7 +9,10 @@ middle, and somewhere off that line too, and that their weight or loads push acr
 their face (``_loaded_across``); each with its segments and stiffeners
 (``_support_segments``: a line is a support where its other plank carries it where it
 is, ``_carried``, and a stiffener where that plank spans between panels and bends with
-the plate, ``_bending_across``).
+the plate, ``_bending_across``); and the planks that one joint alone holds
+(``elastic.hung_planks``), hung on its line along their beam (``_hangs_along``), as
+cantilever plates, whether or not the other plank holds the line straight: the row
+gripping it is their only hold against turning (``plate_mesh._hinge``).
 """
 
 from __future__ import annotations
@@ -27,13 +30,14 @@ def held_planks(model, only: set[int] | None = None):
     over at least PLATE_HELD_SHARE of it (on one line, or on one side of its middle: the
     union of their spans), besides somewhere off that line (the plate is then held, not
     hinged on one line): each segment ((x0, y0), (x1, y1), grip), plank-local, and the
-    rails nailed along it (``_support_segments``).  ``only``: of these local planks alone.
-    """
-    from furncheck.statics.elastic import _joint_lines
+    rails nailed along it (``_support_segments``); and those that one joint alone holds,
+    hung on its line (``_hangs_along``), no stiffeners.  ``only``: of these local planks
+    alone."""
+    from furncheck.statics.elastic import _joint_lines, hung_planks
 
     design, geometry = model.design, model.geometry
     grounded = {contact.plank for contact in geometry.contacts if contact.on_floor}
-    held = carried = None
+    held = carried = hung = None
     joints_of: dict[str, list] = {}
     for k, index in enumerate(model.planks):
         plank = design.planks[index]
@@ -52,7 +56,17 @@ def held_planks(model, only: set[int] | None = None):
                     joints_of.setdefault(plank_id, []).append(geometry.joints[j])
             carried = _carried(geometry, joints_of)     # (its floor feet found once)
         lines = held.get(plank.id)
-        if not lines or len(lines) < 2:
+        if not lines:
+            continue
+        if len(lines) == 1:
+            if hung is None:
+                hung = hung_planks([geometry.joints[j] for j in model.joints],
+                                   [geometry.contacts[c] for c in model.contacts])
+            if plank.id not in hung or not _loaded_across(design, plank):
+                continue
+            segments, _ = _support_segments(design, plank, lines, joints_of[plank.id])
+            if _hangs_along(plank, segments, bool(model.beams.crosswise[k])):
+                yield k, plank, segments, []
             continue
         joints = joints_of[plank.id]
         if not _loaded_across(design, plank):
@@ -102,6 +116,24 @@ def _holds_beam(plank: Plank, segments, axis: int) -> bool:
     return False
 
 
+def _hangs_along(plank: Plank, segments, crosswise: bool) -> bool:
+    """Whether a plank that one joint alone holds (``elastic.hung_planks``) hangs on it
+    along its beam (its longer side, or its local y where ``crosswise``: the model's), as
+    a plate: its one line (``segments``, the joint's) runs along the beam over at least
+    PLATE_HELD_SHARE of its length, and the plank is wider than JOINT_PART_NARROW
+    thicknesses across it, where the beam, its section held straight, shows none of its
+    bending across it (a shelf nailed by its back edge onto a
+    rail read 5.08 mm, two 450 mm overhangs from the joint's middle, before its row was
+    cut into parts; the plate hung on the row sags 0.4 mm)."""
+    if len(segments) != 1:
+        return False
+    axis = 1 if crosswise else 0
+    (start, end, _), = segments
+    need = tol.PLATE_HELD_SHARE * (plank.length, plank.width)[axis] - tol.NODE_MERGE
+    return _segment_axis(segments[0]) == axis and end[axis] - start[axis] >= need \
+        and (plank.width, plank.length)[axis] > tol.JOINT_PART_NARROW * plank.thickness
+
+
 def _side(offset: float) -> float:
     """-1, 0 or 1: which side of the beam's axis a line at ``offset`` (m) lies on (0:
     within NODE_MERGE of it)."""
@@ -141,7 +173,8 @@ def _support_segments(design: Design, plank: Plank, lines, joints,
     """The plank's joint lines (``lines``, of ``joints`` in order) as local segments along
     its x or y axis (clipped to the plank; a line at a slant to both is left out): those
     held straight by their other planks and held up by them where they are (``carried``,
-    ``_carried``; all, where it is None), each with its nail row's grip against turning
+    ``_carried``; all lines, straight or not, where it is None: a plank's only joint,
+    ``held_planks``), each with its nail row's grip against turning
     about it per metre (contract 3a: n nail_withdrawal (t/2)^2 over its length, N m /
     rad per m; the other plank taken as not turning), and the others, the rails and
     aprons that bend with the plank (a rail stiff in its own plane that spans between
@@ -171,8 +204,8 @@ def _support_segments(design: Design, plank: Plank, lines, joints,
             continue
         ends = (low, high)
         partner_id = next(p for p in joint.planks if p != plank.id)
-        if straight(sizes[axis], sizes[1 - axis]) \
-                and (carried is None or carried(partner_id, joint)):
+        if carried is None or (straight(sizes[axis], sizes[1 - axis])
+                               and carried(partner_id, joint)):
             grip = joint.nails * withdrawal * (0.5 * joint.edge_thickness) ** 2
             supports.append((*ends, grip / length))
         else:

@@ -12,8 +12,10 @@ at its centre).  So such a plank is also solved as a plate, on its own:
 * which planks (``plate_supports``): those not standing on the floor whose joint lines,
   held straight by their other planks (``elastic._holds_straight``: a panel, not a
   rail), cover at least PLATE_HELD_SHARE of one of its sides on one line or one side of
-  its middle, and hold it somewhere off that line too; and whose weight or loads push
-  across its face;
+  its middle, and hold it somewhere off that line too, or that one joint alone holds,
+  along its beam (a shelf nailed by its back edge onto a rail: hung on that line, its
+  row's grip its only hold against turning, ``plate_mesh._hinge``); and whose weight or
+  loads push across its face;
 * the plate (``statics.plate_mesh``): Mindlin, bilinear elements with selectively
   reduced shear integration, on a grid through every support line's ends and the edges
   of the load patches of the case it is read in (each case on its own grid: ``_solved``),
@@ -28,7 +30,9 @@ at its centre).  So such a plank is also solved as a plate, on its own:
   on a cabinet's bottom) are not the plate's: its beam carries them.
 
 Its sag is the plate's largest deflection between its supports (the supports do not
-move; an overhang beyond them is its beam's, measured from the tangent at its support),
+move; an overhang beyond them is its beam's, measured from the tangent at its support;
+a plate hung on one line is all overhang, its deflections measured from the tangent at
+that line),
 its span the distance between the outermost supports on either side of that point
 along the plank's axes, the shorter way (``_span_at``, as contract 3a has a beam's),
 and its stress the largest principal moment's 6 |M| / t^2 at
