@@ -738,6 +738,29 @@ ESTIMATES = [
     Estimate("wall-shelf", "default", "shelf stress (N/mm^2)", plank("shelf", "stress"),
              0.26, "13,500 mm^3: 0.26 N/mm^2", model="elastic"),
 
+    # the wall shelf on a rail: its fixings by the moments about the rail's foot, in both
+    # models; elastic, the shelf hangs on its one row as a plate
+    Estimate("wall-shelf-rail", "default", "self-weight (kg)", self_weight, 3.04 + 1.22,
+             "shelf 3.04 kg = 29.8 N, rail 1.22 kg = 11.9 N"),
+    *(Estimate("wall-shelf-rail", "default", what, quantity, hand, quote, kind=kind,
+               model=model)
+      for model in ("rigid", "elastic")
+      for what, quantity, hand, quote, kind in (
+          ("each anchor's pull (N)", anchors_largest("pull", axis=1), (251.0, 271.0),
+           "251 to 271 N per screw", "between"),
+          ("shelf/rail moment (N m)", joint("shelf", "rail", "moment"), 37.6,
+           "M = 324.1 N x 0.116 m = 37.6 N m", "about"))),
+    Estimate("wall-shelf-rail", "default", "shelf/rail pull (N per nail)",
+             joint("shelf", "rail", "pull"), 85.6, "324.1) / 45 = 85.6 N", model="rigid"),
+    Estimate("wall-shelf-rail", "default", "shelf sag (mm)", plank("shelf", "sag"),
+             (0.394, 1.08 * 0.394), "0.390 + 0.003 = 0.394 mm along its middle",
+             kind="between", model="elastic"),
+    Estimate("wall-shelf-rail", "default", "shelf allowed sag (mm)",
+             plank("shelf", "sag_allowed"), 1.205, "2 x 241 / 400 = 1.205 mm", rel=1e-3,
+             model="elastic"),
+    Estimate("wall-shelf-rail", "default", "shelf stress (N/mm^2)", plank("shelf", "stress"),
+             0.774, "6 M / t^2 = 0.774 N/mm^2", rel=0.02, model="elastic"),
+
     Estimate("bookcase-anchored", "default", "self-weight (kg)", self_weight, 26.0,
              "26.0 kg = 255.1 N"),
     *(Estimate("bookcase-anchored", "default", f"{side}/{shelf} shear (N per nail)",
