@@ -159,6 +159,37 @@ def test_a_plate_hung_on_one_gripped_line_is_a_cantilever(grip: float) -> None:
     assert root * 0.98 <= stress <= root * 1.03
 
 
+def test_a_board_on_a_centre_rail_is_two_cantilevers() -> None:
+    """An 800 x 300 x 12 board nailed along its middle line onto a rail (its one joint,
+    grip 4,050 N m / rad per m), 217.39 N spread over it (q = 905.8 Pa): two cantilevers
+    of c = 150 mm either side of the line.  Both sides loaded alike, the line does not
+    turn, and the grip takes no moment: each side's moment at the line is the
+    elements' own (``plate_mesh._line_moments``), q c^2 / 2 = 10.19 N m / m, 6 M / t^2 =
+    0.425 N/mm^2 along its middle (a helper's PyNite plate, 10 mm cells: 0.40 at the
+    centre of the element 5 mm off the line), rising by up to 6 % towards the free ends
+    (the clamped edge's Poisson effect): the stress lies between.  Its sag from the
+    tangent, q c^4 / 8 D + q c^2 / 2 k G t = 0.126 mm at its edges' middles (PyNite 0.126
+    mm), within 2 %; its span 2 c.  (The elements' centres alone, 15 mm off the line, read
+    0.355 N/mm^2.)"""
+    from furncheck.statics.plate_mesh import sag_span
+
+    L, b, t, q = 0.8, 0.3, 0.012, 217.39 / (0.8 * 0.3)
+    plank = Plank("p", L, b, t, (0.0, 0.0, 0.0))
+    material = Material(elastic_modulus=3e9, shear_modulus=0.8e9)
+    plate = plates.plate_for(plank, material, [((-L / 2, 0.0), (L / 2, 0.0), 4050.0)], [])
+    w, stress = plates.plate_solution(plate, q, [])
+    X, Y = plate.grid.nodes
+    rigidity = 3e9 * t ** 3 / (12 * (1 - NU ** 2))
+    c = b / 2
+    hand = q * c ** 4 / (8 * rigidity) + q * c ** 2 / (2 * 5 / 6 * 0.8e9 * t)
+    for edge in (-c, c):                # at the edge's node nearest its middle
+        on_edge = np.flatnonzero(np.abs(Y - edge) < 1e-12)
+        assert w[on_edge[np.argmin(np.abs(X[on_edge]))]] == pytest.approx(hand, rel=0.02)
+    assert sag_span(plate.grid, w)[1] == pytest.approx(2 * c, rel=1e-12)
+    root = 6 * q * c ** 2 / 2 / t ** 2
+    assert root <= stress <= 1.06 * root
+
+
 def test_a_hung_plates_sag_leaves_out_how_far_its_grip_lets_it_turn() -> None:
     """The same plate with a grip a thousand times softer turns a thousand times more
     about its line; its sag, from the tangent there, moves by a few percent (the twist

@@ -293,6 +293,43 @@ def test_a_seat_overhanging_its_legs_by_over_a_third_is_implausible(left, right,
                            f"of its length"]
 
 
+@pytest.mark.parametrize("legs, past", [
+    (370, None),            # 24 mm past the legs' faces: 18.8 N m < W d = 27.5 N m
+    (300, 94),              # 16 % overhang, under the rule's third: 73.8 > 22.4 N m
+    (200, 194),             # 27 %: 152.2 > 15.1 N m
+])
+def test_a_seat_whose_end_load_tips_the_bench_is_implausible(legs, past):
+    """The 900 x 300 x 25 mm bench seat with 80 kg on it (P = 784.8 N), its legs 443.5 x
+    300 x 12 mm at x = -+legs: the planks weigh 5.06 + 2 x 1.20 = 7.46 kg, W = 73.2 N at
+    x = 0.  The load moved to the seat's end, 50 mm in from it (x = 400: ISO 7172's
+    vertical force), tips the bench about the outer face of the leg under that end, x =
+    legs + 6 mm, where P a > W d (a = 400 - legs - 6, d = legs + 6): legs at -+380, the
+    input, a = 14 mm: 11.0 N m against 28.2 N m, it stands; at -+370 it still does; at
+    -+300 and -+200 it tips, which the one-third overhang rule does not see (16 % and
+    27 %), and the change reads implausible.  Without the load there is no such reason."""
+    before = BENCH.format(left=-380, right=380) + LOADED
+    after = BENCH.format(left=-legs, right=legs)
+    found = [r for r in score_of(before, after + LOADED).implausible if "tips it over" in r]
+    expected = [] if past is None else [
+        f"the 80 kg on seat, moved to its end ({past} mm past what the piece stands on), "
+        "tips it over: its own 7.46 kg cannot hold it back (before the change it could)"]
+    assert found == expected
+    assert not [r for r in score_of(BENCH.format(left=-380, right=380), after).implausible
+                if "tips it over" in r]
+
+
+def test_an_end_load_that_tipped_the_input_already_is_not_flagged():
+    """The same bench with its legs at -+200 as the input (its end load tips it already:
+    the maker drew it so, and the load cases decide) and moved to -+150: no new
+    tipping reason."""
+    before = BENCH.format(left=-200, right=200) + LOADED
+    score = score_of(before, BENCH.format(left=-150, right=150) + LOADED)
+    assert not [r for r in score.implausible if "tips it over" in r]
+
+
+LOADED = "loads:\n  - {plank: seat, mass: 80, at: [0, 0, 468.5]}\n"
+
+
 def test_an_overhang_that_barely_grows_is_no_new_overhang():
     """Legs at -+154 under the 900 mm seat leave 450 - 160 = 290 mm, 32.2 %, past them;
     moved 11 mm in (-+143: 301 mm, 33.4 %) the seat crosses a third but grows its

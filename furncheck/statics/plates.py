@@ -36,7 +36,8 @@ that line),
 its span the distance between the outermost supports on either side of that point
 along the plank's axes, the shorter way (``_span_at``, as contract 3a has a beam's),
 and its stress the largest principal moment's 6 |M| / t^2 at
-the elements' centres.
+the elements' centres (and, hung on one line, of the moments at that line,
+``plate_mesh._line_moments``).
 Where these exceed the beam's they are the plank's (``with_plates``); the joints' and
 contacts' forces stay the beam model's.  The sensitivities of ``range`` and ``suggest``
 read a plate's changes where its reading is its plank's and near its limit

@@ -13,7 +13,9 @@ design, and ranked by ``ShopScore.key`` (smaller first), lexicographically:
    (seat, top, shelf) that overhangs its supports by more than OVERHANG_SHARE of its
    length at one end (legs moved 267 mm in under a 900 mm bench seat: whoever sits at
    its end tips it, whatever the load cases say; an input's overhang past that share may
-   not grow either), or a loaded level plank cut by more than SHRINK_SHARE of its length or
+   not grow either; under it, a grown overhang where the plank's largest point load moved
+   to its end tips the piece, ``_tips_at_an_end``), or a loaded level plank cut by more
+   than SHRINK_SHARE of its length or
    width (a top cut to a strip under its pot) or turned out of level by more than
    TILT_LIMIT degrees (a desk's top sloping 10.5 degrees), or (elastic model) a plank resized past
    square, whose one beam then runs the other way (contract 3a: along the longer side; a
@@ -61,7 +63,7 @@ from furncheck.suggest.cutlist import (
 )
 from furncheck.suggest.discrete.common import amount, level, names, upright
 from furncheck.suggest.symmetry import MirrorPlane, broken_pairs
-from furncheck.tolerances import ON_PLANK_EPS, STOCK_BOARD
+from furncheck.tolerances import GRAVITY, ON_PLANK_EPS, STOCK_BOARD
 
 PLANK_COST = 0.05
 """Cost of each plank touched, on top of its relative change (twenty planks touched cost
@@ -74,6 +76,12 @@ OVERHANG_SHARE = 1.0 / 3.0
 """A level plank may reach past its outermost support at one end by at most this share of
 its length (or width, across) before a suggestion reads as implausible (a table top's or
 bench seat's overhang is commonly kept to a quarter or a third of its length)."""
+
+END_LOAD_INSET = 0.05
+"""m: where a level plank's largest point load is moved to find whether it tips the piece
+(``_tips_at_an_end``): this far in from the plank's end, as the stability tests of
+tables put their vertical force, its centre 50 mm from the top's outer edge (ISO
+7172:1988, section 5; EN 1730)."""
 
 OVERHANG_GROWTH = 0.05
 """... and only when the suggestion adds at least this share to the input's overhang (a
@@ -243,6 +251,16 @@ def implausible(original: Design, geometry: Geometry, edited: Design,
             was = f" (it was {round(100 * before[0])} %)" if before[0] > OVERHANG_SHARE else ""
             reasons.append(f"{plank_id} overhangs its supports by {round(100 * after[0])} % "
                            f"of its {after[1]}{was}")
+        elif after[0] > before[0] and _tips_at_an_end(original, plank_id) is None:
+            tips = _tips_at_an_end(edited, plank_id)
+            if tips is not None:
+                load, past, weight = tips
+                reasons.append(
+                    f"the {amount(load / GRAVITY)} kg on {plank_id}, moved to its end "
+                    f"({amount(past / original.unit_scale)} {original.units} past what "
+                    f"the piece stands on), tips it over: its own "
+                    f"{amount(weight / GRAVITY)} kg cannot hold it back (before the change "
+                    "it could)")
     scale, unit = original.unit_scale, original.units
     turned: dict[tuple, list[str]] = {}         # planks alike, named together
     resized, others = _turned_beams(original, geometry, edited, changed, layout)
@@ -425,6 +443,48 @@ def _level_planks(design: Design, supports: dict[str, list[tuple[str, bool]]],
     return [plank.id for plank in design.planks if plank.id in supports and level(plank)
             and (plank.id in changed or any(other in changed
                                              for other, _ in supports[plank.id]))]
+
+
+def _tips_at_an_end(design: Design, plank_id: str) -> tuple[float, float, float] | None:
+    """(N, m, N): where the largest point load that any load case puts on the level plank
+    (a sitter, a leaning person), moved to one of its ends (END_LOAD_INSET in from it,
+    along its middle), tips the piece over the edge of what it stands on: that load, how
+    far past that edge it is, and the planks' weight that holds the piece back; None
+    where no end tips it, and for a piece that a wall fixing holds or that stands on no
+    floor.  Moments about that edge, along each of the plank's axes laid level: P a > W d
+    (a: the load past the edge, d: the planks' centre of mass inside it; the other loads
+    left out).  The overhang
+    rule's reason (a bench's legs moved in under its seat: whoever sits at its end tips
+    it, whatever the load cases say), for a piece too light for its overhang's share."""
+    if design.anchors:
+        return None
+    loads = [-load.force[2] for case in design.load_cases for load in case.loads
+             if load.plank == plank_id and not load.spread and load.force[2] < 0.0]
+    if not loads:
+        return None
+    corners = np.concatenate([plank.corners for plank in design.planks])
+    feet = corners[corners[:, 2] <= design.tolerance][:, :2]
+    if len(feet) == 0:
+        return None
+    masses = np.array([design.plank_mass(plank) for plank in design.planks])
+    centre = masses @ np.array([plank.center_array[:2] for plank in design.planks]) \
+        / masses.sum()
+    weight = float(masses.sum()) * GRAVITY
+    plank = design.plank(plank_id)
+    for axis, half in ((0, max(plank.length / 2.0 - END_LOAD_INSET, 0.0)),
+                       (1, max(plank.width / 2.0 - END_LOAD_INSET, 0.0))):
+        direction = plank.rotation_matrix[:2, axis]
+        norm = float(np.hypot(*direction))
+        if norm <= 0.5:
+            continue
+        direction = direction / norm
+        reach = feet @ direction
+        for sign, edge in ((1.0, float(reach.max())), (-1.0, float(reach.min()))):
+            end = float(plank.center_array[:2] @ direction) + sign * half * norm
+            past, inside = sign * (end - edge), sign * (edge - float(centre @ direction))
+            if past > 0.0 and max(loads) * past > weight * inside:
+                return max(loads), past, weight
+    return None
 
 
 def _overhang_share(design: Design, plank_id: str,
