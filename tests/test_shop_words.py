@@ -160,6 +160,22 @@ def test_a_mirror_pair_tilted_across_its_plane_says_which_way_they_lean(turn, wo
     assert text.startswith(f"Tilt leg_l and leg_r by 5 degrees each, {words}, "), text
 
 
+def test_planks_that_do_not_stand_on_the_floor_have_no_feet():
+    """The stool's legs tilted across their plane as above, the stool drawn 200 mm above
+    the floor (a wall unit's brackets, say): their tops lean in, and no feet are named."""
+    from furncheck.design.load import parse_design
+
+    text = (CATALOG / "stool.yaml").read_text()
+    for z in ("444", "219", "150", "450"):
+        text = text.replace(f", {z}]", f", {int(z) + 200}]")
+    raised = with_model(parse_design(text, "raised.yaml", "yaml"), "rigid")
+    assert min(float(p.corners[:, 2].min()) for p in raised.planks) > 0.19
+    advice = advise(raised, {"leg_l.ry": 5.0, "leg_r.ry": -5.0})
+    assert advice.startswith("Tilt leg_l and leg_r by 5 degrees each, their tops leaning "
+                             "in, "), advice
+    assert "feet" not in advice
+
+
 def test_a_leg_moved_in_under_its_seat_goes_toward_the_leg_opposite():
     """A splayed leg (its top nailed under the seat's edge) moved 50 mm along -x: the seat's
     centre lies 54 degrees off that way (within the 60 of 'toward') and nearer than the

@@ -235,9 +235,13 @@ def _pair_phrase(design: Design, edited: Design, plane: MirrorPlane, first: str,
                    f"{'+' if way[axis] > 0 else '-'}{'xy'[axis]}"
         towards = ahead[0] if ahead[0] == ahead[1] else f"{ahead[0]} and {ahead[1]}"
         return f"tilt {both} by {amount}, their tops toward {towards}"
-    return f"tilt {both} by {amount}, " + (
-        "their tops leaning out (their feet in)" if after > before
-        else "their tops leaning in (their feet splayed out)")
+    standing = all(float(design.plank(p).corners[:, 2].min()) <= design.tolerance
+                   for p in (a, b))            # feet: where they stand on the floor
+    if after > before:
+        return f"tilt {both} by {amount}, their tops leaning out" + (
+            " (their feet in)" if standing else "")
+    return f"tilt {both} by {amount}, their tops leaning in" + (
+        " (their feet splayed out)" if standing else "")
 
 
 def _phrase(design: Design, edited: Design, held: dict, plank: str, subject: str,
