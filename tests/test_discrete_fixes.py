@@ -575,6 +575,72 @@ def test_added_fixings_say_what_the_old_ones_still_take():
     assert fix_valid(anchor)
 
 
+# --- wall brackets -----------------------------------------------------------------------------
+
+SHELF_ON_RAIL = """furncheck: 1
+name: wall-shelf-rail-12mm
+material: {thickness: 12}
+walls: [{point: [0, 0, 0], normal: [0, 1, 0]}]
+planks:
+  - {id: rail, size: [900, 100], center: [0, 9, 1450], rotation: [90, 0, 0], thickness: 18}
+  - {id: shelf, size: [900, 300], center: [0, 150, 1506]}
+anchors:
+  - {plank: rail, at: [-350, 0, 1480], wall: 0, capacity: 700}
+  - {plank: rail, at: [350, 0, 1480], wall: 0, capacity: 700}
+loads:
+  - {plank: shelf, mass: 40, spread: true}
+"""
+
+
+@pytest.mark.parametrize("screws, x", [(True, 350.0), (False, 300.0)])
+def test_a_sagging_shelf_on_a_wall_rail_gets_brackets(screws, x):
+    """A 12 mm 900 x 300 shelf nailed onto an 18 mm rail screwed flat to the wall, 40 kg
+    of books: it sags 3.16 mm against 1.455 allowed (``test_elastic_physics``).  Two
+    brackets on edge under it, square to the wall: as deep as the shelf reaches past the
+    rail's face, 300 - 18 = 282 mm, as tall as the rail reaches below the shelf, 1500 -
+    1400 = 100 mm, 12 mm thick, centred 18 + 141 = 159 mm out and 50 mm under the shelf
+    (z = 1450); under the rail's screws at x = -+350 mm, or, without screws under the
+    shelf (the rail held by two at -+440, outside its 900 / 2 - 12 mm), a sixth of its
+    length in from its ends, x = -+(450 - 150) = -+300 mm.  Nailed to the shelf and the
+    rail, they hold its front edge: valid, the file written back valid too."""
+    text = SHELF_ON_RAIL if screws else SHELF_ON_RAIL.replace("[-350, 0, 1480]",
+                                                              "[-440, 0, 1480]").replace(
+        "[350, 0, 1480]", "[440, 0, 1480]")
+    design = parsed(text, "elastic")
+    bracket = next(f for f in fixes(design) if f.rule == "bracket")
+    sizes = sorted((p.id, round(p.length * 1e3, 6), round(p.width * 1e3, 6),
+                    round(p.thickness * 1e3, 6), tuple(round(v * 1e3, 6) for v in p.center))
+                   for p in bracket.adds)
+    assert sizes == [("bracket-1", 282.0, 100.0, 12.0, (-x, 159.0, 1450.0)),
+                     ("bracket-2", 282.0, 100.0, 12.0, (x, 159.0, 1450.0))]
+    assert bracket.advice == (
+        f"Add bracket-1 and bracket-2 (282 x 100 mm), brackets on edge under shelf, square "
+        f"to the wall, at ({-x:g}, 159, 1450) mm and ({x:g}, 159, 1450) mm, each nailed to "
+        f"shelf and to rail.")
+    assert fix_valid(bracket)
+    joints = {frozenset(j.planks) for j in analyze(bracket.design).joints}
+    assert {frozenset(("shelf", b)) for b in ("bracket-1", "bracket-2")} <= joints
+    assert {frozenset(("rail", b)) for b in ("bracket-1", "bracket-2")} <= joints
+
+
+def test_brackets_are_not_tried_for_an_overloaded_fixing_or_without_a_wall():
+    """The catalog's wall-shelf-rail fails by its screws alone: brackets ending at the
+    rail's foot leave the screws' lever about that foot as it was, so the rule says so
+    and builds nothing; a design by no wall gets no brackets."""
+    from furncheck.suggest.tried import NOT_APPLICABLE
+
+    for name, reason in (("wall-shelf-rail", "it does not relieve a wall fixing"),
+                         ("shelf-cantilever", "the design stands by no wall")):
+        design = with_model(load_design(str(CATALOG / f"{name}.yaml")), "elastic")
+        geometry = analyze(design)
+        trials: list = []
+        found = discrete_fixes(design, geometry, check_design(design, geometry),
+                               trials=trials)
+        assert not [f for f in found if f.rule == "bracket"]
+        (trial,) = [t for t in trials if t.rule == "wall bracket"]
+        assert trial.outcome == NOT_APPLICABLE and trial.reason.startswith(reason), trial
+
+
 # --- near misses -------------------------------------------------------------------------------
 
 def test_a_hovering_side_table_is_stood_on_the_floor_in_the_elastic_model():

@@ -753,6 +753,88 @@ def test_a_thin_shelf_hung_on_a_rail_sags_as_pynite_reads_it():
     assert shelf.stress == pytest.approx(2.74, rel=0.02)
 
 
+WALL_DESK = """furncheck: 1
+name: wall-desk
+material: {thickness: 18}
+walls: [{point: [0, 0, 0], normal: [0, 1, 0]}]
+planks:
+  - {id: top, size: [1200, 600], center: [0, 300, 759]}
+  - {id: leg, size: [600, 750], center: [0, 570, 375], rotation: [90, 0, 0]}
+anchors:
+  - {plank: top, at: [-500, 0, 759], wall: 0, capacity: 2000}
+  - {plank: top, at: [0, 0, 759], wall: 0, capacity: 2000}
+  - {plank: top, at: [500, 0, 759], wall: 0, capacity: 2000}
+loads:
+  - {plank: top, mass: 20, spread: true}
+"""
+
+
+def test_a_top_with_wall_fixings_of_its_own_does_not_hang_on_its_one_joint():
+    """A reviewer's wall desk: a 1200 x 600 top screwed to the wall along its back edge
+    (three fixings) and nailed onto one panel leg 30 mm from its front edge, its one
+    nail joint.  The fixings hold it: it is no plank hung on that row, and no plate
+    cantilevering 570 mm from the leg to the wall reads it sagging (5.59 mm, when the
+    fixings were left out of the test)."""
+    from furncheck.geometry import analyze
+    from furncheck.statics.elastic import hung_planks
+
+    design = parse_design(WALL_DESK, "desk.yaml", "yaml")
+    geometry = analyze(design)
+    assert hung_planks(list(geometry.joints), list(geometry.contacts)) == set()
+    report = check_design(design, geometry)
+    assert not [v for v in report.violations if v.kind == "sagging"], report.violations
+
+
+@pytest.mark.parametrize("rail, cut", [(220, False), (240, True)])
+def test_a_row_is_cut_only_where_a_plate_reads_the_plank_hung_on_it(rail, cut):
+    """The wall shelf on a rail (900 x 250 x 18, 12 kg) with the rail, and its row, cut
+    to 220 or 240 mm: a plate hangs on a row along at least a quarter of the shelf's
+    900 mm, 225 mm (PLATE_HELD_SHARE).  On 240 mm the row is cut into parts and the plate
+    reads the shelf (1.5 mm, sagging); on 220 mm neither: the beam, held at the row's
+    middle, reads two 450 mm overhangs, 2.31 mm, sagging (an overstatement, on the safe
+    side), where before the row was cut with no plate to read what the parts' rigid arms
+    hold straight, and the shelf read valid (1.03 mm)."""
+    from furncheck.geometry import analyze
+    from furncheck.statics import build_model
+
+    text = WALL_SHELF_ON_RAIL.replace("size: [900, 100]", f"size: [{rail}, 100]").replace(
+        "[-300, 0, 1425]", "[-80, 0, 1425]").replace("[300, 0, 1425]", "[80, 0, 1425]"
+                                                     ).replace("mass: 30", "mass: 12")
+    design = parse_design(text, "partial.yaml", "yaml")
+    geometry = analyze(design)
+    model = build_model(design, geometry)
+    assert (model.plank_cache["joint_part_counts"].tolist()[0] > 1) is cut
+    sagging = [v for v in check_design(design, geometry).violations if v.kind == "sagging"]
+    assert sagging
+    assert ("450 mm overhang" in sagging[0].message) is not cut
+
+
+def test_a_board_on_a_wide_panel_reads_its_plate():
+    """The 800 x 300 x 12 board nailed along its middle onto an 18 mm panel 700 mm tall
+    standing on the floor (a helper's design): the panel, an upright edge plank wider
+    than 16 thicknesses, keeps the row whole, and the board's beam, held at the row's
+    middle, read two 400 mm overhangs, 6.72 mm, sagging.  The board hangs on the row as
+    a plate, which replaces that reading: two cantilevers of c = 150 mm, q = 217.39 N /
+    (0.8 x 0.3 m): q c^4 / 8 D + q c^2 / 2 k G t = 0.126 mm (PyNite 0.127 mm), valid."""
+    text = """furncheck: 1
+name: centre-rail
+material: {thickness: 12}
+planks:
+  - {id: rail, size: [800, 700], center: [0, 0, 350], rotation: [90, 0, 0], thickness: 18}
+  - {id: board, size: [800, 300], center: [0, 0, 706]}
+loads:
+  - {plank: board, mass: 20, spread: true}
+"""
+    report = check_design(parse_design(text, "centre.yaml", "yaml"))
+    assert report.valid, report.violations
+    board = next(p for p in report.cases[0].planks if p.id == "board")
+    q, c, t = 217.39 / (0.8 * 0.3), 0.15, 0.012
+    rigidity = 3e9 * t ** 3 / (12 * (1 - 0.25 ** 2))
+    hand = (q * c ** 4 / (8 * rigidity) + q * c ** 2 / (2 * 5 / 6 * 0.8e9 * t)) * 1e3
+    assert hand <= board.sag <= 1.08 * hand
+    assert board.sag_allowed == pytest.approx(300 / 400, rel=1e-6)
+
+
 LONG_BENCH = """furncheck: 1
 name: long-bench
 planks:

@@ -192,9 +192,10 @@ def test_a_board_on_a_centre_rail_is_two_cantilevers() -> None:
 
 def test_a_hung_plates_sag_leaves_out_how_far_its_grip_lets_it_turn() -> None:
     """The same plate with a grip a thousand times softer turns a thousand times more
-    about its line; its sag, from the tangent there, moves by a few percent (the twist
-    of the previous test), not by that turn, and its deflections from the tangent are
-    zero on the line."""
+    about its line (the soft one, 100 N m / rad per m, by q c^2 / 2 / 100 = 0.31 rad:
+    78 mm at the front edge, some 70 times the sag); its sag, from the tangent there,
+    moves by at most an eighth (the twist of the previous test), not by that turn, and
+    its deflections from the tangent are zero on the line."""
     L, c, q = 0.9, 0.25, 1000.0
     plank = Plank("p", L, c, T, (0.0, 0.0, 0.0))
     readings = []
@@ -204,8 +205,6 @@ def test_a_hung_plates_sag_leaves_out_how_far_its_grip_lets_it_turn() -> None:
         X, Y = plate.grid.nodes
         assert np.abs(w[np.abs(Y + c / 2) < 1e-12]).max() < 1e-12 * np.abs(w).max()
         readings.append(np.abs(w).max())
-    turn_at_front = q * c ** 2 / 2 / 1e2 * c          # the soft grip's turn, at the front
-    assert turn_at_front > 50 * readings[0]
     assert readings[0] == pytest.approx(readings[1], rel=0.12)
 
 

@@ -318,6 +318,19 @@ def test_a_seat_whose_end_load_tips_the_bench_is_implausible(legs, past):
                 if "tips it over" in r]
 
 
+def test_the_tipping_words_are_a_mirror_images_words():
+    """Legs moved from -+380 to -200 and +150: both ends tip the bench (194 and 244 mm
+    past the legs' faces); the words name the farther, 244 mm, and so do the mirror
+    image's (legs at -150 and +200), where the first end found was named before."""
+    before = BENCH.format(left=-380, right=380) + LOADED
+    words = [[r for r in score_of(before, BENCH.format(left=left, right=right)
+                                  + LOADED).implausible if "tips it over" in r]
+             for left, right in ((-200, 150), (-150, 200))]
+    assert words[0] == words[1] == [
+        "the 80 kg on seat, moved to its end (244 mm past what the piece stands on), tips "
+        "it over: its own 7.46 kg cannot hold it back (before the change it could)"]
+
+
 def test_an_end_load_that_tipped_the_input_already_is_not_flagged():
     """The same bench with its legs at -+200 as the input (its end load tips it already:
     the maker drew it so, and the load cases decide) and moved to -+150: no new

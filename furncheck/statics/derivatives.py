@@ -263,7 +263,13 @@ def _plate_sides(model: StaticsModel, case, planks: np.ndarray | None,
     where the sides are a step either way (each stepped plate is factored anew: the
     cabinet's linearizations in its four cases meet 452 new plates, about a second)."""
     from furncheck.statics.bending_points import plank_results_where
-    from furncheck.statics.plates import plate_governs, plate_planks, plate_readings, same_grid
+    from furncheck.statics.plates import (
+        plate_governs,
+        plate_planks,
+        plate_readings,
+        same_grid,
+        whole_rows_hung,
+    )
     from furncheck.validity import bending_use, plank_limits
 
     locals_ = {plate.local for plate in plate_planks(model)}
@@ -280,7 +286,7 @@ def _plate_sides(model: StaticsModel, case, planks: np.ndarray | None,
     for k, reading in readings.items():
         i = place[k]
         governs = plate_governs(reading, float(beams.sag[i]), float(beams.span[i]),
-                                float(beams.stress[i]))
+                                float(beams.stress[i]), k in whole_rows_hung(model))
         used = bending_use(reading.sag, reading.span, reading.stress, sag_limit[k],
                            creep[k], strength[k])
         if any(g and float(u) >= tol.PLATE_RATES_FROM for g, u in zip(governs, used)):

@@ -247,16 +247,19 @@ def floor_feet(geometry) -> dict[str, list]:
 def hung_planks(joints: list, contacts: list) -> set[str]:
     """The ids of the planks that one of ``joints`` alone holds: nailed at no other of
     them, and neither standing on the floor nor resting on or under another plank among
-    ``contacts`` (a wall's contact or an anchor's tie may be theirs): a shelf nailed by its
-    back edge onto a rail or cleat, a flap, a board on a single rail.  Where such a
-    joint's row runs along the plank's beam it is cut into parts, whatever the plank's
-    width (``joint_part_counts``), and the plank is checked as a plate hung on that line
-    (``plate_supports.held_planks``), which reads its bending across its width."""
+    ``contacts`` (a wall's contact may be theirs; not an anchor's tie, which holds the
+    plank where it is): a shelf nailed by its back edge onto a rail or cleat, a flap, a
+    board on a single rail.  Where such a plank hangs on the joint's line as a plate
+    (``plate_supports.hung_plate_segments``: loaded across its face, the row along its
+    beam over a quarter of it, the plank wider than 8 thicknesses), the plate check reads
+    its bending across its width, and the row is cut into parts, whatever the plank's
+    width (``joint_part_counts``; where the other plank keeps the row whole, the plate's
+    reading is the plank's, ``plates.whole_rows_hung``)."""
     count: dict[str, int] = {}
     for joint in joints:
         for plank_id in joint.planks:
             count[plank_id] = count.get(plank_id, 0) + 1
-    held = {plank_id for contact in contacts if contact.wall is None and contact.anchor is None
+    held = {plank_id for contact in contacts if contact.wall is None or contact.anchor is not None
             for plank_id in (contact.plank, contact.on) if plank_id is not None}
     return {plank_id for plank_id, n in count.items() if n == 1 and plank_id not in held}
 
@@ -418,11 +421,12 @@ def joint_part_counts(design: Design, joints: list, local: dict[int, int], frame
     JOINT_PART_EDGE_NARROW if it is an upright edge plank (the row's moment about its
     line acts across its face: a coffee table's end panel under the top; a rail on edge
     under a shelf is held along it), unless that plank is one of ``hung``
-    (``hung_planks``: this row alone holds it, and the plate check reads its bending
-    across its width, ``plate_supports``).  ``sizes`` (nP, 2): each local plank's beam
-    length and section width.  Reaches and widths are compared with PART_ROUNDING to
-    spare, so that a joint exactly on a half part, or a plank exactly on a limit, is taken
-    alike whatever the last bits of a turned design's numbers."""
+    (``hung_planks``: this row alone holds it) and hangs on it as a plate, whose check
+    reads its bending across its width (``plate_supports.hung_plate_segments``).
+    ``sizes`` (nP, 2): each local plank's beam length and section width.  Reaches and
+    widths are compared with PART_ROUNDING to spare, so that a joint exactly on a half
+    part, or a plank exactly on a limit, is taken alike whatever the last bits of a
+    turned design's numbers."""
     if not joints:
         return np.ones(0, dtype=int)
     owners = [design.planks[design.plank_index[plank_id]]
@@ -444,8 +448,16 @@ def joint_part_counts(design: Design, joints: list, local: dict[int, int], frame
                      for joint in joints], dtype=bool)
     level = np.abs(axes[:, :, 2, 2]) >= tol.JOINT_PART_LEVEL      # face normal's z
     narrow = np.where(face | level, tol.JOINT_PART_NARROW, tol.JOINT_PART_EDGE_NARROW)
-    alone = np.array([[plank_id in hung for plank_id in joint.planks] for joint in joints],
-                     dtype=bool)
+    alone = np.zeros((len(joints), 2), dtype=bool)
+    if hung:
+        from furncheck.statics.plate_supports import hung_plate_segments
+
+        for j, joint in enumerate(joints):
+            for s, plank in enumerate(owners[2 * j:2 * j + 2]):
+                if plank.id in hung:
+                    crosswise = abs(float(axes[j, s, :, 0] @ plank.rotation_matrix[:, 1])) > 0.5
+                    alone[j, s] = hung_plate_segments(design, plank, joint,
+                                                      crosswise) is not None
     plate = (width > narrow * thickness * (1.0 + PART_ROUNDING)) \
         & (offset > tol.JOINT_PART_CORE * 0.5 * width * (1.0 + PART_ROUNDING)) & ~alone
     nails = np.array([joint.nails for joint in joints], dtype=int)

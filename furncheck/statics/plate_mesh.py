@@ -283,7 +283,11 @@ def _line_moments(supported: np.ndarray, axis: int, xs: np.ndarray, ys: np.ndarr
     sum over an element's unknowns u of its stiffness row times u (its nodal moment: the
     consistent one of its bending and shear, K_e u_e), row 2 r + side for the r-th
     supported node, each over that node's share of the line (``lengths``, m: half the
-    distance to its neighbours on the line), N m / m.  A cantilever's largest moment is
+    distance to its neighbours on the line), N m / m, from the elements along the line
+    alone (past a line that ends inside the plate, the moment at its end grows without
+    bound as the cells shrink, as a plate's does at a support's corner: the elements
+    beyond are left out, and its end reads what the line holds there).  A cantilever's
+    largest moment is
     at its line, where the elements' centres, half a cell off, read it low (a board on
     a centre rail, both sides loaded, turns its line not at all: the grip takes nothing
     of the two sides' moments); a linear element's nodal moment is M + Q h / 2 of its
@@ -293,16 +297,17 @@ def _line_moments(supported: np.ndarray, axis: int, xs: np.ndarray, ys: np.ndarr
     where = {int(dof): r for r, dof in enumerate(turn)}
     line = (ys if axis == 0 else xs)[(supported // len(xs))[0] if axis == 0
                                      else (supported % len(xs))[0]]
-    across = cy if axis == 0 else cx
+    across, lengthwise = (cy, cx) if axis == 0 else (cx, cy)
+    place = (xs[supported % len(xs)] if axis == 0 else ys[supported // len(xs)])
+    within = (lengthwise > place[0]) & (lengthwise < place[-1])
     rows, cols, values = [], [], []
-    for e in np.flatnonzero(np.isin(dofs, turn).any(axis=1)):
+    for e in np.flatnonzero(np.isin(dofs, turn).any(axis=1) & within):
         stiffness = (weights[e] @ terms).reshape(12, 12)
         side = int(across[e] > line)
         for i in np.flatnonzero(np.isin(dofs[e], turn)):
             rows.append(np.full(12, 2 * where[int(dofs[e, i])] + side))
             cols.append(dofs[e])
             values.append(stiffness[i])
-    place = (xs[supported % len(xs)] if axis == 0 else ys[supported // len(xs)])
     bounds = np.concatenate([[place[0]], 0.5 * (place[1:] + place[:-1]), [place[-1]]])
     return (np.concatenate(rows), np.concatenate(cols), np.concatenate(values),
             np.repeat(np.diff(bounds), 2))
@@ -528,7 +533,8 @@ def sag_span(grid: PlateGrid, w: np.ndarray) -> tuple[float, float]:
     supported nodes' bounding box: an overhang beyond them is its beam's, measured from
     the tangent at its support, contract 3a; at every node of a plate hung on one line,
     whose ``w`` is measured from the tangent there, ``plate_solutions``), and its span
-    (``_span_at``: twice the distance to the line, for a plate hung on one)."""
+    (``_span_at``: for a plate hung on one line, twice the distance to its nearest node
+    of the line, straight across it where the line reaches, else to the line's end)."""
     between = np.where(grid.between, np.abs(w), -1.0)
     k = int(np.argmax(between))
     return float(max(between[k], 0.0)), _span_at(grid, k)

@@ -62,10 +62,9 @@ def held_planks(model, only: set[int] | None = None):
             if hung is None:
                 hung = hung_planks([geometry.joints[j] for j in model.joints],
                                    [geometry.contacts[c] for c in model.contacts])
-            if plank.id not in hung or not _loaded_across(design, plank):
-                continue
-            segments, _ = _support_segments(design, plank, lines, joints_of[plank.id])
-            if _hangs_along(plank, segments, bool(model.beams.crosswise[k])):
+            segments = None if plank.id not in hung else hung_plate_segments(
+                design, plank, joints_of[plank.id][0], bool(model.beams.crosswise[k]))
+            if segments is not None:
                 yield k, plank, segments, []
             continue
         joints = joints_of[plank.id]
@@ -114,6 +113,22 @@ def _holds_beam(plank: Plank, segments, axis: int) -> bool:
                                  for seg in segments):
             return True
     return False
+
+
+def hung_plate_segments(design: Design, plank: Plank, joint, crosswise: bool) -> list | None:
+    """The support segment of a plank that ``joint`` alone holds (``elastic.hung_planks``)
+    where it is checked as a plate hung on that joint's line: its weight or a load
+    pushes across its face (``_loaded_across``) and it hangs along its beam
+    (``_hangs_along``; ``crosswise``: its beam runs along its local y); else None.  The
+    one test of both the plate check (``held_planks``) and the row's cut into parts
+    (``elastic.joint_part_counts``): a row is cut only where a plate reads the bending
+    across the plank that the parts' rigid arms hold straight."""
+    if not _loaded_across(design, plank):
+        return None
+    line = (tuple(joint.point.tolist()), tuple((joint.length * joint.frame[:, 1]).tolist()),
+            None)
+    segments, _ = _support_segments(design, plank, [line], [joint])
+    return segments if _hangs_along(plank, segments, crosswise) else None
 
 
 def _hangs_along(plank: Plank, segments, crosswise: bool) -> bool:

@@ -257,12 +257,15 @@ def same_grid(reading: PlateReading, other: PlateReading) -> bool:
                for a, b in zip(reading.lines, other.lines))
 
 
-def plate_governs(reading, beam_sag: float, beam_span: float,
-                  beam_stress: float) -> tuple[bool, bool]:
+def plate_governs(reading, beam_sag: float, beam_span: float, beam_stress: float,
+                  replaces: bool = False) -> tuple[bool, bool]:
     """Whether a plate's (sag, span, stress) ``reading`` is its plank's sag and span (its
     sag over its span the larger: the sag rule's share, a beam's short overhang may use
     more of its allowed sag than the plate's larger sag over its longer span), and
-    whether its stress (the larger): ``_merged``'s rule."""
+    whether its stress (the larger): ``_merged``'s rule; both where it ``replaces`` the
+    beam's (``whole_rows_hung``)."""
+    if replaces:
+        return True, True
     sag, span, stress = reading[:3]
     beam = beam_sag / beam_span if beam_span > 0.0 else 0.0      # no span: no sag rule
     return span > 0.0 and sag / span > beam, stress > beam_stress
@@ -425,18 +428,45 @@ def plate_solution(plate: PlatePlank, uniform: float, points) -> tuple[np.ndarra
 
 def with_plates(model, cases: list[LoadCase], planks: list) -> list:
     """``planks`` (a ``bending.PlankStatics`` per case of ``cases``) with each plate
-    plank's sag, span and stress the plate's where they exceed the beam's (``_merged``)."""
+    plank's sag, span and stress the plate's where they exceed the beam's, or where the
+    plate replaces the beam's reading (``_merged``, ``whole_rows_hung``)."""
     if not plate_planks(model):
         return planks
-    return [_merged(one, found) for one, found in zip(planks, plate_results(model, cases))]
+    whole = whole_rows_hung(model)
+    return [_merged(one, found, whole)
+            for one, found in zip(planks, plate_results(model, cases))]
 
 
-def _merged(planks, found):
+def whole_rows_hung(model) -> frozenset[int]:
+    """The local planks checked as plates hung on their one row (``plate_mesh._hinge``)
+    whose row is left whole (the plank at its other side keeps it whole, a wide upright
+    panel under a board, or it has too few nails to cut: ``elastic.joint_part_counts``):
+    their beam, held at the row's middle alone, reads overhangs along its length that
+    the plank, hung along the whole row, does not have, so the plate's sag, span and
+    stress are the plank's (the plate holds every load on it: nothing else is nailed
+    to it or rests on it).  Kept in ``model.plank_cache``."""
+    cached = model.plank_cache.get("whole_rows_hung")
+    if cached is None:
+        counts = model.plank_cache.get("joint_part_counts")
+        geometry = model.geometry
+        found = set()
+        for plate in plate_planks(model):
+            if plate.grid.hinge is None or counts is None:
+                continue
+            row = next(r for r, j in enumerate(model.joints)
+                       if plate.plank.id in geometry.joints[j].planks)
+            if int(counts[row]) == 1:
+                found.add(plate.local)
+        cached = model.plank_cache["whole_rows_hung"] = frozenset(found)
+    return cached
+
+
+def _merged(planks, found, whole: frozenset[int] = frozenset()):
     """``planks`` (one case's ``PlankStatics``) with the plates' ``found`` (local plank,
     sag, span, stress) where they exceed it: the plate's sag and span where its sag over
     its span is the larger (the sag rule's share: a beam's short overhang may use more
     of its allowed sag than the plate's larger sag over its longer span), the larger
-    stress."""
+    stress; all three the plate's for the planks of ``whole`` (``whole_rows_hung``)."""
     from dataclasses import replace
 
     sag, span, stress = planks.sag.copy(), planks.span.copy(), planks.stress.copy()
@@ -444,12 +474,12 @@ def _merged(planks, found):
     by_plate = set()
     for k, plate_sag, plate_span, plate_stress in found:
         if plate_governs((plate_sag, plate_span, plate_stress), sag[k], span[k],
-                         stress[k])[0]:
+                         stress[k], k in whole)[0]:
             sag[k], span[k] = plate_sag, plate_span
             by_plate.add(k)
             if overhang is not None:
                 overhang[k] = False
-        stress[k] = max(stress[k], plate_stress)
+        stress[k] = plate_stress if k in whole else max(stress[k], plate_stress)
     beam_sideways = planks.sideways
 
     def sideways(k: int) -> bool:       # a plate's sag is across its face: not sideways

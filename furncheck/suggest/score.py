@@ -449,7 +449,8 @@ def _tips_at_an_end(design: Design, plank_id: str) -> tuple[float, float, float]
     """(N, m, N): where the largest point load that any load case puts on the level plank
     (a sitter, a leaning person), moved to one of its ends (END_LOAD_INSET in from it,
     along its middle), tips the piece over the edge of what it stands on: that load, how
-    far past that edge it is, and the planks' weight that holds the piece back; None
+    far past that edge it is (the farthest such end), and the planks' weight that holds
+    the piece back; None
     where no end tips it, and for a piece that a wall fixing holds or that stands on no
     floor.  Moments about that edge, along each of the plank's axes laid level: P a > W d
     (a: the load past the edge, d: the planks' centre of mass inside it; the other loads
@@ -471,6 +472,7 @@ def _tips_at_an_end(design: Design, plank_id: str) -> tuple[float, float, float]
         / masses.sum()
     weight = float(masses.sum()) * GRAVITY
     plank = design.plank(plank_id)
+    tips = []
     for axis, half in ((0, max(plank.length / 2.0 - END_LOAD_INSET, 0.0)),
                        (1, max(plank.width / 2.0 - END_LOAD_INSET, 0.0))):
         direction = plank.rotation_matrix[:2, axis]
@@ -483,8 +485,9 @@ def _tips_at_an_end(design: Design, plank_id: str) -> tuple[float, float, float]
             end = float(plank.center_array[:2] @ direction) + sign * half * norm
             past, inside = sign * (end - edge), sign * (edge - float(centre @ direction))
             if past > 0.0 and max(loads) * past > weight * inside:
-                return max(loads), past, weight
-    return None
+                tips.append((max(loads), past, weight))
+    return max(tips, key=lambda tip: tip[1], default=None)     # the farthest: a mirror
+    # image's words are the design's
 
 
 def _overhang_share(design: Design, plank_id: str,

@@ -24,7 +24,7 @@ class Suggestion:
     adds      : planks added (discrete); ``between`` the planks a support joins
     rule      : the discrete rule that made it ('support', 'rail', 'apron', 'stretcher',
                 'back panel', 'brace', 'outrigger', 'anchor', 'thicker', 'reconnect', 'nails',
-                'fixings', 'pads');
+                'fixings', 'pads', 'bracket');
                 ``advice`` its sentence
     restores  : the kinds of violation it removes ('durability', 'stability', 'geometry',
                 'stiffness' for sag, 'strength' for bending stress)

@@ -5,6 +5,7 @@ section 6.5 and the shop's standard fixes), each checked in full like every sugg
                geometry (legs, parallel and facing planks), words
     supports   the paper's support plank under a failing joint, a stiffening rail under a
                bent plank
+    brackets   a pair of brackets under a wall shelf, square to the rail it hangs on
     feet       against toppling: a support under the overhang, an outrigger foot
     anchors    a wall anchor where the design stands by a wall
     racking    aprons and stretchers between facing legs, back panels and diagonal braces
@@ -37,6 +38,7 @@ from furncheck.dofs import Dof
 from furncheck.geometry import Geometry
 from furncheck.result import DesignReport
 from furncheck.suggest.discrete.anchors import wall_anchors
+from furncheck.suggest.discrete.brackets import wall_brackets
 from furncheck.suggest.discrete.common import Fix, Search
 from furncheck.suggest.discrete.feet import outriggers, overhang_supports
 from furncheck.suggest.discrete.fixings import stronger_fixings
@@ -53,9 +55,9 @@ from furncheck.suggest.tried import FAILED, FOUND, Trial
 __all__ = ["RULES", "Fix", "Search", "_reach", "discrete_fixes", "spares_no_board",
            "support_planks"]
 
-RULES = (support_planks, overhang_supports, outriggers, wall_anchors, aprons, stretchers,
-         back_panels, braces, quarter_turns, thicker_planks, more_nails, nail_down,
-         stronger_fixings, non_slip_pads)
+RULES = (support_planks, wall_brackets, overhang_supports, outriggers, wall_anchors, aprons,
+         stretchers, back_panels, braces, quarter_turns, thicker_planks, more_nails,
+         nail_down, stronger_fixings, non_slip_pads)
 """The rules for a design that stands as drawn, in the order their fixes are listed: the
 paper's support first, then added parts by how little they change the piece, then legs
 turned (no part added), then a thicker board (a change of material), then more nails in

@@ -69,7 +69,7 @@ class Fix:
 
     rule     : the rule that made it ('support', 'rail', 'apron', 'stretcher', 'back panel',
                'brace', 'outrigger', 'anchor', 'thicker', 'reconnect', 'nails', 'fixings',
-               'pads')
+               'pads', 'bracket')
     advice   : the sentence a maker acts on (``Add ...``, ``Make ... thick``), ending in '.'
     design   : the design with the fix; ``report`` its validation (valid)
     adds     : planks added; ``between`` the planks a support joins ((P_i, P_j or 'the
