@@ -97,6 +97,21 @@ loads:
   - {plank: shelf, mass: 30, spread: true}
 """
 
+THIN_SHELF_ON_RAIL = """\
+furncheck: 1
+name: wall-shelf-rail-12mm
+material: {thickness: 12}
+walls: [{point: [0, 0, 0], normal: [0, 1, 0]}]
+planks:
+  - {id: rail, size: [900, 100], center: [0, 9, 1450], rotation: [90, 0, 0], thickness: 18}
+  - {id: shelf, size: [900, 300], center: [0, 150, 1506]}
+anchors:
+  - {plank: rail, at: [-350, 0, 1480], wall: 0, capacity: 700}
+  - {plank: rail, at: [350, 0, 1480], wall: 0, capacity: 700}
+loads:
+  - {plank: shelf, mass: 40, spread: true}
+"""
+
 COAT_RACK = """\
 furncheck: 1
 name: coat-rack

@@ -23,7 +23,7 @@ import elastic_designs as ed
 import numpy as np
 import physics_designs as pd
 import pytest
-from shop_designs import WALL_SHELF_ON_RAIL, WALL_SHELF_ONE_BRACKET
+from shop_designs import THIN_SHELF_ON_RAIL, WALL_SHELF_ON_RAIL, WALL_SHELF_ONE_BRACKET
 
 from furncheck.check import check_design
 from furncheck.design import parse_design
@@ -720,21 +720,6 @@ def test_a_shelf_hung_on_its_back_edge_sags_as_a_plate_cantilever():
     (joint,) = report.cases[0].joints
     weight = 30.0 * 9.81 + 0.9 * 0.25 * 0.018 * 750.0 * 9.81
     assert abs(joint.moment[0]) == pytest.approx(weight * 0.116, rel=0.02)
-
-
-THIN_SHELF_ON_RAIL = """furncheck: 1
-name: wall-shelf-rail-12mm
-material: {thickness: 12}
-walls: [{point: [0, 0, 0], normal: [0, 1, 0]}]
-planks:
-  - {id: rail, size: [900, 100], center: [0, 9, 1450], rotation: [90, 0, 0], thickness: 18}
-  - {id: shelf, size: [900, 300], center: [0, 150, 1506]}
-anchors:
-  - {plank: rail, at: [-350, 0, 1480], wall: 0, capacity: 700}
-  - {plank: rail, at: [350, 0, 1480], wall: 0, capacity: 700}
-loads:
-  - {plank: shelf, mass: 40, spread: true}
-"""
 
 
 def test_a_thin_shelf_hung_on_a_rail_sags_as_pynite_reads_it():

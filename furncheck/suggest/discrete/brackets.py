@@ -6,9 +6,9 @@ A level plank i whose nail joint with a plank k runs along i's longer side, k ly
 to a wall of the design (within WALL_ANCHOR_REACH of it) and reaching below i, gets two
 brackets: boards on edge under i, square to the wall, as deep as i reaches out past k's
 face and as tall as k reaches below i (at most as tall as they are deep), nailed to i
-above and to k behind.  They go under k's fixings where two of them lie under i (each
-screw then pulls straight behind a bracket), else BRACKET_INSET of i's length in from
-its ends.  Tried where i sags or is overstressed, or a joint of i fails (the brackets
+above and to k behind.  They go beside k's fixings where two of them lie under i (each
+screw then pulls close behind a bracket, its head left clear), else BRACKET_INSET of i's
+length in from its ends.  Tried where i sags or is overstressed, or a joint of i fails (the brackets
 take the shelf's moment off the row's nails).  Not for an overloaded fixing: brackets
 that end at k's bottom edge leave the lever between the screws and k's foot, where the
 wall pushes, as it was (the catalog's wall-shelf-rail: tried, and its screws still pull
@@ -46,6 +46,10 @@ BRACKET_INSET = 1.0 / 6.0
 """Brackets not under fixings go this share of the shelf's length in from its ends (a
 900 mm shelf: 150 mm; the overhangs past them a quarter of the span between)."""
 
+BRACKET_CLEARANCE = 0.03
+"""m: from a fixing's centre to the face of a bracket set beside it (room for the screw's
+head and a driver's bit)."""
+
 ALONG_COS = 0.9
 """A joint line within about 25 degrees of the shelf's longer side runs along it."""
 
@@ -78,9 +82,9 @@ def _candidates(search: Search) -> Iterator[Candidate]:
             hung = _hung_on(design, search, i, k)
             if hung is None:
                 continue
-            for places in _places(design, i, k, hung):
+            for places, words in _places(design, i, k, hung):
                 tried += 1
-                yield _candidate(design, i, k, hung, places)
+                yield _candidate(design, i, k, hung, places, words)
     fixings = any(v.where.startswith("anchors[") for v in search.report.violations)
     if not shelves and fixings:
         search.not_applicable(BRACKET, "it does not relieve a wall fixing (brackets that "
@@ -128,28 +132,38 @@ def _hung_on(design: Design, search: Search, i: str, k: str):
 
 
 def _places(design: Design, i: str, k: str, hung) -> list[tuple[float, float]]:
-    """Where along the shelf (m, along its longer axis from the origin) the two brackets
-    go: under the two outermost fixings of ``k`` that lie under the shelf (more than
-    BRACKET_INSET of its length in from its ends' thickness), then BRACKET_INSET of its
-    length in from its ends; each pair once."""
+    """Where along the shelf (m, along its longer axis from the origin, each to a whole
+    unit of the design) the two brackets go, and in words: beside the two outermost
+    fixings of ``k`` that lie under the shelf, BRACKET_CLEARANCE from each screw to the
+    bracket's face, toward the shelf's middle (a bracket over a screw hides its head: it
+    could be neither driven nor reached), then BRACKET_INSET of its length in from its
+    ends; each pair once."""
     along = hung[0]
     shelf = design.plank(i)
+    thickness, scale = design.material.thickness, design.unit_scale
     length = max(shelf.length, shelf.width)
     centre = float(shelf.center_array @ along)
-    half = 0.5 * length - design.material.thickness
+    half = 0.5 * length - thickness
     places = []
     under = sorted(float(np.asarray(a.point) @ along) for a in design.anchors
                    if a.plank == k and abs(float(np.asarray(a.point) @ along) - centre) < half)
-    if len(under) >= 2 and under[-1] - under[0] > 2.0 * design.material.thickness:
-        places.append((under[0], under[-1]))
+    beside = BRACKET_CLEARANCE + 0.5 * thickness
+    if len(under) >= 2 and under[-1] - under[0] > 2.0 * (beside + thickness):
+        places.append(((under[0] + beside, under[-1] - beside), "beside its fixings"))
     inset = (centre - length * (0.5 - BRACKET_INSET), centre + length * (0.5 - BRACKET_INSET))
-    if not places or max(abs(a - b) for a, b in zip(places[0], inset)) > design.tolerance:
-        places.append(inset)
-    return places
+    places.append((inset, "a sixth in from its ends"))
+    rounded = []
+    for pair, words in places:
+        pair = tuple(round(v / scale) * scale for v in pair)
+        if all(max(abs(a - b) for a, b in zip(pair, other)) > design.tolerance
+               for other, _ in rounded):
+            rounded.append((pair, words))
+    return rounded
 
 
-def _candidate(design: Design, i: str, k: str, hung, places) -> Candidate:
-    """The design with a bracket at each of ``places`` (``_hung_on``'s ``hung``)."""
+def _candidate(design: Design, i: str, k: str, hung, places, words: str) -> Candidate:
+    """The design with a bracket at each of ``places`` (``_hung_on``'s ``hung``; ``words``:
+    where, for the reports)."""
     along, out, front, reach, underside, bottom, wall = hung
     depth = reach - front
     height = min(underside - bottom, depth)
@@ -169,5 +183,5 @@ def _candidate(design: Design, i: str, k: str, hung, places) -> Candidate:
               f"{point_of(second.center, design)}, each nailed to {i} and to {k}.")
     return Candidate("bracket", with_planks(design, tuple(made)), advice, tuple(made),
                      (i, k), tuple((end, p.id) for p in made for end in (i, k)),
-                     BRACKET, i, f"under {i}, on {k}", f"{first.id} and {second.id}")
+                     BRACKET, i, f"under {i}, on {k}, {words}", f"{first.id} and {second.id}")
 
