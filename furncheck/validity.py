@@ -305,6 +305,10 @@ def _held_along(geometry: Geometry, model, plank, crosswise: bool) -> str:
     axis = beam_frame(plank, crosswise)[:, 0]
     length = beam_length_width(plank, crosswise)[0]
     parts = model.plank_cache.get("joint_part_counts")
+    if model.plank_cache.get("plates") is not None and \
+            model.planks.index(model.design.plank_index[plank.id]) in \
+            model.plank_cache.get("whole_rows_hung", ()):
+        return ""                       # its plate, hung on the row, is what it reads
     for row, j in enumerate(model.joints):
         joint = geometry.joints[j]
         if parts is not None and parts[row] > 1:

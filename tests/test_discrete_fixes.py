@@ -629,6 +629,27 @@ def test_brackets_are_not_tried_for_an_overloaded_fixing_or_without_a_wall():
         assert trial.outcome == NOT_APPLICABLE and trial.reason.startswith(reason), trial
 
 
+def test_every_rule_says_why_it_does_not_apply_to_an_overloaded_fixing():
+    """wall-shelf-rail fails by its screws alone.  The support rule built nothing (no two
+    parallel planks, no level failing plank over the floor) and said nothing, where the
+    README says each rule does; the thicker rule ran and said a joint's nails shear off,
+    where its one joint is at 13 %: a thicker board only adds weight to what the screws
+    hold."""
+    from furncheck.suggest.tried import NOT_APPLICABLE
+
+    design = with_model(load_design(str(CATALOG / "wall-shelf-rail.yaml")), "elastic")
+    geometry = analyze(design)
+    trials: list = []
+    discrete_fixes(design, geometry, check_design(design, geometry), trials=trials)
+    said = {t.rule: (t.outcome, t.reason) for t in trials
+            if t.rule in ("support plank", "thicker board")}
+    assert said == {
+        "support plank": (NOT_APPLICABLE, "no support fits: no two parallel planks to "
+                          "stand one between, and no failing level plank over the floor"),
+        "thicker board": (NOT_APPLICABLE, "it does not repair an overloaded wall fixing (a "
+                          "thicker board only adds to the weight the fixings hold)")}
+
+
 # --- near misses -------------------------------------------------------------------------------
 
 def test_a_hovering_side_table_is_stood_on_the_floor_in_the_elastic_model():

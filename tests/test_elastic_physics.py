@@ -729,9 +729,12 @@ def test_a_thin_shelf_hung_on_a_rail_sags_as_pynite_reads_it():
     helper's PyNite plate (3.2, Mindlin quads, 10 mm cells, the row's grip as line
     springs): 3.026 mm there, 3.174 mm at most (its free corners), 2.74 N/mm^2 at the row
     (hand 2.72).  Within 2 % of PyNite's largest; span 582 mm, 1.455 mm allowed:
-    `sagging` (it read 18.3 mm before, two 450 mm overhangs from the joint's middle)."""
+    `sagging` (it read 18.3 mm before, two 450 mm overhangs from the joint's middle),
+    said as a cantilever's: at the free end of its 291 mm overhang."""
     report = check_design(parse_design(THIN_SHELF_ON_RAIL, "thin.yaml", "yaml"))
     assert [(v.kind, v.where) for v in report.violations] == [("sagging", "shelf")]
+    assert report.violations[0].message.startswith(     # a cantilever's words, not a span's
+        "sags 3.16 mm at the free end of its 291 mm overhang (a span of 582 mm)")
     shelf = next(p for p in report.cases[0].planks if p.id == "shelf")
     assert shelf.sag == pytest.approx(3.174, rel=0.02)
     assert shelf.sag_allowed == pytest.approx(582 / 400, rel=1e-6)

@@ -433,7 +433,9 @@ def with_plates(model, cases: list[LoadCase], planks: list) -> list:
     if not plate_planks(model):
         return planks
     whole = whole_rows_hung(model)
-    return [_merged(one, found, whole)
+    hinged = frozenset(plate.local for plate in plate_planks(model)
+                       if plate.grid.hinge is not None)
+    return [_merged(one, found, whole, hinged)
             for one, found in zip(planks, plate_results(model, cases))]
 
 
@@ -461,12 +463,15 @@ def whole_rows_hung(model) -> frozenset[int]:
     return cached
 
 
-def _merged(planks, found, whole: frozenset[int] = frozenset()):
+def _merged(planks, found, whole: frozenset[int] = frozenset(),
+            hinged: frozenset[int] = frozenset()):
     """``planks`` (one case's ``PlankStatics``) with the plates' ``found`` (local plank,
     sag, span, stress) where they exceed it: the plate's sag and span where its sag over
     its span is the larger (the sag rule's share: a beam's short overhang may use more
     of its allowed sag than the plate's larger sag over its longer span), the larger
-    stress; all three the plate's for the planks of ``whole`` (``whole_rows_hung``)."""
+    stress; all three the plate's for the planks of ``whole`` (``whole_rows_hung``).  A
+    plate's reading is an overhang's where the plate hangs on one line (``hinged``: its
+    span is twice its overhang, and the sagging message says so), else a span's."""
     from dataclasses import replace
 
     sag, span, stress = planks.sag.copy(), planks.span.copy(), planks.stress.copy()
@@ -478,7 +483,7 @@ def _merged(planks, found, whole: frozenset[int] = frozenset()):
             sag[k], span[k] = plate_sag, plate_span
             by_plate.add(k)
             if overhang is not None:
-                overhang[k] = False
+                overhang[k] = k in hinged
         stress[k] = plate_stress if k in whole else max(stress[k], plate_stress)
     beam_sideways = planks.sideways
 

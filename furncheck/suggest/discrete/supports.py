@@ -100,6 +100,8 @@ def support_candidates(search: Search) -> Iterator[Candidate]:
         return
     neighbours = search.neighbours
     tried: set[tuple] = set()
+    before = len(search.trials)
+    built = False
     failing = dict.fromkeys(_place(design, v.where) for v in report.violations)
     reaches = _reach(failing, neighbours)
     for where in failing:
@@ -136,10 +138,14 @@ def support_candidates(search: Search) -> Iterator[Candidate]:
                                       f"plank, or an overlap narrower than {MIN_OVERLAP:g} "
                                       f"plank thicknesses)", where)
                         continue
+                    built = True
                     yield replace(candidate, target=where, place=between)
         if out_of_reach:
             search.failed(SUPPORT, f"one between {_listed(sorted(set(out_of_reach)))} would "
                           f"not come near every failing joint and plank", where)
+    if not built and not any(t.rule == SUPPORT for t in search.trials[before:]):
+        search.not_applicable(SUPPORT, "no support fits: no two parallel planks to stand "
+                              "one between, and no failing level plank over the floor")
 
 
 def _listed(items: list[str], most: int = 3) -> str:

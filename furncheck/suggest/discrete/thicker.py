@@ -69,6 +69,10 @@ def thicker_planks(search: Search) -> Fix | None:
     every violation is one of these (a design that also tips needs more than thicker
     boards)."""
     report = search.report
+    if any(v.where.startswith("anchors[") for v in report.violations):
+        search.not_applicable(THICKER, "it does not repair an overloaded wall fixing (a "
+                              "thicker board only adds to the weight the fixings hold)")
+        return None
     if not search.repairs(THICKER, (*BENDING, *PULL_FAILING)):
         return None
     why: list[str] = []
