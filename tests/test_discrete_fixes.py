@@ -568,7 +568,7 @@ def test_added_fixings_say_what_the_old_ones_still_take():
     added = max(size for new, size in forces if new)
     old = max(size for new, size in forces if not new)
     assert added < old < tol.ANCHOR_CAPACITY
-    said = re.search(r"each added fixing takes at most ([\d.]+) N, each of the 2 it has "
+    said = re.search(r"each added fixing takes at most ([\d.]+) N, each of the 2 already there "
                      r"at most ([\d.]+) N\.$", anchor.advice)
     assert said, anchor.advice
     assert float(said.group(1)) == pytest.approx(added, abs=0.5)
@@ -1011,7 +1011,7 @@ loads:
     anchor = next(fix for fix in fixes(design) if fix.rule == "anchor")
     assert anchor.advice.startswith(
         "Screw back to the wall at (-150, 0, 1600) mm and (150, 0, 1600) mm with 2 more "
-        "fixings rated 196 N (beside the 2 it has); ")
+        "fixings rated 196 N (beside the 2 already there); ")
     assert len(anchor.design.anchors) == 4 and fix_valid(anchor)
 
 
@@ -1122,8 +1122,8 @@ def test_a_board_lying_on_the_wall_is_screwed_through_its_face_first():
     design = rigid_rack(1620)
     (fix,) = [s for s in suggest_design(design).suggestions if s.rule == "anchor"]
     assert fix.advice.startswith("Screw back to the wall at (-225, 0, 1600) mm and (225, 0, "
-                                 "1600) mm with 2 more fixings rated 196 N (beside the 2 it "
-                                 "has)")
+                                 "1600) mm with 2 more fixings rated 196 N (beside the 2 "
+                                 "already there)")
     assert "bracket" not in fix.advice and fix.report.valid
 
 

@@ -287,12 +287,11 @@ def _line_moments(supported: np.ndarray, axis: int, xs: np.ndarray, ys: np.ndarr
     alone (past a line that ends inside the plate, the moment at its end grows without
     bound as the cells shrink, as a plate's does at a support's corner: the elements
     beyond are left out, and its end reads what the line holds there).  A cantilever's
-    largest moment is
-    at its line, where the elements' centres, half a cell off, read it low (a board on
-    a centre rail, both sides loaded, turns its line not at all: the grip takes nothing
-    of the two sides' moments); a linear element's nodal moment is M + Q h / 2 of its
-    centre's, the moment at its end less q h^2 / 8 (a percent of a 141 mm cantilever's on
-    30 mm cells)."""
+    largest moment is at its line, where the elements' centres, half a cell off, read it
+    low (a board on a centre rail, both sides loaded, turns its line not at all: the
+    grip takes nothing of the two sides' moments); a linear element's nodal moment is
+    M + Q h / 2 of its centre's, the moment at its end less q h^2 / 8 (a percent of a
+    141 mm cantilever's on 30 mm cells)."""
     turn = 3 * supported + (2 if axis == 0 else 1)
     where = {int(dof): r for r, dof in enumerate(turn)}
     line = (ys if axis == 0 else xs)[(supported // len(xs))[0] if axis == 0
@@ -479,9 +478,9 @@ def plate_solutions(grid: PlateGrid, loads: list) -> list[tuple[np.ndarray, floa
     by the elements by their overlap with the square: its edges are grid lines, or within
     a millimetre of one), and its largest bending stress (Pa), 6 |M| / t^2 of the largest
     principal moment at an element's centre.  A plate hung on one line (``_hinge``): its
-    deflections from the tangent at the line, and the moment at the line (its grip's:
-    a cantilever's largest, half a cell from the nearest centre) among the moments.
-    Each load's, bit for bit, as if solved
+    deflections from the tangent at the line, and the moments at the line
+    (``_line_moments``: a cantilever's largest, half a cell from the nearest centre)
+    among the moments.  Each load's, bit for bit, as if solved
     alone (LAPACK's pbtrs solves each column on its own; the moments are summed term by
     term, where a matrix product's blocking depends on how many columns it has)."""
     from furncheck.statics.lapack import banded_solve

@@ -450,13 +450,12 @@ def _tips_at_an_end(design: Design, plank_id: str) -> tuple[float, float, float]
     (a sitter, a leaning person), moved to one of its ends (END_LOAD_INSET in from it,
     along its middle), tips the piece over the edge of what it stands on: that load, how
     far past that edge it is (the farthest such end), and the planks' weight that holds
-    the piece back; None
-    where no end tips it, and for a piece that a wall fixing holds or that stands on no
-    floor.  Moments about that edge, along each of the plank's axes laid level: P a > W d
-    (a: the load past the edge, d: the planks' centre of mass inside it; the other loads
-    left out).  The overhang
-    rule's reason (a bench's legs moved in under its seat: whoever sits at its end tips
-    it, whatever the load cases say), for a piece too light for its overhang's share."""
+    the piece back; None where no end tips it, and for a piece that a wall fixing holds
+    or that stands on no floor.  Moments about that edge, along each of the plank's axes
+    laid level: P a > W d (a: the load past the edge, d: the planks' centre of mass
+    inside it; the other loads left out).  The overhang rule's reason (a bench's legs
+    moved in under its seat: whoever sits at its end tips it, whatever the load cases
+    say), for a piece too light for its overhang's share."""
     if design.anchors:
         return None
     loads = [-load.force[2] for case in design.load_cases for load in case.loads

@@ -80,7 +80,7 @@ def _largest_forces(fix: Fix, design: Design) -> str:
     new = f"at most {plain_number(largest(True), 3)} N"
     if not design.anchors:
         return f"each takes {new}"
-    return f"each added fixing takes {new}, each of the {len(design.anchors)} it has " \
+    return f"each added fixing takes {new}, each of the {len(design.anchors)} already there " \
            f"at most {plain_number(largest(False), 3)} N"
 
 
@@ -137,7 +137,7 @@ def _candidate(search: Search, fixed: list[tuple[str, list[np.ndarray]]], wall: 
     packed = f", packing the {amount(gap / design.unit_scale)} {design.units} gap to " \
              f"the wall" if gap > design.tolerance and not edge else ""  # (a bracket
     # bridges it)
-    beside = f" (beside the {len(design.anchors)} it has)" if more else ""
+    beside = f" (beside the {len(design.anchors)} already there)" if more else ""
     bracket = "" if not edge else " through angle brackets at its edge" if len(planks) == 1 \
         else " through angle brackets at their edges"
     advice = (f"Screw {names(planks)} to {wall_name} at {where} with {fixings} rated "

@@ -1,6 +1,5 @@
 """Under a wall shelf: a pair of brackets (the shop's fix for a shelf that hangs on a rail,
-a cleat or a back board screwed to a wall, and sags, breaks or pulls its nails or
-fixings out).
+a cleat or a back board screwed to a wall, and sags, breaks or pulls its nails out).
 
 A level plank i whose nail joint with a plank k runs along i's longer side, k lying face
 to a wall of the design (within WALL_ANCHOR_REACH of it) and reaching below i, gets two
@@ -8,11 +7,11 @@ brackets: boards on edge under i, square to the wall, as deep as i reaches out p
 face and as tall as k reaches below i (at most as tall as they are deep), nailed to i
 above and to k behind.  They go beside k's fixings where two of them lie under i (each
 screw then pulls close behind a bracket, its head left clear), else BRACKET_INSET of i's
-length in from its ends.  Tried where i sags or is overstressed, or a joint of i fails (the brackets
-take the shelf's moment off the row's nails).  Not for an overloaded fixing: brackets
-that end at k's bottom edge leave the lever between the screws and k's foot, where the
-wall pushes, as it was (the catalog's wall-shelf-rail: tried, and its screws still pull
-too hard).
+length in from its ends.  Tried where i sags or is overstressed, or a joint of i fails
+(the brackets take the shelf's moment off the row's nails).  Not for an overloaded
+fixing: brackets that end at k's bottom edge leave the lever between the screws and k's
+foot, where the wall pushes, as it was (the catalog's wall-shelf-rail: the rule says
+so).
 """
 
 from __future__ import annotations
