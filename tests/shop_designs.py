@@ -112,6 +112,21 @@ loads:
   - {plank: shelf, mass: 40, spread: true}
 """
 
+LIPPED_SHELF = """\
+furncheck: 1
+name: lipped-shelf
+walls: [{point: [0, 0, 0], normal: [0, 1, 0]}]
+planks:
+  - {id: cleat, size: [800, 80], center: [0, 6, 1400], rotation: [90, 0, 0]}
+  - {id: shelf, size: [800, 200], center: [0, 100, 1446]}
+  - {id: lip, size: [800, 30], center: [0, 194, 1467], rotation: [90, 0, 0]}
+anchors:
+  - {plank: cleat, at: [-300, 0, 1420], wall: 0, capacity: 400}
+  - {plank: cleat, at: [300, 0, 1420], wall: 0, capacity: 400}
+loads:
+  - {plank: shelf, mass: 8, spread: true}
+"""
+
 COAT_RACK = """\
 furncheck: 1
 name: coat-rack

@@ -244,24 +244,45 @@ def floor_feet(geometry) -> dict[str, list]:
     return feet
 
 
-def hung_planks(joints: list, contacts: list) -> set[str]:
-    """The ids of the planks that one of ``joints`` alone holds: nailed at no other of
-    them, and neither standing on the floor nor resting on or under another plank among
-    ``contacts`` (a wall's contact may be theirs; not an anchor's tie, which holds the
-    plank where it is): a shelf nailed by its back edge onto a rail or cleat, a flap, a
-    board on a single rail.  Where such a plank hangs on the joint's line as a plate
-    (``plate_supports.hung_plate_segments``: loaded across its face, the row along its
-    beam over a quarter of it, the plank wider than 8 thicknesses), the plate check reads
-    its bending across its width, and the row is cut into parts, whatever the plank's
-    width (``joint_part_counts``; where the other plank keeps the row whole, the plate's
-    reading is the plank's, ``plates.whole_rows_hung``)."""
-    count: dict[str, int] = {}
-    for joint in joints:
+def hung_planks(joints: list, contacts: list,
+                loaded: Collection[str] = ()) -> dict[str, tuple[int, tuple[int, ...]]]:
+    """Per plank that one of ``joints`` alone holds, (that joint's index, the indices of
+    its joints to its leaves): the planks nailed to it and to nothing else, carrying no
+    load (of ``loaded``, the ids of the loaded planks), a lip or an upstand along its
+    edge, which hang on it.  A plank so held stands neither on the floor nor rests on
+    or under another plank among ``contacts``, nor is tied to a wall (a wall's contact may
+    be its, not an anchor's tie, which holds it where it is): a shelf nailed by its back
+    edge onto a rail or cleat, a flap, a board on a single rail.  Where it hangs on the
+    joint's line as a plate (``plate_supports.hung_plate_segments``: loaded across its
+    face, the row along its beam over a quarter of it, the plank wider than 8
+    thicknesses), the plate check reads its bending across its width, its leaves' rows
+    stiffeners of that plate and their weights loads on it, and the row is cut into
+    parts, whatever the plank's width (``joint_part_counts``; where the other plank
+    keeps the row whole, the plate's reading is the plank's, ``plates.whole_rows_hung``)."""
+    mine: dict[str, list[int]] = {}
+    for j, joint in enumerate(joints):
         for plank_id in joint.planks:
-            count[plank_id] = count.get(plank_id, 0) + 1
+            mine.setdefault(plank_id, []).append(j)
     held = {plank_id for contact in contacts if contact.wall is None or contact.anchor is not None
             for plank_id in (contact.plank, contact.on) if plank_id is not None}
-    return {plank_id for plank_id, n in count.items() if n == 1 and plank_id not in held}
+
+    def leaf(plank_id: str) -> bool:
+        return len(mine[plank_id]) == 1 and plank_id not in held and plank_id not in loaded
+
+    found = {}
+    for plank_id, rows in mine.items():
+        if plank_id in held:
+            continue
+        partners = [(j, next(p for p in joints[j].planks if p != plank_id)) for j in rows]
+        holding = [j for j, partner in partners if not leaf(partner)]
+        if len(holding) == 1:
+            found[plank_id] = (holding[0], tuple(j for j in rows if j != holding[0]))
+    return found
+
+
+def loaded_planks(design: Design) -> set[str]:
+    """The ids of the planks that some load case loads."""
+    return {load.plank for case in design.load_cases for load in case.loads}
 
 
 def stands_along(feet, direction, length: float) -> bool:
@@ -405,7 +426,7 @@ def _union_length(spans: list[tuple[float, float]]) -> float:
 
 
 def joint_part_counts(design: Design, joints: list, local: dict[int, int], frames: list,
-                      sizes: np.ndarray, hung: Collection[str] = ()) -> np.ndarray:
+                      sizes: np.ndarray, hung: dict | None = None) -> np.ndarray:
     """(nJ,) into how many parts each joint's nail row is cut (``beams.nail_row_parts``):
     the most of its two planks' ``L |y . e1| / part`` (its reach along that plank's beam,
     e1, over part = the least of JOINT_PART_LENGTH and JOINT_PART_SHARE of that beam's
@@ -421,7 +442,8 @@ def joint_part_counts(design: Design, joints: list, local: dict[int, int], frame
     JOINT_PART_EDGE_NARROW if it is an upright edge plank (the row's moment about its
     line acts across its face: a coffee table's end panel under the top; a rail on edge
     under a shelf is held along it), unless that plank is one of ``hung``
-    (``hung_planks``: this row alone holds it) and hangs on it as a plate, whose check
+    (``hung_planks``: this row alone holds it, but for its leaves) and hangs on it as a
+    plate, whose check
     reads its bending across its width (``plate_supports.hung_plate_segments``).
     ``sizes`` (nP, 2): each local plank's beam length and section width.  Reaches and
     widths are compared with PART_ROUNDING to spare, so that a joint exactly on a half
@@ -454,7 +476,7 @@ def joint_part_counts(design: Design, joints: list, local: dict[int, int], frame
 
         for j, joint in enumerate(joints):
             for s, plank in enumerate(owners[2 * j:2 * j + 2]):
-                if plank.id in hung:
+                if plank.id in hung and hung[plank.id][0] == j:
                     crosswise = abs(float(axes[j, s, :, 0] @ plank.rotation_matrix[:, 1])) > 0.5
                     alone[j, s] = hung_plate_segments(design, plank, joint,
                                                       crosswise) is not None
@@ -561,7 +583,8 @@ def build_elastic_model(design: Design, geometry: Geometry,
         design, joint_list, local, frames,
         np.array([beam_length_width(p, c) for p, c in zip(plank_list, crosswise)],
                  dtype=float).reshape(-1, 2),
-        hung_planks(joint_list, [geometry.contacts[c] for c in contacts])) \
+        hung_planks(joint_list, [geometry.contacts[c] for c in contacts],
+                    loaded_planks(design))) \
         if template is None else template.plank_cache["joint_part_counts"]
     spring_points, arms = part_points(joint_list, part_counts)
     spring_joint = np.repeat(np.arange(len(joints)), part_counts)

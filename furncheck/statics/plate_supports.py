@@ -33,7 +33,7 @@ def held_planks(model, only: set[int] | None = None):
     rails nailed along it (``_support_segments``); and those that one joint alone holds,
     hung on its line (``_hangs_along``), no stiffeners.  ``only``: of these local planks
     alone."""
-    from furncheck.statics.elastic import _joint_lines, hung_planks
+    from furncheck.statics.elastic import _joint_lines, hung_planks, loaded_planks
 
     design, geometry = model.design, model.geometry
     grounded = {contact.plank for contact in geometry.contacts if contact.on_floor}
@@ -58,14 +58,17 @@ def held_planks(model, only: set[int] | None = None):
         lines = held.get(plank.id)
         if not lines:
             continue
+        if hung is None:
+            hung = hung_planks([geometry.joints[j] for j in model.joints],
+                               [geometry.contacts[c] for c in model.contacts],
+                               loaded_planks(design))
+        if plank.id in hung:
+            hanging = _hanging(model, plank, hung[plank.id], lines, joints_of[plank.id],
+                               bool(model.beams.crosswise[k]))
+            if hanging is not None:
+                yield (k, plank, *hanging)
+                continue
         if len(lines) == 1:
-            if hung is None:
-                hung = hung_planks([geometry.joints[j] for j in model.joints],
-                                   [geometry.contacts[c] for c in model.contacts])
-            segments = None if plank.id not in hung else hung_plate_segments(
-                design, plank, joints_of[plank.id][0], bool(model.beams.crosswise[k]))
-            if segments is not None:
-                yield k, plank, segments, []
             continue
         joints = joints_of[plank.id]
         if not _loaded_across(design, plank):
@@ -113,6 +116,34 @@ def _holds_beam(plank: Plank, segments, axis: int) -> bool:
                                  for seg in segments):
             return True
     return False
+
+
+def _hanging(model, plank: Plank, hung: tuple, lines, joints, crosswise: bool):
+    """(support segments, stiffeners) of a plank that one joint alone holds, but for its
+    leaves (``hung``: that joint's row in ``model.joints`` and its leaves' rows; ``lines``
+    and ``joints``: its joint lines and joints, in that order), where it hangs on that
+    joint as a plate (``hung_plate_segments``): its leaves' rows are stiffeners (a lip
+    bends with the plate along its line, ``_bending_across``), and their weights loads on
+    the plate, each at its row's middle (``plates.attach``).  None where it does not."""
+    from furncheck.statics.plates import attach
+
+    design, geometry = model.design, model.geometry
+    holding = geometry.joints[model.joints[hung[0]]]
+    segments = hung_plate_segments(design, plank, holding, crosswise)
+    if segments is None:
+        return None
+    leaves = [(line, joint) for line, joint in zip(lines, joints, strict=True)
+              if joint is not holding]
+    stiffeners = _support_segments(design, plank, [line for line, _ in leaves],
+                                   [joint for _, joint in leaves],
+                                   lambda partner, joint: False)[1] if leaves else []
+    weights = []
+    for _, joint in leaves:
+        leaf = design.plank(next(p for p in joint.planks if p != plank.id))
+        weights.append((tuple(joint.point.tolist()),
+                        (0.0, 0.0, -design.plank_mass(leaf) * tol.GRAVITY)))
+    attach(design, plank.id, tuple(weights))
+    return segments, stiffeners
 
 
 def hung_plate_segments(design: Design, plank: Plank, joint, crosswise: bool) -> list | None:

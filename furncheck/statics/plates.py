@@ -58,7 +58,7 @@ from typing import NamedTuple
 import numpy as np
 
 from furncheck import tolerances as tol
-from furncheck.design.model import Design, LoadCase, Plank
+from furncheck.design.model import Design, Load, LoadCase, Plank
 from furncheck.statics.plate_mesh import PlateGrid, plate_grid, plate_solutions, sag_span
 from furncheck.statics.plate_supports import force_across, held_planks
 
@@ -282,6 +282,30 @@ the supports leave the plate free (``_solved``: every reading of a plate), the m
 recently asked last."""
 
 
+_ATTACHED: OrderedDict = OrderedDict()
+"""(id(design), plank id) -> (a weak reference to the design, ((point, force), ...)): the
+weights of the leaves of a plank hung on one row (``plate_supports._hanging``), which its
+plate carries at their rows' middles (``_case_loads``), the most recently attached last
+(PLATE_DESIGNS of them); an entry whose design is gone, its id another's, is none."""
+
+
+def attach(design: Design, plank_id: str, weights: tuple) -> None:
+    """Record ``weights`` ((point, force) per leaf, m and N) as the loads that the planks
+    hanging on ``plank_id`` alone put on its plate (``_ATTACHED``); a plank found hung
+    again (a stepped design's, another case's) records the same."""
+    key = (id(design), plank_id)
+    _ATTACHED[key] = (weakref.ref(design), weights)
+    _ATTACHED.move_to_end(key)
+    while len(_ATTACHED) > tol.PLATE_DESIGNS:
+        _ATTACHED.popitem(last=False)
+
+
+def _attached(design: Design, plank_id: str) -> tuple:
+    """The weights ``attach`` recorded for the plank of ``design`` (none where none were)."""
+    entry = _ATTACHED.get((id(design), plank_id))
+    return entry[1] if entry is not None and entry[0]() is design else ()
+
+
 def _load_key(loads: tuple) -> tuple:
     """A plate's loads (``_case_loads``: pressure, [(patch, N)]) as a key."""
     uniform, points = loads
@@ -399,14 +423,17 @@ def _plank_loads(design: Design, plank: Plank, cases: list[LoadCase]) -> list:
 def _case_loads(design: Design, loads, plank: Plank) -> tuple[float, list]:
     """(Pa, [(patch, N)]): the pressure across the plank's face of its weight and the
     spread ones of ``loads`` (a case's loads on it), and each of its point loads, its
-    force across the face and its patch (``_patch``); along the face normal, positive.
+    force across the face and its patch (``_patch``), the weights of its leaves first
+    (``attach``: the planks that hang on a hung plank alone, a lip); along the face
+    normal, positive.
     A force across the face of PLATE_SLANT of itself or less is along the face
     (``plate_supports.force_across``): its patch makes no grid lines
     (``_load_patches``)."""
     normal = np.asarray(plank.axes[2])
     area = plank.length * plank.width
     uniform = -design.plank_mass(plank) * tol.GRAVITY * normal[2] / area
-    points = []
+    points = [(_patch(plank, Load(plank.id, force, point)), force_across(force, normal))
+              for point, force in _attached(design, plank.id)]
     for load in loads:
         across = force_across(load.force, normal)
         if load.spread:
@@ -445,19 +472,23 @@ def whole_rows_hung(model) -> frozenset[int]:
     panel under a board, or it has too few nails to cut: ``elastic.joint_part_counts``):
     their beam, held at the row's middle alone, reads overhangs along its length that
     the plank, hung along the whole row, does not have, so the plate's sag, span and
-    stress are the plank's (the plate holds every load on it: nothing else is nailed
-    to it or rests on it).  Kept in ``model.plank_cache``."""
+    stress are the plank's (the plate holds every load on it: nothing rests on it, and
+    what is nailed to it alone, its leaves, weighs on the plate, ``attach``).  Kept in
+    ``model.plank_cache``."""
     cached = model.plank_cache.get("whole_rows_hung")
     if cached is None:
+        from furncheck.statics.elastic import hung_planks, loaded_planks
+
         counts = model.plank_cache.get("joint_part_counts")
         geometry = model.geometry
+        hung = hung_planks([geometry.joints[j] for j in model.joints],
+                           [geometry.contacts[c] for c in model.contacts],
+                           loaded_planks(model.design))
         found = set()
         for plate in plate_planks(model):
-            if plate.grid.hinge is None or counts is None:
+            if plate.grid.hinge is None or counts is None or plate.plank.id not in hung:
                 continue
-            row = next(r for r, j in enumerate(model.joints)
-                       if plate.plank.id in geometry.joints[j].planks)
-            if int(counts[row]) == 1:
+            if int(counts[hung[plate.plank.id][0]]) == 1:
                 found.add(plate.local)
         cached = model.plank_cache["whole_rows_hung"] = frozenset(found)
     return cached
