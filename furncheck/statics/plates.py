@@ -282,28 +282,32 @@ the supports leave the plate free (``_solved``: every reading of a plate), the m
 recently asked last."""
 
 
-_ATTACHED: OrderedDict = OrderedDict()
-"""(id(design), plank id) -> (a weak reference to the design, ((point, force), ...)): the
-weights of the leaves of a plank hung on one row (``plate_supports._hanging``), which its
-plate carries at their rows' middles (``_case_loads``), the most recently attached last
-(PLATE_DESIGNS of them); an entry whose design is gone, its id another's, is none."""
+_ATTACHED: dict = {}
+"""id(design) -> (a weak reference to the design, {plank id: ((point, force), ...)}): the
+weights of the leaves of each plank hung on one row (``plate_supports._hanging``), which
+its plate carries at their rows' middles (``_case_loads``).  An entry lives as long as
+its design (the reference's callback removes it), so that a design's plates read the same
+whatever was read in between; an id freed and reused starts anew."""
 
 
 def attach(design: Design, plank_id: str, weights: tuple) -> None:
     """Record ``weights`` ((point, force) per leaf, m and N) as the loads that the planks
     hanging on ``plank_id`` alone put on its plate (``_ATTACHED``); a plank found hung
     again (a stepped design's, another case's) records the same."""
-    key = (id(design), plank_id)
-    _ATTACHED[key] = (weakref.ref(design), weights)
-    _ATTACHED.move_to_end(key)
-    while len(_ATTACHED) > tol.PLATE_DESIGNS:
-        _ATTACHED.popitem(last=False)
+    key = id(design)
+    entry = _ATTACHED.get(key)
+    if entry is None or entry[0]() is not design:
+        def gone(ref, key=key):
+            if key in _ATTACHED and _ATTACHED[key][0] is ref:
+                del _ATTACHED[key]
+        entry = _ATTACHED[key] = (weakref.ref(design, gone), {})
+    entry[1][plank_id] = weights
 
 
 def _attached(design: Design, plank_id: str) -> tuple:
     """The weights ``attach`` recorded for the plank of ``design`` (none where none were)."""
-    entry = _ATTACHED.get((id(design), plank_id))
-    return entry[1] if entry is not None and entry[0]() is design else ()
+    entry = _ATTACHED.get(id(design))
+    return entry[1].get(plank_id, ()) if entry is not None and entry[0]() is design else ()
 
 
 def _load_key(loads: tuple) -> tuple:
