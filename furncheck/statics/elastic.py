@@ -280,6 +280,19 @@ def hung_planks(joints: list, contacts: list,
     return found
 
 
+def model_hung_planks(model: StaticsModel) -> dict[str, tuple[int, tuple[int, ...]]]:
+    """``hung_planks`` of an elastic model (its joints, its contacts, its design's loaded
+    planks: indices into ``model.joints``), found once and kept in ``model.plank_cache``
+    (``build_elastic_model`` keeps the ones it cut the rows by)."""
+    cached = model.plank_cache.get("hung_planks")
+    if cached is None:
+        geometry = model.geometry
+        cached = model.plank_cache["hung_planks"] = hung_planks(
+            [geometry.joints[j] for j in model.joints],
+            [geometry.contacts[c] for c in model.contacts], loaded_planks(model.design))
+    return cached
+
+
 def loaded_planks(design: Design) -> set[str]:
     """The ids of the planks that some load case loads."""
     return {load.plank for case in design.load_cases for load in case.loads}
@@ -579,12 +592,12 @@ def build_elastic_model(design: Design, geometry: Geometry,
                        for p, c in zip(plank_list, crosswise)])
 
     joint_list = [geometry.joints[j] for j in joints]
+    hung = None if template is not None else hung_planks(
+        joint_list, [geometry.contacts[c] for c in contacts], loaded_planks(design))
     part_counts = joint_part_counts(
         design, joint_list, local, frames,
         np.array([beam_length_width(p, c) for p, c in zip(plank_list, crosswise)],
-                 dtype=float).reshape(-1, 2),
-        hung_planks(joint_list, [geometry.contacts[c] for c in contacts],
-                    loaded_planks(design))) \
+                 dtype=float).reshape(-1, 2), hung) \
         if template is None else template.plank_cache["joint_part_counts"]
     spring_points, arms = part_points(joint_list, part_counts)
     spring_joint = np.repeat(np.arange(len(joints)), part_counts)
@@ -696,6 +709,8 @@ def build_elastic_model(design: Design, geometry: Geometry,
     model.plank_cache["node_layout"] = layout
     model.plank_cache["support_stations"] = stations
     model.plank_cache["joint_part_counts"] = part_counts
+    if hung is not None:            # the plate check asks again (``model_hung_planks``)
+        model.plank_cache["hung_planks"] = hung
     model.plank_cache["weights_per_length"] = weights
     if joint_lines is not None:     # the plate check asks again (``plate_supports.held_planks``)
         model.plank_cache["joint_lines"] = joint_lines

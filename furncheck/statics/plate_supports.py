@@ -33,7 +33,7 @@ def held_planks(model, only: set[int] | None = None):
     rails nailed along it (``_support_segments``); and those that one joint alone holds,
     hung on its line (``_hangs_along``), no stiffeners.  ``only``: of these local planks
     alone."""
-    from furncheck.statics.elastic import _joint_lines, hung_planks, loaded_planks
+    from furncheck.statics.elastic import _joint_lines, model_hung_planks
 
     design, geometry = model.design, model.geometry
     grounded = {contact.plank for contact in geometry.contacts if contact.on_floor}
@@ -59,9 +59,7 @@ def held_planks(model, only: set[int] | None = None):
         if not lines:
             continue
         if hung is None:
-            hung = hung_planks([geometry.joints[j] for j in model.joints],
-                               [geometry.contacts[c] for c in model.contacts],
-                               loaded_planks(design))
+            hung = model_hung_planks(model)
         if plank.id in hung:
             hanging = _hanging(model, plank, hung[plank.id], lines, joints_of[plank.id],
                                bool(model.beams.crosswise[k]))

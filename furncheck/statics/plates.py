@@ -481,13 +481,10 @@ def whole_rows_hung(model) -> frozenset[int]:
     ``model.plank_cache``."""
     cached = model.plank_cache.get("whole_rows_hung")
     if cached is None:
-        from furncheck.statics.elastic import hung_planks, loaded_planks
+        from furncheck.statics.elastic import model_hung_planks
 
         counts = model.plank_cache.get("joint_part_counts")
-        geometry = model.geometry
-        hung = hung_planks([geometry.joints[j] for j in model.joints],
-                           [geometry.contacts[c] for c in model.contacts],
-                           loaded_planks(model.design))
+        hung = model_hung_planks(model)
         found = set()
         for plate in plate_planks(model):
             if plate.grid.hinge is None or counts is None or plate.plank.id not in hung:
